@@ -1,0 +1,94 @@
+// microrelief-render: the headless screenshot program. Thin wiring: parse, load the
+// map, render in an offscreen framebuffer, write the picture and the AOV atomically.
+// On failure: one line on stderr and exit status 2 (bad arguments or input) or 1.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "Options.h"
+#include "core/DataPaths.h"
+#include "core/Error.h"
+#include "core/Log.h"
+#include "image/ImageFile.h"
+
+using namespace microrelief;
+
+namespace {
+
+constexpr const char* kProgram = "microrelief-render";
+
+int fail(int status, const std::string& message) {
+    std::cerr << kProgram << ": error: " << message << '\n';
+    return status;
+}
+
+// RGBA8 from the framebuffer -> RGB: the picture is opaque (background included).
+std::vector<std::uint8_t> dropAlpha(const std::vector<std::uint8_t>& rgba) {
+    std::vector<std::uint8_t> rgb(rgba.size() / 4 * 3);
+    for (std::size_t p = 0, q = 0; p < rgba.size(); p += 4, q += 3) {
+        rgb[q] = rgba[p];
+        rgb[q + 1] = rgba[p + 1];
+        rgb[q + 2] = rgba[p + 2];
+    }
+    return rgb;
+}
+
+int run(const RenderOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    checkImageExtension(o.out);
+    if (o.aov) {
+        if (o.aov->extension() != ".exr") throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
+        checkImageExtension(*o.aov);
+    }
+    const std::filesystem::path heightFile = o.heightFile ? *o.heightFile : defaultHeightMapPath();
+    const HeightMap map = loadHeightMap(heightFile, o.load);
+
+    const auto context = createHeadlessContext(o.backend);
+    if (o.verbose) logInfo("GL: " + context->renderer() + ", " + context->version() + " via " + context->description());
+    const RenderedFrame frame = renderHeadless(*context, map, heightFile.string(), o.job);
+
+    std::size_t exhausted = 0;
+    for (std::size_t p = 3; p < frame.stats.size(); p += 4) exhausted += frame.stats[p] > 0.0f;
+
+    ImageWriteBatch batch;
+    const std::vector<std::uint8_t> rgb = dropAlpha(frame.color);
+    batch.write(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
+    if (o.aov) {
+        batch.write(*o.aov, {frame.width, frame.height, 4, PixelType::Float, frame.position.data(), {"R", "G", "B", "A"}});
+    }
+    batch.commit();
+
+    if (exhausted > 0) {
+        logWarning(std::to_string(exhausted) + " pixel(s) ran out of the iteration budget (shown magenta)");
+    }
+    if (!o.quiet) {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::printf("%s: wrote %s%s%s (%dx%d, map %dx%d, %.2f s, %s)\n", kProgram, o.out.c_str(),
+                    o.aov ? " and " : "", o.aov ? o.aov->c_str() : "", frame.width, frame.height, map.width,
+                    map.height, seconds, context->description().c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    ParseResult parsed = parseRenderOptions(argc, argv);
+    if (!parsed.options) {
+        if (parsed.exitStatus != 0) return fail(parsed.exitStatus, parsed.message);
+        std::cout << parsed.message << '\n';
+        return 0;
+    }
+    const bool verbose = parsed.options->verbose;
+    setLogSink([verbose](LogLevel level, const std::string& message) {
+        if (level == LogLevel::Info && !verbose) return;
+        std::cerr << kProgram << ": " << (level == LogLevel::Warning ? "warning: " : "") << message << '\n';
+    });
+    try {
+        return run(*parsed.options);
+    } catch (const Error& e) {
+        return fail(e.exitStatus(), e.what());
+    } catch (const std::exception& e) {
+        return fail(1, e.what());
+    }
+}

@@ -1,0 +1,71 @@
+// bilinear_patch.glsl: the exact surface, h(X, Y), the bilinear interpolation of the
+// samples with CLAMP_TO_EDGE (scene-and-cli.md), interpolated in float in the shader
+// because hardware filtering weights are low precision on some GPUs.
+//
+// `heights` is the W x H sample texture, read with texelFetch. Cell (i, j) is the patch
+// between the sample centres (i + 0.5, j + 0.5) and (i + 1.5, j + 1.5); cells -1 and
+// W - 1 (H - 1) are the clamped half-texel borders, flat across the edge.
+#ifndef MICRORELIEF_BILINEAR_PATCH_GLSL
+#define MICRORELIEF_BILINEAR_PATCH_GLSL
+
+#include "relief_map.glsl"
+
+// The four corner samples of cell `cell`: x = h00, y = h10, z = h01, w = h11.
+vec4 cellCorners(ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
+    ivec2 last = ivec2(map.size) - 1;
+    ivec2 c0 = clamp(cell, ivec2(0), last);
+    ivec2 c1 = clamp(cell + 1, ivec2(0), last);
+    fetches += 4;
+    return vec4(texelFetch(heights, c0, 0).r, texelFetch(heights, ivec2(c1.x, c0.y), 0).r,
+                texelFetch(heights, ivec2(c0.x, c1.y), 0).r, texelFetch(heights, c1, 0).r);
+}
+
+// The cell that holds map point `xy` (ties go to the cell on the positive side).
+ivec2 cellAt(vec2 xy) { return ivec2(floor(xy - 0.5)); }
+
+// Height of the patch with corners `h` at local coordinates f in [0, 1]^2.
+float patchHeight(vec4 h, vec2 f) {
+    return mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
+}
+
+// Gradient (dh/dX, dh/dY) of the patch at f.
+vec2 patchGradient(vec4 h, vec2 f) {
+    return vec2(mix(h.y - h.x, h.w - h.z, f.y), mix(h.z - h.x, h.w - h.y, f.x));
+}
+
+// h(X, Y): the surface height at a map point.
+float surfaceHeight(ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
+    ivec2 cell = cellAt(xy);
+    return patchHeight(cellCorners(map, heights, cell, fetches), xy - (vec2(cell) + 0.5));
+}
+
+// The first root tau in [0, tauMax] of patch(start.xy + tau dir.xy) = start.z + tau dir.z
+// for the patch with corners `h` whose origin (sample h00) is at `cellOrigin`, or -1.
+// Along a ray the patch height is quadratic in tau (the paper's "exact bilinear
+// interpolation at the last level"), so this is a quadratic, solved stably.
+float intersectPatch(vec4 h, vec2 cellOrigin, vec3 start, vec3 dir, float tauMax) {
+    vec2 f = start.xy - cellOrigin;
+    float b = h.y - h.x, c = h.z - h.x, d = h.x - h.y - h.z + h.w;
+    // f(tau) = A tau^2 + B tau + C = patch height - ray height
+    float C = h.x + b * f.x + c * f.y + d * f.x * f.y - start.z;
+    if (C <= 0.0) return 0.0;  // the piece starts on or below the surface
+    float B = b * dir.x + c * dir.y + d * (f.x * dir.y + f.y * dir.x) - dir.z;
+    float A = d * dir.x * dir.y;
+    float root = -1.0;
+    if (abs(A) * tauMax <= 1e-7 * abs(B)) {
+        // Linear within float precision over this piece.
+        if (B < 0.0) root = -C / B;
+    } else {
+        float disc = B * B - 4.0 * A * C;
+        if (disc >= 0.0) {
+            float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+            float r1 = q / A;
+            float r2 = q != 0.0 ? C / q : -1.0;
+            float lo = min(r1, r2), hi = max(r1, r2);
+            root = lo >= 0.0 ? lo : hi;
+        }
+    }
+    return (root >= 0.0 && root <= tauMax) ? root : -1.0;
+}
+
+#endif

@@ -1,0 +1,194 @@
+// multilevel_trace.glsl: multilevel ray tracing of microrelief by binary subdivision of
+// the ray segment (Vyatkin & Romaniuk, section III, eq. 5-8, fig. 5-6).
+//
+// Inputs, all in map space (map_space.glsl): the ray origin and direction, the max
+// pyramid (max_pyramid.glsl) and the samples (bilinear_patch.glsl). Output: the first
+// point t >= 0 of the ray inside the solid 0 <= h <= h(X, Y) over the map rectangle,
+// on the top surface, a side wall or the bottom face.
+//
+// The segment inside the relief's bounding box is the root voxel V0 = {Pn, Pf}. Each
+// step takes a segment, chooses the level of detail from its (X, Y) footprint, reads
+// the max of every pyramid texel the footprint touches, and discards the segment when
+// its lowest point lies above that max (it cannot hold a hit). Otherwise it is split,
+// near half first (eq. 8: Pn_i = Pn_i-1, Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the
+// footprint is at most one texel wide; there the ray is solved exactly against the
+// bilinear patches it crosses.
+//
+// GLSL has no recursion. A segment is named by its depth d and index k along the
+// root (t range [k, k+1] / 2^d of the root's), and the in-order walk needs no stack:
+// after a segment is done, climb while it is a far half, then step to the sibling.
+#ifndef MICRORELIEF_MULTILEVEL_TRACE_GLSL
+#define MICRORELIEF_MULTILEVEL_TRACE_GLSL
+
+#include "bilinear_patch.glsl"
+#include "map_space.glsl"
+#include "max_pyramid.glsl"
+#include "relief_map.glsl"
+
+// Deeper than any footprint needs (2^24 texels); segment ends stay exact in float.
+#ifndef MICRORELIEF_MAX_DEPTH
+#define MICRORELIEF_MAX_DEPTH 24
+#endif
+
+const int RELIEF_MISS = 0;
+const int RELIEF_TOP = 1;     // the bilinear top surface
+const int RELIEF_WALL_X = 2;  // a side wall X = 0 or X = W
+const int RELIEF_WALL_Y = 3;  // a side wall Y = 0 or Y = H
+const int RELIEF_BOTTOM = 4;  // the bottom face h = 0
+
+struct ReliefHit {
+    int kind;         // RELIEF_MISS, RELIEF_TOP, ...
+    float t;          // ray parameter of the hit (the same in world and map space)
+    vec3 position;    // map-space hit point
+    vec3 normal;      // map-space unit normal for walls and bottom; for the top
+                      // surface (-dh/dX, -dh/dY, 1) unnormalised: use surfaceNormal
+    int iterations;   // segments visited
+    int fetches;      // texels read (pyramid and samples)
+    int stopLevel;    // pyramid level of the last segment examined
+    bool exhausted;   // the iteration budget ran out: the result is not trustworthy
+};
+
+// Ray against the box [0, W] x [0, H] x [0, maxHeight]: the parameter interval inside
+// it, and which slab the entry crossed (0: X, 1: Y, 2: h). Empty when x > y.
+vec2 clipToReliefBox(ReliefMap map, vec3 origin, vec3 dir, out int entryAxis) {
+    vec3 lo = vec3(0.0), hi = vec3(map.size, map.maxHeight);
+    float tEnter = -1e30, tExit = 1e30;
+    entryAxis = -1;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (dir[axis] == 0.0) {
+            if (origin[axis] < lo[axis] || origin[axis] > hi[axis]) return vec2(1.0, 0.0);
+            continue;
+        }
+        float t0 = (lo[axis] - origin[axis]) / dir[axis];
+        float t1 = (hi[axis] - origin[axis]) / dir[axis];
+        if (t0 > t1) { float s = t0; t0 = t1; t1 = s; }
+        if (t0 > tEnter) { tEnter = t0; entryAxis = axis; }
+        tExit = min(tExit, t1);
+    }
+    return vec2(tEnter, tExit);
+}
+
+// Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
+// at most one texel wide: it crosses at most one cell boundary in X and one in Y, so it
+// is cut into at most three pieces, each within one patch, solved in ray order.
+float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+                    inout int fetches, out vec4 corners, out ivec2 cell) {
+    vec3 pa = origin + ta * dir, pb = origin + tb * dir;
+    float cuts[2];
+    for (int axis = 0; axis < 2; ++axis) {
+        cuts[axis] = tb;
+        float ca = floor(pa[axis] - 0.5), cb = floor(pb[axis] - 0.5);
+        if (ca != cb && dir[axis] != 0.0) {
+            float boundary = max(ca, cb) + 0.5;  // the one cell boundary between them
+            cuts[axis] = clamp((boundary - origin[axis]) / dir[axis], ta, tb);
+        }
+    }
+    float bounds[4];
+    bounds[0] = ta;
+    bounds[1] = min(cuts[0], cuts[1]);
+    bounds[2] = max(cuts[0], cuts[1]);
+    bounds[3] = tb;
+    for (int piece = 0; piece < 3; ++piece) {
+        float t0 = bounds[piece], t1 = bounds[piece + 1];
+        if (t1 <= t0 && piece != 0) continue;
+        vec3 start = origin + t0 * dir;
+        cell = cellAt((origin + (0.5 * (t0 + t1)) * dir).xy);
+        corners = cellCorners(map, heights, cell, fetches);
+        float tau = intersectPatch(corners, vec2(cell) + 0.5, start, dir, max(t1 - t0, 0.0));
+        if (tau >= 0.0) return t0 + tau;
+    }
+    return -1.0;
+}
+
+// The world-space unit normal of a hit.
+vec3 reliefWorldNormal(ReliefMap map, ReliefHit hit) {
+    if (hit.kind == RELIEF_TOP) return mapGradientToWorldNormal(map, -hit.normal.xy);
+    return vec3(hit.normal.x, hit.normal.z, hit.normal.y);  // map (X, Y, h) -> world (x, z, y)
+}
+
+ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
+    ReliefHit hit;
+    hit.kind = RELIEF_MISS;
+    hit.t = -1.0;
+    hit.position = vec3(0.0);
+    hit.normal = vec3(0.0, 0.0, 1.0);
+    hit.iterations = 0;
+    hit.fetches = 0;
+    hit.stopLevel = -1;
+    hit.exhausted = false;
+
+    int entryAxis;
+    vec2 range = clipToReliefBox(map, origin, dir, entryAxis);
+    float tNear = max(range.x, 0.0), tFar = range.y;
+    if (tNear > tFar) return hit;
+
+    // Entering from outside through a side wall or the bottom face at a point below
+    // the surface: the solid is hit right there. (Entering through the top face is a
+    // top-surface question for the traversal; from inside the box the eye is above the
+    // surface, by the spec.)
+    vec3 entry = origin + tNear * dir;
+    bool throughTop = entryAxis == 2 && dir.z < 0.0;
+    if (range.x >= 0.0 && entryAxis >= 0 && !throughTop &&
+        entry.z <= surfaceHeight(map, heights, entry.xy, hit.fetches)) {
+        hit.kind = entryAxis == 0 ? RELIEF_WALL_X : entryAxis == 1 ? RELIEF_WALL_Y : RELIEF_BOTTOM;
+        hit.t = tNear;
+        hit.position = entry;
+        hit.normal = vec3(0.0);
+        hit.normal[entryAxis] = dir[entryAxis] > 0.0 ? -1.0 : 1.0;
+        hit.stopLevel = 0;
+        return hit;
+    }
+
+    // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
+    // float conversions and the power-of-two scale are exact, so neighbouring segments
+    // share their end parameter bit for bit and no gap can open between them.
+    float span = tFar - tNear;
+    const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
+    int depth = 0;
+    uint index = 0u;
+    for (int iteration = 1; iteration <= map.maxIterations; ++iteration) {
+        hit.iterations = iteration;
+        int shift = MICRORELIEF_MAX_DEPTH - depth;
+        float ta = tNear + span * (float(index << shift) * kUnit);
+        float tb = tNear + span * (float((index + 1u) << shift) * kUnit);
+        vec3 pa = origin + ta * dir, pb = origin + tb * dir;
+        vec2 lo = min(pa.xy, pb.xy), hi = max(pa.xy, pb.xy);
+        float extent = max(hi.x - lo.x, hi.y - lo.y);
+        int level = footprintLevel(map, extent);
+        hit.stopLevel = level;
+        bool mayHit = min(pa.z, pb.z) <= footprintMax(map, pyramid, lo, hi, level, hit.fetches);
+        if (mayHit) {
+            if (extent <= 1.0 || depth >= MICRORELIEF_MAX_DEPTH) {
+                vec4 corners;
+                ivec2 cell;
+                float t = intersectLeaf(map, heights, origin, dir, ta, tb, hit.fetches, corners, cell);
+                if (t >= 0.0) {
+                    hit.kind = RELIEF_TOP;
+                    hit.t = t;
+                    hit.position = origin + t * dir;
+                    vec2 g = patchGradient(corners, clamp(hit.position.xy - (vec2(cell) + 0.5), 0.0, 1.0));
+                    // Clamped border cells are flat across the edge.
+                    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
+                    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
+                    hit.normal = vec3(-g, 1.0);
+                    return hit;
+                }
+            } else {
+                depth += 1;  // descend into the near half
+                index *= 2u;
+                continue;
+            }
+        }
+        // Done with this segment: climb while it is a far half, then take the sibling.
+        while (depth > 0 && (index & 1u) == 1u) {
+            index >>= 1;
+            depth -= 1;
+        }
+        if (depth == 0) return hit;  // the whole root segment is done: a miss
+        index += 1u;
+    }
+    hit.exhausted = true;
+    return hit;
+}
+
+#endif

@@ -1,0 +1,35 @@
+// Errors a user can cause: one exception type across the library, carrying the
+// category that decides the program's exit status (the spec: 2 for bad arguments or
+// bad input, 1 for anything else). Programming errors are assertions, not Errors.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace microrelief {
+
+enum class ErrorKind {
+    BadInput,  // a file or argument the user gave is wrong: exit status 2
+    Runtime,   // the environment failed us (no GL backend, disk full): exit status 1
+};
+
+class Error : public std::runtime_error {
+public:
+    Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+
+    ErrorKind kind() const { return kind_; }
+    int exitStatus() const { return kind_ == ErrorKind::BadInput ? 2 : 1; }
+
+private:
+    ErrorKind kind_;
+};
+
+[[noreturn]] inline void throwBadInput(const std::string& message) {
+    throw Error(ErrorKind::BadInput, message);
+}
+
+[[noreturn]] inline void throwRuntime(const std::string& message) {
+    throw Error(ErrorKind::Runtime, message);
+}
+
+}  // namespace microrelief

@@ -1,0 +1,99 @@
+#include "gl/ShaderSource.h"
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "core/Error.h"
+
+namespace microrelief {
+
+namespace {
+
+constexpr int kMaxIncludeDepth = 32;
+
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throwRuntime(file.string() + ": cannot open shader source");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+class Assembler {
+public:
+    explicit Assembler(ShaderSource& out) : out_(out) {}
+
+    void splice(const std::filesystem::path& file, int depth) {
+        if (depth > kMaxIncludeDepth) throwRuntime(file.string() + ": #include nested too deeply (a cycle?)");
+        const int index = static_cast<int>(out_.files.size());
+        out_.files.push_back(file);
+        std::istringstream lines(readText(file));
+        static const std::regex include(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+        std::string line;
+        int number = 0;
+        lineMarker(1, index);
+        while (std::getline(lines, line)) {
+            ++number;
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            std::smatch match;
+            if (std::regex_match(line, match, include)) {
+                const std::filesystem::path target = file.parent_path() / match[1].str();
+                std::error_code ec;
+                if (!std::filesystem::exists(target, ec)) {
+                    throwRuntime(file.string() + ":" + std::to_string(number) + ": #include \"" + match[1].str() +
+                                 "\" not found");
+                }
+                splice(target.lexically_normal(), depth + 1);
+                lineMarker(number + 1, index);
+                continue;
+            }
+            out_.text += line;
+            out_.text += '\n';
+        }
+    }
+
+private:
+    // `#line L S` numbers the line after it L in source string S.
+    void lineMarker(int line, int index) {
+        out_.text += "#line " + std::to_string(line) + " " + std::to_string(index) + "\n";
+    }
+
+    ShaderSource& out_;
+};
+
+}  // namespace
+
+ShaderSource assembleShader(const std::filesystem::path& file, const std::string& version,
+                            const std::vector<ShaderDefine>& defines) {
+    ShaderSource source;
+    source.version = version;
+    source.text = "#version " + version + "\n";
+    for (const ShaderDefine& d : defines) source.text += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
+    Assembler(source).splice(file.lexically_normal(), 0);
+    return source;
+}
+
+std::string mapCompilerLog(const std::string& log, const std::vector<std::filesystem::path>& files) {
+    // Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error ..."; glslang: "ERROR: 0:12: ...".
+    static const std::regex location(R"((\d+)(?::(\d+)\((\d+)\)|\((\d+)\)|:(\d+)))");
+    std::string out;
+    std::istringstream lines(log);
+    std::string line;
+    while (std::getline(lines, line)) {
+        std::smatch m;
+        if (std::regex_search(line, m, location)) {
+            const std::size_t index = std::stoul(m[1].str());
+            if (index < files.size()) {
+                const std::string lineNo = m[2].matched ? m[2].str() : m[4].matched ? m[4].str() : m[5].str();
+                std::string where = files[index].string() + ":" + lineNo;
+                if (m[3].matched) where += ":" + m[3].str();
+                line = m.prefix().str() + where + m.suffix().str();
+            }
+        }
+        out += line + '\n';
+    }
+    return out;
+}
+
+}  // namespace microrelief

@@ -1,0 +1,35 @@
+// GLSL sources assembled on the host (Magnum GL/Shader.cpp style): the host prepends
+// `#version` and feature `#define`s, splices relative `#include "..."` files in place,
+// and marks every splice with `#line <line> <file index>` so that a compiler message
+// can be mapped back to the real file and line with mapCompilerLog().
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace microrelief {
+
+struct ShaderSource {
+    std::string text;                          // ready for glShaderSource
+    std::vector<std::filesystem::path> files;  // source-string number -> file
+    std::string version;                       // e.g. "330 core", "300 es"
+};
+
+struct ShaderDefine {
+    std::string name;
+    std::string value;  // may be empty: `#define NAME`
+};
+
+// Reads `file`, resolving each `#include "relative/path"` against the including file's
+// folder (each file spliced once per include; the files' own include guards make
+// repeats empty). Throws Error(Runtime) naming the file for a missing include or an
+// include cycle.
+ShaderSource assembleShader(const std::filesystem::path& file, const std::string& version,
+                            const std::vector<ShaderDefine>& defines = {});
+
+// Rewrites the "<index>:<line>(<col>)" (Mesa) and "<index>(<line>)" (NVIDIA, glslang
+// "ERROR: <index>:<line>:") prefixes of a compiler log into "<file>:<line>".
+std::string mapCompilerLog(const std::string& log, const std::vector<std::filesystem::path>& files);
+
+}  // namespace microrelief

@@ -1,0 +1,53 @@
+// A height map: W x H samples h(i, j) >= 0, row-major with row 0 the first row of the
+// image file (v = 0). Sample (i, j) sits at the texel centre u = (i + 0.5) / W,
+// v = (j + 0.5) / H; between centres the surface is the bilinear interpolation of the
+// samples, clamped to the edge outside them (scene-and-cli.md, "Height map to surface").
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace microrelief {
+
+struct HeightMap {
+    int width = 0;
+    int height = 0;
+    std::vector<float> samples;  // width * height values, row-major
+
+    HeightMap() = default;
+    HeightMap(int w, int h, float fill = 0.0f)
+        : width(w), height(h), samples(static_cast<std::size_t>(w) * h, fill) {}
+
+    bool empty() const { return samples.empty(); }
+
+    float& at(int i, int j) { return samples[static_cast<std::size_t>(j) * width + i]; }
+    float at(int i, int j) const { return samples[static_cast<std::size_t>(j) * width + i]; }
+
+    // The sample with its indices clamped to the map: the CLAMP_TO_EDGE rule.
+    float clamped(int i, int j) const;
+
+    // h(X, Y) in texel space (X = u W, Y = v H): the bilinear surface of the spec.
+    double surface(double x, double y) const;
+
+    float maxValue() const;
+    float minValue() const;
+};
+
+struct HeightMapLoadOptions {
+    int channel = 0;         // --channel: which image channel holds the heights
+    bool normalize = false;  // --normalize: map [min, max] to [0, 1]
+};
+
+// Reads any image OpenImageIO can read. Integer formats become [0, 1] by their type
+// range, float formats stay as stored. Throws Error(BadInput) naming the file and the
+// reason for a missing, unreadable or empty file, a missing channel, or values that
+// are not finite and >= 0 (suggesting --normalize where that would help).
+HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOptions& options = {});
+
+// The checks and normalisation loadHeightMap applies after reading; `source` names the
+// map in messages. Exposed for maps built in memory.
+void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const std::string& source);
+
+}  // namespace microrelief

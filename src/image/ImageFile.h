@@ -1,0 +1,51 @@
+// Writing pictures and AOVs through OpenImageIO, whole or not at all: each file is
+// written to a temporary file in its target's folder and renamed over the target only
+// when every file of the job has been written (scene-and-cli.md, "Outputs").
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace microrelief {
+
+enum class PixelType { UInt8, UInt16, Float };
+
+// A view of interleaved pixels, row 0 at the top; the file gets this type where its
+// format can store it (OpenImageIO converts otherwise).
+struct ImageData {
+    int width = 0, height = 0, channels = 0;
+    PixelType type = PixelType::UInt8;
+    const void* pixels = nullptr;
+    std::vector<std::string> channelNames;  // empty: OpenImageIO's defaults (R, G, B, A)
+};
+
+// Throws Error(BadInput) if no OpenImageIO writer handles the path's extension.
+void checkImageExtension(const std::filesystem::path& file);
+
+// A set of files written together: write() stages each one beside its target, commit()
+// renames them all into place. Whatever was not committed is removed on destruction,
+// so a failed run leaves no new or changed file at any target.
+class ImageWriteBatch {
+public:
+    ImageWriteBatch() = default;
+    ImageWriteBatch(const ImageWriteBatch&) = delete;
+    ImageWriteBatch& operator=(const ImageWriteBatch&) = delete;
+    ~ImageWriteBatch();
+
+    // Creates the target's folder if needed. Throws Error(Runtime) naming the file.
+    void write(const std::filesystem::path& file, const ImageData& image);
+    void commit();
+
+private:
+    struct Staged {
+        std::filesystem::path target, temporary;
+    };
+    std::vector<Staged> staged_;
+};
+
+// One file, atomically.
+void writeImageAtomically(const std::filesystem::path& file, const ImageData& image);
+
+}  // namespace microrelief

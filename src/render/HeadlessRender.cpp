@@ -1,0 +1,36 @@
+#include "render/HeadlessRender.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/DataPaths.h"
+#include "core/Error.h"
+
+namespace microrelief {
+
+RenderedFrame renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
+                             const RenderJob& job) {
+    if (!(job.heightScale > 0.0f) || !std::isfinite(job.heightScale)) {
+        throwBadInput("--height-scale must be a positive number");
+    }
+    context.makeCurrent();
+    const GL& gl = context.gl();
+    // GL objects live in this scope and die before the context does.
+    ReliefRenderer renderer(gl, shaderDirectory());
+    renderer.setHeightScale(job.heightScale);
+    renderer.setHeightMap(map, source);
+    const ReliefExtent extent = reliefExtent(map, job.heightScale);
+    const double radius = std::max({extent.halfWidth, extent.halfDepth, extent.topHeight}) * 2.0;
+    const CameraFrame camera = resolveCamera(job.camera, job.width, job.height, radius);
+
+    OffscreenTarget target(gl, job.width, job.height);
+    target.clear(job.background);
+    renderer.draw(camera, job.shading);
+    gl.Finish();
+    RenderedFrame frame = target.read();
+    const GLenum error = gl.GetError();
+    if (error != GL_NO_ERROR) throwRuntime("GL error 0x" + std::to_string(error) + " while rendering " + source);
+    return frame;
+}
+
+}  // namespace microrelief

@@ -1,0 +1,166 @@
+#include "render/ReliefRenderer.h"
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/Error.h"
+#include "gl/ShaderProgram.h"
+
+namespace microrelief {
+
+ReliefExtent reliefExtent(const HeightMap& map, double heightScale) {
+    const double longer = std::max(map.width, map.height);
+    return {0.5 * map.width / longer, 0.5 * map.height / longer, heightScale * map.maxValue()};
+}
+
+ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir)
+    : gl_(gl), shaderDir_(shaderDir) {
+    reloadShaders();
+    pyramidTexture_ = gl::Texture::create(gl_);
+    sampleTexture_ = gl::Texture::create(gl_);
+    boxArray_ = gl::VertexArray::create(gl_);
+    boxVertices_ = gl::Buffer::create(gl_);
+    boxIndices_ = gl::Buffer::create(gl_);
+}
+
+void ReliefRenderer::reloadShaders() {
+    // GLSL 3.30 core: the oldest desktop version with explicit fragment output
+    // locations and textureLod/texelFetch everywhere.
+    const std::string version = "330 core";
+    const gl::Shader vertex =
+        gl::compileShader(gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
+    const gl::Shader fragment =
+        gl::compileShader(gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version));
+    program_ = gl::linkProgram(gl_, vertex, fragment, "relief");
+}
+
+namespace {
+
+void uploadLevel(const GL& gl, int level, int width, int height, const float* data) {
+    gl.TexImage2D(GL_TEXTURE_2D, level, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, data);
+}
+
+void setSamplerState(const GL& gl, GLint minFilter, int maxLevel) {
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, maxLevel);
+}
+
+}  // namespace
+
+void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source) {
+    GLint maxSize = 0;
+    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (map.width > maxSize || map.height > maxSize) {
+        throwBadInput(source + ": " + std::to_string(map.width) + "x" + std::to_string(map.height) +
+                      " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) + ")");
+    }
+    pyramid_.emplace(map);
+    const MaxPyramid& pyramid = *pyramid_;
+    mapWidth_ = map.width;
+    mapHeight_ = map.height;
+    maxHeight_ = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
+    // Budget: a ray visits at most about two segments per finest texel it crosses plus
+    // their ancestors; 8 (W + H) + 256 is several times that, so running out means a bug.
+    maxIterations_ = 8 * (map.width + map.height) + 256;
+
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());
+    for (int level = 0; level < pyramid.levelCount(); ++level) {
+        uploadLevel(gl_, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
+                    pyramid.levelData(level).data());
+    }
+    setSamplerState(gl_, GL_NEAREST_MIPMAP_NEAREST, pyramid.levelCount() - 1);
+
+    gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
+    uploadLevel(gl_, 0, map.width, map.height, map.samples.data());
+    setSamplerState(gl_, GL_NEAREST, 0);
+    gl_.BindTexture(GL_TEXTURE_2D, 0);
+    uploadBox();
+}
+
+void ReliefRenderer::setHeightScale(float scale) {
+    heightScale_ = scale;
+    if (pyramid_) uploadBox();
+}
+
+void ReliefRenderer::uploadBox() {
+    const double longer = std::max(mapWidth_, mapHeight_);
+    // A small margin keeps every pixel whose ray meets the exact box inside the
+    // rasterised proxy; the shader clips the ray to the exact box itself.
+    const float margin = 1e-3f;
+    const float ax = static_cast<float>(0.5 * mapWidth_ / longer) + margin;
+    const float az = static_cast<float>(0.5 * mapHeight_ / longer) + margin;
+    const float top = heightScale_ * maxHeight_ + margin;
+    const float bottom = -margin;
+    const std::array<float, 24> corners = {-ax, bottom, -az, ax, bottom, -az, ax, bottom, az, -ax, bottom, az,
+                                           -ax, top,    -az, ax, top,    -az, ax, top,    az, -ax, top,    az};
+    // Outward-facing counter-clockwise triangles, two per face.
+    const std::array<GLushort, 36> indices = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                                              1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0};
+    gl_.BindVertexArray(boxArray_.id());
+    gl_.BindBuffer(GL_ARRAY_BUFFER, boxVertices_.id());
+    gl_.BufferData(GL_ARRAY_BUFFER, sizeof(corners), corners.data(), GL_STATIC_DRAW);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, boxIndices_.id());
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(indices), indices.data(), GL_STATIC_DRAW);
+    gl_.EnableVertexAttribArray(0);
+    gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    gl_.BindVertexArray(0);
+}
+
+void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading) {
+    if (!pyramid_) return;
+    const GLuint p = program_.id();
+    gl_.UseProgram(p);
+    auto u = [&](const char* name) { return gl_.GetUniformLocation(p, name); };
+    const glm::vec3 eye(camera.eye), right(camera.right), up(camera.up), forward(camera.forward);
+    const glm::mat4 viewProjection(camera.viewProjection);
+
+    gl_.Uniform1i(u("maxPyramid"), 0);
+    gl_.Uniform1i(u("heightSamples"), 1);
+    gl_.Uniform2f(u("reliefSize"), static_cast<float>(mapWidth_), static_cast<float>(mapHeight_));
+    gl_.Uniform2i(u("pyramidSize"), pyramid_->levelWidth(0), pyramid_->levelHeight(0));
+    gl_.Uniform1i(u("pyramidLevels"), pyramid_->levelCount());
+    gl_.Uniform1f(u("reliefMaxHeight"), maxHeight_);
+    gl_.Uniform1f(u("heightScale"), heightScale_);
+    gl_.Uniform1i(u("maxIterations"), maxIterations_);
+    gl_.Uniform3fv(u("eye"), 1, glm::value_ptr(eye));
+    gl_.Uniform3fv(u("cameraRight"), 1, glm::value_ptr(right));
+    gl_.Uniform3fv(u("cameraUp"), 1, glm::value_ptr(up));
+    gl_.Uniform3fv(u("cameraForward"), 1, glm::value_ptr(forward));
+    gl_.Uniform2f(u("viewportSize"), static_cast<float>(camera.width), static_cast<float>(camera.height));
+    gl_.UniformMatrix4fv(u("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+    gl_.Uniform3fv(u("lightDirection"), 1, glm::value_ptr(glm::normalize(shading.lightDirection)));
+    gl_.Uniform3fv(u("albedo"), 1, glm::value_ptr(shading.albedo));
+
+    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());
+    gl_.ActiveTexture(GL_TEXTURE1);
+    gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
+
+    // Back faces only: exactly one fragment per pixel the box covers, also with the eye
+    // inside the box. Depth clamping keeps faces nearer than the near plane.
+    gl_.Enable(GL_CULL_FACE);
+    gl_.CullFace(GL_FRONT);
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(GL_LESS);
+    gl_.Enable(GL_DEPTH_CLAMP);
+    gl_.Viewport(0, 0, camera.width, camera.height);
+
+    gl_.BindVertexArray(boxArray_.id());
+    gl_.DrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, nullptr);
+    gl_.BindVertexArray(0);
+
+    gl_.Disable(GL_DEPTH_CLAMP);
+    gl_.Disable(GL_CULL_FACE);
+    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.UseProgram(0);
+}
+
+}  // namespace microrelief

@@ -1,0 +1,67 @@
+// Draws microrelief with the multilevel method: the base surface's bounding box is the
+// proxy geometry, and each of its fragments traces its own ray (shaders/relief.frag).
+// Owns the GL objects it needs; draws into whatever framebuffer is bound, which must
+// have the three colour outputs of relief.frag (see OffscreenTarget).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "gl/Objects.h"
+#include "heightmap/HeightMap.h"
+#include "heightmap/MaxPyramid.h"
+#include "render/Camera.h"
+
+namespace microrelief {
+
+struct ShadingOptions {
+    glm::vec3 lightDirection = glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards the light
+    glm::vec3 albedo{0.72f, 0.70f, 0.66f};
+};
+
+// World-space extent of a map's relief: x in [-a/2, a/2], z in [-b/2, b/2] (spec).
+struct ReliefExtent {
+    double halfWidth = 0.5, halfDepth = 0.5;  // a / 2, b / 2
+    double topHeight = 0.0;                   // s * max h
+};
+ReliefExtent reliefExtent(const HeightMap& map, double heightScale);
+
+class ReliefRenderer {
+public:
+    // `shaderDir` holds relief_box.vert, relief.frag and microrelief/.
+    ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir);
+
+    // Builds the max pyramid and uploads it with the samples. Throws Error(BadInput)
+    // when the map exceeds GL_MAX_TEXTURE_SIZE; `source` names the map in that message.
+    void setHeightMap(const HeightMap& map, const std::string& source);
+    void setHeightScale(float scale);
+
+    // Recompiles the shaders; on failure throws and keeps the previous program.
+    void reloadShaders();
+
+    void draw(const CameraFrame& camera, const ShadingOptions& shading);
+
+    const MaxPyramid* pyramid() const { return pyramid_ ? &*pyramid_ : nullptr; }
+    int maxIterations() const { return maxIterations_; }
+
+private:
+    void uploadBox();
+
+    const GL& gl_;
+    std::filesystem::path shaderDir_;
+    gl::Program program_;
+    gl::Texture pyramidTexture_;
+    gl::Texture sampleTexture_;
+    gl::VertexArray boxArray_;
+    gl::Buffer boxVertices_;
+    gl::Buffer boxIndices_;
+    std::optional<MaxPyramid> pyramid_;
+    int mapWidth_ = 0, mapHeight_ = 0;
+    float maxHeight_ = 0.0f;
+    float heightScale_ = 0.1f;
+    int maxIterations_ = 0;
+};
+
+}  // namespace microrelief

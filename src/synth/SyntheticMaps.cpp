@@ -1,0 +1,145 @@
+#include "synth/SyntheticMaps.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/Error.h"
+
+namespace microrelief::synth {
+
+namespace {
+
+// A small integer hash (lowbias32): deterministic across platforms, unlike <random>'s
+// distributions.
+std::uint32_t hash(std::uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
+}
+
+double unitHash(std::int64_t i, std::int64_t j, std::uint32_t seed) {
+    const std::uint32_t h = hash(static_cast<std::uint32_t>(i) * 0x9e3779b9U ^ hash(static_cast<std::uint32_t>(j) + seed));
+    return (h >> 8) * (1.0 / 16777216.0);
+}
+
+// Value noise on a lattice of period 1 at (x, y), smoothstep-interpolated, in [0, 1].
+double latticeNoise(double x, double y, std::uint32_t seed) {
+    const double fx = std::floor(x), fy = std::floor(y);
+    const auto i = static_cast<std::int64_t>(fx), j = static_cast<std::int64_t>(fy);
+    auto smooth = [](double t) { return t * t * (3.0 - 2.0 * t); };
+    const double sx = smooth(x - fx), sy = smooth(y - fy);
+    const double a = unitHash(i, j, seed), b = unitHash(i + 1, j, seed);
+    const double c = unitHash(i, j + 1, seed), d = unitHash(i + 1, j + 1, seed);
+    return (a + (b - a) * sx) * (1 - sy) + (c + (d - c) * sx) * sy;
+}
+
+double fractalNoise(double x, double y, int octaves, std::uint32_t seed) {
+    double sum = 0.0, amplitude = 1.0, total = 0.0;
+    for (int o = 0; o < octaves; ++o) {
+        sum += amplitude * latticeNoise(x, y, seed + 1013U * o);
+        total += amplitude;
+        x *= 2.0;
+        y *= 2.0;
+        amplitude *= 0.5;
+    }
+    return sum / total;
+}
+
+}  // namespace
+
+HeightMap flat(int width, int height, float value) { return HeightMap(width, height, value); }
+
+HeightMap spike(int width, int height, int i, int j) {
+    HeightMap map(width, height);
+    map.at(i, j) = 1.0f;
+    return map;
+}
+
+HeightMap wallColumn(int width, int height, int i) {
+    HeightMap map(width, height);
+    for (int j = 0; j < height; ++j) map.at(i, j) = 1.0f;
+    return map;
+}
+
+HeightMap step(int width, int height, int i0) {
+    HeightMap map(width, height);
+    for (int j = 0; j < height; ++j) {
+        for (int i = i0; i < width; ++i) map.at(i, j) = 1.0f;
+    }
+    return map;
+}
+
+HeightMap valueNoise(int width, int height, double period, int octaves, std::uint32_t seed) {
+    HeightMap map(width, height);
+    for (int j = 0; j < height; ++j) {
+        for (int i = 0; i < width; ++i) {
+            map.at(i, j) = static_cast<float>(fractalNoise((i + 0.5) / period, (j + 0.5) / period, octaves, seed));
+        }
+    }
+    return map;
+}
+
+HeightMap whiteNoise(int width, int height, std::uint32_t seed) {
+    HeightMap map(width, height);
+    for (int j = 0; j < height; ++j) {
+        for (int i = 0; i < width; ++i) map.at(i, j) = static_cast<float>(unitHash(i, j, seed));
+    }
+    return map;
+}
+
+HeightMap cobbles(int width, int height, std::uint32_t seed) {
+    // Stones are Voronoi cells of jittered points on a 6 x 6 grid per map side; a stone's
+    // height rises with the distance to its cell border (F2 - F1) and is rounded off.
+    HeightMap map(width, height);
+    const double cells = 6.0;
+    const double longer = std::max(width, height);
+    for (int j = 0; j < height; ++j) {
+        for (int i = 0; i < width; ++i) {
+            const double x = (i + 0.5) / longer * cells, y = (j + 0.5) / longer * cells;
+            const auto ci = static_cast<std::int64_t>(std::floor(x)), cj = static_cast<std::int64_t>(std::floor(y));
+            double f1 = 1e9, f2 = 1e9, stone = 0.0;
+            for (int dj = -1; dj <= 1; ++dj) {
+                for (int di = -1; di <= 1; ++di) {
+                    const std::int64_t gi = ci + di, gj = cj + dj;
+                    const double px = gi + 0.15 + 0.7 * unitHash(gi, gj, seed);
+                    const double py = gj + 0.15 + 0.7 * unitHash(gi, gj, seed + 7U);
+                    const double d = std::hypot(x - px, y - py);
+                    if (d < f1) {
+                        f2 = f1;
+                        f1 = d;
+                        stone = unitHash(gi, gj, seed + 13U);
+                    } else if (d < f2) {
+                        f2 = d;
+                    }
+                }
+            }
+            const double edge = std::clamp((f2 - f1) / 0.35, 0.0, 1.0);
+            const double dome = std::sqrt(1.0 - (1.0 - edge) * (1.0 - edge));  // rounded shoulders
+            const double grain = fractalNoise(x * 9.0, y * 9.0, 4, seed + 99U);
+            const double h = dome * (0.72 + 0.2 * stone) + 0.08 * grain * dome + 0.03 * grain;
+            map.at(i, j) = static_cast<float>(std::clamp(h, 0.0, 1.0));
+        }
+    }
+    return map;
+}
+
+std::vector<std::string> names() { return {"cobbles", "noise", "white", "spike", "wall", "step", "flat"}; }
+
+HeightMap byName(const std::string& name, int width, int height, std::uint32_t seed) {
+    if (width <= 0 || height <= 0) throwBadInput("the map size must be positive");
+    if (name == "cobbles") return cobbles(width, height, seed);
+    if (name == "noise") return valueNoise(width, height, std::max(width, height) / 8.0, 5, seed);
+    if (name == "white") return whiteNoise(width, height, seed);
+    if (name == "spike") return spike(width, height, width / 2, height / 2);
+    if (name == "wall") return wallColumn(width, height, width / 2);
+    if (name == "step") return step(width, height, width / 2);
+    if (name == "flat") return flat(width, height, 0.5f);
+    std::string known;
+    for (const std::string& n : names()) known += (known.empty() ? "" : ", ") + n;
+    throwBadInput("unknown map '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace microrelief::synth

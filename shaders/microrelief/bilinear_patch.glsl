@@ -46,15 +46,16 @@ float surfaceHeight(ReliefMap map, sampler2D heights, vec2 xy, inout int fetches
 float intersectPatch(vec4 h, vec2 cellOrigin, vec3 start, vec3 dir, float tauMax) {
     vec2 f = start.xy - cellOrigin;
     float b = h.y - h.x, c = h.z - h.x, d = h.x - h.y - h.z + h.w;
-    // f(tau) = A tau^2 + B tau + C = patch height - ray height
+    // g(tau) = A tau^2 + B tau + C = patch height - ray height: < 0 above the surface,
+    // >= 0 inside the solid. The hit is the first tau with g(tau) >= 0.
     float C = h.x + b * f.x + c * f.y + d * f.x * f.y - start.z;
-    if (C <= 0.0) return 0.0;  // the piece starts on or below the surface
+    if (C >= 0.0) return 0.0;  // the piece starts on or below the surface
     float B = b * dir.x + c * dir.y + d * (f.x * dir.y + f.y * dir.x) - dir.z;
     float A = d * dir.x * dir.y;
     float root = -1.0;
     if (abs(A) * tauMax <= 1e-7 * abs(B)) {
         // Linear within float precision over this piece.
-        if (B < 0.0) root = -C / B;
+        if (B > 0.0) root = -C / B;
     } else {
         float disc = B * B - 4.0 * A * C;
         if (disc >= 0.0) {

@@ -49,11 +49,12 @@ struct ReliefHit {
 };
 
 // Ray against the box [0, W] x [0, H] x [0, maxHeight]: the parameter interval inside
-// it, and which slab the entry crossed (0: X, 1: Y, 2: h). Empty when x > y.
-vec2 clipToReliefBox(ReliefMap map, vec3 origin, vec3 dir, out int entryAxis) {
+// it, and which slab the entry and the exit cross (0: X, 1: Y, 2: h). Empty when x > y.
+vec2 clipToReliefBox(ReliefMap map, vec3 origin, vec3 dir, out int entryAxis, out int exitAxis) {
     vec3 lo = vec3(0.0), hi = vec3(map.size, map.maxHeight);
     float tEnter = -1e30, tExit = 1e30;
     entryAxis = -1;
+    exitAxis = -1;
     for (int axis = 0; axis < 3; ++axis) {
         if (dir[axis] == 0.0) {
             if (origin[axis] < lo[axis] || origin[axis] > hi[axis]) return vec2(1.0, 0.0);
@@ -63,9 +64,22 @@ vec2 clipToReliefBox(ReliefMap map, vec3 origin, vec3 dir, out int entryAxis) {
         float t1 = (hi[axis] - origin[axis]) / dir[axis];
         if (t0 > t1) { float s = t0; t0 = t1; t1 = s; }
         if (t0 > tEnter) { tEnter = t0; entryAxis = axis; }
-        tExit = min(tExit, t1);
+        if (t1 < tExit) { tExit = t1; exitAxis = axis; }
     }
     return vec2(tEnter, tExit);
+}
+
+// Fills `hit` as a hit on the top surface at parameter t, in the patch `cell` with
+// corner samples `corners`.
+void setTopHit(inout ReliefHit hit, ReliefMap map, vec3 origin, vec3 dir, float t, vec4 corners, ivec2 cell) {
+    hit.kind = RELIEF_TOP;
+    hit.t = t;
+    hit.position = origin + t * dir;
+    vec2 g = patchGradient(corners, clamp(hit.position.xy - (vec2(cell) + 0.5), 0.0, 1.0));
+    // Clamped border cells are flat across the edge.
+    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
+    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
+    hit.normal = vec3(-g, 1.0);
 }
 
 // Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
@@ -117,8 +131,8 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, v
     hit.stopLevel = -1;
     hit.exhausted = false;
 
-    int entryAxis;
-    vec2 range = clipToReliefBox(map, origin, dir, entryAxis);
+    int entryAxis, exitAxis;
+    vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
     float tNear = max(range.x, 0.0), tFar = range.y;
     if (tNear > tFar) return hit;
 
@@ -128,8 +142,9 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, v
     // surface, by the spec.)
     vec3 entry = origin + tNear * dir;
     bool throughTop = entryAxis == 2 && dir.z < 0.0;
+    bool throughBottom = entryAxis == 2 && dir.z > 0.0;  // h = 0: always in the solid
     if (range.x >= 0.0 && entryAxis >= 0 && !throughTop &&
-        entry.z <= surfaceHeight(map, heights, entry.xy, hit.fetches)) {
+        (throughBottom || entry.z <= surfaceHeight(map, heights, entry.xy, hit.fetches))) {
         hit.kind = entryAxis == 0 ? RELIEF_WALL_X : entryAxis == 1 ? RELIEF_WALL_Y : RELIEF_BOTTOM;
         hit.t = tNear;
         hit.position = entry;
@@ -163,14 +178,7 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, v
                 ivec2 cell;
                 float t = intersectLeaf(map, heights, origin, dir, ta, tb, hit.fetches, corners, cell);
                 if (t >= 0.0) {
-                    hit.kind = RELIEF_TOP;
-                    hit.t = t;
-                    hit.position = origin + t * dir;
-                    vec2 g = patchGradient(corners, clamp(hit.position.xy - (vec2(cell) + 0.5), 0.0, 1.0));
-                    // Clamped border cells are flat across the edge.
-                    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
-                    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
-                    hit.normal = vec3(-g, 1.0);
+                    setTopHit(hit, map, origin, dir, t, corners, cell);
                     return hit;
                 }
             } else {
@@ -184,7 +192,19 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, v
             index >>= 1;
             depth -= 1;
         }
-        if (depth == 0) return hit;  // the whole root segment is done: a miss
+        if (depth == 0) {
+            // The whole segment is done without a hit. A ray that leaves the box through
+            // its floor going down has reached h = 0 inside the map, which belongs to the
+            // solid, so its first hit is that exit point (where the surface is 0). The
+            // exact root lies right at the end of the last segment, where rounding can
+            // push it out of that segment's range; this is where it is caught.
+            if (exitAxis == 2 && dir.z < 0.0) {
+                vec3 exit = origin + tFar * dir;
+                ivec2 cell = cellAt(exit.xy);
+                setTopHit(hit, map, origin, dir, tFar, cellCorners(map, heights, cell, hit.fetches), cell);
+            }
+            return hit;
+        }
         index += 1u;
     }
     hit.exhausted = true;

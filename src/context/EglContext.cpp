@@ -140,6 +140,8 @@ EGLContext createContextOn(EGLDisplay display, std::string& why) {
 
 }  // namespace
 
+bool isEglPresent() { return !candidateDisplays().empty(); }
+
 std::unique_ptr<GlContext> createEglContext() {
     const std::vector<Candidate> candidates = candidateDisplays();
     if (candidates.empty()) throwRuntime("EGL: no device or surfaceless display available");

@@ -43,6 +43,18 @@ std::unique_ptr<GlContext> createHeadlessContext(Backend backend) {
     }
 }
 
+bool isEglPresent();     // EglContext.cpp
+bool isOsMesaPresent();  // OsMesaContext.cpp
+
+bool isBackendPresent(Backend backend) {
+    switch (backend) {
+        case Backend::Egl: return isEglPresent();
+        case Backend::OsMesa: return isOsMesaPresent();
+        case Backend::Auto: return isEglPresent() || isOsMesaPresent();
+    }
+    return false;
+}
+
 Backend parseBackend(const std::string& name) {
     if (name == "auto") return Backend::Auto;
     if (name == "egl") return Backend::Egl;

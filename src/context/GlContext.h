@@ -47,6 +47,11 @@ std::unique_ptr<GlContext> createHeadlessContext(Backend backend);
 std::unique_ptr<GlContext> createEglContext();
 std::unique_ptr<GlContext> createOsMesaContext();
 
+// Whether a backend is installed at all: EGL offers a device or surfaceless display,
+// libOSMesa can be opened. A present backend that then fails to make a context is a
+// failure to report, not an absence (tests skip only on absence).
+bool isBackendPresent(Backend backend);
+
 // A GLFW window with a 3.3 core context; `visible` false gives a hidden window.
 struct GlfwWindowOptions {
     int width = 1280;

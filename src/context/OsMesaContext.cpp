@@ -3,6 +3,7 @@
 // table from OSMesaGetProcAddress; nothing here links against libOSMesa.
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,14 @@ struct OsMesaLibrary {
 const OsMesaLibrary& library() {
     static const OsMesaLibrary lib = [] {
         OsMesaLibrary l;
-        for (const char* name : {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"}) {
-            if ((l.handle = dlopen(name, RTLD_NOW | RTLD_LOCAL)) != nullptr) break;
+        // MICRORELIEF_OSMESA_LIBRARY names another library (or a missing one, to test
+        // the program without this backend).
+        if (const char* name = std::getenv("MICRORELIEF_OSMESA_LIBRARY"); name && *name) {
+            l.handle = dlopen(name, RTLD_NOW | RTLD_LOCAL);
+        } else {
+            for (const char* candidate : {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"}) {
+                if ((l.handle = dlopen(candidate, RTLD_NOW | RTLD_LOCAL)) != nullptr) break;
+            }
         }
         if (!l.handle) return l;
         l.createContextAttribs =
@@ -79,6 +86,8 @@ private:
 };
 
 }  // namespace
+
+bool isOsMesaPresent() { return library().handle != nullptr; }
 
 std::unique_ptr<GlContext> createOsMesaContext() {
     const OsMesaLibrary& lib = library();

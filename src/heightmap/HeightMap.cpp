@@ -1,7 +1,10 @@
 #include "heightmap/HeightMap.h"
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -37,6 +40,32 @@ namespace {
 
 std::string describe(const std::filesystem::path& file) { return file.string(); }
 
+// libpng, under OpenImageIO 2.4's PNG reader, prints "libpng error: ..." to stderr
+// itself before OIIO reports the same failure to us; our one-line error says it
+// already. Silence file descriptor 2 while OIIO reads (loading is single-threaded).
+class QuietStderr {
+public:
+    QuietStderr() {
+        std::fflush(stderr);
+        saved_ = ::dup(2);
+        const int null = ::open("/dev/null", O_WRONLY);
+        if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+        if (null >= 0) ::close(null);
+    }
+    ~QuietStderr() {
+        std::fflush(stderr);
+        if (saved_ >= 0) {
+            ::dup2(saved_, 2);
+            ::close(saved_);
+        }
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
+
 }  // namespace
 
 void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const std::string& source) {
@@ -62,9 +91,12 @@ void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const s
         if (std::isfinite(h) && h >= 0.0f) continue;
         const int i = static_cast<int>(k % map.width), j = static_cast<int>(k / map.width);
         std::ostringstream message;
-        message << source << ": sample (" << i << ", " << j << ") is " << h << "; heights must be "
-                << (std::isfinite(h) ? ">= 0" : "finite")
-                << (std::isfinite(h) ? " (try --normalize to map [min, max] to [0, 1])" : "");
+        // The spec asks every refusal to suggest --normalize; for a non-finite value it
+        // can only help once the value is repaired, and the message says so.
+        message << source << ": sample (" << i << ", " << j << ") is " << h << "; heights must be finite and >= 0 ("
+                << (std::isfinite(h) ? "try --normalize to map [min, max] to [0, 1]"
+                                     : "--normalize rescales finite maps only: repair the map first")
+                << ")";
         throwBadInput(message.str());
     }
 }
@@ -75,6 +107,7 @@ HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOp
     if (!std::filesystem::exists(file, ec)) throwBadInput(name + ": no such file");
     if (std::filesystem::is_directory(file, ec)) throwBadInput(name + ": is a directory, not an image");
 
+    const QuietStderr quiet;
     auto input = OIIO::ImageInput::open(name);
     if (!input) {
         std::string reason = OIIO::geterror();

@@ -8,6 +8,7 @@
 
 #include "core/Error.h"
 #include "gl/ShaderProgram.h"
+#include "trace/MultilevelTracer.h"
 
 namespace microrelief {
 
@@ -66,9 +67,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     mapWidth_ = map.width;
     mapHeight_ = map.height;
     maxHeight_ = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
-    // Budget: a ray visits at most about two segments per finest texel it crosses plus
-    // their ancestors; 8 (W + H) + 256 is several times that, so running out means a bug.
-    maxIterations_ = 8 * (map.width + map.height) + 256;
+    maxIterations_ = traversalBudget(map.width, map.height);
 
     gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
     gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());

@@ -1,0 +1,224 @@
+#include "trace/MultilevelTracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace microrelief {
+
+namespace {
+
+constexpr int kMaxDepth = 24;  // MICRORELIEF_MAX_DEPTH
+
+using Cell = MultilevelTracer::Cell;
+
+Cell cellAt(const HeightMap& map, double x, double y, int& fetches) {
+    const int i = static_cast<int>(std::floor(x - 0.5)), j = static_cast<int>(std::floor(y - 0.5));
+    fetches += 4;
+    return {i, j, map.clamped(i, j), map.clamped(i + 1, j), map.clamped(i, j + 1), map.clamped(i + 1, j + 1)};
+}
+
+// bilinear_patch.glsl: intersectPatch.
+double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& dir, double tauMax) {
+    const double fx = start.x - (c.i + 0.5), fy = start.y - (c.j + 0.5);
+    const double b = c.h10 - c.h00, cc = c.h01 - c.h00, d = c.h00 - c.h10 - c.h01 + c.h11;
+    // g(tau) = patch height - ray height: the hit is the first tau with g >= 0.
+    const double C = c.h00 + b * fx + cc * fy + d * fx * fy - start.z;
+    if (C >= 0.0) return 0.0;
+    const double B = b * dir.x + cc * dir.y + d * (fx * dir.y + fy * dir.x) - dir.z;
+    const double A = d * dir.x * dir.y;
+    double root = -1.0;
+    if (std::abs(A) * tauMax <= 1e-12 * std::abs(B)) {
+        if (B > 0.0) root = -C / B;
+    } else {
+        const double disc = B * B - 4.0 * A * C;
+        if (disc >= 0.0) {
+            const double q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * std::sqrt(disc));
+            const double r1 = q / A, r2 = q != 0.0 ? C / q : -1.0;
+            const double lo = std::min(r1, r2), hi = std::max(r1, r2);
+            root = lo >= 0.0 ? lo : hi;
+        }
+    }
+    return (root >= 0.0 && root <= tauMax) ? root : -1.0;
+}
+
+// max_pyramid.glsl: footprintLevel and footprintMax.
+int footprintLevel(const MaxPyramid& p, double extent) {
+    const int level = extent <= 1.0 ? 0 : static_cast<int>(std::ceil(std::log2(extent)));
+    return std::min(level, p.levelCount() - 1);
+}
+
+double footprintMax(const MaxPyramid& p, glm::dvec2 lo, glm::dvec2 hi, int level, int& fetches) {
+    const int w = p.levelWidth(level), h = p.levelHeight(level);
+    const double toLevel = std::ldexp(1.0, -level);
+    auto index = [toLevel](double x, int size) {
+        return std::clamp(static_cast<int>(std::floor(x * toLevel)), 0, size - 1);
+    };
+    double bound = 0.0;
+    for (int q = index(lo.y, h); q <= index(hi.y, h); ++q) {
+        for (int s = index(lo.x, w); s <= index(hi.x, w); ++s) {
+            bound = std::max<double>(bound, p.texel(level, s, q));
+            ++fetches;
+        }
+    }
+    return bound;
+}
+
+}  // namespace
+
+int traversalBudget(int width, int height) { return 8 * (width + height) + 256; }
+
+MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale)
+    : map_(std::move(map)),
+      pyramid_(map_),
+      heightScale_(heightScale),
+      maxIterations_(traversalBudget(map_.width, map_.height)) {}
+
+// multilevel_trace.glsl: setTopHit's normal, in world space.
+glm::dvec3 MultilevelTracer::topNormal(const Cell& cell, const glm::dvec3& mapPoint) const {
+    const double fx = std::clamp(mapPoint.x - (cell.i + 0.5), 0.0, 1.0);
+    const double fy = std::clamp(mapPoint.y - (cell.j + 0.5), 0.0, 1.0);
+    double gx = (cell.h10 - cell.h00) * (1 - fy) + (cell.h11 - cell.h01) * fy;
+    double gy = (cell.h01 - cell.h00) * (1 - fx) + (cell.h11 - cell.h10) * fx;
+    // Clamped border cells are flat across the edge.
+    if (cell.i < 0 || cell.i >= map_.width - 1) gx = 0.0;
+    if (cell.j < 0 || cell.j >= map_.height - 1) gy = 0.0;
+    const double slope = heightScale_ * std::max(map_.width, map_.height);
+    return glm::normalize(glm::dvec3(-slope * gx, 1.0, -slope * gy));
+}
+
+// multilevel_trace.glsl: intersectLeaf. A segment at most one texel wide crosses at
+// most one cell boundary per axis: cut there and solve the pieces in ray order.
+auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, int& fetches) const
+    -> std::optional<LeafHit> {
+    const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
+    double cuts[2];
+    for (int axis = 0; axis < 2; ++axis) {
+        cuts[axis] = tb;
+        const double ca = std::floor(pa[axis] - 0.5), cb = std::floor(pb[axis] - 0.5);
+        if (ca != cb && ray.dir[axis] != 0.0) {
+            cuts[axis] = std::clamp((std::max(ca, cb) + 0.5 - ray.origin[axis]) / ray.dir[axis], ta, tb);
+        }
+    }
+    const double bounds[4] = {ta, std::min(cuts[0], cuts[1]), std::max(cuts[0], cuts[1]), tb};
+    for (int piece = 0; piece < 3; ++piece) {
+        const double t0 = bounds[piece], t1 = bounds[piece + 1];
+        if (t1 <= t0 && piece != 0) continue;
+        const glm::dvec3 start = ray.origin + t0 * ray.dir;
+        const glm::dvec3 mid = ray.origin + 0.5 * (t0 + t1) * ray.dir;
+        const Cell cell = cellAt(map_, mid.x, mid.y, fetches);
+        const double tau = intersectPatch(cell, start, ray.dir, std::max(t1 - t0, 0.0));
+        if (tau < 0.0) continue;
+        const double t = t0 + tau;
+        return LeafHit{t, topNormal(cell, ray.origin + t * ray.dir)};
+    }
+    return std::nullopt;
+}
+
+std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, TraversalStats* statsOut) const {
+    TraversalStats stats;
+    const double texelsPerUnit = std::max(map_.width, map_.height);
+    const glm::dvec2 size(map_.width, map_.height);
+    const MapRay ray{{worldRay.origin.x * texelsPerUnit + 0.5 * size.x, worldRay.origin.z * texelsPerUnit + 0.5 * size.y,
+                      worldRay.origin.y / heightScale_},
+                     {worldRay.direction.x * texelsPerUnit, worldRay.direction.z * texelsPerUnit,
+                      worldRay.direction.y / heightScale_}};
+    const double maxHeight = pyramid_.texel(pyramid_.levelCount() - 1, 0, 0);
+    auto finish = [&](std::optional<ReliefHit> hit) {
+        if (statsOut) *statsOut = stats;
+        return hit;
+    };
+    auto makeHit = [&](HitFace face, double t, glm::dvec3 normal) {
+        ReliefHit hit;
+        hit.face = face;
+        hit.t = t;
+        hit.position = worldRay.origin + t * worldRay.direction;
+        hit.normal = normal;
+        const glm::dvec3 m = ray.origin + t * ray.dir;
+        hit.uv = {m.x / size.x, m.y / size.y};
+        return hit;
+    };
+
+    // multilevel_trace.glsl: clipToReliefBox.
+    const glm::dvec3 lo(0.0), hi(size.x, size.y, maxHeight);
+    double tEnter = -1e300, tExit = 1e300;
+    int entryAxis = -1, exitAxis = -1;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (ray.dir[axis] == 0.0) {
+            if (ray.origin[axis] < lo[axis] || ray.origin[axis] > hi[axis]) return finish(std::nullopt);
+            continue;
+        }
+        double t0 = (lo[axis] - ray.origin[axis]) / ray.dir[axis], t1 = (hi[axis] - ray.origin[axis]) / ray.dir[axis];
+        if (t0 > t1) std::swap(t0, t1);
+        if (t0 > tEnter) {
+            tEnter = t0;
+            entryAxis = axis;
+        }
+        if (t1 < tExit) {
+            tExit = t1;
+            exitAxis = axis;
+        }
+    }
+    const double tNear = std::max(tEnter, 0.0), tFar = tExit;
+    if (tNear > tFar) return finish(std::nullopt);
+
+    const glm::dvec3 entry = ray.origin + tNear * ray.dir;
+    const bool throughTop = entryAxis == 2 && ray.dir.z < 0.0;
+    const bool throughBottom = entryAxis == 2 && ray.dir.z > 0.0;  // h = 0: always in the solid
+    if (tEnter >= 0.0 && entryAxis >= 0 && !throughTop &&
+        (throughBottom || (stats.fetches += 4, entry.z <= map_.surface(entry.x, entry.y)))) {
+        stats.stopLevel = 0;
+        glm::dvec3 normal(0.0);
+        const double outward = ray.dir[entryAxis] > 0.0 ? -1.0 : 1.0;
+        const HitFace face = entryAxis == 0 ? HitFace::WallX : entryAxis == 1 ? HitFace::WallZ : HitFace::Bottom;
+        if (entryAxis == 0) normal.x = outward;
+        if (entryAxis == 1) normal.z = outward;
+        if (entryAxis == 2) normal.y = outward;
+        return finish(makeHit(face, tNear, normal));
+    }
+
+    const double span = tFar - tNear;
+    const double unit = std::ldexp(1.0, -kMaxDepth);
+    int depth = 0;
+    std::uint32_t index = 0;
+    for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
+        stats.iterations = iteration;
+        const int shift = kMaxDepth - depth;
+        const double ta = tNear + span * (static_cast<double>(index << shift) * unit);
+        const double tb = tNear + span * (static_cast<double>((index + 1u) << shift) * unit);
+        const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
+        const glm::dvec2 flo = glm::min(glm::dvec2(pa), glm::dvec2(pb)), fhi = glm::max(glm::dvec2(pa), glm::dvec2(pb));
+        const double extent = std::max(fhi.x - flo.x, fhi.y - flo.y);
+        const int level = footprintLevel(pyramid_, extent);
+        stats.stopLevel = level;
+        if (std::min(pa.z, pb.z) <= footprintMax(pyramid_, flo, fhi, level, stats.fetches)) {
+            if (extent <= 1.0 || depth >= kMaxDepth) {
+                if (auto hit = intersectLeaf(ray, ta, tb, stats.fetches)) {
+                    return finish(makeHit(HitFace::Top, hit->t, hit->normal));
+                }
+            } else {
+                ++depth;
+                index *= 2u;
+                continue;
+            }
+        }
+        while (depth > 0 && (index & 1u) == 1u) {
+            index >>= 1;
+            --depth;
+        }
+        if (depth == 0) {
+            // Leaving through the floor going down: the exit point is the hit (see the shader).
+            if (exitAxis == 2 && ray.dir.z < 0.0) {
+                const glm::dvec3 exit = ray.origin + tFar * ray.dir;
+                const Cell cell = cellAt(map_, exit.x, exit.y, stats.fetches);
+                return finish(makeHit(HitFace::Top, tFar, topNormal(cell, exit)));
+            }
+            return finish(std::nullopt);
+        }
+        ++index;
+    }
+    stats.exhausted = true;
+    return finish(std::nullopt);
+}
+
+}  // namespace microrelief

@@ -1,0 +1,77 @@
+// The multilevel traversal of shaders/microrelief/multilevel_trace.glsl on the CPU: the
+// same algorithm over the same max pyramid, step for step, for engines that need the
+// relief for picking or collision queries, and as a twin that tests hold the shader to.
+#pragma once
+
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "heightmap/HeightMap.h"
+#include "heightmap/MaxPyramid.h"
+#include "render/Camera.h"
+#include "trace/ReferenceTracer.h"
+
+namespace microrelief {
+
+// What the traversal did for one ray: the figures the shader writes to its statistics
+// output.
+struct TraversalStats {
+    int iterations = 0;  // segments visited
+    int fetches = 0;     // texels read, pyramid and samples
+    int stopLevel = -1;  // pyramid level of the last segment examined
+    bool exhausted = false;
+};
+
+struct ReliefHit {
+    HitFace face = HitFace::Top;
+    double t = 0.0;       // ray parameter
+    glm::dvec3 position;  // world
+    glm::dvec3 normal;    // world, unit, outward
+    glm::dvec2 uv;        // map uv
+};
+
+class MultilevelTracer {
+public:
+    // Builds the max pyramid of `map`; the map is copied (the tracer owns its data).
+    MultilevelTracer(HeightMap map, double heightScale);
+
+    // The first hit of `ray` (world space) with the relief solid, or nothing.
+    std::optional<ReliefHit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const;
+
+    const HeightMap& map() const { return map_; }
+    const MaxPyramid& pyramid() const { return pyramid_; }
+    double heightScale() const { return heightScale_; }
+    // The iteration budget, as the renderer sets it for this map.
+    int maxIterations() const { return maxIterations_; }
+
+    // A ray in map space (map_space.glsl): (X, Y) texel coordinates, third coordinate h.
+    struct MapRay {
+        glm::dvec3 origin, dir;
+    };
+    // A bilinear patch: cell (i, j) and its corner samples (bilinear_patch.glsl).
+    struct Cell {
+        int i, j;
+        double h00, h10, h01, h11;
+    };
+
+private:
+    struct LeafHit {
+        double t;
+        glm::dvec3 normal;  // world
+    };
+    std::optional<LeafHit> intersectLeaf(const MapRay& ray, double ta, double tb, int& fetches) const;
+    glm::dvec3 topNormal(const Cell& cell, const glm::dvec3& mapPoint) const;
+
+    HeightMap map_;
+    MaxPyramid pyramid_;
+    double heightScale_;
+    int maxIterations_;
+};
+
+// The budget a traversal of a W x H map gets, shared by the renderer and the CPU twin:
+// a ray visits about two segments per finest texel it crosses plus their ancestors, so
+// 8 (W + H) + 256 is several times what any ray needs; running out means a bug.
+int traversalBudget(int width, int height);
+
+}  // namespace microrelief

@@ -1,0 +1,136 @@
+// The multilevel elevation map: its shape for any size, and the property the tracer
+// relies on: over any footprint, the max it reports bounds every height of the
+// bilinear surface inside that footprint.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "heightmap/MaxPyramid.h"
+#include "synth/SyntheticMaps.h"
+
+using namespace microrelief;
+
+namespace {
+
+// The surface's max over [x0, x1] x [y0, y1], by dense sampling (a lower bound of the
+// true max, which is what a bound must exceed).
+double sampledMax(const HeightMap& map, double x0, double y0, double x1, double y1, int steps) {
+    double best = 0.0;
+    for (int b = 0; b <= steps; ++b) {
+        for (int a = 0; a <= steps; ++a) {
+            best = std::max(best, map.surface(x0 + (x1 - x0) * a / steps, y0 + (y1 - y0) * b / steps));
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+TEST(MaxPyramid, LevelSizesForOddNonSquareMaps) {
+    const MaxPyramid p(HeightMap(300, 77));
+    // Padded to 512 x 128, then halved with GL's max(1, n >> k) down to 1 x 1.
+    ASSERT_EQ(p.levelCount(), 10);
+    EXPECT_EQ(p.levelWidth(0), 512);
+    EXPECT_EQ(p.levelHeight(0), 128);
+    EXPECT_EQ(p.levelWidth(7), 4);
+    EXPECT_EQ(p.levelHeight(7), 1);
+    EXPECT_EQ(p.levelWidth(9), 1);
+    EXPECT_EQ(p.levelHeight(9), 1);
+}
+
+TEST(MaxPyramid, OneByOneAndTwoByTwo) {
+    HeightMap one(1, 1, 0.4f);
+    const MaxPyramid p1(one);
+    ASSERT_EQ(p1.levelCount(), 1);
+    EXPECT_FLOAT_EQ(p1.texel(0, 0, 0), 0.4f);
+
+    HeightMap two(2, 2);
+    two.samples = {0.0f, 1.0f, 0.25f, 0.5f};
+    const MaxPyramid p2(two);
+    ASSERT_EQ(p2.levelCount(), 2);
+    // Texel (0, 0) covers [0, 1]^2: the surface there peaks at its corner (1, 1), the
+    // average of all four samples, or at the sample (0,0) itself, or an edge midpoint
+    // (1, 0.5): the average of samples 0 and 1 = 0.5.
+    EXPECT_FLOAT_EQ(p2.texel(0, 0, 0), 0.5f);
+    EXPECT_FLOAT_EQ(p2.texel(0, 1, 0), 1.0f);
+    EXPECT_FLOAT_EQ(p2.texel(1, 0, 0), 1.0f);
+}
+
+TEST(MaxPyramid, EachLevelIsTheMaxOfTheLevelBelow) {
+    const HeightMap map = synth::whiteNoise(37, 23, 5);
+    const MaxPyramid p(map);
+    for (int k = 1; k < p.levelCount(); ++k) {
+        for (int q = 0; q < p.levelHeight(k); ++q) {
+            for (int s = 0; s < p.levelWidth(k); ++s) {
+                float expected = 0.0f;
+                for (int cq = 2 * q; cq <= std::min(2 * q + 1, p.levelHeight(k - 1) - 1); ++cq) {
+                    for (int cs = 2 * s; cs <= std::min(2 * s + 1, p.levelWidth(k - 1) - 1); ++cs) {
+                        expected = std::max(expected, p.texel(k - 1, cs, cq));
+                    }
+                }
+                ASSERT_EQ(p.texel(k, s, q), expected) << "level " << k << " texel " << s << "," << q;
+            }
+        }
+    }
+    EXPECT_FLOAT_EQ(p.texel(p.levelCount() - 1, 0, 0), map.maxValue());
+}
+
+TEST(MaxPyramid, FinestLevelIsTheExactSurfaceMaxOverEachTexel) {
+    const HeightMap map = synth::whiteNoise(9, 7, 11);
+    const MaxPyramid p(map);
+    for (int j = 0; j < map.height; ++j) {
+        for (int i = 0; i < map.width; ++i) {
+            const double dense = sampledMax(map, i, j, i + 1, j + 1, 40);
+            // Exact: as high as any sampled point, and attained (the dense grid hits the
+            // nine candidate points, so the two agree to rounding).
+            EXPECT_GE(p.texel(0, i, j) + 1e-6, dense);
+            EXPECT_NEAR(p.texel(0, i, j), dense, 1e-6) << i << "," << j;
+        }
+    }
+}
+
+// The property test: random maps of odd, non-power-of-two, non-square sizes, random
+// footprints of every scale; the bound must never fall below the surface inside.
+TEST(MaxPyramid, BoundsTheBilinearSurfaceOverAnyFootprint) {
+    std::mt19937 random(1234);
+    const std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 2}, {3, 5}, {17, 4}, {31, 33}, {64, 64}, {100, 7}};
+    for (auto [w, h] : sizes) {
+        const HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 131 + h));
+        const MaxPyramid p(map);
+        std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), size(0.0, 1.0);
+        for (int trial = 0; trial < 400; ++trial) {
+            // Footprint sizes spread over scales: from a sliver to the whole map.
+            const double extent = std::pow(std::max(w, h), size(random)) * size(random);
+            const double x0 = x(random), y0 = y(random);
+            const double x1 = std::min<double>(w, x0 + extent * size(random));
+            const double y1 = std::min<double>(h, y0 + extent * size(random));
+            const float bound = p.boundOver(x0, y0, x1, y1);
+            const double truth = sampledMax(map, x0, y0, x1, y1, 24);
+            ASSERT_GE(bound, truth - 1e-6) << w << "x" << h << " footprint [" << x0 << "," << x1 << "]x[" << y0 << ","
+                                           << y1 << "]";
+        }
+    }
+}
+
+// A one-texel spike: the case a sample-only pyramid or a centre fetch gets wrong
+// (the spike's peak lies between the footprint's sample centres).
+TEST(MaxPyramid, ASpikeIsSeenFromEveryFootprintThatTouchesItsSlopes) {
+    const HeightMap map = synth::spike(16, 16, 7, 9);
+    const MaxPyramid p(map);
+    // A thin footprint across the spike's slope only (X in [8.2, 8.3]): the surface
+    // there reaches 1 - 0.7 = 0.3 at the sample row.
+    EXPECT_GE(p.boundOver(8.2, 9.0, 8.3, 10.0), 0.3f - 1e-6f);
+    EXPECT_FLOAT_EQ(p.boundOver(0.0, 0.0, 16.0, 16.0), 1.0f);
+    EXPECT_FLOAT_EQ(p.boundOver(0.0, 0.0, 5.0, 5.0), 0.0f);
+}
+
+TEST(MaxPyramid, FootprintLevelChoosesTexelsAtLeastAsWideAsTheFootprint) {
+    const MaxPyramid p(HeightMap(64, 64));
+    EXPECT_EQ(p.footprintLevel(0.0), 0);
+    EXPECT_EQ(p.footprintLevel(1.0), 0);
+    EXPECT_EQ(p.footprintLevel(1.01), 1);
+    EXPECT_EQ(p.footprintLevel(4.0), 2);
+    EXPECT_EQ(p.footprintLevel(33.0), 6);
+    EXPECT_EQ(p.footprintLevel(1e6), 6);  // clamped to the 1 x 1 level
+}

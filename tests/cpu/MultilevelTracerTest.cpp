@@ -1,0 +1,109 @@
+// The CPU twin of the shader's traversal against the exact reference, ray by ray.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "TestSupport.h"
+#include "synth/SyntheticMaps.h"
+#include "trace/MultilevelTracer.h"
+#include "trace/ReferenceTracer.h"
+
+using namespace microrelief;
+
+namespace {
+
+struct Agreement {
+    int rays = 0, coverageMismatches = 0, offHalfTexel = 0, hits = 0, exhausted = 0;
+};
+
+// Rays from random eyes around and inside the box towards random points of the map.
+Agreement compareRandomRays(const HeightMap& map, double scale, int count, std::uint32_t seed) {
+    const MultilevelTracer twin(map, scale);
+    const ReliefGeometry relief{&map, scale};
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), zeroOne(0.0, 1.0);
+    const double texels = std::max(map.width, map.height);
+    Agreement a;
+    for (int k = 0; k < count; ++k) {
+        const glm::dvec3 target(0.5 * unit(random), scale * zeroOne(random), 0.5 * unit(random));
+        // Elevations from grazing to vertical, some eyes below the base plane.
+        const double elevation = std::asin(std::pow(zeroOne(random), 2.0)) * (k % 7 == 0 ? -1.0 : 1.0);
+        const double azimuth = 3.14159265 * unit(random), distance = 0.3 + 2.0 * zeroOne(random);
+        const glm::dvec3 eye = target + distance * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
+                                                              std::sin(elevation),
+                                                              std::cos(elevation) * std::sin(azimuth));
+        const Ray ray{eye, target - eye};
+        if (eye.y >= 0.0 && std::abs(eye.x) <= 0.5 && std::abs(eye.z) <= 0.5 &&
+            eye.y <= scale * map.surface((eye.x + 0.5) * map.width, (eye.z + 0.5) * map.height)) {
+            continue;  // the spec keeps the eye outside the solid
+        }
+        ++a.rays;
+        TraversalStats stats;
+        const auto hit = twin.intersect(ray, &stats);
+        const ReferenceHit reference = traceReference(relief, ray);
+        a.exhausted += stats.exhausted;
+        if (hit.has_value() != static_cast<bool>(reference)) {
+            ++a.coverageMismatches;
+            continue;
+        }
+        if (!hit) continue;
+        ++a.hits;
+        if (glm::length(hit->position - reference.position) * texels > 0.5) ++a.offHalfTexel;
+    }
+    return a;
+}
+
+}  // namespace
+
+TEST(MultilevelTracer, AgreesWithTheReferenceOnRandomRays) {
+    struct Case {
+        const char* name;
+        HeightMap map;
+        double scale;
+    };
+    const std::vector<Case> cases = {
+        {"white noise 64", synth::whiteNoise(64, 64, 3), 0.05},
+        {"value noise 300x77", synth::valueNoise(300, 77, 12.0, 4, 5), 0.1},
+        {"cobbles 128", synth::cobbles(128, 128, 1), 0.1},
+        {"spike 33", synth::spike(33, 33, 16, 16), 0.2},
+        {"wall 50x31", synth::wallColumn(50, 31, 20), 0.1},
+        {"step 32", synth::step(32, 32, 16), 0.1},
+        {"1x1", synth::flat(1, 1, 0.7f), 0.1},
+        {"2x2", synth::whiteNoise(2, 2, 9), 0.3},
+        {"all zero", synth::flat(16, 16, 0.0f), 0.1},
+    };
+    for (const Case& c : cases) {
+        const Agreement a = compareRandomRays(c.map, c.scale, 4000, 77);
+        // Double precision on both sides: only rays that graze an edge exactly may
+        // differ, so the budget is a handful of rays in 4000.
+        EXPECT_LE(a.coverageMismatches, 2) << c.name;
+        EXPECT_LE(a.offHalfTexel, 2) << c.name;
+        EXPECT_EQ(a.exhausted, 0) << c.name;
+        EXPECT_GT(a.rays, 3000) << c.name;
+    }
+}
+
+TEST(MultilevelTracer, PickingReportsUvAndNormal) {
+    HeightMap map = synth::flat(8, 4, 0.5f);
+    const MultilevelTracer tracer(map, 0.2);
+    // Straight down onto the centre of texel (2, 1): u = 2.5 / 8, v = 1.5 / 4.
+    const double x = (2.5 / 8 - 0.5) * 1.0, z = (1.5 / 4 - 0.5) * 0.5;
+    const auto hit = tracer.intersect({{x, 1.0, z}, {0.0, -1.0, 0.0}});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->face, HitFace::Top);
+    EXPECT_NEAR(hit->position.y, 0.1, 1e-12);
+    EXPECT_NEAR(hit->uv.x, 2.5 / 8, 1e-12);
+    EXPECT_NEAR(hit->uv.y, 1.5 / 4, 1e-12);
+    EXPECT_NEAR(hit->normal.y, 1.0, 1e-12);
+    EXPECT_FALSE(tracer.intersect({{x, 1.0, z}, {0.0, 1.0, 0.0}}));  // looking up: a miss
+}
+
+TEST(MultilevelTracer, FetchesGrowLogarithmicallyWithMapSize) {
+    // The paper's claim in miniature: a vertical ray costs about one level per halving.
+    for (int n : {64, 1024}) {
+        const MultilevelTracer tracer(synth::valueNoise(n, n, n / 8.0, 4, 1), 0.1);
+        TraversalStats stats;
+        ASSERT_TRUE(tracer.intersect({{0.1, 1.0, 0.2}, {0.3, -1.0, 0.2}}, &stats));
+        EXPECT_LT(stats.fetches, 40 * std::log2(n)) << n;
+    }
+}

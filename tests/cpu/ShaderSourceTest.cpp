@@ -1,0 +1,76 @@
+// Host-side GLSL assembly: #version and defines first, relative includes spliced with
+// #line markers, and compiler messages mapped back to the real file and line.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "TestSupport.h"
+#include "core/Error.h"
+#include "gl/ShaderSource.h"
+
+using namespace microrelief;
+
+namespace {
+void writeText(const std::filesystem::path& file, const std::string& text) {
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+}
+}  // namespace
+
+TEST(ShaderSource, VersionDefinesAndIncludesWithLineMarkers) {
+    test::ScratchDir dir;
+    writeText(dir / "lib/a.glsl", "#ifndef A_GLSL\n#define A_GLSL\nfloat a() { return 1.0; }\n#endif\n");
+    writeText(dir / "main.frag", "// main\n#include \"lib/a.glsl\"\nvoid main() {}\n");
+    const ShaderSource source = assembleShader(dir / "main.frag", "330 core", {{"FAST", ""}, {"N", "4"}});
+    EXPECT_EQ(source.version, "330 core");
+    ASSERT_EQ(source.files.size(), 2u);
+    EXPECT_EQ(source.files[1].filename(), "a.glsl");
+    EXPECT_EQ(source.text,
+              "#version 330 core\n#define FAST\n#define N 4\n"
+              "#line 1 0\n// main\n"
+              "#line 1 1\n#ifndef A_GLSL\n#define A_GLSL\nfloat a() { return 1.0; }\n#endif\n"
+              "#line 3 0\nvoid main() {}\n");
+}
+
+TEST(ShaderSource, NestedIncludesResolveAgainstTheIncludingFile) {
+    test::ScratchDir dir;
+    writeText(dir / "lib/inner/b.glsl", "float b() { return 2.0; }\n");
+    writeText(dir / "lib/a.glsl", "#include \"inner/b.glsl\"\n");
+    writeText(dir / "main.frag", "#include \"lib/a.glsl\"\n");
+    const ShaderSource source = assembleShader(dir / "main.frag", "300 es");
+    ASSERT_EQ(source.files.size(), 3u);
+    EXPECT_NE(source.text.find("float b()"), std::string::npos);
+}
+
+TEST(ShaderSource, MissingIncludeNamesFileAndLine) {
+    test::ScratchDir dir;
+    writeText(dir / "main.frag", "\n\n#include \"nope.glsl\"\n");
+    try {
+        assembleShader(dir / "main.frag", "330 core");
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("main.frag:3"), std::string::npos) << message;
+        EXPECT_NE(message.find("nope.glsl"), std::string::npos) << message;
+    }
+}
+
+TEST(ShaderSource, IncludeCycleIsAnErrorNotAHang) {
+    test::ScratchDir dir;
+    writeText(dir / "a.glsl", "#include \"b.glsl\"\n");
+    writeText(dir / "b.glsl", "#include \"a.glsl\"\n");
+    EXPECT_THROW(assembleShader(dir / "a.glsl", "330 core"), Error);
+}
+
+TEST(ShaderSource, CompilerLogsMapToFiles) {
+    const std::vector<std::filesystem::path> files = {"shaders/relief.frag", "shaders/microrelief/x.glsl"};
+    // Mesa
+    EXPECT_EQ(mapCompilerLog("1:12(5): error: `foo' undeclared", files),
+              "shaders/microrelief/x.glsl:12:5: error: `foo' undeclared\n");
+    // NVIDIA
+    EXPECT_EQ(mapCompilerLog("0(7) : error C1008: undefined variable", files),
+              "shaders/relief.frag:7 : error C1008: undefined variable\n");
+    // glslang
+    EXPECT_EQ(mapCompilerLog("ERROR: 1:3: 'x' : undeclared identifier", files),
+              "ERROR: shaders/microrelief/x.glsl:3: 'x' : undeclared identifier\n");
+}

@@ -1,0 +1,102 @@
+// The reusable GLSL library (shaders/microrelief/) must be a pure function library that
+// compiles as GLSL 3.30 core and GLSL ES 3.00: each file is checked on its own by
+// glslangValidator (Debian glslang-tools), wrapped in a minimal fragment shader, the
+// way another engine would include it. The app's own shaders are checked as 3.30.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "TestSupport.h"
+#include "gl/ShaderSource.h"
+
+using namespace microrelief;
+
+namespace {
+
+const std::filesystem::path kShaders = MICRORELIEF_SHADER_SOURCE_DIR;
+
+std::vector<std::filesystem::path> libraryFiles() {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(kShaders / "microrelief")) {
+        if (entry.path().extension() == ".glsl") files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// Runs glslangValidator on an assembled source; returns its output, empty on success.
+std::string validate(const test::ScratchDir& dir, const ShaderSource& source, const std::string& stage,
+                     const std::string& name) {
+    const std::filesystem::path file = dir / (name + "." + stage);
+    std::ofstream(file) << source.text;
+    const std::filesystem::path log = dir / (name + ".log");
+    const std::string command =
+        std::string(GLSLANG_VALIDATOR) + " " + file.string() + " > " + log.string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    return status == 0 ? std::string() : mapCompilerLog(readText(log), source.files);
+}
+
+struct Dialect {
+    const char* version;
+    const char* prelude;  // what a host adds after #version for this dialect
+};
+const Dialect kDialects[] = {
+    {"330 core", ""},
+    {"300 es", "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"},
+};
+
+}  // namespace
+
+TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330AndEs300) {
+    test::ScratchDir dir;
+    const auto files = libraryFiles();
+    ASSERT_GE(files.size(), 5u);
+    for (const auto& file : files) {
+        for (const Dialect& dialect : kDialects) {
+            const std::filesystem::path wrapper = dir / ("use_" + file.stem().string() + ".frag");
+            std::ofstream(wrapper) << dialect.prelude << "#include \"" << file.string() << "\"\n"
+                                   << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
+            const ShaderSource source = assembleShader(wrapper, dialect.version);
+            const std::string errors = validate(dir, source, "frag", file.stem().string());
+            EXPECT_TRUE(errors.empty()) << file.filename() << " as GLSL " << dialect.version << ":\n" << errors;
+        }
+    }
+}
+
+TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
+    // No #version, no uniforms, no in/out at file scope; a file-named include guard.
+    const std::regex forbidden(R"(^\s*(#\s*version|uniform\s|in\s|out\s|layout\s*\())");
+    for (const auto& file : libraryFiles()) {
+        std::istringstream lines(readText(file));
+        std::string line;
+        int number = 0;
+        while (std::getline(lines, line)) {
+            ++number;
+            EXPECT_FALSE(std::regex_search(line, forbidden)) << file.filename() << ":" << number << ": " << line;
+        }
+        std::string guard = "MICRORELIEF_" + file.stem().string() + "_GLSL";
+        std::transform(guard.begin(), guard.end(), guard.begin(), ::toupper);
+        EXPECT_NE(readText(file).find("#ifndef " + guard), std::string::npos) << file.filename() << " lacks " << guard;
+    }
+}
+
+TEST(GlslLibrary, AppShadersCompileAsGlsl330) {
+    test::ScratchDir dir;
+    for (const char* name : {"relief_box.vert", "relief.frag"}) {
+        const std::filesystem::path file = kShaders / name;
+        const ShaderSource source = assembleShader(file, "330 core");
+        const std::string stage = file.extension().string().substr(1);
+        const std::string errors = validate(dir, source, stage, file.stem().string());
+        EXPECT_TRUE(errors.empty()) << name << ":\n" << errors;
+    }
+}

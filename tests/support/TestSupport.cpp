@@ -1,0 +1,108 @@
+#include "TestSupport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "trace/ReferenceTracer.h"
+
+namespace microrelief::test {
+
+ScratchDir::ScratchDir() {
+    std::random_device seed;
+    std::mt19937_64 random(seed());
+    path_ = std::filesystem::temp_directory_path() / ("microrelief-test-" + std::to_string(random()));
+    std::filesystem::create_directories(path_);
+}
+
+ScratchDir::~ScratchDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+}
+
+void writeMap(const std::filesystem::path& file, const HeightMap& map, PixelType type) {
+    std::vector<std::uint8_t> bytes;
+    std::vector<std::uint16_t> words;
+    const void* pixels = map.samples.data();
+    if (type == PixelType::UInt8) {
+        bytes.resize(map.samples.size());
+        for (std::size_t k = 0; k < bytes.size(); ++k) {
+            bytes[k] = static_cast<std::uint8_t>(std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 255.0f));
+        }
+        pixels = bytes.data();
+    } else if (type == PixelType::UInt16) {
+        words.resize(map.samples.size());
+        for (std::size_t k = 0; k < words.size(); ++k) {
+            words[k] = static_cast<std::uint16_t>(std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 65535.0f));
+        }
+        pixels = words.data();
+    }
+    writeImageAtomically(file, {map.width, map.height, 1, type, pixels, {"Y"}});
+}
+
+void writeBytes(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream out(file, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::vector<std::uint8_t> readBytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target, double fovyDeg) {
+    const double e = glm::radians(elevationDeg), a = glm::radians(azimuthDeg);
+    Camera camera;
+    camera.target = target;
+    camera.eye = target + distance * glm::dvec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
+    camera.fovyDegrees = fovyDeg;
+    // Straight down: y is parallel to the view; take -z as up (the spec's top view).
+    camera.up = elevationDeg > 89.999 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
+    return camera;
+}
+
+std::string Accuracy::summary() const {
+    std::ostringstream out;
+    out << pixels << " px, " << referenceHits << " reference hits; hit/miss disagree " << coverageMismatches << " ("
+        << coverageMismatchPercent() << " %); off > 0.5 texel " << offHalfTexel << " (" << offHalfTexelPercent()
+        << " %); error p99 " << p99ErrorTexels << ", max " << maxErrorTexels << " texels; out of budget "
+        << exhausted;
+    return out.str();
+}
+
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
+                              double heightScale) {
+    Accuracy result;
+    const ReferenceTracer reference(ReliefGeometry{&map, heightScale});
+    const double texelsPerUnit = std::max(map.width, map.height);
+    std::vector<double> errors;
+    for (int row = 0; row < frame.height; ++row) {
+        for (int column = 0; column < frame.width; ++column) {
+            ++result.pixels;
+            const float* gpu = frame.positionAt(column, row);
+            if (frame.statsAt(column, row)[3] > 0.0f) ++result.exhausted;
+            const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
+            const bool gpuHit = gpu[3] > 0.5f;
+            if (exact) ++result.referenceHits;
+            if (gpuHit != static_cast<bool>(exact)) {
+                ++result.coverageMismatches;
+                continue;
+            }
+            if (!gpuHit) continue;
+            const double error = glm::length(glm::dvec3(gpu[0], gpu[1], gpu[2]) - exact.position) * texelsPerUnit;
+            errors.push_back(error);
+            if (error > 0.5) ++result.offHalfTexel;
+            result.maxErrorTexels = std::max(result.maxErrorTexels, error);
+        }
+    }
+    if (!errors.empty()) {
+        const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(0.99 * errors.size()));
+        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
+        result.p99ErrorTexels = errors[k];
+    }
+    return result;
+}
+
+}  // namespace microrelief::test

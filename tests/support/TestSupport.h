@@ -1,0 +1,60 @@
+// Shared helpers for the tests: scratch folders, writing maps in any format, and the
+// per-pixel comparison of a rendered AOV against the exact CPU reference.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "heightmap/HeightMap.h"
+#include "image/ImageFile.h"
+#include "render/Camera.h"
+#include "render/OffscreenTarget.h"
+
+namespace microrelief::test {
+
+// A fresh folder under the system temp folder, removed with its contents on destruction.
+class ScratchDir {
+public:
+    ScratchDir();
+    ~ScratchDir();
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+private:
+    std::filesystem::path path_;
+};
+
+// Writes `map` (values in [0, 1] for integer types) as one channel of the given type.
+void writeMap(const std::filesystem::path& file, const HeightMap& map, PixelType type);
+void writeBytes(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes);
+std::vector<std::uint8_t> readBytes(const std::filesystem::path& file);
+
+// A camera on a sphere around the origin: `elevationDeg` above the base plane,
+// `azimuthDeg` around y from +x towards +z, looking at `target`.
+Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target = {0, 0, 0},
+                   double fovyDeg = 40.0);
+
+// GPU AOV against the reference, pixel by pixel (issue 3's figures).
+struct Accuracy {
+    std::size_t pixels = 0;
+    std::size_t referenceHits = 0;
+    std::size_t coverageMismatches = 0;  // hit on one side, miss on the other
+    std::size_t offHalfTexel = 0;        // both hit, positions further apart than half a texel
+    std::size_t exhausted = 0;           // pixels that ran out of the iteration budget
+    double maxErrorTexels = 0.0;
+    double p99ErrorTexels = 0.0;
+
+    double coverageMismatchPercent() const { return pixels ? 100.0 * coverageMismatches / pixels : 0.0; }
+    double offHalfTexelPercent() const { return referenceHits ? 100.0 * offHalfTexel / referenceHits : 0.0; }
+    std::string summary() const;
+};
+
+// Errors are measured in texels of the map: world distance * max(W, H).
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
+                              double heightScale);
+
+}  // namespace microrelief::test

@@ -4,6 +4,7 @@
 // write gl_FragDepth, so the relief depth-composites with other geometry.
 #include "microrelief/map_space.glsl"
 #include "microrelief/multilevel_trace.glsl"
+#include "microrelief/debug_views.glsl"
 #include "microrelief/shading.glsl"
 
 uniform sampler2D maxPyramid;  // the multilevel elevation map, nearest mipmaps
@@ -25,6 +26,7 @@ uniform mat4 viewProjection;
 
 uniform vec3 lightDirection;  // towards the light, unit
 uniform vec3 albedo;
+uniform int debugView;        // DEBUG_VIEW_*; 0 is the shaded picture
 
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outPosition;  // world hit position, 1
@@ -49,9 +51,25 @@ void main() {
 
     vec3 world = eye + hit.t * dir;
     vec3 n = reliefWorldNormal(map, hit);
-    ReliefMaterial material = ReliefMaterial(albedo, 0.25, 48.0);
-    vec3 color = shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0));
-    outColor = vec4(encodeSrgb(color), 1.0);
+    vec3 color;
+    if (debugView == DEBUG_VIEW_ITERATIONS) {
+        // Scaled to the cost of a few levels' worth of segments; saturates red beyond.
+        color = debugScalar(float(hit.iterations), 8.0 * float(pyramidLevels));
+    } else if (debugView == DEBUG_VIEW_LEVEL) {
+        color = debugScalar(float(hit.stopLevel), float(pyramidLevels - 1));
+    } else if (debugView == DEBUG_VIEW_NORMAL) {
+        color = debugNormal(n);
+    } else if (debugView == DEBUG_VIEW_DEPTH) {
+        float distance = length(world - eye), far = length(eye) + 1.5;
+        color = vec3(1.0 - clamp(distance / far, 0.0, 1.0));
+    } else if (debugView == DEBUG_VIEW_POSITION) {
+        vec3 top = mapToWorldPoint(map, vec3(map.size, map.maxHeight));
+        color = debugPosition(world, -top * vec3(1.0, 0.0, 1.0), top);
+    } else {
+        ReliefMaterial material = ReliefMaterial(albedo, 0.25, 48.0);
+        color = encodeSrgb(shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0)));
+    }
+    outColor = vec4(color, 1.0);
     outPosition = vec4(world, 1.0);
     vec4 clip = viewProjection * vec4(world, 1.0);
     gl_FragDepth = clamp(0.5 + 0.5 * clip.z / clip.w, 0.0, 1.0);

@@ -78,6 +78,11 @@ ParseResult parseRenderOptions(int argc, char** argv) {
     app.add_option("--out", out, "Shaded picture; the format follows the extension")->capture_default_str();
     app.add_option("--aov", aov, "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss");
     app.add_option("--light", light, "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
+    std::string view = "shaded";
+    app.add_option("--view", view,
+                   "What the picture shows: shaded, or a debug view of the method: iterations (segments "
+                   "visited, heat map), level (pyramid level where the ray stopped), normal, depth, position")
+        ->capture_default_str();
     app.add_option("--backend", backend, "GL backend: auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
@@ -109,6 +114,7 @@ ParseResult parseRenderOptions(int argc, char** argv) {
         if (glm::length(o.job.shading.lightDirection) == 0.0f) throwBadInput("--light must not be zero");
         parseSize(size, o.job.width, o.job.height);
         o.backend = parseBackend(backend);
+        o.job.shading.view = parseDebugView(view);
         o.out = out;
         if (!aov.empty()) o.aov = aov;
         if (!(o.job.heightScale > 0.0f) || !std::isfinite(o.job.heightScale)) {

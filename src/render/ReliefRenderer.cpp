@@ -12,6 +12,19 @@
 
 namespace microrelief {
 
+namespace {
+constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level", "normal", "depth", "position"};
+}  // namespace
+
+DebugView parseDebugView(const std::string& name) {
+    for (int k = 0; k < 6; ++k) {
+        if (name == kDebugViewNames[k]) return static_cast<DebugView>(k);
+    }
+    throwBadInput("unknown --view '" + name + "' (expected shaded, iterations, level, normal, depth or position)");
+}
+
+const char* debugViewName(DebugView view) { return kDebugViewNames[static_cast<int>(view)]; }
+
 ReliefExtent reliefExtent(const HeightMap& map, double heightScale) {
     const double longer = std::max(map.width, map.height);
     return {0.5 * map.width / longer, 0.5 * map.height / longer, heightScale * map.maxValue()};
@@ -137,6 +150,7 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.UniformMatrix4fv(u("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
     gl_.Uniform3fv(u("lightDirection"), 1, glm::value_ptr(glm::normalize(shading.lightDirection)));
     gl_.Uniform3fv(u("albedo"), 1, glm::value_ptr(shading.albedo));
+    gl_.Uniform1i(u("debugView"), static_cast<int>(shading.view));
 
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());

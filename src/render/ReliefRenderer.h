@@ -16,9 +16,17 @@
 
 namespace microrelief {
 
+// What relief.frag writes to the picture (debug_views.glsl).
+enum class DebugView { Shaded = 0, Iterations, Level, Normal, Depth, Position };
+
+// "shaded", "iterations", "level", "normal", "depth", "position"; throws Error(BadInput).
+DebugView parseDebugView(const std::string& name);
+const char* debugViewName(DebugView view);
+
 struct ShadingOptions {
     glm::vec3 lightDirection = glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards the light
-    glm::vec3 albedo{0.72f, 0.70f, 0.66f};
+    glm::vec3 albedo{0.60f, 0.58f, 0.55f};
+    DebugView view = DebugView::Shaded;
 };
 
 // World-space extent of a map's relief: x in [-a/2, a/2], z in [-b/2, b/2] (spec).

@@ -85,6 +85,8 @@ ParseResult parseRenderOptions(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--backend", backend, "GL backend: auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();
+    app.add_flag("--compare-reference", o.compareReference,
+                 "Also trace every pixel with the exact CPU reference and print how the picture differs");
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
     app.add_flag("-v,--verbose", o.verbose, "Print the GL renderer and shader logs");
     app.set_version_flag("--version", std::string("microrelief-render ") + MICRORELIEF_VERSION);

@@ -19,6 +19,7 @@ struct RenderOptions {
     std::filesystem::path out = "out/microrelief.png";
     std::optional<std::filesystem::path> aov;
     Backend backend = Backend::Auto;
+    bool compareReference = false;  // print accuracy figures against the CPU reference
     bool quiet = false;
     bool verbose = false;
 };

@@ -10,6 +10,7 @@
 #include "core/Error.h"
 #include "core/Log.h"
 #include "image/ImageFile.h"
+#include "trace/Accuracy.h"
 
 using namespace microrelief;
 
@@ -33,6 +34,20 @@ std::vector<std::uint8_t> dropAlpha(const std::vector<std::uint8_t>& rgba) {
     return rgb;
 }
 
+// --compare-reference: the accuracy sweep's figures for this one view.
+void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map, double heightScale) {
+    const Accuracy a = compareWithReference(frame, camera, map, heightScale);
+    std::printf("accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n", a.pixels,
+                a.referenceHits);
+    std::printf("  hit/miss disagreement        %8zu px  %8.4f %% of pixels\n", a.coverageMismatches,
+                a.coverageMismatchPercent());
+    std::printf("  off by more than half a texel %7zu px  %8.4f %% of hit pixels\n", a.offHalfTexel,
+                a.offHalfTexelPercent());
+    std::printf("  position error               p99 %.3g texels, max %.3g texels\n", a.p99ErrorTexels,
+                a.maxErrorTexels);
+    std::printf("  out of the iteration budget  %8zu px\n", a.exhausted);
+}
+
 int run(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     checkImageExtension(o.out);
@@ -45,7 +60,8 @@ int run(const RenderOptions& o) {
 
     const auto context = createHeadlessContext(o.backend);
     if (o.verbose) logInfo("GL: " + context->renderer() + ", " + context->version() + " via " + context->description());
-    const RenderedFrame frame = renderHeadless(*context, map, heightFile.string(), o.job);
+    const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.job);
+    const RenderedFrame& frame = result.frame;
 
     std::size_t exhausted = 0;
     for (std::size_t p = 3; p < frame.stats.size(); p += 4) exhausted += frame.stats[p] > 0.0f;
@@ -58,6 +74,7 @@ int run(const RenderOptions& o) {
     }
     batch.commit();
 
+    if (o.compareReference) printAccuracy(frame, result.camera, map, o.job.heightScale);
     if (exhausted > 0) {
         logWarning(std::to_string(exhausted) + " pixel(s) ran out of the iteration budget (shown magenta)");
     }

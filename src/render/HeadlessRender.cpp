@@ -8,8 +8,8 @@
 
 namespace microrelief {
 
-RenderedFrame renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
-                             const RenderJob& job) {
+HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
+                              const RenderJob& job) {
     if (!(job.heightScale > 0.0f) || !std::isfinite(job.heightScale)) {
         throwBadInput("--height-scale must be a positive number");
     }
@@ -27,10 +27,10 @@ RenderedFrame renderHeadless(GlContext& context, const HeightMap& map, const std
     target.clear(job.background);
     renderer.draw(camera, job.shading);
     gl.Finish();
-    RenderedFrame frame = target.read();
+    HeadlessResult result{target.read(), camera};
     const GLenum error = gl.GetError();
-    if (error != GL_NO_ERROR) throwRuntime("GL error 0x" + std::to_string(error) + " while rendering " + source);
-    return frame;
+    if (error != GL_NO_ERROR) throwRuntime("GL error " + std::to_string(error) + " while rendering " + source);
+    return result;
 }
 
 }  // namespace microrelief

@@ -20,8 +20,13 @@ struct RenderJob {
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB
 };
 
+struct HeadlessResult {
+    RenderedFrame frame;
+    CameraFrame camera;  // the rays the picture was traced with
+};
+
 // `source` names the map in error messages. Throws Error.
-RenderedFrame renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
-                             const RenderJob& job);
+HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
+                              const RenderJob& job);
 
 }  // namespace microrelief

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "GlTestBackend.h"
 #include "TestSupport.h"
 #include "context/GlContext.h"
 #include "render/HeadlessRender.h"
@@ -15,8 +16,6 @@ using namespace microrelief;
 
 namespace {
 
-Backend gBackend = Backend::Egl;
-
 // Thresholds for every view (issue 3): hit/miss may flip only for rays that graze a
 // ridge or a silhouette edge, at most 0.1 % of pixels; positions may be off by more
 // than half a texel for at most 0.2 % of hit pixels (the same grazing rays, whose hit
@@ -26,13 +25,10 @@ constexpr double kMaxOffHalfTexelPercent = 0.2;
 
 class Render : public ::testing::Test {
 protected:
-    static GlContext* context() {
-        static std::unique_ptr<GlContext> instance = createHeadlessContext(gBackend);
-        return instance.get();
-    }
+    static GlContext* context() { return &test::glContext(); }
 
     void SetUp() override {
-        if (!isBackendPresent(gBackend)) GTEST_SKIP() << backendName(gBackend) << " is not installed";
+        if (!isBackendPresent(test::glBackend())) GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
     }
 
     struct Result {
@@ -49,9 +45,9 @@ protected:
         job.height = size;
         job.heightScale = heightScale;
         Result r;
-        r.frame = renderHeadless(*context(), map, "test map", job);
-        const ReliefExtent extent = reliefExtent(map, heightScale);
-        r.camera = resolveCamera(camera, size, size, std::max({extent.halfWidth, extent.halfDepth, extent.topHeight}) * 2);
+        HeadlessResult rendered = renderHeadless(*context(), map, "test map", job);
+        r.frame = std::move(rendered.frame);
+        r.camera = rendered.camera;
         r.accuracy = test::compareWithReference(r.frame, r.camera, map, heightScale);
         std::printf("    %s\n", r.accuracy.summary().c_str());
         EXPECT_LE(r.accuracy.coverageMismatchPercent(), kMaxCoverageMismatchPercent) << r.accuracy.summary();
@@ -219,13 +215,3 @@ TEST_F(Render, PictureIsShadedNotFlat) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-    ::testing::InitGoogleTest(&argc, argv);
-    for (int k = 1; k < argc; ++k) {
-        const std::string arg = argv[k];
-        if (arg.rfind("--backend=", 0) == 0) gBackend = parseBackend(arg.substr(10));
-    }
-    std::printf("GL tests on backend %s\n", backendName(gBackend));
-    return RUN_ALL_TESTS();
-}

@@ -6,7 +6,6 @@
 #include <random>
 #include <sstream>
 
-#include "trace/ReferenceTracer.h"
 
 namespace microrelief::test {
 
@@ -61,48 +60,6 @@ Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm:
     // Straight down: y is parallel to the view; take -z as up (the spec's top view).
     camera.up = elevationDeg > 89.999 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
     return camera;
-}
-
-std::string Accuracy::summary() const {
-    std::ostringstream out;
-    out << pixels << " px, " << referenceHits << " reference hits; hit/miss disagree " << coverageMismatches << " ("
-        << coverageMismatchPercent() << " %); off > 0.5 texel " << offHalfTexel << " (" << offHalfTexelPercent()
-        << " %); error p99 " << p99ErrorTexels << ", max " << maxErrorTexels << " texels; out of budget "
-        << exhausted;
-    return out.str();
-}
-
-Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
-                              double heightScale) {
-    Accuracy result;
-    const ReferenceTracer reference(ReliefGeometry{&map, heightScale});
-    const double texelsPerUnit = std::max(map.width, map.height);
-    std::vector<double> errors;
-    for (int row = 0; row < frame.height; ++row) {
-        for (int column = 0; column < frame.width; ++column) {
-            ++result.pixels;
-            const float* gpu = frame.positionAt(column, row);
-            if (frame.statsAt(column, row)[3] > 0.0f) ++result.exhausted;
-            const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
-            const bool gpuHit = gpu[3] > 0.5f;
-            if (exact) ++result.referenceHits;
-            if (gpuHit != static_cast<bool>(exact)) {
-                ++result.coverageMismatches;
-                continue;
-            }
-            if (!gpuHit) continue;
-            const double error = glm::length(glm::dvec3(gpu[0], gpu[1], gpu[2]) - exact.position) * texelsPerUnit;
-            errors.push_back(error);
-            if (error > 0.5) ++result.offHalfTexel;
-            result.maxErrorTexels = std::max(result.maxErrorTexels, error);
-        }
-    }
-    if (!errors.empty()) {
-        const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(0.99 * errors.size()));
-        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
-        result.p99ErrorTexels = errors[k];
-    }
-    return result;
 }
 
 }  // namespace microrelief::test

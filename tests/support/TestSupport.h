@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "image/ImageFile.h"
 #include "render/Camera.h"
 #include "render/OffscreenTarget.h"
+#include "trace/Accuracy.h"
 
 namespace microrelief::test {
 
@@ -38,23 +40,9 @@ std::vector<std::uint8_t> readBytes(const std::filesystem::path& file);
 Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target = {0, 0, 0},
                    double fovyDeg = 40.0);
 
-// GPU AOV against the reference, pixel by pixel (issue 3's figures).
-struct Accuracy {
-    std::size_t pixels = 0;
-    std::size_t referenceHits = 0;
-    std::size_t coverageMismatches = 0;  // hit on one side, miss on the other
-    std::size_t offHalfTexel = 0;        // both hit, positions further apart than half a texel
-    std::size_t exhausted = 0;           // pixels that ran out of the iteration budget
-    double maxErrorTexels = 0.0;
-    double p99ErrorTexels = 0.0;
-
-    double coverageMismatchPercent() const { return pixels ? 100.0 * coverageMismatches / pixels : 0.0; }
-    double offHalfTexelPercent() const { return referenceHits ? 100.0 * offHalfTexel / referenceHits : 0.0; }
-    std::string summary() const;
-};
-
-// Errors are measured in texels of the map: world distance * max(W, H).
-Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
-                              double heightScale);
+using microrelief::Accuracy;
+using microrelief::PixelHit;
+using microrelief::compareWithReference;
+using microrelief::measureAccuracy;
 
 }  // namespace microrelief::test

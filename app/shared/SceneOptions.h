@@ -1,0 +1,67 @@
+// The flags that describe a view of a height map (scene-and-cli.md): the map, the camera
+// and the shading. microrelief-render and microrelief-viewer register them through this
+// one file, so the viewer's "copy as command" writes exactly what the renderer parses.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "heightmap/HeightMap.h"
+#include "render/HeadlessRender.h"
+
+namespace CLI {
+class App;
+}
+
+namespace microrelief {
+
+struct SceneOptions {
+    std::optional<std::filesystem::path> heightFile;  // empty: the bundled default map
+    HeightMapLoadOptions load;
+    RenderJob job;  // camera, size, height scale, shading, background
+};
+
+// Registers the flags on a CLI11 app and turns their text into SceneOptions after the
+// parse. Two groups, so a program can place its own flags between them in --help.
+class SceneFlags {
+public:
+    // `options` holds the defaults shown in --help and receives the parsed values; it
+    // must outlive the parse.
+    explicit SceneFlags(SceneOptions& options);
+
+    // --height --channel --normalize --height-scale --eye --target --up --fovy --size
+    void addMapAndCamera(CLI::App& app);
+    // --light --view --background
+    void addShading(CLI::App& app);
+
+    // After app.parse(): validates and fills the options. Throws Error(BadInput) with a
+    // message naming the flag.
+    void apply();
+
+private:
+    SceneOptions& options_;
+    std::string height_, eye_, target_, up_, size_, light_, view_, background_;
+};
+
+// "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.
+glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text);
+// "WxH" -> width, height; throws Error(BadInput).
+void parseSizeFlag(const std::string& text, int& width, int& height);
+
+// The shortest decimal text that reads back as exactly `value` ("0.1", "-2.5e-07").
+std::string exactNumber(double value);
+// "x,y,z" with exactNumber() components.
+std::string exactVector(const glm::dvec3& v);
+
+// The microrelief-render command line (without --out) that renders `options` again, every
+// value written exactly: `program --height FILE --height-scale 0.1 --eye x,y,z ...`.
+// Arguments are quoted for a POSIX shell where they need it.
+std::string renderCommandLine(const SceneOptions& options, const std::string& program = "microrelief-render");
+
+// `text` quoted for a POSIX shell, unchanged when it needs no quoting.
+std::string shellQuote(const std::string& text);
+
+}  // namespace microrelief

@@ -1,0 +1,50 @@
+// Measuring a tracer against the exact CPU reference (trace/ReferenceTracer.h) over the
+// pixels of a picture: hit/miss disagreements, positions off by more than half a
+// texel, error percentiles in texels, traversals that ran out of budget.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "heightmap/HeightMap.h"
+#include "render/Camera.h"
+#include "render/OffscreenTarget.h"
+
+namespace microrelief {
+
+// A tracer's answers against the exact reference, pixel by pixel: the figures of the
+// accuracy sweep and of microrelief-render --compare-reference.
+struct Accuracy {
+    std::size_t pixels = 0;
+    std::size_t referenceHits = 0;
+    std::size_t coverageMismatches = 0;  // hit on one side, miss on the other
+    std::size_t offHalfTexel = 0;        // both hit, positions further apart than half a texel
+    std::size_t exhausted = 0;           // pixels that ran out of the iteration budget
+    double maxErrorTexels = 0.0;
+    double p99ErrorTexels = 0.0;
+
+    double coverageMismatchPercent() const { return pixels ? 100.0 * coverageMismatches / pixels : 0.0; }
+    double offHalfTexelPercent() const { return referenceHits ? 100.0 * offHalfTexel / referenceHits : 0.0; }
+    std::string summary() const;
+};
+
+// One pixel's answer from the tracer under test.
+struct PixelHit {
+    bool hit = false;
+    glm::dvec3 position{0.0};
+    bool exhausted = false;
+};
+
+// Every pixel of `camera`'s picture: `trace(column, row, ray)` against the exact
+// reference. Errors are measured in texels of the map: world distance * max(W, H).
+Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double heightScale,
+                         const std::function<PixelHit(int, int, const Ray&)>& trace);
+
+// A rendered frame's AOV against the reference.
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
+                              double heightScale);
+
+}  // namespace microrelief

@@ -8,8 +8,8 @@
 namespace microrelief {
 
 struct Camera {
-    glm::dvec3 eye{0.8, 0.6, 0.8};
-    glm::dvec3 target{0.0, 0.0, 0.0};
+    glm::dvec3 eye{0.8, 0.5, 0.85};
+    glm::dvec3 target{0.0, -0.03, 0.0};
     glm::dvec3 up{0.0, 1.0, 0.0};
     double fovyDegrees = 45.0;
 };

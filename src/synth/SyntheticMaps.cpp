@@ -118,7 +118,7 @@ HeightMap cobbles(int width, int height, std::uint32_t seed) {
             }
             const double edge = std::clamp((f2 - f1) / 0.35, 0.0, 1.0);
             const double dome = std::sqrt(1.0 - (1.0 - edge) * (1.0 - edge));  // rounded shoulders
-            const double grain = fractalNoise(x * 9.0, y * 9.0, 4, seed + 99U);
+            const double grain = fractalNoise(x * 5.0, y * 5.0, 3, seed + 99U);
             const double h = dome * (0.72 + 0.2 * stone) + 0.08 * grain * dome + 0.03 * grain;
             map.at(i, j) = static_cast<float>(std::clamp(h, 0.0, 1.0));
         }

@@ -1,9 +1,26 @@
 // relief.frag: one ray per pixel through the pixel centre, traced by the multilevel
-// method (microrelief/multilevel_trace.glsl), shaded, with the world position of the
-// hit and the traversal's statistics as extra outputs. Misses are discarded; hits
-// write gl_FragDepth, so the relief depth-composites with other geometry.
+// method (microrelief/multilevel_trace.glsl) or, for comparison, one of its peers,
+// shaded, with the world position of the hit and the traversal's statistics as extra
+// outputs. Misses are discarded; hits write gl_FragDepth, so the relief
+// depth-composites with other geometry.
+//
+// Host defines: MICRORELIEF_METHOD (0 multilevel, 1 normal, 2 offset, 3 steep, 4 pom,
+// 5 relief, 6 maxmip); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
+// writes texel reads to the statistics and keeps misses (so they are counted too).
 #include "microrelief/map_space.glsl"
 #include "microrelief/multilevel_trace.glsl"
+
+#include "microrelief/maxmip_trace.glsl"
+#include "microrelief/normal_mapping.glsl"
+#include "microrelief/parallax_occlusion.glsl"
+#include "microrelief/parallax_offset.glsl"
+#include "microrelief/relief_mapping.glsl"
+#include "microrelief/steep_parallax.glsl"
+// Every method is included (the host splices includes before the preprocessor runs);
+// MICRORELIEF_METHOD picks the one that is called, and the compiler drops the rest.
+#ifndef MICRORELIEF_METHOD
+#define MICRORELIEF_METHOD 0
+#endif
 #include "microrelief/debug_views.glsl"
 #include "microrelief/shading.glsl"
 
@@ -28,18 +45,50 @@ uniform vec3 lightDirection;  // towards the light, unit
 uniform vec3 albedo;
 uniform int debugView;        // DEBUG_VIEW_*; 0 is the shaded picture
 
+uniform int methodSteps;         // peers' quality knob: layers, samples or linear steps
+uniform int methodMinSteps;      // pom: samples when looking straight down
+uniform int methodRefineSteps;   // relief: binary search steps
+uniform float pixelErrorTolerance;  // multilevel: stop at levels whose texel < this many pixels
+
+ReliefHit traceRay(ReliefMap map, vec3 origin, vec3 dir) {
+#if MICRORELIEF_METHOD == 1
+    return traceNormalMapping(map, heightSamples, origin, dir);
+#elif MICRORELIEF_METHOD == 2
+    return traceParallaxOffset(map, heightSamples, origin, dir);
+#elif MICRORELIEF_METHOD == 3
+    return traceSteepParallax(map, heightSamples, origin, dir, methodSteps);
+#elif MICRORELIEF_METHOD == 4
+    return traceParallaxOcclusion(map, heightSamples, origin, dir, methodMinSteps, methodSteps);
+#elif MICRORELIEF_METHOD == 5
+    return traceReliefMapping(map, heightSamples, origin, dir, methodSteps, methodRefineSteps);
+#elif MICRORELIEF_METHOD == 6
+    return traceMaxMip(map, maxPyramid, heightSamples, origin, dir);
+#else
+    return traceMultilevel(map, maxPyramid, heightSamples, origin, dir);
+#endif
+}
+
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outPosition;  // world hit position, 1
 layout(location = 2) out vec4 outStats;     // iterations, fetches, stop level, exhausted
 
 void main() {
-    ReliefMap map = ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, heightScale, maxIterations);
-
     vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
     vec3 dir = cameraForward + ndc.x * cameraRight + ndc.y * cameraUp;
-    ReliefHit hit = traceMultilevel(map, maxPyramid, heightSamples, worldToMapPoint(map, eye),
-                                    worldToMapVector(map, dir));
-    outStats = vec4(float(hit.iterations), float(hit.fetches), float(hit.stopLevel), hit.exhausted ? 1.0 : 0.0);
+    // Level-of-detail cone: a level-k texel (2^k finest texels) projects to less than
+    // pixelErrorTolerance pixels once 2^k <= lodCone * t (t along this unnormalised ray).
+    float pixelAngle = 2.0 * length(cameraUp) / viewportSize.y;
+    float lodCone = pixelErrorTolerance * pixelAngle * length(dir) * max(reliefSize.x, reliefSize.y);
+    ReliefMap map = ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, heightScale, maxIterations,
+                              lodCone);
+
+    ReliefHit hit = traceRay(map, worldToMapPoint(map, eye), worldToMapVector(map, dir));
+#ifdef MICRORELIEF_COUNT_FETCHES
+    float fetches = float(hit.fetches);
+#else
+    float fetches = 0.0;  // the counting is dead code without the instrumented variant
+#endif
+    outStats = vec4(float(hit.iterations), fetches, float(hit.stopLevel), hit.exhausted ? 1.0 : 0.0);
     if (hit.exhausted) {
         // Never silent: a traversal cut short by the budget shows as magenta.
         outColor = vec4(1.0, 0.0, 1.0, 1.0);
@@ -47,7 +96,17 @@ void main() {
         gl_FragDepth = gl_FragCoord.z;
         return;
     }
-    if (hit.kind == RELIEF_MISS) discard;
+    if (hit.kind == RELIEF_MISS) {
+#ifdef MICRORELIEF_COUNT_FETCHES
+        // Keep the statistics of missed rays; the picture of this variant is not used.
+        outColor = vec4(0.0);
+        outPosition = vec4(0.0);
+        gl_FragDepth = 1.0;
+        return;
+#else
+        discard;
+#endif
+    }
 
     vec3 world = eye + hit.t * dir;
     vec3 n = reliefWorldNormal(map, hit);

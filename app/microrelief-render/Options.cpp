@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -78,6 +79,18 @@ ParseResult parseRenderOptions(int argc, char** argv) {
     app.add_option("--out", out, "Shaded picture; the format follows the extension")->capture_default_str();
     app.add_option("--aov", aov, "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss");
     app.add_option("--light", light, "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
+    std::string method = "multilevel";
+    app.add_option("--method", method,
+                   "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
+                   "normal, offset, steep, pom, relief, maxmip")
+        ->capture_default_str();
+    app.add_option("--steps", o.job.method.steps,
+                   "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps")
+        ->capture_default_str();
+    app.add_option("--pixel-error", o.job.method.pixelError,
+                   "multilevel: stop at pyramid levels whose texels project to less than this many pixels "
+                   "(0: exact)")
+        ->capture_default_str();
     std::string view = "shaded";
     app.add_option("--view", view,
                    "What the picture shows: shaded, or a debug view of the method: iterations (segments "
@@ -117,6 +130,12 @@ ParseResult parseRenderOptions(int argc, char** argv) {
         parseSize(size, o.job.width, o.job.height);
         o.backend = parseBackend(backend);
         o.job.shading.view = parseDebugView(view);
+        o.job.method.method = parseMethod(method);
+        if (o.job.method.steps < 1 || o.job.method.steps > 65536) throwBadInput("--steps must lie in 1..65536");
+        o.job.method.minSteps = std::max(1, std::min(o.job.method.minSteps, o.job.method.steps));
+        if (!(o.job.method.pixelError >= 0.0f) || !std::isfinite(o.job.method.pixelError)) {
+            throwBadInput("--pixel-error must be a number >= 0");
+        }
         o.out = out;
         if (!aov.empty()) o.aov = aov;
         if (!(o.job.heightScale > 0.0f) || !std::isfinite(o.job.heightScale)) {

@@ -171,8 +171,19 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, v
         float extent = max(hi.x - lo.x, hi.y - lo.y);
         int level = footprintLevel(map, extent);
         hit.stopLevel = level;
-        bool mayHit = min(pa.z, pb.z) <= footprintMax(map, pyramid, lo, hi, level, hit.fetches);
+        float bound = footprintMax(map, pyramid, lo, hi, level, hit.fetches);
+        bool mayHit = min(pa.z, pb.z) <= bound;
         if (mayHit) {
+            if (level > 0 && exp2(float(level)) <= map.lodCone * ta) {
+                // Accuracy-controlled level of detail (paper, section II: "under criterion
+                // of required accuracy"): this level's texels project to less than the
+                // tolerated pixel error, so its max box stands for the surface here.
+                float t = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
+                vec3 p = origin + t * dir;
+                ivec2 cell = cellAt(p.xy);
+                setTopHit(hit, map, origin, dir, t, cellCorners(map, heights, cell, hit.fetches), cell);
+                return hit;
+            }
             if (extent <= 1.0 || depth >= MICRORELIEF_MAX_DEPTH) {
                 vec4 corners;
                 ivec2 cell;

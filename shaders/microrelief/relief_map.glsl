@@ -14,6 +14,9 @@ struct ReliefMap {
     float maxHeight;     // the map's maximum height (pyramid top), in map units
     float heightScale;   // s: world height of map height 1
     int maxIterations;   // traversal budget; running out is reported, never silent
+    float lodCone;       // accuracy-controlled level of detail: a level-k segment at ray
+                         // parameter t may stand for the surface once 2^k <= lodCone * t;
+                         // 0 is exact (multilevel_trace.glsl)
 };
 
 #endif

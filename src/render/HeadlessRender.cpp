@@ -17,6 +17,7 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     const GL& gl = context.gl();
     // GL objects live in this scope and die before the context does.
     ReliefRenderer renderer(gl, shaderDirectory());
+    renderer.setMethod(job.method);
     renderer.setHeightScale(job.heightScale);
     renderer.setHeightMap(map, source);
     const ReliefExtent extent = reliefExtent(map, job.heightScale);

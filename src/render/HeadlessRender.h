@@ -17,6 +17,7 @@ struct RenderJob {
     int width = 1280, height = 720;
     float heightScale = 0.1f;
     ShadingOptions shading;
+    MethodSettings method;
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -14,7 +15,21 @@ namespace microrelief {
 
 namespace {
 constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level", "normal", "depth", "position"};
+constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip"};
 }  // namespace
+
+Method parseMethod(const std::string& name) {
+    for (int k = 0; k < 7; ++k) {
+        if (name == kMethodNames[k]) return static_cast<Method>(k);
+    }
+    throwBadInput("unknown --method '" + name + "' (expected multilevel, normal, offset, steep, pom, relief or maxmip)");
+}
+
+const char* methodName(Method method) { return kMethodNames[static_cast<int>(method)]; }
+
+bool methodHasSteps(Method method) {
+    return method == Method::Steep || method == Method::Pom || method == Method::Relief;
+}
 
 DebugView parseDebugView(const std::string& name) {
     for (int k = 0; k < 6; ++k) {
@@ -44,11 +59,29 @@ void ReliefRenderer::reloadShaders() {
     // GLSL 3.30 core: the oldest desktop version with explicit fragment output
     // locations and textureLod/texelFetch everywhere.
     const std::string version = "330 core";
+    std::vector<ShaderDefine> defines = {{"MICRORELIEF_METHOD", std::to_string(static_cast<int>(method_.method))}};
+    if (countFetches_) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex =
         gl::compileShader(gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
     const gl::Shader fragment =
-        gl::compileShader(gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version));
-    program_ = gl::linkProgram(gl_, vertex, fragment, "relief");
+        gl::compileShader(gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version, defines));
+    program_ = gl::linkProgram(gl_, vertex, fragment, std::string("relief (") + methodName(method_.method) + ")");
+}
+
+void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
+    const bool recompile = settings.method != method_.method || countFetches != countFetches_;
+    const MethodSettings previous = method_;
+    const bool previousCount = countFetches_;
+    method_ = settings;
+    countFetches_ = countFetches;
+    if (!recompile) return;
+    try {
+        reloadShaders();
+    } catch (...) {
+        method_ = previous;  // keep drawing with the program that works
+        countFetches_ = previousCount;
+        throw;
+    }
 }
 
 namespace {
@@ -151,6 +184,10 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.Uniform3fv(u("lightDirection"), 1, glm::value_ptr(glm::normalize(shading.lightDirection)));
     gl_.Uniform3fv(u("albedo"), 1, glm::value_ptr(shading.albedo));
     gl_.Uniform1i(u("debugView"), static_cast<int>(shading.view));
+    gl_.Uniform1i(u("methodSteps"), method_.steps);
+    gl_.Uniform1i(u("methodMinSteps"), method_.minSteps);
+    gl_.Uniform1i(u("methodRefineSteps"), method_.refineSteps);
+    gl_.Uniform1f(u("pixelErrorTolerance"), method_.pixelError);
 
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());

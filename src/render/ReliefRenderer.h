@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -15,6 +16,24 @@
 #include "render/Camera.h"
 
 namespace microrelief {
+
+// How each pixel's ray is traced (relief.frag's MICRORELIEF_METHOD): the paper's
+// multilevel method, or one of the peers it is measured against.
+enum class Method { Multilevel = 0, Normal, Offset, Steep, Pom, Relief, MaxMip };
+
+// "multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip"; throws Error(BadInput).
+Method parseMethod(const std::string& name);
+const char* methodName(Method method);
+// Whether a method's quality knob is a step count (steep, pom, relief).
+bool methodHasSteps(Method method);
+
+struct MethodSettings {
+    Method method = Method::Multilevel;
+    int steps = 64;         // steep: layers; pom: samples at grazing angles; relief: linear steps
+    int minSteps = 8;       // pom: samples looking straight down
+    int refineSteps = 8;    // relief: binary search steps
+    float pixelError = 0.0f;  // multilevel: tolerated error in pixels; 0 is exact
+};
 
 // What relief.frag writes to the picture (debug_views.glsl).
 enum class DebugView { Shaded = 0, Iterations, Level, Normal, Depth, Position };
@@ -49,6 +68,12 @@ public:
     // Recompiles the shaders; on failure throws and keeps the previous program.
     void reloadShaders();
 
+    // Chooses the tracing method (recompiles when the method or the instrumentation
+    // changes; step counts and the pixel error are uniforms). `countFetches` selects the
+    // instrumented variant that writes texel reads to the statistics output.
+    void setMethod(const MethodSettings& settings, bool countFetches = false);
+    const MethodSettings& method() const { return method_; }
+
     void draw(const CameraFrame& camera, const ShadingOptions& shading);
 
     const MaxPyramid* pyramid() const { return pyramid_ ? &*pyramid_ : nullptr; }
@@ -70,6 +95,8 @@ private:
     float maxHeight_ = 0.0f;
     float heightScale_ = 0.1f;
     int maxIterations_ = 0;
+    MethodSettings method_;
+    bool countFetches_ = false;
 };
 
 }  // namespace microrelief

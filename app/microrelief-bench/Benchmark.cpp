@@ -1,0 +1,210 @@
+#include "Benchmark.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "core/DataPaths.h"
+#include "render/OffscreenTarget.h"
+#include "synth/SyntheticMaps.h"
+#include "trace/ReferenceTracer.h"
+
+namespace microrelief::bench {
+
+namespace {
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// A camera looking at the relief's centre with `degrees` between the view direction and
+// the surface normal (0: straight down).
+Camera viewCamera(int degrees, double top) {
+    const double elevation = glm::radians(90.0 - degrees), azimuth = glm::radians(35.0);
+    Camera camera;
+    camera.target = {0.0, 0.5 * top, 0.0};
+    camera.eye = camera.target +
+                 1.35 * glm::dvec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+                                   std::cos(elevation) * std::sin(azimuth));
+    camera.up = degrees == 0 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
+    camera.fovyDegrees = 45.0;
+    return camera;
+}
+
+// The exact answer for every pixel of a view, and which pixels' rays meet the box.
+struct ReferencePicture {
+    std::vector<std::optional<glm::dvec3>> hits;
+    std::vector<bool> inBox;
+};
+
+bool rayMeetsBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
+    double t0 = 0.0, t1 = 1e300;
+    for (int a = 0; a < 3; ++a) {
+        if (ray.direction[a] == 0.0) {
+            if (ray.origin[a] < lo[a] || ray.origin[a] > hi[a]) return false;
+            continue;
+        }
+        double ta = (lo[a] - ray.origin[a]) / ray.direction[a], tb = (hi[a] - ray.origin[a]) / ray.direction[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    return t0 <= t1;
+}
+
+ReferencePicture tracePicture(const BenchMap& m, const CameraFrame& camera) {
+    const ReferenceTracer reference(ReliefGeometry{m.map.get(), m.heightScale});
+    const ReliefExtent extent = reliefExtent(*m.map, m.heightScale);
+    const glm::dvec3 lo(-extent.halfWidth, 0.0, -extent.halfDepth), hi(extent.halfWidth, extent.topHeight, extent.halfDepth);
+    ReferencePicture picture;
+    picture.hits.resize(static_cast<std::size_t>(camera.width) * camera.height);
+    picture.inBox.resize(picture.hits.size());
+    for (int row = 0; row < camera.height; ++row) {
+        for (int column = 0; column < camera.width; ++column) {
+            const Ray ray = camera.pixelRay(column, row);
+            const std::size_t k = static_cast<std::size_t>(row) * camera.width + column;
+            if (const ReferenceHit hit = reference.trace(ray)) picture.hits[k] = hit.position;
+            picture.inBox[k] = rayMeetsBox(ray, lo, hi);
+        }
+    }
+    return picture;
+}
+
+class Timer {
+public:
+    explicit Timer(const GL& gl) : gl_(gl), query_(gl::Query::create(gl)) {}
+
+    // GPU and wall milliseconds of one draw.
+    std::pair<double, double> time(const std::function<void()>& draw) {
+        gl_.Finish();
+        const auto start = std::chrono::steady_clock::now();
+        gl_.BeginQuery(GL_TIME_ELAPSED, query_.id());
+        draw();
+        gl_.EndQuery(GL_TIME_ELAPSED);
+        gl_.Finish();
+        const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        GLuint64 ns = 0;
+        gl_.GetQueryObjectui64v(query_.id(), GL_QUERY_RESULT, &ns);
+        return {ns * 1e-6, wall};
+    }
+
+private:
+    const GL& gl_;
+    gl::Query query_;
+};
+
+}  // namespace
+
+HeightMap benchRelief(int n) { return synth::valueNoise(n, n, n / 6.0, 6, 2024); }
+
+std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
+    std::vector<Setting> settings;
+    MethodSettings s;
+    s.method = method;
+    if (method == Method::Multilevel) {
+        for (float error : {0.0f, 1.0f, 4.0f}) {
+            s.pixelError = error;
+            settings.push_back({s, error == 0.0f ? "exact" : std::to_string(static_cast<int>(error)) + "px"});
+        }
+    } else if (methodHasSteps(method)) {
+        for (int steps = 8; steps <= std::min(2 * mapSize, maxSteps); steps *= 2) {
+            s.steps = steps;
+            s.minSteps = std::max(4, steps / 4);  // pom: a quarter of the samples looking straight down
+            s.refineSteps = 8;                    // relief: binary search steps after the linear search
+            settings.push_back({s, std::to_string(steps)});
+        }
+    } else {
+        settings.push_back({s, method == Method::MaxMip ? "exact" : "-"});
+    }
+    return settings;
+}
+
+void runBenchmark(GlContext& context, const BenchOptions& options, const std::vector<BenchMap>& maps,
+                  const std::function<void(const Measurement&)>& report) {
+    context.makeCurrent();
+    const GL& gl = context.gl();
+    ReliefRenderer renderer(gl, shaderDirectory());
+    OffscreenTarget target(gl, options.width, options.height);
+    Timer timer(gl);
+    const ShadingOptions shading;
+
+    for (const BenchMap& m : maps) {
+        renderer.setHeightScale(static_cast<float>(m.heightScale));
+        renderer.setHeightMap(*m.map, m.name);
+        const int mapSize = std::max(m.map->width, m.map->height);
+        const double top = m.heightScale * m.map->maxValue();
+        const double texelsPerUnit = mapSize;
+        for (int degrees : options.viewDegrees) {
+            const CameraFrame camera = resolveCamera(viewCamera(degrees, top), options.width, options.height, 2.0);
+            const ReferencePicture reference = tracePicture(m, camera);
+            for (Method method : options.methods) {
+                for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps)) {
+                    Measurement r;
+                    r.method = methodName(method);
+                    r.param = setting.param;
+                    r.map = m.name;
+                    r.mapSize = mapSize;
+                    r.viewDegrees = degrees;
+                    r.width = options.width;
+                    r.height = options.height;
+                    auto draw = [&] {
+                        target.clear(glm::vec3(0.0f));
+                        renderer.draw(camera, shading);
+                    };
+
+                    // Timing: the plain variant, two warm-up frames, then the median.
+                    renderer.setMethod(setting.method, false);
+                    draw();
+                    draw();
+                    std::vector<double> gpu, wall;
+                    for (int f = 0; f < options.frames; ++f) {
+                        const auto [g, w] = timer.time(draw);
+                        gpu.push_back(g);
+                        wall.push_back(w);
+                    }
+                    r.msMedian = median(gpu);
+                    r.msWallMedian = median(wall);
+
+                    // Accuracy from the plain variant's AOV.
+                    const RenderedFrame frame = target.read();
+                    std::size_t hits = 0, mismatches = 0, off = 0;
+                    for (std::size_t k = 0; k < reference.hits.size(); ++k) {
+                        const float* p = &frame.position[k * 4];
+                        const bool gpuHit = p[3] > 0.5f;
+                        hits += reference.hits[k].has_value();
+                        if (gpuHit != reference.hits[k].has_value()) {
+                            ++mismatches;
+                        } else if (gpuHit && glm::length(glm::dvec3(p[0], p[1], p[2]) - *reference.hits[k]) *
+                                                     texelsPerUnit > 0.5) {
+                            ++off;
+                        }
+                        r.exhausted += frame.stats[k * 4 + 3] > 0.0f;
+                    }
+                    r.coverageMismatchPct = 100.0 * mismatches / reference.hits.size();
+                    r.offHalfTexelPct = hits ? 100.0 * off / hits : 0.0;
+
+                    // Fetches: the instrumented variant, once.
+                    renderer.setMethod(setting.method, true);
+                    draw();
+                    const RenderedFrame counted = target.read();
+                    double sum = 0.0;
+                    std::size_t covered = 0;
+                    for (std::size_t k = 0; k < reference.inBox.size(); ++k) {
+                        if (!reference.inBox[k]) continue;
+                        const double fetches = counted.stats[k * 4 + 1];
+                        sum += fetches;
+                        ++covered;
+                        r.fetchesMax = std::max(r.fetchesMax, fetches);
+                    }
+                    r.fetchesMean = covered ? sum / covered : 0.0;
+                    report(r);
+                }
+            }
+        }
+    }
+}
+
+}  // namespace microrelief::bench

@@ -1,0 +1,64 @@
+// microrelief-bench's measurements: for each method and knob setting, map and view, the
+// median frame time (GL timer queries and glFinish wall time), texel fetches per pixel
+// (the instrumented shader variant) and accuracy against the exact CPU reference.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "context/GlContext.h"
+#include "heightmap/HeightMap.h"
+#include "render/ReliefRenderer.h"
+
+namespace microrelief::bench {
+
+struct BenchMap {
+    std::string name;  // "noise" for the resampled relief, else the asset's file stem
+    std::shared_ptr<const HeightMap> map;
+    double heightScale = 0.1;
+};
+
+struct Setting {
+    MethodSettings method;
+    std::string param;  // the knob as the CSV shows it: steps, pixel error, or "-"
+};
+
+struct Measurement {
+    std::string method, param, map;
+    int mapSize = 0;       // max(W, H)
+    int viewDegrees = 0;   // between the view direction and the surface normal
+    int width = 0, height = 0;
+    double msMedian = 0.0;      // GL_TIME_ELAPSED
+    double msWallMedian = 0.0;  // draw + glFinish on the CPU clock
+    double fetchesMean = 0.0;   // over pixels whose ray meets the relief's box
+    double fetchesMax = 0.0;
+    double coverageMismatchPct = 0.0;
+    double offHalfTexelPct = 0.0;
+    std::size_t exhausted = 0;
+};
+
+struct BenchOptions {
+    std::vector<int> mapSizes;
+    std::vector<std::string> assets;  // extra maps (files)
+    std::vector<int> viewDegrees;
+    int width = 512, height = 512;
+    int maxSteps = 4096;  // cap on the step budgets of steep, pom and relief
+    int frames = 10;      // timed frames per measurement, after warm-up
+    std::vector<Method> methods;
+};
+
+// The knob settings measured for `method` on a map of `mapSize` texels: step budgets in
+// powers of two from 8 to min(2 mapSize, maxSteps); pixel errors 0, 1 and 4 for the
+// multilevel method; one setting for the others.
+std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps);
+
+// Runs everything; `report` is called after each measurement (progress and the CSV).
+void runBenchmark(GlContext& context, const BenchOptions& options, const std::vector<BenchMap>& maps,
+                  const std::function<void(const Measurement&)>& report);
+
+// The "noise" relief at n x n: the same continuous relief at every size.
+HeightMap benchRelief(int n);
+
+}  // namespace microrelief::bench

@@ -1,0 +1,239 @@
+#include "Report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "core/Error.h"
+
+namespace microrelief::bench {
+
+namespace {
+
+// Text files get the same whole-or-nothing treatment as images.
+void writeTextAtomically(const std::filesystem::path& file, const std::string& text) {
+    std::filesystem::create_directories(file.parent_path().empty() ? "." : file.parent_path());
+    const std::filesystem::path temporary = file.parent_path() / ("." + file.filename().string() + ".tmp");
+    {
+        std::ofstream out(temporary, std::ios::binary);
+        out << text;
+        if (!out) throwRuntime(file.string() + ": cannot write");
+    }
+    std::error_code ec;
+    std::filesystem::rename(temporary, file, ec);
+    if (ec) throwRuntime(file.string() + ": cannot move into place (" + ec.message() + ")");
+}
+
+std::string csvQuote(const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+std::string fixed(double value, int digits) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+    return buffer;
+}
+
+// A peer reaches the multilevel method's accuracy when it is within the accuracy
+// sweep's budgets of it: hit/miss disagreement at most 0.1 % of pixels worse, hits off
+// by more than half a texel at most 0.2 % worse.
+bool reaches(const Measurement& peer, const Measurement& multilevel) {
+    return peer.coverageMismatchPct <= multilevel.coverageMismatchPct + 0.1 &&
+           peer.offHalfTexelPct <= multilevel.offHalfTexelPct + 0.2;
+}
+
+using Key = std::tuple<std::string, int, int>;  // map, size, view
+
+const Measurement* find(const std::vector<Measurement>& rows, const Key& key, const std::string& method,
+                        const std::string& param) {
+    for (const Measurement& r : rows) {
+        if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method && r.param == param) return &r;
+    }
+    return nullptr;
+}
+
+// The cheapest-to-reach setting: the smallest budget (rows are in increasing budget order).
+const Measurement* equalAccuracy(const std::vector<Measurement>& rows, const Key& key, const std::string& method,
+                                 const Measurement& multilevel) {
+    for (const Measurement& r : rows) {
+        if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method && reaches(r, multilevel)) return &r;
+    }
+    return nullptr;
+}
+
+std::vector<Key> keys(const std::vector<Measurement>& rows) {
+    std::vector<Key> out;
+    for (const Measurement& r : rows) {
+        const Key k{r.map, r.mapSize, r.viewDegrees};
+        if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
+    }
+    return out;
+}
+
+std::vector<std::string> methods(const std::vector<Measurement>& rows) {
+    std::vector<std::string> out;
+    for (const Measurement& r : rows) {
+        if (std::find(out.begin(), out.end(), r.method) == out.end()) out.push_back(r.method);
+    }
+    return out;
+}
+
+}  // namespace
+
+void writeCsv(const std::filesystem::path& file, const RunInfo& info, const std::vector<Measurement>& rows) {
+    std::ostringstream out;
+    out << "method,param,map,map_size,view_deg,width,height,ms_median,ms_wall_median,fetches_mean,fetches_max,"
+           "coverage_mismatch_pct,off_half_texel_pct,exhausted_px,renderer\n";
+    for (const Measurement& r : rows) {
+        out << r.method << ',' << r.param << ',' << r.map << ',' << r.mapSize << ',' << r.viewDegrees << ',' << r.width
+            << ',' << r.height << ',' << fixed(r.msMedian, 4) << ',' << fixed(r.msWallMedian, 4) << ','
+            << fixed(r.fetchesMean, 2) << ',' << fixed(r.fetchesMax, 0) << ',' << fixed(r.coverageMismatchPct, 4) << ','
+            << fixed(r.offHalfTexelPct, 4) << ',' << r.exhausted << ',' << csvQuote(info.renderer) << '\n';
+    }
+    writeTextAtomically(file, out.str());
+}
+
+std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info, const std::vector<Measurement>& rows) {
+    std::ostringstream md;
+    md << "Run " << info.date << " on " << info.renderer << " (`" << info.command << "`).\n\n";
+    md << "Equal-accuracy time: for each peer, the smallest setting whose accuracy against the exact CPU "
+          "reference is within 0.1 % (hit/miss) and 0.2 % (hits off by more than half a texel) of the multilevel "
+          "method's, its GPU time, and the multilevel method's speed-up over it. *never*: no setting measured "
+          "reaches it.\n\n";
+    const std::vector<std::string> peers = [&] {
+        std::vector<std::string> all = methods(rows);
+        all.erase(std::remove(all.begin(), all.end(), "multilevel"), all.end());
+        return all;
+    }();
+    md << "| map | size | view | multilevel ms | mismatch % | off % | fetches |";
+    for (const std::string& p : peers) md << ' ' << p << " |";
+    md << "\n|---|---|---|---|---|---|---|";
+    for (std::size_t k = 0; k < peers.size(); ++k) md << "---|";
+    md << '\n';
+    for (const Key& key : keys(rows)) {
+        const Measurement* ml = find(rows, key, "multilevel", "exact");
+        if (!ml) continue;
+        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
+           << fixed(ml->msMedian, 2) << " | " << fixed(ml->coverageMismatchPct, 3) << " | "
+           << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->fetchesMean, 1) << " |";
+        for (const std::string& p : peers) {
+            const Measurement* eq = equalAccuracy(rows, key, p, *ml);
+            if (!eq) {
+                md << " never |";
+            } else {
+                md << ' ' << eq->param << ": " << fixed(eq->msMedian, 2) << " ms (" << fixed(eq->msMedian / ml->msMedian, 1)
+                   << "x) |";
+            }
+        }
+        md << '\n';
+    }
+
+    md << "\nAccuracy-controlled level of detail (multilevel, `--pixel-error`): time and accuracy.\n\n";
+    md << "| map | size | view | exact ms | 1 px ms | 1 px off % | 4 px ms | 4 px off % |\n|---|---|---|---|---|---|---|---|\n";
+    for (const Key& key : keys(rows)) {
+        const Measurement* e = find(rows, key, "multilevel", "exact");
+        const Measurement* one = find(rows, key, "multilevel", "1px");
+        const Measurement* four = find(rows, key, "multilevel", "4px");
+        if (!e || !one || !four) continue;
+        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
+           << fixed(e->msMedian, 2) << " | " << fixed(one->msMedian, 2) << " | " << fixed(one->offHalfTexelPct, 2)
+           << " | " << fixed(four->msMedian, 2) << " | " << fixed(four->offHalfTexelPct, 2) << " |\n";
+    }
+
+    // The targets of issue 5, as measured.
+    md << "\nTargets:\n\n";
+    std::map<int, const Measurement*> at45;
+    int view45 = -1;
+    for (const Measurement& r : rows) {
+        if (r.method != "multilevel" || r.param != "exact" || r.map != "noise") continue;
+        if (view45 < 0 || std::abs(r.viewDegrees - 45) < std::abs(view45 - 45)) view45 = r.viewDegrees;
+    }
+    for (const Measurement& r : rows) {
+        if (r.method == "multilevel" && r.param == "exact" && r.map == "noise" && r.viewDegrees == view45) at45[r.mapSize] = &r;
+    }
+    if (at45.count(256) && at45.size() > 1) {
+        const Measurement& big = *at45.rbegin()->second;
+        md << "- Time at " << big.mapSize << " / time at 256, multilevel at " << view45 << "°: "
+           << fixed(big.msMedian / at45[256]->msMedian, 2) << " (target <= 1.5).\n";
+    }
+    for (const auto& [size, r] : at45) {
+        const double budget = 2.0 * (std::log2(size) + 1.0);
+        md << "- Mean fetches per pixel at " << size << ": " << fixed(r->fetchesMean, 1) << " (target <= "
+           << fixed(budget, 0) << ").\n";
+    }
+    writeTextAtomically(file, md.str());
+    return md.str();
+}
+
+bool writePlots(const std::filesystem::path& folder, const std::vector<Measurement>& rows, std::string& why) {
+    if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+        why = "gnuplot is not installed (apt-get install gnuplot-nox)";
+        return false;
+    }
+    // One line per method on the resampled relief at the view nearest 45 degrees: the
+    // multilevel method exact, each peer at its equal-accuracy setting where it has one,
+    // else its largest budget.
+    int view = -1;
+    for (const Measurement& r : rows) {
+        if (r.map == "noise" && (view < 0 || std::abs(r.viewDegrees - 45) < std::abs(view - 45))) view = r.viewDegrees;
+    }
+    std::ostringstream data;
+    std::vector<std::string> names;
+    for (const std::string& method : methods(rows)) {
+        std::ostringstream block;
+        int points = 0;
+        for (const Key& key : keys(rows)) {
+            if (std::get<0>(key) != "noise" || std::get<2>(key) != view) continue;
+            const Measurement* ml = find(rows, key, "multilevel", "exact");
+            const Measurement* pick = nullptr;
+            if (method == "multilevel") {
+                pick = ml;
+            } else if (ml) {
+                pick = equalAccuracy(rows, key, method, *ml);
+            }
+            if (!pick) {  // largest budget measured
+                for (const Measurement& r : rows) {
+                    if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method) pick = &r;
+                }
+            }
+            if (!pick) continue;
+            block << pick->mapSize << ' ' << pick->msMedian << ' ' << pick->fetchesMean << '\n';
+            ++points;
+        }
+        if (points == 0) continue;
+        data << block.str() << "\n\n";
+        names.push_back(method);
+    }
+    writeTextAtomically(folder / "plot_data.txt", data.str());
+    std::ostringstream script;
+    script << "set terminal pngcairo size 800,500 noenhanced\nset logscale x 2\nset logscale y\nset key outside right\n"
+              "set grid\nset xlabel 'map size (texels per side)'\n";
+    for (const auto& [output, column, label] :
+         {std::tuple<std::string, int, std::string>{"time_vs_size.png", 2, "GPU time per frame (ms)"},
+          {"fetches_vs_size.png", 3, "texel fetches per pixel (mean)"}}) {
+        script << "set output '" << (folder / output).string() << "'\nset ylabel '" << label << "'\nset title '"
+               << label << " at " << view << " deg; peers at equal accuracy where reached, else their largest budget'\n"
+               << "plot ";
+        for (std::size_t k = 0; k < names.size(); ++k) {
+            script << (k ? ", " : "") << "'" << (folder / "plot_data.txt").string() << "' index " << k << " using 1:"
+                   << column << " with linespoints title '" << names[k] << "'";
+        }
+        script << '\n';
+    }
+    writeTextAtomically(folder / "plots.gnuplot", script.str());
+    const std::string command = "gnuplot " + (folder / "plots.gnuplot").string() + " 2>&1";
+    if (std::system(command.c_str()) != 0) {
+        why = "gnuplot failed on " + (folder / "plots.gnuplot").string();
+        return false;
+    }
+    return true;
+}
+
+}  // namespace microrelief::bench

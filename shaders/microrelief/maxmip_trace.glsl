@@ -1,0 +1,137 @@
+// maxmip_trace.glsl: the maximum mipmap quadtree traversal, the peer "maxmip" of issue 5
+// (A. Tevs, I. Ihrke, H.-P. Seidel, "Maximum Mipmaps for Fast, Accurate, and Scalable
+// Dynamic Height Field Rendering", I3D 2008, sec. 4).
+//
+// Inputs in map space (relief_map.glsl): X, Y in texels, h in map height units, the ray
+// origin + t dir (t as in world space); `pyramid` the max pyramid (layout: max_pyramid.glsl),
+// `heights` the W x H samples (bilinear_patch.glsl). Output, as traceMultilevel's: the
+// exact first point t >= 0 of the ray in the solid, on the top surface, a side wall or
+// the bottom face, with the same statistics (iterations = nodes visited).
+//
+// The pyramid is a quadtree: node (p, q) at level L is the box [p, p+1) 2^L x [q, q+1) 2^L
+// x [0, its max]. From the root, each step takes the node the ray is in and clips the ray
+// to the node's column. If the ray passes above the box it moves on to the exit boundary,
+// into the neighbour at the same level, and goes up one level when that neighbour has a
+// different parent. If the ray meets the box it steps onto the box (its top) and goes down
+// into the child there. At level 0 the texel spans parts of up to four bilinear patches;
+// the ray is solved exactly against those it crosses, in order (intersectLeaf).
+#ifndef MICRORELIEF_MAXMIP_TRACE_GLSL
+#define MICRORELIEF_MAXMIP_TRACE_GLSL
+
+#include "bilinear_patch.glsl"
+#include "multilevel_trace.glsl"
+#include "relief_hit.glsl"
+#include "relief_map.glsl"
+
+// A ray entering the box through a side wall or the bottom face below the surface hits
+// the solid right there (as in traceMultilevel). True, with `hit` filled, in that case.
+bool entryFaceHit(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float tEnter,
+                  int entryAxis, inout ReliefHit hit) {
+    if (tEnter < 0.0 || entryAxis < 0 || (entryAxis == 2 && dir.z < 0.0)) return false;
+    vec3 entry = origin + tEnter * dir;
+    bool throughBottom = entryAxis == 2;  // h = 0: always in the solid
+    if (!throughBottom && entry.z > surfaceHeight(map, heights, entry.xy, hit.fetches)) {
+        return false;
+    }
+    hit.kind = entryAxis == 0 ? RELIEF_WALL_X : entryAxis == 1 ? RELIEF_WALL_Y : RELIEF_BOTTOM;
+    hit.t = tEnter;
+    hit.position = entry;
+    hit.normal = vec3(0.0);
+    hit.normal[entryAxis] = dir[entryAxis] > 0.0 ? -1.0 : 1.0;
+    hit.stopLevel = 0;
+    return true;
+}
+
+// Ray parameter where the ray leaves node `node` at `level` through a side of its column,
+// per axis (1e30 along an axis the ray does not move on).
+vec2 maxMipNodeExits(ivec2 node, int level, vec3 origin, vec3 dir) {
+    float size = exp2(float(level));
+    vec2 exits = vec2(1e30);
+    for (int axis = 0; axis < 2; ++axis) {
+        if (dir[axis] == 0.0) continue;
+        float side = (float(node[axis]) + (dir[axis] > 0.0 ? 1.0 : 0.0)) * size;
+        exits[axis] = (side - origin[axis]) / dir[axis];
+    }
+    return exits;
+}
+
+// The child of `node` (at `level` > 0) holding map point p; on the midline, the child the
+// ray moves into.
+ivec2 maxMipChildAt(ivec2 node, int level, vec2 p, vec3 dir) {
+    float halfSize = exp2(float(level - 1));
+    ivec2 child = 2 * node;
+    for (int axis = 0; axis < 2; ++axis) {
+        float mid = (2.0 * float(node[axis]) + 1.0) * halfSize;
+        if (p[axis] > mid || (p[axis] == mid && dir[axis] > 0.0)) child[axis] += 1;
+    }
+    return child;
+}
+
+// The node's max height: one texel of the pyramid.
+float maxMipNodeHeight(ReliefMap map, sampler2D pyramid, ivec2 node, int level, inout int fetches) {
+    ivec2 levelSize = max(ivec2(1), map.pyramidSize >> level);
+    fetches += 1;
+    return texelFetch(pyramid, clamp(node, ivec2(0), levelSize - 1), level).r;
+}
+
+ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
+    ReliefHit hit = reliefMissHit();
+    int entryAxis, exitAxis;
+    vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
+    float t = max(range.x, 0.0), tFar = range.y;
+    if (t > tFar) return hit;
+    if (entryFaceHit(map, heights, origin, dir, range.x, entryAxis, hit)) return hit;
+
+    int topLevel = map.levelCount - 1;
+    int level = topLevel;
+    ivec2 node = ivec2(0);  // the root covers the whole map
+    for (int iteration = 1; iteration <= map.maxIterations; ++iteration) {
+        hit.iterations = iteration;
+        hit.stopLevel = level;
+        vec2 exits = maxMipNodeExits(node, level, origin, dir);
+        float tExit = min(max(min(exits.x, exits.y), t), tFar);
+        float top = maxMipNodeHeight(map, pyramid, node, level, hit.fetches);
+        float hNow = origin.z + t * dir.z, hExit = origin.z + tExit * dir.z;
+        if (min(hNow, hExit) <= top) {
+            if (level > 0) {
+                // Step onto the box top (only a descending ray can be above it here), then
+                // go down into the child that holds that point.
+                if (hNow > top) t = clamp((top - origin.z) / dir.z, t, tExit);
+                node = maxMipChildAt(node, level, (origin + t * dir).xy, dir);
+                level -= 1;
+                continue;
+            }
+            vec4 corners;
+            ivec2 cell;
+            float tHit =
+                intersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
+            if (tHit >= 0.0) {
+                setTopHit(hit, map, origin, dir, tHit, corners, cell);
+                return hit;
+            }
+        }
+        if (tExit >= tFar) {
+            // Out of the box. Leaving through the floor inside the map reaches h = 0, which
+            // is in the solid: the hit is right there (rounding can put the root past the
+            // last leaf's end), as in traceMultilevel.
+            if (exitAxis == 2 && dir.z < 0.0) {
+                setTopHitAt(hit, map, heights, tFar, origin + tFar * dir);
+            }
+            return hit;
+        }
+        // Into the neighbour through the side(s) crossed; up one level across a parent's side.
+        ivec2 next = node + ivec2(exits.x <= tExit ? int(sign(dir.x)) : 0,
+                                  exits.y <= tExit ? int(sign(dir.y)) : 0);
+        bool newParent = any(notEqual(next >> 1, node >> 1));
+        node = next;
+        t = tExit;
+        if (newParent && level < topLevel) {
+            node >>= 1;
+            level += 1;
+        }
+    }
+    hit.exhausted = true;
+    return hit;
+}
+
+#endif

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -86,31 +87,44 @@ std::string exactVector(const glm::dvec3& v) {
     return exactText(v.x) + ',' + exactText(v.y) + ',' + exactText(v.z);
 }
 
-SceneFlags::SceneFlags(SceneOptions& options)
-    : options_(options),
-      eye_(vectorText(options.job.camera.eye)),
-      target_(vectorText(options.job.camera.target)),
-      up_(vectorText(options.job.camera.up)),
-      size_(std::to_string(options.job.width) + "x" + std::to_string(options.job.height)),
-      view_(debugViewName(options.job.shading.view)),
-      background_(vectorText(glm::dvec3(options.job.background))) {}
+SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load, RenderJob& job)
+    : heightFile_(heightFile),
+      load_(load),
+      job_(job),
+      eye_(vectorText(job.camera.eye)),
+      target_(vectorText(job.camera.target)),
+      up_(vectorText(job.camera.up)),
+      size_(std::to_string(job.width) + "x" + std::to_string(job.height)),
+      method_(methodName(job.method.method)),
+      view_(debugViewName(job.shading.view)),
+      background_(vectorText(glm::dvec3(job.background))) {}
 
 void SceneFlags::addMapAndCamera(CLI::App& app) {
-    SceneOptions& o = options_;
     app.add_option("--height", height_, "Height map image (any format OpenImageIO reads); default: the bundled map");
-    app.add_option("--channel", o.load.channel, "Image channel holding the heights")->capture_default_str();
-    app.add_flag("--normalize", o.load.normalize, "Map the map's [min, max] to [0, 1]");
-    app.add_option("--height-scale", o.job.heightScale, "World height of map value 1 (the map spans 1 unit)")
+    app.add_option("--channel", load_.channel, "Image channel holding the heights")->capture_default_str();
+    app.add_flag("--normalize", load_.normalize, "Map the map's [min, max] to [0, 1]");
+    app.add_option("--height-scale", job_.heightScale, "World height of map value 1 (the map spans 1 unit)")
         ->capture_default_str();
     app.add_option("--eye", eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
     app.add_option("--target", target_, "Point the camera looks at, x,y,z")->capture_default_str();
     app.add_option("--up", up_, "Camera up direction x,y,z")->capture_default_str();
-    app.add_option("--fovy", o.job.camera.fovyDegrees, "Vertical field of view in degrees")->capture_default_str();
+    app.add_option("--fovy", job_.camera.fovyDegrees, "Vertical field of view in degrees")->capture_default_str();
     app.add_option("--size", size_, "Picture size WIDTHxHEIGHT")->capture_default_str();
 }
 
 void SceneFlags::addShading(CLI::App& app) {
     app.add_option("--light", light_, "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
+    app.add_option("--method", method_,
+                   "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
+                   "normal, offset, steep, pom, relief, maxmip")
+        ->capture_default_str();
+    app.add_option("--steps", job_.method.steps,
+                   "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps")
+        ->capture_default_str();
+    app.add_option("--pixel-error", job_.method.pixelError,
+                   "multilevel: stop at pyramid levels whose texels project to less than this many pixels "
+                   "(0: exact)")
+        ->capture_default_str();
     app.add_option("--view", view_,
                    "What the picture shows: shaded, or a debug view of the method: iterations (segments "
                    "visited, heat map), level (pyramid level where the ray stopped), normal, depth, position")
@@ -119,24 +133,29 @@ void SceneFlags::addShading(CLI::App& app) {
 }
 
 void SceneFlags::apply() {
-    SceneOptions& o = options_;
-    if (!height_.empty()) o.heightFile = height_;
-    o.job.camera.eye = parseVectorFlag("--eye", eye_);
-    o.job.camera.target = parseVectorFlag("--target", target_);
-    o.job.camera.up = parseVectorFlag("--up", up_);
-    if (!light_.empty()) o.job.shading.lightDirection = glm::vec3(parseVectorFlag("--light", light_));
-    if (glm::length(o.job.shading.lightDirection) == 0.0f) throwBadInput("--light must not be zero");
-    parseSizeFlag(size_, o.job.width, o.job.height);
-    o.job.shading.view = parseDebugView(view_);
-    o.job.background = glm::vec3(parseVectorFlag("--background", background_));
-    if (glm::any(glm::lessThan(o.job.background, glm::vec3(0.0f)))) throwBadInput("--background must be >= 0");
-    if (!(o.job.heightScale > 0.0f) || !std::isfinite(o.job.heightScale)) {
+    if (!height_.empty()) heightFile_ = height_;
+    job_.camera.eye = parseVectorFlag("--eye", eye_);
+    job_.camera.target = parseVectorFlag("--target", target_);
+    job_.camera.up = parseVectorFlag("--up", up_);
+    if (!light_.empty()) job_.shading.lightDirection = glm::vec3(parseVectorFlag("--light", light_));
+    if (glm::length(job_.shading.lightDirection) == 0.0f) throwBadInput("--light must not be zero");
+    parseSizeFlag(size_, job_.width, job_.height);
+    job_.shading.view = parseDebugView(view_);
+    job_.method.method = parseMethod(method_);
+    if (job_.method.steps < 1 || job_.method.steps > 65536) throwBadInput("--steps must lie in 1..65536");
+    job_.method.minSteps = std::max(1, std::min(job_.method.minSteps, job_.method.steps));
+    if (!(job_.method.pixelError >= 0.0f) || !std::isfinite(job_.method.pixelError)) {
+        throwBadInput("--pixel-error must be a number >= 0");
+    }
+    job_.background = glm::vec3(parseVectorFlag("--background", background_));
+    if (glm::any(glm::lessThan(job_.background, glm::vec3(0.0f)))) throwBadInput("--background must be >= 0");
+    if (!(job_.heightScale > 0.0f) || !std::isfinite(job_.heightScale)) {
         throwBadInput("--height-scale must be a positive number");
     }
-    if (!(o.job.camera.fovyDegrees > 0.0 && o.job.camera.fovyDegrees < 180.0)) {
+    if (!(job_.camera.fovyDegrees > 0.0 && job_.camera.fovyDegrees < 180.0)) {
         throwBadInput("--fovy must lie strictly between 0 and 180 degrees");
     }
-    if (o.load.channel < 0) throwBadInput("--channel must be >= 0");
+    if (load_.channel < 0) throwBadInput("--channel must be >= 0");
 }
 
 std::string shellQuote(const std::string& text) {
@@ -165,8 +184,13 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     flag("--fovy", exactText(job.camera.fovyDegrees));
     flag("--size", std::to_string(job.width) + "x" + std::to_string(job.height));
     line += " --light=" + exactVector(job.shading.lightDirection);
+    flag("--method", methodName(job.method.method));
+    const MethodSettings defaults;
+    if (job.method.steps != defaults.steps) flag("--steps", std::to_string(job.method.steps));
+    if (job.method.pixelError != defaults.pixelError) flag("--pixel-error", exactText(job.method.pixelError));
     flag("--view", debugViewName(job.shading.view));
-    flag("--background", exactVector(job.background));
+    // Only when changed: the command stays short, and runs on renderers without the flag.
+    if (job.background != RenderJob{}.background) flag("--background", exactVector(job.background));
     return line;
 }
 

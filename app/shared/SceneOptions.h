@@ -24,26 +24,29 @@ struct SceneOptions {
     RenderJob job;  // camera, size, height scale, shading, background
 };
 
-// Registers the flags on a CLI11 app and turns their text into SceneOptions after the
+// Registers the flags on a CLI11 app and turns their text into the options after the
 // parse. Two groups, so a program can place its own flags between them in --help.
 class SceneFlags {
 public:
-    // `options` holds the defaults shown in --help and receives the parsed values; it
+    // The targets hold the defaults shown in --help and receive the parsed values; they
     // must outlive the parse.
-    explicit SceneFlags(SceneOptions& options);
+    SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load, RenderJob& job);
+    explicit SceneFlags(SceneOptions& options) : SceneFlags(options.heightFile, options.load, options.job) {}
 
     // --height --channel --normalize --height-scale --eye --target --up --fovy --size
     void addMapAndCamera(CLI::App& app);
-    // --light --view --background
+    // --light --method --steps --pixel-error --view --background
     void addShading(CLI::App& app);
 
-    // After app.parse(): validates and fills the options. Throws Error(BadInput) with a
+    // After app.parse(): validates and fills the targets. Throws Error(BadInput) with a
     // message naming the flag.
     void apply();
 
 private:
-    SceneOptions& options_;
-    std::string height_, eye_, target_, up_, size_, light_, view_, background_;
+    std::optional<std::filesystem::path>& heightFile_;
+    HeightMapLoadOptions& load_;
+    RenderJob& job_;
+    std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
 };
 
 // "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.

@@ -19,22 +19,51 @@ int footprintLevel(ReliefMap map, float extent) {
     return min(level, map.levelCount - 1);
 }
 
-// The max of the pyramid over the map-space rectangle [lo, hi] at `level`: every texel
-// the rectangle touches is read (at most 2 x 2 when the level comes from
-// footprintLevel), never one fetch at its centre, so the bound is conservative.
-float footprintMax(ReliefMap map, sampler2D pyramid, vec2 lo, vec2 hi, int level, inout int fetches) {
-    ivec2 levelSize = max(ivec2(1), map.pyramidSize >> level);
-    float toLevel = exp2(-float(level));
-    ivec2 first = clamp(ivec2(floor(lo * toLevel)), ivec2(0), levelSize - 1);
-    ivec2 last = clamp(ivec2(floor(hi * toLevel)), ivec2(0), levelSize - 1);
-    vec2 texelSize = 1.0 / vec2(levelSize);
-    float lod = float(level);
-    float bound = 0.0;
-    for (int q = first.y; q <= last.y; ++q) {
-        for (int p = first.x; p <= last.x; ++p) {
-            bound = max(bound, textureLod(pyramid, (vec2(p, q) + 0.5) * texelSize, lod).r);
-            fetches += 1;
-        }
+// The level-`level` texel that holds map point p. Exact integer arithmetic: the finest
+// texel index, clamped to the map (not its padding), shifted right by the level.
+ivec2 pyramidTexelAt(ReliefMap map, vec2 p, int level) {
+    return clamp(ivec2(floor(p)), ivec2(0), ivec2(map.size) - 1) >> level;
+}
+
+// One pyramid texel, read with textureLod at its centre (nearest filtering).
+float pyramidTexel(ReliefMap map, sampler2D pyramid, ivec2 texel, int level, inout int fetches) {
+    vec2 levelSize = vec2(max(ivec2(1), map.pyramidSize >> level));
+    fetches += 1;
+    return textureLod(pyramid, (vec2(texel) + 0.5) / levelSize, float(level)).r;
+}
+
+// The bound of the pyramid over the segment from a to b (map points, ray origin and
+// direction given for ordering): the max of every texel the segment crosses, never a
+// single fetch at its centre, so it is conservative. `level` comes in as the footprint
+// level and goes out as the level read:
+//  * one fetch when the segment lies in a single texel at `level`, or at the level
+//    above (whose texel contains the segment, so its max is a bound too, one level
+//    looser): the common case;
+//  * otherwise the texels the segment crosses at `level`, two, or three when it passes
+//    a corner, since the level is coarse enough for it to span at most two per axis.
+float segmentBound(ReliefMap map, sampler2D pyramid, vec3 origin, vec3 dir, vec2 a, vec2 b, inout int level,
+                   inout int fetches) {
+    ivec2 ta = pyramidTexelAt(map, a, level), tb = pyramidTexelAt(map, b, level);
+    // The footprint level makes |tb - ta| <= 1 per axis; rounding in log2 can leave it
+    // one level short, which this restores.
+    while (any(greaterThan(abs(tb - ta), ivec2(1))) && level < map.levelCount - 1) {
+        level += 1;
+        ta = pyramidTexelAt(map, a, level);
+        tb = pyramidTexelAt(map, b, level);
+    }
+    if (ta == tb) return pyramidTexel(map, pyramid, ta, level, fetches);
+    if (level + 1 < map.levelCount && (ta >> 1) == (tb >> 1)) {
+        level += 1;
+        return pyramidTexel(map, pyramid, ta >> 1, level, fetches);
+    }
+    float bound = max(pyramidTexel(map, pyramid, ta, level, fetches), pyramidTexel(map, pyramid, tb, level, fetches));
+    if (ta.x != tb.x && ta.y != tb.y) {
+        // Through a corner: the third texel is the one beside ta across whichever
+        // boundary the ray crosses first.
+        vec2 boundary = vec2(max(ta, tb) << level);
+        vec2 tCross = (boundary - origin.xy) / dir.xy;
+        ivec2 middle = tCross.x < tCross.y ? ivec2(tb.x, ta.y) : ivec2(ta.x, tb.y);
+        bound = max(bound, pyramidTexel(map, pyramid, middle, level, fetches));
     }
     return bound;
 }

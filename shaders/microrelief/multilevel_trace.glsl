@@ -85,30 +85,54 @@ void setTopHit(inout ReliefHit hit, ReliefMap map, vec3 origin, vec3 dir, float 
 // Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
 // at most one texel wide: it crosses at most one cell boundary in X and one in Y, so it
 // is cut into at most three pieces, each within one patch, solved in ray order.
+// Neighbouring pieces' patches share an edge, so moving on reads only two new samples.
 float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
                     inout int fetches, out vec4 corners, out ivec2 cell) {
     vec3 pa = origin + ta * dir, pb = origin + tb * dir;
+    ivec2 firstCell = cellAt(pa.xy), lastCell = cellAt(pb.xy);
     float cuts[2];
     for (int axis = 0; axis < 2; ++axis) {
         cuts[axis] = tb;
-        float ca = floor(pa[axis] - 0.5), cb = floor(pb[axis] - 0.5);
-        if (ca != cb && dir[axis] != 0.0) {
-            float boundary = max(ca, cb) + 0.5;  // the one cell boundary between them
+        if (firstCell[axis] != lastCell[axis] && dir[axis] != 0.0) {
+            // The one cell boundary between them.
+            float boundary = float(max(firstCell[axis], lastCell[axis])) + 0.5;
             cuts[axis] = clamp((boundary - origin[axis]) / dir[axis], ta, tb);
         }
     }
+    // The pieces in ray order, and which axis the ray steps across after the first.
+    int firstAxis = cuts[0] <= cuts[1] ? 0 : 1;
     float bounds[4];
     bounds[0] = ta;
     bounds[1] = min(cuts[0], cuts[1]);
     bounds[2] = max(cuts[0], cuts[1]);
     bounds[3] = tb;
+    cell = firstCell;
+    corners = cellCorners(map, heights, cell, fetches);
+    ivec2 last = ivec2(map.size) - 1;
     for (int piece = 0; piece < 3; ++piece) {
+        if (piece > 0) {
+            int axis = piece == 1 ? firstAxis : 1 - firstAxis;
+            if (firstCell[axis] == lastCell[axis]) continue;  // no boundary on this axis
+            int step = lastCell[axis] > firstCell[axis] ? 1 : -1;
+            cell[axis] += step;
+            // Keep the shared edge, read the two samples of the far edge.
+            ivec2 c0 = clamp(cell, ivec2(0), last), c1 = clamp(cell + 1, ivec2(0), last);
+            fetches += 2;
+            if (axis == 0) {
+                vec2 keep = step > 0 ? corners.yw : corners.xz;
+                vec2 fresh = vec2(texelFetch(heights, ivec2(step > 0 ? c1.x : c0.x, c0.y), 0).r,
+                                  texelFetch(heights, ivec2(step > 0 ? c1.x : c0.x, c1.y), 0).r);
+                corners = step > 0 ? vec4(keep.x, fresh.x, keep.y, fresh.y) : vec4(fresh.x, keep.x, fresh.y, keep.y);
+            } else {
+                vec2 keep = step > 0 ? corners.zw : corners.xy;
+                vec2 fresh = vec2(texelFetch(heights, ivec2(c0.x, step > 0 ? c1.y : c0.y), 0).r,
+                                  texelFetch(heights, ivec2(c1.x, step > 0 ? c1.y : c0.y), 0).r);
+                corners = step > 0 ? vec4(keep, fresh) : vec4(fresh, keep);
+            }
+        }
         float t0 = bounds[piece], t1 = bounds[piece + 1];
-        if (t1 <= t0 && piece != 0) continue;
-        vec3 start = origin + t0 * dir;
-        cell = cellAt((origin + (0.5 * (t0 + t1)) * dir).xy);
-        corners = cellCorners(map, heights, cell, fetches);
-        float tau = intersectPatch(corners, vec2(cell) + 0.5, start, dir, max(t1 - t0, 0.0));
+        if (t1 < t0) continue;
+        float tau = intersectPatch(corners, vec2(cell) + 0.5, origin + t0 * dir, dir, t1 - t0);
         if (tau >= 0.0) return t0 + tau;
     }
     return -1.0;
@@ -168,10 +192,11 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, v
         float tb = tNear + span * (float((index + 1u) << shift) * kUnit);
         vec3 pa = origin + ta * dir, pb = origin + tb * dir;
         vec2 lo = min(pa.xy, pb.xy), hi = max(pa.xy, pb.xy);
+        // The level of detail from the segment's footprint (paper, fig. 6).
         float extent = max(hi.x - lo.x, hi.y - lo.y);
         int level = footprintLevel(map, extent);
+        float bound = segmentBound(map, pyramid, origin, dir, pa.xy, pb.xy, level, hit.fetches);
         hit.stopLevel = level;
-        float bound = footprintMax(map, pyramid, lo, hi, level, hit.fetches);
         bool mayHit = min(pa.z, pb.z) <= bound;
         if (mayHit) {
             if (level > 0 && exp2(float(level)) <= map.lodCone * ta) {

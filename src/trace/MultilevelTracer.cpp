@@ -42,24 +42,38 @@ double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& 
     return (root >= 0.0 && root <= tauMax) ? root : -1.0;
 }
 
-// max_pyramid.glsl: footprintLevel and footprintMax.
+// max_pyramid.glsl: footprintLevel.
 int footprintLevel(const MaxPyramid& p, double extent) {
     const int level = extent <= 1.0 ? 0 : static_cast<int>(std::ceil(std::log2(extent)));
     return std::min(level, p.levelCount() - 1);
 }
 
-double footprintMax(const MaxPyramid& p, glm::dvec2 lo, glm::dvec2 hi, int level, int& fetches) {
-    const int w = p.levelWidth(level), h = p.levelHeight(level);
-    const double toLevel = std::ldexp(1.0, -level);
-    auto index = [toLevel](double x, int size) {
-        return std::clamp(static_cast<int>(std::floor(x * toLevel)), 0, size - 1);
+// max_pyramid.glsl: pyramidTexelAt and segmentBound.
+glm::ivec2 pyramidTexelAt(const HeightMap& map, glm::dvec2 p, int level) {
+    const int i = std::clamp(static_cast<int>(std::floor(p.x)), 0, map.width - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(p.y)), 0, map.height - 1);
+    return {i >> level, j >> level};
+}
+
+double segmentBound(const MaxPyramid& p, const HeightMap& map, const glm::dvec3& origin, const glm::dvec3& dir,
+                    glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) {
+    auto texel = [&](glm::ivec2 t, int l) {
+        ++fetches;
+        return static_cast<double>(p.texel(l, t.x, t.y));
     };
-    double bound = 0.0;
-    for (int q = index(lo.y, h); q <= index(hi.y, h); ++q) {
-        for (int s = index(lo.x, w); s <= index(hi.x, w); ++s) {
-            bound = std::max<double>(bound, p.texel(level, s, q));
-            ++fetches;
-        }
+    glm::ivec2 ta = pyramidTexelAt(map, a, level), tb = pyramidTexelAt(map, b, level);
+    while ((std::abs(tb.x - ta.x) > 1 || std::abs(tb.y - ta.y) > 1) && level < p.levelCount() - 1) {
+        ++level;
+        ta = pyramidTexelAt(map, a, level);
+        tb = pyramidTexelAt(map, b, level);
+    }
+    if (ta == tb) return texel(ta, level);
+    if (level + 1 < p.levelCount() && (ta >> 1) == (tb >> 1)) return texel(ta >> 1, ++level);
+    double bound = std::max(texel(ta, level), texel(tb, level));
+    if (ta.x != tb.x && ta.y != tb.y) {
+        const glm::dvec2 boundary(std::max(ta.x, tb.x) << level, std::max(ta.y, tb.y) << level);
+        const double tx = (boundary.x - origin.x) / dir.x, ty = (boundary.y - origin.y) / dir.y;
+        bound = std::max(bound, texel(tx < ty ? glm::ivec2(tb.x, ta.y) : glm::ivec2(ta.x, tb.y), level));
     }
     return bound;
 }
@@ -92,25 +106,33 @@ glm::dvec3 MultilevelTracer::topNormal(const Cell& cell, const glm::dvec3& mapPo
 auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, int& fetches) const
     -> std::optional<LeafHit> {
     const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
+    const glm::ivec2 first(std::floor(pa.x - 0.5), std::floor(pa.y - 0.5));
+    const glm::ivec2 last(std::floor(pb.x - 0.5), std::floor(pb.y - 0.5));
     double cuts[2];
     for (int axis = 0; axis < 2; ++axis) {
         cuts[axis] = tb;
-        const double ca = std::floor(pa[axis] - 0.5), cb = std::floor(pb[axis] - 0.5);
-        if (ca != cb && ray.dir[axis] != 0.0) {
-            cuts[axis] = std::clamp((std::max(ca, cb) + 0.5 - ray.origin[axis]) / ray.dir[axis], ta, tb);
+        if (first[axis] != last[axis] && ray.dir[axis] != 0.0) {
+            const double boundary = std::max(first[axis], last[axis]) + 0.5;
+            cuts[axis] = std::clamp((boundary - ray.origin[axis]) / ray.dir[axis], ta, tb);
         }
     }
+    const int firstAxis = cuts[0] <= cuts[1] ? 0 : 1;
     const double bounds[4] = {ta, std::min(cuts[0], cuts[1]), std::max(cuts[0], cuts[1]), tb};
+    glm::ivec2 at = first;
+    Cell cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);  // the cell whose origin sample is `at`
     for (int piece = 0; piece < 3; ++piece) {
+        if (piece > 0) {
+            const int axis = piece == 1 ? firstAxis : 1 - firstAxis;
+            if (first[axis] == last[axis]) continue;
+            at[axis] += last[axis] > first[axis] ? 1 : -1;
+            int ignored = 0;
+            cell = cellAt(map_, at.x + 1.0, at.y + 1.0, ignored);
+            fetches += 2;  // the shader keeps the shared edge and reads two samples
+        }
         const double t0 = bounds[piece], t1 = bounds[piece + 1];
-        if (t1 <= t0 && piece != 0) continue;
-        const glm::dvec3 start = ray.origin + t0 * ray.dir;
-        const glm::dvec3 mid = ray.origin + 0.5 * (t0 + t1) * ray.dir;
-        const Cell cell = cellAt(map_, mid.x, mid.y, fetches);
-        const double tau = intersectPatch(cell, start, ray.dir, std::max(t1 - t0, 0.0));
-        if (tau < 0.0) continue;
-        const double t = t0 + tau;
-        return LeafHit{t, topNormal(cell, ray.origin + t * ray.dir)};
+        if (t1 < t0) continue;
+        const double tau = intersectPatch(cell, ray.origin + t0 * ray.dir, ray.dir, t1 - t0);
+        if (tau >= 0.0) return LeafHit{t0 + tau, topNormal(cell, ray.origin + (t0 + tau) * ray.dir)};
     }
     return std::nullopt;
 }
@@ -189,9 +211,10 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, Traver
         const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
         const glm::dvec2 flo = glm::min(glm::dvec2(pa), glm::dvec2(pb)), fhi = glm::max(glm::dvec2(pa), glm::dvec2(pb));
         const double extent = std::max(fhi.x - flo.x, fhi.y - flo.y);
-        const int level = footprintLevel(pyramid_, extent);
+        int level = footprintLevel(pyramid_, extent);
+        const double bound = segmentBound(pyramid_, map_, ray.origin, ray.dir, pa, pb, level, stats.fetches);
         stats.stopLevel = level;
-        if (std::min(pa.z, pb.z) <= footprintMax(pyramid_, flo, fhi, level, stats.fetches)) {
+        if (std::min(pa.z, pb.z) <= bound) {
             if (extent <= 1.0 || depth >= kMaxDepth) {
                 if (auto hit = intersectLeaf(ray, ta, tb, stats.fetches)) {
                     return finish(makeHit(HitFace::Top, hit->t, hit->normal));

@@ -108,7 +108,12 @@ void main() {
 #endif
     }
 
-    vec3 world = eye + hit.t * dir;
+#if MICRORELIEF_METHOD == 2
+    // Parallax offset's answer is not on the ray (it shifts the texture lookup instead).
+    vec3 world = mapToWorldPoint(map, hit.position);
+#else
+    vec3 world = eye + hit.t * dir;  // on the ray exactly, without a round trip through map space
+#endif
     vec3 n = reliefWorldNormal(map, hit);
     vec3 color;
     if (debugView == DEBUG_VIEW_ITERATIONS) {

@@ -25,6 +25,7 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
 
 // time_vs_size.png and fetches_vs_size.png in `folder`, if gnuplot is installed;
 // returns false (and says why) otherwise.
-bool writePlots(const std::filesystem::path& folder, const std::vector<Measurement>& rows, std::string& why);
+bool writePlots(const std::filesystem::path& folder, const RunInfo& info, const std::vector<Measurement>& rows,
+                std::string& why);
 
 }  // namespace microrelief::bench

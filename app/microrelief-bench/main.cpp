@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
         });
         std::cout << '\n' << writeMarkdown(folder / "bench.md", info, rows);
         std::string why;
-        if (!writePlots(folder, rows, why)) std::cerr << "microrelief-bench: warning: no plots: " << why << '\n';
+        if (!writePlots(folder, info, rows, why)) std::cerr << "microrelief-bench: warning: no plots: " << why << '\n';
         std::cout << "microrelief-bench: wrote " << (folder / "bench.csv").string() << ", bench.md and plots in "
                   << folder.string() << '\n';
         return 0;

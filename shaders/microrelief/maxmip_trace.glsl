@@ -70,8 +70,7 @@ ivec2 maxMipChildAt(ivec2 node, int level, vec2 p, vec3 dir) {
 // The node's max height: one texel of the pyramid.
 float maxMipNodeHeight(ReliefMap map, sampler2D pyramid, ivec2 node, int level, inout int fetches) {
     ivec2 levelSize = max(ivec2(1), map.pyramidSize >> level);
-    fetches += 1;
-    return texelFetch(pyramid, clamp(node, ivec2(0), levelSize - 1), level).r;
+    return pyramidTexel(map, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
 }
 
 ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {

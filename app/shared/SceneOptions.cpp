@@ -15,7 +15,9 @@
 namespace microrelief {
 
 glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
-    const auto invalid = [&] { throwBadInput(flag + " expects three numbers x,y,z, got '" + text + "'"); };
+    const auto invalid = [&] {
+        throwBadInput(flag + " expects three numbers x,y,z, got '" + text + "'");
+    };
     std::vector<double> values;
     std::stringstream in(text);
     std::string part;
@@ -39,8 +41,8 @@ void parseSizeFlag(const std::string& text, int& width, int& height) {
     char x = 0;
     long w = 0, h = 0;
     std::string rest;
-    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 || h <= 0 || w > 65536 ||
-        h > 65536) {
+    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 || h <= 0 ||
+        w > 65536 || h > 65536) {
         throwBadInput("--size expects WIDTHxHEIGHT with positive integers, got '" + text + "'");
     }
     width = static_cast<int>(w);
@@ -53,8 +55,9 @@ template <class T>
 std::string toChars(T value, int precision = -1) {
     char text[64];
     const auto end = precision < 0 ? std::to_chars(text, text + sizeof text, value).ptr
-                                   : std::to_chars(text, text + sizeof text, value, std::chars_format::general,
-                                                   precision).ptr;
+                                   : std::to_chars(text, text + sizeof text, value,
+                                                   std::chars_format::general, precision)
+                                         .ptr;
     return std::string(text, end);
 }
 
@@ -81,13 +84,16 @@ std::string exactVector(const glm::vec3& v) {
 
 }  // namespace
 
-std::string exactNumber(double value) { return exactText(value); }
+std::string exactNumber(double value) {
+    return exactText(value);
+}
 
 std::string exactVector(const glm::dvec3& v) {
     return exactText(v.x) + ',' + exactText(v.y) + ',' + exactText(v.z);
 }
 
-SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load, RenderJob& job)
+SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load,
+                       RenderJob& job)
     : heightFile_(heightFile),
       load_(load),
       job_(job),
@@ -100,36 +106,47 @@ SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightM
       background_(vectorText(glm::dvec3(job.background))) {}
 
 void SceneFlags::addMapAndCamera(CLI::App& app) {
-    app.add_option("--height", height_, "Height map image (any format OpenImageIO reads); default: the bundled map");
-    app.add_option("--channel", load_.channel, "Image channel holding the heights")->capture_default_str();
+    app.add_option("--height", height_,
+                   "Height map image (any format OpenImageIO reads); default: the bundled map");
+    app.add_option("--channel", load_.channel, "Image channel holding the heights")
+        ->capture_default_str();
     app.add_flag("--normalize", load_.normalize, "Map the map's [min, max] to [0, 1]");
-    app.add_option("--height-scale", job_.heightScale, "World height of map value 1 (the map spans 1 unit)")
+    app.add_option("--height-scale", job_.heightScale,
+                   "World height of map value 1 (the map spans 1 unit)")
         ->capture_default_str();
     app.add_option("--eye", eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
     app.add_option("--target", target_, "Point the camera looks at, x,y,z")->capture_default_str();
     app.add_option("--up", up_, "Camera up direction x,y,z")->capture_default_str();
-    app.add_option("--fovy", job_.camera.fovyDegrees, "Vertical field of view in degrees")->capture_default_str();
+    app.add_option("--fovy", job_.camera.fovyDegrees, "Vertical field of view in degrees")
+        ->capture_default_str();
     app.add_option("--size", size_, "Picture size WIDTHxHEIGHT")->capture_default_str();
 }
 
 void SceneFlags::addShading(CLI::App& app) {
-    app.add_option("--light", light_, "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
-    app.add_option("--method", method_,
-                   "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
-                   "normal, offset, steep, pom, relief, maxmip")
+    app.add_option("--light", light_,
+                   "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
+    app.add_option(
+           "--method", method_,
+           "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
+           "normal, offset, steep, pom, relief, maxmip")
         ->capture_default_str();
-    app.add_option("--steps", job_.method.steps,
-                   "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps")
+    app.add_option(
+           "--steps", job_.method.steps,
+           "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps")
         ->capture_default_str();
-    app.add_option("--pixel-error", job_.method.pixelError,
-                   "multilevel: stop at pyramid levels whose texels project to less than this many pixels "
-                   "(0: exact)")
+    app.add_option(
+           "--pixel-error", job_.method.pixelError,
+           "multilevel: stop at pyramid levels whose texels project to less than this many pixels "
+           "(0: exact)")
         ->capture_default_str();
-    app.add_option("--view", view_,
-                   "What the picture shows: shaded, or a debug view of the method: iterations (segments "
-                   "visited, heat map), level (pyramid level where the ray stopped), normal, depth, position")
+    app.add_option(
+           "--view", view_,
+           "What the picture shows: shaded, or a debug view of the method: iterations (segments "
+           "visited, heat map), level (pyramid level where the ray stopped), normal, depth, "
+           "position")
         ->capture_default_str();
-    app.add_option("--background", background_, "Background colour r,g,b (linear, 0 to 1)")->capture_default_str();
+    app.add_option("--background", background_, "Background colour r,g,b (linear, 0 to 1)")
+        ->capture_default_str();
 }
 
 void SceneFlags::apply() {
@@ -137,18 +154,21 @@ void SceneFlags::apply() {
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
-    if (!light_.empty()) job_.shading.lightDirection = glm::vec3(parseVectorFlag("--light", light_));
+    if (!light_.empty())
+        job_.shading.lightDirection = glm::vec3(parseVectorFlag("--light", light_));
     if (glm::length(job_.shading.lightDirection) == 0.0f) throwBadInput("--light must not be zero");
     parseSizeFlag(size_, job_.width, job_.height);
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
-    if (job_.method.steps < 1 || job_.method.steps > 65536) throwBadInput("--steps must lie in 1..65536");
+    if (job_.method.steps < 1 || job_.method.steps > 65536)
+        throwBadInput("--steps must lie in 1..65536");
     job_.method.minSteps = std::max(1, std::min(job_.method.minSteps, job_.method.steps));
     if (!(job_.method.pixelError >= 0.0f) || !std::isfinite(job_.method.pixelError)) {
         throwBadInput("--pixel-error must be a number >= 0");
     }
     job_.background = glm::vec3(parseVectorFlag("--background", background_));
-    if (glm::any(glm::lessThan(job_.background, glm::vec3(0.0f)))) throwBadInput("--background must be >= 0");
+    if (glm::any(glm::lessThan(job_.background, glm::vec3(0.0f))))
+        throwBadInput("--background must be >= 0");
     if (!(job_.heightScale > 0.0f) || !std::isfinite(job_.heightScale)) {
         throwBadInput("--height-scale must be a positive number");
     }
@@ -159,8 +179,9 @@ void SceneFlags::apply() {
 }
 
 std::string shellQuote(const std::string& text) {
-    const bool plain = !text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                               "0123456789_-+=.,/:@%") == std::string::npos;
+    const bool plain = !text.empty() && text.find_first_not_of(
+                                            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                            "0123456789_-+=.,/:@%") == std::string::npos;
     if (plain) return text;
     std::string quoted = "'";
     for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -187,7 +208,8 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     flag("--method", methodName(job.method.method));
     const MethodSettings defaults;
     if (job.method.steps != defaults.steps) flag("--steps", std::to_string(job.method.steps));
-    if (job.method.pixelError != defaults.pixelError) flag("--pixel-error", exactText(job.method.pixelError));
+    if (job.method.pixelError != defaults.pixelError)
+        flag("--pixel-error", exactText(job.method.pixelError));
     flag("--view", debugViewName(job.shading.view));
     // Only when changed: the command stays short, and runs on renderers without the flag.
     if (job.background != RenderJob{}.background) flag("--background", exactVector(job.background));

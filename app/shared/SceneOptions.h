@@ -30,8 +30,10 @@ class SceneFlags {
 public:
     // The targets hold the defaults shown in --help and receive the parsed values; they
     // must outlive the parse.
-    SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load, RenderJob& job);
-    explicit SceneFlags(SceneOptions& options) : SceneFlags(options.heightFile, options.load, options.job) {}
+    SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load,
+               RenderJob& job);
+    explicit SceneFlags(SceneOptions& options)
+        : SceneFlags(options.heightFile, options.load, options.job) {}
 
     // --height --channel --normalize --height-scale --eye --target --up --fovy --size
     void addMapAndCamera(CLI::App& app);
@@ -62,7 +64,8 @@ std::string exactVector(const glm::dvec3& v);
 // The microrelief-render command line (without --out) that renders `options` again, every
 // value written exactly: `program --height FILE --height-scale 0.1 --eye x,y,z ...`.
 // Arguments are quoted for a POSIX shell where they need it.
-std::string renderCommandLine(const SceneOptions& options, const std::string& program = "microrelief-render");
+std::string renderCommandLine(const SceneOptions& options,
+                              const std::string& program = "microrelief-render");
 
 // `text` quoted for a POSIX shell, unchanged when it needs no quoting.
 std::string shellQuote(const std::string& text);

@@ -1,0 +1,27 @@
+// Dear ImGui over a GLFW window: the context and both backends, set up and torn down
+// together (RAII), so the panel's GL objects die before the window's context.
+#pragma once
+
+#include "context/GlfwContext.h"
+
+namespace microrelief {
+
+class ImGuiLayer {
+public:
+    // Installs ImGui's GLFW callbacks, which call on to any installed before: install
+    // the viewer's own first. `uiScale` sizes fonts and widgets (HiDPI).
+    ImGuiLayer(GlfwContext& window, float uiScale);
+    ~ImGuiLayer();
+    ImGuiLayer(const ImGuiLayer&) = delete;
+    ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+
+    void beginFrame();
+    // Draws the frame's widgets into the bound framebuffer.
+    void render();
+
+    // Whether ImGui uses the mouse or keyboard now (a widget is hovered, dragged, typed in).
+    bool wantsMouse() const;
+    bool wantsKeyboard() const;
+};
+
+}  // namespace microrelief

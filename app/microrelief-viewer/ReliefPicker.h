@@ -1,0 +1,38 @@
+// Picking: what lies under the cursor, found by the library's CPU twin of the shader's
+// traversal (trace/MultilevelTracer.h) along the very ray the pixel's fragment traces
+// (CameraFrame::pixelRay), so the answer agrees with the picture.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "heightmap/HeightMap.h"
+#include "render/Camera.h"
+#include "trace/MultilevelTracer.h"
+
+namespace microrelief {
+
+struct PickResult {
+    glm::dvec2 uv;        // map uv of the hit
+    double height = 0.0;  // the map's value h(u, v) there (world y over the height scale)
+    glm::dvec3 position;  // world
+    HitFace face = HitFace::Top;
+    int iterations = 0;  // segments the traversal visited
+};
+
+class ReliefPicker {
+public:
+    // A new map or height scale; the tracer (its max pyramid) is rebuilt on the next pick.
+    void setMap(std::shared_ptr<const HeightMap> map);
+    void setHeightScale(double heightScale);
+
+    // The hit along the ray through pixel (column, row) of `camera`, or nothing.
+    std::optional<PickResult> pick(const CameraFrame& camera, int column, int row);
+
+private:
+    std::shared_ptr<const HeightMap> map_;
+    double heightScale_ = 0.1;
+    std::unique_ptr<MultilevelTracer> tracer_;
+};
+
+}  // namespace microrelief

@@ -1,0 +1,566 @@
+#include "ViewerApp.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+
+#include "core/DataPaths.h"
+#include "core/Error.h"
+#include "core/Log.h"
+#include "image/ImageFile.h"
+
+namespace microrelief {
+
+namespace {
+
+constexpr int kLogLines = 8;
+// How often the panel's iteration figure is read back: a few times a second is live
+// enough, and keeps the readback off most frames on a software rasteriser.
+constexpr double kStatisticsInterval = 0.25;
+// Fly speed, world units a second (the map spans 1); Shift and Ctrl scale it.
+constexpr double kFlySpeed = 0.25;
+
+double now() {
+    return glfwGetTime();
+}
+
+// RGBA8 rows -> RGB rows (the pictures are opaque), optionally turning GL's bottom-up
+// rows into the top-down rows of every output image.
+std::vector<std::uint8_t> toRgb(const std::vector<std::uint8_t>& rgba, int width, int height,
+                                bool flip) {
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+    for (int row = 0; row < height; ++row) {
+        const int from = flip ? height - 1 - row : row;
+        for (int column = 0; column < width; ++column) {
+            const std::size_t p = (static_cast<std::size_t>(from) * width + column) * 4;
+            const std::size_t q = (static_cast<std::size_t>(row) * width + column) * 3;
+            rgb[q] = rgba[p];
+            rgb[q + 1] = rgba[p + 1];
+            rgb[q + 2] = rgba[p + 2];
+        }
+    }
+    return rgb;
+}
+
+// The scene radius microrelief-render gives resolveCamera (HeadlessRender.cpp): it
+// sets only the depth range, but the same number keeps the two programs identical.
+double sceneRadius(const HeightMap& map, double heightScale) {
+    const ReliefExtent extent = reliefExtent(map, heightScale);
+    return std::max({extent.halfWidth, extent.halfDepth, extent.topHeight}) * 2.0;
+}
+
+std::string timestamp() {
+    const std::time_t t = std::time(nullptr);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y%m%d-%H%M%S", std::localtime(&t));
+    return text;
+}
+
+}  // namespace
+
+std::filesystem::path viewerShaderDirectory(const ViewerOptions& options) {
+    if (options.shaderDir) return *options.shaderDir;
+    std::error_code ec;
+    const std::filesystem::path source = MICRORELIEF_SOURCE_SHADER_DIR;
+    const bool fromBuildTree =
+        std::filesystem::equivalent(dataDirectory(), MICRORELIEF_BUILD_DATA_DIR, ec);
+    if (fromBuildTree && std::filesystem::is_regular_file(source / "relief.frag", ec))
+        return source;
+    return shaderDirectory();
+}
+
+ViewerApp::ViewerApp(const ViewerOptions& options)
+    : options_(options), controller_(options.scene.job.camera) {
+    state_.scene = options.scene;
+    state_.vsync = options.vsync && options.frames == 0;
+    state_.panelVisible = options.panel;
+    const std::filesystem::path file = options.scene.heightFile.value_or(defaultHeightMapPath());
+    map_ = std::make_shared<const HeightMap>(loadHeightMap(file, options.scene.load));
+    loadedWith_ = options.scene.load;
+    // A degenerate camera is a bad argument: refuse it before any window opens.
+    resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
+                  sceneRadius(*map_, options.scene.job.heightScale));
+
+    setupWindow();
+    const GL& gl = window_->gl();
+    const std::filesystem::path shaders = viewerShaderDirectory(options);
+    renderer_ = std::make_unique<ReliefRenderer>(gl, shaders);
+    renderer_->setMethod(options.scene.job.method);
+    renderer_->setHeightScale(options.scene.job.heightScale);
+    renderer_->setHeightMap(*map_, file.string());
+    timer_ = std::make_unique<GpuTimer>(gl);
+    watcher_ = std::make_unique<ShaderWatcher>(shaders);
+    picker_.setMap(map_);
+    picker_.setHeightScale(options.scene.job.heightScale);
+
+    if (state_.scene.heightFile)
+        state_.scene.heightFile = std::filesystem::absolute(*state_.scene.heightFile);
+    state_.mapName = file.filename().string();
+    state_.mapWidth = map_->width;
+    state_.mapHeight = map_->height;
+    state_.iterationBudget = renderer_->maxIterations();
+    state_.shaderFolder = shaders.string();
+    state_.glRenderer = window_->renderer() + ", " + window_->version();
+    if (options.verbose) note("GL: " + state_.glRenderer);
+}
+
+ViewerApp::~ViewerApp() = default;
+
+void ViewerApp::setupWindow() {
+    GlfwWindowOptions windowOptions;
+    windowOptions.width = options_.scene.job.width;
+    windowOptions.height = options_.scene.job.height;
+    windowOptions.title = "microrelief-viewer";
+    window_ = createGlfwContext(windowOptions);
+    GLFWwindow* window = window_->window();
+
+    // A --size larger than the screen would open a window partly off it: fit the window
+    // (an automated --screenshot still renders at exactly --size, offscreen).
+    GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+    if (const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr) {
+        int width = 0, height = 0;
+        glfwGetWindowSize(window, &width, &height);
+        const double fit = std::min({1.0, 0.95 * mode->width / width, 0.9 * mode->height / height});
+        if (fit < 1.0)
+            glfwSetWindowSize(window, static_cast<int>(width * fit),
+                              static_cast<int>(height * fit));
+    }
+    float scaleX = 1.0f, scaleY = 1.0f;
+    glfwGetWindowContentScale(window, &scaleX, &scaleY);
+    uiScale_ = std::max(1.0f, scaleX);
+
+    glfwSetWindowUserPointer(window, this);
+    // Installed before ImGui's callbacks, which call on to it.
+    glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+        if (count > 0)
+            static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))->droppedFile_ = paths[count - 1];
+    });
+    // Key presses are queued, not polled: a tap shorter than a slow frame (a software
+    // rasteriser's) would fall between two polls of ImGui's key state.
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+        if (action == GLFW_PRESS)
+            static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))->pressedKeys_.push_back(key);
+    });
+    imgui_ = std::make_unique<ImGuiLayer>(*window_, uiScale_);
+    setVsync(state_.vsync);
+}
+
+int ViewerApp::run() {
+    int frames = 0;
+    lastFrameTime_ = now();
+    while (!glfwWindowShouldClose(window_->window())) {
+        const bool last = options_.frames > 0 && frames + 1 == options_.frames;
+        waitForEvents();
+        if (framebufferSize().x == 0 || framebufferSize().y == 0) {
+            glfwWaitEvents();  // minimised: nothing to draw until it comes back
+            continue;
+        }
+        const double start = now();
+        frame();
+        present(last && options_.windowScreenshot.has_value());
+        state_.frameMilliseconds = (now() - start) * 1e3;
+        if (last) break;
+        ++frames;
+    }
+    if (options_.frames > 0) {
+        if (!target_) throwRuntime("the window closed before the first frame");
+        const GLenum error = window_->gl().GetError();
+        if (error != GL_NO_ERROR)
+            throwRuntime("GL error 0x" + std::to_string(error) + " while rendering");
+        ImageWriteBatch batch;
+        std::vector<std::uint8_t> view;
+        if (options_.screenshot) {
+            const RenderedFrame picture = target_->read();
+            view = toRgb(picture.color, picture.width, picture.height, false);
+            batch.write(*options_.screenshot,
+                        {picture.width, picture.height, 3, PixelType::UInt8, view.data(), {}});
+        }
+        if (options_.windowScreenshot) {
+            batch.write(*options_.windowScreenshot, {windowPixelsWidth_,
+                                                     windowPixelsHeight_,
+                                                     3,
+                                                     PixelType::UInt8,
+                                                     windowPixels_.data(),
+                                                     {}});
+        }
+        batch.commit();
+    }
+    if (options_.printCommand) std::printf("%s\n", renderCommand().c_str());
+    return 0;
+}
+
+void ViewerApp::waitForEvents() {
+    // Poll while anything moves; otherwise sleep until an event (or a look at the
+    // shader folder is due), so an idle viewer costs nothing.
+    const bool busy =
+        options_.frames > 0 || state_.continuous || framesToDraw_ > 0 || ImGui::IsAnyMouseDown();
+    if (busy) {
+        glfwPollEvents();
+        framesToDraw_ = std::max(framesToDraw_ - 1, 0);
+        return;
+    }
+    const double timeout = 0.3, start = now();
+    glfwWaitEventsTimeout(timeout);
+    // Woken by an event: draw a few frames, as ImGui settles hover and clicks over two.
+    if (now() - start < 0.9 * timeout) framesToDraw_ = 3;
+}
+
+void ViewerApp::frame() {
+    // Fly speed needs the time since the last frame, idle waits included; the panel
+    // shows the frame's own work, which the waits would hide.
+    const double time = now();
+    const double seconds = time - lastFrameTime_;
+    lastFrameTime_ = time;
+
+    if (droppedFile_) {
+        const std::filesystem::path file = *droppedFile_;
+        droppedFile_.reset();
+        openMap(file);
+    }
+    if (watcher_->changed()) reloadShaders();
+
+    imgui_->beginFrame();
+    handleInput(seconds);
+    updatePick();
+    state_.yawDegrees = controller_.yawDegrees();
+    state_.pitchDegrees = controller_.pitchDegrees();
+    state_.scene.job.camera = controller_.camera();
+    const glm::ivec2 size = viewSize();
+    state_.scene.job.width = size.x;
+    state_.scene.job.height = size.y;
+    applyPanel(drawPanel(state_, uiScale_));
+    renderView();
+    sampleStatistics();
+}
+
+void ViewerApp::handleInput(double seconds) {
+    if (!imgui_->wantsKeyboard()) {
+        for (int key : pressedKeys_) handleKey(key);
+        if (state_.flyMode) flyKeys(seconds);
+    }
+    pressedKeys_.clear();
+    if (!imgui_->wantsMouse()) handleMouse();
+}
+
+void ViewerApp::handleKey(int key) {
+    switch (key) {
+        case GLFW_KEY_ESCAPE:
+            glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
+            break;
+        case GLFW_KEY_F:
+            state_.flyMode = !state_.flyMode;
+            break;
+        case GLFW_KEY_R:
+            controller_.reset();
+            break;
+        case GLFW_KEY_TAB:
+            state_.panelVisible = !state_.panelVisible;
+            break;
+        case GLFW_KEY_F12:
+        case GLFW_KEY_P:
+            takeScreenshot();
+            break;
+        case GLFW_KEY_C:
+            copyCommand();
+            break;
+        case GLFW_KEY_V:
+            setVsync(!state_.vsync);
+            break;
+        default:
+            if (key >= GLFW_KEY_1 && key <= GLFW_KEY_6)
+                state_.scene.job.shading.view = static_cast<DebugView>(key - GLFW_KEY_1);
+    }
+}
+
+void ViewerApp::flyKeys(double seconds) {
+    const auto down = [](int key) { return ImGui::IsKeyDown(key) ? 1.0 : 0.0; };
+    const glm::dvec3 direction(down(GLFW_KEY_D) - down(GLFW_KEY_A),
+                               down(GLFW_KEY_E) - down(GLFW_KEY_Q),
+                               down(GLFW_KEY_W) - down(GLFW_KEY_S));
+    if (direction == glm::dvec3(0.0)) return;
+    const ImGuiIO& io = ImGui::GetIO();
+    const double speed = kFlySpeed * (io.KeyShift ? 4.0 : 1.0) * (io.KeyCtrl ? 0.2 : 1.0);
+    // A long stall (a slow frame on a software rasteriser) must not throw the eye away.
+    controller_.fly(direction * speed * std::min(seconds, 0.25));
+    framesToDraw_ = std::max(framesToDraw_, 2);
+}
+
+void ViewerApp::handleMouse() {
+    const ImGuiIO& io = ImGui::GetIO();
+    const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+    const bool panning = ImGui::IsMouseDown(ImGuiMouseButton_Right) ||
+                         ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
+                         (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift);
+    if (panning) {
+        // The picture's height in window units, which is what the mouse moves in.
+        controller_.pan(dx, dy,
+                        viewSize().y * viewRect().scale * io.DisplaySize.y / framebufferSize().y);
+    } else if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && (dx != 0.0 || dy != 0.0)) {
+        state_.flyMode ? controller_.look(dx, dy) : controller_.orbit(dx, dy);
+    }
+    if (io.MouseWheel != 0.0f) controller_.zoom(io.MouseWheel);
+    if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && state_.pick)
+        controller_.setTarget(state_.pick->position);
+}
+
+void ViewerApp::applyPanel(const PanelActions& a) {
+    if (a.openMap) openMap(*a.openMap);
+    if (a.reloadMap) openMap(state_.scene.heightFile);
+    if (a.heightScaleChanged) {
+        renderer_->setHeightScale(state_.scene.job.heightScale);
+        picker_.setHeightScale(state_.scene.job.heightScale);
+    }
+    if (a.fovyChanged) controller_.setFovy(state_.scene.job.camera.fovyDegrees);
+    if (a.methodChanged) setMethod();
+    if (a.resetView) controller_.reset();
+    if (a.reloadShaders) reloadShaders();
+    if (a.screenshot) takeScreenshot();
+    if (a.copyCommand) copyCommand();
+    if (a.vsyncChanged) setVsync(state_.vsync);
+}
+
+void ViewerApp::updatePick() {
+    state_.pick.reset();
+    const ImGuiIO& io = ImGui::GetIO();
+    if (imgui_->wantsMouse() || !ImGui::IsMousePosValid()) return;
+    // Window units -> framebuffer pixels (HiDPI) -> the view's pixels.
+    const glm::ivec2 fb = framebufferSize();
+    const double x = io.MousePos.x * fb.x / io.DisplaySize.x,
+                 y = io.MousePos.y * fb.y / io.DisplaySize.y;
+    const ViewRect rect = viewRect();
+    const int column = static_cast<int>(std::floor((x - rect.x) / rect.scale));
+    const int row = static_cast<int>(std::floor((y - rect.y) / rect.scale));
+    state_.pick = picker_.pick(cameraFrame(), column, row);
+}
+
+void ViewerApp::renderView() {
+    const glm::ivec2 size = viewSize();
+    if (!target_ || target_->width() != size.x || target_->height() != size.y) {
+        target_.reset();  // free the old attachments before making new ones
+        target_ = std::make_unique<OffscreenTarget>(window_->gl(), size.x, size.y);
+        rendered_.reset();
+    }
+    const RenderKey key = renderKey();
+    if (rendered_ == key && !state_.continuous) return;
+    target_->clear(state_.scene.job.background);
+    const double start = now();
+    timer_->begin();
+    renderer_->draw(cameraFrame(), state_.scene.job.shading);
+    timer_->end();
+    // The wall-clock time to glFinish as well: software rasterisers (llvmpipe) answer
+    // timer queries without timing the rasterisation, and read about 0 there.
+    window_->gl().Finish();
+    state_.wallMilliseconds = (now() - start) * 1e3;
+    rendered_ = key;
+    statisticsStale_ = true;
+    framesToDraw_ = std::max(framesToDraw_, 2);  // the timer's result comes a frame or two later
+}
+
+void ViewerApp::sampleStatistics() {
+    timer_->poll();
+    state_.gpuMilliseconds = timer_->lastMilliseconds();
+    const double time = now();
+    if (!statisticsStale_ || time - lastStatisticsTime_ < kStatisticsInterval) return;
+    state_.iterations = readIterationStats(window_->gl(), *target_);
+    statisticsStale_ = false;
+    lastStatisticsTime_ = time;
+}
+
+void ViewerApp::present(bool captureWindow) {
+    const GL& gl = window_->gl();
+    const glm::ivec2 fb = framebufferSize(), size = viewSize();
+    const ViewRect rect = viewRect();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, fb.x, fb.y);
+    gl.ClearColor(0.05f, 0.05f, 0.06f, 1.0f);  // the margins around a letterboxed view
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+
+    // The view's picture as it is: no panel, no rescaling unless the window's size
+    // differs from the view's (a fixed --size with --screenshot).
+    target_->bind();
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    const int x0 = static_cast<int>(std::lround(rect.x)),
+              x1 = static_cast<int>(std::lround(rect.x + size.x * rect.scale));
+    const int y1 = fb.y - static_cast<int>(std::lround(rect.y));  // GL rows count from the bottom
+    const int y0 = fb.y - static_cast<int>(std::lround(rect.y + size.y * rect.scale));
+    gl.BlitFramebuffer(0, 0, size.x, size.y, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT,
+                       rect.scale == 1.0 ? GL_NEAREST : GL_LINEAR);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, fb.x, fb.y);
+
+    imgui_->render();
+    if (captureWindow) windowPixels_ = readWindow(windowPixelsWidth_, windowPixelsHeight_);
+    glfwSwapBuffers(window_->window());
+}
+
+std::vector<std::uint8_t> ViewerApp::readWindow(int& width, int& height) const {
+    const GL& gl = window_->gl();
+    const glm::ivec2 fb = framebufferSize();
+    width = fb.x;
+    height = fb.y;
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.ReadBuffer(GL_BACK);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    return toRgb(rgba, width, height, true);
+}
+
+void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
+    const std::filesystem::path path = file.value_or(defaultHeightMapPath());
+    try {
+        auto map = std::make_shared<const HeightMap>(loadHeightMap(path, state_.scene.load));
+        renderer_->setHeightMap(*map, path.string());
+        map_ = std::move(map);
+    } catch (const Error& e) {
+        // The current map stays, and so do the options it was loaded with.
+        state_.scene.load = loadedWith_;
+        state_.mapError = e.what();
+        note(std::string("cannot open: ") + e.what());
+        return;
+    }
+    picker_.setMap(map_);
+    loadedWith_ = state_.scene.load;
+    state_.scene.heightFile = file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
+    state_.mapName = path.filename().string();
+    state_.mapWidth = map_->width;
+    state_.mapHeight = map_->height;
+    state_.mapError.clear();
+    state_.iterationBudget = renderer_->maxIterations();
+    ++mapGeneration_;
+    glfwSetWindowTitle(window_->window(), ("microrelief-viewer: " + state_.mapName).c_str());
+    note("opened " + path.string() + " (" + std::to_string(map_->width) + "x" +
+         std::to_string(map_->height) + ")");
+}
+
+void ViewerApp::reloadShaders() {
+    try {
+        renderer_->reloadShaders();
+    } catch (const Error& e) {
+        // ReliefRenderer keeps the previous program running; the message names file:line.
+        state_.shaderError = e.what();
+        note(std::string("shader error, previous program kept: ") + e.what());
+        return;
+    }
+    state_.shaderError.clear();
+    ++shaderGeneration_;
+    note("shaders reloaded from " + watcher_->folder().string());
+}
+
+void ViewerApp::setMethod() {
+    MethodSettings& method = state_.scene.job.method;
+    // What microrelief-render derives from --steps, so "copy as command" reproduces it.
+    method.minSteps = std::max(1, std::min(MethodSettings{}.minSteps, method.steps));
+    try {
+        renderer_->setMethod(method);
+    } catch (const Error& e) {
+        method = renderer_->method();  // the renderer keeps the method that compiles
+        state_.shaderError = e.what();
+        note(std::string("shader error, previous method kept: ") + e.what());
+    }
+}
+
+void ViewerApp::takeScreenshot() {
+    std::filesystem::path file = std::filesystem::path("out") / ("viewer-" + timestamp() + ".png");
+    for (int n = 2; std::filesystem::exists(file); ++n) {
+        file = std::filesystem::path("out") /
+               ("viewer-" + timestamp() + "-" + std::to_string(n) + ".png");
+    }
+    try {
+        const RenderedFrame picture = target_->read();
+        const std::vector<std::uint8_t> rgb =
+            toRgb(picture.color, picture.width, picture.height, false);
+        writeImageAtomically(file,
+                             {picture.width, picture.height, 3, PixelType::UInt8, rgb.data(), {}});
+        note("wrote " + file.string());
+    } catch (const Error& e) {
+        note(std::string("screenshot failed: ") + e.what());
+    }
+}
+
+std::string ViewerApp::renderCommand() const {
+    SceneOptions scene = state_.scene;
+    scene.job.camera = controller_.camera();
+    const glm::ivec2 size = viewSize();
+    scene.job.width = size.x;
+    scene.job.height = size.y;
+    return renderCommandLine(scene);
+}
+
+void ViewerApp::copyCommand() {
+    const std::string command = renderCommand();
+    glfwSetClipboardString(window_->window(), command.c_str());
+    note("copied: " + command);
+}
+
+void ViewerApp::setVsync(bool on) {
+    state_.vsync = on;
+    glfwSwapInterval(on ? 1 : 0);
+}
+
+void ViewerApp::note(const std::string& message) {
+    std::printf("microrelief-viewer: %s\n", message.c_str());
+    std::fflush(stdout);
+    state_.log.push_back(message);
+    while (state_.log.size() > kLogLines) state_.log.pop_front();
+}
+
+glm::ivec2 ViewerApp::framebufferSize() const {
+    glm::ivec2 size(0);
+    glfwGetFramebufferSize(window_->window(), &size.x, &size.y);
+    return size;
+}
+
+glm::ivec2 ViewerApp::viewSize() const {
+    // An automated screenshot renders at exactly --size, to compare with microrelief-render;
+    // otherwise the view fills the window, one ray per framebuffer pixel.
+    if (options_.screenshot) return {options_.scene.job.width, options_.scene.job.height};
+    // A fraction of the framebuffer's resolution keeps a software rasteriser interactive.
+    const glm::dvec2 scaled =
+        glm::dvec2(framebufferSize()) * static_cast<double>(state_.resolution);
+    return glm::max(glm::ivec2(glm::round(scaled)), glm::ivec2(1));
+}
+
+ViewerApp::ViewRect ViewerApp::viewRect() const {
+    const glm::ivec2 fb = framebufferSize(), size = viewSize();
+    if (fb == size) return {0.0, 0.0, 1.0};
+    const double scale =
+        std::min(static_cast<double>(fb.x) / size.x, static_cast<double>(fb.y) / size.y);
+    return {(fb.x - size.x * scale) * 0.5, (fb.y - size.y * scale) * 0.5, scale};
+}
+
+CameraFrame ViewerApp::cameraFrame() const {
+    const glm::ivec2 size = viewSize();
+    return resolveCamera(controller_.camera(), size.x, size.y,
+                         sceneRadius(*map_, state_.scene.job.heightScale));
+}
+
+ViewerApp::RenderKey ViewerApp::renderKey() const {
+    const Camera& c = controller_.camera();
+    const RenderJob& job = state_.scene.job;
+    const glm::ivec2 size = viewSize();
+    return {c.eye,
+            c.target,
+            c.up,
+            c.fovyDegrees,
+            size.x,
+            size.y,
+            job.heightScale,
+            job.shading.lightDirection,
+            job.shading.albedo,
+            job.background,
+            job.shading.view,
+            renderer_->method().method,
+            renderer_->method().steps,
+            renderer_->method().minSteps,
+            renderer_->method().pixelError,
+            mapGeneration_,
+            shaderGeneration_};
+}
+
+}  // namespace microrelief

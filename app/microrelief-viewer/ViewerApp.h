@@ -1,0 +1,119 @@
+// The viewer: a GLFW window whose relief is drawn by the library's ReliefRenderer into
+// an OffscreenTarget (the same path as microrelief-render, so a view and its headless
+// twin agree pixel for pixel), blitted to the window with the Dear ImGui panel on top.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "CameraController.h"
+#include "FrameStats.h"
+#include "ImGuiLayer.h"
+#include "ReliefPicker.h"
+#include "ShaderWatcher.h"
+#include "ViewerOptions.h"
+#include "ViewerPanel.h"
+#include "context/GlfwContext.h"
+#include "render/OffscreenTarget.h"
+#include "render/ReliefRenderer.h"
+
+namespace microrelief {
+
+class ViewerApp {
+public:
+    // Loads the map, opens the window, compiles the shaders. Throws Error: BadInput for
+    // a bad map or camera (exit status 2), Runtime for no display or no GL (1).
+    explicit ViewerApp(const ViewerOptions& options);
+    ~ViewerApp();
+    ViewerApp(const ViewerApp&) = delete;
+    ViewerApp& operator=(const ViewerApp&) = delete;
+
+    // Runs until the window closes, or for --frames frames; returns the exit status.
+    int run();
+
+    // The microrelief-render command line of the current view.
+    std::string renderCommand() const;
+
+private:
+    // What the relief pass depends on: when none of it changed, the last picture stands.
+    struct RenderKey {
+        glm::dvec3 eye, target, up;
+        double fovy;
+        int width, height;
+        float heightScale;
+        glm::vec3 light, albedo, background;
+        DebugView view;
+        Method method;
+        int steps, minSteps;
+        float pixelError;
+        int mapGeneration, shaderGeneration;
+        bool operator==(const RenderKey&) const = default;
+    };
+    // Where the view's picture lies in the window's framebuffer (pixels, top-left origin).
+    struct ViewRect {
+        double x, y, scale;
+    };
+
+    void setupWindow();
+    void frame();
+    void waitForEvents();
+    void handleInput(double seconds);
+    void handleKey(int key);
+    void flyKeys(double seconds);
+    void handleMouse();
+    void applyPanel(const PanelActions& actions);
+    void updatePick();
+    void renderView();
+    void sampleStatistics();
+    void present(bool captureWindow);
+
+    void openMap(const std::optional<std::filesystem::path>& file);
+    void reloadShaders();
+    void setMethod();
+    void takeScreenshot();
+    void copyCommand();
+    void setVsync(bool on);
+    void note(const std::string& message);
+
+    glm::ivec2 framebufferSize() const;
+    glm::ivec2 viewSize() const;
+    ViewRect viewRect() const;
+    CameraFrame cameraFrame() const;
+    RenderKey renderKey() const;
+    std::vector<std::uint8_t> readWindow(int& width, int& height) const;
+
+    ViewerOptions options_;
+    ViewerState state_;
+    HeightMapLoadOptions loadedWith_;  // the options the current map was loaded with
+    std::shared_ptr<const HeightMap> map_;
+    CameraController controller_;
+    ReliefPicker picker_;
+    float uiScale_ = 1.0f;
+    int mapGeneration_ = 0, shaderGeneration_ = 0;
+    std::optional<RenderKey> rendered_;  // what the target holds
+    bool statisticsStale_ = true;
+    double lastStatisticsTime_ = -1.0, lastFrameTime_ = 0.0;
+    int framesToDraw_ = 0;  // frames to draw before waiting for events again
+    std::optional<std::filesystem::path> droppedFile_;
+    std::vector<int> pressedKeys_;            // GLFW key codes pressed since the last frame
+    std::vector<std::uint8_t> windowPixels_;  // --window-screenshot, RGB
+    int windowPixelsWidth_ = 0, windowPixelsHeight_ = 0;
+
+    // GL owners after the window: they are destroyed first, while its context lives.
+    std::unique_ptr<GlfwContext> window_;
+    std::unique_ptr<ImGuiLayer> imgui_;
+    std::unique_ptr<ReliefRenderer> renderer_;
+    std::unique_ptr<OffscreenTarget> target_;
+    std::unique_ptr<GpuTimer> timer_;
+    std::unique_ptr<ShaderWatcher> watcher_;
+};
+
+// Where the viewer reads and watches shaders: --shader-dir, else the source tree's
+// shaders/ when it runs from its build tree (so edits there hot-reload), else the
+// installed ones.
+std::filesystem::path viewerShaderDirectory(const ViewerOptions& options);
+
+}  // namespace microrelief

@@ -1,0 +1,239 @@
+#include "ViewerPanel.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/ReliefRenderer.h"
+
+namespace microrelief {
+
+const ControlHelp kControls[] = {
+    {"Left drag", "Orbit about the target (fly mode: look around)"},
+    {"Right or middle drag, Shift+left drag", "Pan"},
+    {"Scroll", "Zoom; close in, the target moves along (into the box)"},
+    {"Double-click", "Orbit about the point under the cursor"},
+    {"F", "Fly mode on/off"},
+    {"W A S D, Q E", "Fly: forward, left, back, right, down, up (Shift faster, Ctrl slower)"},
+    {"R", "Reset the view to the command line's"},
+    {"1 ... 6", "Shaded, iterations, level, normal, depth, position"},
+    {"F12 or P", "Screenshot of the 3D view (no panel) to out/"},
+    {"C", "Copy as command: the microrelief-render command line of this view"},
+    {"V", "Vsync on/off"},
+    {"Tab", "Show or hide the panel"},
+    {"Drop a file", "Open it as the height map"},
+    {"Esc", "Quit"},
+};
+const int kControlCount = static_cast<int>(sizeof(kControls) / sizeof(kControls[0]));
+
+namespace {
+
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
+
+void mapSection(ViewerState& s, PanelActions& actions) {
+    if (!ImGui::CollapsingHeader("Height map", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::TextWrapped("%s", s.mapName.c_str());
+    ImGui::Text("%d x %d samples", s.mapWidth, s.mapHeight);
+    const ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("Open").x -
+                            2.0f * style.FramePadding.x - style.ItemSpacing.x);
+    const bool entered =
+        ImGui::InputTextWithHint("##path", "path, or drop a file on the window", &s.typedPath,
+                                 ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if ((ImGui::Button("Open") || entered) && !s.typedPath.empty()) actions.openMap = s.typedPath;
+    if (ImGui::InputInt("Channel", &s.scene.load.channel)) {
+        s.scene.load.channel = std::max(s.scene.load.channel, 0);
+        actions.reloadMap = true;
+    }
+    if (ImGui::Checkbox("Normalise to [0, 1]", &s.scene.load.normalize)) actions.reloadMap = true;
+    if (ImGui::SliderFloat("Height scale", &s.scene.job.heightScale, 0.001f, 1.0f, "%.4f",
+                           ImGuiSliderFlags_Logarithmic)) {
+        s.scene.job.heightScale = std::max(s.scene.job.heightScale, 1e-4f);
+        actions.heightScaleChanged = true;
+    }
+}
+
+// The light as azimuth and elevation, written back only when the user moves a slider,
+// so a --light given on the command line stays exactly as given until then.
+void lightControls(ShadingOptions& shading) {
+    const glm::vec3 l = glm::normalize(shading.lightDirection);
+    float azimuth = glm::degrees(std::atan2(l.z, l.x));
+    float elevation = glm::degrees(std::asin(std::clamp(l.y, -1.0f, 1.0f)));
+    const bool moved = ImGui::SliderFloat("Light azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg") |
+                       ImGui::SliderFloat("Light elevation", &elevation, -90.0f, 90.0f, "%.0f deg");
+    if (!moved) return;
+    const float a = glm::radians(azimuth), e = glm::radians(elevation);
+    shading.lightDirection = {std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a)};
+}
+
+// The tracer: the paper's multilevel method, or a peer to compare it with.
+void methodControls(MethodSettings& method, PanelActions& actions) {
+    int index = static_cast<int>(method.method);
+    const char* names[] = {"multilevel (the paper's, exact)",
+                           "normal mapping",
+                           "parallax offset",
+                           "steep parallax",
+                           "parallax occlusion",
+                           "relief mapping",
+                           "maximum mipmaps"};
+    if (ImGui::Combo("Method", &index, names, IM_ARRAYSIZE(names))) {
+        method.method = static_cast<Method>(index);
+        actions.methodChanged = true;
+    }
+    if (methodHasSteps(method.method) &&
+        ImGui::SliderInt("Steps", &method.steps, 1, 512, "%d", ImGuiSliderFlags_Logarithmic)) {
+        method.steps = std::clamp(method.steps, 1, 65536);
+        actions.methodChanged = true;
+    }
+    if (method.method == Method::Multilevel &&
+        ImGui::SliderFloat("Pixel error", &method.pixelError, 0.0f, 8.0f, "%.2f px")) {
+        method.pixelError = std::max(method.pixelError, 0.0f);
+        actions.methodChanged = true;
+    }
+}
+
+void viewSection(ViewerState& s, PanelActions& actions) {
+    if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    methodControls(s.scene.job.method, actions);
+    int view = static_cast<int>(s.scene.job.shading.view);
+    const char* names[] = {
+        "shaded", "iterations (heat map)", "level where the ray stopped", "normal",
+        "depth",  "position (AOV)"};
+    if (ImGui::Combo("Show", &view, names, IM_ARRAYSIZE(names)))
+        s.scene.job.shading.view = static_cast<DebugView>(view);
+    lightControls(s.scene.job.shading);
+    ImGui::ColorEdit3("Background", &s.scene.job.background.x, ImGuiColorEditFlags_Float);
+    float fovy = static_cast<float>(s.scene.job.camera.fovyDegrees);
+    if (ImGui::SliderFloat("Field of view", &fovy, 5.0f, 120.0f, "%.1f deg")) {
+        s.scene.job.camera.fovyDegrees = fovy;
+        actions.fovyChanged = true;
+    }
+    ImGui::Checkbox("Fly mode (F)", &s.flyMode);
+    ImGui::SameLine();
+    if (ImGui::Button("Reset view (R)")) actions.resetView = true;
+    const Camera& c = s.scene.job.camera;
+    ImGui::Text("eye    %+.3f %+.3f %+.3f", c.eye.x, c.eye.y, c.eye.z);
+    ImGui::Text("target %+.3f %+.3f %+.3f", c.target.x, c.target.y, c.target.z);
+    ImGui::Text("yaw %.1f deg, pitch %.1f deg", s.yawDegrees, s.pitchDegrees);
+}
+
+void statsSection(ViewerState& s) {
+    if (!ImGui::CollapsingHeader("Method", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (s.gpuMilliseconds) {
+        ImGui::Text("relief pass %.2f ms (GL timer query)", *s.gpuMilliseconds);
+    } else {
+        ImGui::TextDisabled("relief pass: waiting for the timer query");
+    }
+    ImGui::Text("relief pass %.1f ms to glFinish, frame %.1f ms", s.wallMilliseconds,
+                s.frameMilliseconds);
+    ImGui::Text("iterations per hit pixel: mean %.1f, max %d", s.iterations.meanPerHitPixel,
+                s.iterations.maxIterations);
+    ImGui::Text("budget %d; %d x %d pixels, %zu hit", s.iterationBudget, s.scene.job.width,
+                s.scene.job.height, s.iterations.hitPixels);
+    ImGui::Checkbox("Render every frame", &s.continuous);
+    ImGui::SameLine();
+    const float resolutions[] = {1.0f, 0.5f, 0.25f};
+    const char* resolutionNames[] = {"full", "1/2", "1/4"};
+    int resolution =
+        static_cast<int>(std::find(resolutions, resolutions + 3, s.resolution) - resolutions);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4.0f);
+    if (ImGui::Combo("Resolution", &resolution, resolutionNames, 3))
+        s.resolution = resolutions[resolution];
+    if (s.pick) {
+        ImGui::Text("cursor: uv %.4f %.4f, h %.4f", s.pick->uv.x, s.pick->uv.y, s.pick->height);
+    } else {
+        ImGui::TextDisabled("cursor: no relief under it");
+    }
+}
+
+void actionsSection(ViewerState& s, PanelActions& actions) {
+    if (!ImGui::CollapsingHeader("Output", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (ImGui::Button("Screenshot (F12)")) actions.screenshot = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Copy as command (C)")) actions.copyCommand = true;
+    if (ImGui::Checkbox("Vsync (V)", &s.vsync)) actions.vsyncChanged = true;
+    ImGui::TextDisabled("%s", s.glRenderer.c_str());
+}
+
+void shaderSection(ViewerState& s, PanelActions& actions) {
+    if (!ImGui::CollapsingHeader("Shaders", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::TextWrapped("watching %s", s.shaderFolder.c_str());
+    if (ImGui::Button("Reload now")) actions.reloadShaders = true;
+    ImGui::SameLine();
+    if (s.shaderError.empty()) {
+        ImGui::TextDisabled("compiled");
+    } else {
+        ImGui::TextColored(kErrorColor, "error, see the top");
+    }
+}
+
+// Errors first, where they cannot be missed: the panel may scroll.
+void errorBanner(const ViewerState& s) {
+    ImGui::PushTextWrapPos(0.0f);
+    if (!s.shaderError.empty()) {
+        ImGui::TextColored(kErrorColor, "Shader error (the previous program keeps running):");
+        ImGui::TextColored(kErrorColor, "%s", s.shaderError.c_str());
+    }
+    if (!s.mapError.empty()) {
+        ImGui::TextColored(kErrorColor, "Cannot open the map (the current one stays):");
+        ImGui::TextColored(kErrorColor, "%s", s.mapError.c_str());
+    }
+    ImGui::PopTextWrapPos();
+}
+
+void logAndHelp(const ViewerState& s) {
+    if (ImGui::CollapsingHeader("Log", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::PushTextWrapPos(0.0f);
+        for (const std::string& line : s.log) ImGui::TextUnformatted(line.c_str());
+        ImGui::PopTextWrapPos();
+    }
+    if (ImGui::CollapsingHeader("Controls") &&
+        ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
+        for (int k = 0; k < kControlCount; ++k) {
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(kControls[k].input);
+            ImGui::TableNextColumn();
+            ImGui::TextWrapped("%s", kControls[k].action);
+        }
+        ImGui::EndTable();
+    }
+}
+
+void hoverReadout(const ViewerState& s) {
+    if (!s.pick || ImGui::GetIO().WantCaptureMouse) return;
+    ImGui::BeginTooltip();
+    ImGui::Text("uv %.4f, %.4f", s.pick->uv.x, s.pick->uv.y);
+    ImGui::Text("h  %.4f", s.pick->height);
+    ImGui::EndTooltip();
+}
+
+}  // namespace
+
+PanelActions drawPanel(ViewerState& state, float uiScale) {
+    PanelActions actions;
+    hoverReadout(state);
+    if (!state.panelVisible) return actions;
+    // Fixed width, as tall as its content up to the window's height (then it scrolls).
+    const float margin = 8.0f * uiScale, width = 380.0f * uiScale;
+    ImGui::SetNextWindowPos(ImVec2(margin, margin), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(
+        ImVec2(width, 0.0f),
+        ImVec2(width, std::max(ImGui::GetIO().DisplaySize.y - 2.0f * margin, 50.0f)));
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    if (ImGui::Begin("microrelief", &state.panelVisible, ImGuiWindowFlags_AlwaysAutoResize)) {
+        errorBanner(state);
+        mapSection(state, actions);
+        viewSection(state, actions);
+        statsSection(state);
+        actionsSection(state, actions);
+        shaderSection(state, actions);
+        logAndHelp(state);
+    }
+    ImGui::End();
+    return actions;
+}
+
+}  // namespace microrelief

@@ -1,0 +1,69 @@
+// The viewer's Dear ImGui panel: immediate mode, so it reads and edits a plain state
+// struct each frame and hands back what the user asked for; the app does the work.
+#pragma once
+
+#include <deque>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "FrameStats.h"
+#include "ReliefPicker.h"
+#include "SceneOptions.h"
+
+namespace microrelief {
+
+// What the panel shows and edits. The scene's map file, load options, height scale,
+// shading and background are the view's own; its camera and size mirror the view.
+struct ViewerState {
+    SceneOptions scene;
+    bool vsync = true;
+    bool continuous = false;  // re-render the relief every frame, not only on change
+    float resolution = 1.0f;  // the view's pixels per framebuffer pixel, per side
+    bool flyMode = false;
+    bool panelVisible = true;
+    std::string typedPath;  // the panel's path field
+
+    // Shown only.
+    std::string mapName;
+    int mapWidth = 0, mapHeight = 0;
+    std::string mapError;     // the last failed load; the previous map stays
+    std::string shaderError;  // the last failed compile (file:line); the previous program runs
+    std::string shaderFolder;
+    std::string glRenderer;
+    std::optional<double> gpuMilliseconds;  // the relief pass, GL timer query
+    double wallMilliseconds = 0.0;          // the relief pass, draw to glFinish
+    double frameMilliseconds = 0.0;         // the last frame's work, CPU side, swap included
+    IterationStats iterations;
+    int iterationBudget = 0;
+    std::optional<PickResult> pick;
+    double yawDegrees = 0.0, pitchDegrees = 0.0;
+    std::deque<std::string> log;  // newest last
+};
+
+struct PanelActions {
+    std::optional<std::filesystem::path> openMap;  // a path typed into the panel
+    bool reloadMap = false;                        // channel or normalisation changed
+    bool heightScaleChanged = false;
+    bool fovyChanged = false;
+    bool methodChanged = false;
+    bool screenshot = false;
+    bool copyCommand = false;
+    bool resetView = false;
+    bool reloadShaders = false;
+    bool vsyncChanged = false;
+};
+
+// Draws the panel (when visible) and the hover read-out near the cursor. `uiScale`
+// is the monitor's content scale.
+PanelActions drawPanel(ViewerState& state, float uiScale);
+
+// The controls, for the panel's help and the README: key or mouse, what it does.
+struct ControlHelp {
+    const char* input;
+    const char* action;
+};
+extern const ControlHelp kControls[];
+extern const int kControlCount;
+
+}  // namespace microrelief

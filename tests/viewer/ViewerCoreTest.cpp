@@ -1,0 +1,259 @@
+// The parts of microrelief-viewer that need no window: the camera controller (never
+// flips, keeps the command line's camera exactly until the first rotation, reaches
+// grazing angles and the inside of the relief's box), "copy as command" read back by
+// the same flags, picking, and the shader folder watch.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "CameraController.h"
+#include "ReliefPicker.h"
+#include "ShaderWatcher.h"
+#include "TestSupport.h"
+#include "ViewerOptions.h"
+#include "synth/SyntheticMaps.h"
+
+using namespace microrelief;
+
+namespace {
+
+Camera startCamera() {
+    Camera camera;
+    camera.eye = {0.8, 0.5, 0.85};
+    camera.target = {0.0, -0.03, 0.0};
+    camera.up = {0.0, 1.0, 0.0};
+    camera.fovyDegrees = 45.0;
+    return camera;
+}
+
+// The camera's screen-up vector, as the renderer resolves it.
+glm::dvec3 screenUp(const Camera& camera) {
+    return glm::normalize(resolveCamera(camera, 64, 64, 1.0).up);
+}
+
+TEST(CameraController, KeepsTheStartCameraExactlyUntilTheFirstRotation) {
+    const Camera start = startCamera();
+    CameraController controller(start);
+    EXPECT_EQ(controller.camera().eye, start.eye);
+    EXPECT_EQ(controller.camera().target, start.target);
+    EXPECT_EQ(controller.camera().up, start.up);
+    controller.orbit(30.0, -10.0);
+    controller.reset();
+    EXPECT_EQ(controller.camera().eye, start.eye);
+    EXPECT_EQ(controller.camera().target, start.target);
+}
+
+TEST(CameraController, OrbitNeverFlipsAtThePoles) {
+    CameraController controller(startCamera());
+    const double distance = controller.distance();
+    // Drag far past both poles, in steps, with some sideways motion: the pitch clamps,
+    // the screen's up keeps pointing up (no flip) and the distance stays.
+    for (double dy : {40.0, -40.0}) {
+        for (int step = 0; step < 200; ++step) {
+            controller.orbit(3.0, dy);
+            const Camera& c = controller.camera();
+            ASSERT_LE(std::abs(controller.pitchDegrees()),
+                      CameraController::kPitchLimitDegrees + 1e-9);
+            ASSERT_GT(glm::dot(screenUp(c), glm::dvec3(0, 1, 0)), 0.0)
+                << "flipped at step " << step;
+            ASSERT_NEAR(controller.distance(), distance, 1e-9);
+            ASSERT_NO_THROW(resolveCamera(c, 64, 64, 1.0));
+        }
+        EXPECT_NEAR(std::abs(controller.pitchDegrees()), CameraController::kPitchLimitDegrees,
+                    1e-6);
+    }
+}
+
+TEST(CameraController, DragDirectionsFollowTheConventions) {
+    CameraController controller(startCamera());
+    const double pitch = controller.pitchDegrees();
+    controller.orbit(0.0, 20.0);  // drag down: the eye rises, the view looks further down
+    EXPECT_LT(controller.pitchDegrees(), pitch);
+    const glm::dvec3 eye = controller.camera().eye;
+    const glm::dvec3 right = glm::normalize(resolveCamera(controller.camera(), 64, 64, 1.0).right);
+    controller.orbit(20.0, 0.0);  // drag right: the relief turns right, the eye moves left
+    EXPECT_LT(glm::dot(controller.camera().eye - eye, right), 0.0);
+}
+
+TEST(CameraController, StartingStraightDownKeepsTheScreenOrientation) {
+    // The top-down view of the spec (up = -z): the first rotation must not spin it.
+    Camera top;
+    top.eye = {0.0, 1.5, 0.0};
+    top.target = {0.0, 0.0, 0.0};
+    top.up = {0.0, 0.0, -1.0};
+    CameraController controller(top);
+    controller.orbit(0.0, -1.0);  // a nudge away from the pole
+    EXPECT_GT(glm::dot(screenUp(controller.camera()), glm::dvec3(0, 0, -1)), 0.99);
+}
+
+TEST(CameraController, ZoomPassesThroughTheTargetIntoTheBox) {
+    CameraController controller(startCamera());
+    for (int step = 0; step < 200; ++step) controller.zoom(1.0);
+    EXPECT_GE(controller.distance(), CameraController::kMinDistance * 0.999);
+    // It went past the old target, on along the view direction.
+    const glm::dvec3 view = glm::normalize(startCamera().target - startCamera().eye);
+    EXPECT_GT(glm::dot(controller.camera().eye - startCamera().target, view), 0.5);
+}
+
+TEST(CameraController, FlyReachesGrazingAnglesInsideTheBox) {
+    CameraController controller(startCamera());
+    controller.look(0.0, -85.0);  // drag up: look up, to about the horizon
+    for (int step = 0; step < 45; ++step) controller.fly({0.0, -0.01, 0.0});  // down
+    controller.fly({0.0, 0.0, 0.6});
+    const Camera& c = controller.camera();
+    // Inside the box of a map scaled by 0.1, looking nearly along the surface.
+    EXPECT_LT(c.eye.y, 0.1);
+    EXPECT_LT(std::abs(c.eye.x), 0.5);
+    EXPECT_LT(std::abs(c.eye.z), 0.5);
+    EXPECT_LT(std::abs(controller.pitchDegrees()), 10.0);
+    EXPECT_NO_THROW(resolveCamera(c, 64, 64, 1.0));
+}
+
+TEST(CameraController, LookTurnsAboutTheEye) {
+    CameraController controller(startCamera());
+    const glm::dvec3 eye = controller.camera().eye;
+    controller.look(50.0, -30.0);
+    EXPECT_EQ(controller.camera().eye, eye);
+    controller.setTarget({0.1, 0.0, 0.1});
+    EXPECT_EQ(controller.camera().eye, eye);
+    EXPECT_EQ(controller.camera().target, glm::dvec3(0.1, 0.0, 0.1));
+}
+
+// --- "copy as command": what the viewer writes, the same flags read back exactly.
+
+std::vector<std::string> splitWords(const std::string& line) {
+    std::istringstream in(line);
+    std::vector<std::string> words;
+    for (std::string word; in >> word;) words.push_back(word);
+    return words;
+}
+
+ViewerOptions parseWords(std::vector<std::string> words) {
+    std::vector<char*> argv;
+    for (std::string& word : words) argv.push_back(word.data());
+    ViewerParseResult parsed = parseViewerOptions(static_cast<int>(argv.size()), argv.data());
+    EXPECT_TRUE(parsed.options) << parsed.message;
+    return parsed.options ? *parsed.options : ViewerOptions{};
+}
+
+TEST(CopyAsCommand, TheRenderCommandLineReadsBackExactly) {
+    SceneOptions scene;
+    scene.heightFile = "/maps/rock.exr";
+    scene.load.channel = 2;
+    scene.load.normalize = true;
+    scene.job.heightScale = 0.0734f;
+    // Values a drag produces: no short decimal form.
+    scene.job.camera.eye = {0.1 + 1.0 / 3.0, -std::sqrt(2.0) / 7.0, 1e-7 * M_PI};
+    scene.job.camera.target = {-0.25, 0.0, std::nextafter(0.1, 1.0)};
+    scene.job.camera.up = {0.0, 1.0, 0.0};
+    scene.job.camera.fovyDegrees = 37.123456789012345;
+    scene.job.width = 333;
+    scene.job.height = 217;
+    scene.job.shading.lightDirection = {std::cos(1.1f), 0.3f, -std::sin(1.1f)};
+    scene.job.shading.view = DebugView::Level;
+    scene.job.background = {0.3f, 0.01f, 1.0f / 3.0f};
+    scene.job.method.method = Method::Relief;
+    scene.job.method.steps = 23;
+    scene.job.method.pixelError = 0.7f;
+
+    const std::string line = renderCommandLine(scene, "microrelief-viewer");
+    const SceneOptions back = parseWords(splitWords(line)).scene;
+    EXPECT_EQ(back.heightFile, scene.heightFile);
+    EXPECT_EQ(back.load.channel, 2);
+    EXPECT_TRUE(back.load.normalize);
+    EXPECT_EQ(back.job.heightScale, scene.job.heightScale);
+    EXPECT_EQ(back.job.camera.eye, scene.job.camera.eye) << line;
+    EXPECT_EQ(back.job.camera.target, scene.job.camera.target) << line;
+    EXPECT_EQ(back.job.camera.up, scene.job.camera.up);
+    EXPECT_EQ(back.job.camera.fovyDegrees, scene.job.camera.fovyDegrees) << line;
+    EXPECT_EQ(back.job.width, 333);
+    EXPECT_EQ(back.job.height, 217);
+    EXPECT_EQ(back.job.shading.lightDirection, scene.job.shading.lightDirection) << line;
+    EXPECT_EQ(back.job.shading.view, DebugView::Level);
+    EXPECT_EQ(back.job.background, scene.job.background) << line;
+    EXPECT_EQ(back.job.method.method, Method::Relief);
+    EXPECT_EQ(back.job.method.steps, 23);
+    EXPECT_EQ(back.job.method.pixelError, 0.7f);
+}
+
+TEST(CopyAsCommand, DefaultsStayOffTheLineAndPathsAreQuoted) {
+    SceneOptions scene;
+    scene.heightFile = "/my maps/it's.png";
+    const std::string line = renderCommandLine(scene);
+    EXPECT_EQ(line.rfind("microrelief-render ", 0), 0u) << line;
+    EXPECT_NE(line.find("--height '/my maps/it'\\''s.png'"), std::string::npos) << line;
+    EXPECT_EQ(line.find("--background"), std::string::npos) << line;
+    EXPECT_EQ(line.find("--channel"), std::string::npos) << line;
+    EXPECT_EQ(line.find("--steps"), std::string::npos) << line;
+    for (const char* flag : {"--height-scale", "--eye", "--target", "--up", "--fovy", "--size",
+                             "--light", "--method", "--view"}) {
+        EXPECT_NE(line.find(flag), std::string::npos) << flag << " in " << line;
+    }
+}
+
+TEST(ViewerOptions, ScreenshotImpliesOneFrame) {
+    const ViewerOptions o =
+        parseWords({"microrelief-viewer", "--screenshot", "a.png", "--size", "20x10"});
+    EXPECT_EQ(o.frames, 1);
+    EXPECT_EQ(o.scene.job.width, 20);
+    ASSERT_TRUE(o.screenshot);
+    EXPECT_EQ(o.screenshot->string(), "a.png");
+}
+
+// --- picking
+
+TEST(ReliefPicker, PicksTheMapUnderThePixel) {
+    // A ramp along u: h = u at the sample centres, so the picked height reads the uv.
+    HeightMap ramp(32, 16);
+    for (int j = 0; j < ramp.height; ++j) {
+        for (int i = 0; i < ramp.width; ++i) ramp.at(i, j) = (i + 0.5f) / ramp.width;
+    }
+    ReliefPicker picker;
+    picker.setMap(std::make_shared<const HeightMap>(ramp));
+    picker.setHeightScale(0.2);
+    Camera top;
+    top.eye = {0.0, 2.0, 0.0};
+    top.up = {0.0, 0.0, -1.0};
+    top.fovyDegrees = 30.0;
+    const CameraFrame frame = resolveCamera(top, 101, 101, 1.0);
+    // The centre pixel looks straight down at u = v = 0.5.
+    const std::optional<PickResult> centre = picker.pick(frame, 50, 50);
+    ASSERT_TRUE(centre);
+    EXPECT_NEAR(centre->uv.x, 0.5, 1e-6);
+    EXPECT_NEAR(centre->uv.y, 0.5, 1e-6);
+    EXPECT_NEAR(centre->height, 0.5, 1e-6);
+    EXPECT_EQ(centre->face, HitFace::Top);
+    // Image row 0 is v = 0 (far side, -z); column 0 is u = 0 (-x): left of centre is lower.
+    const std::optional<PickResult> left = picker.pick(frame, 40, 50);
+    ASSERT_TRUE(left);
+    EXPECT_LT(left->uv.x, 0.5);
+    EXPECT_NEAR(left->height, left->uv.x, 1e-6);
+    EXPECT_FALSE(picker.pick(frame, 0, 0)) << "the corner ray passes beside the relief";
+    EXPECT_FALSE(picker.pick(frame, -1, 50));
+    picker.setHeightScale(0.4);  // rebuilt for the new scale; h is the map's value still
+    EXPECT_NEAR(picker.pick(frame, 50, 50)->height, 0.5, 1e-6);
+}
+
+// --- hot reload
+
+TEST(ShaderWatcher, SeesEditsNewFilesAndRemovals) {
+    test::ScratchDir dir;
+    std::filesystem::create_directories(dir / "microrelief");
+    std::ofstream(dir / "relief.frag") << "void main() {}\n";
+    ShaderWatcher watcher(dir.path());
+    const auto now = std::chrono::milliseconds(0);
+    EXPECT_FALSE(watcher.changed(now));
+    std::ofstream(dir / "microrelief" / "new.glsl") << "// new\n";
+    EXPECT_TRUE(watcher.changed(now));
+    EXPECT_FALSE(watcher.changed(now)) << "once per change";
+    std::ofstream(dir / "relief.frag") << "void main() { }\n";  // one byte longer
+    EXPECT_TRUE(watcher.changed(now));
+    std::filesystem::remove(dir / "microrelief" / "new.glsl");
+    EXPECT_TRUE(watcher.changed(now));
+    EXPECT_FALSE(watcher.changed(std::chrono::hours(1))) << "looks at most once an interval";
+}
+
+}  // namespace

@@ -1,0 +1,243 @@
+// microrelief-viewer in a real window on an X server (CTest runs it under xvfb-run), driven
+// the way a script would: --frames N --screenshot FILE --print-command. Each view's
+// screenshot must match what microrelief-render draws headless (EGL) when given the
+// command line the viewer prints for it, so "copy as command" reproduces the view.
+// Skips where there is no X display.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "TestSupport.h"
+#include "heightmap/HeightMap.h"
+#include "image/ImageFile.h"
+#include "synth/SyntheticMaps.h"
+
+using namespace microrelief;
+
+namespace {
+
+// Both programs run the same shaders on Mesa's llvmpipe (the viewer through GLX on Xvfb,
+// the renderer through EGL, held to software below), the same rays (the command line
+// carries every number exactly) and the same arithmetic, so the pictures are expected
+// to be identical, and are: max 0 for every view here. The margins allow only what two
+// front ends of one driver might do differently without being wrong, a level of
+// rounding in a colour channel (max), on at most a few percent of the channels (mean,
+// in levels of 255). A ray that hits on one side and misses on the other, a camera off
+// by a rounding of a printed number, a different size, light or map all fail it.
+constexpr int kMaxChannelDifference = 1;
+constexpr double kMeanChannelDifference = 0.05;
+
+// glvnd's description of Mesa's EGL (Debian's libegl-mesa0).
+constexpr const char* kMesaEglVendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
+
+struct Image {
+    int width = 0, height = 0, channels = 0;
+    std::vector<std::uint8_t> pixels;
+    std::uint8_t at(int column, int row, int channel) const {
+        return pixels[(static_cast<std::size_t>(row) * width + column) * channels + channel];
+    }
+};
+
+Image readImage(const std::filesystem::path& file) {
+    Image image;
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) return image;
+    image.width = in->spec().width;
+    image.height = in->spec().height;
+    image.channels = in->spec().nchannels;
+    image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * image.channels);
+    in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.pixels.data());
+    return image;
+}
+
+struct Difference {
+    int max = 0;
+    double mean = 0.0;
+};
+
+// Over the RGB channels of the rectangle [x0, x1) x [y0, y1).
+Difference difference(const Image& a, const Image& b, int x0, int y0, int x1, int y1) {
+    Difference d;
+    double sum = 0.0;
+    for (int row = y0; row < y1; ++row) {
+        for (int column = x0; column < x1; ++column) {
+            for (int c = 0; c < 3; ++c) {
+                const int delta = std::abs(a.at(column, row, c) - b.at(column, row, c));
+                d.max = std::max(d.max, delta);
+                sum += delta;
+            }
+        }
+    }
+    d.mean = sum / (3.0 * (x1 - x0) * (y1 - y0));
+    return d;
+}
+
+// Actual, expected and a diff (amplified 8 times) beside the test log, for a human to see.
+std::string keepForInspection(const std::string& name, const Image& actual, const Image& expected) {
+    const std::filesystem::path folder = std::filesystem::current_path() / "viewer-failures";
+    std::filesystem::create_directories(folder);
+    Image diff = actual;
+    for (std::size_t k = 0; k < diff.pixels.size(); ++k) {
+        diff.pixels[k] = static_cast<std::uint8_t>(
+            std::min(255, 8 * std::abs(actual.pixels[k] - expected.pixels[k])));
+    }
+    for (const auto& [suffix, image] :
+         {std::pair{"actual", &actual}, {"expected", &expected}, {"diff", &diff}}) {
+        writeImageAtomically(folder / (name + "-" + suffix + ".png"), {image->width,
+                                                                       image->height,
+                                                                       image->channels,
+                                                                       PixelType::UInt8,
+                                                                       image->pixels.data(),
+                                                                       {}});
+    }
+    return (folder / (name + "-{actual,expected,diff}.png")).string();
+}
+
+struct RunResult {
+    int status = -1;
+    std::string out, err;
+};
+
+class ViewerUnderX : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const char* display = std::getenv("DISPLAY");
+        if (!display || !*display) GTEST_SKIP() << "no X display (CTest runs this under xvfb-run)";
+    }
+
+    RunResult run(const std::string& command) {
+        const std::string line =
+            command + " > " + (dir / "stdout").string() + " 2> " + (dir / "stderr").string();
+        const int raw = std::system(line.c_str());
+        std::ifstream out(dir / "stdout"), err(dir / "stderr");
+        std::ostringstream o, e;
+        o << out.rdbuf();
+        e << err.rdbuf();
+        return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, o.str(), e.str()};
+    }
+
+    // Renders `flags` in the viewer, then the command line it prints with
+    // microrelief-render, and compares the two pictures. Returns the viewer's picture.
+    Image compareWithRender(const std::string& name, const std::string& flags,
+                            const std::string& extra = "") {
+        const auto viewerPicture = dir / (name + "-viewer.png"),
+                   renderPicture = dir / (name + "-render.png");
+        // The renderer's shaders: the build tree's copy, which microrelief-render reads too.
+        const RunResult viewer =
+            run(std::string(MICRORELIEF_VIEWER_EXE) + " --shader-dir " + MICRORELIEF_SHADERS +
+                " --frames 3 --print-command --screenshot " + viewerPicture.string() + " " + flags +
+                " " + extra);
+        EXPECT_EQ(viewer.status, 0) << viewer.err;
+        const std::string printed = lastLine(viewer.out);
+        EXPECT_EQ(printed.rfind("microrelief-render ", 0), 0u) << viewer.out;
+        if (viewer.status != 0 || printed.rfind("microrelief-render ", 0) != 0) return {};
+
+        // Software EGL for the renderer, as the viewer on Xvfb has: a GPU's own EGL may
+        // round differently (not wrongly), which is not what this test is about.
+        const std::string software =
+            std::filesystem::exists(kMesaEglVendor)
+                ? std::string("__EGL_VENDOR_LIBRARY_FILENAMES=") + kMesaEglVendor + " "
+                : std::string();
+        const std::string command = software + "LIBGL_ALWAYS_SOFTWARE=1 " + MICRORELIEF_RENDER_EXE +
+                                    printed.substr(std::string("microrelief-render").size());
+        const RunResult render = run(command + " --quiet --out " + renderPicture.string());
+        EXPECT_EQ(render.status, 0) << command << "\n" << render.err;
+        const Image actual = readImage(viewerPicture), expected = readImage(renderPicture);
+        EXPECT_GT(actual.width, 0) << name;
+        EXPECT_EQ(actual.width, expected.width) << name;
+        EXPECT_EQ(actual.height, expected.height) << name;
+        if (actual.width == 0 || actual.width != expected.width || actual.height != expected.height)
+            return actual;
+
+        const Difference d = difference(actual, expected, 0, 0, actual.width, actual.height);
+        std::printf("    %-10s max %3d, mean %.4f levels\n", name.c_str(), d.max, d.mean);
+        if (d.max > kMaxChannelDifference || d.mean > kMeanChannelDifference) {
+            ADD_FAILURE() << name
+                          << ": the viewer's picture differs from microrelief-render's (max "
+                          << d.max << ", mean " << d.mean << " levels); see "
+                          << keepForInspection(name, actual, expected)
+                          << "\n  render command: " << command;
+        }
+        return actual;
+    }
+
+    static std::string lastLine(const std::string& text) {
+        std::istringstream in(text);
+        std::string line, last;
+        while (std::getline(in, line)) {
+            if (!line.empty()) last = line;
+        }
+        return last;
+    }
+
+    test::ScratchDir dir;
+};
+
+TEST_F(ViewerUnderX, DefaultViewMatchesTheRenderer) {
+    const Image picture = compareWithRender("default", "--size 200x150");
+    EXPECT_EQ(picture.width, 200);
+    EXPECT_EQ(picture.height, 150);
+}
+
+TEST_F(ViewerUnderX, ScreenshotIsAtSizeWhateverTheWindow) {
+    // Larger than the X screen (xvfb-run's 1280x1024): the window shrinks to fit, the
+    // 3D view is still rendered at exactly --size.
+    const Image picture = compareWithRender("oversize", "--size 1400x120 --fovy 20");
+    EXPECT_EQ(picture.width, 1400);
+    EXPECT_EQ(picture.height, 120);
+}
+
+TEST_F(ViewerUnderX, GrazingViewFromInsideTheBox) {
+    // A non-square map, 16-bit, with the eye inside the relief's bounding box, just
+    // above the surface, looking almost level: the hardest rays of the method.
+    const HeightMap map = synth::valueNoise(96, 64, 12.0, 3, 7);
+    test::writeMap(dir / "noise.png", map, PixelType::UInt16);
+    const double scale = 0.2, x = 0.2, z = -0.1;
+    const double u = x / 1.0 + 0.5, v = z / (64.0 / 96.0) + 0.5;
+    const double y = scale * map.surface(u * map.width, v * map.height) + 0.01;
+    std::ostringstream flags;
+    flags << "--height " << (dir / "noise.png").string() << " --height-scale " << scale
+          << " --eye=" << x << ',' << y << ',' << z << " --target=-0.4," << y - 0.03
+          << ",0.15 --fovy 60 --size 160x120";
+    compareWithRender("grazing", flags.str());
+}
+
+TEST_F(ViewerUnderX, DebugViewLightAndNormalisation) {
+    HeightMap map = synth::cobbles(80, 48, 3);
+    for (float& h : map.samples) h = h * 3.0f - 1.0f;  // negative values: needs --normalize
+    test::writeMap(dir / "signed.exr", map, PixelType::Float);
+    const std::string map_ = "--height " + (dir / "signed.exr").string() + " --normalize ";
+    compareWithRender("iterations", map_ + "--view iterations --size 120x90");
+    compareWithRender("lit", map_ + "--light=0.3,0.2,-1 --eye=-0.6,-0.5,0.4 --size 120x90");
+}
+
+TEST_F(ViewerUnderX, PeerMethodsAndTheirKnobsCarryOver) {
+    compareWithRender("pom", "--method pom --steps 24 --size 120x90 --background 0.5,0.2,0.1");
+    compareWithRender("pixelerror", "--pixel-error 1.5 --view level --size 120x90");
+}
+
+TEST_F(ViewerUnderX, StraightDownWithTheSpecsOrientation) {
+    compareWithRender("topdown", "--eye 0,1.6,0 --target 0,0,0 --up 0,0,-1 --size 96x96");
+}
+
+TEST_F(ViewerUnderX, WindowScreenshotShowsThePanelOverTheView) {
+    const auto window = dir / "window.png";
+    const Image view =
+        compareWithRender("window", "--size 640x400", "--window-screenshot " + window.string());
+    const Image shot = readImage(window);
+    ASSERT_EQ(shot.width, 640);
+    ASSERT_EQ(shot.height, 400);
+    ASSERT_EQ(view.width, 640);
+    // The panel sits at the top left; the right of the window is the 3D view, untouched.
+    EXPECT_GT(difference(shot, view, 20, 20, 300, 200).mean, 10.0) << "no panel at the top left";
+    const Difference right = difference(shot, view, 560, 0, 640, 400);
+    EXPECT_LE(right.max, 0) << "the view around the panel must be the 3D view as rendered";
+}
+
+}  // namespace

@@ -12,6 +12,7 @@ packages=(
   libglfw3-dev libglm-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
   libopenimageio-dev openimageio-tools
   libgtest-dev libcli11-dev python3-glad glslang-tools
+  libimgui-dev xvfb xauth
 )
 
 missing=()

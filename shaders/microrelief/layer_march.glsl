@@ -15,7 +15,7 @@
 #define MICRORELIEF_LAYER_MARCH_GLSL
 
 #include "bilinear_patch.glsl"
-#include "multilevel_trace.glsl"
+#include "relief_hit.glsl"
 #include "relief_map.glsl"
 
 // Upper bound on any sample count a caller asks for: every loop stays bounded.

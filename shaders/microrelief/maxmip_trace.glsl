@@ -19,28 +19,10 @@
 #define MICRORELIEF_MAXMIP_TRACE_GLSL
 
 #include "bilinear_patch.glsl"
+#include "max_pyramid.glsl"
 #include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
-
-// A ray entering the box through a side wall or the bottom face below the surface hits
-// the solid right there (as in traceMultilevel). True, with `hit` filled, in that case.
-bool entryFaceHit(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float tEnter,
-                  int entryAxis, inout ReliefHit hit) {
-    if (tEnter < 0.0 || entryAxis < 0 || (entryAxis == 2 && dir.z < 0.0)) return false;
-    vec3 entry = origin + tEnter * dir;
-    bool throughBottom = entryAxis == 2;  // h = 0: always in the solid
-    if (!throughBottom && entry.z > surfaceHeight(map, heights, entry.xy, hit.fetches)) {
-        return false;
-    }
-    hit.kind = entryAxis == 0 ? RELIEF_WALL_X : entryAxis == 1 ? RELIEF_WALL_Y : RELIEF_BOTTOM;
-    hit.t = tEnter;
-    hit.position = entry;
-    hit.normal = vec3(0.0);
-    hit.normal[entryAxis] = dir[entryAxis] > 0.0 ? -1.0 : 1.0;
-    hit.stopLevel = 0;
-    return true;
-}
 
 // Ray parameter where the ray leaves node `node` at `level` through a side of its column,
 // per axis (1e30 along an axis the ray does not move on).

@@ -23,64 +23,13 @@
 #include "bilinear_patch.glsl"
 #include "map_space.glsl"
 #include "max_pyramid.glsl"
+#include "relief_hit.glsl"
 #include "relief_map.glsl"
 
 // Deeper than any footprint needs (2^24 texels); segment ends stay exact in float.
 #ifndef MICRORELIEF_MAX_DEPTH
 #define MICRORELIEF_MAX_DEPTH 24
 #endif
-
-const int RELIEF_MISS = 0;
-const int RELIEF_TOP = 1;     // the bilinear top surface
-const int RELIEF_WALL_X = 2;  // a side wall X = 0 or X = W
-const int RELIEF_WALL_Y = 3;  // a side wall Y = 0 or Y = H
-const int RELIEF_BOTTOM = 4;  // the bottom face h = 0
-
-struct ReliefHit {
-    int kind;         // RELIEF_MISS, RELIEF_TOP, ...
-    float t;          // ray parameter of the hit (the same in world and map space)
-    vec3 position;    // map-space hit point
-    vec3 normal;      // map-space unit normal for walls and bottom; for the top
-                      // surface (-dh/dX, -dh/dY, 1) unnormalised: use surfaceNormal
-    int iterations;   // segments visited
-    int fetches;      // texels read (pyramid and samples)
-    int stopLevel;    // pyramid level of the last segment examined
-    bool exhausted;   // the iteration budget ran out: the result is not trustworthy
-};
-
-// Ray against the box [0, W] x [0, H] x [0, maxHeight]: the parameter interval inside
-// it, and which slab the entry and the exit cross (0: X, 1: Y, 2: h). Empty when x > y.
-vec2 clipToReliefBox(ReliefMap map, vec3 origin, vec3 dir, out int entryAxis, out int exitAxis) {
-    vec3 lo = vec3(0.0), hi = vec3(map.size, map.maxHeight);
-    float tEnter = -1e30, tExit = 1e30;
-    entryAxis = -1;
-    exitAxis = -1;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (dir[axis] == 0.0) {
-            if (origin[axis] < lo[axis] || origin[axis] > hi[axis]) return vec2(1.0, 0.0);
-            continue;
-        }
-        float t0 = (lo[axis] - origin[axis]) / dir[axis];
-        float t1 = (hi[axis] - origin[axis]) / dir[axis];
-        if (t0 > t1) { float s = t0; t0 = t1; t1 = s; }
-        if (t0 > tEnter) { tEnter = t0; entryAxis = axis; }
-        if (t1 < tExit) { tExit = t1; exitAxis = axis; }
-    }
-    return vec2(tEnter, tExit);
-}
-
-// Fills `hit` as a hit on the top surface at parameter t, in the patch `cell` with
-// corner samples `corners`.
-void setTopHit(inout ReliefHit hit, ReliefMap map, vec3 origin, vec3 dir, float t, vec4 corners, ivec2 cell) {
-    hit.kind = RELIEF_TOP;
-    hit.t = t;
-    hit.position = origin + t * dir;
-    vec2 g = patchGradient(corners, clamp(hit.position.xy - (vec2(cell) + 0.5), 0.0, 1.0));
-    // Clamped border cells are flat across the edge.
-    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
-    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
-    hit.normal = vec3(-g, 1.0);
-}
 
 // Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
 // at most one texel wide: it crosses at most one cell boundary in X and one in Y, so it
@@ -138,45 +87,18 @@ float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, flo
     return -1.0;
 }
 
-// The world-space unit normal of a hit.
-vec3 reliefWorldNormal(ReliefMap map, ReliefHit hit) {
-    if (hit.kind == RELIEF_TOP) return mapGradientToWorldNormal(map, -hit.normal.xy);
-    return vec3(hit.normal.x, hit.normal.z, hit.normal.y);  // map (X, Y, h) -> world (x, z, y)
-}
-
 ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
-    ReliefHit hit;
-    hit.kind = RELIEF_MISS;
-    hit.t = -1.0;
-    hit.position = vec3(0.0);
-    hit.normal = vec3(0.0, 0.0, 1.0);
-    hit.iterations = 0;
-    hit.fetches = 0;
-    hit.stopLevel = -1;
-    hit.exhausted = false;
+    ReliefHit hit = reliefMissHit();
 
     int entryAxis, exitAxis;
     vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
     float tNear = max(range.x, 0.0), tFar = range.y;
     if (tNear > tFar) return hit;
 
-    // Entering from outside through a side wall or the bottom face at a point below
-    // the surface: the solid is hit right there. (Entering through the top face is a
-    // top-surface question for the traversal; from inside the box the eye is above the
-    // surface, by the spec.)
-    vec3 entry = origin + tNear * dir;
-    bool throughTop = entryAxis == 2 && dir.z < 0.0;
-    bool throughBottom = entryAxis == 2 && dir.z > 0.0;  // h = 0: always in the solid
-    if (range.x >= 0.0 && entryAxis >= 0 && !throughTop &&
-        (throughBottom || entry.z <= surfaceHeight(map, heights, entry.xy, hit.fetches))) {
-        hit.kind = entryAxis == 0 ? RELIEF_WALL_X : entryAxis == 1 ? RELIEF_WALL_Y : RELIEF_BOTTOM;
-        hit.t = tNear;
-        hit.position = entry;
-        hit.normal = vec3(0.0);
-        hit.normal[entryAxis] = dir[entryAxis] > 0.0 ? -1.0 : 1.0;
-        hit.stopLevel = 0;
-        return hit;
-    }
+    // Entering from outside through a side wall or the bottom face at a point below the
+    // surface is a hit right there. (Entering through the top face is a top-surface
+    // question for the traversal; from inside the box the eye is above the surface.)
+    if (entryFaceHit(map, heights, origin, dir, range.x, entryAxis, hit)) return hit;
 
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments

@@ -13,7 +13,6 @@
 #ifndef MICRORELIEF_NORMAL_MAPPING_GLSL
 #define MICRORELIEF_NORMAL_MAPPING_GLSL
 
-#include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 

@@ -18,7 +18,6 @@
 #define MICRORELIEF_PARALLAX_OCCLUSION_GLSL
 
 #include "layer_march.glsl"
-#include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 

@@ -23,7 +23,6 @@
 
 #include "bilinear_patch.glsl"
 #include "layer_march.glsl"
-#include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
@@ -42,10 +41,11 @@ ReliefHit traceParallaxOffset(ReliefMap map, sampler2D heights, vec3 origin, vec
         return hit;
     }
     if (!(dir.z < 0.0)) return hit;
-    // Welsh 2004: offset = d V.xy (not d V.xy / V.z), V in world units; back to texels.
+    // Welsh 2004: shift = d V.xy, not d V.xy / V.z, with d and V in world units; here V
+    // points along the ray (into the relief), so the shift is away from the eye.
     vec3 view = tangentSpaceDirection(map, dir);
-    float depth = (entry.z - h0) * map.heightScale * max(map.size.x, map.size.y);
-    vec2 shifted = entry.xy + depth * view.xy;
+    float depthInTexels = (entry.z - h0) * map.heightScale * max(map.size.x, map.size.y);
+    vec2 shifted = entry.xy + depthInTexels * view.xy;
     bool inFootprint =
         all(greaterThanEqual(shifted, vec2(0.0))) && all(lessThanEqual(shifted, map.size));
     if (!inFootprint) return hit;

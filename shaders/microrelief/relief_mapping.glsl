@@ -17,7 +17,6 @@
 #define MICRORELIEF_RELIEF_MAPPING_GLSL
 
 #include "layer_march.glsl"
-#include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 

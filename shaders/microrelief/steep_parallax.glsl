@@ -16,7 +16,6 @@
 #define MICRORELIEF_STEEP_PARALLAX_GLSL
 
 #include "layer_march.glsl"
-#include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 

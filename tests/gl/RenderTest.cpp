@@ -215,3 +215,54 @@ TEST_F(Render, PictureIsShadedNotFlat) {
 }
 
 }  // namespace
+
+namespace {
+
+// The peers, each as published: maxmip is exact like the multilevel method; the
+// step-based methods converge on the top surface as their budget grows and show their
+// artifacts with few steps; normal mapping has no parallax at all.
+class Peers : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!isBackendPresent(test::glBackend())) GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+    }
+
+    test::Accuracy measure(Method method, int steps) {
+        const HeightMap map = synth::cobbles(64, 64, 3);
+        RenderJob job;
+        job.camera = test::orbitCamera(25.0, 40.0, 1.3, {0.0, 0.04, 0.0});
+        job.width = job.height = 64;
+        job.method.method = method;
+        job.method.steps = steps;
+        job.method.minSteps = std::max(4, steps / 4);
+        const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
+        const test::Accuracy a = test::compareWithReference(r.frame, r.camera, map, job.heightScale);
+        std::printf("    %-10s %5d: %s\n", methodName(method), steps, a.summary().c_str());
+        return a;
+    }
+};
+
+TEST_F(Peers, MaxMipIsExact) {
+    const test::Accuracy a = measure(Method::MaxMip, 0);
+    EXPECT_LE(a.coverageMismatchPercent(), 0.1);
+    EXPECT_LE(a.offHalfTexelPercent(), 0.2);
+    EXPECT_EQ(a.exhausted, 0u);
+}
+
+TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
+    for (Method method : {Method::Steep, Method::Pom, Method::Relief}) {
+        const test::Accuracy few = measure(method, 8), many = measure(method, 512);
+        // Few steps: visibly wrong (stair steps, sunken or missed features). Many steps:
+        // within a few per cent of the exact answer on this smooth relief (they know no
+        // side walls, so the comparison keeps a margin).
+        EXPECT_GT(few.offHalfTexelPercent(), 2.0 * many.offHalfTexelPercent() + 1.0) << methodName(method);
+        EXPECT_LT(many.offHalfTexelPercent(), 3.0) << methodName(method);
+    }
+}
+
+TEST_F(Peers, NormalMappingHasNoParallax) {
+    // Every hit lies on the top plane of the box: most are far from the true surface.
+    EXPECT_GT(measure(Method::Normal, 0).offHalfTexelPercent(), 20.0);
+}
+
+}  // namespace

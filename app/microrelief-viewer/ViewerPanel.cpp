@@ -124,6 +124,14 @@ void statsSection(ViewerState& s) {
     if (!ImGui::CollapsingHeader("Method", ImGuiTreeNodeFlags_DefaultOpen)) return;
     if (s.gpuMilliseconds) {
         ImGui::Text("relief pass %.2f ms (GL timer query)", *s.gpuMilliseconds);
+        // llvmpipe answers timer queries without timing its rasteriser threads.
+        if (*s.gpuMilliseconds < 0.1 * s.wallMilliseconds) {
+            ImGui::SameLine();
+            ImGui::TextDisabled("(?)");
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(
+                    "This driver's timer misses the rasterisation; see the wall time");
+        }
     } else {
         ImGui::TextDisabled("relief pass: waiting for the timer query");
     }

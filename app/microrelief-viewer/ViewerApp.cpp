@@ -85,6 +85,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
                   sceneRadius(*map_, options.scene.job.heightScale));
 
+    state_.mapName = file.filename().string();
     setupWindow();
     const GL& gl = window_->gl();
     const std::filesystem::path shaders = viewerShaderDirectory(options);
@@ -99,7 +100,6 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
 
     if (state_.scene.heightFile)
         state_.scene.heightFile = std::filesystem::absolute(*state_.scene.heightFile);
-    state_.mapName = file.filename().string();
     state_.mapWidth = map_->width;
     state_.mapHeight = map_->height;
     state_.iterationBudget = renderer_->maxIterations();
@@ -114,7 +114,7 @@ void ViewerApp::setupWindow() {
     GlfwWindowOptions windowOptions;
     windowOptions.width = options_.scene.job.width;
     windowOptions.height = options_.scene.job.height;
-    windowOptions.title = "microrelief-viewer";
+    windowOptions.title = "microrelief-viewer: " + state_.mapName;
     window_ = createGlfwContext(windowOptions);
     GLFWwindow* window = window_->window();
 
@@ -150,47 +150,51 @@ void ViewerApp::setupWindow() {
 }
 
 int ViewerApp::run() {
-    int frames = 0;
+    int drawn = 0;
     lastFrameTime_ = now();
-    while (!glfwWindowShouldClose(window_->window())) {
-        const bool last = options_.frames > 0 && frames + 1 == options_.frames;
+    while (!glfwWindowShouldClose(window_->window()) &&
+           (options_.frames == 0 || drawn < options_.frames)) {
         waitForEvents();
         if (framebufferSize().x == 0 || framebufferSize().y == 0) {
             glfwWaitEvents();  // minimised: nothing to draw until it comes back
             continue;
         }
+        const bool last = drawn + 1 == options_.frames;
         const double start = now();
         frame();
         present(last && options_.windowScreenshot.has_value());
         state_.frameMilliseconds = (now() - start) * 1e3;
-        if (last) break;
-        ++frames;
+        ++drawn;
     }
     if (options_.frames > 0) {
-        if (!target_) throwRuntime("the window closed before the first frame");
-        const GLenum error = window_->gl().GetError();
-        if (error != GL_NO_ERROR)
-            throwRuntime("GL error 0x" + std::to_string(error) + " while rendering");
-        ImageWriteBatch batch;
-        std::vector<std::uint8_t> view;
-        if (options_.screenshot) {
-            const RenderedFrame picture = target_->read();
-            view = toRgb(picture.color, picture.width, picture.height, false);
-            batch.write(*options_.screenshot,
-                        {picture.width, picture.height, 3, PixelType::UInt8, view.data(), {}});
-        }
-        if (options_.windowScreenshot) {
-            batch.write(*options_.windowScreenshot, {windowPixelsWidth_,
-                                                     windowPixelsHeight_,
-                                                     3,
-                                                     PixelType::UInt8,
-                                                     windowPixels_.data(),
-                                                     {}});
-        }
-        batch.commit();
+        if (drawn < options_.frames) throwRuntime("the window closed before the last of --frames");
+        writeAutomationOutputs();
     }
     if (options_.printCommand) std::printf("%s\n", renderCommand().c_str());
     return 0;
+}
+
+void ViewerApp::writeAutomationOutputs() {
+    const GLenum error = window_->gl().GetError();
+    if (error != GL_NO_ERROR) {
+        char code[16];
+        std::snprintf(code, sizeof code, "0x%04x", error);
+        throwRuntime(std::string("GL error ") + code + " while rendering");
+    }
+    ImageWriteBatch batch;  // both files or neither
+    std::vector<std::uint8_t> view;
+    if (options_.screenshot) {
+        const RenderedFrame picture = target_->read();
+        view = toRgb(picture.color, picture.width, picture.height, false);
+        const ImageData image{picture.width, picture.height, 3, PixelType::UInt8, view.data(), {}};
+        batch.write(*options_.screenshot, image);
+    }
+    if (options_.windowScreenshot) {
+        const ImageData image{windowPixelsWidth_, windowPixelsHeight_,  3,
+                              PixelType::UInt8,   windowPixels_.data(), {}};
+        batch.write(*options_.windowScreenshot, image);
+    }
+    batch.commit();
 }
 
 void ViewerApp::waitForEvents() {

@@ -69,6 +69,8 @@ private:
     void renderView();
     void sampleStatistics();
     void present(bool captureWindow);
+    // --screenshot and --window-screenshot, after the last frame.
+    void writeAutomationOutputs();
 
     void openMap(const std::optional<std::filesystem::path>& file);
     void reloadShaders();

@@ -98,7 +98,7 @@ private:
 
 }  // namespace
 
-HeightMap benchRelief(int n) { return synth::valueNoise(n, n, n / 6.0, 6, 2024); }
+HeightMap benchRelief(int n) { return synth::cobbles(n, n, 7); }
 
 std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
     std::vector<Setting> settings;

@@ -15,7 +15,7 @@
 namespace microrelief::bench {
 
 struct BenchMap {
-    std::string name;  // "noise" for the resampled relief, else the asset's file stem
+    std::string name;  // kResampledRelief, or the asset's file stem
     std::shared_ptr<const HeightMap> map;
     double heightScale = 0.1;
 };
@@ -58,7 +58,10 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps);
 void runBenchmark(GlContext& context, const BenchOptions& options, const std::vector<BenchMap>& maps,
                   const std::function<void(const Measurement&)>& report);
 
-// The "noise" relief at n x n: the same continuous relief at every size.
+// The benchmark's relief at n x n: procedural cobblestones (synth::cobbles, another seed
+// than the bundled map), the same continuous relief at every size, with steep joints
+// that step-based methods must not step over.
 HeightMap benchRelief(int n);
+inline const std::string kResampledRelief = "relief";
 
 }  // namespace microrelief::bench

@@ -29,7 +29,7 @@ std::vector<BenchMap> loadMaps(const BenchOptions& options) {
     std::vector<BenchMap> maps;
     for (int n : options.mapSizes) {
         std::cout << "microrelief-bench: making the " << n << "x" << n << " relief\n" << std::flush;
-        maps.push_back({"noise", std::make_shared<const HeightMap>(benchRelief(n)), 0.1});
+        maps.push_back({kResampledRelief, std::make_shared<const HeightMap>(benchRelief(n)), 0.1});
     }
     for (const std::string& file : options.assets) {
         const std::filesystem::path path = file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);

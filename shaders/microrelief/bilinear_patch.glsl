@@ -2,22 +2,65 @@
 // samples with CLAMP_TO_EDGE (scene-and-cli.md), interpolated in float in the shader
 // because hardware filtering weights are low precision on some GPUs.
 //
-// `heights` is the W x H sample texture, read with texelFetch. Cell (i, j) is the patch
-// between the sample centres (i + 0.5, j + 0.5) and (i + 1.5, j + 1.5); cells -1 and
-// W - 1 (H - 1) are the clamped half-texel borders, flat across the edge.
+// `heights` is the W x H sample texture (CLAMP_TO_EDGE; its filter is not used). Cell
+// (i, j) is the patch between the sample centres (i + 0.5, j + 0.5) and (i + 1.5, j + 1.5);
+// cells -1 and W - 1 (H - 1) are the clamped half-texel borders, flat across the edge.
 #ifndef MICRORELIEF_BILINEAR_PATCH_GLSL
 #define MICRORELIEF_BILINEAR_PATCH_GLSL
 
 #include "relief_map.glsl"
 
+// How a cell's four samples are read: 1, one textureGather (GLSL 4.00, ES 3.10 and up);
+// 0, four texelFetch. `fetches` counts texture instructions: 1 or 4 per cell.
+#ifndef MICRORELIEF_TEXTURE_GATHER
+#if (!defined(GL_ES) && __VERSION__ >= 400) || (defined(GL_ES) && __VERSION__ >= 310)
+#define MICRORELIEF_TEXTURE_GATHER 1
+#else
+#define MICRORELIEF_TEXTURE_GATHER 0
+#endif
+#endif
+
 // The four corner samples of cell `cell`: x = h00, y = h10, z = h01, w = h11.
 vec4 cellCorners(ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
+#if MICRORELIEF_TEXTURE_GATHER
+    // The bilinear footprint of the point midway between the cell's four samples is
+    // exactly those samples, clamped at the edges as CLAMP_TO_EDGE clamps them.
+    fetches += 1;
+    vec4 g = textureGather(heights, (vec2(cell) + 1.0) / map.size);
+    return vec4(g.w, g.z, g.x, g.y);  // gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0)
+#else
     ivec2 last = ivec2(map.size) - 1;
     ivec2 c0 = clamp(cell, ivec2(0), last);
     ivec2 c1 = clamp(cell + 1, ivec2(0), last);
     fetches += 4;
     return vec4(texelFetch(heights, c0, 0).r, texelFetch(heights, ivec2(c1.x, c0.y), 0).r,
                 texelFetch(heights, ivec2(c0.x, c1.y), 0).r, texelFetch(heights, c1, 0).r);
+#endif
+}
+
+// The corners of the neighbour of `cell` one `step` (+1 or -1) along `axis`, given the
+// corners of `cell`; `cell` moves. The two cells share an edge: without gathering, only
+// the far edge's two samples are read.
+vec4 neighbourCorners(ReliefMap map, sampler2D heights, inout ivec2 cell, int axis, int step, vec4 corners,
+                      inout int fetches) {
+    cell[axis] += step;
+#if MICRORELIEF_TEXTURE_GATHER
+    return cellCorners(map, heights, cell, fetches);
+#else
+    ivec2 last = ivec2(map.size) - 1;
+    ivec2 c0 = clamp(cell, ivec2(0), last), c1 = clamp(cell + 1, ivec2(0), last);
+    fetches += 2;
+    if (axis == 0) {
+        int x = step > 0 ? c1.x : c0.x;
+        vec2 fresh = vec2(texelFetch(heights, ivec2(x, c0.y), 0).r, texelFetch(heights, ivec2(x, c1.y), 0).r);
+        vec2 kept = step > 0 ? corners.yw : corners.xz;
+        return step > 0 ? vec4(kept.x, fresh.x, kept.y, fresh.y) : vec4(fresh.x, kept.x, fresh.y, kept.y);
+    }
+    int y = step > 0 ? c1.y : c0.y;
+    vec2 fresh = vec2(texelFetch(heights, ivec2(c0.x, y), 0).r, texelFetch(heights, ivec2(c1.x, y), 0).r);
+    vec2 kept = step > 0 ? corners.zw : corners.xy;
+    return step > 0 ? vec4(kept, fresh) : vec4(fresh, kept);
+#endif
 }
 
 // The cell that holds map point `xy` (ties go to the cell on the positive side).

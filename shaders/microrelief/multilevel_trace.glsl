@@ -34,7 +34,7 @@
 // Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
 // at most one texel wide: it crosses at most one cell boundary in X and one in Y, so it
 // is cut into at most three pieces, each within one patch, solved in ray order.
-// Neighbouring pieces' patches share an edge, so moving on reads only two new samples.
+// Neighbouring pieces' patches share an edge (neighbourCorners).
 float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
                     inout int fetches, out vec4 corners, out ivec2 cell) {
     vec3 pa = origin + ta * dir, pb = origin + tb * dir;
@@ -57,27 +57,12 @@ float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, flo
     bounds[3] = tb;
     cell = firstCell;
     corners = cellCorners(map, heights, cell, fetches);
-    ivec2 last = ivec2(map.size) - 1;
     for (int piece = 0; piece < 3; ++piece) {
         if (piece > 0) {
             int axis = piece == 1 ? firstAxis : 1 - firstAxis;
             if (firstCell[axis] == lastCell[axis]) continue;  // no boundary on this axis
             int step = lastCell[axis] > firstCell[axis] ? 1 : -1;
-            cell[axis] += step;
-            // Keep the shared edge, read the two samples of the far edge.
-            ivec2 c0 = clamp(cell, ivec2(0), last), c1 = clamp(cell + 1, ivec2(0), last);
-            fetches += 2;
-            if (axis == 0) {
-                vec2 keep = step > 0 ? corners.yw : corners.xz;
-                vec2 fresh = vec2(texelFetch(heights, ivec2(step > 0 ? c1.x : c0.x, c0.y), 0).r,
-                                  texelFetch(heights, ivec2(step > 0 ? c1.x : c0.x, c1.y), 0).r);
-                corners = step > 0 ? vec4(keep.x, fresh.x, keep.y, fresh.y) : vec4(fresh.x, keep.x, fresh.y, keep.y);
-            } else {
-                vec2 keep = step > 0 ? corners.zw : corners.xy;
-                vec2 fresh = vec2(texelFetch(heights, ivec2(c0.x, step > 0 ? c1.y : c0.y), 0).r,
-                                  texelFetch(heights, ivec2(c1.x, step > 0 ? c1.y : c0.y), 0).r);
-                corners = step > 0 ? vec4(keep, fresh) : vec4(fresh, keep);
-            }
+            corners = neighbourCorners(map, heights, cell, axis, step, corners, fetches);
         }
         float t0 = bounds[piece], t1 = bounds[piece + 1];
         if (t1 < t0) continue;

@@ -56,9 +56,12 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
 }
 
 void ReliefRenderer::reloadShaders() {
-    // GLSL 3.30 core: the oldest desktop version with explicit fragment output
-    // locations and textureLod/texelFetch everywhere.
-    const std::string version = "330 core";
+    // GLSL 4.00 core where the GL has it (a patch's four samples in one textureGather:
+    // bilinear_patch.glsl), else 3.30 core, the oldest with explicit output locations.
+    GLint major = 0, minor = 0;
+    gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
+    gl_.GetIntegerv(GL_MINOR_VERSION, &minor);
+    const std::string version = major >= 4 ? "400 core" : "330 core";
     std::vector<ShaderDefine> defines = {{"MICRORELIEF_METHOD", std::to_string(static_cast<int>(method_.method))}};
     if (countFetches_) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex =

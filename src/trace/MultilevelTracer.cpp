@@ -12,9 +12,11 @@ constexpr int kMaxDepth = 24;  // MICRORELIEF_MAX_DEPTH
 
 using Cell = MultilevelTracer::Cell;
 
+// Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
+// per patch (bilinear_patch.glsl), one texel per pyramid read.
 Cell cellAt(const HeightMap& map, double x, double y, int& fetches) {
     const int i = static_cast<int>(std::floor(x - 0.5)), j = static_cast<int>(std::floor(y - 0.5));
-    fetches += 4;
+    fetches += 1;
     return {i, j, map.clamped(i, j), map.clamped(i + 1, j), map.clamped(i, j + 1), map.clamped(i + 1, j + 1)};
 }
 
@@ -125,9 +127,7 @@ auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, in
             const int axis = piece == 1 ? firstAxis : 1 - firstAxis;
             if (first[axis] == last[axis]) continue;
             at[axis] += last[axis] > first[axis] ? 1 : -1;
-            int ignored = 0;
-            cell = cellAt(map_, at.x + 1.0, at.y + 1.0, ignored);
-            fetches += 2;  // the shader keeps the shared edge and reads two samples
+            cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);
         }
         const double t0 = bounds[piece], t1 = bounds[piece + 1];
         if (t1 < t0) continue;
@@ -188,7 +188,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, Traver
     const bool throughTop = entryAxis == 2 && ray.dir.z < 0.0;
     const bool throughBottom = entryAxis == 2 && ray.dir.z > 0.0;  // h = 0: always in the solid
     if (tEnter >= 0.0 && entryAxis >= 0 && !throughTop &&
-        (throughBottom || (stats.fetches += 4, entry.z <= map_.surface(entry.x, entry.y)))) {
+        (throughBottom || (stats.fetches += 1, entry.z <= map_.surface(entry.x, entry.y)))) {
         stats.stopLevel = 0;
         glm::dvec3 normal(0.0);
         const double outward = ray.dir[entryAxis] > 0.0 ? -1.0 : 1.0;

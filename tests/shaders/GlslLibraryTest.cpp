@@ -1,5 +1,5 @@
 // The reusable GLSL library (shaders/microrelief/) must be a pure function library that
-// compiles as GLSL 3.30 core and GLSL ES 3.00: each file is checked on its own by
+// compiles as GLSL 3.30 core and GLSL ES 3.00 (and 4.00 core, where it gathers): each file is checked on its own by
 // glslangValidator (Debian glslang-tools), wrapped in a minimal fragment shader, the
 // way another engine would include it. The app's own shaders are checked as 3.30.
 #include <gtest/gtest.h>
@@ -52,12 +52,13 @@ struct Dialect {
 };
 const Dialect kDialects[] = {
     {"330 core", ""},
+    {"400 core", ""},  // the textureGather path
     {"300 es", "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"},
 };
 
 }  // namespace
 
-TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330AndEs300) {
+TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330And400AndEs300) {
     test::ScratchDir dir;
     const auto files = libraryFiles();
     ASSERT_GE(files.size(), 5u);
@@ -90,11 +91,12 @@ TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
     }
 }
 
-TEST(GlslLibrary, AppShadersCompileAsGlsl330) {
+TEST(GlslLibrary, AppShadersCompileAsGlsl330And400) {
     test::ScratchDir dir;
+    for (const char* version : {"330 core", "400 core"})
     for (const char* name : {"relief_box.vert", "relief.frag"}) {
         const std::filesystem::path file = kShaders / name;
-        const ShaderSource source = assembleShader(file, "330 core");
+        const ShaderSource source = assembleShader(file, version);
         const std::string stage = file.extension().string().substr(1);
         const std::string errors = validate(dir, source, stage, file.stem().string());
         EXPECT_TRUE(errors.empty()) << name << ":\n" << errors;

@@ -50,11 +50,10 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
 
 int run(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    checkImageExtension(o.out);
-    if (o.aov) {
-        if (o.aov->extension() != ".exr") throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
-        checkImageExtension(*o.aov);
+    if (o.aov && o.aov->extension() != ".exr") {
+        throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
     }
+    checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov} : std::vector{o.out});
     const std::filesystem::path heightFile = o.heightFile ? *o.heightFile : defaultHeightMapPath();
     const HeightMap map = loadHeightMap(heightFile, o.load);
 

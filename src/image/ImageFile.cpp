@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <vector>
 
 #include "core/Error.h"
 
@@ -73,12 +74,57 @@ void ImageWriteBatch::write(const std::filesystem::path& file, const ImageData& 
 }
 
 void ImageWriteBatch::commit() {
+    // Move each existing target aside first, so that a rename failing half-way can be
+    // undone: either every target is the new file, or every target is as it was.
+    struct Moved {
+        std::filesystem::path target, backup;
+        bool replaced = false;
+    };
+    std::vector<Moved> moved;
+    auto rollBack = [&moved] {
+        for (auto it = moved.rbegin(); it != moved.rend(); ++it) {
+            std::error_code ignored;
+            if (it->replaced) std::filesystem::remove(it->target, ignored);
+            if (!it->backup.empty()) std::filesystem::rename(it->backup, it->target, ignored);
+        }
+    };
     for (const Staged& s : staged_) {
+        Moved m{s.target, {}};
         std::error_code ec;
+        if (std::filesystem::exists(s.target, ec)) {
+            m.backup = temporaryBeside(s.target);
+            std::filesystem::rename(s.target, m.backup, ec);
+            if (ec) {
+                rollBack();
+                throwRuntime(s.target.string() + ": cannot replace the existing file (" + ec.message() + ")");
+            }
+        }
+        moved.push_back(m);
         std::filesystem::rename(s.temporary, s.target, ec);
-        if (ec) throwRuntime(s.target.string() + ": cannot move the finished file into place (" + ec.message() + ")");
+        if (ec) {
+            rollBack();
+            throwRuntime(s.target.string() + ": cannot move the finished file into place (" + ec.message() + ")");
+        }
+        moved.back().replaced = true;
+    }
+    for (const Moved& m : moved) {
+        std::error_code ignored;
+        if (!m.backup.empty()) std::filesystem::remove(m.backup, ignored);
     }
     staged_.clear();
+}
+
+void checkOutputTargets(const std::vector<std::filesystem::path>& files) {
+    for (std::size_t k = 0; k < files.size(); ++k) {
+        std::error_code ec;
+        if (std::filesystem::is_directory(files[k], ec)) throwBadInput(files[k].string() + ": is a directory");
+        checkImageExtension(files[k]);
+        for (std::size_t other = 0; other < k; ++other) {
+            if (files[k].lexically_normal() == files[other].lexically_normal()) {
+                throwBadInput(files[k].string() + ": given for two outputs");
+            }
+        }
+    }
 }
 
 void writeImageAtomically(const std::filesystem::path& file, const ImageData& image) {

@@ -24,9 +24,14 @@ struct ImageData {
 // Throws Error(BadInput) if no OpenImageIO writer handles the path's extension.
 void checkImageExtension(const std::filesystem::path& file);
 
+// Before any work: every output has a known image extension, is not a folder, and no two
+// outputs are the same file. Throws Error(BadInput) naming the file.
+void checkOutputTargets(const std::vector<std::filesystem::path>& files);
+
 // A set of files written together: write() stages each one beside its target, commit()
-// renames them all into place. Whatever was not committed is removed on destruction,
-// so a failed run leaves no new or changed file at any target.
+// renames them all into place, restoring the old files if any rename fails. Whatever
+// was not committed is removed on destruction, so a failed run leaves no new or
+// changed file at any target.
 class ImageWriteBatch {
 public:
     ImageWriteBatch() = default;

@@ -44,17 +44,15 @@ float pyramidTexel(ReliefMap map, sampler2D pyramid, ivec2 texel, int level, ino
 #endif
 }
 
-// The bound of the pyramid over the segment from a to b (map points, ray origin and
-// direction given for ordering): the max of every texel the segment crosses, never a
-// single fetch at its centre, so it is conservative. `level` comes in as the footprint
-// level and goes out as the level read:
+// The bound of the pyramid over the segment from a to b (map points): the max of every
+// texel the segment crosses, never a single fetch at its centre, so it is conservative.
+// `level` comes in as the footprint level and goes out as the level read:
 //  * one fetch when the segment lies in a single texel at `level`, or at the level
 //    above (whose texel contains the segment, so its max is a bound too, one level
 //    looser): the common case;
 //  * otherwise the texels the segment crosses at `level`, two, or three when it passes
 //    a corner, since the level is coarse enough for it to span at most two per axis.
-float segmentBound(ReliefMap map, sampler2D pyramid, vec3 origin, vec3 dir, vec2 a, vec2 b, inout int level,
-                   inout int fetches) {
+float segmentBound(ReliefMap map, sampler2D pyramid, vec2 a, vec2 b, inout int level, inout int fetches) {
     ivec2 ta = pyramidTexelAt(map, a, level), tb = pyramidTexelAt(map, b, level);
     // The footprint level makes |tb - ta| <= 1 per axis; rounding in log2 can leave it
     // one level short, which this restores.
@@ -71,10 +69,9 @@ float segmentBound(ReliefMap map, sampler2D pyramid, vec3 origin, vec3 dir, vec2
     float bound = max(pyramidTexel(map, pyramid, ta, level, fetches), pyramidTexel(map, pyramid, tb, level, fetches));
     if (ta.x != tb.x && ta.y != tb.y) {
         // Through a corner: the third texel is the one beside ta across whichever
-        // boundary the ray crosses first.
-        vec2 boundary = vec2(max(ta, tb) << level);
-        vec2 tCross = (boundary - origin.xy) / dir.xy;
-        ivec2 middle = tCross.x < tCross.y ? ivec2(tb.x, ta.y) : ivec2(ta.x, tb.y);
+        // boundary the segment crosses first (both differ, so b - a has no zero part).
+        vec2 crossing = (vec2(max(ta, tb) << level) - a) / (b - a);
+        ivec2 middle = crossing.x < crossing.y ? ivec2(tb.x, ta.y) : ivec2(ta.x, tb.y);
         bound = max(bound, pyramidTexel(map, pyramid, middle, level, fetches));
     }
     return bound;

@@ -55,13 +55,11 @@ float maxMipNodeHeight(ReliefMap map, sampler2D pyramid, ivec2 node, int level, 
     return pyramidTexel(map, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
 }
 
-ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
-    ReliefHit hit = reliefMissHit();
-    int entryAxis, exitAxis;
-    vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
-    float t = max(range.x, 0.0), tFar = range.y;
-    if (t > tFar) return hit;
-    if (entryFaceHit(map, heights, origin, dir, range.x, entryAxis, hit)) return hit;
+// The quadtree walk over the segment origin + t dir, t in [0, tFar], of a ray that left
+// the box through `exitAxis`; fills `hit` with local t.
+void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir, float tFar,
+                int exitAxis, inout ReliefHit hit) {
+    float t = 0.0;
 
     int topLevel = map.levelCount - 1;
     int level = topLevel;
@@ -88,7 +86,7 @@ ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
                 intersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
             if (tHit >= 0.0) {
                 setTopHit(hit, map, origin, dir, tHit, corners, cell);
-                return hit;
+                return;
             }
         }
         if (tExit >= tFar) {
@@ -98,7 +96,7 @@ ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
             if (exitAxis == 2 && dir.z < 0.0) {
                 setTopHitAt(hit, map, heights, tFar, origin + tFar * dir);
             }
-            return hit;
+            return;
         }
         // Into the neighbour through the side(s) crossed; up one level across a parent's side.
         ivec2 next = node + ivec2(exits.x <= tExit ? int(sign(dir.x)) : 0,
@@ -112,6 +110,17 @@ ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
         }
     }
     hit.exhausted = true;
+}
+
+ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
+    ReliefHit hit = reliefMissHit();
+    vec3 start;
+    float tStart, span;
+    int exitAxis;
+    if (enterReliefBox(map, heights, origin, dir, hit, start, tStart, span, exitAxis)) {
+        walkMaxMip(map, pyramid, heights, start, dir, span, exitAxis, hit);
+        measureFromEye(hit, tStart);
+    }
     return hit;
 }
 

@@ -72,57 +72,45 @@ float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, flo
     return -1.0;
 }
 
-ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
-    ReliefHit hit = reliefMissHit();
-
-    int entryAxis, exitAxis;
-    vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
-    float tNear = max(range.x, 0.0), tFar = range.y;
-    if (tNear > tFar) return hit;
-
-    // Entering from outside through a side wall or the bottom face at a point below the
-    // surface is a hit right there. (Entering through the top face is a top-surface
-    // question for the traversal; from inside the box the eye is above the surface.)
-    if (entryFaceHit(map, heights, origin, dir, range.x, entryAxis, hit)) return hit;
-
+// The binary subdivision of the segment start + t dir, t in [0, span] (a ray that left
+// the box through `exitAxis`); tStart is the segment's distance from the eye in t, for
+// the level-of-detail cone. Fills `hit` with map-space positions and local t.
+void subdivideSegment(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 start, vec3 dir, float span,
+                      float tStart, int exitAxis, inout ReliefHit hit) {
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments
     // share their end parameter bit for bit and no gap can open between them.
-    float span = tFar - tNear;
     const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
     int depth = 0;
     uint index = 0u;
     for (int iteration = 1; iteration <= map.maxIterations; ++iteration) {
         hit.iterations = iteration;
         int shift = MICRORELIEF_MAX_DEPTH - depth;
-        float ta = tNear + span * (float(index << shift) * kUnit);
-        float tb = tNear + span * (float((index + 1u) << shift) * kUnit);
-        vec3 pa = origin + ta * dir, pb = origin + tb * dir;
-        vec2 lo = min(pa.xy, pb.xy), hi = max(pa.xy, pb.xy);
+        float ta = span * (float(index << shift) * kUnit);
+        float tb = span * (float((index + 1u) << shift) * kUnit);
+        vec3 pa = start + ta * dir, pb = start + tb * dir;
         // The level of detail from the segment's footprint (paper, fig. 6).
-        float extent = max(hi.x - lo.x, hi.y - lo.y);
+        vec2 extents = abs(pb.xy - pa.xy);
+        float extent = max(extents.x, extents.y);
         int level = footprintLevel(map, extent);
-        float bound = segmentBound(map, pyramid, origin, dir, pa.xy, pb.xy, level, hit.fetches);
+        float bound = segmentBound(map, pyramid, pa.xy, pb.xy, level, hit.fetches);
         hit.stopLevel = level;
-        bool mayHit = min(pa.z, pb.z) <= bound;
-        if (mayHit) {
-            if (level > 0 && exp2(float(level)) <= map.lodCone * ta) {
+        if (min(pa.z, pb.z) <= bound) {
+            if (level > 0 && exp2(float(level)) <= map.lodCone * (tStart + ta)) {
                 // Accuracy-controlled level of detail (paper, section II: "under criterion
                 // of required accuracy"): this level's texels project to less than the
                 // tolerated pixel error, so its max box stands for the surface here.
                 float t = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
-                vec3 p = origin + t * dir;
-                ivec2 cell = cellAt(p.xy);
-                setTopHit(hit, map, origin, dir, t, cellCorners(map, heights, cell, hit.fetches), cell);
-                return hit;
+                setTopHitAt(hit, map, heights, t, start + t * dir);
+                return;
             }
             if (extent <= 1.0 || depth >= MICRORELIEF_MAX_DEPTH) {
                 vec4 corners;
                 ivec2 cell;
-                float t = intersectLeaf(map, heights, origin, dir, ta, tb, hit.fetches, corners, cell);
+                float t = intersectLeaf(map, heights, start, dir, ta, tb, hit.fetches, corners, cell);
                 if (t >= 0.0) {
-                    setTopHit(hit, map, origin, dir, t, corners, cell);
-                    return hit;
+                    setTopHit(hit, map, start, dir, t, corners, cell);
+                    return;
                 }
             } else {
                 depth += 1;  // descend into the near half
@@ -141,16 +129,23 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, v
             // solid, so its first hit is that exit point (where the surface is 0). The
             // exact root lies right at the end of the last segment, where rounding can
             // push it out of that segment's range; this is where it is caught.
-            if (exitAxis == 2 && dir.z < 0.0) {
-                vec3 exit = origin + tFar * dir;
-                ivec2 cell = cellAt(exit.xy);
-                setTopHit(hit, map, origin, dir, tFar, cellCorners(map, heights, cell, hit.fetches), cell);
-            }
-            return hit;
+            if (exitAxis == 2 && dir.z < 0.0) setTopHitAt(hit, map, heights, span, start + span * dir);
+            return;
         }
         index += 1u;
     }
     hit.exhausted = true;
+}
+
+ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
+    ReliefHit hit = reliefMissHit();
+    vec3 start;
+    float tStart, span;
+    int exitAxis;
+    if (enterReliefBox(map, heights, origin, dir, hit, start, tStart, span, exitAxis)) {
+        subdivideSegment(map, pyramid, heights, start, dir, span, tStart, exitAxis, hit);
+        measureFromEye(hit, tStart);
+    }
     return hit;
 }
 

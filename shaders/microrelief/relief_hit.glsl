@@ -110,6 +110,30 @@ bool entryFaceHit(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float
     return true;
 }
 
+// The start every exact tracer shares. Clips the ray to the relief's box and, when it
+// comes in from outside through a side wall or the bottom face at a point below the
+// surface, fills `hit` with that entry (the solid is hit right there; entering through
+// the top face is a question for the traversal, and from inside the box the eye is above
+// the surface, by the spec). Returns true when there is a segment left to trace: `start`
+// is where the ray enters the box (or the eye, inside it), and the ray goes on as
+// start + t dir for t in [0, span]; its parameter from the eye is tStart + t. Working
+// from the entry keeps positions near the box exact however far away the eye is.
+bool enterReliefBox(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, inout ReliefHit hit, out vec3 start,
+                    out float tStart, out float span, out int exitAxis) {
+    int entryAxis;
+    vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
+    tStart = max(range.x, 0.0);
+    span = range.y - tStart;
+    start = origin + tStart * dir;
+    if (span < 0.0) return false;
+    return !entryFaceHit(map, heights, origin, dir, range.x, entryAxis, hit);
+}
+
+// A hit found from `start` (enterReliefBox) as a parameter from the eye.
+void measureFromEye(inout ReliefHit hit, float tStart) {
+    if (hit.kind != RELIEF_MISS) hit.t += tStart;
+}
+
 // The world-space unit normal of a hit.
 vec3 reliefWorldNormal(ReliefMap map, ReliefHit hit) {
     if (hit.kind == RELIEF_TOP) return mapGradientToWorldNormal(map, -hit.normal.xy);

@@ -149,7 +149,17 @@ std::unique_ptr<GlContext> createEglContext() {
     for (const Candidate& c : candidates) {
         std::string why;
         EGLContext context = createContextOn(c.display, why);
-        if (context != EGL_NO_CONTEXT) return std::make_unique<EglContext>(c.display, context, c.name);
+        if (context != EGL_NO_CONTEXT) {
+            try {
+                return std::make_unique<EglContext>(c.display, context, c.name);
+            } catch (const Error& e) {
+                // The constructor threw, so no destructor runs: release it here and go on
+                // to the next display.
+                eglMakeCurrent(c.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+                eglDestroyContext(c.display, context);
+                why = e.what();
+            }
+        }
         reasons += (reasons.empty() ? "" : ", ") + c.name + ": " + why;
     }
     throwRuntime("EGL: no display gave a GL 3.3 core context (" + reasons + ")");

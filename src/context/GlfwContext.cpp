@@ -46,8 +46,13 @@ GlfwContext::GlfwContext(const GlfwWindowOptions& options) {
         throwRuntime(std::string("GLFW: cannot open a GL 3.3 core window (") + (description ? description : "?") +
                      ")");
     }
-    makeCurrent();
-    loadFunctions(loadGlfw, nullptr, "GLFW");
+    try {
+        makeCurrent();
+        loadFunctions(loadGlfw, nullptr, "GLFW");
+    } catch (...) {
+        glfwDestroyWindow(window_);  // the constructor throws: no destructor runs
+        throw;
+    }
 }
 
 GlfwContext::~GlfwContext() {

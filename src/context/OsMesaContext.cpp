@@ -100,7 +100,12 @@ std::unique_ptr<GlContext> createOsMesaContext() {
                               OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
     OSMesaContext context = lib.createContextAttribs(attributes, nullptr);
     if (!context) throwRuntime("OSMesa: cannot create a GL 3.3 core context");
-    return std::make_unique<OsMesaContextImpl>(context);
+    try {
+        return std::make_unique<OsMesaContextImpl>(context);
+    } catch (...) {
+        lib.destroyContext(context);  // the constructor threw: no destructor runs
+        throw;
+    }
 }
 
 }  // namespace microrelief

@@ -8,3 +8,10 @@
 namespace microrelief {
 using GL = GladGLContext;
 }  // namespace microrelief
+
+#include <string>
+
+namespace microrelief::gl {
+// "0x0502": GL enums and error codes as the specification writes them.
+std::string enumHex(GLenum value);
+}  // namespace microrelief::gl

@@ -14,23 +14,23 @@ int ceilPowerOfTwo(int n) {
 }
 
 // The exact max of the bilinear surface over texel square (i, j): the nine points where
-// the patches that meet the square have their corners (see MaxPyramid.h).
+// the patches that meet the square have their corners (see MaxPyramid.h). Computed in
+// double and rounded up to float, so that the bound is never an ulp below the surface.
 float texelSquareMax(const HeightMap& map, int i, int j) {
-    float best = 0.0f;
+    double best = 0.0;
     for (int dj = -1; dj <= 1; ++dj) {
         for (int di = -1; di <= 1; ++di) {
             // Point (i + 0.5 + di/2, j + 0.5 + dj/2) is the average of the samples on
             // either side of it along each axis where it lies between two centres.
             const int i0 = di < 0 ? i - 1 : i, i1 = di > 0 ? i + 1 : i;
             const int j0 = dj < 0 ? j - 1 : j, j1 = dj > 0 ? j + 1 : j;
-            const float value = 0.25f * (map.clamped(i0, j0) + map.clamped(i1, j0) +
-                                         map.clamped(i0, j1) + map.clamped(i1, j1));
+            const double value = 0.25 * (static_cast<double>(map.clamped(i0, j0)) + map.clamped(i1, j0) +
+                                          map.clamped(i0, j1) + map.clamped(i1, j1));
             best = std::max(best, value);
         }
     }
-    // Rounding in the averages can land one ulp below a sample; the sample itself is on
-    // the surface, so include it explicitly.
-    return std::max(best, map.at(i, j));
+    const float rounded = static_cast<float>(best);
+    return rounded < best ? std::nextafter(rounded, INFINITY) : rounded;
 }
 
 }  // namespace
@@ -73,16 +73,32 @@ int MaxPyramid::footprintLevel(double extent) const {
     return level;
 }
 
-float MaxPyramid::boundOver(double x0, double y0, double x1, double y1) const {
-    const int level = footprintLevel(std::max(x1 - x0, y1 - y0));
-    const double scale = std::ldexp(1.0, -level);
-    const int w = widths_[level], h = heights_[level];
-    auto index = [scale](double x, int size) { return std::clamp(static_cast<int>(std::floor(x * scale)), 0, size - 1); };
-    float best = 0.0f;
-    for (int q = index(y0, h); q <= index(y1, h); ++q) {
-        for (int p = index(x0, w); p <= index(x1, w); ++p) best = std::max(best, texel(level, p, q));
+glm::ivec2 MaxPyramid::texelAt(glm::dvec2 p, int level) const {
+    const int i = std::clamp(static_cast<int>(std::floor(p.x)), 0, mapWidth_ - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(p.y)), 0, mapHeight_ - 1);
+    return {i >> level, j >> level};
+}
+
+double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const {
+    auto read = [&](glm::ivec2 t, int l) {
+        ++fetches;
+        return static_cast<double>(texel(l, t.x, t.y));
+    };
+    glm::ivec2 ta = texelAt(a, level), tb = texelAt(b, level);
+    while ((std::abs(tb.x - ta.x) > 1 || std::abs(tb.y - ta.y) > 1) && level < levelCount() - 1) {
+        ++level;
+        ta = texelAt(a, level);
+        tb = texelAt(b, level);
     }
-    return best;
+    if (ta == tb) return read(ta, level);
+    if (level + 1 < levelCount() && (ta >> 1) == (tb >> 1)) return read(ta >> 1, ++level);
+    double bound = std::max(read(ta, level), read(tb, level));
+    if (ta.x != tb.x && ta.y != tb.y) {
+        // Through a corner: the texel beside ta across the boundary crossed first.
+        const glm::dvec2 crossing = (glm::dvec2(glm::max(ta, tb) << level) - a) / (b - a);
+        bound = std::max(bound, read(crossing.x < crossing.y ? glm::ivec2(tb.x, ta.y) : glm::ivec2(ta.x, tb.y), level));
+    }
+    return bound;
 }
 
 }  // namespace microrelief

@@ -19,6 +19,8 @@
 
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "heightmap/HeightMap.h"
 
 namespace microrelief {
@@ -35,13 +37,17 @@ public:
     const std::vector<float>& levelData(int level) const { return levels_[level]; }
     float texel(int level, int p, int q) const { return levels_[level][static_cast<std::size_t>(q) * widths_[level] + p]; }
 
-    // The pyramid's bound on the surface over the texel-space rectangle [x0, x1] x [y0, y1]:
-    // the max over the texels of the coarsest level whose footprint rule (extent <= 2^k)
-    // the rectangle meets, the same lookup the shader makes. Always >= the surface there.
-    float boundOver(double x0, double y0, double x1, double y1) const;
-
     // The level whose texels are at least as wide as `extent` finest texels.
     int footprintLevel(double extent) const;
+
+    // The level-`level` texel holding map point p (max_pyramid.glsl: pyramidTexelAt).
+    glm::ivec2 texelAt(glm::dvec2 p, int level) const;
+
+    // The bound over the segment from a to b that the shader reads (max_pyramid.glsl:
+    // segmentBound): the max of the one to three texels the segment crosses at `level`
+    // (in: the footprint level; out: the level read), counting them in `fetches`. Never
+    // below the surface anywhere along the segment's path.
+    double segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const;
 
 private:
     int mapWidth_, mapHeight_;

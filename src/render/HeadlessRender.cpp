@@ -30,7 +30,7 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     gl.Finish();
     HeadlessResult result{target.read(), camera};
     const GLenum error = gl.GetError();
-    if (error != GL_NO_ERROR) throwRuntime("GL error " + std::to_string(error) + " while rendering " + source);
+    if (error != GL_NO_ERROR) throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + source);
     return result;
 }
 

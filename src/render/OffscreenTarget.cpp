@@ -62,7 +62,7 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height) : gl_(gl),
     const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        throwRuntime("the offscreen framebuffer is incomplete (status 0x" + std::to_string(status) + ")");
+        throwRuntime("the offscreen framebuffer is incomplete (status " + gl::enumHex(status) + ")");
     }
 }
 

@@ -44,42 +44,6 @@ double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& 
     return (root >= 0.0 && root <= tauMax) ? root : -1.0;
 }
 
-// max_pyramid.glsl: footprintLevel.
-int footprintLevel(const MaxPyramid& p, double extent) {
-    const int level = extent <= 1.0 ? 0 : static_cast<int>(std::ceil(std::log2(extent)));
-    return std::min(level, p.levelCount() - 1);
-}
-
-// max_pyramid.glsl: pyramidTexelAt and segmentBound.
-glm::ivec2 pyramidTexelAt(const HeightMap& map, glm::dvec2 p, int level) {
-    const int i = std::clamp(static_cast<int>(std::floor(p.x)), 0, map.width - 1);
-    const int j = std::clamp(static_cast<int>(std::floor(p.y)), 0, map.height - 1);
-    return {i >> level, j >> level};
-}
-
-double segmentBound(const MaxPyramid& p, const HeightMap& map, const glm::dvec3& origin, const glm::dvec3& dir,
-                    glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) {
-    auto texel = [&](glm::ivec2 t, int l) {
-        ++fetches;
-        return static_cast<double>(p.texel(l, t.x, t.y));
-    };
-    glm::ivec2 ta = pyramidTexelAt(map, a, level), tb = pyramidTexelAt(map, b, level);
-    while ((std::abs(tb.x - ta.x) > 1 || std::abs(tb.y - ta.y) > 1) && level < p.levelCount() - 1) {
-        ++level;
-        ta = pyramidTexelAt(map, a, level);
-        tb = pyramidTexelAt(map, b, level);
-    }
-    if (ta == tb) return texel(ta, level);
-    if (level + 1 < p.levelCount() && (ta >> 1) == (tb >> 1)) return texel(ta >> 1, ++level);
-    double bound = std::max(texel(ta, level), texel(tb, level));
-    if (ta.x != tb.x && ta.y != tb.y) {
-        const glm::dvec2 boundary(std::max(ta.x, tb.x) << level, std::max(ta.y, tb.y) << level);
-        const double tx = (boundary.x - origin.x) / dir.x, ty = (boundary.y - origin.y) / dir.y;
-        bound = std::max(bound, texel(tx < ty ? glm::ivec2(tb.x, ta.y) : glm::ivec2(ta.x, tb.y), level));
-    }
-    return bound;
-}
-
 }  // namespace
 
 int traversalBudget(int width, int height) { return 8 * (width + height) + 256; }
@@ -199,26 +163,34 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, Traver
         return finish(makeHit(face, tNear, normal));
     }
 
-    const double span = tFar - tNear;
+    // From the box entry on, as the shader works (relief_hit.glsl: enterReliefBox).
+    const MapRay fromEntry{ray.origin + tNear * ray.dir, ray.dir};
+    if (auto hit = subdivideSegment(fromEntry, tFar - tNear, exitAxis, stats)) {
+        return finish(makeHit(HitFace::Top, tNear + hit->t, hit->normal));
+    }
+    return finish(std::nullopt);
+}
+
+// multilevel_trace.glsl: subdivideSegment, over ray.origin + t ray.dir, t in [0, span].
+auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exitAxis, TraversalStats& stats) const
+    -> std::optional<LeafHit> {
     const double unit = std::ldexp(1.0, -kMaxDepth);
     int depth = 0;
     std::uint32_t index = 0;
     for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
         stats.iterations = iteration;
         const int shift = kMaxDepth - depth;
-        const double ta = tNear + span * (static_cast<double>(index << shift) * unit);
-        const double tb = tNear + span * (static_cast<double>((index + 1u) << shift) * unit);
+        const double ta = span * (static_cast<double>(index << shift) * unit);
+        const double tb = span * (static_cast<double>((index + 1u) << shift) * unit);
         const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
-        const glm::dvec2 flo = glm::min(glm::dvec2(pa), glm::dvec2(pb)), fhi = glm::max(glm::dvec2(pa), glm::dvec2(pb));
-        const double extent = std::max(fhi.x - flo.x, fhi.y - flo.y);
-        int level = footprintLevel(pyramid_, extent);
-        const double bound = segmentBound(pyramid_, map_, ray.origin, ray.dir, pa, pb, level, stats.fetches);
+        const glm::dvec2 extents = glm::abs(glm::dvec2(pb) - glm::dvec2(pa));
+        const double extent = std::max(extents.x, extents.y);
+        int level = pyramid_.footprintLevel(extent);
+        const double bound = pyramid_.segmentBound(pa, pb, level, stats.fetches);
         stats.stopLevel = level;
         if (std::min(pa.z, pb.z) <= bound) {
             if (extent <= 1.0 || depth >= kMaxDepth) {
-                if (auto hit = intersectLeaf(ray, ta, tb, stats.fetches)) {
-                    return finish(makeHit(HitFace::Top, hit->t, hit->normal));
-                }
+                if (auto hit = intersectLeaf(ray, ta, tb, stats.fetches)) return hit;
             } else {
                 ++depth;
                 index *= 2u;
@@ -232,16 +204,15 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, Traver
         if (depth == 0) {
             // Leaving through the floor going down: the exit point is the hit (see the shader).
             if (exitAxis == 2 && ray.dir.z < 0.0) {
-                const glm::dvec3 exit = ray.origin + tFar * ray.dir;
-                const Cell cell = cellAt(map_, exit.x, exit.y, stats.fetches);
-                return finish(makeHit(HitFace::Top, tFar, topNormal(cell, exit)));
+                const glm::dvec3 exit = ray.origin + span * ray.dir;
+                return LeafHit{span, topNormal(cellAt(map_, exit.x, exit.y, stats.fetches), exit)};
             }
-            return finish(std::nullopt);
+            return std::nullopt;
         }
         ++index;
     }
     stats.exhausted = true;
-    return finish(std::nullopt);
+    return std::nullopt;
 }
 
 }  // namespace microrelief

@@ -90,39 +90,80 @@ TEST(MaxPyramid, FinestLevelIsTheExactSurfaceMaxOverEachTexel) {
     }
 }
 
+// The bound the traversal reads for a segment from a to b (segmentBound, the C++
+// mirror of max_pyramid.glsl), at the level the traversal picks for it.
+double traversalBound(const MaxPyramid& p, glm::dvec2 a, glm::dvec2 b, int* fetches = nullptr) {
+    const glm::dvec2 extents = glm::abs(b - a);
+    int level = p.footprintLevel(std::max(extents.x, extents.y));
+    int counted = 0;
+    const double bound = p.segmentBound(a, b, level, counted);
+    if (fetches) *fetches = counted;
+    return bound;
+}
+
+// The surface's max along the segment's path, densely sampled: what a bound must exceed.
+double sampledMaxAlong(const HeightMap& map, glm::dvec2 a, glm::dvec2 b, int steps) {
+    double best = 0.0;
+    for (int k = 0; k <= steps; ++k) {
+        const glm::dvec2 p = a + (b - a) * (static_cast<double>(k) / steps);
+        best = std::max(best, map.surface(p.x, p.y));
+    }
+    return best;
+}
+
 // The property test: random maps of odd, non-power-of-two, non-square sizes, random
-// footprints of every scale; the bound must never fall below the surface inside.
-TEST(MaxPyramid, BoundsTheBilinearSurfaceOverAnyFootprint) {
+// segments of every length and direction; the bound read with one to three fetches
+// must never fall below the surface anywhere along the segment.
+TEST(MaxPyramid, SegmentBoundCoversTheSurfaceAlongAnySegment) {
     std::mt19937 random(1234);
     const std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 2}, {3, 5}, {17, 4}, {31, 33}, {64, 64}, {100, 7}};
     for (auto [w, h] : sizes) {
         const HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 131 + h));
         const MaxPyramid p(map);
-        std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), size(0.0, 1.0);
-        for (int trial = 0; trial < 400; ++trial) {
-            // Footprint sizes spread over scales: from a sliver to the whole map.
-            const double extent = std::pow(std::max(w, h), size(random)) * size(random);
-            const double x0 = x(random), y0 = y(random);
-            const double x1 = std::min<double>(w, x0 + extent * size(random));
-            const double y1 = std::min<double>(h, y0 + extent * size(random));
-            const float bound = p.boundOver(x0, y0, x1, y1);
-            const double truth = sampledMax(map, x0, y0, x1, y1, 24);
-            ASSERT_GE(bound, truth - 1e-6) << w << "x" << h << " footprint [" << x0 << "," << x1 << "]x[" << y0 << ","
-                                           << y1 << "]";
+        std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0), turn(0.0, 6.2831853);
+        for (int trial = 0; trial < 2000; ++trial) {
+            // Lengths spread over scales, from a sliver to the whole map.
+            const double length = std::pow(std::max(w, h) * 1.5, unit(random)) * unit(random);
+            const double angle = turn(random);
+            const glm::dvec2 a(x(random), y(random));
+            const glm::dvec2 b = glm::clamp(a + length * glm::dvec2(std::cos(angle), std::sin(angle)), glm::dvec2(0.0),
+                                            glm::dvec2(w, h));
+            int fetches = 0;
+            const double bound = traversalBound(p, a, b, &fetches);
+            ASSERT_GE(bound, sampledMaxAlong(map, a, b, 400) - 1e-12)
+                << w << "x" << h << " segment (" << a.x << "," << a.y << ") -> (" << b.x << "," << b.y << ")";
+            ASSERT_GE(fetches, 1);
+            ASSERT_LE(fetches, 3);
         }
     }
 }
 
 // A one-texel spike: the case a sample-only pyramid or a centre fetch gets wrong
 // (the spike's peak lies between the footprint's sample centres).
-TEST(MaxPyramid, ASpikeIsSeenFromEveryFootprintThatTouchesItsSlopes) {
+TEST(MaxPyramid, ASpikeIsSeenByEverySegmentOverItsSlopes) {
     const HeightMap map = synth::spike(16, 16, 7, 9);
     const MaxPyramid p(map);
-    // A thin footprint across the spike's slope only (X in [8.2, 8.3]): the surface
-    // there reaches 1 - 0.7 = 0.3 at the sample row.
-    EXPECT_GE(p.boundOver(8.2, 9.0, 8.3, 10.0), 0.3f - 1e-6f);
-    EXPECT_FLOAT_EQ(p.boundOver(0.0, 0.0, 16.0, 16.0), 1.0f);
-    EXPECT_FLOAT_EQ(p.boundOver(0.0, 0.0, 5.0, 5.0), 0.0f);
+    // A short segment across the spike's slope only (X in [8.2, 8.3]): the surface there
+    // reaches 1 - 0.7 = 0.3 at the sample row.
+    EXPECT_GE(traversalBound(p, {8.2, 9.5}, {8.3, 9.5}), 0.3 - 1e-6);
+    EXPECT_DOUBLE_EQ(traversalBound(p, {0.0, 0.0}, {16.0, 16.0}), 1.0);
+    EXPECT_DOUBLE_EQ(traversalBound(p, {0.5, 0.5}, {4.5, 4.0}), 0.0);
+}
+
+TEST(MaxPyramid, FinestLevelNeverRoundsBelowTheSurface) {
+    // Averages of samples that do not sum exactly in float: the bound is rounded up.
+    HeightMap map(2, 2);
+    map.samples = {0.1f, 0.7f, 0.3f, 0.9f};
+    const MaxPyramid p(map);
+    for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < 2; ++i) {
+            for (int k = 0; k <= 100; ++k) {
+                for (int l = 0; l <= 100; ++l) {
+                    ASSERT_GE(static_cast<double>(p.texel(0, i, j)), map.surface(i + k / 100.0, j + l / 100.0));
+                }
+            }
+        }
+    }
 }
 
 TEST(MaxPyramid, FootprintLevelChoosesTexelsAtLeastAsWideAsTheFootprint) {

@@ -76,7 +76,8 @@ TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330And400AndEs300) {
 
 TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
     // No #version, no uniforms, no in/out at file scope; a file-named include guard.
-    const std::regex forbidden(R"(^\s*(#\s*version|uniform\s|in\s|out\s|layout\s*\())");
+    // File scope only (unindented): an indented "out" is a function parameter.
+    const std::regex forbidden(R"(^(#\s*version|uniform\s|in\s|out\s|layout\s*\())");
     for (const auto& file : libraryFiles()) {
         std::istringstream lines(readText(file));
         std::string line;

@@ -176,11 +176,7 @@ int ViewerApp::run() {
 
 void ViewerApp::writeAutomationOutputs() {
     const GLenum error = window_->gl().GetError();
-    if (error != GL_NO_ERROR) {
-        char code[16];
-        std::snprintf(code, sizeof code, "0x%04x", error);
-        throwRuntime(std::string("GL error ") + code + " while rendering");
-    }
+    if (error != GL_NO_ERROR) throwRuntime("GL error " + gl::enumHex(error) + " while rendering");
     ImageWriteBatch batch;  // both files or neither
     std::vector<std::uint8_t> view;
     if (options_.screenshot) {

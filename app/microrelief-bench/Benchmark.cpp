@@ -111,9 +111,7 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
         }
     } else if (methodHasSteps(method)) {
         for (int steps = 8; steps <= std::min(2 * mapSize, maxSteps); steps *= 2) {
-            s.steps = steps;
-            s.minSteps = std::max(4, steps / 4);  // pom: a quarter of the samples looking straight down
-            s.refineSteps = 8;                    // relief: binary search steps after the linear search
+            s.setSteps(steps);
             settings.push_back({s, std::to_string(steps)});
         }
     } else {

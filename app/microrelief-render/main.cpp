@@ -23,17 +23,6 @@ int fail(int status, const std::string& message) {
     return status;
 }
 
-// RGBA8 from the framebuffer -> RGB: the picture is opaque (background included).
-std::vector<std::uint8_t> dropAlpha(const std::vector<std::uint8_t>& rgba) {
-    std::vector<std::uint8_t> rgb(rgba.size() / 4 * 3);
-    for (std::size_t p = 0, q = 0; p < rgba.size(); p += 4, q += 3) {
-        rgb[q] = rgba[p];
-        rgb[q + 1] = rgba[p + 1];
-        rgb[q + 2] = rgba[p + 2];
-    }
-    return rgb;
-}
-
 // --compare-reference: the accuracy sweep's figures for this one view.
 void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map, double heightScale) {
     const Accuracy a = compareWithReference(frame, camera, map, heightScale);
@@ -66,7 +55,7 @@ int run(const RenderOptions& o) {
     for (std::size_t p = 3; p < frame.stats.size(); p += 4) exhausted += frame.stats[p] > 0.0f;
 
     ImageWriteBatch batch;
-    const std::vector<std::uint8_t> rgb = dropAlpha(frame.color);
+    const std::vector<std::uint8_t> rgb = rgbFromRgba(frame.color, frame.width, frame.height);
     batch.write(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
     if (o.aov) {
         batch.write(*o.aov, {frame.width, frame.height, 4, PixelType::Float, frame.position.data(), {"R", "G", "B", "A"}});

@@ -28,31 +28,6 @@ double now() {
     return glfwGetTime();
 }
 
-// RGBA8 rows -> RGB rows (the pictures are opaque), optionally turning GL's bottom-up
-// rows into the top-down rows of every output image.
-std::vector<std::uint8_t> toRgb(const std::vector<std::uint8_t>& rgba, int width, int height,
-                                bool flip) {
-    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
-    for (int row = 0; row < height; ++row) {
-        const int from = flip ? height - 1 - row : row;
-        for (int column = 0; column < width; ++column) {
-            const std::size_t p = (static_cast<std::size_t>(from) * width + column) * 4;
-            const std::size_t q = (static_cast<std::size_t>(row) * width + column) * 3;
-            rgb[q] = rgba[p];
-            rgb[q + 1] = rgba[p + 1];
-            rgb[q + 2] = rgba[p + 2];
-        }
-    }
-    return rgb;
-}
-
-// The scene radius microrelief-render gives resolveCamera (HeadlessRender.cpp): it
-// sets only the depth range, but the same number keeps the two programs identical.
-double sceneRadius(const HeightMap& map, double heightScale) {
-    const ReliefExtent extent = reliefExtent(map, heightScale);
-    return std::max({extent.halfWidth, extent.halfDepth, extent.topHeight}) * 2.0;
-}
-
 std::string timestamp() {
     const std::time_t t = std::time(nullptr);
     char text[32];
@@ -80,10 +55,11 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.panelVisible = options.panel;
     const std::filesystem::path file = options.scene.heightFile.value_or(defaultHeightMapPath());
     map_ = std::make_shared<const HeightMap>(loadHeightMap(file, options.scene.load));
+    mapMaxHeight_ = map_->maxValue();  // once per map, not per frame
     loadedWith_ = options.scene.load;
     // A degenerate camera is a bad argument: refuse it before any window opens.
     resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
-                  sceneRadius(*map_, options.scene.job.heightScale));
+                  sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_, options.scene.job.heightScale)));
 
     state_.mapName = file.filename().string();
     setupWindow();
@@ -181,7 +157,7 @@ void ViewerApp::writeAutomationOutputs() {
     std::vector<std::uint8_t> view;
     if (options_.screenshot) {
         const RenderedFrame picture = target_->read();
-        view = toRgb(picture.color, picture.width, picture.height, false);
+        view = rgbFromRgba(picture.color, picture.width, picture.height, false);
         const ImageData image{picture.width, picture.height, 3, PixelType::UInt8, view.data(), {}};
         batch.write(*options_.screenshot, image);
     }
@@ -408,7 +384,7 @@ std::vector<std::uint8_t> ViewerApp::readWindow(int& width, int& height) const {
     gl.ReadBuffer(GL_BACK);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    return toRgb(rgba, width, height, true);
+    return rgbFromRgba(rgba, width, height, true);
 }
 
 void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
@@ -417,6 +393,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         auto map = std::make_shared<const HeightMap>(loadHeightMap(path, state_.scene.load));
         renderer_->setHeightMap(*map, path.string());
         map_ = std::move(map);
+        mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
         // The current map stays, and so do the options it was loaded with.
         state_.scene.load = loadedWith_;
@@ -455,7 +432,7 @@ void ViewerApp::reloadShaders() {
 void ViewerApp::setMethod() {
     MethodSettings& method = state_.scene.job.method;
     // What microrelief-render derives from --steps, so "copy as command" reproduces it.
-    method.minSteps = std::max(1, std::min(MethodSettings{}.minSteps, method.steps));
+    method.setSteps(method.steps);
     try {
         renderer_->setMethod(method);
     } catch (const Error& e) {
@@ -474,7 +451,7 @@ void ViewerApp::takeScreenshot() {
     try {
         const RenderedFrame picture = target_->read();
         const std::vector<std::uint8_t> rgb =
-            toRgb(picture.color, picture.width, picture.height, false);
+            rgbFromRgba(picture.color, picture.width, picture.height, false);
         writeImageAtomically(file,
                              {picture.width, picture.height, 3, PixelType::UInt8, rgb.data(), {}});
         note("wrote " + file.string());
@@ -537,7 +514,7 @@ ViewerApp::ViewRect ViewerApp::viewRect() const {
 CameraFrame ViewerApp::cameraFrame() const {
     const glm::ivec2 size = viewSize();
     return resolveCamera(controller_.camera(), size.x, size.y,
-                         sceneRadius(*map_, state_.scene.job.heightScale));
+                         sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_, state_.scene.job.heightScale)));
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {

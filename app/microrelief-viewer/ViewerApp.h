@@ -91,6 +91,7 @@ private:
     ViewerState state_;
     HeightMapLoadOptions loadedWith_;  // the options the current map was loaded with
     std::shared_ptr<const HeightMap> map_;
+    float mapMaxHeight_ = 0.0f;  // map_'s largest sample
     CameraController controller_;
     ReliefPicker picker_;
     float uiScale_ = 1.0f;

@@ -162,7 +162,7 @@ void SceneFlags::apply() {
     job_.method.method = parseMethod(method_);
     if (job_.method.steps < 1 || job_.method.steps > 65536)
         throwBadInput("--steps must lie in 1..65536");
-    job_.method.minSteps = std::max(1, std::min(job_.method.minSteps, job_.method.steps));
+    job_.method.setSteps(job_.method.steps);
     if (!(job_.method.pixelError >= 0.0f) || !std::isfinite(job_.method.pixelError)) {
         throwBadInput("--pixel-error must be a number >= 0");
     }

@@ -127,6 +127,21 @@ void checkOutputTargets(const std::vector<std::filesystem::path>& files) {
     }
 }
 
+std::vector<std::uint8_t> rgbFromRgba(const std::vector<std::uint8_t>& rgba, int width, int height, bool flipRows) {
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+    for (int row = 0; row < height; ++row) {
+        const int from = flipRows ? height - 1 - row : row;
+        for (int column = 0; column < width; ++column) {
+            const std::size_t p = (static_cast<std::size_t>(from) * width + column) * 4;
+            const std::size_t q = (static_cast<std::size_t>(row) * width + column) * 3;
+            rgb[q] = rgba[p];
+            rgb[q + 1] = rgba[p + 1];
+            rgb[q + 2] = rgba[p + 2];
+        }
+    }
+    return rgb;
+}
+
 void writeImageAtomically(const std::filesystem::path& file, const ImageData& image) {
     ImageWriteBatch batch;
     batch.write(file, image);

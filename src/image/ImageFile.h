@@ -50,6 +50,11 @@ private:
     std::vector<Staged> staged_;
 };
 
+// RGBA8 rows -> RGB rows (the pictures are opaque); `flipRows` turns GL's bottom-up rows
+// into the top-down rows of every output image.
+std::vector<std::uint8_t> rgbFromRgba(const std::vector<std::uint8_t>& rgba, int width, int height,
+                                      bool flipRows = false);
+
 // One file, atomically.
 void writeImageAtomically(const std::filesystem::path& file, const ImageData& image);
 

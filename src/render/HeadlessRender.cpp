@@ -16,13 +16,11 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     context.makeCurrent();
     const GL& gl = context.gl();
     // GL objects live in this scope and die before the context does.
-    ReliefRenderer renderer(gl, shaderDirectory());
-    renderer.setMethod(job.method);
+    ReliefRenderer renderer(gl, shaderDirectory(), job.method);
     renderer.setHeightScale(job.heightScale);
     renderer.setHeightMap(map, source);
-    const ReliefExtent extent = reliefExtent(map, job.heightScale);
-    const double radius = std::max({extent.halfWidth, extent.halfDepth, extent.topHeight}) * 2.0;
-    const CameraFrame camera = resolveCamera(job.camera, job.width, job.height, radius);
+    const CameraFrame camera =
+        resolveCamera(job.camera, job.width, job.height, sceneRadius(reliefExtent(map, job.heightScale)));
 
     OffscreenTarget target(gl, job.width, job.height);
     target.clear(job.background);

@@ -40,13 +40,19 @@ DebugView parseDebugView(const std::string& name) {
 
 const char* debugViewName(DebugView view) { return kDebugViewNames[static_cast<int>(view)]; }
 
-ReliefExtent reliefExtent(const HeightMap& map, double heightScale) {
-    const double longer = std::max(map.width, map.height);
-    return {0.5 * map.width / longer, 0.5 * map.height / longer, heightScale * map.maxValue()};
+ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale) {
+    const double longer = std::max(width, height);
+    return {0.5 * width / longer, 0.5 * height / longer, heightScale * maxHeight};
 }
 
-ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir)
-    : gl_(gl), shaderDir_(shaderDir) {
+ReliefExtent reliefExtent(const HeightMap& map, double heightScale) {
+    return reliefExtent(map.width, map.height, map.maxValue(), heightScale);
+}
+
+double sceneRadius(const ReliefExtent& e) { return 2.0 * std::max({e.halfWidth, e.halfDepth, e.topHeight}); }
+
+ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir, const MethodSettings& method)
+    : gl_(gl), shaderDir_(shaderDir), method_(method) {
     reloadShaders();
     pyramidTexture_ = gl::Texture::create(gl_);
     sampleTexture_ = gl::Texture::create(gl_);
@@ -55,36 +61,41 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
     boxIndices_ = gl::Buffer::create(gl_);
 }
 
-void ReliefRenderer::reloadShaders() {
+ReliefRenderer::CompiledProgram ReliefRenderer::compile(const ProgramKey& key) const {
     // GLSL 4.00 core where the GL has it (a patch's four samples in one textureGather:
     // bilinear_patch.glsl), else 3.30 core, the oldest with explicit output locations.
-    GLint major = 0, minor = 0;
+    GLint major = 0;
     gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
-    gl_.GetIntegerv(GL_MINOR_VERSION, &minor);
     const std::string version = major >= 4 ? "400 core" : "330 core";
-    std::vector<ShaderDefine> defines = {{"MICRORELIEF_METHOD", std::to_string(static_cast<int>(method_.method))}};
-    if (countFetches_) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
+    std::vector<ShaderDefine> defines = {{"MICRORELIEF_METHOD", std::to_string(static_cast<int>(key.first))}};
+    if (key.second) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex =
         gl::compileShader(gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
     const gl::Shader fragment =
         gl::compileShader(gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version, defines));
-    program_ = gl::linkProgram(gl_, vertex, fragment, std::string("relief (") + methodName(method_.method) + ")");
+    return {gl::linkProgram(gl_, vertex, fragment, std::string("relief (") + methodName(key.first) + ")"), {}};
+}
+
+void ReliefRenderer::reloadShaders() {
+    const ProgramKey key{method_.method, countFetches_};
+    CompiledProgram fresh = compile(key);  // throws before anything changes
+    programs_.clear();
+    current_ = &(programs_[key] = std::move(fresh));
 }
 
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
-    const bool recompile = settings.method != method_.method || countFetches != countFetches_;
-    const MethodSettings previous = method_;
-    const bool previousCount = countFetches_;
+    const ProgramKey key{settings.method, countFetches};
+    auto found = programs_.find(key);
+    if (found == programs_.end()) found = programs_.emplace(key, compile(key)).first;  // throws: nothing changes
+    current_ = &found->second;
     method_ = settings;
     countFetches_ = countFetches;
-    if (!recompile) return;
-    try {
-        reloadShaders();
-    } catch (...) {
-        method_ = previous;  // keep drawing with the program that works
-        countFetches_ = previousCount;
-        throw;
-    }
+}
+
+GLint ReliefRenderer::uniform(const char* name) {
+    auto [it, inserted] = current_->uniforms.try_emplace(name, -1);
+    if (inserted) it->second = gl_.GetUniformLocation(current_->program.id(), name);
+    return it->second;
 }
 
 namespace {
@@ -111,10 +122,12 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
         throwBadInput(source + ": " + std::to_string(map.width) + "x" + std::to_string(map.height) +
                       " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) + ")");
     }
-    pyramid_.emplace(map);
-    const MaxPyramid& pyramid = *pyramid_;
+    const MaxPyramid pyramid(map);  // on the GPU from here on; only its shape is kept
     mapWidth_ = map.width;
     mapHeight_ = map.height;
+    pyramidWidth_ = pyramid.levelWidth(0);
+    pyramidHeight_ = pyramid.levelHeight(0);
+    pyramidLevels_ = pyramid.levelCount();
     maxHeight_ = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
     maxIterations_ = traversalBudget(map.width, map.height);
 
@@ -135,7 +148,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
 
 void ReliefRenderer::setHeightScale(float scale) {
     heightScale_ = scale;
-    if (pyramid_) uploadBox();
+    if (mapWidth_ > 0) uploadBox();
 }
 
 void ReliefRenderer::uploadBox() {
@@ -163,34 +176,32 @@ void ReliefRenderer::uploadBox() {
 }
 
 void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading) {
-    if (!pyramid_) return;
-    const GLuint p = program_.id();
-    gl_.UseProgram(p);
-    auto u = [&](const char* name) { return gl_.GetUniformLocation(p, name); };
+    if (mapWidth_ == 0) return;
+    gl_.UseProgram(current_->program.id());
     const glm::vec3 eye(camera.eye), right(camera.right), up(camera.up), forward(camera.forward);
     const glm::mat4 viewProjection(camera.viewProjection);
 
-    gl_.Uniform1i(u("maxPyramid"), 0);
-    gl_.Uniform1i(u("heightSamples"), 1);
-    gl_.Uniform2f(u("reliefSize"), static_cast<float>(mapWidth_), static_cast<float>(mapHeight_));
-    gl_.Uniform2i(u("pyramidSize"), pyramid_->levelWidth(0), pyramid_->levelHeight(0));
-    gl_.Uniform1i(u("pyramidLevels"), pyramid_->levelCount());
-    gl_.Uniform1f(u("reliefMaxHeight"), maxHeight_);
-    gl_.Uniform1f(u("heightScale"), heightScale_);
-    gl_.Uniform1i(u("maxIterations"), maxIterations_);
-    gl_.Uniform3fv(u("eye"), 1, glm::value_ptr(eye));
-    gl_.Uniform3fv(u("cameraRight"), 1, glm::value_ptr(right));
-    gl_.Uniform3fv(u("cameraUp"), 1, glm::value_ptr(up));
-    gl_.Uniform3fv(u("cameraForward"), 1, glm::value_ptr(forward));
-    gl_.Uniform2f(u("viewportSize"), static_cast<float>(camera.width), static_cast<float>(camera.height));
-    gl_.UniformMatrix4fv(u("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-    gl_.Uniform3fv(u("lightDirection"), 1, glm::value_ptr(glm::normalize(shading.lightDirection)));
-    gl_.Uniform3fv(u("albedo"), 1, glm::value_ptr(shading.albedo));
-    gl_.Uniform1i(u("debugView"), static_cast<int>(shading.view));
-    gl_.Uniform1i(u("methodSteps"), method_.steps);
-    gl_.Uniform1i(u("methodMinSteps"), method_.minSteps);
-    gl_.Uniform1i(u("methodRefineSteps"), method_.refineSteps);
-    gl_.Uniform1f(u("pixelErrorTolerance"), method_.pixelError);
+    gl_.Uniform1i(uniform("maxPyramid"), 0);
+    gl_.Uniform1i(uniform("heightSamples"), 1);
+    gl_.Uniform2f(uniform("reliefSize"), static_cast<float>(mapWidth_), static_cast<float>(mapHeight_));
+    gl_.Uniform2i(uniform("pyramidSize"), pyramidWidth_, pyramidHeight_);
+    gl_.Uniform1i(uniform("pyramidLevels"), pyramidLevels_);
+    gl_.Uniform1f(uniform("reliefMaxHeight"), maxHeight_);
+    gl_.Uniform1f(uniform("heightScale"), heightScale_);
+    gl_.Uniform1i(uniform("maxIterations"), maxIterations_);
+    gl_.Uniform3fv(uniform("eye"), 1, glm::value_ptr(eye));
+    gl_.Uniform3fv(uniform("cameraRight"), 1, glm::value_ptr(right));
+    gl_.Uniform3fv(uniform("cameraUp"), 1, glm::value_ptr(up));
+    gl_.Uniform3fv(uniform("cameraForward"), 1, glm::value_ptr(forward));
+    gl_.Uniform2f(uniform("viewportSize"), static_cast<float>(camera.width), static_cast<float>(camera.height));
+    gl_.UniformMatrix4fv(uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+    gl_.Uniform3fv(uniform("lightDirection"), 1, glm::value_ptr(glm::normalize(shading.lightDirection)));
+    gl_.Uniform3fv(uniform("albedo"), 1, glm::value_ptr(shading.albedo));
+    gl_.Uniform1i(uniform("debugView"), static_cast<int>(shading.view));
+    gl_.Uniform1i(uniform("methodSteps"), method_.steps);
+    gl_.Uniform1i(uniform("methodMinSteps"), method_.minSteps);
+    gl_.Uniform1i(uniform("methodRefineSteps"), method_.refineSteps);
+    gl_.Uniform1f(uniform("pixelErrorTolerance"), method_.pixelError);
 
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());

@@ -4,9 +4,12 @@
 // have the three colour outputs of relief.frag (see OffscreenTarget).
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
-#include <optional>
+#include <map>
 #include <string>
+#include <unordered_map>
+#include <utility>
 
 #include <glm/glm.hpp>
 
@@ -29,11 +32,27 @@ bool methodHasSteps(Method method);
 
 struct MethodSettings {
     Method method = Method::Multilevel;
-    int steps = 64;         // steep: layers; pom: samples at grazing angles; relief: linear steps
-    int minSteps = 8;       // pom: samples looking straight down
-    int refineSteps = 8;    // relief: binary search steps
+    int steps = 64;           // steep: layers; pom: samples at grazing angles; relief: linear steps
+    int minSteps = 16;        // pom: samples looking straight down (setSteps: a quarter, >= 4)
+    int refineSteps = 8;      // relief: binary search steps
     float pixelError = 0.0f;  // multilevel: tolerated error in pixels; 0 is exact
+
+    // The step budget and what follows from it, the one rule every program uses.
+    void setSteps(int n) {
+        steps = n;
+        minSteps = std::min(n, std::max(4, n / 4));
+    }
 };
+
+// World-space extent of a map's relief: x in [-a/2, a/2], z in [-b/2, b/2] (spec).
+struct ReliefExtent {
+    double halfWidth = 0.5, halfDepth = 0.5;  // a / 2, b / 2
+    double topHeight = 0.0;                   // s * max h
+};
+ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale);
+ReliefExtent reliefExtent(const HeightMap& map, double heightScale);  // scans the map for its max
+// The radius resolveCamera gets for this relief (it sets the depth range only).
+double sceneRadius(const ReliefExtent& extent);
 
 // What relief.frag writes to the picture (debug_views.glsl).
 enum class DebugView { Shaded = 0, Iterations, Level, Normal, Depth, Position };
@@ -48,50 +67,55 @@ struct ShadingOptions {
     DebugView view = DebugView::Shaded;
 };
 
-// World-space extent of a map's relief: x in [-a/2, a/2], z in [-b/2, b/2] (spec).
-struct ReliefExtent {
-    double halfWidth = 0.5, halfDepth = 0.5;  // a / 2, b / 2
-    double topHeight = 0.0;                   // s * max h
-};
-ReliefExtent reliefExtent(const HeightMap& map, double heightScale);
-
 class ReliefRenderer {
 public:
-    // `shaderDir` holds relief_box.vert, relief.frag and microrelief/.
-    ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir);
+    // `shaderDir` holds relief_box.vert, relief.frag and microrelief/; `method` is the
+    // program compiled first.
+    ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir, const MethodSettings& method = {});
 
     // Builds the max pyramid and uploads it with the samples. Throws Error(BadInput)
     // when the map exceeds GL_MAX_TEXTURE_SIZE; `source` names the map in that message.
     void setHeightMap(const HeightMap& map, const std::string& source);
     void setHeightScale(float scale);
 
-    // Recompiles the shaders; on failure throws and keeps the previous program.
+    // Recompiles the current program from the files; on failure throws and keeps the
+    // previous program. Other programs compiled before are dropped (they may be stale).
     void reloadShaders();
 
-    // Chooses the tracing method (recompiles when the method or the instrumentation
-    // changes; step counts and the pixel error are uniforms). `countFetches` selects the
-    // instrumented variant that writes texel reads to the statistics output.
+    // Chooses the tracing method; each (method, instrumentation) pair is compiled once
+    // and kept. Step counts and the pixel error are uniforms. `countFetches` selects the
+    // instrumented variant that writes texel reads to the statistics output. On a
+    // compile failure throws and keeps the method that works.
     void setMethod(const MethodSettings& settings, bool countFetches = false);
     const MethodSettings& method() const { return method_; }
 
     void draw(const CameraFrame& camera, const ShadingOptions& shading);
 
-    const MaxPyramid* pyramid() const { return pyramid_ ? &*pyramid_ : nullptr; }
     int maxIterations() const { return maxIterations_; }
 
 private:
+    // A linked program and the uniform locations looked up in it so far.
+    struct CompiledProgram {
+        gl::Program program;
+        std::unordered_map<std::string, GLint> uniforms;
+    };
+    using ProgramKey = std::pair<Method, bool>;  // method, counts fetches
+
+    CompiledProgram compile(const ProgramKey& key) const;
+    GLint uniform(const char* name);
     void uploadBox();
 
     const GL& gl_;
     std::filesystem::path shaderDir_;
-    gl::Program program_;
+    std::map<ProgramKey, CompiledProgram> programs_;
+    CompiledProgram* current_ = nullptr;
     gl::Texture pyramidTexture_;
     gl::Texture sampleTexture_;
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;
     gl::Buffer boxIndices_;
-    std::optional<MaxPyramid> pyramid_;
-    int mapWidth_ = 0, mapHeight_ = 0;
+    int mapWidth_ = 0, mapHeight_ = 0;       // 0: no map yet
+    int pyramidWidth_ = 0, pyramidHeight_ = 0, pyramidLevels_ = 0;
     float maxHeight_ = 0.0f;
     float heightScale_ = 0.1f;
     int maxIterations_ = 0;

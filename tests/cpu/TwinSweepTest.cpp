@@ -13,16 +13,12 @@ TEST(TwinSweep, EveryCaseMatchesTheReference) {
         const MultilevelTracer twin(*m.map, m.heightScale);
         for (const test::SweepView& view : test::sweepViews(m)) {
             const CameraFrame camera = resolveCamera(view.camera, test::kSweepSize, test::kSweepSize, 2.0);
-            const Accuracy a = measureAccuracy(camera, *m.map, m.heightScale, [&](int, int, const Ray& ray) {
-                TraversalStats stats;
-                const auto hit = twin.intersect(ray, &stats);
-                return PixelHit{hit.has_value(), hit ? hit->position : glm::dvec3(0.0), stats.exhausted};
-            });
-            // Double precision on both sides: the rare disagreement is a ray that touches
-            // a spike's tip or an edge exactly; the budgets apply as on the GPU.
+            const Accuracy a = measureAccuracy(camera, *m.map, m.heightScale,
+                                               [&](int, int, const Ray& ray) { return test::twinPixel(twin, ray); });
+            // Double precision on both sides, the GPU's budgets all the same.
             const std::string where = m.name + " " + view.name + ": " + a.summary();
-            EXPECT_LE(a.coverageMismatchPercent(), 0.1) << where;
-            EXPECT_TRUE(a.offHalfTexel <= 1 || a.offHalfTexelPercent() <= 0.2) << where;
+            EXPECT_LE(a.coverageMismatchPercent(), test::kMaxCoverageMismatchPercent) << where;
+            EXPECT_TRUE(test::withinOffBudget(a)) << where;
             EXPECT_EQ(a.exhausted, 0u) << where;
         }
     }

@@ -110,6 +110,12 @@ std::vector<SweepView> sweepViews(const SweepMap& m) {
     return views;
 }
 
+PixelHit twinPixel(const MultilevelTracer& twin, const Ray& ray) {
+    TraversalStats stats;
+    const auto hit = twin.intersect(ray, &stats);
+    return PixelHit{hit.has_value(), hit ? hit->position : glm::dvec3(0.0), stats.exhausted};
+}
+
 std::vector<SweepCase> sweepCases() {
     std::vector<SweepCase> cases;
     for (const SweepMap& map : sweepMaps()) {

@@ -8,7 +8,7 @@
 #include "core/DataPaths.h"
 #include "render/OffscreenTarget.h"
 #include "synth/SyntheticMaps.h"
-#include "trace/ReferenceTracer.h"
+#include "trace/Accuracy.h"
 
 namespace microrelief::bench {
 
@@ -34,12 +34,6 @@ Camera viewCamera(int degrees, double top) {
     return camera;
 }
 
-// The exact answer for every pixel of a view, and which pixels' rays meet the box.
-struct ReferencePicture {
-    std::vector<std::optional<glm::dvec3>> hits;
-    std::vector<bool> inBox;
-};
-
 bool rayMeetsBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
     double t0 = 0.0, t1 = 1e300;
     for (int a = 0; a < 3; ++a) {
@@ -55,22 +49,15 @@ bool rayMeetsBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
     return t0 <= t1;
 }
 
-ReferencePicture tracePicture(const BenchMap& m, const CameraFrame& camera) {
-    const ReferenceTracer reference(ReliefGeometry{m.map.get(), m.heightScale});
-    const ReliefExtent extent = reliefExtent(*m.map, m.heightScale);
+// Which pixels' rays meet the relief's box: the pixels the fetch means are taken over.
+std::vector<bool> pixelsInBox(const CameraFrame& camera, const ReliefExtent& extent) {
     const glm::dvec3 lo(-extent.halfWidth, 0.0, -extent.halfDepth), hi(extent.halfWidth, extent.topHeight, extent.halfDepth);
-    ReferencePicture picture;
-    picture.hits.resize(static_cast<std::size_t>(camera.width) * camera.height);
-    picture.inBox.resize(picture.hits.size());
+    std::vector<bool> inBox;
+    inBox.reserve(static_cast<std::size_t>(camera.width) * camera.height);
     for (int row = 0; row < camera.height; ++row) {
-        for (int column = 0; column < camera.width; ++column) {
-            const Ray ray = camera.pixelRay(column, row);
-            const std::size_t k = static_cast<std::size_t>(row) * camera.width + column;
-            if (const ReferenceHit hit = reference.trace(ray)) picture.hits[k] = hit.position;
-            picture.inBox[k] = rayMeetsBox(ray, lo, hi);
-        }
+        for (int column = 0; column < camera.width; ++column) inBox.push_back(rayMeetsBox(camera.pixelRay(column, row), lo, hi));
     }
-    return picture;
+    return inBox;
 }
 
 class Timer {
@@ -133,11 +120,12 @@ void runBenchmark(GlContext& context, const BenchOptions& options, const std::ve
         renderer.setHeightScale(static_cast<float>(m.heightScale));
         renderer.setHeightMap(*m.map, m.name);
         const int mapSize = std::max(m.map->width, m.map->height);
-        const double top = m.heightScale * m.map->maxValue();
-        const double texelsPerUnit = mapSize;
+        const ReliefExtent extent = reliefExtent(*m.map, m.heightScale);
         for (int degrees : options.viewDegrees) {
-            const CameraFrame camera = resolveCamera(viewCamera(degrees, top), options.width, options.height, 2.0);
-            const ReferencePicture reference = tracePicture(m, camera);
+            const CameraFrame camera =
+                resolveCamera(viewCamera(degrees, extent.topHeight), options.width, options.height, sceneRadius(extent));
+            const ReferencePicture reference = traceReferencePicture(camera, *m.map, m.heightScale);
+            const std::vector<bool> inBox = pixelsInBox(camera, extent);
             for (Method method : options.methods) {
                 for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps)) {
                     Measurement r;
@@ -167,22 +155,10 @@ void runBenchmark(GlContext& context, const BenchOptions& options, const std::ve
                     r.msWallMedian = median(wall);
 
                     // Accuracy from the plain variant's AOV.
-                    const RenderedFrame frame = target.read();
-                    std::size_t hits = 0, mismatches = 0, off = 0;
-                    for (std::size_t k = 0; k < reference.hits.size(); ++k) {
-                        const float* p = &frame.position[k * 4];
-                        const bool gpuHit = p[3] > 0.5f;
-                        hits += reference.hits[k].has_value();
-                        if (gpuHit != reference.hits[k].has_value()) {
-                            ++mismatches;
-                        } else if (gpuHit && glm::length(glm::dvec3(p[0], p[1], p[2]) - *reference.hits[k]) *
-                                                     texelsPerUnit > 0.5) {
-                            ++off;
-                        }
-                        r.exhausted += frame.stats[k * 4 + 3] > 0.0f;
-                    }
-                    r.coverageMismatchPct = 100.0 * mismatches / reference.hits.size();
-                    r.offHalfTexelPct = hits ? 100.0 * off / hits : 0.0;
+                    const Accuracy accuracy = compareWithReference(target.read(), camera, reference);
+                    r.coverageMismatchPct = accuracy.coverageMismatchPercent();
+                    r.offHalfTexelPct = accuracy.offHalfTexelPercent();
+                    r.exhausted = accuracy.exhausted;
 
                     // Fetches: the instrumented variant, once.
                     renderer.setMethod(setting.method, true);
@@ -190,8 +166,8 @@ void runBenchmark(GlContext& context, const BenchOptions& options, const std::ve
                     const RenderedFrame counted = target.read();
                     double sum = 0.0;
                     std::size_t covered = 0;
-                    for (std::size_t k = 0; k < reference.inBox.size(); ++k) {
-                        if (!reference.inBox[k]) continue;
+                    for (std::size_t k = 0; k < inBox.size(); ++k) {
+                        if (!inBox[k]) continue;
                         const double fetches = counted.stats[k * 4 + 1];
                         sum += fetches;
                         ++covered;

@@ -9,6 +9,7 @@
 
 #include "Benchmark.h"
 #include "Report.h"
+#include "SceneOptions.h"
 #include "core/DataPaths.h"
 #include "core/Error.h"
 #include "core/Log.h"
@@ -87,10 +88,7 @@ int main(int argc, char** argv) {
             options.assets = {"default"};
             options.viewDegrees = {0, 45, 70, 85};
         }
-        if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width <= 0 ||
-            options.height <= 0) {
-            throwBadInput("--size expects WIDTHxHEIGHT, got '" + size + "'");
-        }
+        parseSizeFlag(size, options.width, options.height);
         std::stringstream list(methodList);
         for (std::string name; std::getline(list, name, ',');) options.methods.push_back(parseMethod(name));
 

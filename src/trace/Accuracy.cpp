@@ -17,26 +17,38 @@ std::string Accuracy::summary() const {
     return out.str();
 }
 
-Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double heightScale,
+ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map, double heightScale) {
+    const ReferenceTracer reference(ReliefGeometry{&map, heightScale});
+    ReferencePicture picture;
+    picture.width = camera.width;
+    picture.texelsPerUnit = std::max(map.width, map.height);
+    picture.hits.reserve(static_cast<std::size_t>(camera.width) * camera.height);
+    for (int row = 0; row < camera.height; ++row) {
+        for (int column = 0; column < camera.width; ++column) {
+            const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
+            picture.hits.push_back(exact ? std::optional<glm::dvec3>(exact.position) : std::nullopt);
+        }
+    }
+    return picture;
+}
+
+Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& reference,
                          const std::function<PixelHit(int, int, const Ray&)>& trace) {
     Accuracy result;
-    const ReferenceTracer reference(ReliefGeometry{&map, heightScale});
-    const double texelsPerUnit = std::max(map.width, map.height);
     std::vector<double> errors;
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
             ++result.pixels;
-            const Ray ray = camera.pixelRay(column, row);
-            const PixelHit tested = trace(column, row, ray);
-            const ReferenceHit exact = reference.trace(ray);
+            const PixelHit tested = trace(column, row, camera.pixelRay(column, row));
+            const std::optional<glm::dvec3>& exact = reference.hits[static_cast<std::size_t>(row) * reference.width + column];
             result.exhausted += tested.exhausted;
             if (exact) ++result.referenceHits;
-            if (tested.hit != static_cast<bool>(exact)) {
+            if (tested.hit != exact.has_value()) {
                 ++result.coverageMismatches;
                 continue;
             }
             if (!tested.hit) continue;
-            const double error = glm::length(tested.position - exact.position) * texelsPerUnit;
+            const double error = glm::length(tested.position - *exact) * reference.texelsPerUnit;
             errors.push_back(error);
             if (error > 0.5) ++result.offHalfTexel;
             result.maxErrorTexels = std::max(result.maxErrorTexels, error);
@@ -50,12 +62,22 @@ Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double
     return result;
 }
 
-Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
-                              double heightScale) {
-    return measureAccuracy(camera, map, heightScale, [&](int column, int row, const Ray&) {
+Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double heightScale,
+                         const std::function<PixelHit(int, int, const Ray&)>& trace) {
+    return measureAccuracy(camera, traceReferencePicture(camera, map, heightScale), trace);
+}
+
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
+                              const ReferencePicture& reference) {
+    return measureAccuracy(camera, reference, [&](int column, int row, const Ray&) {
         const float* p = frame.positionAt(column, row);
         return PixelHit{p[3] > 0.5f, glm::dvec3(p[0], p[1], p[2]), frame.statsAt(column, row)[3] > 0.0f};
     });
+}
+
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
+                              double heightScale) {
+    return compareWithReference(frame, camera, traceReferencePicture(camera, map, heightScale));
 }
 
 }  // namespace microrelief

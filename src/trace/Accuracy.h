@@ -5,6 +5,8 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
+#include <vector>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -38,12 +40,25 @@ struct PixelHit {
     bool exhausted = false;
 };
 
-// Every pixel of `camera`'s picture: `trace(column, row, ray)` against the exact
-// reference. Errors are measured in texels of the map: world distance * max(W, H).
+// The exact reference's answer for every pixel of a camera's picture, traced once and
+// reusable for any number of tracers of the same view.
+struct ReferencePicture {
+    int width = 0;
+    double texelsPerUnit = 1.0;                   // max(W, H): errors are reported in texels
+    std::vector<std::optional<glm::dvec3>> hits;  // row-major, world positions
+};
+ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map, double heightScale);
+
+// Every pixel of `camera`'s picture: `trace(column, row, ray)` against the reference.
+// Errors are measured in texels of the map: world distance * max(W, H).
+Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& reference,
+                         const std::function<PixelHit(int, int, const Ray&)>& trace);
 Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double heightScale,
                          const std::function<PixelHit(int, int, const Ray&)>& trace);
 
 // A rendered frame's AOV against the reference.
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
+                              const ReferencePicture& reference);
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
                               double heightScale);
 

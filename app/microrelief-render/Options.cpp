@@ -7,7 +7,7 @@
 
 namespace microrelief {
 
-ParseResult parseRenderOptions(int argc, char** argv) {
+ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     RenderOptions o;
     CLI::App app{
         "Renders a height map as microrelief, ray traced per pixel by multilevel binary subdivision\n"
@@ -33,33 +33,13 @@ ParseResult parseRenderOptions(int argc, char** argv) {
     app.set_version_flag("--version", std::string("microrelief-render ") + MICRORELIEF_VERSION);
     app.allow_windows_style_options(false);
 
-    ParseResult result;
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        result.message = app.help();
-        return result;
-    } catch (const CLI::CallForVersion& e) {
-        result.message = e.what();
-        return result;
-    } catch (const CLI::ParseError& e) {
-        result.exitStatus = 2;
-        result.message = std::string(e.what()) + " (see --help)";
-        return result;
-    }
-
-    try {
+    return parseCommandLine<RenderOptions>(app, argc, argv, [&] {
         scene.apply();
         o.backend = parseBackend(backend);
         o.out = out;
         if (!aov.empty()) o.aov = aov;
-    } catch (const Error& e) {
-        result.exitStatus = 2;
-        result.message = e.what();
-        return result;
-    }
-    result.options = std::move(o);
-    return result;
+        return o;
+    });
 }
 
 }  // namespace microrelief

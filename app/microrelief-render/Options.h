@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "CommandLine.h"
 #include "context/GlContext.h"
 #include "heightmap/HeightMap.h"
 #include "render/HeadlessRender.h"
@@ -24,12 +25,6 @@ struct RenderOptions {
     bool verbose = false;
 };
 
-struct ParseResult {
-    std::optional<RenderOptions> options;  // empty: nothing to render
-    int exitStatus = 0;                    // when empty: 0 after --help/--version, 2 on error
-    std::string message;                   // the help text, the version, or the error
-};
-
-ParseResult parseRenderOptions(int argc, char** argv);
+ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv);
 
 }  // namespace microrelief

@@ -18,11 +18,6 @@ namespace {
 
 constexpr const char* kProgram = "microrelief-render";
 
-int fail(int status, const std::string& message) {
-    std::cerr << kProgram << ": error: " << message << '\n';
-    return status;
-}
-
 // --compare-reference: the accuracy sweep's figures for this one view.
 void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map, double heightScale) {
     const Accuracy a = compareWithReference(frame, camera, map, heightScale);
@@ -78,22 +73,5 @@ int run(const RenderOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    ParseResult parsed = parseRenderOptions(argc, argv);
-    if (!parsed.options) {
-        if (parsed.exitStatus != 0) return fail(parsed.exitStatus, parsed.message);
-        std::cout << parsed.message << '\n';
-        return 0;
-    }
-    const bool verbose = parsed.options->verbose;
-    setLogSink([verbose](LogLevel level, const std::string& message) {
-        if (level == LogLevel::Info && !verbose) return;
-        std::cerr << kProgram << ": " << (level == LogLevel::Warning ? "warning: " : "") << message << '\n';
-    });
-    try {
-        return run(*parsed.options);
-    } catch (const Error& e) {
-        return fail(e.exitStatus(), e.what());
-    } catch (const std::exception& e) {
-        return fail(1, e.what());
-    }
+    return runProgram<RenderOptions>(kProgram, parseRenderOptions(argc, argv), run);
 }

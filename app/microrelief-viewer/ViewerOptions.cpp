@@ -53,7 +53,7 @@ void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
 
 }  // namespace
 
-ViewerParseResult parseViewerOptions(int argc, char** argv) {
+ParseResult<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     ViewerOptions o;
     CLI::App app{
         "Shows a height map as microrelief in a window, ray traced per pixel by multilevel binary\n"
@@ -71,29 +71,10 @@ ViewerParseResult parseViewerOptions(int argc, char** argv) {
     app.set_version_flag("--version", std::string("microrelief-viewer ") + MICRORELIEF_VERSION);
     app.allow_windows_style_options(false);
 
-    ViewerParseResult result;
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        result.message = app.help();
-        return result;
-    } catch (const CLI::CallForVersion& e) {
-        result.message = e.what();
-        return result;
-    } catch (const CLI::ParseError& e) {
-        result.exitStatus = 2;
-        result.message = std::string(e.what()) + " (see --help)";
-        return result;
-    }
-    try {
+    return parseCommandLine<ViewerOptions>(app, argc, argv, [&] {
         finish(o, scene, screenshot, windowScreenshot, shaderDir, noVsync, noPanel);
-    } catch (const Error& e) {
-        result.exitStatus = 2;
-        result.message = e.what();
-        return result;
-    }
-    result.options = std::move(o);
-    return result;
+        return o;
+    });
 }
 
 }  // namespace microrelief

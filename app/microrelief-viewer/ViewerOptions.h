@@ -4,6 +4,8 @@
 // under Xvfb, the shader folder to watch, vsync.
 #pragma once
 
+#include "CommandLine.h"
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -31,12 +33,6 @@ struct ViewerOptions {
     bool verbose = false;  // -v: print the GL renderer and shader logs
 };
 
-struct ViewerParseResult {
-    std::optional<ViewerOptions> options;  // empty: nothing to show
-    int exitStatus = 0;                    // when empty: 0 after --help/--version, 2 on error
-    std::string message;                   // the help text, the version, or the error
-};
-
-ViewerParseResult parseViewerOptions(int argc, char** argv);
+ParseResult<ViewerOptions> parseViewerOptions(int argc, char** argv);
 
 }  // namespace microrelief

@@ -26,9 +26,9 @@ Camera viewCamera(int degrees, double top) {
     const double elevation = glm::radians(90.0 - degrees), azimuth = glm::radians(35.0);
     Camera camera;
     camera.target = {0.0, 0.5 * top, 0.0};
-    camera.eye = camera.target +
-                 1.35 * glm::dvec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
-                                   std::cos(elevation) * std::sin(azimuth));
+    camera.eye = camera.target + 1.35 * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
+                                                   std::sin(elevation),
+                                                   std::cos(elevation) * std::sin(azimuth));
     camera.up = degrees == 0 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
     camera.fovyDegrees = 45.0;
     return camera;
@@ -41,7 +41,8 @@ bool rayMeetsBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
             if (ray.origin[a] < lo[a] || ray.origin[a] > hi[a]) return false;
             continue;
         }
-        double ta = (lo[a] - ray.origin[a]) / ray.direction[a], tb = (hi[a] - ray.origin[a]) / ray.direction[a];
+        double ta = (lo[a] - ray.origin[a]) / ray.direction[a],
+               tb = (hi[a] - ray.origin[a]) / ray.direction[a];
         if (ta > tb) std::swap(ta, tb);
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);
@@ -51,11 +52,13 @@ bool rayMeetsBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
 
 // Which pixels' rays meet the relief's box: the pixels the fetch means are taken over.
 std::vector<bool> pixelsInBox(const CameraFrame& camera, const ReliefExtent& extent) {
-    const glm::dvec3 lo(-extent.halfWidth, 0.0, -extent.halfDepth), hi(extent.halfWidth, extent.topHeight, extent.halfDepth);
+    const glm::dvec3 lo(-extent.halfWidth, 0.0, -extent.halfDepth),
+        hi(extent.halfWidth, extent.topHeight, extent.halfDepth);
     std::vector<bool> inBox;
     inBox.reserve(static_cast<std::size_t>(camera.width) * camera.height);
     for (int row = 0; row < camera.height; ++row) {
-        for (int column = 0; column < camera.width; ++column) inBox.push_back(rayMeetsBox(camera.pixelRay(column, row), lo, hi));
+        for (int column = 0; column < camera.width; ++column)
+            inBox.push_back(rayMeetsBox(camera.pixelRay(column, row), lo, hi));
     }
     return inBox;
 }
@@ -72,7 +75,9 @@ public:
         draw();
         gl_.EndQuery(GL_TIME_ELAPSED);
         gl_.Finish();
-        const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const double wall =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
         GLuint64 ns = 0;
         gl_.GetQueryObjectui64v(query_.id(), GL_QUERY_RESULT, &ns);
         return {ns * 1e-6, wall};
@@ -85,7 +90,9 @@ private:
 
 }  // namespace
 
-HeightMap benchRelief(int n) { return synth::cobbles(n, n, 7); }
+HeightMap benchRelief(int n) {
+    return synth::cobbles(n, n, 7);
+}
 
 std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
     std::vector<Setting> settings;
@@ -94,7 +101,8 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
     if (method == Method::Multilevel) {
         for (float error : {0.0f, 1.0f, 4.0f}) {
             s.pixelError = error;
-            settings.push_back({s, error == 0.0f ? "exact" : std::to_string(static_cast<int>(error)) + "px"});
+            settings.push_back(
+                {s, error == 0.0f ? "exact" : std::to_string(static_cast<int>(error)) + "px"});
         }
     } else if (methodHasSteps(method)) {
         for (int steps = 8; steps <= std::min(2 * mapSize, maxSteps); steps *= 2) {
@@ -107,7 +115,8 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
     return settings;
 }
 
-void runBenchmark(GlContext& context, const BenchOptions& options, const std::vector<BenchMap>& maps,
+void runBenchmark(GlContext& context, const BenchOptions& options,
+                  const std::vector<BenchMap>& maps,
                   const std::function<void(const Measurement&)>& report) {
     context.makeCurrent();
     const GL& gl = context.gl();
@@ -123,7 +132,8 @@ void runBenchmark(GlContext& context, const BenchOptions& options, const std::ve
         const ReliefExtent extent = reliefExtent(*m.map, m.heightScale);
         for (int degrees : options.viewDegrees) {
             const CameraFrame camera =
-                resolveCamera(viewCamera(degrees, extent.topHeight), options.width, options.height, sceneRadius(extent));
+                resolveCamera(viewCamera(degrees, extent.topHeight), options.width, options.height,
+                              sceneRadius(extent));
             const ReferencePicture reference = traceReferencePicture(camera, *m.map, m.heightScale);
             const std::vector<bool> inBox = pixelsInBox(camera, extent);
             for (Method method : options.methods) {
@@ -155,7 +165,8 @@ void runBenchmark(GlContext& context, const BenchOptions& options, const std::ve
                     r.msWallMedian = median(wall);
 
                     // Accuracy from the plain variant's AOV.
-                    const Accuracy accuracy = compareWithReference(target.read(), camera, reference);
+                    const Accuracy accuracy =
+                        compareWithReference(target.read(), camera, reference);
                     r.coverageMismatchPct = accuracy.coverageMismatchPercent();
                     r.offHalfTexelPct = accuracy.offHalfTexelPercent();
                     r.exhausted = accuracy.exhausted;

@@ -27,8 +27,8 @@ struct Setting {
 
 struct Measurement {
     std::string method, param, map;
-    int mapSize = 0;       // max(W, H)
-    int viewDegrees = 0;   // between the view direction and the surface normal
+    int mapSize = 0;      // max(W, H)
+    int viewDegrees = 0;  // between the view direction and the surface normal
     int width = 0, height = 0;
     double msMedian = 0.0;      // GL_TIME_ELAPSED
     double msWallMedian = 0.0;  // draw + glFinish on the CPU clock
@@ -55,7 +55,8 @@ struct BenchOptions {
 std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps);
 
 // Runs everything; `report` is called after each measurement (progress and the CSV).
-void runBenchmark(GlContext& context, const BenchOptions& options, const std::vector<BenchMap>& maps,
+void runBenchmark(GlContext& context, const BenchOptions& options,
+                  const std::vector<BenchMap>& maps,
                   const std::function<void(const Measurement&)>& report);
 
 // The benchmark's relief at n x n: procedural cobblestones (synth::cobbles, another seed

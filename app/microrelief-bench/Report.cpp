@@ -18,7 +18,8 @@ namespace {
 // Text files get the same whole-or-nothing treatment as images.
 void writeTextAtomically(const std::filesystem::path& file, const std::string& text) {
     std::filesystem::create_directories(file.parent_path().empty() ? "." : file.parent_path());
-    const std::filesystem::path temporary = file.parent_path() / ("." + file.filename().string() + ".tmp");
+    const std::filesystem::path temporary =
+        file.parent_path() / ("." + file.filename().string() + ".tmp");
     {
         std::ofstream out(temporary, std::ios::binary);
         out << text;
@@ -56,25 +57,31 @@ using Key = std::tuple<std::string, int, int>;  // map, size, view
 // On a CPU rasteriser (llvmpipe, softpipe) the GL timer query does not cover the
 // deferred rasterisation, so the tables use the glFinish wall time there.
 bool softwareRenderer(const std::string& renderer) {
-    return renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos ||
+    return renderer.find("llvmpipe") != std::string::npos ||
+           renderer.find("softpipe") != std::string::npos ||
            renderer.find("swrast") != std::string::npos;
 }
 
-double frameMs(const Measurement& r, bool wall) { return wall ? r.msWallMedian : r.msMedian; }
+double frameMs(const Measurement& r, bool wall) {
+    return wall ? r.msWallMedian : r.msMedian;
+}
 
-const Measurement* find(const std::vector<Measurement>& rows, const Key& key, const std::string& method,
-                        const std::string& param) {
+const Measurement* find(const std::vector<Measurement>& rows, const Key& key,
+                        const std::string& method, const std::string& param) {
     for (const Measurement& r : rows) {
-        if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method && r.param == param) return &r;
+        if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method && r.param == param)
+            return &r;
     }
     return nullptr;
 }
 
 // The cheapest-to-reach setting: the smallest budget (rows are in increasing budget order).
-const Measurement* equalAccuracy(const std::vector<Measurement>& rows, const Key& key, const std::string& method,
-                                 const Measurement& multilevel) {
+const Measurement* equalAccuracy(const std::vector<Measurement>& rows, const Key& key,
+                                 const std::string& method, const Measurement& multilevel) {
     for (const Measurement& r : rows) {
-        if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method && reaches(r, multilevel)) return &r;
+        if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method &&
+            reaches(r, multilevel))
+            return &r;
     }
     return nullptr;
 }
@@ -98,30 +105,41 @@ std::vector<std::string> methods(const std::vector<Measurement>& rows) {
 
 }  // namespace
 
-void writeCsv(const std::filesystem::path& file, const RunInfo& info, const std::vector<Measurement>& rows) {
+void writeCsv(const std::filesystem::path& file, const RunInfo& info,
+              const std::vector<Measurement>& rows) {
     std::ostringstream out;
-    out << "method,param,map,map_size,view_deg,width,height,ms_median,ms_wall_median,fetches_mean,fetches_max,"
+    out << "method,param,map,map_size,view_deg,width,height,ms_median,ms_wall_median,fetches_mean,"
+           "fetches_max,"
            "coverage_mismatch_pct,off_half_texel_pct,exhausted_px,renderer\n";
     for (const Measurement& r : rows) {
-        out << r.method << ',' << r.param << ',' << r.map << ',' << r.mapSize << ',' << r.viewDegrees << ',' << r.width
-            << ',' << r.height << ',' << fixed(r.msMedian, 4) << ',' << fixed(r.msWallMedian, 4) << ','
-            << fixed(r.fetchesMean, 2) << ',' << fixed(r.fetchesMax, 0) << ',' << fixed(r.coverageMismatchPct, 4) << ','
-            << fixed(r.offHalfTexelPct, 4) << ',' << r.exhausted << ',' << csvQuote(info.renderer) << '\n';
+        out << r.method << ',' << r.param << ',' << r.map << ',' << r.mapSize << ','
+            << r.viewDegrees << ',' << r.width << ',' << r.height << ',' << fixed(r.msMedian, 4)
+            << ',' << fixed(r.msWallMedian, 4) << ',' << fixed(r.fetchesMean, 2) << ','
+            << fixed(r.fetchesMax, 0) << ',' << fixed(r.coverageMismatchPct, 4) << ','
+            << fixed(r.offHalfTexelPct, 4) << ',' << r.exhausted << ',' << csvQuote(info.renderer)
+            << '\n';
     }
     writeTextAtomically(file, out.str());
 }
 
-std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info, const std::vector<Measurement>& rows) {
+std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info,
+                          const std::vector<Measurement>& rows) {
     const bool wall = softwareRenderer(info.renderer);
     std::ostringstream md;
-    md << "Run " << info.date << " on " << info.renderer << " (`" << info.command << "`). Times: median of the "
-       << (wall ? "frame's glFinish wall time (a CPU rasteriser: the GL timer query misses its work)"
-                : "GL_TIME_ELAPSED timer queries")
+    md << "Run " << info.date << " on " << info.renderer << " (`" << info.command
+       << "`). Times: median of the "
+       << (wall
+               ? "frame's glFinish wall time (a CPU rasteriser: the GL timer query misses its work)"
+               : "GL_TIME_ELAPSED timer queries")
        << ", in ms.\n\n";
-    md << "Equal-accuracy time: for each peer, the smallest setting whose accuracy against the exact CPU "
-          "reference (% of pixels whose hit/miss disagrees, % of hits off by more than half a texel) is within "
-          "0.01 percentage points of the multilevel method's, its time, and that time over the multilevel "
-          "method's (above 1: the multilevel method is faster). *never*: no setting measured reaches it.\n\n";
+    md << "Equal-accuracy time: for each peer, the smallest setting whose accuracy against the "
+          "exact CPU "
+          "reference (% of pixels whose hit/miss disagrees, % of hits off by more than half a "
+          "texel) is within "
+          "0.01 percentage points of the multilevel method's, its time, and that time over the "
+          "multilevel "
+          "method's (above 1: the multilevel method is faster). *never*: no setting measured "
+          "reaches it.\n\n";
     const std::vector<std::string> peers = [&] {
         std::vector<std::string> all = methods(rows);
         all.erase(std::remove(all.begin(), all.end(), "multilevel"), all.end());
@@ -135,9 +153,9 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
     for (const Key& key : keys(rows)) {
         const Measurement* ml = find(rows, key, "multilevel", "exact");
         if (!ml) continue;
-        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
-           << fixed(frameMs(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3) << " | "
-           << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->fetchesMean, 1) << " |";
+        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
+           << "° | " << fixed(frameMs(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
+           << " | " << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->fetchesMean, 1) << " |";
         for (const std::string& p : peers) {
             const Measurement* eq = equalAccuracy(rows, key, p, *ml);
             if (!eq) {
@@ -150,17 +168,19 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         md << '\n';
     }
 
-    md << "\nAccuracy-controlled level of detail (multilevel, `--pixel-error`): time and accuracy.\n\n";
-    md << "| map | size | view | exact ms | 1 px ms | 1 px off % | 4 px ms | 4 px off % |\n|---|---|---|---|---|---|---|---|\n";
+    md << "\nAccuracy-controlled level of detail (multilevel, `--pixel-error`): time and "
+          "accuracy.\n\n";
+    md << "| map | size | view | exact ms | 1 px ms | 1 px off % | 4 px ms | 4 px off % "
+          "|\n|---|---|---|---|---|---|---|---|\n";
     for (const Key& key : keys(rows)) {
         const Measurement* e = find(rows, key, "multilevel", "exact");
         const Measurement* one = find(rows, key, "multilevel", "1px");
         const Measurement* four = find(rows, key, "multilevel", "4px");
         if (!e || !one || !four) continue;
-        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
-           << fixed(frameMs(*e, wall), 2) << " | " << fixed(frameMs(*one, wall), 2) << " | "
-           << fixed(one->offHalfTexelPct, 2) << " | " << fixed(frameMs(*four, wall), 2) << " | "
-           << fixed(four->offHalfTexelPct, 2) << " |\n";
+        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
+           << "° | " << fixed(frameMs(*e, wall), 2) << " | " << fixed(frameMs(*one, wall), 2)
+           << " | " << fixed(one->offHalfTexelPct, 2) << " | " << fixed(frameMs(*four, wall), 2)
+           << " | " << fixed(four->offHalfTexelPct, 2) << " |\n";
     }
 
     // The targets of issue 5, as measured.
@@ -169,27 +189,31 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
     int view45 = -1;
     for (const Measurement& r : rows) {
         if (r.method != "multilevel" || r.param != "exact" || r.map != kResampledRelief) continue;
-        if (view45 < 0 || std::abs(r.viewDegrees - 45) < std::abs(view45 - 45)) view45 = r.viewDegrees;
+        if (view45 < 0 || std::abs(r.viewDegrees - 45) < std::abs(view45 - 45))
+            view45 = r.viewDegrees;
     }
     for (const Measurement& r : rows) {
-        if (r.method == "multilevel" && r.param == "exact" && r.map == kResampledRelief && r.viewDegrees == view45) at45[r.mapSize] = &r;
+        if (r.method == "multilevel" && r.param == "exact" && r.map == kResampledRelief &&
+            r.viewDegrees == view45)
+            at45[r.mapSize] = &r;
     }
     if (at45.count(256) && at45.size() > 1) {
         const Measurement& big = *at45.rbegin()->second;
-        md << "- Time at " << big.mapSize << " / time at 256, multilevel at " << view45 << "°: "
-           << fixed(frameMs(big, wall) / frameMs(*at45[256], wall), 2) << " (target <= 1.5).\n";
+        md << "- Time at " << big.mapSize << " / time at 256, multilevel at " << view45
+           << "°: " << fixed(frameMs(big, wall) / frameMs(*at45[256], wall), 2)
+           << " (target <= 1.5).\n";
     }
     for (const auto& [size, r] : at45) {
         const double budget = 2.0 * (std::log2(size) + 1.0);
-        md << "- Mean fetches per pixel at " << size << ": " << fixed(r->fetchesMean, 1) << " (target <= "
-           << fixed(budget, 0) << ").\n";
+        md << "- Mean fetches per pixel at " << size << ": " << fixed(r->fetchesMean, 1)
+           << " (target <= " << fixed(budget, 0) << ").\n";
     }
     writeTextAtomically(file, md.str());
     return md.str();
 }
 
-bool writePlots(const std::filesystem::path& folder, const RunInfo& info, const std::vector<Measurement>& rows,
-                std::string& why) {
+bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
+                const std::vector<Measurement>& rows, std::string& why) {
     const bool wall = softwareRenderer(info.renderer);
     if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
         why = "gnuplot is not installed (apt-get install gnuplot-nox)";
@@ -200,7 +224,9 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info, const 
     // else its largest budget.
     int view = -1;
     for (const Measurement& r : rows) {
-        if (r.map == kResampledRelief && (view < 0 || std::abs(r.viewDegrees - 45) < std::abs(view - 45))) view = r.viewDegrees;
+        if (r.map == kResampledRelief &&
+            (view < 0 || std::abs(r.viewDegrees - 45) < std::abs(view - 45)))
+            view = r.viewDegrees;
     }
     std::ostringstream data;
     std::vector<std::string> names;
@@ -218,11 +244,13 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info, const 
             }
             if (!pick) {  // largest budget measured
                 for (const Measurement& r : rows) {
-                    if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method) pick = &r;
+                    if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method)
+                        pick = &r;
                 }
             }
             if (!pick) continue;
-            block << pick->mapSize << ' ' << frameMs(*pick, wall) << ' ' << pick->fetchesMean << '\n';
+            block << pick->mapSize << ' ' << frameMs(*pick, wall) << ' ' << pick->fetchesMean
+                  << '\n';
             ++points;
         }
         if (points == 0) continue;
@@ -231,18 +259,22 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info, const 
     }
     writeTextAtomically(folder / "plot_data.txt", data.str());
     std::ostringstream script;
-    script << "set terminal pngcairo size 800,500 noenhanced\nset logscale x 2\nset logscale y\nset key outside right\n"
+    script << "set terminal pngcairo size 800,500 noenhanced\nset logscale x 2\nset logscale "
+              "y\nset key outside right\n"
               "set grid\nset xlabel 'map size (texels per side)'\n";
     for (const auto& [output, column, label] :
-         {std::tuple<std::string, int, std::string>{"time_vs_size.png", 2,
-                                                    wall ? "frame time, wall clock (ms)" : "GPU time per frame (ms)"},
+         {std::tuple<std::string, int, std::string>{
+              "time_vs_size.png", 2,
+              wall ? "frame time, wall clock (ms)" : "GPU time per frame (ms)"},
           {"fetches_vs_size.png", 3, "texel fetches per pixel (mean)"}}) {
-        script << "set output '" << (folder / output).string() << "'\nset ylabel '" << label << "'\nset title '"
-               << "view " << view << " deg: multilevel exact; peers at equal accuracy, else their largest budget'\n"
+        script << "set output '" << (folder / output).string() << "'\nset ylabel '" << label
+               << "'\nset title '"
+               << "view " << view
+               << " deg: multilevel exact; peers at equal accuracy, else their largest budget'\n"
                << "plot ";
         for (std::size_t k = 0; k < names.size(); ++k) {
-            script << (k ? ", " : "") << "'" << (folder / "plot_data.txt").string() << "' index " << k << " using 1:"
-                   << column << " with linespoints title '" << names[k] << "'";
+            script << (k ? ", " : "") << "'" << (folder / "plot_data.txt").string() << "' index "
+                   << k << " using 1:" << column << " with linespoints title '" << names[k] << "'";
         }
         script << '\n';
     }

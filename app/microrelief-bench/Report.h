@@ -18,14 +18,16 @@ struct RunInfo {
 
 // Rewrites the whole CSV atomically (called after every measurement, so a long run
 // that is interrupted keeps what it measured).
-void writeCsv(const std::filesystem::path& file, const RunInfo& info, const std::vector<Measurement>& rows);
+void writeCsv(const std::filesystem::path& file, const RunInfo& info,
+              const std::vector<Measurement>& rows);
 
 // The summary table; returns the Markdown text it wrote.
-std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info, const std::vector<Measurement>& rows);
+std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info,
+                          const std::vector<Measurement>& rows);
 
 // time_vs_size.png and fetches_vs_size.png in `folder`, if gnuplot is installed;
 // returns false (and says why) otherwise.
-bool writePlots(const std::filesystem::path& folder, const RunInfo& info, const std::vector<Measurement>& rows,
-                std::string& why);
+bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
+                const std::vector<Measurement>& rows, std::string& why);
 
 }  // namespace microrelief::bench

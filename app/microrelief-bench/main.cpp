@@ -33,8 +33,10 @@ std::vector<BenchMap> loadMaps(const BenchOptions& options) {
         maps.push_back({kResampledRelief, std::make_shared<const HeightMap>(benchRelief(n)), 0.1});
     }
     for (const std::string& file : options.assets) {
-        const std::filesystem::path path = file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);
-        maps.push_back({path.stem().string(), std::make_shared<const HeightMap>(loadHeightMap(path)), 0.1});
+        const std::filesystem::path path =
+            file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);
+        maps.push_back(
+            {path.stem().string(), std::make_shared<const HeightMap>(loadHeightMap(path)), 0.1});
     }
     return maps;
 }
@@ -43,7 +45,8 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
     std::size_t n = 0;
     for (const BenchMap& m : maps) {
         for (Method method : options.methods) {
-            n += settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps).size();
+            n +=
+                settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps).size();
         }
     }
     return n * options.viewDegrees.size();
@@ -59,13 +62,17 @@ int main(int argc, char** argv) {
     std::string methodList = "multilevel,maxmip,normal,offset,steep,pom,relief";
     BenchOptions options;
     app.add_flag("--quick", quick,
-                 "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 (minutes on a CPU)");
-    app.add_option("--size", size, "Picture size WIDTHxHEIGHT (default 512x512; 256x256 with --quick)");
-    app.add_option("--frames", options.frames, "Timed frames per measurement, after two warm-up frames")
+                 "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
+                 "(minutes on a CPU)");
+    app.add_option("--size", size,
+                   "Picture size WIDTHxHEIGHT (default 512x512; 256x256 with --quick)");
+    app.add_option("--frames", options.frames,
+                   "Timed frames per measurement, after two warm-up frames")
         ->capture_default_str();
     app.add_option("--methods", methodList, "Comma-separated methods")->capture_default_str();
     app.add_option("--backend", backend, "auto, egl or osmesa")->capture_default_str();
-    app.add_option("--out-dir", outDir, "Folder for bench.csv, bench.md and the plots")->capture_default_str();
+    app.add_option("--out-dir", outDir, "Folder for bench.csv, bench.md and the plots")
+        ->capture_default_str();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -74,7 +81,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     setLogSink([](LogLevel level, const std::string& message) {
-        if (level == LogLevel::Warning) std::cerr << "microrelief-bench: warning: " << message << '\n';
+        if (level == LogLevel::Warning)
+            std::cerr << "microrelief-bench: warning: " << message << '\n';
     });
     try {
         if (options.frames < 10) throwBadInput("--frames must be at least 10");
@@ -90,10 +98,12 @@ int main(int argc, char** argv) {
         }
         parseSizeFlag(size, options.width, options.height);
         std::stringstream list(methodList);
-        for (std::string name; std::getline(list, name, ',');) options.methods.push_back(parseMethod(name));
+        for (std::string name; std::getline(list, name, ',');)
+            options.methods.push_back(parseMethod(name));
 
         const auto context = createHeadlessContext(parseBackend(backend));
-        RunInfo info{context->renderer(), today(), "microrelief-bench" + std::string(quick ? " --quick" : "")};
+        RunInfo info{context->renderer(), today(),
+                     "microrelief-bench" + std::string(quick ? " --quick" : "")};
         const std::vector<BenchMap> maps = loadMaps(options);
         const std::size_t total = countMeasurements(options, maps);
         const std::filesystem::path folder = outDir;
@@ -102,17 +112,22 @@ int main(int argc, char** argv) {
         runBenchmark(*context, options, maps, [&](const Measurement& r) {
             rows.push_back(r);
             writeCsv(folder / "bench.csv", info, rows);
-            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            std::printf("[%3zu/%zu %5.0f s] %-10s %-5s %s %d %2d deg: %9.3f ms, %7.1f fetches, %.3f %% / %.3f %%\n",
-                        rows.size(), total, elapsed, r.method.c_str(), r.param.c_str(), r.map.c_str(), r.mapSize,
-                        r.viewDegrees, r.msMedian, r.fetchesMean, r.coverageMismatchPct, r.offHalfTexelPct);
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::printf(
+                "[%3zu/%zu %5.0f s] %-10s %-5s %s %d %2d deg: %9.3f ms, %7.1f fetches, %.3f %% / "
+                "%.3f %%\n",
+                rows.size(), total, elapsed, r.method.c_str(), r.param.c_str(), r.map.c_str(),
+                r.mapSize, r.viewDegrees, r.msMedian, r.fetchesMean, r.coverageMismatchPct,
+                r.offHalfTexelPct);
             std::fflush(stdout);
         });
         std::cout << '\n' << writeMarkdown(folder / "bench.md", info, rows);
         std::string why;
-        if (!writePlots(folder, info, rows, why)) std::cerr << "microrelief-bench: warning: no plots: " << why << '\n';
-        std::cout << "microrelief-bench: wrote " << (folder / "bench.csv").string() << ", bench.md and plots in "
-                  << folder.string() << '\n';
+        if (!writePlots(folder, info, rows, why))
+            std::cerr << "microrelief-bench: warning: no plots: " << why << '\n';
+        std::cout << "microrelief-bench: wrote " << (folder / "bench.csv").string()
+                  << ", bench.md and plots in " << folder.string() << '\n';
         return 0;
     } catch (const Error& e) {
         std::cerr << "microrelief-bench: error: " << e.what() << '\n';

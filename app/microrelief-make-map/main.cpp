@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <sstream>
 #include <iostream>
+#include <sstream>
 #include <vector>
 
 #include "core/Error.h"
@@ -43,15 +43,18 @@ int main(int argc, char** argv) {
         const HeightMap map = synth::byName(name, width, height, seed);
         // Float for EXR; otherwise 16 bits, which PNG and TIFF store as they are.
         if (std::filesystem::path(out).extension() == ".exr") {
-            writeImageAtomically(out, {width, height, 1, PixelType::Float, map.samples.data(), {"Y"}});
+            writeImageAtomically(out,
+                                 {width, height, 1, PixelType::Float, map.samples.data(), {"Y"}});
         } else {
             std::vector<std::uint16_t> words(map.samples.size());
             for (std::size_t k = 0; k < words.size(); ++k) {
-                words[k] = static_cast<std::uint16_t>(std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 65535.0f));
+                words[k] = static_cast<std::uint16_t>(
+                    std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 65535.0f));
             }
             writeImageAtomically(out, {width, height, 1, PixelType::UInt16, words.data(), {"Y"}});
         }
-        std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width << "x" << height << ")\n";
+        std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width << "x"
+                  << height << ")\n";
         return 0;
     } catch (const Error& e) {
         std::cerr << "microrelief-make-map: error: " << e.what() << '\n';

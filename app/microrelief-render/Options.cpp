@@ -10,7 +10,8 @@ namespace microrelief {
 ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     RenderOptions o;
     CLI::App app{
-        "Renders a height map as microrelief, ray traced per pixel by multilevel binary subdivision\n"
+        "Renders a height map as microrelief, ray traced per pixel by multilevel binary "
+        "subdivision\n"
         "(Vyatkin & Romaniuk), headless through EGL or OSMesa.",
         "microrelief-render"};
     app.get_formatter()->column_width(34);
@@ -21,13 +22,16 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     std::string backend = "auto", aov;
     std::string out = o.out.string();
     scene.addMapAndCamera(app);
-    app.add_option("--out", out, "Shaded picture; the format follows the extension")->capture_default_str();
-    app.add_option("--aov", aov, "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss");
+    app.add_option("--out", out, "Shaded picture; the format follows the extension")
+        ->capture_default_str();
+    app.add_option("--aov", aov,
+                   "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss");
     scene.addShading(app);
     app.add_option("--backend", backend, "GL backend: auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();
-    app.add_flag("--compare-reference", o.compareReference,
-                 "Also trace every pixel with the exact CPU reference and print how the picture differs");
+    app.add_flag(
+        "--compare-reference", o.compareReference,
+        "Also trace every pixel with the exact CPU reference and print how the picture differs");
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
     app.add_flag("-v,--verbose", o.verbose, "Print the GL renderer and shader logs");
     app.set_version_flag("--version", std::string("microrelief-render ") + MICRORELIEF_VERSION);

@@ -19,16 +19,18 @@ namespace {
 constexpr const char* kProgram = "microrelief-render";
 
 // --compare-reference: the accuracy sweep's figures for this one view.
-void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map, double heightScale) {
+void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
+                   double heightScale) {
     const Accuracy a = compareWithReference(frame, camera, map, heightScale);
-    std::printf("accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n", a.pixels,
-                a.referenceHits);
-    std::printf("  hit/miss disagreement        %8zu px  %8.4f %% of pixels\n", a.coverageMismatches,
-                a.coverageMismatchPercent());
+    std::printf(
+        "accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n",
+        a.pixels, a.referenceHits);
+    std::printf("  hit/miss disagreement        %8zu px  %8.4f %% of pixels\n",
+                a.coverageMismatches, a.coverageMismatchPercent());
     std::printf("  off by more than half a texel %7zu px  %8.4f %% of hit pixels\n", a.offHalfTexel,
                 a.offHalfTexelPercent());
-    std::printf("  position error               p99 %.3g texels, max %.3g texels\n", a.p99ErrorTexels,
-                a.maxErrorTexels);
+    std::printf("  position error               p99 %.3g texels, max %.3g texels\n",
+                a.p99ErrorTexels, a.maxErrorTexels);
     std::printf("  out of the iteration budget  %8zu px\n", a.exhausted);
 }
 
@@ -37,12 +39,15 @@ int run(const RenderOptions& o) {
     if (o.aov && o.aov->extension() != ".exr") {
         throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
     }
-    checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov} : std::vector{o.out});
+    checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov}
+                             : std::vector{o.out});
     const std::filesystem::path heightFile = o.heightFile ? *o.heightFile : defaultHeightMapPath();
     const HeightMap map = loadHeightMap(heightFile, o.load);
 
     const auto context = createHeadlessContext(o.backend);
-    if (o.verbose) logInfo("GL: " + context->renderer() + ", " + context->version() + " via " + context->description());
+    if (o.verbose)
+        logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
+                context->description());
     const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.job);
     const RenderedFrame& frame = result.frame;
 
@@ -53,19 +58,26 @@ int run(const RenderOptions& o) {
     const std::vector<std::uint8_t> rgb = rgbFromRgba(frame.color, frame.width, frame.height);
     batch.write(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
     if (o.aov) {
-        batch.write(*o.aov, {frame.width, frame.height, 4, PixelType::Float, frame.position.data(), {"R", "G", "B", "A"}});
+        batch.write(*o.aov, {frame.width,
+                             frame.height,
+                             4,
+                             PixelType::Float,
+                             frame.position.data(),
+                             {"R", "G", "B", "A"}});
     }
     batch.commit();
 
     if (o.compareReference) printAccuracy(frame, result.camera, map, o.job.heightScale);
     if (exhausted > 0) {
-        logWarning(std::to_string(exhausted) + " pixel(s) ran out of the iteration budget (shown magenta)");
+        logWarning(std::to_string(exhausted) +
+                   " pixel(s) ran out of the iteration budget (shown magenta)");
     }
     if (!o.quiet) {
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf("%s: wrote %s%s%s (%dx%d, map %dx%d, %.2f s, %s)\n", kProgram, o.out.c_str(),
-                    o.aov ? " and " : "", o.aov ? o.aov->c_str() : "", frame.width, frame.height, map.width,
-                    map.height, seconds, context->description().c_str());
+                    o.aov ? " and " : "", o.aov ? o.aov->c_str() : "", frame.width, frame.height,
+                    map.width, map.height, seconds, context->description().c_str());
     }
     return 0;
 }

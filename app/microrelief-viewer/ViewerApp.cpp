@@ -59,7 +59,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     loadedWith_ = options.scene.load;
     // A degenerate camera is a bad argument: refuse it before any window opens.
     resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
-                  sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_, options.scene.job.heightScale)));
+                  sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
+                                           options.scene.job.heightScale)));
 
     state_.mapName = file.filename().string();
     setupWindow();
@@ -514,7 +515,8 @@ ViewerApp::ViewRect ViewerApp::viewRect() const {
 CameraFrame ViewerApp::cameraFrame() const {
     const glm::ivec2 size = viewSize();
     return resolveCamera(controller_.camera(), size.x, size.y,
-                         sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_, state_.scene.job.heightScale)));
+                         sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
+                                                  state_.scene.job.heightScale)));
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {

@@ -10,8 +10,9 @@ constexpr const char* kProgram = "microrelief-viewer";
 }  // namespace
 
 int main(int argc, char** argv) {
-    return runProgram<ViewerOptions>(kProgram, parseViewerOptions(argc, argv), [](const ViewerOptions& options) {
-        ViewerApp viewer(options);
-        return viewer.run();
-    });
+    return runProgram<ViewerOptions>(kProgram, parseViewerOptions(argc, argv),
+                                     [](const ViewerOptions& options) {
+                                         ViewerApp viewer(options);
+                                         return viewer.run();
+                                     });
 }

@@ -26,7 +26,8 @@ struct ParseResult {
 // Parses argv with `app`, whose options write into the caller's variables, then calls
 // `finish` to turn them into Options (it throws Error(BadInput) for a bad value).
 template <class Options>
-ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv, const std::function<Options()>& finish) {
+ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv,
+                                      const std::function<Options()>& finish) {
     ParseResult<Options> result;
     try {
         app.parse(argc, argv);
@@ -54,7 +55,8 @@ ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv, cons
 // (information only with the options' `verbose`), runs `body` and turns its Error into
 // one line and the exit status the error's kind calls for.
 template <class Options>
-int runProgram(const char* program, ParseResult<Options>&& parsed, const std::function<int(const Options&)>& body) {
+int runProgram(const char* program, ParseResult<Options>&& parsed,
+               const std::function<int(const Options&)>& body) {
     auto fail = [program](int status, const std::string& message) {
         std::cerr << program << ": error: " << message << '\n';
         return status;
@@ -67,7 +69,8 @@ int runProgram(const char* program, ParseResult<Options>&& parsed, const std::fu
     const bool verbose = parsed.options->verbose;
     setLogSink([program, verbose](LogLevel level, const std::string& message) {
         if (level == LogLevel::Info && !verbose) return;
-        std::cerr << program << ": " << (level == LogLevel::Warning ? "warning: " : "") << message << '\n';
+        std::cerr << program << ": " << (level == LogLevel::Warning ? "warning: " : "") << message
+                  << '\n';
     });
     try {
         return body(*parsed.options);

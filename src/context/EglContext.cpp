@@ -27,16 +27,26 @@ bool hasExtension(const char* list, const char* name) {
 
 std::string eglErrorName(EGLint error) {
     switch (error) {
-        case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-        case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-        case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-        case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-        case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-        case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-        case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-        case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-        case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-        default: return "EGL error " + std::to_string(error);
+        case EGL_NOT_INITIALIZED:
+            return "EGL_NOT_INITIALIZED";
+        case EGL_BAD_ACCESS:
+            return "EGL_BAD_ACCESS";
+        case EGL_BAD_ALLOC:
+            return "EGL_BAD_ALLOC";
+        case EGL_BAD_ATTRIBUTE:
+            return "EGL_BAD_ATTRIBUTE";
+        case EGL_BAD_CONFIG:
+            return "EGL_BAD_CONFIG";
+        case EGL_BAD_CONTEXT:
+            return "EGL_BAD_CONTEXT";
+        case EGL_BAD_DISPLAY:
+            return "EGL_BAD_DISPLAY";
+        case EGL_BAD_MATCH:
+            return "EGL_BAD_MATCH";
+        case EGL_BAD_PARAMETER:
+            return "EGL_BAD_PARAMETER";
+        default:
+            return "EGL error " + std::to_string(error);
     }
 }
 
@@ -48,24 +58,28 @@ struct Candidate {
 std::vector<Candidate> candidateDisplays() {
     std::vector<Candidate> hardware, software;
     const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    auto getPlatformDisplay =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+        eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (!getPlatformDisplay) return {};
 
     if (hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
-        auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-        auto queryDeviceString =
-            reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+        auto queryDevices =
+            reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+        auto queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+            eglGetProcAddress("eglQueryDeviceStringEXT"));
         EGLint count = 0;
         if (queryDevices && queryDevices(0, nullptr, &count) && count > 0) {
             std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
             queryDevices(count, devices.data(), &count);
             for (EGLint k = 0; k < count; ++k) {
-                const char* ext = queryDeviceString ? queryDeviceString(devices[k], EGL_EXTENSIONS) : nullptr;
+                const char* ext =
+                    queryDeviceString ? queryDeviceString(devices[k], EGL_EXTENSIONS) : nullptr;
                 const bool isSoftware = hasExtension(ext, "EGL_MESA_device_software");
-                EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[k], nullptr);
+                EGLDisplay display =
+                    getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[k], nullptr);
                 if (display == EGL_NO_DISPLAY) continue;
-                const std::string name = "device " + std::to_string(k) + (isSoftware ? ", software" : "");
+                const std::string name =
+                    "device " + std::to_string(k) + (isSoftware ? ", software" : "");
                 (isSoftware ? software : hardware).push_back({display, name});
             }
         }
@@ -73,13 +87,16 @@ std::vector<Candidate> candidateDisplays() {
     std::vector<Candidate> all = hardware;
     all.insert(all.end(), software.begin(), software.end());
     if (hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
-        EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        EGLDisplay display =
+            getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (display != EGL_NO_DISPLAY) all.push_back({display, "surfaceless"});
     }
     return all;
 }
 
-GLADapiproc loadEgl(void*, const char* name) { return reinterpret_cast<GLADapiproc>(eglGetProcAddress(name)); }
+GLADapiproc loadEgl(void*, const char* name) {
+    return reinterpret_cast<GLADapiproc>(eglGetProcAddress(name));
+}
 
 class EglContext final : public GlContext {
 public:
@@ -97,7 +114,8 @@ public:
 
     void makeCurrent() override {
         if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
-            throwRuntime("EGL (" + name_ + "): eglMakeCurrent failed: " + eglErrorName(eglGetError()));
+            throwRuntime("EGL (" + name_ +
+                         "): eglMakeCurrent failed: " + eglErrorName(eglGetError()));
         }
     }
     std::string description() const override { return "egl (" + name_ + ")"; }
@@ -123,24 +141,32 @@ EGLContext createContextOn(EGLDisplay display, std::string& why) {
         why = "no desktop OpenGL API";
         return EGL_NO_CONTEXT;
     }
-    const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+    const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                                       EGL_PBUFFER_BIT, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint configs = 0;
     if (!eglChooseConfig(display, configAttributes, &config, 1, &configs) || configs == 0) {
         why = "no OpenGL config";
         return EGL_NO_CONTEXT;
     }
-    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                        3,
+                                        EGL_CONTEXT_MINOR_VERSION,
+                                        3,
+                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                         EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
-    if (context == EGL_NO_CONTEXT) why = "eglCreateContext (3.3 core): " + eglErrorName(eglGetError());
+    if (context == EGL_NO_CONTEXT)
+        why = "eglCreateContext (3.3 core): " + eglErrorName(eglGetError());
     return context;
 }
 
 }  // namespace
 
-bool isEglPresent() { return !candidateDisplays().empty(); }
+bool isEglPresent() {
+    return !candidateDisplays().empty();
+}
 
 std::unique_ptr<GlContext> createEglContext() {
     const std::vector<Candidate> candidates = candidateDisplays();

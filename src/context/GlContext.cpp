@@ -21,14 +21,21 @@ std::string glString(const GL& gl, GLenum name) {
 }
 }  // namespace
 
-std::string GlContext::renderer() const { return glString(gl_, GL_RENDERER); }
-std::string GlContext::version() const { return glString(gl_, GL_VERSION); }
+std::string GlContext::renderer() const {
+    return glString(gl_, GL_RENDERER);
+}
+std::string GlContext::version() const {
+    return glString(gl_, GL_VERSION);
+}
 
 std::unique_ptr<GlContext> createHeadlessContext(Backend backend) {
     switch (backend) {
-        case Backend::Egl: return createEglContext();
-        case Backend::OsMesa: return createOsMesaContext();
-        case Backend::Auto: break;
+        case Backend::Egl:
+            return createEglContext();
+        case Backend::OsMesa:
+            return createOsMesaContext();
+        case Backend::Auto:
+            break;
     }
     std::string eglReason;
     try {
@@ -48,9 +55,12 @@ bool isOsMesaPresent();  // OsMesaContext.cpp
 
 bool isBackendPresent(Backend backend) {
     switch (backend) {
-        case Backend::Egl: return isEglPresent();
-        case Backend::OsMesa: return isOsMesaPresent();
-        case Backend::Auto: return isEglPresent() || isOsMesaPresent();
+        case Backend::Egl:
+            return isEglPresent();
+        case Backend::OsMesa:
+            return isOsMesaPresent();
+        case Backend::Auto:
+            return isEglPresent() || isOsMesaPresent();
     }
     return false;
 }
@@ -64,9 +74,12 @@ Backend parseBackend(const std::string& name) {
 
 const char* backendName(Backend backend) {
     switch (backend) {
-        case Backend::Auto: return "auto";
-        case Backend::Egl: return "egl";
-        case Backend::OsMesa: return "osmesa";
+        case Backend::Auto:
+            return "auto";
+        case Backend::Egl:
+            return "egl";
+        case Backend::OsMesa:
+            return "osmesa";
     }
     return "?";
 }

@@ -10,7 +10,9 @@ namespace microrelief {
 
 namespace {
 
-GLADapiproc loadGlfw(void*, const char* name) { return glfwGetProcAddress(name); }
+GLADapiproc loadGlfw(void*, const char* name) {
+    return glfwGetProcAddress(name);
+}
 
 // glfwInit once per process; glfwTerminate at exit, after every window is gone.
 void initGlfw() {
@@ -23,7 +25,8 @@ void initGlfw() {
     if (!ready) {
         const char* description = nullptr;
         glfwGetError(&description);
-        throwRuntime(std::string("GLFW: cannot initialise (") + (description ? description : "no display?") + ")");
+        throwRuntime(std::string("GLFW: cannot initialise (") +
+                     (description ? description : "no display?") + ")");
     }
 }
 
@@ -39,12 +42,13 @@ GlfwContext::GlfwContext(const GlfwWindowOptions& options) {
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
-    window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    window_ =
+        glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
     if (!window_) {
         const char* description = nullptr;
         glfwGetError(&description);
-        throwRuntime(std::string("GLFW: cannot open a GL 3.3 core window (") + (description ? description : "?") +
-                     ")");
+        throwRuntime(std::string("GLFW: cannot open a GL 3.3 core window (") +
+                     (description ? description : "?") + ")");
     }
     try {
         makeCurrent();
@@ -59,7 +63,9 @@ GlfwContext::~GlfwContext() {
     if (window_) glfwDestroyWindow(window_);
 }
 
-void GlfwContext::makeCurrent() { glfwMakeContextCurrent(window_); }
+void GlfwContext::makeCurrent() {
+    glfwMakeContextCurrent(window_);
+}
 
 std::unique_ptr<GlfwContext> createGlfwContext(const GlfwWindowOptions& options) {
     return std::make_unique<GlfwContext>(options);

@@ -19,11 +19,12 @@ namespace {
 using OSMesaContext = struct osmesa_context*;
 using PFNOSMesaCreateContextAttribs = OSMesaContext (*)(const int* attribList, OSMesaContext share);
 using PFNOSMesaDestroyContext = void (*)(OSMesaContext);
-using PFNOSMesaMakeCurrent = unsigned char (*)(OSMesaContext, void* buffer, unsigned type, int width, int height);
+using PFNOSMesaMakeCurrent = unsigned char (*)(OSMesaContext, void* buffer, unsigned type,
+                                               int width, int height);
 using PFNOSMesaGetProcAddress = void (*(*)(const char*))();
-constexpr int OSMESA_FORMAT = 0x22, OSMESA_RGBA = 0x1908, OSMESA_DEPTH_BITS = 0x30, OSMESA_PROFILE = 0x33,
-              OSMESA_CORE_PROFILE = 0x34, OSMESA_CONTEXT_MAJOR_VERSION = 0x36,
-              OSMESA_CONTEXT_MINOR_VERSION = 0x37;
+constexpr int OSMESA_FORMAT = 0x22, OSMESA_RGBA = 0x1908, OSMESA_DEPTH_BITS = 0x30,
+              OSMESA_PROFILE = 0x33, OSMESA_CORE_PROFILE = 0x34,
+              OSMESA_CONTEXT_MAJOR_VERSION = 0x36, OSMESA_CONTEXT_MINOR_VERSION = 0x37;
 constexpr unsigned kUnsignedByte = 0x1401;
 
 struct OsMesaLibrary {
@@ -48,11 +49,14 @@ const OsMesaLibrary& library() {
             }
         }
         if (!l.handle) return l;
-        l.createContextAttribs =
-            reinterpret_cast<PFNOSMesaCreateContextAttribs>(dlsym(l.handle, "OSMesaCreateContextAttribs"));
-        l.destroyContext = reinterpret_cast<PFNOSMesaDestroyContext>(dlsym(l.handle, "OSMesaDestroyContext"));
-        l.makeCurrent = reinterpret_cast<PFNOSMesaMakeCurrent>(dlsym(l.handle, "OSMesaMakeCurrent"));
-        l.getProcAddress = reinterpret_cast<PFNOSMesaGetProcAddress>(dlsym(l.handle, "OSMesaGetProcAddress"));
+        l.createContextAttribs = reinterpret_cast<PFNOSMesaCreateContextAttribs>(
+            dlsym(l.handle, "OSMesaCreateContextAttribs"));
+        l.destroyContext =
+            reinterpret_cast<PFNOSMesaDestroyContext>(dlsym(l.handle, "OSMesaDestroyContext"));
+        l.makeCurrent =
+            reinterpret_cast<PFNOSMesaMakeCurrent>(dlsym(l.handle, "OSMesaMakeCurrent"));
+        l.getProcAddress =
+            reinterpret_cast<PFNOSMesaGetProcAddress>(dlsym(l.handle, "OSMesaGetProcAddress"));
         return l;
     }();
     return lib;
@@ -87,17 +91,28 @@ private:
 
 }  // namespace
 
-bool isOsMesaPresent() { return library().handle != nullptr; }
+bool isOsMesaPresent() {
+    return library().handle != nullptr;
+}
 
 std::unique_ptr<GlContext> createOsMesaContext() {
     const OsMesaLibrary& lib = library();
     if (!lib.handle) throwRuntime("OSMesa: libOSMesa.so.8 not found (Debian package libosmesa6)");
-    if (!lib.createContextAttribs || !lib.destroyContext || !lib.makeCurrent || !lib.getProcAddress) {
+    if (!lib.createContextAttribs || !lib.destroyContext || !lib.makeCurrent ||
+        !lib.getProcAddress) {
         throwRuntime("OSMesa: the library lacks OSMesaCreateContextAttribs (too old)");
     }
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_PROFILE,
-                              OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                              OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              3,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              3,
+                              0};
     OSMesaContext context = lib.createContextAttribs(attributes, nullptr);
     if (!context) throwRuntime("OSMesa: cannot create a GL 3.3 core context");
     try {

@@ -8,7 +8,7 @@
 namespace microrelief {
 
 std::filesystem::path dataDirectory();
-std::filesystem::path shaderDirectory();     // dataDirectory() / "shaders"
+std::filesystem::path shaderDirectory();       // dataDirectory() / "shaders"
 std::filesystem::path defaultHeightMapPath();  // the bundled default map
 
 }  // namespace microrelief

@@ -7,13 +7,16 @@ namespace microrelief {
 namespace {
 LogSink& sink() {
     static LogSink instance = [](LogLevel level, const std::string& message) {
-        std::cerr << "microrelief: " << (level == LogLevel::Warning ? "warning: " : "") << message << '\n';
+        std::cerr << "microrelief: " << (level == LogLevel::Warning ? "warning: " : "") << message
+                  << '\n';
     };
     return instance;
 }
 }  // namespace
 
-void setLogSink(LogSink s) { sink() = std::move(s); }
+void setLogSink(LogSink s) {
+    sink() = std::move(s);
+}
 
 void logMessage(LogLevel level, const std::string& message) {
     if (sink()) sink()(level, message);

@@ -14,7 +14,11 @@ using LogSink = std::function<void(LogLevel, const std::string&)>;
 
 void setLogSink(LogSink sink);
 void logMessage(LogLevel level, const std::string& message);
-inline void logWarning(const std::string& message) { logMessage(LogLevel::Warning, message); }
-inline void logInfo(const std::string& message) { logMessage(LogLevel::Info, message); }
+inline void logWarning(const std::string& message) {
+    logMessage(LogLevel::Warning, message);
+}
+inline void logInfo(const std::string& message) {
+    logMessage(LogLevel::Info, message);
+}
 
 }  // namespace microrelief

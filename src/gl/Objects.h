@@ -48,27 +48,51 @@ private:
 };
 
 struct TexturePolicy {
-    static GLuint create(const GL& gl) { GLuint n = 0; gl.GenTextures(1, &n); return n; }
+    static GLuint create(const GL& gl) {
+        GLuint n = 0;
+        gl.GenTextures(1, &n);
+        return n;
+    }
     static void destroy(const GL& gl, GLuint n) { gl.DeleteTextures(1, &n); }
 };
 struct BufferPolicy {
-    static GLuint create(const GL& gl) { GLuint n = 0; gl.GenBuffers(1, &n); return n; }
+    static GLuint create(const GL& gl) {
+        GLuint n = 0;
+        gl.GenBuffers(1, &n);
+        return n;
+    }
     static void destroy(const GL& gl, GLuint n) { gl.DeleteBuffers(1, &n); }
 };
 struct VertexArrayPolicy {
-    static GLuint create(const GL& gl) { GLuint n = 0; gl.GenVertexArrays(1, &n); return n; }
+    static GLuint create(const GL& gl) {
+        GLuint n = 0;
+        gl.GenVertexArrays(1, &n);
+        return n;
+    }
     static void destroy(const GL& gl, GLuint n) { gl.DeleteVertexArrays(1, &n); }
 };
 struct FramebufferPolicy {
-    static GLuint create(const GL& gl) { GLuint n = 0; gl.GenFramebuffers(1, &n); return n; }
+    static GLuint create(const GL& gl) {
+        GLuint n = 0;
+        gl.GenFramebuffers(1, &n);
+        return n;
+    }
     static void destroy(const GL& gl, GLuint n) { gl.DeleteFramebuffers(1, &n); }
 };
 struct RenderbufferPolicy {
-    static GLuint create(const GL& gl) { GLuint n = 0; gl.GenRenderbuffers(1, &n); return n; }
+    static GLuint create(const GL& gl) {
+        GLuint n = 0;
+        gl.GenRenderbuffers(1, &n);
+        return n;
+    }
     static void destroy(const GL& gl, GLuint n) { gl.DeleteRenderbuffers(1, &n); }
 };
 struct QueryPolicy {
-    static GLuint create(const GL& gl) { GLuint n = 0; gl.GenQueries(1, &n); return n; }
+    static GLuint create(const GL& gl) {
+        GLuint n = 0;
+        gl.GenQueries(1, &n);
+        return n;
+    }
     static void destroy(const GL& gl, GLuint n) { gl.DeleteQueries(1, &n); }
 };
 struct ShaderPolicy {

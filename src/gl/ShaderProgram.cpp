@@ -12,20 +12,27 @@ namespace {
 
 const char* stageName(GLenum stage) {
     switch (stage) {
-        case GL_VERTEX_SHADER: return "vertex";
-        case GL_FRAGMENT_SHADER: return "fragment";
-        default: return "shader";
+        case GL_VERTEX_SHADER:
+            return "vertex";
+        case GL_FRAGMENT_SHADER:
+            return "fragment";
+        default:
+            return "shader";
     }
 }
 
 std::string infoLog(const GL& gl, GLuint name, bool isProgram) {
     GLint length = 0;
-    if (isProgram) gl.GetProgramiv(name, GL_INFO_LOG_LENGTH, &length);
-    else gl.GetShaderiv(name, GL_INFO_LOG_LENGTH, &length);
+    if (isProgram)
+        gl.GetProgramiv(name, GL_INFO_LOG_LENGTH, &length);
+    else
+        gl.GetShaderiv(name, GL_INFO_LOG_LENGTH, &length);
     if (length <= 1) return {};
     std::vector<char> text(static_cast<std::size_t>(length));
-    if (isProgram) gl.GetProgramInfoLog(name, length, nullptr, text.data());
-    else gl.GetShaderInfoLog(name, length, nullptr, text.data());
+    if (isProgram)
+        gl.GetProgramInfoLog(name, length, nullptr, text.data());
+    else
+        gl.GetShaderInfoLog(name, length, nullptr, text.data());
     std::string log(text.data());
     while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
     return log;
@@ -39,7 +46,8 @@ std::string summarise(const std::string& log) {
     int count = 0;
     while (std::getline(lines, line)) {
         if (line.empty()) continue;
-        if (first.empty() || (first.find("error") == std::string::npos && line.find("error") != std::string::npos)) {
+        if (first.empty() ||
+            (first.find("error") == std::string::npos && line.find("error") != std::string::npos)) {
             first = line;
         }
         ++count;
@@ -58,9 +66,10 @@ Shader compileShader(const GL& gl, GLenum stage, const ShaderSource& source) {
     GLint ok = GL_FALSE;
     gl.GetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
     const std::string log = mapCompilerLog(infoLog(gl, shader.id(), false), source.files);
-    const std::string what = std::string(stageName(stage)) + " shader " +
-                             (source.files.empty() ? std::string("?") : source.files.front().string()) + " (GLSL " +
-                             source.version + ")";
+    const std::string what =
+        std::string(stageName(stage)) + " shader " +
+        (source.files.empty() ? std::string("?") : source.files.front().string()) + " (GLSL " +
+        source.version + ")";
     if (!ok) {
         logInfo("compile log of the " + what + ":\n" + log);
         throwRuntime("cannot compile the " + what + ": " + summarise(log));
@@ -69,7 +78,8 @@ Shader compileShader(const GL& gl, GLenum stage, const ShaderSource& source) {
     return shader;
 }
 
-Program linkProgram(const GL& gl, const Shader& vertex, const Shader& fragment, const std::string& name) {
+Program linkProgram(const GL& gl, const Shader& vertex, const Shader& fragment,
+                    const std::string& name) {
     Program program(gl, gl.CreateProgram());
     gl.AttachShader(program.id(), vertex.id());
     gl.AttachShader(program.id(), fragment.id());

@@ -11,7 +11,8 @@
 namespace microrelief::gl {
 
 Shader compileShader(const GL& gl, GLenum stage, const ShaderSource& source);
-Program linkProgram(const GL& gl, const Shader& vertex, const Shader& fragment, const std::string& name);
+Program linkProgram(const GL& gl, const Shader& vertex, const Shader& fragment,
+                    const std::string& name);
 
 // A uniform's location, or -1 when the linker dropped it (unused): setting -1 is a no-op.
 inline GLint uniform(const GL& gl, const Program& program, const char* name) {

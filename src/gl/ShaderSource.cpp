@@ -25,7 +25,8 @@ public:
     explicit Assembler(ShaderSource& out) : out_(out) {}
 
     void splice(const std::filesystem::path& file, int depth) {
-        if (depth > kMaxIncludeDepth) throwRuntime(file.string() + ": #include nested too deeply (a cycle?)");
+        if (depth > kMaxIncludeDepth)
+            throwRuntime(file.string() + ": #include nested too deeply (a cycle?)");
         const int index = static_cast<int>(out_.files.size());
         out_.files.push_back(file);
         std::istringstream lines(readText(file));
@@ -41,8 +42,8 @@ public:
                 const std::filesystem::path target = file.parent_path() / match[1].str();
                 std::error_code ec;
                 if (!std::filesystem::exists(target, ec)) {
-                    throwRuntime(file.string() + ":" + std::to_string(number) + ": #include \"" + match[1].str() +
-                                 "\" not found");
+                    throwRuntime(file.string() + ":" + std::to_string(number) + ": #include \"" +
+                                 match[1].str() + "\" not found");
                 }
                 splice(target.lexically_normal(), depth + 1);
                 lineMarker(number + 1, index);
@@ -69,12 +70,14 @@ ShaderSource assembleShader(const std::filesystem::path& file, const std::string
     ShaderSource source;
     source.version = version;
     source.text = "#version " + version + "\n";
-    for (const ShaderDefine& d : defines) source.text += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
+    for (const ShaderDefine& d : defines)
+        source.text += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
     Assembler(source).splice(file.lexically_normal(), 0);
     return source;
 }
 
-std::string mapCompilerLog(const std::string& log, const std::vector<std::filesystem::path>& files) {
+std::string mapCompilerLog(const std::string& log,
+                           const std::vector<std::filesystem::path>& files) {
     // Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error ..."; glslang: "ERROR: 0:12: ...".
     static const std::regex location(R"((\d+)(?::(\d+)\((\d+)\)|\((\d+)\)|:(\d+)))");
     std::string out;
@@ -85,7 +88,9 @@ std::string mapCompilerLog(const std::string& log, const std::vector<std::filesy
         if (std::regex_search(line, m, location)) {
             const std::size_t index = std::stoul(m[1].str());
             if (index < files.size()) {
-                const std::string lineNo = m[2].matched ? m[2].str() : m[4].matched ? m[4].str() : m[5].str();
+                const std::string lineNo = m[2].matched   ? m[2].str()
+                                           : m[4].matched ? m[4].str()
+                                                          : m[5].str();
                 std::string where = files[index].string() + ":" + lineNo;
                 if (m[3].matched) where += ":" + m[3].str();
                 line = m.prefix().str() + where + m.suffix().str();

@@ -4,9 +4,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "core/Error.h"
@@ -38,7 +38,9 @@ float HeightMap::minValue() const {
 
 namespace {
 
-std::string describe(const std::filesystem::path& file) { return file.string(); }
+std::string describe(const std::filesystem::path& file) {
+    return file.string();
+}
 
 // libpng, under OpenImageIO 2.4's PNG reader, prints "libpng error: ..." to stderr
 // itself before OIIO reports the same failure to us; our one-line error says it
@@ -68,7 +70,8 @@ private:
 
 }  // namespace
 
-void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const std::string& source) {
+void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options,
+                    const std::string& source) {
     if (map.width <= 0 || map.height <= 0 || map.empty()) {
         throwBadInput(source + ": the height map has no samples");
     }
@@ -76,8 +79,9 @@ void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const s
         float lo = INFINITY, hi = -INFINITY;
         for (float h : map.samples) {
             if (!std::isfinite(h)) {
-                throwBadInput(source + ": the height map holds a non-finite value (NaN or Inf); "
-                                       "--normalize cannot map it");
+                throwBadInput(source +
+                              ": the height map holds a non-finite value (NaN or Inf); "
+                              "--normalize cannot map it");
             }
             lo = std::min(lo, h);
             hi = std::max(hi, h);
@@ -93,9 +97,11 @@ void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const s
         std::ostringstream message;
         // The spec asks every refusal to suggest --normalize; for a non-finite value it
         // can only help once the value is repaired, and the message says so.
-        message << source << ": sample (" << i << ", " << j << ") is " << h << "; heights must be finite and >= 0 ("
-                << (std::isfinite(h) ? "try --normalize to map [min, max] to [0, 1]"
-                                     : "--normalize rescales finite maps only: repair the map first")
+        message << source << ": sample (" << i << ", " << j << ") is " << h
+                << "; heights must be finite and >= 0 ("
+                << (std::isfinite(h)
+                        ? "try --normalize to map [min, max] to [0, 1]"
+                        : "--normalize rescales finite maps only: repair the map first")
                 << ")";
         throwBadInput(message.str());
     }
@@ -105,7 +111,8 @@ HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOp
     const std::string name = describe(file);
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) throwBadInput(name + ": no such file");
-    if (std::filesystem::is_directory(file, ec)) throwBadInput(name + ": is a directory, not an image");
+    if (std::filesystem::is_directory(file, ec))
+        throwBadInput(name + ": is a directory, not an image");
 
     const QuietStderr quiet;
     auto input = OIIO::ImageInput::open(name);
@@ -117,22 +124,25 @@ HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOp
         throwBadInput(name + ": cannot read the image (" + reason + ")");
     }
     const OIIO::ImageSpec& spec = input->spec();
-    if (spec.width <= 0 || spec.height <= 0) throwBadInput(name + ": the image is empty (0 pixels)");
+    if (spec.width <= 0 || spec.height <= 0)
+        throwBadInput(name + ": the image is empty (0 pixels)");
     if (spec.depth > 1) throwBadInput(name + ": volume images are not height maps");
     if (options.channel < 0 || options.channel >= spec.nchannels) {
-        throwBadInput(name + ": --channel " + std::to_string(options.channel) + " is out of range; the image has " +
-                      std::to_string(spec.nchannels) + " channel(s)");
+        throwBadInput(name + ": --channel " + std::to_string(options.channel) +
+                      " is out of range; the image has " + std::to_string(spec.nchannels) +
+                      " channel(s)");
     }
 
     HeightMap map(spec.width, spec.height);
     // Reading as FLOAT makes OpenImageIO normalise integer formats by their type range
     // (uint8 / 255, uint16 / 65535) and pass float formats through unchanged.
-    const bool ok = input->read_image(0, 0, options.channel, options.channel + 1, OIIO::TypeDesc::FLOAT,
-                                      map.samples.data());
+    const bool ok = input->read_image(0, 0, options.channel, options.channel + 1,
+                                      OIIO::TypeDesc::FLOAT, map.samples.data());
     if (!ok) {
         std::string reason = input->geterror();
         std::replace(reason.begin(), reason.end(), '\n', ' ');
-        throwBadInput(name + ": cannot read the pixels (" + (reason.empty() ? "truncated or corrupt" : reason) + ")");
+        throwBadInput(name + ": cannot read the pixels (" +
+                      (reason.empty() ? "truncated or corrupt" : reason) + ")");
     }
     input->close();
     prepareHeights(map, options, name);

@@ -44,7 +44,8 @@ struct HeightMapLoadOptions {
 // range, float formats stay as stored. Throws Error(BadInput) naming the file and the
 // reason for a missing, unreadable or empty file, a missing channel, or values that
 // are not finite and >= 0 (suggesting --normalize where that would help).
-HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOptions& options = {});
+HeightMap loadHeightMap(const std::filesystem::path& file,
+                        const HeightMapLoadOptions& options = {});
 
 // The checks and normalisation loadHeightMap applies after reading; `source` names the
 // map in messages. Exposed for maps built in memory.

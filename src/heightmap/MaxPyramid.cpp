@@ -24,8 +24,9 @@ float texelSquareMax(const HeightMap& map, int i, int j) {
             // either side of it along each axis where it lies between two centres.
             const int i0 = di < 0 ? i - 1 : i, i1 = di > 0 ? i + 1 : i;
             const int j0 = dj < 0 ? j - 1 : j, j1 = dj > 0 ? j + 1 : j;
-            const double value = 0.25 * (static_cast<double>(map.clamped(i0, j0)) + map.clamped(i1, j0) +
-                                          map.clamped(i0, j1) + map.clamped(i1, j1));
+            const double value =
+                0.25 * (static_cast<double>(map.clamped(i0, j0)) + map.clamped(i1, j0) +
+                        map.clamped(i0, j1) + map.clamped(i1, j1));
             best = std::max(best, value);
         }
     }
@@ -41,7 +42,8 @@ MaxPyramid::MaxPyramid(const HeightMap& map) : mapWidth_(map.width), mapHeight_(
     heights_.push_back(ph);
     std::vector<float> finest(static_cast<std::size_t>(pw) * ph, 0.0f);
     for (int j = 0; j < map.height; ++j) {
-        for (int i = 0; i < map.width; ++i) finest[static_cast<std::size_t>(j) * pw + i] = texelSquareMax(map, i, j);
+        for (int i = 0; i < map.width; ++i)
+            finest[static_cast<std::size_t>(j) * pw + i] = texelSquareMax(map, i, j);
     }
     levels_.push_back(std::move(finest));
 
@@ -96,7 +98,9 @@ double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fet
     if (ta.x != tb.x && ta.y != tb.y) {
         // Through a corner: the texel beside ta across the boundary crossed first.
         const glm::dvec2 crossing = (glm::dvec2(glm::max(ta, tb) << level) - a) / (b - a);
-        bound = std::max(bound, read(crossing.x < crossing.y ? glm::ivec2(tb.x, ta.y) : glm::ivec2(ta.x, tb.y), level));
+        bound = std::max(
+            bound,
+            read(crossing.x < crossing.y ? glm::ivec2(tb.x, ta.y) : glm::ivec2(ta.x, tb.y), level));
     }
     return bound;
 }

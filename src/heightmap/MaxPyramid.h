@@ -35,7 +35,9 @@ public:
     int levelWidth(int level) const { return widths_[level]; }
     int levelHeight(int level) const { return heights_[level]; }
     const std::vector<float>& levelData(int level) const { return levels_[level]; }
-    float texel(int level, int p, int q) const { return levels_[level][static_cast<std::size_t>(q) * widths_[level] + p]; }
+    float texel(int level, int p, int q) const {
+        return levels_[level][static_cast<std::size_t>(q) * widths_[level] + p];
+    }
 
     // The level whose texels are at least as wide as `extent` finest texels.
     int footprintLevel(double extent) const;

@@ -23,8 +23,8 @@ std::string oneLine(std::string text) {
 // extension, from which OpenImageIO picks the format.
 std::filesystem::path temporaryBeside(const std::filesystem::path& target) {
     static std::atomic<int> counter{0};
-    const std::string name = "." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                             std::to_string(counter++) + target.extension().string();
+    const std::string name = "." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) +
+                             "-" + std::to_string(counter++) + target.extension().string();
     return target.parent_path() / name;
 }
 
@@ -32,7 +32,8 @@ std::filesystem::path temporaryBeside(const std::filesystem::path& target) {
 
 void checkImageExtension(const std::filesystem::path& file) {
     const std::string extension = file.extension().string();
-    if (extension.empty()) throwBadInput(file.string() + ": no extension to choose an image format by");
+    if (extension.empty())
+        throwBadInput(file.string() + ": no extension to choose an image format by");
     auto output = OIIO::ImageOutput::create(file.string());
     if (!output) {
         OIIO::geterror();  // clear the pending message
@@ -52,7 +53,9 @@ void ImageWriteBatch::write(const std::filesystem::path& file, const ImageData& 
     const std::filesystem::path folder = file.parent_path();
     if (!folder.empty()) {
         std::filesystem::create_directories(folder, ec);
-        if (ec) throwRuntime(file.string() + ": cannot create the folder " + folder.string() + " (" + ec.message() + ")");
+        if (ec)
+            throwRuntime(file.string() + ": cannot create the folder " + folder.string() + " (" +
+                         ec.message() + ")");
     }
     const std::filesystem::path temporary = temporaryBeside(file);
     staged_.push_back({file, temporary});
@@ -65,11 +68,12 @@ void ImageWriteBatch::write(const std::filesystem::path& file, const ImageData& 
     OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
     if (!image.channelNames.empty()) spec.channelnames = image.channelNames;
     if (image.channels == 4) spec.alpha_channel = 3;
-    const bool ok =
-        output->open(temporary.string(), spec) && output->write_image(type, image.pixels) && output->close();
+    const bool ok = output->open(temporary.string(), spec) &&
+                    output->write_image(type, image.pixels) && output->close();
     if (!ok) {
         const std::string reason = oneLine(output->geterror());
-        throwRuntime(file.string() + ": cannot write (" + (reason.empty() ? "unknown error" : reason) + ")");
+        throwRuntime(file.string() + ": cannot write (" +
+                     (reason.empty() ? "unknown error" : reason) + ")");
     }
 }
 
@@ -96,14 +100,16 @@ void ImageWriteBatch::commit() {
             std::filesystem::rename(s.target, m.backup, ec);
             if (ec) {
                 rollBack();
-                throwRuntime(s.target.string() + ": cannot replace the existing file (" + ec.message() + ")");
+                throwRuntime(s.target.string() + ": cannot replace the existing file (" +
+                             ec.message() + ")");
             }
         }
         moved.push_back(m);
         std::filesystem::rename(s.temporary, s.target, ec);
         if (ec) {
             rollBack();
-            throwRuntime(s.target.string() + ": cannot move the finished file into place (" + ec.message() + ")");
+            throwRuntime(s.target.string() + ": cannot move the finished file into place (" +
+                         ec.message() + ")");
         }
         moved.back().replaced = true;
     }
@@ -117,7 +123,8 @@ void ImageWriteBatch::commit() {
 void checkOutputTargets(const std::vector<std::filesystem::path>& files) {
     for (std::size_t k = 0; k < files.size(); ++k) {
         std::error_code ec;
-        if (std::filesystem::is_directory(files[k], ec)) throwBadInput(files[k].string() + ": is a directory");
+        if (std::filesystem::is_directory(files[k], ec))
+            throwBadInput(files[k].string() + ": is a directory");
         checkImageExtension(files[k]);
         for (std::size_t other = 0; other < k; ++other) {
             if (files[k].lexically_normal() == files[other].lexically_normal()) {
@@ -127,7 +134,8 @@ void checkOutputTargets(const std::vector<std::filesystem::path>& files) {
     }
 }
 
-std::vector<std::uint8_t> rgbFromRgba(const std::vector<std::uint8_t>& rgba, int width, int height, bool flipRows) {
+std::vector<std::uint8_t> rgbFromRgba(const std::vector<std::uint8_t>& rgba, int width, int height,
+                                      bool flipRows) {
     std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
     for (int row = 0; row < height; ++row) {
         const int from = flipRows ? height - 1 - row : row;

@@ -22,7 +22,8 @@ CameraFrame resolveCamera(const Camera& camera, int width, int height, double sc
     }
     const glm::dvec3 view = camera.target - camera.eye;
     const double distance = glm::length(view);
-    if (!(distance > 0.0) || !std::isfinite(distance)) throwBadInput("--eye and --target must differ");
+    if (!(distance > 0.0) || !std::isfinite(distance))
+        throwBadInput("--eye and --target must differ");
     const glm::dvec3 forward = view / distance;
     const glm::dvec3 side = glm::cross(forward, camera.up);
     if (!(glm::length(side) > 1e-9 * glm::length(camera.up))) {
@@ -46,7 +47,8 @@ CameraFrame resolveCamera(const Camera& camera, int width, int height, double sc
     const double centre = glm::length(camera.eye);
     const double zFar = centre + 2.0 * sceneRadius;
     const double zNear = std::max(1e-4 * zFar, centre - 2.0 * sceneRadius);
-    const glm::dmat4 projection = glm::perspective(glm::radians(camera.fovyDegrees), aspect, zNear, zFar);
+    const glm::dmat4 projection =
+        glm::perspective(glm::radians(camera.fovyDegrees), aspect, zNear, zFar);
     frame.viewProjection = projection * glm::lookAt(camera.eye, camera.eye + forward, up);
     return frame;
 }

@@ -19,8 +19,8 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     ReliefRenderer renderer(gl, shaderDirectory(), job.method);
     renderer.setHeightScale(job.heightScale);
     renderer.setHeightMap(map, source);
-    const CameraFrame camera =
-        resolveCamera(job.camera, job.width, job.height, sceneRadius(reliefExtent(map, job.heightScale)));
+    const CameraFrame camera = resolveCamera(job.camera, job.width, job.height,
+                                             sceneRadius(reliefExtent(map, job.heightScale)));
 
     OffscreenTarget target(gl, job.width, job.height);
     target.clear(job.background);
@@ -28,7 +28,8 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     gl.Finish();
     HeadlessResult result{target.read(), camera};
     const GLenum error = gl.GetError();
-    if (error != GL_NO_ERROR) throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + source);
+    if (error != GL_NO_ERROR)
+        throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + source);
     return result;
 }
 

@@ -10,10 +10,12 @@ namespace microrelief {
 
 namespace {
 
-gl::Texture makeAttachment(const GL& gl, GLenum internalFormat, GLenum format, GLenum type, int width, int height) {
+gl::Texture makeAttachment(const GL& gl, GLenum internalFormat, GLenum format, GLenum type,
+                           int width, int height) {
     gl::Texture texture = gl::Texture::create(gl);
     gl.BindTexture(GL_TEXTURE_2D, texture.id());
-    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internalFormat), width, height, 0, format, type, nullptr);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internalFormat), width, height, 0, format,
+                  type, nullptr);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return texture;
@@ -35,14 +37,16 @@ float srgbEncode(float linear) {
 
 }  // namespace
 
-OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height) : gl_(gl), width_(width), height_(height) {
+OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
+    : gl_(gl), width_(width), height_(height) {
     GLint maxSize = 0, maxViewport[2] = {0, 0};
     gl_.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
     const int limit = std::min({maxSize, maxViewport[0], maxViewport[1]});
     if (width <= 0 || height <= 0 || width > limit || height > limit) {
         throwBadInput("--size " + std::to_string(width) + "x" + std::to_string(height) +
-                      " is outside what this GL renders (1 to " + std::to_string(limit) + " per side)");
+                      " is outside what this GL renders (1 to " + std::to_string(limit) +
+                      " per side)");
     }
     framebuffer_ = gl::Framebuffer::create(gl_);
     color_ = makeAttachment(gl_, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
@@ -54,7 +58,8 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height) : gl_(gl),
 
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
-    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, position_.id(), 0);
+    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, position_.id(),
+                             0);
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, stats_.id(), 0);
     gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
@@ -62,7 +67,8 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height) : gl_(gl),
     const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        throwRuntime("the offscreen framebuffer is incomplete (status " + gl::enumHex(status) + ")");
+        throwRuntime("the offscreen framebuffer is incomplete (status " + gl::enumHex(status) +
+                     ")");
     }
 }
 
@@ -73,7 +79,8 @@ void OffscreenTarget::bind() const {
 
 void OffscreenTarget::clear(const glm::vec3& background) const {
     bind();
-    const float color[4] = {srgbEncode(background.r), srgbEncode(background.g), srgbEncode(background.b), 1.0f};
+    const float color[4] = {srgbEncode(background.r), srgbEncode(background.g),
+                            srgbEncode(background.b), 1.0f};
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const float farDepth = 1.0f;
     gl_.ClearBufferfv(GL_COLOR, 0, color);

@@ -14,18 +14,23 @@
 namespace microrelief {
 
 namespace {
-constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level", "normal", "depth", "position"};
-constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip"};
+constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level",
+                                           "normal", "depth",      "position"};
+constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep",
+                                        "pom",        "relief", "maxmip"};
 }  // namespace
 
 Method parseMethod(const std::string& name) {
     for (int k = 0; k < 7; ++k) {
         if (name == kMethodNames[k]) return static_cast<Method>(k);
     }
-    throwBadInput("unknown --method '" + name + "' (expected multilevel, normal, offset, steep, pom, relief or maxmip)");
+    throwBadInput("unknown --method '" + name +
+                  "' (expected multilevel, normal, offset, steep, pom, relief or maxmip)");
 }
 
-const char* methodName(Method method) { return kMethodNames[static_cast<int>(method)]; }
+const char* methodName(Method method) {
+    return kMethodNames[static_cast<int>(method)];
+}
 
 bool methodHasSteps(Method method) {
     return method == Method::Steep || method == Method::Pom || method == Method::Relief;
@@ -35,10 +40,13 @@ DebugView parseDebugView(const std::string& name) {
     for (int k = 0; k < 6; ++k) {
         if (name == kDebugViewNames[k]) return static_cast<DebugView>(k);
     }
-    throwBadInput("unknown --view '" + name + "' (expected shaded, iterations, level, normal, depth or position)");
+    throwBadInput("unknown --view '" + name +
+                  "' (expected shaded, iterations, level, normal, depth or position)");
 }
 
-const char* debugViewName(DebugView view) { return kDebugViewNames[static_cast<int>(view)]; }
+const char* debugViewName(DebugView view) {
+    return kDebugViewNames[static_cast<int>(view)];
+}
 
 ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale) {
     const double longer = std::max(width, height);
@@ -49,9 +57,12 @@ ReliefExtent reliefExtent(const HeightMap& map, double heightScale) {
     return reliefExtent(map.width, map.height, map.maxValue(), heightScale);
 }
 
-double sceneRadius(const ReliefExtent& e) { return 2.0 * std::max({e.halfWidth, e.halfDepth, e.topHeight}); }
+double sceneRadius(const ReliefExtent& e) {
+    return 2.0 * std::max({e.halfWidth, e.halfDepth, e.topHeight});
+}
 
-ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir, const MethodSettings& method)
+ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
+                               const MethodSettings& method)
     : gl_(gl), shaderDir_(shaderDir), method_(method) {
     reloadShaders();
     pyramidTexture_ = gl::Texture::create(gl_);
@@ -67,13 +78,16 @@ ReliefRenderer::CompiledProgram ReliefRenderer::compile(const ProgramKey& key) c
     GLint major = 0;
     gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
     const std::string version = major >= 4 ? "400 core" : "330 core";
-    std::vector<ShaderDefine> defines = {{"MICRORELIEF_METHOD", std::to_string(static_cast<int>(key.first))}};
+    std::vector<ShaderDefine> defines = {
+        {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(key.first))}};
     if (key.second) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
-    const gl::Shader vertex =
-        gl::compileShader(gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
-    const gl::Shader fragment =
-        gl::compileShader(gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version, defines));
-    return {gl::linkProgram(gl_, vertex, fragment, std::string("relief (") + methodName(key.first) + ")"), {}};
+    const gl::Shader vertex = gl::compileShader(
+        gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
+    const gl::Shader fragment = gl::compileShader(
+        gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version, defines));
+    return {gl::linkProgram(gl_, vertex, fragment,
+                            std::string("relief (") + methodName(key.first) + ")"),
+            {}};
 }
 
 void ReliefRenderer::reloadShaders() {
@@ -86,7 +100,8 @@ void ReliefRenderer::reloadShaders() {
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
     const ProgramKey key{settings.method, countFetches};
     auto found = programs_.find(key);
-    if (found == programs_.end()) found = programs_.emplace(key, compile(key)).first;  // throws: nothing changes
+    if (found == programs_.end())
+        found = programs_.emplace(key, compile(key)).first;  // throws: nothing changes
     current_ = &found->second;
     method_ = settings;
     countFetches_ = countFetches;
@@ -120,7 +135,8 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (map.width > maxSize || map.height > maxSize) {
         throwBadInput(source + ": " + std::to_string(map.width) + "x" + std::to_string(map.height) +
-                      " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) + ")");
+                      " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) +
+                      ")");
     }
     const MaxPyramid pyramid(map);  // on the GPU from here on; only its shape is kept
     mapWidth_ = map.width;
@@ -160,8 +176,9 @@ void ReliefRenderer::uploadBox() {
     const float az = static_cast<float>(0.5 * mapHeight_ / longer) + margin;
     const float top = heightScale_ * maxHeight_ + margin;
     const float bottom = -margin;
-    const std::array<float, 24> corners = {-ax, bottom, -az, ax, bottom, -az, ax, bottom, az, -ax, bottom, az,
-                                           -ax, top,    -az, ax, top,    -az, ax, top,    az, -ax, top,    az};
+    const std::array<float, 24> corners = {-ax, bottom, -az,    ax,  bottom, -az, ax,  bottom,
+                                           az,  -ax,    bottom, az,  -ax,    top, -az, ax,
+                                           top, -az,    ax,     top, az,     -ax, top, az};
     // Outward-facing counter-clockwise triangles, two per face.
     const std::array<GLushort, 36> indices = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
                                               1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0};
@@ -183,7 +200,8 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
 
     gl_.Uniform1i(uniform("maxPyramid"), 0);
     gl_.Uniform1i(uniform("heightSamples"), 1);
-    gl_.Uniform2f(uniform("reliefSize"), static_cast<float>(mapWidth_), static_cast<float>(mapHeight_));
+    gl_.Uniform2f(uniform("reliefSize"), static_cast<float>(mapWidth_),
+                  static_cast<float>(mapHeight_));
     gl_.Uniform2i(uniform("pyramidSize"), pyramidWidth_, pyramidHeight_);
     gl_.Uniform1i(uniform("pyramidLevels"), pyramidLevels_);
     gl_.Uniform1f(uniform("reliefMaxHeight"), maxHeight_);
@@ -193,9 +211,11 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.Uniform3fv(uniform("cameraRight"), 1, glm::value_ptr(right));
     gl_.Uniform3fv(uniform("cameraUp"), 1, glm::value_ptr(up));
     gl_.Uniform3fv(uniform("cameraForward"), 1, glm::value_ptr(forward));
-    gl_.Uniform2f(uniform("viewportSize"), static_cast<float>(camera.width), static_cast<float>(camera.height));
+    gl_.Uniform2f(uniform("viewportSize"), static_cast<float>(camera.width),
+                  static_cast<float>(camera.height));
     gl_.UniformMatrix4fv(uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-    gl_.Uniform3fv(uniform("lightDirection"), 1, glm::value_ptr(glm::normalize(shading.lightDirection)));
+    gl_.Uniform3fv(uniform("lightDirection"), 1,
+                   glm::value_ptr(glm::normalize(shading.lightDirection)));
     gl_.Uniform3fv(uniform("albedo"), 1, glm::value_ptr(shading.albedo));
     gl_.Uniform1i(uniform("debugView"), static_cast<int>(shading.view));
     gl_.Uniform1i(uniform("methodSteps"), method_.steps);

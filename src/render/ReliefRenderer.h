@@ -62,7 +62,8 @@ DebugView parseDebugView(const std::string& name);
 const char* debugViewName(DebugView view);
 
 struct ShadingOptions {
-    glm::vec3 lightDirection = glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards the light
+    glm::vec3 lightDirection =
+        glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards the light
     glm::vec3 albedo{0.60f, 0.58f, 0.55f};
     DebugView view = DebugView::Shaded;
 };
@@ -71,7 +72,8 @@ class ReliefRenderer {
 public:
     // `shaderDir` holds relief_box.vert, relief.frag and microrelief/; `method` is the
     // program compiled first.
-    ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir, const MethodSettings& method = {});
+    ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
+                   const MethodSettings& method = {});
 
     // Builds the max pyramid and uploads it with the samples. Throws Error(BadInput)
     // when the map exceeds GL_MAX_TEXTURE_SIZE; `source` names the map in that message.
@@ -114,7 +116,7 @@ private:
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;
     gl::Buffer boxIndices_;
-    int mapWidth_ = 0, mapHeight_ = 0;       // 0: no map yet
+    int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
     int pyramidWidth_ = 0, pyramidHeight_ = 0, pyramidLevels_ = 0;
     float maxHeight_ = 0.0f;
     float heightScale_ = 0.1f;

@@ -21,7 +21,8 @@ std::uint32_t hash(std::uint32_t x) {
 }
 
 double unitHash(std::int64_t i, std::int64_t j, std::uint32_t seed) {
-    const std::uint32_t h = hash(static_cast<std::uint32_t>(i) * 0x9e3779b9U ^ hash(static_cast<std::uint32_t>(j) + seed));
+    const std::uint32_t h = hash(static_cast<std::uint32_t>(i) * 0x9e3779b9U ^
+                                 hash(static_cast<std::uint32_t>(j) + seed));
     return (h >> 8) * (1.0 / 16777216.0);
 }
 
@@ -50,7 +51,9 @@ double fractalNoise(double x, double y, int octaves, std::uint32_t seed) {
 
 }  // namespace
 
-HeightMap flat(int width, int height, float value) { return HeightMap(width, height, value); }
+HeightMap flat(int width, int height, float value) {
+    return HeightMap(width, height, value);
+}
 
 HeightMap spike(int width, int height, int i, int j) {
     HeightMap map(width, height);
@@ -76,7 +79,8 @@ HeightMap valueNoise(int width, int height, double period, int octaves, std::uin
     HeightMap map(width, height);
     for (int j = 0; j < height; ++j) {
         for (int i = 0; i < width; ++i) {
-            map.at(i, j) = static_cast<float>(fractalNoise((i + 0.5) / period, (j + 0.5) / period, octaves, seed));
+            map.at(i, j) = static_cast<float>(
+                fractalNoise((i + 0.5) / period, (j + 0.5) / period, octaves, seed));
         }
     }
     return map;
@@ -99,7 +103,8 @@ HeightMap cobbles(int width, int height, std::uint32_t seed) {
     for (int j = 0; j < height; ++j) {
         for (int i = 0; i < width; ++i) {
             const double x = (i + 0.5) / longer * cells, y = (j + 0.5) / longer * cells;
-            const auto ci = static_cast<std::int64_t>(std::floor(x)), cj = static_cast<std::int64_t>(std::floor(y));
+            const auto ci = static_cast<std::int64_t>(std::floor(x)),
+                       cj = static_cast<std::int64_t>(std::floor(y));
             double f1 = 1e9, f2 = 1e9, stone = 0.0;
             for (int dj = -1; dj <= 1; ++dj) {
                 for (int di = -1; di <= 1; ++di) {
@@ -126,7 +131,9 @@ HeightMap cobbles(int width, int height, std::uint32_t seed) {
     return map;
 }
 
-std::vector<std::string> names() { return {"cobbles", "noise", "white", "spike", "wall", "step", "flat"}; }
+std::vector<std::string> names() {
+    return {"cobbles", "noise", "white", "spike", "wall", "step", "flat"};
+}
 
 HeightMap byName(const std::string& name, int width, int height, std::uint32_t seed) {
     if (width <= 0 || height <= 0) throwBadInput("the map size must be positive");

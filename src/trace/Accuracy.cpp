@@ -10,14 +10,15 @@ namespace microrelief {
 
 std::string Accuracy::summary() const {
     std::ostringstream out;
-    out << pixels << " px, " << referenceHits << " reference hits; hit/miss disagree " << coverageMismatches << " ("
-        << coverageMismatchPercent() << " %); off > 0.5 texel " << offHalfTexel << " (" << offHalfTexelPercent()
-        << " %); error p99 " << p99ErrorTexels << ", max " << maxErrorTexels << " texels; out of budget "
-        << exhausted;
+    out << pixels << " px, " << referenceHits << " reference hits; hit/miss disagree "
+        << coverageMismatches << " (" << coverageMismatchPercent() << " %); off > 0.5 texel "
+        << offHalfTexel << " (" << offHalfTexelPercent() << " %); error p99 " << p99ErrorTexels
+        << ", max " << maxErrorTexels << " texels; out of budget " << exhausted;
     return out.str();
 }
 
-ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map, double heightScale) {
+ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
+                                       double heightScale) {
     const ReferenceTracer reference(ReliefGeometry{&map, heightScale});
     ReferencePicture picture;
     picture.width = camera.width;
@@ -26,7 +27,8 @@ ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMa
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
             const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
-            picture.hits.push_back(exact ? std::optional<glm::dvec3>(exact.position) : std::nullopt);
+            picture.hits.push_back(exact ? std::optional<glm::dvec3>(exact.position)
+                                         : std::nullopt);
         }
     }
     return picture;
@@ -40,7 +42,8 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
         for (int column = 0; column < camera.width; ++column) {
             ++result.pixels;
             const PixelHit tested = trace(column, row, camera.pixelRay(column, row));
-            const std::optional<glm::dvec3>& exact = reference.hits[static_cast<std::size_t>(row) * reference.width + column];
+            const std::optional<glm::dvec3>& exact =
+                reference.hits[static_cast<std::size_t>(row) * reference.width + column];
             result.exhausted += tested.exhausted;
             if (exact) ++result.referenceHits;
             if (tested.hit != exact.has_value()) {
@@ -55,8 +58,10 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
         }
     }
     if (!errors.empty()) {
-        const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(0.99 * errors.size()));
-        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
+        const std::size_t k =
+            std::min(errors.size() - 1, static_cast<std::size_t>(0.99 * errors.size()));
+        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k),
+                         errors.end());
         result.p99ErrorTexels = errors[k];
     }
     return result;
@@ -71,12 +76,13 @@ Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& cam
                               const ReferencePicture& reference) {
     return measureAccuracy(camera, reference, [&](int column, int row, const Ray&) {
         const float* p = frame.positionAt(column, row);
-        return PixelHit{p[3] > 0.5f, glm::dvec3(p[0], p[1], p[2]), frame.statsAt(column, row)[3] > 0.0f};
+        return PixelHit{p[3] > 0.5f, glm::dvec3(p[0], p[1], p[2]),
+                        frame.statsAt(column, row)[3] > 0.0f};
     });
 }
 
-Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
-                              double heightScale) {
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
+                              const HeightMap& map, double heightScale) {
     return compareWithReference(frame, camera, traceReferencePicture(camera, map, heightScale));
 }
 

@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -28,8 +28,12 @@ struct Accuracy {
     double maxErrorTexels = 0.0;
     double p99ErrorTexels = 0.0;
 
-    double coverageMismatchPercent() const { return pixels ? 100.0 * coverageMismatches / pixels : 0.0; }
-    double offHalfTexelPercent() const { return referenceHits ? 100.0 * offHalfTexel / referenceHits : 0.0; }
+    double coverageMismatchPercent() const {
+        return pixels ? 100.0 * coverageMismatches / pixels : 0.0;
+    }
+    double offHalfTexelPercent() const {
+        return referenceHits ? 100.0 * offHalfTexel / referenceHits : 0.0;
+    }
     std::string summary() const;
 };
 
@@ -47,7 +51,8 @@ struct ReferencePicture {
     double texelsPerUnit = 1.0;                   // max(W, H): errors are reported in texels
     std::vector<std::optional<glm::dvec3>> hits;  // row-major, world positions
 };
-ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map, double heightScale);
+ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
+                                       double heightScale);
 
 // Every pixel of `camera`'s picture: `trace(column, row, ray)` against the reference.
 // Errors are measured in texels of the map: world distance * max(W, H).
@@ -59,7 +64,7 @@ Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double
 // A rendered frame's AOV against the reference.
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
                               const ReferencePicture& reference);
-Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
-                              double heightScale);
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
+                              const HeightMap& map, double heightScale);
 
 }  // namespace microrelief

@@ -17,11 +17,17 @@ using Cell = MultilevelTracer::Cell;
 Cell cellAt(const HeightMap& map, double x, double y, int& fetches) {
     const int i = static_cast<int>(std::floor(x - 0.5)), j = static_cast<int>(std::floor(y - 0.5));
     fetches += 1;
-    return {i, j, map.clamped(i, j), map.clamped(i + 1, j), map.clamped(i, j + 1), map.clamped(i + 1, j + 1)};
+    return {i,
+            j,
+            map.clamped(i, j),
+            map.clamped(i + 1, j),
+            map.clamped(i, j + 1),
+            map.clamped(i + 1, j + 1)};
 }
 
 // bilinear_patch.glsl: intersectPatch.
-double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& dir, double tauMax) {
+double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& dir,
+                      double tauMax) {
     const double fx = start.x - (c.i + 0.5), fy = start.y - (c.j + 0.5);
     const double b = c.h10 - c.h00, cc = c.h01 - c.h00, d = c.h00 - c.h10 - c.h01 + c.h11;
     // g(tau) = patch height - ray height: the hit is the first tau with g >= 0.
@@ -46,7 +52,9 @@ double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& 
 
 }  // namespace
 
-int traversalBudget(int width, int height) { return 8 * (width + height) + 256; }
+int traversalBudget(int width, int height) {
+    return 8 * (width + height) + 256;
+}
 
 MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale)
     : map_(std::move(map)),
@@ -85,7 +93,8 @@ auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, in
     const int firstAxis = cuts[0] <= cuts[1] ? 0 : 1;
     const double bounds[4] = {ta, std::min(cuts[0], cuts[1]), std::max(cuts[0], cuts[1]), tb};
     glm::ivec2 at = first;
-    Cell cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);  // the cell whose origin sample is `at`
+    Cell cell =
+        cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);  // the cell whose origin sample is `at`
     for (int piece = 0; piece < 3; ++piece) {
         if (piece > 0) {
             const int axis = piece == 1 ? firstAxis : 1 - firstAxis;
@@ -96,19 +105,22 @@ auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, in
         const double t0 = bounds[piece], t1 = bounds[piece + 1];
         if (t1 < t0) continue;
         const double tau = intersectPatch(cell, ray.origin + t0 * ray.dir, ray.dir, t1 - t0);
-        if (tau >= 0.0) return LeafHit{t0 + tau, topNormal(cell, ray.origin + (t0 + tau) * ray.dir)};
+        if (tau >= 0.0)
+            return LeafHit{t0 + tau, topNormal(cell, ray.origin + (t0 + tau) * ray.dir)};
     }
     return std::nullopt;
 }
 
-std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, TraversalStats* statsOut) const {
+std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
+                                                     TraversalStats* statsOut) const {
     TraversalStats stats;
     const double texelsPerUnit = std::max(map_.width, map_.height);
     const glm::dvec2 size(map_.width, map_.height);
-    const MapRay ray{{worldRay.origin.x * texelsPerUnit + 0.5 * size.x, worldRay.origin.z * texelsPerUnit + 0.5 * size.y,
-                      worldRay.origin.y / heightScale_},
-                     {worldRay.direction.x * texelsPerUnit, worldRay.direction.z * texelsPerUnit,
-                      worldRay.direction.y / heightScale_}};
+    const MapRay ray{
+        {worldRay.origin.x * texelsPerUnit + 0.5 * size.x,
+         worldRay.origin.z * texelsPerUnit + 0.5 * size.y, worldRay.origin.y / heightScale_},
+        {worldRay.direction.x * texelsPerUnit, worldRay.direction.z * texelsPerUnit,
+         worldRay.direction.y / heightScale_}};
     const double maxHeight = pyramid_.texel(pyramid_.levelCount() - 1, 0, 0);
     auto finish = [&](std::optional<ReliefHit> hit) {
         if (statsOut) *statsOut = stats;
@@ -131,10 +143,12 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, Traver
     int entryAxis = -1, exitAxis = -1;
     for (int axis = 0; axis < 3; ++axis) {
         if (ray.dir[axis] == 0.0) {
-            if (ray.origin[axis] < lo[axis] || ray.origin[axis] > hi[axis]) return finish(std::nullopt);
+            if (ray.origin[axis] < lo[axis] || ray.origin[axis] > hi[axis])
+                return finish(std::nullopt);
             continue;
         }
-        double t0 = (lo[axis] - ray.origin[axis]) / ray.dir[axis], t1 = (hi[axis] - ray.origin[axis]) / ray.dir[axis];
+        double t0 = (lo[axis] - ray.origin[axis]) / ray.dir[axis],
+               t1 = (hi[axis] - ray.origin[axis]) / ray.dir[axis];
         if (t0 > t1) std::swap(t0, t1);
         if (t0 > tEnter) {
             tEnter = t0;
@@ -156,7 +170,9 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, Traver
         stats.stopLevel = 0;
         glm::dvec3 normal(0.0);
         const double outward = ray.dir[entryAxis] > 0.0 ? -1.0 : 1.0;
-        const HitFace face = entryAxis == 0 ? HitFace::WallX : entryAxis == 1 ? HitFace::WallZ : HitFace::Bottom;
+        const HitFace face = entryAxis == 0   ? HitFace::WallX
+                             : entryAxis == 1 ? HitFace::WallZ
+                                              : HitFace::Bottom;
         if (entryAxis == 0) normal.x = outward;
         if (entryAxis == 1) normal.z = outward;
         if (entryAxis == 2) normal.y = outward;
@@ -172,8 +188,8 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, Traver
 }
 
 // multilevel_trace.glsl: subdivideSegment, over ray.origin + t ray.dir, t in [0, span].
-auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exitAxis, TraversalStats& stats) const
-    -> std::optional<LeafHit> {
+auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exitAxis,
+                                        TraversalStats& stats) const -> std::optional<LeafHit> {
     const double unit = std::ldexp(1.0, -kMaxDepth);
     int depth = 0;
     std::uint32_t index = 0;

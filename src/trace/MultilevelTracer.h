@@ -60,8 +60,10 @@ private:
         double t;
         glm::dvec3 normal;  // world
     };
-    std::optional<LeafHit> intersectLeaf(const MapRay& ray, double ta, double tb, int& fetches) const;
-    std::optional<LeafHit> subdivideSegment(const MapRay& ray, double span, int exitAxis, TraversalStats& stats) const;
+    std::optional<LeafHit> intersectLeaf(const MapRay& ray, double ta, double tb,
+                                         int& fetches) const;
+    std::optional<LeafHit> subdivideSegment(const MapRay& ray, double span, int exitAxis,
+                                            TraversalStats& stats) const;
     glm::dvec3 topNormal(const Cell& cell, const glm::dvec3& mapPoint) const;
 
     HeightMap map_;

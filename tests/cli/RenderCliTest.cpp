@@ -35,8 +35,9 @@ class RenderCli : public ::testing::Test {
 protected:
     // Runs microrelief-render with `args` (already shell-quoted where needed).
     RunResult run(const std::string& args, const std::string& environment = "") {
-        const std::string command = environment + " " + MICRORELIEF_RENDER_EXE + " " + args + " > " +
-                                    (dir / "stdout").string() + " 2> " + (dir / "stderr").string();
+        const std::string command = environment + " " + MICRORELIEF_RENDER_EXE + " " + args +
+                                    " > " + (dir / "stdout").string() + " 2> " +
+                                    (dir / "stderr").string();
         const int raw = std::system(command.c_str());
         RunResult r;
         r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -50,12 +51,14 @@ protected:
         EXPECT_EQ(r.status, status) << r.err;
         EXPECT_EQ(r.errLines(), 1) << r.err;
         EXPECT_EQ(r.err.rfind("microrelief-render: error: ", 0), 0u) << r.err;
-        EXPECT_NE(r.err.find(mentions), std::string::npos) << "expected '" << mentions << "' in: " << r.err;
+        EXPECT_NE(r.err.find(mentions), std::string::npos)
+            << "expected '" << mentions << "' in: " << r.err;
     }
 
     std::vector<std::string> filesIn(const std::filesystem::path& folder) {
         std::vector<std::string> names;
-        for (const auto& e : std::filesystem::directory_iterator(folder)) names.push_back(e.path().filename());
+        for (const auto& e : std::filesystem::directory_iterator(folder))
+            names.push_back(e.path().filename());
         std::sort(names.begin(), names.end());
         return names;
     }
@@ -67,8 +70,8 @@ protected:
 TEST_F(RenderCli, HelpAndVersionExitZero) {
     const RunResult help = run("--help");
     EXPECT_EQ(help.status, 0);
-    for (const char* flag : {"--height", "--height-scale", "--eye", "--target", "--up", "--fovy", "--size", "--out",
-                             "--aov", "--backend", "--channel", "--normalize"}) {
+    for (const char* flag : {"--height", "--height-scale", "--eye", "--target", "--up", "--fovy",
+                             "--size", "--out", "--aov", "--backend", "--channel", "--normalize"}) {
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     }
     const RunResult version = run("--version");
@@ -106,7 +109,8 @@ TEST_F(RenderCli, DefaultMapRendersThePictureAndTheAov) {
         EXPECT_LE(pixels[p + 1], 0.1f + 1e-5f);
     }
     EXPECT_GT(hits, 48 * 32 / 4);
-    EXPECT_EQ(filesIn(dir.path()), (std::vector<std::string>{"stderr", "stdout", "view.exr", "view.png"}))
+    EXPECT_EQ(filesIn(dir.path()),
+              (std::vector<std::string>{"stderr", "stdout", "view.exr", "view.png"}))
         << "no temporary file may remain";
 }
 
@@ -171,9 +175,11 @@ TEST_F(RenderCli, OutputsThatCannotAllBeWrittenAreRefusedBeforeAnyIsTouched) {
     const auto picture = dir / "a.png";
     test::writeBytes(picture, {'o', 'l', 'd'});
     std::filesystem::create_directory(dir / "d.exr");
-    expectFailure(run(small + "--out " + picture.string() + " --aov " + (dir / "d.exr").string()), 2, "d.exr");
-    expectFailure(run(small + "--out " + (dir / "same.exr").string() + " --aov " + (dir / "same.exr").string()), 2,
-                  "same.exr");
+    expectFailure(run(small + "--out " + picture.string() + " --aov " + (dir / "d.exr").string()),
+                  2, "d.exr");
+    expectFailure(run(small + "--out " + (dir / "same.exr").string() + " --aov " +
+                      (dir / "same.exr").string()),
+                  2, "same.exr");
     EXPECT_EQ(test::readBytes(picture), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
     EXPECT_FALSE(std::filesystem::exists(dir / "same.exr"));
 }
@@ -182,21 +188,23 @@ TEST_F(RenderCli, NormalizeRescuesNegativeMaps) {
     HeightMap negative(4, 4, 0.5f);
     negative.at(1, 1) = -1.0f;
     test::writeMap(dir / "negative.exr", negative, PixelType::Float);
-    const RunResult r = run(small + "--normalize --height " + (dir / "negative.exr").string() + " --out " +
-                            (dir / "n.png").string());
+    const RunResult r = run(small + "--normalize --height " + (dir / "negative.exr").string() +
+                            " --out " + (dir / "n.png").string());
     EXPECT_EQ(r.status, 0) << r.err;
 }
 
 TEST_F(RenderCli, OneByOneMapRenders) {
     test::writeMap(dir / "one.png", HeightMap(1, 1, 1.0f), PixelType::UInt8);
-    const RunResult r = run(small + "--height " + (dir / "one.png").string() + " --out " + (dir / "o.png").string());
+    const RunResult r = run(small + "--height " + (dir / "one.png").string() + " --out " +
+                            (dir / "o.png").string());
     EXPECT_EQ(r.status, 0) << r.err;
 }
 
 TEST_F(RenderCli, NoGlBackendExitsOneWithOneLine) {
     // No EGL vendor library and no OSMesa: nothing can make a context.
     const RunResult r = run(small + "--out " + (dir / "x.png").string(),
-                            "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json MICRORELIEF_OSMESA_LIBRARY=/nonexistent.so");
+                            "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "
+                            "MICRORELIEF_OSMESA_LIBRARY=/nonexistent.so");
     expectFailure(r, 1, "no GL backend");
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }

@@ -45,7 +45,8 @@ TEST(HeightMapLoad, Png8BitIsNormalisedByTypeRange) {
     const HeightMap map = loadHeightMap(dir / "m.png");
     ASSERT_EQ(map.width, 3);
     ASSERT_EQ(map.height, 2);
-    for (std::size_t k = 0; k < source.samples.size(); ++k) EXPECT_NEAR(map.samples[k], source.samples[k], 1e-6);
+    for (std::size_t k = 0; k < source.samples.size(); ++k)
+        EXPECT_NEAR(map.samples[k], source.samples[k], 1e-6);
 }
 
 TEST(HeightMapLoad, Png16BitKeepsSixteenBits) {
@@ -121,7 +122,8 @@ TEST(HeightMapLoad, NegativeValueIsRefusedWithAHint) {
 
 TEST(HeightMapLoad, NanAndInfAreRefused) {
     ScratchDir dir;
-    for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    for (float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
         HeightMap source(2, 2, 0.5f);
         source.at(0, 1) = bad;
         test::writeMap(dir / "bad.exr", source, PixelType::Float);
@@ -146,8 +148,10 @@ TEST(HeightMapLoad, TruncatedAndGarbageFilesAreRefused) {
     test::writeBytes(dir / "truncated.png", bytes);
     EXPECT_NE(badInputMessage([&] { loadHeightMap(dir / "truncated.png"); }).find("truncated.png"),
               std::string::npos);
-    test::writeBytes(dir / "garbage.png", {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'});
-    EXPECT_NE(badInputMessage([&] { loadHeightMap(dir / "garbage.png"); }).find("garbage.png"), std::string::npos);
+    test::writeBytes(dir / "garbage.png",
+                     {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'});
+    EXPECT_NE(badInputMessage([&] { loadHeightMap(dir / "garbage.png"); }).find("garbage.png"),
+              std::string::npos);
     test::writeBytes(dir / "empty.png", {});
     badInputMessage([&] { loadHeightMap(dir / "empty.png"); });
     badInputMessage([&] { loadHeightMap(dir.path()); });  // a folder
@@ -156,8 +160,9 @@ TEST(HeightMapLoad, TruncatedAndGarbageFilesAreRefused) {
 TEST(HeightMapLoad, ZeroSizedPngIsRefused) {
     // A PNG signature and an IHDR chunk declaring 0 x 0 pixels.
     ScratchDir dir;
-    const std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I', 'H', 'D',
-                                           'R', 0, 0, 0, 0, 0, 0, 0, 0, 8, 0, 0, 0, 0, 0x00, 0x00, 0x00, 0x00};
+    const std::vector<std::uint8_t> png = {
+        0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I',  'H',  'D',  'R', 0,
+        0,    0,   0,   0,   0,    0,    0,    8,    0, 0, 0, 0,  0x00, 0x00, 0x00, 0x00};
     test::writeBytes(dir / "zero.png", png);
     badInputMessage([&] { loadHeightMap(dir / "zero.png"); });
 }
@@ -173,12 +178,12 @@ TEST(HeightMapLoad, OneByOneIsAValidMap) {
 
 TEST(HeightMapSurface, BilinearBetweenCentresClampedOutside) {
     HeightMap map(2, 2);
-    map.samples = {0.0f, 1.0f, 2.0f, 3.0f};  // h00 h10 / h01 h11
-    EXPECT_DOUBLE_EQ(map.surface(0.5, 0.5), 0.0);   // sample (0, 0)
-    EXPECT_DOUBLE_EQ(map.surface(1.5, 1.5), 3.0);   // sample (1, 1)
-    EXPECT_DOUBLE_EQ(map.surface(1.0, 0.5), 0.5);   // halfway along the top row
-    EXPECT_DOUBLE_EQ(map.surface(1.0, 1.0), 1.5);   // the middle
-    EXPECT_DOUBLE_EQ(map.surface(0.0, 0.0), 0.0);   // clamped corner
+    map.samples = {0.0f, 1.0f, 2.0f, 3.0f};        // h00 h10 / h01 h11
+    EXPECT_DOUBLE_EQ(map.surface(0.5, 0.5), 0.0);  // sample (0, 0)
+    EXPECT_DOUBLE_EQ(map.surface(1.5, 1.5), 3.0);  // sample (1, 1)
+    EXPECT_DOUBLE_EQ(map.surface(1.0, 0.5), 0.5);  // halfway along the top row
+    EXPECT_DOUBLE_EQ(map.surface(1.0, 1.0), 1.5);  // the middle
+    EXPECT_DOUBLE_EQ(map.surface(0.0, 0.0), 0.0);  // clamped corner
     EXPECT_DOUBLE_EQ(map.surface(2.0, 0.0), 1.0);
-    EXPECT_DOUBLE_EQ(map.surface(0.1, 1.0), 1.0);   // clamped in X, interpolated in Y
+    EXPECT_DOUBLE_EQ(map.surface(0.1, 1.0), 1.0);  // clamped in X, interpolated in Y
 }

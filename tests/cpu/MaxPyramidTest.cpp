@@ -19,7 +19,8 @@ double sampledMax(const HeightMap& map, double x0, double y0, double x1, double 
     double best = 0.0;
     for (int b = 0; b <= steps; ++b) {
         for (int a = 0; a <= steps; ++a) {
-            best = std::max(best, map.surface(x0 + (x1 - x0) * a / steps, y0 + (y1 - y0) * b / steps));
+            best =
+                std::max(best, map.surface(x0 + (x1 - x0) * a / steps, y0 + (y1 - y0) * b / steps));
         }
     }
     return best;
@@ -69,7 +70,8 @@ TEST(MaxPyramid, EachLevelIsTheMaxOfTheLevelBelow) {
                         expected = std::max(expected, p.texel(k - 1, cs, cq));
                     }
                 }
-                ASSERT_EQ(p.texel(k, s, q), expected) << "level " << k << " texel " << s << "," << q;
+                ASSERT_EQ(p.texel(k, s, q), expected)
+                    << "level " << k << " texel " << s << "," << q;
             }
         }
     }
@@ -116,22 +118,26 @@ double sampledMaxAlong(const HeightMap& map, glm::dvec2 a, glm::dvec2 b, int ste
 // must never fall below the surface anywhere along the segment.
 TEST(MaxPyramid, SegmentBoundCoversTheSurfaceAlongAnySegment) {
     std::mt19937 random(1234);
-    const std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 2}, {3, 5}, {17, 4}, {31, 33}, {64, 64}, {100, 7}};
+    const std::vector<std::pair<int, int>> sizes = {{1, 1},   {2, 2},   {3, 5},  {17, 4},
+                                                    {31, 33}, {64, 64}, {100, 7}};
     for (auto [w, h] : sizes) {
         const HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 131 + h));
         const MaxPyramid p(map);
-        std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0), turn(0.0, 6.2831853);
+        std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0),
+            turn(0.0, 6.2831853);
         for (int trial = 0; trial < 2000; ++trial) {
             // Lengths spread over scales, from a sliver to the whole map.
             const double length = std::pow(std::max(w, h) * 1.5, unit(random)) * unit(random);
             const double angle = turn(random);
             const glm::dvec2 a(x(random), y(random));
-            const glm::dvec2 b = glm::clamp(a + length * glm::dvec2(std::cos(angle), std::sin(angle)), glm::dvec2(0.0),
-                                            glm::dvec2(w, h));
+            const glm::dvec2 b =
+                glm::clamp(a + length * glm::dvec2(std::cos(angle), std::sin(angle)),
+                           glm::dvec2(0.0), glm::dvec2(w, h));
             int fetches = 0;
             const double bound = traversalBound(p, a, b, &fetches);
             ASSERT_GE(bound, sampledMaxAlong(map, a, b, 400) - 1e-12)
-                << w << "x" << h << " segment (" << a.x << "," << a.y << ") -> (" << b.x << "," << b.y << ")";
+                << w << "x" << h << " segment (" << a.x << "," << a.y << ") -> (" << b.x << ","
+                << b.y << ")";
             ASSERT_GE(fetches, 1);
             ASSERT_LE(fetches, 3);
         }
@@ -159,7 +165,8 @@ TEST(MaxPyramid, FinestLevelNeverRoundsBelowTheSurface) {
         for (int i = 0; i < 2; ++i) {
             for (int k = 0; k <= 100; ++k) {
                 for (int l = 0; l <= 100; ++l) {
-                    ASSERT_GE(static_cast<double>(p.texel(0, i, j)), map.surface(i + k / 100.0, j + l / 100.0));
+                    ASSERT_GE(static_cast<double>(p.texel(0, i, j)),
+                              map.surface(i + k / 100.0, j + l / 100.0));
                 }
             }
         }

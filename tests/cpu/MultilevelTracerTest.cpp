@@ -27,11 +27,13 @@ Agreement compareRandomRays(const HeightMap& map, double scale, int count, std::
     for (int k = 0; k < count; ++k) {
         const glm::dvec3 target(0.5 * unit(random), scale * zeroOne(random), 0.5 * unit(random));
         // Elevations from grazing to vertical, some eyes below the base plane.
-        const double elevation = std::asin(std::pow(zeroOne(random), 2.0)) * (k % 7 == 0 ? -1.0 : 1.0);
+        const double elevation =
+            std::asin(std::pow(zeroOne(random), 2.0)) * (k % 7 == 0 ? -1.0 : 1.0);
         const double azimuth = 3.14159265 * unit(random), distance = 0.3 + 2.0 * zeroOne(random);
-        const glm::dvec3 eye = target + distance * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
-                                                              std::sin(elevation),
-                                                              std::cos(elevation) * std::sin(azimuth));
+        const glm::dvec3 eye =
+            target + distance * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
+                                           std::sin(elevation),
+                                           std::cos(elevation) * std::sin(azimuth));
         const Ray ray{eye, target - eye};
         if (eye.y >= 0.0 && std::abs(eye.x) <= 0.5 && std::abs(eye.z) <= 0.5 &&
             eye.y <= scale * map.surface((eye.x + 0.5) * map.width, (eye.z + 0.5) * map.height)) {

@@ -19,9 +19,11 @@ void writeText(const std::filesystem::path& file, const std::string& text) {
 
 TEST(ShaderSource, VersionDefinesAndIncludesWithLineMarkers) {
     test::ScratchDir dir;
-    writeText(dir / "lib/a.glsl", "#ifndef A_GLSL\n#define A_GLSL\nfloat a() { return 1.0; }\n#endif\n");
+    writeText(dir / "lib/a.glsl",
+              "#ifndef A_GLSL\n#define A_GLSL\nfloat a() { return 1.0; }\n#endif\n");
     writeText(dir / "main.frag", "// main\n#include \"lib/a.glsl\"\nvoid main() {}\n");
-    const ShaderSource source = assembleShader(dir / "main.frag", "330 core", {{"FAST", ""}, {"N", "4"}});
+    const ShaderSource source =
+        assembleShader(dir / "main.frag", "330 core", {{"FAST", ""}, {"N", "4"}});
     EXPECT_EQ(source.version, "330 core");
     ASSERT_EQ(source.files.size(), 2u);
     EXPECT_EQ(source.files[1].filename(), "a.glsl");
@@ -63,7 +65,8 @@ TEST(ShaderSource, IncludeCycleIsAnErrorNotAHang) {
 }
 
 TEST(ShaderSource, CompilerLogsMapToFiles) {
-    const std::vector<std::filesystem::path> files = {"shaders/relief.frag", "shaders/microrelief/x.glsl"};
+    const std::vector<std::filesystem::path> files = {"shaders/relief.frag",
+                                                      "shaders/microrelief/x.glsl"};
     // Mesa
     EXPECT_EQ(mapCompilerLog("1:12(5): error: `foo' undeclared", files),
               "shaders/microrelief/x.glsl:12:5: error: `foo' undeclared\n");

@@ -12,9 +12,11 @@ TEST(TwinSweep, EveryCaseMatchesTheReference) {
     for (const test::SweepMap& m : test::sweepMaps()) {
         const MultilevelTracer twin(*m.map, m.heightScale);
         for (const test::SweepView& view : test::sweepViews(m)) {
-            const CameraFrame camera = resolveCamera(view.camera, test::kSweepSize, test::kSweepSize, 2.0);
-            const Accuracy a = measureAccuracy(camera, *m.map, m.heightScale,
-                                               [&](int, int, const Ray& ray) { return test::twinPixel(twin, ray); });
+            const CameraFrame camera =
+                resolveCamera(view.camera, test::kSweepSize, test::kSweepSize, 2.0);
+            const Accuracy a = measureAccuracy(
+                camera, *m.map, m.heightScale,
+                [&](int, int, const Ray& ray) { return test::twinPixel(twin, ray); });
             // Double precision on both sides, the GPU's budgets all the same.
             const std::string where = m.name + " " + view.name + ": " + a.summary();
             EXPECT_LE(a.coverageMismatchPercent(), test::kMaxCoverageMismatchPercent) << where;

@@ -19,7 +19,8 @@ namespace {
 class AccuracySweep : public ::testing::TestWithParam<std::size_t> {
 protected:
     void SetUp() override {
-        if (!isBackendPresent(test::glBackend())) GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+        if (!isBackendPresent(test::glBackend()))
+            GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
     }
 };
 
@@ -35,7 +36,8 @@ TEST_P(AccuracySweep, MatchesTheReference) {
     const MultilevelTracer twin(*m.map, m.heightScale);
 
     for (const test::SweepView& view : test::sweepViews(m)) {
-        const CameraFrame camera = resolveCamera(view.camera, test::kSweepSize, test::kSweepSize, 2.0);
+        const CameraFrame camera =
+            resolveCamera(view.camera, test::kSweepSize, test::kSweepSize, 2.0);
         target.clear(glm::vec3(0.0f));
         renderer.draw(camera, ShadingOptions{});
         const RenderedFrame frame = target.read();
@@ -49,15 +51,18 @@ TEST_P(AccuracySweep, MatchesTheReference) {
                 twinVsGpu += twinHit != (frame.positionAt(column, row)[3] > 0.5f);
             }
         }
-        std::printf("| %-7s | %-22s | %6zu | %7.3f %% | %7.3f %% | %9.2e | %9.2e | %zu | twin vs gpu %zu |\n",
-                    backendName(test::glBackend()), (m.name + " " + view.name).c_str(), gpu.referenceHits,
-                    gpu.coverageMismatchPercent(), gpu.offHalfTexelPercent(), gpu.p99ErrorTexels, gpu.maxErrorTexels,
-                    gpu.exhausted, twinVsGpu);
+        std::printf(
+            "| %-7s | %-22s | %6zu | %7.3f %% | %7.3f %% | %9.2e | %9.2e | %zu | twin vs gpu %zu "
+            "|\n",
+            backendName(test::glBackend()), (m.name + " " + view.name).c_str(), gpu.referenceHits,
+            gpu.coverageMismatchPercent(), gpu.offHalfTexelPercent(), gpu.p99ErrorTexels,
+            gpu.maxErrorTexels, gpu.exhausted, twinVsGpu);
         const std::string where = m.name + " " + view.name + ": " + gpu.summary();
         EXPECT_LE(gpu.coverageMismatchPercent(), test::kMaxCoverageMismatchPercent) << where;
         EXPECT_TRUE(test::withinOffBudget(gpu)) << where;
         EXPECT_EQ(gpu.exhausted, 0u) << where;
-        EXPECT_LE(100.0 * twinVsGpu / gpu.pixels, test::kMaxCoverageMismatchPercent) << "twin against gpu, " << where;
+        EXPECT_LE(100.0 * twinVsGpu / gpu.pixels, test::kMaxCoverageMismatchPercent)
+            << "twin against gpu, " << where;
     }
 }
 

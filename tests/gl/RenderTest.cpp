@@ -28,7 +28,8 @@ protected:
     static GlContext* context() { return &test::glContext(); }
 
     void SetUp() override {
-        if (!isBackendPresent(test::glBackend())) GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+        if (!isBackendPresent(test::glBackend()))
+            GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
     }
 
     struct Result {
@@ -38,7 +39,8 @@ protected:
     };
 
     // Renders `map` and compares it with the reference; asserts the standard thresholds.
-    Result renderAndCompare(const HeightMap& map, const Camera& camera, float heightScale, int size = 64) {
+    Result renderAndCompare(const HeightMap& map, const Camera& camera, float heightScale,
+                            int size = 64) {
         RenderJob job;
         job.camera = camera;
         job.width = size;
@@ -50,8 +52,10 @@ protected:
         r.camera = rendered.camera;
         r.accuracy = test::compareWithReference(r.frame, r.camera, map, heightScale);
         std::printf("    %s\n", r.accuracy.summary().c_str());
-        EXPECT_LE(r.accuracy.coverageMismatchPercent(), kMaxCoverageMismatchPercent) << r.accuracy.summary();
-        EXPECT_LE(r.accuracy.offHalfTexelPercent(), kMaxOffHalfTexelPercent) << r.accuracy.summary();
+        EXPECT_LE(r.accuracy.coverageMismatchPercent(), kMaxCoverageMismatchPercent)
+            << r.accuracy.summary();
+        EXPECT_LE(r.accuracy.offHalfTexelPercent(), kMaxOffHalfTexelPercent)
+            << r.accuracy.summary();
         EXPECT_EQ(r.accuracy.exhausted, 0u) << r.accuracy.summary();
         return r;
     }
@@ -73,7 +77,8 @@ TEST_F(Render, FlatMapIsHitAtExactlyTheScaledHeight) {
                 const float* p = r.frame.positionAt(column, row);
                 if (p[3] < 0.5f || std::abs(p[0]) > 0.499f || std::abs(p[2]) > 0.499f) continue;
                 ++top;  // well inside the footprint: must be the top face
-                ASSERT_NEAR(p[1], 0.06f, 1e-5f) << "elevation " << elevation << " pixel " << column << "," << row;
+                ASSERT_NEAR(p[1], 0.06f, 1e-5f)
+                    << "elevation " << elevation << " pixel " << column << "," << row;
             }
         }
         EXPECT_GT(top, 200u) << "elevation " << elevation;
@@ -98,7 +103,8 @@ TEST_F(Render, OneTexelSpikeIsHitFromAGrazingAngle) {
     // linear search with fewer than ~32 steps along the ray would step over it.
     const HeightMap map = synth::spike(32, 32, 16, 16);
     const glm::dvec3 spikeTop(0.5 / 32, 0.05, 0.5 / 32);
-    const Result r = renderAndCompare(map, test::orbitCamera(4.0, 20.0, 0.9, spikeTop, 12.0), 0.1f, 96);
+    const Result r =
+        renderAndCompare(map, test::orbitCamera(4.0, 20.0, 0.9, spikeTop, 12.0), 0.1f, 96);
     std::size_t spikePixels = 0;
     for (std::size_t p = 0; p < r.frame.position.size(); p += 4) {
         if (r.frame.position[p + 3] > 0.5f && r.frame.position[p + 1] > 0.02f) ++spikePixels;
@@ -108,7 +114,8 @@ TEST_F(Render, OneTexelSpikeIsHitFromAGrazingAngle) {
 
 TEST_F(Render, OneTexelWallIsNotSteppedThrough) {
     const HeightMap map = synth::wallColumn(64, 64, 40);
-    const Result r = renderAndCompare(map, test::orbitCamera(2.0, 180.0, 1.2, {0, 0.02, 0}, 30.0), 0.05f, 96);
+    const Result r =
+        renderAndCompare(map, test::orbitCamera(2.0, 180.0, 1.2, {0, 0.02, 0}, 30.0), 0.05f, 96);
     std::size_t wallPixels = 0;
     for (std::size_t p = 0; p < r.frame.position.size(); p += 4) {
         wallPixels += r.frame.position[p + 3] > 0.5f && r.frame.position[p + 1] > 0.01f;
@@ -133,13 +140,14 @@ TEST_F(Render, EyeInsideTheBoxAboveTheSurface) {
     const HeightMap map = synth::valueNoise(64, 64, 16.0, 3, 7);
     const float scale = 0.3f;
     // An eye over the lowest sample, halfway between it and the top of the box.
-    std::size_t lowest = std::min_element(map.samples.begin(), map.samples.end()) - map.samples.begin();
+    std::size_t lowest =
+        std::min_element(map.samples.begin(), map.samples.end()) - map.samples.begin();
     const int i = static_cast<int>(lowest % 64), j = static_cast<int>(lowest / 64);
     const glm::dvec3 ground((i + 0.5) / 64 - 0.5, scale * map.at(i, j), (j + 0.5) / 64 - 0.5);
     const double top = scale * map.maxValue();
     Camera camera;
     camera.eye = ground + glm::dvec3(0, 0.5 * (top - ground.y), 0);
-    ASSERT_LT(camera.eye.y, top);  // inside the box ...
+    ASSERT_LT(camera.eye.y, top);                                    // inside the box ...
     ASSERT_GT(camera.eye.y, scale * map.surface(i + 0.5, j + 0.5));  // ... above the surface
     camera.target = glm::dvec3(-camera.eye.x * 0.5, ground.y, -camera.eye.z * 0.5);
     camera.fovyDegrees = 90.0;
@@ -157,18 +165,21 @@ TEST_F(Render, BottomFaceFromBelow) {
         if (r.frame.position[p + 3] < 0.5f) continue;
         ++bottom;
         // Float rounding of eye + t dir in the shader: a few ulps of the eye height.
-        EXPECT_NEAR(r.frame.position[p + 1], 0.0f, 1e-6f) << "a hit from below is on the bottom face y = 0";
+        EXPECT_NEAR(r.frame.position[p + 1], 0.0f, 1e-6f)
+            << "a hit from below is on the bottom face y = 0";
     }
     EXPECT_GT(bottom, 500u);
 }
 
 TEST_F(Render, SideWallsFromALowAngle) {
     const HeightMap map = synth::valueNoise(40, 40, 10.0, 3, 9);
-    const Result r = renderAndCompare(map, test::orbitCamera(3.0, 45.0, 1.5, {0, 0.05, 0}, 35.0), 0.2f, 96);
+    const Result r =
+        renderAndCompare(map, test::orbitCamera(3.0, 45.0, 1.5, {0, 0.05, 0}, 35.0), 0.2f, 96);
     std::size_t wall = 0;
     for (std::size_t p = 0; p < r.frame.position.size(); p += 4) {
         const float* hit = &r.frame.position[p];
-        wall += hit[3] > 0.5f && (std::abs(std::abs(hit[0]) - 0.5f) < 1e-5f || std::abs(std::abs(hit[2]) - 0.5f) < 1e-5f);
+        wall += hit[3] > 0.5f && (std::abs(std::abs(hit[0]) - 0.5f) < 1e-5f ||
+                                  std::abs(std::abs(hit[2]) - 0.5f) < 1e-5f);
     }
     EXPECT_GT(wall, 200u) << r.accuracy.summary();
 }
@@ -224,7 +235,8 @@ namespace {
 class Peers : public ::testing::Test {
 protected:
     void SetUp() override {
-        if (!isBackendPresent(test::glBackend())) GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+        if (!isBackendPresent(test::glBackend()))
+            GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
     }
 
     test::Accuracy measure(Method method, int steps) {
@@ -236,7 +248,8 @@ protected:
         job.method.steps = steps;
         job.method.minSteps = std::max(4, steps / 4);
         const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
-        const test::Accuracy a = test::compareWithReference(r.frame, r.camera, map, job.heightScale);
+        const test::Accuracy a =
+            test::compareWithReference(r.frame, r.camera, map, job.heightScale);
         std::printf("    %-10s %5d: %s\n", methodName(method), steps, a.summary().c_str());
         return a;
     }
@@ -255,7 +268,8 @@ TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
         // Few steps: visibly wrong (stair steps, sunken or missed features). Many steps:
         // within a few per cent of the exact answer on this smooth relief (they know no
         // side walls, so the comparison keeps a margin).
-        EXPECT_GT(few.offHalfTexelPercent(), 2.0 * many.offHalfTexelPercent() + 1.0) << methodName(method);
+        EXPECT_GT(few.offHalfTexelPercent(), 2.0 * many.offHalfTexelPercent() + 1.0)
+            << methodName(method);
         EXPECT_LT(many.offHalfTexelPercent(), 3.0) << methodName(method);
     }
 }

@@ -1,7 +1,7 @@
 // The reusable GLSL library (shaders/microrelief/) must be a pure function library that
-// compiles as GLSL 3.30 core and GLSL ES 3.00 (and 4.00 core, where it gathers): each file is checked on its own by
-// glslangValidator (Debian glslang-tools), wrapped in a minimal fragment shader, the
-// way another engine would include it. The app's own shaders are checked as 3.30.
+// compiles as GLSL 3.30 core and GLSL ES 3.00 (and 4.00 core, where it gathers): each file is
+// checked on its own by glslangValidator (Debian glslang-tools), wrapped in a minimal fragment
+// shader, the way another engine would include it. The app's own shaders are checked as 3.30.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -35,8 +35,8 @@ std::string readText(const std::filesystem::path& file) {
 }
 
 // Runs glslangValidator on an assembled source; returns its output, empty on success.
-std::string validate(const test::ScratchDir& dir, const ShaderSource& source, const std::string& stage,
-                     const std::string& name) {
+std::string validate(const test::ScratchDir& dir, const ShaderSource& source,
+                     const std::string& stage, const std::string& name) {
     const std::filesystem::path file = dir / (name + "." + stage);
     std::ofstream(file) << source.text;
     const std::filesystem::path log = dir / (name + ".log");
@@ -65,11 +65,14 @@ TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330And400AndEs300) {
     for (const auto& file : files) {
         for (const Dialect& dialect : kDialects) {
             const std::filesystem::path wrapper = dir / ("use_" + file.stem().string() + ".frag");
-            std::ofstream(wrapper) << dialect.prelude << "#include \"" << file.string() << "\"\n"
-                                   << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
+            std::ofstream(wrapper)
+                << dialect.prelude << "#include \"" << file.string() << "\"\n"
+                << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
             const ShaderSource source = assembleShader(wrapper, dialect.version);
             const std::string errors = validate(dir, source, "frag", file.stem().string());
-            EXPECT_TRUE(errors.empty()) << file.filename() << " as GLSL " << dialect.version << ":\n" << errors;
+            EXPECT_TRUE(errors.empty())
+                << file.filename() << " as GLSL " << dialect.version << ":\n"
+                << errors;
         }
     }
 }
@@ -84,22 +87,24 @@ TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
         int number = 0;
         while (std::getline(lines, line)) {
             ++number;
-            EXPECT_FALSE(std::regex_search(line, forbidden)) << file.filename() << ":" << number << ": " << line;
+            EXPECT_FALSE(std::regex_search(line, forbidden))
+                << file.filename() << ":" << number << ": " << line;
         }
         std::string guard = "MICRORELIEF_" + file.stem().string() + "_GLSL";
         std::transform(guard.begin(), guard.end(), guard.begin(), ::toupper);
-        EXPECT_NE(readText(file).find("#ifndef " + guard), std::string::npos) << file.filename() << " lacks " << guard;
+        EXPECT_NE(readText(file).find("#ifndef " + guard), std::string::npos)
+            << file.filename() << " lacks " << guard;
     }
 }
 
 TEST(GlslLibrary, AppShadersCompileAsGlsl330And400) {
     test::ScratchDir dir;
     for (const char* version : {"330 core", "400 core"})
-    for (const char* name : {"relief_box.vert", "relief.frag"}) {
-        const std::filesystem::path file = kShaders / name;
-        const ShaderSource source = assembleShader(file, version);
-        const std::string stage = file.extension().string().substr(1);
-        const std::string errors = validate(dir, source, stage, file.stem().string());
-        EXPECT_TRUE(errors.empty()) << name << ":\n" << errors;
-    }
+        for (const char* name : {"relief_box.vert", "relief.frag"}) {
+            const std::filesystem::path file = kShaders / name;
+            const ShaderSource source = assembleShader(file, version);
+            const std::string stage = file.extension().string().substr(1);
+            const std::string errors = validate(dir, source, stage, file.stem().string());
+            EXPECT_TRUE(errors.empty()) << name << ":\n" << errors;
+        }
 }

@@ -11,13 +11,16 @@ namespace microrelief::test {
 
 namespace {
 
-std::shared_ptr<const HeightMap> share(HeightMap map) { return std::make_shared<const HeightMap>(std::move(map)); }
+std::shared_ptr<const HeightMap> share(HeightMap map) {
+    return std::make_shared<const HeightMap>(std::move(map));
+}
 
 // Sparse one-texel spikes of full height on a zero floor.
 HeightMap spikes(int n, std::uint32_t seed) {
     HeightMap map(n, n);
     const HeightMap dice = synth::whiteNoise(n, n, seed);
-    for (std::size_t k = 0; k < map.samples.size(); ++k) map.samples[k] = dice.samples[k] > 0.985f ? 1.0f : 0.0f;
+    for (std::size_t k = 0; k < map.samples.size(); ++k)
+        map.samples[k] = dice.samples[k] > 0.985f ? 1.0f : 0.0f;
     return map;
 }
 
@@ -25,7 +28,8 @@ HeightMap spikes(int n, std::uint32_t seed) {
 HeightMap walls(int n, int spacing) {
     HeightMap map(n, n);
     for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) map.at(i, j) = (i % spacing == spacing / 2 || j % spacing == spacing / 2) ? 1.0f : 0.0f;
+        for (int i = 0; i < n; ++i)
+            map.at(i, j) = (i % spacing == spacing / 2 || j % spacing == spacing / 2) ? 1.0f : 0.0f;
     }
     return map;
 }
@@ -38,7 +42,8 @@ HeightMap cliffs(int n) {
 }
 
 // A map that went through a file of the given type and back.
-std::shared_ptr<const HeightMap> throughFile(const HeightMap& map, PixelType type, const std::string& name) {
+std::shared_ptr<const HeightMap> throughFile(const HeightMap& map, PixelType type,
+                                             const std::string& name) {
     static ScratchDir scratch;
     const auto file = scratch / name;
     writeMap(file, map, type);
@@ -61,7 +66,8 @@ const std::vector<SweepMap>& sweepMaps() {
             {"oblong300x77", share(synth::valueNoise(300, 77, 10.0, 4, 8)), 0.1},
             {"single1x1", share(synth::flat(1, 1, 0.6f)), 0.1},
             {"tiny2x2", share(synth::whiteNoise(2, 2, 3)), 0.2},
-            {"png16", throughFile(synth::cobbles(256, 256, 1), PixelType::UInt16, "cobbles16.png"), 0.1},
+            {"png16", throughFile(synth::cobbles(256, 256, 1), PixelType::UInt16, "cobbles16.png"),
+             0.1},
             {"exrfloat", throughFile(tall, PixelType::Float, "tall.exr"), 0.03},
             {"huge4096", share(synth::valueNoise(4096, 4096, 256.0, 6, 5)), 0.1},
         };
@@ -76,17 +82,21 @@ std::vector<SweepView> sweepViews(const SweepMap& m) {
     const glm::dvec3 centre(0.0, 0.5 * top, 0.0);
     // The 4096 map is the costly one: a few views suffice to show size does not matter.
     const bool few = map.width * map.height > 1024 * 1024;
-    const std::vector<double> elevations = few ? std::vector<double>{90, 30, 3} : std::vector<double>{90, 60, 30, 10, 3, 1};
-    const std::vector<double> azimuths = few ? std::vector<double>{37} : std::vector<double>{0, 37, 135, 250};
+    const std::vector<double> elevations =
+        few ? std::vector<double>{90, 30, 3} : std::vector<double>{90, 60, 30, 10, 3, 1};
+    const std::vector<double> azimuths =
+        few ? std::vector<double>{37} : std::vector<double>{0, 37, 135, 250};
     for (double e : elevations) {
         for (double a : azimuths) {
             if (e == 90 && a != azimuths.front()) continue;  // one top view is enough
-            views.push_back({"e" + std::to_string(static_cast<int>(e)) + "a" + std::to_string(static_cast<int>(a)),
+            views.push_back({"e" + std::to_string(static_cast<int>(e)) + "a" +
+                                 std::to_string(static_cast<int>(a)),
                              orbitCamera(e, a, 1.6, centre, 45.0)});
         }
     }
     // Inside the box, above the surface: over the lowest sample, halfway up to the top.
-    const auto lowest = std::min_element(map.samples.begin(), map.samples.end()) - map.samples.begin();
+    const auto lowest =
+        std::min_element(map.samples.begin(), map.samples.end()) - map.samples.begin();
     const int i = static_cast<int>(lowest % map.width), j = static_cast<int>(lowest / map.width);
     const double longer = std::max(map.width, map.height);
     const glm::dvec3 ground((i + 0.5 - 0.5 * map.width) / longer, m.heightScale * map.at(i, j),

@@ -6,13 +6,13 @@
 #include <random>
 #include <sstream>
 
-
 namespace microrelief::test {
 
 ScratchDir::ScratchDir() {
     std::random_device seed;
     std::mt19937_64 random(seed());
-    path_ = std::filesystem::temp_directory_path() / ("microrelief-test-" + std::to_string(random()));
+    path_ =
+        std::filesystem::temp_directory_path() / ("microrelief-test-" + std::to_string(random()));
     std::filesystem::create_directories(path_);
 }
 
@@ -28,13 +28,15 @@ void writeMap(const std::filesystem::path& file, const HeightMap& map, PixelType
     if (type == PixelType::UInt8) {
         bytes.resize(map.samples.size());
         for (std::size_t k = 0; k < bytes.size(); ++k) {
-            bytes[k] = static_cast<std::uint8_t>(std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 255.0f));
+            bytes[k] = static_cast<std::uint8_t>(
+                std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 255.0f));
         }
         pixels = bytes.data();
     } else if (type == PixelType::UInt16) {
         words.resize(map.samples.size());
         for (std::size_t k = 0; k < words.size(); ++k) {
-            words[k] = static_cast<std::uint16_t>(std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 65535.0f));
+            words[k] = static_cast<std::uint16_t>(
+                std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 65535.0f));
         }
         pixels = words.data();
     }
@@ -43,7 +45,8 @@ void writeMap(const std::filesystem::path& file, const HeightMap& map, PixelType
 
 void writeBytes(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes) {
     std::ofstream out(file, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
 }
 
 std::vector<std::uint8_t> readBytes(const std::filesystem::path& file) {
@@ -51,11 +54,13 @@ std::vector<std::uint8_t> readBytes(const std::filesystem::path& file) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target, double fovyDeg) {
+Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target,
+                   double fovyDeg) {
     const double e = glm::radians(elevationDeg), a = glm::radians(azimuthDeg);
     Camera camera;
     camera.target = target;
-    camera.eye = target + distance * glm::dvec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
+    camera.eye = target + distance * glm::dvec3(std::cos(e) * std::cos(a), std::sin(e),
+                                                std::cos(e) * std::sin(a));
     camera.fovyDegrees = fovyDeg;
     // Straight down: y is parallel to the view; take -z as up (the spec's top view).
     camera.up = elevationDeg > 89.999 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);

@@ -37,12 +37,12 @@ std::vector<std::uint8_t> readBytes(const std::filesystem::path& file);
 
 // A camera on a sphere around the origin: `elevationDeg` above the base plane,
 // `azimuthDeg` around y from +x towards +z, looking at `target`.
-Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target = {0, 0, 0},
-                   double fovyDeg = 40.0);
+Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance,
+                   glm::dvec3 target = {0, 0, 0}, double fovyDeg = 40.0);
 
 using microrelief::Accuracy;
-using microrelief::PixelHit;
 using microrelief::compareWithReference;
 using microrelief::measureAccuracy;
+using microrelief::PixelHit;
 
 }  // namespace microrelief::test

@@ -134,7 +134,8 @@ std::vector<std::string> splitWords(const std::string& line) {
 ViewerOptions parseWords(std::vector<std::string> words) {
     std::vector<char*> argv;
     for (std::string& word : words) argv.push_back(word.data());
-    ParseResult<ViewerOptions> parsed = parseViewerOptions(static_cast<int>(argv.size()), argv.data());
+    ParseResult<ViewerOptions> parsed =
+        parseViewerOptions(static_cast<int>(argv.size()), argv.data());
     EXPECT_TRUE(parsed.options) << parsed.message;
     return parsed.options ? *parsed.options : ViewerOptions{};
 }

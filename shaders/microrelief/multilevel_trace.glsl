@@ -96,7 +96,7 @@ void subdivideSegment(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
         float bound = segmentBound(map, pyramid, pa.xy, pb.xy, level, hit.fetches);
         hit.stopLevel = level;
         if (min(pa.z, pb.z) <= bound) {
-            if (level > 0 && exp2(float(level)) <= map.lodCone * (tStart + ta)) {
+            if (map.lodCone > 0.0 && level > 0 && exp2(float(level)) <= map.lodCone * (tStart + ta)) {
                 // Accuracy-controlled level of detail (paper, section II: "under criterion
                 // of required accuracy"): this level's texels project to less than the
                 // tolerated pixel error, so its max box stands for the surface here.

@@ -18,14 +18,22 @@ constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level",
                                            "normal", "depth",      "position"};
 constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep",
                                         "pom",        "relief", "maxmip"};
+
+// The enum value whose name is `name`, by position in `names`; throws Error(BadInput)
+// naming the flag and the choices.
+template <class Enum, std::size_t N>
+Enum parseName(const char* const (&names)[N], const std::string& name, const char* flag) {
+    std::string choices;
+    for (std::size_t k = 0; k < N; ++k) {
+        if (name == names[k]) return static_cast<Enum>(k);
+        choices += std::string(k == 0 ? "" : k + 1 == N ? " or " : ", ") + names[k];
+    }
+    throwBadInput(std::string("unknown ") + flag + " '" + name + "' (expected " + choices + ")");
+}
 }  // namespace
 
 Method parseMethod(const std::string& name) {
-    for (int k = 0; k < 7; ++k) {
-        if (name == kMethodNames[k]) return static_cast<Method>(k);
-    }
-    throwBadInput("unknown --method '" + name +
-                  "' (expected multilevel, normal, offset, steep, pom, relief or maxmip)");
+    return parseName<Method>(kMethodNames, name, "--method");
 }
 
 const char* methodName(Method method) {
@@ -37,11 +45,7 @@ bool methodHasSteps(Method method) {
 }
 
 DebugView parseDebugView(const std::string& name) {
-    for (int k = 0; k < 6; ++k) {
-        if (name == kDebugViewNames[k]) return static_cast<DebugView>(k);
-    }
-    throwBadInput("unknown --view '" + name +
-                  "' (expected shaded, iterations, level, normal, depth or position)");
+    return parseName<DebugView>(kDebugViewNames, name, "--view");
 }
 
 const char* debugViewName(DebugView view) {

@@ -1,5 +1,6 @@
 #include "gl/ShaderSource.h"
 
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -11,6 +12,7 @@ namespace microrelief {
 namespace {
 
 constexpr int kMaxIncludeDepth = 32;
+constexpr int kLineStride = 100000;  // line numbers per file in the assembled source
 
 std::string readText(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -39,13 +41,18 @@ public:
             if (!line.empty() && line.back() == '\r') line.pop_back();
             std::smatch match;
             if (std::regex_match(line, match, include)) {
-                const std::filesystem::path target = file.parent_path() / match[1].str();
+                const std::filesystem::path target =
+                    (file.parent_path() / match[1].str()).lexically_normal();
                 std::error_code ec;
                 if (!std::filesystem::exists(target, ec)) {
                     throwRuntime(file.string() + ":" + std::to_string(number) + ": #include \"" +
                                  match[1].str() + "\" not found");
                 }
-                splice(target.lexically_normal(), depth + 1);
+                // Each file once, as its include guard would have it anyway: the source
+                // stays small however often the library's files include each other.
+                if (std::find(out_.files.begin(), out_.files.end(), target) == out_.files.end()) {
+                    splice(target, depth + 1);
+                }
                 lineMarker(number + 1, index);
                 continue;
             }
@@ -55,9 +62,11 @@ public:
     }
 
 private:
-    // `#line L S` numbers the line after it L in source string S.
+    // `#line L S` numbers the line after it L in source string S. Not every compiler
+    // reports S (Mesa reports 0), so the file is in L too: L = index * kLineStride + line.
     void lineMarker(int line, int index) {
-        out_.text += "#line " + std::to_string(line) + " " + std::to_string(index) + "\n";
+        out_.text += "#line " + std::to_string(index * kLineStride + line) + " " +
+                     std::to_string(index) + "\n";
     }
 
     ShaderSource& out_;
@@ -86,12 +95,16 @@ std::string mapCompilerLog(const std::string& log,
     while (std::getline(lines, line)) {
         std::smatch m;
         if (std::regex_search(line, m, location)) {
-            const std::size_t index = std::stoul(m[1].str());
+            std::size_t index = std::stoul(m[1].str());
+            long number = std::stol(m[2].matched   ? m[2].str()
+                                    : m[4].matched ? m[4].str()
+                                                   : m[5].str());
+            if (number >= kLineStride) {  // the file is in the line number (see lineMarker)
+                index = static_cast<std::size_t>(number / kLineStride);
+                number %= kLineStride;
+            }
             if (index < files.size()) {
-                const std::string lineNo = m[2].matched   ? m[2].str()
-                                           : m[4].matched ? m[4].str()
-                                                          : m[5].str();
-                std::string where = files[index].string() + ":" + lineNo;
+                std::string where = files[index].string() + ":" + std::to_string(number);
                 if (m[3].matched) where += ":" + m[3].str();
                 line = m.prefix().str() + where + m.suffix().str();
             }

@@ -3,11 +3,15 @@
 // --backend=egl|osmesa (one CTest entry each); skips only where that backend is absent.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
 #include <memory>
 
 #include "GlTestBackend.h"
 #include "TestSupport.h"
 #include "context/GlContext.h"
+#include "core/DataPaths.h"
+#include "core/Error.h"
 #include "render/HeadlessRender.h"
 #include "synth/SyntheticMaps.h"
 #include "trace/ReferenceTracer.h"
@@ -277,6 +281,38 @@ TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
 TEST_F(Peers, NormalMappingHasNoParallax) {
     // Every hit lies on the top plane of the box: most are far from the true surface.
     EXPECT_GT(measure(Method::Normal, 0).offHalfTexelPercent(), 20.0);
+}
+
+}  // namespace
+
+namespace {
+
+// A compile error names the library file and line it is in, on this backend's compiler
+// (Mesa reports source string 0, so the file travels in the line number: ShaderSource).
+TEST(ShaderErrors, NameTheLibraryFileAndLine) {
+    if (!isBackendPresent(test::glBackend()))
+        GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+    test::ScratchDir dir;
+    std::filesystem::copy(shaderDirectory(), dir.path(), std::filesystem::copy_options::recursive);
+    const std::filesystem::path broken = dir / "microrelief/shading.glsl";
+    std::string text = test::readText(broken);
+    const std::size_t at = text.find("float diffuse = max(dot(n, l), 0.0);");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 0, "undeclaredThing();\n    ");
+    const int line =
+        1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+    std::ofstream(broken) << text;
+
+    test::glContext().makeCurrent();
+    try {
+        ReliefRenderer renderer(test::glContext().gl(), dir.path());
+        FAIL() << "the broken shader compiled";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("shading.glsl:" + std::to_string(line)), std::string::npos)
+            << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+    }
 }
 
 }  // namespace

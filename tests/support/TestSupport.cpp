@@ -54,6 +54,11 @@ std::vector<std::uint8_t> readBytes(const std::filesystem::path& file) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+std::string readText(const std::filesystem::path& file) {
+    const std::vector<std::uint8_t> bytes = readBytes(file);
+    return {bytes.begin(), bytes.end()};
+}
+
 Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target,
                    double fovyDeg) {
     const double e = glm::radians(elevationDeg), a = glm::radians(azimuthDeg);

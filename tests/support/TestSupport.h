@@ -34,6 +34,7 @@ private:
 void writeMap(const std::filesystem::path& file, const HeightMap& map, PixelType type);
 void writeBytes(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes);
 std::vector<std::uint8_t> readBytes(const std::filesystem::path& file);
+std::string readText(const std::filesystem::path& file);
 
 // A camera on a sphere around the origin: `elevationDeg` above the base plane,
 // `azimuthDeg` around y from +x towards +z, looking at `target`.

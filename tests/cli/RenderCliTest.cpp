@@ -2,13 +2,10 @@
 // (0 success, 2 bad arguments or input, 1 anything else), exactly one error line on
 // stderr naming the file and the reason, and no file written or changed on failure.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <OpenImageIO/imageio.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include "TestSupport.h"
 #include "context/GlContext.h"
@@ -18,41 +15,18 @@ using namespace microrelief;
 
 namespace {
 
-struct RunResult {
-    int status = -1;
-    std::string out, err;
-    int errLines() const { return static_cast<int>(std::count(err.begin(), err.end(), '\n')); }
-};
-
-std::string slurp(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 class RenderCli : public ::testing::Test {
 protected:
     // Runs microrelief-render with `args` (already shell-quoted where needed).
-    RunResult run(const std::string& args, const std::string& environment = "") {
-        const std::string command = environment + " " + MICRORELIEF_RENDER_EXE + " " + args +
-                                    " > " + (dir / "stdout").string() + " 2> " +
-                                    (dir / "stderr").string();
-        const int raw = std::system(command.c_str());
-        RunResult r;
-        r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-        r.out = slurp(dir / "stdout");
-        r.err = slurp(dir / "stderr");
-        return r;
+    // Runs microrelief-render with `args` (already shell-quoted where needed).
+    test::RunResult run(const std::string& args, const std::string& environment = "") {
+        return test::runCommand(environment + " " + MICRORELIEF_RENDER_EXE + " " + args,
+                                dir.path());
     }
 
     // Asserts the spec's failure shape and returns the message.
-    static void expectFailure(const RunResult& r, int status, const std::string& mentions) {
-        EXPECT_EQ(r.status, status) << r.err;
-        EXPECT_EQ(r.errLines(), 1) << r.err;
-        EXPECT_EQ(r.err.rfind("microrelief-render: error: ", 0), 0u) << r.err;
-        EXPECT_NE(r.err.find(mentions), std::string::npos)
-            << "expected '" << mentions << "' in: " << r.err;
+    static void expectFailure(const test::RunResult& r, int status, const std::string& mentions) {
+        test::expectOneLineFailure(r, "microrelief-render", status, mentions);
     }
 
     std::vector<std::string> filesIn(const std::filesystem::path& folder) {
@@ -68,20 +42,20 @@ protected:
 };
 
 TEST_F(RenderCli, HelpAndVersionExitZero) {
-    const RunResult help = run("--help");
+    const test::RunResult help = run("--help");
     EXPECT_EQ(help.status, 0);
     for (const char* flag : {"--height", "--height-scale", "--eye", "--target", "--up", "--fovy",
                              "--size", "--out", "--aov", "--backend", "--channel", "--normalize"}) {
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     }
-    const RunResult version = run("--version");
+    const test::RunResult version = run("--version");
     EXPECT_EQ(version.status, 0);
     EXPECT_NE(version.out.find("microrelief-render"), std::string::npos);
 }
 
 TEST_F(RenderCli, DefaultMapRendersThePictureAndTheAov) {
     const auto out = dir / "view.png", aov = dir / "view.exr";
-    const RunResult r = run(small + "--out " + out.string() + " --aov " + aov.string());
+    const test::RunResult r = run(small + "--out " + out.string() + " --aov " + aov.string());
     ASSERT_EQ(r.status, 0) << r.err;
     auto picture = OIIO::ImageInput::open(out.string());
     ASSERT_TRUE(picture);
@@ -119,7 +93,7 @@ TEST_F(RenderCli, NegativeCoordinatesInBothSpellings) {
     ASSERT_EQ(run(small + "--eye=-0.7,0.5,-0.6 --out " + a.string()).status, 0);
     ASSERT_EQ(run(small + "--eye -0.7,0.5,-0.6 --out " + b.string()).status, 0);
     EXPECT_EQ(test::readBytes(a), test::readBytes(b));
-    const RunResult below = run(small + "--eye -0.3,-1,0.2 --out " + a.string());
+    const test::RunResult below = run(small + "--eye -0.3,-1,0.2 --out " + a.string());
     EXPECT_EQ(below.status, 0) << below.err;
 }
 
@@ -140,7 +114,8 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     const auto out = dir / "keep.png";
     test::writeBytes(out, {'o', 'l', 'd'});
     auto expectRefused = [&](const std::filesystem::path& map, const std::string& reason) {
-        const RunResult r = run(small + "--height " + map.string() + " --out " + out.string());
+        const test::RunResult r =
+            run(small + "--height " + map.string() + " --out " + out.string());
         expectFailure(r, 2, map.filename().string());
         EXPECT_NE(r.err.find(reason), std::string::npos) << r.err;
         EXPECT_EQ(test::readBytes(out), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
@@ -188,23 +163,24 @@ TEST_F(RenderCli, NormalizeRescuesNegativeMaps) {
     HeightMap negative(4, 4, 0.5f);
     negative.at(1, 1) = -1.0f;
     test::writeMap(dir / "negative.exr", negative, PixelType::Float);
-    const RunResult r = run(small + "--normalize --height " + (dir / "negative.exr").string() +
-                            " --out " + (dir / "n.png").string());
+    const test::RunResult r =
+        run(small + "--normalize --height " + (dir / "negative.exr").string() + " --out " +
+            (dir / "n.png").string());
     EXPECT_EQ(r.status, 0) << r.err;
 }
 
 TEST_F(RenderCli, OneByOneMapRenders) {
     test::writeMap(dir / "one.png", HeightMap(1, 1, 1.0f), PixelType::UInt8);
-    const RunResult r = run(small + "--height " + (dir / "one.png").string() + " --out " +
-                            (dir / "o.png").string());
+    const test::RunResult r = run(small + "--height " + (dir / "one.png").string() + " --out " +
+                                  (dir / "o.png").string());
     EXPECT_EQ(r.status, 0) << r.err;
 }
 
 TEST_F(RenderCli, NoGlBackendExitsOneWithOneLine) {
     // No EGL vendor library and no OSMesa: nothing can make a context.
-    const RunResult r = run(small + "--out " + (dir / "x.png").string(),
-                            "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "
-                            "MICRORELIEF_OSMESA_LIBRARY=/nonexistent.so");
+    const test::RunResult r = run(small + "--out " + (dir / "x.png").string(),
+                                  "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "
+                                  "MICRORELIEF_OSMESA_LIBRARY=/nonexistent.so");
     expectFailure(r, 1, "no GL backend");
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
@@ -214,8 +190,8 @@ TEST_F(RenderCli, EachBackendOnRequest) {
         if (!isBackendPresent(parseBackend(backend))) {
             GTEST_SKIP() << backend << " is absent";  // Mesa 25.1 and later have no OSMesa
         }
-        const RunResult r = run(std::string("--size 32x32 --backend ") + backend + " --out " +
-                                (dir / (std::string(backend) + ".png")).string());
+        const test::RunResult r = run(std::string("--size 32x32 --backend ") + backend + " --out " +
+                                      (dir / (std::string(backend) + ".png")).string());
         EXPECT_EQ(r.status, 0) << backend << ": " << r.err;
         EXPECT_NE(r.out.find(backend), std::string::npos) << r.out;
     }

@@ -1,7 +1,11 @@
 #include "TestSupport.h"
 
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -57,6 +61,25 @@ std::vector<std::uint8_t> readBytes(const std::filesystem::path& file) {
 std::string readText(const std::filesystem::path& file) {
     const std::vector<std::uint8_t> bytes = readBytes(file);
     return {bytes.begin(), bytes.end()};
+}
+
+int RunResult::errLines() const {
+    return static_cast<int>(std::count(err.begin(), err.end(), '\n'));
+}
+
+RunResult runCommand(const std::string& command, const std::filesystem::path& scratch) {
+    const std::filesystem::path out = scratch / "stdout", err = scratch / "stderr";
+    const int raw = std::system((command + " > " + out.string() + " 2> " + err.string()).c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, readText(out), readText(err)};
+}
+
+void expectOneLineFailure(const RunResult& r, const std::string& program, int status,
+                          const std::string& mentions) {
+    EXPECT_EQ(r.status, status) << r.err;
+    EXPECT_EQ(r.errLines(), 1) << r.err;
+    EXPECT_EQ(r.err.rfind(program + ": error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(mentions), std::string::npos)
+        << "expected '" << mentions << "' in: " << r.err;
 }
 
 Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target,

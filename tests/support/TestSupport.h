@@ -36,6 +36,20 @@ void writeBytes(const std::filesystem::path& file, const std::vector<std::uint8_
 std::vector<std::uint8_t> readBytes(const std::filesystem::path& file);
 std::string readText(const std::filesystem::path& file);
 
+// A program run as a user runs it: `command` through the shell, stdout and stderr
+// captured through files in `scratch`.
+struct RunResult {
+    int status = -1;  // exit status, -1 when it did not exit normally
+    std::string out, err;
+    int errLines() const;
+};
+RunResult runCommand(const std::string& command, const std::filesystem::path& scratch);
+
+// The spec's failure shape: exit `status`, exactly one stderr line starting
+// "<program>: error: " and mentioning `mentions`.
+void expectOneLineFailure(const RunResult& r, const std::string& program, int status,
+                          const std::string& mentions);
+
 // A camera on a sphere around the origin: `elevationDeg` above the base plane,
 // `azimuthDeg` around y from +x towards +z, looking at `target`.
 Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance,

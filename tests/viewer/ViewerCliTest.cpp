@@ -2,11 +2,8 @@
 // errors a user can make, which fail the way microrelief-render's do (exit status 2 and
 // one line naming the flag or the file) before any window opens.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include "TestSupport.h"
 
@@ -14,50 +11,32 @@ using namespace microrelief;
 
 namespace {
 
-struct RunResult {
-    int status = -1;
-    std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 class ViewerCli : public ::testing::Test {
 protected:
     // No display: nothing here may need one.
-    RunResult run(const std::string& args) {
-        const std::string command = std::string("DISPLAY= WAYLAND_DISPLAY= ") +
-                                    MICRORELIEF_VIEWER_EXE + " " + args + " > " +
-                                    (dir / "stdout").string() + " 2> " + (dir / "stderr").string();
-        const int raw = std::system(command.c_str());
-        return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir / "stdout"),
-                slurp(dir / "stderr")};
+    // No display: nothing here may need one.
+    test::RunResult run(const std::string& args) {
+        return test::runCommand(
+            std::string("DISPLAY= WAYLAND_DISPLAY= ") + MICRORELIEF_VIEWER_EXE + " " + args,
+            dir.path());
     }
 
-    static void expectFailure(const RunResult& r, int status, const std::string& mentions) {
-        EXPECT_EQ(r.status, status) << r.err;
-        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-        EXPECT_EQ(r.err.rfind("microrelief-viewer: error: ", 0), 0u) << r.err;
-        EXPECT_NE(r.err.find(mentions), std::string::npos)
-            << "expected '" << mentions << "' in: " << r.err;
+    static void expectFailure(const test::RunResult& r, int status, const std::string& mentions) {
+        test::expectOneLineFailure(r, "microrelief-viewer", status, mentions);
     }
 
     test::ScratchDir dir;
 };
 
 TEST_F(ViewerCli, HelpListsTheRenderersSceneFlags) {
-    const RunResult help = run("--help");
+    const test::RunResult help = run("--help");
     EXPECT_EQ(help.status, 0);
     for (const char* flag :
          {"--height", "--channel", "--normalize", "--height-scale", "--eye", "--target", "--up",
           "--fovy", "--size", "--light", "--method", "--view", "--frames", "--screenshot"}) {
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     }
-    const RunResult version = run("--version");
+    const test::RunResult version = run("--version");
     EXPECT_EQ(version.status, 0);
     EXPECT_NE(version.out.find("microrelief-viewer"), std::string::npos);
 }
@@ -79,7 +58,7 @@ TEST_F(ViewerCli, BadMapsAndCamerasExitTwoBeforeAnyWindow) {
 }
 
 TEST_F(ViewerCli, NoDisplayExitsOneWithOneLine) {
-    const RunResult r = run("--frames 1");
+    const test::RunResult r = run("--frames 1");
     expectFailure(r, 1, "GLFW");
 }
 

@@ -24,7 +24,10 @@
 #include "microrelief/debug_views.glsl"
 #include "microrelief/shading.glsl"
 
-uniform sampler2D maxPyramid;  // the multilevel elevation map, nearest mipmaps
+// The multilevel elevation map (max_pyramid.glsl), nearest mipmaps: the aligned levels
+// (maxmip's quadtree) and the overlapping ones (the multilevel method's windows).
+uniform sampler2D maxPyramid;
+uniform sampler2D windowPyramid;
 uniform sampler2D heightSamples;
 
 uniform vec2 reliefSize;
@@ -64,7 +67,7 @@ ReliefHit traceRay(ReliefMap map, vec3 origin, vec3 dir) {
 #elif MICRORELIEF_METHOD == 6
     return traceMaxMip(map, maxPyramid, heightSamples, origin, dir);
 #else
-    return traceMultilevel(map, maxPyramid, heightSamples, origin, dir);
+    return traceMultilevel(map, windowPyramid, heightSamples, origin, dir);
 #endif
 }
 

@@ -1,23 +1,17 @@
 // max_pyramid.glsl: reading the multilevel elevation map (paper, section II-III, fig. 6).
 //
-// `pyramid` is a single-channel float texture whose mip level k holds, per texel, the
-// maximum of the bilinear surface over the finest texels it covers, with nearest
-// filtering (GL_NEAREST_MIPMAP_NEAREST). Level k texel (p, q) covers map-space
-// X in [p 2^k, (p+1) 2^k), Y in [q 2^k, (q+1) 2^k).
+// Two pyramids, single-channel float textures with nearest filtering
+// (GL_NEAREST_MIPMAP_NEAREST), of the same sizes (W, H rounded up to powers of two, then
+// halved down to 1 x 1), built by MaxPyramid:
+//  * the aligned one (the quadtree): level k texel (p, q) holds the maximum of the
+//    bilinear surface over map-space X in [p 2^k, (p+1) 2^k), Y in [q 2^k, (q+1) 2^k);
+//  * the overlapping one (the windows): level k texel (p, q) holds the max of aligned
+//    texels p..p+1 by q..q+1 of level k, twice as wide, so that windows overlap by half.
+// The multilevel traversal reads the windows (segmentBound), maxmip the quadtree.
 #ifndef MICRORELIEF_MAX_PYRAMID_GLSL
 #define MICRORELIEF_MAX_PYRAMID_GLSL
 
 #include "relief_map.glsl"
-
-// The level of detail for a footprint `extent` texels wide (paper: 1/2^level < Lp <=
-// 1/2^(level+1) in map units): the finest level whose texels are at least that wide,
-// so that the footprint touches at most 2 x 2 of them.
-int footprintLevel(ReliefMap map, float extent) {
-    int level = extent <= 1.0 ? 0 : int(ceil(log2(extent)));
-    // log2 of an exact power of two may round up one step; that is conservative (a
-    // coarser max), never wrong.
-    return min(level, map.levelCount - 1);
-}
 
 // The level-`level` texel that holds map point p. Exact integer arithmetic: the finest
 // texel index, clamped to the map (not its padding), shifted right by the level.
@@ -44,37 +38,39 @@ float pyramidTexel(ReliefMap map, sampler2D pyramid, ivec2 texel, int level, ino
 #endif
 }
 
-// The bound of the pyramid over the segment from a to b (map points): the max of every
-// texel the segment crosses, never a single fetch at its centre, so it is conservative.
-// `level` comes in as the footprint level and goes out as the level read:
-//  * one fetch when the segment lies in a single texel at `level`, or at the level
-//    above (whose texel contains the segment, so its max is a bound too, one level
-//    looser): the common case;
-//  * otherwise the texels the segment crosses at `level`, two, or three when it passes
-//    a corner, since the level is coarse enough for it to span at most two per axis.
-float segmentBound(ReliefMap map, sampler2D pyramid, vec2 a, vec2 b, inout int level, inout int fetches) {
-    ivec2 ta = pyramidTexelAt(map, a, level), tb = pyramidTexelAt(map, b, level);
-    // The footprint level makes |tb - ta| <= 1 per axis; rounding in log2 can leave it
-    // one level short, which this restores.
-    while (any(greaterThan(abs(tb - ta), ivec2(1))) && level < map.levelCount - 1) {
-        level += 1;
-        ta = pyramidTexelAt(map, a, level);
-        tb = pyramidTexelAt(map, b, level);
-    }
-    if (ta == tb) return pyramidTexel(map, pyramid, ta, level, fetches);
-    if (level + 1 < map.levelCount && (ta >> 1) == (tb >> 1)) {
-        level += 1;
-        return pyramidTexel(map, pyramid, ta >> 1, level, fetches);
-    }
-    float bound = max(pyramidTexel(map, pyramid, ta, level, fetches), pyramidTexel(map, pyramid, tb, level, fetches));
-    if (ta.x != tb.x && ta.y != tb.y) {
-        // Through a corner: the third texel is the one beside ta across whichever
-        // boundary the segment crosses first (both differ, so b - a has no zero part).
-        vec2 crossing = (vec2(max(ta, tb) << level) - a) / (b - a);
-        ivec2 middle = crossing.x < crossing.y ? ivec2(tb.x, ta.y) : ivec2(ta.x, tb.y);
-        bound = max(bound, pyramidTexel(map, pyramid, middle, level, fetches));
-    }
-    return bound;
+// floor(log2(n)) for n >= 1, exactly; 0 for n = 0.
+int floorLog2(int n) {
+#if __VERSION__ >= 400
+    return max(findMSB(n), 0);
+#else
+    int k = n > 1 ? int(log2(float(n))) : 0;  // may be one off at powers of two
+    if ((1 << k) > n) k -= 1;
+    if ((2 << k) <= n) k += 1;
+    return k;
+#endif
+}
+
+// The level whose windows hold a footprint of finest texels lo..hi (lo <= hi per axis):
+// the finest level k at which it spans at most one level-k texel boundary per axis. A
+// span of d texels does once d < 2^k, so with m = floor(log2 d) that is m or m + 1.
+int windowLevel(ReliefMap map, ivec2 lo, ivec2 hi) {
+    ivec2 span = hi - lo;
+    int level = floorLog2(max(span.x, span.y));
+    if (any(greaterThan((hi >> level) - (lo >> level), ivec2(1)))) level += 1;
+    return min(level, map.levelCount - 1);
+}
+
+// The bound of the pyramid over the segment from a to b (map points): one texel of the
+// overlapping pyramid `windows` (texel (p, q) of level k: the max over finest texels
+// [p 2^k, (p+2) 2^k) x [q 2^k, (q+2) 2^k)), the window at the lower corner of the
+// segment's footprint, at the level of detail the footprint chooses (windowLevel). The
+// footprint lies inside that window, so the bound is conservative, and one textureLod
+// reads it, as the paper has it. `level` is set to the level read.
+float segmentBound(ReliefMap map, sampler2D windows, vec2 a, vec2 b, out int level, inout int fetches) {
+    ivec2 ta = pyramidTexelAt(map, a, 0), tb = pyramidTexelAt(map, b, 0);
+    ivec2 lo = min(ta, tb), hi = max(ta, tb);
+    level = windowLevel(map, lo, hi);
+    return pyramidTexel(map, windows, lo >> level, level, fetches);
 }
 
 #endif

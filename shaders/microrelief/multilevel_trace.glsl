@@ -1,22 +1,25 @@
 // multilevel_trace.glsl: multilevel ray tracing of microrelief by binary subdivision of
 // the ray segment (Vyatkin & Romaniuk, section III, eq. 5-8, fig. 5-6).
 //
-// Inputs, all in map space (map_space.glsl): the ray origin and direction, the max
-// pyramid (max_pyramid.glsl) and the samples (bilinear_patch.glsl). Output: the first
+// Inputs, all in map space (map_space.glsl): the ray origin and direction, the
+// overlapping max pyramid (`windows`, max_pyramid.glsl) and the samples
+// (bilinear_patch.glsl). Output: the first
 // point t >= 0 of the ray inside the solid 0 <= h <= h(X, Y) over the map rectangle,
 // on the top surface, a side wall or the bottom face.
 //
 // The segment inside the relief's bounding box is the root voxel V0 = {Pn, Pf}. Each
 // step takes a segment, chooses the level of detail from its (X, Y) footprint, reads
-// the max of every pyramid texel the footprint touches, and discards the segment when
-// its lowest point lies above that max (it cannot hold a hit). Otherwise it is split,
+// with one textureLod the max over a window of the pyramid that holds the footprint,
+// and discards the segment when its lowest point lies above that max (it cannot hold a
+// hit). Otherwise it is split,
 // near half first (eq. 8: Pn_i = Pn_i-1, Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the
 // footprint is at most one texel wide; there the ray is solved exactly against the
 // bilinear patches it crosses.
 //
 // GLSL has no recursion. A segment is named by its depth d and index k along the
 // root (t range [k, k+1] / 2^d of the root's), and the in-order walk needs no stack:
-// after a segment is done, climb while it is a far half, then step to the sibling.
+// after a segment is done, k + 1 names the next one at depth d, and shifting out its
+// trailing zeros climbs to the coarsest segment that starts there.
 #ifndef MICRORELIEF_MULTILEVEL_TRACE_GLSL
 #define MICRORELIEF_MULTILEVEL_TRACE_GLSL
 
@@ -30,6 +33,17 @@
 #ifndef MICRORELIEF_MAX_DEPTH
 #define MICRORELIEF_MAX_DEPTH 24
 #endif
+
+// The number of trailing zero bits of n > 0.
+int trailingZeros(uint n) {
+#if __VERSION__ >= 400
+    return findLSB(n);
+#else
+    int count = 0;
+    for (; (n & 1u) == 0u; n >>= 1) ++count;
+    return count;
+#endif
+}
 
 // Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
 // at most one texel wide: it crosses at most one cell boundary in X and one in Y, so it
@@ -75,7 +89,7 @@ float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, flo
 // The binary subdivision of the segment start + t dir, t in [0, span] (a ray that left
 // the box through `exitAxis`); tStart is the segment's distance from the eye in t, for
 // the level-of-detail cone. Fills `hit` with map-space positions and local t.
-void subdivideSegment(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 start, vec3 dir, float span,
+void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 start, vec3 dir, float span,
                       float tStart, int exitAxis, inout ReliefHit hit) {
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments
@@ -89,17 +103,26 @@ void subdivideSegment(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
         float ta = span * (float(index << shift) * kUnit);
         float tb = span * (float((index + 1u) << shift) * kUnit);
         vec3 pa = start + ta * dir, pb = start + tb * dir;
-        // The level of detail from the segment's footprint (paper, fig. 6).
         vec2 extents = abs(pb.xy - pa.xy);
         float extent = max(extents.x, extents.y);
-        int level = footprintLevel(map, extent);
-        float bound = segmentBound(map, pyramid, pa.xy, pb.xy, level, hit.fetches);
-        hit.stopLevel = level;
-        if (min(pa.z, pb.z) <= bound) {
-            if (map.lodCone > 0.0 && level > 0 && exp2(float(level)) <= map.lodCone * (tStart + ta)) {
+        // A segment down to the floor (h = 0, in the solid) needs no bound; any other is
+        // bounded by one window of the pyramid at the level its footprint chooses (paper,
+        // fig. 6).
+        float lowest = min(pa.z, pb.z);
+        bool mayHit = lowest <= 0.0;
+        int level = -1;
+        float bound = 0.0;
+        if (!mayHit) {
+            bound = segmentBound(map, windows, pa.xy, pb.xy, level, hit.fetches);
+            hit.stopLevel = level;
+            mayHit = lowest <= bound;
+        }
+        if (mayHit) {
+            if (map.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= map.lodCone * (tStart + ta)) {
                 // Accuracy-controlled level of detail (paper, section II: "under criterion
-                // of required accuracy"): this level's texels project to less than the
-                // tolerated pixel error, so its max box stands for the surface here.
+                // of required accuracy"): the window read, 2^(level+1) texels wide, projects
+                // to less than the tolerated pixel error, so its max box stands for the
+                // surface here.
                 float t = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
                 setTopHitAt(hit, map, heights, t, start + t * dir);
                 return;
@@ -118,11 +141,14 @@ void subdivideSegment(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
                 continue;
             }
         }
-        // Done with this segment: climb while it is a far half, then take the sibling.
-        while (depth > 0 && (index & 1u) == 1u) {
-            index >>= 1;
-            depth -= 1;
-        }
+        // Done with this segment: on to the next one along the ray, the sibling of its
+        // lowest ancestor that is a near half. Stepping the index climbs as many levels
+        // as the carry runs (the trailing zeros of the new index); at depth 0 it has left
+        // the root.
+        index += 1u;
+        int climb = trailingZeros(index);
+        index >>= climb;
+        depth -= climb;
         if (depth == 0) {
             // The whole segment is done without a hit. A ray that leaves the box through
             // its floor going down has reached h = 0 inside the map, which belongs to the
@@ -132,18 +158,17 @@ void subdivideSegment(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
             if (exitAxis == 2 && dir.z < 0.0) setTopHitAt(hit, map, heights, span, start + span * dir);
             return;
         }
-        index += 1u;
     }
     hit.exhausted = true;
 }
 
-ReliefHit traceMultilevel(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
+ReliefHit traceMultilevel(ReliefMap map, sampler2D windows, sampler2D heights, vec3 origin, vec3 dir) {
     ReliefHit hit = reliefMissHit();
     vec3 start;
     float tStart, span;
     int exitAxis;
     if (enterReliefBox(map, heights, origin, dir, hit, start, tStart, span, exitAxis)) {
-        subdivideSegment(map, pyramid, heights, start, dir, span, tStart, exitAxis, hit);
+        subdivideSegment(map, windows, heights, start, dir, span, tStart, exitAxis, hit);
         measureFromEye(hit, tStart);
     }
     return hit;

@@ -67,12 +67,24 @@ MaxPyramid::MaxPyramid(const HeightMap& map) : mapWidth_(map.width), mapHeight_(
         heights_.push_back(h);
         levels_.push_back(std::move(parent));
     }
-}
 
-int MaxPyramid::footprintLevel(double extent) const {
-    int level = 0;
-    while (level + 1 < levelCount() && std::ldexp(1.0, level) < extent) ++level;
-    return level;
+    // The overlapping levels: each texel the max of the 2 x 2 aligned texels from it on;
+    // past a level's last row or column there is no surface (0, like the padding).
+    for (int level = 0; level < levelCount(); ++level) {
+        const int w = widths_[level], h = heights_[level];
+        const std::vector<float>& aligned = levels_[level];
+        auto at = [&](int p, int q) {
+            return p < w && q < h ? aligned[static_cast<std::size_t>(q) * w + p] : 0.0f;
+        };
+        std::vector<float> window(aligned.size());
+        for (int q = 0; q < h; ++q) {
+            for (int p = 0; p < w; ++p) {
+                window[static_cast<std::size_t>(q) * w + p] =
+                    std::max({at(p, q), at(p + 1, q), at(p, q + 1), at(p + 1, q + 1)});
+            }
+        }
+        windows_.push_back(std::move(window));
+    }
 }
 
 glm::ivec2 MaxPyramid::texelAt(glm::dvec2 p, int level) const {
@@ -81,28 +93,23 @@ glm::ivec2 MaxPyramid::texelAt(glm::dvec2 p, int level) const {
     return {i >> level, j >> level};
 }
 
+int MaxPyramid::windowLevel(glm::ivec2 lo, glm::ivec2 hi) const {
+    // A span of d texels crosses at most one level-k boundary once d < 2^k, so with
+    // m = floor(log2 d) the level is m or m + 1.
+    const int span = std::max(hi.x - lo.x, hi.y - lo.y);
+    int level = 0;
+    while ((2 << level) <= span) ++level;
+    const glm::ivec2 crossed = (hi >> level) - (lo >> level);
+    if (crossed.x > 1 || crossed.y > 1) ++level;
+    return std::min(level, levelCount() - 1);
+}
+
 double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const {
-    auto read = [&](glm::ivec2 t, int l) {
-        ++fetches;
-        return static_cast<double>(texel(l, t.x, t.y));
-    };
-    glm::ivec2 ta = texelAt(a, level), tb = texelAt(b, level);
-    while ((std::abs(tb.x - ta.x) > 1 || std::abs(tb.y - ta.y) > 1) && level < levelCount() - 1) {
-        ++level;
-        ta = texelAt(a, level);
-        tb = texelAt(b, level);
-    }
-    if (ta == tb) return read(ta, level);
-    if (level + 1 < levelCount() && (ta >> 1) == (tb >> 1)) return read(ta >> 1, ++level);
-    double bound = std::max(read(ta, level), read(tb, level));
-    if (ta.x != tb.x && ta.y != tb.y) {
-        // Through a corner: the texel beside ta across the boundary crossed first.
-        const glm::dvec2 crossing = (glm::dvec2(glm::max(ta, tb) << level) - a) / (b - a);
-        bound = std::max(
-            bound,
-            read(crossing.x < crossing.y ? glm::ivec2(tb.x, ta.y) : glm::ivec2(ta.x, tb.y), level));
-    }
-    return bound;
+    const glm::ivec2 ta = texelAt(a, 0), tb = texelAt(b, 0);
+    const glm::ivec2 lo = glm::min(ta, tb), hi = glm::max(ta, tb);
+    level = windowLevel(lo, hi);
+    ++fetches;
+    return window(level, lo.x >> level, lo.y >> level);
 }
 
 }  // namespace microrelief

@@ -15,6 +15,14 @@
 //    (p, q) covers finest texels [p 2^k, (p+1) 2^k) x [q 2^k, (q+1) 2^k): an index at
 //    level k is the finest index shifted right by k, clamped to the level's size. Odd,
 //    non-power-of-two and non-square maps need no special case.
+//
+// Beside these aligned levels (the quadtree the maxmip peer walks) it keeps overlapping
+// ones, which the multilevel traversal reads: overlapping texel (p, q) of level k is the
+// max of aligned level-k texels p..p+1 by q..q+1, the surface's max over the window
+// [p 2^k, (p+2) 2^k) x [q 2^k, (q+2) 2^k) of finest texels. Neighbouring windows overlap
+// by half, so a footprint whose texels span at most one level-k boundary per axis lies
+// inside the window at its lower corner: a segment's bound is always one texel, read at
+// a level no coarser than its footprint (segmentBound).
 #pragma once
 
 #include <vector>
@@ -39,22 +47,31 @@ public:
         return levels_[level][static_cast<std::size_t>(q) * widths_[level] + p];
     }
 
-    // The level whose texels are at least as wide as `extent` finest texels.
-    int footprintLevel(double extent) const;
+    // The overlapping levels, in the same layout as the aligned ones.
+    const std::vector<float>& windowLevelData(int level) const { return windows_[level]; }
+    float window(int level, int p, int q) const {
+        return windows_[level][static_cast<std::size_t>(q) * widths_[level] + p];
+    }
 
     // The level-`level` texel holding map point p (max_pyramid.glsl: pyramidTexelAt).
     glm::ivec2 texelAt(glm::dvec2 p, int level) const;
 
+    // The level whose windows hold a footprint of finest texels lo..hi (per axis, lo <=
+    // hi): the finest level k at which the footprint spans at most one level-k texel
+    // boundary per axis (max_pyramid.glsl: windowLevel).
+    int windowLevel(glm::ivec2 lo, glm::ivec2 hi) const;
+
     // The bound over the segment from a to b that the shader reads (max_pyramid.glsl:
-    // segmentBound): the max of the one to three texels the segment crosses at `level`
-    // (in: the footprint level; out: the level read), counting them in `fetches`. Never
-    // below the surface anywhere along the segment's path.
+    // segmentBound): one overlapping texel, the window at windowLevel that holds the
+    // segment's footprint; `level` is set to that level and `fetches` counts the read.
+    // Never below the surface anywhere along the segment's path.
     double segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const;
 
 private:
     int mapWidth_, mapHeight_;
     std::vector<int> widths_, heights_;
     std::vector<std::vector<float>> levels_;
+    std::vector<std::vector<float>> windows_;
 };
 
 }  // namespace microrelief

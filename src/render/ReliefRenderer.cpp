@@ -70,6 +70,7 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
     : gl_(gl), shaderDir_(shaderDir), method_(method) {
     reloadShaders();
     pyramidTexture_ = gl::Texture::create(gl_);
+    windowTexture_ = gl::Texture::create(gl_);
     sampleTexture_ = gl::Texture::create(gl_);
     boxArray_ = gl::VertexArray::create(gl_);
     boxVertices_ = gl::Buffer::create(gl_);
@@ -152,12 +153,14 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     maxIterations_ = traversalBudget(map.width, map.height);
 
     gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());
-    for (int level = 0; level < pyramid.levelCount(); ++level) {
-        uploadLevel(gl_, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
-                    pyramid.levelData(level).data());
+    for (bool windows : {false, true}) {
+        gl_.BindTexture(GL_TEXTURE_2D, (windows ? windowTexture_ : pyramidTexture_).id());
+        for (int level = 0; level < pyramid.levelCount(); ++level) {
+            uploadLevel(gl_, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
+                        (windows ? pyramid.windowLevelData(level) : pyramid.levelData(level)).data());
+        }
+        setSamplerState(gl_, GL_NEAREST_MIPMAP_NEAREST, pyramid.levelCount() - 1);
     }
-    setSamplerState(gl_, GL_NEAREST_MIPMAP_NEAREST, pyramid.levelCount() - 1);
 
     gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
     uploadLevel(gl_, 0, map.width, map.height, map.samples.data());
@@ -204,6 +207,7 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
 
     gl_.Uniform1i(uniform("maxPyramid"), 0);
     gl_.Uniform1i(uniform("heightSamples"), 1);
+    gl_.Uniform1i(uniform("windowPyramid"), 2);
     gl_.Uniform2f(uniform("reliefSize"), static_cast<float>(mapWidth_),
                   static_cast<float>(mapHeight_));
     gl_.Uniform2i(uniform("pyramidSize"), pyramidWidth_, pyramidHeight_);
@@ -231,6 +235,8 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());
     gl_.ActiveTexture(GL_TEXTURE1);
     gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
+    gl_.ActiveTexture(GL_TEXTURE2);
+    gl_.BindTexture(GL_TEXTURE_2D, windowTexture_.id());
 
     // Back faces only: exactly one fragment per pixel the box covers, also with the eye
     // inside the box. Depth clamping keeps faces nearer than the near plane.

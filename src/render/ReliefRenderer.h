@@ -111,7 +111,8 @@ private:
     std::filesystem::path shaderDir_;
     std::map<ProgramKey, CompiledProgram> programs_;
     CompiledProgram* current_ = nullptr;
-    gl::Texture pyramidTexture_;
+    gl::Texture pyramidTexture_;  // aligned max levels (maxmip)
+    gl::Texture windowTexture_;   // overlapping max levels (multilevel)
     gl::Texture sampleTexture_;
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;

@@ -1,6 +1,7 @@
 #include "trace/MultilevelTracer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -201,10 +202,15 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
         const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
         const glm::dvec2 extents = glm::abs(glm::dvec2(pb) - glm::dvec2(pa));
         const double extent = std::max(extents.x, extents.y);
-        int level = pyramid_.footprintLevel(extent);
-        const double bound = pyramid_.segmentBound(pa, pb, level, stats.fetches);
-        stats.stopLevel = level;
-        if (std::min(pa.z, pb.z) <= bound) {
+        // A segment down to the floor (h = 0, in the solid) needs no bound.
+        const double lowest = std::min(pa.z, pb.z);
+        bool mayHit = lowest <= 0.0;
+        if (!mayHit) {
+            int level = 0;
+            mayHit = lowest <= pyramid_.segmentBound(pa, pb, level, stats.fetches);
+            stats.stopLevel = level;
+        }
+        if (mayHit) {
             if (extent <= 1.0 || depth >= kMaxDepth) {
                 if (auto hit = intersectLeaf(ray, ta, tb, stats.fetches)) return hit;
             } else {
@@ -213,10 +219,11 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
                 continue;
             }
         }
-        while (depth > 0 && (index & 1u) == 1u) {
-            index >>= 1;
-            --depth;
-        }
+        // On to the next segment: the carry of index + 1 climbs (see the shader).
+        ++index;
+        const int climb = std::countr_zero(index);
+        index >>= climb;
+        depth -= climb;
         if (depth == 0) {
             // Leaving through the floor going down: the exit point is the hit (see the shader).
             if (exitAxis == 2 && ray.dir.z < 0.0) {
@@ -225,7 +232,6 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
             }
             return std::nullopt;
         }
-        ++index;
     }
     stats.exhausted = true;
     return std::nullopt;

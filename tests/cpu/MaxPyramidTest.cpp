@@ -94,12 +94,12 @@ TEST(MaxPyramid, FinestLevelIsTheExactSurfaceMaxOverEachTexel) {
 
 // The bound the traversal reads for a segment from a to b (segmentBound, the C++
 // mirror of max_pyramid.glsl), at the level the traversal picks for it.
-double traversalBound(const MaxPyramid& p, glm::dvec2 a, glm::dvec2 b, int* fetches = nullptr) {
-    const glm::dvec2 extents = glm::abs(b - a);
-    int level = p.footprintLevel(std::max(extents.x, extents.y));
-    int counted = 0;
-    const double bound = p.segmentBound(a, b, level, counted);
+double traversalBound(const MaxPyramid& p, glm::dvec2 a, glm::dvec2 b, int* fetches = nullptr,
+                      int* level = nullptr) {
+    int counted = 0, read = -1;
+    const double bound = p.segmentBound(a, b, read, counted);
     if (fetches) *fetches = counted;
+    if (level) *level = read;
     return bound;
 }
 
@@ -114,7 +114,8 @@ double sampledMaxAlong(const HeightMap& map, glm::dvec2 a, glm::dvec2 b, int ste
 }
 
 // The property test: random maps of odd, non-power-of-two, non-square sizes, random
-// segments of every length and direction; the bound read with one to three fetches
+// segments of every length and direction; the bound, one fetch at a level no coarser
+// than one step above the footprint's (its texels at least half the footprint wide),
 // must never fall below the surface anywhere along the segment.
 TEST(MaxPyramid, SegmentBoundCoversTheSurfaceAlongAnySegment) {
     std::mt19937 random(1234);
@@ -133,13 +134,15 @@ TEST(MaxPyramid, SegmentBoundCoversTheSurfaceAlongAnySegment) {
             const glm::dvec2 b =
                 glm::clamp(a + length * glm::dvec2(std::cos(angle), std::sin(angle)),
                            glm::dvec2(0.0), glm::dvec2(w, h));
-            int fetches = 0;
-            const double bound = traversalBound(p, a, b, &fetches);
+            int fetches = 0, level = -1;
+            const double bound = traversalBound(p, a, b, &fetches, &level);
             ASSERT_GE(bound, sampledMaxAlong(map, a, b, 400) - 1e-12)
                 << w << "x" << h << " segment (" << a.x << "," << a.y << ") -> (" << b.x << ","
                 << b.y << ")";
-            ASSERT_GE(fetches, 1);
-            ASSERT_LE(fetches, 3);
+            ASSERT_EQ(fetches, 1);
+            const double extent = std::max(std::abs(b.x - a.x), std::abs(b.y - a.y));
+            ASSERT_TRUE(level == 0 || std::ldexp(1.0, level) <= 2.0 * (extent + 1.0))
+                << "level " << level << " for a footprint " << extent << " wide";
         }
     }
 }
@@ -173,12 +176,32 @@ TEST(MaxPyramid, FinestLevelNeverRoundsBelowTheSurface) {
     }
 }
 
-TEST(MaxPyramid, FootprintLevelChoosesTexelsAtLeastAsWideAsTheFootprint) {
+TEST(MaxPyramid, WindowLevelIsTheFinestWhoseWindowHoldsTheFootprint) {
     const MaxPyramid p(HeightMap(64, 64));
-    EXPECT_EQ(p.footprintLevel(0.0), 0);
-    EXPECT_EQ(p.footprintLevel(1.0), 0);
-    EXPECT_EQ(p.footprintLevel(1.01), 1);
-    EXPECT_EQ(p.footprintLevel(4.0), 2);
-    EXPECT_EQ(p.footprintLevel(33.0), 6);
-    EXPECT_EQ(p.footprintLevel(1e6), 6);  // clamped to the 1 x 1 level
+    EXPECT_EQ(p.windowLevel({5, 5}, {5, 5}), 0);    // one texel
+    EXPECT_EQ(p.windowLevel({5, 5}, {6, 6}), 0);    // 2 x 2 texels from 5: window 0
+    EXPECT_EQ(p.windowLevel({5, 5}, {7, 5}), 1);    // 5..7: level-1 texels 2..3
+    EXPECT_EQ(p.windowLevel({3, 0}, {5, 0}), 1);    // 3..5: level-1 texels 1..2
+    EXPECT_EQ(p.windowLevel({8, 8}, {15, 15}), 2);  // 8 wide, aligned: level-2 texels 2..3
+    EXPECT_EQ(p.windowLevel({7, 0}, {15, 0}), 3);   // 9 wide: level-3 texels 0..1
+    EXPECT_EQ(p.windowLevel({31, 0}, {32, 0}), 0);  // across the middle, still window 0
+    EXPECT_EQ(p.windowLevel({0, 0}, {63, 63}), 5);  // the whole map: 2 x 2 level-5 texels
+}
+
+TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoAlignedTexels) {
+    const HeightMap map = synth::whiteNoise(13, 6, 77);  // padded to 16 x 8
+    const MaxPyramid p(map);
+    for (int level = 0; level < p.levelCount(); ++level) {
+        const int w = p.levelWidth(level), h = p.levelHeight(level);
+        for (int q = 0; q < h; ++q) {
+            for (int pp = 0; pp < w; ++pp) {
+                float expected = 0.0f;
+                for (int dq = 0; dq < 2; ++dq)
+                    for (int dp = 0; dp < 2; ++dp)
+                        if (pp + dp < w && q + dq < h)
+                            expected = std::max(expected, p.texel(level, pp + dp, q + dq));
+                ASSERT_EQ(p.window(level, pp, q), expected) << level << ": " << pp << "," << q;
+            }
+        }
+    }
 }

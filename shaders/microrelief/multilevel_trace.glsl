@@ -18,8 +18,7 @@
 //
 // GLSL has no recursion. A segment is named by its depth d and index k along the
 // root (t range [k, k+1] / 2^d of the root's), and the in-order walk needs no stack:
-// after a segment is done, k + 1 names the next one at depth d, and shifting out its
-// trailing zeros climbs to the coarsest segment that starts there.
+// after a segment is done, k + 1 names the next one at depth d, or, halved, its parent.
 #ifndef MICRORELIEF_MULTILEVEL_TRACE_GLSL
 #define MICRORELIEF_MULTILEVEL_TRACE_GLSL
 
@@ -33,17 +32,6 @@
 #ifndef MICRORELIEF_MAX_DEPTH
 #define MICRORELIEF_MAX_DEPTH 24
 #endif
-
-// The number of trailing zero bits of n > 0.
-int trailingZeros(uint n) {
-#if __VERSION__ >= 400
-    return findLSB(n);
-#else
-    int count = 0;
-    for (; (n & 1u) == 0u; n >>= 1) ++count;
-    return count;
-#endif
-}
 
 // Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
 // at most one texel wide: it crosses at most one cell boundary in X and one in Y, so it
@@ -95,8 +83,17 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     // float conversions and the power-of-two scale are exact, so neighbouring segments
     // share their end parameter bit for bit and no gap can open between them.
     const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
+    const float kNoBound = 3.4e38;
     int depth = 0;
     uint index = 0u;
+    // A bound over the parent's path, so over this segment's too (kNoBound: not known).
+    float parentBound = kNoBound;
+    // The outcome, reported after the loop (which keeps the loop's body small): a hit at
+    // tHit >= 0, solved exactly on the patch `corners` of `cell` or else taken as is.
+    bool finished = false, solved = false;
+    float tHit = -1.0;
+    vec4 corners;
+    ivec2 cell;
     for (int iteration = 1; iteration <= map.maxIterations; ++iteration) {
         hit.iterations = iteration;
         int shift = MICRORELIEF_MAX_DEPTH - depth;
@@ -105,15 +102,15 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
         vec3 pa = start + ta * dir, pb = start + tb * dir;
         vec2 extents = abs(pb.xy - pa.xy);
         float extent = max(extents.x, extents.y);
-        // A segment down to the floor (h = 0, in the solid) needs no bound; any other is
-        // bounded by one window of the pyramid at the level its footprint chooses (paper,
-        // fig. 6).
+        // A segment down to the floor (h = 0, in the solid) may hold a hit; one above its
+        // parent's bound cannot; any other is bounded by one window of the pyramid at the
+        // level its footprint chooses (paper, fig. 6).
         float lowest = min(pa.z, pb.z);
         bool mayHit = lowest <= 0.0;
         int level = -1;
-        float bound = 0.0;
-        if (!mayHit) {
-            bound = segmentBound(map, windows, pa.xy, pb.xy, level, hit.fetches);
+        float bound = parentBound;
+        if (!mayHit && lowest <= parentBound) {
+            bound = min(bound, segmentBound(map, windows, pa.xy, pb.xy, level, hit.fetches));
             hit.stopLevel = level;
             mayHit = lowest <= bound;
         }
@@ -123,43 +120,63 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
                 // of required accuracy"): the window read, 2^(level+1) texels wide, projects
                 // to less than the tolerated pixel error, so its max box stands for the
                 // surface here.
-                float t = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
-                setTopHitAt(hit, map, heights, t, start + t * dir);
-                return;
+                tHit = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
+                finished = true;
+                break;
             }
             if (extent <= 1.0 || depth >= MICRORELIEF_MAX_DEPTH) {
-                vec4 corners;
-                ivec2 cell;
-                float t = intersectLeaf(map, heights, start, dir, ta, tb, hit.fetches, corners, cell);
-                if (t >= 0.0) {
-                    setTopHit(hit, map, start, dir, t, corners, cell);
-                    return;
+                tHit = intersectLeaf(map, heights, start, dir, ta, tb, hit.fetches, corners, cell);
+                if (tHit >= 0.0) {
+                    finished = solved = true;
+                    break;
                 }
             } else {
-                depth += 1;  // descend into the near half
+                // Descend into the near half (eq. 8), or straight into the far half when
+                // the near one lies wholly above this segment's bound (a falling ray
+                // that reaches the bound only past the midpoint).
+                depth += 1;
                 index *= 2u;
+                parentBound = bound;
+                float middleZ = start.z + 0.5 * (ta + tb) * dir.z;
+                if (min(pa.z, middleZ) > bound) index += 1u;
                 continue;
             }
         }
-        // Done with this segment: on to the next one along the ray, the sibling of its
-        // lowest ancestor that is a near half. Stepping the index climbs as many levels
-        // as the carry runs (the trailing zeros of the new index); at depth 0 it has left
-        // the root.
+        // Done with this segment: on to the next one along the ray, index + 1 at this
+        // depth. After a near half that is its sibling, under the same parent. After a
+        // far half it is a near half under another parent, and the walk climbs to that
+        // parent, twice as long, when this segment cleared its bound by more than twice
+        // its own drop in height, so that the parent likely clears its bound too and
+        // crosses empty space in one step. Close to the surface it stays at this depth.
+        // (The paper's recursion would climb to the coarsest segment starting there, and
+        // so near the surface come back down through levels whose bounds seldom reject.)
+        bool farHalf = (index & 1u) == 1u;
         index += 1u;
-        int climb = trailingZeros(index);
-        index >>= climb;
-        depth -= climb;
-        if (depth == 0) {
-            // The whole segment is done without a hit. A ray that leaves the box through
-            // its floor going down has reached h = 0 inside the map, which belongs to the
+        if ((index >> depth) != 0u) {
+            // Past the root's end without a hit. A ray that leaves the box through its
+            // floor going down has reached h = 0 inside the map, which belongs to the
             // solid, so its first hit is that exit point (where the surface is 0). The
             // exact root lies right at the end of the last segment, where rounding can
             // push it out of that segment's range; this is where it is caught.
-            if (exitAxis == 2 && dir.z < 0.0) setTopHitAt(hit, map, heights, span, start + span * dir);
-            return;
+            tHit = exitAxis == 2 && dir.z < 0.0 ? span : -1.0;
+            finished = true;
+            break;
+        }
+        if (farHalf) {
+            parentBound = kNoBound;
+            if (lowest - bound > 2.0 * abs(pb.z - pa.z)) {
+                index >>= 1;
+                depth -= 1;
+            }
         }
     }
-    hit.exhausted = true;
+    if (!finished) {
+        hit.exhausted = true;
+    } else if (solved) {
+        setTopHit(hit, map, start, dir, tHit, corners, cell);
+    } else if (tHit >= 0.0) {
+        setTopHitAt(hit, map, heights, tHit, start + tHit * dir);
+    }
 }
 
 ReliefHit traceMultilevel(ReliefMap map, sampler2D windows, sampler2D heights, vec3 origin, vec3 dir) {

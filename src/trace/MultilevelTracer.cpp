@@ -1,9 +1,9 @@
 #include "trace/MultilevelTracer.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace microrelief {
 
@@ -192,8 +192,10 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
 auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exitAxis,
                                         TraversalStats& stats) const -> std::optional<LeafHit> {
     const double unit = std::ldexp(1.0, -kMaxDepth);
+    constexpr double kNoBound = std::numeric_limits<double>::infinity();
     int depth = 0;
     std::uint32_t index = 0;
+    double parentBound = kNoBound;  // over the parent's path (see the shader)
     for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
         stats.iterations = iteration;
         const int shift = kMaxDepth - depth;
@@ -202,35 +204,47 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
         const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
         const glm::dvec2 extents = glm::abs(glm::dvec2(pb) - glm::dvec2(pa));
         const double extent = std::max(extents.x, extents.y);
-        // A segment down to the floor (h = 0, in the solid) needs no bound.
+        // Down to the floor: may hit; above the parent's bound: cannot; else one window.
         const double lowest = std::min(pa.z, pb.z);
         bool mayHit = lowest <= 0.0;
-        if (!mayHit) {
+        double bound = parentBound;
+        if (!mayHit && lowest <= parentBound) {
             int level = 0;
-            mayHit = lowest <= pyramid_.segmentBound(pa, pb, level, stats.fetches);
+            bound = std::min(bound, pyramid_.segmentBound(pa, pb, level, stats.fetches));
             stats.stopLevel = level;
+            mayHit = lowest <= bound;
         }
         if (mayHit) {
             if (extent <= 1.0 || depth >= kMaxDepth) {
                 if (auto hit = intersectLeaf(ray, ta, tb, stats.fetches)) return hit;
             } else {
+                // The near half, or the far one when the near one lies above the bound.
                 ++depth;
                 index *= 2u;
+                parentBound = bound;
+                const double middleZ = ray.origin.z + 0.5 * (ta + tb) * ray.dir.z;
+                if (std::min(pa.z, middleZ) > bound) ++index;
                 continue;
             }
         }
-        // On to the next segment: the carry of index + 1 climbs (see the shader).
+        // On to index + 1 at this depth; after a far half cleared by a wide margin, one
+        // level up (see the shader).
+        const bool farHalf = (index & 1u) == 1u;
         ++index;
-        const int climb = std::countr_zero(index);
-        index >>= climb;
-        depth -= climb;
-        if (depth == 0) {
+        if ((index >> depth) != 0u) {
             // Leaving through the floor going down: the exit point is the hit (see the shader).
             if (exitAxis == 2 && ray.dir.z < 0.0) {
                 const glm::dvec3 exit = ray.origin + span * ray.dir;
                 return LeafHit{span, topNormal(cellAt(map_, exit.x, exit.y, stats.fetches), exit)};
             }
             return std::nullopt;
+        }
+        if (farHalf) {
+            parentBound = kNoBound;
+            if (lowest - bound > 2.0 * std::abs(pb.z - pa.z)) {
+                index >>= 1;
+                --depth;
+            }
         }
     }
     stats.exhausted = true;

@@ -78,8 +78,8 @@ layout(location = 2) out vec4 outStats;     // iterations, fetches, stop level, 
 void main() {
     vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
     vec3 dir = cameraForward + ndc.x * cameraRight + ndc.y * cameraUp;
-    // Level-of-detail cone: a level-k texel (2^k finest texels) projects to less than
-    // pixelErrorTolerance pixels once 2^k <= lodCone * t (t along this unnormalised ray).
+    // Level-of-detail cone: a span of w finest texels (a pyramid window) projects to less
+    // than pixelErrorTolerance pixels once w <= lodCone * t (t along this unnormalised ray).
     float pixelAngle = 2.0 * length(cameraUp) / viewportSize.y;
     float lodCone = pixelErrorTolerance * pixelAngle * length(dir) * max(reliefSize.x, reliefSize.y);
     ReliefMap map = ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, heightScale, maxIterations,

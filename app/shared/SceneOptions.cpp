@@ -136,7 +136,7 @@ void SceneFlags::addShading(CLI::App& app) {
         ->capture_default_str();
     app.add_option(
            "--pixel-error", job_.method.pixelError,
-           "multilevel: stop at pyramid levels whose texels project to less than this many pixels "
+           "multilevel: stop at pyramid levels whose windows project to less than this many pixels "
            "(0: exact)")
         ->capture_default_str();
     app.add_option(

@@ -3,18 +3,17 @@
 //
 // Inputs, all in map space (map_space.glsl): the ray origin and direction, the
 // overlapping max pyramid (`windows`, max_pyramid.glsl) and the samples
-// (bilinear_patch.glsl). Output: the first
-// point t >= 0 of the ray inside the solid 0 <= h <= h(X, Y) over the map rectangle,
-// on the top surface, a side wall or the bottom face.
+// (bilinear_patch.glsl). Output: the first point t >= 0 of the ray inside the solid
+// 0 <= h <= h(X, Y) over the map rectangle, on the top surface, a side wall or the
+// bottom face.
 //
 // The segment inside the relief's bounding box is the root voxel V0 = {Pn, Pf}. Each
 // step takes a segment, chooses the level of detail from its (X, Y) footprint, reads
 // with one textureLod the max over a window of the pyramid that holds the footprint,
 // and discards the segment when its lowest point lies above that max (it cannot hold a
-// hit). Otherwise it is split,
-// near half first (eq. 8: Pn_i = Pn_i-1, Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the
-// footprint is at most one texel wide; there the ray is solved exactly against the
-// bilinear patches it crosses.
+// hit). Otherwise it is split, near half first (eq. 8: Pn_i = Pn_i-1,
+// Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the footprint is at most one texel wide; there
+// the ray is solved exactly against the bilinear patches it crosses.
 //
 // GLSL has no recursion. A segment is named by its depth d and index k along the
 // root (t range [k, k+1] / 2^d of the root's), and the in-order walk needs no stack:

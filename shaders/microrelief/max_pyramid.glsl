@@ -43,7 +43,8 @@ int floorLog2(int n) {
 #if __VERSION__ >= 400
     return max(findMSB(n), 0);
 #else
-    int k = n > 1 ? int(log2(float(n))) : 0;  // may be one off at powers of two
+    if (n <= 1) return 0;
+    int k = int(log2(float(n)));  // may be one off at powers of two
     if ((1 << k) > n) k -= 1;
     if ((2 << k) <= n) k += 1;
     return k;

@@ -13,10 +13,10 @@
 
 #include "relief_map.glsl"
 
-// The level-`level` texel that holds map point p. Exact integer arithmetic: the finest
-// texel index, clamped to the map (not its padding), shifted right by the level.
-ivec2 pyramidTexelAt(ReliefMap map, vec2 p, int level) {
-    return clamp(ivec2(floor(p)), ivec2(0), ivec2(map.size) - 1) >> level;
+// The finest texel that holds map point p, clamped to the map (not its padding); the
+// level-k texel holding it is this shifted right by k.
+ivec2 finestTexelAt(ReliefMap map, vec2 p) {
+    return clamp(ivec2(floor(p)), ivec2(0), ivec2(map.size) - 1);
 }
 
 // How a pyramid texel is read. 0 (default): textureLod at the texel's centre with
@@ -68,7 +68,7 @@ int windowLevel(ReliefMap map, ivec2 lo, ivec2 hi) {
 // footprint lies inside that window, so the bound is conservative, and one textureLod
 // reads it, as the paper has it. `level` is set to the level read.
 float segmentBound(ReliefMap map, sampler2D windows, vec2 a, vec2 b, out int level, inout int fetches) {
-    ivec2 ta = pyramidTexelAt(map, a, 0), tb = pyramidTexelAt(map, b, 0);
+    ivec2 ta = finestTexelAt(map, a), tb = finestTexelAt(map, b);
     ivec2 lo = min(ta, tb), hi = max(ta, tb);
     level = windowLevel(map, lo, hi);
     return pyramidTexel(map, windows, lo >> level, level, fetches);

@@ -1,6 +1,7 @@
 #include "heightmap/MaxPyramid.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace microrelief {
@@ -87,25 +88,23 @@ MaxPyramid::MaxPyramid(const HeightMap& map) : mapWidth_(map.width), mapHeight_(
     }
 }
 
-glm::ivec2 MaxPyramid::texelAt(glm::dvec2 p, int level) const {
-    const int i = std::clamp(static_cast<int>(std::floor(p.x)), 0, mapWidth_ - 1);
-    const int j = std::clamp(static_cast<int>(std::floor(p.y)), 0, mapHeight_ - 1);
-    return {i >> level, j >> level};
+glm::ivec2 MaxPyramid::finestTexelAt(glm::dvec2 p) const {
+    return {std::clamp(static_cast<int>(std::floor(p.x)), 0, mapWidth_ - 1),
+            std::clamp(static_cast<int>(std::floor(p.y)), 0, mapHeight_ - 1)};
 }
 
 int MaxPyramid::windowLevel(glm::ivec2 lo, glm::ivec2 hi) const {
     // A span of d texels crosses at most one level-k boundary once d < 2^k, so with
     // m = floor(log2 d) the level is m or m + 1.
-    const int span = std::max(hi.x - lo.x, hi.y - lo.y);
-    int level = 0;
-    while ((2 << level) <= span) ++level;
+    const unsigned span = static_cast<unsigned>(std::max(hi.x - lo.x, hi.y - lo.y));
+    int level = span > 0 ? std::bit_width(span) - 1 : 0;  // floor(log2 span), like findMSB
     const glm::ivec2 crossed = (hi >> level) - (lo >> level);
     if (crossed.x > 1 || crossed.y > 1) ++level;
     return std::min(level, levelCount() - 1);
 }
 
 double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const {
-    const glm::ivec2 ta = texelAt(a, 0), tb = texelAt(b, 0);
+    const glm::ivec2 ta = finestTexelAt(a), tb = finestTexelAt(b);
     const glm::ivec2 lo = glm::min(ta, tb), hi = glm::max(ta, tb);
     level = windowLevel(lo, hi);
     ++fetches;

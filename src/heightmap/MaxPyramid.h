@@ -53,8 +53,9 @@ public:
         return windows_[level][static_cast<std::size_t>(q) * widths_[level] + p];
     }
 
-    // The level-`level` texel holding map point p (max_pyramid.glsl: pyramidTexelAt).
-    glm::ivec2 texelAt(glm::dvec2 p, int level) const;
+    // The finest texel holding map point p, clamped to the map (max_pyramid.glsl:
+    // finestTexelAt).
+    glm::ivec2 finestTexelAt(glm::dvec2 p) const;
 
     // The level whose windows hold a footprint of finest texels lo..hi (per axis, lo <=
     // hi): the finest level k at which the footprint spans at most one level-k texel

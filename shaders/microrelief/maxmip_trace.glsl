@@ -55,24 +55,52 @@ float maxMipNodeHeight(ReliefMap map, sampler2D pyramid, ivec2 node, int level, 
     return pyramidTexel(map, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
 }
 
+// Into the neighbour of `node` across the side(s) of its column the ray leaves through
+// at tExit; up one level when that neighbour has a different parent.
+void maxMipNextNode(inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit, vec3 dir) {
+    ivec2 next = node + ivec2(exits.x <= tExit ? int(sign(dir.x)) : 0,
+                              exits.y <= tExit ? int(sign(dir.y)) : 0);
+    bool newParent = any(notEqual(next >> 1, node >> 1));
+    node = next;
+    if (newParent && level < topLevel) {
+        node >>= 1;
+        level += 1;
+    }
+}
+
 // The quadtree walk over the segment origin + t dir, t in [0, tFar], of a ray that left
-// the box through `exitAxis`; fills `hit` with local t.
+// the box through `exitAxis`; fills `hit` with local t. The loops have the shape of
+// traceMultilevel's (multilevel_trace.glsl): an inner one walks nodes down to a finest
+// texel the ray meets, an outer one solves it, so that pixels in SIMD lanes pay for
+// their leaves once per outer pass, not on every node.
 void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir, float tFar,
                 int exitAxis, inout ReliefHit hit) {
-    float t = 0.0;
-
+    float t = 0.0;  // where the ray is in the current node
     int topLevel = map.levelCount - 1;
     int level = topLevel;
     ivec2 node = ivec2(0);  // the root covers the whole map
-    for (int iteration = 1; iteration <= map.maxIterations; ++iteration) {
-        hit.iterations = iteration;
-        hit.stopLevel = level;
-        vec2 exits = maxMipNodeExits(node, level, origin, dir);
-        float tExit = min(max(min(exits.x, exits.y), t), tFar);
-        float top = maxMipNodeHeight(map, pyramid, node, level, hit.fetches);
-        float hNow = origin.z + t * dir.z, hExit = origin.z + tExit * dir.z;
-        if (min(hNow, hExit) <= top) {
-            if (level > 0) {
+    bool finished = false, solved = false;
+    float tHit = -1.0;
+    vec4 corners;
+    ivec2 cell;
+    int iteration = 0;
+    vec2 exits;  // where the ray leaves the current node's column, per axis
+    float tExit;
+    while (!finished) {
+        // Down the walk to a finest texel whose box the ray meets, or to the walk's end.
+        bool atLeaf = false;
+        while (iteration < map.maxIterations) {
+            iteration += 1;
+            hit.stopLevel = level;
+            exits = maxMipNodeExits(node, level, origin, dir);
+            tExit = min(max(min(exits.x, exits.y), t), tFar);
+            float top = maxMipNodeHeight(map, pyramid, node, level, hit.fetches);
+            float hNow = origin.z + t * dir.z, hExit = origin.z + tExit * dir.z;
+            if (min(hNow, hExit) <= top) {
+                if (level == 0) {
+                    atLeaf = true;
+                    break;
+                }
                 // Step onto the box top (only a descending ray can be above it here), then
                 // go down into the child that holds that point.
                 if (hNow > top) t = clamp((top - origin.z) / dir.z, t, tExit);
@@ -80,36 +108,37 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
                 level -= 1;
                 continue;
             }
-            vec4 corners;
-            ivec2 cell;
-            float tHit =
-                intersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
-            if (tHit >= 0.0) {
-                setTopHit(hit, map, origin, dir, tHit, corners, cell);
-                return;
+            if (tExit >= tFar) {
+                finished = true;
+                break;
             }
+            maxMipNextNode(node, level, topLevel, exits, tExit, dir);
+            t = tExit;
         }
-        if (tExit >= tFar) {
-            // Out of the box. Leaving through the floor inside the map reaches h = 0, which
-            // is in the solid: the hit is right there (rounding can put the root past the
-            // last leaf's end), as in traceMultilevel.
-            if (exitAxis == 2 && dir.z < 0.0) {
-                setTopHitAt(hit, map, heights, tFar, origin + tFar * dir);
-            }
-            return;
-        }
-        // Into the neighbour through the side(s) crossed; up one level across a parent's side.
-        ivec2 next = node + ivec2(exits.x <= tExit ? int(sign(dir.x)) : 0,
-                                  exits.y <= tExit ? int(sign(dir.y)) : 0);
-        bool newParent = any(notEqual(next >> 1, node >> 1));
-        node = next;
-        t = tExit;
-        if (newParent && level < topLevel) {
-            node >>= 1;
-            level += 1;
+        if (!atLeaf) break;  // finished, or out of iterations
+        // At level 0 the texel spans parts of up to four bilinear patches; the ray is
+        // solved exactly against those it crosses, in order.
+        tHit = intersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
+        if (tHit >= 0.0) {
+            finished = solved = true;
+        } else if (tExit >= tFar) {
+            finished = true;
+        } else {
+            maxMipNextNode(node, level, topLevel, exits, tExit, dir);
+            t = tExit;
         }
     }
-    hit.exhausted = true;
+    hit.iterations = iteration;
+    if (!finished) {
+        hit.exhausted = true;
+    } else if (solved) {
+        setTopHit(hit, map, origin, dir, tHit, corners, cell);
+    } else if (exitAxis == 2 && dir.z < 0.0) {
+        // Out of the box through the floor inside the map: h = 0 is in the solid, so the
+        // hit is right there (rounding can put the root past the last leaf's end), as in
+        // traceMultilevel.
+        setTopHitAt(hit, map, heights, tFar, origin + tFar * dir);
+    }
 }
 
 ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {

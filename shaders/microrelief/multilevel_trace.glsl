@@ -73,66 +73,97 @@ float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, flo
     return -1.0;
 }
 
+// A segment's bound when its parent's is not known (the root, and a near half reached
+// from the far half before it).
+const float kNoBound = 3.4e38;
+
+// The walk past segment (depth, index), done with: on to index + 1 at this depth. After
+// a near half that is its sibling, under the same parent. After a far half it is a near
+// half under another parent, whose bound is not known, and the walk climbs to that
+// parent, twice as long, when `climb` says so. False past the root's end.
+bool nextSegment(inout int depth, inout uint index, inout float parentBound, bool climb) {
+    bool farHalf = (index & 1u) == 1u;
+    index += 1u;
+    if ((index >> depth) != 0u) return false;
+    if (farHalf) {
+        parentBound = kNoBound;
+        if (climb) {
+            index >>= 1;
+            depth -= 1;
+        }
+    }
+    return true;
+}
+
 // The binary subdivision of the segment start + t dir, t in [0, span] (a ray that left
 // the box through `exitAxis`); tStart is the segment's distance from the eye in t, for
 // the level-of-detail cone. Fills `hit` with map-space positions and local t.
+//
+// Two loops, one inside the other (the "while-while" shape of Aila and Laine, "Understanding
+// the Efficiency of Ray Traversal on GPUs", HPG 2009): the inner one walks segments until
+// it reaches a leaf that may hold a hit, the outer one solves that leaf. Pixels that run
+// together in SIMD lanes reach their leaves at different steps; with the leaf inside a
+// single loop, every step would pay for the leaf of any lane that needs one (llvmpipe runs
+// both sides of every branch, a GPU's warp the taken ones), here a block of pixels pays
+// for its leaves once per outer pass.
 void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 start, vec3 dir, float span,
                       float tStart, int exitAxis, inout ReliefHit hit) {
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments
     // share their end parameter bit for bit and no gap can open between them.
     const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
-    const float kNoBound = 3.4e38;
     int depth = 0;
     uint index = 0u;
     // A bound over the parent's path, so over this segment's too (kNoBound: not known).
     float parentBound = kNoBound;
-    // The outcome, reported after the loop (which keeps the loop's body small): a hit at
+    // The outcome, reported after the loops (which keeps their bodies small): a hit at
     // tHit >= 0, solved exactly on the patch `corners` of `cell` or else taken as is.
     bool finished = false, solved = false;
     float tHit = -1.0;
     vec4 corners;
     ivec2 cell;
-    for (int iteration = 1; iteration <= map.maxIterations; ++iteration) {
-        hit.iterations = iteration;
-        int shift = MICRORELIEF_MAX_DEPTH - depth;
-        float ta = span * (float(index << shift) * kUnit);
-        float tb = span * (float((index + 1u) << shift) * kUnit);
-        vec3 pa = start + ta * dir, pb = start + tb * dir;
-        vec2 extents = abs(pb.xy - pa.xy);
-        float extent = max(extents.x, extents.y);
-        // A segment down to the floor (h = 0, in the solid) may hold a hit; one above its
-        // parent's bound cannot; any other is bounded by one window of the pyramid at the
-        // level its footprint chooses (paper, fig. 6).
-        float lowest = min(pa.z, pb.z);
-        bool mayHit = lowest <= 0.0;
-        int level = -1;
-        float bound = parentBound;
-        if (!mayHit && lowest <= parentBound) {
-            bound = min(bound, segmentBound(map, windows, pa.xy, pb.xy, level, hit.fetches));
-            hit.stopLevel = level;
-            mayHit = lowest <= bound;
-        }
-        if (mayHit) {
-            if (map.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= map.lodCone * (tStart + ta)) {
-                // Accuracy-controlled level of detail (paper, section II: "under criterion
-                // of required accuracy"): the window read, 2^(level+1) texels wide, projects
-                // to less than the tolerated pixel error, so its max box stands for the
-                // surface here.
-                tHit = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
-                finished = true;
-                break;
+    int iteration = 0;
+    float ta, tb;  // the current segment
+    while (!finished) {
+        // Down the walk to a leaf that may hold a hit, or to the walk's end.
+        bool atLeaf = false;
+        while (iteration < map.maxIterations) {
+            iteration += 1;
+            int shift = MICRORELIEF_MAX_DEPTH - depth;
+            ta = span * (float(index << shift) * kUnit);
+            tb = span * (float((index + 1u) << shift) * kUnit);
+            vec3 pa = start + ta * dir, pb = start + tb * dir;
+            vec2 extents = abs(pb.xy - pa.xy);
+            float extent = max(extents.x, extents.y);
+            // A segment down to the floor (h = 0, in the solid) may hold a hit; one above
+            // its parent's bound cannot; any other is bounded by one window of the pyramid
+            // at the level its footprint chooses (paper, fig. 6).
+            float lowest = min(pa.z, pb.z);
+            bool mayHit = lowest <= 0.0;
+            int level = -1;
+            float bound = parentBound;
+            if (!mayHit && lowest <= parentBound) {
+                bound = min(bound, segmentBound(map, windows, pa.xy, pb.xy, level, hit.fetches));
+                hit.stopLevel = level;
+                mayHit = lowest <= bound;
             }
-            if (extent <= 1.0 || depth >= MICRORELIEF_MAX_DEPTH) {
-                tHit = intersectLeaf(map, heights, start, dir, ta, tb, hit.fetches, corners, cell);
-                if (tHit >= 0.0) {
-                    finished = solved = true;
+            if (mayHit) {
+                if (map.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= map.lodCone * (tStart + ta)) {
+                    // Accuracy-controlled level of detail (paper, section II: "under
+                    // criterion of required accuracy"): the window read, 2^(level+1)
+                    // texels wide, projects to less than the tolerated pixel error, so its
+                    // max box stands for the surface here.
+                    tHit = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
+                    finished = true;
                     break;
                 }
-            } else {
+                if (extent <= 1.0 || depth >= MICRORELIEF_MAX_DEPTH) {
+                    atLeaf = true;
+                    break;
+                }
                 // Descend into the near half (eq. 8), or straight into the far half when
-                // the near one lies wholly above this segment's bound (a falling ray
-                // that reaches the bound only past the midpoint).
+                // the near one lies wholly above this segment's bound (a falling ray that
+                // reaches the bound only past the midpoint).
                 depth += 1;
                 index *= 2u;
                 parentBound = bound;
@@ -140,41 +171,39 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
                 if (min(pa.z, middleZ) > bound) index += 1u;
                 continue;
             }
-        }
-        // Done with this segment: on to the next one along the ray, index + 1 at this
-        // depth. After a near half that is its sibling, under the same parent. After a
-        // far half it is a near half under another parent, and the walk climbs to that
-        // parent, twice as long, when this segment cleared its bound by more than twice
-        // its own drop in height, so that the parent likely clears its bound too and
-        // crosses empty space in one step. Close to the surface it stays at this depth.
-        // (The paper's recursion would climb to the coarsest segment starting there, and
-        // so near the surface come back down through levels whose bounds seldom reject.)
-        bool farHalf = (index & 1u) == 1u;
-        index += 1u;
-        if ((index >> depth) != 0u) {
-            // Past the root's end without a hit. A ray that leaves the box through its
-            // floor going down has reached h = 0 inside the map, which belongs to the
-            // solid, so its first hit is that exit point (where the surface is 0). The
-            // exact root lies right at the end of the last segment, where rounding can
-            // push it out of that segment's range; this is where it is caught.
-            tHit = exitAxis == 2 && dir.z < 0.0 ? span : -1.0;
-            finished = true;
-            break;
-        }
-        if (farHalf) {
-            parentBound = kNoBound;
-            if (lowest - bound > 2.0 * abs(pb.z - pa.z)) {
-                index >>= 1;
-                depth -= 1;
+            // Discarded. After a far half the walk climbs when the segment cleared its
+            // bound by more than twice its own drop in height, so that the parent likely
+            // clears its bound too and crosses empty space in one step; close to the
+            // surface it stays at this depth. (The paper's recursion would climb to the
+            // coarsest segment starting there, and so near the surface come back down
+            // through levels whose bounds seldom reject.)
+            if (!nextSegment(depth, index, parentBound, lowest - bound > 2.0 * abs(pb.z - pa.z))) {
+                finished = true;
+                break;
             }
         }
+        if (!atLeaf) break;  // finished, or out of iterations
+        tHit = intersectLeaf(map, heights, start, dir, ta, tb, hit.fetches, corners, cell);
+        if (tHit >= 0.0) {
+            finished = solved = true;
+        } else if (!nextSegment(depth, index, parentBound, false)) {
+            finished = true;
+        }
     }
+    hit.iterations = iteration;
     if (!finished) {
         hit.exhausted = true;
     } else if (solved) {
         setTopHit(hit, map, start, dir, tHit, corners, cell);
     } else if (tHit >= 0.0) {
         setTopHitAt(hit, map, heights, tHit, start + tHit * dir);
+    } else if (exitAxis == 2 && dir.z < 0.0) {
+        // Past the root's end without a hit. A ray that leaves the box through its floor
+        // going down has reached h = 0 inside the map, which belongs to the solid, so its
+        // first hit is that exit point (where the surface is 0). The exact root lies right
+        // at the end of the last segment, where rounding can push it out of that
+        // segment's range; this is where it is caught.
+        setTopHitAt(hit, map, heights, span, start + span * dir);
     }
 }
 

@@ -189,6 +189,9 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
 }
 
 // multilevel_trace.glsl: subdivideSegment, over ray.origin + t ray.dir, t in [0, span].
+// The shader splits this loop in two (segments inside, the leaf outside) for the sake of
+// SIMD lanes; the segments and their order are the same, and a GL test compares them
+// per pixel.
 auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exitAxis,
                                         TraversalStats& stats) const -> std::optional<LeafHit> {
     const double unit = std::ldexp(1.0, -kMaxDepth);

@@ -12,8 +12,9 @@
 // with one textureLod the max over a window of the pyramid that holds the footprint,
 // and discards the segment when its lowest point lies above that max (it cannot hold a
 // hit). Otherwise it is split, near half first (eq. 8: Pn_i = Pn_i-1,
-// Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the footprint is at most one texel wide; there
-// the ray is solved exactly against the bilinear patches it crosses.
+// Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the footprint is a few texels wide at most
+// (MICRORELIEF_LEAF_TEXELS); there the ray is solved exactly against the bilinear patches
+// it crosses.
 //
 // GLSL has no recursion. A segment is named by its depth d and index k along the
 // root (t range [k, k+1] / 2^d of the root's), and the in-order walk needs no stack:
@@ -32,43 +33,43 @@
 #define MICRORELIEF_MAX_DEPTH 24
 #endif
 
-// Exact first hit on the bilinear surface along [ta, tb], a segment whose footprint is
-// at most one texel wide: it crosses at most one cell boundary in X and one in Y, so it
-// is cut into at most three pieces, each within one patch, solved in ray order.
-// Neighbouring pieces' patches share an edge (neighbourCorners).
+// The subdivision stops at segments whose footprint is at most this many texels wide and
+// solves them exactly against the bilinear patches they cross (intersectLeaf). 1 is the
+// paper's order (down to the finest level); a few texels cost fewer segments and fewer
+// leaves for the same exact hit (README, "Performance": 4 was the fastest there). A float.
+#ifndef MICRORELIEF_LEAF_TEXELS
+#define MICRORELIEF_LEAF_TEXELS 4.0
+#endif
+
+// Exact first hit on the bilinear surface along [ta, tb], or -1: the patches (cells
+// between four samples) the segment crosses, in ray order, each solved as a quadratic,
+// from one cell to its neighbour across the boundary the ray meets first (a 2D DDA, as
+// in the reference tracer). Neighbouring patches share an edge (neighbourCorners).
+// `corners` and `cell` are the patch of the hit.
 float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
                     inout int fetches, out vec4 corners, out ivec2 cell) {
-    vec3 pa = origin + ta * dir, pb = origin + tb * dir;
-    ivec2 firstCell = cellAt(pa.xy), lastCell = cellAt(pb.xy);
-    float cuts[2];
-    for (int axis = 0; axis < 2; ++axis) {
-        cuts[axis] = tb;
-        if (firstCell[axis] != lastCell[axis] && dir[axis] != 0.0) {
-            // The one cell boundary between them.
-            float boundary = float(max(firstCell[axis], lastCell[axis])) + 0.5;
-            cuts[axis] = clamp((boundary - origin[axis]) / dir[axis], ta, tb);
-        }
-    }
-    // The pieces in ray order, and which axis the ray steps across after the first.
-    int firstAxis = cuts[0] <= cuts[1] ? 0 : 1;
-    float bounds[4];
-    bounds[0] = ta;
-    bounds[1] = min(cuts[0], cuts[1]);
-    bounds[2] = max(cuts[0], cuts[1]);
-    bounds[3] = tb;
-    cell = firstCell;
+    cell = cellAt((origin + ta * dir).xy);
+    ivec2 lastCell = cellAt((origin + tb * dir).xy);
+    ivec2 toward = ivec2(sign(vec2(lastCell - cell)));
+    ivec2 cells = abs(lastCell - cell);
     corners = cellCorners(map, heights, cell, fetches);
-    for (int piece = 0; piece < 3; ++piece) {
-        if (piece > 0) {
-            int axis = piece == 1 ? firstAxis : 1 - firstAxis;
-            if (firstCell[axis] == lastCell[axis]) continue;  // no boundary on this axis
-            int step = lastCell[axis] > firstCell[axis] ? 1 : -1;
-            corners = neighbourCorners(map, heights, cell, axis, step, corners, fetches);
+    float t0 = ta;
+    for (int piece = 0; piece <= cells.x + cells.y; ++piece) {
+        // Where the ray leaves this cell towards lastCell, per axis (tb: it does not).
+        vec2 exits = vec2(tb);
+        for (int axis = 0; axis < 2; ++axis) {
+            if (cell[axis] != lastCell[axis] && dir[axis] != 0.0) {
+                float boundary = float(cell[axis] + max(toward[axis], 0)) + 0.5;
+                exits[axis] = clamp((boundary - origin[axis]) / dir[axis], t0, tb);
+            }
         }
-        float t0 = bounds[piece], t1 = bounds[piece + 1];
-        if (t1 < t0) continue;
+        float t1 = min(exits.x, exits.y);
         float tau = intersectPatch(corners, vec2(cell) + 0.5, origin + t0 * dir, dir, t1 - t0);
         if (tau >= 0.0) return t0 + tau;
+        if (t1 >= tb) break;
+        int axis = exits.x <= exits.y ? 0 : 1;
+        corners = neighbourCorners(map, heights, cell, axis, toward[axis], corners, fetches);
+        t0 = t1;
     }
     return -1.0;
 }
@@ -123,7 +124,9 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     vec4 corners;
     ivec2 cell;
     int iteration = 0;
-    float ta, tb;  // the current segment
+    float ta, tb;     // the current segment
+    float leafBound;  // the bound of the leaf the inner loop stopped at
+    bool floorExit = exitAxis == 2 && dir.z < 0.0;
     while (!finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
@@ -137,9 +140,11 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             float extent = max(extents.x, extents.y);
             // A segment down to the floor (h = 0, in the solid) may hold a hit; one above
             // its parent's bound cannot; any other is bounded by one window of the pyramid
-            // at the level its footprint chooses (paper, fig. 6).
+            // at the level its footprint chooses (paper, fig. 6). Only a segment that ends
+            // where the ray leaves through the floor reaches it; that is tested exactly,
+            // since pb.z rounds to either side of 0 there.
             float lowest = min(pa.z, pb.z);
-            bool mayHit = lowest <= 0.0;
+            bool mayHit = floorExit && tb == span;
             int level = -1;
             float bound = parentBound;
             if (!mayHit && lowest <= parentBound) {
@@ -157,8 +162,9 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
                     finished = true;
                     break;
                 }
-                if (extent <= 1.0 || depth >= MICRORELIEF_MAX_DEPTH) {
+                if (extent <= MICRORELIEF_LEAF_TEXELS || depth >= MICRORELIEF_MAX_DEPTH) {
                     atLeaf = true;
+                    leafBound = bound;
                     break;
                 }
                 // Descend into the near half (eq. 8), or straight into the far half when
@@ -183,7 +189,9 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             }
         }
         if (!atLeaf) break;  // finished, or out of iterations
-        tHit = intersectLeaf(map, heights, start, dir, ta, tb, hit.fetches, corners, cell);
+        // No hit before a falling ray comes down to the leaf's bound: solve from there.
+        float tFrom = dir.z < 0.0 ? clamp((leafBound - start.z) / dir.z, ta, tb) : ta;
+        tHit = intersectLeaf(map, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (!nextSegment(depth, index, parentBound, false)) {

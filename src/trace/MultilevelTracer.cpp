@@ -9,7 +9,8 @@ namespace microrelief {
 
 namespace {
 
-constexpr int kMaxDepth = 24;  // MICRORELIEF_MAX_DEPTH
+constexpr int kMaxDepth = 24;         // MICRORELIEF_MAX_DEPTH
+constexpr double kLeafTexels = 4.0;  // MICRORELIEF_LEAF_TEXELS
 
 using Cell = MultilevelTracer::Cell;
 
@@ -76,38 +77,35 @@ glm::dvec3 MultilevelTracer::topNormal(const Cell& cell, const glm::dvec3& mapPo
     return glm::normalize(glm::dvec3(-slope * gx, 1.0, -slope * gy));
 }
 
-// multilevel_trace.glsl: intersectLeaf. A segment at most one texel wide crosses at
-// most one cell boundary per axis: cut there and solve the pieces in ray order.
+// multilevel_trace.glsl: intersectLeaf. The cells the segment crosses, in ray order, each
+// solved exactly; from a cell to the neighbour across the boundary the ray meets first.
 auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, int& fetches) const
     -> std::optional<LeafHit> {
     const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
-    const glm::ivec2 first(std::floor(pa.x - 0.5), std::floor(pa.y - 0.5));
+    glm::ivec2 at(std::floor(pa.x - 0.5), std::floor(pa.y - 0.5));  // the cell's origin sample
     const glm::ivec2 last(std::floor(pb.x - 0.5), std::floor(pb.y - 0.5));
-    double cuts[2];
-    for (int axis = 0; axis < 2; ++axis) {
-        cuts[axis] = tb;
-        if (first[axis] != last[axis] && ray.dir[axis] != 0.0) {
-            const double boundary = std::max(first[axis], last[axis]) + 0.5;
-            cuts[axis] = std::clamp((boundary - ray.origin[axis]) / ray.dir[axis], ta, tb);
+    const glm::ivec2 toward(last.x > at.x ? 1 : last.x < at.x ? -1 : 0,
+                            last.y > at.y ? 1 : last.y < at.y ? -1 : 0);
+    const int pieces = std::abs(last.x - at.x) + std::abs(last.y - at.y) + 1;
+    Cell cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);
+    double t0 = ta;
+    for (int piece = 0; piece < pieces; ++piece) {
+        double exits[2] = {tb, tb};
+        for (int axis = 0; axis < 2; ++axis) {
+            if (at[axis] != last[axis] && ray.dir[axis] != 0.0) {
+                const double boundary = at[axis] + std::max(toward[axis], 0) + 0.5;
+                exits[axis] = std::clamp((boundary - ray.origin[axis]) / ray.dir[axis], t0, tb);
+            }
         }
-    }
-    const int firstAxis = cuts[0] <= cuts[1] ? 0 : 1;
-    const double bounds[4] = {ta, std::min(cuts[0], cuts[1]), std::max(cuts[0], cuts[1]), tb};
-    glm::ivec2 at = first;
-    Cell cell =
-        cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);  // the cell whose origin sample is `at`
-    for (int piece = 0; piece < 3; ++piece) {
-        if (piece > 0) {
-            const int axis = piece == 1 ? firstAxis : 1 - firstAxis;
-            if (first[axis] == last[axis]) continue;
-            at[axis] += last[axis] > first[axis] ? 1 : -1;
-            cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);
-        }
-        const double t0 = bounds[piece], t1 = bounds[piece + 1];
-        if (t1 < t0) continue;
+        const double t1 = std::min(exits[0], exits[1]);
         const double tau = intersectPatch(cell, ray.origin + t0 * ray.dir, ray.dir, t1 - t0);
         if (tau >= 0.0)
             return LeafHit{t0 + tau, topNormal(cell, ray.origin + (t0 + tau) * ray.dir)};
+        if (t1 >= tb) break;
+        const int axis = exits[0] <= exits[1] ? 0 : 1;
+        at[axis] += toward[axis];
+        cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);
+        t0 = t1;
     }
     return std::nullopt;
 }
@@ -199,6 +197,7 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
     int depth = 0;
     std::uint32_t index = 0;
     double parentBound = kNoBound;  // over the parent's path (see the shader)
+    const bool floorExit = exitAxis == 2 && ray.dir.z < 0.0;
     for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
         stats.iterations = iteration;
         const int shift = kMaxDepth - depth;
@@ -207,9 +206,10 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
         const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
         const glm::dvec2 extents = glm::abs(glm::dvec2(pb) - glm::dvec2(pa));
         const double extent = std::max(extents.x, extents.y);
-        // Down to the floor: may hit; above the parent's bound: cannot; else one window.
+        // Down to the floor (ending where the ray leaves through it): may hit; above the
+        // parent's bound: cannot; else one window.
         const double lowest = std::min(pa.z, pb.z);
-        bool mayHit = lowest <= 0.0;
+        bool mayHit = floorExit && tb == span;
         double bound = parentBound;
         if (!mayHit && lowest <= parentBound) {
             int level = 0;
@@ -218,8 +218,11 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
             mayHit = lowest <= bound;
         }
         if (mayHit) {
-            if (extent <= 1.0 || depth >= kMaxDepth) {
-                if (auto hit = intersectLeaf(ray, ta, tb, stats.fetches)) return hit;
+            if (extent <= kLeafTexels || depth >= kMaxDepth) {
+                // From where a falling ray comes down to the bound (see the shader).
+                const double tFrom =
+                    ray.dir.z < 0.0 ? std::clamp((bound - ray.origin.z) / ray.dir.z, ta, tb) : ta;
+                if (auto hit = intersectLeaf(ray, tFrom, tb, stats.fetches)) return hit;
             } else {
                 // The near half, or the far one when the near one lies above the bound.
                 ++depth;

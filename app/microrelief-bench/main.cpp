@@ -115,11 +115,11 @@ int main(int argc, char** argv) {
             const double elapsed =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             std::printf(
-                "[%3zu/%zu %5.0f s] %-10s %-5s %s %d %2d deg: %9.3f ms, %7.1f fetches, %.3f %% / "
-                "%.3f %%\n",
+                "[%3zu/%zu %5.0f s] %-10s %-5s %s %d %2d deg: %8.3f ms timer, %8.3f ms wall, "
+                "%7.1f fetches, %.3f %% / %.3f %%\n",
                 rows.size(), total, elapsed, r.method.c_str(), r.param.c_str(), r.map.c_str(),
-                r.mapSize, r.viewDegrees, r.msMedian, r.fetchesMean, r.coverageMismatchPct,
-                r.offHalfTexelPct);
+                r.mapSize, r.viewDegrees, r.msMedian, r.msWallMedian, r.fetchesMean,
+                r.coverageMismatchPct, r.offHalfTexelPct);
             std::fflush(stdout);
         });
         std::cout << '\n' << writeMarkdown(folder / "bench.md", info, rows);

@@ -84,8 +84,8 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
     vec4 corners;
     ivec2 cell;
     int iteration = 0;
-    vec2 exits;  // where the ray leaves the current node's column, per axis
-    float tExit;
+    vec2 exits = vec2(0.0);  // where the ray leaves the current node's column, per axis
+    float tExit = 0.0;
     while (!finished) {
         // Down the walk to a finest texel whose box the ray meets, or to the walk's end.
         bool atLeaf = false;

@@ -36,7 +36,7 @@
 // The subdivision stops at segments whose footprint is at most this many texels wide and
 // solves them exactly against the bilinear patches they cross (intersectLeaf). 1 is the
 // paper's order (down to the finest level); a few texels cost fewer segments and fewer
-// leaves for the same exact hit (README, "Performance": 4 was the fastest there). A float.
+// leaves for the same exact hit (README, "Performance": 4 was the best across map sizes).
 #ifndef MICRORELIEF_LEAF_TEXELS
 #define MICRORELIEF_LEAF_TEXELS 4.0
 #endif
@@ -124,8 +124,8 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     vec4 corners;
     ivec2 cell;
     int iteration = 0;
-    float ta, tb;     // the current segment
-    float leafBound;  // the bound of the leaf the inner loop stopped at
+    float ta = 0.0, tb = 0.0;  // the current segment
+    float leafBound = 0.0;     // the bound of the leaf the inner loop stopped at
     bool floorExit = exitAxis == 2 && dir.z < 0.0;
     while (!finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
@@ -162,7 +162,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
                     finished = true;
                     break;
                 }
-                if (extent <= MICRORELIEF_LEAF_TEXELS || depth >= MICRORELIEF_MAX_DEPTH) {
+                if (extent <= float(MICRORELIEF_LEAF_TEXELS) || depth >= MICRORELIEF_MAX_DEPTH) {
                     atLeaf = true;
                     leafBound = bound;
                     break;

@@ -133,11 +133,8 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
         hit.exhausted = true;
     } else if (solved) {
         setTopHit(hit, map, origin, dir, tHit, corners, cell);
-    } else if (exitAxis == 2 && dir.z < 0.0) {
-        // Out of the box through the floor inside the map: h = 0 is in the solid, so the
-        // hit is right there (rounding can put the root past the last leaf's end), as in
-        // traceMultilevel.
-        setTopHitAt(hit, map, heights, tFar, origin + tFar * dir);
+    } else {
+        setWalkEndHit(hit, map, heights, origin, dir, tFar, exitAxis);  // out of the box
     }
 }
 

@@ -126,7 +126,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     int iteration = 0;
     float ta = 0.0, tb = 0.0;  // the current segment
     float leafBound = 0.0;     // the bound of the leaf the inner loop stopped at
-    bool floorExit = exitAxis == 2 && dir.z < 0.0;
+    bool floorExit = leavesThroughFloor(dir, exitAxis);
     while (!finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
@@ -205,13 +205,8 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
         setTopHit(hit, map, start, dir, tHit, corners, cell);
     } else if (tHit >= 0.0) {
         setTopHitAt(hit, map, heights, tHit, start + tHit * dir);
-    } else if (exitAxis == 2 && dir.z < 0.0) {
-        // Past the root's end without a hit. A ray that leaves the box through its floor
-        // going down has reached h = 0 inside the map, which belongs to the solid, so its
-        // first hit is that exit point (where the surface is 0). The exact root lies right
-        // at the end of the last segment, where rounding can push it out of that
-        // segment's range; this is where it is caught.
-        setTopHitAt(hit, map, heights, span, start + span * dir);
+    } else {
+        setWalkEndHit(hit, map, heights, start, dir, span, exitAxis);  // past the root's end
     }
 }
 

@@ -91,6 +91,21 @@ void setTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t,
     hit.t = t;
 }
 
+// A ray that leaves the box through its floor going down reaches h = 0 inside the map,
+// which belongs to the solid.
+bool leavesThroughFloor(vec3 dir, int exitAxis) {
+    return exitAxis == 2 && dir.z < 0.0;
+}
+
+// The end of an exact walk over start + t dir, t in [0, tExit], that found no hit: a ray
+// that leaves through the floor hits it at the exit point (where the surface is 0). The
+// exact root lies right at the end of the walk, where rounding can push it out of the
+// last leaf's range; this is where it is caught. Any other ray misses.
+void setWalkEndHit(inout ReliefHit hit, ReliefMap map, sampler2D heights, vec3 start, vec3 dir, float tExit,
+                   int exitAxis) {
+    if (leavesThroughFloor(dir, exitAxis)) setTopHitAt(hit, map, heights, tExit, start + tExit * dir);
+}
+
 // A ray entering the box through a side wall or the bottom face below the surface hits
 // the solid right there (as in traceMultilevel). True, with `hit` filled, in that case.
 bool entryFaceHit(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float tEnter,

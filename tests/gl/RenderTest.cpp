@@ -289,6 +289,89 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
     }
 }
 
+// The accuracy-controlled level of detail (--pixel-error e) takes the max box of a window
+// that projects to at most e pixels for the surface. Its bound: the box holds the solid,
+// so a hit is never farther along the ray than the exact one and every exact hit stays a
+// hit; and the hit lies inside the window at a height the surface reaches there, so
+// within sqrt(2) e pixels (at the hit's distance) of a surface point as high. A map with
+// 16 texels to a pixel, where the tolerance changes most hits.
+TEST_F(Render, PixelErrorBoundsHowFarAHitStrays) {
+    const HeightMap map = synth::cobbles(1024, 1024, 3);
+    const double heightScale = 0.1, texelsPerUnit = 1024.0;
+    const float top = map.maxValue();
+    const int size = 64;
+    for (float pixelError : {1.0f, 4.0f}) {
+        for (double elevation : {45.0, 15.0}) {
+            RenderJob job;
+            job.camera = test::orbitCamera(elevation, 40.0, 1.3, {0.0, 0.04, 0.0});
+            job.width = job.height = size;
+            job.heightScale = static_cast<float>(heightScale);
+            job.method.pixelError = pixelError;
+            const HeadlessResult r = renderHeadless(*context(), map, "cobbles", job);
+            const ReferencePicture reference =
+                traceReferencePicture(r.camera, map, heightScale);
+            // One pixel's footprint in texels per unit of distance from the eye, as the
+            // shader's level-of-detail cone has it (relief.frag).
+            const double texelsPerPixelPerUnit =
+                2.0 * glm::length(r.camera.up) / size * texelsPerUnit;
+            std::size_t exactHits = 0, lost = 0, hits = 0, behind = 0, stray = 0, moved = 0;
+            double worstStray = 0.0;
+            for (int row = 0; row < size; ++row) {
+                for (int column = 0; column < size; ++column) {
+                    const auto& exact = reference.hits[std::size_t(row) * size + column];
+                    const float* p = r.frame.positionAt(column, row);
+                    exactHits += exact.has_value();
+                    if (p[3] < 0.5f) {
+                        lost += exact.has_value();
+                        continue;
+                    }
+                    ++hits;
+                    const glm::dvec3 hit(p[0], p[1], p[2]);
+                    const double distance = glm::length(hit - r.camera.eye);
+                    if (exact) {
+                        const double exactDistance = glm::length(*exact - r.camera.eye);
+                        behind += distance > exactDistance + 0.5 / texelsPerUnit;
+                        moved += glm::length(hit - *exact) * texelsPerUnit > 0.5;
+                    }
+                    // A surface point as high within sqrt(2) windows: the samples around
+                    // (one more texel each way covers the patches the square touches).
+                    // Hits on the side walls (entered below the surface) are exact.
+                    const double x = hit.x * texelsPerUnit + 512.0 - 0.5,
+                                 y = hit.z * texelsPerUnit + 512.0 - 0.5;
+                    if (std::min({x + 0.5, 1023.5 - x, y + 0.5, 1023.5 - y}) < 1e-3) continue;
+                    const double reach =
+                        std::sqrt(2.0) * pixelError * texelsPerPixelPerUnit * distance + 1.0;
+                    float highest = 0.0f, lowest = top;
+                    for (int j = int(std::floor(y - reach)); j <= int(std::ceil(y + reach)); ++j) {
+                        for (int i = int(std::floor(x - reach)); i <= int(std::ceil(x + reach));
+                             ++i) {
+                            highest = std::max(highest, map.clamped(i, j));
+                            lowest = std::min(lowest, map.clamped(i, j));
+                        }
+                    }
+                    const double h = hit.y / heightScale, slack = 1e-4 * top;
+                    const double above = h - highest - slack, below = lowest - h - slack;
+                    if (above > 0.0 || below > 0.0) {
+                        ++stray;
+                        worstStray = std::max({worstStray, above, below});
+                    }
+                }
+            }
+            std::printf(
+                "    %.0f px, %2.0f deg: %zu exact hits, %zu lost, %zu of %zu hits behind the "
+                "exact one, %zu with no surface point as high within reach (worst %.4f), %zu "
+                "moved by more than half a texel\n",
+                pixelError, elevation, exactHits, lost, behind, hits, stray, worstStray, moved);
+            ASSERT_GT(exactHits, std::size_t(size * size / 4));
+            EXPECT_LE(lost, exactHits / 1000) << pixelError << " px, " << elevation << " deg";
+            EXPECT_LE(behind, hits / 500) << pixelError << " px, " << elevation << " deg";
+            EXPECT_EQ(stray, 0u) << pixelError << " px, " << elevation << " deg";
+            // Not the exact picture: the tolerance was used.
+            EXPECT_GT(moved, exactHits / 4) << pixelError << " px, " << elevation << " deg";
+        }
+    }
+}
+
 }  // namespace
 
 namespace {

@@ -169,6 +169,8 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                         compareWithReference(target.read(), camera, reference);
                     r.coverageMismatchPct = accuracy.coverageMismatchPercent();
                     r.offHalfTexelPct = accuracy.offHalfTexelPercent();
+                    r.meanErrorPx = accuracy.meanErrorPixels;
+                    r.p99ErrorPx = accuracy.p99ErrorPixels;
                     r.exhausted = accuracy.exhausted;
 
                     // Fetches: the instrumented variant, once.

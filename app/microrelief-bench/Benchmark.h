@@ -36,6 +36,8 @@ struct Measurement {
     double fetchesMax = 0.0;
     double coverageMismatchPct = 0.0;
     double offHalfTexelPct = 0.0;
+    double meanErrorPx = 0.0;  // hits' distance from the exact ones, in pixels there
+    double p99ErrorPx = 0.0;
     std::size_t exhausted = 0;
 };
 

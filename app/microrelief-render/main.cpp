@@ -31,6 +31,8 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
                 a.offHalfTexelPercent());
     std::printf("  position error               p99 %.3g texels, max %.3g texels\n",
                 a.p99ErrorTexels, a.maxErrorTexels);
+    std::printf("                               mean %.3g px, p99 %.3g px (pixels at the hit)\n",
+                a.meanErrorPixels, a.p99ErrorPixels);
     std::printf("  out of the iteration budget  %8zu px\n", a.exhausted);
 }
 

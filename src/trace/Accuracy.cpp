@@ -13,7 +13,8 @@ std::string Accuracy::summary() const {
     out << pixels << " px, " << referenceHits << " reference hits; hit/miss disagree "
         << coverageMismatches << " (" << coverageMismatchPercent() << " %); off > 0.5 texel "
         << offHalfTexel << " (" << offHalfTexelPercent() << " %); error p99 " << p99ErrorTexels
-        << ", max " << maxErrorTexels << " texels; out of budget " << exhausted;
+        << ", max " << maxErrorTexels << " texels, mean " << meanErrorPixels << " px, p99 "
+        << p99ErrorPixels << " px; out of budget " << exhausted;
     return out.str();
 }
 
@@ -34,10 +35,26 @@ ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMa
     return picture;
 }
 
+namespace {
+
+// The 99th percentile of `values` (reordered), 0 for none.
+double percentile99(std::vector<double>& values) {
+    if (values.empty()) return 0.0;
+    const std::size_t k =
+        std::min(values.size() - 1, static_cast<std::size_t>(0.99 * values.size()));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k),
+                     values.end());
+    return values[k];
+}
+
+}  // namespace
+
 Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& reference,
                          const std::function<PixelHit(int, int, const Ray&)>& trace) {
     Accuracy result;
-    std::vector<double> errors;
+    std::vector<double> errors, pixelErrors;
+    // A pixel's angular width (CameraFrame::up is scaled by tan(fovy / 2)).
+    const double pixelAngle = 2.0 * glm::length(camera.up) / camera.height;
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
             ++result.pixels;
@@ -53,17 +70,19 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
             if (!tested.hit) continue;
             const double error = glm::length(tested.position - *exact) * reference.texelsPerUnit;
             errors.push_back(error);
+            pixelErrors.push_back(glm::length(tested.position - *exact) /
+                                  (glm::length(*exact - camera.eye) * pixelAngle));
             if (error > 0.5) ++result.offHalfTexel;
             result.maxErrorTexels = std::max(result.maxErrorTexels, error);
         }
     }
-    if (!errors.empty()) {
-        const std::size_t k =
-            std::min(errors.size() - 1, static_cast<std::size_t>(0.99 * errors.size()));
-        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k),
-                         errors.end());
-        result.p99ErrorTexels = errors[k];
+    result.p99ErrorTexels = percentile99(errors);
+    if (!pixelErrors.empty()) {
+        double sum = 0.0;
+        for (double e : pixelErrors) sum += e;
+        result.meanErrorPixels = sum / pixelErrors.size();
     }
+    result.p99ErrorPixels = percentile99(pixelErrors);
     return result;
 }
 

@@ -1,6 +1,6 @@
 // Measuring a tracer against the exact CPU reference (trace/ReferenceTracer.h) over the
 // pixels of a picture: hit/miss disagreements, positions off by more than half a
-// texel, error percentiles in texels, traversals that ran out of budget.
+// texel, error percentiles in texels and pixels, traversals that ran out of budget.
 #pragma once
 
 #include <cstddef>
@@ -27,6 +27,10 @@ struct Accuracy {
     std::size_t exhausted = 0;           // pixels that ran out of the iteration budget
     double maxErrorTexels = 0.0;
     double p99ErrorTexels = 0.0;
+    // The same distances in pixels: over the width of a pixel's cone at the exact hit's
+    // distance from the eye (what a level-of-detail tolerance is stated in).
+    double meanErrorPixels = 0.0;
+    double p99ErrorPixels = 0.0;
 
     double coverageMismatchPercent() const {
         return pixels ? 100.0 * coverageMismatches / pixels : 0.0;

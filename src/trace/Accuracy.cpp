@@ -70,8 +70,9 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
             if (!tested.hit) continue;
             const double error = glm::length(tested.position - *exact) * reference.texelsPerUnit;
             errors.push_back(error);
+            const double pixelWidth = glm::length(*exact - camera.eye) * pixelAngle;
             pixelErrors.push_back(glm::length(tested.position - *exact) /
-                                  (glm::length(*exact - camera.eye) * pixelAngle));
+                                  std::max(pixelWidth, 1e-12));
             if (error > 0.5) ++result.offHalfTexel;
             result.maxErrorTexels = std::max(result.maxErrorTexels, error);
         }

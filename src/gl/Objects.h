@@ -47,54 +47,25 @@ private:
     GLuint name_ = 0;
 };
 
-struct TexturePolicy {
+// The kinds GL generates and deletes in batches (glGenTextures(n, names) and
+// glDeleteTextures(n, names), ...): one policy over the two entry points of the table.
+template <auto Generate, auto Delete>
+struct GeneratedNamePolicy {
     static GLuint create(const GL& gl) {
         GLuint n = 0;
-        gl.GenTextures(1, &n);
+        (gl.*Generate)(1, &n);
         return n;
     }
-    static void destroy(const GL& gl, GLuint n) { gl.DeleteTextures(1, &n); }
+    static void destroy(const GL& gl, GLuint n) { (gl.*Delete)(1, &n); }
 };
-struct BufferPolicy {
-    static GLuint create(const GL& gl) {
-        GLuint n = 0;
-        gl.GenBuffers(1, &n);
-        return n;
-    }
-    static void destroy(const GL& gl, GLuint n) { gl.DeleteBuffers(1, &n); }
-};
-struct VertexArrayPolicy {
-    static GLuint create(const GL& gl) {
-        GLuint n = 0;
-        gl.GenVertexArrays(1, &n);
-        return n;
-    }
-    static void destroy(const GL& gl, GLuint n) { gl.DeleteVertexArrays(1, &n); }
-};
-struct FramebufferPolicy {
-    static GLuint create(const GL& gl) {
-        GLuint n = 0;
-        gl.GenFramebuffers(1, &n);
-        return n;
-    }
-    static void destroy(const GL& gl, GLuint n) { gl.DeleteFramebuffers(1, &n); }
-};
-struct RenderbufferPolicy {
-    static GLuint create(const GL& gl) {
-        GLuint n = 0;
-        gl.GenRenderbuffers(1, &n);
-        return n;
-    }
-    static void destroy(const GL& gl, GLuint n) { gl.DeleteRenderbuffers(1, &n); }
-};
-struct QueryPolicy {
-    static GLuint create(const GL& gl) {
-        GLuint n = 0;
-        gl.GenQueries(1, &n);
-        return n;
-    }
-    static void destroy(const GL& gl, GLuint n) { gl.DeleteQueries(1, &n); }
-};
+using TexturePolicy = GeneratedNamePolicy<&GL::GenTextures, &GL::DeleteTextures>;
+using BufferPolicy = GeneratedNamePolicy<&GL::GenBuffers, &GL::DeleteBuffers>;
+using VertexArrayPolicy = GeneratedNamePolicy<&GL::GenVertexArrays, &GL::DeleteVertexArrays>;
+using FramebufferPolicy = GeneratedNamePolicy<&GL::GenFramebuffers, &GL::DeleteFramebuffers>;
+using RenderbufferPolicy = GeneratedNamePolicy<&GL::GenRenderbuffers, &GL::DeleteRenderbuffers>;
+using QueryPolicy = GeneratedNamePolicy<&GL::GenQueries, &GL::DeleteQueries>;
+// Shaders and programs are made by glCreateShader / glCreateProgram (gl/ShaderProgram.h) and
+// deleted one at a time.
 struct ShaderPolicy {
     static void destroy(const GL& gl, GLuint n) { gl.DeleteShader(n); }
 };

@@ -42,8 +42,7 @@ double percentile99(std::vector<double>& values) {
     if (values.empty()) return 0.0;
     const std::size_t k =
         std::min(values.size() - 1, static_cast<std::size_t>(0.99 * values.size()));
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k),
-                     values.end());
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
     return values[k];
 }
 

@@ -308,8 +308,7 @@ TEST_F(Render, PixelErrorBoundsHowFarAHitStrays) {
             job.heightScale = static_cast<float>(heightScale);
             job.method.pixelError = pixelError;
             const HeadlessResult r = renderHeadless(*context(), map, "cobbles", job);
-            const ReferencePicture reference =
-                traceReferencePicture(r.camera, map, heightScale);
+            const ReferencePicture reference = traceReferencePicture(r.camera, map, heightScale);
             // One pixel's footprint in texels per unit of distance from the eye, as the
             // shader's level-of-detail cone has it (relief.frag).
             const double texelsPerPixelPerUnit =

@@ -175,14 +175,19 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     r.msMedian = median(gpu);
                     r.msWallMedian = median(wall);
 
-                    // Accuracy from the plain variant's AOV.
-                    const Accuracy accuracy =
-                        compareWithReference(target.read(), camera, reference);
+                    // Accuracy from the plain variant's AOV: over every pixel, and over
+                    // those whose exact hit is on the top surface.
+                    const RenderedFrame frame = target.read();
+                    const Accuracy accuracy = compareWithReference(frame, camera, reference);
                     r.coverageMismatchPct = accuracy.coverageMismatchPercent();
                     r.offHalfTexelPct = accuracy.offHalfTexelPercent();
                     r.meanErrorPx = accuracy.meanErrorPixels;
                     r.p99ErrorPx = accuracy.p99ErrorPixels;
                     r.exhausted = accuracy.exhausted;
+                    const Accuracy top =
+                        compareWithReference(frame, camera, reference, AccuracyScope::TopSurface);
+                    r.topCoverageMismatchPct = top.coverageMismatchPercent();
+                    r.topOffHalfTexelPct = top.offHalfTexelPercent();
 
                     // Fetches: the instrumented variant, once.
                     renderer.setMethod(setting.method, true);

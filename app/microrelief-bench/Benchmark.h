@@ -36,6 +36,10 @@ struct Measurement {
     double fetchesMax = 0.0;
     double coverageMismatchPct = 0.0;
     double offHalfTexelPct = 0.0;
+    // The same two over the pixels whose exact hit is on the top surface: what the peers
+    // that know no side walls or bottom face are measured by.
+    double topCoverageMismatchPct = 0.0;
+    double topOffHalfTexelPct = 0.0;
     double meanErrorPx = 0.0;  // hits' distance from the exact ones, in pixels there
     double p99ErrorPx = 0.0;
     std::size_t exhausted = 0;

@@ -44,6 +44,10 @@ bool methodHasSteps(Method method) {
     return method == Method::Steep || method == Method::Pom || method == Method::Relief;
 }
 
+bool methodTracesTheSolid(Method method) {
+    return method == Method::Multilevel || method == Method::MaxMip;
+}
+
 DebugView parseDebugView(const std::string& name) {
     return parseName<DebugView>(kDebugViewNames, name, "--view");
 }
@@ -156,8 +160,9 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     for (bool windows : {false, true}) {
         gl_.BindTexture(GL_TEXTURE_2D, (windows ? windowTexture_ : pyramidTexture_).id());
         for (int level = 0; level < pyramid.levelCount(); ++level) {
-            uploadLevel(gl_, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
-                        (windows ? pyramid.windowLevelData(level) : pyramid.levelData(level)).data());
+            uploadLevel(
+                gl_, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
+                (windows ? pyramid.windowLevelData(level) : pyramid.levelData(level)).data());
         }
         setSamplerState(gl_, GL_NEAREST_MIPMAP_NEAREST, pyramid.levelCount() - 1);
     }

@@ -29,6 +29,9 @@ Method parseMethod(const std::string& name);
 const char* methodName(Method method);
 // Whether a method's quality knob is a step count (steep, pom, relief).
 bool methodHasSteps(Method method);
+// Whether a method traces the whole solid, side walls and bottom face included
+// (multilevel, maxmip); the others know the top surface only.
+bool methodTracesTheSolid(Method method);
 
 struct MethodSettings {
     Method method = Method::Multilevel;

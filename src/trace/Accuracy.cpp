@@ -30,6 +30,7 @@ ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMa
             const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
             picture.hits.push_back(exact ? std::optional<glm::dvec3>(exact.position)
                                          : std::nullopt);
+            picture.onTop.push_back(exact.face == HitFace::Top);
         }
     }
     return picture;
@@ -49,17 +50,19 @@ double percentile99(std::vector<double>& values) {
 }  // namespace
 
 Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& reference,
-                         const std::function<PixelHit(int, int, const Ray&)>& trace) {
+                         const std::function<PixelHit(int, int, const Ray&)>& trace,
+                         AccuracyScope scope) {
     Accuracy result;
     std::vector<double> errors, pixelErrors;
     // A pixel's angular width (CameraFrame::up is scaled by tan(fovy / 2)).
     const double pixelAngle = 2.0 * glm::length(camera.up) / camera.height;
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
+            const std::size_t pixel = static_cast<std::size_t>(row) * reference.width + column;
+            if (scope == AccuracyScope::TopSurface && !reference.onTop[pixel]) continue;
             ++result.pixels;
             const PixelHit tested = trace(column, row, camera.pixelRay(column, row));
-            const std::optional<glm::dvec3>& exact =
-                reference.hits[static_cast<std::size_t>(row) * reference.width + column];
+            const std::optional<glm::dvec3>& exact = reference.hits[pixel];
             result.exhausted += tested.exhausted;
             if (exact) ++result.referenceHits;
             if (tested.hit != exact.has_value()) {
@@ -92,12 +95,15 @@ Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double
 }
 
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
-                              const ReferencePicture& reference) {
-    return measureAccuracy(camera, reference, [&](int column, int row, const Ray&) {
-        const float* p = frame.positionAt(column, row);
-        return PixelHit{p[3] > 0.5f, glm::dvec3(p[0], p[1], p[2]),
-                        frame.statsAt(column, row)[3] > 0.0f};
-    });
+                              const ReferencePicture& reference, AccuracyScope scope) {
+    return measureAccuracy(
+        camera, reference,
+        [&](int column, int row, const Ray&) {
+            const float* p = frame.positionAt(column, row);
+            return PixelHit{p[3] > 0.5f, glm::dvec3(p[0], p[1], p[2]),
+                            frame.statsAt(column, row)[3] > 0.0f};
+        },
+        scope);
 }
 
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,

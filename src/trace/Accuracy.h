@@ -54,20 +54,28 @@ struct ReferencePicture {
     int width = 0;
     double texelsPerUnit = 1.0;                   // max(W, H): errors are reported in texels
     std::vector<std::optional<glm::dvec3>> hits;  // row-major, world positions
+    std::vector<bool> onTop;                      // row-major: the hit is on the top surface
 };
+
+// Which pixels a comparison takes in: all of them, or only those whose exact hit lies on
+// the top surface, for methods that know no side walls or bottom face (what they do there
+// is what can be asked of them).
+enum class AccuracyScope { AllPixels, TopSurface };
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
                                        double heightScale);
 
 // Every pixel of `camera`'s picture: `trace(column, row, ray)` against the reference.
 // Errors are measured in texels of the map: world distance * max(W, H).
 Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& reference,
-                         const std::function<PixelHit(int, int, const Ray&)>& trace);
+                         const std::function<PixelHit(int, int, const Ray&)>& trace,
+                         AccuracyScope scope = AccuracyScope::AllPixels);
 Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double heightScale,
                          const std::function<PixelHit(int, int, const Ray&)>& trace);
 
 // A rendered frame's AOV against the reference.
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
-                              const ReferencePicture& reference);
+                              const ReferencePicture& reference,
+                              AccuracyScope scope = AccuracyScope::AllPixels);
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
                               const HeightMap& map, double heightScale);
 

@@ -51,7 +51,7 @@ uniform int debugView;        // DEBUG_VIEW_*; 0 is the shaded picture
 uniform int methodSteps;         // peers' quality knob: layers, samples or linear steps
 uniform int methodMinSteps;      // pom: samples when looking straight down
 uniform int methodRefineSteps;   // relief: binary search steps
-uniform float pixelErrorTolerance;  // multilevel: stop at levels whose texel < this many pixels
+uniform float pixelErrorTolerance;  // multilevel: stop at windows narrower than this many pixels
 
 ReliefHit traceRay(ReliefMap map, vec3 origin, vec3 dir) {
 #if MICRORELIEF_METHOD == 1

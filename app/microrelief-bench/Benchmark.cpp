@@ -176,7 +176,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     r.msWallMedian = median(wall);
 
                     // Accuracy from the plain variant's AOV: over every pixel, and over
-                    // those whose exact hit is on the top surface.
+                    // those whose rays come in through the top face.
                     const RenderedFrame frame = target.read();
                     const Accuracy accuracy = compareWithReference(frame, camera, reference);
                     r.coverageMismatchPct = accuracy.coverageMismatchPercent();

@@ -36,7 +36,7 @@ struct Measurement {
     double fetchesMax = 0.0;
     double coverageMismatchPct = 0.0;
     double offHalfTexelPct = 0.0;
-    // The same two over the pixels whose exact hit is on the top surface: what the peers
+    // The same two over the pixels whose rays come in through the top face: what the peers
     // that know no side walls or bottom face are measured by.
     double topCoverageMismatchPct = 0.0;
     double topOffHalfTexelPct = 0.0;

@@ -119,10 +119,11 @@ std::vector<std::string> methods(const std::vector<Measurement>& rows) {
 void writeCsv(const std::filesystem::path& file, const RunInfo& info,
               const std::vector<Measurement>& rows) {
     std::ostringstream out;
-    out << "method,param,map,map_size,view_deg,width,height,ms_median,ms_wall_median,fetches_mean,"
-           "fetches_max,"
-           "coverage_mismatch_pct,off_half_texel_pct,top_coverage_mismatch_pct,top_off_half_texel_"
-           "pct,"
+    // One literal per group of columns, each name whole.
+    out << "method,param,map,map_size,view_deg,width,height,"
+           "ms_median,ms_wall_median,fetches_mean,fetches_max,"
+           "coverage_mismatch_pct,off_half_texel_pct,"
+           "top_coverage_mismatch_pct,top_off_half_texel_pct,"
            "mean_error_px,p99_error_px,exhausted_px,renderer\n";
     for (const Measurement& r : rows) {
         out << r.method << ',' << r.param << ',' << r.map << ',' << r.mapSize << ','
@@ -155,7 +156,7 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
           "multilevel "
           "method's (above 1: the multilevel method is faster). *never*: no setting measured "
           "reaches it. Peers marked *(top)* know no side walls or bottom face: they are "
-          "measured on the pixels whose exact hit is on the top surface, against the "
+          "measured on the pixels whose rays come in through the top face, against the "
           "multilevel method's accuracy on the same pixels.\n\n";
     const std::vector<std::string> peers = [&] {
         std::vector<std::string> all = methods(rows);

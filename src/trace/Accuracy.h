@@ -54,12 +54,15 @@ struct ReferencePicture {
     int width = 0;
     double texelsPerUnit = 1.0;                   // max(W, H): errors are reported in texels
     std::vector<std::optional<glm::dvec3>> hits;  // row-major, world positions
-    std::vector<bool> onTop;                      // row-major: the hit is on the top surface
+    // Row-major: the pixel's ray does not come into the relief's box through a side wall
+    // or the bottom face (it comes through the top face, starts inside, or misses the box).
+    std::vector<bool> viaTop;
 };
 
-// Which pixels a comparison takes in: all of them, or only those whose exact hit lies on
-// the top surface, for methods that know no side walls or bottom face (what they do there
-// is what can be asked of them).
+// Which pixels a comparison takes in: all of them, or those whose rays do not come in
+// through a side wall or the bottom face (AccuracyScope::TopSurface), for methods that
+// know no side walls or bottom face: their hits and misses where the top surface is all
+// the ray can meet, false hits included (what can be asked of them).
 enum class AccuracyScope { AllPixels, TopSurface };
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
                                        double heightScale);

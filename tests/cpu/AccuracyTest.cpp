@@ -2,77 +2,100 @@
 // over which pixels, checked with made-up tracers whose errors are known exactly.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "TestSupport.h"
+#include "core/Error.h"
 #include "render/Camera.h"
 #include "synth/SyntheticMaps.h"
 #include "trace/Accuracy.h"
+#include "trace/ReferenceTracer.h"
 
 using namespace microrelief;
 
 namespace {
 
-// A low view of a raised map, with its near side walls in the picture.
+// A low view of a raised map, its near side walls and the sky in the picture; not square,
+// so that width and height cannot stand in for each other.
 struct Scene {
     HeightMap map = synth::cobbles(64, 64, 3);
     double heightScale = 0.1;
-    CameraFrame camera =
-        resolveCamera(test::orbitCamera(12.0, 30.0, 1.4, {0.0, 0.03, 0.0}), 48, 48, 2.0);
+    Camera view = test::orbitCamera(12.0, 30.0, 1.4, {0.0, 0.03, 0.0}, 40.0);
+    CameraFrame camera = resolveCamera(view, 64, 40, 2.0);
     ReferencePicture reference = traceReferencePicture(camera, map, heightScale);
 
-    const std::optional<glm::dvec3>& exact(int column, int row) const {
-        return reference.hits[std::size_t(row) * camera.width + column];
-    }
-    bool onTop(int column, int row) const {
-        return reference.onTop[std::size_t(row) * camera.width + column];
-    }
+    std::size_t at(int column, int row) const { return std::size_t(row) * camera.width + column; }
 };
 
-TEST(Accuracy, TopSurfaceScopeTakesInOnlyPixelsWhoseExactHitIsOnTop) {
+TEST(Accuracy, TopSurfaceScopeLeavesOutRaysThroughTheWallsAndTheBottom) {
     const Scene s;
-    std::size_t top = 0, wallOrBottom = 0;
+    const ReferenceTracer tracer(ReliefGeometry{&s.map, s.heightScale});
+    std::size_t inScope = 0, wallHits = 0, wallHitsInScope = 0, missesInScope = 0;
     for (int row = 0; row < s.camera.height; ++row) {
         for (int column = 0; column < s.camera.width; ++column) {
-            top += s.onTop(column, row);
-            wallOrBottom += s.exact(column, row) && !s.onTop(column, row);
+            const ReferenceHit exact = tracer.trace(s.camera.pixelRay(column, row));
+            const bool viaTop = s.reference.viaTop[s.at(column, row)];
+            inScope += viaTop;
+            const bool wall = exact && exact.face != HitFace::Top;
+            wallHits += wall;
+            wallHitsInScope += wall && viaTop;
+            missesInScope += !exact && viaTop;
         }
     }
-    ASSERT_GT(top, 200u);
-    ASSERT_GT(wallOrBottom, 20u) << "the view must show side walls";
+    ASSERT_GT(wallHits, 20u) << "the view must show side walls";
+    ASSERT_GT(missesInScope, 100u) << "the view must show the sky";
+    EXPECT_EQ(wallHitsInScope, 0u);
 
-    // A tracer that knows the top surface only: exact there, and on a wall pixel it
-    // answers one texel off (as a step method that stops at its first sample would).
-    const auto topOnly = [&](int column, int row, const Ray&) {
-        const std::optional<glm::dvec3>& exact = s.exact(column, row);
-        if (!exact) return PixelHit{};
-        const glm::dvec3 offset =
-            s.onTop(column, row) ? glm::dvec3(0.0) : glm::dvec3(0, 1.0 / 64, 0);
-        return PixelHit{true, *exact + offset, false};
+    // A tracer that knows the top surface only: exact where the ray comes in through the
+    // top; elsewhere a texel off on a hit and a false hit on a miss (the box's silhouette).
+    const auto topOnly = [&](int column, int row, const Ray& ray) {
+        const std::optional<glm::dvec3>& exact = s.reference.hits[s.at(column, row)];
+        if (s.reference.viaTop[s.at(column, row)])
+            return exact ? PixelHit{true, *exact, false} : PixelHit{};
+        return PixelHit{true, exact ? *exact + glm::dvec3(0, 1.0 / 64, 0) : ray.origin, false};
     };
     const Accuracy all = measureAccuracy(s.camera, s.reference, topOnly);
-    const Accuracy onTop =
-        measureAccuracy(s.camera, s.reference, topOnly, AccuracyScope::TopSurface);
+    const Accuracy top = measureAccuracy(s.camera, s.reference, topOnly, AccuracyScope::TopSurface);
     EXPECT_EQ(all.pixels, std::size_t(s.camera.width) * s.camera.height);
-    EXPECT_EQ(all.offHalfTexel, wallOrBottom);
-    EXPECT_EQ(onTop.pixels, top);
-    EXPECT_EQ(onTop.referenceHits, top);
-    EXPECT_EQ(onTop.offHalfTexel, 0u);
-    EXPECT_EQ(onTop.coverageMismatches, 0u);
+    EXPECT_GE(all.offHalfTexel, wallHits);
+    EXPECT_EQ(top.pixels, inScope);
+    EXPECT_EQ(top.offHalfTexel, 0u);
+    EXPECT_EQ(top.coverageMismatches, 0u);
+
+    // A false hit where a ray through the top face misses is still counted.
+    const auto falseHits = [&](int column, int row, const Ray& ray) {
+        const std::optional<glm::dvec3>& exact = s.reference.hits[s.at(column, row)];
+        return exact ? PixelHit{true, *exact, false} : PixelHit{true, ray.origin, false};
+    };
+    EXPECT_EQ(measureAccuracy(s.camera, s.reference, falseHits, AccuracyScope::TopSurface)
+                  .coverageMismatches,
+              missesInScope);
 }
 
 TEST(Accuracy, PixelErrorIsTheDistanceOverAPixelsWidthThere) {
     const Scene s;
-    // Every hit moved along its ray by exactly half a pixel's width at the exact hit.
-    const double pixelAngle = 2.0 * glm::length(s.camera.up) / s.camera.height;
+    // Every hit moved along its ray by half a pixel's width at the exact hit: the width
+    // of the picture's centre pixel, 2 tan(fovy / 2) / height per unit of distance.
+    const double perUnit = 2.0 * std::tan(glm::radians(s.view.fovyDegrees) / 2.0) / s.camera.height;
     const auto halfPixelOff = [&](int column, int row, const Ray& ray) {
-        const std::optional<glm::dvec3>& exact = s.exact(column, row);
+        const std::optional<glm::dvec3>& exact = s.reference.hits[s.at(column, row)];
         if (!exact) return PixelHit{};
-        const double width = glm::length(*exact - s.camera.eye) * pixelAngle;
+        const double width = glm::length(*exact - s.camera.eye) * perUnit;
         return PixelHit{true, *exact + 0.5 * width * glm::normalize(ray.direction), false};
     };
     const Accuracy a = measureAccuracy(s.camera, s.reference, halfPixelOff);
+    EXPECT_GT(a.referenceHits, 500u);
     EXPECT_NEAR(a.meanErrorPixels, 0.5, 1e-9);
     EXPECT_NEAR(a.p99ErrorPixels, 0.5, 1e-9);
     EXPECT_EQ(a.coverageMismatches, 0u);
+}
+
+TEST(Accuracy, RefusesAReferenceOfAnotherSize) {
+    const Scene s;
+    const CameraFrame other = resolveCamera(s.view, 40, 64, 2.0);
+    EXPECT_THROW(
+        measureAccuracy(other, s.reference, [](int, int, const Ray&) { return PixelHit{}; }),
+        Error);
 }
 
 }  // namespace

@@ -293,7 +293,7 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
 // that projects to at most e pixels for the surface. Its bound: the box holds the solid,
 // so a hit is never farther along the ray than the exact one and every exact hit stays a
 // hit; and the hit lies inside the window at a height the surface reaches there, so
-// within sqrt(2) e pixels (at the hit's distance) of a surface point as high. A map with
+// within e pixels per axis (at the hit's distance) of a surface point as high. A map with
 // 16 texels to a pixel, where the tolerance changes most hits.
 TEST_F(Render, PixelErrorBoundsHowFarAHitStrays) {
     const HeightMap map = synth::cobbles(1024, 1024, 3);
@@ -332,14 +332,13 @@ TEST_F(Render, PixelErrorBoundsHowFarAHitStrays) {
                         behind += distance > exactDistance + 0.5 / texelsPerUnit;
                         moved += glm::length(hit - *exact) * texelsPerUnit > 0.5;
                     }
-                    // A surface point as high within sqrt(2) windows: the samples around
-                    // (one more texel each way covers the patches the square touches).
+                    // A surface point as high within a window's width per axis: the samples
+                    // around (one more texel each way covers the patches the square touches).
                     // Hits on the side walls (entered below the surface) are exact.
                     const double x = hit.x * texelsPerUnit + 512.0 - 0.5,
                                  y = hit.z * texelsPerUnit + 512.0 - 0.5;
                     if (std::min({x + 0.5, 1023.5 - x, y + 0.5, 1023.5 - y}) < 1e-3) continue;
-                    const double reach =
-                        std::sqrt(2.0) * pixelError * texelsPerPixelPerUnit * distance + 1.0;
+                    const double reach = pixelError * texelsPerPixelPerUnit * distance + 1.0;
                     float highest = 0.0f, lowest = top;
                     for (int j = int(std::floor(y - reach)); j <= int(std::ceil(y + reach)); ++j) {
                         for (int i = int(std::floor(x - reach)); i <= int(std::ceil(x + reach));

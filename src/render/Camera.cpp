@@ -15,6 +15,10 @@ Ray CameraFrame::pixelRay(int column, int row) const {
     return {eye, forward + x * right + y * up};
 }
 
+double CameraFrame::pixelWidthPerUnit() const {
+    return 2.0 * glm::length(up) / height;  // `up` is scaled by tan(fovy / 2)
+}
+
 CameraFrame resolveCamera(const Camera& camera, int width, int height, double sceneRadius) {
     if (width <= 0 || height <= 0) throwBadInput("the picture size must be positive");
     if (!(camera.fovyDegrees > 0.0 && camera.fovyDegrees < 180.0)) {

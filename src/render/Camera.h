@@ -31,6 +31,10 @@ struct CameraFrame {
 
     // The ray through the centre of pixel (column, row), row 0 the top row.
     Ray pixelRay(int column, int row) const;
+    // The centre pixel's width per unit of distance from the eye, 2 tan(fovy / 2) / height:
+    // the unit of pixel errors (trace/Accuracy.h), as relief.frag's level-of-detail cone
+    // has it.
+    double pixelWidthPerUnit() const;
 };
 
 // Throws Error(BadInput) for a degenerate camera (eye at the target, up along the view

@@ -19,51 +19,19 @@ std::string Accuracy::summary() const {
     return out.str();
 }
 
-namespace {
-
-// Whether `ray` comes into the box [lo, hi] through a side wall or the bottom face: the
-// slab it enters last is x, z, or y from below, at a point in front of the origin.
-bool entersThroughSideOrBottom(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
-    double tEnter = -1e300, tExit = 1e300;
-    int entryAxis = -1;
-    for (int axis = 0; axis < 3; ++axis) {
-        const double o = ray.origin[axis], d = ray.direction[axis];
-        if (d == 0.0) {
-            if (o < lo[axis] || o > hi[axis]) return false;  // misses the box
-            continue;
-        }
-        double t0 = (lo[axis] - o) / d, t1 = (hi[axis] - o) / d;
-        if (t0 > t1) std::swap(t0, t1);
-        if (t0 > tEnter) {
-            tEnter = t0;
-            entryAxis = axis;
-        }
-        tExit = std::min(tExit, t1);
-    }
-    if (tEnter > tExit || tExit < 0.0 || tEnter < 0.0) return false;  // misses, or starts inside
-    return entryAxis != 1 || ray.direction.y > 0.0;
-}
-
-}  // namespace
-
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
                                        double heightScale) {
     const ReferenceTracer reference(ReliefGeometry{&map, heightScale});
-    const double longer = std::max(map.width, map.height);
-    const glm::dvec3 hi(0.5 * map.width / longer, heightScale * map.maxValue(),
-                        0.5 * map.height / longer);
-    const glm::dvec3 lo(-hi.x, 0.0, -hi.z);
     ReferencePicture picture;
     picture.width = camera.width;
-    picture.texelsPerUnit = longer;
+    picture.texelsPerUnit = std::max(map.width, map.height);
     picture.hits.reserve(static_cast<std::size_t>(camera.width) * camera.height);
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
-            const Ray ray = camera.pixelRay(column, row);
-            const ReferenceHit exact = reference.trace(ray);
+            const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
             picture.hits.push_back(exact ? std::optional<glm::dvec3>(exact.position)
                                          : std::nullopt);
-            picture.viaTop.push_back(!entersThroughSideOrBottom(ray, lo, hi));
+            picture.viaTop.push_back(exact.entryFace == HitFace::None);
         }
     }
     return picture;
@@ -91,9 +59,7 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
         throwRuntime("measureAccuracy: the reference picture is not of this camera's size");
     Accuracy result;
     std::vector<double> errors, pixelErrors;
-    // The centre pixel's width per unit of distance (CameraFrame::up is scaled by
-    // tan(fovy / 2)), as the shader's level-of-detail cone has it (relief.frag).
-    const double pixelAngle = 2.0 * glm::length(camera.up) / camera.height;
+    const double pixelWidthPerUnit = camera.pixelWidthPerUnit();
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
             const std::size_t pixel = static_cast<std::size_t>(row) * reference.width + column;
@@ -110,7 +76,7 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
             if (!tested.hit) continue;
             const double error = glm::length(tested.position - *exact) * reference.texelsPerUnit;
             errors.push_back(error);
-            const double pixelWidth = glm::length(*exact - camera.eye) * pixelAngle;
+            const double pixelWidth = glm::length(*exact - camera.eye) * pixelWidthPerUnit;
             pixelErrors.push_back(glm::length(tested.position - *exact) /
                                   std::max(pixelWidth, 1e-12));
             if (error > 0.5) ++result.offHalfTexel;

@@ -247,18 +247,22 @@ ReferenceHit traceBelow(const ReliefGeometry& relief, const Ray& ray, double top
 
     const auto span = clipToBoundingBox(o, d, map.width, map.height, top);
     if (!span) return {};
+    const auto entered = [&span](ReferenceHit hit) {
+        hit.entryFace = span->entryFace;
+        return hit;
+    };
     // Heights are >= 0, so the whole bottom face belongs to the solid.
     if (span->entryFace == HitFace::Bottom)
-        return faceHit(HitFace::Bottom, span->tEnter, ray, space);
+        return entered(faceHit(HitFace::Bottom, span->tEnter, ray, space));
 
     const double tStart = std::max(span->tEnter, 0.0);
     const auto contact = walkCells(map, relief.heightScale, o, d, tStart, *span);
-    if (!contact) return {};
+    if (!contact) return entered({});
     // Touching the solid right where the ray enters through a wall: a wall hit.
     if (span->entryFace != HitFace::None && contact->t == tStart) {
-        return faceHit(span->entryFace, tStart, ray, space);
+        return entered(faceHit(span->entryFace, tStart, ray, space));
     }
-    return topHit(*contact, ray, space);
+    return entered(topHit(*contact, ray, space));
 }
 
 }  // namespace

@@ -22,6 +22,9 @@ struct ReferenceHit {
     glm::dvec3 position{0.0};  // world position of the hit
     glm::dvec3 normal{0.0};    // world unit normal, outward; on top the bilinear surface normal
     glm::dvec2 uv{0.0};        // map uv of the hit (u = X/W, v = Y/H)
+    // Hit or not: the face of the relief's bounding box the ray comes in through, WallX,
+    // WallZ or Bottom; None for the top face, an origin inside the box, or no box at all.
+    HitFace entryFace = HitFace::None;
     explicit operator bool() const { return face != HitFace::None; }
 };
 

@@ -311,8 +311,7 @@ TEST_F(Render, PixelErrorBoundsHowFarAHitStrays) {
             const ReferencePicture reference = traceReferencePicture(r.camera, map, heightScale);
             // One pixel's footprint in texels per unit of distance from the eye, as the
             // shader's level-of-detail cone has it (relief.frag).
-            const double texelsPerPixelPerUnit =
-                2.0 * glm::length(r.camera.up) / size * texelsPerUnit;
+            const double texelsPerPixelPerUnit = r.camera.pixelWidthPerUnit() * texelsPerUnit;
             std::size_t exactHits = 0, lost = 0, hits = 0, behind = 0, stray = 0, moved = 0;
             double worstStray = 0.0;
             for (int row = 0; row < size; ++row) {

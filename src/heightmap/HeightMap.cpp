@@ -17,14 +17,19 @@ float HeightMap::clamped(int i, int j) const {
     return at(std::clamp(i, 0, width - 1), std::clamp(j, 0, height - 1));
 }
 
-double HeightMap::surface(double x, double y) const {
+float HeightMap::wrapped(int i, int j) const {
+    const int column = i % width;
+    return at(column < 0 ? column + width : column, std::clamp(j, 0, height - 1));
+}
+
+double HeightMap::surface(double x, double y, bool wrapU) const {
     // Sample centres sit at half-integers: shift so that sample i is at integer i.
     const double sx = x - 0.5, sy = y - 0.5;
     const double fx0 = std::floor(sx), fy0 = std::floor(sy);
     const int i = static_cast<int>(fx0), j = static_cast<int>(fy0);
     const double fx = sx - fx0, fy = sy - fy0;
-    const double h00 = clamped(i, j), h10 = clamped(i + 1, j);
-    const double h01 = clamped(i, j + 1), h11 = clamped(i + 1, j + 1);
+    const double h00 = sample(i, j, wrapU), h10 = sample(i + 1, j, wrapU);
+    const double h01 = sample(i, j + 1, wrapU), h11 = sample(i + 1, j + 1, wrapU);
     return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
 }
 

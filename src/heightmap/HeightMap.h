@@ -27,9 +27,14 @@ struct HeightMap {
 
     // The sample with its indices clamped to the map: the CLAMP_TO_EDGE rule.
     float clamped(int i, int j) const;
+    // The sample with i wrapped around the map (a curved base's periodic u) and j clamped.
+    float wrapped(int i, int j) const;
+    // clamped() or wrapped(): how a base surface addresses its map.
+    float sample(int i, int j, bool wrapU) const { return wrapU ? wrapped(i, j) : clamped(i, j); }
 
-    // h(X, Y) in texel space (X = u W, Y = v H): the bilinear surface of the spec.
-    double surface(double x, double y) const;
+    // h(X, Y) in texel space (X = u W, Y = v H): the bilinear surface of the spec, with
+    // column W - 1 joined to column 0 when `wrapU` (a curved base).
+    double surface(double x, double y, bool wrapU = false) const;
 
     float maxValue() const;
     float minValue() const;

@@ -17,7 +17,7 @@ int ceilPowerOfTwo(int n) {
 // The exact max of the bilinear surface over texel square (i, j): the nine points where
 // the patches that meet the square have their corners (see MaxPyramid.h). Computed in
 // double and rounded up to float, so that the bound is never an ulp below the surface.
-float texelSquareMax(const HeightMap& map, int i, int j) {
+float texelSquareMax(const HeightMap& map, int i, int j, bool wrapU) {
     double best = 0.0;
     for (int dj = -1; dj <= 1; ++dj) {
         for (int di = -1; di <= 1; ++di) {
@@ -26,8 +26,8 @@ float texelSquareMax(const HeightMap& map, int i, int j) {
             const int i0 = di < 0 ? i - 1 : i, i1 = di > 0 ? i + 1 : i;
             const int j0 = dj < 0 ? j - 1 : j, j1 = dj > 0 ? j + 1 : j;
             const double value =
-                0.25 * (static_cast<double>(map.clamped(i0, j0)) + map.clamped(i1, j0) +
-                        map.clamped(i0, j1) + map.clamped(i1, j1));
+                0.25 * (static_cast<double>(map.sample(i0, j0, wrapU)) + map.sample(i1, j0, wrapU) +
+                        map.sample(i0, j1, wrapU) + map.sample(i1, j1, wrapU));
             best = std::max(best, value);
         }
     }
@@ -37,14 +37,15 @@ float texelSquareMax(const HeightMap& map, int i, int j) {
 
 }  // namespace
 
-MaxPyramid::MaxPyramid(const HeightMap& map) : mapWidth_(map.width), mapHeight_(map.height) {
+MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU)
+    : mapWidth_(map.width), mapHeight_(map.height), wrapU_(wrapU) {
     const int pw = ceilPowerOfTwo(map.width), ph = ceilPowerOfTwo(map.height);
     widths_.push_back(pw);
     heights_.push_back(ph);
     std::vector<float> finest(static_cast<std::size_t>(pw) * ph, 0.0f);
     for (int j = 0; j < map.height; ++j) {
         for (int i = 0; i < map.width; ++i)
-            finest[static_cast<std::size_t>(j) * pw + i] = texelSquareMax(map, i, j);
+            finest[static_cast<std::size_t>(j) * pw + i] = texelSquareMax(map, i, j, wrapU);
     }
     levels_.push_back(std::move(finest));
 
@@ -103,12 +104,24 @@ int MaxPyramid::windowLevel(glm::ivec2 lo, glm::ivec2 hi) const {
     return std::min(level, levelCount() - 1);
 }
 
-double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const {
-    const glm::ivec2 ta = finestTexelAt(a), tb = finestTexelAt(b);
-    const glm::ivec2 lo = glm::min(ta, tb), hi = glm::max(ta, tb);
+double MaxPyramid::windowOver(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const {
     level = windowLevel(lo, hi);
     ++fetches;
     return window(level, lo.x >> level, lo.y >> level);
+}
+
+double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const {
+    const glm::ivec2 ta = finestTexelAt(a), tb = finestTexelAt(b);
+    return windowOver(glm::min(ta, tb), glm::max(ta, tb), level, fetches);
+}
+
+double MaxPyramid::footprintBound(glm::dvec2 lo, glm::dvec2 hi, int& level, int& fetches) const {
+    if (!wrapU_ || hi.x < mapWidth_)
+        return windowOver(finestTexelAt(lo), finestTexelAt(hi), level, fetches);
+    // Across the seam: [lo.x, W) and [0, hi.x - W], each held by a window of its own.
+    const glm::ivec2 tlo = finestTexelAt(lo), thi = finestTexelAt(hi - glm::dvec2(mapWidth_, 0.0));
+    const double right = windowOver(tlo, {mapWidth_ - 1, thi.y}, level, fetches);
+    return std::max(right, windowOver({0, tlo.y}, thi, level, fetches));
 }
 
 }  // namespace microrelief

@@ -23,6 +23,11 @@
 // by half, so a footprint whose texels span at most one level-k boundary per axis lies
 // inside the window at its lower corner: a segment's bound is always one texel, read at
 // a level no coarser than its footprint (segmentBound).
+//
+// On a curved base u wraps (BaseShape.h): the finest level's texel squares at the seam
+// take their neighbours from the other side of the map (wrapU), and a footprint that
+// crosses the seam is read as its two parts (footprintBound). Coarser levels and the
+// padding are as on the plane: no window reaches across the seam.
 #pragma once
 
 #include <vector>
@@ -35,7 +40,8 @@ namespace microrelief {
 
 class MaxPyramid {
 public:
-    explicit MaxPyramid(const HeightMap& map);
+    // `wrapU`: the map's u is periodic (a curved base), column W - 1 joins column 0.
+    explicit MaxPyramid(const HeightMap& map, bool wrapU = false);
 
     int mapWidth() const { return mapWidth_; }
     int mapHeight() const { return mapHeight_; }
@@ -68,8 +74,20 @@ public:
     // Never below the surface anywhere along the segment's path.
     double segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const;
 
+    // The bound over a footprint rectangle [lo, hi] of map points (lo <= hi per axis), the
+    // curved bases' form of segmentBound (max_pyramid.glsl: footprintBound): one window,
+    // or on a wrapped map whose rectangle reaches past X = W (hi.x >= W, lo.x < W), the
+    // larger of the windows over its two parts, [lo.x, W) and [0, hi.x - W]. `level` is
+    // the level of the last window read.
+    double footprintBound(glm::dvec2 lo, glm::dvec2 hi, int& level, int& fetches) const;
+    bool wrapsU() const { return wrapU_; }
+
 private:
+    // The window at windowLevel over the finest texels lo..hi, one fetch.
+    double windowOver(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const;
+
     int mapWidth_, mapHeight_;
+    bool wrapU_ = false;
     std::vector<int> widths_, heights_;
     std::vector<std::vector<float>> levels_;
     std::vector<std::vector<float>> windows_;

@@ -9,23 +9,10 @@ namespace microrelief {
 
 namespace {
 
-constexpr int kMaxDepth = 24;         // MICRORELIEF_MAX_DEPTH
+constexpr int kMaxDepth = 24;        // MICRORELIEF_MAX_DEPTH
 constexpr double kLeafTexels = 4.0;  // MICRORELIEF_LEAF_TEXELS
 
 using Cell = MultilevelTracer::Cell;
-
-// Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
-// per patch (bilinear_patch.glsl), one texel per pyramid read.
-Cell cellAt(const HeightMap& map, double x, double y, int& fetches) {
-    const int i = static_cast<int>(std::floor(x - 0.5)), j = static_cast<int>(std::floor(y - 0.5));
-    fetches += 1;
-    return {i,
-            j,
-            map.clamped(i, j),
-            map.clamped(i + 1, j),
-            map.clamped(i, j + 1),
-            map.clamped(i + 1, j + 1)};
-}
 
 // bilinear_patch.glsl: intersectPatch.
 double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& dir,
@@ -52,42 +39,78 @@ double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& 
     return (root >= 0.0 && root <= tauMax) ? root : -1.0;
 }
 
+double patchHeight(const Cell& c, double fx, double fy) {
+    return (c.h00 * (1 - fx) + c.h10 * fx) * (1 - fy) + (c.h01 * (1 - fx) + c.h11 * fx) * fy;
+}
+
+// The patch's max over the rectangle between local points a and b: a bilinear function is
+// linear along each axis, so over a rectangle it peaks at a corner.
+double patchMaxOver(const Cell& c, glm::dvec2 a, glm::dvec2 b) {
+    a = glm::clamp(a, 0.0, 1.0);
+    b = glm::clamp(b, 0.0, 1.0);
+    return std::max({patchHeight(c, a.x, a.y), patchHeight(c, b.x, a.y), patchHeight(c, a.x, b.y),
+                     patchHeight(c, b.x, b.y)});
+}
+
 }  // namespace
 
 int traversalBudget(int width, int height) {
     return 8 * (width + height) + 256;
 }
 
-MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale)
+MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base)
     : map_(std::move(map)),
-      pyramid_(map_),
+      pyramid_(map_, base.wrapsU()),
       heightScale_(heightScale),
+      base_(BaseSurface::make(base, map_.width, map_.height, heightScale,
+                              pyramid_.texel(pyramid_.levelCount() - 1, 0, 0))),
       maxIterations_(traversalBudget(map_.width, map_.height)) {}
 
-// multilevel_trace.glsl: setTopHit's normal, in world space.
-glm::dvec3 MultilevelTracer::topNormal(const Cell& cell, const glm::dvec3& mapPoint) const {
-    const double fx = std::clamp(mapPoint.x - (cell.i + 0.5), 0.0, 1.0);
-    const double fy = std::clamp(mapPoint.y - (cell.j + 0.5), 0.0, 1.0);
-    double gx = (cell.h10 - cell.h00) * (1 - fy) + (cell.h11 - cell.h01) * fy;
-    double gy = (cell.h01 - cell.h00) * (1 - fx) + (cell.h11 - cell.h10) * fx;
-    // Clamped border cells are flat across the edge.
-    if (cell.i < 0 || cell.i >= map_.width - 1) gx = 0.0;
-    if (cell.j < 0 || cell.j >= map_.height - 1) gy = 0.0;
-    const double slope = heightScale_ * std::max(map_.width, map_.height);
-    return glm::normalize(glm::dvec3(-slope * gx, 1.0, -slope * gy));
+// Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
+// per patch (bilinear_patch.glsl), one texel per pyramid read. Cell (i, j) lies between
+// samples i..i+1, j..j+1, wrapped in i on a curved base, clamped otherwise.
+Cell MultilevelTracer::cellAt(int i, int j, int& fetches) const {
+    fetches += 1;
+    const bool wrap = base_->wrapsU();
+    return {i,
+            j,
+            map_.sample(i, j, wrap),
+            map_.sample(i + 1, j, wrap),
+            map_.sample(i, j + 1, wrap),
+            map_.sample(i + 1, j + 1, wrap)};
 }
 
-// multilevel_trace.glsl: intersectLeaf. The cells the segment crosses, in ray order, each
-// solved exactly; from a cell to the neighbour across the boundary the ray meets first.
-auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, int& fetches) const
+// relief_hit.glsl: setTopHit's normal, in the base's frame.
+glm::dvec3 MultilevelTracer::topNormal(const Cell& cell, const glm::dvec3& framePoint) const {
+    const glm::dvec3 m = base_->mapPoint(framePoint);
+    double fx = m.x - (cell.i + 0.5);
+    if (base_->wrapsU()) fx -= map_.width * std::round(fx / map_.width);
+    fx = std::clamp(fx, 0.0, 1.0);
+    const double fy = std::clamp(m.y - (cell.j + 0.5), 0.0, 1.0);
+    double gx = (cell.h10 - cell.h00) * (1 - fy) + (cell.h11 - cell.h01) * fy;
+    double gy = (cell.h01 - cell.h00) * (1 - fx) + (cell.h11 - cell.h10) * fx;
+    // Clamped border cells are flat across the edge (in u only where u does not wrap).
+    if (!base_->wrapsU() && (cell.i < 0 || cell.i >= map_.width - 1)) gx = 0.0;
+    if (cell.j < 0 || cell.j >= map_.height - 1) gy = 0.0;
+    return base_->topNormal(framePoint, {gx, gy});
+}
+
+// multilevel_trace.glsl: intersectLeaf, on the plane. The cells the segment crosses, in
+// ray order, each solved exactly; from a cell to the neighbour across the boundary the
+// ray meets first.
+auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, int& fetches) const
     -> std::optional<LeafHit> {
-    const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
+    const glm::dvec3 pa = ray.at(ta), pb = ray.at(tb);
     glm::ivec2 at(std::floor(pa.x - 0.5), std::floor(pa.y - 0.5));  // the cell's origin sample
     const glm::ivec2 last(std::floor(pb.x - 0.5), std::floor(pb.y - 0.5));
-    const glm::ivec2 toward(last.x > at.x ? 1 : last.x < at.x ? -1 : 0,
-                            last.y > at.y ? 1 : last.y < at.y ? -1 : 0);
+    const glm::ivec2 toward(last.x > at.x   ? 1
+                            : last.x < at.x ? -1
+                                            : 0,
+                            last.y > at.y   ? 1
+                            : last.y < at.y ? -1
+                                            : 0);
     const int pieces = std::abs(last.x - at.x) + std::abs(last.y - at.y) + 1;
-    Cell cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);
+    Cell cell = cellAt(at.x, at.y, fetches);
     double t0 = ta;
     for (int piece = 0; piece < pieces; ++piece) {
         double exits[2] = {tb, tb};
@@ -98,89 +121,183 @@ auto MultilevelTracer::intersectLeaf(const MapRay& ray, double ta, double tb, in
             }
         }
         const double t1 = std::min(exits[0], exits[1]);
-        const double tau = intersectPatch(cell, ray.origin + t0 * ray.dir, ray.dir, t1 - t0);
-        if (tau >= 0.0)
-            return LeafHit{t0 + tau, topNormal(cell, ray.origin + (t0 + tau) * ray.dir)};
+        const double tau = intersectPatch(cell, ray.at(t0), ray.dir, t1 - t0);
+        if (tau >= 0.0) return LeafHit{t0 + tau, topNormal(cell, ray.at(t0 + tau))};
         if (t1 >= tb) break;
         const int axis = exits[0] <= exits[1] ? 0 : 1;
         at[axis] += toward[axis];
-        cell = cellAt(map_, at.x + 1.0, at.y + 1.0, fetches);
+        cell = cellAt(at.x, at.y, fetches);
         t0 = t1;
     }
     return std::nullopt;
 }
 
+// base_curved.glsl: intersectCurvedLeaf. The latitude turns at most once along a line:
+// split there, so that on each piece X and Y are both monotone and the cells the path
+// crosses are walked in order.
+auto MultilevelTracer::intersectCurvedLeaf(const FrameRay& ray, double ta, double tb,
+                                           int& fetches) const -> std::optional<LeafHit> {
+    const auto& base = static_cast<const CurvedSurface&>(*base_);
+    const std::optional<double> turn = base.turnY(ray);
+    if (turn && *turn > ta && *turn < tb) {
+        if (auto hit = walkCurvedCells(base, ray, ta, *turn, fetches)) return hit;
+        return walkCurvedCells(base, ray, *turn, tb, fetches);
+    }
+    return walkCurvedCells(base, ray, ta, tb, fetches);
+}
+
+// base_curved.glsl: walkCurvedCells. A DDA over the cells of a curved path whose X and Y
+// are monotone on [from, to]: each cell's stretch ends where the path crosses the cell's
+// boundary ahead in X (a half-plane through the axis) or in Y (a plane or a cone), found
+// in closed form; a crossing found behind the current t means rounding put the walk's
+// start just past it, and the walk steps on at once.
+auto MultilevelTracer::walkCurvedCells(const CurvedSurface& base, const FrameRay& ray, double from,
+                                       double to, int& fetches) const -> std::optional<LeafHit> {
+    const int w = map_.width, h = map_.height;
+    const glm::dvec3 start = base.mapPoint(ray.at(from));
+    int i = static_cast<int>(std::floor(start.x - 0.5)),
+        j = static_cast<int>(std::floor(start.y - 0.5));
+    i = (i % w + w) % w;
+    j = std::clamp(j, -1, h - 1);
+    const bool xUp = CurvedSurface::xIncreases(ray);
+    const double yFrom = start.y, yTo = base.mapY(ray.at(to));
+    const bool yMoves = yTo != yFrom, yUp = yTo > yFrom;
+    double t0 = from;
+    for (int piece = 0; piece < w + h + 4; ++piece) {
+        double t1 = to;
+        bool stepX = false, stepY = false;
+        // A map one sample wide has no boundary in X: its one cell goes all the way round.
+        if (const auto tx = w > 1 ? base.crossX(ray, xUp ? i + 1.5 : i + 0.5) : std::nullopt;
+            tx && *tx <= t1) {
+            t1 = std::max(*tx, t0);
+            stepX = true;
+        }
+        const double yBoundary = yUp ? j + 1.5 : j + 0.5;
+        if (yMoves && yBoundary > 0.0 && yBoundary < h) {
+            if (const auto ty = base.crossY(ray, yBoundary, from, to); ty && *ty <= t1) {
+                const double t = std::max(*ty, t0);
+                stepX = stepX && t == t1;
+                t1 = t;
+                stepY = true;
+            }
+        }
+        const Cell cell = cellAt(i, j, fetches);
+        if (const auto root = solveCurvedCell(base, ray, cell, t0, t1))
+            return LeafHit{*root, topNormal(cell, ray.at(*root))};
+        if (!stepX && !stepY) break;  // the stretch ended at `to`
+        if (stepX) i = (i + (xUp ? 1 : w - 1)) % w;
+        if (stepY) j += yUp ? 1 : -1;
+        t0 = t1;
+    }
+    return std::nullopt;
+}
+
+// base_curved.glsl: solveCurvedCell. The first t in [c0, c1] where the ray is on or under
+// the cell's patch, g(t) = patch(X(t), Y(t)) - h(t) >= 0. Along the path g is no longer a
+// polynomial, so the stretch is subdivided as the traversal subdivides the ray, near
+// half first, each piece discarded when its lowest height (exact, from the convexity of
+// the radial distance) lies above the patch's max over its footprint (exact: X and Y are
+// monotone here, and a bilinear patch peaks at a corner of a rectangle). Neither bound is
+// ever on the wrong side, so no contact is lost. At depth kCurvedCellDepth a piece is a
+// thousandth of the stretch, over which g is smooth to third order: a sign change at its
+// ends or middle gives the root by interpolation, and without one a concave parabola
+// through the three values that reaches 0 is a touching ray (a hit in the closed solid).
+std::optional<double> MultilevelTracer::solveCurvedCell(const CurvedSurface& base,
+                                                        const FrameRay& ray, const Cell& cell,
+                                                        double c0, double c1) const {
+    const int w = map_.width;
+    const auto local = [&](double t) {
+        const glm::dvec3 m = base.mapPoint(ray.at(t));
+        double fx = m.x - (cell.i + 0.5);
+        fx -= w * std::round(fx / w);
+        return glm::dvec3(fx, m.y - (cell.j + 0.5), m.z);
+    };
+    const auto gap = [&](double t) {
+        const glm::dvec3 f = local(t);
+        return patchHeight(cell, std::clamp(f.x, 0.0, 1.0), std::clamp(f.y, 0.0, 1.0)) - f.z;
+    };
+    int depth = 0;
+    std::uint32_t index = 0;
+    for (;;) {
+        const double width = (c1 - c0) / static_cast<double>(1u << depth);
+        const double a = c0 + index * width;
+        const double b = index + 1 == (1u << depth) ? c1 : a + width;
+        const glm::dvec3 fa = local(a), fb = local(b);
+        const bool may =
+            base.lowest(ray, a, b) <= patchMaxOver(cell, glm::min(glm::dvec2(fa), glm::dvec2(fb)),
+                                                   glm::max(glm::dvec2(fa), glm::dvec2(fb)));
+        if (may && depth < kCurvedCellDepth) {
+            ++depth;
+            index *= 2u;
+            continue;
+        }
+        if (may) {
+            const double m = 0.5 * (a + b);
+            const double ga = gap(a), gm = gap(m), gb = gap(b);
+            if (ga >= 0.0) return a;
+            if (gm >= 0.0) return a + (m - a) * ga / (ga - gm);
+            if (gb >= 0.0) return m + (b - m) * gm / (gm - gb);
+            // g(s) = ga + B s + A s^2 through s = 0, 1/2, 1.
+            const double A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
+            if (A < 0.0) {
+                const double vertex = -B / (2.0 * A);
+                const double disc = B * B - 4.0 * A * ga;
+                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0) {
+                    const double s = std::clamp((-B + std::sqrt(disc)) / (2.0 * A), 0.0, vertex);
+                    return a + s * (b - a);
+                }
+            }
+        }
+        // Past this piece: to its successor in order, as high up as it is unvisited.
+        ++index;
+        while (depth > 0 && (index & 1u) == 0u) {
+            index >>= 1;
+            --depth;
+        }
+        if (depth == 0) return std::nullopt;
+    }
+}
+
 std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
                                                      TraversalStats* statsOut) const {
     TraversalStats stats;
-    const double texelsPerUnit = std::max(map_.width, map_.height);
-    const glm::dvec2 size(map_.width, map_.height);
-    const MapRay ray{
-        {worldRay.origin.x * texelsPerUnit + 0.5 * size.x,
-         worldRay.origin.z * texelsPerUnit + 0.5 * size.y, worldRay.origin.y / heightScale_},
-        {worldRay.direction.x * texelsPerUnit, worldRay.direction.z * texelsPerUnit,
-         worldRay.direction.y / heightScale_}};
-    const double maxHeight = pyramid_.texel(pyramid_.levelCount() - 1, 0, 0);
+    const FrameRay ray = base_->frameRay(worldRay);
     auto finish = [&](std::optional<ReliefHit> hit) {
         if (statsOut) *statsOut = stats;
         return hit;
     };
-    auto makeHit = [&](HitFace face, double t, glm::dvec3 normal) {
+    auto makeHit = [&](HitFace face, double t, const glm::dvec3& frameNormal) {
         ReliefHit hit;
         hit.face = face;
         hit.t = t;
         hit.position = worldRay.origin + t * worldRay.direction;
-        hit.normal = normal;
-        const glm::dvec3 m = ray.origin + t * ray.dir;
-        hit.uv = {m.x / size.x, m.y / size.y};
+        hit.normal = base_->worldNormal(frameNormal);
+        const glm::dvec3 m = base_->mapPoint(ray.at(t));
+        hit.uv = {m.x / map_.width, m.y / map_.height};
         return hit;
     };
 
-    // multilevel_trace.glsl: clipToReliefBox.
-    const glm::dvec3 lo(0.0), hi(size.x, size.y, maxHeight);
-    double tEnter = -1e300, tExit = 1e300;
-    int entryAxis = -1, exitAxis = -1;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (ray.dir[axis] == 0.0) {
-            if (ray.origin[axis] < lo[axis] || ray.origin[axis] > hi[axis])
-                return finish(std::nullopt);
-            continue;
-        }
-        double t0 = (lo[axis] - ray.origin[axis]) / ray.dir[axis],
-               t1 = (hi[axis] - ray.origin[axis]) / ray.dir[axis];
-        if (t0 > t1) std::swap(t0, t1);
-        if (t0 > tEnter) {
-            tEnter = t0;
-            entryAxis = axis;
-        }
-        if (t1 < tExit) {
-            tExit = t1;
-            exitAxis = axis;
+    // relief_hit.glsl: enterReliefShell.
+    const ShellSpan span = base_->clip(ray);
+    const double tNear = std::max(span.tEnter, 0.0);
+    if (span.empty() || tNear > span.tExit) return finish(std::nullopt);
+    if (span.tEnter >= 0.0 && span.entry != ShellFace::None) {
+        // Through a wall, a cap or the bottom: a hit right there when below the surface.
+        const glm::dvec3 m = base_->mapPoint(ray.at(tNear));
+        const bool bottom = span.entry == ShellFace::Bottom;  // h = 0: always in the solid
+        if (bottom || (stats.fetches += 1, m.z <= map_.surface(m.x, m.y, base_->wrapsU()))) {
+            stats.stopLevel = 0;
+            const HitFace face = span.entry == ShellFace::WallX   ? HitFace::WallX
+                                 : span.entry == ShellFace::WallY ? HitFace::WallZ
+                                 : bottom                         ? HitFace::Bottom
+                                                                  : HitFace::Cap;
+            return finish(makeHit(face, tNear, base_->faceNormal(span.entry, ray)));
         }
     }
-    const double tNear = std::max(tEnter, 0.0), tFar = tExit;
-    if (tNear > tFar) return finish(std::nullopt);
 
-    const glm::dvec3 entry = ray.origin + tNear * ray.dir;
-    const bool throughTop = entryAxis == 2 && ray.dir.z < 0.0;
-    const bool throughBottom = entryAxis == 2 && ray.dir.z > 0.0;  // h = 0: always in the solid
-    if (tEnter >= 0.0 && entryAxis >= 0 && !throughTop &&
-        (throughBottom || (stats.fetches += 1, entry.z <= map_.surface(entry.x, entry.y)))) {
-        stats.stopLevel = 0;
-        glm::dvec3 normal(0.0);
-        const double outward = ray.dir[entryAxis] > 0.0 ? -1.0 : 1.0;
-        const HitFace face = entryAxis == 0   ? HitFace::WallX
-                             : entryAxis == 1 ? HitFace::WallZ
-                                              : HitFace::Bottom;
-        if (entryAxis == 0) normal.x = outward;
-        if (entryAxis == 1) normal.z = outward;
-        if (entryAxis == 2) normal.y = outward;
-        return finish(makeHit(face, tNear, normal));
-    }
-
-    // From the box entry on, as the shader works (relief_hit.glsl: enterReliefBox).
-    const MapRay fromEntry{ray.origin + tNear * ray.dir, ray.dir};
-    if (auto hit = subdivideSegment(fromEntry, tFar - tNear, exitAxis, stats)) {
+    // From the shell's entry on, as the shader works (relief_hit.glsl: enterReliefShell).
+    const FrameRay fromEntry{ray.at(tNear), ray.dir};
+    if (auto hit = subdivideSegment(fromEntry, span.tExit - tNear, span.floorExit, stats)) {
         return finish(makeHit(HitFace::Top, tNear + hit->t, hit->normal));
     }
     return finish(std::nullopt);
@@ -190,46 +307,44 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
 // The shader splits this loop in two (segments inside, the leaf outside) for the sake of
 // SIMD lanes; the segments and their order are the same, and a GL test compares them
 // per pixel.
-auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exitAxis,
+auto MultilevelTracer::subdivideSegment(const FrameRay& ray, double span, bool floorExit,
                                         TraversalStats& stats) const -> std::optional<LeafHit> {
     const double unit = std::ldexp(1.0, -kMaxDepth);
     constexpr double kNoBound = std::numeric_limits<double>::infinity();
     int depth = 0;
     std::uint32_t index = 0;
     double parentBound = kNoBound;  // over the parent's path (see the shader)
-    const bool floorExit = exitAxis == 2 && ray.dir.z < 0.0;
+    const bool curved = base_->shape().curved();
     for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
         stats.iterations = iteration;
         const int shift = kMaxDepth - depth;
         const double ta = span * (static_cast<double>(index << shift) * unit);
         const double tb = span * (static_cast<double>((index + 1u) << shift) * unit);
-        const glm::dvec3 pa = ray.origin + ta * ray.dir, pb = ray.origin + tb * ray.dir;
-        const glm::dvec2 extents = glm::abs(glm::dvec2(pb) - glm::dvec2(pa));
-        const double extent = std::max(extents.x, extents.y);
+        const Footprint footprint = base_->footprint(ray, ta, tb);
         // Down to the floor (ending where the ray leaves through it): may hit; above the
-        // parent's bound: cannot; else one window.
-        const double lowest = std::min(pa.z, pb.z);
+        // parent's bound: cannot; else one window (two across a curved base's seam).
         bool mayHit = floorExit && tb == span;
         double bound = parentBound;
-        if (!mayHit && lowest <= parentBound) {
+        if (!mayHit && footprint.lowest <= parentBound) {
             int level = 0;
-            bound = std::min(bound, pyramid_.segmentBound(pa, pb, level, stats.fetches));
+            bound = std::min(
+                bound, pyramid_.footprintBound(footprint.lo, footprint.hi, level, stats.fetches));
             stats.stopLevel = level;
-            mayHit = lowest <= bound;
+            mayHit = footprint.lowest <= bound;
         }
         if (mayHit) {
-            if (extent <= kLeafTexels || depth >= kMaxDepth) {
+            if (footprint.extent() <= kLeafTexels || depth >= kMaxDepth) {
                 // From where a falling ray comes down to the bound (see the shader).
-                const double tFrom =
-                    ray.dir.z < 0.0 ? std::clamp((bound - ray.origin.z) / ray.dir.z, ta, tb) : ta;
-                if (auto hit = intersectLeaf(ray, tFrom, tb, stats.fetches)) return hit;
+                const double tFrom = base_->descendTo(ray, ta, tb, bound);
+                auto hit = curved ? intersectCurvedLeaf(ray, tFrom, tb, stats.fetches)
+                                  : intersectLeaf(ray, tFrom, tb, stats.fetches);
+                if (hit) return hit;
             } else {
                 // The near half, or the far one when the near one lies above the bound.
                 ++depth;
                 index *= 2u;
                 parentBound = bound;
-                const double middleZ = ray.origin.z + 0.5 * (ta + tb) * ray.dir.z;
-                if (std::min(pa.z, middleZ) > bound) ++index;
+                if (base_->lowest(ray, ta, 0.5 * (ta + tb)) > bound) ++index;
                 continue;
             }
         }
@@ -239,15 +354,17 @@ auto MultilevelTracer::subdivideSegment(const MapRay& ray, double span, int exit
         ++index;
         if ((index >> depth) != 0u) {
             // Leaving through the floor going down: the exit point is the hit (see the shader).
-            if (exitAxis == 2 && ray.dir.z < 0.0) {
-                const glm::dvec3 exit = ray.origin + span * ray.dir;
-                return LeafHit{span, topNormal(cellAt(map_, exit.x, exit.y, stats.fetches), exit)};
+            if (floorExit) {
+                const glm::dvec3 exit = ray.at(span);
+                const Cell cell = cellAt(static_cast<int>(std::floor(exit.x - 0.5)),
+                                         static_cast<int>(std::floor(exit.y - 0.5)), stats.fetches);
+                return LeafHit{span, topNormal(cell, exit)};
             }
             return std::nullopt;
         }
         if (farHalf) {
             parentBound = kNoBound;
-            if (lowest - bound > 2.0 * std::abs(pb.z - pa.z)) {
+            if (footprint.lowest - bound > 2.0 * footprint.drop) {
                 index >>= 1;
                 --depth;
             }

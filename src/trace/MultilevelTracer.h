@@ -1,12 +1,16 @@
 // The multilevel traversal of shaders/microrelief/multilevel_trace.glsl on the CPU: the
-// same algorithm over the same max pyramid, step for step, for engines that need the
-// relief for picking or collision queries, and as a twin that tests hold the shader to.
+// same algorithm over the same max pyramid and the same base-surface seam
+// (base/BaseSurface.h), step for step, for engines that need the relief for picking or
+// collision queries, and as a twin that tests hold the shader to.
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include <glm/glm.hpp>
 
+#include "base/BaseShape.h"
+#include "base/BaseSurface.h"
 #include "heightmap/HeightMap.h"
 #include "heightmap/MaxPyramid.h"
 #include "render/Camera.h"
@@ -33,22 +37,20 @@ struct ReliefHit {
 
 class MultilevelTracer {
 public:
-    // Builds the max pyramid of `map`; the map is copied (the tracer owns its data).
-    MultilevelTracer(HeightMap map, double heightScale);
+    // Builds the max pyramid of `map` laid over `base`; the map is copied (the tracer owns
+    // its data).
+    MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base = {});
 
     // The first hit of `ray` (world space) with the relief solid, or nothing.
     std::optional<ReliefHit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const;
 
     const HeightMap& map() const { return map_; }
     const MaxPyramid& pyramid() const { return pyramid_; }
+    const BaseSurface& base() const { return *base_; }
     double heightScale() const { return heightScale_; }
     // The iteration budget, as the renderer sets it for this map.
     int maxIterations() const { return maxIterations_; }
 
-    // A ray in map space (map_space.glsl): (X, Y) texel coordinates, third coordinate h.
-    struct MapRay {
-        glm::dvec3 origin, dir;
-    };
     // A bilinear patch: cell (i, j) and its corner samples (bilinear_patch.glsl).
     struct Cell {
         int i, j;
@@ -58,17 +60,25 @@ public:
 private:
     struct LeafHit {
         double t;
-        glm::dvec3 normal;  // world
+        glm::dvec3 normal;  // in the base's frame (BaseSurface::topNormal)
     };
-    std::optional<LeafHit> intersectLeaf(const MapRay& ray, double ta, double tb,
+    Cell cellAt(int i, int j, int& fetches) const;
+    std::optional<LeafHit> intersectLeaf(const FrameRay& ray, double ta, double tb,
                                          int& fetches) const;
-    std::optional<LeafHit> subdivideSegment(const MapRay& ray, double span, int exitAxis,
+    std::optional<LeafHit> intersectCurvedLeaf(const FrameRay& ray, double ta, double tb,
+                                               int& fetches) const;
+    std::optional<LeafHit> walkCurvedCells(const CurvedSurface& base, const FrameRay& ray,
+                                           double t0, double tEnd, int& fetches) const;
+    std::optional<double> solveCurvedCell(const CurvedSurface& base, const FrameRay& ray,
+                                          const Cell& cell, double c0, double c1) const;
+    std::optional<LeafHit> subdivideSegment(const FrameRay& ray, double span, bool floorExit,
                                             TraversalStats& stats) const;
-    glm::dvec3 topNormal(const Cell& cell, const glm::dvec3& mapPoint) const;
+    glm::dvec3 topNormal(const Cell& cell, const glm::dvec3& framePoint) const;
 
     HeightMap map_;
     MaxPyramid pyramid_;
     double heightScale_;
+    std::unique_ptr<BaseSurface> base_;
     int maxIterations_;
 };
 
@@ -76,5 +86,9 @@ private:
 // a ray visits about two segments per finest texel it crosses plus their ancestors, so
 // 8 (W + H) + 256 is several times what any ray needs; running out means a bug.
 int traversalBudget(int width, int height);
+
+// The curved leaf's subdivision of one cell (base_curved.glsl, MICRORELIEF_CELL_DEPTH):
+// down to 2^-depth of the cell's stretch of the ray, then a quadratic model of the gap.
+constexpr int kCurvedCellDepth = 10;
 
 }  // namespace microrelief

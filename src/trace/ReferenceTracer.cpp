@@ -268,6 +268,10 @@ ReferenceHit traceBelow(const ReliefGeometry& relief, const Ray& ray, double top
 }  // namespace
 
 ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray) {
+    if (relief.base.curved()) {
+        return detail::traceCurvedReference(relief, ray,
+                                            relief.heightScale * relief.map->maxValue());
+    }
     // Without a known top the walk covers every cell under the ray's path over the
     // footprint; the exact per-cell cull keeps the cells above the relief cheap.
     return traceBelow(relief, ray, kInfinity);
@@ -277,6 +281,7 @@ ReferenceTracer::ReferenceTracer(const ReliefGeometry& relief)
     : relief_(relief), top_(relief.heightScale * static_cast<double>(relief.map->maxValue())) {}
 
 ReferenceHit ReferenceTracer::trace(const Ray& ray) const {
+    if (relief_.base.curved()) return detail::traceCurvedReference(relief_, ray, top_);
     return traceBelow(relief_, ray, top_);
 }
 

@@ -1,20 +1,26 @@
 // The exact CPU reference tracer: the ground truth the GPU renderer is checked against.
-// It shares no code with the multilevel tracer on purpose. It walks the bilinear cells
-// the ray crosses (a 2D DDA) and solves the ray against each cell's bilinear patch
-// exactly (a quadratic in t), in double precision, against the solid of the spec
-// (scene-and-cli.md, "Height map to surface"): the top surface, the side walls and the
-// bottom face. The cost is O(cells crossed) per ray.
+// It shares no code with the multilevel tracer on purpose. On the plane it walks the
+// bilinear cells the ray crosses (a 2D DDA) and solves the ray against each cell's
+// bilinear patch exactly (a quadratic in t), in double precision, against the solid of the
+// spec (scene-and-cli.md, "Height map to surface"): the top surface, the side walls and
+// the bottom face. On a curved base (trace/CurvedReference.cpp) the path of the ray over
+// the map is a curve and the surface along it no longer a polynomial: it lists every
+// crossing of a cell boundary in closed form, and in each cell finds the first contact by
+// bisection with a Lipschitz bound of the gap, to 1e-12 of the ray's length. The cost is
+// O(cells crossed) per ray.
 #pragma once
 
 #include <glm/glm.hpp>
 
+#include "base/BaseShape.h"
 #include "heightmap/HeightMap.h"
 #include "render/Camera.h"
 
 namespace microrelief {
 
-// The face of the solid a ray hits. WallX: the walls x = +-a/2; WallZ: z = +-b/2.
-enum class HitFace { None, Top, WallX, WallZ, Bottom };
+// The face of the solid a ray hits. WallX: the walls x = +-a/2; WallZ: z = +-b/2 (the
+// plane); Cap: an end of the cylinder. Top is the relief surface on every base.
+enum class HitFace { None, Top, WallX, WallZ, Bottom, Cap };
 
 struct ReferenceHit {
     HitFace face = HitFace::None;
@@ -28,10 +34,13 @@ struct ReferenceHit {
     explicit operator bool() const { return face != HitFace::None; }
 };
 
-// The scene of the spec for one map: the solid {|x| <= a/2, |z| <= b/2, 0 <= y <= s h(u, v)}.
+// The scene of the spec for one map: on the plane the solid {|x| <= a/2, |z| <= b/2,
+// 0 <= y <= s h(u, v)}; on a curved base the column or the star-shaped body of
+// base/BaseShape.h.
 struct ReliefGeometry {
     const HeightMap* map;  // not owned; must be non-empty with heights >= 0
     double heightScale = 0.1;
+    BaseShape base = {};
 };
 
 // The exact first hit of `ray` (world space) with the relief solid: its first point with
@@ -54,5 +63,11 @@ private:
     ReliefGeometry relief_;
     double top_;  // s times the largest sample
 };
+
+namespace detail {
+// The curved bases' reference (trace/CurvedReference.cpp); `top` is s times the largest
+// sample, or infinity where it is not known.
+ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const Ray& ray, double top);
+}  // namespace detail
 
 }  // namespace microrelief

@@ -86,6 +86,70 @@ TEST(MultilevelTracer, AgreesWithTheReferenceOnRandomRays) {
     }
 }
 
+// The twin on curved bases against the independent reference: random eyes around the
+// body (some inside the shell), aimed at it or anywhere; double precision on both sides.
+TEST(MultilevelTracer, AgreesWithTheReferenceOnCurvedBases) {
+    struct Case {
+        const char* name;
+        HeightMap map;
+        double scale;
+        BaseShape base;
+    };
+    HeightMap seam = synth::valueNoise(48, 24, 6.0, 3, 2);
+    for (int j = 0; j < seam.height; ++j) seam.at(0, j) = 0.0f, seam.at(47, j) = 1.0f;
+    const std::vector<Case> cases = {
+        {"cylinder cobbles 64", synth::cobbles(64, 64, 1), 0.15, BaseShape::cylinder()},
+        {"cylinder white 33x17", synth::whiteNoise(33, 17, 3), 0.1, BaseShape::cylinder(0.4, 0.5)},
+        {"cylinder seam", seam, 0.2, BaseShape::cylinder()},
+        {"sphere cobbles 64x32", synth::cobbles(64, 32, 2), 0.1, BaseShape::sphere()},
+        {"sphere white 21x11", synth::whiteNoise(21, 11, 5), 0.2, BaseShape::sphere(0.4)},
+        {"sphere seam", seam, 0.2, BaseShape::sphere()},
+        {"ellipsoid spikes", synth::spike(16, 9, 3, 4), 0.5, BaseShape::ellipsoid({0.3, 0.5, 0.2})},
+        {"sphere 1x1", synth::flat(1, 1, 0.5f), 0.2, BaseShape::sphere()},
+        {"cylinder zero", synth::flat(8, 8, 0.0f), 0.1, BaseShape::cylinder()},
+    };
+    for (const Case& c : cases) {
+        const MultilevelTracer twin(c.map, c.scale, c.base);
+        const ReferenceTracer reference(ReliefGeometry{&c.map, c.scale, c.base});
+        const double texel = c.base.texelSize(c.map.width, c.map.height);
+        const glm::dvec3 box = c.base.boxMax(c.map.width, c.map.height, c.scale * c.map.maxValue());
+        std::mt19937 random(91);
+        std::uniform_real_distribution<double> unit(-1.0, 1.0);
+        Agreement a;
+        for (int k = 0; k < 3000; ++k) {
+            const double reach = k % 5 == 0 ? 1.02 : 3.0;  // some eyes inside the shell
+            const glm::dvec3 eye =
+                reach * box * glm::dvec3(unit(random), unit(random), unit(random));
+            const Ray ray =
+                k % 3 == 0
+                    ? Ray{eye, glm::dvec3(unit(random), unit(random), unit(random))}
+                    : Ray{eye,
+                          0.8 * box * glm::dvec3(unit(random), unit(random), unit(random)) - eye};
+            const ReferenceHit exact = reference.trace(ray);
+            if (exact && exact.t == 0.0) continue;  // the eye inside the solid
+            ++a.rays;
+            TraversalStats stats;
+            const auto hit = twin.intersect(ray, &stats);
+            a.exhausted += stats.exhausted;
+            if (hit.has_value() != static_cast<bool>(exact)) {
+                ++a.coverageMismatches;
+                continue;
+            }
+            if (!hit) continue;
+            ++a.hits;
+            if (glm::length(hit->position - exact.position) > 0.5 * texel) ++a.offHalfTexel;
+            EXPECT_EQ(hit->face == HitFace::Cap, exact.face == HitFace::Cap)
+                << c.name << " ray " << k;
+        }
+        std::printf("  %-22s %d rays, %d hits, %d hit/miss, %d off > 0.5 texel\n", c.name, a.rays,
+                    a.hits, a.coverageMismatches, a.offHalfTexel);
+        EXPECT_LE(a.coverageMismatches, 2) << c.name;
+        EXPECT_LE(a.offHalfTexel, 2) << c.name;
+        EXPECT_EQ(a.exhausted, 0) << c.name;
+        EXPECT_GT(a.hits, 800) << c.name;
+    }
+}
+
 TEST(MultilevelTracer, PickingReportsUvAndNormal) {
     HeightMap map = synth::flat(8, 4, 0.5f);
     const MultilevelTracer tracer(map, 0.2);
@@ -120,9 +184,8 @@ TEST(MultilevelTracer, MeanFetchesStayWithinTwoPerLevelOnTheBenchRelief) {
         const HeightMap map = synth::cobbles(n, n, 7);
         const MultilevelTracer tracer(map, 0.1);
         const double top = 0.1 * map.maxValue();
-        const CameraFrame camera =
-            resolveCamera(test::orbitCamera(45.0, 35.0, 1.35, {0.0, 0.5 * top, 0.0}, 45.0), 64, 64,
-                          2.0);
+        const CameraFrame camera = resolveCamera(
+            test::orbitCamera(45.0, 35.0, 1.35, {0.0, 0.5 * top, 0.0}, 45.0), 64, 64, 2.0);
         double fetches = 0.0;
         int rays = 0, hits = 0;
         for (int row = 0; row < camera.height; ++row) {

@@ -5,7 +5,8 @@
 // depth-composites with other geometry.
 //
 // Host defines: MICRORELIEF_METHOD (0 multilevel, 1 normal, 2 offset, 3 steep, 4 pom,
-// 5 relief, 6 maxmip); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
+// 5 relief, 6 maxmip); MICRORELIEF_BASE (0 plane, 1 cylinder, 2 ellipsoid:
+// base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
 // writes texel reads to the statistics and keeps misses (so they are counted too).
 #include "microrelief/map_space.glsl"
 #include "microrelief/multilevel_trace.glsl"
@@ -36,6 +37,9 @@ uniform int pyramidLevels;
 uniform float reliefMaxHeight;
 uniform float heightScale;
 uniform int maxIterations;
+uniform vec3 frameScale;     // curved bases: world size of the canonical frame's unit
+uniform vec3 reliefBoxMin;   // the proxy box, world space (the position debug view)
+uniform vec3 reliefBoxMax;
 
 uniform vec3 eye;
 uniform vec3 cameraRight;    // scaled by tan(fovx / 2)
@@ -83,9 +87,9 @@ void main() {
     float pixelAngle = 2.0 * length(cameraUp) / viewportSize.y;
     float lodCone = pixelErrorTolerance * pixelAngle * length(dir) * max(reliefSize.x, reliefSize.y);
     ReliefMap map = ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, heightScale, maxIterations,
-                              lodCone);
+                              lodCone, frameScale);
 
-    ReliefHit hit = traceRay(map, worldToMapPoint(map, eye), worldToMapVector(map, dir));
+    ReliefHit hit = traceRay(map, baseFramePoint(map, eye), baseFrameVector(map, dir));
 #ifdef MICRORELIEF_COUNT_FETCHES
     float fetches = float(hit.fetches);
 #else
@@ -113,7 +117,7 @@ void main() {
 
 #if MICRORELIEF_METHOD == 2
     // Parallax offset's answer is not on the ray (it shifts the texture lookup instead).
-    vec3 world = mapToWorldPoint(map, hit.position);
+    vec3 world = baseWorldPoint(map, hit.position);
 #else
     vec3 world = eye + hit.t * dir;  // on the ray exactly, without a round trip through map space
 #endif
@@ -130,8 +134,7 @@ void main() {
         float distance = length(world - eye), far = length(eye) + 1.5;
         color = vec3(1.0 - clamp(distance / far, 0.0, 1.0));
     } else if (debugView == DEBUG_VIEW_POSITION) {
-        vec3 top = mapToWorldPoint(map, vec3(map.size, map.maxHeight));
-        color = debugPosition(world, -top * vec3(1.0, 0.0, 1.0), top);
+        color = debugPosition(world, reliefBoxMin, reliefBoxMax);
     } else {
         ReliefMaterial material = ReliefMaterial(albedo, 0.25, 48.0);
         color = encodeSrgb(shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0)));

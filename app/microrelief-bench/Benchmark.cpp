@@ -52,8 +52,7 @@ bool rayMeetsBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
 
 // Which pixels' rays meet the relief's box: the pixels the fetch means are taken over.
 std::vector<bool> pixelsInBox(const CameraFrame& camera, const ReliefExtent& extent) {
-    const glm::dvec3 lo(-extent.halfWidth, 0.0, -extent.halfDepth),
-        hi(extent.halfWidth, extent.topHeight, extent.halfDepth);
+    const glm::dvec3 lo = extent.min, hi = extent.max;
     std::vector<bool> inBox;
     inBox.reserve(static_cast<std::size_t>(camera.width) * camera.height);
     for (int row = 0; row < camera.height; ++row) {

@@ -114,6 +114,14 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
     app.add_option("--height-scale", job_.heightScale,
                    "World height of map value 1 (the map spans 1 unit)")
         ->capture_default_str();
+    app.add_option("--base", base_,
+                   "Base surface the map is laid over: plane, cylinder (axis y), ellipsoid or "
+                   "sphere (u wraps around the y axis)")
+        ->capture_default_str();
+    app.add_option("--radius", radius_,
+                   "Cylinder radius (default 0.3) or sphere radius (default 0.5), world units");
+    app.add_option("--length", length_, "Cylinder length along y (default 1), world units");
+    app.add_option("--radii", radii_, "Ellipsoid radii A,B,C along x, y, z (default 0.5,0.5,0.5)");
     app.add_option("--eye", eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
     app.add_option("--target", target_, "Point the camera looks at, x,y,z")->capture_default_str();
     app.add_option("--up", up_, "Camera up direction x,y,z")->capture_default_str();
@@ -149,8 +157,49 @@ void SceneFlags::addShading(CLI::App& app) {
         ->capture_default_str();
 }
 
+namespace {
+
+// The --base flags into a shape: each size flag only where its base has that size, each
+// size positive and finite.
+BaseShape parseBase(const std::string& name, const std::optional<double>& radius,
+                    const std::optional<double>& length, const std::string& radii) {
+    const BaseKind kind = parseBaseKind(name);
+    const bool sphere = name == "sphere";
+    const auto refuse = [&](const char* flag) {
+        throwBadInput(std::string(flag) + " does not apply to --base " + name);
+    };
+    BaseShape shape;
+    switch (kind) {
+        case BaseKind::Plane:
+            if (radius) refuse("--radius");
+            if (length) refuse("--length");
+            if (!radii.empty()) refuse("--radii");
+            return shape;
+        case BaseKind::Cylinder:
+            if (!radii.empty()) refuse("--radii");
+            shape = BaseShape::cylinder(radius.value_or(0.3), length.value_or(1.0));
+            break;
+        case BaseKind::Ellipsoid:
+            if (length) refuse("--length");
+            if (sphere) {
+                if (!radii.empty()) refuse("--radii");
+                shape = BaseShape::sphere(radius.value_or(0.5));
+            } else {
+                if (radius) refuse("--radius");
+                shape = BaseShape::ellipsoid(radii.empty() ? glm::dvec3(0.5)
+                                                           : parseVectorFlag("--radii", radii));
+            }
+            break;
+    }
+    validateBaseShape(shape);
+    return shape;
+}
+
+}  // namespace
+
 void SceneFlags::apply() {
     if (!height_.empty()) heightFile_ = height_;
+    job_.base = parseBase(base_, radius_, length_, radii_);
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
@@ -160,6 +209,7 @@ void SceneFlags::apply() {
     parseSizeFlag(size_, job_.width, job_.height);
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
+    checkMethodSupportsBase(job_.method.method, job_.base);
     if (job_.method.steps < 1 || job_.method.steps > 65536)
         throwBadInput("--steps must lie in 1..65536");
     job_.method.setSteps(job_.method.steps);
@@ -198,6 +248,18 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     if (o.load.channel != 0) flag("--channel", std::to_string(o.load.channel));
     if (o.load.normalize) flag("--normalize", "");
     flag("--height-scale", exactText(job.heightScale));
+    const std::string base = baseName(job.base);
+    if (job.base.kind == BaseKind::Cylinder) {
+        flag("--base", base);
+        flag("--radius", exactText(job.base.radius));
+        flag("--length", exactText(job.base.length));
+    } else if (base == "sphere") {
+        flag("--base", base);
+        flag("--radius", exactText(job.base.radii.x));
+    } else if (job.base.kind == BaseKind::Ellipsoid) {
+        flag("--base", base);
+        line += " --radii=" + exactVector(job.base.radii);
+    }
     // "=" keeps a leading minus from reading as a flag in any parser.
     line += " --eye=" + exactVector(job.camera.eye);
     line += " --target=" + exactVector(job.camera.target);

@@ -5,6 +5,9 @@
 // `heights` is the W x H sample texture (CLAMP_TO_EDGE; its filter is not used). Cell
 // (i, j) is the patch between the sample centres (i + 0.5, j + 0.5) and (i + 1.5, j + 1.5);
 // cells -1 and W - 1 (H - 1) are the clamped half-texel borders, flat across the edge.
+// On a curved base (MICRORELIEF_BASE != 0) u wraps: the texture's S wrap is REPEAT, cell
+// W - 1 joins sample W - 1 to sample 0 across the seam, and cell indices are kept in
+// 0..W - 1 (wrapCell).
 #ifndef MICRORELIEF_BILINEAR_PATCH_GLSL
 #define MICRORELIEF_BILINEAR_PATCH_GLSL
 
@@ -32,6 +35,10 @@ vec4 cellCorners(ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches
     ivec2 last = ivec2(map.size) - 1;
     ivec2 c0 = clamp(cell, ivec2(0), last);
     ivec2 c1 = clamp(cell + 1, ivec2(0), last);
+#if MICRORELIEF_BASE != 0
+    c0.x = cell.x;
+    c1.x = cell.x + 1 > last.x ? 0 : cell.x + 1;
+#endif
     fetches += 4;
     return vec4(texelFetch(heights, c0, 0).r, texelFetch(heights, ivec2(c1.x, c0.y), 0).r,
                 texelFetch(heights, ivec2(c0.x, c1.y), 0).r, texelFetch(heights, c1, 0).r);
@@ -63,8 +70,27 @@ vec4 neighbourCorners(ReliefMap map, sampler2D heights, inout ivec2 cell, int ax
 #endif
 }
 
+// A cell index in 0..W - 1 on a curved base (u wraps); unchanged on the plane.
+ivec2 wrapCell(ReliefMap map, ivec2 cell) {
+#if MICRORELIEF_BASE != 0
+    int width = int(map.size.x);
+    cell.x -= width * int(floor(float(cell.x) / float(width)));
+#endif
+    return cell;
+}
+
 // The cell that holds map point `xy` (ties go to the cell on the positive side).
 ivec2 cellAt(vec2 xy) { return ivec2(floor(xy - 0.5)); }
+
+// Map point `xy` in the local coordinates of `cell`, whose sample h00 is at the origin; on
+// a curved base the seam cell W - 1 holds the points just past X = 0 too.
+vec2 cellLocal(ReliefMap map, ivec2 cell, vec2 xy) {
+    vec2 f = xy - (vec2(cell) + 0.5);
+#if MICRORELIEF_BASE != 0
+    f.x -= map.size.x * floor(f.x / map.size.x + 0.5);
+#endif
+    return f;
+}
 
 // Height of the patch with corners `h` at local coordinates f in [0, 1]^2.
 float patchHeight(vec4 h, vec2 f) {
@@ -78,8 +104,17 @@ vec2 patchGradient(vec4 h, vec2 f) {
 
 // h(X, Y): the surface height at a map point.
 float surfaceHeight(ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
-    ivec2 cell = cellAt(xy);
-    return patchHeight(cellCorners(map, heights, cell, fetches), xy - (vec2(cell) + 0.5));
+    ivec2 cell = wrapCell(map, cellAt(xy));
+    return patchHeight(cellCorners(map, heights, cell, fetches), clamp(cellLocal(map, cell, xy), 0.0, 1.0));
+}
+
+// The patch's max over the rectangle [lo, hi] of local coordinates (clamped to the
+// patch): bilinear, so linear along each axis, it peaks at a corner of any rectangle.
+float patchMaxOver(vec4 h, vec2 lo, vec2 hi) {
+    lo = clamp(lo, 0.0, 1.0);
+    hi = clamp(hi, 0.0, 1.0);
+    return max(max(patchHeight(h, lo), patchHeight(h, vec2(hi.x, lo.y))),
+               max(patchHeight(h, vec2(lo.x, hi.y)), patchHeight(h, hi)));
 }
 
 // The first root tau in [0, tauMax] of patch(start.xy + tau dir.xy) = start.z + tau dir.z

@@ -7,7 +7,9 @@
 //    bilinear surface over map-space X in [p 2^k, (p+1) 2^k), Y in [q 2^k, (q+1) 2^k);
 //  * the overlapping one (the windows): level k texel (p, q) holds the max of aligned
 //    texels p..p+1 by q..q+1 of level k, twice as wide, so that windows overlap by half.
-// The multilevel traversal reads the windows (segmentBound), maxmip the quadtree.
+// The multilevel traversal reads the windows (footprintBound), maxmip the quadtree. On a
+// curved base the finest level bounds the surface across the seam u = 0 (MaxPyramid's
+// wrapU) and a footprint that crosses the seam is read as its two parts.
 #ifndef MICRORELIEF_MAX_PYRAMID_GLSL
 #define MICRORELIEF_MAX_PYRAMID_GLSL
 
@@ -61,17 +63,30 @@ int windowLevel(ReliefMap map, ivec2 lo, ivec2 hi) {
     return min(level, map.levelCount - 1);
 }
 
-// The bound of the pyramid over the segment from a to b (map points): one texel of the
-// overlapping pyramid `windows` (texel (p, q) of level k: the max over finest texels
+// The bound of the pyramid over the finest texels lo..hi: one texel of the overlapping
+// pyramid `windows` (texel (p, q) of level k: the max over finest texels
 // [p 2^k, (p+2) 2^k) x [q 2^k, (q+2) 2^k)), the window at the lower corner of the
-// segment's footprint, at the level of detail the footprint chooses (windowLevel). The
-// footprint lies inside that window, so the bound is conservative, and one textureLod
-// reads it, as the paper has it. `level` is set to the level read.
-float segmentBound(ReliefMap map, sampler2D windows, vec2 a, vec2 b, out int level, inout int fetches) {
-    ivec2 ta = finestTexelAt(map, a), tb = finestTexelAt(map, b);
-    ivec2 lo = min(ta, tb), hi = max(ta, tb);
+// footprint, at the level of detail the footprint chooses (windowLevel). The footprint
+// lies inside that window, so the bound is conservative, and one textureLod reads it, as
+// the paper has it. `level` is set to the level read.
+float windowOver(ReliefMap map, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
     level = windowLevel(map, lo, hi);
     return pyramidTexel(map, windows, lo >> level, level, fetches);
+}
+
+// The bound over a segment's footprint, the map rectangle [lo, hi] (base_surface.glsl):
+// the window that holds its texels; on a curved base, a rectangle that reaches past
+// X = W wraps across the seam, and the larger of the windows over its two parts,
+// [lo.x, W) and [0, hi.x - W], bounds it (two fetches, for the segments that cross it).
+float footprintBound(ReliefMap map, sampler2D windows, vec2 lo, vec2 hi, out int level, inout int fetches) {
+#if MICRORELIEF_BASE != 0
+    if (hi.x >= map.size.x) {
+        ivec2 tlo = finestTexelAt(map, lo), thi = finestTexelAt(map, hi - vec2(map.size.x, 0.0));
+        float right = windowOver(map, windows, tlo, ivec2(int(map.size.x) - 1, thi.y), level, fetches);
+        return max(right, windowOver(map, windows, ivec2(0, tlo.y), thi, level, fetches));
+    }
+#endif
+    return windowOver(map, windows, finestTexelAt(map, lo), finestTexelAt(map, hi), level, fetches);
 }
 
 #endif

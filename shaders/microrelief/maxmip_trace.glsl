@@ -68,13 +68,13 @@ void maxMipNextNode(inout ivec2 node, inout int level, int topLevel, vec2 exits,
     }
 }
 
-// The quadtree walk over the segment origin + t dir, t in [0, tFar], of a ray that left
-// the box through `exitAxis`; fills `hit` with local t. The loops have the shape of
+// The quadtree walk over the segment origin + t dir, t in [0, tFar], of a ray that leaves
+// the box through its floor when `floorExit`; fills `hit` with local t. The loops have the shape of
 // traceMultilevel's (multilevel_trace.glsl): an inner one walks nodes down to a finest
 // texel the ray meets, an outer one solves it, so that pixels in SIMD lanes pay for
 // their leaves once per outer pass, not on every node.
 void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir, float tFar,
-                int exitAxis, inout ReliefHit hit) {
+                bool floorExit, inout ReliefHit hit) {
     float t = 0.0;  // where the ray is in the current node
     int topLevel = map.levelCount - 1;
     int level = topLevel;
@@ -118,7 +118,7 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
         if (!atLeaf) break;  // finished, or out of iterations
         // At level 0 the texel spans parts of up to four bilinear patches; the ray is
         // solved exactly against those it crosses, in order.
-        tHit = intersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
+        tHit = baseIntersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (tExit >= tFar) {
@@ -134,7 +134,7 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
     } else if (solved) {
         setTopHit(hit, map, origin, dir, tHit, corners, cell);
     } else {
-        setWalkEndHit(hit, map, heights, origin, dir, tFar, exitAxis);  // out of the box
+        setWalkEndHit(hit, map, heights, origin, dir, tFar, floorExit);  // out of the box
     }
 }
 
@@ -142,9 +142,9 @@ ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
     ReliefHit hit = reliefMissHit();
     vec3 start;
     float tStart, span;
-    int exitAxis;
-    if (enterReliefBox(map, heights, origin, dir, hit, start, tStart, span, exitAxis)) {
-        walkMaxMip(map, pyramid, heights, start, dir, span, exitAxis, hit);
+    bool floorExit;
+    if (enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
+        walkMaxMip(map, pyramid, heights, start, dir, span, floorExit, hit);
         measureFromEye(hit, tStart);
     }
     return hit;

@@ -1,20 +1,23 @@
 // multilevel_trace.glsl: multilevel ray tracing of microrelief by binary subdivision of
 // the ray segment (Vyatkin & Romaniuk, section III, eq. 5-8, fig. 5-6).
 //
-// Inputs, all in map space (map_space.glsl): the ray origin and direction, the
+// Inputs, all in the base's frame (base_surface.glsl): the ray origin and direction, the
 // overlapping max pyramid (`windows`, max_pyramid.glsl) and the samples
-// (bilinear_patch.glsl). Output: the first point t >= 0 of the ray inside the solid
-// 0 <= h <= h(X, Y) over the map rectangle, on the top surface, a side wall or the
-// bottom face.
+// (bilinear_patch.glsl). Output: the first point t >= 0 of the ray inside the solid: over
+// the plane 0 <= h <= h(X, Y) on the map rectangle, on the top surface, a side wall or the
+// bottom face; over a curved base the column or the star-shaped body, on its surface or a
+// cap.
 //
-// The segment inside the relief's bounding box is the root voxel V0 = {Pn, Pf}. Each
+// The segment inside the relief's bounding shell is the root voxel V0 = {Pn, Pf}. Each
 // step takes a segment, chooses the level of detail from its (X, Y) footprint, reads
 // with one textureLod the max over a window of the pyramid that holds the footprint,
 // and discards the segment when its lowest point lies above that max (it cannot hold a
 // hit). Otherwise it is split, near half first (eq. 8: Pn_i = Pn_i-1,
 // Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the footprint is a few texels wide at most
 // (MICRORELIEF_LEAF_TEXELS); there the ray is solved exactly against the bilinear patches
-// it crosses.
+// it crosses (baseIntersectLeaf). The footprint and the lowest point come from the base
+// surface (baseFootprint): on the plane the ends of the segment, on a curved base bounds
+// of the curve the segment's path draws in (X, Y, h).
 //
 // GLSL has no recursion. A segment is named by its depth d and index k along the
 // root (t range [k, k+1] / 2^d of the root's), and the in-order walk needs no stack:
@@ -22,8 +25,8 @@
 #ifndef MICRORELIEF_MULTILEVEL_TRACE_GLSL
 #define MICRORELIEF_MULTILEVEL_TRACE_GLSL
 
+#include "base_surface.glsl"
 #include "bilinear_patch.glsl"
-#include "map_space.glsl"
 #include "max_pyramid.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
@@ -40,39 +43,6 @@
 #ifndef MICRORELIEF_LEAF_TEXELS
 #define MICRORELIEF_LEAF_TEXELS 4.0
 #endif
-
-// Exact first hit on the bilinear surface along [ta, tb], or -1: the patches (cells
-// between four samples) the segment crosses, in ray order, each solved as a quadratic,
-// from one cell to its neighbour across the boundary the ray meets first (a 2D DDA, as
-// in the reference tracer). Neighbouring patches share an edge (neighbourCorners).
-// `corners` and `cell` are the patch of the hit.
-float intersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                    inout int fetches, out vec4 corners, out ivec2 cell) {
-    cell = cellAt((origin + ta * dir).xy);
-    ivec2 lastCell = cellAt((origin + tb * dir).xy);
-    ivec2 toward = ivec2(sign(vec2(lastCell - cell)));
-    ivec2 cells = abs(lastCell - cell);
-    corners = cellCorners(map, heights, cell, fetches);
-    float t0 = ta;
-    for (int piece = 0; piece <= cells.x + cells.y; ++piece) {
-        // Where the ray leaves this cell towards lastCell, per axis (tb: it does not).
-        vec2 exits = vec2(tb);
-        for (int axis = 0; axis < 2; ++axis) {
-            if (cell[axis] != lastCell[axis] && dir[axis] != 0.0) {
-                float boundary = float(cell[axis] + max(toward[axis], 0)) + 0.5;
-                exits[axis] = clamp((boundary - origin[axis]) / dir[axis], t0, tb);
-            }
-        }
-        float t1 = min(exits.x, exits.y);
-        float tau = intersectPatch(corners, vec2(cell) + 0.5, origin + t0 * dir, dir, t1 - t0);
-        if (tau >= 0.0) return t0 + tau;
-        if (t1 >= tb) break;
-        int axis = exits.x <= exits.y ? 0 : 1;
-        corners = neighbourCorners(map, heights, cell, axis, toward[axis], corners, fetches);
-        t0 = t1;
-    }
-    return -1.0;
-}
 
 // A segment's bound when its parent's is not known (the root, and a near half reached
 // from the far half before it).
@@ -96,9 +66,9 @@ bool nextSegment(inout int depth, inout uint index, inout float parentBound, boo
     return true;
 }
 
-// The binary subdivision of the segment start + t dir, t in [0, span] (a ray that left
-// the box through `exitAxis`); tStart is the segment's distance from the eye in t, for
-// the level-of-detail cone. Fills `hit` with map-space positions and local t.
+// The binary subdivision of the segment start + t dir, t in [0, span] (`floorExit`: a ray
+// that leaves the plane's box through its floor); tStart is the segment's distance from
+// the eye in t, for the level-of-detail cone. Fills `hit` with frame positions and local t.
 //
 // Two loops, one inside the other (the "while-while" shape of Aila and Laine, "Understanding
 // the Efficiency of Ray Traversal on GPUs", HPG 2009): the inner one walks segments until
@@ -108,7 +78,7 @@ bool nextSegment(inout int depth, inout uint index, inout float parentBound, boo
 // both sides of every branch, a GPU's warp the taken ones), here a block of pixels pays
 // for its leaves once per outer pass.
 void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 start, vec3 dir, float span,
-                      float tStart, int exitAxis, inout ReliefHit hit) {
+                      float tStart, bool floorExit, inout ReliefHit hit) {
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments
     // share their end parameter bit for bit and no gap can open between them.
@@ -126,7 +96,6 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     int iteration = 0;
     float ta = 0.0, tb = 0.0;  // the current segment
     float leafBound = 0.0;     // the bound of the leaf the inner loop stopped at
-    bool floorExit = leavesThroughFloor(dir, exitAxis);
     while (!finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
@@ -135,34 +104,34 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             int shift = MICRORELIEF_MAX_DEPTH - depth;
             ta = span * (float(index << shift) * kUnit);
             tb = span * (float((index + 1u) << shift) * kUnit);
-            vec3 pa = start + ta * dir, pb = start + tb * dir;
-            vec2 extents = abs(pb.xy - pa.xy);
-            float extent = max(extents.x, extents.y);
-            // A segment down to the floor (h = 0, in the solid) may hold a hit; one above
-            // its parent's bound cannot; any other is bounded by one window of the pyramid
-            // at the level its footprint chooses (paper, fig. 6). Only a segment that ends
-            // where the ray leaves through the floor reaches it; that is tested exactly,
-            // since pb.z rounds to either side of 0 there.
-            float lowest = min(pa.z, pb.z);
+            BaseFootprint footprint = baseFootprint(map, start, dir, ta, tb);
+            // A segment down to the floor (h = 0, in the solid) may hit; one above its
+            // parent's bound cannot; any other is bounded by one window of the pyramid at
+            // the level its footprint chooses (paper, fig. 6), two where a curved base's
+            // footprint crosses the seam. Only a segment that ends where the ray leaves
+            // the plane's box through the floor reaches it; that is tested exactly, since
+            // the height there rounds to either side of 0.
             bool mayHit = floorExit && tb == span;
             int level = -1;
             float bound = parentBound;
-            if (!mayHit && lowest <= parentBound) {
-                bound = min(bound, segmentBound(map, windows, pa.xy, pb.xy, level, hit.fetches));
+            if (!mayHit && footprint.lowest <= parentBound) {
+                bound = min(bound, footprintBound(map, windows, footprint.lo, footprint.hi, level, hit.fetches));
                 hit.stopLevel = level;
-                mayHit = lowest <= bound;
+                mayHit = footprint.lowest <= bound;
             }
             if (mayHit) {
                 if (map.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= map.lodCone * (tStart + ta)) {
                     // Accuracy-controlled level of detail (paper, section II: "under
                     // criterion of required accuracy"): the window read, 2^(level+1)
                     // texels wide, projects to less than the tolerated pixel error, so its
-                    // max box stands for the surface here.
-                    tHit = pa.z <= bound ? ta : mix(ta, tb, (pa.z - bound) / (pa.z - pb.z));
+                    // max box stands for the surface here: the hit is where the ray comes
+                    // down to it.
+                    tHit = baseDescendTo(map, start, dir, ta, tb, bound);
                     finished = true;
                     break;
                 }
-                if (extent <= float(MICRORELIEF_LEAF_TEXELS) || depth >= MICRORELIEF_MAX_DEPTH) {
+                vec2 extents = footprint.hi - footprint.lo;
+                if (max(extents.x, extents.y) <= float(MICRORELIEF_LEAF_TEXELS) || depth >= MICRORELIEF_MAX_DEPTH) {
                     atLeaf = true;
                     leafBound = bound;
                     break;
@@ -173,8 +142,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
                 depth += 1;
                 index *= 2u;
                 parentBound = bound;
-                float middleZ = start.z + 0.5 * (ta + tb) * dir.z;
-                if (min(pa.z, middleZ) > bound) index += 1u;
+                if (baseLowest(map, start, dir, ta, 0.5 * (ta + tb)) > bound) index += 1u;
                 continue;
             }
             // Discarded. After a far half the walk climbs when the segment cleared its
@@ -183,15 +151,15 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             // surface it stays at this depth. (The paper's recursion would climb to the
             // coarsest segment starting there, and so near the surface come back down
             // through levels whose bounds seldom reject.)
-            if (!nextSegment(depth, index, parentBound, lowest - bound > 2.0 * abs(pb.z - pa.z))) {
+            if (!nextSegment(depth, index, parentBound, footprint.lowest - bound > 2.0 * footprint.drop)) {
                 finished = true;
                 break;
             }
         }
         if (!atLeaf) break;  // finished, or out of iterations
-        // No hit before a falling ray comes down to the leaf's bound: solve from there.
-        float tFrom = dir.z < 0.0 ? clamp((leafBound - start.z) / dir.z, ta, tb) : ta;
-        tHit = intersectLeaf(map, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
+        // No hit before the ray comes down to the leaf's bound: solve from there.
+        float tFrom = baseDescendTo(map, start, dir, ta, tb, leafBound);
+        tHit = baseIntersectLeaf(map, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (!nextSegment(depth, index, parentBound, false)) {
@@ -206,7 +174,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     } else if (tHit >= 0.0) {
         setTopHitAt(hit, map, heights, tHit, start + tHit * dir);
     } else {
-        setWalkEndHit(hit, map, heights, start, dir, span, exitAxis);  // past the root's end
+        setWalkEndHit(hit, map, heights, start, dir, span, floorExit);  // past the root's end
     }
 }
 
@@ -214,9 +182,9 @@ ReliefHit traceMultilevel(ReliefMap map, sampler2D windows, sampler2D heights, v
     ReliefHit hit = reliefMissHit();
     vec3 start;
     float tStart, span;
-    int exitAxis;
-    if (enterReliefBox(map, heights, origin, dir, hit, start, tStart, span, exitAxis)) {
-        subdivideSegment(map, windows, heights, start, dir, span, tStart, exitAxis, hit);
+    bool floorExit;
+    if (enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
+        subdivideSegment(map, windows, heights, start, dir, span, tStart, floorExit, hit);
         measureFromEye(hit, tStart);
     }
     return hit;

@@ -1,22 +1,54 @@
 // relief_map.glsl: the relief's description, shared by every function of the library.
 //
-// Map space is where the traversal runs: (X, Y) = (u W, v H) are texel coordinates of
-// the height map (texel i covers X in [i, i+1], its sample sits at X = i + 0.5) and the
-// third coordinate is the height h in map units (world height / height scale). The
-// relief occupies X in [0, W], Y in [0, H], 0 <= h <= h(X, Y).
+// Map space is where the traversal reads the map: (X, Y) = (u W, v H) are texel
+// coordinates of the height map (texel i covers X in [i, i+1], its sample sits at
+// X = i + 0.5) and the third coordinate is the height h in map units (world height /
+// height scale on the plane, a fraction of the canonical radius on a curved base).
+//
+// The base surface (base_surface.glsl) is chosen by the host with MICRORELIEF_BASE: 0 the
+// plane y = 0, 1 a cylinder, 2 an ellipsoid (scene-and-cli.md, "Base surfaces"). The
+// traversal runs in the base's frame, where the ray is a straight line with the world's
+// t: map space itself on the plane (the relief occupies X in [0, W], Y in [0, H],
+// 0 <= h <= h(X, Y)), the canonical frame q = world / frameScale on a curved base.
 #ifndef MICRORELIEF_RELIEF_MAP_GLSL
 #define MICRORELIEF_RELIEF_MAP_GLSL
+
+#ifndef MICRORELIEF_BASE
+#define MICRORELIEF_BASE 0
+#endif
 
 struct ReliefMap {
     vec2 size;           // W, H: height map size in texels
     ivec2 pyramidSize;   // finest pyramid level size (W, H rounded up to powers of two)
     int levelCount;      // number of pyramid levels, the last one 1x1
     float maxHeight;     // the map's maximum height (pyramid top), in map units
-    float heightScale;   // s: world height of map height 1
+    float heightScale;   // s: world height of map height 1 (plane); radius fraction (curved)
     int maxIterations;   // traversal budget; running out is reported, never silent
     float lodCone;       // accuracy-controlled level of detail: a level-k segment at ray
                          // parameter t may stand for the surface once 2^k <= lodCone * t;
                          // 0 is exact (multilevel_trace.glsl)
+    vec3 frameScale;     // curved bases: world size of the canonical frame's unit,
+                         // (R, L / 2, R) for a cylinder, (A, B, C) for an ellipsoid
+};
+
+// What a ray meets: the kinds of ReliefHit (relief_hit.glsl), also naming the face of the
+// bounding shell a ray enters through (RELIEF_MISS there: the top face or the curved
+// shell, where the traversal starts).
+const int RELIEF_MISS = 0;
+const int RELIEF_TOP = 1;     // the relief surface
+const int RELIEF_WALL_X = 2;  // the plane: a side wall X = 0 or X = W
+const int RELIEF_WALL_Y = 3;  // the plane: a side wall Y = 0 or Y = H
+const int RELIEF_BOTTOM = 4;  // the plane: the bottom face h = 0
+const int RELIEF_CAP = 5;     // the cylinder: a flat cap, y = +-1 in the frame
+
+// What the traversal knows of a segment of the ray (base_surface.glsl): a rectangle of
+// map space that holds its path (hi.x may exceed W on a curved base: the rectangle wraps
+// across u = 0), its lowest height above the base, and how much its height changes.
+struct BaseFootprint {
+    vec2 lo;
+    vec2 hi;
+    float lowest;
+    float drop;
 };
 
 #endif

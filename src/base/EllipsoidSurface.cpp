@@ -22,10 +22,10 @@ public:
         return insideRadius<3>(ray.origin, ray.dir, r);
     }
     double radial(const glm::dvec3& q) const override { return glm::length(q); }
+    // The polar angle as atan2(|q.xz|, q.y): well conditioned at the poles, where
+    // acos(q.y / r) loses half the digits (base_ellipsoid.glsl does the same).
     double mapY(const glm::dvec3& q) const override {
-        const double r = glm::length(q);
-        const double c = r > 0.0 ? std::clamp(q.y / r, -1.0, 1.0) : 0.0;
-        return height_ * std::acos(c) / kPi;
+        return height_ * std::atan2(std::hypot(q.x, q.z), q.y) / kPi;
     }
 
     double lowestRadial(const FrameRay& ray, double ta, double tb) const override {

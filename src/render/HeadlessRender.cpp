@@ -18,9 +18,10 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     // GL objects live in this scope and die before the context does.
     ReliefRenderer renderer(gl, shaderDirectory(), job.method);
     renderer.setHeightScale(job.heightScale);
-    renderer.setHeightMap(map, source);
-    const CameraFrame camera = resolveCamera(job.camera, job.width, job.height,
-                                             sceneRadius(reliefExtent(map, job.heightScale)));
+    renderer.setHeightMap(map, source, job.base);
+    const CameraFrame camera =
+        resolveCamera(job.camera, job.width, job.height,
+                      sceneRadius(reliefExtent(map, job.heightScale, job.base)));
 
     OffscreenTarget target(gl, job.width, job.height);
     target.clear(job.background);

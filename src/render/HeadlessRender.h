@@ -16,6 +16,7 @@ struct RenderJob {
     Camera camera;
     int width = 1280, height = 720;
     float heightScale = 0.1f;
+    BaseShape base;  // the surface the map is laid over (--base, --radius, --length, --radii)
     ShadingOptions shading;
     MethodSettings method;
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB

@@ -48,6 +48,12 @@ bool methodTracesTheSolid(Method method) {
     return method == Method::Multilevel || method == Method::MaxMip;
 }
 
+void checkMethodSupportsBase(Method method, const BaseShape& base) {
+    if (!base.curved() || method == Method::Multilevel) return;
+    throwBadInput(std::string("--method ") + methodName(method) + " does not run on --base " +
+                  baseName(base) + " (curved bases take multilevel)");
+}
+
 DebugView parseDebugView(const std::string& name) {
     return parseName<DebugView>(kDebugViewNames, name, "--view");
 }
@@ -56,17 +62,19 @@ const char* debugViewName(DebugView view) {
     return kDebugViewNames[static_cast<int>(view)];
 }
 
-ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale) {
-    const double longer = std::max(width, height);
-    return {0.5 * width / longer, 0.5 * height / longer, heightScale * maxHeight};
+ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale,
+                          const BaseShape& base) {
+    const double top = heightScale * maxHeight;
+    return {base.boxMin(width, height, top), base.boxMax(width, height, top), top};
 }
 
-ReliefExtent reliefExtent(const HeightMap& map, double heightScale) {
-    return reliefExtent(map.width, map.height, map.maxValue(), heightScale);
+ReliefExtent reliefExtent(const HeightMap& map, double heightScale, const BaseShape& base) {
+    return reliefExtent(map.width, map.height, map.maxValue(), heightScale, base);
 }
 
 double sceneRadius(const ReliefExtent& e) {
-    return 2.0 * std::max({e.halfWidth, e.halfDepth, e.topHeight});
+    const glm::dvec3 corner = glm::max(glm::abs(e.min), glm::abs(e.max));
+    return 2.0 * std::max({corner.x, corner.y, corner.z});
 }
 
 ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
@@ -82,38 +90,58 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
 }
 
 ReliefRenderer::CompiledProgram ReliefRenderer::compile(const ProgramKey& key) const {
+    const auto [method, countFetches, base] = key;
     // GLSL 4.00 core where the GL has it (a patch's four samples in one textureGather:
     // bilinear_patch.glsl), else 3.30 core, the oldest with explicit output locations.
     GLint major = 0;
     gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
     const std::string version = major >= 4 ? "400 core" : "330 core";
     std::vector<ShaderDefine> defines = {
-        {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(key.first))}};
-    if (key.second) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
+        {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(method))},
+        {"MICRORELIEF_BASE", std::to_string(static_cast<int>(base))}};
+    if (countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex = gl::compileShader(
         gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
     const gl::Shader fragment = gl::compileShader(
         gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version, defines));
     return {gl::linkProgram(gl_, vertex, fragment,
-                            std::string("relief (") + methodName(key.first) + ")"),
+                            std::string("relief (") + methodName(method) + ", " +
+                                baseName(BaseShape{base}) + ")"),
             {}};
 }
 
 void ReliefRenderer::reloadShaders() {
-    const ProgramKey key{method_.method, countFetches_};
+    const ProgramKey key{method_.method, countFetches_, base_.kind};
     CompiledProgram fresh = compile(key);  // throws before anything changes
     programs_.clear();
     current_ = &(programs_[key] = std::move(fresh));
 }
 
-void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
-    const ProgramKey key{settings.method, countFetches};
+ReliefRenderer::CompiledProgram& ReliefRenderer::program(const ProgramKey& key) {
     auto found = programs_.find(key);
     if (found == programs_.end())
         found = programs_.emplace(key, compile(key)).first;  // throws: nothing changes
-    current_ = &found->second;
+    return found->second;
+}
+
+void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
+    checkMethodSupportsBase(settings.method, base_);
+    current_ = &program({settings.method, countFetches, base_.kind});
     method_ = settings;
     countFetches_ = countFetches;
+}
+
+void ReliefRenderer::setBase(const BaseShape& base) {
+    validateBaseShape(base);
+    if (mapWidth_ > 0 && base.wrapsU() != wrapsU_) {
+        throwRuntime(
+            "ReliefRenderer::setBase: between the plane and a curved base the map must "
+            "be uploaded again (setHeightMap)");
+    }
+    checkMethodSupportsBase(method_.method, base);
+    current_ = &program({method_.method, countFetches_, base.kind});
+    base_ = base;
+    if (mapWidth_ > 0) uploadBox();
 }
 
 GLint ReliefRenderer::uniform(const char* name) {
@@ -128,10 +156,12 @@ void uploadLevel(const GL& gl, int level, int width, int height, const float* da
     gl.TexImage2D(GL_TEXTURE_2D, level, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, data);
 }
 
-void setSamplerState(const GL& gl, GLint minFilter, int maxLevel) {
+// The samples of a curved base repeat in S, so that a patch's textureGather at the seam
+// reads column W - 1 and column 0 (bilinear_patch.glsl); everything else clamps.
+void setSamplerState(const GL& gl, GLint minFilter, int maxLevel, bool repeatS = false) {
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, maxLevel);
@@ -139,7 +169,10 @@ void setSamplerState(const GL& gl, GLint minFilter, int maxLevel) {
 
 }  // namespace
 
-void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source) {
+void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
+                                  const BaseShape& base) {
+    validateBaseShape(base);
+    checkMethodSupportsBase(method_.method, base);
     GLint maxSize = 0;
     gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (map.width > maxSize || map.height > maxSize) {
@@ -147,7 +180,11 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
                       " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) +
                       ")");
     }
-    const MaxPyramid pyramid(map);  // on the GPU from here on; only its shape is kept
+    current_ = &program({method_.method, countFetches_, base.kind});  // throws: nothing changes
+    const MaxPyramid pyramid(map,
+                             base.wrapsU());  // on the GPU from here on; only its shape is kept
+    base_ = base;
+    wrapsU_ = base.wrapsU();
     mapWidth_ = map.width;
     mapHeight_ = map.height;
     pyramidWidth_ = pyramid.levelWidth(0);
@@ -169,7 +206,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
 
     gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
     uploadLevel(gl_, 0, map.width, map.height, map.samples.data());
-    setSamplerState(gl_, GL_NEAREST, 0);
+    setSamplerState(gl_, GL_NEAREST, 0, wrapsU_);
     gl_.BindTexture(GL_TEXTURE_2D, 0);
     uploadBox();
 }
@@ -180,17 +217,14 @@ void ReliefRenderer::setHeightScale(float scale) {
 }
 
 void ReliefRenderer::uploadBox() {
-    const double longer = std::max(mapWidth_, mapHeight_);
     // A small margin keeps every pixel whose ray meets the exact box inside the
-    // rasterised proxy; the shader clips the ray to the exact box itself.
-    const float margin = 1e-3f;
-    const float ax = static_cast<float>(0.5 * mapWidth_ / longer) + margin;
-    const float az = static_cast<float>(0.5 * mapHeight_ / longer) + margin;
-    const float top = heightScale_ * maxHeight_ + margin;
-    const float bottom = -margin;
-    const std::array<float, 24> corners = {-ax, bottom, -az,    ax,  bottom, -az, ax,  bottom,
-                                           az,  -ax,    bottom, az,  -ax,    top, -az, ax,
-                                           top, -az,    ax,     top, az,     -ax, top, az};
+    // rasterised proxy; the shader clips the ray to the exact shell itself.
+    const ReliefExtent extent =
+        reliefExtent(mapWidth_, mapHeight_, maxHeight_, heightScale_, base_);
+    const glm::vec3 lo = glm::vec3(extent.min) - 1e-3f, hi = glm::vec3(extent.max) + 1e-3f;
+    const std::array<float, 24> corners = {lo.x, lo.y, lo.z, hi.x, lo.y, lo.z, hi.x, lo.y,
+                                           hi.z, lo.x, lo.y, hi.z, lo.x, hi.y, lo.z, hi.x,
+                                           hi.y, lo.z, hi.x, hi.y, hi.z, lo.x, hi.y, hi.z};
     // Outward-facing counter-clockwise triangles, two per face.
     const std::array<GLushort, 36> indices = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
                                               1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0};
@@ -220,6 +254,11 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.Uniform1f(uniform("reliefMaxHeight"), maxHeight_);
     gl_.Uniform1f(uniform("heightScale"), heightScale_);
     gl_.Uniform1i(uniform("maxIterations"), maxIterations_);
+    const ReliefExtent extent =
+        reliefExtent(mapWidth_, mapHeight_, maxHeight_, heightScale_, base_);
+    gl_.Uniform3fv(uniform("frameScale"), 1, glm::value_ptr(glm::vec3(base_.frameScale())));
+    gl_.Uniform3fv(uniform("reliefBoxMin"), 1, glm::value_ptr(glm::vec3(extent.min)));
+    gl_.Uniform3fv(uniform("reliefBoxMax"), 1, glm::value_ptr(glm::vec3(extent.max)));
     gl_.Uniform3fv(uniform("eye"), 1, glm::value_ptr(eye));
     gl_.Uniform3fv(uniform("cameraRight"), 1, glm::value_ptr(right));
     gl_.Uniform3fv(uniform("cameraUp"), 1, glm::value_ptr(up));

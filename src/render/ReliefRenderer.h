@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
 #include <glm/glm.hpp>
 
+#include "base/BaseShape.h"
 #include "gl/Objects.h"
 #include "heightmap/HeightMap.h"
 #include "heightmap/MaxPyramid.h"
@@ -32,6 +34,10 @@ bool methodHasSteps(Method method);
 // Whether a method traces the whole solid, side walls and bottom face included
 // (multilevel, maxmip); the others know the top surface only.
 bool methodTracesTheSolid(Method method);
+// Whether a method runs on a base: every method on the plane; on a curved base the exact
+// ones (multilevel, maxmip) and the peers engines ship there, pom and relief stepping in
+// the base's tangent frame. Otherwise throws Error(BadInput) naming both flags.
+void checkMethodSupportsBase(Method method, const BaseShape& base);
 
 struct MethodSettings {
     Method method = Method::Multilevel;
@@ -47,13 +53,16 @@ struct MethodSettings {
     }
 };
 
-// World-space extent of a map's relief: x in [-a/2, a/2], z in [-b/2, b/2] (spec).
+// World-space extent of a map's relief: its bounding box, the proxy geometry (spec: on
+// the plane x in [-a/2, a/2], z in [-b/2, b/2], y in [0, s max h]; BaseShape::boxMax).
 struct ReliefExtent {
-    double halfWidth = 0.5, halfDepth = 0.5;  // a / 2, b / 2
-    double topHeight = 0.0;                   // s * max h
+    glm::dvec3 min{-0.5, 0.0, -0.5}, max{0.5, 0.0, 0.5};
+    double topHeight = 0.0;  // s * max h: world units on the plane, canonical on a curved base
 };
-ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale);
-ReliefExtent reliefExtent(const HeightMap& map, double heightScale);  // scans the map for its max
+ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale,
+                          const BaseShape& base = {});
+// Scans the map for its max.
+ReliefExtent reliefExtent(const HeightMap& map, double heightScale, const BaseShape& base = {});
 // The radius resolveCamera gets for this relief (it sets the depth range only).
 double sceneRadius(const ReliefExtent& extent);
 
@@ -78,10 +87,18 @@ public:
     ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
                    const MethodSettings& method = {});
 
-    // Builds the max pyramid and uploads it with the samples. Throws Error(BadInput)
-    // when the map exceeds GL_MAX_TEXTURE_SIZE; `source` names the map in that message.
-    void setHeightMap(const HeightMap& map, const std::string& source);
+    // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base) and
+    // uploads it with the samples. Throws Error(BadInput) when the map exceeds
+    // GL_MAX_TEXTURE_SIZE or the method does not run on that base; `source` names the map
+    // in that message.
+    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {});
     void setHeightScale(float scale);
+    // Another base of the same addressing as the map was uploaded with (the curved bases
+    // among themselves, a new size of the same one); a change between the plane and a
+    // curved base needs setHeightMap. Throws Error(BadInput) for a method that does not run
+    // on it, keeping the base it had.
+    void setBase(const BaseShape& base);
+    const BaseShape& base() const { return base_; }
 
     // Recompiles the current program from the files; on failure throws and keeps the
     // previous program. Other programs compiled before are dropped (they may be stale).
@@ -104,9 +121,11 @@ private:
         gl::Program program;
         std::unordered_map<std::string, GLint> uniforms;
     };
-    using ProgramKey = std::pair<Method, bool>;  // method, counts fetches
+    using ProgramKey = std::tuple<Method, bool, BaseKind>;  // method, counts fetches, base
 
     CompiledProgram compile(const ProgramKey& key) const;
+    // The program for the key, compiled on first use; throws and changes nothing on failure.
+    CompiledProgram& program(const ProgramKey& key);
     GLint uniform(const char* name);
     void uploadBox();
 
@@ -127,6 +146,8 @@ private:
     int maxIterations_ = 0;
     MethodSettings method_;
     bool countFetches_ = false;
+    BaseShape base_;
+    bool wrapsU_ = false;  // the addressing the map's pyramid was built with
 };
 
 }  // namespace microrelief

@@ -20,11 +20,11 @@ std::string Accuracy::summary() const {
 }
 
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
-                                       double heightScale) {
-    const ReferenceTracer reference(ReliefGeometry{&map, heightScale});
+                                       double heightScale, const BaseShape& base) {
+    const ReferenceTracer reference(ReliefGeometry{&map, heightScale, base});
     ReferencePicture picture;
     picture.width = camera.width;
-    picture.texelsPerUnit = std::max(map.width, map.height);
+    picture.texelsPerUnit = 1.0 / base.texelSize(map.width, map.height);
     picture.hits.reserve(static_cast<std::size_t>(camera.width) * camera.height);
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
@@ -94,8 +94,9 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
 }
 
 Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double heightScale,
-                         const std::function<PixelHit(int, int, const Ray&)>& trace) {
-    return measureAccuracy(camera, traceReferencePicture(camera, map, heightScale), trace);
+                         const std::function<PixelHit(int, int, const Ray&)>& trace,
+                         const BaseShape& base) {
+    return measureAccuracy(camera, traceReferencePicture(camera, map, heightScale, base), trace);
 }
 
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
@@ -111,8 +112,9 @@ Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& cam
 }
 
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
-                              const HeightMap& map, double heightScale) {
-    return compareWithReference(frame, camera, traceReferencePicture(camera, map, heightScale));
+                              const HeightMap& map, double heightScale, const BaseShape& base) {
+    return compareWithReference(frame, camera,
+                                traceReferencePicture(camera, map, heightScale, base));
 }
 
 }  // namespace microrelief

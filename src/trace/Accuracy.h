@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "base/BaseShape.h"
 #include "heightmap/HeightMap.h"
 #include "render/Camera.h"
 #include "render/OffscreenTarget.h"
@@ -52,7 +53,8 @@ struct PixelHit {
 // reusable for any number of tracers of the same view.
 struct ReferencePicture {
     int width = 0;
-    double texelsPerUnit = 1.0;                   // max(W, H): errors are reported in texels
+    // Errors are reported in texels: 1 / BaseShape::texelSize, max(W, H) on the plane.
+    double texelsPerUnit = 1.0;
     std::vector<std::optional<glm::dvec3>> hits;  // row-major, world positions
     // Row-major: the pixel's ray does not come into the relief's box through a side wall
     // or the bottom face (it comes through the top face, starts inside, or misses the box).
@@ -65,7 +67,7 @@ struct ReferencePicture {
 // the ray can meet, false hits included (what can be asked of them).
 enum class AccuracyScope { AllPixels, TopSurface };
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
-                                       double heightScale);
+                                       double heightScale, const BaseShape& base = {});
 
 // Every pixel of `camera`'s picture: `trace(column, row, ray)` against the reference.
 // Errors are measured in texels of the map: world distance * max(W, H).
@@ -73,13 +75,14 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
                          const std::function<PixelHit(int, int, const Ray&)>& trace,
                          AccuracyScope scope = AccuracyScope::AllPixels);
 Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double heightScale,
-                         const std::function<PixelHit(int, int, const Ray&)>& trace);
+                         const std::function<PixelHit(int, int, const Ray&)>& trace,
+                         const BaseShape& base = {});
 
 // A rendered frame's AOV against the reference.
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
                               const ReferencePicture& reference,
                               AccuracyScope scope = AccuracyScope::AllPixels);
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
-                              const HeightMap& map, double heightScale);
+                              const HeightMap& map, double heightScale, const BaseShape& base = {});
 
 }  // namespace microrelief

@@ -223,9 +223,10 @@ std::optional<double> MultilevelTracer::solveCurvedCell(const CurvedSurface& bas
         const double a = c0 + index * width;
         const double b = index + 1 == (1u << depth) ? c1 : a + width;
         const glm::dvec3 fa = local(a), fb = local(b);
-        const bool may =
-            base.lowest(ray, a, b) <= patchMaxOver(cell, glm::min(glm::dvec2(fa), glm::dvec2(fb)),
-                                                   glm::max(glm::dvec2(fa), glm::dvec2(fb)));
+        const double top =
+            patchMaxOver(cell, glm::min(glm::dvec2(fa), glm::dvec2(fb)) - kFootprintMargin,
+                         glm::max(glm::dvec2(fa), glm::dvec2(fb)) + kFootprintMargin);
+        const bool may = base.lowest(ray, a, b) <= top;
         if (may && depth < kCurvedCellDepth) {
             ++depth;
             index *= 2u;

@@ -1,0 +1,86 @@
+// base_curved.glsl: what the cylinder and the ellipsoid share as base surfaces
+// (base_surface.glsl; the C++ copy is src/base/CurvedSurface.cpp): the canonical frame
+// q = world / frameScale, the angle about the y axis that sets u, where the line crosses a
+// half-plane of constant u, and the X part of a segment's footprint.
+//
+// u = fract(0.5 + atan(q.x, q.z) / 2 pi): u = 0.5 faces +z, the seam u = 0 is at -z.
+//
+// Float margins. Every bound the traversal compares is widened by a margin that covers
+// the rounding of the float arithmetic that computes it, so that it is never on the wrong
+// side of the exact value: X and Y by 2^-10 texel plus 2^-19 of the map's size (u and v
+// carry float's 2^-24 relative error and atan's few ulp, far less than 2^-19), radial
+// distances by 2^-19 in the frame (a point o + t d and its length, |o|, |t d| < 4: a few
+// ulp of 4, 2^-21 each). None loosens a bound measurably.
+#ifndef MICRORELIEF_BASE_CURVED_GLSL
+#define MICRORELIEF_BASE_CURVED_GLSL
+
+#include "relief_map.glsl"
+
+const float kCurvedPi = 3.14159265358979;
+const float kCurvedRadiusMargin = 1.0 / 524288.0;  // 2^-19
+const float kCurvedNever = 1e30;                    // a crossing that does not happen
+
+float curvedMarginX(ReliefMap map) { return 1.0 / 1024.0 + map.size.x * (1.0 / 524288.0); }
+float curvedMarginY(ReliefMap map) { return 1.0 / 1024.0 + map.size.y * (1.0 / 524288.0); }
+
+vec3 curvedFramePoint(ReliefMap map, vec3 world) { return world / map.frameScale; }
+vec3 curvedFrameVector(ReliefMap map, vec3 world) { return world / map.frameScale; }
+vec3 curvedWorldPoint(ReliefMap map, vec3 q) { return q * map.frameScale; }
+// The inverse transpose of diag(frameScale).
+vec3 curvedWorldNormal(ReliefMap map, vec3 n) { return normalize(n / map.frameScale); }
+
+// X of frame point q, in [0, W). On the axis (where atan(0, 0) is undefined) u = 0.5.
+float curvedMapX(ReliefMap map, vec3 q) {
+    bool onAxis = q.x == 0.0 && q.z == 0.0;
+    return map.size.x * fract(0.5 + atan(q.x, onAxis ? 1.0 : q.z) * (0.5 / kCurvedPi));
+}
+
+// Whether X grows along the line: d(atan(x, z))/dt = (z dx - x dz) / (x^2 + z^2), whose
+// sign is constant along a line.
+bool curvedXIncreases(vec3 origin, vec3 dir) { return origin.z * dir.x - origin.x * dir.z > 0.0; }
+
+// The t at which the line crosses the half-plane of constant X = boundary through the
+// axis (points lambda (sin phi, y, cos phi), lambda >= 0), kCurvedNever where it does not.
+// The line meets the half-plane's plane once at most, so any t is that crossing: a walk
+// that finds it behind its start has rounded past it already.
+float curvedCrossX(ReliefMap map, vec3 origin, vec3 dir, float boundary) {
+    float phi = 2.0 * kCurvedPi * (boundary / map.size.x - 0.5);
+    float s = sin(phi), c = cos(phi);
+    float rate = s * dir.z - c * dir.x;
+    if (rate == 0.0) return kCurvedNever;
+    float t = (c * origin.x - s * origin.z) / rate;
+    vec3 p = origin + t * dir;
+    return s * p.x + c * p.z > 0.0 ? t : kCurvedNever;
+}
+
+// The X range of the path between frame points pa and pb. The angle about the axis is
+// monotone along a line, and a segment that does not meet the axis turns by less than half
+// a turn, so the path covers exactly the shorter arc between its ends. Near half a turn
+// the segment passes next to the axis (where rounding could pick the wrong arc, and one
+// through it jumps by half a turn): all of u then. lo in [0, W), hi up to lo + W.
+vec2 curvedRangeX(ReliefMap map, vec3 pa, vec3 pb) {
+    float w = map.size.x, margin = curvedMarginX(map);
+    float xa = curvedMapX(map, pa), xb = curvedMapX(map, pb);
+    float arc = xb - xa;
+    if (arc > 0.5 * w) arc -= w;
+    if (arc < -0.5 * w) arc += w;
+    if (abs(arc) >= 0.5 * w - 2.0 * margin) return vec2(0.0, w);
+    vec2 range = vec2(min(xa, xa + arc) - margin, max(xa, xa + arc) + margin);
+    return range.x < 0.0 ? range + w : range;
+}
+
+// The interval of t where |p(t)| <= radius for the line p = o + t d (in the xz plane for
+// the cylinder, in space for the ellipsoid), from the point nearest the centre, which keeps
+// far origins accurate. Empty (x > y) when the line passes outside.
+vec2 curvedInsideRadius(vec3 origin, vec3 dir, float radius) {
+    float dd = dot(dir, dir);
+    if (dd == 0.0) return dot(origin, origin) <= radius * radius ? vec2(-1e30, 1e30) : vec2(1.0, -1.0);
+    float tc = -dot(origin, dir) / dd;
+    vec3 pc = origin + tc * dir;
+    float h2 = (radius * radius - dot(pc, pc)) / dd;
+    if (h2 < 0.0) return vec2(1.0, -1.0);
+    float halfChord = sqrt(h2);
+    return vec2(tc - halfChord, tc + halfChord);
+}
+
+#endif

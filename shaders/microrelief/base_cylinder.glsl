@@ -1,0 +1,72 @@
+// base_cylinder.glsl: a cylinder as the base surface (base_surface.glsl; the C++ copy is
+// src/base/CylinderSurface.cpp). In the canonical frame q = (x / R, 2 y / L, z / R) the
+// column has radius 1 about the y axis and flat caps at y = +-1; v = (1 - q.y) / 2 runs
+// down the axis; the height sets the distance from the axis, |q.xz| = 1 + s h.
+#ifndef MICRORELIEF_BASE_CYLINDER_GLSL
+#define MICRORELIEF_BASE_CYLINDER_GLSL
+
+#include "base_curved.glsl"
+#include "relief_map.glsl"
+
+float cylinderRadial(vec3 q) { return length(q.xz); }
+float cylinderMapY(ReliefMap map, vec3 q) { return map.size.y * 0.5 * (1.0 - q.y); }
+
+// The smallest distance from the axis over [ta, tb]: |p_xz(t)| is convex along a line,
+// so its minimum is at the nearest point, clamped to the segment. Exact; the margin
+// covers rounding.
+float cylinderLowestRadial(vec3 origin, vec3 dir, float ta, float tb) {
+    float dd = dot(dir.xz, dir.xz);
+    float t = dd > 0.0 ? clamp(-dot(origin.xz, dir.xz) / dd, ta, tb) : ta;
+    return length(origin.xz + t * dir.xz) - kCurvedRadiusMargin;
+}
+
+// Y is linear in t: its range over [ta, tb] is that of the ends.
+vec2 cylinderRangeY(ReliefMap map, vec3 pa, vec3 pb) {
+    float ya = cylinderMapY(map, pa), yb = cylinderMapY(map, pb);
+    return vec2(min(ya, yb), max(ya, yb));
+}
+
+// The t at which the line crosses the plane of constant Y = boundary (once at most, so
+// any t, as for curvedCrossX), kCurvedNever where it is parallel.
+float cylinderCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary) {
+    if (dir.y == 0.0) return kCurvedNever;
+    return (1.0 - 2.0 * boundary / map.size.y - origin.y) / dir.y;
+}
+
+// The bounding shell: the slab |y| <= 1 and the cylinder of radius 1 + s maxHeight, a
+// convex region met in one interval; the later of the two entries names the face (a cap
+// or the shell, RELIEF_MISS, where the traversal starts).
+vec2 cylinderClipToShell(ReliefMap map, vec3 origin, vec3 dir, out int entryFace) {
+    entryFace = RELIEF_MISS;
+    vec2 side = curvedInsideRadius(vec3(origin.x, 0.0, origin.z), vec3(dir.x, 0.0, dir.z),
+                                   1.0 + map.heightScale * map.maxHeight);
+    if (dir.y == 0.0) return abs(origin.y) > 1.0 ? vec2(1.0, 0.0) : side;
+    float t0 = (-1.0 - origin.y) / dir.y, t1 = (1.0 - origin.y) / dir.y;
+    vec2 slab = vec2(min(t0, t1), max(t0, t1));
+    if (slab.x > side.x) entryFace = RELIEF_CAP;
+    return vec2(max(side.x, slab.x), min(side.y, slab.y));
+}
+
+BaseFootprint cylinderFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+    vec3 pa = origin + ta * dir, pb = origin + tb * dir;
+    vec2 x = curvedRangeX(map, pa, pb);
+    vec2 y = cylinderRangeY(map, pa, pb) + vec2(-1.0, 1.0) * curvedMarginY(map);
+    float lowest = (cylinderLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+    return BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest,
+                         abs(cylinderRadial(pb) - cylinderRadial(pa)) / map.heightScale);
+}
+
+// q = rho e_rho(phi) + y e_y with rho = 1 + s h: the outward normal is rho e_rho - rho_phi
+// e_phi - rho rho_y e_y, with rho_phi = s W / 2 pi dh/dX and rho_y = -s H / 2 dh/dY.
+vec3 cylinderTopNormal(ReliefMap map, vec3 q, vec2 gradient) {
+    float rho = cylinderRadial(q);
+    if (rho == 0.0) return vec3(0.0, 1.0, 0.0);
+    vec3 eRho = vec3(q.x, 0.0, q.z) / rho, ePhi = vec3(q.z, 0.0, -q.x) / rho;
+    float rhoPhi = map.heightScale * map.size.x / (2.0 * kCurvedPi) * gradient.x;
+    float rhoY = -map.heightScale * map.size.y * 0.5 * gradient.y;
+    return rho * eRho - rhoPhi * ePhi - vec3(0.0, rho * rhoY, 0.0);
+}
+
+vec3 cylinderFaceNormal(vec3 q) { return vec3(0.0, q.y > 0.0 ? 1.0 : -1.0, 0.0); }
+
+#endif

@@ -1,0 +1,111 @@
+// base_ellipsoid.glsl: an ellipsoid as the base surface (base_surface.glsl; the C++ copy
+// is src/base/EllipsoidSurface.cpp). In the canonical frame q = (x / A, y / B, z / C) it
+// is the unit sphere; v = theta / pi is the polar angle from +y (v = 0 at the top pole);
+// the height sets the distance from the centre, |q| = 1 + s h: a star-shaped body.
+#ifndef MICRORELIEF_BASE_ELLIPSOID_GLSL
+#define MICRORELIEF_BASE_ELLIPSOID_GLSL
+
+#include "base_curved.glsl"
+#include "relief_map.glsl"
+
+float ellipsoidRadial(vec3 q) { return length(q); }
+
+// The polar angle as atan(|q.xz|, q.y): well conditioned at the poles, where acos(q.y / r)
+// would lose half the digits. At the centre (undefined) the equator.
+float ellipsoidMapY(ReliefMap map, vec3 q) {
+    float rho = length(q.xz);
+    bool atCentre = rho == 0.0 && q.y == 0.0;
+    return map.size.y * atan(rho, atCentre ? 0.0 : q.y) / kCurvedPi;
+}
+
+// The smallest distance from the centre over [ta, tb] (convex along a line: the nearest
+// point, clamped); the margin covers rounding.
+float ellipsoidLowestRadial(vec3 origin, vec3 dir, float ta, float tb) {
+    float t = clamp(-dot(origin, dir) / dot(dir, dir), ta, tb);
+    return length(origin + t * dir) - kCurvedRadiusMargin;
+}
+
+// Where the latitude turns: q.y / |q| along o + t d has the derivative N(t) / |p|^3 with N
+// linear in t, N(t) = dy |o|^2 - oy (o.d) + t (dy (o.d) - oy |d|^2); its one root is the
+// latitude's only interior extremum (kCurvedNever if none).
+float ellipsoidTurnY(vec3 origin, vec3 dir) {
+    float od = dot(origin, dir);
+    float slope = dir.y * od - origin.y * dot(dir, dir);
+    return slope == 0.0 ? kCurvedNever : -(dir.y * dot(origin, origin) - origin.y * od) / slope;
+}
+
+vec2 ellipsoidRangeY(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+    float ya = ellipsoidMapY(map, origin + ta * dir), yb = ellipsoidMapY(map, origin + tb * dir);
+    vec2 range = vec2(min(ya, yb), max(ya, yb));
+    float turn = ellipsoidTurnY(origin, dir);
+    if (turn > ta && turn < tb) {
+        float y = ellipsoidMapY(map, origin + turn * dir);
+        range = vec2(min(range.x, y), max(range.y, y));
+    }
+    return range;
+}
+
+// The t in [from, to] (where Y is monotone, so there is one at most) at which the line
+// crosses the cone of constant Y = boundary, cos^2 |p_xz|^2 = sin^2 p_y^2 on the nappe
+// where p_y has the sign of cos; kCurvedNever if none. The equator's cone is the plane
+// y = 0 (the quadratic's double root there would lose half the digits).
+float ellipsoidCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
+    float theta = kCurvedPi * boundary / map.size.y;
+    float c = cos(theta), s = sin(theta);
+    if (abs(c) < 1e-6) {
+        float t = dir.y == 0.0 ? kCurvedNever : -origin.y / dir.y;
+        return t >= from && t <= to ? t : kCurvedNever;
+    }
+    float c2 = c * c, s2 = s * s;
+    float a = c2 * dot(dir.xz, dir.xz) - s2 * dir.y * dir.y;
+    float b = c2 * dot(origin.xz, dir.xz) - s2 * origin.y * dir.y;
+    float k = c2 * dot(origin.xz, origin.xz) - s2 * origin.y * origin.y;
+    vec2 roots = vec2(kCurvedNever);
+    if (a == 0.0) {
+        if (b != 0.0) roots.x = -k / (2.0 * b);
+    } else {
+        float disc = b * b - a * k;
+        if (disc < 0.0) return kCurvedNever;
+        float q = -(b + (b >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+        roots = vec2(q / a, q != 0.0 ? k / q : kCurvedNever);
+    }
+    float first = kCurvedNever;
+    for (int r = 0; r < 2; ++r) {
+        float t = roots[r];
+        bool nappe = (origin.y + t * dir.y) * c >= 0.0;
+        if (t >= from && t <= to && nappe) first = min(first, t);
+    }
+    return first;
+}
+
+// The bounding shell: the ball of radius 1 + s maxHeight. It is entered through the
+// shell itself, never a face.
+vec2 ellipsoidClipToShell(ReliefMap map, vec3 origin, vec3 dir) {
+    return curvedInsideRadius(origin, dir, 1.0 + map.heightScale * map.maxHeight);
+}
+
+BaseFootprint ellipsoidFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+    vec3 pa = origin + ta * dir, pb = origin + tb * dir;
+    vec2 x = curvedRangeX(map, pa, pb);
+    vec2 y = ellipsoidRangeY(map, origin, dir, ta, tb) + vec2(-1.0, 1.0) * curvedMarginY(map);
+    float lowest = (ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+    return BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest,
+                         abs(ellipsoidRadial(pb) - ellipsoidRadial(pa)) / map.heightScale);
+}
+
+// q = r w(theta, phi) with r = 1 + s h: the outward normal is r w - r_theta e_theta -
+// r_phi / sin(theta) e_phi, with r_theta = s H / pi dh/dY and r_phi = s W / 2 pi dh/dX.
+vec3 ellipsoidTopNormal(ReliefMap map, vec3 q, vec2 gradient) {
+    float r = length(q);
+    if (r == 0.0) return vec3(0.0, 1.0, 0.0);
+    vec3 w = q / r;
+    float sinTheta = length(w.xz), cosTheta = w.y;
+    vec2 phi = sinTheta > 0.0 ? w.xz / sinTheta : vec2(0.0, 1.0);  // (sin, cos) of phi
+    vec3 eTheta = vec3(cosTheta * phi.x, -sinTheta, cosTheta * phi.y);
+    vec3 ePhi = vec3(phi.y, 0.0, -phi.x);
+    float rTheta = map.heightScale * map.size.y / kCurvedPi * gradient.y;
+    float rPhi = map.heightScale * map.size.x / (2.0 * kCurvedPi) * gradient.x;
+    return r * w - rTheta * eTheta - rPhi / max(sinTheta, 1e-6) * ePhi;
+}
+
+#endif

@@ -1,0 +1,320 @@
+// base_surface.glsl: the base-surface seam of the library, everything the tracers need
+// to know about the surface the height map is laid over (paper, section II: "planes,
+// ellipsoids, or cylinders"; scene-and-cli.md, "Base surfaces"), for the base the host
+// chooses with MICRORELIEF_BASE (relief_map.glsl): 0 the plane (base_plane.glsl), 1 a
+// cylinder (base_cylinder.glsl), 2 an ellipsoid (base_ellipsoid.glsl). The C++ mirror is
+// src/base/BaseSurface.h; a new base is one file in each, and a branch here.
+//
+// The tracers work in the base's frame, where the ray is a straight line o + t d with the
+// world's t (baseFramePoint, baseFrameVector). For a segment [ta, tb] of it the seam gives
+// its footprint on the map and its lowest height above the base (baseFootprint), both
+// bounds, never samples: on a curved base the path in (X, Y, h) is a curve, but the angle
+// about the axis is monotone along a line, the distance from the axis or the centre is
+// convex along it, and the latitude has at most one interior extremum, so each extreme
+// over the segment is at an end or at one interior point found in closed form. It gives
+// the ray's interval in the bounding shell and the face it enters through
+// (baseClipToShell), the exact first hit over a leaf (baseIntersectLeaf), and the hit's
+// map point and normal (baseMapPoint, baseTopNormal, baseWorldNormal).
+//
+// The exact hit on a curved base (curvedIntersectLeaf): along the ray the surface is no
+// longer a polynomial in t. The leaf walks the cells its path crosses, in order, each
+// cell's stretch ending where the path crosses a boundary (a half-plane of constant u, a
+// plane or a cone of constant v), found in closed form; in each cell it subdivides the
+// stretch as the traversal subdivides the ray, near half first, discarding each piece
+// whose lowest height lies above the patch's max over its footprint (both exact: X and Y
+// are monotone there, and a bilinear patch peaks at a corner of a rectangle), down to
+// 2^-MICRORELIEF_CELL_DEPTH of the stretch; over such a piece the gap between the patch
+// and the ray is smooth to third order, and a sign change of it at the piece's ends or
+// middle gives the root by interpolation, while without one a concave parabola through the
+// three values that reaches 0 is a ray touching the surface (a hit in the closed solid).
+#ifndef MICRORELIEF_BASE_SURFACE_GLSL
+#define MICRORELIEF_BASE_SURFACE_GLSL
+
+#include "base_curved.glsl"
+#include "base_cylinder.glsl"
+#include "base_ellipsoid.glsl"
+#include "base_plane.glsl"
+#include "bilinear_patch.glsl"
+#include "map_space.glsl"
+#include "relief_map.glsl"
+
+// The curved leaf's subdivision of one cell's stretch of the ray: down to 2^-10 of it,
+// where the quadratic model of the gap is exact to third order (a thousandth of a cell).
+#ifndef MICRORELIEF_CELL_DEPTH
+#define MICRORELIEF_CELL_DEPTH 10
+#endif
+
+vec3 baseFramePoint(ReliefMap map, vec3 world) {
+#if MICRORELIEF_BASE == 0
+    return worldToMapPoint(map, world);
+#else
+    return curvedFramePoint(map, world);
+#endif
+}
+
+vec3 baseFrameVector(ReliefMap map, vec3 world) {
+#if MICRORELIEF_BASE == 0
+    return worldToMapVector(map, world);
+#else
+    return curvedFrameVector(map, world);
+#endif
+}
+
+vec3 baseWorldPoint(ReliefMap map, vec3 q) {
+#if MICRORELIEF_BASE == 0
+    return mapToWorldPoint(map, q);
+#else
+    return curvedWorldPoint(map, q);
+#endif
+}
+
+// Y of a frame point (curved bases), and the map point (X, Y, h): X in [0, W) on a
+// curved base.
+float baseMapY(ReliefMap map, vec3 q) {
+#if MICRORELIEF_BASE == 1
+    return cylinderMapY(map, q);
+#elif MICRORELIEF_BASE == 2
+    return ellipsoidMapY(map, q);
+#else
+    return q.y;
+#endif
+}
+
+vec3 baseMapPoint(ReliefMap map, vec3 q) {
+#if MICRORELIEF_BASE == 1
+    return vec3(curvedMapX(map, q), cylinderMapY(map, q), (cylinderRadial(q) - 1.0) / map.heightScale);
+#elif MICRORELIEF_BASE == 2
+    return vec3(curvedMapX(map, q), ellipsoidMapY(map, q), (ellipsoidRadial(q) - 1.0) / map.heightScale);
+#else
+    return q;
+#endif
+}
+
+// The ray's interval in the bounding shell (empty when x > y); the face it enters through
+// (RELIEF_WALL_X, _WALL_Y, _BOTTOM, _CAP, or RELIEF_MISS: the top face or the curved
+// shell); whether it leaves through the plane's floor going down.
+vec2 baseClipToShell(ReliefMap map, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
+    entryFace = RELIEF_MISS;
+    floorExit = false;
+#if MICRORELIEF_BASE == 1
+    return cylinderClipToShell(map, origin, dir, entryFace);
+#elif MICRORELIEF_BASE == 2
+    return ellipsoidClipToShell(map, origin, dir);
+#else
+    return planeClipToShell(map, origin, dir, entryFace, floorExit);
+#endif
+}
+
+BaseFootprint baseFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+#if MICRORELIEF_BASE == 1
+    return cylinderFootprint(map, origin, dir, ta, tb);
+#elif MICRORELIEF_BASE == 2
+    return ellipsoidFootprint(map, origin, dir, ta, tb);
+#else
+    return planeFootprint(origin, dir, ta, tb);
+#endif
+}
+
+// baseFootprint(...).lowest alone: the lowest height over [ta, tb], never above it.
+float baseLowest(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+#if MICRORELIEF_BASE == 1
+    return (cylinderLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+#elif MICRORELIEF_BASE == 2
+    return (ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+#else
+    return planeLowest(origin, dir, ta, tb);
+#endif
+}
+
+// The first t in [ta, tb] at which the ray is at or below height h (map units), never
+// later than the exact one; ta where it starts there or does not get that low.
+float baseDescendTo(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float h) {
+#if MICRORELIEF_BASE == 0
+    return planeDescendTo(origin, dir, ta, tb, h);
+#else
+    float radius = 1.0 + map.heightScale * h + kCurvedRadiusMargin;
+#if MICRORELIEF_BASE == 1
+    vec2 inside = curvedInsideRadius(vec3(origin.x, 0.0, origin.z), vec3(dir.x, 0.0, dir.z), radius);
+#else
+    vec2 inside = curvedInsideRadius(origin, dir, radius);
+#endif
+    return inside.x > ta && inside.x <= tb ? inside.x : ta;
+#endif
+}
+
+// Where the latitude turns (kCurvedNever on the plane and the cylinder), and where the
+// path crosses the cell boundary Y = boundary, Y monotone on [from, to].
+float baseTurnY(vec3 origin, vec3 dir) {
+#if MICRORELIEF_BASE == 2
+    return ellipsoidTurnY(origin, dir);
+#else
+    return kCurvedNever;
+#endif
+}
+
+float baseCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
+#if MICRORELIEF_BASE == 2
+    return ellipsoidCrossY(map, origin, dir, boundary, from, to);
+#else
+    return cylinderCrossY(map, origin, dir, boundary);
+#endif
+}
+
+// The outward normal (not unit) in the frame at frame point q of the top surface, whose
+// map gradient there is (dh/dX, dh/dY); of the face a ray entered through.
+vec3 baseTopNormal(ReliefMap map, vec3 q, vec2 gradient) {
+#if MICRORELIEF_BASE == 1
+    return cylinderTopNormal(map, q, gradient);
+#elif MICRORELIEF_BASE == 2
+    return ellipsoidTopNormal(map, q, gradient);
+#else
+    return planeTopNormal(gradient);
+#endif
+}
+
+vec3 baseFaceNormal(ReliefMap map, int face, vec3 q, vec3 dir) {
+#if MICRORELIEF_BASE == 0
+    return planeFaceNormal(face, dir);
+#else
+    return cylinderFaceNormal(q);  // the cylinder's caps: the only faces a curved shell has
+#endif
+}
+
+// A frame normal as a world-space unit vector.
+vec3 baseWorldNormal(ReliefMap map, vec3 n) {
+#if MICRORELIEF_BASE == 0
+    return planeWorldNormal(map, n);
+#else
+    return curvedWorldNormal(map, n);
+#endif
+}
+
+// The ray at t in the local coordinates of `cell`, and its height: (fx, fy, h).
+vec3 curvedLocal(ReliefMap map, vec3 origin, vec3 dir, float t, ivec2 cell) {
+    vec3 m = baseMapPoint(map, origin + t * dir);
+    return vec3(cellLocal(map, cell, m.xy), m.z);
+}
+
+// Patch minus ray: >= 0 where the ray is on or under the surface.
+float curvedGap(vec4 corners, vec3 local) {
+    return patchHeight(corners, clamp(local.xy, 0.0, 1.0)) - local.z;
+}
+
+// The first t in [c0, c1] where the ray meets the patch `corners` of `cell`, or -1 (see
+// the header).
+float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 corners, float c0, float c1) {
+    vec2 margin = vec2(curvedMarginX(map), curvedMarginY(map));
+    int depth = 0;
+    uint index = 0u;
+    // A walk of the binary tree of pieces visits each at most once.
+    for (int guard = 0; guard < (2 << MICRORELIEF_CELL_DEPTH); ++guard) {
+        float width = (c1 - c0) * exp2(-float(depth));
+        float a = c0 + float(index) * width;
+        float b = index + 1u == (1u << uint(depth)) ? c1 : a + width;
+        vec3 fa = curvedLocal(map, origin, dir, a, cell), fb = curvedLocal(map, origin, dir, b, cell);
+        float top = patchMaxOver(corners, min(fa.xy, fb.xy) - margin, max(fa.xy, fb.xy) + margin);
+        bool may = baseLowest(map, origin, dir, a, b) <= top;
+        if (may && depth < MICRORELIEF_CELL_DEPTH) {
+            depth += 1;
+            index *= 2u;
+            continue;
+        }
+        if (may) {
+            float m = 0.5 * (a + b);
+            float ga = curvedGap(corners, fa), gb = curvedGap(corners, fb);
+            float gm = curvedGap(corners, curvedLocal(map, origin, dir, m, cell));
+            if (ga >= 0.0) return a;
+            if (gm >= 0.0) return a + (m - a) * ga / (ga - gm);
+            if (gb >= 0.0) return m + (b - m) * gm / (gm - gb);
+            // g(s) = ga + B s + A s^2 through s = 0, 1/2, 1: a concave one reaching 0.
+            float A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
+            if (A < 0.0) {
+                float vertex = -B / (2.0 * A), disc = B * B - 4.0 * A * ga;
+                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0)
+                    return a + clamp((-B + sqrt(disc)) / (2.0 * A), 0.0, vertex) * (b - a);
+            }
+        }
+        // Past this piece: on to its successor in order, as high up as it is unvisited.
+        index += 1u;
+        while (depth > 0 && (index & 1u) == 0u) {
+            index >>= 1;
+            depth -= 1;
+        }
+        if (depth == 0) return -1.0;
+    }
+    return -1.0;
+}
+
+// The cells of the path over [from, to], where X and Y are both monotone, in order: each
+// cell's stretch ends where the path crosses its boundary ahead in X or in Y. A crossing
+// found behind the current t means rounding put the start just past it: the walk steps on
+// at once. `corners` and `cell` are the patch of the hit.
+float curvedWalkCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
+                      inout int fetches, out vec4 corners, out ivec2 cell) {
+    int width = int(map.size.x);
+    vec3 start = baseMapPoint(map, origin + from * dir);
+    cell = wrapCell(map, cellAt(start.xy));
+    cell.y = clamp(cell.y, -1, int(map.size.y) - 1);
+    bool xUp = curvedXIncreases(origin, dir);
+    float yTo = baseMapY(map, origin + to * dir);
+    bool yMoves = yTo != start.y, yUp = yTo > start.y;
+    float t0 = from;
+    corners = vec4(0.0);
+    for (int piece = 0; piece < width + int(map.size.y) + 4; ++piece) {
+        float t1 = to;
+        bool stepX = false, stepY = false;
+        // A map one sample wide has no boundary in X: its one cell goes all the way round.
+        float tx = width > 1 ? curvedCrossX(map, origin, dir, float(cell.x) + (xUp ? 1.5 : 0.5)) : kCurvedNever;
+        if (tx <= t1) {
+            t1 = max(tx, t0);
+            stepX = true;
+        }
+        float yBoundary = float(cell.y) + (yUp ? 1.5 : 0.5);
+        if (yMoves && yBoundary > 0.0 && yBoundary < map.size.y) {
+            float ty = baseCrossY(map, origin, dir, yBoundary, from, to);
+            if (ty <= t1) {
+                float t = max(ty, t0);
+                stepX = stepX && t == t1;
+                t1 = t;
+                stepY = true;
+            }
+        }
+        corners = cellCorners(map, heights, cell, fetches);
+        float tHit = curvedSolveCell(map, origin, dir, cell, corners, t0, t1);
+        if (tHit >= 0.0) return tHit;
+        if (!stepX && !stepY) break;  // the stretch ended at `to`
+        if (stepX) cell.x = xUp ? (cell.x + 1 == width ? 0 : cell.x + 1) : (cell.x == 0 ? width - 1 : cell.x - 1);
+        if (stepY) cell.y += yUp ? 1 : -1;
+        t0 = t1;
+    }
+    return -1.0;
+}
+
+// The exact first hit over [ta, tb] on a curved base: the latitude turns at most once
+// along a line, so the leaf is walked in two pieces at most, X and Y monotone on each.
+float curvedIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+                          inout int fetches, out vec4 corners, out ivec2 cell) {
+    float turn = baseTurnY(origin, dir);
+    float from = ta, to = turn > ta && turn < tb ? turn : tb;
+    float tHit = -1.0;
+    for (int piece = 0; piece < 2; ++piece) {
+        tHit = curvedWalkCells(map, heights, origin, dir, from, to, fetches, corners, cell);
+        if (tHit >= 0.0 || to >= tb) break;
+        from = to;
+        to = tb;
+    }
+    return tHit;
+}
+
+// The exact first hit on the surface over [ta, tb], or -1; `corners` and `cell` are the
+// patch of the hit.
+float baseIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+                        inout int fetches, out vec4 corners, out ivec2 cell) {
+#if MICRORELIEF_BASE == 0
+    return planeIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, corners, cell);
+#else
+    return curvedIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, corners, cell);
+#endif
+}
+
+#endif

@@ -143,7 +143,8 @@ float baseDescendTo(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, fl
 }
 
 // Where the latitude turns (kCurvedNever on the plane and the cylinder), and where the
-// path crosses the cell boundary Y = boundary, Y monotone on [from, to].
+// path crosses the cell boundary Y = boundary on the branch [from, to] of the line on
+// which Y is monotone (the cylinder's planes are crossed once: any t).
 float baseTurnY(vec3 origin, vec3 dir) {
 #if MICRORELIEF_BASE == 2
     return ellipsoidTurnY(origin, dir);
@@ -246,11 +247,13 @@ float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 cor
 }
 
 // The cells of the path over [from, to], where X and Y are both monotone, in order: each
-// cell's stretch ends where the path crosses its boundary ahead in X or in Y. A crossing
-// found behind the current t means rounding put the start just past it: the walk steps on
-// at once. `corners` and `cell` are the patch of the hit.
+// cell's stretch ends where the path crosses its boundary ahead in X or in Y. [branchFrom,
+// branchTo] is the whole branch of the line that holds [from, to] on which Y is monotone,
+// so that each boundary is crossed once on it: a crossing found there but behind the
+// current t means rounding put the start just past it, and the walk steps on at once.
+// `corners` and `cell` are the patch of the hit.
 float curvedWalkCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
-                      inout int fetches, out vec4 corners, out ivec2 cell) {
+                      float branchFrom, float branchTo, inout int fetches, out vec4 corners, out ivec2 cell) {
     int width = int(map.size.x);
     vec3 start = baseMapPoint(map, origin + from * dir);
     cell = wrapCell(map, cellAt(start.xy));
@@ -271,7 +274,7 @@ float curvedWalkCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, f
         }
         float yBoundary = float(cell.y) + (yUp ? 1.5 : 0.5);
         if (yMoves && yBoundary > 0.0 && yBoundary < map.size.y) {
-            float ty = baseCrossY(map, origin, dir, yBoundary, from, to);
+            float ty = baseCrossY(map, origin, dir, yBoundary, branchFrom, branchTo);
             if (ty <= t1) {
                 float t = max(ty, t0);
                 stepX = stepX && t == t1;
@@ -298,7 +301,11 @@ float curvedIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 di
     float from = ta, to = turn > ta && turn < tb ? turn : tb;
     float tHit = -1.0;
     for (int piece = 0; piece < 2; ++piece) {
-        tHit = curvedWalkCells(map, heights, origin, dir, from, to, fetches, corners, cell);
+        // The branch of the line, before or after the turn, that holds [from, to].
+        bool beforeTurn = turn != kCurvedNever && turn >= to;
+        float branchFrom = beforeTurn || turn == kCurvedNever ? -kCurvedNever : turn;
+        float branchTo = beforeTurn ? turn : kCurvedNever;
+        tHit = curvedWalkCells(map, heights, origin, dir, from, to, branchFrom, branchTo, fetches, corners, cell);
         if (tHit >= 0.0 || to >= tb) break;
         from = to;
         to = tb;

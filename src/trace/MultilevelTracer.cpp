@@ -139,20 +139,25 @@ auto MultilevelTracer::intersectCurvedLeaf(const FrameRay& ray, double ta, doubl
                                            int& fetches) const -> std::optional<LeafHit> {
     const auto& base = static_cast<const CurvedSurface&>(*base_);
     const std::optional<double> turn = base.turnY(ray);
+    constexpr double kAll = std::numeric_limits<double>::infinity();
+    // The branches of the line before and after the turn, on each of which Y is monotone.
+    const glm::dvec2 before(-kAll, turn ? *turn : kAll), after(turn ? *turn : -kAll, kAll);
     if (turn && *turn > ta && *turn < tb) {
-        if (auto hit = walkCurvedCells(base, ray, ta, *turn, fetches)) return hit;
-        return walkCurvedCells(base, ray, *turn, tb, fetches);
+        if (auto hit = walkCurvedCells(base, ray, ta, *turn, before, fetches)) return hit;
+        return walkCurvedCells(base, ray, *turn, tb, after, fetches);
     }
-    return walkCurvedCells(base, ray, ta, tb, fetches);
+    return walkCurvedCells(base, ray, ta, tb, turn && *turn <= ta ? after : before, fetches);
 }
 
-// base_curved.glsl: walkCurvedCells. A DDA over the cells of a curved path whose X and Y
+// base_surface.glsl: curvedWalkCells. A DDA over the cells of a curved path whose X and Y
 // are monotone on [from, to]: each cell's stretch ends where the path crosses the cell's
 // boundary ahead in X (a half-plane through the axis) or in Y (a plane or a cone), found
-// in closed form; a crossing found behind the current t means rounding put the walk's
-// start just past it, and the walk steps on at once.
+// in closed form. `branch` is the branch of the line holding [from, to] on which Y is
+// monotone, where each boundary is crossed once: a crossing found on it behind the
+// current t means rounding put the walk's start just past it, and the walk steps on.
 auto MultilevelTracer::walkCurvedCells(const CurvedSurface& base, const FrameRay& ray, double from,
-                                       double to, int& fetches) const -> std::optional<LeafHit> {
+                                       double to, glm::dvec2 branch, int& fetches) const
+    -> std::optional<LeafHit> {
     const int w = map_.width, h = map_.height;
     const glm::dvec3 start = base.mapPoint(ray.at(from));
     int i = static_cast<int>(std::floor(start.x - 0.5)),
@@ -174,7 +179,7 @@ auto MultilevelTracer::walkCurvedCells(const CurvedSurface& base, const FrameRay
         }
         const double yBoundary = yUp ? j + 1.5 : j + 0.5;
         if (yMoves && yBoundary > 0.0 && yBoundary < h) {
-            if (const auto ty = base.crossY(ray, yBoundary, from, to); ty && *ty <= t1) {
+            if (const auto ty = base.crossY(ray, yBoundary, branch.x, branch.y); ty && *ty <= t1) {
                 const double t = std::max(*ty, t0);
                 stepX = stepX && t == t1;
                 t1 = t;

@@ -68,7 +68,8 @@ private:
     std::optional<LeafHit> intersectCurvedLeaf(const FrameRay& ray, double ta, double tb,
                                                int& fetches) const;
     std::optional<LeafHit> walkCurvedCells(const CurvedSurface& base, const FrameRay& ray,
-                                           double t0, double tEnd, int& fetches) const;
+                                           double from, double to, glm::dvec2 branch,
+                                           int& fetches) const;
     std::optional<double> solveCurvedCell(const CurvedSurface& base, const FrameRay& ray,
                                           const Cell& cell, double c0, double c1) const;
     std::optional<LeafHit> subdivideSegment(const FrameRay& ray, double span, bool floorExit,

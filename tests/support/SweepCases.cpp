@@ -52,11 +52,53 @@ std::shared_ptr<const HeightMap> throughFile(const HeightMap& map, PixelType typ
 
 }  // namespace
 
+// Noise whose first and last columns differ sharply: the seam of a curved base, where
+// the surface climbs from 0 (columns 0, 1) to 1 (columns W - 2, W - 1) across u = 0.
+HeightMap seamMap(int w, int h) {
+    HeightMap map = synth::valueNoise(w, h, 8.0, 3, 23);
+    for (int j = 0; j < h; ++j) {
+        map.at(0, j) = map.at(1, j) = 0.0f;
+        map.at(w - 2, j) = map.at(w - 1, j) = 1.0f;
+    }
+    return map;
+}
+
+// The curved bases' maps: the seam, real-looking and rough relief, spikes, odd and
+// non-square sizes, 1 x 1, a 16-bit PNG and a float EXR; each on a cylinder and on an
+// ellipsoid (a sphere for some).
+std::vector<SweepMap> curvedMaps() {
+    HeightMap tall = synth::valueNoise(60, 30, 10.0, 3, 41);
+    for (float& h : tall.samples) h *= 2.0f;  // float maps keep values above 1
+    const auto png16 = throughFile(synth::cobbles(128, 64, 3), PixelType::UInt16, "globe16.png");
+    const auto exr = throughFile(tall, PixelType::Float, "tall-curved.exr");
+    const std::vector<std::pair<std::string, std::pair<std::shared_ptr<const HeightMap>, double>>>
+        relief = {
+            {"seam", {share(seamMap(96, 48)), 0.15}},
+            {"cobbles", {share(synth::cobbles(128, 128, 5)), 0.12}},
+            {"white", {share(synth::whiteNoise(64, 32, 9)), 0.1}},
+            {"spikes", {share(spikes(96, 6)), 0.2}},
+            {"oblong75x33", {share(synth::valueNoise(75, 33, 6.0, 3, 12)), 0.15}},
+            {"single1x1", {share(synth::flat(1, 1, 0.6f)), 0.1}},
+            {"png16", {png16, 0.1}},
+            {"exrfloat", {exr, 0.06}},
+        };
+    std::vector<SweepMap> maps;
+    for (std::size_t k = 0; k < relief.size(); ++k) {
+        const auto& [name, data] = relief[k];
+        maps.push_back(
+            {"cylinder_" + name, data.first, data.second, BaseShape::cylinder(0.3, 0.8)});
+        // Alternately a sphere and an ellipsoid of unequal radii.
+        maps.push_back({(k % 2 ? "ellipsoid_" : "sphere_") + name, data.first, data.second,
+                        k % 2 ? BaseShape::ellipsoid({0.45, 0.35, 0.3}) : BaseShape::sphere(0.4)});
+    }
+    return maps;
+}
+
 const std::vector<SweepMap>& sweepMaps() {
     static const std::vector<SweepMap> maps = [] {
         HeightMap tall = synth::valueNoise(96, 96, 24.0, 4, 31);
         for (float& h : tall.samples) h *= 3.0f;  // float maps keep values above 1
-        return std::vector<SweepMap>{
+        std::vector<SweepMap> all{
             {"noise", share(synth::whiteNoise(128, 128, 2)), 0.05},
             {"spikes", share(spikes(128, 4)), 0.1},
             {"walls", share(walls(128, 16)), 0.08},
@@ -71,11 +113,99 @@ const std::vector<SweepMap>& sweepMaps() {
             {"exrfloat", throughFile(tall, PixelType::Float, "tall.exr"), 0.03},
             {"huge4096", share(synth::valueNoise(4096, 4096, 256.0, 6, 5)), 0.1},
         };
+        for (SweepMap& m : curvedMaps()) all.push_back(std::move(m));
+        return all;
     }();
     return maps;
 }
 
+namespace {
+
+// Views of a curved base: orbits from high to grazing at several azimuths (the limb, rays
+// tangent to the shell, rings every silhouette), the seam from behind (-z), the poles or
+// the caps from above and below, grazing along the caps' plane and along the side, the
+// eye inside the bounding shell but outside the solid, far away.
+std::vector<SweepView> curvedViews(const SweepMap& m) {
+    const HeightMap& map = *m.map;
+    const BaseShape& base = m.base;
+    const double top = m.heightScale * map.maxValue();
+    const glm::dvec3 box = base.boxMax(map.width, map.height, top);
+    const double size = std::max({box.x, box.y, box.z});
+    std::vector<SweepView> views;
+    const auto add = [&](const std::string& name, const Camera& camera) {
+        views.push_back({name, camera});
+    };
+    for (double e : {60.0, 20.0, 3.0}) {
+        for (double a : {15.0, 130.0, 250.0}) {
+            add("e" + std::to_string(static_cast<int>(e)) + "a" +
+                    std::to_string(static_cast<int>(a)),
+                orbitCamera(e, a, 3.2 * size, {0.0, 0.0, 0.0}, 40.0));
+        }
+    }
+    add("seam", orbitCamera(8.0, -90.0, 2.6 * size, {0.0, 0.0, 0.0}, 40.0));
+    // Close up across the seam from its low side (columns 0, 1), looking at the slope up
+    // to columns W - 2, W - 1: a pyramid that bounded the seam texels with clamped
+    // neighbours would miss that slope here.
+    add("top", orbitCamera(89.0, 30.0, 2.8 * size, {0.0, 0.0, 0.0}, 40.0));
+    add("bottom", orbitCamera(-89.0, 200.0, 2.8 * size, {0.0, 0.0, 0.0}, 40.0));
+    const glm::dvec3 scale = base.frameScale();
+    // A frame point at polar angle theta from +y and longitude phi, at radius r (for the
+    // cylinder: height y, at distance r from the axis).
+    const auto at = [&](double theta, double phi, double r, double y) {
+        const glm::dvec3 q = base.kind == BaseKind::Cylinder
+                                 ? glm::dvec3(r * std::sin(phi), y, r * std::cos(phi))
+                                 : r * glm::dvec3(std::sin(theta) * std::sin(phi), std::cos(theta),
+                                                  std::sin(theta) * std::cos(phi));
+        return q * scale;
+    };
+    Camera seam;
+    seam.eye = at(1.2, 3.14159265358979 + 0.12, 1.0 + top + 0.2, 0.3);
+    seam.target = at(1.5, 3.14159265358979, 1.0, 0.0);
+    seam.fovyDegrees = 15.0;
+    add("seamclose", seam);
+    Camera graze;
+    graze.eye = at(1.2, 0.3, 1.0 + top + 0.04, 0.3);
+    graze.target = at(1.5, 1.1, 1.0, -0.1);
+    graze.fovyDegrees = 50.0;
+    add("grazing", graze);
+    if (base.kind == BaseKind::Cylinder) {
+        // Level with the top cap, just above it: rays skim the cap's plane.
+        Camera cap;
+        cap.eye = {2.5 * size, 0.5 * base.length + 0.01, 0.3 * size};
+        cap.target = {0.0, 0.5 * base.length - 0.01, 0.0};
+        cap.fovyDegrees = 30.0;
+        add("capgraze", cap);
+    } else {
+        // Low over the pole, looking across it.
+        Camera pole;
+        pole.eye = at(0.15, 2.0, 1.0 + top + 0.05, 0.0);
+        pole.target = at(0.3, 2.0 + 3.14159, 1.0, 0.0);
+        pole.fovyDegrees = 60.0;
+        add("polegraze", pole);
+    }
+    // Inside the shell, above the lowest sample's point, halfway up to the shell.
+    const auto lowest =
+        std::min_element(map.samples.begin(), map.samples.end()) - map.samples.begin();
+    const int i = static_cast<int>(lowest % map.width), j = static_cast<int>(lowest / map.width);
+    const double hLow = m.heightScale * map.at(i, j);
+    if (top > hLow) {
+        const double phi = 2.0 * 3.14159265358979 * ((i + 0.5) / map.width - 0.5);
+        const double v = (j + 0.5) / map.height;
+        const double r = 1.0 + hLow + 0.5 * (top - hLow);
+        Camera inside;
+        inside.eye = at(3.14159265358979 * v, phi, r, 1.0 - 2.0 * v);
+        inside.target = at(3.14159265358979 * v + 0.3, phi + 0.5, 1.0, 1.0 - 2.0 * v - 0.2);
+        inside.fovyDegrees = 80.0;
+        add("inside", inside);
+    }
+    add("far", orbitCamera(30.0, 75.0, 40.0 * size, {0.0, 0.0, 0.0}, 3.0));
+    return views;
+}
+
+}  // namespace
+
 std::vector<SweepView> sweepViews(const SweepMap& m) {
+    if (m.base.curved()) return curvedViews(m);
     std::vector<SweepView> views;
     const HeightMap& map = *m.map;
     const double top = m.heightScale * map.maxValue();

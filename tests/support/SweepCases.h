@@ -20,6 +20,7 @@ struct SweepMap {
     std::string name;
     std::shared_ptr<const HeightMap> map;
     double heightScale;
+    BaseShape base = {};  // the plane, a cylinder or an ellipsoid (issue 11)
 };
 
 struct SweepView {
@@ -34,7 +35,8 @@ struct SweepCase {
 };
 
 // Built once per process (the 4096 map takes a moment); `scratch` holds the files the
-// 16-bit and float maps are written to and read back from.
+// 16-bit and float maps are written to and read back from. The plane's maps first, then
+// the curved bases' (each map on a cylinder and on an ellipsoid or a sphere).
 const std::vector<SweepMap>& sweepMaps();
 std::vector<SweepView> sweepViews(const SweepMap& map);
 std::vector<SweepCase> sweepCases();

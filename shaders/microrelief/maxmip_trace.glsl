@@ -24,27 +24,70 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
+// Which way the ray moves over the map, per axis (+1, -1 or 0), and the branch of its line
+// on which that holds: on the plane and the cylinder the whole line; on an ellipsoid the
+// latitude turns once, at `turn`, and Y's way flips there (the walk stays in its node).
+struct MaxMipCourse {
+    ivec2 step;
+    vec2 branch;
+    float turn;  // kCurvedNever where Y never turns
+};
+
+MaxMipCourse maxMipCourse(ReliefMap map, vec3 origin, vec3 dir, float tFar) {
+#if MICRORELIEF_BASE == 0
+    return MaxMipCourse(ivec2(sign(dir.xy)), vec2(-kCurvedNever, kCurvedNever), kCurvedNever);
+#else
+    float turn = baseTurnY(origin, dir);
+    if (!(turn > 0.0 && turn < tFar)) turn = kCurvedNever;
+    // Y's way before the turn (or on the whole segment): from its value at the start to its
+    // value where the branch ends.
+    float yStart = baseMapY(map, origin), yEnd = baseMapY(map, origin + min(turn, tFar) * dir);
+    int stepY = yEnd > yStart ? 1 : yEnd < yStart ? -1 : 0;
+    return MaxMipCourse(ivec2(curvedXIncreases(origin, dir) ? 1 : -1, stepY),
+                        vec2(-kCurvedNever, turn), turn);
+#endif
+}
+
+// Past the turn: Y goes the other way, on the branch after it.
+void maxMipTurn(inout MaxMipCourse course) {
+    course.step.y = -course.step.y;
+    course.branch = vec2(course.turn, kCurvedNever);
+    course.turn = kCurvedNever;
+}
+
 // Ray parameter where the ray leaves node `node` at `level` through a side of its column,
-// per axis (1e30 along an axis the ray does not move on).
-vec2 maxMipNodeExits(ivec2 node, int level, vec3 origin, vec3 dir) {
+// per axis (kCurvedNever along an axis it does not leave by). On a curved base the sides
+// are a half-plane of constant X through the axis (the map's seam, X = W, past its last
+// column) and a plane or cone of constant Y, met in closed form (base_surface.glsl).
+vec2 maxMipNodeExits(ReliefMap map, ivec2 node, int level, vec3 origin, vec3 dir, MaxMipCourse course) {
     float size = exp2(float(level));
-    vec2 exits = vec2(1e30);
+    vec2 exits = vec2(kCurvedNever);
+#if MICRORELIEF_BASE == 0
     for (int axis = 0; axis < 2; ++axis) {
         if (dir[axis] == 0.0) continue;
         float side = (float(node[axis]) + (dir[axis] > 0.0 ? 1.0 : 0.0)) * size;
         exits[axis] = (side - origin[axis]) / dir[axis];
     }
+#else
+    if (map.size.x > 1.0) {
+        float side = course.step.x > 0 ? min(float(node.x + 1) * size, map.size.x) : float(node.x) * size;
+        exits.x = curvedCrossX(map, origin, dir, side);
+    }
+    float side = (float(node.y) + (course.step.y > 0 ? 1.0 : 0.0)) * size;
+    if (course.step.y != 0 && side > 0.0 && side < map.size.y)
+        exits.y = baseCrossY(map, origin, dir, side, course.branch.x, course.branch.y);
+#endif
     return exits;
 }
 
 // The child of `node` (at `level` > 0) holding map point p; on the midline, the child the
 // ray moves into.
-ivec2 maxMipChildAt(ivec2 node, int level, vec2 p, vec3 dir) {
+ivec2 maxMipChildAt(ivec2 node, int level, vec2 p, ivec2 step) {
     float halfSize = exp2(float(level - 1));
     ivec2 child = 2 * node;
     for (int axis = 0; axis < 2; ++axis) {
         float mid = (2.0 * float(node[axis]) + 1.0) * halfSize;
-        if (p[axis] > mid || (p[axis] == mid && dir[axis] > 0.0)) child[axis] += 1;
+        if (p[axis] > mid || (p[axis] == mid && step[axis] > 0)) child[axis] += 1;
     }
     return child;
 }
@@ -56,10 +99,16 @@ float maxMipNodeHeight(ReliefMap map, sampler2D pyramid, ivec2 node, int level, 
 }
 
 // Into the neighbour of `node` across the side(s) of its column the ray leaves through
-// at tExit; up one level when that neighbour has a different parent.
-void maxMipNextNode(inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit, vec3 dir) {
-    ivec2 next = node + ivec2(exits.x <= tExit ? int(sign(dir.x)) : 0,
-                              exits.y <= tExit ? int(sign(dir.y)) : 0);
+// at tExit; up one level when that neighbour has a different parent. On a curved base the
+// nodes wrap in X: past the last column that holds map texels comes column 0.
+void maxMipNextNode(ReliefMap map, inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit,
+                    ivec2 step) {
+    ivec2 next = node + ivec2(exits.x <= tExit ? step.x : 0, exits.y <= tExit ? step.y : 0);
+#if MICRORELIEF_BASE != 0
+    int lastColumn = (int(map.size.x) - 1) >> level;
+    if (next.x > lastColumn) next.x = 0;
+    if (next.x < 0) next.x = lastColumn;
+#endif
     bool newParent = any(notEqual(next >> 1, node >> 1));
     node = next;
     if (newParent && level < topLevel) {
@@ -86,25 +135,27 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
     int iteration = 0;
     vec2 exits = vec2(0.0);  // where the ray leaves the current node's column, per axis
     float tExit = 0.0;
+    MaxMipCourse course = maxMipCourse(map, origin, dir, tFar);
     while (!finished) {
         // Down the walk to a finest texel whose box the ray meets, or to the walk's end.
         bool atLeaf = false;
         while (iteration < map.maxIterations) {
             iteration += 1;
             hit.stopLevel = level;
-            exits = maxMipNodeExits(node, level, origin, dir);
-            tExit = min(max(min(exits.x, exits.y), t), tFar);
+            exits = maxMipNodeExits(map, node, level, origin, dir, course);
+            // Where Y turns the node's side ahead in Y changes: a stop of its own.
+            float tStop = min(min(exits.x, exits.y), course.turn);
+            tExit = min(max(tStop, t), tFar);
             float top = maxMipNodeHeight(map, pyramid, node, level, hit.fetches);
-            float hNow = origin.z + t * dir.z, hExit = origin.z + tExit * dir.z;
-            if (min(hNow, hExit) <= top) {
+            if (baseLowest(map, origin, dir, t, tExit) <= top) {
                 if (level == 0) {
                     atLeaf = true;
                     break;
                 }
-                // Step onto the box top (only a descending ray can be above it here), then
+                // Step onto the box top (only a ray coming down can be above it here), then
                 // go down into the child that holds that point.
-                if (hNow > top) t = clamp((top - origin.z) / dir.z, t, tExit);
-                node = maxMipChildAt(node, level, (origin + t * dir).xy, dir);
+                t = baseDescendTo(map, origin, dir, t, tExit, top);
+                node = maxMipChildAt(node, level, baseMapPoint(map, origin + t * dir).xy, course.step);
                 level -= 1;
                 continue;
             }
@@ -112,7 +163,11 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
                 finished = true;
                 break;
             }
-            maxMipNextNode(node, level, topLevel, exits, tExit, dir);
+            if (tExit == course.turn) {
+                maxMipTurn(course);  // the same node, on the branch after the turn
+            } else {
+                maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
+            }
             t = tExit;
         }
         if (!atLeaf) break;  // finished, or out of iterations
@@ -124,7 +179,11 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
         } else if (tExit >= tFar) {
             finished = true;
         } else {
-            maxMipNextNode(node, level, topLevel, exits, tExit, dir);
+            if (tExit == course.turn) {
+                maxMipTurn(course);
+            } else {
+                maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
+            }
             t = tExit;
         }
     }

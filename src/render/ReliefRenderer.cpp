@@ -49,9 +49,9 @@ bool methodTracesTheSolid(Method method) {
 }
 
 void checkMethodSupportsBase(Method method, const BaseShape& base) {
-    if (!base.curved() || method == Method::Multilevel) return;
+    if (!base.curved() || method == Method::Multilevel || method == Method::MaxMip) return;
     throwBadInput(std::string("--method ") + methodName(method) + " does not run on --base " +
-                  baseName(base) + " (curved bases take multilevel)");
+                  baseName(base) + " (curved bases take multilevel and maxmip)");
 }
 
 DebugView parseDebugView(const std::string& name) {

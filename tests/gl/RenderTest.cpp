@@ -406,6 +406,32 @@ TEST_F(Peers, MaxMipIsExact) {
     EXPECT_EQ(a.exhausted, 0u);
 }
 
+// maxmip on the curved bases: the quadtree walk's node sides are half-planes, planes and
+// cones met in closed form, the nodes wrap across the seam, Y turns once on an ellipsoid.
+TEST_F(Peers, MaxMipIsExactOnCurvedBases) {
+    const HeightMap map = synth::cobbles(96, 48, 4);
+    for (const BaseShape& base : {BaseShape::cylinder(0.3, 0.8), BaseShape::sphere(0.4),
+                                  BaseShape::ellipsoid({0.45, 0.35, 0.3})}) {
+        for (const Camera& camera :
+             {test::orbitCamera(20.0, 40.0, 1.4), test::orbitCamera(5.0, -90.0, 1.2),
+              test::orbitCamera(80.0, 200.0, 1.3)}) {
+            RenderJob job;
+            job.camera = camera;
+            job.width = job.height = 64;
+            job.base = base;
+            job.method.method = Method::MaxMip;
+            const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
+            const test::Accuracy a =
+                test::compareWithReference(r.frame, r.camera, map, job.heightScale, base);
+            std::printf("    maxmip on %-9s: %s\n", baseName(base).c_str(), a.summary().c_str());
+            EXPECT_GT(a.referenceHits, 1000u);
+            EXPECT_LE(a.coverageMismatchPercent(), 0.1) << baseName(base);
+            EXPECT_LE(a.offHalfTexelPercent(), 0.2) << baseName(base);
+            EXPECT_EQ(a.exhausted, 0u) << baseName(base);
+        }
+    }
+}
+
 TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
     for (Method method : {Method::Steep, Method::Pom, Method::Relief}) {
         const test::Accuracy few = measure(method, 8), many = measure(method, 512);

@@ -57,7 +57,7 @@ uniform int methodMinSteps;      // pom: samples when looking straight down
 uniform int methodRefineSteps;   // relief: binary search steps
 uniform float pixelErrorTolerance;  // multilevel: stop at windows narrower than this many pixels
 
-ReliefHit traceRay(ReliefMap map, vec3 origin, vec3 dir) {
+ReliefHit traceInFrame(ReliefMap map, vec3 origin, vec3 dir) {
 #if MICRORELIEF_METHOD == 1
     return traceNormalMapping(map, heightSamples, origin, dir);
 #elif MICRORELIEF_METHOD == 2
@@ -72,6 +72,29 @@ ReliefHit traceRay(ReliefMap map, vec3 origin, vec3 dir) {
     return traceMaxMip(map, maxPyramid, heightSamples, origin, dir);
 #else
     return traceMultilevel(map, windowPyramid, heightSamples, origin, dir);
+#endif
+}
+
+// The step-based peers on a curved base, as engines run them there (pom, relief): in the
+// base's tangent frame where the ray enters the shell, map space taken as flat from there
+// on; their answer, a map point, is then placed on the base (off the ray, like offset's).
+#define MICRORELIEF_TANGENT_PEER (MICRORELIEF_BASE != 0 && (MICRORELIEF_METHOD == 4 || MICRORELIEF_METHOD == 5))
+
+ReliefHit traceRay(ReliefMap map, vec3 origin, vec3 dir) {
+#if MICRORELIEF_TANGENT_PEER
+    vec3 localOrigin, localDir;
+    float tEntry;
+    if (!baseTangentRay(map, origin, dir, localOrigin, localDir, tEntry)) return reliefMissHit();
+    ReliefHit hit = traceInFrame(map, localOrigin, localDir);
+    if (hit.kind == RELIEF_TOP) {
+        vec3 q = baseSurfacePoint(map, hit.position);
+        hit.normal = baseTopNormal(map, q, -hit.normal.xy);
+        hit.position = q;
+        hit.t += tEntry;
+    }
+    return hit;
+#else
+    return traceInFrame(map, origin, dir);
 #endif
 }
 
@@ -115,8 +138,9 @@ void main() {
 #endif
     }
 
-#if MICRORELIEF_METHOD == 2
-    // Parallax offset's answer is not on the ray (it shifts the texture lookup instead).
+#if MICRORELIEF_METHOD == 2 || MICRORELIEF_TANGENT_PEER
+    // Parallax offset's answer is not on the ray (it shifts the texture lookup instead),
+    // nor is a tangent-frame peer's on a curved base.
     vec3 world = baseWorldPoint(map, hit.position);
 #else
     vec3 world = eye + hit.t * dir;  // on the ray exactly, without a round trip through map space

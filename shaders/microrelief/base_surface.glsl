@@ -190,6 +190,67 @@ vec3 baseWorldNormal(ReliefMap map, vec3 n) {
 #endif
 }
 
+// The frame point of map point (X, Y, h): the surface point of the base at (u, v),
+// raised by h along the base's normal.
+vec3 baseSurfacePoint(ReliefMap map, vec3 m) {
+#if MICRORELIEF_BASE == 0
+    return m;
+#else
+    float phi = 2.0 * kCurvedPi * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
+#if MICRORELIEF_BASE == 1
+    return vec3(r * sin(phi), 1.0 - 2.0 * m.y / map.size.y, r * cos(phi));
+#else
+    float theta = kCurvedPi * m.y / map.size.y;
+    return r * vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
+#endif
+#endif
+}
+
+// The base's tangent frame at map point m: the frame point's derivatives along X, Y and h
+// (orthogonal on every base: map space's axes on the plane).
+void baseTangentFrame(ReliefMap map, vec3 m, out vec3 alongX, out vec3 alongY, out vec3 alongH) {
+#if MICRORELIEF_BASE == 0
+    alongX = vec3(1.0, 0.0, 0.0);
+    alongY = vec3(0.0, 1.0, 0.0);
+    alongH = vec3(0.0, 0.0, 1.0);
+#else
+    float phi = 2.0 * kCurvedPi * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
+    vec3 ePhi = vec3(cos(phi), 0.0, -sin(phi));
+#if MICRORELIEF_BASE == 1
+    alongX = r * (2.0 * kCurvedPi / map.size.x) * ePhi;
+    alongY = vec3(0.0, -2.0 / map.size.y, 0.0);
+    alongH = map.heightScale * vec3(sin(phi), 0.0, cos(phi));
+#else
+    float theta = kCurvedPi * m.y / map.size.y;
+    vec3 w = vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
+    vec3 eTheta = vec3(cos(theta) * sin(phi), -sin(theta), cos(theta) * cos(phi));
+    alongX = r * sin(theta) * (2.0 * kCurvedPi / map.size.x) * ePhi;
+    alongY = r * (kCurvedPi / map.size.y) * eTheta;
+    alongH = map.heightScale * w;
+#endif
+#endif
+}
+
+// The ray in the tangent frame where it enters the shell, as engines run parallax methods
+// on a curved surface: map space (X, Y, h) taken as flat from that point on, the ray's
+// direction expressed in the base's tangent frame there, blind to the curvature beyond.
+// False when the ray misses the shell. `tEntry` is where it enters (or 0 inside it).
+bool baseTangentRay(ReliefMap map, vec3 origin, vec3 dir, out vec3 localOrigin, out vec3 localDir,
+                    out float tEntry) {
+    int entryFace;
+    bool floorExit;
+    vec2 range = baseClipToShell(map, origin, dir, entryFace, floorExit);
+    tEntry = max(range.x, 0.0);
+    localOrigin = baseMapPoint(map, origin + tEntry * dir);
+    localDir = vec3(0.0);
+    if (tEntry > range.y) return false;
+    vec3 alongX, alongY, alongH;
+    baseTangentFrame(map, localOrigin, alongX, alongY, alongH);
+    localDir = vec3(dot(dir, alongX) / dot(alongX, alongX), dot(dir, alongY) / dot(alongY, alongY),
+                    dot(dir, alongH) / dot(alongH, alongH));
+    return true;
+}
+
 // The ray at t in the local coordinates of `cell`, and its height: (fx, fy, h).
 vec3 curvedLocal(ReliefMap map, vec3 origin, vec3 dir, float t, ivec2 cell) {
     vec3 m = baseMapPoint(map, origin + t * dir);

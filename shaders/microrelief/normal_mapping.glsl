@@ -26,7 +26,7 @@ ReliefHit traceNormalMapping(ReliefMap map, sampler2D heights, vec3 origin, vec3
     if (t < 0.0 || !inFootprint) return hit;
     hit.iterations = 1;
     hit.stopLevel = 0;
-    setTopHitAt(hit, map, heights, t, vec3(p.xy, map.maxHeight));
+    setMapTopHitAt(hit, map, heights, t, vec3(p.xy, map.maxHeight));
     return hit;
 }
 

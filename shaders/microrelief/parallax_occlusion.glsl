@@ -31,7 +31,7 @@ ReliefHit traceParallaxOcclusion(ReliefMap map, sampler2D heights, vec3 origin, 
     // g = surface - ray is linear in t along the segment in this approximation: its root.
     float t = below.t;
     if (below.g > above.g) t = mix(below.t, above.t, below.g / (below.g - above.g));
-    setTopHitAt(hit, map, heights, t, origin + t * dir);
+    setMapTopHitAt(hit, map, heights, t, origin + t * dir);
     return hit;
 }
 

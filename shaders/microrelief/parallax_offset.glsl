@@ -37,7 +37,7 @@ ReliefHit traceParallaxOffset(ReliefMap map, sampler2D heights, vec3 origin, vec
     hit.stopLevel = 0;
     float h0 = surfaceHeight(map, heights, entry.xy, hit.fetches);
     if (entry.z <= h0) {
-        setTopHitAt(hit, map, heights, tNear, entry);  // entered under the surface
+        setMapTopHitAt(hit, map, heights, tNear, entry);  // entered under the surface
         return hit;
     }
     if (!(dir.z < 0.0)) return hit;
@@ -49,7 +49,7 @@ ReliefHit traceParallaxOffset(ReliefMap map, sampler2D heights, vec3 origin, vec
     bool inFootprint =
         all(greaterThanEqual(shifted, vec2(0.0))) && all(lessThanEqual(shifted, map.size));
     if (!inFootprint) return hit;
-    setTopHitAt(hit, map, heights, (h0 - origin.z) / dir.z, vec3(shifted, h0));
+    setMapTopHitAt(hit, map, heights, (h0 - origin.z) / dir.z, vec3(shifted, h0));
     return hit;
 }
 

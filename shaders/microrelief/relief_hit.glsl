@@ -66,6 +66,25 @@ void setTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t,
     hit.t = t;
 }
 
+// A top-surface hit of a tracer that works in map space (X, Y, h) whatever the base: the
+// step-based peers, which march in the tangent frame of the base (on a curved base blind
+// to its curvature: relief.frag maps their answer onto the base). `mapPoint` is reported
+// with the map-space normal (-dh/dX, -dh/dY, 1) of the bilinear surface there. On the
+// plane, map space is the frame, and this is setTopHitAt.
+void setMapTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t, vec3 mapPoint) {
+    ivec2 cell = wrapCell(map, cellAt(mapPoint.xy));
+    vec4 corners = cellCorners(map, heights, cell, hit.fetches);
+    vec2 g = patchGradient(corners, clamp(cellLocal(map, cell, mapPoint.xy), 0.0, 1.0));
+#if MICRORELIEF_BASE == 0
+    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
+#endif
+    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
+    hit.kind = RELIEF_TOP;
+    hit.t = t;
+    hit.position = mapPoint;
+    hit.normal = vec3(-g, 1.0);
+}
+
 // The end of an exact walk over start + t dir, t in [0, tExit], that found no hit: a ray
 // that leaves the plane's box through its floor hits it at the exit point (where the
 // surface is 0). The exact root lies right at the end of the walk, where rounding can push

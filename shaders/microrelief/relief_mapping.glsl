@@ -40,7 +40,7 @@ ReliefHit traceReliefMapping(ReliefMap map, sampler2D heights, vec3 origin, vec3
             above = middle;
         }
     }
-    setTopHitAt(hit, map, heights, below.t, origin + below.t * dir);
+    setMapTopHitAt(hit, map, heights, below.t, origin + below.t * dir);
     return hit;
 }
 

@@ -23,7 +23,7 @@ ReliefHit traceSteepParallax(ReliefMap map, sampler2D heights, vec3 origin, vec3
     ReliefHit hit = reliefMissHit();
     LayerSample above, below;
     if (marchLayers(map, heights, origin, dir, layers, hit, above, below)) {
-        setTopHitAt(hit, map, heights, below.t, origin + below.t * dir);
+        setMapTopHitAt(hit, map, heights, below.t, origin + below.t * dir);
     }
     return hit;
 }

@@ -49,9 +49,11 @@ bool methodTracesTheSolid(Method method) {
 }
 
 void checkMethodSupportsBase(Method method, const BaseShape& base) {
-    if (!base.curved() || method == Method::Multilevel || method == Method::MaxMip) return;
+    if (!base.curved() || method == Method::Multilevel || method == Method::MaxMip ||
+        method == Method::Pom || method == Method::Relief)
+        return;
     throwBadInput(std::string("--method ") + methodName(method) + " does not run on --base " +
-                  baseName(base) + " (curved bases take multilevel and maxmip)");
+                  baseName(base) + " (curved bases take multilevel, maxmip, pom and relief)");
 }
 
 DebugView parseDebugView(const std::string& name) {

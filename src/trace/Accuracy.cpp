@@ -112,9 +112,10 @@ Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& cam
 }
 
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
-                              const HeightMap& map, double heightScale, const BaseShape& base) {
+                              const HeightMap& map, double heightScale, const BaseShape& base,
+                              AccuracyScope scope) {
     return compareWithReference(frame, camera,
-                                traceReferencePicture(camera, map, heightScale, base));
+                                traceReferencePicture(camera, map, heightScale, base), scope);
 }
 
 }  // namespace microrelief

@@ -83,6 +83,7 @@ Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& cam
                               const ReferencePicture& reference,
                               AccuracyScope scope = AccuracyScope::AllPixels);
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
-                              const HeightMap& map, double heightScale, const BaseShape& base = {});
+                              const HeightMap& map, double heightScale, const BaseShape& base = {},
+                              AccuracyScope scope = AccuracyScope::AllPixels);
 
 }  // namespace microrelief

@@ -432,6 +432,45 @@ TEST_F(Peers, MaxMipIsExactOnCurvedBases) {
     }
 }
 
+// pom and relief on a curved base, as engines ship them there: marching in the tangent
+// frame where the ray enters the shell, blind to the curvature beyond. Looking straight
+// at the globe they come close with enough steps; towards the limb, where the surface
+// curves away from the tangent plane within a few texels, their hits sink below it or
+// miss it, whatever the budget.
+TEST_F(Peers, TangentFrameMethodsAreBlindToTheCurvature) {
+    const HeightMap map = synth::cobbles(128, 64, 6);
+    const BaseShape base = BaseShape::sphere(0.4);
+    const auto render = [&](Method method, const Camera& camera) {
+        RenderJob job;
+        job.camera = camera;
+        job.width = job.height = 64;
+        job.base = base;
+        job.method.method = method;
+        job.method.setSteps(256);
+        const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
+        const test::Accuracy a = test::compareWithReference(r.frame, r.camera, map, job.heightScale,
+                                                            base, AccuracyScope::TopSurface);
+        std::printf("    %-10s on the sphere: %s\n", methodName(method), a.summary().c_str());
+        return a;
+    };
+    Camera facing = test::orbitCamera(10.0, 60.0, 1.0), limb;
+    facing.fovyDegrees = 20.0;
+    limb.eye = {0.1, 0.25, 0.9};
+    limb.target = {0.38, 0.05, 0.0};
+    limb.fovyDegrees = 30.0;
+    for (Method method : {Method::Pom, Method::Relief}) {
+        EXPECT_LT(render(method, facing).offHalfTexelPercent(), 3.0) << methodName(method);
+        // Measured: 1.1 % of pixels hit/miss, 1.7 % of hits off, with 256 steps;
+        // the exact method has none of either on the same view.
+        const test::Accuracy atLimb = render(method, limb);
+        EXPECT_GT(atLimb.coverageMismatchPercent(), 0.5) << methodName(method);
+        EXPECT_GT(atLimb.offHalfTexelPercent(), 1.0) << methodName(method);
+    }
+    const test::Accuracy exact = render(Method::Multilevel, limb);
+    EXPECT_LE(exact.offHalfTexelPercent(), 0.2);
+    EXPECT_LE(exact.coverageMismatchPercent(), 0.1);
+}
+
 TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
     for (Method method : {Method::Steep, Method::Pom, Method::Relief}) {
         const test::Accuracy few = measure(method, 8), many = measure(method, 512);

@@ -289,6 +289,53 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
     }
 }
 
+// The same on the curved bases: the twin's seam (base/) and the shader's (base_surface.glsl)
+// make the same footprints up to their margins (the shader's float ones are wider: a
+// footprint near a texel boundary may reach over it in one and not the other).
+TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwinOnCurvedBases) {
+    const HeightMap map = synth::cobbles(128, 64, 3);
+    const float heightScale = 0.12f;
+    GlContext& context = test::glContext();
+    context.makeCurrent();
+    GLint major = 0;
+    context.gl().GetIntegerv(GL_MAJOR_VERSION, &major);
+    const int size = 64;
+    OffscreenTarget target(context.gl(), size, size);
+    for (const BaseShape& base : {BaseShape::cylinder(0.3, 0.8), BaseShape::sphere(0.4)}) {
+        ReliefRenderer renderer(context.gl(), shaderDirectory());
+        renderer.setHeightScale(heightScale);
+        renderer.setHeightMap(map, "cobbles", base);
+        renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
+        const MultilevelTracer twin(map, heightScale, base);
+        for (double elevation : {35.0, 5.0}) {
+            const CameraFrame camera =
+                resolveCamera(test::orbitCamera(elevation, -70.0, 1.4), size, size, 2.0);
+            target.clear(glm::vec3(0.0f));
+            renderer.draw(camera, ShadingOptions{});
+            const RenderedFrame frame = target.read();
+            std::size_t traced = 0, sameIterations = 0, sameFetches = 0;
+            for (int row = 0; row < size; ++row) {
+                for (int column = 0; column < size; ++column) {
+                    const float* gpu = &frame.stats[4 * (std::size_t(row) * size + column)];
+                    if (gpu[0] == 0.0f) continue;
+                    TraversalStats cpu;
+                    twin.intersect(camera.pixelRay(column, row), &cpu);
+                    ++traced;
+                    sameIterations += cpu.iterations == static_cast<int>(gpu[0]);
+                    sameFetches += cpu.fetches == static_cast<int>(gpu[1]);
+                }
+            }
+            std::printf("    %-8s %2.0f deg: %zu rays, same segments %zu, same fetches %zu\n",
+                        baseName(base).c_str(), elevation, traced, sameIterations, sameFetches);
+            ASSERT_GT(traced, std::size_t(size * size / 8));
+            EXPECT_GE(sameIterations, traced * 99 / 100) << baseName(base) << " " << elevation;
+            if (major >= 4) {
+                EXPECT_GE(sameFetches, traced * 99 / 100) << baseName(base) << " " << elevation;
+            }
+        }
+    }
+}
+
 // The accuracy-controlled level of detail (--pixel-error e) takes the max box of a window
 // that projects to at most e pixels for the surface. Its bound: the box holds the solid,
 // so a hit is never farther along the ray than the exact one and every exact hit stays a

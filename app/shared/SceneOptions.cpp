@@ -168,6 +168,11 @@ BaseShape parseBase(const std::string& name, const std::optional<double>& radius
     const auto refuse = [&](const char* flag) {
         throwBadInput(std::string(flag) + " does not apply to --base " + name);
     };
+    for (const auto& [flag, value] :
+         {std::pair{"--radius", radius}, std::pair{"--length", length}}) {
+        if (value && !(*value > 0.0 && std::isfinite(*value)))
+            throwBadInput(std::string(flag) + " must be a positive finite number");
+    }
     BaseShape shape;
     switch (kind) {
         case BaseKind::Plane:

@@ -110,6 +110,45 @@ TEST_F(RenderCli, BadArgumentsExitTwo) {
     expectFailure(run(small + "--aov " + (dir / "x.png").string()), 2, "x.png");
 }
 
+// The base surface's flags (scene-and-cli.md, "Base surfaces"): an unknown base, a size
+// that is zero, negative or not finite, a size flag the base has not: exit 2, one line
+// naming the flag, nothing written.
+TEST_F(RenderCli, BadBaseSurfacesExitTwoAndWriteNothing) {
+    const auto out = dir / "never.png";
+    const std::string to = " --out " + out.string();
+    expectFailure(run(small + "--base torus" + to), 2, "--base");
+    expectFailure(run(small + "--base cylinder --radius 0" + to), 2, "--radius");
+    expectFailure(run(small + "--base cylinder --radius -0.3" + to), 2, "--radius");
+    expectFailure(run(small + "--base cylinder --length inf" + to), 2, "--length");
+    expectFailure(run(small + "--base cylinder --length nan" + to), 2, "--length");
+    expectFailure(run(small + "--base ellipsoid --radii 0.5,0,0.5" + to), 2, "--radii");
+    expectFailure(run(small + "--base ellipsoid --radii 0.5,0.5" + to), 2, "--radii");
+    expectFailure(run(small + "--base sphere --radius -1" + to), 2, "--radius");
+    expectFailure(run(small + "--radius 0.3" + to), 2, "--radius");  // the plane has none
+    expectFailure(run(small + "--base plane --length 2" + to), 2, "--length");
+    expectFailure(run(small + "--base sphere --length 2" + to), 2, "--length");
+    expectFailure(run(small + "--base sphere --radii 1,1,1" + to), 2, "--radii");
+    expectFailure(run(small + "--base ellipsoid --radius 1" + to), 2, "--radius");
+    expectFailure(run(small + "--base cylinder --method steep" + to), 2, "--method");
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Each base renders, and --compare-reference holds it to the reference.
+TEST_F(RenderCli, EveryBaseRendersExactly) {
+    for (const char* base :
+         {"--base plane", "--base cylinder --radius 0.3 --length 0.8", "--base sphere --radius 0.4",
+          "--base ellipsoid --radii 0.45,0.35,0.3"}) {
+        const auto out = dir / "base.png";
+        const test::RunResult r = run(small + base + " --eye 0.9,0.5,0.8 --target 0,0,0 --out " +
+                                      out.string() + " --compare-reference");
+        ASSERT_EQ(r.status, 0) << base << ": " << r.err;
+        EXPECT_NE(r.out.find("hit/miss disagreement               0 px"), std::string::npos)
+            << base << ":\n"
+            << r.out;
+        EXPECT_TRUE(std::filesystem::exists(out)) << base;
+    }
+}
+
 TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     const auto out = dir / "keep.png";
     test::writeBytes(out, {'o', 'l', 'd'});

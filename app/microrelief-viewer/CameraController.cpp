@@ -126,4 +126,11 @@ void CameraController::setFovy(double degrees) {
     camera_.fovyDegrees = std::clamp(degrees, 1.0, 170.0);
 }
 
+void CameraController::frame(const glm::dvec3& centre, double radius) {
+    const double halfAngle = glm::radians(0.5 * camera_.fovyDegrees);
+    const double distance = std::max(radius / std::sin(halfAngle), kMinDistance);
+    camera_.eye = centre - forward() * distance;
+    camera_.target = centre;
+}
+
 }  // namespace microrelief

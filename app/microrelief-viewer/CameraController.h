@@ -37,6 +37,9 @@ public:
     // Orbit about `point` from now on; the eye stays where it is.
     void setTarget(const glm::dvec3& point);
     void setFovy(double degrees);
+    // Looks at `centre` along the current view direction from just far enough that a
+    // sphere of `radius` about it fills the view.
+    void frame(const glm::dvec3& centre, double radius);
     void reset() { camera_ = initial_; }
 
     // Yaw (about +y, from +x towards +z) and pitch (above the horizon) of the view, degrees.

@@ -13,17 +13,22 @@ void ReliefPicker::setHeightScale(double heightScale) {
     tracer_.reset();
 }
 
+void ReliefPicker::setBase(const BaseShape& base) {
+    if (base == base_) return;
+    base_ = base;
+    tracer_.reset();
+}
+
 std::optional<PickResult> ReliefPicker::pick(const CameraFrame& camera, int column, int row) {
     if (!map_ || column < 0 || row < 0 || column >= camera.width || row >= camera.height)
         return std::nullopt;
     // Built lazily: dragging the height-scale slider must not rebuild the pyramid for
     // every intermediate value.
-    if (!tracer_) tracer_ = std::make_unique<MultilevelTracer>(*map_, heightScale_);
+    if (!tracer_) tracer_ = std::make_unique<MultilevelTracer>(*map_, heightScale_, base_);
     TraversalStats stats;
     const std::optional<ReliefHit> hit = tracer_->intersect(camera.pixelRay(column, row), &stats);
     if (!hit) return std::nullopt;
-    return PickResult{hit->uv, hit->position.y / heightScale_, hit->position, hit->face,
-                      stats.iterations};
+    return PickResult{hit->uv, hit->height, hit->position, hit->face, stats.iterations};
 }
 
 }  // namespace microrelief

@@ -14,7 +14,7 @@ namespace microrelief {
 
 struct PickResult {
     glm::dvec2 uv;        // map uv of the hit
-    double height = 0.0;  // the map's value h(u, v) there (world y over the height scale)
+    double height = 0.0;  // the map's value h(u, v) there
     glm::dvec3 position;  // world
     HitFace face = HitFace::Top;
     int iterations = 0;  // segments the traversal visited
@@ -25,6 +25,7 @@ public:
     // A new map or height scale; the tracer (its max pyramid) is rebuilt on the next pick.
     void setMap(std::shared_ptr<const HeightMap> map);
     void setHeightScale(double heightScale);
+    void setBase(const BaseShape& base);
 
     // The hit along the ray through pixel (column, row) of `camera`, or nothing.
     std::optional<PickResult> pick(const CameraFrame& camera, int column, int row);
@@ -32,6 +33,7 @@ public:
 private:
     std::shared_ptr<const HeightMap> map_;
     double heightScale_ = 0.1;
+    BaseShape base_;
     std::unique_ptr<MultilevelTracer> tracer_;
 };
 

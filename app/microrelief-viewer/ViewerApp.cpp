@@ -60,7 +60,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     // A degenerate camera is a bad argument: refuse it before any window opens.
     resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
                   sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
-                                           options.scene.job.heightScale)));
+                                           options.scene.job.heightScale, options.scene.job.base)));
 
     state_.mapName = file.filename().string();
     setupWindow();
@@ -69,11 +69,12 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     renderer_ = std::make_unique<ReliefRenderer>(gl, shaders);
     renderer_->setMethod(options.scene.job.method);
     renderer_->setHeightScale(options.scene.job.heightScale);
-    renderer_->setHeightMap(*map_, file.string());
+    renderer_->setHeightMap(*map_, file.string(), options.scene.job.base);
     timer_ = std::make_unique<GpuTimer>(gl);
     watcher_ = std::make_unique<ShaderWatcher>(shaders);
     picker_.setMap(map_);
     picker_.setHeightScale(options.scene.job.heightScale);
+    picker_.setBase(options.scene.job.base);
 
     if (state_.scene.heightFile)
         state_.scene.heightFile = std::filesystem::absolute(*state_.scene.heightFile);
@@ -291,6 +292,7 @@ void ViewerApp::applyPanel(const PanelActions& a) {
         renderer_->setHeightScale(state_.scene.job.heightScale);
         picker_.setHeightScale(state_.scene.job.heightScale);
     }
+    if (a.baseChanged) setBase(a.baseKindChanged);
     if (a.fovyChanged) controller_.setFovy(state_.scene.job.camera.fovyDegrees);
     if (a.methodChanged) setMethod();
     if (a.resetView) controller_.reset();
@@ -392,7 +394,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     const std::filesystem::path path = file.value_or(defaultHeightMapPath());
     try {
         auto map = std::make_shared<const HeightMap>(loadHeightMap(path, state_.scene.load));
-        renderer_->setHeightMap(*map, path.string());
+        renderer_->setHeightMap(*map, path.string(), state_.scene.job.base);
         map_ = std::move(map);
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
@@ -441,6 +443,32 @@ void ViewerApp::setMethod() {
         state_.shaderError = e.what();
         note(std::string("shader error, previous method kept: ") + e.what());
     }
+}
+
+void ViewerApp::setBase(bool frame) {
+    const BaseShape base = state_.scene.job.base;
+    try {
+        // Between the plane and a curved base the pyramid is built anew (u wraps).
+        if (base.wrapsU() != renderer_->base().wrapsU()) {
+            renderer_->setHeightMap(*map_, state_.mapName, base);
+        } else {
+            renderer_->setBase(base);
+        }
+    } catch (const Error& e) {
+        state_.scene.job.base = renderer_->base();  // the renderer keeps the base that works
+        note(std::string("base surface not changed: ") + e.what());
+        return;
+    }
+    picker_.setBase(base);
+    ++mapGeneration_;
+    if (!frame) return;
+    // The new object fills the view from where the camera looks now: the target at the
+    // middle of its box, the eye back along the view until the box's sphere fits.
+    const ReliefExtent extent =
+        reliefExtent(map_->width, map_->height, mapMaxHeight_, state_.scene.job.heightScale, base);
+    const glm::dvec3 centre = 0.5 * (extent.min + extent.max);
+    const double radius = 0.5 * glm::length(extent.max - extent.min);
+    controller_.frame(centre, radius);
 }
 
 void ViewerApp::takeScreenshot() {
@@ -514,9 +542,10 @@ ViewerApp::ViewRect ViewerApp::viewRect() const {
 
 CameraFrame ViewerApp::cameraFrame() const {
     const glm::ivec2 size = viewSize();
-    return resolveCamera(controller_.camera(), size.x, size.y,
-                         sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
-                                                  state_.scene.job.heightScale)));
+    return resolveCamera(
+        controller_.camera(), size.x, size.y,
+        sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
+                                 state_.scene.job.heightScale, state_.scene.job.base)));
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {

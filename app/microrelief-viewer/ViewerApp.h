@@ -75,6 +75,8 @@ private:
     void openMap(const std::optional<std::filesystem::path>& file);
     void reloadShaders();
     void setMethod();
+    // The base surface in the panel's state; `frame`: point the view at the new object.
+    void setBase(bool frame);
     void takeScreenshot();
     void copyCommand();
     void setVsync(bool on);

@@ -32,6 +32,40 @@ namespace {
 
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
 
+// The base surface the map is laid over, and its size. A new base starts at the sizes
+// microrelief-render gives it by default.
+void baseControls(BaseShape& base, PanelActions& actions) {
+    const char* names[] = {"plane", "cylinder", "ellipsoid", "sphere"};
+    const std::string name = baseName(base);
+    int index = static_cast<int>(std::find(names, names + 4, name) - names);
+    if (ImGui::Combo("Base surface", &index, names, IM_ARRAYSIZE(names))) {
+        base = index == 1   ? BaseShape::cylinder()
+               : index == 2 ? BaseShape::ellipsoid({0.5, 0.35, 0.4})
+               : index == 3 ? BaseShape::sphere()
+                            : BaseShape::plane();
+        actions.baseKindChanged = actions.baseChanged = true;
+    }
+    const auto size = [&](const char* label, double& value) {
+        float v = static_cast<float>(value);
+        if (ImGui::SliderFloat(label, &v, 0.05f, 2.0f, "%.3f", ImGuiSliderFlags_Logarithmic)) {
+            value = std::max(v, 0.01f);
+            actions.baseChanged = true;
+        }
+    };
+    if (base.kind == BaseKind::Cylinder) {
+        size("Radius", base.radius);
+        size("Length", base.length);
+    } else if (name == "sphere") {
+        double radius = base.radii.x;
+        size("Radius", radius);
+        base.radii = glm::dvec3(radius);
+    } else if (base.kind == BaseKind::Ellipsoid) {
+        size("Radius x", base.radii.x);
+        size("Radius y", base.radii.y);
+        size("Radius z", base.radii.z);
+    }
+}
+
 void mapSection(ViewerState& s, PanelActions& actions) {
     if (!ImGui::CollapsingHeader("Height map", ImGuiTreeNodeFlags_DefaultOpen)) return;
     ImGui::TextWrapped("%s", s.mapName.c_str());
@@ -54,6 +88,7 @@ void mapSection(ViewerState& s, PanelActions& actions) {
         s.scene.job.heightScale = std::max(s.scene.job.heightScale, 1e-4f);
         actions.heightScaleChanged = true;
     }
+    baseControls(s.scene.job.base, actions);
 }
 
 // The light as azimuth and elevation, written back only when the user moves a slider,

@@ -45,6 +45,8 @@ struct PanelActions {
     std::optional<std::filesystem::path> openMap;  // a path typed into the panel
     bool reloadMap = false;                        // channel or normalisation changed
     bool heightScaleChanged = false;
+    bool baseChanged = false;      // a size of the base surface
+    bool baseKindChanged = false;  // another base surface: the view frames it
     bool fovyChanged = false;
     bool methodChanged = false;
     bool screenshot = false;

@@ -280,6 +280,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
         hit.normal = base_->worldNormal(frameNormal);
         const glm::dvec3 m = base_->mapPoint(ray.at(t));
         hit.uv = {m.x / map_.width, m.y / map_.height};
+        hit.height = m.z;
         return hit;
     };
 

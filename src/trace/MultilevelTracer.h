@@ -33,6 +33,7 @@ struct ReliefHit {
     glm::dvec3 position;  // world
     glm::dvec3 normal;    // world, unit, outward
     glm::dvec2 uv;        // map uv
+    double height = 0.0;  // h of the hit's map point (the map's value there, on the surface)
 };
 
 class MultilevelTracer {

@@ -222,6 +222,15 @@ TEST_F(ViewerUnderX, PeerMethodsAndTheirKnobsCarryOver) {
     compareWithRender("pixelerror", "--pixel-error 1.5 --view level --size 120x90");
 }
 
+TEST_F(ViewerUnderX, CurvedBasesCarryOver) {
+    compareWithRender("cylinder",
+                      "--base cylinder --radius 0.25 --length 0.9 --eye 0.7,0.4,0.9 "
+                      "--target 0,0,0 --size 120x90");
+    compareWithRender("ellipsoid",
+                      "--base ellipsoid --radii=0.5,0.3,0.4 --method maxmip "
+                      "--eye=-0.5,0.6,0.9 --target 0,0,0 --size 120x90");
+}
+
 TEST_F(ViewerUnderX, StraightDownWithTheSpecsOrientation) {
     compareWithRender("topdown", "--eye 0,1.6,0 --target 0,0,0 --up 0,0,-1 --size 96x96");
 }

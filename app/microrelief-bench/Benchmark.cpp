@@ -20,20 +20,6 @@ double median(std::vector<double> values) {
     return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-// A camera looking at the relief's centre with `degrees` between the view direction and
-// the surface normal (0: straight down).
-Camera viewCamera(int degrees, double top) {
-    const double elevation = glm::radians(90.0 - degrees), azimuth = glm::radians(35.0);
-    Camera camera;
-    camera.target = {0.0, 0.5 * top, 0.0};
-    camera.eye = camera.target + 1.35 * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
-                                                   std::sin(elevation),
-                                                   std::cos(elevation) * std::sin(azimuth));
-    camera.up = degrees == 0 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
-    camera.fovyDegrees = 45.0;
-    return camera;
-}
-
 bool rayMeetsBox(const Ray& ray, const glm::dvec3& lo, const glm::dvec3& hi) {
     double t0 = 0.0, t1 = 1e300;
     for (int a = 0; a < 3; ++a) {
@@ -93,6 +79,33 @@ HeightMap benchRelief(int n) {
     return synth::cobbles(n, n, 7);
 }
 
+std::string mapOnBase(const std::string& name, const BaseShape& base) {
+    return base.curved() ? name + "-" + baseName(base) : name;
+}
+
+Camera viewCamera(int degrees, const BaseShape& base, double top) {
+    const double tilt = glm::radians(static_cast<double>(degrees));
+    Camera camera;
+    camera.fovyDegrees = 45.0;
+    if (!base.curved()) {
+        const double elevation = glm::radians(90.0 - degrees), azimuth = glm::radians(35.0);
+        camera.target = {0.0, 0.5 * top, 0.0};
+        camera.eye = camera.target + 1.35 * glm::dvec3(std::cos(elevation) * std::cos(azimuth),
+                                                       std::sin(elevation),
+                                                       std::cos(elevation) * std::sin(azimuth));
+        camera.up = degrees == 0 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
+        return camera;
+    }
+    // u = 0.6 on the equator: the frame direction (sin phi, 0, cos phi), phi = 36 degrees.
+    const double phi = 2.0 * 3.14159265358979 * (0.6 - 0.5);
+    const glm::dvec3 scale = base.frameScale(), out(std::sin(phi), 0.0, std::cos(phi));
+    camera.target = (1.0 + 0.5 * top) * out * scale;
+    const glm::dvec3 normal = glm::normalize(out / scale), up(0.0, 1.0, 0.0);
+    camera.eye = camera.target + 1.35 * (std::cos(tilt) * normal + std::sin(tilt) * up);
+    camera.up = -std::sin(tilt) * normal + std::cos(tilt) * up;  // square to the view
+    return camera;
+}
+
 std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
     std::vector<Setting> settings;
     MethodSettings s;
@@ -127,21 +140,28 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
 
     for (const BenchMap& m : maps) {
         renderer.setHeightScale(static_cast<float>(m.heightScale));
-        renderer.setHeightMap(*m.map, m.name);
+        renderer.setMethod(MethodSettings{});  // runs on every base
+        renderer.setHeightMap(*m.map, m.name, m.base);
         const int mapSize = std::max(m.map->width, m.map->height);
-        const ReliefExtent extent = reliefExtent(*m.map, m.heightScale);
+        const ReliefExtent extent = reliefExtent(*m.map, m.heightScale, m.base);
         for (int degrees : options.viewDegrees) {
             const CameraFrame camera =
-                resolveCamera(viewCamera(degrees, extent.topHeight), options.width, options.height,
-                              sceneRadius(extent));
-            const ReferencePicture reference = traceReferencePicture(camera, *m.map, m.heightScale);
+                resolveCamera(viewCamera(degrees, m.base, extent.topHeight), options.width,
+                              options.height, sceneRadius(extent));
+            const ReferencePicture reference =
+                traceReferencePicture(camera, *m.map, m.heightScale, m.base);
             const std::vector<bool> inBox = pixelsInBox(camera, extent);
+            std::size_t referenceHits = 0;
+            for (const auto& hit : reference.hits) referenceHits += hit.has_value();
             for (Method method : options.methods) {
+                if (!methodRunsOnBase(method, m.base)) continue;
                 for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps)) {
                     Measurement r;
                     r.method = methodName(method);
                     r.param = setting.param;
                     r.map = m.name;
+                    r.base = baseName(m.base);
+                    r.hitPct = 100.0 * referenceHits / reference.hits.size();
                     r.mapSize = mapSize;
                     r.viewDegrees = degrees;
                     r.width = options.width;

@@ -15,9 +15,10 @@
 namespace microrelief::bench {
 
 struct BenchMap {
-    std::string name;  // kResampledRelief, or the asset's file stem
+    std::string name;  // kResampledRelief, or the asset's file stem; "-cylinder" etc. appended
     std::shared_ptr<const HeightMap> map;
     double heightScale = 0.1;
+    BaseShape base = {};
 };
 
 struct Setting {
@@ -27,6 +28,7 @@ struct Setting {
 
 struct Measurement {
     std::string method, param, map;
+    std::string base = "plane";
     int mapSize = 0;      // max(W, H)
     int viewDegrees = 0;  // between the view direction and the surface normal
     int width = 0, height = 0;
@@ -43,6 +45,7 @@ struct Measurement {
     double meanErrorPx = 0.0;  // hits' distance from the exact ones, in pixels there
     double p99ErrorPx = 0.0;
     std::size_t exhausted = 0;
+    double hitPct = 0.0;  // pixels whose exact ray hits the relief: the covered area
 };
 
 struct BenchOptions {
@@ -53,6 +56,7 @@ struct BenchOptions {
     int maxSteps = 4096;  // cap on the step budgets of steep, pom and relief
     int frames = 10;      // timed frames per measurement, after warm-up
     std::vector<Method> methods;
+    std::vector<BaseShape> bases{BaseShape::plane()};  // each map on each base
 };
 
 // The knob settings measured for `method` on a map of `mapSize` texels: step budgets in
@@ -70,5 +74,14 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
 // that step-based methods must not step over.
 HeightMap benchRelief(int n);
 inline const std::string kResampledRelief = "relief";
+
+// The name a map goes by on a base: "relief" on the plane, "relief-cylinder", ...
+std::string mapOnBase(const std::string& name, const BaseShape& base);
+
+// A camera looking at the relief halfway up it, at a point of the base whose normal makes
+// `degrees` with the view direction (0: straight at it), from 1.35 units away: on the plane
+// the map's centre, seen from azimuth 35 degrees; on a curved base the point at u = 0.6
+// on the equator (the middle of the column), tilted towards +y.
+Camera viewCamera(int degrees, const BaseShape& base, double top);
 
 }  // namespace microrelief::bench

@@ -114,26 +114,104 @@ std::vector<std::string> methods(const std::vector<Measurement>& rows) {
     return out;
 }
 
+// Issue 11's figures for the curved bases: the multilevel method on the column and the
+// sphere beside the plane, the same map and view; its fetches against 2 (log2 N + 1);
+// the growth from 256 to the largest map beside the plane's; what pom and relief get
+// wrong at their largest budget.
+std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
+    std::vector<std::string> curved;
+    for (const Measurement& r : rows) {
+        if (r.base != "plane" && r.map.rfind(kResampledRelief + "-", 0) == 0 &&
+            std::find(curved.begin(), curved.end(), r.map) == curved.end())
+            curved.push_back(r.map);
+    }
+    if (curved.empty()) return "";
+    std::ostringstream md;
+    md << "\nCurved bases, multilevel method exact, beside the plane for the same map and view "
+          "(hit %: pixels the relief covers; fetches target: 2 (log2 N + 1)); pom and relief at "
+          "their largest budget, on the pixels whose rays come in through the shell:\n\n";
+    md << "| map | size | view | ms | plane ms | vs plane | hit % (plane) | fetches (target) | "
+          "pom off % / mismatch % | relief off % / mismatch % |\n"
+          "|---|---|---|---|---|---|---|---|---|---|\n";
+    const auto largest = [&](const Key& key, const std::string& method) {
+        const Measurement* best = nullptr;
+        for (const Measurement& r : rows) {
+            if (Key{r.map, r.mapSize, r.viewDegrees} == key && r.method == method &&
+                (!best || std::stoi(r.param) > std::stoi(best->param)))
+                best = &r;
+        }
+        return best;
+    };
+    for (const Key& key : keys(rows)) {
+        if (std::find(curved.begin(), curved.end(), std::get<0>(key)) == curved.end()) continue;
+        const Measurement* ml = find(rows, key, "multilevel", "exact");
+        const Measurement* plane = find(
+            rows, Key{kResampledRelief, std::get<1>(key), std::get<2>(key)}, "multilevel", "exact");
+        if (!ml) continue;
+        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
+           << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
+           << (plane ? fixed(frameMs(*plane, wall), 2) : "-") << " | "
+           << (plane ? fixed(frameMs(*ml, wall) / frameMs(*plane, wall), 2) + "x" : "-") << " | "
+           << fixed(ml->hitPct, 0) << " (" << (plane ? fixed(plane->hitPct, 0) : "-") << ") | "
+           << fixed(ml->fetchesMean, 1) << " (" << fixed(2.0 * (std::log2(ml->mapSize) + 1.0), 0)
+           << ") |";
+        for (const char* peer : {"pom", "relief"}) {
+            const Measurement* p = largest(key, peer);
+            if (p) {
+                md << ' ' << p->param << ": " << fixed(p->topOffHalfTexelPct, 2) << " / "
+                   << fixed(p->topCoverageMismatchPct, 2) << " |";
+            } else {
+                md << " - |";
+            }
+        }
+        md << '\n';
+    }
+    // Growth with the map's size at the view nearest 45 degrees, against the plane's.
+    for (const std::string& name : curved) {
+        std::map<int, const Measurement*> exact, flat;
+        int view = -1;
+        for (const Measurement& r : rows) {
+            if (r.map == name && (view < 0 || std::abs(r.viewDegrees - 45) < std::abs(view - 45)))
+                view = r.viewDegrees;
+        }
+        for (const Measurement& r : rows) {
+            if (r.method != "multilevel" || r.param != "exact" || r.viewDegrees != view) continue;
+            if (r.map == name) exact[r.mapSize] = &r;
+            if (r.map == kResampledRelief) flat[r.mapSize] = &r;
+        }
+        if (!exact.count(256) || exact.size() < 2) continue;
+        const int big = exact.rbegin()->first;
+        md << "- " << name << ": time at " << big << " / time at 256, " << view
+           << "°: " << fixed(frameMs(*exact[big], wall) / frameMs(*exact[256], wall), 2);
+        if (flat.count(256) && flat.count(big))
+            md << " (the plane's: "
+               << fixed(frameMs(*flat[big], wall) / frameMs(*flat[256], wall), 2)
+               << "; target: no worse)";
+        md << ".\n";
+    }
+    return md.str();
+}
+
 }  // namespace
 
 void writeCsv(const std::filesystem::path& file, const RunInfo& info,
               const std::vector<Measurement>& rows) {
     std::ostringstream out;
     // One literal per group of columns, each name whole.
-    out << "method,param,map,map_size,view_deg,width,height,"
+    out << "method,param,map,base,map_size,view_deg,width,height,"
            "ms_median,ms_wall_median,fetches_mean,fetches_max,"
            "coverage_mismatch_pct,off_half_texel_pct,"
            "top_coverage_mismatch_pct,top_off_half_texel_pct,"
-           "mean_error_px,p99_error_px,exhausted_px,renderer\n";
+           "mean_error_px,p99_error_px,exhausted_px,hit_pct,renderer\n";
     for (const Measurement& r : rows) {
-        out << r.method << ',' << r.param << ',' << r.map << ',' << r.mapSize << ','
-            << r.viewDegrees << ',' << r.width << ',' << r.height << ',' << fixed(r.msMedian, 4)
-            << ',' << fixed(r.msWallMedian, 4) << ',' << fixed(r.fetchesMean, 2) << ','
-            << fixed(r.fetchesMax, 0) << ',' << fixed(r.coverageMismatchPct, 4) << ','
-            << fixed(r.offHalfTexelPct, 4) << ',' << fixed(r.topCoverageMismatchPct, 4) << ','
-            << fixed(r.topOffHalfTexelPct, 4) << ',' << fixed(r.meanErrorPx, 3) << ','
-            << fixed(r.p99ErrorPx, 3) << ',' << r.exhausted << ',' << csvQuote(info.renderer)
-            << '\n';
+        out << r.method << ',' << r.param << ',' << r.map << ',' << r.base << ',' << r.mapSize
+            << ',' << r.viewDegrees << ',' << r.width << ',' << r.height << ','
+            << fixed(r.msMedian, 4) << ',' << fixed(r.msWallMedian, 4) << ','
+            << fixed(r.fetchesMean, 2) << ',' << fixed(r.fetchesMax, 0) << ','
+            << fixed(r.coverageMismatchPct, 4) << ',' << fixed(r.offHalfTexelPct, 4) << ','
+            << fixed(r.topCoverageMismatchPct, 4) << ',' << fixed(r.topOffHalfTexelPct, 4) << ','
+            << fixed(r.meanErrorPx, 3) << ',' << fixed(r.p99ErrorPx, 3) << ',' << r.exhausted << ','
+            << fixed(r.hitPct, 2) << ',' << csvQuote(info.renderer) << '\n';
     }
     writeTextAtomically(file, out.str());
 }
@@ -238,6 +316,7 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         md << "- Mean fetches per pixel at " << size << ": " << fixed(r->fetchesMean, 1)
            << " (target <= " << fixed(budget, 0) << ").\n";
     }
+    md << curvedSection(rows, wall);
     writeTextAtomically(file, md.str());
     return md.str();
 }

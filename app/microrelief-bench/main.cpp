@@ -28,15 +28,19 @@ std::string today() {
 
 std::vector<BenchMap> loadMaps(const BenchOptions& options) {
     std::vector<BenchMap> maps;
+    // Each map on each base, the bases of one map together (a map is made once).
     for (int n : options.mapSizes) {
         std::cout << "microrelief-bench: making the " << n << "x" << n << " relief\n" << std::flush;
-        maps.push_back({kResampledRelief, std::make_shared<const HeightMap>(benchRelief(n)), 0.1});
+        const auto relief = std::make_shared<const HeightMap>(benchRelief(n));
+        for (const BaseShape& base : options.bases)
+            maps.push_back({mapOnBase(kResampledRelief, base), relief, 0.1, base});
     }
     for (const std::string& file : options.assets) {
         const std::filesystem::path path =
             file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);
-        maps.push_back(
-            {path.stem().string(), std::make_shared<const HeightMap>(loadHeightMap(path)), 0.1});
+        const auto map = std::make_shared<const HeightMap>(loadHeightMap(path));
+        for (const BaseShape& base : options.bases)
+            maps.push_back({mapOnBase(path.stem().string(), base), map, 0.1, base});
     }
     return maps;
 }
@@ -45,6 +49,7 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
     std::size_t n = 0;
     for (const BenchMap& m : maps) {
         for (Method method : options.methods) {
+            if (!methodRunsOnBase(method, m.base)) continue;
             n +=
                 settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps).size();
         }
@@ -60,6 +65,7 @@ int main(int argc, char** argv) {
     bool quick = false;
     std::string size = "512x512", backend = "auto", outDir = "out/bench";
     std::string methodList = "multilevel,maxmip,normal,offset,steep,pom,relief";
+    std::string baseList = "plane,cylinder,sphere";
     BenchOptions options;
     app.add_flag("--quick", quick,
                  "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
@@ -70,6 +76,10 @@ int main(int argc, char** argv) {
                    "Timed frames per measurement, after two warm-up frames")
         ->capture_default_str();
     app.add_option("--methods", methodList, "Comma-separated methods")->capture_default_str();
+    app.add_option("--bases", baseList,
+                   "Comma-separated base surfaces, each at microrelief-render's default size "
+                   "(curved bases take multilevel, maxmip, pom and relief)")
+        ->capture_default_str();
     app.add_option("--backend", backend, "auto, egl or osmesa")->capture_default_str();
     app.add_option("--out-dir", outDir, "Folder for bench.csv, bench.md and the plots")
         ->capture_default_str();
@@ -100,6 +110,16 @@ int main(int argc, char** argv) {
         std::stringstream list(methodList);
         for (std::string name; std::getline(list, name, ',');)
             options.methods.push_back(parseMethod(name));
+        options.bases.clear();
+        std::stringstream bases(baseList);
+        for (std::string name; std::getline(bases, name, ',');) {
+            const BaseKind kind = parseBaseKind(name);
+            options.bases.push_back(kind == BaseKind::Cylinder    ? BaseShape::cylinder()
+                                    : kind == BaseKind::Ellipsoid ? name == "sphere"
+                                                                        ? BaseShape::sphere()
+                                                                        : BaseShape::ellipsoid()
+                                                                  : BaseShape::plane());
+        }
 
         const auto context = createHeadlessContext(parseBackend(backend));
         RunInfo info{context->renderer(), today(),

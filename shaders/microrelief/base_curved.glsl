@@ -53,14 +53,13 @@ float curvedCrossX(ReliefMap map, vec3 origin, vec3 dir, float boundary) {
     return s * p.x + c * p.z > 0.0 ? t : kCurvedNever;
 }
 
-// The X range of the path between frame points pa and pb. The angle about the axis is
+// The X range of the path between frame points of X = xa and xb. The angle about the axis is
 // monotone along a line, and a segment that does not meet the axis turns by less than half
 // a turn, so the path covers exactly the shorter arc between its ends. Near half a turn
 // the segment passes next to the axis (where rounding could pick the wrong arc, and one
 // through it jumps by half a turn): all of u then. lo in [0, W), hi up to lo + W.
-vec2 curvedRangeX(ReliefMap map, vec3 pa, vec3 pb) {
+vec2 curvedRangeX(ReliefMap map, float xa, float xb) {
     float w = map.size.x, margin = curvedMarginX(map);
-    float xa = curvedMapX(map, pa), xb = curvedMapX(map, pb);
     float arc = xb - xa;
     if (arc > 0.5 * w) arc -= w;
     if (arc < -0.5 * w) arc += w;

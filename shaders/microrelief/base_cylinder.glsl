@@ -20,11 +20,6 @@ float cylinderLowestRadial(vec3 origin, vec3 dir, float ta, float tb) {
     return length(origin.xz + t * dir.xz) - kCurvedRadiusMargin;
 }
 
-// Y is linear in t: its range over [ta, tb] is that of the ends.
-vec2 cylinderRangeY(ReliefMap map, vec3 pa, vec3 pb) {
-    float ya = cylinderMapY(map, pa), yb = cylinderMapY(map, pb);
-    return vec2(min(ya, yb), max(ya, yb));
-}
 
 // The t at which the line crosses the plane of constant Y = boundary (once at most, so
 // any t, as for curvedCrossX), kCurvedNever where it is parallel.
@@ -47,13 +42,16 @@ vec2 cylinderClipToShell(ReliefMap map, vec3 origin, vec3 dir, out int entryFace
     return vec2(max(side.x, slab.x), min(side.y, slab.y));
 }
 
-BaseFootprint cylinderFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
-    vec3 pa = origin + ta * dir, pb = origin + tb * dir;
-    vec2 x = curvedRangeX(map, pa, pb);
-    vec2 y = cylinderRangeY(map, pa, pb) + vec2(-1.0, 1.0) * curvedMarginY(map);
+// A segment's ends as (X, Y, distance from the axis), what its footprint is made of.
+vec3 cylinderEnd(ReliefMap map, vec3 q) { return vec3(curvedMapX(map, q), cylinderMapY(map, q), cylinderRadial(q)); }
+
+// The footprint of [ta, tb] from its ends `ea`, `eb` (cylinderEnd): Y is linear in t, so
+// its range is that of the ends.
+BaseFootprint cylinderFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
+    vec2 x = curvedRangeX(map, ea.x, eb.x);
+    vec2 y = vec2(min(ea.y, eb.y), max(ea.y, eb.y)) + vec2(-1.0, 1.0) * curvedMarginY(map);
     float lowest = (cylinderLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
-    return BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest,
-                         abs(cylinderRadial(pb) - cylinderRadial(pa)) / map.heightScale);
+    return BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest, abs(eb.z - ea.z) / map.heightScale);
 }
 
 // q = rho e_rho(phi) + y e_y with rho = 1 + s h: the outward normal is rho e_rho - rho_phi

@@ -34,8 +34,9 @@ float ellipsoidTurnY(vec3 origin, vec3 dir) {
     return slope == 0.0 ? kCurvedNever : -(dir.y * dot(origin, origin) - origin.y * od) / slope;
 }
 
-vec2 ellipsoidRangeY(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
-    float ya = ellipsoidMapY(map, origin + ta * dir), yb = ellipsoidMapY(map, origin + tb * dir);
+// The Y range over [ta, tb] whose ends have Y = ya and yb: theirs, and the turn's if it
+// lies inside.
+vec2 ellipsoidRangeY(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float ya, float yb) {
     vec2 range = vec2(min(ya, yb), max(ya, yb));
     float turn = ellipsoidTurnY(origin, dir);
     if (turn > ta && turn < tb) {
@@ -84,13 +85,15 @@ vec2 ellipsoidClipToShell(ReliefMap map, vec3 origin, vec3 dir) {
     return curvedInsideRadius(origin, dir, 1.0 + map.heightScale * map.maxHeight);
 }
 
-BaseFootprint ellipsoidFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
-    vec3 pa = origin + ta * dir, pb = origin + tb * dir;
-    vec2 x = curvedRangeX(map, pa, pb);
-    vec2 y = ellipsoidRangeY(map, origin, dir, ta, tb) + vec2(-1.0, 1.0) * curvedMarginY(map);
+// A segment's ends as (X, Y, distance from the centre), what its footprint is made of.
+vec3 ellipsoidEnd(ReliefMap map, vec3 q) { return vec3(curvedMapX(map, q), ellipsoidMapY(map, q), ellipsoidRadial(q)); }
+
+// The footprint of [ta, tb] from its ends `ea`, `eb` (ellipsoidEnd).
+BaseFootprint ellipsoidFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
+    vec2 x = curvedRangeX(map, ea.x, eb.x);
+    vec2 y = ellipsoidRangeY(map, origin, dir, ta, tb, ea.y, eb.y) + vec2(-1.0, 1.0) * curvedMarginY(map);
     float lowest = (ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
-    return BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest,
-                         abs(ellipsoidRadial(pb) - ellipsoidRadial(pa)) / map.heightScale);
+    return BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest, abs(eb.z - ea.z) / map.heightScale);
 }
 
 // q = r w(theta, phi) with r = 1 + s h: the outward normal is r w - r_theta e_theta -

@@ -47,8 +47,8 @@ vec2 planeClipToShell(ReliefMap map, vec3 origin, vec3 dir, out int entryFace, o
     return range;
 }
 
-BaseFootprint planeFootprint(vec3 origin, vec3 dir, float ta, float tb) {
-    vec3 pa = origin + ta * dir, pb = origin + tb * dir;
+// The footprint of a segment from its ends pa, pb (map points).
+BaseFootprint planeFootprint(vec3 pa, vec3 pb) {
     return BaseFootprint(min(pa.xy, pb.xy), max(pa.xy, pb.xy), min(pa.z, pb.z), abs(pb.z - pa.z));
 }
 

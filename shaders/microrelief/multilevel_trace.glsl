@@ -96,6 +96,11 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     int iteration = 0;
     float ta = 0.0, tb = 0.0;  // the current segment
     float leafBound = 0.0;     // the bound of the leaf the inner loop stopped at
+    // The last segment's ends and what the footprint needs of them (baseEnd, curved bases:
+    // transcendental): the walk's next segment starts where the last one started (its
+    // near half) or ended.
+    float lastA = -1.0, lastB = -1.0;
+    vec3 endA = vec3(0.0), endB = vec3(0.0);
     while (!finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
@@ -104,7 +109,17 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             int shift = MICRORELIEF_MAX_DEPTH - depth;
             ta = span * (float(index << shift) * kUnit);
             tb = span * (float((index + 1u) << shift) * kUnit);
-            BaseFootprint footprint = baseFootprint(map, start, dir, ta, tb);
+#if MICRORELIEF_BASE != 0
+            vec3 ea = ta == lastA ? endA : ta == lastB ? endB : baseEnd(map, start + ta * dir);
+            vec3 eb = tb == lastB ? endB : baseEnd(map, start + tb * dir);
+            lastA = ta;
+            lastB = tb;
+            endA = ea;
+            endB = eb;
+#else
+            vec3 ea = start + ta * dir, eb = start + tb * dir;  // on the plane, the ends are all
+#endif
+            BaseFootprint footprint = baseFootprintOf(map, start, dir, ta, tb, ea, eb);
             // A segment down to the floor (h = 0, in the solid) may hit; one above its
             // parent's bound cannot; any other is bounded by one window of the pyramid at
             // the level its footprint chooses (paper, fig. 6), two where a curved base's

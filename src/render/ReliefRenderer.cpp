@@ -48,10 +48,13 @@ bool methodTracesTheSolid(Method method) {
     return method == Method::Multilevel || method == Method::MaxMip;
 }
 
+bool methodRunsOnBase(Method method, const BaseShape& base) {
+    return !base.curved() || method == Method::Multilevel || method == Method::MaxMip ||
+           method == Method::Pom || method == Method::Relief;
+}
+
 void checkMethodSupportsBase(Method method, const BaseShape& base) {
-    if (!base.curved() || method == Method::Multilevel || method == Method::MaxMip ||
-        method == Method::Pom || method == Method::Relief)
-        return;
+    if (methodRunsOnBase(method, base)) return;
     throwBadInput(std::string("--method ") + methodName(method) + " does not run on --base " +
                   baseName(base) + " (curved bases take multilevel, maxmip, pom and relief)");
 }

@@ -38,6 +38,7 @@ bool methodTracesTheSolid(Method method);
 // ones (multilevel, maxmip) and the peers engines ship there, pom and relief stepping in
 // the base's tangent frame. Otherwise throws Error(BadInput) naming both flags.
 void checkMethodSupportsBase(Method method, const BaseShape& base);
+bool methodRunsOnBase(Method method, const BaseShape& base);
 
 struct MethodSettings {
     Method method = Method::Multilevel;

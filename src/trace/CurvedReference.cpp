@@ -110,8 +110,9 @@ glm::dvec2 withinRadius(glm::dvec3 o, glm::dvec3 d, double radius, bool axis) {
 }
 
 // Every t in (t0, t1) at which the line crosses a cell boundary of the map.
-std::vector<double> boundaryCrossings(const Surface& m, const glm::dvec3& o, const glm::dvec3& d,
-                                      double t0, double t1) {
+std::vector<double> boundaryCrossings(const Surface& m, const CurvedBoundaries& boundaries,
+                                      const glm::dvec3& o, const glm::dvec3& d, double t0,
+                                      double t1) {
     std::vector<double> crossings;
     const auto keep = [&](double t) {
         if (t > t0 && t < t1) crossings.push_back(t);
@@ -123,25 +124,23 @@ std::vector<double> boundaryCrossings(const Surface& m, const glm::dvec3& o, con
     if (!m.cylinder) keep(-glm::dot(o, d) / glm::dot(d, d));
     // Constant u: the half-plane {lambda (sin phi, *, cos phi), lambda > 0}. The line's
     // point p has (p.x, p.z) = lambda (sin phi, cos phi): solve p.x cos phi = p.z sin phi.
-    for (int i = 0; i < m.width; ++i) {
-        const double phi = 2.0 * kPi * ((i + 0.5) / m.width - 0.5);
-        const double sn = std::sin(phi), cs = std::cos(phi);
+    for (const glm::dvec2& angle : boundaries.u) {
+        const double sn = angle.x, cs = angle.y;
         const double rate = d.x * cs - d.z * sn;
         if (rate == 0.0) continue;
         const double t = (o.z * sn - o.x * cs) / rate;
         const glm::dvec3 p = o + t * d;
         if (p.x * sn + p.z * cs > 0.0) keep(t);
     }
-    for (int j = 0; j < m.height; ++j) {
-        const double y = j + 0.5;  // the boundary between cells j - 1 and j
+    for (const double v : boundaries.v) {
         if (m.cylinder) {
             // Constant v: the plane q.y = 1 - 2 v.
-            if (d.y != 0.0) keep((1.0 - 2.0 * y / m.height - o.y) / d.y);
+            if (d.y != 0.0) keep((v - o.y) / d.y);
             continue;
         }
         // Constant v: the cone of half-angle theta about +y, q.y = |q| cos theta, written
         // as (q.y)^2 = cos^2 |q|^2 on the nappe where q.y has the sign of cos theta.
-        const double theta = kPi * y / m.height, cs = std::cos(theta);
+        const double cs = v;
         if (std::abs(cs) < 1e-9) {  // the equator: the plane q.y = 0, not a cone
             if (d.y != 0.0) keep(-o.y / d.y);
             continue;
@@ -261,14 +260,29 @@ glm::dvec3 topNormal(const Surface& m, const Patch& patch, glm::dvec2 f, double 
 
 }  // namespace
 
-ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const Ray& ray, double top) {
+CurvedBoundaries curvedBoundaries(const ReliefGeometry& relief) {
+    const HeightMap& map = *relief.map;
+    CurvedBoundaries b;
+    for (int i = 0; i < map.width; ++i) {
+        const double phi = 2.0 * kPi * ((i + 0.5) / map.width - 0.5);
+        b.u.push_back({std::sin(phi), std::cos(phi)});
+    }
+    for (int j = 0; j < map.height; ++j) {
+        const double y = j + 0.5;  // the boundary between cells j - 1 and j
+        b.v.push_back(relief.base.kind == BaseKind::Cylinder ? 1.0 - 2.0 * y / map.height
+                                                             : std::cos(kPi * y / map.height));
+    }
+    return b;
+}
+
+ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const CurvedBoundaries& boundaries,
+                                  const Ray& ray, double top) {
     assert(relief.map != nullptr && !relief.map->empty() && relief.base.curved());
     const HeightMap& map = *relief.map;
     const bool cylinder = relief.base.kind == BaseKind::Cylinder;
     const Surface m{map, relief.heightScale, cylinder, map.width, map.height};
     const glm::dvec3 scale = relief.base.frameScale();
     const glm::dvec3 o = ray.origin / scale, d = ray.direction / scale;
-    if (!std::isfinite(top)) top = relief.heightScale * map.maxValue();
 
     // The shell: within 1 + top of the axis (between the caps) or the centre.
     glm::dvec2 span = withinRadius(o, d, 1.0 + top, cylinder);
@@ -315,7 +329,7 @@ ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const Ray& ray, 
     }
 
     const double t0 = std::max(span.x, 0.0), t1 = span.y;
-    std::vector<double> stops = boundaryCrossings(m, o, d, t0, t1);
+    std::vector<double> stops = boundaryCrossings(m, boundaries, o, d, t0, t1);
     stops.insert(stops.begin(), t0);
     stops.push_back(t1);
     const double tolerance = 1e-12 * std::max(t1 - t0, 1e-300);

@@ -221,6 +221,8 @@ std::optional<double> MultilevelTracer::solveCurvedCell(const CurvedSurface& bas
         const glm::dvec3 f = local(t);
         return patchHeight(cell, std::clamp(f.x, 0.0, 1.0), std::clamp(f.y, 0.0, 1.0)) - f.z;
     };
+    // Pieces this short are final (base_surface.glsl: kCurvedFinalLength).
+    const double finalLength = kCurvedFinalLength / glm::length(ray.dir);
     int depth = 0;
     std::uint32_t index = 0;
     for (;;) {
@@ -232,7 +234,7 @@ std::optional<double> MultilevelTracer::solveCurvedCell(const CurvedSurface& bas
             patchMaxOver(cell, glm::min(glm::dvec2(fa), glm::dvec2(fb)) - kFootprintMargin,
                          glm::max(glm::dvec2(fa), glm::dvec2(fb)) + kFootprintMargin);
         const bool may = base.lowest(ray, a, b) <= top;
-        if (may && depth < kCurvedCellDepth) {
+        if (may && depth < kCurvedCellDepth && b - a > finalLength) {
             ++depth;
             index *= 2u;
             continue;

@@ -89,8 +89,10 @@ private:
 // 8 (W + H) + 256 is several times what any ray needs; running out means a bug.
 int traversalBudget(int width, int height);
 
-// The curved leaf's subdivision of one cell (base_curved.glsl, MICRORELIEF_CELL_DEPTH):
-// down to 2^-depth of the cell's stretch of the ray, then a quadratic model of the gap.
+// The curved leaf's subdivision of one cell (base_surface.glsl, MICRORELIEF_CELL_DEPTH and
+// kCurvedFinalLength): down to pieces 2^-7 long in the frame, or 2^-10 of the cell's stretch
+// of the ray, then a quadratic model of the gap.
 constexpr int kCurvedCellDepth = 10;
+constexpr double kCurvedFinalLength = 1.0 / 128.0;
 
 }  // namespace microrelief

@@ -269,7 +269,7 @@ ReferenceHit traceBelow(const ReliefGeometry& relief, const Ray& ray, double top
 
 ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray) {
     if (relief.base.curved()) {
-        return detail::traceCurvedReference(relief, ray,
+        return detail::traceCurvedReference(relief, detail::curvedBoundaries(relief), ray,
                                             relief.heightScale * relief.map->maxValue());
     }
     // Without a known top the walk covers every cell under the ray's path over the
@@ -278,10 +278,12 @@ ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray) {
 }
 
 ReferenceTracer::ReferenceTracer(const ReliefGeometry& relief)
-    : relief_(relief), top_(relief.heightScale * static_cast<double>(relief.map->maxValue())) {}
+    : relief_(relief), top_(relief.heightScale * static_cast<double>(relief.map->maxValue())) {
+    if (relief.base.curved()) boundaries_ = detail::curvedBoundaries(relief);
+}
 
 ReferenceHit ReferenceTracer::trace(const Ray& ray) const {
-    if (relief_.base.curved()) return detail::traceCurvedReference(relief_, ray, top_);
+    if (relief_.base.curved()) return detail::traceCurvedReference(relief_, boundaries_, ray, top_);
     return traceBelow(relief_, ray, top_);
 }
 

@@ -10,6 +10,8 @@
 // O(cells crossed) per ray.
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "base/BaseShape.h"
@@ -54,6 +56,21 @@ ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray);
 // traceReference for many rays against one relief: it finds the relief's top once
 // (O(W H)) so that each ray walks only the cells below it (a 4096^2 map, 128^2 rays:
 // about 100 times faster). The same hits; the map must not change while in use.
+namespace detail {
+// The cell boundaries of a curved base's map, once per map: the half-planes of constant u
+// as (sin, cos) of their angle, the cones (or planes) of constant v as the cosine of their
+// polar angle (the cylinder's as their height).
+struct CurvedBoundaries {
+    std::vector<glm::dvec2> u;
+    std::vector<double> v;
+};
+CurvedBoundaries curvedBoundaries(const ReliefGeometry& relief);
+// The curved bases' reference (trace/CurvedReference.cpp); `top` is s times the largest
+// sample.
+ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const CurvedBoundaries& boundaries,
+                                  const Ray& ray, double top);
+}  // namespace detail
+
 class ReferenceTracer {
 public:
     explicit ReferenceTracer(const ReliefGeometry& relief);
@@ -61,13 +78,8 @@ public:
 
 private:
     ReliefGeometry relief_;
-    double top_;  // s times the largest sample
+    double top_;                           // s times the largest sample
+    detail::CurvedBoundaries boundaries_;  // curved bases only
 };
-
-namespace detail {
-// The curved bases' reference (trace/CurvedReference.cpp); `top` is s times the largest
-// sample, or infinity where it is not known.
-ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const Ray& ray, double top);
-}  // namespace detail
 
 }  // namespace microrelief

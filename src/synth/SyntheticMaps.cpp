@@ -37,6 +37,26 @@ double latticeNoise(double x, double y, std::uint32_t seed) {
     return (a + (b - a) * sx) * (1 - sy) + (c + (d - c) * sx) * sy;
 }
 
+// Value noise on the unit lattice in space, smoothstep-interpolated, in [0, 1].
+double latticeNoise3(const double p[3], std::uint32_t seed) {
+    double f[3], s[3];
+    std::int64_t c[3];
+    for (int a = 0; a < 3; ++a) {
+        const double floor = std::floor(p[a]);
+        c[a] = static_cast<std::int64_t>(floor);
+        f[a] = p[a] - floor;
+        s[a] = f[a] * f[a] * (3.0 - 2.0 * f[a]);
+    }
+    double sum = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
+        const double w = (dx ? s[0] : 1 - s[0]) * (dy ? s[1] : 1 - s[1]) * (dz ? s[2] : 1 - s[2]);
+        sum += w *
+               unitHash(c[0] + dx, c[1] + dy, seed + 7919U * static_cast<std::uint32_t>(c[2] + dz));
+    }
+    return sum;
+}
+
 double fractalNoise(double x, double y, int octaves, std::uint32_t seed) {
     double sum = 0.0, amplitude = 1.0, total = 0.0;
     for (int o = 0; o < octaves; ++o) {
@@ -131,8 +151,38 @@ HeightMap cobbles(int width, int height, std::uint32_t seed) {
     return map;
 }
 
+HeightMap planet(int width, int height, std::uint32_t seed) {
+    // Noise of the point on the unit sphere at (u, v), so the map is seamless in u and
+    // smooth at the poles: fBm continents above a flat sea, with ridged mountains.
+    HeightMap map(width, height);
+    constexpr double pi = 3.14159265358979323846;
+    for (int j = 0; j < height; ++j) {
+        const double theta = pi * (j + 0.5) / height;
+        for (int i = 0; i < width; ++i) {
+            const double phi = 2.0 * pi * ((i + 0.5) / width - 0.5);
+            const double w[3] = {std::sin(theta) * std::sin(phi), std::cos(theta),
+                                 std::sin(theta) * std::cos(phi)};
+            double land = 0.0, ridges = 0.0, amplitude = 1.0, total = 0.0;
+            for (int octave = 0; octave < 7; ++octave) {
+                const double scale = 1.6 * std::ldexp(1.0, octave);
+                const double p[3] = {w[0] * scale, w[1] * scale, w[2] * scale};
+                const double n = latticeNoise3(p, seed + 101U * octave);
+                land += amplitude * n;
+                ridges += amplitude * (1.0 - std::abs(2.0 * n - 1.0));
+                total += amplitude;
+                amplitude *= 0.5;
+            }
+            land /= total;
+            ridges /= total;
+            const double coast = std::clamp((land - 0.47) * 5.0, 0.0, 1.0);
+            map.at(i, j) = static_cast<float>(coast * (0.15 + 0.85 * ridges * ridges));
+        }
+    }
+    return map;
+}
+
 std::vector<std::string> names() {
-    return {"cobbles", "noise", "white", "spike", "wall", "step", "flat"};
+    return {"cobbles", "noise", "white", "spike", "wall", "step", "flat", "planet"};
 }
 
 HeightMap byName(const std::string& name, int width, int height, std::uint32_t seed) {
@@ -144,6 +194,7 @@ HeightMap byName(const std::string& name, int width, int height, std::uint32_t s
     if (name == "wall") return wallColumn(width, height, width / 2);
     if (name == "step") return step(width, height, width / 2);
     if (name == "flat") return flat(width, height, 0.5f);
+    if (name == "planet") return planet(width, height, seed);
     std::string known;
     for (const std::string& n : names()) known += (known.empty() ? "" : ", ") + n;
     throwBadInput("unknown map '" + name + "' (known: " + known + ")");

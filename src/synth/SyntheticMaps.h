@@ -26,7 +26,11 @@ HeightMap whiteNoise(int width, int height, std::uint32_t seed);
 // Sizes are relative, so the same relief comes out at any resolution.
 HeightMap cobbles(int width, int height, std::uint32_t seed);
 
-// Names accepted by byName(): cobbles, noise, white, spike, wall, step, flat.
+// Continents and ridged mountains over a flat sea, an equirectangular map for a globe
+// (--base sphere): seamless in u, smooth at the poles.
+HeightMap planet(int width, int height, std::uint32_t seed);
+
+// Names accepted by byName(): cobbles, noise, white, spike, wall, step, flat, planet.
 std::vector<std::string> names();
 // Throws Error(BadInput) for an unknown name.
 HeightMap byName(const std::string& name, int width, int height, std::uint32_t seed);

@@ -7,6 +7,32 @@
 
 namespace microrelief {
 
+namespace {
+
+// The camera path flags: what they need of each other. Throws Error(BadInput).
+void applyBatchFlags(const CLI::App& app, RenderOptions& o, const std::string& cameras,
+                     const std::string& frames, const std::string& shard,
+                     const std::string& manifest) {
+    BatchOptions& b = o.batch;
+    const bool turntable = app.count("--turntable") > 0;
+    if (turntable && b.turntable < 1) throwBadInput("--turntable needs at least 1 view");
+    if (!cameras.empty()) b.cameras = cameras;
+    if (turntable && b.cameras) throwBadInput("--turntable and --cameras: give one camera path");
+    if (!frames.empty()) b.frames = parseFrameRange(frames);
+    if (!shard.empty()) b.shard = parseShard(shard);
+    if (!manifest.empty()) b.manifest = manifest;
+    for (const char* flag : {"--frames", "--shard", "--skip-existing", "--manifest"}) {
+        if (!b.active() && app.count(flag) > 0)
+            throwBadInput(std::string(flag) +
+                          " needs a camera path (--turntable N or --cameras FILE)");
+    }
+    if (b.active() && o.compareReference)
+        throwBadInput("--compare-reference checks one picture: not with a camera path");
+    if (b.active() && app.count("--out") == 0) o.out = "out/microrelief-{frame:04d}.png";
+}
+
+}  // namespace
+
 ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     RenderOptions o;
     CLI::App app{
@@ -22,7 +48,9 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     std::string backend = "auto", aov;
     std::string out = o.out.string();
     scene.addMapAndCamera(app);
-    app.add_option("--out", out, "Shaded picture; the format follows the extension")
+    app.add_option("--out", out,
+                   "Shaded picture; the format follows the extension. With a camera path, a "
+                   "pattern: {frame}, {frame:04d} (default out/microrelief-{frame:04d}.png)")
         ->capture_default_str();
     app.add_option("--aov", aov,
                    "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss");
@@ -34,6 +62,31 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         "Also trace every pixel with the exact CPU reference and print how the picture differs");
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
     app.add_flag("-v,--verbose", o.verbose, "Print the GL renderer and shader logs");
+    std::string cameras, frames, shard, manifest;
+    const std::string paths = "Camera paths (one process, many frames)";
+    app.add_option("--turntable", o.batch.turntable,
+                   "Render N views around the target at the eye's distance and elevation, "
+                   "frames 0 to N-1")
+        ->group(paths);
+    app.add_option("--cameras", cameras,
+                   "Render the cameras of a file: CSV or JSON lines with eye, target, up, fovy "
+                   "and per-row flags (README)")
+        ->group(paths);
+    app.add_option("--frames", frames,
+                   "Only frames A-B of the path (numbered from 0, both included; A- to the end)")
+        ->group(paths);
+    app.add_option("--shard", shard,
+                   "Only shard I of N (I/N): every N-th frame, from the I-th; slurm: I and N of "
+                   "this task of a Slurm job array")
+        ->group(paths);
+    app.add_flag("--skip-existing", o.batch.skipExisting,
+                 "Leave the frames whose files are there (files are written whole or not at all)")
+        ->group(paths);
+    app.add_option("--manifest", manifest,
+                   "The CSV of the frames done (frame,file,camera,ms,status), appended to; "
+                   "{shard} and {shards} expand (default: manifest.csv, with --shard "
+                   "manifest-{shard}-of-{shards}.csv, in the folder of --out)")
+        ->group(paths);
     app.set_version_flag("--version", std::string("microrelief-render ") + MICRORELIEF_VERSION);
     app.allow_windows_style_options(false);
 
@@ -42,6 +95,7 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         o.backend = parseBackend(backend);
         o.out = out;
         if (!aov.empty()) o.aov = aov;
+        applyBatchFlags(app, o, cameras, frames, shard, manifest);
         return o;
     });
 }

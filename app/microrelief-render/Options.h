@@ -7,18 +7,33 @@
 #include <string>
 
 #include "CommandLine.h"
+#include "FrameSelection.h"
 #include "context/GlContext.h"
 #include "heightmap/HeightMap.h"
 #include "render/HeadlessRender.h"
 
 namespace microrelief {
 
+// A camera path (--turntable, --cameras) and what a run does with it (README, "Camera
+// paths and batch rendering"). Without a path the program draws its one picture.
+struct BatchOptions {
+    int turntable = 0;  // views; 0: no turntable
+    std::optional<std::filesystem::path> cameras;
+    FrameRange frames;
+    std::optional<Shard> shard;
+    bool skipExisting = false;
+    std::optional<std::string> manifest;  // a pattern with {shard}, {shards}
+
+    bool active() const { return turntable > 0 || cameras.has_value(); }
+};
+
 struct RenderOptions {
     std::optional<std::filesystem::path> heightFile;  // empty: the bundled default map
     HeightMapLoadOptions load;
     RenderJob job;
-    std::filesystem::path out = "out/microrelief.png";
+    std::filesystem::path out = "out/microrelief.png";  // with a path: a FramePattern
     std::optional<std::filesystem::path> aov;
+    BatchOptions batch;
     Backend backend = Backend::Auto;
     bool compareReference = false;  // print accuracy figures against the CPU reference
     bool quiet = false;

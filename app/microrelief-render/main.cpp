@@ -1,10 +1,12 @@
 // microrelief-render: the headless screenshot program. Thin wiring: parse, load the
-// map, render in an offscreen framebuffer, write the picture and the AOV atomically.
+// map, render in an offscreen framebuffer, write the picture and the AOV atomically;
+// or, given a camera path, hand over to runBatch.
 // On failure: one line on stderr and exit status 2 (bad arguments or input) or 1.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 
+#include "BatchRender.h"
 #include "Options.h"
 #include "core/DataPaths.h"
 #include "core/Error.h"
@@ -37,6 +39,7 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
 }
 
 int run(const RenderOptions& o) {
+    if (o.batch.active()) return runBatch(o);  // a camera path: many frames
     const auto start = std::chrono::steady_clock::now();
     if (o.aov && o.aov->extension() != ".exr") {
         throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");

@@ -1,10 +1,13 @@
 #include "image/ImageFile.h"
 
 #include <OpenImageIO/imageio.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <charconv>
 #include <vector>
 
 #include "core/Error.h"
@@ -154,6 +157,29 @@ void writeImageAtomically(const std::filesystem::path& file, const ImageData& im
     ImageWriteBatch batch;
     batch.write(file, image);
     batch.commit();
+}
+
+std::optional<std::filesystem::path> abandonedTemporaryTarget(const std::filesystem::path& file) {
+    // The name temporaryBeside gives: ".<stem>.tmp-<pid>-<n><extension>".
+    const std::string name = file.filename().string();
+    const std::size_t tag = name.rfind(".tmp-");
+    if (name.size() < 2 || name[0] != '.' || tag == std::string::npos || tag < 1)
+        return std::nullopt;
+    const char* p = name.data() + tag + 5;
+    const char* end = name.data() + name.size();
+    long pid = 0, n = 0;
+    auto read = std::from_chars(p, end, pid);
+    if (read.ec != std::errc() || read.ptr == end || *read.ptr != '-' || pid <= 0)
+        return std::nullopt;
+    read = std::from_chars(read.ptr + 1, end, n);
+    if (read.ec != std::errc()) return std::nullopt;
+    const std::string extension(read.ptr, end);
+    if (!extension.empty() && (extension[0] != '.' || extension.find('.', 1) != std::string::npos))
+        return std::nullopt;
+    // A process that still runs may yet rename it (kill with signal 0 only asks).
+    if (pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+        return std::nullopt;
+    return file.parent_path() / (name.substr(1, tag - 1) + extension);
 }
 
 }  // namespace microrelief

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,5 +58,11 @@ std::vector<std::uint8_t> rgbFromRgba(const std::vector<std::uint8_t>& rgba, int
 
 // One file, atomically.
 void writeImageAtomically(const std::filesystem::path& file, const ImageData& image);
+
+// The target whose temporary `file` is, when it is one of ImageWriteBatch's temporary
+// files and the process that wrote it is gone: a writer killed before its rename
+// (SIGKILL, a power cut) leaves it behind. Else nothing (not a temporary, or one that a
+// running process on this machine may still rename).
+std::optional<std::filesystem::path> abandonedTemporaryTarget(const std::filesystem::path& file);
 
 }  // namespace microrelief

@@ -1,7 +1,9 @@
 // One picture, start to finish, in an offscreen framebuffer of the given context: the
-// path that microrelief-render and the GL tests share.
+// path that microrelief-render and the GL tests share. HeadlessRenderer draws many
+// pictures in one context (microrelief-render's camera paths) along the same path.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "context/GlContext.h"
@@ -25,6 +27,32 @@ struct RenderJob {
 struct HeadlessResult {
     RenderedFrame frame;
     CameraFrame camera;  // the rays the picture was traced with
+};
+
+// Pictures of one map at a time, keeping what they share from one to the next: the
+// programs (each method compiled once), the map's textures and max pyramid (built
+// again only by setHeightMap) and the framebuffer (made again only for another size).
+// Its GL objects belong to `context`: it must not outlive it.
+class HeadlessRenderer {
+public:
+    // Compiles `method`'s program first. Throws Error.
+    explicit HeadlessRenderer(GlContext& context, const MethodSettings& method = {});
+
+    // Uploads the map and builds its pyramid for `base` (wrapped in u on a curved base);
+    // `source` names it in error messages. A job may then take another size of that base,
+    // or another curved base; between the plane and a curved base, set the map again.
+    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {});
+    // Renders `job` of the current map. Throws Error.
+    HeadlessResult render(const RenderJob& job);
+
+private:
+    GlContext& context_;
+    std::optional<ReliefRenderer> renderer_;
+    std::optional<OffscreenTarget> target_;
+    std::string source_;
+    int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
+    double maxHeight_ = 0.0;
+    std::optional<float> heightScale_;  // the scale the renderer has
 };
 
 // `source` names the map in error messages. Throws Error.

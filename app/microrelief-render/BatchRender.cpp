@@ -1,0 +1,270 @@
+#include "BatchRender.h"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <set>
+#include <tuple>
+
+#include "CameraPath.h"
+#include "FramePattern.h"
+#include "Manifest.h"
+#include "Progress.h"
+#include "core/DataPaths.h"
+#include "core/Error.h"
+#include "core/Log.h"
+#include "image/ImageFile.h"
+
+namespace microrelief {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct FrameFiles {
+    int frame = 0;
+    std::filesystem::path out;
+    std::optional<std::filesystem::path> aov;
+};
+
+// The files of every selected frame, checked before anything is drawn: patterns that
+// name one file for two frames, unknown formats, folders in the way.
+std::vector<FrameFiles> frameFiles(const RenderOptions& o, std::size_t pathLength,
+                                   const std::vector<int>& frames) {
+    const FramePattern out(o.out.string(), "--out");
+    const std::optional<FramePattern> aov =
+        o.aov ? std::optional<FramePattern>(FramePattern(o.aov->string(), "--aov")) : std::nullopt;
+    if (pathLength > 1 && !out.uses("frame")) {
+        throwBadInput("--out " + out.text() +
+                      ": no {frame} in the name, so every frame would overwrite the last (e.g. "
+                      "out/view-{frame:04d}.png)");
+    }
+    if (aov && pathLength > 1 && !aov->uses("frame")) {
+        throwBadInput("--aov " + aov->text() +
+                      ": no {frame} in the name, so every frame would overwrite the last (e.g. "
+                      "out/view-{frame:04d}.exr)");
+    }
+    std::vector<FrameFiles> files;
+    std::map<std::filesystem::path, int> owner;  // file -> frame, to find names given twice
+    for (const int frame : frames) {
+        FrameFiles f{frame, out.expand("frame", frame), std::nullopt};
+        if (aov) f.aov = aov->expand("frame", frame);
+        if (files.empty()) {
+            if (f.aov && f.aov->extension() != ".exr")
+                throwBadInput(f.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
+            checkOutputTargets(f.aov ? std::vector{f.out, *f.aov} : std::vector{f.out});
+        }
+        for (const auto* file : {&f.out, f.aov ? &*f.aov : nullptr}) {
+            if (!file) continue;
+            const auto [at, fresh] = owner.emplace(file->lexically_normal(), frame);
+            if (!fresh) {
+                throwBadInput(file->string() + ": the name of two outputs (frames " +
+                              std::to_string(at->second) + " and " + std::to_string(frame) + ")");
+            }
+            std::error_code ec;
+            if (std::filesystem::is_directory(*file, ec))
+                throwBadInput(file->string() + ": is a directory");
+        }
+        files.push_back(std::move(f));
+    }
+    return files;
+}
+
+// Every map file a selected frame names is there, before anything is drawn (what is in
+// it is checked when it is loaded).
+void checkMapFiles(const std::vector<PathFrame>& path, const std::vector<int>& frames) {
+    std::set<std::filesystem::path> checked;
+    for (const int frame : frames) {
+        const auto& file = path[frame].scene.heightFile;
+        if (!file || !checked.insert(*file).second) continue;
+        std::error_code ec;
+        const auto status = std::filesystem::status(*file, ec);
+        if (!std::filesystem::exists(status))
+            throwBadInput(path[frame].origin + ": " + file->string() + ": no such file");
+        if (!std::filesystem::is_regular_file(status))
+            throwBadInput(path[frame].origin + ": " + file->string() + ": not a regular file");
+    }
+}
+
+std::filesystem::path manifestFile(const RenderOptions& o) {
+    const Shard shard = o.batch.shard.value_or(Shard{});
+    const std::string text =
+        o.batch.manifest ? *o.batch.manifest
+                         : (FramePattern(o.out.string(), "--out").fixedFolder() /
+                            (o.batch.shard ? "manifest-{shard}-of-{shards}.csv" : "manifest.csv"))
+                               .string();
+    return FramePattern(text, "--manifest", {"shard", "shards"})
+        .expand({{"shard", shard.index}, {"shards", shard.count}});
+}
+
+// Removes the temporary files that a killed run left beside this run's outputs; those
+// of other frames and of running processes stay.
+int removeAbandonedTemporaries(const std::vector<FrameFiles>& files) {
+    std::set<std::filesystem::path> outputs, folders;
+    for (const FrameFiles& f : files) {
+        for (const auto* file : {&f.out, f.aov ? &*f.aov : nullptr}) {
+            if (!file) continue;
+            outputs.insert(file->lexically_normal());
+            folders.insert(file->parent_path());
+        }
+    }
+    int removed = 0;
+    for (const auto& folder : folders) {
+        std::error_code ec;
+        const std::filesystem::path listed = folder.empty() ? "." : folder;
+        for (auto it = std::filesystem::directory_iterator(listed, ec);
+             !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+            const auto target = abandonedTemporaryTarget(folder / it->path().filename());
+            if (!target || outputs.count(target->lexically_normal()) == 0) continue;
+            std::error_code ignored;
+            removed += std::filesystem::remove(it->path(), ignored);
+        }
+    }
+    return removed;
+}
+
+std::string plural(int n, const std::string& noun) {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+// A file as an earlier run left it: there, and not empty. Files are renamed into place
+// only when whole, so a file that is there is complete.
+bool complete(const std::filesystem::path& file) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) > 0 &&
+           !ec;
+}
+
+// The map a frame draws, as loaded: file, load options, and whether its pyramid wraps in
+// u (a curved base; between the plane and a curved base the map is uploaded again).
+using MapKey = std::tuple<std::filesystem::path, int, bool, bool>;
+
+MapKey mapKey(const SceneOptions& scene) {
+    return {scene.heightFile ? *scene.heightFile : defaultHeightMapPath(), scene.load.channel,
+            scene.load.normalize, scene.job.base.wrapsU()};
+}
+
+}  // namespace
+
+int runBatch(const RenderOptions& o) {
+    const auto start = Clock::now();
+    const SceneOptions base{o.heightFile, o.load, o.job};
+    const std::vector<PathFrame> path = o.batch.cameras ? readCameraFile(*o.batch.cameras, base)
+                                                        : turntablePath(base, o.batch.turntable);
+    const Shard shard = o.batch.shard.value_or(Shard{});
+    const std::vector<int> frames =
+        selectFrames(static_cast<int>(path.size()), o.batch.frames, shard);
+    const std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
+    checkMapFiles(path, frames);
+    const std::filesystem::path manifestPath = manifestFile(o);
+    for (const FrameFiles& f : files) {
+        if (manifestPath.lexically_normal() == f.out.lexically_normal() ||
+            (f.aov && manifestPath.lexically_normal() == f.aov->lexically_normal()))
+            throwBadInput(manifestPath.string() + ": given for the manifest and an output");
+    }
+
+    ManifestWriter manifest(manifestPath);
+    if (const int removed = removeAbandonedTemporaries(files); removed > 0)
+        logInfo("removed " + std::to_string(removed) + " temporary file(s) of a killed run");
+
+    BatchProgress progress(static_cast<int>(frames.size()),
+                           !o.quiet && BatchProgress::stderrIsTerminal());
+    std::unique_ptr<GlContext> context;
+    std::optional<HeadlessRenderer> renderer;
+    std::optional<MapKey> loaded;
+    int rendered = 0, skipped = 0, mapsLoaded = 0;
+
+    for (const FrameFiles& f : files) {
+        const PathFrame& frame = path[f.frame];
+        const std::string camera =
+            cameraFlags(frame.scene.job.camera) + (frame.flags.empty() ? "" : " " + frame.flags);
+        if (o.batch.skipExisting && complete(f.out) && (!f.aov || complete(*f.aov))) {
+            manifest.append({f.frame, f.out.string(), camera, 0.0, "skipped"});
+            ++skipped;
+            progress.frameDone(false, 0.0);
+            continue;
+        }
+        const auto frameStart = Clock::now();
+        try {
+            if (!context) {
+                context = createHeadlessContext(o.backend);
+                if (o.verbose)
+                    logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
+                            context->description());
+                renderer.emplace(*context, frame.scene.job.method);
+            }
+            if (const MapKey key = mapKey(frame.scene); key != loaded) {
+                loaded.reset();
+                const HeightMap map = loadHeightMap(std::get<0>(key), frame.scene.load);
+                renderer->setHeightMap(map, std::get<0>(key).string(), frame.scene.job.base);
+                loaded = key;
+                ++mapsLoaded;
+            }
+            const HeadlessResult result = renderer->render(frame.scene.job);
+            const RenderedFrame& pixels = result.frame;
+
+            std::size_t exhausted = 0;
+            for (std::size_t p = 3; p < pixels.stats.size(); p += 4)
+                exhausted += pixels.stats[p] > 0.0f;
+            if (exhausted > 0) {
+                progress.clear();
+                logWarning("frame " + std::to_string(f.frame) + ": " + std::to_string(exhausted) +
+                           " pixel(s) ran out of the iteration budget (shown magenta)");
+            }
+            ImageWriteBatch batch;
+            const std::vector<std::uint8_t> rgb =
+                rgbFromRgba(pixels.color, pixels.width, pixels.height);
+            batch.write(f.out, {pixels.width, pixels.height, 3, PixelType::UInt8, rgb.data(), {}});
+            if (f.aov) {
+                batch.write(*f.aov, {pixels.width,
+                                     pixels.height,
+                                     4,
+                                     PixelType::Float,
+                                     pixels.position.data(),
+                                     {"R", "G", "B", "A"}});
+            }
+            batch.commit();
+        } catch (const Error&) {
+            progress.clear();
+            try {
+                manifest.append(
+                    {f.frame, f.out.string(), camera, secondsSince(frameStart) * 1e3, "failed"});
+            } catch (const Error&) {
+                // The frame's own error is the one to report.
+            }
+            throw;
+        }
+        const double seconds = secondsSince(frameStart);
+        manifest.append({f.frame, f.out.string(), camera, seconds * 1e3, "rendered"});
+        ++rendered;
+        progress.frameDone(true, seconds);
+    }
+    progress.finish();
+
+    if (!o.quiet) {
+        const double seconds = secondsSince(start);
+        char timing[64];
+        std::snprintf(timing, sizeof timing, "%.2f s, %.3g fps", seconds,
+                      seconds > 0.0 ? rendered / seconds : 0.0);
+        std::string line =
+            "microrelief-render: " + plural(static_cast<int>(frames.size()), "frame") + " of " +
+            std::to_string(path.size()) + " (" +
+            (o.batch.cameras ? o.batch.cameras->string() : "turntable");
+        if (o.batch.shard)
+            line += ", shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count);
+        line += "): " + std::to_string(rendered) + " rendered, " + std::to_string(skipped) +
+                " skipped, to " + o.out.string() + (o.aov ? " and " + o.aov->string() : "") +
+                "; manifest " + manifestPath.string() + "; " + timing + ", " +
+                plural(mapsLoaded, "map") + " loaded" +
+                (context ? ", " + context->description() : "");
+        std::printf("%s\n", line.c_str());
+    }
+    return 0;
+}
+
+}  // namespace microrelief

@@ -277,10 +277,12 @@ bool baseTangentRay(ReliefMap map, vec3 origin, vec3 dir, out vec3 localOrigin, 
     return true;
 }
 
-// The ray at t in the local coordinates of `cell`, and its height: (fx, fy, h).
+// Map point m in the local coordinates of `cell`, with its height: (fx, fy, h).
+vec3 curvedCellLocal(ReliefMap map, ivec2 cell, vec3 m) { return vec3(cellLocal(map, cell, m.xy), m.z); }
+
+// The ray at t in the local coordinates of `cell`, and its height.
 vec3 curvedLocal(ReliefMap map, vec3 origin, vec3 dir, float t, ivec2 cell) {
-    vec3 m = baseMapPoint(map, origin + t * dir);
-    return vec3(cellLocal(map, cell, m.xy), m.z);
+    return curvedCellLocal(map, cell, baseMapPoint(map, origin + t * dir));
 }
 
 // Patch minus ray: >= 0 where the ray is on or under the surface.
@@ -289,10 +291,12 @@ float curvedGap(vec4 corners, vec3 local) {
 }
 
 // The first t in [c0, c1] where the ray meets the patch `corners` of `cell`, or -1 (see
-// the header). The walk carries the local coordinates of the current piece's ends, so
-// that each step computes one new point: the middle it descends to, or the end of the
-// piece it moves on to.
-float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 corners, float c0, float c1) {
+// the header). `ends`: the map points at c0 and c1, the first known from the cell before
+// and the second found here (the next cell's first). The walk carries the local
+// coordinates of the current piece's ends, so that each step computes one new point: the
+// middle it descends to, or the end of the piece it moves on to.
+float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 corners, float c0, float c1,
+                      vec3 startPoint, out vec3 endPoint) {
     vec2 margin = vec2(curvedMarginX(map), curvedMarginY(map));
     // A piece this short is final: over it the quadratic model of the gap is exact to
     // float precision whatever the base's curvature (see the header).
@@ -300,7 +304,8 @@ float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 cor
     int depth = 0;
     uint index = 0u;
     float a = c0, b = c1;
-    vec3 fa = curvedLocal(map, origin, dir, a, cell), fb = curvedLocal(map, origin, dir, b, cell);
+    endPoint = baseMapPoint(map, origin + c1 * dir);
+    vec3 fa = curvedCellLocal(map, cell, startPoint), fb = curvedCellLocal(map, cell, endPoint);
     // A walk of the binary tree of pieces visits each at most once.
     for (int guard = 0; guard < (2 << MICRORELIEF_CELL_DEPTH); ++guard) {
         float top = patchMaxOver(corners, min(fa.xy, fb.xy) - margin, max(fa.xy, fb.xy) + margin);
@@ -360,6 +365,7 @@ float curvedWalkCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, f
     float yTo = baseMapY(map, origin + to * dir);
     bool yMoves = yTo != start.y, yUp = yTo > start.y;
     float t0 = from;
+    vec3 point = start;  // the map point at t0
     corners = vec4(0.0);
     for (int piece = 0; piece < width + int(map.size.y) + 4; ++piece) {
         float t1 = to;
@@ -381,8 +387,10 @@ float curvedWalkCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, f
             }
         }
         corners = cellCorners(map, heights, cell, fetches);
-        float tHit = curvedSolveCell(map, origin, dir, cell, corners, t0, t1);
+        vec3 next;
+        float tHit = curvedSolveCell(map, origin, dir, cell, corners, t0, t1, point, next);
         if (tHit >= 0.0) return tHit;
+        point = next;
         if (!stepX && !stepY) break;  // the stretch ended at `to`
         if (stepX) cell.x = xUp ? (cell.x + 1 == width ? 0 : cell.x + 1) : (cell.x == 0 ? width - 1 : cell.x - 1);
         if (stepY) cell.y += yUp ? 1 : -1;

@@ -33,6 +33,31 @@ double HeightMap::surface(double x, double y, bool wrapU) const {
     return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
 }
 
+double HeightMap::surface(double x, double y, bool wrapU, Interpolation interpolation) const {
+    if (interpolation == Interpolation::Bilinear) return surface(x, y, wrapU);
+    // The texel square holding (x, y), and the position in it from its sample.
+    const double fx0 = std::floor(x), fy0 = std::floor(y);
+    const int i = static_cast<int>(fx0), j = static_cast<int>(fy0);
+    double wx[3], wy[3];
+    quadraticWeights(x - fx0 - 0.5, wx);
+    quadraticWeights(y - fy0 - 0.5, wy);
+    double h = 0.0;
+    for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) h += wx[a] * wy[b] * sample(i - 1 + a, j - 1 + b, wrapU);
+    }
+    return h;
+}
+
+Interpolation parseInterpolation(const std::string& name) {
+    if (name == "bilinear") return Interpolation::Bilinear;
+    if (name == "biquadratic") return Interpolation::Biquadratic;
+    throwBadInput("unknown --interpolation '" + name + "' (expected bilinear or biquadratic)");
+}
+
+const char* interpolationName(Interpolation interpolation) {
+    return interpolation == Interpolation::Biquadratic ? "biquadratic" : "bilinear";
+}
+
 float HeightMap::maxValue() const {
     return samples.empty() ? 0.0f : *std::max_element(samples.begin(), samples.end());
 }

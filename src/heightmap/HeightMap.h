@@ -11,6 +11,24 @@
 
 namespace microrelief {
 
+// The last level of detail (paper, section II: "bi-linear or bi-quadratic interpolation
+// of elevation values"; scene-and-cli.md, "Interpolation"): the bilinear interpolation of
+// the samples, or the uniform quadratic B-spline whose control points are the samples
+// (smooth, C1; it does not in general pass through them).
+enum class Interpolation { Bilinear = 0, Biquadratic = 1 };
+
+// "bilinear", "biquadratic"; throws Error(BadInput) naming --interpolation.
+Interpolation parseInterpolation(const std::string& name);
+const char* interpolationName(Interpolation interpolation);
+
+// The uniform quadratic B-spline's weights at f in [-1/2, 1/2] (the position in a texel
+// square from its sample, X - i - 1/2) of the samples i - 1, i, i + 1.
+inline void quadraticWeights(double f, double w[3]) {
+    w[0] = 0.5 * (0.5 - f) * (0.5 - f);
+    w[1] = 0.75 - f * f;
+    w[2] = 0.5 * (0.5 + f) * (0.5 + f);
+}
+
 struct HeightMap {
     int width = 0;
     int height = 0;
@@ -35,6 +53,9 @@ struct HeightMap {
     // h(X, Y) in texel space (X = u W, Y = v H): the bilinear surface of the spec, with
     // column W - 1 joined to column 0 when `wrapU` (a curved base).
     double surface(double x, double y, bool wrapU = false) const;
+    // The same for either interpolation: the biquadratic one sums the 3 x 3 samples around
+    // the texel square holding (X, Y), clamped or wrapped as sample() has it.
+    double surface(double x, double y, bool wrapU, Interpolation interpolation) const;
 
     float maxValue() const;
     float minValue() const;

@@ -35,9 +35,39 @@ float texelSquareMax(const HeightMap& map, int i, int j, bool wrapU) {
     return rounded < best ? std::nextafter(rounded, INFINITY) : rounded;
 }
 
+// A bound of the biquadratic surface over texel square (i, j), never below it. Over the
+// square the uniform quadratic B-spline is a tensor-product quadratic whose Bezier control
+// net is, per axis, (c0 + c1) / 2, c1, (c1 + c2) / 2 of its three control points (the
+// B-spline's weights (1 - u)^2 / 2, 1/2 + u - u^2, u^2 / 2 over u in [0, 1] are exactly
+// these Bernstein combinations); the patch lies in the convex hull of its Bezier net, so
+// the net's max bounds it. Tighter than the 3 x 3 samples' max (the net's entries are
+// averages of them), and attained at the square's corners when a corner entry is the
+// largest. Computed in double, rounded up to float.
+float texelSquareBezierMax(const HeightMap& map, int i, int j, bool wrapU) {
+    double c[3][3];
+    for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) c[b][a] = map.sample(i - 1 + a, j - 1 + b, wrapU);
+    }
+    const auto net = [](const double p[3], double q[3]) {
+        q[0] = 0.5 * (p[0] + p[1]);
+        q[1] = p[1];
+        q[2] = 0.5 * (p[1] + p[2]);
+    };
+    double rows[3][3], best = 0.0;
+    for (int b = 0; b < 3; ++b) net(c[b], rows[b]);
+    for (int a = 0; a < 3; ++a) {
+        const double column[3] = {rows[0][a], rows[1][a], rows[2][a]};
+        double q[3];
+        net(column, q);
+        best = std::max({best, q[0], q[1], q[2]});
+    }
+    const float rounded = static_cast<float>(best);
+    return rounded < best ? std::nextafter(rounded, INFINITY) : rounded;
+}
+
 }  // namespace
 
-MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU)
+MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU, Interpolation interpolation)
     : mapWidth_(map.width), mapHeight_(map.height), wrapU_(wrapU) {
     const int pw = ceilPowerOfTwo(map.width), ph = ceilPowerOfTwo(map.height);
     widths_.push_back(pw);
@@ -45,7 +75,9 @@ MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU)
     std::vector<float> finest(static_cast<std::size_t>(pw) * ph, 0.0f);
     for (int j = 0; j < map.height; ++j) {
         for (int i = 0; i < map.width; ++i)
-            finest[static_cast<std::size_t>(j) * pw + i] = texelSquareMax(map, i, j, wrapU);
+            finest[static_cast<std::size_t>(j) * pw + i] =
+                interpolation == Interpolation::Biquadratic ? texelSquareBezierMax(map, i, j, wrapU)
+                                                            : texelSquareMax(map, i, j, wrapU);
     }
     levels_.push_back(std::move(finest));
 

@@ -41,7 +41,10 @@ namespace microrelief {
 class MaxPyramid {
 public:
     // `wrapU`: the map's u is periodic (a curved base), column W - 1 joins column 0.
-    explicit MaxPyramid(const HeightMap& map, bool wrapU = false);
+    // `interpolation`: the surface the finest level bounds (biquadratic: the max of the
+    // Bezier control net of the patch over each texel square, see MaxPyramid.cpp).
+    explicit MaxPyramid(const HeightMap& map, bool wrapU = false,
+                        Interpolation interpolation = Interpolation::Bilinear);
 
     int mapWidth() const { return mapWidth_; }
     int mapHeight() const { return mapHeight_; }

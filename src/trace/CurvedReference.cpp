@@ -44,6 +44,11 @@ struct Surface {
     double s;
     bool cylinder;
     int width, height;
+    bool quadratic;  // the biquadratic surface: patches over texel squares, not between samples
+
+    // Where the patches' boundaries lie: between sample centres (bilinear cells, X = i + 1/2)
+    // or on texel edges (biquadratic squares, X = i).
+    double offset() const { return quadratic ? 0.0 : 0.5; }
 
     double mapX(const glm::dvec3& q) const {
         const double u = 0.5 + std::atan2(q.x, q.z) / (2.0 * kPi);
@@ -64,18 +69,81 @@ struct Surface {
     }
 };
 
-// Cell (i, j): between samples i, i + 1 (wrapped) and j, j + 1 (clamped); h over local
-// (fx, fy) in [0, 1]^2 is h00 + e fx + g fy + k fx fy.
+// The surface over cell (i, j), in local coordinates (fx, fy) in [0, 1]^2 from the cell's
+// corner X = i + offset. Bilinear: between samples i, i + 1 (wrapped) and j, j + 1
+// (clamped), h00 + e fx + g fy + k fx fy. Biquadratic: texel square (i, j), the B-spline
+// sum of samples i - 1..i + 1 by j - 1..j + 1 at f = local - 1/2.
 struct Patch {
-    double h00, e, g, k;
-    double height(double fx, double fy) const { return h00 + e * fx + g * fy + k * fx * fy; }
-    double maxCorner() const { return std::max({h00, h00 + e, h00 + g, h00 + e + g + k}); }
+    bool quadratic = false;
+    double h00 = 0, e = 0, g = 0, k = 0;  // bilinear
+    double c[3][3] = {};                  // biquadratic, c[b][a]: sample (i - 1 + a, j - 1 + b)
+
+    double height(double fx, double fy) const {
+        if (!quadratic) return h00 + e * fx + g * fy + k * fx * fy;
+        double wx[3], wy[3];
+        quadraticWeights(fx - 0.5, wx);
+        quadraticWeights(fy - 0.5, wy);
+        double h = 0.0;
+        for (int b = 0; b < 3; ++b)
+            for (int a = 0; a < 3; ++a) h += wx[a] * wy[b] * c[b][a];
+        return h;
+    }
+    // Bounds of |dh/dfx|, |dh/dfy| over the cell. A bilinear patch's slope along x is
+    // linear in fy, extreme at its edges; a quadratic B-spline's derivative is the linear
+    // B-spline of the differences of its control points, so no steeper than the largest.
+    glm::dvec2 slopes() const {
+        if (!quadratic)
+            return {std::max(std::abs(e), std::abs(e + k)), std::max(std::abs(g), std::abs(g + k))};
+        glm::dvec2 slope(0.0);
+        for (int b = 0; b < 3; ++b) {
+            for (int a = 0; a < 2; ++a) {
+                slope.x = std::max(slope.x, std::abs(c[b][a + 1] - c[b][a]));
+                slope.y = std::max(slope.y, std::abs(c[a + 1][b] - c[a][b]));
+            }
+        }
+        return slope;
+    }
+    // Never exceeded: a bilinear patch peaks at a corner, a B-spline within its control
+    // points' range.
+    double maxValue() const {
+        if (!quadratic) return std::max({h00, h00 + e, h00 + g, h00 + e + g + k});
+        double best = c[0][0];
+        for (const auto& row : c)
+            for (double v : row) best = std::max(best, v);
+        return best;
+    }
+    // (dh/dfx, dh/dfy) at (fx, fy).
+    glm::dvec2 gradient(double fx, double fy) const {
+        if (!quadratic) return {e + k * fy, g + k * fx};
+        double wx[3], wy[3];
+        quadraticWeights(fx - 0.5, wx);
+        quadraticWeights(fy - 0.5, wy);
+        const double f = fx - 0.5, h = fy - 0.5;
+        const double dx[3] = {-(0.5 - f), -2.0 * f, 0.5 + f},
+                     dy[3] = {-(0.5 - h), -2.0 * h, 0.5 + h};
+        glm::dvec2 gradient(0.0);
+        for (int b = 0; b < 3; ++b)
+            for (int a = 0; a < 3; ++a)
+                gradient += c[b][a] * glm::dvec2(dx[a] * wy[b], wx[a] * dy[b]);
+        return gradient;
+    }
 };
 
 Patch patchOf(const Surface& m, int i, int j) {
+    Patch p;
+    p.quadratic = m.quadratic;
+    if (m.quadratic) {
+        for (int b = 0; b < 3; ++b)
+            for (int a = 0; a < 3; ++a) p.c[b][a] = m.sample(i - 1 + a, j - 1 + b);
+        return p;
+    }
     const double h00 = m.sample(i, j), h10 = m.sample(i + 1, j);
     const double h01 = m.sample(i, j + 1), h11 = m.sample(i + 1, j + 1);
-    return {h00, h10 - h00, h01 - h00, h00 - h10 - h01 + h11};
+    p.h00 = h00;
+    p.e = h10 - h00;
+    p.g = h01 - h00;
+    p.k = h00 - h10 - h01 + h11;
+    return p;
 }
 
 // The line's parameters where a t^2 + b t + c = 0, both roots, by the cancellation-free
@@ -168,9 +236,9 @@ struct CellSearch {
 
     glm::dvec2 local(double t) const {
         const glm::dvec3 q = o + t * d;
-        double fx = m.mapX(q) - (i + 0.5);
+        double fx = m.mapX(q) - (i + m.offset());
         fx -= m.width * std::round(fx / m.width);  // the seam cell
-        return {std::clamp(fx, 0.0, 1.0), std::clamp(m.mapY(q) - (j + 0.5), 0.0, 1.0)};
+        return {std::clamp(fx, 0.0, 1.0), std::clamp(m.mapY(q) - (j + m.offset()), 0.0, 1.0)};
     }
     double gap(double t) const {
         const glm::dvec2 f = local(t);
@@ -188,8 +256,8 @@ struct CellSearch {
     // A Lipschitz bound of the gap over [a, b]: |dg/dt| <= s (|dh/dfx| |dX/dt| + |dh/dfy|
     // |dY/dt|) + |d radial/dt|, each factor bounded over the piece.
     double lipschitz(double a, double b) const {
-        const double slopeX = std::max(std::abs(patch.e), std::abs(patch.e + patch.k));
-        const double slopeY = std::max(std::abs(patch.g), std::abs(patch.g + patch.k));
+        const glm::dvec2 slope = patch.slopes();
+        const double slopeX = slope.x, slopeY = slope.y;
         // u = atan2(x, z) / 2 pi: |du/dt| = |z dx - x dz| / (2 pi rho^2), the numerator
         // constant along the line.
         const double moment = std::abs(o.z * d.x - o.x * d.z);
@@ -209,14 +277,15 @@ struct CellSearch {
 
     std::optional<double> first(double a, double b) const {
         // A stretch wholly above its patch's highest corner cannot touch it.
-        if (nearestRadial(a, b, m.cylinder) > 1.0 + m.s * patch.maxCorner()) return std::nullopt;
-        const double lip = lipschitz(a, b);
+        if (nearestRadial(a, b, m.cylinder) > 1.0 + m.s * patch.maxValue()) return std::nullopt;
         std::vector<glm::dvec2> pieces{{a, b}};
         for (int examined = 0; !pieces.empty(); ++examined) {
             const glm::dvec2 piece = pieces.back();
             pieces.pop_back();
             const double mid = 0.5 * (piece.x + piece.y), half = 0.5 * (piece.y - piece.x);
-            if (gap(mid) + lip * half < 0.0) continue;  // no contact anywhere in the piece
+            // The bound of each piece its own: near the axis u turns fast, away from it
+            // slowly, and one bound for the whole stretch would be the axis's.
+            if (gap(mid) + lipschitz(piece.x, piece.y) * half < 0.0) continue;  // no contact
             if (2.0 * half <= tolerance || examined >= kMaxPieces) return piece.x;
             pieces.push_back({mid, piece.y});  // the far half after the near one
             pieces.push_back({piece.x, mid});
@@ -230,7 +299,8 @@ struct CellSearch {
 glm::dvec3 topNormal(const Surface& m, const Patch& patch, glm::dvec2 f, double x, double y,
                      const glm::dvec3& scale) {
     const double h = patch.height(f.x, f.y);
-    const double hx = patch.e + patch.k * f.y, hy = patch.g + patch.k * f.x;  // per texel
+    const glm::dvec2 slope = patch.gradient(f.x, f.y);  // per texel
+    const double hx = slope.x, hy = slope.y;
     const double radius = 1.0 + m.s * h;
     const double phi = 2.0 * kPi * (x / m.width - 0.5);
     const glm::dvec3 outward(std::sin(phi), 0.0, std::cos(phi)),
@@ -262,13 +332,16 @@ glm::dvec3 topNormal(const Surface& m, const Patch& patch, glm::dvec2 f, double 
 
 CurvedBoundaries curvedBoundaries(const ReliefGeometry& relief) {
     const HeightMap& map = *relief.map;
+    // Bilinear cells end at sample centres, biquadratic squares at texel edges (the
+    // poles and the caps, Y = 0 and H, are not crossed).
+    const double offset = relief.interpolation == Interpolation::Biquadratic ? 0.0 : 0.5;
     CurvedBoundaries b;
     for (int i = 0; i < map.width; ++i) {
-        const double phi = 2.0 * kPi * ((i + 0.5) / map.width - 0.5);
+        const double phi = 2.0 * kPi * ((i + offset) / map.width - 0.5);
         b.u.push_back({std::sin(phi), std::cos(phi)});
     }
-    for (int j = 0; j < map.height; ++j) {
-        const double y = j + 0.5;  // the boundary between cells j - 1 and j
+    for (int j = offset == 0.0 ? 1 : 0; j < map.height; ++j) {
+        const double y = j + offset;  // the boundary between cells j - 1 and j
         b.v.push_back(relief.base.kind == BaseKind::Cylinder ? 1.0 - 2.0 * y / map.height
                                                              : std::cos(kPi * y / map.height));
     }
@@ -280,7 +353,9 @@ ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const CurvedBoun
     assert(relief.map != nullptr && !relief.map->empty() && relief.base.curved());
     const HeightMap& map = *relief.map;
     const bool cylinder = relief.base.kind == BaseKind::Cylinder;
-    const Surface m{map, relief.heightScale, cylinder, map.width, map.height};
+    const Surface m{map,        relief.heightScale,
+                    cylinder,   map.width,
+                    map.height, relief.interpolation == Interpolation::Biquadratic};
     const glm::dvec3 scale = relief.base.frameScale();
     const glm::dvec3 o = ray.origin / scale, d = ray.direction / scale;
 
@@ -338,8 +413,9 @@ ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const CurvedBoun
         if (b <= a && !(a == b && stops.size() == 2)) continue;
         const glm::dvec3 mid = at(0.5 * (a + b));
         const double x = m.mapX(mid), y = m.mapY(mid);
-        const int i = static_cast<int>(std::floor(x - 0.5));
-        const int j = std::clamp(static_cast<int>(std::floor(y - 0.5)), -1, map.height - 1);
+        const int i = static_cast<int>(std::floor(x - m.offset()));
+        const int j = std::clamp(static_cast<int>(std::floor(y - m.offset())), m.quadratic ? 0 : -1,
+                                 map.height - 1);
         const CellSearch cell{m, o, d, i, j, patchOf(m, i, j), tolerance};
         if (const auto t = cell.first(a, b)) {
             finish(HitFace::Top, *t);

@@ -1,10 +1,12 @@
 #include "trace/ReferenceTracer.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 namespace microrelief {
 
@@ -148,8 +150,7 @@ double cellExit(double origin, double dir, int cell) {
 
 struct CellContact {
     double t = 0.0;
-    BilinearPatch patch;
-    glm::dvec2 local{0.0};  // (fx, fz) of the contact in the patch
+    glm::dvec2 gradient{0.0};  // (dh/dx, dh/dz) of the surface at the contact, sample space
 };
 
 // The 2D DDA (Amanatides and Woo) over the bilinear cells the ray crosses between
@@ -170,7 +171,7 @@ std::optional<CellContact> walkCells(const HeightMap& map, double heightScale, c
         if (const auto tau = firstContact(patch, local, d, tEnd - t)) {
             const double fx = std::clamp(local.x + *tau * d.x, 0.0, 1.0);
             const double fz = std::clamp(local.z + *tau * d.z, 0.0, 1.0);
-            return CellContact{std::min(t + *tau, tEnd), patch, {fx, fz}};
+            return CellContact{std::min(t + *tau, tEnd), patch.gradient(fx, fz)};
         }
         if (tEnd >= tExit) {
             // Down through the base plane inside the footprint the ray is in the solid
@@ -178,12 +179,192 @@ std::optional<CellContact> walkCells(const HeightMap& map, double heightScale, c
             if (!span.exitsThroughBottom) return std::nullopt;
             const glm::dvec3 end = local + (tEnd - t) * d;
             return CellContact{
-                tEnd, patch, {std::clamp(end.x, 0.0, 1.0), std::clamp(end.z, 0.0, 1.0)}};
+                tEnd, patch.gradient(std::clamp(end.x, 0.0, 1.0), std::clamp(end.z, 0.0, 1.0))};
         }
         // Through a corner both indices step; the diagonal cells only touch the ray there.
         if (tx <= tz) ci += stepI;
         if (tz <= tx) cj += stepJ;
         if (ci < -1 || ci >= map.width || cj < -1 || cj >= map.height) return std::nullopt;
+        t = tEnd;
+    }
+}
+
+// ---- The biquadratic surface (scene-and-cli.md, "Interpolation") ----
+//
+// Over texel square (i, j), sample space x in [i - 1/2, i + 1/2], the surface is the sum of
+// the 3 x 3 samples around it weighted by the quadratic B-spline's (1/2 - f)^2 / 2,
+// 3/4 - f^2, (1/2 + f)^2 / 2 with f = x - i. Along the ray f is linear in t, so the gap
+// between the ray and the surface is a polynomial of degree 4 in t, written out here in
+// the power basis; its first zero is isolated through its derivatives, whose roots split
+// the stretch into pieces where it is monotone.
+
+using Polynomial = std::vector<double>;  // coefficients, lowest degree first
+
+Polynomial multiply(const Polynomial& a, const Polynomial& b) {
+    Polynomial c(a.size() + b.size() - 1, 0.0);
+    for (std::size_t i = 0; i < a.size(); ++i)
+        for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
+    return c;
+}
+
+double evaluate(const Polynomial& p, double t) {
+    double v = 0.0;
+    for (std::size_t k = p.size(); k-- > 0;) v = v * t + p[k];
+    return v;
+}
+
+Polynomial derivative(const Polynomial& p) {
+    Polynomial d;
+    for (std::size_t k = 1; k < p.size(); ++k) d.push_back(static_cast<double>(k) * p[k]);
+    return d.empty() ? Polynomial{0.0} : d;
+}
+
+// A root of p in [a, b], where p is monotone there with p(a) > 0 >= p(b): bisection to the
+// last bit.
+double bisectMonotone(const Polynomial& p, double a, double b) {
+    for (int k = 0; k < 200 && b - a > 1e-16 * std::max(1.0, std::abs(b)); ++k) {
+        const double m = 0.5 * (a + b);
+        (evaluate(p, m) > 0.0 ? a : b) = m;
+    }
+    return b;
+}
+
+// The roots of p in (a, b), sorted: the roots of p' split [a, b] into monotone pieces, each
+// with at most one root.
+std::vector<double> rootsIn(const Polynomial& p, double a, double b) {
+    std::vector<double> stops{a};
+    if (p.size() > 2) {
+        for (double c : rootsIn(derivative(p), a, b)) stops.push_back(c);
+    }
+    stops.push_back(b);
+    std::vector<double> roots;
+    for (std::size_t k = 0; k + 1 < stops.size(); ++k) {
+        const double l = stops[k], r = stops[k + 1];
+        const double pl = evaluate(p, l), pr = evaluate(p, r);
+        if (pr == 0.0 && r < b) {
+            roots.push_back(r);
+        } else if ((pl > 0.0 && pr < 0.0) || (pl < 0.0 && pr > 0.0)) {
+            const Polynomial q = pl > 0.0 ? p : [&] {
+                Polynomial n = p;
+                for (double& c : n) c = -c;
+                return n;
+            }();
+            roots.push_back(bisectMonotone(q, l, r));
+        }
+    }
+    return roots;
+}
+
+// The first tau in [0, length] with p(tau) <= 0: the start, or the first end of a
+// monotone piece at which p is <= 0 (a touching ray reaches 0 at a critical point).
+std::optional<double> firstNonPositive(const Polynomial& p, double length) {
+    if (evaluate(p, 0.0) <= 0.0) return 0.0;
+    std::vector<double> stops = rootsIn(derivative(p), 0.0, length);
+    stops.push_back(length);
+    double previous = 0.0;
+    for (double stop : stops) {
+        if (evaluate(p, stop) <= 0.0) return bisectMonotone(p, previous, stop);
+        previous = stop;
+    }
+    return std::nullopt;
+}
+
+struct QuadraticSquare {
+    double c[3][3];  // world heights of samples (i - 1 + a, j - 1 + b) as c[b][a]
+    double maxSample;
+};
+
+QuadraticSquare squareAt(const HeightMap& map, double heightScale, int i, int j) {
+    QuadraticSquare q{};
+    q.maxSample = 0.0;
+    for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) {
+            q.c[b][a] = heightScale * map.clamped(i - 1 + a, j - 1 + b);
+            q.maxSample = std::max(q.maxSample, q.c[b][a]);
+        }
+    }
+    return q;
+}
+
+// The B-spline weights as polynomials in tau, where f = f0 + tau df.
+std::array<Polynomial, 3> weightPolynomials(double f0, double df) {
+    const Polynomial minus{0.5 - f0, -df}, plus{0.5 + f0, df};  // 1/2 -+ f
+    Polynomial w0 = multiply(minus, minus), w2 = multiply(plus, plus);
+    for (double& c : w0) c *= 0.5;
+    for (double& c : w2) c *= 0.5;
+    const Polynomial w1{0.75 - f0 * f0, -2.0 * f0 * df, -df * df};
+    return {w0, w1, w2};
+}
+
+// The first tau in [0, length] at which the ray (its start at f = local (x - i, z - j))
+// lies on or below the square's surface.
+std::optional<double> firstContact(const QuadraticSquare& q, const glm::dvec3& local,
+                                   const glm::dvec3& d, double length) {
+    // Exact cull: the surface never rises above its control points.
+    if (std::min(local.y, local.y + d.y * length) > q.maxSample) return std::nullopt;
+    const auto wx = weightPolynomials(local.x, d.x), wz = weightPolynomials(local.z, d.z);
+    Polynomial gap{local.y, d.y, 0.0, 0.0, 0.0};  // ray height - surface height
+    for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) {
+            const Polynomial term = multiply(wx[a], wz[b]);
+            for (std::size_t k = 0; k < term.size(); ++k) gap[k] -= q.c[b][a] * term[k];
+        }
+    }
+    return firstNonPositive(gap, length);
+}
+
+glm::dvec2 gradientAt(const QuadraticSquare& q, double fx, double fz) {
+    double wx[3], wz[3];
+    quadraticWeights(fx, wx);
+    quadraticWeights(fz, wz);
+    const double dx[3] = {-(0.5 - fx), -2.0 * fx, 0.5 + fx},
+                 dz[3] = {-(0.5 - fz), -2.0 * fz, 0.5 + fz};
+    glm::dvec2 g(0.0);
+    for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) g += q.c[b][a] * glm::dvec2(dx[a] * wz[b], wx[a] * dz[b]);
+    }
+    return g;
+}
+
+// The DDA over the texel squares the ray crosses (sample space: square i holds
+// x in [i - 1/2, i + 1/2], i in [0, W - 1]), solving each square's quartic: the first
+// contact. As walkCells, for the biquadratic surface.
+std::optional<CellContact> walkSquares(const HeightMap& map, double heightScale,
+                                       const glm::dvec3& o, const glm::dvec3& d, double tStart,
+                                       const BoxSpan& span) {
+    // In square space (sample space + 1/2) the squares are unit cells 0..W-1 x 0..H-1.
+    const glm::dvec3 os = o + glm::dvec3(0.5, 0.0, 0.5);
+    const glm::dvec3 start = os + tStart * d;
+    const auto first = [](double p, double dir, int count) {
+        double cell = std::floor(p);
+        if (dir < 0.0 && p == cell) cell -= 1.0;
+        return static_cast<int>(std::clamp(cell, 0.0, count - 1.0));
+    };
+    int i = first(start.x, d.x, map.width), j = first(start.z, d.z, map.height);
+    const int stepI = d.x > 0.0 ? 1 : -1, stepJ = d.z > 0.0 ? 1 : -1;
+    double t = tStart;
+    for (;;) {
+        const double tx = cellExit(os.x, d.x, i), tz = cellExit(os.z, d.z, j);
+        const double tEnd = std::max(t, std::min({tx, tz, span.tExit}));
+        const QuadraticSquare square = squareAt(map, heightScale, i, j);
+        // Local: f = x - i - 1/2 in [-1/2, 1/2] over the square.
+        const glm::dvec3 local = os + t * d - glm::dvec3(i + 0.5, 0.0, j + 0.5);
+        const auto at = [&](double tau) {
+            return glm::dvec2(std::clamp(local.x + tau * d.x, -0.5, 0.5),
+                              std::clamp(local.z + tau * d.z, -0.5, 0.5));
+        };
+        if (const auto tau = firstContact(square, local, d, tEnd - t)) {
+            const glm::dvec2 f = at(*tau);
+            return CellContact{std::min(t + *tau, tEnd), gradientAt(square, f.x, f.y)};
+        }
+        if (tEnd >= span.tExit) {
+            if (!span.exitsThroughBottom) return std::nullopt;
+            const glm::dvec2 f = at(tEnd - t);
+            return CellContact{tEnd, gradientAt(square, f.x, f.y)};
+        }
+        if (tx <= tz) i += stepI;
+        if (tz <= tx) j += stepJ;
+        if (i < 0 || i >= map.width || j < 0 || j >= map.height) return std::nullopt;
         t = tEnd;
     }
 }
@@ -229,7 +410,7 @@ ReferenceHit topHit(const CellContact& contact, const Ray& ray, const SampleSpac
     hit.position = ray.origin + contact.t * ray.direction;
     hit.uv = space.uv(space.point(ray.origin) + contact.t * space.vector(ray.direction));
     // y = h(fx, fz) with fx = x scale + const: dy/dx = scale dh/dfx, likewise for z.
-    const glm::dvec2 slope = contact.patch.gradient(contact.local.x, contact.local.y) * space.scale;
+    const glm::dvec2 slope = contact.gradient * space.scale;
     hit.normal = glm::normalize(glm::dvec3(-slope.x, 1.0, -slope.y));
     return hit;
 }
@@ -256,7 +437,9 @@ ReferenceHit traceBelow(const ReliefGeometry& relief, const Ray& ray, double top
         return entered(faceHit(HitFace::Bottom, span->tEnter, ray, space));
 
     const double tStart = std::max(span->tEnter, 0.0);
-    const auto contact = walkCells(map, relief.heightScale, o, d, tStart, *span);
+    const auto contact = relief.interpolation == Interpolation::Biquadratic
+                             ? walkSquares(map, relief.heightScale, o, d, tStart, *span)
+                             : walkCells(map, relief.heightScale, o, d, tStart, *span);
     if (!contact) return entered({});
     // Touching the solid right where the ray enters through a wall: a wall hit.
     if (span->entryFace != HitFace::None && contact->t == tStart) {

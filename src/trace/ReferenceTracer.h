@@ -43,6 +43,7 @@ struct ReliefGeometry {
     const HeightMap* map;  // not owned; must be non-empty with heights >= 0
     double heightScale = 0.1;
     BaseShape base = {};
+    Interpolation interpolation = Interpolation::Bilinear;
 };
 
 // The exact first hit of `ray` (world space) with the relief solid: its first point with

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 #include "synth/SyntheticMaps.h"
 #include "trace/ReferenceTracer.h"
@@ -36,7 +37,8 @@ struct Solid {
     }
     double surfaceRadius(const glm::dvec3& q) const {
         const glm::dvec2 xy = mapXY(q);
-        return 1.0 + relief.heightScale * relief.map->surface(xy.x, xy.y, true);
+        return 1.0 +
+               relief.heightScale * relief.map->surface(xy.x, xy.y, true, relief.interpolation);
     }
     // Inside by more than `margin` (canonical units).
     bool deepInside(const glm::dvec3& world, double margin) const {
@@ -134,8 +136,14 @@ TEST(CurvedReference, AConstantMapIsAColumnOrAnEllipsoidOfKnownRadius) {
 TEST(CurvedReference, OneRaisedSamplePeaksAtItsOwnDirection) {
     const int w = 16, h = 8, i = 5, j = 3;
     const HeightMap map = synth::spike(w, h, i, j);
-    for (const BaseShape& base : {BaseShape::sphere(0.5), BaseShape::cylinder(0.3, 1.0)}) {
-        const ReliefGeometry relief{&map, 0.3, base};
+    // Bilinear: the sample's height itself, 1; biquadratic: the B-spline's 3/4 x 3/4.
+    for (const auto& [base, interpolation, peak] :
+         std::vector<std::tuple<BaseShape, Interpolation, double>>{
+             {BaseShape::sphere(0.5), Interpolation::Bilinear, 1.0},
+             {BaseShape::cylinder(0.3, 1.0), Interpolation::Bilinear, 1.0},
+             {BaseShape::sphere(0.5), Interpolation::Biquadratic, 0.5625},
+             {BaseShape::cylinder(0.3, 1.0), Interpolation::Biquadratic, 0.5625}}) {
+        const ReliefGeometry relief{&map, 0.3, base, interpolation};
         // The sample's direction: u = (i + 0.5) / W, v = (j + 0.5) / H.
         const double phi = 2.0 * kPi * ((i + 0.5) / w - 0.5), v = (j + 0.5) / h;
         glm::dvec3 q;
@@ -145,18 +153,21 @@ TEST(CurvedReference, OneRaisedSamplePeaksAtItsOwnDirection) {
             const double theta = kPi * v;
             q = {std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi)};
         }
-        // From outside, straight at the axis (or centre) through the sample: the peak at 1.3.
+        // From outside, straight at the axis (or centre) through the sample: the peak at
+        // radius 1 + s peak.
         glm::dvec3 inward = -q;
         if (base.kind == BaseKind::Cylinder) inward.y = 0.0;
         const glm::dvec3 scale = base.frameScale();
-        const glm::dvec3 peak = q * glm::dvec3(1.3, 1.0, 1.3);
-        const glm::dvec3 worldPeak =
-            base.kind == BaseKind::Cylinder ? peak * scale : q * 1.3 * scale;
+        const double radius = 1.0 + 0.3 * peak;
+        const glm::dvec3 worldPeak = base.kind == BaseKind::Cylinder
+                                         ? q * glm::dvec3(radius, 1.0, radius) * scale
+                                         : q * radius * scale;
         const glm::dvec3 worldEye = worldPeak - 2.0 * glm::normalize(inward * scale) * 1.0;
         const ReferenceHit hit = traceReference(relief, through(worldEye, worldPeak));
         ASSERT_TRUE(hit);
         EXPECT_EQ(hit.face, HitFace::Top);
-        EXPECT_NEAR(glm::length(hit.position - worldPeak), 0.0, 1e-9) << baseName(base);
+        EXPECT_NEAR(glm::length(hit.position - worldPeak), 0.0, 1e-9)
+            << baseName(base) << " " << interpolationName(interpolation);
         EXPECT_NEAR(hit.uv.x, (i + 0.5) / w, 1e-9);
         EXPECT_NEAR(hit.uv.y, v, 1e-9);
     }
@@ -224,7 +235,8 @@ TEST(CurvedReference, RandomRaysHitTheSolidFirstWhereTheyEnterIt) {
         const HeightMap map = trial % 3 == 0 ? synth::whiteNoise(w, h, trial)
                                              : synth::valueNoise(w, h, 4.0, 3, trial);
         const BaseShape& base = bases[trial % 4];
-        const Solid solid{{&map, 0.05 + 0.4 * zeroOne(random), base}};
+        const Solid solid{{&map, 0.05 + 0.4 * zeroOne(random), base,
+                           trial % 3 == 1 ? Interpolation::Biquadratic : Interpolation::Bilinear}};
         const glm::dvec3 box = base.boxMax(w, h, solid.relief.heightScale * map.maxValue());
         for (int n = 0; n < 40; ++n) {
             glm::dvec3 eye;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <tuple>
 #include <vector>
 
 namespace microrelief {
@@ -39,7 +40,7 @@ double surfaceY(const ReliefGeometry& relief, double x, double z) {
     const Extents e = extentsOf(*relief.map);
     const double texelX = (x / e.a + 0.5) * relief.map->width;
     const double texelY = (z / e.b + 0.5) * relief.map->height;
-    return relief.heightScale * relief.map->surface(texelX, texelY);
+    return relief.heightScale * relief.map->surface(texelX, texelY, false, relief.interpolation);
 }
 
 // Inside the solid by more than `margin` in every constraint.
@@ -519,6 +520,77 @@ TEST(ReferenceTracerPatch, RaysAlongCellBoundariesAgreeWithBisection) {
     }
 }
 
+// --- The biquadratic surface -----------------------------------------------------------
+
+// One raised sample is the B-spline itself: 3/4 x 3/4 at its centre, 1/2 x 3/4 on the
+// edge of its texel square, 1/8 x 3/4 at the next sample.
+TEST(ReferenceTracerBiquadratic, ASpikeIsTheBSpline) {
+    const HeightMap map = [] {
+        HeightMap m(9, 9, 0.0f);
+        m.at(4, 3) = 1.0f;
+        return m;
+    }();
+    const ReliefGeometry relief{&map, 0.5, BaseShape::plane(), Interpolation::Biquadratic};
+    const auto down = [&](double i, double j) {
+        const glm::dvec2 xz = worldAtSample(map, i, j);
+        return traceReference(relief, {{xz.x, 2.0, xz.y}, {0.0, -1.0, 0.0}});
+    };
+    for (const auto& [i, j, h] : std::vector<std::tuple<double, double, double>>{
+             {4.0, 3.0, 0.5625}, {4.5, 3.0, 0.375}, {5.0, 3.0, 0.09375}, {4.0, 3.5, 0.375}}) {
+        const ReferenceHit hit = down(i, j);
+        ASSERT_EQ(hit.face, HitFace::Top) << i << "," << j;
+        EXPECT_NEAR(hit.position.y, 0.5 * h, kExact) << i << "," << j;
+    }
+    // The peak is smooth: straight up at the centre, tilted evenly either side.
+    EXPECT_NEAR(down(4.0, 3.0).normal.y, 1.0, kExact);
+    const glm::dvec3 left = down(3.7, 3.0).normal, right = down(4.3, 3.0).normal;
+    EXPECT_NEAR(left.x, -right.x, kExact);
+    EXPECT_LT(left.x, 0.0);
+}
+
+// Slanted rays through the quartic part of a square against dense bisection on the
+// surface's own definition (HeightMap::surface).
+TEST(ReferenceTracerBiquadratic, SlantedRaysAgreeWithBisection) {
+    std::mt19937_64 random(99);
+    HeightMap map(7, 5);
+    std::uniform_real_distribution<float> value(0.0f, 1.0f);
+    for (float& h : map.samples) h = value(random);
+    const ReliefGeometry relief{&map, 0.4, BaseShape::plane(), Interpolation::Biquadratic};
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    int hits = 0;
+    for (int k = 0; k < 300; ++k) {
+        const glm::dvec3 target(0.45 * unit(random), 0.0, 0.3 * unit(random));
+        const glm::dvec3 eye =
+            target + glm::dvec3(unit(random), 0.6 + 0.5 * unit(random), unit(random));
+        const Ray ray = through(eye, {target.x, surfaceY(relief, target.x, target.z), target.z});
+        const ReferenceHit hit = traceReference(relief, ray);
+        ASSERT_TRUE(hit) << k;  // the target itself is on the surface
+        // Bisection for the first point below the surface, from dense samples; none before
+        // the target, which is on the surface (and may round to either side of it): t = 1.
+        double t0 = 1.0, t1 = 1.0;
+        for (int n = 1; n <= 20000; ++n) {
+            const double t = n / 20000.0;
+            const glm::dvec3 p = ray.origin + t * ray.direction;
+            const bool in = std::abs(p.x) <= 0.5 && std::abs(p.z) <= 5.0 / 14.0 &&
+                            p.y <= surfaceY(relief, p.x, p.z);
+            if (in) {
+                t1 = t;
+                t0 = (n - 1) / 20000.0;
+                break;
+            }
+        }
+        for (int n = 0; n < 60; ++n) {
+            const double m = 0.5 * (t0 + t1);
+            const glm::dvec3 p = ray.origin + m * ray.direction;
+            (p.y <= surfaceY(relief, p.x, p.z) ? t1 : t0) = m;
+        }
+        if (hit.face != HitFace::Top) continue;
+        ++hits;
+        EXPECT_NEAR(hit.t, t1, 1e-9) << k;
+    }
+    EXPECT_GT(hits, 200);
+}
+
 // --- Random maps and rays: the definition of a hit ------------------------------------
 
 HeightMap randomMap(std::mt19937_64& random) {
@@ -652,7 +724,10 @@ TEST(ReferenceTracerProperty, RandomRaysHitTheSolidFirstWhereTheyEnterIt) {
     int hits = 0, misses = 0, faces[5] = {};
     for (int trial = 0; trial < 300; ++trial) {
         const HeightMap map = randomMap(random);
-        const ReliefGeometry relief{&map, scale(random)};
+        // Both interpolations, trial by trial.
+        const ReliefGeometry relief{
+            &map, scale(random), BaseShape::plane(),
+            trial % 2 ? Interpolation::Biquadratic : Interpolation::Bilinear};
         const Extents e = extentsOf(map);
         const double boxTop = relief.heightScale * map.maxValue();
         for (int n = 0; n < 12; ++n) {

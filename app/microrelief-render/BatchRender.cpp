@@ -140,13 +140,14 @@ bool complete(const std::filesystem::path& file) {
            !ec;
 }
 
-// The map a frame draws, as loaded: file, load options, and whether its pyramid wraps in
-// u (a curved base; between the plane and a curved base the map is uploaded again).
-using MapKey = std::tuple<std::filesystem::path, int, bool, bool>;
+// The map a frame draws, as loaded: file, load options, whether its pyramid wraps in u (a
+// curved base; between the plane and a curved base the map is uploaded again) and the
+// surface it bounds (the interpolation).
+using MapKey = std::tuple<std::filesystem::path, int, bool, bool, Interpolation>;
 
 MapKey mapKey(const SceneOptions& scene) {
     return {scene.heightFile ? *scene.heightFile : defaultHeightMapPath(), scene.load.channel,
-            scene.load.normalize, scene.job.base.wrapsU()};
+            scene.load.normalize, scene.job.base.wrapsU(), scene.job.interpolation};
 }
 
 }  // namespace
@@ -201,7 +202,8 @@ int runBatch(const RenderOptions& o) {
             if (const MapKey key = mapKey(frame.scene); key != loaded) {
                 loaded.reset();
                 const HeightMap map = loadHeightMap(std::get<0>(key), frame.scene.load);
-                renderer->setHeightMap(map, std::get<0>(key).string(), frame.scene.job.base);
+                renderer->setHeightMap(map, std::get<0>(key).string(), frame.scene.job.base,
+                                       frame.scene.job.interpolation);
                 loaded = key;
                 ++mapsLoaded;
             }

@@ -22,8 +22,9 @@ constexpr const char* kProgram = "microrelief-render";
 
 // --compare-reference: the accuracy sweep's figures for this one view.
 void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
-                   double heightScale, const BaseShape& base) {
-    const Accuracy a = compareWithReference(frame, camera, map, heightScale, base);
+                   const RenderJob& job) {
+    const Accuracy a = compareWithReference(
+        frame, camera, ReliefGeometry{&map, job.heightScale, job.base, job.interpolation});
     std::printf(
         "accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n",
         a.pixels, a.referenceHits);
@@ -72,7 +73,7 @@ int run(const RenderOptions& o) {
     }
     batch.commit();
 
-    if (o.compareReference) printAccuracy(frame, result.camera, map, o.job.heightScale, o.job.base);
+    if (o.compareReference) printAccuracy(frame, result.camera, map, o.job);
     if (exhausted > 0) {
         logWarning(std::to_string(exhausted) +
                    " pixel(s) ran out of the iteration budget (shown magenta)");

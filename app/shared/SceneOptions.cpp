@@ -114,6 +114,10 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
     app.add_option("--height-scale", job_.heightScale,
                    "World height of map value 1 (the map spans 1 unit)")
         ->capture_default_str();
+    app.add_option("--interpolation", interpolation_,
+                   "The last level: bilinear, or biquadratic (the quadratic B-spline of the "
+                   "samples: smooth)")
+        ->capture_default_str();
     app.add_option("--base", base_,
                    "Base surface the map is laid over: plane, cylinder (axis y), ellipsoid or "
                    "sphere (u wraps around the y axis)")
@@ -205,6 +209,7 @@ BaseShape parseBase(const std::string& name, const std::optional<double>& radius
 void SceneFlags::apply() {
     if (!height_.empty()) heightFile_ = height_;
     job_.base = parseBase(base_, radius_, length_, radii_);
+    job_.interpolation = parseInterpolation(interpolation_);
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
@@ -253,6 +258,8 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     if (o.load.channel != 0) flag("--channel", std::to_string(o.load.channel));
     if (o.load.normalize) flag("--normalize", "");
     flag("--height-scale", exactText(job.heightScale));
+    if (job.interpolation != Interpolation::Bilinear)
+        flag("--interpolation", interpolationName(job.interpolation));
     const std::string base = baseName(job.base);
     if (job.base.kind == BaseKind::Cylinder) {
         flag("--base", base);

@@ -35,8 +35,8 @@ public:
     explicit SceneFlags(SceneOptions& options)
         : SceneFlags(options.heightFile, options.load, options.job) {}
 
-    // --height --channel --normalize --height-scale --base --radius --length --radii --eye
-    // --target --up --fovy --size
+    // --height --channel --normalize --height-scale --interpolation --base --radius --length
+    // --radii --eye --target --up --fovy --size
     void addMapAndCamera(CLI::App& app);
     // --light --method --steps --pixel-error --view --background
     void addShading(CLI::App& app);
@@ -50,7 +50,7 @@ private:
     HeightMapLoadOptions& load_;
     RenderJob& job_;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
-    std::string base_ = "plane", radii_;
+    std::string base_ = "plane", radii_, interpolation_ = "bilinear";
     std::optional<double> radius_, length_;
 };
 

@@ -61,6 +61,15 @@ float planeDescendTo(vec3 origin, vec3 dir, float ta, float tb, float h) {
     return dir.z < 0.0 ? clamp((h - origin.z) / dir.z, ta, tb) : ta;
 }
 
+// Where the straight path crosses the cell boundary X = boundary (Y = boundary), any t; 1e30
+// where it runs parallel to it.
+float planeCrossX(vec3 origin, vec3 dir, float boundary) {
+    return dir.x == 0.0 ? 1e30 : (boundary - origin.x) / dir.x;
+}
+float planeCrossY(vec3 origin, vec3 dir, float boundary) {
+    return dir.y == 0.0 ? 1e30 : (boundary - origin.y) / dir.y;
+}
+
 // Map space normals: (-dh/dX, -dh/dY, 1) on top, the axis of a face.
 vec3 planeTopNormal(vec2 gradient) { return vec3(-gradient, 1.0); }
 
@@ -78,7 +87,9 @@ vec3 planeWorldNormal(ReliefMap map, vec3 n) {
     return normalize(vec3(n.x * texelsPerUnit, n.z / map.heightScale, n.y * texelsPerUnit));
 }
 
-// Exact first hit on the bilinear surface along [ta, tb], or -1: the patches (cells
+// Exact first hit on the bilinear surface along [ta, tb], or -1 (the plane's own leaf for
+// the bilinear surface; the biquadratic one walks texel squares, base_surface.glsl): the
+// patches (cells
 // between four samples) the segment crosses, in ray order, each solved as a quadratic,
 // from one cell to its neighbour across the boundary the ray meets first (a 2D DDA, as
 // in the reference tracer). Neighbouring patches share an edge (neighbourCorners).

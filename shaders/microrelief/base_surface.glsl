@@ -16,7 +16,7 @@
 // (baseClipToShell), the exact first hit over a leaf (baseIntersectLeaf), and the hit's
 // map point and normal (baseMapPoint, baseTopNormal, baseWorldNormal).
 //
-// The exact hit on a curved base (curvedIntersectLeaf): along the ray the surface is no
+// The exact hit on a curved base (intersectLeafCells): along the ray the surface is no
 // longer a polynomial in t. The leaf walks the cells its path crosses, in order, each
 // cell's stretch ending where the path crosses a boundary (a half-plane of constant u, a
 // plane or a cone of constant v), found in closed form; in each cell it subdivides the
@@ -37,6 +37,7 @@
 #include "bilinear_patch.glsl"
 #include "map_space.glsl"
 #include "relief_map.glsl"
+#include "relief_patch.glsl"
 
 // The curved leaf's subdivision of one cell's stretch of the ray: down to pieces
 // kCurvedFinalLength long in the frame, or 2^-10 of the stretch at most. Over a piece of
@@ -51,6 +52,12 @@
 #define MICRORELIEF_CELL_DEPTH 10
 #endif
 const float kCurvedFinalLength = 1.0 / 128.0;
+// The biquadratic surface along a piece of the path D texels wide departs from the parabola
+// through its ends and middle by about its third derivative times (D / 2)^3 / 9 sqrt(3): a
+// bicubic's is bounded by the map's range, and with D = 2^-6 that is 2.6e-7 of it.
+const float kBiquadraticFinalFootprint = 1.0 / 64.0;
+// The patch's bound, padded by its own float rounding (a few ulp of the net's entries).
+const float kPatchTopMargin = 1.0 / 1048576.0;
 
 vec3 baseFramePoint(ReliefMap map, vec3 world) {
 #if MICRORELIEF_BASE == 0
@@ -168,22 +175,12 @@ float baseDescendTo(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, fl
 #endif
 }
 
-// Where the latitude turns (kCurvedNever on the plane and the cylinder), and where the
-// path crosses the cell boundary Y = boundary on the branch [from, to] of the line on
-// which Y is monotone (the cylinder's planes are crossed once: any t).
+// Where the latitude turns (kCurvedNever on the plane and the cylinder).
 float baseTurnY(vec3 origin, vec3 dir) {
 #if MICRORELIEF_BASE == 2
     return ellipsoidTurnY(origin, dir);
 #else
     return kCurvedNever;
-#endif
-}
-
-float baseCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
-#if MICRORELIEF_BASE == 2
-    return ellipsoidCrossY(map, origin, dir, boundary, from, to);
-#else
-    return cylinderCrossY(map, origin, dir, boundary);
 #endif
 }
 
@@ -277,52 +274,93 @@ bool baseTangentRay(ReliefMap map, vec3 origin, vec3 dir, out vec3 localOrigin, 
     return true;
 }
 
-// Map point m in the local coordinates of `cell`, with its height: (fx, fy, h).
-vec3 curvedCellLocal(ReliefMap map, ivec2 cell, vec3 m) { return vec3(cellLocal(map, cell, m.xy), m.z); }
-
-// The ray at t in the local coordinates of `cell`, and its height.
-vec3 curvedLocal(ReliefMap map, vec3 origin, vec3 dir, float t, ivec2 cell) {
-    return curvedCellLocal(map, cell, baseMapPoint(map, origin + t * dir));
+// The leaf's walk over the cells its path crosses, for every base and both
+// interpolations but the plane's bilinear surface (whose leaf is planeIntersectLeaf):
+// where the path crosses the cell boundaries X = i + kPatchOffset and Y = j + kPatchOffset
+// (relief_patch.glsl), and which way it goes.
+bool baseXIncreases(vec3 origin, vec3 dir) {
+#if MICRORELIEF_BASE == 0
+    return dir.x > 0.0;
+#else
+    return curvedXIncreases(origin, dir);
+#endif
 }
+
+float baseCrossX(ReliefMap map, vec3 origin, vec3 dir, float boundary) {
+#if MICRORELIEF_BASE == 0
+    return planeCrossX(origin, dir, boundary);
+#else
+    return curvedCrossX(map, origin, dir, boundary);
+#endif
+}
+
+// On the plane and the cylinder each Y boundary is crossed once (any t); on the
+// ellipsoid, the crossing on the branch [from, to] of the line where Y is monotone.
+float baseCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
+#if MICRORELIEF_BASE == 2
+    return ellipsoidCrossY(map, origin, dir, boundary, from, to);
+#elif MICRORELIEF_BASE == 1
+    return cylinderCrossY(map, origin, dir, boundary);
+#else
+    return planeCrossY(origin, dir, boundary);
+#endif
+}
+
+// When a piece of a cell's stretch is final (see the header): on a curved base once it is
+// kCurvedFinalLength long in the frame, and for the biquadratic surface once its footprint
+// is kBiquadraticFinalFootprint texels wide; the bilinear surface along a straight path is
+// a quadratic the parabola holds exactly.
+#if MICRORELIEF_BASE == 0
+const float kFinalLength = 1e30;
+#else
+const float kFinalLength = kCurvedFinalLength;
+#endif
+#if MICRORELIEF_INTERPOLATION == 1
+const float kFinalFootprint = kBiquadraticFinalFootprint;
+#else
+const float kFinalFootprint = 1e30;
+#endif
+
+// Map point m in the local coordinates of `cell`, with its height: (fx, fy, h).
+vec3 cellLocalPoint(ReliefMap map, ivec2 cell, vec3 m) { return vec3(patchLocal(map, cell, m.xy), m.z); }
 
 // Patch minus ray: >= 0 where the ray is on or under the surface.
-float curvedGap(vec4 corners, vec3 local) {
-    return patchHeight(corners, clamp(local.xy, 0.0, 1.0)) - local.z;
-}
+float cellGap(ReliefPatch cellPatch, vec3 local) { return patchValue(cellPatch, clamp(local.xy, 0.0, 1.0)) - local.z; }
 
-// The first t in [c0, c1] where the ray meets the patch `corners` of `cell`, or -1 (see
-// the header). `ends`: the map points at c0 and c1, the first known from the cell before
-// and the second found here (the next cell's first). The walk carries the local
-// coordinates of the current piece's ends, so that each step computes one new point: the
-// middle it descends to, or the end of the piece it moves on to.
-float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 corners, float c0, float c1,
-                      vec3 startPoint, out vec3 endPoint) {
+// The first t in [c0, c1] where the ray meets the patch `cellPatch` of `cell`, or -1 (see the
+// header). `startPoint`: the map point at c0, known from the cell before; `endPoint`: the
+// one at c1, found here (the next cell's start). The walk carries the local coordinates of
+// the current piece's ends, so that each step computes one new point: the middle it
+// descends to, or the end of the piece it moves on to. Every margin pads a bound outwards.
+float cellStretchHit(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, ReliefPatch cellPatch, float c0, float c1,
+                     vec3 startPoint, out vec3 endPoint) {
     vec2 margin = vec2(curvedMarginX(map), curvedMarginY(map));
-    // A piece this short is final: over it the quadratic model of the gap is exact to
-    // float precision whatever the base's curvature (see the header).
-    float finalLength = kCurvedFinalLength / length(dir);
+    float topMargin = kPatchTopMargin * map.maxHeight;
+    float finalLength = kFinalLength / length(dir);
     int depth = 0;
     uint index = 0u;
     float a = c0, b = c1;
     endPoint = baseMapPoint(map, origin + c1 * dir);
-    vec3 fa = curvedCellLocal(map, cell, startPoint), fb = curvedCellLocal(map, cell, endPoint);
+    vec3 fa = cellLocalPoint(map, cell, startPoint), fb = cellLocalPoint(map, cell, endPoint);
     // A walk of the binary tree of pieces visits each at most once.
     for (int guard = 0; guard < (2 << MICRORELIEF_CELL_DEPTH); ++guard) {
-        float top = patchMaxOver(corners, min(fa.xy, fb.xy) - margin, max(fa.xy, fb.xy) + margin);
+        vec2 lo = min(fa.xy, fb.xy), hi = max(fa.xy, fb.xy);
+        float top = patchTop(cellPatch, lo - margin, hi + margin) + topMargin;
         bool may = baseLowest(map, origin, dir, a, b) <= top;
-        bool last = depth == MICRORELIEF_CELL_DEPTH || b - a <= finalLength;
+        bool last = depth == MICRORELIEF_CELL_DEPTH ||
+                    (b - a <= finalLength && max(hi.x - lo.x, hi.y - lo.y) <= kFinalFootprint);
         if (may && !last) {
             // Into the near half.
             depth += 1;
             index *= 2u;
             b = 0.5 * (a + b);
-            fb = curvedLocal(map, origin, dir, b, cell);
+            fb = cellLocalPoint(map, cell, baseMapPoint(map, origin + b * dir));
             continue;
         }
         if (may) {
             float m = 0.5 * (a + b);
-            float ga = curvedGap(corners, fa), gb = curvedGap(corners, fb);
-            float gm = curvedGap(corners, curvedLocal(map, origin, dir, m, cell));
+            float ga = cellGap(cellPatch, fa), gb = cellGap(cellPatch, fb);
+            float gm = cellGap(cellPatch, cellLocalPoint(map, cell, baseMapPoint(map, origin + m * dir)));
             if (ga >= 0.0) return a;
             if (gm >= 0.0) return a + (m - a) * ga / (ga - gm);
             if (gb >= 0.0) return m + (b - m) * gm / (gm - gb);
@@ -344,7 +382,7 @@ float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 cor
         a = b;
         fa = fb;
         b = index + 1u == (1u << uint(depth)) ? c1 : c0 + float(index + 1u) * ((c1 - c0) * exp2(-float(depth)));
-        fb = curvedLocal(map, origin, dir, b, cell);
+        fb = cellLocalPoint(map, cell, baseMapPoint(map, origin + b * dir));
     }
     return -1.0;
 }
@@ -354,29 +392,37 @@ float curvedSolveCell(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, vec4 cor
 // branchTo] is the whole branch of the line that holds [from, to] on which Y is monotone,
 // so that each boundary is crossed once on it: a crossing found there but behind the
 // current t means rounding put the start just past it, and the walk steps on at once.
-// `corners` and `cell` are the patch of the hit.
-float curvedWalkCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
-                      float branchFrom, float branchTo, inout int fetches, out vec4 corners, out ivec2 cell) {
+// `cellPatch` and `cell` are the patch of the hit.
+float walkLeafCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
+                    float branchFrom, float branchTo, inout int fetches, out ReliefPatch cellPatch, out ivec2 cell) {
     int width = int(map.size.x);
+    // Cells in Y: -1..H - 1 between sample centres, 0..H - 1 over texel squares.
+    int firstRow = kPatchOffset > 0.0 ? -1 : 0, lastRow = int(map.size.y) - 1;
     vec3 start = baseMapPoint(map, origin + from * dir);
-    cell = wrapCell(map, cellAt(start.xy));
-    cell.y = clamp(cell.y, -1, int(map.size.y) - 1);
-    bool xUp = curvedXIncreases(origin, dir);
+    cell = patchCellAt(map, start.xy);
+    cell.y = clamp(cell.y, firstRow, lastRow);
+#if MICRORELIEF_BASE == 0
+    cell.x = clamp(cell.x, firstRow, width - 1);
+#endif
+    bool xUp = baseXIncreases(origin, dir);
     float yTo = baseMapY(map, origin + to * dir);
     bool yMoves = yTo != start.y, yUp = yTo > start.y;
     float t0 = from;
     vec3 point = start;  // the map point at t0
-    corners = vec4(0.0);
+    cellPatch = ReliefPatch(0.0);
     for (int piece = 0; piece < width + int(map.size.y) + 4; ++piece) {
         float t1 = to;
         bool stepX = false, stepY = false;
-        // A map one sample wide has no boundary in X: its one cell goes all the way round.
-        float tx = width > 1 ? curvedCrossX(map, origin, dir, float(cell.x) + (xUp ? 1.5 : 0.5)) : kCurvedNever;
+        // A curved map one sample wide has no boundary in X: its one cell goes all the way
+        // round.
+        float tx = MICRORELIEF_BASE == 0 || width > 1
+                       ? baseCrossX(map, origin, dir, float(cell.x) + kPatchOffset + (xUp ? 1.0 : 0.0))
+                       : kCurvedNever;
         if (tx <= t1) {
             t1 = max(tx, t0);
             stepX = true;
         }
-        float yBoundary = float(cell.y) + (yUp ? 1.5 : 0.5);
+        float yBoundary = float(cell.y) + kPatchOffset + (yUp ? 1.0 : 0.0);
         if (yMoves && yBoundary > 0.0 && yBoundary < map.size.y) {
             float ty = baseCrossY(map, origin, dir, yBoundary, branchFrom, branchTo);
             if (ty <= t1) {
@@ -386,23 +432,28 @@ float curvedWalkCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, f
                 stepY = true;
             }
         }
-        corners = cellCorners(map, heights, cell, fetches);
+        cellPatch = patchAt(map, heights, cell, fetches);
         vec3 next;
-        float tHit = curvedSolveCell(map, origin, dir, cell, corners, t0, t1, point, next);
+        float tHit = cellStretchHit(map, origin, dir, cell, cellPatch, t0, t1, point, next);
         if (tHit >= 0.0) return tHit;
         point = next;
         if (!stepX && !stepY) break;  // the stretch ended at `to`
+#if MICRORELIEF_BASE == 0
+        if (stepX) cell.x += xUp ? 1 : -1;
+#else
         if (stepX) cell.x = xUp ? (cell.x + 1 == width ? 0 : cell.x + 1) : (cell.x == 0 ? width - 1 : cell.x - 1);
+#endif
         if (stepY) cell.y += yUp ? 1 : -1;
         t0 = t1;
     }
     return -1.0;
 }
 
-// The exact first hit over [ta, tb] on a curved base: the latitude turns at most once
-// along a line, so the leaf is walked in two pieces at most, X and Y monotone on each.
-float curvedIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                          inout int fetches, out vec4 corners, out ivec2 cell) {
+// The exact first hit over [ta, tb] by the cells the path crosses: the latitude turns at
+// most once along a line, so the leaf is walked in two pieces at most, X and Y monotone on
+// each.
+float intersectLeafCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+                         inout int fetches, out ReliefPatch cellPatch, out ivec2 cell) {
     float turn = baseTurnY(origin, dir);
     float from = ta, to = turn > ta && turn < tb ? turn : tb;
     float tHit = -1.0;
@@ -411,7 +462,7 @@ float curvedIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 di
         bool beforeTurn = turn != kCurvedNever && turn >= to;
         float branchFrom = beforeTurn || turn == kCurvedNever ? -kCurvedNever : turn;
         float branchTo = beforeTurn ? turn : kCurvedNever;
-        tHit = curvedWalkCells(map, heights, origin, dir, from, to, branchFrom, branchTo, fetches, corners, cell);
+        tHit = walkLeafCells(map, heights, origin, dir, from, to, branchFrom, branchTo, fetches, cellPatch, cell);
         if (tHit >= 0.0 || to >= tb) break;
         from = to;
         to = tb;
@@ -422,11 +473,11 @@ float curvedIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 di
 // The exact first hit on the surface over [ta, tb], or -1; `corners` and `cell` are the
 // patch of the hit.
 float baseIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                        inout int fetches, out vec4 corners, out ivec2 cell) {
-#if MICRORELIEF_BASE == 0
-    return planeIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, corners, cell);
+                        inout int fetches, out ReliefPatch cellPatch, out ivec2 cell) {
+#if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 0
+    return planeIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
 #else
-    return curvedIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, corners, cell);
+    return intersectLeafCells(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
 #endif
 }
 

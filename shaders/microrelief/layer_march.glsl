@@ -14,7 +14,7 @@
 #ifndef MICRORELIEF_LAYER_MARCH_GLSL
 #define MICRORELIEF_LAYER_MARCH_GLSL
 
-#include "bilinear_patch.glsl"
+#include "relief_patch.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
@@ -34,7 +34,7 @@ LayerSample layerSampleAt(ReliefMap map, sampler2D heights, vec3 origin, vec3 di
                           inout ReliefHit hit) {
     vec3 p = origin + t * dir;
     hit.iterations += 1;
-    return LayerSample(t, surfaceHeight(map, heights, p.xy, hit.fetches) - p.z);
+    return LayerSample(t, reliefHeight(map, heights, p.xy, hit.fetches) - p.z);
 }
 
 // The ray direction in the tangent frame of the published methods: map (X, Y, h) axes in

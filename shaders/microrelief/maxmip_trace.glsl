@@ -18,7 +18,7 @@
 #ifndef MICRORELIEF_MAXMIP_TRACE_GLSL
 #define MICRORELIEF_MAXMIP_TRACE_GLSL
 
-#include "bilinear_patch.glsl"
+#include "relief_patch.glsl"
 #include "max_pyramid.glsl"
 #include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
@@ -130,7 +130,7 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
     ivec2 node = ivec2(0);  // the root covers the whole map
     bool finished = false, solved = false;
     float tHit = -1.0;
-    vec4 corners;
+    ReliefPatch corners;
     ivec2 cell;
     int iteration = 0;
     vec2 exits = vec2(0.0);  // where the ray leaves the current node's column, per axis

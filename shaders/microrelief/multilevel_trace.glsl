@@ -26,7 +26,7 @@
 #define MICRORELIEF_MULTILEVEL_TRACE_GLSL
 
 #include "base_surface.glsl"
-#include "bilinear_patch.glsl"
+#include "relief_patch.glsl"
 #include "max_pyramid.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
@@ -91,7 +91,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     // tHit >= 0, solved exactly on the patch `corners` of `cell` or else taken as is.
     bool finished = false, solved = false;
     float tHit = -1.0;
-    vec4 corners;
+    ReliefPatch corners;
     ivec2 cell;
     int iteration = 0;
     float ta = 0.0, tb = 0.0;  // the current segment

@@ -21,7 +21,7 @@
 #ifndef MICRORELIEF_PARALLAX_OFFSET_GLSL
 #define MICRORELIEF_PARALLAX_OFFSET_GLSL
 
-#include "bilinear_patch.glsl"
+#include "relief_patch.glsl"
 #include "layer_march.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
@@ -35,7 +35,7 @@ ReliefHit traceParallaxOffset(ReliefMap map, sampler2D heights, vec3 origin, vec
     vec3 entry = origin + tNear * dir;
     hit.iterations = 1;
     hit.stopLevel = 0;
-    float h0 = surfaceHeight(map, heights, entry.xy, hit.fetches);
+    float h0 = reliefHeight(map, heights, entry.xy, hit.fetches);
     if (entry.z <= h0) {
         setMapTopHitAt(hit, map, heights, tNear, entry);  // entered under the surface
         return hit;

@@ -1,7 +1,7 @@
 // relief_hit.glsl: the answer every relief tracer of the library gives (ReliefHit), and
 // the pieces they share to fill it: the ray's interval in the relief's bounding shell
 // (base_surface.glsl), the empty answer, a hit on a side wall, the bottom face or a cap
-// where the ray enters, and a hit on the top surface with its normal.
+// where the ray enters, and a hit on the top surface (relief_patch.glsl) with its normal.
 //
 // Inputs are in the base's frame (relief_map.glsl): map space on the plane, the canonical
 // frame on a curved base; t is the ray parameter, the same in world and frame. The normal
@@ -11,8 +11,8 @@
 #define MICRORELIEF_RELIEF_HIT_GLSL
 
 #include "base_surface.glsl"
-#include "bilinear_patch.glsl"
 #include "relief_map.glsl"
+#include "relief_patch.glsl"
 
 struct ReliefHit {
     int kind;         // RELIEF_MISS, RELIEF_TOP, ... (relief_map.glsl)
@@ -39,30 +39,20 @@ ReliefHit reliefMissHit() {
     return hit;
 }
 
-// Fills `hit` as a hit on the top surface at parameter t, in the patch `cell` with
-// corner samples `corners`.
-void setTopHit(inout ReliefHit hit, ReliefMap map, vec3 origin, vec3 dir, float t, vec4 corners, ivec2 cell) {
+// Fills `hit` as a hit on the top surface at parameter t, in the patch `cellPatch` of `cell`.
+void setTopHit(inout ReliefHit hit, ReliefMap map, vec3 origin, vec3 dir, float t, ReliefPatch cellPatch, ivec2 cell) {
     hit.kind = RELIEF_TOP;
     hit.t = t;
     hit.position = origin + t * dir;
-    vec2 xy = baseMapPoint(map, hit.position).xy;
-    vec2 g = patchGradient(corners, clamp(cellLocal(map, cell, xy), 0.0, 1.0));
-    // Clamped border cells are flat across the edge (in u only where it does not wrap).
-#if MICRORELIEF_BASE == 0
-    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
-#endif
-    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
-    hit.normal = baseTopNormal(map, hit.position, g);
+    hit.normal = baseTopNormal(map, hit.position, reliefSlope(map, cellPatch, cell, baseMapPoint(map, hit.position).xy));
 }
 
 // A top-surface hit reported at frame point `position` with ray parameter `t`, the normal
-// taken from the bilinear gradient there (what a normal map would give). The point need
-// not lie on the ray: the offset methods report one that does not.
+// taken from the surface's gradient there (what a normal map would give).
 void setTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t, vec3 position) {
-    ivec2 cell = wrapCell(map, cellAt(baseMapPoint(map, position).xy));
-    vec4 corners = cellCorners(map, heights, cell, hit.fetches);
-    // setTopHit with a zero direction reports `position` itself, with its border rule.
-    setTopHit(hit, map, position, vec3(0.0), 0.0, corners, cell);
+    ivec2 cell = patchCellAt(map, baseMapPoint(map, position).xy);
+    // setTopHit with a zero direction reports `position` itself.
+    setTopHit(hit, map, position, vec3(0.0), 0.0, patchAt(map, heights, cell, hit.fetches), cell);
     hit.t = t;
 }
 
@@ -72,13 +62,8 @@ void setTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t,
 // with the map-space normal (-dh/dX, -dh/dY, 1) of the bilinear surface there. On the
 // plane, map space is the frame, and this is setTopHitAt.
 void setMapTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t, vec3 mapPoint) {
-    ivec2 cell = wrapCell(map, cellAt(mapPoint.xy));
-    vec4 corners = cellCorners(map, heights, cell, hit.fetches);
-    vec2 g = patchGradient(corners, clamp(cellLocal(map, cell, mapPoint.xy), 0.0, 1.0));
-#if MICRORELIEF_BASE == 0
-    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
-#endif
-    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
+    ivec2 cell = patchCellAt(map, mapPoint.xy);
+    vec2 g = reliefSlope(map, patchAt(map, heights, cell, hit.fetches), cell, mapPoint.xy);
     hit.kind = RELIEF_TOP;
     hit.t = t;
     hit.position = mapPoint;
@@ -102,7 +87,7 @@ bool entryFaceHit(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float
     vec3 entry = origin + tEnter * dir;
     vec3 m = baseMapPoint(map, entry);
     bool throughBottom = entryFace == RELIEF_BOTTOM;  // h = 0: always in the solid
-    if (!throughBottom && m.z > surfaceHeight(map, heights, m.xy, hit.fetches)) return false;
+    if (!throughBottom && m.z > reliefHeight(map, heights, m.xy, hit.fetches)) return false;
     hit.kind = entryFace;
     hit.t = tEnter;
     hit.position = entry;

@@ -17,6 +17,11 @@
 #define MICRORELIEF_BASE 0
 #endif
 
+// The last level's interpolation (relief_patch.glsl): 0 bilinear, 1 biquadratic.
+#ifndef MICRORELIEF_INTERPOLATION
+#define MICRORELIEF_INTERPOLATION 0
+#endif
+
 struct ReliefMap {
     vec2 size;           // W, H: height map size in texels
     ivec2 pyramidSize;   // finest pyramid level size (W, H rounded up to powers of two)

@@ -25,9 +25,9 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
 }
 
 void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,
-                                    const BaseShape& base) {
+                                    const BaseShape& base, Interpolation interpolation) {
     context_.makeCurrent();
-    renderer_->setHeightMap(map, source, base);
+    renderer_->setHeightMap(map, source, base, interpolation);
     source_ = source;
     mapWidth_ = map.width;
     mapHeight_ = map.height;
@@ -42,6 +42,8 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     // Another size or curved base of the map's addressing; between the plane and a curved
     // base the pyramid is built anew (setHeightMap).
     if (job.base != renderer_->base()) renderer_->setBase(job.base);
+    if (job.interpolation != renderer_->interpolation())
+        throwRuntime("HeadlessRenderer::render: the map was set for another interpolation");
     renderer_->setMethod(job.method);  // compiled once per method, then looked up
     if (heightScale_ != job.heightScale) {
         renderer_->setHeightScale(job.heightScale);
@@ -70,7 +72,7 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     checkHeightScale(job.heightScale);
     // GL objects live in this scope and die before the context does.
     HeadlessRenderer renderer(context, job.method);
-    renderer.setHeightMap(map, source, job.base);
+    renderer.setHeightMap(map, source, job.base, job.interpolation);
     return renderer.render(job);
 }
 

@@ -19,6 +19,7 @@ struct RenderJob {
     int width = 1280, height = 720;
     float heightScale = 0.1f;
     BaseShape base;  // the surface the map is laid over (--base, --radius, --length, --radii)
+    Interpolation interpolation = Interpolation::Bilinear;  // the last level (--interpolation)
     ShadingOptions shading;
     MethodSettings method;
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB
@@ -40,8 +41,10 @@ public:
 
     // Uploads the map and builds its pyramid for `base` (wrapped in u on a curved base);
     // `source` names it in error messages. A job may then take another size of that base,
-    // or another curved base; between the plane and a curved base, set the map again.
-    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {});
+    // or another curved base; between the plane and a curved base, or for another
+    // interpolation, set the map again.
+    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
+                      Interpolation interpolation = Interpolation::Bilinear);
     // Renders `job` of the current map. Throws Error.
     HeadlessResult render(const RenderJob& job);
 

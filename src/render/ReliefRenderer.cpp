@@ -95,7 +95,7 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
 }
 
 ReliefRenderer::CompiledProgram ReliefRenderer::compile(const ProgramKey& key) const {
-    const auto [method, countFetches, base] = key;
+    const auto [method, countFetches, base, interpolation] = key;
     // GLSL 4.00 core where the GL has it (a patch's four samples in one textureGather:
     // bilinear_patch.glsl), else 3.30 core, the oldest with explicit output locations.
     GLint major = 0;
@@ -103,7 +103,8 @@ ReliefRenderer::CompiledProgram ReliefRenderer::compile(const ProgramKey& key) c
     const std::string version = major >= 4 ? "400 core" : "330 core";
     std::vector<ShaderDefine> defines = {
         {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(method))},
-        {"MICRORELIEF_BASE", std::to_string(static_cast<int>(base))}};
+        {"MICRORELIEF_BASE", std::to_string(static_cast<int>(base))},
+        {"MICRORELIEF_INTERPOLATION", std::to_string(static_cast<int>(interpolation))}};
     if (countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex = gl::compileShader(
         gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
@@ -111,12 +112,13 @@ ReliefRenderer::CompiledProgram ReliefRenderer::compile(const ProgramKey& key) c
         gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version, defines));
     return {gl::linkProgram(gl_, vertex, fragment,
                             std::string("relief (") + methodName(method) + ", " +
-                                baseName(BaseShape{base}) + ")"),
+                                baseName(BaseShape{base}) + ", " +
+                                interpolationName(interpolation) + ")"),
             {}};
 }
 
 void ReliefRenderer::reloadShaders() {
-    const ProgramKey key{method_.method, countFetches_, base_.kind};
+    const ProgramKey key{method_.method, countFetches_, base_.kind, interpolation_};
     CompiledProgram fresh = compile(key);  // throws before anything changes
     programs_.clear();
     current_ = &(programs_[key] = std::move(fresh));
@@ -131,7 +133,7 @@ ReliefRenderer::CompiledProgram& ReliefRenderer::program(const ProgramKey& key) 
 
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
     checkMethodSupportsBase(settings.method, base_);
-    current_ = &program({settings.method, countFetches, base_.kind});
+    current_ = &program({settings.method, countFetches, base_.kind, interpolation_});
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -144,7 +146,7 @@ void ReliefRenderer::setBase(const BaseShape& base) {
             "be uploaded again (setHeightMap)");
     }
     checkMethodSupportsBase(method_.method, base);
-    current_ = &program({method_.method, countFetches_, base.kind});
+    current_ = &program({method_.method, countFetches_, base.kind, interpolation_});
     base_ = base;
     if (mapWidth_ > 0) uploadBox();
 }
@@ -175,7 +177,7 @@ void setSamplerState(const GL& gl, GLint minFilter, int maxLevel, bool repeatS =
 }  // namespace
 
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
-                                  const BaseShape& base) {
+                                  const BaseShape& base, Interpolation interpolation) {
     validateBaseShape(base);
     checkMethodSupportsBase(method_.method, base);
     GLint maxSize = 0;
@@ -185,11 +187,13 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
                       " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) +
                       ")");
     }
-    current_ = &program({method_.method, countFetches_, base.kind});  // throws: nothing changes
-    const MaxPyramid pyramid(map,
-                             base.wrapsU());  // on the GPU from here on; only its shape is kept
+    // Throws before anything changes.
+    current_ = &program({method_.method, countFetches_, base.kind, interpolation});
+    // On the GPU from here on; only its shape is kept.
+    const MaxPyramid pyramid(map, base.wrapsU(), interpolation);
     base_ = base;
     wrapsU_ = base.wrapsU();
+    interpolation_ = interpolation;
     mapWidth_ = map.width;
     mapHeight_ = map.height;
     pyramidWidth_ = pyramid.levelWidth(0);

@@ -88,11 +88,12 @@ public:
     ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
                    const MethodSettings& method = {});
 
-    // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base) and
-    // uploads it with the samples. Throws Error(BadInput) when the map exceeds
-    // GL_MAX_TEXTURE_SIZE or the method does not run on that base; `source` names the map
-    // in that message.
-    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {});
+    // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base), of
+    // the surface `interpolation` makes of it, and uploads it with the samples. Throws
+    // Error(BadInput) when the map exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that
+    // base; `source` names the map in that message.
+    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
+                      Interpolation interpolation = Interpolation::Bilinear);
     void setHeightScale(float scale);
     // Another base of the same addressing as the map was uploaded with (the curved bases
     // among themselves, a new size of the same one); a change between the plane and a
@@ -100,6 +101,7 @@ public:
     // on it, keeping the base it had.
     void setBase(const BaseShape& base);
     const BaseShape& base() const { return base_; }
+    Interpolation interpolation() const { return interpolation_; }
 
     // Recompiles the current program from the files; on failure throws and keeps the
     // previous program. Other programs compiled before are dropped (they may be stale).
@@ -122,7 +124,8 @@ private:
         gl::Program program;
         std::unordered_map<std::string, GLint> uniforms;
     };
-    using ProgramKey = std::tuple<Method, bool, BaseKind>;  // method, counts fetches, base
+    // Method, counts fetches, base, interpolation.
+    using ProgramKey = std::tuple<Method, bool, BaseKind, Interpolation>;
 
     CompiledProgram compile(const ProgramKey& key) const;
     // The program for the key, compiled on first use; throws and changes nothing on failure.
@@ -149,6 +152,7 @@ private:
     bool countFetches_ = false;
     BaseShape base_;
     bool wrapsU_ = false;  // the addressing the map's pyramid was built with
+    Interpolation interpolation_ = Interpolation::Bilinear;  // the surface it bounds
 };
 
 }  // namespace microrelief

@@ -20,11 +20,16 @@ std::string Accuracy::summary() const {
 }
 
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
-                                       double heightScale, const BaseShape& base) {
-    const ReferenceTracer reference(ReliefGeometry{&map, heightScale, base});
+                                       double heightScale, const BaseShape& base,
+                                       Interpolation interpolation) {
+    return traceReferencePicture(camera, ReliefGeometry{&map, heightScale, base, interpolation});
+}
+
+ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGeometry& relief) {
+    const ReferenceTracer reference(relief);
     ReferencePicture picture;
     picture.width = camera.width;
-    picture.texelsPerUnit = 1.0 / base.texelSize(map.width, map.height);
+    picture.texelsPerUnit = 1.0 / relief.base.texelSize(relief.map->width, relief.map->height);
     picture.hits.reserve(static_cast<std::size_t>(camera.width) * camera.height);
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
@@ -114,8 +119,12 @@ Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& cam
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
                               const HeightMap& map, double heightScale, const BaseShape& base,
                               AccuracyScope scope) {
-    return compareWithReference(frame, camera,
-                                traceReferencePicture(camera, map, heightScale, base), scope);
+    return compareWithReference(frame, camera, ReliefGeometry{&map, heightScale, base}, scope);
+}
+
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
+                              const ReliefGeometry& relief, AccuracyScope scope) {
+    return compareWithReference(frame, camera, traceReferencePicture(camera, relief), scope);
 }
 
 }  // namespace microrelief

@@ -15,6 +15,7 @@
 #include "heightmap/HeightMap.h"
 #include "render/Camera.h"
 #include "render/OffscreenTarget.h"
+#include "trace/ReferenceTracer.h"
 
 namespace microrelief {
 
@@ -66,8 +67,10 @@ struct ReferencePicture {
 // know no side walls or bottom face: their hits and misses where the top surface is all
 // the ray can meet, false hits included (what can be asked of them).
 enum class AccuracyScope { AllPixels, TopSurface };
+ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGeometry& relief);
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
-                                       double heightScale, const BaseShape& base = {});
+                                       double heightScale, const BaseShape& base = {},
+                                       Interpolation interpolation = Interpolation::Bilinear);
 
 // Every pixel of `camera`'s picture: `trace(column, row, ray)` against the reference.
 // Errors are measured in texels of the map: world distance * max(W, H).
@@ -81,6 +84,9 @@ Accuracy measureAccuracy(const CameraFrame& camera, const HeightMap& map, double
 // A rendered frame's AOV against the reference.
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
                               const ReferencePicture& reference,
+                              AccuracyScope scope = AccuracyScope::AllPixels);
+Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
+                              const ReliefGeometry& relief,
                               AccuracyScope scope = AccuracyScope::AllPixels);
 Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& camera,
                               const HeightMap& map, double heightScale, const BaseShape& base = {},

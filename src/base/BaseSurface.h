@@ -95,6 +95,27 @@ public:
     // A frame normal in world space, unit.
     virtual glm::dvec3 worldNormal(const glm::dvec3& frameNormal) const = 0;
 
+    // The leaf's walk over cells (base_surface.glsl, walkLeafCells). The t at which the path
+    // crosses the cell boundary X = boundary, any t (each is crossed once along a line: a
+    // walk that finds it behind its start has rounded past it), or nullopt.
+    virtual std::optional<double> crossX(const FrameRay& ray, double boundary) const = 0;
+    // Whether X grows along the ray (monotone along a line on every base).
+    virtual bool xIncreases(const FrameRay& ray) const = 0;
+    // Y of a frame point.
+    virtual double mapY(const glm::dvec3& q) const = 0;
+    // Where Y turns (its one interior extremum along the line), or nullopt.
+    virtual std::optional<double> turnY(const FrameRay& ray) const = 0;
+    // The t at which the path crosses Y = boundary, Y being monotone on [from, to]: where
+    // the line crosses that boundary only once (planes), that crossing at any t, like
+    // crossX; where it may cross twice (the ellipsoid's cones), the one crossing in
+    // [from, to]. nullopt if none.
+    virtual std::optional<double> crossY(const FrameRay& ray, double boundary, double from,
+                                         double to) const = 0;
+    // A piece of a cell's stretch at most this long (frame units) is final: the curved
+    // bases' curvature is then below float precision (base_surface.glsl:
+    // kCurvedFinalLength); the plane has no curvature.
+    virtual double finalLength() const = 0;
+
     // For the implementations; make() is how a surface is made.
     BaseSurface(const BaseShape& shape, int mapWidth, int mapHeight, double heightScale,
                 double maxHeight)
@@ -127,12 +148,9 @@ public:
 
     // X of frame point q, in [0, W).
     double mapX(const glm::dvec3& q) const;
-    // The t at which the line crosses the cell boundary X = boundary (a half-plane through
-    // the axis; the line meets it at most once), or nullopt where it never does. Any t:
-    // a walk that finds it behind its start has rounded past the boundary already.
-    std::optional<double> crossX(const FrameRay& ray, double boundary) const;
-    // Whether X grows along the ray (the angle about the axis is monotone along a line).
-    static bool xIncreases(const FrameRay& ray);
+    std::optional<double> crossX(const FrameRay& ray, double boundary) const override;
+    bool xIncreases(const FrameRay& ray) const override;
+    double finalLength() const override { return 1.0 / 128.0; }
 
     // The distance that sets the height: from the axis (cylinder) or the centre.
     virtual double radial(const glm::dvec3& q) const = 0;
@@ -140,18 +158,8 @@ public:
     virtual double lowestRadial(const FrameRay& ray, double ta, double tb) const = 0;
     // The interval of t where radial <= r (empty, x > y, if none).
     virtual glm::dvec2 insideRadial(const FrameRay& ray, double r) const = 0;
-    // Y of frame point q, in [0, H].
-    virtual double mapY(const glm::dvec3& q) const = 0;
     // The range of Y over [ta, tb]: the ends, and the one interior extremum if any.
     virtual glm::dvec2 rangeY(const FrameRay& ray, double ta, double tb) const = 0;
-    // Where Y turns (its one interior extremum along the line), or nullopt.
-    virtual std::optional<double> turnY(const FrameRay& ray) const = 0;
-    // The t at which the path crosses Y = boundary, Y being monotone on [from, to]: where
-    // the line crosses that boundary only once (the cylinder's planes), that crossing at
-    // any t, like crossX; where it may cross twice (the ellipsoid's cones), the one crossing
-    // in [from, to]. nullopt if none.
-    virtual std::optional<double> crossY(const FrameRay& ray, double boundary, double from,
-                                         double to) const = 0;
 
 protected:
     // The radial distance of the shell, 1 + s max h.

@@ -41,7 +41,7 @@ double CurvedSurface::mapX(const glm::dvec3& q) const {
     return width_ * (u - std::floor(u));
 }
 
-bool CurvedSurface::xIncreases(const FrameRay& ray) {
+bool CurvedSurface::xIncreases(const FrameRay& ray) const {
     // d(atan2(x, z))/dt = (z dx - x dz) / (x^2 + z^2): its sign is constant along a line.
     return ray.origin.z * ray.dir.x - ray.origin.x * ray.dir.z > 0.0;
 }

@@ -83,6 +83,20 @@ public:
         return n;
     }
 
+    std::optional<double> crossX(const FrameRay& ray, double boundary) const override {
+        if (ray.dir.x == 0.0) return std::nullopt;
+        return (boundary - ray.origin.x) / ray.dir.x;
+    }
+    bool xIncreases(const FrameRay& ray) const override { return ray.dir.x > 0.0; }
+    double mapY(const glm::dvec3& q) const override { return q.y; }
+    std::optional<double> turnY(const FrameRay&) const override { return std::nullopt; }
+    std::optional<double> crossY(const FrameRay& ray, double boundary, double,
+                                 double) const override {
+        if (ray.dir.y == 0.0) return std::nullopt;
+        return (boundary - ray.origin.y) / ray.dir.y;
+    }
+    double finalLength() const override { return std::numeric_limits<double>::infinity(); }
+
     // Map (X, Y, h) -> world (x, z, y): the inverse transpose of the map's scales.
     glm::dvec3 worldNormal(const glm::dvec3& n) const override {
         const double k = texelsPerUnit();

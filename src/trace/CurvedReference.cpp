@@ -389,13 +389,15 @@ ReferenceHit traceCurvedReference(const ReliefGeometry& relief, const CurvedBoun
     // radius over the edge row (v = 0 at the top, 1 at the bottom).
     if (hit.entryFace == HitFace::Cap) {
         const glm::dvec3 q = at(span.x);
+        // The edge row's patch: the bilinear cell or biquadratic texel square holding the
+        // edge (the last square for v = 1, whose far side the edge is).
         const double x = m.mapX(q), y = q.y > 0.0 ? 0.0 : map.height;
-        const int i = static_cast<int>(std::floor(x - 0.5)),
-                  j = static_cast<int>(std::floor(y - 0.5));
-        double fx = x - (i + 0.5);
+        const int i = static_cast<int>(std::floor(x - m.offset()));
+        const int j = std::min(static_cast<int>(std::floor(y - m.offset())), map.height - 1);
+        double fx = x - (i + m.offset());
         fx -= map.width * std::round(fx / map.width);
-        const double h =
-            patchOf(m, i, j).height(std::clamp(fx, 0.0, 1.0), std::clamp(y - (j + 0.5), 0.0, 1.0));
+        const double h = patchOf(m, i, j).height(std::clamp(fx, 0.0, 1.0),
+                                                 std::clamp(y - (j + m.offset()), 0.0, 1.0));
         if (m.radial(q) <= 1.0 + m.s * h) {
             finish(HitFace::Cap, span.x);
             hit.normal = glm::normalize(glm::dvec3(0.0, q.y > 0.0 ? 1.0 : -1.0, 0.0) / scale);

@@ -12,10 +12,8 @@ namespace {
 constexpr int kMaxDepth = 24;        // MICRORELIEF_MAX_DEPTH
 constexpr double kLeafTexels = 4.0;  // MICRORELIEF_LEAF_TEXELS
 
-using Cell = MultilevelTracer::Cell;
-
 // bilinear_patch.glsl: intersectPatch.
-double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& dir,
+double intersectPatch(const SurfacePatch& c, const glm::dvec3& start, const glm::dvec3& dir,
                       double tauMax) {
     const double fx = start.x - (c.i + 0.5), fy = start.y - (c.j + 0.5);
     const double b = c.h10 - c.h00, cc = c.h01 - c.h00, d = c.h00 - c.h10 - c.h01 + c.h11;
@@ -39,60 +37,47 @@ double intersectPatch(const Cell& c, const glm::dvec3& start, const glm::dvec3& 
     return (root >= 0.0 && root <= tauMax) ? root : -1.0;
 }
 
-double patchHeight(const Cell& c, double fx, double fy) {
-    return (c.h00 * (1 - fx) + c.h10 * fx) * (1 - fy) + (c.h01 * (1 - fx) + c.h11 * fx) * fy;
-}
-
-// The patch's max over the rectangle between local points a and b: a bilinear function is
-// linear along each axis, so over a rectangle it peaks at a corner.
-double patchMaxOver(const Cell& c, glm::dvec2 a, glm::dvec2 b) {
-    a = glm::clamp(a, 0.0, 1.0);
-    b = glm::clamp(b, 0.0, 1.0);
-    return std::max({patchHeight(c, a.x, a.y), patchHeight(c, b.x, a.y), patchHeight(c, a.x, b.y),
-                     patchHeight(c, b.x, b.y)});
-}
-
 }  // namespace
 
 int traversalBudget(int width, int height) {
     return 8 * (width + height) + 256;
 }
 
-MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base)
+MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base,
+                                   Interpolation interpolation)
     : map_(std::move(map)),
-      pyramid_(map_, base.wrapsU()),
+      interpolation_(interpolation),
+      pyramid_(map_, base.wrapsU(), interpolation),
       heightScale_(heightScale),
       base_(BaseSurface::make(base, map_.width, map_.height, heightScale,
                               pyramid_.texel(pyramid_.levelCount() - 1, 0, 0))),
       maxIterations_(traversalBudget(map_.width, map_.height)) {}
 
 // Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
-// per patch (bilinear_patch.glsl), one texel per pyramid read. Cell (i, j) lies between
-// samples i..i+1, j..j+1, wrapped in i on a curved base, clamped otherwise.
-Cell MultilevelTracer::cellAt(int i, int j, int& fetches) const {
-    fetches += 1;
-    const bool wrap = base_->wrapsU();
-    return {i,
-            j,
-            map_.sample(i, j, wrap),
-            map_.sample(i + 1, j, wrap),
-            map_.sample(i, j + 1, wrap),
-            map_.sample(i + 1, j + 1, wrap)};
+// per bilinear patch and four per biquadratic one (relief_patch.glsl), one texel per
+// pyramid read. Cells lie between samples i..i+1 (bilinear) or over texel square i (its
+// samples i-1..i+1), wrapped in i on a curved base, clamped otherwise.
+SurfacePatch MultilevelTracer::patchAt(int i, int j, int& fetches) const {
+    fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1;
+    return SurfacePatch::at(map_, i, j, base_->wrapsU(), interpolation_);
 }
 
 // relief_hit.glsl: setTopHit's normal, in the base's frame.
-glm::dvec3 MultilevelTracer::topNormal(const Cell& cell, const glm::dvec3& framePoint) const {
+glm::dvec3 MultilevelTracer::topNormal(const SurfacePatch& patch,
+                                       const glm::dvec3& framePoint) const {
     const glm::dvec3 m = base_->mapPoint(framePoint);
-    double fx = m.x - (cell.i + 0.5);
+    const double offset = SurfacePatch::offset(interpolation_);
+    double fx = m.x - (patch.i + offset);
     if (base_->wrapsU()) fx -= map_.width * std::round(fx / map_.width);
-    fx = std::clamp(fx, 0.0, 1.0);
-    const double fy = std::clamp(m.y - (cell.j + 0.5), 0.0, 1.0);
-    double gx = (cell.h10 - cell.h00) * (1 - fy) + (cell.h11 - cell.h01) * fy;
-    double gy = (cell.h01 - cell.h00) * (1 - fx) + (cell.h11 - cell.h10) * fx;
-    // Clamped border cells are flat across the edge (in u only where u does not wrap).
-    if (!base_->wrapsU() && (cell.i < 0 || cell.i >= map_.width - 1)) gx = 0.0;
-    if (cell.j < 0 || cell.j >= map_.height - 1) gy = 0.0;
-    return base_->topNormal(framePoint, {gx, gy});
+    const glm::dvec2 f(std::clamp(fx, 0.0, 1.0), std::clamp(m.y - (patch.j + offset), 0.0, 1.0));
+    glm::dvec2 g = patch.gradient(f);
+    // Clamped bilinear border cells are flat across the edge (in u only where it does not
+    // wrap); the biquadratic surface is flat at the edge by itself.
+    if (interpolation_ == Interpolation::Bilinear) {
+        if (!base_->wrapsU() && (patch.i < 0 || patch.i >= map_.width - 1)) g.x = 0.0;
+        if (patch.j < 0 || patch.j >= map_.height - 1) g.y = 0.0;
+    }
+    return base_->topNormal(framePoint, g);
 }
 
 // multilevel_trace.glsl: intersectLeaf, on the plane. The cells the segment crosses, in
@@ -110,7 +95,7 @@ auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, 
                             : last.y < at.y ? -1
                                             : 0);
     const int pieces = std::abs(last.x - at.x) + std::abs(last.y - at.y) + 1;
-    Cell cell = cellAt(at.x, at.y, fetches);
+    SurfacePatch cell = patchAt(at.x, at.y, fetches);
     double t0 = ta;
     for (int piece = 0; piece < pieces; ++piece) {
         double exits[2] = {tb, tb};
@@ -126,58 +111,66 @@ auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, 
         if (t1 >= tb) break;
         const int axis = exits[0] <= exits[1] ? 0 : 1;
         at[axis] += toward[axis];
-        cell = cellAt(at.x, at.y, fetches);
+        cell = patchAt(at.x, at.y, fetches);
         t0 = t1;
     }
     return std::nullopt;
 }
 
-// base_curved.glsl: intersectCurvedLeaf. The latitude turns at most once along a line:
+// base_surface.glsl: intersectLeafCells. The latitude turns at most once along a line:
 // split there, so that on each piece X and Y are both monotone and the cells the path
 // crosses are walked in order.
-auto MultilevelTracer::intersectCurvedLeaf(const FrameRay& ray, double ta, double tb,
-                                           int& fetches) const -> std::optional<LeafHit> {
-    const auto& base = static_cast<const CurvedSurface&>(*base_);
-    const std::optional<double> turn = base.turnY(ray);
+auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double tb,
+                                          int& fetches) const -> std::optional<LeafHit> {
+    const std::optional<double> turn = base_->turnY(ray);
     constexpr double kAll = std::numeric_limits<double>::infinity();
     // The branches of the line before and after the turn, on each of which Y is monotone.
     const glm::dvec2 before(-kAll, turn ? *turn : kAll), after(turn ? *turn : -kAll, kAll);
     if (turn && *turn > ta && *turn < tb) {
-        if (auto hit = walkCurvedCells(base, ray, ta, *turn, before, fetches)) return hit;
-        return walkCurvedCells(base, ray, *turn, tb, after, fetches);
+        if (auto hit = walkLeafCells(ray, ta, *turn, before, fetches)) return hit;
+        return walkLeafCells(ray, *turn, tb, after, fetches);
     }
-    return walkCurvedCells(base, ray, ta, tb, turn && *turn <= ta ? after : before, fetches);
+    return walkLeafCells(ray, ta, tb, turn && *turn <= ta ? after : before, fetches);
 }
 
-// base_surface.glsl: curvedWalkCells. A DDA over the cells of a curved path whose X and Y
-// are monotone on [from, to]: each cell's stretch ends where the path crosses the cell's
-// boundary ahead in X (a half-plane through the axis) or in Y (a plane or a cone), found
-// in closed form. `branch` is the branch of the line holding [from, to] on which Y is
-// monotone, where each boundary is crossed once: a crossing found on it behind the
-// current t means rounding put the walk's start just past it, and the walk steps on.
-auto MultilevelTracer::walkCurvedCells(const CurvedSurface& base, const FrameRay& ray, double from,
-                                       double to, glm::dvec2 branch, int& fetches) const
+// base_surface.glsl: walkLeafCells. A DDA over the cells of a path whose X and Y are
+// monotone on [from, to]: each cell's stretch ends where the path crosses the cell's
+// boundary ahead in X (a half-plane through the axis, a plane on the plane) or in Y (a
+// plane or a cone), found in closed form. `branch` is the branch of the line holding
+// [from, to] on which Y is monotone, where each boundary is crossed once: a crossing found
+// on it behind the current t means rounding put the walk's start just past it, and the
+// walk steps on.
+auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to,
+                                     glm::dvec2 branch, int& fetches) const
     -> std::optional<LeafHit> {
+    const BaseSurface& base = *base_;
     const int w = map_.width, h = map_.height;
+    const double offset = SurfacePatch::offset(interpolation_);
+    const int firstCell = offset > 0.0 ? -1 : 0;  // bilinear border cells at -1
     const glm::dvec3 start = base.mapPoint(ray.at(from));
-    int i = static_cast<int>(std::floor(start.x - 0.5)),
-        j = static_cast<int>(std::floor(start.y - 0.5));
-    i = (i % w + w) % w;
-    j = std::clamp(j, -1, h - 1);
-    const bool xUp = CurvedSurface::xIncreases(ray);
+    int i = static_cast<int>(std::floor(start.x - offset)), j = static_cast<int>(std::floor(start.y - offset));
+    if (base.wrapsU()) {
+        i = (i % w + w) % w;
+    } else {
+        i = std::clamp(i, firstCell, w - 1);
+    }
+    j = std::clamp(j, firstCell, h - 1);
+    const bool xUp = base.xIncreases(ray);
     const double yFrom = start.y, yTo = base.mapY(ray.at(to));
     const bool yMoves = yTo != yFrom, yUp = yTo > yFrom;
     double t0 = from;
     for (int piece = 0; piece < w + h + 4; ++piece) {
         double t1 = to;
         bool stepX = false, stepY = false;
-        // A map one sample wide has no boundary in X: its one cell goes all the way round.
-        if (const auto tx = w > 1 ? base.crossX(ray, xUp ? i + 1.5 : i + 0.5) : std::nullopt;
-            tx && *tx <= t1) {
+        // A curved map one sample wide has no boundary in X: its one cell goes all the way round.
+        const std::optional<double> tx = !base.wrapsU() || w > 1
+                                             ? base.crossX(ray, i + offset + (xUp ? 1.0 : 0.0))
+                                             : std::nullopt;
+        if (tx && *tx <= t1) {
             t1 = std::max(*tx, t0);
             stepX = true;
         }
-        const double yBoundary = yUp ? j + 1.5 : j + 0.5;
+        const double yBoundary = j + offset + (yUp ? 1.0 : 0.0);
         if (yMoves && yBoundary > 0.0 && yBoundary < h) {
             if (const auto ty = base.crossY(ray, yBoundary, branch.x, branch.y); ty && *ty <= t1) {
                 const double t = std::max(*ty, t0);
@@ -186,43 +179,48 @@ auto MultilevelTracer::walkCurvedCells(const CurvedSurface& base, const FrameRay
                 stepY = true;
             }
         }
-        const Cell cell = cellAt(i, j, fetches);
-        if (const auto root = solveCurvedCell(base, ray, cell, t0, t1))
-            return LeafHit{*root, topNormal(cell, ray.at(*root))};
+        const SurfacePatch patch = patchAt(i, j, fetches);
+        if (const auto root = cellStretchHit(ray, patch, t0, t1))
+            return LeafHit{*root, topNormal(patch, ray.at(*root))};
         if (!stepX && !stepY) break;  // the stretch ended at `to`
-        if (stepX) i = (i + (xUp ? 1 : w - 1)) % w;
+        if (stepX) i = base.wrapsU() ? (i + (xUp ? 1 : w - 1)) % w : i + (xUp ? 1 : -1);
         if (stepY) j += yUp ? 1 : -1;
         t0 = t1;
     }
     return std::nullopt;
 }
 
-// base_curved.glsl: solveCurvedCell. The first t in [c0, c1] where the ray is on or under
-// the cell's patch, g(t) = patch(X(t), Y(t)) - h(t) >= 0. Along the path g is no longer a
-// polynomial, so the stretch is subdivided as the traversal subdivides the ray, near
-// half first, each piece discarded when its lowest height (exact, from the convexity of
-// the radial distance) lies above the patch's max over its footprint (exact: X and Y are
-// monotone here, and a bilinear patch peaks at a corner of a rectangle). Neither bound is
-// ever on the wrong side, so no contact is lost. At depth kCurvedCellDepth a piece is a
-// thousandth of the stretch, over which g is smooth to third order: a sign change at its
-// ends or middle gives the root by interpolation, and without one a concave parabola
-// through the three values that reaches 0 is a touching ray (a hit in the closed solid).
-std::optional<double> MultilevelTracer::solveCurvedCell(const CurvedSurface& base,
-                                                        const FrameRay& ray, const Cell& cell,
-                                                        double c0, double c1) const {
+// base_surface.glsl: cellStretchHit. The first t in [c0, c1] where the ray is on or under
+// the cell's patch, g(t) = patch(X(t), Y(t)) - h(t) >= 0. Along a curved path, or for the
+// biquadratic surface, g is not a quadratic, so the stretch is subdivided as the traversal
+// subdivides the ray, near half first, each piece discarded when its lowest height (exact:
+// the ends on the plane, the convexity of the radial distance on a curved base) lies above
+// the patch's max over its footprint (exact: X and Y are monotone here, SurfacePatch::
+// maxOver). Neither bound is ever on the wrong side, so no contact is lost. Final pieces
+// (short in the frame on a curved base, narrow for the biquadratic surface, or 2^-10 of
+// the stretch) hold g to a parabola to float precision: a sign change at their ends or
+// middle gives the root by interpolation, and without one a concave parabola through the
+// three values that reaches 0 is a touching ray (a hit in the closed solid).
+std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
+                                                       const SurfacePatch& patch, double c0,
+                                                       double c1) const {
+    const BaseSurface& base = *base_;
     const int w = map_.width;
+    const double offset = SurfacePatch::offset(interpolation_);
+    const double finalFootprint = interpolation_ == Interpolation::Biquadratic
+                                      ? kBiquadraticFinalFootprint
+                                      : std::numeric_limits<double>::infinity();
     const auto local = [&](double t) {
         const glm::dvec3 m = base.mapPoint(ray.at(t));
-        double fx = m.x - (cell.i + 0.5);
-        fx -= w * std::round(fx / w);
-        return glm::dvec3(fx, m.y - (cell.j + 0.5), m.z);
+        double fx = m.x - (patch.i + offset);
+        if (base.wrapsU()) fx -= w * std::round(fx / w);
+        return glm::dvec3(fx, m.y - (patch.j + offset), m.z);
     };
     const auto gap = [&](double t) {
         const glm::dvec3 f = local(t);
-        return patchHeight(cell, std::clamp(f.x, 0.0, 1.0), std::clamp(f.y, 0.0, 1.0)) - f.z;
+        return patch.height(glm::clamp(glm::dvec2(f), 0.0, 1.0)) - f.z;
     };
-    // Pieces this short are final (base_surface.glsl: kCurvedFinalLength).
-    const double finalLength = kCurvedFinalLength / glm::length(ray.dir);
+    const double finalLength = base.finalLength() / glm::length(ray.dir);
     int depth = 0;
     std::uint32_t index = 0;
     for (;;) {
@@ -230,11 +228,13 @@ std::optional<double> MultilevelTracer::solveCurvedCell(const CurvedSurface& bas
         const double a = c0 + index * width;
         const double b = index + 1 == (1u << depth) ? c1 : a + width;
         const glm::dvec3 fa = local(a), fb = local(b);
-        const double top =
-            patchMaxOver(cell, glm::min(glm::dvec2(fa), glm::dvec2(fb)) - kFootprintMargin,
-                         glm::max(glm::dvec2(fa), glm::dvec2(fb)) + kFootprintMargin);
+        const glm::dvec2 lo = glm::min(glm::dvec2(fa), glm::dvec2(fb)),
+                         hi = glm::max(glm::dvec2(fa), glm::dvec2(fb));
+        const double top = patch.maxOver(lo - kFootprintMargin, hi + kFootprintMargin);
         const bool may = base.lowest(ray, a, b) <= top;
-        if (may && depth < kCurvedCellDepth && b - a > finalLength) {
+        const bool last = depth == kCellDepth ||
+                          (b - a <= finalLength && std::max(hi.x - lo.x, hi.y - lo.y) <= finalFootprint);
+        if (may && !last) {
             ++depth;
             index *= 2u;
             continue;
@@ -294,7 +294,9 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
         // Through a wall, a cap or the bottom: a hit right there when below the surface.
         const glm::dvec3 m = base_->mapPoint(ray.at(tNear));
         const bool bottom = span.entry == ShellFace::Bottom;  // h = 0: always in the solid
-        if (bottom || (stats.fetches += 1, m.z <= map_.surface(m.x, m.y, base_->wrapsU()))) {
+        if (bottom ||
+            (stats.fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1,
+             m.z <= map_.surface(m.x, m.y, base_->wrapsU(), interpolation_))) {
             stats.stopLevel = 0;
             const HitFace face = span.entry == ShellFace::WallX   ? HitFace::WallX
                                  : span.entry == ShellFace::WallY ? HitFace::WallZ
@@ -323,7 +325,8 @@ auto MultilevelTracer::subdivideSegment(const FrameRay& ray, double span, bool f
     int depth = 0;
     std::uint32_t index = 0;
     double parentBound = kNoBound;  // over the parent's path (see the shader)
-    const bool curved = base_->shape().curved();
+    // The plane's bilinear leaf is a quadratic per cell; every other leaf walks its cells.
+    const bool cellWalk = base_->shape().curved() || interpolation_ == Interpolation::Biquadratic;
     for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
         stats.iterations = iteration;
         const int shift = kMaxDepth - depth;
@@ -345,8 +348,8 @@ auto MultilevelTracer::subdivideSegment(const FrameRay& ray, double span, bool f
             if (footprint.extent() <= kLeafTexels || depth >= kMaxDepth) {
                 // From where a falling ray comes down to the bound (see the shader).
                 const double tFrom = base_->descendTo(ray, ta, tb, bound);
-                auto hit = curved ? intersectCurvedLeaf(ray, tFrom, tb, stats.fetches)
-                                  : intersectLeaf(ray, tFrom, tb, stats.fetches);
+                auto hit = cellWalk ? intersectLeafCells(ray, tFrom, tb, stats.fetches)
+                                    : intersectLeaf(ray, tFrom, tb, stats.fetches);
                 if (hit) return hit;
             } else {
                 // The near half, or the far one when the near one lies above the bound.
@@ -365,9 +368,11 @@ auto MultilevelTracer::subdivideSegment(const FrameRay& ray, double span, bool f
             // Leaving through the floor going down: the exit point is the hit (see the shader).
             if (floorExit) {
                 const glm::dvec3 exit = ray.at(span);
-                const Cell cell = cellAt(static_cast<int>(std::floor(exit.x - 0.5)),
-                                         static_cast<int>(std::floor(exit.y - 0.5)), stats.fetches);
-                return LeafHit{span, topNormal(cell, exit)};
+                const double offset = SurfacePatch::offset(interpolation_);
+                const SurfacePatch patch =
+                    patchAt(static_cast<int>(std::floor(exit.x - offset)),
+                            static_cast<int>(std::floor(exit.y - offset)), stats.fetches);
+                return LeafHit{span, topNormal(patch, exit)};
             }
             return std::nullopt;
         }

@@ -13,6 +13,7 @@
 #include "base/BaseSurface.h"
 #include "heightmap/HeightMap.h"
 #include "heightmap/MaxPyramid.h"
+#include "heightmap/SurfacePatch.h"
 #include "render/Camera.h"
 #include "trace/ReferenceTracer.h"
 
@@ -38,9 +39,10 @@ struct ReliefHit {
 
 class MultilevelTracer {
 public:
-    // Builds the max pyramid of `map` laid over `base`; the map is copied (the tracer owns
-    // its data).
-    MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base = {});
+    // Builds the max pyramid of `map` laid over `base`, for the surface `interpolation` makes
+    // of it; the map is copied (the tracer owns its data).
+    MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base = {},
+                     Interpolation interpolation = Interpolation::Bilinear);
 
     // The first hit of `ray` (world space) with the relief solid, or nothing.
     std::optional<ReliefHit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const;
@@ -52,32 +54,28 @@ public:
     // The iteration budget, as the renderer sets it for this map.
     int maxIterations() const { return maxIterations_; }
 
-    // A bilinear patch: cell (i, j) and its corner samples (bilinear_patch.glsl).
-    struct Cell {
-        int i, j;
-        double h00, h10, h01, h11;
-    };
+    Interpolation interpolation() const { return interpolation_; }
 
 private:
     struct LeafHit {
         double t;
         glm::dvec3 normal;  // in the base's frame (BaseSurface::topNormal)
     };
-    Cell cellAt(int i, int j, int& fetches) const;
+    SurfacePatch patchAt(int i, int j, int& fetches) const;
     std::optional<LeafHit> intersectLeaf(const FrameRay& ray, double ta, double tb,
                                          int& fetches) const;
-    std::optional<LeafHit> intersectCurvedLeaf(const FrameRay& ray, double ta, double tb,
-                                               int& fetches) const;
-    std::optional<LeafHit> walkCurvedCells(const CurvedSurface& base, const FrameRay& ray,
-                                           double from, double to, glm::dvec2 branch,
-                                           int& fetches) const;
-    std::optional<double> solveCurvedCell(const CurvedSurface& base, const FrameRay& ray,
-                                          const Cell& cell, double c0, double c1) const;
+    std::optional<LeafHit> intersectLeafCells(const FrameRay& ray, double ta, double tb,
+                                              int& fetches) const;
+    std::optional<LeafHit> walkLeafCells(const FrameRay& ray, double from, double to,
+                                         glm::dvec2 branch, int& fetches) const;
+    std::optional<double> cellStretchHit(const FrameRay& ray, const SurfacePatch& patch, double c0,
+                                         double c1) const;
     std::optional<LeafHit> subdivideSegment(const FrameRay& ray, double span, bool floorExit,
                                             TraversalStats& stats) const;
-    glm::dvec3 topNormal(const Cell& cell, const glm::dvec3& framePoint) const;
+    glm::dvec3 topNormal(const SurfacePatch& patch, const glm::dvec3& framePoint) const;
 
     HeightMap map_;
+    Interpolation interpolation_;
     MaxPyramid pyramid_;
     double heightScale_;
     std::unique_ptr<BaseSurface> base_;
@@ -89,10 +87,11 @@ private:
 // 8 (W + H) + 256 is several times what any ray needs; running out means a bug.
 int traversalBudget(int width, int height);
 
-// The curved leaf's subdivision of one cell (base_surface.glsl, MICRORELIEF_CELL_DEPTH and
-// kCurvedFinalLength): down to pieces 2^-7 long in the frame, or 2^-10 of the cell's stretch
-// of the ray, then a quadratic model of the gap.
-constexpr int kCurvedCellDepth = 10;
-constexpr double kCurvedFinalLength = 1.0 / 128.0;
+// The leaf's subdivision of one cell's stretch (base_surface.glsl, MICRORELIEF_CELL_DEPTH,
+// kCurvedFinalLength, kBiquadraticFinalFootprint): down to pieces 2^-7 long in the frame on
+// a curved base and 2^-6 texel wide for the biquadratic surface, or 2^-10 of the stretch,
+// then a quadratic model of the gap.
+constexpr int kCellDepth = 10;
+constexpr double kBiquadraticFinalFootprint = 1.0 / 64.0;
 
 }  // namespace microrelief

@@ -18,9 +18,10 @@ struct Agreement {
 };
 
 // Rays from random eyes around and inside the box towards random points of the map.
-Agreement compareRandomRays(const HeightMap& map, double scale, int count, std::uint32_t seed) {
-    const MultilevelTracer twin(map, scale);
-    const ReliefGeometry relief{&map, scale};
+Agreement compareRandomRays(const HeightMap& map, double scale, int count, std::uint32_t seed,
+                            Interpolation interpolation = Interpolation::Bilinear) {
+    const MultilevelTracer twin(map, scale, BaseShape::plane(), interpolation);
+    const ReliefGeometry relief{&map, scale, BaseShape::plane(), interpolation};
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> unit(-1.0, 1.0), zeroOne(0.0, 1.0);
     const double texels = std::max(map.width, map.height);
@@ -37,7 +38,8 @@ Agreement compareRandomRays(const HeightMap& map, double scale, int count, std::
                                            std::cos(elevation) * std::sin(azimuth));
         const Ray ray{eye, target - eye};
         if (eye.y >= 0.0 && std::abs(eye.x) <= 0.5 && std::abs(eye.z) <= 0.5 &&
-            eye.y <= scale * map.surface((eye.x + 0.5) * map.width, (eye.z + 0.5) * map.height)) {
+            eye.y <= scale * map.surface((eye.x + 0.5) * map.width, (eye.z + 0.5) * map.height,
+                                         false, interpolation)) {
             continue;  // the spec keeps the eye outside the solid
         }
         ++a.rays;
@@ -76,13 +78,16 @@ TEST(MultilevelTracer, AgreesWithTheReferenceOnRandomRays) {
         {"all zero", synth::flat(16, 16, 0.0f), 0.1},
     };
     for (const Case& c : cases) {
-        const Agreement a = compareRandomRays(c.map, c.scale, 4000, 77);
-        // Double precision on both sides: only rays that graze an edge exactly may
-        // differ, so the budget is a handful of rays in 4000.
-        EXPECT_LE(a.coverageMismatches, 2) << c.name;
-        EXPECT_LE(a.offHalfTexel, 2) << c.name;
-        EXPECT_EQ(a.exhausted, 0) << c.name;
-        EXPECT_GT(a.rays, 3000) << c.name;
+        for (Interpolation interpolation : {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+            const Agreement a = compareRandomRays(c.map, c.scale, 4000, 77, interpolation);
+            // Double precision on both sides: only rays that graze an edge exactly may
+            // differ, so the budget is a handful of rays in 4000.
+            const std::string where = std::string(c.name) + " " + interpolationName(interpolation);
+            EXPECT_LE(a.coverageMismatches, 2) << where;
+            EXPECT_LE(a.offHalfTexel, 2) << where;
+            EXPECT_EQ(a.exhausted, 0) << where;
+            EXPECT_GT(a.rays, 3000) << where;
+        }
     }
 }
 
@@ -108,9 +113,16 @@ TEST(MultilevelTracer, AgreesWithTheReferenceOnCurvedBases) {
         {"sphere 1x1", synth::flat(1, 1, 0.5f), 0.2, BaseShape::sphere()},
         {"cylinder zero", synth::flat(8, 8, 0.0f), 0.1, BaseShape::cylinder()},
     };
-    for (const Case& c : cases) {
-        const MultilevelTracer twin(c.map, c.scale, c.base);
-        const ReferenceTracer reference(ReliefGeometry{&c.map, c.scale, c.base});
+    for (const auto& [c, interpolation] :
+         [&] {
+             std::vector<std::pair<Case, Interpolation>> all;
+             for (const Case& c : cases)
+                 for (Interpolation i : {Interpolation::Bilinear, Interpolation::Biquadratic})
+                     all.push_back({c, i});
+             return all;
+         }()) {
+        const MultilevelTracer twin(c.map, c.scale, c.base, interpolation);
+        const ReferenceTracer reference(ReliefGeometry{&c.map, c.scale, c.base, interpolation});
         const double texel = c.base.texelSize(c.map.width, c.map.height);
         const glm::dvec3 box = c.base.boxMax(c.map.width, c.map.height, c.scale * c.map.maxValue());
         std::mt19937 random(91);
@@ -141,8 +153,9 @@ TEST(MultilevelTracer, AgreesWithTheReferenceOnCurvedBases) {
             EXPECT_EQ(hit->face == HitFace::Cap, exact.face == HitFace::Cap)
                 << c.name << " ray " << k;
         }
-        std::printf("  %-22s %d rays, %d hits, %d hit/miss, %d off > 0.5 texel\n", c.name, a.rays,
-                    a.hits, a.coverageMismatches, a.offHalfTexel);
+        std::printf("  %-22s %-11s %d rays, %d hits, %d hit/miss, %d off > 0.5 texel\n", c.name,
+                    interpolationName(interpolation), a.rays, a.hits, a.coverageMismatches,
+                    a.offHalfTexel);
         EXPECT_LE(a.coverageMismatches, 2) << c.name;
         EXPECT_LE(a.offHalfTexel, 2) << c.name;
         EXPECT_EQ(a.exhausted, 0) << c.name;

@@ -1,0 +1,36 @@
+// The surface over one cell of a height map, for either interpolation: the C++ mirror of
+// shaders/microrelief/relief_patch.glsl (bilinear_patch.glsl, biquadratic_patch.glsl).
+// Bilinear cells lie between sample centres (cell (i, j) over X in [i + 1/2, i + 3/2]),
+// biquadratic cells are texel squares (X in [i, i + 1]); local coordinates f run over
+// [0, 1]^2 across a cell.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "heightmap/HeightMap.h"
+
+namespace microrelief {
+
+struct SurfacePatch {
+    Interpolation interpolation = Interpolation::Bilinear;
+    int i = 0, j = 0;                         // the cell
+    double h00 = 0, h10 = 0, h01 = 0, h11 = 0;  // bilinear: the corner samples
+    double net[3][3] = {};                    // biquadratic: the Bezier net, net[a][b]
+
+    // Where cell 0 starts: 1/2 (bilinear), 0 (biquadratic).
+    static double offset(Interpolation interpolation) {
+        return interpolation == Interpolation::Biquadratic ? 0.0 : 0.5;
+    }
+    // The patch of cell (i, j), its samples wrapped in i when `wrapU`, clamped otherwise.
+    static SurfacePatch at(const HeightMap& map, int i, int j, bool wrapU,
+                           Interpolation interpolation);
+
+    double height(glm::dvec2 f) const;
+    glm::dvec2 gradient(glm::dvec2 f) const;  // (dh/dX, dh/dY), per texel
+    // The patch's max over the local rectangle [lo, hi] (clamped to the cell), never below
+    // it: a bilinear patch peaks at a corner of any rectangle; a biquadratic one lies in the
+    // convex hull of the rectangle's Bezier net (biquadratic_patch.glsl).
+    double maxOver(glm::dvec2 lo, glm::dvec2 hi) const;
+};
+
+}  // namespace microrelief

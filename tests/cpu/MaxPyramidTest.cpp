@@ -205,3 +205,68 @@ TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoAlignedTexels) {
         }
     }
 }
+
+// The biquadratic surface (issue 12): its finest level is the max of each texel square's
+// Bezier net, which must never fall below the patch (a B-spline lies in its net's convex
+// hull) and is tighter than the 3 x 3 samples the patch sums; and every window the
+// traversal reads over a footprint, on the plane's clamped map and a curved base's wrapped
+// one (rectangles across the seam included), must bound the surface inside it.
+TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
+    std::mt19937 random(77);
+    const std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 2}, {3, 5}, {17, 4}, {31, 33}};
+    for (const bool wrapU : {false, true}) {
+        for (auto [w, h] : sizes) {
+            for (const bool spiky : {false, true}) {
+                const auto seed = static_cast<std::uint32_t>(w * 31 + h);
+                const HeightMap map =
+                    spiky ? synth::spike(w, h, w / 2, h / 2) : synth::whiteNoise(w, h, seed);
+                const MaxPyramid p(map, wrapU, Interpolation::Biquadratic);
+                const auto surface = [&](double x, double y) {
+                    return map.surface(x, y, wrapU, Interpolation::Biquadratic);
+                };
+                const auto denseMax = [&](double x0, double y0, double x1, double y1, int steps) {
+                    double best = 0.0;
+                    for (int b = 0; b <= steps; ++b)
+                        for (int a = 0; a <= steps; ++a)
+                            best = std::max(best, surface(x0 + (x1 - x0) * a / steps,
+                                                          y0 + (y1 - y0) * b / steps));
+                    return best;
+                };
+                for (int j = 0; j < h; ++j) {
+                    for (int i = 0; i < w; ++i) {
+                        double samples = 0.0;
+                        for (int b = -1; b <= 1; ++b)
+                            for (int a = -1; a <= 1; ++a)
+                                samples =
+                                    std::max<double>(samples, map.sample(i + a, j + b, wrapU));
+                        const double texel = p.texel(0, i, j);
+                        ASSERT_GE(texel + 1e-12, denseMax(i, j, i + 1, j + 1, 24)) << i << "," << j;
+                        ASSERT_LE(texel, samples + 1e-6) << i << "," << j;
+                    }
+                }
+                std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0);
+                for (int trial = 0; trial < 400; ++trial) {
+                    const glm::dvec2 lo(x(random), y(random));
+                    const double reach = std::max(w, h) * unit(random) * unit(random);
+                    glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
+                    hi.y = std::min(hi.y, static_cast<double>(h));
+                    // Past X = W only on the wrapped map, and never more than once round.
+                    hi.x = std::min(hi.x, wrapU ? lo.x + w - 1e-9 : static_cast<double>(w));
+                    int level = -1, fetches = 0;
+                    const double bound = p.footprintBound(lo, hi, level, fetches);
+                    ASSERT_GE(bound, denseMax(lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
+                        << w << "x" << h << (wrapU ? " wrapped" : "") << " [" << lo.x << "," << lo.y
+                        << "] - [" << hi.x << "," << hi.y << "]";
+                    if (!wrapU) {  // the plane's reads: along the segment lo -> hi
+                        double along = 0.0;
+                        for (int k = 0; k <= 300; ++k) {
+                            const glm::dvec2 q = lo + (hi - lo) * (k / 300.0);
+                            along = std::max(along, surface(q.x, q.y));
+                        }
+                        ASSERT_GE(p.segmentBound(lo, hi, level, fetches), along - 1e-12);
+                    }
+                }
+            }
+        }
+    }
+}

@@ -10,13 +10,13 @@ using namespace microrelief;
 
 TEST(TwinSweep, EveryCaseMatchesTheReference) {
     for (const test::SweepMap& m : test::sweepMaps()) {
-        const MultilevelTracer twin(*m.map, m.heightScale, m.base);
+        const MultilevelTracer twin(*m.map, m.heightScale, m.base, m.interpolation);
         for (const test::SweepView& view : test::sweepViews(m)) {
             const CameraFrame camera =
                 resolveCamera(view.camera, test::kSweepSize, test::kSweepSize, 2.0);
             const Accuracy a = measureAccuracy(
-                camera, *m.map, m.heightScale,
-                [&](int, int, const Ray& ray) { return test::twinPixel(twin, ray); }, m.base);
+                camera, traceReferencePicture(camera, m.geometry()),
+                [&](int, int, const Ray& ray) { return test::twinPixel(twin, ray); });
             // Double precision on both sides, the GPU's budgets all the same.
             const std::string where = m.name + " " + view.name + ": " + a.summary();
             EXPECT_LE(a.coverageMismatchPercent(), test::kMaxCoverageMismatchPercent) << where;

@@ -31,9 +31,9 @@ TEST_P(AccuracySweep, MatchesTheReference) {
     const GL& gl = context.gl();
     ReliefRenderer renderer(gl, shaderDirectory());
     renderer.setHeightScale(static_cast<float>(m.heightScale));
-    renderer.setHeightMap(*m.map, m.name, m.base);
+    renderer.setHeightMap(*m.map, m.name, m.base, m.interpolation);
     OffscreenTarget target(gl, test::kSweepSize, test::kSweepSize);
-    const MultilevelTracer twin(*m.map, m.heightScale, m.base);
+    const MultilevelTracer twin(*m.map, m.heightScale, m.base, m.interpolation);
 
     for (const test::SweepView& view : test::sweepViews(m)) {
         const CameraFrame camera =
@@ -41,8 +41,7 @@ TEST_P(AccuracySweep, MatchesTheReference) {
         target.clear(glm::vec3(0.0f));
         renderer.draw(camera, ShadingOptions{});
         const RenderedFrame frame = target.read();
-        const test::Accuracy gpu =
-            test::compareWithReference(frame, camera, *m.map, m.heightScale, m.base);
+        const test::Accuracy gpu = test::compareWithReference(frame, camera, m.geometry());
         // The CPU twin on the same rays (tests/cpu holds it to the reference): where it
         // and the GPU disagree on hit/miss.
         std::size_t twinVsGpu = 0;

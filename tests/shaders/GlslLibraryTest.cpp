@@ -108,3 +108,37 @@ TEST(GlslLibrary, AppShadersCompileAsGlsl330And400) {
             EXPECT_TRUE(errors.empty()) << name << ":\n" << errors;
         }
 }
+
+// Every base surface and last level the renderer builds (MICRORELIEF_BASE 0..2,
+// MICRORELIEF_INTERPOLATION 0..1): the app's fragment shader as 3.30 and 4.00, and the
+// library's entry point as an engine or a browser would include it, as ES 3.00.
+TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
+    test::ScratchDir dir;
+    for (int base = 0; base <= 2; ++base) {
+        for (int interpolation = 0; interpolation <= 1; ++interpolation) {
+            const std::vector<ShaderDefine> defines = {
+                {"MICRORELIEF_BASE", std::to_string(base)},
+                {"MICRORELIEF_INTERPOLATION", std::to_string(interpolation)}};
+            const std::string variant =
+                "base " + std::to_string(base) + ", interpolation " + std::to_string(interpolation);
+            for (const char* version : {"330 core", "400 core"}) {
+                const ShaderSource source =
+                    assembleShader(kShaders / "relief.frag", version, defines);
+                const std::string errors = validate(dir, source, "frag", "relief");
+                EXPECT_TRUE(errors.empty())
+                    << "relief.frag, " << variant << ", " << version << ":\n"
+                    << errors;
+            }
+            const Dialect& es = kDialects[2];
+            const std::filesystem::path wrapper = dir / "use_relief_hit.frag";
+            std::ofstream(wrapper)
+                << es.prelude << "#include \""
+                << (kShaders / "microrelief" / "relief_hit.glsl").string() << "\"\n"
+                << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
+            const std::string errors =
+                validate(dir, assembleShader(wrapper, es.version, defines), "frag", "relief_hit");
+            EXPECT_TRUE(errors.empty()) << "relief_hit.glsl as ES 3.00, " << variant << ":\n"
+                                        << errors;
+        }
+    }
+}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 #include "TestSupport.h"
 #include "synth/SyntheticMaps.h"
@@ -114,6 +115,33 @@ const std::vector<SweepMap>& sweepMaps() {
             {"huge4096", share(synth::valueNoise(4096, 4096, 256.0, 6, 5)), 0.1},
         };
         for (SweepMap& m : curvedMaps()) all.push_back(std::move(m));
+        // The biquadratic surface on the maps that stress it most: the one-texel features
+        // (its patches overshoot nothing but spread each spike over 3 x 3 squares), the
+        // cliffs, odd and tiny sizes, floats above 1, the 4096 map, the seam (whose B-spline
+        // reads across it) and every base.
+        const std::vector<std::string> biquadratic = {"noise",
+                                                      "spikes",
+                                                      "cliffs",
+                                                      "oblong300x77",
+                                                      "tiny2x2",
+                                                      "exrfloat",
+                                                      "huge4096",
+                                                      "cylinder_seam",
+                                                      "sphere_seam",
+                                                      "ellipsoid_cobbles",
+                                                      "sphere_white",
+                                                      "cylinder_spikes",
+                                                      "sphere_oblong75x33",
+                                                      "ellipsoid_single1x1"};
+        for (const std::string& name : biquadratic) {
+            const auto m = std::find_if(all.begin(), all.end(),
+                                        [&](const SweepMap& s) { return s.name == name; });
+            if (m == all.end()) throw std::logic_error("no sweep map named " + name);
+            SweepMap copy = *m;
+            copy.name += "_biquadratic";
+            copy.interpolation = Interpolation::Biquadratic;
+            all.push_back(std::move(copy));
+        }
         return all;
     }();
     return maps;

@@ -21,6 +21,9 @@ struct SweepMap {
     std::shared_ptr<const HeightMap> map;
     double heightScale;
     BaseShape base = {};  // the plane, a cylinder or an ellipsoid (issue 11)
+    Interpolation interpolation = Interpolation::Bilinear;  // the last level (issue 12)
+
+    ReliefGeometry geometry() const { return {map.get(), heightScale, base, interpolation}; }
 };
 
 struct SweepView {
@@ -36,7 +39,8 @@ struct SweepCase {
 
 // Built once per process (the 4096 map takes a moment); `scratch` holds the files the
 // 16-bit and float maps are written to and read back from. The plane's maps first, then
-// the curved bases' (each map on a cylinder and on an ellipsoid or a sphere).
+// the curved bases' (each map on a cylinder and on an ellipsoid or a sphere), then a
+// share of both on the biquadratic surface (named "..._biquadratic").
 const std::vector<SweepMap>& sweepMaps();
 std::vector<SweepView> sweepViews(const SweepMap& map);
 std::vector<SweepCase> sweepCases();

@@ -63,7 +63,8 @@ double SurfacePatch::height(glm::dvec2 f) const {
 
 glm::dvec2 SurfacePatch::gradient(glm::dvec2 f) const {
     if (interpolation == Interpolation::Bilinear)
-        return {(h10 - h00) * (1 - f.y) + (h11 - h01) * f.y, (h01 - h00) * (1 - f.x) + (h11 - h10) * f.x};
+        return {(h10 - h00) * (1 - f.y) + (h11 - h01) * f.y,
+                (h01 - h00) * (1 - f.x) + (h11 - h10) * f.x};
     const glm::dvec3 bu = bernstein(f.x), bv = bernstein(f.y);
     const glm::dvec3 du(-2.0 * (1.0 - f.x), 2.0 - 4.0 * f.x, 2.0 * f.x);
     const glm::dvec3 dv(-2.0 * (1.0 - f.y), 2.0 - 4.0 * f.y, 2.0 * f.y);
@@ -86,7 +87,8 @@ double SurfacePatch::maxOver(glm::dvec2 lo, glm::dvec2 hi) const {
         // Restricted along u: the k-th point's net column over v, then its Bezier points over
         // [lo.y, hi.y].
         glm::dvec3 column(0.0);
-        for (int a = 0; a < 3; ++a) column += su[k][a] * glm::dvec3(net[a][0], net[a][1], net[a][2]);
+        for (int a = 0; a < 3; ++a)
+            column += su[k][a] * glm::dvec3(net[a][0], net[a][1], net[a][2]);
         for (int l = 0; l < 3; ++l) top = std::max(top, glm::dot(sv[l], column));
     }
     return top;

@@ -13,9 +13,9 @@ namespace microrelief {
 
 struct SurfacePatch {
     Interpolation interpolation = Interpolation::Bilinear;
-    int i = 0, j = 0;                         // the cell
+    int i = 0, j = 0;                           // the cell
     double h00 = 0, h10 = 0, h01 = 0, h11 = 0;  // bilinear: the corner samples
-    double net[3][3] = {};                    // biquadratic: the Bezier net, net[a][b]
+    double net[3][3] = {};                      // biquadratic: the Bezier net, net[a][b]
 
     // Where cell 0 starts: 1/2 (bilinear), 0 (biquadratic).
     static double offset(Interpolation interpolation) {

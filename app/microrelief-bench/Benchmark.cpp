@@ -79,8 +79,14 @@ HeightMap benchRelief(int n) {
     return synth::cobbles(n, n, 7);
 }
 
-std::string mapOnBase(const std::string& name, const BaseShape& base) {
-    return base.curved() ? name + "-" + baseName(base) : name;
+std::string mapOnBase(const std::string& name, const BaseShape& base, Interpolation interpolation) {
+    return (base.curved() ? name + "-" + baseName(base) : name) +
+           (interpolation == Interpolation::Biquadratic ? "-biquadratic" : "");
+}
+
+bool measuredOn(Method method, Interpolation interpolation) {
+    return interpolation == Interpolation::Bilinear || method == Method::Multilevel ||
+           method == Method::MaxMip;
 }
 
 Camera viewCamera(int degrees, const BaseShape& base, double top) {
@@ -141,26 +147,28 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
     for (const BenchMap& m : maps) {
         renderer.setHeightScale(static_cast<float>(m.heightScale));
         renderer.setMethod(MethodSettings{});  // runs on every base
-        renderer.setHeightMap(*m.map, m.name, m.base);
+        renderer.setHeightMap(*m.map, m.name, m.base, m.interpolation);
         const int mapSize = std::max(m.map->width, m.map->height);
         const ReliefExtent extent = reliefExtent(*m.map, m.heightScale, m.base);
         for (int degrees : options.viewDegrees) {
             const CameraFrame camera =
                 resolveCamera(viewCamera(degrees, m.base, extent.topHeight), options.width,
                               options.height, sceneRadius(extent));
-            const ReferencePicture reference =
-                traceReferencePicture(camera, *m.map, m.heightScale, m.base);
+            const ReferencePicture reference = traceReferencePicture(
+                camera, ReliefGeometry{m.map.get(), m.heightScale, m.base, m.interpolation});
             const std::vector<bool> inBox = pixelsInBox(camera, extent);
             std::size_t referenceHits = 0;
             for (const auto& hit : reference.hits) referenceHits += hit.has_value();
             for (Method method : options.methods) {
-                if (!methodRunsOnBase(method, m.base)) continue;
+                if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation))
+                    continue;
                 for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps)) {
                     Measurement r;
                     r.method = methodName(method);
                     r.param = setting.param;
                     r.map = m.name;
                     r.base = baseName(m.base);
+                    r.interpolation = interpolationName(m.interpolation);
                     r.hitPct = 100.0 * referenceHits / reference.hits.size();
                     r.mapSize = mapSize;
                     r.viewDegrees = degrees;

@@ -19,6 +19,7 @@ struct BenchMap {
     std::shared_ptr<const HeightMap> map;
     double heightScale = 0.1;
     BaseShape base = {};
+    Interpolation interpolation = Interpolation::Bilinear;  // "-biquadratic" appended
 };
 
 struct Setting {
@@ -29,6 +30,7 @@ struct Setting {
 struct Measurement {
     std::string method, param, map;
     std::string base = "plane";
+    std::string interpolation = "bilinear";
     int mapSize = 0;      // max(W, H)
     int viewDegrees = 0;  // between the view direction and the surface normal
     int width = 0, height = 0;
@@ -57,7 +59,13 @@ struct BenchOptions {
     int frames = 10;      // timed frames per measurement, after warm-up
     std::vector<Method> methods;
     std::vector<BaseShape> bases{BaseShape::plane()};  // each map on each base
+    // Each map and base on each; the biquadratic surface with the exact methods only.
+    std::vector<Interpolation> interpolations{Interpolation::Bilinear};
 };
+
+// Whether `method` is measured on the `interpolation` surface: everything on bilinear, the
+// exact methods (multilevel, maxmip) on biquadratic, beside their bilinear rows.
+bool measuredOn(Method method, Interpolation interpolation);
 
 // The knob settings measured for `method` on a map of `mapSize` texels: step budgets in
 // powers of two from 8 to min(2 mapSize, maxSteps); pixel errors 0, 1 and 4 for the
@@ -75,8 +83,10 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
 HeightMap benchRelief(int n);
 inline const std::string kResampledRelief = "relief";
 
-// The name a map goes by on a base: "relief" on the plane, "relief-cylinder", ...
-std::string mapOnBase(const std::string& name, const BaseShape& base);
+// The name a map goes by on a base and surface: "relief" on the plane, "relief-cylinder",
+// "relief-biquadratic", "relief-sphere-biquadratic", ...
+std::string mapOnBase(const std::string& name, const BaseShape& base,
+                      Interpolation interpolation = Interpolation::Bilinear);
 
 // A camera looking at the relief halfway up it, at a point of the base whose normal makes
 // `degrees` with the view direction (0: straight at it), from 1.35 units away: on the plane

@@ -121,7 +121,8 @@ std::vector<std::string> methods(const std::vector<Measurement>& rows) {
 std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
     std::vector<std::string> curved;
     for (const Measurement& r : rows) {
-        if (r.base != "plane" && r.map.rfind(kResampledRelief + "-", 0) == 0 &&
+        if (r.base != "plane" && r.interpolation == "bilinear" &&
+            r.map.rfind(kResampledRelief + "-", 0) == 0 &&
             std::find(curved.begin(), curved.end(), r.map) == curved.end())
             curved.push_back(r.map);
     }
@@ -196,6 +197,45 @@ std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
     return md.str();
 }
 
+// Issue 12's figures: the biquadratic last level beside the bilinear one for the same map,
+// base and view, with the exact methods; targets: time <= 1.5x, fetches <= 1.2x.
+std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) {
+    const std::string suffix = "-biquadratic";
+    std::ostringstream md;
+    bool any = false;
+    for (const Key& key : keys(rows)) {
+        const std::string& name = std::get<0>(key);
+        if (name.size() <= suffix.size() ||
+            name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+            continue;
+        const Key bilinear{name.substr(0, name.size() - suffix.size()), std::get<1>(key),
+                           std::get<2>(key)};
+        for (const auto& [method, param] :
+             {std::pair<std::string, std::string>{"multilevel", "exact"}, {"maxmip", "exact"}}) {
+            const Measurement* q = find(rows, key, method, param);
+            const Measurement* l = find(rows, bilinear, method, param);
+            if (!q || !l) continue;
+            if (!any) {
+                md << "\nBiquadratic last level beside the bilinear one, the same map, base and "
+                      "view (targets: time <= 1.5x, fetches <= 1.2x):\n\n"
+                      "| map | size | view | method | ms | bilinear ms | time | fetches | "
+                      "bilinear fetches | fetches ratio | mismatch % | off % |\n"
+                      "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+                any = true;
+            }
+            md << "| " << name << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
+               << method << " | " << fixed(frameMs(*q, wall), 2) << " | "
+               << fixed(frameMs(*l, wall), 2) << " | "
+               << fixed(frameMs(*q, wall) / frameMs(*l, wall), 2) << "x | "
+               << fixed(q->fetchesMean, 1) << " | " << fixed(l->fetchesMean, 1) << " | "
+               << fixed(l->fetchesMean > 0.0 ? q->fetchesMean / l->fetchesMean : 0.0, 2) << "x | "
+               << fixed(q->coverageMismatchPct, 3) << " | " << fixed(q->offHalfTexelPct, 3)
+               << " |\n";
+        }
+    }
+    return md.str();
+}
+
 }  // namespace
 
 void writeCsv(const std::filesystem::path& file, const RunInfo& info,
@@ -206,7 +246,7 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
            "ms_median,ms_wall_median,fetches_mean,fetches_max,"
            "coverage_mismatch_pct,off_half_texel_pct,"
            "top_coverage_mismatch_pct,top_off_half_texel_pct,"
-           "mean_error_px,p99_error_px,exhausted_px,hit_pct,renderer\n";
+           "mean_error_px,p99_error_px,exhausted_px,hit_pct,interpolation,renderer\n";
     for (const Measurement& r : rows) {
         out << r.method << ',' << r.param << ',' << r.map << ',' << r.base << ',' << r.mapSize
             << ',' << r.viewDegrees << ',' << r.width << ',' << r.height << ','
@@ -215,7 +255,8 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
             << fixed(r.coverageMismatchPct, 4) << ',' << fixed(r.offHalfTexelPct, 4) << ','
             << fixed(r.topCoverageMismatchPct, 4) << ',' << fixed(r.topOffHalfTexelPct, 4) << ','
             << fixed(r.meanErrorPx, 3) << ',' << fixed(r.p99ErrorPx, 3) << ',' << r.exhausted << ','
-            << fixed(r.hitPct, 2) << ',' << csvQuote(info.renderer) << '\n';
+            << fixed(r.hitPct, 2) << ',' << r.interpolation << ',' << csvQuote(info.renderer)
+            << '\n';
     }
     writeTextAtomically(file, out.str());
 }
@@ -253,7 +294,8 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
     md << '\n';
     for (const Key& key : keys(rows)) {
         const Measurement* ml = find(rows, key, "multilevel", "exact");
-        if (!ml) continue;
+        // The biquadratic rows, without peers, have a table of their own.
+        if (!ml || ml->interpolation != "bilinear") continue;
         md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
            << "° | " << fixed(frameMs(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
            << " | " << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->fetchesMean, 1) << " |";
@@ -321,6 +363,7 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
            << " (target <= " << fixed(budget, 0) << ").\n";
     }
     md << curvedSection(rows, wall);
+    md << biquadraticSection(rows, wall);
     writeTextAtomically(file, md.str());
     return md.str();
 }

@@ -33,14 +33,18 @@ std::vector<BenchMap> loadMaps(const BenchOptions& options) {
         std::cout << "microrelief-bench: making the " << n << "x" << n << " relief\n" << std::flush;
         const auto relief = std::make_shared<const HeightMap>(benchRelief(n));
         for (const BaseShape& base : options.bases)
-            maps.push_back({mapOnBase(kResampledRelief, base), relief, 0.1, base});
+            for (Interpolation interpolation : options.interpolations)
+                maps.push_back({mapOnBase(kResampledRelief, base, interpolation), relief, 0.1, base,
+                                interpolation});
     }
     for (const std::string& file : options.assets) {
         const std::filesystem::path path =
             file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);
         const auto map = std::make_shared<const HeightMap>(loadHeightMap(path));
         for (const BaseShape& base : options.bases)
-            maps.push_back({mapOnBase(path.stem().string(), base), map, 0.1, base});
+            for (Interpolation interpolation : options.interpolations)
+                maps.push_back({mapOnBase(path.stem().string(), base, interpolation), map, 0.1,
+                                base, interpolation});
     }
     return maps;
 }
@@ -49,7 +53,7 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
     std::size_t n = 0;
     for (const BenchMap& m : maps) {
         for (Method method : options.methods) {
-            if (!methodRunsOnBase(method, m.base)) continue;
+            if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation)) continue;
             n +=
                 settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps).size();
         }
@@ -66,6 +70,7 @@ int main(int argc, char** argv) {
     std::string size = "512x512", backend = "auto", outDir = "out/bench";
     std::string methodList = "multilevel,maxmip,normal,offset,steep,pom,relief";
     std::string baseList = "plane,cylinder,sphere";
+    std::string interpolationList = "bilinear,biquadratic";
     BenchOptions options;
     app.add_flag("--quick", quick,
                  "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
@@ -79,6 +84,10 @@ int main(int argc, char** argv) {
     app.add_option("--bases", baseList,
                    "Comma-separated base surfaces, each at microrelief-render's default size "
                    "(curved bases take multilevel, maxmip, pom and relief)")
+        ->capture_default_str();
+    app.add_option("--interpolations", interpolationList,
+                   "Comma-separated last levels, bilinear and biquadratic (biquadratic with the "
+                   "exact methods, multilevel and maxmip)")
         ->capture_default_str();
     app.add_option("--backend", backend, "auto, egl or osmesa")->capture_default_str();
     app.add_option("--out-dir", outDir, "Folder for bench.csv, bench.md and the plots")
@@ -120,6 +129,11 @@ int main(int argc, char** argv) {
                                                                         : BaseShape::ellipsoid()
                                                                   : BaseShape::plane());
         }
+
+        options.interpolations.clear();
+        std::stringstream interpolations(interpolationList);
+        for (std::string name; std::getline(interpolations, name, ',');)
+            options.interpolations.push_back(parseInterpolation(name));
 
         const auto context = createHeadlessContext(parseBackend(backend));
         RunInfo info{context->renderer(), today(),

@@ -239,19 +239,23 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
     const float heightScale = 0.1f;
     GlContext& context = test::glContext();
     context.makeCurrent();
-    ReliefRenderer renderer(context.gl(), shaderDirectory());
-    renderer.setHeightScale(heightScale);
-    renderer.setHeightMap(map, "cobbles");
-    renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
-    const MultilevelTracer twin(map, heightScale);
-    // The twin counts a patch's four samples as one fetch, as the GLSL 4.00 variant's
-    // textureGather does; under 3.30 they are four texelFetch.
+    // The twin counts a bilinear patch's four samples as one fetch and a biquadratic one's
+    // nine as four, as the GLSL 4.00 variant's textureGather does; under 3.30 they are
+    // texelFetch each.
     GLint major = 0;
     context.gl().GetIntegerv(GL_MAJOR_VERSION, &major);
     const bool countsGathers = major >= 4;
     const int size = 64;
     OffscreenTarget target(context.gl(), size, size);
-    for (double elevation : {45.0, 10.0}) {
+    for (const auto& [interpolation, elevation] :
+         {std::pair{Interpolation::Bilinear, 45.0}, std::pair{Interpolation::Bilinear, 10.0},
+          std::pair{Interpolation::Biquadratic, 45.0},
+          std::pair{Interpolation::Biquadratic, 10.0}}) {
+        ReliefRenderer renderer(context.gl(), shaderDirectory());
+        renderer.setHeightScale(heightScale);
+        renderer.setHeightMap(map, "cobbles", BaseShape::plane(), interpolation);
+        renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
+        const MultilevelTracer twin(map, heightScale, BaseShape::plane(), interpolation);
         const CameraFrame camera = resolveCamera(
             test::orbitCamera(elevation, 40.0, 1.3, {0.0, 0.04, 0.0}), size, size, 2.0);
         target.clear(glm::vec3(0.0f));
@@ -277,14 +281,16 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
             }
         }
         std::printf(
-            "    %2.0f deg: %zu rays, %.2f segments and %.2f fetches each (twin: %.2f), same "
-            "segments %zu, same fetches %zu\n",
-            elevation, traced, double(gpuIterations) / traced, double(gpuFetches) / traced,
-            double(cpuFetches) / traced, sameIterations, sameFetches);
+            "    %-11s %2.0f deg: %zu rays, %.2f segments and %.2f fetches each (twin: %.2f), "
+            "same segments %zu, same fetches %zu\n",
+            interpolationName(interpolation), elevation, traced, double(gpuIterations) / traced,
+            double(gpuFetches) / traced, double(cpuFetches) / traced, sameIterations, sameFetches);
         ASSERT_GT(traced, std::size_t(size * size / 8));
-        EXPECT_GE(sameIterations, traced * 99 / 100) << elevation << " degrees";
+        EXPECT_GE(sameIterations, traced * 99 / 100)
+            << interpolationName(interpolation) << " " << elevation << " degrees";
         if (countsGathers) {
-            EXPECT_GE(sameFetches, traced * 99 / 100) << elevation << " degrees";
+            EXPECT_GE(sameFetches, traced * 99 / 100)
+                << interpolationName(interpolation) << " " << elevation << " degrees";
         }
     }
 }
@@ -301,12 +307,17 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwinOnCurvedBases) {
     context.gl().GetIntegerv(GL_MAJOR_VERSION, &major);
     const int size = 64;
     OffscreenTarget target(context.gl(), size, size);
-    for (const BaseShape& base : {BaseShape::cylinder(0.3, 0.8), BaseShape::sphere(0.4)}) {
+    for (const auto& [base, interpolation] :
+         {std::pair{BaseShape::cylinder(0.3, 0.8), Interpolation::Bilinear},
+          std::pair{BaseShape::sphere(0.4), Interpolation::Bilinear},
+          std::pair{BaseShape::cylinder(0.3, 0.8), Interpolation::Biquadratic},
+          std::pair{BaseShape::sphere(0.4), Interpolation::Biquadratic}}) {
         ReliefRenderer renderer(context.gl(), shaderDirectory());
         renderer.setHeightScale(heightScale);
-        renderer.setHeightMap(map, "cobbles", base);
+        renderer.setHeightMap(map, "cobbles", base, interpolation);
         renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
-        const MultilevelTracer twin(map, heightScale, base);
+        const MultilevelTracer twin(map, heightScale, base, interpolation);
+        const std::string name = baseName(base) + " " + interpolationName(interpolation);
         for (double elevation : {35.0, 5.0}) {
             const CameraFrame camera =
                 resolveCamera(test::orbitCamera(elevation, -70.0, 1.4), size, size, 2.0);
@@ -325,13 +336,71 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwinOnCurvedBases) {
                     sameFetches += cpu.fetches == static_cast<int>(gpu[1]);
                 }
             }
-            std::printf("    %-8s %2.0f deg: %zu rays, same segments %zu, same fetches %zu\n",
-                        baseName(base).c_str(), elevation, traced, sameIterations, sameFetches);
+            std::printf("    %-20s %2.0f deg: %zu rays, same segments %zu, same fetches %zu\n",
+                        name.c_str(), elevation, traced, sameIterations, sameFetches);
             ASSERT_GT(traced, std::size_t(size * size / 8));
-            EXPECT_GE(sameIterations, traced * 99 / 100) << baseName(base) << " " << elevation;
+            EXPECT_GE(sameIterations, traced * 99 / 100) << name << " " << elevation;
             if (major >= 4) {
-                EXPECT_GE(sameFetches, traced * 99 / 100) << baseName(base) << " " << elevation;
+                EXPECT_GE(sameFetches, traced * 99 / 100) << name << " " << elevation;
             }
+        }
+    }
+}
+
+// Smoothness (issue 12): on a close-up of a smooth relief, where a texel spans some 40
+// pixels, the normal of the biquadratic hit changes little from a pixel to its neighbour
+// (the surface is C1 across texel edges: the change is its curvature over one pixel),
+// while the bilinear one jumps at every texel edge (each cell is its own facet). Normals
+// come from the Normal debug view, n / 2 + 1/2 in 8 bits: a step of 1/255 per component
+// (at most 0.011 rad between two pixels' normals). The stated bound, 0.035 rad (2 degrees):
+// that quantisation plus the curvature of this relief over a pixel (its second derivative
+// times the pixel's footprint, under 0.02 rad here).
+TEST_F(Render, BiquadraticNormalsAreSmoothAcrossTexelEdges) {
+    constexpr double kBoundRadians = 0.035;
+    const HeightMap map = synth::valueNoise(16, 16, 4.0, 2, 21);
+    RenderJob job;
+    job.width = job.height = 256;
+    job.heightScale = 0.15f;
+    job.camera.eye = {0.02, 0.35, 0.28};
+    job.camera.target = {0.0, 0.05, 0.02};
+    job.camera.fovyDegrees = 40.0;
+    job.shading.view = DebugView::Normal;
+    const double texel = 1.0 / 16.0;
+    for (const Interpolation interpolation :
+         {Interpolation::Biquadratic, Interpolation::Bilinear}) {
+        job.interpolation = interpolation;
+        const HeadlessResult r = renderHeadless(*context(), map, "smooth noise", job);
+        const auto normalAt = [&](int column, int row) {
+            const std::uint8_t* c = &r.frame.color[4 * (std::size_t(row) * job.width + column)];
+            return glm::normalize(glm::dvec3(c[0], c[1], c[2]) / 255.0 * 2.0 - 1.0);
+        };
+        double worst = 0.0;
+        std::size_t pairs = 0, jumps = 0;
+        for (int row = 8; row < job.height; row += 8) {
+            for (int column = 0; column + 1 < job.width; ++column) {
+                const float* a = r.frame.positionAt(column, row);
+                const float* b = r.frame.positionAt(column + 1, row);
+                if (a[3] < 0.5f || b[3] < 0.5f) continue;
+                // Neighbours on one stretch of surface (not across an occluding edge).
+                if (glm::distance(glm::dvec3(a[0], a[1], a[2]), glm::dvec3(b[0], b[1], b[2])) >
+                    0.1 * texel)
+                    continue;
+                const double angle = std::acos(std::clamp(
+                    glm::dot(normalAt(column, row), normalAt(column + 1, row)), -1.0, 1.0));
+                worst = std::max(worst, angle);
+                jumps += angle > kBoundRadians;
+                ++pairs;
+            }
+        }
+        std::printf(
+            "    %-11s %zu neighbouring pairs, largest normal change %.4f rad, %zu above %.3f\n",
+            interpolationName(interpolation), pairs, worst, jumps, kBoundRadians);
+        ASSERT_GT(pairs, std::size_t(5000));
+        if (interpolation == Interpolation::Biquadratic) {
+            EXPECT_LT(worst, kBoundRadians);
+        } else {
+            // Facets: rows cross some 5 texel edges each, 31 rows.
+            EXPECT_GT(jumps, std::size_t(60)) << "the bilinear normal should jump at texel edges";
         }
     }
 }
@@ -430,7 +499,8 @@ protected:
             GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
     }
 
-    test::Accuracy measure(Method method, int steps) {
+    test::Accuracy measure(Method method, int steps,
+                           Interpolation interpolation = Interpolation::Bilinear) {
         const HeightMap map = synth::cobbles(64, 64, 3);
         RenderJob job;
         job.camera = test::orbitCamera(25.0, 40.0, 1.3, {0.0, 0.04, 0.0});
@@ -438,43 +508,53 @@ protected:
         job.method.method = method;
         job.method.steps = steps;
         job.method.minSteps = std::max(4, steps / 4);
+        job.interpolation = interpolation;
         const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
-        const test::Accuracy a =
-            test::compareWithReference(r.frame, r.camera, map, job.heightScale);
-        std::printf("    %-10s %5d: %s\n", methodName(method), steps, a.summary().c_str());
+        const test::Accuracy a = test::compareWithReference(
+            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, {}, interpolation});
+        std::printf("    %-10s %-11s %5d: %s\n", methodName(method),
+                    interpolationName(interpolation), steps, a.summary().c_str());
         return a;
     }
 };
 
 TEST_F(Peers, MaxMipIsExact) {
-    const test::Accuracy a = measure(Method::MaxMip, 0);
-    EXPECT_LE(a.coverageMismatchPercent(), 0.1);
-    EXPECT_LE(a.offHalfTexelPercent(), 0.2);
-    EXPECT_EQ(a.exhausted, 0u);
+    for (const Interpolation interpolation :
+         {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+        const test::Accuracy a = measure(Method::MaxMip, 0, interpolation);
+        EXPECT_LE(a.coverageMismatchPercent(), 0.1) << interpolationName(interpolation);
+        EXPECT_LE(a.offHalfTexelPercent(), 0.2) << interpolationName(interpolation);
+        EXPECT_EQ(a.exhausted, 0u) << interpolationName(interpolation);
+    }
 }
 
 // maxmip on the curved bases: the quadtree walk's node sides are half-planes, planes and
 // cones met in closed form, the nodes wrap across the seam, Y turns once on an ellipsoid.
 TEST_F(Peers, MaxMipIsExactOnCurvedBases) {
     const HeightMap map = synth::cobbles(96, 48, 4);
-    for (const BaseShape& base : {BaseShape::cylinder(0.3, 0.8), BaseShape::sphere(0.4),
-                                  BaseShape::ellipsoid({0.45, 0.35, 0.3})}) {
-        for (const Camera& camera :
-             {test::orbitCamera(20.0, 40.0, 1.4), test::orbitCamera(5.0, -90.0, 1.2),
-              test::orbitCamera(80.0, 200.0, 1.3)}) {
-            RenderJob job;
-            job.camera = camera;
-            job.width = job.height = 64;
-            job.base = base;
-            job.method.method = Method::MaxMip;
-            const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
-            const test::Accuracy a =
-                test::compareWithReference(r.frame, r.camera, map, job.heightScale, base);
-            std::printf("    maxmip on %-9s: %s\n", baseName(base).c_str(), a.summary().c_str());
-            EXPECT_GT(a.referenceHits, 1000u);
-            EXPECT_LE(a.coverageMismatchPercent(), 0.1) << baseName(base);
-            EXPECT_LE(a.offHalfTexelPercent(), 0.2) << baseName(base);
-            EXPECT_EQ(a.exhausted, 0u) << baseName(base);
+    for (const Interpolation interpolation :
+         {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+        for (const BaseShape& base : {BaseShape::cylinder(0.3, 0.8), BaseShape::sphere(0.4),
+                                      BaseShape::ellipsoid({0.45, 0.35, 0.3})}) {
+            const std::string name = baseName(base) + " " + interpolationName(interpolation);
+            for (const Camera& camera :
+                 {test::orbitCamera(20.0, 40.0, 1.4), test::orbitCamera(5.0, -90.0, 1.2),
+                  test::orbitCamera(80.0, 200.0, 1.3)}) {
+                RenderJob job;
+                job.camera = camera;
+                job.width = job.height = 64;
+                job.base = base;
+                job.interpolation = interpolation;
+                job.method.method = Method::MaxMip;
+                const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
+                const test::Accuracy a = test::compareWithReference(
+                    r.frame, r.camera, ReliefGeometry{&map, job.heightScale, base, interpolation});
+                std::printf("    maxmip on %-21s: %s\n", name.c_str(), a.summary().c_str());
+                EXPECT_GT(a.referenceHits, 1000u);
+                EXPECT_LE(a.coverageMismatchPercent(), 0.1) << name;
+                EXPECT_LE(a.offHalfTexelPercent(), 0.2) << name;
+                EXPECT_EQ(a.exhausted, 0u) << name;
+            }
         }
     }
 }

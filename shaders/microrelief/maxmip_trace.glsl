@@ -37,14 +37,25 @@ MaxMipCourse maxMipCourse(ReliefMap map, vec3 origin, vec3 dir, float tFar) {
 #if MICRORELIEF_BASE == 0
     return MaxMipCourse(ivec2(sign(dir.xy)), vec2(-kCurvedNever, kCurvedNever), kCurvedNever);
 #else
+    // The branch of the line the segment starts on: before the turn, or after it where the
+    // turn lies behind the start (the cones Y = const are crossed once per branch, and a
+    // crossing on the other branch, behind the start, must not count).
     float turn = baseTurnY(origin, dir);
-    if (!(turn > 0.0 && turn < tFar)) turn = kCurvedNever;
+    vec2 branch = vec2(-kCurvedNever, kCurvedNever);
+    if (turn <= 0.0) {
+        branch.x = turn;
+        turn = kCurvedNever;
+    } else if (turn < tFar) {
+        branch.y = turn;
+    } else {
+        branch.y = min(turn, kCurvedNever);
+        turn = kCurvedNever;
+    }
     // Y's way before the turn (or on the whole segment): from its value at the start to its
     // value where the branch ends.
     float yStart = baseMapY(map, origin), yEnd = baseMapY(map, origin + min(turn, tFar) * dir);
     int stepY = yEnd > yStart ? 1 : yEnd < yStart ? -1 : 0;
-    return MaxMipCourse(ivec2(curvedXIncreases(origin, dir) ? 1 : -1, stepY),
-                        vec2(-kCurvedNever, turn), turn);
+    return MaxMipCourse(ivec2(curvedXIncreases(origin, dir) ? 1 : -1, stepY), branch, turn);
 #endif
 }
 

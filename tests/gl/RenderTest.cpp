@@ -531,15 +531,23 @@ TEST_F(Peers, MaxMipIsExact) {
 // maxmip on the curved bases: the quadtree walk's node sides are half-planes, planes and
 // cones met in closed form, the nodes wrap across the seam, Y turns once on an ellipsoid.
 TEST_F(Peers, MaxMipIsExactOnCurvedBases) {
-    const HeightMap map = synth::cobbles(96, 48, 4);
+    const HeightMap map = synth::cobbles(128, 128, 4);  // square: rows as many as columns
     for (const Interpolation interpolation :
          {Interpolation::Bilinear, Interpolation::Biquadratic}) {
         for (const BaseShape& base : {BaseShape::cylinder(0.3, 0.8), BaseShape::sphere(0.4),
                                       BaseShape::ellipsoid({0.45, 0.35, 0.3})}) {
             const std::string name = baseName(base) + " " + interpolationName(interpolation);
+            // From high above the equator at 45 degrees, at the globe's upper half: segments
+            // that begin past the latitude's turn, whose cones Y = const the line's other
+            // branch also crosses, behind the start (a walk that took those crossings left
+            // its nodes at once and skipped them).
+            Camera high;
+            high.eye = {0.71, 0.76, 0.97};
+            high.target = {0.26, 0.0, 0.36};
+            high.up = {-0.416, 0.707, -0.572};
             for (const Camera& camera :
                  {test::orbitCamera(20.0, 40.0, 1.4), test::orbitCamera(5.0, -90.0, 1.2),
-                  test::orbitCamera(80.0, 200.0, 1.3)}) {
+                  test::orbitCamera(80.0, 200.0, 1.3), high}) {
                 RenderJob job;
                 job.camera = camera;
                 job.width = job.height = 64;

@@ -334,6 +334,15 @@ float cellGap(ReliefPatch cellPatch, vec3 local) { return patchValue(cellPatch, 
 // descends to, or the end of the piece it moves on to. Every margin pads a bound outwards.
 float cellStretchHit(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, ReliefPatch cellPatch, float c0, float c1,
                      vec3 startPoint, out vec3 endPoint) {
+#if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 1
+    // The plane's path is straight: the gap is one quartic (biquadratic_patch.glsl).
+    endPoint = baseMapPoint(map, origin + c1 * dir);
+    vec3 pa = cellLocalPoint(map, cell, startPoint), pb = cellLocalPoint(map, cell, endPoint);
+    Quartic gap = biquadraticPathGap(cellPatch, pa, pb);
+    float footprint = max(abs(pb.x - pa.x), abs(pb.y - pa.y));
+    float s = quarticFirstHit(gap, kFinalFootprint / max(footprint, 1e-30), kPatchTopMargin * map.maxHeight);
+    return s < 0.0 ? -1.0 : c0 + s * (c1 - c0);
+#else
     vec2 margin = vec2(curvedMarginX(map), curvedMarginY(map));
     float topMargin = kPatchTopMargin * map.maxHeight;
     float finalLength = kFinalLength / length(dir);
@@ -385,6 +394,7 @@ float cellStretchHit(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, ReliefPat
         fb = cellLocalPoint(map, cell, baseMapPoint(map, origin + b * dir));
     }
     return -1.0;
+#endif
 }
 
 // The cells of the path over [from, to], where X and Y are both monotone, in order: each

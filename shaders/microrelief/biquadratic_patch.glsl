@@ -111,4 +111,138 @@ float biquadraticMaxOver(mat3 net, vec2 lo, vec2 hi) {
     return top;
 }
 
+// ---- Along a straight path (the plane): the patch minus the ray is a quartic ----
+//
+// Over a stretch of a straight ray inside one texel square, from local point fa to fb
+// (u, v and the ray's height z, each linear in s in [0, 1]), the gap g(s) = patch(u, v) - z
+// is a quartic in s. Its Bernstein coefficients come from the net: restricting each axis
+// to the path's range (quadraticRestriction) gives a biquadratic net over [0, 1]^2 whose
+// diagonal is the path, and the diagonal of a tensor-product quadratic is the quartic with
+// coefficients N00, (N10 + N01) / 2, (N20 + 4 N11 + N02) / 6, (N21 + N12) / 2, N22. The
+// quartic lies within the convex hull of its coefficients over any piece, which bounds it
+// along the path itself (not over a rectangle of the patch, nor against the ray's lowest
+// point): a piece whose coefficients are all below zero holds no hit.
+
+// A quartic's five coefficients: (c0, c1, c2, c3) and c4.
+struct Quartic {
+    vec4 c;
+    float c4;
+};
+
+// The coefficients of g over [0, 1].
+Quartic biquadraticPathGap(mat3 net, vec3 fa, vec3 fb) {
+    mat3 su = quadraticRestriction(fa.x, fb.x), sv = quadraticRestriction(fa.y, fb.y);
+    // n[k][l]: restricted along u (columns k) and v (rows l).
+    mat3 n;
+    for (int k = 0; k < 3; ++k) {
+        vec3 column = net[0] * su[k][0] + net[1] * su[k][1] + net[2] * su[k][2];
+        n[k] = vec3(dot(sv[0], column), dot(sv[1], column), dot(sv[2], column));
+    }
+    vec4 z = fa.z + vec4(0.0, 0.25, 0.5, 0.75) * (fb.z - fa.z);
+    vec4 diagonal = vec4(n[0][0], 0.5 * (n[1][0] + n[0][1]), (n[2][0] + 4.0 * n[1][1] + n[0][2]) / 6.0,
+                         0.5 * (n[2][1] + n[1][2]));
+    return Quartic(diagonal - z, n[2][2] - fb.z);
+}
+
+// The coefficients over [sa, sb] of the quartic whose coefficients over [0, 1] are q: de
+// Casteljau at sa keeps the right part, then at the piece's end within it the left part.
+Quartic quarticPiece(Quartic q, float sa, float sb) {
+    // Right of sa: the last point of each level.
+    vec4 l1 = mix(q.c, vec4(q.c.yzw, q.c4), sa);  // 4 points of level 1
+    vec3 l2 = mix(l1.xyz, l1.yzw, sa);
+    vec2 l3 = mix(l2.xy, l2.yz, sa);
+    float l4 = mix(l3.x, l3.y, sa);
+    vec4 r = vec4(l4, l3.y, l2.z, l1.w);
+    float r4 = q.c4;
+    // Left of tau within it: the first point of each level.
+    float tau = sa < 1.0 ? (sb - sa) / (1.0 - sa) : 1.0;
+    vec4 m1 = mix(r, vec4(r.yzw, r4), tau);
+    vec3 m2 = mix(m1.xyz, m1.yzw, tau);
+    vec2 m3 = mix(m2.xy, m2.yz, tau);
+    float m4 = mix(m3.x, m3.y, tau);
+    return Quartic(vec4(r.x, m1.x, m2.x, m3.x), m4);
+}
+
+// The quartic at s in [0, 1]: de Casteljau.
+float quarticValue(Quartic q, float s) {
+    vec4 l1 = mix(q.c, vec4(q.c.yzw, q.c4), s);
+    vec3 l2 = mix(l1.xyz, l1.yzw, s);
+    vec2 l3 = mix(l2.xy, l2.yz, s);
+    return mix(l3.x, l3.y, s);
+}
+
+// The one root of a quartic that rises from q(0) < 0 to q(1) >= 0 with coefficients that
+// never fall (so it is monotone): regula falsi with the Illinois rule, the bracket [lo, hi]
+// (q(lo) < 0 <= q(hi)) shrinking superlinearly, until it is 2^-18 of the piece wide.
+float quarticRisingRoot(Quartic q) {
+    float lo = 0.0, hi = 1.0, qlo = q.c.x, qhi = q.c4;
+    int side = 0;
+    for (int k = 0; k < 16 && hi - lo > 1.0 / 262144.0; ++k) {
+        float s = clamp((lo * qhi - hi * qlo) / (qhi - qlo), lo, hi);
+        float qs = quarticValue(q, s);
+        if (qs >= 0.0) {
+            hi = s;
+            qhi = qs;
+            if (side < 0) qlo *= 0.5;
+            side = -1;
+        } else {
+            lo = s;
+            qlo = qs;
+            if (side > 0) qhi *= 0.5;
+            side = 1;
+        }
+    }
+    return hi;
+}
+
+// Pieces 2^-12 of the stretch at the finest (a tenth of the final footprint on the
+// longest stretch a square holds).
+const int kQuarticDepth = 12;
+
+// The first s in [0, 1] where g(s) >= 0 (the ray on or under the patch), or -1: the binary
+// tree of pieces in order, each skipped when all its coefficients are below -margin (the
+// float rounding of the net and of the restriction), down to pieces `finalWidth` wide,
+// solved by the parabola through their ends and middle (base_surface.glsl: cellStretchHit).
+float quarticFirstHit(Quartic g, float finalWidth, float margin) {
+    int depth = 0;
+    uint index = 0u;
+    for (int guard = 0; guard < (2 << kQuarticDepth); ++guard) {
+        float scale = exp2(-float(depth));
+        float sa = float(index) * scale, sb = float(index + 1u) * scale;
+        Quartic c = depth == 0 ? g : quarticPiece(g, sa, sb);
+        float top = max(max(max(c.c.x, c.c.y), max(c.c.z, c.c.w)), c.c4);
+        if (top >= -margin) {
+            if (c.c.x >= 0.0) return sa;
+            // Rising all the way to a point in the solid: one root, found directly.
+            vec4 rise = vec4(c.c.yzw, c.c4) - c.c;
+            if (c.c4 >= 0.0 && all(greaterThanEqual(rise, vec4(0.0))))
+                return sa + (sb - sa) * quarticRisingRoot(c);
+            if (sb - sa > finalWidth && depth < kQuarticDepth) {
+                depth += 1;
+                index *= 2u;
+                continue;
+            }
+            // The final piece: the parabola through s = 0, 1/2, 1 of it.
+            float ga = c.c.x, gb = c.c4;
+            float gm = (dot(c.c, vec4(1.0, 4.0, 6.0, 4.0)) + c.c4) / 16.0;
+            if (gm >= 0.0) return sa + 0.5 * (sb - sa) * ga / (ga - gm);
+            if (gb >= 0.0) return sa + (sb - sa) * (0.5 + 0.5 * gm / (gm - gb));
+            float A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
+            if (A < 0.0) {
+                float vertex = -B / (2.0 * A), disc = B * B - 4.0 * A * ga;
+                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0)
+                    return sa + clamp((-B + sqrt(disc)) / (2.0 * A), 0.0, vertex) * (sb - sa);
+            }
+        }
+        // On to the next piece in order, as high up as it is unvisited.
+        index += 1u;
+        while (depth > 0 && (index & 1u) == 0u) {
+            index >>= 1;
+            depth -= 1;
+        }
+        if (depth == 0) return -1.0;
+    }
+    return -1.0;
+}
+
 #endif

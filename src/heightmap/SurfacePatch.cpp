@@ -1,6 +1,8 @@
 #include "heightmap/SurfacePatch.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 namespace microrelief {
 
@@ -92,6 +94,114 @@ double SurfacePatch::maxOver(glm::dvec2 lo, glm::dvec2 hi) const {
         for (int l = 0; l < 3; ++l) top = std::max(top, glm::dot(sv[l], column));
     }
     return top;
+}
+
+SurfacePatch::Quartic SurfacePatch::pathGap(const glm::dvec3& fa, const glm::dvec3& fb) const {
+    const glm::dmat3 su = restriction(fa.x, fb.x), sv = restriction(fa.y, fb.y);
+    // n[k][l]: the net restricted to the path's range along u (k) and v (l), over [0, 1]^2;
+    // the path is its diagonal.
+    double n[3][3];
+    for (int k = 0; k < 3; ++k) {
+        glm::dvec3 column(0.0);
+        for (int a = 0; a < 3; ++a)
+            column += su[k][a] * glm::dvec3(net[a][0], net[a][1], net[a][2]);
+        for (int l = 0; l < 3; ++l) n[k][l] = glm::dot(sv[l], column);
+    }
+    // The diagonal of a tensor-product quadratic: coefficient m sums n[k][l] over k + l = m,
+    // weighted C(2, k) C(2, l) / C(4, m); the ray's height is linear.
+    const double dz = fb.z - fa.z;
+    return {n[0][0] - fa.z, 0.5 * (n[1][0] + n[0][1]) - (fa.z + 0.25 * dz),
+            (n[2][0] + 4.0 * n[1][1] + n[0][2]) / 6.0 - (fa.z + 0.5 * dz),
+            0.5 * (n[2][1] + n[1][2]) - (fa.z + 0.75 * dz), n[2][2] - fb.z};
+}
+
+SurfacePatch::Quartic quarticPiece(const SurfacePatch::Quartic& q, double sa, double sb) {
+    // Right of sa: in place, c[k] ends as level 4 - k's point k.
+    SurfacePatch::Quartic c = q;
+    for (int r = 1; r <= 4; ++r)
+        for (int i = 0; i <= 4 - r; ++i) c[i] += sa * (c[i + 1] - c[i]);
+    // Left of tau within [sa, 1]: in place from the top, c[k] ends as level k's point 0.
+    const double tau = sa < 1.0 ? (sb - sa) / (1.0 - sa) : 1.0;
+    for (int r = 1; r <= 4; ++r)
+        for (int i = 4; i >= r; --i) c[i] = c[i - 1] + tau * (c[i] - c[i - 1]);
+    return c;
+}
+
+double quarticValue(const SurfacePatch::Quartic& q, double s) {
+    SurfacePatch::Quartic c = q;
+    for (int r = 1; r <= 4; ++r)
+        for (int i = 0; i <= 4 - r; ++i) c[i] += s * (c[i + 1] - c[i]);
+    return c[0];
+}
+
+namespace {
+
+// The one root of a quartic rising from q(0) < 0 to q(1) >= 0 with coefficients that never
+// fall: regula falsi with the Illinois rule until the bracket is 2^-18 wide; its upper end,
+// in the solid.
+double risingRoot(const SurfacePatch::Quartic& q) {
+    double lo = 0.0, hi = 1.0, qlo = q[0], qhi = q[4];
+    int side = 0;
+    for (int k = 0; k < 16 && hi - lo > 1.0 / 262144.0; ++k) {
+        const double s = std::clamp((lo * qhi - hi * qlo) / (qhi - qlo), lo, hi);
+        const double qs = quarticValue(q, s);
+        if (qs >= 0.0) {
+            hi = s;
+            qhi = qs;
+            if (side < 0) qlo *= 0.5;
+            side = -1;
+        } else {
+            lo = s;
+            qlo = qs;
+            if (side > 0) qhi *= 0.5;
+            side = 1;
+        }
+    }
+    return hi;
+}
+
+constexpr int kQuarticDepth = 12;
+
+}  // namespace
+
+std::optional<double> quarticFirstHit(const SurfacePatch::Quartic& g, double finalWidth,
+                                      double margin) {
+    int depth = 0;
+    std::uint32_t index = 0;
+    for (;;) {
+        const double scale = std::ldexp(1.0, -depth);
+        const double sa = index * scale, sb = (index + 1u) * scale;
+        const SurfacePatch::Quartic c = depth == 0 ? g : quarticPiece(g, sa, sb);
+        if (*std::max_element(c.begin(), c.end()) >= -margin) {
+            if (c[0] >= 0.0) return sa;
+            const bool rising =
+                c[4] >= 0.0 && c[1] >= c[0] && c[2] >= c[1] && c[3] >= c[2] && c[4] >= c[3];
+            if (rising) return sa + (sb - sa) * risingRoot(c);
+            if (sb - sa > finalWidth && depth < kQuarticDepth) {
+                ++depth;
+                index *= 2u;
+                continue;
+            }
+            // The final piece: the parabola through its ends and middle.
+            const double ga = c[0], gb = c[4];
+            const double gm = (c[0] + 4.0 * c[1] + 6.0 * c[2] + 4.0 * c[3] + c[4]) / 16.0;
+            if (gm >= 0.0) return sa + 0.5 * (sb - sa) * ga / (ga - gm);
+            if (gb >= 0.0) return sa + (sb - sa) * (0.5 + 0.5 * gm / (gm - gb));
+            const double A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
+            if (A < 0.0) {
+                const double vertex = -B / (2.0 * A), disc = B * B - 4.0 * A * ga;
+                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0)
+                    return sa +
+                           std::clamp((-B + std::sqrt(disc)) / (2.0 * A), 0.0, vertex) * (sb - sa);
+            }
+        }
+        ++index;
+        while (depth > 0 && (index & 1u) == 0u) {
+            index >>= 1;
+            --depth;
+        }
+        if (depth == 0) return std::nullopt;
+    }
 }
 
 }  // namespace microrelief

@@ -5,6 +5,9 @@
 // [0, 1]^2 across a cell.
 #pragma once
 
+#include <array>
+#include <optional>
+
 #include <glm/glm.hpp>
 
 #include "heightmap/HeightMap.h"
@@ -31,6 +34,23 @@ struct SurfacePatch {
     // it: a bilinear patch peaks at a corner of any rectangle; a biquadratic one lies in the
     // convex hull of the rectangle's Bezier net (biquadratic_patch.glsl).
     double maxOver(glm::dvec2 lo, glm::dvec2 hi) const;
+
+    // Biquadratic only: the Bernstein coefficients over s in [0, 1] of the quartic
+    // g(s) = height(f(s)) - z(s) along the straight path from local point fa to fb (x, y:
+    // local coordinates, z: the ray's height, each linear in s). biquadratic_patch.glsl:
+    // biquadraticPathGap.
+    using Quartic = std::array<double, 5>;
+    Quartic pathGap(const glm::dvec3& fa, const glm::dvec3& fb) const;
 };
+
+// A quartic's Bernstein coefficients over [sa, sb] from those over [0, 1] (de Casteljau),
+// its value at s, and its first point with g(s) >= 0, or nullopt: the pieces in order, each
+// skipped when all its coefficients are below -margin (the convex hull bounds the quartic),
+// a rising piece solved by regula falsi, others halved down to `finalWidth` and solved by
+// the parabola through their ends and middle (biquadratic_patch.glsl: quarticFirstHit).
+SurfacePatch::Quartic quarticPiece(const SurfacePatch::Quartic& q, double sa, double sb);
+double quarticValue(const SurfacePatch::Quartic& q, double s);
+std::optional<double> quarticFirstHit(const SurfacePatch::Quartic& q, double finalWidth,
+                                      double margin);
 
 }  // namespace microrelief

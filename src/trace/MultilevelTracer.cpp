@@ -140,15 +140,15 @@ auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double
 // [from, to] on which Y is monotone, where each boundary is crossed once: a crossing found
 // on it behind the current t means rounding put the walk's start just past it, and the
 // walk steps on.
-auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to,
-                                     glm::dvec2 branch, int& fetches) const
-    -> std::optional<LeafHit> {
+auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to, glm::dvec2 branch,
+                                     int& fetches) const -> std::optional<LeafHit> {
     const BaseSurface& base = *base_;
     const int w = map_.width, h = map_.height;
     const double offset = SurfacePatch::offset(interpolation_);
     const int firstCell = offset > 0.0 ? -1 : 0;  // bilinear border cells at -1
     const glm::dvec3 start = base.mapPoint(ray.at(from));
-    int i = static_cast<int>(std::floor(start.x - offset)), j = static_cast<int>(std::floor(start.y - offset));
+    int i = static_cast<int>(std::floor(start.x - offset)),
+        j = static_cast<int>(std::floor(start.y - offset));
     if (base.wrapsU()) {
         i = (i % w + w) % w;
     } else {
@@ -220,6 +220,16 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
         const glm::dvec3 f = local(t);
         return patch.height(glm::clamp(glm::dvec2(f), 0.0, 1.0)) - f.z;
     };
+    if (!base.shape().curved() && interpolation_ == Interpolation::Biquadratic) {
+        // The plane's path is straight: the gap is one quartic (SurfacePatch::pathGap).
+        const glm::dvec3 fa = local(c0), fb = local(c1);
+        const double footprint = std::max(std::abs(fb.x - fa.x), std::abs(fb.y - fa.y));
+        const auto s = quarticFirstHit(patch.pathGap(fa, fb),
+                                       kBiquadraticFinalFootprint / std::max(footprint, 1e-300),
+                                       kFootprintMargin * base.maxHeight());
+        if (!s) return std::nullopt;
+        return c0 + *s * (c1 - c0);
+    }
     const double finalLength = base.finalLength() / glm::length(ray.dir);
     int depth = 0;
     std::uint32_t index = 0;
@@ -232,8 +242,9 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
                          hi = glm::max(glm::dvec2(fa), glm::dvec2(fb));
         const double top = patch.maxOver(lo - kFootprintMargin, hi + kFootprintMargin);
         const bool may = base.lowest(ray, a, b) <= top;
-        const bool last = depth == kCellDepth ||
-                          (b - a <= finalLength && std::max(hi.x - lo.x, hi.y - lo.y) <= finalFootprint);
+        const bool last =
+            depth == kCellDepth ||
+            (b - a <= finalLength && std::max(hi.x - lo.x, hi.y - lo.y) <= finalFootprint);
         if (may && !last) {
             ++depth;
             index *= 2u;
@@ -294,9 +305,8 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
         // Through a wall, a cap or the bottom: a hit right there when below the surface.
         const glm::dvec3 m = base_->mapPoint(ray.at(tNear));
         const bool bottom = span.entry == ShellFace::Bottom;  // h = 0: always in the solid
-        if (bottom ||
-            (stats.fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1,
-             m.z <= map_.surface(m.x, m.y, base_->wrapsU(), interpolation_))) {
+        if (bottom || (stats.fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1,
+                       m.z <= map_.surface(m.x, m.y, base_->wrapsU(), interpolation_))) {
             stats.stopLevel = 0;
             const HitFace face = span.entry == ShellFace::WallX   ? HitFace::WallX
                                  : span.entry == ShellFace::WallY ? HitFace::WallZ

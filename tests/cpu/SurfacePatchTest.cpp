@@ -93,8 +93,99 @@ TEST(SurfacePatch, MaxOverBoundsThePatchOnAnyRectangle) {
                     << "," << lo.y << "]-[" << hi.x << "," << hi.y << "]";
                 ASSERT_LE(bound, patch.maxOver({0, 0}, {1, 1}) + 1e-12);
                 // Tight on small rectangles: within the patch's second-order change over them.
-                if (size < 0.05) ASSERT_LE(bound - sampled, 4.0 * size * size + 1e-9) << size;
+                if (size < 0.05) {
+                    ASSERT_LE(bound - sampled, 4.0 * size * size + 1e-9) << size;
+                }
             }
         }
     }
+}
+
+namespace {
+
+// A random straight path across a biquadratic texel square of white noise: local (u, v)
+// ends anywhere in the square, the ray's height at each end anywhere in [0, 1].
+struct Path {
+    SurfacePatch patch;
+    glm::dvec3 fa, fb;
+    double gap(double s) const {
+        const glm::dvec3 f = glm::mix(fa, fb, s);
+        return patch.height(glm::dvec2(f)) - f.z;
+    }
+};
+
+Path randomPath(const HeightMap& map, std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::uniform_int_distribution<int> cell(-1, map.width - 1);
+    const SurfacePatch patch =
+        SurfacePatch::at(map, cell(random), cell(random), false, Interpolation::Biquadratic);
+    return {patch,
+            {unit(random), unit(random), unit(random)},
+            {unit(random), unit(random), unit(random)}};
+}
+
+}  // namespace
+
+// pathGap's quartic is the patch minus the ray along the path, quarticPiece's coefficients
+// are the same quartic over a sub-piece, and their convex hull bounds it there: the bound
+// the plane's biquadratic leaf skips pieces by (biquadratic_patch.glsl: quarticFirstHit).
+TEST(SurfacePatch, PathGapIsTheGapAndItsPiecesHullsBoundIt) {
+    const HeightMap map = synth::whiteNoise(9, 9, 11);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int k = 0; k < 2000; ++k) {
+        const Path path = randomPath(map, random);
+        const SurfacePatch::Quartic q = path.patch.pathGap(path.fa, path.fb);
+        for (int n = 0; n <= 16; ++n)
+            ASSERT_NEAR(quarticValue(q, n / 16.0), path.gap(n / 16.0), 1e-12) << k << " " << n;
+        double sa = unit(random), sb = unit(random);
+        if (sa > sb) std::swap(sa, sb);
+        const SurfacePatch::Quartic piece = quarticPiece(q, sa, sb);
+        const double hull = *std::max_element(piece.begin(), piece.end());
+        for (int n = 0; n <= 32; ++n) {
+            const double s = sa + (sb - sa) * n / 32.0;
+            ASSERT_NEAR(quarticValue(piece, n / 32.0), quarticValue(q, s), 1e-12) << k;
+            ASSERT_LE(quarticValue(q, s), hull + 1e-12) << k << " [" << sa << ", " << sb << "]";
+        }
+    }
+}
+
+// quarticFirstHit finds the first zero of the gap, against a dense scan refined by
+// bisection: the same hit or miss unless the path only grazes the patch, and the same
+// point to within the final piece's parabola.
+TEST(SurfacePatch, QuarticFirstHitIsTheFirstPointInTheSolid) {
+    const HeightMap map = synth::whiteNoise(9, 9, 12);
+    std::mt19937 random(4);
+    int hits = 0, grazes = 0;
+    for (int k = 0; k < 3000; ++k) {
+        const Path path = randomPath(map, random);
+        const auto found = quarticFirstHit(path.patch.pathGap(path.fa, path.fb), 1.0 / 64.0, 0.0);
+        std::optional<double> expected;
+        double top = path.gap(0.0);
+        constexpr int kScan = 4096;
+        for (int n = 0; n <= kScan && !expected; ++n) {
+            const double s = static_cast<double>(n) / kScan;
+            top = std::max(top, path.gap(s));
+            if (path.gap(s) < 0.0) continue;
+            double lo = std::max(0.0, s - 1.0 / kScan), hi = s;
+            if (n == 0) lo = hi = 0.0;
+            for (int b = 0; b < 50; ++b)
+                (path.gap(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+            expected = hi;
+        }
+        if (expected.has_value() != found.has_value() ||
+            (expected && std::abs(*expected - *found) > 1e-3)) {
+            // Only where the path grazes the patch: the gap's top within the scan's reach of 0.
+            ASSERT_LT(std::abs(top), 1e-4) << k << ": expected " << (expected ? *expected : -1.0)
+                                           << ", found " << (found ? *found : -1.0);
+            ++grazes;
+            continue;
+        }
+        if (expected) {
+            ++hits;
+            ASSERT_GE(path.gap(*found), -1e-4) << k << " at " << *found;
+        }
+    }
+    EXPECT_GT(hits, 500);
+    EXPECT_LT(grazes, 10);
 }

@@ -5,6 +5,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <sys/stat.h>
+
 #include <cstdlib>
 
 #include "TestSupport.h"
@@ -126,7 +128,7 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     std::vector<std::uint8_t> bytes = test::readBytes(dir / "whole.png");
     bytes.resize(bytes.size() / 2);
     test::writeBytes(dir / "truncated.png", bytes);
-    expectRefused(dir / "truncated.png", "cannot read");
+    expectRefused(dir / "truncated.png", "truncated");
 
     HeightMap nan(4, 4, 0.5f);
     nan.at(2, 3) = std::nanf("");
@@ -138,12 +140,36 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     test::writeMap(dir / "negative.exr", negative, PixelType::Float);
     expectRefused(dir / "negative.exr", "--normalize");
 
-    // Wider than llvmpipe's and most GPUs' GL_MAX_TEXTURE_SIZE (16384 or 32768), yet
-    // a small file: one row of 40000 zeros.
+    // Wider than the loader's limit (kMaxHeightMapSide), yet a small file: one row of
+    // 40000 zeros.
     test::writeMap(dir / "huge.png", HeightMap(40000, 1), PixelType::UInt8);
-    expectRefused(dir / "huge.png", "GL_MAX_TEXTURE_SIZE");
+    expectRefused(dir / "huge.png", "40000 x 1 is larger than the 16384 x 16384");
 
     EXPECT_EQ(filesIn(dir.path()).size(), 8u) << "no temporary file may remain";
+}
+
+// Inputs that used to hang or exhaust memory (issue 15), refused before OpenImageIO
+// reads a pixel. `timeout` turns a hang into a failure instead of a stuck suite.
+TEST_F(RenderCli, DevicesFifosAndLyingHeadersAreRefusedAtOnce) {
+    auto expectRefused = [&](const std::string& map, const std::string& reason) {
+        const test::RunResult r =
+            run(small + "--height " + map + " --out " + (dir / "x.png").string(), "timeout 20");
+        expectFailure(r, 2, map);
+        EXPECT_NE(r.err.find(reason), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+    };
+    expectRefused("/dev/zero", "not a regular file");
+    expectRefused("/dev/urandom", "not a regular file");
+    const auto fifo = dir / "map.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    expectRefused(fifo.string(), "not a regular file");
+    // A 69-byte PNG whose header claims 65535 x 40000 (10 GB of floats) and one that
+    // claims 100000 x 100000 (which used to end in std::bad_alloc): refused from the header.
+    const auto corpus = std::filesystem::path(MICRORELIEF_FUZZ_CORPUS_DIR);
+    expectRefused((corpus / "claims_65535x40000.png").string(),
+                  "65535 x 40000 is larger than the 16384 x 16384");
+    expectRefused((corpus / "claims_100000x100000.png").string(),
+                  "100000 x 100000 is larger than the 16384 x 16384");
 }
 
 TEST_F(RenderCli, OutputsThatCannotAllBeWrittenAreRefusedBeforeAnyIsTouched) {

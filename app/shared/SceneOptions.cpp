@@ -36,14 +36,22 @@ glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
     return {values[0], values[1], values[2]};
 }
 
-void parseSizeFlag(const std::string& text, int& width, int& height) {
+void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide,
+                   const std::string& limitReason) {
     std::istringstream in(text);
     char x = 0;
-    long w = 0, h = 0;
+    long long w = 0, h = 0;
     std::string rest;
-    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 || h <= 0 ||
-        w > 65536 || h > 65536) {
+    // Digits only on both sides: "5x5junk", "5x5.5", "+5x5" and "5 x 5" are not sizes.
+    const bool digits =
+        !text.empty() && text.find_first_not_of("0123456789xX") == std::string::npos;
+    if (!digits || !(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 ||
+        h <= 0) {
         throwBadInput("--size expects WIDTHxHEIGHT with positive integers, got '" + text + "'");
+    }
+    if (w > maxSide || h > maxSide) {
+        throwBadInput("--size " + text + " is larger than " + std::to_string(maxSide) + " x " +
+                      std::to_string(maxSide) + (limitReason.empty() ? "" : ", " + limitReason));
     }
     width = static_cast<int>(w);
     height = static_cast<int>(h);

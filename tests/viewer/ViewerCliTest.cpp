@@ -47,7 +47,10 @@ TEST_F(ViewerCli, BadArgumentsExitTwo) {
     expectFailure(run("--fovy 180"), 2, "--fovy");
     expectFailure(run("--view sideways"), 2, "sideways");
     expectFailure(run("--method raymarch"), 2, "raymarch");
-    expectFailure(run("--frames -1"), 2, "--frames");
+    // A readable range, not the largest double in 309 digits.
+    const test::RunResult frames = run("--frames -1");
+    expectFailure(frames, 2, "--frames must be 0 (run until the window closes) or more, got -1");
+    EXPECT_LT(frames.err.size(), 120u) << frames.err;
     expectFailure(run("--no-such-flag"), 2, "--no-such-flag");
     expectFailure(run("--screenshot " + (dir / "x.unknownext").string()), 2, "x.unknownext");
 }

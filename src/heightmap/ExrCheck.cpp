@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
 
 namespace microrelief {
 
@@ -37,6 +38,61 @@ std::string printable(const std::string& name) {
         if (c < 0x20 || c > 0x7e) c = '?';
     }
     return text;
+}
+
+// The value size OpenEXR 3.1 reads for a type whatever the size field says (a mismatch
+// puts its parser out of step with the file: the next "size" it reads is garbage, and it
+// allocates that); 0 for the types whose size field it follows or that are checked apart.
+std::size_t fixedValueSize(const std::string& type) {
+    static const std::map<std::string, std::size_t> sizes = {{"box2i", 16},
+                                                             {"box2f", 16},
+                                                             {"int", 4},
+                                                             {"float", 4},
+                                                             {"double", 8},
+                                                             {"v2i", 8},
+                                                             {"v2f", 8},
+                                                             {"v2d", 16},
+                                                             {"v3i", 12},
+                                                             {"v3f", 12},
+                                                             {"v3d", 24},
+                                                             {"m33f", 36},
+                                                             {"m33d", 72},
+                                                             {"m44f", 64},
+                                                             {"m44d", 128},
+                                                             {"compression", 1},
+                                                             {"lineOrder", 1},
+                                                             {"envmap", 1},
+                                                             {"deepImageState", 1},
+                                                             {"chromaticities", 32},
+                                                             {"keycode", 28},
+                                                             {"timecode", 8},
+                                                             {"rational", 8},
+                                                             {"tiledesc", 9}};
+    const auto found = sizes.find(type);
+    return found == sizes.end() ? 0 : found->second;
+}
+
+// A channel list as OpenEXR reads it: entries of a name and 16 bytes until an empty
+// name, which must be the value's last byte.
+bool channelListFits(const std::vector<unsigned char>& value) {
+    std::size_t at = 0;
+    for (;;) {
+        const std::size_t start = at;
+        while (at < value.size() && value[at] != 0) ++at;
+        if (at == value.size() || at - start > 255) return false;
+        ++at;  // the null
+        if (at - start == 1) return at == value.size();
+        at += 16;
+        if (at > value.size()) return false;
+    }
+}
+
+// A preview image: width, height, then 4 bytes a pixel, which OpenEXR reads in full.
+bool previewFits(const std::vector<unsigned char>& value) {
+    if (value.size() < 8) return false;
+    const std::uint64_t w = static_cast<std::uint32_t>(littleEndian(value.data()));
+    const std::uint64_t h = static_cast<std::uint32_t>(littleEndian(value.data() + 4));
+    return 8 + 4 * w * h == value.size();
 }
 
 }  // namespace
@@ -89,7 +145,22 @@ std::optional<std::vector<ExrPartSize>> readExrHeader(const std::filesystem::pat
                          " bytes, more than the file holds";
                 return std::nullopt;
             }
-            if (*name == "dataWindow") {
+            const std::size_t fixed = fixedValueSize(*type);
+            if (fixed != 0 && static_cast<std::size_t>(size) != fixed) {
+                defect = "attribute '" + printable(*name) + "' of type " + printable(*type) +
+                         " has " + std::to_string(size) + " bytes, not " + std::to_string(fixed);
+                return std::nullopt;
+            }
+            if (*type == "chlist" || *type == "preview") {
+                std::vector<unsigned char> value(static_cast<std::size_t>(size));
+                in.read(reinterpret_cast<char*>(value.data()), size);
+                const bool fits = *type == "chlist" ? channelListFits(value) : previewFits(value);
+                if (!fits) {
+                    defect = "attribute '" + printable(*name) + "' (" + *type +
+                             ") does not fill its " + std::to_string(size) + " bytes";
+                    return std::nullopt;
+                }
+            } else if (*name == "dataWindow") {
                 if (*type != "box2i" || size != 16) {
                     defect = "the data window is not a box2i";
                     return std::nullopt;

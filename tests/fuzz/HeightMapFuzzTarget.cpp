@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <unistd.h>
@@ -31,9 +32,10 @@ namespace {
     std::abort();
 }
 
-// The extension OpenImageIO tries first, from the bytes' magic number: the PNG, OpenEXR
-// and TIFF readers first for their own files; anything else as ".img", which no reader
-// claims, so OpenImageIO tries every reader it has (what an odd file meets).
+// The file's extension, which picks the one reader the loader uses: from the bytes' magic
+// number for PNG, OpenEXR and TIFF, the formats of the seeds; otherwise the first byte
+// picks among other readers a height map might go to, so that a damaged or misnamed file
+// meets them too.
 const char* extensionFor(const std::uint8_t* data, std::size_t size) {
     auto starts = [&](const char* magic, std::size_t n) {
         return size >= n && std::memcmp(data, magic, n) == 0;
@@ -41,7 +43,8 @@ const char* extensionFor(const std::uint8_t* data, std::size_t size) {
     if (starts("\x89PNG", 4)) return ".png";
     if (starts("\x76\x2f\x31\x01", 4)) return ".exr";
     if (starts("II*\0", 4) || starts("MM\0*", 4)) return ".tif";
-    return ".img";
+    static const char* const others[] = {".jpg", ".tga", ".bmp", ".hdr", ".pgm", ".psd", ".img"};
+    return size == 0 ? ".img" : others[data[0] % std::size(others)];
 }
 
 std::filesystem::path scratchFolder() {
@@ -93,7 +96,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (message.rfind(file.string() + ": ", 0) != 0) broken("unnamed error: " + message);
         if (message.find('\n') != std::string::npos)
             broken("a message of several lines: " + message);
-        if (message.find("PNG read error") != std::string::npos)
+        // OpenImageIO's PNG reader starts the message it records from libpng's error
+        // callback so; the loader puts it in parentheses after "cannot read the ...".
+        if (message.find(": cannot read the image (PNG read error") != std::string::npos ||
+            message.find(": cannot read the pixels (PNG read error") != std::string::npos)
             broken("libpng failed and printed its own line: " + message);
     }
     std::filesystem::remove(file);

@@ -181,8 +181,33 @@ TEST_F(RenderCli, OutputsThatCannotAllBeWrittenAreRefusedBeforeAnyIsTouched) {
     expectFailure(run(small + "--out " + (dir / "same.exr").string() + " --aov " +
                       (dir / "same.exr").string()),
                   2, "same.exr");
+    // One file in two spellings (issue 15: the AOV used to replace the picture).
+    std::filesystem::create_directory_symlink(dir.path(), dir / "o");
+    // (o is a link to this folder; d.exr a real folder; n does not exist.)
+    for (const char* other : {"n/../same.exr", "d.exr/../same.exr", "o/same.exr", "./same.exr"}) {
+        expectFailure(run(small + "--out " + (dir / "same.exr").string() + " --aov " +
+                          (dir / other).string()),
+                      2, "the same file as");
+    }
+    // An output whose folder would have to be made inside a file.
+    expectFailure(run(small + "--out " + (dir / "a.png" / "x.png").string()), 2, "not a folder");
     EXPECT_EQ(test::readBytes(picture), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
     EXPECT_FALSE(std::filesystem::exists(dir / "same.exr"));
+}
+
+TEST_F(RenderCli, SigtermWhileWritingLeavesNoTemporaryAndNoNewFolder) {
+    // A large AOV takes a moment to write: wait until its temporary appears in the new
+    // folder, then send SIGTERM. The program must die of it and leave nothing behind.
+    const auto folder = dir / "new";
+    const std::string command =
+        std::string("( ") + MICRORELIEF_RENDER_EXE + " --size 2048x2048 --backend auto --out " +
+        (folder / "deep/x.png").string() + " --aov " + (folder / "deep/x.exr").string() +
+        " & pid=$!; seen=no; for i in $(seq 1200); do if ls -a " + (folder / "deep").string() +
+        " 2>/dev/null | grep -q tmp; then seen=yes; break; fi; sleep 0.05; done; kill -TERM $pid; "
+        "wait $pid; echo \"status=$? seen=$seen\" )";
+    const test::RunResult r = test::runCommand(command, dir.path());
+    EXPECT_NE(r.out.find("status=143 seen=yes"), std::string::npos) << r.out << r.err;
+    EXPECT_FALSE(std::filesystem::exists(folder)) << "the folders it made must go";
 }
 
 TEST_F(RenderCli, NormalizeRescuesNegativeMaps) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/Error.h"
+#include "render/FloatLimits.h"
 
 namespace microrelief {
 
@@ -33,6 +34,16 @@ glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
         values.push_back(value);
     }
     if (values.size() != 3 || text.back() == ',') invalid();
+    // The shader gets these as floats; camera coordinates beyond the limit also make
+    // exact hits impossible (render/FloatLimits.h).
+    for (double value : values) {
+        if (std::abs(value) > kMaxWorldCoordinate) {
+            throwBadInput(flag + " " + text + ": each component must lie within +-" +
+                          exactNumber(kMaxWorldCoordinate) +
+                          " (world units, the relief spans 1; the shader's float "
+                          "arithmetic holds no more)");
+        }
+    }
     return {values[0], values[1], values[2]};
 }
 
@@ -100,6 +111,21 @@ std::string exactVector(const glm::dvec3& v) {
     return exactText(v.x) + ',' + exactText(v.y) + ',' + exactText(v.z);
 }
 
+namespace {
+
+// A direction the shader normalises in float: not zero, and not so short that its
+// squared length underflows (render/FloatLimits.h).
+void checkDirection(const std::string& flag, const std::string& text, const glm::dvec3& v) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (largest == 0.0) throwBadInput(flag + " must not be zero");
+    if (largest < kMinDirectionComponent) {
+        throwBadInput(flag + " " + text + ": its largest component must be at least " +
+                      exactNumber(kMinDirectionComponent) + " (the shader normalises it in float)");
+    }
+}
+
+}  // namespace
+
 SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load,
                        RenderJob& job)
     : heightFile_(heightFile),
@@ -162,9 +188,12 @@ void SceneFlags::apply() {
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
-    if (!light_.empty())
-        job_.shading.lightDirection = glm::vec3(parseVectorFlag("--light", light_));
-    if (glm::length(job_.shading.lightDirection) == 0.0f) throwBadInput("--light must not be zero");
+    checkDirection("--up", up_, job_.camera.up);
+    if (!light_.empty()) {
+        const glm::dvec3 light = parseVectorFlag("--light", light_);
+        checkDirection("--light", light_, light);
+        job_.shading.lightDirection = glm::vec3(light);
+    }
     parseSizeFlag(size_, job_.width, job_.height);
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);

@@ -5,6 +5,7 @@
 
 #include "core/DataPaths.h"
 #include "core/Error.h"
+#include "render/FloatLimits.h"
 
 namespace microrelief {
 
@@ -12,6 +13,11 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
                               const RenderJob& job) {
     if (!(job.heightScale > 0.0f) || !std::isfinite(job.heightScale)) {
         throwBadInput("--height-scale must be a positive number");
+    }
+    {
+        // Before any GL work: the float range and precision the shader needs.
+        const CameraFrame frame = resolveCamera(job.camera, job.width, job.height, 1.0);
+        checkFloatLimits(map, job.heightScale, job.camera, frame, source);
     }
     context.makeCurrent();
     const GL& gl = context.gl();

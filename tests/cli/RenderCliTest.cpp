@@ -210,6 +210,41 @@ TEST_F(RenderCli, SigtermWhileWritingLeavesNoTemporaryAndNoNewFolder) {
     EXPECT_FALSE(std::filesystem::exists(folder)) << "the folders it made must go";
 }
 
+// Numbers beyond what the shader's float arithmetic holds (render/FloatLimits.h),
+// refused with the reason; numbers just inside them render exactly.
+TEST_F(RenderCli, NumbersTheShaderCannotHoldAreRefusedWithTheReason) {
+    auto scaled = [&](const std::string& name, float factor) {
+        HeightMap map = synth::valueNoise(32, 32, 8, 2, 4);
+        for (float& h : map.samples) h *= factor;
+        test::writeMap(dir / name, map, PixelType::Float);
+        return (dir / name).string();
+    };
+    const std::string out = " --out " + (dir / "x.png").string();
+    // Heights 3e38 at scale 1: the relief's top overflows the world (issue 15: 36.6 % of
+    // pixels wrong, exit 0).
+    expectFailure(run(small + "--height " + scaled("top.exr", 3e38f) + " --height-scale 1" + out),
+                  2, "the relief's top");
+    // Heights 1e17 at scale 1e-18 (a top of 0.1): the patch solve would overflow.
+    expectFailure(
+        run(small + "--height " + scaled("solve.exr", 1e17f) + " --height-scale 1e-18" + out), 2,
+        "patch solve");
+    // Heights 1e15 at scale 1e-16 are inside the limits, and exact.
+    const test::RunResult inside =
+        run(small + "--height " + scaled("inside.exr", 1e15f) +
+            " --height-scale 1e-16 --compare-reference --out " + (dir / "inside.png").string());
+    ASSERT_EQ(inside.status, 0) << inside.err;
+    EXPECT_NE(inside.out.find("off by more than half a texel       0 px"), std::string::npos)
+        << inside.out;
+    // Camera and light vectors that float cannot carry, each with its own reason.
+    expectFailure(run(small + "--eye 1e300,1,1" + out), 2, "--eye 1e300,1,1: each component");
+    expectFailure(run(small + "--target 1,1e7,1" + out), 2, "--target 1,1e7,1: each component");
+    expectFailure(run(small + "--light 1e300,0,0" + out), 2, "--light 1e300,0,0: each component");
+    expectFailure(run(small + "--light 1e-300,0,0" + out), 2, "--light 1e-300,0,0: its largest");
+    // An eye too far away for exact hits in float: 5000 units from a 256-texel map.
+    expectFailure(run(small + "--eye 5000,1,1" + out), 2, "too far");
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
 TEST_F(RenderCli, NormalizeRescuesNegativeMaps) {
     HeightMap negative(4, 4, 0.5f);
     negative.at(1, 1) = -1.0f;

@@ -194,7 +194,9 @@ void SceneFlags::apply() {
         checkDirection("--light", light_, light);
         job_.shading.lightDirection = glm::vec3(light);
     }
-    parseSizeFlag(size_, job_.width, job_.height);
+    // Any side here; checkPictureSize states the limits, sides and pixels, in one message.
+    parseSizeFlag(size_, job_.width, job_.height, 1 << 30);
+    checkPictureSize(job_.width, job_.height);
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
     if (job_.method.steps < 1 || job_.method.steps > 65536)

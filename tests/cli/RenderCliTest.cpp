@@ -245,6 +245,23 @@ TEST_F(RenderCli, NumbersTheShaderCannotHoldAreRefusedWithTheReason) {
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+// Pictures wider than the GL's viewport limit (16384 on llvmpipe) are drawn in tiles;
+// beyond the stated limit they are refused up front.
+TEST_F(RenderCli, PicturesBeyondTheGlLimitsRenderInTilesUpToTheStatedLimit) {
+    const auto wide = dir / "wide.png";
+    const test::RunResult r = run("--size 20000x6 --out " + wide.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto picture = OIIO::ImageInput::open(wide.string());
+    ASSERT_TRUE(picture);
+    EXPECT_EQ(picture->spec().width, 20000);
+    EXPECT_EQ(picture->spec().height, 6);
+    for (const char* size : {"16385x16384", "65537x1", "17000x17000"}) {
+        expectFailure(run(std::string("--size ") + size + " --out " + (dir / "x.png").string()), 2,
+                      "at most 268435456 pixels (16384 x 16384");
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
 TEST_F(RenderCli, NormalizeRescuesNegativeMaps) {
     HeightMap negative(4, 4, 0.5f);
     negative.at(1, 1) = -1.0f;

@@ -234,6 +234,26 @@ TEST_F(Render, PictureIsShadedNotFlat) {
 // the same number of segments and of texel fetches (the instrumented variant), on a
 // relief whose joints make rays skim the surface, from 45 degrees and from a grazing 10.
 // Float and double may round a comparison differently on a few grazing rays.
+// A picture drawn in tiles (the path of pictures larger than the GL's limits) is the
+// picture drawn whole, bit for bit: colour, positions and statistics. Tiles of 32 on a
+// 150 x 97 picture leave partial tiles at the right and the top.
+TEST_F(Render, TiledPictureIsTheWholePictureBitForBit) {
+    const HeightMap map = synth::cobbles(96, 80, 5);
+    RenderJob job;
+    job.camera = test::orbitCamera(35.0, 20.0, 1.4, {0.0, 0.03, 0.0});
+    job.width = 150;
+    job.height = 97;
+    const HeadlessResult whole = renderHeadless(*context(), map, "cobbles", job);
+    for (int side : {32, 97, 7}) {
+        job.tileSide = side;
+        const HeadlessResult tiled = renderHeadless(*context(), map, "cobbles", job);
+        EXPECT_EQ(tiled.frame.color, whole.frame.color) << side;
+        EXPECT_EQ(tiled.frame.position, whole.frame.position) << side;
+        EXPECT_EQ(tiled.frame.stats, whole.frame.stats) << side;
+    }
+    EXPECT_GT(hitCount(whole.frame), 150u * 97 / 4) << "the relief fills the picture";
+}
+
 TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
     const HeightMap map = synth::cobbles(256, 256, 3);
     const float heightScale = 0.1f;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
 #include "TestSupport.h"
 #include "synth/SyntheticMaps.h"
@@ -52,25 +53,60 @@ std::shared_ptr<const HeightMap> throughFile(const HeightMap& map, PixelType typ
 
 }  // namespace
 
+namespace {
+
+// The list of maps, each made only when first needed: the GL sweep registers one test per
+// entry (its count and names come from here), and building the 4096 map takes seconds.
+struct SweepMapRecipe {
+    const char* name;
+    std::function<std::shared_ptr<const HeightMap>()> make;
+    double heightScale;
+};
+
+const std::vector<SweepMapRecipe>& sweepMapRecipes() {
+    static const std::vector<SweepMapRecipe> recipes = {
+        {"noise", [] { return share(synth::whiteNoise(128, 128, 2)); }, 0.05},
+        {"spikes", [] { return share(spikes(128, 4)); }, 0.1},
+        {"walls", [] { return share(walls(128, 16)); }, 0.08},
+        {"cliffs", [] { return share(cliffs(128)); }, 0.1},
+        {"zero", [] { return share(synth::flat(16, 16, 0.0f)); }, 0.1},
+        {"one", [] { return share(synth::flat(16, 16, 1.0f)); }, 0.1},
+        {"oblong300x77", [] { return share(synth::valueNoise(300, 77, 10.0, 4, 8)); }, 0.1},
+        {"single1x1", [] { return share(synth::flat(1, 1, 0.6f)); }, 0.1},
+        {"tiny2x2", [] { return share(synth::whiteNoise(2, 2, 3)); }, 0.2},
+        {"png16",
+         [] {
+             return throughFile(synth::cobbles(256, 256, 1), PixelType::UInt16, "cobbles16.png");
+         },
+         0.1},
+        {"exrfloat",
+         [] {
+             HeightMap tall = synth::valueNoise(96, 96, 24.0, 4, 31);
+             for (float& h : tall.samples) h *= 3.0f;  // float maps keep values above 1
+             return throughFile(tall, PixelType::Float, "tall.exr");
+         },
+         0.03},
+        {"huge4096", [] { return share(synth::valueNoise(4096, 4096, 256.0, 6, 5)); }, 0.1},
+    };
+    return recipes;
+}
+
+}  // namespace
+
+std::size_t sweepMapCount() {
+    return sweepMapRecipes().size();
+}
+
+std::string sweepMapName(std::size_t k) {
+    return sweepMapRecipes().at(k).name;
+}
+
 const std::vector<SweepMap>& sweepMaps() {
     static const std::vector<SweepMap> maps = [] {
-        HeightMap tall = synth::valueNoise(96, 96, 24.0, 4, 31);
-        for (float& h : tall.samples) h *= 3.0f;  // float maps keep values above 1
-        return std::vector<SweepMap>{
-            {"noise", share(synth::whiteNoise(128, 128, 2)), 0.05},
-            {"spikes", share(spikes(128, 4)), 0.1},
-            {"walls", share(walls(128, 16)), 0.08},
-            {"cliffs", share(cliffs(128)), 0.1},
-            {"zero", share(synth::flat(16, 16, 0.0f)), 0.1},
-            {"one", share(synth::flat(16, 16, 1.0f)), 0.1},
-            {"oblong300x77", share(synth::valueNoise(300, 77, 10.0, 4, 8)), 0.1},
-            {"single1x1", share(synth::flat(1, 1, 0.6f)), 0.1},
-            {"tiny2x2", share(synth::whiteNoise(2, 2, 3)), 0.2},
-            {"png16", throughFile(synth::cobbles(256, 256, 1), PixelType::UInt16, "cobbles16.png"),
-             0.1},
-            {"exrfloat", throughFile(tall, PixelType::Float, "tall.exr"), 0.03},
-            {"huge4096", share(synth::valueNoise(4096, 4096, 256.0, 6, 5)), 0.1},
-        };
+        std::vector<SweepMap> built;
+        for (const SweepMapRecipe& r : sweepMapRecipes())
+            built.push_back({r.name, r.make(), r.heightScale});
+        return built;
     }();
     return maps;
 }

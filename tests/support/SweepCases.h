@@ -36,6 +36,9 @@ struct SweepCase {
 // Built once per process (the 4096 map takes a moment); `scratch` holds the files the
 // 16-bit and float maps are written to and read back from.
 const std::vector<SweepMap>& sweepMaps();
+// How many maps sweepMaps() holds and their names, without building them.
+std::size_t sweepMapCount();
+std::string sweepMapName(std::size_t k);
 std::vector<SweepView> sweepViews(const SweepMap& map);
 std::vector<SweepCase> sweepCases();
 

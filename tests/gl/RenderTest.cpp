@@ -403,7 +403,8 @@ protected:
             GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
     }
 
-    test::Accuracy measure(Method method, int steps) {
+    test::Accuracy measure(Method method, int steps,
+                           AccuracyScope scope = AccuracyScope::AllPixels) {
         const HeightMap map = synth::cobbles(64, 64, 3);
         RenderJob job;
         job.camera = test::orbitCamera(25.0, 40.0, 1.3, {0.0, 0.04, 0.0});
@@ -412,9 +413,10 @@ protected:
         job.method.steps = steps;
         job.method.minSteps = std::max(4, steps / 4);
         const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
-        const test::Accuracy a =
-            test::compareWithReference(r.frame, r.camera, map, job.heightScale);
-        std::printf("    %-10s %5d: %s\n", methodName(method), steps, a.summary().c_str());
+        const test::Accuracy a = test::compareWithReference(
+            r.frame, r.camera, traceReferencePicture(r.camera, map, job.heightScale), scope);
+        std::printf("    %-10s %5d%s: %s\n", methodName(method), steps,
+                    scope == AccuracyScope::TopSurface ? " (top)" : "", a.summary().c_str());
         return a;
     }
 };
@@ -428,13 +430,16 @@ TEST_F(Peers, MaxMipIsExact) {
 
 TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
     for (Method method : {Method::Steep, Method::Pom, Method::Relief}) {
-        const test::Accuracy few = measure(method, 8), many = measure(method, 512);
-        // Few steps: visibly wrong (stair steps, sunken or missed features). Many steps:
-        // within a few per cent of the exact answer on this smooth relief (they know no
-        // side walls, so the comparison keeps a margin).
-        EXPECT_GT(few.offHalfTexelPercent(), 2.0 * many.offHalfTexelPercent() + 1.0)
+        const test::Accuracy few = measure(method, 8, AccuracyScope::TopSurface),
+                             many = measure(method, 512, AccuracyScope::TopSurface);
+        // Scored where the top surface is all a ray can meet (they know no side walls or
+        // bottom face). Few steps: visibly wrong (stair steps, sunken or missed
+        // features: 2.7 % to 66 % of hits off here). Many steps: held to the budget of the
+        // exact methods on this smooth relief (0 off and 0 flipped here).
+        EXPECT_GT(few.offHalfTexelPercent(), 1.0) << methodName(method);
+        EXPECT_LE(many.offHalfTexelPercent(), kMaxOffHalfTexelPercent) << methodName(method);
+        EXPECT_LE(many.coverageMismatchPercent(), kMaxCoverageMismatchPercent)
             << methodName(method);
-        EXPECT_LT(many.offHalfTexelPercent(), 3.0) << methodName(method);
     }
 }
 

@@ -20,7 +20,7 @@ class AccuracySweep : public ::testing::TestWithParam<std::size_t> {
 protected:
     void SetUp() override {
         if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
     }
 };
 

@@ -444,6 +444,48 @@ TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
     }
 }
 
+// Parallax offset with offset limiting (Welsh 2004), as published: each hit sits at the
+// height h0 the map has where the ray comes in through the top face, moved from there
+// away from the eye by the depth (top - s h0) times the horizontal part of the unit view
+// vector: off the ray, never farther than the depth, and blind to occlusion, so far from
+// the exact hits.
+TEST_F(Peers, ParallaxOffsetShiftsByTheDepthAlongTheView) {
+    const HeightMap map = synth::cobbles(64, 64, 3);
+    RenderJob job;
+    job.camera = test::orbitCamera(25.0, 40.0, 1.3, {0.0, 0.04, 0.0});
+    job.width = job.height = 64;
+    job.method.method = Method::Offset;
+    const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
+    const double s = job.heightScale, top = s * map.maxValue();
+    int checked = 0;
+    for (int row = 0; row < r.camera.height; ++row) {
+        for (int column = 0; column < r.camera.width; ++column) {
+            const float* p = r.frame.positionAt(column, row);
+            const Ray ray = r.camera.pixelRay(column, row);
+            if (p[3] < 0.5f || !(ray.direction.y < 0.0)) continue;
+            const glm::dvec3 entry =
+                ray.origin + (top - ray.origin.y) / ray.direction.y * ray.direction;
+            if (std::abs(entry.x) > 0.5 || std::abs(entry.z) > 0.5) continue;  // via a wall
+            const double h0 =
+                s * map.surface((entry.x + 0.5) * map.width, (entry.z + 0.5) * map.height);
+            const glm::dvec2 view =
+                glm::dvec2(ray.direction.x, ray.direction.z) / glm::length(ray.direction);
+            const glm::dvec2 shift = glm::dvec2(p[0] - entry.x, p[2] - entry.z);
+            // Float in the shader: 1e-5 world units is 0.00064 texels here.
+            EXPECT_NEAR(p[1], h0, 1e-5) << column << "," << row;
+            EXPECT_NEAR(shift.x, (top - h0) * view.x, 1e-5) << column << "," << row;
+            EXPECT_NEAR(shift.y, (top - h0) * view.y, 1e-5) << column << "," << row;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 64 * 64 / 4);
+    const test::Accuracy a = test::compareWithReference(
+        r.frame, r.camera, traceReferencePicture(r.camera, map, job.heightScale),
+        AccuracyScope::TopSurface);
+    std::printf("    offset: %s\n", a.summary().c_str());
+    EXPECT_GT(a.offHalfTexelPercent(), 20.0) << "no occlusion: far from the exact hits";
+}
+
 TEST_F(Peers, NormalMappingHasNoParallax) {
     // Every hit lies on the top plane of the box: most are far from the true surface.
     EXPECT_GT(measure(Method::Normal, 0).offHalfTexelPercent(), 20.0);

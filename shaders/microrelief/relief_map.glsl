@@ -7,6 +7,8 @@
 #ifndef MICRORELIEF_RELIEF_MAP_GLSL
 #define MICRORELIEF_RELIEF_MAP_GLSL
 
+#include "precision.glsl"
+
 struct ReliefMap {
     vec2 size;           // W, H: height map size in texels
     ivec2 pyramidSize;   // finest pyramid level size (W, H rounded up to powers of two)

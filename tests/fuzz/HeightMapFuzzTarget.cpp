@@ -97,9 +97,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (message.find('\n') != std::string::npos)
             broken("a message of several lines: " + message);
         // OpenImageIO's PNG reader starts the message it records from libpng's error
-        // callback so; the loader puts it in parentheses after "cannot read the ...".
-        if (message.find(": cannot read the image (PNG read error") != std::string::npos ||
-            message.find(": cannot read the pixels (PNG read error") != std::string::npos)
+        // callback so, and the loader puts it right after the file's name; anchored there,
+        // since the fuzzer learns the text and writes it into other messages (an OpenEXR
+        // attribute's name), which a search anywhere would take for libpng's.
+        const std::string prefix = file.string() + ": cannot read the ";
+        if (message.rfind(prefix + "image (PNG read error", 0) == 0 ||
+            message.rfind(prefix + "pixels (PNG read error", 0) == 0)
             broken("libpng failed and printed its own line: " + message);
     }
     std::filesystem::remove(file);

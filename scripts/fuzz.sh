@@ -10,6 +10,8 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 shift || true
+MICRORELIEF_EXTRA_PACKAGES="clang libclang-rt-14-dev" MICRORELIEF_SETUP_NO_BUILD=1 \
+  bash "$root/scripts/setup.sh"
 cd "$root"
 [ -f build-fuzz/build.ninja ] || cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz

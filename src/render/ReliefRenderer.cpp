@@ -147,7 +147,15 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
                       " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) +
                       ")");
     }
-    const MaxPyramid pyramid(map);  // on the GPU from here on; only its shape is kept
+    const MaxPyramid pyramid = [&] {
+        try {
+            return MaxPyramid(map);  // on the GPU from here on; only its shape is kept
+        } catch (const std::bad_alloc&) {
+            throwRuntime(source + ": not enough memory for the max pyramid of its " +
+                         std::to_string(map.width) + "x" + std::to_string(map.height) +
+                         " samples");
+        }
+    }();
     mapWidth_ = map.width;
     mapHeight_ = map.height;
     pyramidWidth_ = pyramid.levelWidth(0);

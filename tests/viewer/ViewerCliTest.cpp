@@ -57,6 +57,8 @@ TEST_F(ViewerCli, BadArgumentsExitTwo) {
 
 TEST_F(ViewerCli, BadMapsAndCamerasExitTwoBeforeAnyWindow) {
     expectFailure(run("--height " + (dir / "missing.png").string()), 2, "missing.png");
+    // OpenImageIO's probes used to read /dev/zero forever (issue 15).
+    expectFailure(run("--height /dev/zero"), 2, "/dev/zero: is not a regular file");
     expectFailure(run("--eye 0,1,0 --target 0,0,0 --up 0,1,0"), 2, "--up");
 }
 

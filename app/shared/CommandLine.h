@@ -7,8 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
-#include <new>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <string>
 

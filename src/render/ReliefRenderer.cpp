@@ -152,8 +152,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
             return MaxPyramid(map);  // on the GPU from here on; only its shape is kept
         } catch (const std::bad_alloc&) {
             throwRuntime(source + ": not enough memory for the max pyramid of its " +
-                         std::to_string(map.width) + "x" + std::to_string(map.height) +
-                         " samples");
+                         std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
         }
     }();
     mapWidth_ = map.width;

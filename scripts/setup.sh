@@ -2,6 +2,8 @@
 # Installs what is missing (Debian 12 packages), configures and builds microrelief in
 # build/. Idempotent: a second run installs nothing and rebuilds only what changed.
 # Sourced by run.sh and test.sh; usable alone: bash scripts/setup.sh
+# MICRORELIEF_EXTRA_PACKAGES adds packages (sanitize.sh and fuzz.sh: clang and its
+# runtime); MICRORELIEF_SETUP_NO_BUILD=1 installs only.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -10,10 +12,12 @@ build="${MICRORELIEF_BUILD_DIR:-$root/build}"
 packages=(
   cmake ninja-build g++ pkg-config
   libglfw3-dev libglm-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
-  libopenimageio-dev openimageio-tools
+  libopenimageio-dev openimageio-tools zlib1g-dev
   libgtest-dev libcli11-dev python3-glad glslang-tools
   libimgui-dev xvfb xauth
 )
+read -r -a extra <<< "${MICRORELIEF_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
 
 missing=()
 for p in "${packages[@]}"; do
@@ -26,6 +30,9 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
+if [ "${MICRORELIEF_SETUP_NO_BUILD:-0}" = 1 ]; then
+  return 0 2>/dev/null || exit 0
+fi
 if [ ! -f "$build/build.ninja" ]; then
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi

@@ -45,7 +45,8 @@ uniform vec3 eye;
 uniform vec3 cameraRight;    // scaled by tan(fovx / 2)
 uniform vec3 cameraUp;       // scaled by tan(fovy / 2)
 uniform vec3 cameraForward;  // unit
-uniform vec2 viewportSize;
+uniform vec2 viewportSize;   // the whole picture's, in pixels
+uniform vec2 tileOrigin;     // where the drawn tile sits in it (0, 0: the whole picture)
 uniform mat4 viewProjection;
 
 uniform vec3 lightDirection;  // towards the light, unit
@@ -103,7 +104,8 @@ layout(location = 1) out vec4 outPosition;  // world hit position, 1
 layout(location = 2) out vec4 outStats;     // iterations, fetches, stop level, exhausted
 
 void main() {
-    vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
+    // Integer + 0.5 plus an integer: exact, so a tile's pixel casts the whole picture's ray.
+    vec2 ndc = (gl_FragCoord.xy + tileOrigin) / viewportSize * 2.0 - 1.0;
     vec3 dir = cameraForward + ndc.x * cameraRight + ndc.y * cameraUp;
     // Level-of-detail cone: a span of w finest texels (a pyramid window) projects to less
     // than pixelErrorTolerance pixels once w <= lodCone * t (t along this unnormalised ray).

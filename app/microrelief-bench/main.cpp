@@ -3,6 +3,8 @@
 // bench.csv, bench.md and plots into --out-dir; prints progress as it goes.
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <ctime>
 #include <iostream>
@@ -47,6 +49,21 @@ std::vector<BenchMap> loadMaps(const BenchOptions& options) {
                                 base, interpolation});
     }
     return maps;
+}
+
+// Before any work: --out-dir is a folder we may write in, or the nearest part of it that
+// exists is one, so that it can be made. Throws Error(BadInput).
+void checkOutputFolder(const std::filesystem::path& folder) {
+    std::error_code ec;
+    std::filesystem::path existing = folder;
+    while (!existing.empty() && !std::filesystem::exists(existing, ec))
+        existing = existing.parent_path();
+    if (existing.empty()) existing = ".";
+    const std::string where = existing == folder ? "" : " (" + existing.string() + ")";
+    if (!std::filesystem::is_directory(existing, ec))
+        throwBadInput("--out-dir " + folder.string() + where + " is not a folder");
+    if (::access(existing.c_str(), W_OK | X_OK) != 0)
+        throwBadInput("--out-dir " + folder.string() + where + ": cannot write there");
 }
 
 std::size_t countMeasurements(const BenchOptions& options, const std::vector<BenchMap>& maps) {
@@ -134,6 +151,10 @@ int main(int argc, char** argv) {
         std::stringstream interpolations(interpolationList);
         for (std::string name; std::getline(interpolations, name, ',');)
             options.interpolations.push_back(parseInterpolation(name));
+        if (options.methods.empty())
+            throwBadInput(
+                "--methods names no method (a comma-separated list: multilevel,maxmip,...)");
+        checkOutputFolder(outDir);
 
         const auto context = createHeadlessContext(parseBackend(backend));
         RunInfo info{context->renderer(), today(),

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
-#include <sstream>
 #include <vector>
 
+#include "SceneOptions.h"
 #include "core/Error.h"
 #include "image/ImageFile.h"
 #include "synth/SyntheticMaps.h"
@@ -35,11 +35,10 @@ int main(int argc, char** argv) {
     }
     try {
         int width = 0, height = 0;
-        char x = 0;
-        std::istringstream in(size);
-        if (!(in >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0) {
-            throwBadInput("--size expects WIDTHxHEIGHT, got '" + size + "'");
-        }
+        // No larger than a map the other programs load (kMaxHeightMapSide): at the
+        // limit, 1 GiB of samples and 512 MiB of 16-bit words.
+        parseSizeFlag(size, width, height, kMaxHeightMapSide,
+                      "the largest height map microrelief loads");
         const HeightMap map = synth::byName(name, width, height, seed);
         // Float for EXR; otherwise 16 bits, which PNG and TIFF store as they are.
         if (std::filesystem::path(out).extension() == ".exr") {
@@ -59,5 +58,9 @@ int main(int argc, char** argv) {
     } catch (const Error& e) {
         std::cerr << "microrelief-make-map: error: " << e.what() << '\n';
         return e.exitStatus();
+    } catch (const std::bad_alloc&) {
+        std::cerr << "microrelief-make-map: error: " << out << ": not enough memory for a " << size
+                  << " map\n";
+        return 1;
     }
 }

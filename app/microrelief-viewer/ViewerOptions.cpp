@@ -13,8 +13,7 @@ void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
                     std::string& windowScreenshot, std::string& shaderDir, bool& noVsync,
                     bool& noPanel) {
     app.add_option("--frames", o.frames,
-                   "Render this many frames, write the screenshots asked for, and exit")
-        ->check(CLI::NonNegativeNumber);
+                   "Render this many frames, write the screenshots asked for, and exit");
     app.add_option("--screenshot", screenshot,
                    "After the last frame, write the 3D view (no panel) at exactly --size (implies "
                    "--frames 1)");
@@ -37,6 +36,11 @@ void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
             const std::string& windowScreenshot, const std::string& shaderDir, bool noVsync,
             bool noPanel) {
     scene.apply();
+    // Checked here, not by CLI::NonNegativeNumber, whose message prints the range up to
+    // the largest double in 309 digits.
+    if (o.frames < 0)
+        throwBadInput("--frames must be 0 (run until the window closes) or more, got " +
+                      std::to_string(o.frames));
     if (!screenshot.empty()) {
         o.screenshot = screenshot;
         checkImageExtension(*o.screenshot);

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -76,6 +77,9 @@ int runProgram(const char* program, ParseResult<Options>&& parsed,
         return body(*parsed.options);
     } catch (const Error& e) {
         return fail(e.exitStatus(), e.what());
+    } catch (const std::bad_alloc&) {
+        // Where a file is at stake the library names it (an Error); this is the rest.
+        return fail(1, "out of memory");
     } catch (const std::exception& e) {
         return fail(1, e.what());
     }

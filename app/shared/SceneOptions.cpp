@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/Error.h"
+#include "render/FloatLimits.h"
 
 namespace microrelief {
 
@@ -33,17 +34,35 @@ glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
         values.push_back(value);
     }
     if (values.size() != 3 || text.back() == ',') invalid();
+    // The shader gets these as floats; camera coordinates beyond the limit also make
+    // exact hits impossible (render/FloatLimits.h).
+    for (double value : values) {
+        if (std::abs(value) > kMaxWorldCoordinate) {
+            throwBadInput(flag + " " + text + ": each component must lie within +-" +
+                          exactNumber(kMaxWorldCoordinate) +
+                          " (world units, the relief spans 1; the shader's float "
+                          "arithmetic holds no more)");
+        }
+    }
     return {values[0], values[1], values[2]};
 }
 
-void parseSizeFlag(const std::string& text, int& width, int& height) {
+void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide,
+                   const std::string& limitReason) {
     std::istringstream in(text);
     char x = 0;
-    long w = 0, h = 0;
+    long long w = 0, h = 0;
     std::string rest;
-    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 || h <= 0 ||
-        w > 65536 || h > 65536) {
+    // Digits only on both sides: "5x5junk", "5x5.5", "+5x5" and "5 x 5" are not sizes.
+    const bool digits =
+        !text.empty() && text.find_first_not_of("0123456789xX") == std::string::npos;
+    if (!digits || !(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 ||
+        h <= 0) {
         throwBadInput("--size expects WIDTHxHEIGHT with positive integers, got '" + text + "'");
+    }
+    if (w > maxSide || h > maxSide) {
+        throwBadInput("--size " + text + " is larger than " + std::to_string(maxSide) + " x " +
+                      std::to_string(maxSide) + (limitReason.empty() ? "" : ", " + limitReason));
     }
     width = static_cast<int>(w);
     height = static_cast<int>(h);
@@ -91,6 +110,21 @@ std::string exactNumber(double value) {
 std::string exactVector(const glm::dvec3& v) {
     return exactText(v.x) + ',' + exactText(v.y) + ',' + exactText(v.z);
 }
+
+namespace {
+
+// A direction the shader normalises in float: not zero, and not so short that its
+// squared length underflows (render/FloatLimits.h).
+void checkDirection(const std::string& flag, const std::string& text, const glm::dvec3& v) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (largest == 0.0) throwBadInput(flag + " must not be zero");
+    if (largest < kMinDirectionComponent) {
+        throwBadInput(flag + " " + text + ": its largest component must be at least " +
+                      exactNumber(kMinDirectionComponent) + " (the shader normalises it in float)");
+    }
+}
+
+}  // namespace
 
 SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load,
                        RenderJob& job)
@@ -213,10 +247,15 @@ void SceneFlags::apply() {
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
-    if (!light_.empty())
-        job_.shading.lightDirection = glm::vec3(parseVectorFlag("--light", light_));
-    if (glm::length(job_.shading.lightDirection) == 0.0f) throwBadInput("--light must not be zero");
-    parseSizeFlag(size_, job_.width, job_.height);
+    checkDirection("--up", up_, job_.camera.up);
+    if (!light_.empty()) {
+        const glm::dvec3 light = parseVectorFlag("--light", light_);
+        checkDirection("--light", light_, light);
+        job_.shading.lightDirection = glm::vec3(light);
+    }
+    // Any side here; checkPictureSize states the limits, sides and pixels, in one message.
+    parseSizeFlag(size_, job_.width, job_.height, 1 << 30);
+    checkPictureSize(job_.width, job_.height);
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
     checkMethodSupportsBase(job_.method.method, job_.base);

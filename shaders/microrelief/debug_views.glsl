@@ -4,6 +4,8 @@
 #ifndef MICRORELIEF_DEBUG_VIEWS_GLSL
 #define MICRORELIEF_DEBUG_VIEWS_GLSL
 
+#include "precision.glsl"
+
 const int DEBUG_VIEW_SHADED = 0;
 const int DEBUG_VIEW_ITERATIONS = 1;  // segments visited, heat map
 const int DEBUG_VIEW_LEVEL = 2;       // pyramid level of the last segment

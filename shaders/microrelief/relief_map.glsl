@@ -21,6 +21,7 @@
 #ifndef MICRORELIEF_INTERPOLATION
 #define MICRORELIEF_INTERPOLATION 0
 #endif
+#include "precision.glsl"
 
 struct ReliefMap {
     vec2 size;           // W, H: height map size in texels

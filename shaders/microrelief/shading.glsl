@@ -5,6 +5,8 @@
 #ifndef MICRORELIEF_SHADING_GLSL
 #define MICRORELIEF_SHADING_GLSL
 
+#include "precision.glsl"
+
 struct ReliefMaterial {
     vec3 albedo;      // diffuse reflectance, linear
     float specular;   // Blinn-Phong highlight strength

@@ -61,15 +61,30 @@ struct HeightMap {
     float minValue() const;
 };
 
+// The largest map side loadHeightMap accepts, checked from the file's header before any
+// sample is read or allocated: 16384, the GL_MAX_TEXTURE_SIZE of llvmpipe and of most
+// desktop GPUs (and the least that OpenGL 4.1 and later guarantee), so that a map's
+// samples take at most 1 GiB (its pyramid about 2.7 GiB more) before a GL context
+// exists. The renderer checks the GPU's own, possibly lower, limit when it uploads.
+inline constexpr int kMaxHeightMapSide = 16384;
+// More channels than any height map needs; OpenImageIO reads whole pixels, so this
+// bounds what it holds per scanline.
+inline constexpr int kMaxHeightMapChannels = 1024;
+
 struct HeightMapLoadOptions {
-    int channel = 0;         // --channel: which image channel holds the heights
-    bool normalize = false;  // --normalize: map [min, max] to [0, 1]
+    int channel = 0;                  // --channel: which image channel holds the heights
+    bool normalize = false;           // --normalize: map [min, max] to [0, 1]
+    int maxSide = kMaxHeightMapSide;  // larger maps are refused from the header
 };
 
 // Reads any image OpenImageIO can read. Integer formats become [0, 1] by their type
 // range, float formats stay as stored. Throws Error(BadInput) naming the file and the
-// reason for a missing, unreadable or empty file, a missing channel, or values that
-// are not finite and >= 0 (suggesting --normalize where that would help).
+// reason for a missing, unreadable or empty file, one that is not a regular file (a
+// device or a FIFO, refused before OpenImageIO opens it), a size beyond
+// kMaxHeightMapSide (from the header, before allocating), a PNG that libpng would
+// refuse (heightmap/PngCheck.h), a missing channel, or values that are not finite and
+// >= 0 (suggesting --normalize where that would help); Error(Runtime) naming the file
+// when memory runs out.
 HeightMap loadHeightMap(const std::filesystem::path& file,
                         const HeightMapLoadOptions& options = {});
 

@@ -25,14 +25,20 @@ struct ImageData {
 // Throws Error(BadInput) if no OpenImageIO writer handles the path's extension.
 void checkImageExtension(const std::filesystem::path& file);
 
-// Before any work: every output has a known image extension, is not a folder, and no two
-// outputs are the same file. Throws Error(BadInput) naming the file.
+// Before any work: every output has a known image extension, is not a folder, lies in a
+// folder that exists or can be made, and no two outputs are the same file: compared as
+// resolved paths (symbolic links and ".." followed, std::filesystem::weakly_canonical)
+// and, where the file exists, by device and inode (hard links). Throws Error(BadInput)
+// naming the file.
 void checkOutputTargets(const std::vector<std::filesystem::path>& files);
 
 // A set of files written together: write() stages each one beside its target, commit()
 // renames them all into place, restoring the old files if any rename fails. Whatever
-// was not committed is removed on destruction, so a failed run leaves no new or
-// changed file at any target.
+// was not committed is removed on destruction, folders write() made included, so a
+// failed run leaves no new or changed file and no new folder. SIGINT, SIGTERM and SIGHUP
+// do the same: a handler, installed with the first batch, undoes every unfinished batch
+// of the process (temporaries removed, files moved aside put back, new folders removed)
+// from a table of fixed buffers, and the process then dies of the signal.
 class ImageWriteBatch {
 public:
     ImageWriteBatch() = default;
@@ -45,10 +51,15 @@ public:
     void commit();
 
 private:
+    void createFolders(const std::filesystem::path& file);
+
     struct Staged {
         std::filesystem::path target, temporary;
+        int slot = -1;  // in the signal handler's table: removes the temporary
     };
     std::vector<Staged> staged_;
+    std::vector<std::pair<std::filesystem::path, int>> createdFolders_;  // outermost first
+    bool committed_ = false;
 };
 
 // RGBA8 rows -> RGB rows (the pictures are opaque); `flipRows` turns GL's bottom-up rows

@@ -5,6 +5,7 @@
 
 #include "core/DataPaths.h"
 #include "core/Error.h"
+#include "render/FloatLimits.h"
 
 namespace microrelief {
 
@@ -17,6 +18,18 @@ void checkHeightScale(float heightScale) {
 }
 
 }  // namespace
+
+void checkPictureSize(int width, int height) {
+    const double pixels = static_cast<double>(width) * height;
+    if (width <= 0 || height <= 0 || width > kMaxPictureSide || height > kMaxPictureSide ||
+        pixels > static_cast<double>(kMaxPicturePixels)) {
+        throwBadInput("--size " + std::to_string(width) + "x" + std::to_string(height) +
+                      " is outside the pictures this program renders: sides up to " +
+                      std::to_string(kMaxPictureSide) + ", at most " +
+                      std::to_string(kMaxPicturePixels) + " pixels (16384 x 16384; " +
+                      std::to_string(kFrameBytesPerPixel) + " bytes a pixel in memory)");
+    }
+}
 
 HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& method)
     : context_(context) {
@@ -36,7 +49,14 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
 
 HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     checkHeightScale(job.heightScale);
+    checkPictureSize(job.width, job.height);
     if (mapWidth_ == 0) throwRuntime("HeadlessRenderer::render: no height map");
+    {
+        // Before any GL work: the float range and precision the shader needs.
+        const CameraFrame frame = resolveCamera(job.camera, job.width, job.height, 1.0);
+        checkFloatLimits({mapWidth_, mapHeight_, maxHeight_}, job.heightScale, job.camera, frame,
+                         source_);
+    }
     context_.makeCurrent();
     const GL& gl = context_.gl();
     // Another size or curved base of the map's addressing; between the plane and a curved
@@ -53,14 +73,45 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         job.camera, job.width, job.height,
         sceneRadius(reliefExtent(mapWidth_, mapHeight_, maxHeight_, job.heightScale, job.base)));
 
-    if (!target_ || target_->width() != job.width || target_->height() != job.height) {
+    // Tiles no larger than the GL's viewport and renderbuffer limits, and kDefaultTileSide
+    // (a 4096 x 4096 target holds 640 MB of attachments; llvmpipe fails to complete one of
+    // 16384 x 16384). Each tile casts the whole picture's rays (ReliefRenderer::draw).
+    GLint maxRenderbuffer = 0, maxViewport[2] = {0, 0};
+    gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    const int tile = std::min({job.tileSide > 0 ? job.tileSide : kDefaultTileSide,
+                               static_cast<int>(maxRenderbuffer), static_cast<int>(maxViewport[0]),
+                               static_cast<int>(maxViewport[1])});
+    const int targetWidth = std::min(tile, job.width), targetHeight = std::min(tile, job.height);
+    if (!target_ || target_->width() != targetWidth || target_->height() != targetHeight) {
         target_.reset();
-        target_.emplace(gl, job.width, job.height);
+        target_.emplace(gl, targetWidth, targetHeight);
     }
-    target_->clear(job.background);
-    renderer_->draw(camera, job.shading);
+
+    HeadlessResult result{{}, camera};
+    RenderedFrame& frame = result.frame;
+    try {
+        const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
+        frame.width = job.width;
+        frame.height = job.height;
+        frame.color.resize(count);
+        frame.position.resize(count);
+        frame.stats.resize(count);
+    } catch (const std::bad_alloc&) {
+        throwRuntime("not enough memory for a " + std::to_string(job.width) + "x" +
+                     std::to_string(job.height) + " picture (" +
+                     std::to_string(kFrameBytesPerPixel) + " bytes a pixel)");
+    }
+    for (int y = 0; y < job.height; y += tile) {
+        for (int x = 0; x < job.width; x += tile) {
+            const PictureTile part{x, y, std::min(tile, job.width - x),
+                                   std::min(tile, job.height - y)};
+            target_->clear(job.background);
+            renderer_->draw(camera, job.shading, part);
+            target_->readInto(frame, part.x, part.y, part.width, part.height);
+        }
+    }
     gl.Finish();
-    HeadlessResult result{target_->read(), camera};
     const GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)
         throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + source_);
@@ -69,7 +120,11 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
 
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
                               const RenderJob& job) {
+    // Refused before the pyramid is built; render checks them again.
     checkHeightScale(job.heightScale);
+    checkPictureSize(job.width, job.height);
+    checkFloatLimits({map.width, map.height, map.maxValue()}, job.heightScale, job.camera,
+                     resolveCamera(job.camera, job.width, job.height, 1.0), source);
     // GL objects live in this scope and die before the context does.
     HeadlessRenderer renderer(context, job.method);
     renderer.setHeightMap(map, source, job.base, job.interpolation);

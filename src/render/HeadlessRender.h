@@ -14,6 +14,15 @@
 
 namespace microrelief {
 
+// The largest picture renderHeadless makes, refused up front beyond: sides up to 65536
+// and at most 16384 x 16384 pixels, which the frame holds in memory at
+// kFrameBytesPerPixel (colour, the position AOV and the statistics: 9.7 GiB at the
+// limit). Larger than the GL's own limits, it is drawn in tiles of kDefaultTileSide.
+inline constexpr int kMaxPictureSide = 65536;
+inline constexpr long long kMaxPicturePixels = 16384LL * 16384;
+inline constexpr int kFrameBytesPerPixel = 4 + 16 + 16;
+inline constexpr int kDefaultTileSide = 4096;
+
 struct RenderJob {
     Camera camera;
     int width = 1280, height = 720;
@@ -23,6 +32,7 @@ struct RenderJob {
     ShadingOptions shading;
     MethodSettings method;
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB
+    int tileSide = 0;  // 0: kDefaultTileSide (or the GL's limit, if lower); tests set less
 };
 
 struct HeadlessResult {
@@ -57,6 +67,8 @@ private:
     double maxHeight_ = 0.0;
     std::optional<float> heightScale_;  // the scale the renderer has
 };
+// Throws Error(BadInput) for a picture size beyond the limits above.
+void checkPictureSize(int width, int height);
 
 // `source` names the map in error messages. Throws Error.
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,

@@ -21,15 +21,6 @@ gl::Texture makeAttachment(const GL& gl, GLenum internalFormat, GLenum format, G
     return texture;
 }
 
-template <class T>
-void flipRows(std::vector<T>& pixels, int width, int height, int channels) {
-    const std::size_t row = static_cast<std::size_t>(width) * channels;
-    for (int j = 0; j < height / 2; ++j) {
-        std::swap_ranges(pixels.begin() + j * row, pixels.begin() + (j + 1) * row,
-                         pixels.begin() + (height - 1 - j) * row);
-    }
-}
-
 float srgbEncode(float linear) {
     const float c = std::fmin(std::fmax(linear, 0.0f), 1.0f);
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
@@ -97,20 +88,33 @@ RenderedFrame OffscreenTarget::read() const {
     frame.color.resize(count);
     frame.position.resize(count);
     frame.stats.resize(count);
+    readInto(frame, 0, 0, width_, height_);
+    return frame;
+}
+
+void OffscreenTarget::readInto(RenderedFrame& frame, int x, int y, int width, int height) const {
+    std::vector<std::uint8_t> color(static_cast<std::size_t>(width) * height * 4);
+    std::vector<float> position(color.size()), stats(color.size());
     gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, frame.color.data());
+    gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, frame.position.data());
+    gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, position.data());
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT2);
-    gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, frame.stats.data());
+    gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, stats.data());
     gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    // GL's row 0 is the bottom of the picture; ours is the top.
-    flipRows(frame.color, width_, height_, 4);
-    flipRows(frame.position, width_, height_, 4);
-    flipRows(frame.stats, width_, height_, 4);
-    return frame;
+    // GL's row 0 is the bottom of the picture; ours is the top: tile row r is GL row
+    // y + r of the picture, its row frame.height - 1 - (y + r).
+    const std::size_t rowValues = static_cast<std::size_t>(width) * 4;
+    for (int r = 0; r < height; ++r) {
+        const std::size_t from = static_cast<std::size_t>(r) * rowValues;
+        const std::size_t to =
+            (static_cast<std::size_t>(frame.height - 1 - (y + r)) * frame.width + x) * 4;
+        std::copy_n(color.begin() + from, rowValues, frame.color.begin() + to);
+        std::copy_n(position.begin() + from, rowValues, frame.position.begin() + to);
+        std::copy_n(stats.begin() + from, rowValues, frame.stats.begin() + to);
+    }
 }
 
 }  // namespace microrelief

@@ -38,6 +38,10 @@ public:
     // statistics to 0 and depth to 1.
     void clear(const glm::vec3& background) const;
     RenderedFrame read() const;
+    // The lower-left width x height pixels of this target into `frame` (a picture of its
+    // own size, allocated by the caller), as the tile whose lower-left corner is at GL
+    // window position (x, y) of that picture.
+    void readInto(RenderedFrame& frame, int x, int y, int width, int height) const;
 
     int width() const { return width_; }
     int height() const { return height_; }

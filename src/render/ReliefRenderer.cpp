@@ -189,8 +189,15 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     }
     // Throws before anything changes.
     current_ = &program({method_.method, countFetches_, base.kind, interpolation});
-    // On the GPU from here on; only its shape is kept.
-    const MaxPyramid pyramid(map, base.wrapsU(), interpolation);
+    const MaxPyramid pyramid = [&] {
+        try {
+            // On the GPU from here on; only its shape is kept.
+            return MaxPyramid(map, base.wrapsU(), interpolation);
+        } catch (const std::bad_alloc&) {
+            throwRuntime(source + ": not enough memory for the max pyramid of its " +
+                         std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
+        }
+    }();
     base_ = base;
     wrapsU_ = base.wrapsU();
     interpolation_ = interpolation;
@@ -247,11 +254,23 @@ void ReliefRenderer::uploadBox() {
     gl_.BindVertexArray(0);
 }
 
-void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading) {
+void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading,
+                          const PictureTile& tile) {
     if (mapWidth_ == 0) return;
     gl_.UseProgram(current_->program.id());
     const glm::vec3 eye(camera.eye), right(camera.right), up(camera.up), forward(camera.forward);
-    const glm::mat4 viewProjection(camera.viewProjection);
+    // A tile: the same clip space, scaled and shifted in x and y so that the tile fills
+    // the viewport (rows z and w are untouched, so the depth is the whole picture's to
+    // the bit); the shader adds the tile's origin to gl_FragCoord, so each pixel casts
+    // the ray it casts in the whole picture.
+    const PictureTile whole{0, 0, camera.width, camera.height};
+    const PictureTile& t = tile.width > 0 ? tile : whole;
+    glm::dmat4 toTile(1.0);
+    toTile[0][0] = static_cast<double>(camera.width) / t.width;
+    toTile[1][1] = static_cast<double>(camera.height) / t.height;
+    toTile[3][0] = static_cast<double>(camera.width - 2 * t.x - t.width) / t.width;
+    toTile[3][1] = static_cast<double>(camera.height - 2 * t.y - t.height) / t.height;
+    const glm::mat4 viewProjection(toTile * camera.viewProjection);
 
     gl_.Uniform1i(uniform("maxPyramid"), 0);
     gl_.Uniform1i(uniform("heightSamples"), 1);
@@ -274,6 +293,7 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.Uniform3fv(uniform("cameraForward"), 1, glm::value_ptr(forward));
     gl_.Uniform2f(uniform("viewportSize"), static_cast<float>(camera.width),
                   static_cast<float>(camera.height));
+    gl_.Uniform2f(uniform("tileOrigin"), static_cast<float>(t.x), static_cast<float>(t.y));
     gl_.UniformMatrix4fv(uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
     gl_.Uniform3fv(uniform("lightDirection"), 1,
                    glm::value_ptr(glm::normalize(shading.lightDirection)));
@@ -298,7 +318,7 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.Enable(GL_DEPTH_TEST);
     gl_.DepthFunc(GL_LESS);
     gl_.Enable(GL_DEPTH_CLAMP);
-    gl_.Viewport(0, 0, camera.width, camera.height);
+    gl_.Viewport(0, 0, t.width, t.height);
 
     gl_.BindVertexArray(boxArray_.id());
     gl_.DrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, nullptr);

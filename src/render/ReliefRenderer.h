@@ -81,6 +81,14 @@ struct ShadingOptions {
     DebugView view = DebugView::Shaded;
 };
 
+// The part of the picture one draw covers, in GL window coordinates of the whole
+// picture (origin at the bottom left): the bound framebuffer holds width x height
+// pixels of it from (x, y). The default, width 0, is the whole picture.
+struct PictureTile {
+    int x = 0, y = 0;
+    int width = 0, height = 0;
+};
+
 class ReliefRenderer {
 public:
     // `shaderDir` holds relief_box.vert, relief.frag and microrelief/; `method` is the
@@ -114,7 +122,10 @@ public:
     void setMethod(const MethodSettings& settings, bool countFetches = false);
     const MethodSettings& method() const { return method_; }
 
-    void draw(const CameraFrame& camera, const ShadingOptions& shading);
+    // Draws the picture `camera` describes, or the tile of it given: the same rays, so a
+    // picture drawn in tiles is the one drawn whole, pixel for pixel.
+    void draw(const CameraFrame& camera, const ShadingOptions& shading,
+              const PictureTile& tile = {});
 
     int maxIterations() const { return maxIterations_; }
 

@@ -1,6 +1,7 @@
 // Loading height maps (scene-and-cli.md, "Height map to surface"): formats, channels,
 // normalisation and the refusal of values the relief cannot have.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <limits>
@@ -186,4 +187,93 @@ TEST(HeightMapSurface, BilinearBetweenCentresClampedOutside) {
     EXPECT_DOUBLE_EQ(map.surface(0.0, 0.0), 0.0);  // clamped corner
     EXPECT_DOUBLE_EQ(map.surface(2.0, 0.0), 1.0);
     EXPECT_DOUBLE_EQ(map.surface(0.1, 1.0), 1.0);  // clamped in X, interpolated in Y
+}
+
+namespace {
+
+const std::filesystem::path kCorpus = MICRORELIEF_FUZZ_CORPUS_DIR;
+
+// The message of loading `file` (a copy of a corpus file under `name`), which must be
+// refused.
+std::string refusal(const ScratchDir& dir, const std::string& corpusFile, const std::string& name,
+                    const HeightMapLoadOptions& options = {}) {
+    std::filesystem::copy_file(kCorpus / corpusFile, dir / name);
+    return badInputMessage([&] { loadHeightMap(dir / name, options); });
+}
+
+}  // namespace
+
+// Issue 15: inputs that hung or exhausted memory, refused before OpenImageIO reads them.
+TEST(HeightMapLoad, WhatIsNotARegularFileIsRefusedBeforeOpening) {
+    ScratchDir dir;
+    EXPECT_NE(badInputMessage([] { loadHeightMap("/dev/zero"); }).find("not a regular file"),
+              std::string::npos);
+    // Opening a FIFO for reading would block until a writer came: never, here.
+    ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+    EXPECT_NE(badInputMessage([&] { loadHeightMap(dir / "fifo.png"); }).find("not a regular file"),
+              std::string::npos);
+}
+
+TEST(HeightMapLoad, SizesBeyondTheLimitAreRefusedFromTheHeader) {
+    ScratchDir dir;
+    // 69 bytes claiming 65535 x 40000: 10 GB of floats if the header were believed.
+    EXPECT_NE(refusal(dir, "claims_65535x40000.png", "a.png")
+                  .find("65535 x 40000 is larger than the 16384 x 16384"),
+              std::string::npos);
+    // The limit is an option (the fuzz target loads at most 2048): a real 64 x 64 map.
+    test::writeMap(dir / "m.png", ramp(64, 64), PixelType::UInt16);
+    HeightMapLoadOptions small;
+    small.maxSide = 32;
+    EXPECT_NE(badInputMessage([&] {
+                  loadHeightMap(dir / "m.png", small);
+              }).find("64 x 64 is larger than the 32 x 32"),
+              std::string::npos);
+    EXPECT_EQ(loadHeightMap(dir / "m.png").width, 64);
+}
+
+// What libpng would call an error is refused first, so that libpng never prints its own
+// "libpng error:" line (heightmap/PngCheck.h); each with the reason.
+TEST(HeightMapLoad, DamagedPngsAreRefusedBeforeLibpngSeesThem) {
+    ScratchDir dir;
+    const std::pair<const char*, const char*> cases[] = {
+        {"bad_idat_crc.png", "IDAT: CRC error"},
+        {"bad_filter.png", "IDAT: bad filter type 7"},
+        {"short_data.png", "IDAT: not enough image data"},
+        {"truncated_in_idat.png", "IDAT: the file ends inside the chunk (truncated)"},
+        {"truncated_in_ihdr.png", "the file ends inside the PNG header"},
+        {"palette_without_plte.png", "a palette image without PLTE"},
+    };
+    for (const auto& [file, reason] : cases) {
+        const std::string message = refusal(dir, file, file);
+        EXPECT_NE(message.find("not a valid PNG (" + std::string(reason)), std::string::npos)
+            << message;
+    }
+    // Sound files of every colour type and interlacing load.
+    for (const char* file : {"grey8_4x4.png", "grey16_3x2.png", "rgba8_2x2.png", "palette1_8x2.png",
+                             "adam7_3x3.png", "text_chunk.png"}) {
+        EXPECT_NO_THROW(loadHeightMap(kCorpus / file)) << file;
+    }
+}
+
+// OpenEXR 3.1 allocates what a header claims: attributes that do not fill their size are
+// refused first (found by the fuzzer: 1.2 GB allocations from 300-byte files).
+TEST(HeightMapLoad, OpenExrHeadersThatLieAreRefused) {
+    ScratchDir dir;
+    EXPECT_NE(refusal(dir, "found_exr_box2i_size_0.bin", "a.exr").find("has 0 bytes, not 16"),
+              std::string::npos);
+    EXPECT_NE(refusal(dir, "found_exr_attribute_desync.bin", "b.exr").find("has 144 bytes, not 16"),
+              std::string::npos);
+    EXPECT_NE(refusal(dir, "truncated_half_4x4.exr", "c.exr").find("not a valid OpenEXR file"),
+              std::string::npos);
+    EXPECT_NO_THROW(loadHeightMap(kCorpus / "half_4x4.exr"));
+}
+
+// One reader, the one the extension names: no probing of every format OpenImageIO has.
+TEST(HeightMapLoad, TheExtensionChoosesTheReader) {
+    ScratchDir dir;
+    EXPECT_NE(refusal(dir, "noise_3x5.tif", "tiff.png").find("Not a PNG file"), std::string::npos);
+    EXPECT_NE(refusal(dir, "grey8_4x4.png", "map.img").find("no image format"), std::string::npos);
+    EXPECT_NE(refusal(dir, "grey8_4x4.png", "noextension").find("no extension"), std::string::npos);
+    std::filesystem::copy_file(kCorpus / "grey8_4x4.png", dir / "UPPER.PNG");
+    EXPECT_EQ(loadHeightMap(dir / "UPPER.PNG").width, 4);
 }

@@ -20,7 +20,7 @@ class AccuracySweep : public ::testing::TestWithParam<std::size_t> {
 protected:
     void SetUp() override {
         if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
     }
 };
 
@@ -67,10 +67,11 @@ TEST_P(AccuracySweep, MatchesTheReference) {
 }
 
 std::string caseName(const ::testing::TestParamInfo<std::size_t>& info) {
-    return test::sweepMaps()[info.param].name;
+    return test::sweepMapName(info.param);
 }
 
+// One case per map of the list, however long it is.
 INSTANTIATE_TEST_SUITE_P(Maps, AccuracySweep,
-                         ::testing::Range<std::size_t>(0, test::sweepMaps().size()), caseName);
+                         ::testing::Range<std::size_t>(0, test::sweepMapCount()), caseName);
 
 }  // namespace

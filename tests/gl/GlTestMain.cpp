@@ -5,6 +5,7 @@
 #include <string>
 
 #include "GlTestBackend.h"
+#include "TestSupport.h"
 
 namespace microrelief::test {
 
@@ -28,6 +29,12 @@ int main(int argc, char** argv) {
         if (arg.rfind("--backend=", 0) == 0)
             microrelief::test::gBackend = microrelief::parseBackend(arg.substr(10));
     }
-    std::printf("GL tests on backend %s\n", microrelief::backendName(microrelief::test::gBackend));
+    const microrelief::Backend backend = microrelief::test::gBackend;
+    std::printf("GL tests on backend %s\n", microrelief::backendName(backend));
+    if (!microrelief::isBackendPresent(backend)) {
+        // Explicit either way: every test skips (and says why) only where the run allows it.
+        std::printf("%s\n", microrelief::test::missingBackendMessage(backend).c_str());
+        if (!microrelief::test::missingBackendAllowed(backend)) return 1;
+    }
     return RUN_ALL_TESTS();
 }

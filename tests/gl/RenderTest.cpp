@@ -1,6 +1,7 @@
 // Rendering, checked by numbers: the world positions of the AOV against the exact CPU
 // reference (trace/ReferenceTracer), pixel by pixel. Runs on the backend named by
-// --backend=egl|osmesa (one CTest entry each); skips only where that backend is absent.
+// --backend=egl|osmesa (one CTest entry each); an absent backend fails the run unless
+// MICRORELIEF_ALLOW_MISSING_GL names it, and then every test skips and says so.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,7 +35,7 @@ protected:
 
     void SetUp() override {
         if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
     }
 
     struct Result {
@@ -234,6 +235,26 @@ TEST_F(Render, PictureIsShadedNotFlat) {
 // the same number of segments and of texel fetches (the instrumented variant), on a
 // relief whose joints make rays skim the surface, from 45 degrees and from a grazing 10.
 // Float and double may round a comparison differently on a few grazing rays.
+// A picture drawn in tiles (the path of pictures larger than the GL's limits) is the
+// picture drawn whole, bit for bit: colour, positions and statistics. Tiles of 32 on a
+// 150 x 97 picture leave partial tiles at the right and the top.
+TEST_F(Render, TiledPictureIsTheWholePictureBitForBit) {
+    const HeightMap map = synth::cobbles(96, 80, 5);
+    RenderJob job;
+    job.camera = test::orbitCamera(35.0, 20.0, 1.4, {0.0, 0.03, 0.0});
+    job.width = 150;
+    job.height = 97;
+    const HeadlessResult whole = renderHeadless(*context(), map, "cobbles", job);
+    for (int side : {32, 97, 7}) {
+        job.tileSide = side;
+        const HeadlessResult tiled = renderHeadless(*context(), map, "cobbles", job);
+        EXPECT_EQ(tiled.frame.color, whole.frame.color) << side;
+        EXPECT_EQ(tiled.frame.position, whole.frame.position) << side;
+        EXPECT_EQ(tiled.frame.stats, whole.frame.stats) << side;
+    }
+    EXPECT_GT(hitCount(whole.frame), 150u * 97 / 4) << "the relief fills the picture";
+}
+
 TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
     const HeightMap map = synth::cobbles(256, 256, 3);
     const float heightScale = 0.1f;
@@ -496,11 +517,12 @@ class Peers : public ::testing::Test {
 protected:
     void SetUp() override {
         if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
     }
 
     test::Accuracy measure(Method method, int steps,
-                           Interpolation interpolation = Interpolation::Bilinear) {
+                           Interpolation interpolation = Interpolation::Bilinear,
+                           AccuracyScope scope = AccuracyScope::AllPixels) {
         const HeightMap map = synth::cobbles(64, 64, 3);
         RenderJob job;
         job.camera = test::orbitCamera(25.0, 40.0, 1.3, {0.0, 0.04, 0.0});
@@ -511,9 +533,10 @@ protected:
         job.interpolation = interpolation;
         const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
         const test::Accuracy a = test::compareWithReference(
-            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, {}, interpolation});
-        std::printf("    %-10s %-11s %5d: %s\n", methodName(method),
-                    interpolationName(interpolation), steps, a.summary().c_str());
+            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, {}, interpolation}, scope);
+        std::printf("    %-10s %-11s %5d%s: %s\n", methodName(method),
+                    interpolationName(interpolation), steps,
+                    scope == AccuracyScope::TopSurface ? " (top)" : "", a.summary().c_str());
         return a;
     }
 };
@@ -608,14 +631,61 @@ TEST_F(Peers, TangentFrameMethodsAreBlindToTheCurvature) {
 
 TEST_F(Peers, StepMethodsConvergeWithTheirBudget) {
     for (Method method : {Method::Steep, Method::Pom, Method::Relief}) {
-        const test::Accuracy few = measure(method, 8), many = measure(method, 512);
-        // Few steps: visibly wrong (stair steps, sunken or missed features). Many steps:
-        // within a few per cent of the exact answer on this smooth relief (they know no
-        // side walls, so the comparison keeps a margin).
-        EXPECT_GT(few.offHalfTexelPercent(), 2.0 * many.offHalfTexelPercent() + 1.0)
+        const test::Accuracy few = measure(method, 8, Interpolation::Bilinear,
+                                           AccuracyScope::TopSurface),
+                             many = measure(method, 512, Interpolation::Bilinear,
+                                            AccuracyScope::TopSurface);
+        // Scored where the top surface is all a ray can meet (they know no side walls or
+        // bottom face). Few steps: visibly wrong (stair steps, sunken or missed
+        // features: 2.7 % to 66 % of hits off here). Many steps: held to the budget of the
+        // exact methods on this smooth relief (0 off and 0 flipped here).
+        EXPECT_GT(few.offHalfTexelPercent(), 1.0) << methodName(method);
+        EXPECT_LE(many.offHalfTexelPercent(), kMaxOffHalfTexelPercent) << methodName(method);
+        EXPECT_LE(many.coverageMismatchPercent(), kMaxCoverageMismatchPercent)
             << methodName(method);
-        EXPECT_LT(many.offHalfTexelPercent(), 3.0) << methodName(method);
     }
+}
+
+// Parallax offset with offset limiting (Welsh 2004), as published: each hit sits at the
+// height h0 the map has where the ray comes in through the top face, moved from there
+// away from the eye by the depth (top - s h0) times the horizontal part of the unit view
+// vector: off the ray, never farther than the depth, and blind to occlusion, so far from
+// the exact hits.
+TEST_F(Peers, ParallaxOffsetShiftsByTheDepthAlongTheView) {
+    const HeightMap map = synth::cobbles(64, 64, 3);
+    RenderJob job;
+    job.camera = test::orbitCamera(25.0, 40.0, 1.3, {0.0, 0.04, 0.0});
+    job.width = job.height = 64;
+    job.method.method = Method::Offset;
+    const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
+    const double s = job.heightScale, top = s * map.maxValue();
+    int checked = 0;
+    for (int row = 0; row < r.camera.height; ++row) {
+        for (int column = 0; column < r.camera.width; ++column) {
+            const float* p = r.frame.positionAt(column, row);
+            const Ray ray = r.camera.pixelRay(column, row);
+            if (p[3] < 0.5f || !(ray.direction.y < 0.0)) continue;
+            const glm::dvec3 entry =
+                ray.origin + (top - ray.origin.y) / ray.direction.y * ray.direction;
+            if (std::abs(entry.x) > 0.5 || std::abs(entry.z) > 0.5) continue;  // via a wall
+            const double h0 =
+                s * map.surface((entry.x + 0.5) * map.width, (entry.z + 0.5) * map.height);
+            const glm::dvec2 view =
+                glm::dvec2(ray.direction.x, ray.direction.z) / glm::length(ray.direction);
+            const glm::dvec2 shift = glm::dvec2(p[0] - entry.x, p[2] - entry.z);
+            // Float in the shader: 1e-5 world units is 0.00064 texels here.
+            EXPECT_NEAR(p[1], h0, 1e-5) << column << "," << row;
+            EXPECT_NEAR(shift.x, (top - h0) * view.x, 1e-5) << column << "," << row;
+            EXPECT_NEAR(shift.y, (top - h0) * view.y, 1e-5) << column << "," << row;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 64 * 64 / 4);
+    const test::Accuracy a = test::compareWithReference(
+        r.frame, r.camera, traceReferencePicture(r.camera, map, job.heightScale),
+        AccuracyScope::TopSurface);
+    std::printf("    offset: %s\n", a.summary().c_str());
+    EXPECT_GT(a.offHalfTexelPercent(), 20.0) << "no occlusion: far from the exact hits";
 }
 
 TEST_F(Peers, NormalMappingHasNoParallax) {
@@ -631,7 +701,7 @@ namespace {
 // (Mesa reports source string 0, so the file travels in the line number: ShaderSource).
 TEST(ShaderErrors, NameTheLibraryFileAndLine) {
     if (!isBackendPresent(test::glBackend()))
-        GTEST_SKIP() << backendName(test::glBackend()) << " is absent";
+        GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
     test::ScratchDir dir;
     std::filesystem::copy(shaderDirectory(), dir.path(), std::filesystem::copy_options::recursive);
     const std::filesystem::path broken = dir / "microrelief/shading.glsl";

@@ -35,26 +35,37 @@ std::string readText(const std::filesystem::path& file) {
 }
 
 // Runs glslangValidator on an assembled source; returns its output, empty on success.
+// With `tree`, the intermediate tree it prints on success goes there.
 std::string validate(const test::ScratchDir& dir, const ShaderSource& source,
-                     const std::string& stage, const std::string& name) {
+                     const std::string& stage, const std::string& name,
+                     std::string* tree = nullptr) {
     const std::filesystem::path file = dir / (name + "." + stage);
     std::ofstream(file) << source.text;
     const std::filesystem::path log = dir / (name + ".log");
-    const std::string command =
-        std::string(GLSLANG_VALIDATOR) + " " + file.string() + " > " + log.string() + " 2>&1";
+    const std::string command = std::string(GLSLANG_VALIDATOR) + (tree ? " -i " : " ") +
+                                file.string() + " > " + log.string() + " 2>&1";
     const int status = std::system(command.c_str());
+    if (tree) *tree = readText(log);
     return status == 0 ? std::string() : mapCompilerLog(readText(log), source.files);
 }
 
-struct Dialect {
-    const char* version;
-    const char* prelude;  // what a host adds after #version for this dialect
-};
-const Dialect kDialects[] = {
-    {"330 core", ""},
-    {"400 core", ""},  // the textureGather path
-    {"300 es", "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"},
-};
+// The lines of glslang's intermediate tree that run below highp ("mediump", "lowp"): the
+// first few and how many there are; empty when there are none.
+std::string belowHighp(const std::string& tree) {
+    std::istringstream lines(tree);
+    std::string line, found;
+    int count = 0;
+    while (std::getline(lines, line)) {
+        if (line.find("mediump") == std::string::npos && line.find("lowp") == std::string::npos)
+            continue;
+        if (++count <= 4) found += line + "\n";
+    }
+    return count == 0 ? "" : std::to_string(count) + " lines below highp, first:\n" + found;
+}
+
+// No precision prelude for ES: the library states what it needs itself (precision.glsl),
+// and the ES check holds it to that (EveryFileRunsAtHighpUnderGlslEs).
+const char* const kDialects[] = {"330 core", "400 core" /* the textureGather path */, "300 es"};
 
 }  // namespace
 
@@ -63,16 +74,15 @@ TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330And400AndEs300) {
     const auto files = libraryFiles();
     ASSERT_GE(files.size(), 5u);
     for (const auto& file : files) {
-        for (const Dialect& dialect : kDialects) {
+        for (const char* version : kDialects) {
             const std::filesystem::path wrapper = dir / ("use_" + file.stem().string() + ".frag");
             std::ofstream(wrapper)
-                << dialect.prelude << "#include \"" << file.string() << "\"\n"
+                << "#include \"" << file.string() << "\"\n"
                 << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
-            const ShaderSource source = assembleShader(wrapper, dialect.version);
+            const ShaderSource source = assembleShader(wrapper, version);
             const std::string errors = validate(dir, source, "frag", file.stem().string());
-            EXPECT_TRUE(errors.empty())
-                << file.filename() << " as GLSL " << dialect.version << ":\n"
-                << errors;
+            EXPECT_TRUE(errors.empty()) << file.filename() << " as GLSL " << version << ":\n"
+                                        << errors;
         }
     }
 }
@@ -97,16 +107,47 @@ TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
     }
 }
 
-TEST(GlslLibrary, AppShadersCompileAsGlsl330And400) {
+// GLSL ES 3.00 fragment shaders default int to mediump, which holds +-2^15 only, and
+// sampler2D to lowp: the 24-bit segment indices and the R32F texels need highp. Every
+// file, compiled as ES with no precision of the host's, must run at highp throughout:
+// no operation, variable or texture read below it in glslang's intermediate tree.
+TEST(GlslLibrary, EveryFileRunsAtHighpUnderGlslEs) {
     test::ScratchDir dir;
-    for (const char* version : {"330 core", "400 core"})
-        for (const char* name : {"relief_box.vert", "relief.frag"}) {
-            const std::filesystem::path file = kShaders / name;
-            const ShaderSource source = assembleShader(file, version);
-            const std::string stage = file.extension().string().substr(1);
-            const std::string errors = validate(dir, source, stage, file.stem().string());
-            EXPECT_TRUE(errors.empty()) << name << ":\n" << errors;
+    for (const auto& file : libraryFiles()) {
+        const std::filesystem::path wrapper = dir / ("es_" + file.stem().string() + ".frag");
+        std::ofstream(wrapper) << "#include \"" << file.string() << "\"\n"
+                               << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
+        std::string tree;
+        const std::string errors =
+            validate(dir, assembleShader(wrapper, "300 es"), "frag", file.stem().string(), &tree);
+        ASSERT_TRUE(errors.empty()) << file.filename() << ":\n" << errors;
+        EXPECT_EQ(belowHighp(tree), "") << file.filename();
+    }
+}
+
+// The program's own shaders, every method of relief.frag, as GLSL 3.30 and 4.00 core and
+// as GLSL ES 3.00 (there at highp throughout, as above).
+TEST(GlslLibrary, AppShadersCompileAsGlsl330And400AndEs300) {
+    test::ScratchDir dir;
+    for (const char* version : {"330 core", "400 core", "300 es"}) {
+        for (int method = 0; method <= 6; ++method) {
+            for (const char* name : {"relief_box.vert", "relief.frag"}) {
+                const std::filesystem::path file = kShaders / name;
+                const ShaderSource source =
+                    assembleShader(file, version, {{"MICRORELIEF_METHOD", std::to_string(method)}});
+                const std::string stage = file.extension().string().substr(1);
+                std::string tree;
+                const std::string errors =
+                    validate(dir, source, stage, file.stem().string(), &tree);
+                EXPECT_TRUE(errors.empty())
+                    << name << " (method " << method << ") as GLSL " << version << ":\n"
+                    << errors;
+                if (std::string(version) == "300 es" && stage == "frag") {
+                    EXPECT_EQ(belowHighp(tree), "") << name << " (method " << method << ")";
+                }
+            }
         }
+    }
 }
 
 // Every base surface and last level the renderer builds (MICRORELIEF_BASE 0..2,
@@ -129,14 +170,14 @@ TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
                     << "relief.frag, " << variant << ", " << version << ":\n"
                     << errors;
             }
-            const Dialect& es = kDialects[2];
+            const char* es = kDialects[2];  // the library states its own precision
             const std::filesystem::path wrapper = dir / "use_relief_hit.frag";
             std::ofstream(wrapper)
-                << es.prelude << "#include \""
-                << (kShaders / "microrelief" / "relief_hit.glsl").string() << "\"\n"
+                << "#include \"" << (kShaders / "microrelief" / "relief_hit.glsl").string()
+                << "\"\n"
                 << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
             const std::string errors =
-                validate(dir, assembleShader(wrapper, es.version, defines), "frag", "relief_hit");
+                validate(dir, assembleShader(wrapper, es, defines), "frag", "relief_hit");
             EXPECT_TRUE(errors.empty()) << "relief_hit.glsl as ES 3.00, " << variant << ":\n"
                                         << errors;
         }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 
 #include "TestSupport.h"
@@ -51,8 +52,6 @@ std::shared_ptr<const HeightMap> throughFile(const HeightMap& map, PixelType typ
     return share(loadHeightMap(file));
 }
 
-}  // namespace
-
 // Noise whose first and last columns differ sharply: the seam of a curved base, where
 // the surface climbs from 0 (columns 0, 1) to 1 (columns W - 2, W - 1) across u = 0.
 HeightMap seamMap(int w, int h) {
@@ -64,57 +63,89 @@ HeightMap seamMap(int w, int h) {
     return map;
 }
 
+// The list of maps, each made only when first needed: the GL sweep registers one test per
+// entry (its count and names come from here), and building the 4096 map takes seconds.
+using MakeMap = std::function<std::shared_ptr<const HeightMap>()>;
+
+struct SweepMapRecipe {
+    std::string name;
+    MakeMap make;
+    double heightScale;
+    BaseShape base = {};
+    Interpolation interpolation = Interpolation::Bilinear;
+};
+
+// `make` run once, its map shared by every recipe that holds the result.
+MakeMap once(MakeMap make) {
+    auto made = std::make_shared<std::shared_ptr<const HeightMap>>();
+    return [made, make = std::move(make)] {
+        if (!*made) *made = make();
+        return *made;
+    };
+}
+
 // The curved bases' maps: the seam, real-looking and rough relief, spikes, odd and
 // non-square sizes, 1 x 1, a 16-bit PNG and a float EXR; each on a cylinder and on an
 // ellipsoid (a sphere for some).
-std::vector<SweepMap> curvedMaps() {
-    HeightMap tall = synth::valueNoise(60, 30, 10.0, 3, 41);
-    for (float& h : tall.samples) h *= 2.0f;  // float maps keep values above 1
-    const auto png16 = throughFile(synth::cobbles(128, 64, 3), PixelType::UInt16, "globe16.png");
-    const auto exr = throughFile(tall, PixelType::Float, "tall-curved.exr");
-    const std::vector<std::pair<std::string, std::pair<std::shared_ptr<const HeightMap>, double>>>
-        relief = {
-            {"seam", {share(seamMap(96, 48)), 0.15}},
-            {"cobbles", {share(synth::cobbles(128, 128, 5)), 0.12}},
-            {"white", {share(synth::whiteNoise(64, 32, 9)), 0.1}},
-            {"spikes", {share(spikes(96, 6)), 0.2}},
-            {"oblong75x33", {share(synth::valueNoise(75, 33, 6.0, 3, 12)), 0.15}},
-            {"single1x1", {share(synth::flat(1, 1, 0.6f)), 0.1}},
-            {"png16", {png16, 0.1}},
-            {"exrfloat", {exr, 0.06}},
-        };
-    std::vector<SweepMap> maps;
+void addCurvedRecipes(std::vector<SweepMapRecipe>& recipes) {
+    const std::vector<std::pair<std::string, std::pair<MakeMap, double>>> relief = {
+        {"seam", {[] { return share(seamMap(96, 48)); }, 0.15}},
+        {"cobbles", {[] { return share(synth::cobbles(128, 128, 5)); }, 0.12}},
+        {"white", {[] { return share(synth::whiteNoise(64, 32, 9)); }, 0.1}},
+        {"spikes", {[] { return share(spikes(96, 6)); }, 0.2}},
+        {"oblong75x33", {[] { return share(synth::valueNoise(75, 33, 6.0, 3, 12)); }, 0.15}},
+        {"single1x1", {[] { return share(synth::flat(1, 1, 0.6f)); }, 0.1}},
+        {"png16",
+         {[] { return throughFile(synth::cobbles(128, 64, 3), PixelType::UInt16, "globe16.png"); },
+          0.1}},
+        {"exrfloat",
+         {[] {
+              HeightMap tall = synth::valueNoise(60, 30, 10.0, 3, 41);
+              for (float& h : tall.samples) h *= 2.0f;  // float maps keep values above 1
+              return throughFile(tall, PixelType::Float, "tall-curved.exr");
+          },
+          0.06}},
+    };
     for (std::size_t k = 0; k < relief.size(); ++k) {
         const auto& [name, data] = relief[k];
-        maps.push_back(
-            {"cylinder_" + name, data.first, data.second, BaseShape::cylinder(0.3, 0.8)});
+        const MakeMap make = once(data.first);
+        recipes.push_back({"cylinder_" + name, make, data.second, BaseShape::cylinder(0.3, 0.8)});
         // Alternately a sphere and an ellipsoid of unequal radii.
-        maps.push_back({(k % 2 ? "ellipsoid_" : "sphere_") + name, data.first, data.second,
-                        k % 2 ? BaseShape::ellipsoid({0.45, 0.35, 0.3}) : BaseShape::sphere(0.4)});
+        recipes.push_back(
+            {(k % 2 ? "ellipsoid_" : "sphere_") + name, make, data.second,
+             k % 2 ? BaseShape::ellipsoid({0.45, 0.35, 0.3}) : BaseShape::sphere(0.4)});
     }
-    return maps;
 }
 
-const std::vector<SweepMap>& sweepMaps() {
-    static const std::vector<SweepMap> maps = [] {
-        HeightMap tall = synth::valueNoise(96, 96, 24.0, 4, 31);
-        for (float& h : tall.samples) h *= 3.0f;  // float maps keep values above 1
-        std::vector<SweepMap> all{
-            {"noise", share(synth::whiteNoise(128, 128, 2)), 0.05},
-            {"spikes", share(spikes(128, 4)), 0.1},
-            {"walls", share(walls(128, 16)), 0.08},
-            {"cliffs", share(cliffs(128)), 0.1},
-            {"zero", share(synth::flat(16, 16, 0.0f)), 0.1},
-            {"one", share(synth::flat(16, 16, 1.0f)), 0.1},
-            {"oblong300x77", share(synth::valueNoise(300, 77, 10.0, 4, 8)), 0.1},
-            {"single1x1", share(synth::flat(1, 1, 0.6f)), 0.1},
-            {"tiny2x2", share(synth::whiteNoise(2, 2, 3)), 0.2},
-            {"png16", throughFile(synth::cobbles(256, 256, 1), PixelType::UInt16, "cobbles16.png"),
+const std::vector<SweepMapRecipe>& sweepMapRecipes() {
+    static const std::vector<SweepMapRecipe> recipes = [] {
+        std::vector<SweepMapRecipe> all = {
+            {"noise", [] { return share(synth::whiteNoise(128, 128, 2)); }, 0.05},
+            {"spikes", [] { return share(spikes(128, 4)); }, 0.1},
+            {"walls", [] { return share(walls(128, 16)); }, 0.08},
+            {"cliffs", [] { return share(cliffs(128)); }, 0.1},
+            {"zero", [] { return share(synth::flat(16, 16, 0.0f)); }, 0.1},
+            {"one", [] { return share(synth::flat(16, 16, 1.0f)); }, 0.1},
+            {"oblong300x77", [] { return share(synth::valueNoise(300, 77, 10.0, 4, 8)); }, 0.1},
+            {"single1x1", [] { return share(synth::flat(1, 1, 0.6f)); }, 0.1},
+            {"tiny2x2", [] { return share(synth::whiteNoise(2, 2, 3)); }, 0.2},
+            {"png16",
+             [] {
+                 return throughFile(synth::cobbles(256, 256, 1), PixelType::UInt16,
+                                    "cobbles16.png");
+             },
              0.1},
-            {"exrfloat", throughFile(tall, PixelType::Float, "tall.exr"), 0.03},
-            {"huge4096", share(synth::valueNoise(4096, 4096, 256.0, 6, 5)), 0.1},
+            {"exrfloat",
+             [] {
+                 HeightMap tall = synth::valueNoise(96, 96, 24.0, 4, 31);
+                 for (float& h : tall.samples) h *= 3.0f;  // float maps keep values above 1
+                 return throughFile(tall, PixelType::Float, "tall.exr");
+             },
+             0.03},
+            {"huge4096", [] { return share(synth::valueNoise(4096, 4096, 256.0, 6, 5)); }, 0.1},
         };
-        for (SweepMap& m : curvedMaps()) all.push_back(std::move(m));
+        for (SweepMapRecipe& r : all) r.make = once(std::move(r.make));
+        addCurvedRecipes(all);
         // The biquadratic surface on the maps that stress it most: the one-texel features
         // (its patches overshoot nothing but spread each spike over 3 x 3 squares), the
         // cliffs, odd and tiny sizes, floats above 1, the 4096 map, the seam (whose B-spline
@@ -135,14 +166,34 @@ const std::vector<SweepMap>& sweepMaps() {
                                                       "ellipsoid_single1x1"};
         for (const std::string& name : biquadratic) {
             const auto m = std::find_if(all.begin(), all.end(),
-                                        [&](const SweepMap& s) { return s.name == name; });
+                                        [&](const SweepMapRecipe& r) { return r.name == name; });
             if (m == all.end()) throw std::logic_error("no sweep map named " + name);
-            SweepMap copy = *m;
+            SweepMapRecipe copy = *m;
             copy.name += "_biquadratic";
             copy.interpolation = Interpolation::Biquadratic;
             all.push_back(std::move(copy));
         }
         return all;
+    }();
+    return recipes;
+}
+
+}  // namespace
+
+std::size_t sweepMapCount() {
+    return sweepMapRecipes().size();
+}
+
+std::string sweepMapName(std::size_t k) {
+    return sweepMapRecipes().at(k).name;
+}
+
+const std::vector<SweepMap>& sweepMaps() {
+    static const std::vector<SweepMap> maps = [] {
+        std::vector<SweepMap> built;
+        for (const SweepMapRecipe& r : sweepMapRecipes())
+            built.push_back({r.name, r.make(), r.heightScale, r.base, r.interpolation});
+        return built;
     }();
     return maps;
 }

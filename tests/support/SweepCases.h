@@ -42,6 +42,9 @@ struct SweepCase {
 // the curved bases' (each map on a cylinder and on an ellipsoid or a sphere), then a
 // share of both on the biquadratic surface (named "..._biquadratic").
 const std::vector<SweepMap>& sweepMaps();
+// How many maps sweepMaps() holds and their names, without building them.
+std::size_t sweepMapCount();
+std::string sweepMapName(std::size_t k);
 std::vector<SweepView> sweepViews(const SweepMap& map);
 std::vector<SweepCase> sweepCases();
 

@@ -95,4 +95,24 @@ Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm:
     return camera;
 }
 
+bool missingBackendAllowed(Backend backend) {
+    const char* list = std::getenv("MICRORELIEF_ALLOW_MISSING_GL");
+    if (!list) return false;
+    std::stringstream names(list);
+    for (std::string name; std::getline(names, name, ',');) {
+        if (name == "all" || name == backendName(backend)) return true;
+    }
+    return false;
+}
+
+std::string missingBackendMessage(Backend backend) {
+    const std::string name = backendName(backend);
+    return missingBackendAllowed(backend)
+               ? "the " + name +
+                     " backend is absent: skipped, as MICRORELIEF_ALLOW_MISSING_GL allows"
+               : "the " + name +
+                     " backend is absent: failing (set MICRORELIEF_ALLOW_MISSING_GL=" + name +
+                     " to skip its tests instead)";
+}
+
 }  // namespace microrelief::test

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "context/GlContext.h"
 #include "heightmap/HeightMap.h"
 #include "image/ImageFile.h"
 #include "render/Camera.h"
@@ -49,6 +50,14 @@ RunResult runCommand(const std::string& command, const std::filesystem::path& sc
 // "<program>: error: " and mentioning `mentions`.
 void expectOneLineFailure(const RunResult& r, const std::string& program, int status,
                           const std::string& mentions);
+
+// Whether this run may go without a GL backend: MICRORELIEF_ALLOW_MISSING_GL lists the
+// ones that may be absent (comma-separated: egl, osmesa, or all). Unset (as in .ci/run),
+// a missing backend fails the suite instead of skipping every test that needs it, so a
+// machine or CI without a working EGL cannot go green without running a shader.
+bool missingBackendAllowed(Backend backend);
+// The line a test prints for a missing backend: allowed (skipped) or not (failing).
+std::string missingBackendMessage(Backend backend);
 
 // A camera on a sphere around the origin: `elevationDeg` above the base plane,
 // `azimuthDeg` around y from +x towards +z, looking at `target`.

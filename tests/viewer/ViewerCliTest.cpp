@@ -47,13 +47,18 @@ TEST_F(ViewerCli, BadArgumentsExitTwo) {
     expectFailure(run("--fovy 180"), 2, "--fovy");
     expectFailure(run("--view sideways"), 2, "sideways");
     expectFailure(run("--method raymarch"), 2, "raymarch");
-    expectFailure(run("--frames -1"), 2, "--frames");
+    // A readable range, not the largest double in 309 digits.
+    const test::RunResult frames = run("--frames -1");
+    expectFailure(frames, 2, "--frames must be 0 (run until the window closes) or more, got -1");
+    EXPECT_LT(frames.err.size(), 120u) << frames.err;
     expectFailure(run("--no-such-flag"), 2, "--no-such-flag");
     expectFailure(run("--screenshot " + (dir / "x.unknownext").string()), 2, "x.unknownext");
 }
 
 TEST_F(ViewerCli, BadMapsAndCamerasExitTwoBeforeAnyWindow) {
     expectFailure(run("--height " + (dir / "missing.png").string()), 2, "missing.png");
+    // OpenImageIO's probes used to read /dev/zero forever (issue 15).
+    expectFailure(run("--height /dev/zero"), 2, "/dev/zero: is not a regular file");
     expectFailure(run("--eye 0,1,0 --target 0,0,0 --up 0,1,0"), 2, "--up");
 }
 

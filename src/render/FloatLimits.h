@@ -1,0 +1,54 @@
+// What the shader's float arithmetic holds: the limits on the relief and the camera
+// beyond which the picture stops being exact (or finite), checked before a render.
+//
+// Every number the shader works with is a 32-bit float (24-bit significand, largest
+// 3.4e38). In map space (map_space.glsl) a ray is origin + t dir with X, Y in texels and
+// the height in map units h = y / s (s = --height-scale), so
+//   dir.xy = world direction (x, z) * T,  T = max(W, H) texels per world unit,
+//   dir.h  = world direction y / s.
+// Three things can go wrong, each bounded here with the margins the comments in
+// FloatLimits.cpp derive:
+//  1. World coordinates that float cannot carry: the box corners, the eye and the depth
+//     range are uniforms. Camera vectors and the relief's top s * max h: within
+//     kMaxWorldCoordinate.
+//  2. Overflow in the exact patch solve (bilinear_patch.glsl, intersectPatch): B^2 and
+//     4AC are products of (height difference * dir.xy) and dir.h terms; they must stay
+//     below 2^128. Bounded by max h * Dxy <= 2^58 and Dh <= 2^58, Dxy and Dh the largest
+//     |dir.xy|, |dir.h| over the picture's rays.
+//  3. Precision of the entry point (relief_hit.glsl, enterReliefBox): the ray is moved
+//     from the eye to where it enters the box, start = origin + tStart dir, which keeps
+//     about 2 ulps of |origin| as its error. Exactness (hits within half a texel; the
+//     accuracy sweep measures 0.018 texels at p99) wants the hit moved by less than 1/32
+//     texel: the eye within 2^18 texels of the map in X, Y and (h error times the ray's
+//     cotangent) |eye.y| T <= 2^18. Measured on a 1024 map: p99 error 0.025 texels at
+//     102400 texels away, 0.05 at 256000 (one pixel off by more than half a texel),
+//     0.28 at 1024000, 5 % of pixels off at 4096000.
+#pragma once
+
+#include <string>
+
+#include "heightmap/HeightMap.h"
+#include "render/Camera.h"
+
+namespace microrelief {
+
+// Camera coordinates (--eye, --target) and the relief's top s * max h, in world units
+// (the relief spans one); also the largest component of --up and --light.
+inline constexpr double kMaxWorldCoordinate = 1e6;
+// Directions (--up, --light) need a largest component of at least this (smaller ones
+// lose their length to underflow when squared in float).
+inline constexpr double kMinDirectionComponent = 1e-6;
+
+// What the limits need of a map: its size and its largest height.
+struct MapExtent {
+    int width = 0, height = 0;  // texels
+    double maxHeight = 0.0;     // map units
+};
+
+// Throws Error(BadInput) naming `source` (the map) or the flag, with the limit and the
+// reason, when rendering a map of `map`'s extent at `heightScale` through `camera` would
+// leave the range above.
+void checkFloatLimits(const MapExtent& map, double heightScale, const Camera& camera,
+                      const CameraFrame& frame, const std::string& source);
+
+}  // namespace microrelief

@@ -1,0 +1,60 @@
+// microrelief-make-map and microrelief-bench as a user meets them: sizes and output
+// folders refused before any work (issue 15), with the spec's one-line failure.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "TestSupport.h"
+
+using namespace microrelief;
+
+namespace {
+
+class ToolsCli : public ::testing::Test {
+protected:
+    test::RunResult run(const char* program, const std::string& args) {
+        return test::runCommand(std::string(program) + " " + args, dir.path());
+    }
+    test::ScratchDir dir;
+};
+
+TEST_F(ToolsCli, MakeMapRefusesMalformedAndOversizedSizes) {
+    const std::string out = " --out " + (dir / "m.png").string();
+    for (const char* size : {"5x5junk", "5x5.5", "+5x5", "5x", "x5", "0x5", "5", "-5x5"}) {
+        const test::RunResult r =
+            run(MICRORELIEF_MAKE_MAP_EXE, std::string("noise --size '") + size + "'" + out);
+        test::expectOneLineFailure(r, "microrelief-make-map", 2, size);
+    }
+    // Beyond the largest map the programs load: refused before 40 GB of noise is made.
+    for (const char* size : {"100000x100000", "46341x46341", "16385x1"}) {
+        const test::RunResult r =
+            run(MICRORELIEF_MAKE_MAP_EXE, std::string("noise --size ") + size + out);
+        test::expectOneLineFailure(r, "microrelief-make-map", 2, "larger than 16384 x 16384");
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "m.png"));
+
+    const test::RunResult ok = run(MICRORELIEF_MAKE_MAP_EXE, "noise --size 5x3" + out);
+    ASSERT_EQ(ok.status, 0) << ok.err;
+    auto image = OIIO::ImageInput::open((dir / "m.png").string());
+    ASSERT_TRUE(image);
+    EXPECT_EQ(image->spec().width, 5);
+    EXPECT_EQ(image->spec().height, 3);
+}
+
+TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork) {
+    test::writeBytes(dir / "file.txt", {'x'});
+    auto expectRefused = [&](const std::string& args, const std::string& mentions) {
+        const test::RunResult r = run(MICRORELIEF_BENCH_EXE, "--quick " + args);
+        test::expectOneLineFailure(r, "microrelief-bench", 2, mentions);
+        // Nothing started: the first thing the benchmark prints is the map it makes.
+        EXPECT_EQ(r.out, "") << args;
+    };
+    expectRefused("--out-dir /dev/full", "/dev/full is not a folder");
+    expectRefused("--out-dir " + (dir / "file.txt").string(), "file.txt is not a folder");
+    expectRefused("--out-dir " + (dir / "file.txt" / "sub").string(), "is not a folder");
+    expectRefused("--methods '' --out-dir " + (dir / "b").string(), "--methods names no method");
+    expectRefused("--methods multilevel,,maxmip --out-dir " + (dir / "b").string(), "--method");
+    EXPECT_FALSE(std::filesystem::exists(dir / "b"));
+}
+
+}  // namespace

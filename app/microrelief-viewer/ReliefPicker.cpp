@@ -19,12 +19,19 @@ void ReliefPicker::setBase(const BaseShape& base) {
     tracer_.reset();
 }
 
+void ReliefPicker::setInterpolation(Interpolation interpolation) {
+    if (interpolation == interpolation_) return;
+    interpolation_ = interpolation;
+    tracer_.reset();
+}
+
 std::optional<PickResult> ReliefPicker::pick(const CameraFrame& camera, int column, int row) {
     if (!map_ || column < 0 || row < 0 || column >= camera.width || row >= camera.height)
         return std::nullopt;
     // Built lazily: dragging the height-scale slider must not rebuild the pyramid for
     // every intermediate value.
-    if (!tracer_) tracer_ = std::make_unique<MultilevelTracer>(*map_, heightScale_, base_);
+    if (!tracer_)
+        tracer_ = std::make_unique<MultilevelTracer>(*map_, heightScale_, base_, interpolation_);
     TraversalStats stats;
     const std::optional<ReliefHit> hit = tracer_->intersect(camera.pixelRay(column, row), &stats);
     if (!hit) return std::nullopt;

@@ -26,6 +26,7 @@ public:
     void setMap(std::shared_ptr<const HeightMap> map);
     void setHeightScale(double heightScale);
     void setBase(const BaseShape& base);
+    void setInterpolation(Interpolation interpolation);
 
     // The hit along the ray through pixel (column, row) of `camera`, or nothing.
     std::optional<PickResult> pick(const CameraFrame& camera, int column, int row);
@@ -34,6 +35,7 @@ private:
     std::shared_ptr<const HeightMap> map_;
     double heightScale_ = 0.1;
     BaseShape base_;
+    Interpolation interpolation_ = Interpolation::Bilinear;
     std::unique_ptr<MultilevelTracer> tracer_;
 };
 

@@ -69,12 +69,14 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     renderer_ = std::make_unique<ReliefRenderer>(gl, shaders);
     renderer_->setMethod(options.scene.job.method);
     renderer_->setHeightScale(options.scene.job.heightScale);
-    renderer_->setHeightMap(*map_, file.string(), options.scene.job.base);
+    renderer_->setHeightMap(*map_, file.string(), options.scene.job.base,
+                            options.scene.job.interpolation);
     timer_ = std::make_unique<GpuTimer>(gl);
     watcher_ = std::make_unique<ShaderWatcher>(shaders);
     picker_.setMap(map_);
     picker_.setHeightScale(options.scene.job.heightScale);
     picker_.setBase(options.scene.job.base);
+    picker_.setInterpolation(options.scene.job.interpolation);
 
     if (state_.scene.heightFile)
         state_.scene.heightFile = std::filesystem::absolute(*state_.scene.heightFile);
@@ -293,6 +295,7 @@ void ViewerApp::applyPanel(const PanelActions& a) {
         picker_.setHeightScale(state_.scene.job.heightScale);
     }
     if (a.baseChanged) setBase(a.baseKindChanged);
+    if (a.interpolationChanged) setInterpolation();
     if (a.fovyChanged) controller_.setFovy(state_.scene.job.camera.fovyDegrees);
     if (a.methodChanged) setMethod();
     if (a.resetView) controller_.reset();
@@ -394,7 +397,8 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     const std::filesystem::path path = file.value_or(defaultHeightMapPath());
     try {
         auto map = std::make_shared<const HeightMap>(loadHeightMap(path, state_.scene.load));
-        renderer_->setHeightMap(*map, path.string(), state_.scene.job.base);
+        renderer_->setHeightMap(*map, path.string(), state_.scene.job.base,
+                                state_.scene.job.interpolation);
         map_ = std::move(map);
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
@@ -445,12 +449,27 @@ void ViewerApp::setMethod() {
     }
 }
 
+void ViewerApp::setInterpolation() {
+    const Interpolation interpolation = state_.scene.job.interpolation;
+    try {
+        // Another surface between the samples: another finest level, so a new pyramid.
+        renderer_->setHeightMap(*map_, state_.mapName, state_.scene.job.base, interpolation);
+    } catch (const Error& e) {
+        state_.scene.job.interpolation = renderer_->interpolation();  // the one that works
+        note(std::string("last level not changed: ") + e.what());
+        return;
+    }
+    picker_.setInterpolation(interpolation);
+    ++mapGeneration_;
+    note(std::string("last level: ") + interpolationName(interpolation));
+}
+
 void ViewerApp::setBase(bool frame) {
     const BaseShape base = state_.scene.job.base;
     try {
         // Between the plane and a curved base the pyramid is built anew (u wraps).
         if (base.wrapsU() != renderer_->base().wrapsU()) {
-            renderer_->setHeightMap(*map_, state_.mapName, base);
+            renderer_->setHeightMap(*map_, state_.mapName, base, state_.scene.job.interpolation);
         } else {
             renderer_->setBase(base);
         }

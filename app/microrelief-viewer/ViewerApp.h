@@ -77,6 +77,8 @@ private:
     void setMethod();
     // The base surface in the panel's state; `frame`: point the view at the new object.
     void setBase(bool frame);
+    // The last level in the panel's state: the pyramid built again for it.
+    void setInterpolation();
     void takeScreenshot();
     void copyCommand();
     void setVsync(bool on);

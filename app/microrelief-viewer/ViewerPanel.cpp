@@ -89,6 +89,17 @@ void mapSection(ViewerState& s, PanelActions& actions) {
         actions.heightScaleChanged = true;
     }
     baseControls(s.scene.job.base, actions);
+    int interpolation = s.scene.job.interpolation == Interpolation::Biquadratic ? 1 : 0;
+    const char* const interpolations[] = {"bilinear", "biquadratic (smooth)"};
+    if (ImGui::Combo("Last level", &interpolation, interpolations, IM_ARRAYSIZE(interpolations))) {
+        s.scene.job.interpolation =
+            interpolation == 1 ? Interpolation::Biquadratic : Interpolation::Bilinear;
+        actions.interpolationChanged = true;
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "The surface between the samples: bilinear patches (a facet per texel),\n"
+            "or the quadratic B-spline of the samples (smooth normals)");
 }
 
 // The light as azimuth and elevation, written back only when the user moves a slider,

@@ -45,8 +45,9 @@ struct PanelActions {
     std::optional<std::filesystem::path> openMap;  // a path typed into the panel
     bool reloadMap = false;                        // channel or normalisation changed
     bool heightScaleChanged = false;
-    bool baseChanged = false;      // a size of the base surface
-    bool baseKindChanged = false;  // another base surface: the view frames it
+    bool baseChanged = false;           // a size of the base surface
+    bool baseKindChanged = false;       // another base surface: the view frames it
+    bool interpolationChanged = false;  // the last level: the pyramid is built anew
     bool fovyChanged = false;
     bool methodChanged = false;
     bool screenshot = false;

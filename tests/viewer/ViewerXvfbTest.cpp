@@ -231,6 +231,16 @@ TEST_F(ViewerUnderX, CurvedBasesCarryOver) {
                       "--eye=-0.5,0.6,0.9 --target 0,0,0 --size 120x90");
 }
 
+TEST_F(ViewerUnderX, BiquadraticCarriesOver) {
+    // A close-up where the two last levels differ: the viewer must trace the one it prints.
+    const std::string closeUp = "--eye 0.05,0.12,0.05 --target 0,0,-0.05 --size 120x90";
+    const Image smooth = compareWithRender("biquadratic", closeUp + " --interpolation biquadratic");
+    const Image faceted = compareWithRender("bilinear", closeUp);
+    ASSERT_EQ(smooth.width, faceted.width);
+    const Difference d = difference(smooth, faceted, 0, 0, smooth.width, smooth.height);
+    EXPECT_GT(d.mean, 1.0) << "the biquadratic close-up looks like the bilinear one";
+}
+
 TEST_F(ViewerUnderX, StraightDownWithTheSpecsOrientation) {
     compareWithRender("topdown", "--eye 0,1.6,0 --target 0,0,0 --up 0,0,-1 --size 96x96");
 }

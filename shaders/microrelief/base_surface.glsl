@@ -35,6 +35,7 @@
 #include "base_ellipsoid.glsl"
 #include "base_plane.glsl"
 #include "bilinear_patch.glsl"
+#include "final_piece.glsl"
 #include "map_space.glsl"
 #include "relief_map.glsl"
 #include "relief_patch.glsl"
@@ -370,16 +371,8 @@ float cellStretchHit(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, ReliefPat
             float m = 0.5 * (a + b);
             float ga = cellGap(cellPatch, fa), gb = cellGap(cellPatch, fb);
             float gm = cellGap(cellPatch, cellLocalPoint(map, cell, baseMapPoint(map, origin + m * dir)));
-            if (ga >= 0.0) return a;
-            if (gm >= 0.0) return a + (m - a) * ga / (ga - gm);
-            if (gb >= 0.0) return m + (b - m) * gm / (gm - gb);
-            // g(s) = ga + B s + A s^2 through s = 0, 1/2, 1: a concave one reaching 0.
-            float A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
-            if (A < 0.0) {
-                float vertex = -B / (2.0 * A), disc = B * B - 4.0 * A * ga;
-                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0)
-                    return a + clamp((-B + sqrt(disc)) / (2.0 * A), 0.0, vertex) * (b - a);
-            }
+            float s = parabolaFirstRoot(ga, gm, gb);
+            if (s >= 0.0) return a + s * (b - a);
         }
         // Past this piece: on to its successor in order, as high up as it is unvisited.
         index += 1u;

@@ -13,6 +13,7 @@
 #define MICRORELIEF_BIQUADRATIC_PATCH_GLSL
 
 #include "bilinear_patch.glsl"
+#include "final_piece.glsl"
 #include "relief_map.glsl"
 
 // One sample, its column clamped or wrapped, its row clamped.
@@ -223,16 +224,9 @@ float quarticFirstHit(Quartic g, float finalWidth, float margin) {
                 continue;
             }
             // The final piece: the parabola through s = 0, 1/2, 1 of it.
-            float ga = c.c.x, gb = c.c4;
-            float gm = (dot(c.c, vec4(1.0, 4.0, 6.0, 4.0)) + c.c4) / 16.0;
-            if (gm >= 0.0) return sa + 0.5 * (sb - sa) * ga / (ga - gm);
-            if (gb >= 0.0) return sa + (sb - sa) * (0.5 + 0.5 * gm / (gm - gb));
-            float A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
-            if (A < 0.0) {
-                float vertex = -B / (2.0 * A), disc = B * B - 4.0 * A * ga;
-                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0)
-                    return sa + clamp((-B + sqrt(disc)) / (2.0 * A), 0.0, vertex) * (sb - sa);
-            }
+            float middle = (dot(c.c, vec4(1.0, 4.0, 6.0, 4.0)) + c.c4) / 16.0;
+            float s = parabolaFirstRoot(c.c.x, middle, c.c4);
+            if (s >= 0.0) return sa + s * (sb - sa);
         }
         // On to the next piece in order, as high up as it is unvisited.
         index += 1u;

@@ -115,6 +115,20 @@ SurfacePatch::Quartic SurfacePatch::pathGap(const glm::dvec3& fa, const glm::dve
             0.5 * (n[2][1] + n[1][2]) - (fa.z + 0.75 * dz), n[2][2] - fb.z};
 }
 
+std::optional<double> parabolaFirstRoot(double ga, double gm, double gb) {
+    if (ga >= 0.0) return 0.0;
+    if (gm >= 0.0) return 0.5 * ga / (ga - gm);
+    if (gb >= 0.0) return 0.5 + 0.5 * gm / (gm - gb);
+    // g(s) = ga + B s + A s^2.
+    const double A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
+    if (A < 0.0) {
+        const double vertex = -B / (2.0 * A), disc = B * B - 4.0 * A * ga;
+        if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0)
+            return std::clamp((-B + std::sqrt(disc)) / (2.0 * A), 0.0, vertex);
+    }
+    return std::nullopt;
+}
+
 SurfacePatch::Quartic quarticPiece(const SurfacePatch::Quartic& q, double sa, double sb) {
     // Right of sa: in place, c[k] ends as level 4 - k's point k.
     SurfacePatch::Quartic c = q;
@@ -183,17 +197,8 @@ std::optional<double> quarticFirstHit(const SurfacePatch::Quartic& g, double fin
                 continue;
             }
             // The final piece: the parabola through its ends and middle.
-            const double ga = c[0], gb = c[4];
-            const double gm = (c[0] + 4.0 * c[1] + 6.0 * c[2] + 4.0 * c[3] + c[4]) / 16.0;
-            if (gm >= 0.0) return sa + 0.5 * (sb - sa) * ga / (ga - gm);
-            if (gb >= 0.0) return sa + (sb - sa) * (0.5 + 0.5 * gm / (gm - gb));
-            const double A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
-            if (A < 0.0) {
-                const double vertex = -B / (2.0 * A), disc = B * B - 4.0 * A * ga;
-                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0)
-                    return sa +
-                           std::clamp((-B + std::sqrt(disc)) / (2.0 * A), 0.0, vertex) * (sb - sa);
-            }
+            const double middle = (c[0] + 4.0 * c[1] + 6.0 * c[2] + 4.0 * c[3] + c[4]) / 16.0;
+            if (const auto s = parabolaFirstRoot(c[0], middle, c[4])) return sa + *s * (sb - sa);
         }
         ++index;
         while (depth > 0 && (index & 1u) == 0u) {

@@ -43,6 +43,12 @@ struct SurfacePatch {
     Quartic pathGap(const glm::dvec3& fa, const glm::dvec3& fb) const;
 };
 
+// The first s in [0, 1] where the parabola through (0, ga), (1/2, gm), (1, gb) reaches 0,
+// or nullopt: a sign change at the ends or the middle interpolated; without one, a concave
+// parabola that reaches 0 is a touching ray, a hit in the closed solid
+// (final_piece.glsl: parabolaFirstRoot). The final pieces of the leaves' subdivisions.
+std::optional<double> parabolaFirstRoot(double ga, double gm, double gb);
+
 // A quartic's Bernstein coefficients over [sa, sb] from those over [0, 1] (de Casteljau),
 // its value at s, and its first point with g(s) >= 0, or nullopt: the pieces in order, each
 // skipped when all its coefficients are below -margin (the convex hull bounds the quartic),

@@ -253,19 +253,7 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
         if (may) {
             const double m = 0.5 * (a + b);
             const double ga = gap(a), gm = gap(m), gb = gap(b);
-            if (ga >= 0.0) return a;
-            if (gm >= 0.0) return a + (m - a) * ga / (ga - gm);
-            if (gb >= 0.0) return m + (b - m) * gm / (gm - gb);
-            // g(s) = ga + B s + A s^2 through s = 0, 1/2, 1.
-            const double A = 2.0 * (ga - 2.0 * gm + gb), B = -3.0 * ga + 4.0 * gm - gb;
-            if (A < 0.0) {
-                const double vertex = -B / (2.0 * A);
-                const double disc = B * B - 4.0 * A * ga;
-                if (vertex > 0.0 && vertex < 1.0 && disc >= 0.0) {
-                    const double s = std::clamp((-B + std::sqrt(disc)) / (2.0 * A), 0.0, vertex);
-                    return a + s * (b - a);
-                }
-            }
+            if (const auto s = parabolaFirstRoot(ga, gm, gb)) return a + *s * (b - a);
         }
         // Past this piece: to its successor in order, as high up as it is unvisited.
         ++index;

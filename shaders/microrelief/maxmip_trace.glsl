@@ -80,7 +80,12 @@ vec2 maxMipNodeExits(ReliefMap map, ivec2 node, int level, vec3 origin, vec3 dir
         exits[axis] = (side - origin[axis]) / dir[axis];
     }
 #else
-    if (map.size.x > 1.0) {
+    // A node that spans every column (a map one sample wide, or a level narrower than the
+    // map's width rounds to: a map narrower than it is tall) goes all the way round: it
+    // has no side in X, and crossing the seam keeps the ray in it. (Its only side would be
+    // the seam, which a line crosses once: once crossed, the same crossing, behind the ray,
+    // would be its exit again and again.)
+    if (((int(map.size.x) - 1) >> level) > 0) {
         float side = course.step.x > 0 ? min(float(node.x + 1) * size, map.size.x) : float(node.x) * size;
         exits.x = curvedCrossX(map, origin, dir, side);
     }

@@ -78,6 +78,26 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
     return n * options.viewDegrees.size();
 }
 
+// A comma-separated list flag, each item read by the parser of the single flag; its
+// errors name the list flag the user gave (the parsers name the single one).
+template <typename Parse>
+auto parseList(const std::string& list, const std::string& single, const std::string& flag,
+               Parse parse) {
+    std::vector<decltype(parse(std::string()))> items;
+    std::stringstream in(list);
+    for (std::string name; std::getline(in, name, ',');) {
+        try {
+            items.push_back(parse(name));
+        } catch (const Error& e) {
+            std::string message = e.what();
+            if (const auto at = message.find(single); at != std::string::npos)
+                message.replace(at, single.size(), flag);
+            throw Error(e.kind(), message);
+        }
+    }
+    return items;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,24 +153,16 @@ int main(int argc, char** argv) {
             options.viewDegrees = {0, 45, 70, 85};
         }
         parseSizeFlag(size, options.width, options.height);
-        std::stringstream list(methodList);
-        for (std::string name; std::getline(list, name, ',');)
-            options.methods.push_back(parseMethod(name));
-        options.bases.clear();
-        std::stringstream bases(baseList);
-        for (std::string name; std::getline(bases, name, ',');) {
+        options.methods = parseList(methodList, "--method", "--methods", parseMethod);
+        options.bases = parseList(baseList, "--base", "--bases", [](const std::string& name) {
             const BaseKind kind = parseBaseKind(name);
-            options.bases.push_back(kind == BaseKind::Cylinder    ? BaseShape::cylinder()
-                                    : kind == BaseKind::Ellipsoid ? name == "sphere"
-                                                                        ? BaseShape::sphere()
-                                                                        : BaseShape::ellipsoid()
-                                                                  : BaseShape::plane());
-        }
-
-        options.interpolations.clear();
-        std::stringstream interpolations(interpolationList);
-        for (std::string name; std::getline(interpolations, name, ',');)
-            options.interpolations.push_back(parseInterpolation(name));
+            return kind == BaseKind::Cylinder ? BaseShape::cylinder()
+                   : kind == BaseKind::Ellipsoid
+                       ? name == "sphere" ? BaseShape::sphere() : BaseShape::ellipsoid()
+                       : BaseShape::plane();
+        });
+        options.interpolations =
+            parseList(interpolationList, "--interpolation", "--interpolations", parseInterpolation);
         if (options.methods.empty())
             throwBadInput(
                 "--methods names no method (a comma-separated list: multilevel,maxmip,...)");

@@ -54,6 +54,11 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--out-dir " + (dir / "file.txt" / "sub").string(), "is not a folder");
     expectRefused("--methods '' --out-dir " + (dir / "b").string(), "--methods names no method");
     expectRefused("--methods multilevel,,maxmip --out-dir " + (dir / "b").string(), "--method");
+    // Unknown items, named with the list flag the user gave.
+    expectRefused("--methods foo --out-dir " + (dir / "b").string(), "unknown --methods 'foo'");
+    expectRefused("--bases torus --out-dir " + (dir / "b").string(), "unknown --bases 'torus'");
+    expectRefused("--interpolations bicubic --out-dir " + (dir / "b").string(),
+                  "unknown --interpolations 'bicubic'");
     EXPECT_FALSE(std::filesystem::exists(dir / "b"));
 }
 

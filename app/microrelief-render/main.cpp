@@ -13,6 +13,7 @@
 #include "core/Log.h"
 #include "image/ImageFile.h"
 #include "trace/Accuracy.h"
+#include "trace/ReferenceTracer.h"
 
 using namespace microrelief;
 
@@ -39,6 +40,21 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
     std::printf("  out of the iteration budget  %8zu px\n", a.exhausted);
 }
 
+// The scene contract keeps the eye outside the relief's solid; from inside it no picture
+// is defined (the methods and the reference disagree on what the rays meet), so say so.
+// The exact reference answers: a ray from inside the solid hits it at t = 0.
+void warnIfEyeInsideTheSolid(const HeightMap& map, const RenderJob& job,
+                             const std::filesystem::path& heightFile) {
+    const Camera& camera = job.camera;
+    const ReferenceHit hit = traceReference({&map, job.heightScale, job.base, job.interpolation},
+                                            Ray{camera.eye, camera.target - camera.eye});
+    if (hit && hit.t == 0.0) {
+        logWarning("--eye lies inside the relief's solid (under the surface of " +
+                   heightFile.filename().string() +
+                   "): the picture is undefined there; move the eye above the surface");
+    }
+}
+
 int run(const RenderOptions& o) {
     if (o.batch.active()) return runBatch(o);  // a camera path: many frames
     const auto start = std::chrono::steady_clock::now();
@@ -49,6 +65,7 @@ int run(const RenderOptions& o) {
                              : std::vector{o.out});
     const std::filesystem::path heightFile = o.heightFile ? *o.heightFile : defaultHeightMapPath();
     const HeightMap map = loadHeightMap(heightFile, o.load);
+    warnIfEyeInsideTheSolid(map, o.job, heightFile);
 
     const auto context = createHeadlessContext(o.backend);
     if (o.verbose)

@@ -99,6 +99,27 @@ TEST_F(RenderCli, NegativeCoordinatesInBothSpellings) {
     EXPECT_EQ(below.status, 0) << below.err;
 }
 
+// The spec keeps the eye outside the solid: an eye under the surface still renders, with a
+// warning that names the map; above it, or below the base plane, there is none.
+TEST_F(RenderCli, AnEyeInsideTheSolidIsWarnedOf) {
+    const auto out = (dir / "a.png").string();
+    const test::RunResult inside =
+        run(small + "--eye 0.05,0.005,0.05 --target -0.3,0,-0.3 --out " + out);
+    EXPECT_EQ(inside.status, 0) << inside.err;
+    EXPECT_NE(inside.err.find("warning: --eye lies inside the relief's solid (under the surface "
+                              "of cobbles.png)"),
+              std::string::npos)
+        << inside.err;
+    const test::RunResult column =
+        run(small + "--base cylinder --eye 0,0,0.301 --target 0.3,0,0.3 --out " + out);
+    EXPECT_NE(column.err.find("inside the relief's solid"), std::string::npos) << column.err;
+    for (const std::string eye : {"0.05,0.2,0.05", "-0.3,-1,0.2"}) {
+        const test::RunResult outside = run(small + "--eye " + eye + " --out " + out);
+        EXPECT_EQ(outside.status, 0) << outside.err;
+        EXPECT_EQ(outside.err.find("inside"), std::string::npos) << eye << ": " << outside.err;
+    }
+}
+
 TEST_F(RenderCli, BadArgumentsExitTwo) {
     expectFailure(run(small + "--size 0x10"), 2, "--size");
     expectFailure(run(small + "--eye 1,2"), 2, "--eye");

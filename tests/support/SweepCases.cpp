@@ -85,7 +85,7 @@ MakeMap once(MakeMap make) {
 }
 
 // The curved bases' maps: the seam, real-looking and rough relief, spikes, odd and
-// non-square sizes, 1 x 1, a 16-bit PNG and a float EXR; each on a cylinder and on an
+// non-square sizes (wider and narrower than tall), 1 x 1, a 16-bit PNG and a float EXR; each on a cylinder and on an
 // ellipsoid (a sphere for some).
 void addCurvedRecipes(std::vector<SweepMapRecipe>& recipes) {
     const std::vector<std::pair<std::string, std::pair<MakeMap, double>>> relief = {
@@ -94,6 +94,8 @@ void addCurvedRecipes(std::vector<SweepMapRecipe>& recipes) {
         {"white", {[] { return share(synth::whiteNoise(64, 32, 9)); }, 0.1}},
         {"spikes", {[] { return share(spikes(96, 6)); }, 0.2}},
         {"oblong75x33", {[] { return share(synth::valueNoise(75, 33, 6.0, 3, 12)); }, 0.15}},
+        // Narrower than tall: levels with one column of pyramid nodes round the axis.
+        {"tall33x75", {[] { return share(synth::valueNoise(33, 75, 6.0, 3, 13)); }, 0.15}},
         {"single1x1", {[] { return share(synth::flat(1, 1, 0.6f)); }, 0.1}},
         {"png16",
          {[] { return throughFile(synth::cobbles(128, 64, 3), PixelType::UInt16, "globe16.png"); },

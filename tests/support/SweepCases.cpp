@@ -85,8 +85,8 @@ MakeMap once(MakeMap make) {
 }
 
 // The curved bases' maps: the seam, real-looking and rough relief, spikes, odd and
-// non-square sizes (wider and narrower than tall), 1 x 1, a 16-bit PNG and a float EXR; each on a cylinder and on an
-// ellipsoid (a sphere for some).
+// non-square sizes (wider and narrower than tall), 1 x 1, a 16-bit PNG and a float EXR; each on a
+// cylinder and on an ellipsoid (a sphere for some).
 void addCurvedRecipes(std::vector<SweepMapRecipe>& recipes) {
     const std::vector<std::pair<std::string, std::pair<MakeMap, double>>> relief = {
         {"seam", {[] { return share(seamMap(96, 48)); }, 0.15}},
@@ -94,8 +94,6 @@ void addCurvedRecipes(std::vector<SweepMapRecipe>& recipes) {
         {"white", {[] { return share(synth::whiteNoise(64, 32, 9)); }, 0.1}},
         {"spikes", {[] { return share(spikes(96, 6)); }, 0.2}},
         {"oblong75x33", {[] { return share(synth::valueNoise(75, 33, 6.0, 3, 12)); }, 0.15}},
-        // Narrower than tall: levels with one column of pyramid nodes round the axis.
-        {"tall33x75", {[] { return share(synth::valueNoise(33, 75, 6.0, 3, 13)); }, 0.15}},
         {"single1x1", {[] { return share(synth::flat(1, 1, 0.6f)); }, 0.1}},
         {"png16",
          {[] { return throughFile(synth::cobbles(128, 64, 3), PixelType::UInt16, "globe16.png"); },
@@ -107,6 +105,8 @@ void addCurvedRecipes(std::vector<SweepMapRecipe>& recipes) {
               return throughFile(tall, PixelType::Float, "tall-curved.exr");
           },
           0.06}},
+        // Narrower than tall: levels with one column of pyramid nodes round the axis.
+        {"tall33x75", {[] { return share(synth::valueNoise(33, 75, 6.0, 3, 13)); }, 0.15}},
     };
     for (std::size_t k = 0; k < relief.size(); ++k) {
         const auto& [name, data] = relief[k];

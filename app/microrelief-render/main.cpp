@@ -65,13 +65,13 @@ int run(const RenderOptions& o) {
                              : std::vector{o.out});
     const std::filesystem::path heightFile = o.heightFile ? *o.heightFile : defaultHeightMapPath();
     const HeightMap map = loadHeightMap(heightFile, o.load);
-    warnIfEyeInsideTheSolid(map, o.job, heightFile);
 
     const auto context = createHeadlessContext(o.backend);
     if (o.verbose)
         logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
                 context->description());
     const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.job);
+    warnIfEyeInsideTheSolid(map, o.job, heightFile);  // the camera checked by now
     const RenderedFrame& frame = result.frame;
 
     std::size_t exhausted = 0;

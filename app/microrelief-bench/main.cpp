@@ -163,6 +163,10 @@ int main(int argc, char** argv) {
         });
         options.interpolations =
             parseList(interpolationList, "--interpolation", "--interpolations", parseInterpolation);
+        if (options.bases.empty())
+            throwBadInput("--bases names no base (a comma-separated list: plane,cylinder,...)");
+        if (options.interpolations.empty())
+            throwBadInput("--interpolations names no interpolation (bilinear,biquadratic)");
         if (options.methods.empty())
             throwBadInput(
                 "--methods names no method (a comma-separated list: multilevel,maxmip,...)");

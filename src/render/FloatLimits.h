@@ -39,6 +39,10 @@ inline constexpr double kMaxWorldCoordinate = 1e6;
 // lose their length to underflow when squared in float).
 inline constexpr double kMinDirectionComponent = 1e-6;
 
+// Derived for the plane's map space. On a curved base the same checks run, and map space
+// there has other scales (Y is H / (L/2) texels a unit on a cylinder of length L): not a
+// derived bound there, only the plane's, which a review found can be looser.
+//
 // What the limits need of a map: its size and its largest height.
 struct MapExtent {
     int width = 0, height = 0;  // texels

@@ -61,9 +61,9 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     const GL& gl = context_.gl();
     // Another size or curved base of the map's addressing; between the plane and a curved
     // base the pyramid is built anew (setHeightMap).
-    if (job.base != renderer_->base()) renderer_->setBase(job.base);
     if (job.interpolation != renderer_->interpolation())
         throwRuntime("HeadlessRenderer::render: the map was set for another interpolation");
+    if (job.base != renderer_->base()) renderer_->setBase(job.base);
     renderer_->setMethod(job.method);  // compiled once per method, then looked up
     if (heightScale_ != job.heightScale) {
         renderer_->setHeightScale(job.heightScale);
@@ -76,12 +76,15 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     // Tiles no larger than the GL's viewport and renderbuffer limits, and kDefaultTileSide
     // (a 4096 x 4096 target holds 640 MB of attachments; llvmpipe fails to complete one of
     // 16384 x 16384). Each tile casts the whole picture's rays (ReliefRenderer::draw).
-    GLint maxRenderbuffer = 0, maxViewport[2] = {0, 0};
+    // The colour attachments are textures: GL_MAX_TEXTURE_SIZE bounds them too.
+    GLint maxRenderbuffer = 0, maxTexture = 0, maxViewport[2] = {0, 0};
     gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
     gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
     const int tile = std::min({job.tileSide > 0 ? job.tileSide : kDefaultTileSide,
-                               static_cast<int>(maxRenderbuffer), static_cast<int>(maxViewport[0]),
-                               static_cast<int>(maxViewport[1])});
+                               static_cast<int>(maxRenderbuffer), static_cast<int>(maxTexture),
+                               static_cast<int>(maxViewport[0]), static_cast<int>(maxViewport[1])});
+    if (tile < 1) throwRuntime("the GL reports no usable framebuffer size (a failed query)");
     const int targetWidth = std::min(tile, job.width), targetHeight = std::min(tile, job.height);
     if (!target_ || target_->width() != targetWidth || target_->height() != targetHeight) {
         target_.reset();

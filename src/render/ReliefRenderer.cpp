@@ -187,8 +187,8 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
                       " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) +
                       ")");
     }
-    // Throws before anything changes.
-    current_ = &program({method_.method, countFetches_, base.kind, interpolation});
+    // Both throw before anything changes (the program is compiled, or looked up, first).
+    CompiledProgram& next = program({method_.method, countFetches_, base.kind, interpolation});
     const MaxPyramid pyramid = [&] {
         try {
             // On the GPU from here on; only its shape is kept.
@@ -198,6 +198,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
                          std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
         }
     }();
+    current_ = &next;  // std::map: the reference stays valid
     base_ = base;
     wrapsU_ = base.wrapsU();
     interpolation_ = interpolation;

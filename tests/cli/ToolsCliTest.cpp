@@ -54,6 +54,9 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--out-dir " + (dir / "file.txt" / "sub").string(), "is not a folder");
     expectRefused("--methods '' --out-dir " + (dir / "b").string(), "--methods names no method");
     expectRefused("--methods multilevel,,maxmip --out-dir " + (dir / "b").string(), "--method");
+    expectRefused("--bases '' --out-dir " + (dir / "b").string(), "--bases names no base");
+    expectRefused("--interpolations '' --out-dir " + (dir / "b").string(),
+                  "--interpolations names no interpolation");
     // Unknown items, named with the list flag the user gave.
     expectRefused("--methods foo --out-dir " + (dir / "b").string(), "unknown --methods 'foo'");
     expectRefused("--bases torus --out-dir " + (dir / "b").string(), "unknown --bases 'torus'");

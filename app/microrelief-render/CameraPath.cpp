@@ -209,11 +209,18 @@ RowCamera parseCsvRow(const std::string& text, const CsvLayout& layout, const st
 
 // A JSON value, as far as camera rows need: numbers keep their text (so that NaN or a
 // typo gets the same message as in CSV), objects their members in order.
+// (A member is a struct of its own, not a std::pair: a pair of an incomplete JsonValue
+// does not compile with clang and libstdc++ 12, the sanitizer build's.)
+struct JsonMember;
 struct JsonValue {
     enum class Kind { Null, Boolean, Number, String, Array, Object } kind = Kind::Null;
     std::string text;  // a number's token, a string's contents
     std::vector<JsonValue> items;
-    std::vector<std::pair<std::string, JsonValue>> members;
+    std::vector<JsonMember> members;
+};
+struct JsonMember {
+    std::string key;
+    JsonValue value;
 };
 
 class JsonReader {
@@ -262,7 +269,7 @@ private:
                 if (p_ >= s_.size() || s_[p_] != '"') fail("expected a key in quotes");
                 std::string key = string();
                 expect(':');
-                v.members.emplace_back(std::move(key), value(depth + 1));
+                v.members.push_back({std::move(key), value(depth + 1)});
             } while (take(','));
             expect('}');
         } else if (c == '[') {

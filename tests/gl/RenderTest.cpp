@@ -540,6 +540,26 @@ protected:
                     scope == AccuracyScope::TopSurface ? " (top)" : "", a.summary().c_str());
         return a;
     }
+
+    // maxmip on `base`, 64 x 64 through `camera`, held to the exact methods' thresholds
+    // against the reference, with at least `minHits` hit pixels.
+    void expectMaxMipExact(const HeightMap& map, const BaseShape& base, Interpolation interpolation,
+                           const Camera& camera, const std::string& name, std::size_t minHits) {
+        RenderJob job;
+        job.camera = camera;
+        job.width = job.height = 64;
+        job.base = base;
+        job.interpolation = interpolation;
+        job.method.method = Method::MaxMip;
+        const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
+        const test::Accuracy a = test::compareWithReference(
+            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, base, interpolation});
+        std::printf("    maxmip on %-40s: %s\n", name.c_str(), a.summary().c_str());
+        EXPECT_GT(a.referenceHits, minHits) << name;
+        EXPECT_LE(a.coverageMismatchPercent(), 0.1) << name;
+        EXPECT_LE(a.offHalfTexelPercent(), 0.2) << name;
+        EXPECT_EQ(a.exhausted, 0u) << name;
+    }
 };
 
 TEST_F(Peers, MaxMipIsExact) {
@@ -572,20 +592,7 @@ TEST_F(Peers, MaxMipIsExactOnCurvedBases) {
             for (const Camera& camera :
                  {test::orbitCamera(20.0, 40.0, 1.4), test::orbitCamera(5.0, -90.0, 1.2),
                   test::orbitCamera(80.0, 200.0, 1.3), high}) {
-                RenderJob job;
-                job.camera = camera;
-                job.width = job.height = 64;
-                job.base = base;
-                job.interpolation = interpolation;
-                job.method.method = Method::MaxMip;
-                const HeadlessResult r = renderHeadless(test::glContext(), map, "cobbles", job);
-                const test::Accuracy a = test::compareWithReference(
-                    r.frame, r.camera, ReliefGeometry{&map, job.heightScale, base, interpolation});
-                std::printf("    maxmip on %-21s: %s\n", name.c_str(), a.summary().c_str());
-                EXPECT_GT(a.referenceHits, 1000u);
-                EXPECT_LE(a.coverageMismatchPercent(), 0.1) << name;
-                EXPECT_LE(a.offHalfTexelPercent(), 0.2) << name;
-                EXPECT_EQ(a.exhausted, 0u) << name;
+                expectMaxMipExact(map, base, interpolation, camera, name, 1000);
             }
         }
     }
@@ -608,22 +615,9 @@ TEST_F(Peers, MaxMipNodesThatSpanEveryColumnHaveNoSideInX) {
             for (const auto& [map, camera, view] :
                  {std::tuple{&tall, seam, "tall map, the seam"},
                   std::tuple{&square, far, "square map, from afar"}}) {
-                RenderJob job;
-                job.camera = camera;
-                job.width = job.height = 64;
-                job.base = base;
-                job.interpolation = interpolation;
-                job.method.method = Method::MaxMip;
-                const HeadlessResult r = renderHeadless(test::glContext(), *map, "cobbles", job);
-                const test::Accuracy a = test::compareWithReference(
-                    r.frame, r.camera, ReliefGeometry{map, job.heightScale, base, interpolation});
-                const std::string name =
-                    baseName(base) + " " + interpolationName(interpolation) + ", " + view;
-                std::printf("    maxmip on %-40s: %s\n", name.c_str(), a.summary().c_str());
-                EXPECT_GT(a.referenceHits, 300u) << name;
-                EXPECT_LE(a.coverageMismatchPercent(), 0.1) << name;
-                EXPECT_LE(a.offHalfTexelPercent(), 0.2) << name;
-                EXPECT_EQ(a.exhausted, 0u) << name;
+                expectMaxMipExact(
+                    *map, base, interpolation, camera,
+                    baseName(base) + " " + interpolationName(interpolation) + ", " + view, 300);
             }
         }
     }

@@ -1,13 +1,14 @@
 # The GL loader is generated at build time by glad2 (Debian's python3-glad) from the
 # Khronos XML it ships (--reproducible: no download). --mx makes a per-context function
 # table (GladGLContext), so one process can hold EGL, OSMesa and GLFW contexts at once
-# without ever calling the gl* symbols that libGL or libOSMesa export.
+# without ever calling the gl* symbols that libGL or libOSMesa export. Installed with
+# microrelief::gl, its header under include/microrelief/third_party (gl/Gl.h).
 find_program(GLAD_EXECUTABLE glad REQUIRED
   DOC "glad2 loader generator (Debian package python3-glad)")
 
 set(GLAD_OUT ${PROJECT_BINARY_DIR}/glad)
 set(GLAD_API "gl:core=3.3")
-set(GLAD_EXTENSIONS "GL_KHR_debug")
+set(GLAD_EXTENSIONS "GL_KHR_debug,GL_ARB_clip_control")
 
 add_custom_command(
   OUTPUT ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/include/glad/gl.h
@@ -17,5 +18,8 @@ add_custom_command(
   VERBATIM)
 
 add_library(microrelief_glad STATIC ${GLAD_OUT}/src/gl.c)
-target_include_directories(microrelief_glad SYSTEM PUBLIC ${GLAD_OUT}/include)
-set_target_properties(microrelief_glad PROPERTIES POSITION_INDEPENDENT_CODE ON)
+add_library(microrelief::glad ALIAS microrelief_glad)
+target_include_directories(microrelief_glad SYSTEM PUBLIC
+  $<BUILD_INTERFACE:${GLAD_OUT}/include>
+  $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/microrelief/third_party>)
+set_target_properties(microrelief_glad PROPERTIES POSITION_INDEPENDENT_CODE ON EXPORT_NAME glad)

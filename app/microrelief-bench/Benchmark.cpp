@@ -5,10 +5,10 @@
 #include <cmath>
 #include <optional>
 
-#include "core/DataPaths.h"
-#include "render/OffscreenTarget.h"
-#include "synth/SyntheticMaps.h"
-#include "trace/Accuracy.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/render/OffscreenTarget.h"
+#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/trace/Accuracy.h"
 
 namespace microrelief::bench {
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "context/GlContext.h"
-#include "heightmap/HeightMap.h"
-#include "render/ReliefRenderer.h"
+#include "microrelief/context/GlContext.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/ReliefRenderer.h"
 
 namespace microrelief::bench {
 

@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief::bench {
 

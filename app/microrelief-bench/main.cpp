@@ -12,9 +12,11 @@
 #include "Benchmark.h"
 #include "Report.h"
 #include "SceneOptions.h"
-#include "core/DataPaths.h"
-#include "core/Error.h"
-#include "core/Log.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/Log.h"
+#include "microrelief/heightmap/HeightMapFile.h"
 
 using namespace microrelief;
 using namespace microrelief::bench;

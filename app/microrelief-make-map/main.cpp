@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "SceneOptions.h"
-#include "core/Error.h"
-#include "image/ImageFile.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/image/ImageFile.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

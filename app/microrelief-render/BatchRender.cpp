@@ -11,10 +11,12 @@
 #include "FramePattern.h"
 #include "Manifest.h"
 #include "Progress.h"
-#include "core/DataPaths.h"
-#include "core/Error.h"
-#include "core/Log.h"
-#include "image/ImageFile.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/Log.h"
+#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/image/ImageFile.h"
 
 namespace microrelief {
 

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "Csv.h"
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

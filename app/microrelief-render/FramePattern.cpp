@@ -4,7 +4,7 @@
 #include <cassert>
 #include <charconv>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

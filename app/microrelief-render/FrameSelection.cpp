@@ -3,7 +3,7 @@
 #include <charconv>
 #include <climits>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

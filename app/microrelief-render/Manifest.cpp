@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "Csv.h"
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

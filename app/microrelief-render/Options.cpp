@@ -3,7 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include "SceneOptions.h"
-#include "core/Error.h"
+#include "microrelief/Version.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 
@@ -87,7 +88,8 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
                    "{shard} and {shards} expand (default: manifest.csv, with --shard "
                    "manifest-{shard}-of-{shards}.csv, in the folder of --out)")
         ->group(paths);
-    app.set_version_flag("--version", std::string("microrelief-render ") + MICRORELIEF_VERSION);
+    app.set_version_flag("--version",
+                         std::string("microrelief-render ") + MICRORELIEF_VERSION_STRING);
     app.allow_windows_style_options(false);
 
     return parseCommandLine<RenderOptions>(app, argc, argv, [&] {

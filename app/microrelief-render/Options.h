@@ -8,9 +8,9 @@
 
 #include "CommandLine.h"
 #include "FrameSelection.h"
-#include "context/GlContext.h"
-#include "heightmap/HeightMap.h"
-#include "render/HeadlessRender.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/HeadlessRender.h"
 
 namespace microrelief {
 

@@ -8,12 +8,14 @@
 
 #include "BatchRender.h"
 #include "Options.h"
-#include "core/DataPaths.h"
-#include "core/Error.h"
-#include "core/Log.h"
-#include "image/ImageFile.h"
-#include "trace/Accuracy.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/Log.h"
+#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/image/ImageFile.h"
+#include "microrelief/trace/Accuracy.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

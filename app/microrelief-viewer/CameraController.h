@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/Camera.h"
+#include "microrelief/render/Camera.h"
 
 namespace microrelief {
 

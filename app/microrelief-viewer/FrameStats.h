@@ -6,8 +6,8 @@
 #include <array>
 #include <optional>
 
-#include "gl/Objects.h"
-#include "render/OffscreenTarget.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/render/OffscreenTarget.h"
 
 namespace microrelief {
 

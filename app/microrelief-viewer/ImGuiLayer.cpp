@@ -1,7 +1,7 @@
 #include "ImGuiLayer.h"
 
 #include "ImGuiBackends.h"
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

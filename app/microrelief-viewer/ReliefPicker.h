@@ -6,9 +6,9 @@
 #include <memory>
 #include <optional>
 
-#include "heightmap/HeightMap.h"
-#include "render/Camera.h"
-#include "trace/MultilevelTracer.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/trace/MultilevelTracer.h"
 
 namespace microrelief {
 

@@ -8,10 +8,11 @@
 #include <cstdio>
 #include <ctime>
 
-#include "core/DataPaths.h"
-#include "core/Error.h"
-#include "core/Log.h"
-#include "image/ImageFile.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/Log.h"
+#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/image/ImageFile.h"
 
 namespace microrelief {
 

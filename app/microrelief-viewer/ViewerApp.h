@@ -16,9 +16,9 @@
 #include "ShaderWatcher.h"
 #include "ViewerOptions.h"
 #include "ViewerPanel.h"
-#include "context/GlfwContext.h"
-#include "render/OffscreenTarget.h"
-#include "render/ReliefRenderer.h"
+#include "microrelief/context/GlfwContext.h"
+#include "microrelief/render/OffscreenTarget.h"
+#include "microrelief/render/ReliefRenderer.h"
 
 namespace microrelief {
 

@@ -2,8 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/Error.h"
-#include "image/ImageFile.h"
+#include "microrelief/Version.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/image/ImageFile.h"
 
 namespace microrelief {
 
@@ -72,7 +73,8 @@ ParseResult<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     scene.addMapAndCamera(app);
     scene.addShading(app);
     addViewerFlags(app, o, screenshot, windowScreenshot, shaderDir, noVsync, noPanel);
-    app.set_version_flag("--version", std::string("microrelief-viewer ") + MICRORELIEF_VERSION);
+    app.set_version_flag("--version",
+                         std::string("microrelief-viewer ") + MICRORELIEF_VERSION_STRING);
     app.allow_windows_style_options(false);
 
     return parseCommandLine<ViewerOptions>(app, argc, argv, [&] {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/ReliefRenderer.h"
+#include "microrelief/render/ReliefRenderer.h"
 
 namespace microrelief {
 

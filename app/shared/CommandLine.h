@@ -12,8 +12,8 @@
 #include <optional>
 #include <string>
 
-#include "core/Error.h"
-#include "core/Log.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/Log.h"
 
 namespace microrelief {
 

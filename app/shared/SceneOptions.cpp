@@ -10,8 +10,8 @@
 #include <sstream>
 #include <vector>
 
-#include "core/Error.h"
-#include "render/FloatLimits.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/render/FloatLimits.h"
 
 namespace microrelief {
 

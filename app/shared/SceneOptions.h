@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "heightmap/HeightMap.h"
-#include "render/HeadlessRender.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/HeadlessRender.h"
 
 namespace CLI {
 class App;

@@ -3,7 +3,7 @@
 // ellipsoids, or cylinders"; scene-and-cli.md, "Base surfaces"), for the base the host
 // chooses with MICRORELIEF_BASE (relief_map.glsl): 0 the plane (base_plane.glsl), 1 a
 // cylinder (base_cylinder.glsl), 2 an ellipsoid (base_ellipsoid.glsl). The C++ mirror is
-// src/base/BaseSurface.h; a new base is one file in each, and a branch here.
+// include/microrelief/base/BaseSurface.h; a new base is one file in each, and a branch here.
 //
 // The tracers work in the base's frame, where the ray is a straight line o + t d with the
 // world's t (baseFramePoint, baseFrameVector). For a segment [ta, tb] of it the seam gives

@@ -1,10 +1,10 @@
-#include "base/BaseShape.h"
+#include "microrelief/base/BaseShape.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

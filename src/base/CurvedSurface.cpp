@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "base/BaseSurface.h"
+#include "microrelief/base/BaseSurface.h"
 
 namespace microrelief {
 

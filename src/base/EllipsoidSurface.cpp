@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "base/BaseSurface.h"
 #include "base/CurvedCommon.h"
+#include "microrelief/base/BaseSurface.h"
 
 namespace microrelief {
 

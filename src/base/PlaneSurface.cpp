@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "base/BaseSurface.h"
+#include "microrelief/base/BaseSurface.h"
 
 namespace microrelief {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "context/GlContext.h"
-#include "core/Error.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

@@ -1,6 +1,8 @@
-#include "context/GlContext.h"
+#include "microrelief/context/GlContext.h"
 
-#include "core/Error.h"
+#include <utility>
+
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 
@@ -28,60 +30,28 @@ std::string GlContext::version() const {
     return glString(gl_, GL_VERSION);
 }
 
-std::unique_ptr<GlContext> createHeadlessContext(Backend backend) {
-    switch (backend) {
-        case Backend::Egl:
-            return createEglContext();
-        case Backend::OsMesa:
-            return createOsMesaContext();
-        case Backend::Auto:
-            break;
+namespace {
+// A context someone else made and keeps current.
+class AdoptedContext final : public GlContext {
+public:
+    AdoptedContext(GLADloadfunc load, std::string description)
+        : description_(std::move(description)) {
+        // glad's user-pointer loader, with the plain loader as the user pointer.
+        loadFunctions(
+            [](void* user, const char* name) { return reinterpret_cast<GLADloadfunc>(user)(name); },
+            reinterpret_cast<void*>(load), description_);
     }
-    std::string eglReason;
-    try {
-        return createEglContext();
-    } catch (const Error& e) {
-        eglReason = e.what();
-    }
-    try {
-        return createOsMesaContext();
-    } catch (const Error& e) {
-        throwRuntime("no GL backend available: " + eglReason + "; " + e.what());
-    }
-}
+    void makeCurrent() override {}
+    std::string description() const override { return description_; }
 
-bool isEglPresent();     // EglContext.cpp
-bool isOsMesaPresent();  // OsMesaContext.cpp
+private:
+    std::string description_;
+};
+}  // namespace
 
-bool isBackendPresent(Backend backend) {
-    switch (backend) {
-        case Backend::Egl:
-            return isEglPresent();
-        case Backend::OsMesa:
-            return isOsMesaPresent();
-        case Backend::Auto:
-            return isEglPresent() || isOsMesaPresent();
-    }
-    return false;
-}
-
-Backend parseBackend(const std::string& name) {
-    if (name == "auto") return Backend::Auto;
-    if (name == "egl") return Backend::Egl;
-    if (name == "osmesa") return Backend::OsMesa;
-    throwBadInput("unknown backend '" + name + "' (expected auto, egl or osmesa)");
-}
-
-const char* backendName(Backend backend) {
-    switch (backend) {
-        case Backend::Auto:
-            return "auto";
-        case Backend::Egl:
-            return "egl";
-        case Backend::OsMesa:
-            return "osmesa";
-    }
-    return "?";
+std::unique_ptr<GlContext> adoptCurrentContext(GLADloadfunc load, const std::string& description) {
+    if (load == nullptr) throwRuntime(description + ": no GetProcAddress function given");
+    return std::make_unique<AdoptedContext>(load, description);
 }
 
 }  // namespace microrelief

@@ -1,10 +1,10 @@
-#include "context/GlfwContext.h"
+#include "microrelief/context/GlfwContext.h"
 
 #include <GLFW/glfw3.h>
 
 #include <string>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

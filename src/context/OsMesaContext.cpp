@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "context/GlContext.h"
-#include "core/Error.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

@@ -1,8 +1,8 @@
-#include "core/DataPaths.h"
+#include "microrelief/core/DataPaths.h"
 
 #include <cstdlib>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

@@ -1,4 +1,4 @@
-#include "core/Log.h"
+#include "microrelief/core/Log.h"
 
 #include <iostream>
 

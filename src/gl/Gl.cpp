@@ -1,4 +1,4 @@
-#include "gl/Gl.h"
+#include "microrelief/gl/Gl.h"
 
 #include <cstdio>
 

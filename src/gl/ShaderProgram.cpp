@@ -1,10 +1,10 @@
-#include "gl/ShaderProgram.h"
+#include "microrelief/gl/ShaderProgram.h"
 
 #include <sstream>
 #include <vector>
 
-#include "core/Error.h"
-#include "core/Log.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/Log.h"
 
 namespace microrelief::gl {
 

@@ -1,11 +1,11 @@
-#include "gl/ShaderSource.h"
+#include "microrelief/gl/ShaderSource.h"
 
 #include <algorithm>
 #include <fstream>
 #include <regex>
 #include <sstream>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

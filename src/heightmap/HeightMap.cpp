@@ -1,15 +1,12 @@
-#include "heightmap/HeightMap.h"
-
-#include <OpenImageIO/imageio.h>
+#include "microrelief/heightmap/HeightMap.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
-#include "core/Error.h"
-#include "heightmap/ExrCheck.h"
-#include "heightmap/PngCheck.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 
@@ -66,14 +63,6 @@ float HeightMap::minValue() const {
     return samples.empty() ? 0.0f : *std::min_element(samples.begin(), samples.end());
 }
 
-namespace {
-
-std::string describe(const std::filesystem::path& file) {
-    return file.string();
-}
-
-}  // namespace
-
 void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options,
                     const std::string& source) {
     if (map.width <= 0 || map.height <= 0 || map.empty()) {
@@ -113,109 +102,51 @@ void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options,
 
 namespace {
 
-// Before OpenImageIO sees the path: a device (/dev/zero), a FIFO or a socket never ends
-// or blocks, and OpenImageIO's format probes would read it forever.
-void checkRegularFile(const std::filesystem::path& file, const std::string& name) {
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(file, ec);
-    if (status.type() == std::filesystem::file_type::not_found)
-        throwBadInput(name + ": no such file");
-    if (ec) throwBadInput(name + ": cannot read (" + ec.message() + ")");
-    if (status.type() == std::filesystem::file_type::directory)
-        throwBadInput(name + ": is a directory, not an image");
-    if (status.type() != std::filesystem::file_type::regular)
-        throwBadInput(name +
-                      ": is not a regular file (a device, FIFO or socket); give an image file");
-}
-
-void checkSize(const std::string& name, long long width, long long height, int maxSide) {
-    if (width <= 0 || height <= 0) throwBadInput(name + ": the image is empty (0 pixels)");
-    if (width > maxSide || height > maxSide) {
-        throwBadInput(name + ": " + std::to_string(width) + " x " + std::to_string(height) +
-                      " is larger than the " + std::to_string(maxSide) + " x " +
-                      std::to_string(maxSide) + " a height map may have");
+// heightMapFromSamples for either sample type: `scale` maps a stored value to [0, 1].
+template <class Sample>
+HeightMap copySamples(const Sample* samples, int width, int height, std::size_t rowStrideBytes,
+                      float scale, const HeightMapLoadOptions& options, const std::string& source) {
+    if (samples == nullptr) throwBadInput(source + ": no samples (a null pointer)");
+    if (width <= 0 || height <= 0)
+        throwBadInput(source + ": the height map has no samples (" + std::to_string(width) + " x " +
+                      std::to_string(height) + ")");
+    if (width > options.maxSide || height > options.maxSide) {
+        throwBadInput(source + ": " + std::to_string(width) + " x " + std::to_string(height) +
+                      " is larger than the " + std::to_string(options.maxSide) + " x " +
+                      std::to_string(options.maxSide) + " a height map may have");
     }
-}
-
-std::string oneLine(std::string text) {
-    std::replace(text.begin(), text.end(), '\n', ' ');
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
+    const std::size_t rowBytes = static_cast<std::size_t>(width) * sizeof(Sample);
+    if (rowStrideBytes < rowBytes) {
+        throwBadInput(source + ": a row stride of " + std::to_string(rowStrideBytes) +
+                      " bytes is shorter than a row (" + std::to_string(rowBytes) + " bytes)");
+    }
+    HeightMap map(width, height);
+    const auto* bytes = reinterpret_cast<const unsigned char*>(samples);
+    for (int j = 0; j < height; ++j) {
+        // Rows need not be aligned for Sample: copy each value's bytes.
+        const unsigned char* row = bytes + rowStrideBytes * static_cast<std::size_t>(j);
+        for (int i = 0; i < width; ++i) {
+            Sample value;
+            std::memcpy(&value, row + static_cast<std::size_t>(i) * sizeof(Sample), sizeof(Sample));
+            map.at(i, j) = static_cast<float>(value) * scale;
+        }
+    }
+    prepareHeights(map, options, source);
+    return map;
 }
 
 }  // namespace
 
-HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
-    const std::string name = describe(file);
-    checkRegularFile(file, name);
-    if (hasPngSignature(file)) {
-        // The size first, from IHDR alone, then the structure (which inflates the data).
-        std::string defect;
-        const std::optional<PngHeader> header = readPngHeader(file, defect);
-        if (!header) throwBadInput(name + ": not a valid PNG (" + defect + ")");
-        checkSize(name, header->width, header->height, options.maxSide);
-        if (const auto bad = pngStructureDefect(file))
-            throwBadInput(name + ": not a valid PNG (" + *bad + ")");
-    } else if (hasExrMagic(file)) {
-        std::string defect;
-        const auto parts = readExrHeader(file, defect);
-        if (!parts) throwBadInput(name + ": not a valid OpenEXR file (" + defect + ")");
-        for (const ExrPartSize& part : *parts)
-            checkSize(name, part.width, part.height, options.maxSide);
-    }
+HeightMap heightMapFromSamples(const float* samples, int width, int height,
+                               std::size_t rowStrideBytes, const HeightMapLoadOptions& options,
+                               const std::string& source) {
+    return copySamples(samples, width, height, rowStrideBytes, 1.0f, options, source);
+}
 
-    // The reader the extension names, and only that one: OpenImageIO's ImageInput::open
-    // tries every reader it has when that one fails, and some of the 28 are no place for
-    // a damaged file (the fuzzer had a 26-byte file make the WebP reader allocate 872 MB;
-    // the IFF probe reads /dev/zero forever). The format follows the extension, as for
-    // the outputs.
-    std::string extension = file.extension().string();
-    if (extension.size() < 2) throwBadInput(name + ": no extension to tell the image format by");
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    auto input = OIIO::ImageInput::create(extension.substr(1), /*do_open=*/false);
-    if (!input) {
-        OIIO::geterror();  // clear the pending message
-        throwBadInput(name + ": no image format OpenImageIO reads for the extension '" +
-                      file.extension().string() + "'");
-    }
-    OIIO::ImageSpec opened;
-    if (!input->open(name, opened)) {
-        std::string reason = oneLine(input->geterror());
-        if (reason.empty()) reason = "not a " + std::string(input->format_name()) + " file";
-        throwBadInput(name + ": cannot read the image (" + reason + ")");
-    }
-    const OIIO::ImageSpec& spec = input->spec();
-    checkSize(name, spec.width, spec.height, options.maxSide);
-    if (spec.depth > 1) throwBadInput(name + ": volume images are not height maps");
-    if (spec.nchannels > kMaxHeightMapChannels) {
-        throwBadInput(name + ": " + std::to_string(spec.nchannels) + " channels, more than the " +
-                      std::to_string(kMaxHeightMapChannels) + " a height map may have");
-    }
-    if (options.channel < 0 || options.channel >= spec.nchannels) {
-        throwBadInput(name + ": --channel " + std::to_string(options.channel) +
-                      " is out of range; the image has " + std::to_string(spec.nchannels) +
-                      " channel(s)");
-    }
-
-    try {
-        HeightMap map(spec.width, spec.height);
-        // Reading as FLOAT makes OpenImageIO normalise integer formats by their type range
-        // (uint8 / 255, uint16 / 65535) and pass float formats through unchanged.
-        const bool ok = input->read_image(0, 0, options.channel, options.channel + 1,
-                                          OIIO::TypeDesc::FLOAT, map.samples.data());
-        if (!ok) {
-            const std::string reason = oneLine(input->geterror());
-            throwBadInput(name + ": cannot read the pixels (" +
-                          (reason.empty() ? "truncated or corrupt" : reason) + ")");
-        }
-        input->close();
-        prepareHeights(map, options, name);
-        return map;
-    } catch (const std::bad_alloc&) {
-        throwRuntime(name + ": not enough memory for its " + std::to_string(spec.width) + " x " +
-                     std::to_string(spec.height) + " samples");
-    }
+HeightMap heightMapFromSamples(const std::uint16_t* samples, int width, int height,
+                               std::size_t rowStrideBytes, const HeightMapLoadOptions& options,
+                               const std::string& source) {
+    return copySamples(samples, width, height, rowStrideBytes, 1.0f / 65535.0f, options, source);
 }
 
 }  // namespace microrelief

@@ -1,4 +1,4 @@
-#include "heightmap/MaxPyramid.h"
+#include "microrelief/heightmap/MaxPyramid.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "heightmap/SurfacePatch.h"
+#include "microrelief/heightmap/SurfacePatch.h"
 
 #include <algorithm>
 #include <cmath>

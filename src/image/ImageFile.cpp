@@ -1,4 +1,4 @@
-#include "image/ImageFile.h"
+#include "microrelief/image/ImageFile.h"
 
 #include <OpenImageIO/imageio.h>
 #include <signal.h>
@@ -16,7 +16,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

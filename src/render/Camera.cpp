@@ -1,11 +1,11 @@
-#include "render/Camera.h"
+#include "microrelief/render/Camera.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

@@ -1,10 +1,10 @@
-#include "render/FloatLimits.h"
+#include "microrelief/render/FloatLimits.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

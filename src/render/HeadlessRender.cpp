@@ -1,11 +1,11 @@
-#include "render/HeadlessRender.h"
+#include "microrelief/render/HeadlessRender.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/DataPaths.h"
-#include "core/Error.h"
-#include "render/FloatLimits.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/render/FloatLimits.h"
 
 namespace microrelief {
 

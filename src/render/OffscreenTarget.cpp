@@ -1,10 +1,10 @@
-#include "render/OffscreenTarget.h"
+#include "microrelief/render/OffscreenTarget.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief {
 

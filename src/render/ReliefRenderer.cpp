@@ -1,4 +1,4 @@
-#include "render/ReliefRenderer.h"
+#include "microrelief/render/ReliefRenderer.h"
 
 #include <algorithm>
 #include <array>
@@ -7,9 +7,9 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "core/Error.h"
-#include "gl/ShaderProgram.h"
-#include "trace/MultilevelTracer.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/gl/ShaderProgram.h"
+#include "microrelief/trace/MultilevelTracer.h"
 
 namespace microrelief {
 
@@ -65,21 +65,6 @@ DebugView parseDebugView(const std::string& name) {
 
 const char* debugViewName(DebugView view) {
     return kDebugViewNames[static_cast<int>(view)];
-}
-
-ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale,
-                          const BaseShape& base) {
-    const double top = heightScale * maxHeight;
-    return {base.boxMin(width, height, top), base.boxMax(width, height, top), top};
-}
-
-ReliefExtent reliefExtent(const HeightMap& map, double heightScale, const BaseShape& base) {
-    return reliefExtent(map.width, map.height, map.maxValue(), heightScale, base);
-}
-
-double sceneRadius(const ReliefExtent& e) {
-    const glm::dvec3 corner = glm::max(glm::abs(e.min), glm::abs(e.max));
-    return 2.0 * std::max({corner.x, corner.y, corner.z});
 }
 
 ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,

@@ -1,9 +1,9 @@
-#include "synth/SyntheticMaps.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/Error.h"
+#include "microrelief/core/Error.h"
 
 namespace microrelief::synth {
 

@@ -1,11 +1,11 @@
-#include "trace/Accuracy.h"
+#include "microrelief/trace/Accuracy.h"
 
 #include <algorithm>
 #include <sstream>
 #include <vector>
 
-#include "core/Error.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 namespace microrelief {
 

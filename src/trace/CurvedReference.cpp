@@ -27,7 +27,7 @@
 #include <optional>
 #include <vector>
 
-#include "trace/ReferenceTracer.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 namespace microrelief::detail {
 

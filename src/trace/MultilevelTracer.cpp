@@ -1,4 +1,4 @@
-#include "trace/MultilevelTracer.h"
+#include "microrelief/trace/MultilevelTracer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "trace/ReferenceTracer.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 #include <algorithm>
 #include <array>

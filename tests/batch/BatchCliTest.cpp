@@ -18,7 +18,7 @@
 
 #include "Manifest.h"
 #include "TestSupport.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 extern char** environ;
 

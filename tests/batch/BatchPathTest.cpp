@@ -20,8 +20,8 @@
 #include "Manifest.h"
 #include "Progress.h"
 #include "TestSupport.h"
-#include "core/Error.h"
-#include "image/ImageFile.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/image/ImageFile.h"
 
 using namespace microrelief;
 

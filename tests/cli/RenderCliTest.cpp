@@ -10,8 +10,8 @@
 #include <cstdlib>
 
 #include "TestSupport.h"
-#include "context/GlContext.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "TestSupport.h"
-#include "core/Error.h"
-#include "render/Camera.h"
-#include "synth/SyntheticMaps.h"
-#include "trace/Accuracy.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/trace/Accuracy.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

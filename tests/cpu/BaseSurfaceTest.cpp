@@ -7,9 +7,9 @@
 #include <numbers>
 #include <random>
 
-#include "base/BaseSurface.h"
-#include "heightmap/MaxPyramid.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/base/BaseSurface.h"
+#include "microrelief/heightmap/MaxPyramid.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

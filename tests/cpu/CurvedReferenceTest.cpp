@@ -10,8 +10,8 @@
 #include <random>
 #include <tuple>
 
-#include "synth/SyntheticMaps.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

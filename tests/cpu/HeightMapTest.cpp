@@ -7,8 +7,9 @@
 #include <limits>
 
 #include "TestSupport.h"
-#include "core/Error.h"
-#include "heightmap/HeightMap.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/heightmap/HeightMapFile.h"
 
 using namespace microrelief;
 using microrelief::test::ScratchDir;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "TestSupport.h"
-#include "core/Error.h"
-#include "image/ImageFile.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/image/ImageFile.h"
 
 using namespace microrelief;
 

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <random>
 
-#include "heightmap/MaxPyramid.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/heightmap/MaxPyramid.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -4,10 +4,10 @@
 #include <random>
 
 #include "TestSupport.h"
-#include "render/Camera.h"
-#include "synth/SyntheticMaps.h"
-#include "trace/MultilevelTracer.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/trace/MultilevelTracer.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 
@@ -113,8 +113,7 @@ TEST(MultilevelTracer, AgreesWithTheReferenceOnCurvedBases) {
         {"sphere 1x1", synth::flat(1, 1, 0.5f), 0.2, BaseShape::sphere()},
         {"cylinder zero", synth::flat(8, 8, 0.0f), 0.1, BaseShape::cylinder()},
     };
-    for (const auto& [c, interpolation] :
-         [&] {
+    for (const auto& [c, interpolation] : [&] {
              std::vector<std::pair<Case, Interpolation>> all;
              for (const Case& c : cases)
                  for (Interpolation i : {Interpolation::Bilinear, Interpolation::Biquadratic})

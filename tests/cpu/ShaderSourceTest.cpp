@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "TestSupport.h"
-#include "core/Error.h"
-#include "gl/ShaderSource.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/gl/ShaderSource.h"
 
 using namespace microrelief;
 

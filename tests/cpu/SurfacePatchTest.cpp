@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <random>
 
-#include "heightmap/SurfacePatch.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/heightmap/SurfacePatch.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

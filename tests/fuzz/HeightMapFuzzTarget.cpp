@@ -22,8 +22,9 @@
 
 #include <unistd.h>
 
-#include "core/Error.h"
-#include "heightmap/HeightMap.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/heightmap/HeightMapFile.h"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include "GlTestBackend.h"
 #include "SweepCases.h"
 #include "TestSupport.h"
-#include "core/DataPaths.h"
-#include "render/ReliefRenderer.h"
-#include "trace/MultilevelTracer.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/render/ReliefRenderer.h"
+#include "microrelief/trace/MultilevelTracer.h"
 
 using namespace microrelief;
 

@@ -2,7 +2,7 @@
 // every test uses the one context made for it.
 #pragma once
 
-#include "context/GlContext.h"
+#include "microrelief/context/HeadlessContext.h"
 
 namespace microrelief::test {
 

@@ -11,13 +11,13 @@
 
 #include "GlTestBackend.h"
 #include "TestSupport.h"
-#include "context/GlContext.h"
-#include "core/DataPaths.h"
-#include "core/Error.h"
-#include "render/HeadlessRender.h"
-#include "synth/SyntheticMaps.h"
-#include "trace/MultilevelTracer.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/render/HeadlessRender.h"
+#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/trace/MultilevelTracer.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

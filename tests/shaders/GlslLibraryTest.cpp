@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "TestSupport.h"
-#include "gl/ShaderSource.h"
+#include "microrelief/gl/ShaderSource.h"
 
 using namespace microrelief;
 

@@ -7,7 +7,8 @@
 #include <stdexcept>
 
 #include "TestSupport.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 namespace microrelief::test {
 

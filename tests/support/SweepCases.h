@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "heightmap/HeightMap.h"
-#include "render/Camera.h"
-#include "trace/Accuracy.h"
-#include "trace/MultilevelTracer.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/trace/Accuracy.h"
+#include "microrelief/trace/MultilevelTracer.h"
 
 namespace microrelief::test {
 

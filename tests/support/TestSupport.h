@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "context/GlContext.h"
-#include "heightmap/HeightMap.h"
-#include "image/ImageFile.h"
-#include "render/Camera.h"
-#include "render/OffscreenTarget.h"
-#include "trace/Accuracy.h"
+#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/image/ImageFile.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/render/OffscreenTarget.h"
+#include "microrelief/trace/Accuracy.h"
 
 namespace microrelief::test {
 

@@ -14,7 +14,7 @@
 #include "ShaderWatcher.h"
 #include "TestSupport.h"
 #include "ViewerOptions.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -14,9 +14,9 @@
 #include <sstream>
 
 #include "TestSupport.h"
-#include "heightmap/HeightMap.h"
-#include "image/ImageFile.h"
-#include "synth/SyntheticMaps.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/image/ImageFile.h"
+#include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -7,7 +7,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
-#include "gl/Gl.h"
+#include "microrelief/gl/Gl.h"
 
 namespace microrelief {
 

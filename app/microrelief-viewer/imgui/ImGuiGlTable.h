@@ -1,7 +1,7 @@
 // Forced-included (-include) into Debian's imgui_impl_opengl3.cpp, which is compiled with
 // IMGUI_IMPL_OPENGL_LOADER_CUSTOM: instead of the backend's own gl3w-style loader (which
 // dlopens libGL and keeps a process-wide pointer table), every gl* name it calls becomes
-// a call through the window context's glad table (src/gl/Gl.h), like all GL in the
+// a call through the window context's glad table (include/microrelief/gl/Gl.h), like all GL in the
 // project. The list is what imgui_impl_opengl3.cpp 1.86 calls; a name missing here fails
 // to compile (glad --mx declares no gl* functions), it can never reach libGL silently.
 #pragma once

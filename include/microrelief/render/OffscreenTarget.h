@@ -4,28 +4,12 @@
 // of every output image.
 #pragma once
 
-#include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
 
-#include "gl/Objects.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/render/RenderedFrame.h"
 
 namespace microrelief {
-
-struct RenderedFrame {
-    int width = 0, height = 0;
-    std::vector<std::uint8_t> color;  // RGBA8, row 0 at the top
-    std::vector<float> position;      // RGBA32F: world x, y, z, hit (1) or miss (0)
-    std::vector<float> stats;         // RGBA32F: iterations, fetches, stop level, exhausted
-
-    const float* positionAt(int column, int row) const {
-        return &position[(static_cast<std::size_t>(row) * width + column) * 4];
-    }
-    const float* statsAt(int column, int row) const {
-        return &stats[(static_cast<std::size_t>(row) * width + column) * 4];
-    }
-};
 
 class OffscreenTarget {
 public:

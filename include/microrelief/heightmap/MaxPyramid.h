@@ -34,7 +34,7 @@
 
 #include <glm/glm.hpp>
 
-#include "heightmap/HeightMap.h"
+#include "microrelief/heightmap/HeightMap.h"
 
 namespace microrelief {
 

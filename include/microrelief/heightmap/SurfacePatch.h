@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "heightmap/HeightMap.h"
+#include "microrelief/heightmap/HeightMap.h"
 
 namespace microrelief {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "heightmap/HeightMap.h"
+#include "microrelief/heightmap/HeightMap.h"
 
 namespace microrelief::synth {
 

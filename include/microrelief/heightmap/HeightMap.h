@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -61,7 +62,7 @@ struct HeightMap {
     float minValue() const;
 };
 
-// The largest map side loadHeightMap accepts, checked from the file's header before any
+// The largest map side loadHeightMap (heightmap/HeightMapFile.h) accepts, checked from the file's header before any
 // sample is read or allocated: 16384, the GL_MAX_TEXTURE_SIZE of llvmpipe and of most
 // desktop GPUs (and the least that OpenGL 4.1 and later guarantee), so that a map's
 // samples take at most 1 GiB (its pyramid about 2.7 GiB more) before a GL context
@@ -77,19 +78,22 @@ struct HeightMapLoadOptions {
     int maxSide = kMaxHeightMapSide;  // larger maps are refused from the header
 };
 
-// Reads any image OpenImageIO can read. Integer formats become [0, 1] by their type
-// range, float formats stay as stored. Throws Error(BadInput) naming the file and the
-// reason for a missing, unreadable or empty file, one that is not a regular file (a
-// device or a FIFO, refused before OpenImageIO opens it), a size beyond
-// kMaxHeightMapSide (from the header, before allocating), a PNG that libpng would
-// refuse (heightmap/PngCheck.h), a missing channel, or values that are not finite and
-// >= 0 (suggesting --normalize where that would help); Error(Runtime) naming the file
-// when memory runs out.
-HeightMap loadHeightMap(const std::filesystem::path& file,
-                        const HeightMapLoadOptions& options = {});
-
 // The checks and normalisation loadHeightMap applies after reading; `source` names the
 // map in messages. Exposed for maps built in memory.
 void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const std::string& source);
+
+// A map copied from samples the caller holds (an engine's own image, a texture read
+// back): `width` x `height` values, row j starting `rowStrideBytes * j` bytes after
+// `samples` (at least a row's bytes: width * sizeof the sample), row 0 at v = 0. 16-bit
+// samples become [0, 1] by 65535, as the loader reads them. Then prepareHeights, with
+// `options.normalize`. Throws Error(BadInput) naming `source` for an empty or oversized
+// size (options.maxSide), a null pointer, a stride shorter than a row, or samples
+// prepareHeights refuses.
+HeightMap heightMapFromSamples(const float* samples, int width, int height,
+                               std::size_t rowStrideBytes, const HeightMapLoadOptions& options = {},
+                               const std::string& source = "samples");
+HeightMap heightMapFromSamples(const std::uint16_t* samples, int width, int height,
+                               std::size_t rowStrideBytes, const HeightMapLoadOptions& options = {},
+                               const std::string& source = "samples");
 
 }  // namespace microrelief

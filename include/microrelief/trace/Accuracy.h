@@ -11,11 +11,11 @@
 
 #include <glm/glm.hpp>
 
-#include "base/BaseShape.h"
-#include "heightmap/HeightMap.h"
-#include "render/Camera.h"
-#include "render/OffscreenTarget.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/base/BaseShape.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/render/RenderedFrame.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 namespace microrelief {
 

@@ -9,13 +9,13 @@
 
 #include <glm/glm.hpp>
 
-#include "base/BaseShape.h"
-#include "base/BaseSurface.h"
-#include "heightmap/HeightMap.h"
-#include "heightmap/MaxPyramid.h"
-#include "heightmap/SurfacePatch.h"
-#include "render/Camera.h"
-#include "trace/ReferenceTracer.h"
+#include "microrelief/base/BaseShape.h"
+#include "microrelief/base/BaseSurface.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/heightmap/MaxPyramid.h"
+#include "microrelief/heightmap/SurfacePatch.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/trace/ReferenceTracer.h"
 
 namespace microrelief {
 

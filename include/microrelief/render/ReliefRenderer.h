@@ -14,11 +14,12 @@
 
 #include <glm/glm.hpp>
 
-#include "base/BaseShape.h"
-#include "gl/Objects.h"
-#include "heightmap/HeightMap.h"
-#include "heightmap/MaxPyramid.h"
-#include "render/Camera.h"
+#include "microrelief/base/BaseShape.h"
+#include "microrelief/base/ReliefExtent.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/heightmap/MaxPyramid.h"
+#include "microrelief/render/Camera.h"
 
 namespace microrelief {
 
@@ -53,19 +54,6 @@ struct MethodSettings {
         minSteps = std::min(n, std::max(4, n / 4));
     }
 };
-
-// World-space extent of a map's relief: its bounding box, the proxy geometry (spec: on
-// the plane x in [-a/2, a/2], z in [-b/2, b/2], y in [0, s max h]; BaseShape::boxMax).
-struct ReliefExtent {
-    glm::dvec3 min{-0.5, 0.0, -0.5}, max{0.5, 0.0, 0.5};
-    double topHeight = 0.0;  // s * max h: world units on the plane, canonical on a curved base
-};
-ReliefExtent reliefExtent(int width, int height, double maxHeight, double heightScale,
-                          const BaseShape& base = {});
-// Scans the map for its max.
-ReliefExtent reliefExtent(const HeightMap& map, double heightScale, const BaseShape& base = {});
-// The radius resolveCamera gets for this relief (it sets the depth range only).
-double sceneRadius(const ReliefExtent& extent);
 
 // What relief.frag writes to the picture (debug_views.glsl).
 enum class DebugView { Shaded = 0, Iterations, Level, Normal, Depth, Position };

@@ -27,8 +27,8 @@
 
 #include <glm/glm.hpp>
 
-#include "base/BaseShape.h"
-#include "render/Camera.h"
+#include "microrelief/base/BaseShape.h"
+#include "microrelief/render/Camera.h"
 
 namespace microrelief {
 

@@ -6,7 +6,7 @@
 
 #include <utility>
 
-#include "gl/Gl.h"
+#include "microrelief/gl/Gl.h"
 
 namespace microrelief::gl {
 

@@ -2,9 +2,22 @@
 // under Xvfb. The window is the context's default framebuffer.
 #pragma once
 
-#include "context/GlContext.h"
+#include <memory>
+#include <string>
+
+#include "microrelief/context/GlContext.h"
+
+struct GLFWwindow;
 
 namespace microrelief {
+
+// A GLFW window with a 3.3 core context; `visible` false gives a hidden window.
+struct GlfwWindowOptions {
+    int width = 1280;
+    int height = 720;
+    std::string title = "microrelief";
+    bool visible = true;
+};
 
 class GlfwContext final : public GlContext {
 public:
@@ -19,5 +32,7 @@ public:
 private:
     GLFWwindow* window_ = nullptr;
 };
+
+std::unique_ptr<GlfwContext> createGlfwContext(const GlfwWindowOptions& options);
 
 }  // namespace microrelief

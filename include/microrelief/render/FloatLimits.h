@@ -27,8 +27,8 @@
 
 #include <string>
 
-#include "heightmap/HeightMap.h"
-#include "render/Camera.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/Camera.h"
 
 namespace microrelief {
 

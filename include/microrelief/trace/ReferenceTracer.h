@@ -14,9 +14,9 @@
 
 #include <glm/glm.hpp>
 
-#include "base/BaseShape.h"
-#include "heightmap/HeightMap.h"
-#include "render/Camera.h"
+#include "microrelief/base/BaseShape.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/Camera.h"
 
 namespace microrelief {
 

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "gl/Objects.h"
-#include "gl/ShaderSource.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/gl/ShaderSource.h"
 
 namespace microrelief::gl {
 

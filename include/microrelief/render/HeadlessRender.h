@@ -6,11 +6,11 @@
 #include <optional>
 #include <string>
 
-#include "context/GlContext.h"
-#include "heightmap/HeightMap.h"
-#include "render/Camera.h"
-#include "render/OffscreenTarget.h"
-#include "render/ReliefRenderer.h"
+#include "microrelief/context/GlContext.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/Camera.h"
+#include "microrelief/render/OffscreenTarget.h"
+#include "microrelief/render/ReliefRenderer.h"
 
 namespace microrelief {
 

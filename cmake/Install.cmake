@@ -1,0 +1,51 @@
+# Installing the library for engines: static archives (position-independent, so they
+# link into shared objects too), the public headers, glad2's generated header for
+# microrelief::gl, a CMake package with one export set per component, pkg-config files,
+# and (cmake/RuntimeData.cmake) the GLSL library under share/microrelief/shaders.
+include(CMakePackageConfigHelpers)
+
+set(MICRORELIEF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/microrelief)
+
+# The version header, generated into the build tree's include/ and installed beside the
+# others.
+configure_file(${PROJECT_SOURCE_DIR}/cmake/Version.h.in
+               ${PROJECT_BINARY_DIR}/include/microrelief/Version.h @ONLY)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/microrelief ${PROJECT_BINARY_DIR}/include/microrelief
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${GLAD_OUT}/include/
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/microrelief/third_party)
+
+# One export set per component, so that a program asking for core finds no GL, EGL or
+# OpenImageIO dependency to resolve. microrelief_glad travels with gl.
+foreach(component core io gl headless glfw)
+  set(targets microrelief_${component})
+  if(component STREQUAL "gl")
+    list(APPEND targets microrelief_glad)
+  endif()
+  install(TARGETS ${targets} EXPORT microrelief-${component}
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(EXPORT microrelief-${component} NAMESPACE microrelief::
+          FILE microrelief-${component}-targets.cmake DESTINATION ${MICRORELIEF_CMAKE_DIR})
+endforeach()
+
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/microreliefConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/microreliefConfig.cmake
+  INSTALL_DESTINATION ${MICRORELIEF_CMAKE_DIR}
+  PATH_VARS MICRORELIEF_DATA_SUBDIR CMAKE_INSTALL_INCLUDEDIR)
+# 0.x: minor versions may change the API, so only the same minor version is compatible.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/microreliefConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/microreliefConfig.cmake
+              ${PROJECT_BINARY_DIR}/microreliefConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/OpenImageIOFix.cmake
+        DESTINATION ${MICRORELIEF_CMAKE_DIR})
+
+# pkg-config, one file per component (the archives are static, so each file's Requires
+# name what its archive needs at link time).
+foreach(component core io gl headless glfw)
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/pkgconfig/microrelief-${component}.pc.in
+                 ${PROJECT_BINARY_DIR}/pkgconfig/microrelief-${component}.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/microrelief-${component}.pc
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endforeach()

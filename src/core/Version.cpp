@@ -1,0 +1,9 @@
+#include "microrelief/Version.h"
+
+namespace microrelief {
+
+const char* libraryVersion() {
+    return MICRORELIEF_VERSION_STRING;
+}
+
+}  // namespace microrelief

@@ -58,21 +58,21 @@ uniform int methodMinSteps;      // pom: samples when looking straight down
 uniform int methodRefineSteps;   // relief: binary search steps
 uniform float pixelErrorTolerance;  // multilevel: stop at windows narrower than this many pixels
 
-ReliefHit traceInFrame(ReliefMap map, vec3 origin, vec3 dir) {
+mr_ReliefHit traceInFrame(mr_ReliefMap map, vec3 origin, vec3 dir) {
 #if MICRORELIEF_METHOD == 1
-    return traceNormalMapping(map, heightSamples, origin, dir);
+    return mr_traceNormalMapping(map, heightSamples, origin, dir);
 #elif MICRORELIEF_METHOD == 2
-    return traceParallaxOffset(map, heightSamples, origin, dir);
+    return mr_traceParallaxOffset(map, heightSamples, origin, dir);
 #elif MICRORELIEF_METHOD == 3
-    return traceSteepParallax(map, heightSamples, origin, dir, methodSteps);
+    return mr_traceSteepParallax(map, heightSamples, origin, dir, methodSteps);
 #elif MICRORELIEF_METHOD == 4
-    return traceParallaxOcclusion(map, heightSamples, origin, dir, methodMinSteps, methodSteps);
+    return mr_traceParallaxOcclusion(map, heightSamples, origin, dir, methodMinSteps, methodSteps);
 #elif MICRORELIEF_METHOD == 5
-    return traceReliefMapping(map, heightSamples, origin, dir, methodSteps, methodRefineSteps);
+    return mr_traceReliefMapping(map, heightSamples, origin, dir, methodSteps, methodRefineSteps);
 #elif MICRORELIEF_METHOD == 6
-    return traceMaxMip(map, maxPyramid, heightSamples, origin, dir);
+    return mr_traceMaxMip(map, maxPyramid, heightSamples, origin, dir);
 #else
-    return traceMultilevel(map, windowPyramid, heightSamples, origin, dir);
+    return mr_traceMultilevel(map, windowPyramid, heightSamples, origin, dir);
 #endif
 }
 
@@ -81,15 +81,15 @@ ReliefHit traceInFrame(ReliefMap map, vec3 origin, vec3 dir) {
 // on; their answer, a map point, is then placed on the base (off the ray, like offset's).
 #define MICRORELIEF_TANGENT_PEER (MICRORELIEF_BASE != 0 && (MICRORELIEF_METHOD == 4 || MICRORELIEF_METHOD == 5))
 
-ReliefHit traceRay(ReliefMap map, vec3 origin, vec3 dir) {
+mr_ReliefHit traceRay(mr_ReliefMap map, vec3 origin, vec3 dir) {
 #if MICRORELIEF_TANGENT_PEER
     vec3 localOrigin, localDir;
     float tEntry;
-    if (!baseTangentRay(map, origin, dir, localOrigin, localDir, tEntry)) return reliefMissHit();
-    ReliefHit hit = traceInFrame(map, localOrigin, localDir);
-    if (hit.kind == RELIEF_TOP) {
-        vec3 q = baseSurfacePoint(map, hit.position);
-        hit.normal = baseTopNormal(map, q, -hit.normal.xy);
+    if (!mr_baseTangentRay(map, origin, dir, localOrigin, localDir, tEntry)) return mr_reliefMissHit();
+    mr_ReliefHit hit = traceInFrame(map, localOrigin, localDir);
+    if (hit.kind == MR_RELIEF_TOP) {
+        vec3 q = mr_baseSurfacePoint(map, hit.position);
+        hit.normal = mr_baseTopNormal(map, q, -hit.normal.xy);
         hit.position = q;
         hit.t += tEntry;
     }
@@ -111,10 +111,10 @@ void main() {
     // than pixelErrorTolerance pixels once w <= lodCone * t (t along this unnormalised ray).
     float pixelAngle = 2.0 * length(cameraUp) / viewportSize.y;
     float lodCone = pixelErrorTolerance * pixelAngle * length(dir) * max(reliefSize.x, reliefSize.y);
-    ReliefMap map = ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, heightScale, maxIterations,
+    mr_ReliefMap map = mr_ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, heightScale, maxIterations,
                               lodCone, frameScale);
 
-    ReliefHit hit = traceRay(map, baseFramePoint(map, eye), baseFrameVector(map, dir));
+    mr_ReliefHit hit = traceRay(map, mr_baseFramePoint(map, eye), mr_baseFrameVector(map, dir));
 #ifdef MICRORELIEF_COUNT_FETCHES
     float fetches = float(hit.fetches);
 #else
@@ -128,7 +128,7 @@ void main() {
         gl_FragDepth = gl_FragCoord.z;
         return;
     }
-    if (hit.kind == RELIEF_MISS) {
+    if (hit.kind == MR_RELIEF_MISS) {
 #ifdef MICRORELIEF_COUNT_FETCHES
         // Keep the statistics of missed rays; the picture of this variant is not used.
         outColor = vec4(0.0);
@@ -143,27 +143,27 @@ void main() {
 #if MICRORELIEF_METHOD == 2 || MICRORELIEF_TANGENT_PEER
     // Parallax offset's answer is not on the ray (it shifts the texture lookup instead),
     // nor is a tangent-frame peer's on a curved base.
-    vec3 world = baseWorldPoint(map, hit.position);
+    vec3 world = mr_baseWorldPoint(map, hit.position);
 #else
     vec3 world = eye + hit.t * dir;  // on the ray exactly, without a round trip through map space
 #endif
-    vec3 n = reliefWorldNormal(map, hit);
+    vec3 n = mr_reliefWorldNormal(map, hit);
     vec3 color;
-    if (debugView == DEBUG_VIEW_ITERATIONS) {
+    if (debugView == MR_DEBUG_VIEW_ITERATIONS) {
         // Scaled to the cost of a few levels' worth of segments; saturates red beyond.
-        color = debugScalar(float(hit.iterations), 8.0 * float(pyramidLevels));
-    } else if (debugView == DEBUG_VIEW_LEVEL) {
-        color = debugScalar(float(hit.stopLevel), float(pyramidLevels - 1));
-    } else if (debugView == DEBUG_VIEW_NORMAL) {
-        color = debugNormal(n);
-    } else if (debugView == DEBUG_VIEW_DEPTH) {
+        color = mr_debugScalar(float(hit.iterations), 8.0 * float(pyramidLevels));
+    } else if (debugView == MR_DEBUG_VIEW_LEVEL) {
+        color = mr_debugScalar(float(hit.stopLevel), float(pyramidLevels - 1));
+    } else if (debugView == MR_DEBUG_VIEW_NORMAL) {
+        color = mr_debugNormal(n);
+    } else if (debugView == MR_DEBUG_VIEW_DEPTH) {
         float distance = length(world - eye), far = length(eye) + 1.5;
         color = vec3(1.0 - clamp(distance / far, 0.0, 1.0));
-    } else if (debugView == DEBUG_VIEW_POSITION) {
-        color = debugPosition(world, reliefBoxMin, reliefBoxMax);
+    } else if (debugView == MR_DEBUG_VIEW_POSITION) {
+        color = mr_debugPosition(world, reliefBoxMin, reliefBoxMax);
     } else {
-        ReliefMaterial material = ReliefMaterial(albedo, 0.25, 48.0);
-        color = encodeSrgb(shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0)));
+        mr_ReliefMaterial material = mr_ReliefMaterial(albedo, 0.25, 48.0);
+        color = mr_encodeSrgb(mr_shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0)));
     }
     outColor = vec4(color, 1.0);
     outPosition = vec4(world, 1.0);

@@ -16,41 +16,41 @@
 
 #include "relief_map.glsl"
 
-const float kCurvedPi = 3.14159265358979;
-const float kCurvedRadiusMargin = 1.0 / 524288.0;  // 2^-19
-const float kCurvedNever = 1e30;                    // a crossing that does not happen
+const float MR_CURVED_PI = 3.14159265358979;
+const float MR_CURVED_RADIUS_MARGIN = 1.0 / 524288.0;  // 2^-19
+const float MR_CURVED_NEVER = 1e30;                    // a crossing that does not happen
 
-float curvedMarginX(ReliefMap map) { return 1.0 / 1024.0 + map.size.x * (1.0 / 524288.0); }
-float curvedMarginY(ReliefMap map) { return 1.0 / 1024.0 + map.size.y * (1.0 / 524288.0); }
+float mr_curvedMarginX(mr_ReliefMap map) { return 1.0 / 1024.0 + map.size.x * (1.0 / 524288.0); }
+float mr_curvedMarginY(mr_ReliefMap map) { return 1.0 / 1024.0 + map.size.y * (1.0 / 524288.0); }
 
-vec3 curvedFramePoint(ReliefMap map, vec3 world) { return world / map.frameScale; }
-vec3 curvedFrameVector(ReliefMap map, vec3 world) { return world / map.frameScale; }
-vec3 curvedWorldPoint(ReliefMap map, vec3 q) { return q * map.frameScale; }
+vec3 mr_curvedFramePoint(mr_ReliefMap map, vec3 world) { return world / map.frameScale; }
+vec3 mr_curvedFrameVector(mr_ReliefMap map, vec3 world) { return world / map.frameScale; }
+vec3 mr_curvedWorldPoint(mr_ReliefMap map, vec3 q) { return q * map.frameScale; }
 // The inverse transpose of diag(frameScale).
-vec3 curvedWorldNormal(ReliefMap map, vec3 n) { return normalize(n / map.frameScale); }
+vec3 mr_curvedWorldNormal(mr_ReliefMap map, vec3 n) { return normalize(n / map.frameScale); }
 
 // X of frame point q, in [0, W). On the axis (where atan(0, 0) is undefined) u = 0.5.
-float curvedMapX(ReliefMap map, vec3 q) {
+float mr_curvedMapX(mr_ReliefMap map, vec3 q) {
     bool onAxis = q.x == 0.0 && q.z == 0.0;
-    return map.size.x * fract(0.5 + atan(q.x, onAxis ? 1.0 : q.z) * (0.5 / kCurvedPi));
+    return map.size.x * fract(0.5 + atan(q.x, onAxis ? 1.0 : q.z) * (0.5 / MR_CURVED_PI));
 }
 
 // Whether X grows along the line: d(atan(x, z))/dt = (z dx - x dz) / (x^2 + z^2), whose
 // sign is constant along a line.
-bool curvedXIncreases(vec3 origin, vec3 dir) { return origin.z * dir.x - origin.x * dir.z > 0.0; }
+bool mr_curvedXIncreases(vec3 origin, vec3 dir) { return origin.z * dir.x - origin.x * dir.z > 0.0; }
 
 // The t at which the line crosses the half-plane of constant X = boundary through the
-// axis (points lambda (sin phi, y, cos phi), lambda >= 0), kCurvedNever where it does not.
+// axis (points lambda (sin phi, y, cos phi), lambda >= 0), MR_CURVED_NEVER where it does not.
 // The line meets the half-plane's plane once at most, so any t is that crossing: a walk
 // that finds it behind its start has rounded past it already.
-float curvedCrossX(ReliefMap map, vec3 origin, vec3 dir, float boundary) {
-    float phi = 2.0 * kCurvedPi * (boundary / map.size.x - 0.5);
+float mr_curvedCrossX(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary) {
+    float phi = 2.0 * MR_CURVED_PI * (boundary / map.size.x - 0.5);
     float s = sin(phi), c = cos(phi);
     float rate = s * dir.z - c * dir.x;
-    if (rate == 0.0) return kCurvedNever;
+    if (rate == 0.0) return MR_CURVED_NEVER;
     float t = (c * origin.x - s * origin.z) / rate;
     vec3 p = origin + t * dir;
-    return s * p.x + c * p.z > 0.0 ? t : kCurvedNever;
+    return s * p.x + c * p.z > 0.0 ? t : MR_CURVED_NEVER;
 }
 
 // The X range of the path between frame points of X = xa and xb. The angle about the axis is
@@ -58,8 +58,8 @@ float curvedCrossX(ReliefMap map, vec3 origin, vec3 dir, float boundary) {
 // a turn, so the path covers exactly the shorter arc between its ends. Near half a turn
 // the segment passes next to the axis (where rounding could pick the wrong arc, and one
 // through it jumps by half a turn): all of u then. lo in [0, W), hi up to lo + W.
-vec2 curvedRangeX(ReliefMap map, float xa, float xb) {
-    float w = map.size.x, margin = curvedMarginX(map);
+vec2 mr_curvedRangeX(mr_ReliefMap map, float xa, float xb) {
+    float w = map.size.x, margin = mr_curvedMarginX(map);
     float arc = xb - xa;
     if (arc > 0.5 * w) arc -= w;
     if (arc < -0.5 * w) arc += w;
@@ -71,7 +71,7 @@ vec2 curvedRangeX(ReliefMap map, float xa, float xb) {
 // The interval of t where |p(t)| <= radius for the line p = o + t d (in the xz plane for
 // the cylinder, in space for the ellipsoid), from the point nearest the centre, which keeps
 // far origins accurate. Empty (x > y) when the line passes outside.
-vec2 curvedInsideRadius(vec3 origin, vec3 dir, float radius) {
+vec2 mr_curvedInsideRadius(vec3 origin, vec3 dir, float radius) {
     float dd = dot(dir, dir);
     if (dd == 0.0) return dot(origin, origin) <= radius * radius ? vec2(-1e30, 1e30) : vec2(1.0, -1.0);
     float tc = -dot(origin, dir) / dd;

@@ -8,39 +8,39 @@
 #include "base_curved.glsl"
 #include "relief_map.glsl"
 
-float ellipsoidRadial(vec3 q) { return length(q); }
+float mr_ellipsoidRadial(vec3 q) { return length(q); }
 
 // The polar angle as atan(|q.xz|, q.y): well conditioned at the poles, where acos(q.y / r)
 // would lose half the digits. At the centre (undefined) the equator.
-float ellipsoidMapY(ReliefMap map, vec3 q) {
+float mr_ellipsoidMapY(mr_ReliefMap map, vec3 q) {
     float rho = length(q.xz);
     bool atCentre = rho == 0.0 && q.y == 0.0;
-    return map.size.y * atan(rho, atCentre ? 0.0 : q.y) / kCurvedPi;
+    return map.size.y * atan(rho, atCentre ? 0.0 : q.y) / MR_CURVED_PI;
 }
 
 // The smallest distance from the centre over [ta, tb] (convex along a line: the nearest
 // point, clamped); the margin covers rounding.
-float ellipsoidLowestRadial(vec3 origin, vec3 dir, float ta, float tb) {
+float mr_ellipsoidLowestRadial(vec3 origin, vec3 dir, float ta, float tb) {
     float t = clamp(-dot(origin, dir) / dot(dir, dir), ta, tb);
-    return length(origin + t * dir) - kCurvedRadiusMargin;
+    return length(origin + t * dir) - MR_CURVED_RADIUS_MARGIN;
 }
 
 // Where the latitude turns: q.y / |q| along o + t d has the derivative N(t) / |p|^3 with N
 // linear in t, N(t) = dy |o|^2 - oy (o.d) + t (dy (o.d) - oy |d|^2); its one root is the
-// latitude's only interior extremum (kCurvedNever if none).
-float ellipsoidTurnY(vec3 origin, vec3 dir) {
+// latitude's only interior extremum (MR_CURVED_NEVER if none).
+float mr_ellipsoidTurnY(vec3 origin, vec3 dir) {
     float od = dot(origin, dir);
     float slope = dir.y * od - origin.y * dot(dir, dir);
-    return slope == 0.0 ? kCurvedNever : -(dir.y * dot(origin, origin) - origin.y * od) / slope;
+    return slope == 0.0 ? MR_CURVED_NEVER : -(dir.y * dot(origin, origin) - origin.y * od) / slope;
 }
 
 // The Y range over [ta, tb] whose ends have Y = ya and yb: theirs, and the turn's if it
 // lies inside.
-vec2 ellipsoidRangeY(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float ya, float yb) {
+vec2 mr_ellipsoidRangeY(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float ya, float yb) {
     vec2 range = vec2(min(ya, yb), max(ya, yb));
-    float turn = ellipsoidTurnY(origin, dir);
+    float turn = mr_ellipsoidTurnY(origin, dir);
     if (turn > ta && turn < tb) {
-        float y = ellipsoidMapY(map, origin + turn * dir);
+        float y = mr_ellipsoidMapY(map, origin + turn * dir);
         range = vec2(min(range.x, y), max(range.y, y));
     }
     return range;
@@ -48,29 +48,29 @@ vec2 ellipsoidRangeY(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, f
 
 // The t in [from, to] (where Y is monotone, so there is one at most) at which the line
 // crosses the cone of constant Y = boundary, cos^2 |p_xz|^2 = sin^2 p_y^2 on the nappe
-// where p_y has the sign of cos; kCurvedNever if none. The equator's cone is the plane
+// where p_y has the sign of cos; MR_CURVED_NEVER if none. The equator's cone is the plane
 // y = 0 (the quadratic's double root there would lose half the digits).
-float ellipsoidCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
-    float theta = kCurvedPi * boundary / map.size.y;
+float mr_ellipsoidCrossY(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
+    float theta = MR_CURVED_PI * boundary / map.size.y;
     float c = cos(theta), s = sin(theta);
     if (abs(c) < 1e-6) {
-        float t = dir.y == 0.0 ? kCurvedNever : -origin.y / dir.y;
-        return t >= from && t <= to ? t : kCurvedNever;
+        float t = dir.y == 0.0 ? MR_CURVED_NEVER : -origin.y / dir.y;
+        return t >= from && t <= to ? t : MR_CURVED_NEVER;
     }
     float c2 = c * c, s2 = s * s;
     float a = c2 * dot(dir.xz, dir.xz) - s2 * dir.y * dir.y;
     float b = c2 * dot(origin.xz, dir.xz) - s2 * origin.y * dir.y;
     float k = c2 * dot(origin.xz, origin.xz) - s2 * origin.y * origin.y;
-    vec2 roots = vec2(kCurvedNever);
+    vec2 roots = vec2(MR_CURVED_NEVER);
     if (a == 0.0) {
         if (b != 0.0) roots.x = -k / (2.0 * b);
     } else {
         float disc = b * b - a * k;
-        if (disc < 0.0) return kCurvedNever;
+        if (disc < 0.0) return MR_CURVED_NEVER;
         float q = -(b + (b >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
-        roots = vec2(q / a, q != 0.0 ? k / q : kCurvedNever);
+        roots = vec2(q / a, q != 0.0 ? k / q : MR_CURVED_NEVER);
     }
-    float first = kCurvedNever;
+    float first = MR_CURVED_NEVER;
     for (int r = 0; r < 2; ++r) {
         float t = roots[r];
         bool nappe = (origin.y + t * dir.y) * c >= 0.0;
@@ -81,24 +81,24 @@ float ellipsoidCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary, floa
 
 // The bounding shell: the ball of radius 1 + s maxHeight. It is entered through the
 // shell itself, never a face.
-vec2 ellipsoidClipToShell(ReliefMap map, vec3 origin, vec3 dir) {
-    return curvedInsideRadius(origin, dir, 1.0 + map.heightScale * map.maxHeight);
+vec2 mr_ellipsoidClipToShell(mr_ReliefMap map, vec3 origin, vec3 dir) {
+    return mr_curvedInsideRadius(origin, dir, 1.0 + map.heightScale * map.maxHeight);
 }
 
 // A segment's ends as (X, Y, distance from the centre), what its footprint is made of.
-vec3 ellipsoidEnd(ReliefMap map, vec3 q) { return vec3(curvedMapX(map, q), ellipsoidMapY(map, q), ellipsoidRadial(q)); }
+vec3 mr_ellipsoidEnd(mr_ReliefMap map, vec3 q) { return vec3(mr_curvedMapX(map, q), mr_ellipsoidMapY(map, q), mr_ellipsoidRadial(q)); }
 
-// The footprint of [ta, tb] from its ends `ea`, `eb` (ellipsoidEnd).
-BaseFootprint ellipsoidFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
-    vec2 x = curvedRangeX(map, ea.x, eb.x);
-    vec2 y = ellipsoidRangeY(map, origin, dir, ta, tb, ea.y, eb.y) + vec2(-1.0, 1.0) * curvedMarginY(map);
-    float lowest = (ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
-    return BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest, abs(eb.z - ea.z) / map.heightScale);
+// The footprint of [ta, tb] from its ends `ea`, `eb` (mr_ellipsoidEnd).
+mr_BaseFootprint mr_ellipsoidFootprint(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
+    vec2 x = mr_curvedRangeX(map, ea.x, eb.x);
+    vec2 y = mr_ellipsoidRangeY(map, origin, dir, ta, tb, ea.y, eb.y) + vec2(-1.0, 1.0) * mr_curvedMarginY(map);
+    float lowest = (mr_ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+    return mr_BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest, abs(eb.z - ea.z) / map.heightScale);
 }
 
 // q = r w(theta, phi) with r = 1 + s h: the outward normal is r w - r_theta e_theta -
 // r_phi / sin(theta) e_phi, with r_theta = s H / pi dh/dY and r_phi = s W / 2 pi dh/dX.
-vec3 ellipsoidTopNormal(ReliefMap map, vec3 q, vec2 gradient) {
+vec3 mr_ellipsoidTopNormal(mr_ReliefMap map, vec3 q, vec2 gradient) {
     float r = length(q);
     if (r == 0.0) return vec3(0.0, 1.0, 0.0);
     vec3 w = q / r;
@@ -106,8 +106,8 @@ vec3 ellipsoidTopNormal(ReliefMap map, vec3 q, vec2 gradient) {
     vec2 phi = sinTheta > 0.0 ? w.xz / sinTheta : vec2(0.0, 1.0);  // (sin, cos) of phi
     vec3 eTheta = vec3(cosTheta * phi.x, -sinTheta, cosTheta * phi.y);
     vec3 ePhi = vec3(phi.y, 0.0, -phi.x);
-    float rTheta = map.heightScale * map.size.y / kCurvedPi * gradient.y;
-    float rPhi = map.heightScale * map.size.x / (2.0 * kCurvedPi) * gradient.x;
+    float rTheta = map.heightScale * map.size.y / MR_CURVED_PI * gradient.y;
+    float rPhi = map.heightScale * map.size.x / (2.0 * MR_CURVED_PI) * gradient.x;
     return r * w - rTheta * eTheta - rPhi / max(sinTheta, 1e-6) * ePhi;
 }
 

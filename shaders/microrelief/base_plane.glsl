@@ -2,7 +2,7 @@
 // src/base/PlaneSurface.cpp). Its frame is map space (map_space.glsl), where the ray is a
 // straight line in (X, Y, h): a segment's footprint is the rectangle of its ends, its
 // lowest height the lower end, the bounding shell the box [0, W] x [0, H] x [0, maxHeight],
-// and the leaf's patches are met along a straight path (planeIntersectLeaf).
+// and the leaf's patches are met along a straight path (mr_planeIntersectLeaf).
 #ifndef MICRORELIEF_BASE_PLANE_GLSL
 #define MICRORELIEF_BASE_PLANE_GLSL
 
@@ -14,7 +14,7 @@
 // it, and which slab the entry and the exit cross (0: X, 1: Y, 2: h). Empty when x > y.
 // Under a curved base (the step-based peers' local frame, layer_march.glsl) X wraps and
 // has no walls.
-vec2 clipToReliefBox(ReliefMap map, vec3 origin, vec3 dir, out int entryAxis, out int exitAxis) {
+vec2 mr_clipToReliefBox(mr_ReliefMap map, vec3 origin, vec3 dir, out int entryAxis, out int exitAxis) {
     vec3 lo = vec3(0.0), hi = vec3(map.size, map.maxHeight);
     float tEnter = -1e30, tExit = 1e30;
     entryAxis = -1;
@@ -34,47 +34,47 @@ vec2 clipToReliefBox(ReliefMap map, vec3 origin, vec3 dir, out int entryAxis, ou
 }
 
 // The box as the bounding shell: the face the ray enters through (a wall, the bottom, or
-// RELIEF_MISS for the top face, where the traversal starts) and whether it leaves through
+// MR_RELIEF_MISS for the top face, where the traversal starts) and whether it leaves through
 // the floor going down (it meets h = 0, inside the solid, there).
-vec2 planeClipToShell(ReliefMap map, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
+vec2 mr_planeClipToShell(mr_ReliefMap map, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
     int entryAxis, exitAxis;
-    vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
-    entryFace = entryAxis == 0   ? RELIEF_WALL_X
-                : entryAxis == 1 ? RELIEF_WALL_Y
-                : entryAxis == 2 && dir.z > 0.0 ? RELIEF_BOTTOM
-                                                : RELIEF_MISS;
+    vec2 range = mr_clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
+    entryFace = entryAxis == 0   ? MR_RELIEF_WALL_X
+                : entryAxis == 1 ? MR_RELIEF_WALL_Y
+                : entryAxis == 2 && dir.z > 0.0 ? MR_RELIEF_BOTTOM
+                                                : MR_RELIEF_MISS;
     floorExit = exitAxis == 2 && dir.z < 0.0;
     return range;
 }
 
 // The footprint of a segment from its ends pa, pb (map points).
-BaseFootprint planeFootprint(vec3 pa, vec3 pb) {
-    return BaseFootprint(min(pa.xy, pb.xy), max(pa.xy, pb.xy), min(pa.z, pb.z), abs(pb.z - pa.z));
+mr_BaseFootprint mr_planeFootprint(vec3 pa, vec3 pb) {
+    return mr_BaseFootprint(min(pa.xy, pb.xy), max(pa.xy, pb.xy), min(pa.z, pb.z), abs(pb.z - pa.z));
 }
 
-float planeLowest(vec3 origin, vec3 dir, float ta, float tb) {
+float mr_planeLowest(vec3 origin, vec3 dir, float ta, float tb) {
     return min(origin.z + ta * dir.z, origin.z + tb * dir.z);
 }
 
 // The first t in [ta, tb] at which the ray is at or below height h (ta if it starts so).
-float planeDescendTo(vec3 origin, vec3 dir, float ta, float tb, float h) {
+float mr_planeDescendTo(vec3 origin, vec3 dir, float ta, float tb, float h) {
     return dir.z < 0.0 ? clamp((h - origin.z) / dir.z, ta, tb) : ta;
 }
 
 // Where the straight path crosses the cell boundary X = boundary (Y = boundary), any t; 1e30
 // where it runs parallel to it.
-float planeCrossX(vec3 origin, vec3 dir, float boundary) {
+float mr_planeCrossX(vec3 origin, vec3 dir, float boundary) {
     return dir.x == 0.0 ? 1e30 : (boundary - origin.x) / dir.x;
 }
-float planeCrossY(vec3 origin, vec3 dir, float boundary) {
+float mr_planeCrossY(vec3 origin, vec3 dir, float boundary) {
     return dir.y == 0.0 ? 1e30 : (boundary - origin.y) / dir.y;
 }
 
 // Map space normals: (-dh/dX, -dh/dY, 1) on top, the axis of a face.
-vec3 planeTopNormal(vec2 gradient) { return vec3(-gradient, 1.0); }
+vec3 mr_planeTopNormal(vec2 gradient) { return vec3(-gradient, 1.0); }
 
-vec3 planeFaceNormal(int face, vec3 dir) {
-    int axis = face == RELIEF_WALL_X ? 0 : face == RELIEF_WALL_Y ? 1 : 2;
+vec3 mr_planeFaceNormal(int face, vec3 dir) {
+    int axis = face == MR_RELIEF_WALL_X ? 0 : face == MR_RELIEF_WALL_Y ? 1 : 2;
     vec3 n = vec3(0.0);
     n[axis] = dir[axis] > 0.0 ? -1.0 : 1.0;
     return n;
@@ -82,7 +82,7 @@ vec3 planeFaceNormal(int face, vec3 dir) {
 
 // A map-space normal in world space: the inverse transpose of G's scales, (X, Y, h) ->
 // (x, z, y).
-vec3 planeWorldNormal(ReliefMap map, vec3 n) {
+vec3 mr_planeWorldNormal(mr_ReliefMap map, vec3 n) {
     float texelsPerUnit = max(map.size.x, map.size.y);
     return normalize(vec3(n.x * texelsPerUnit, n.z / map.heightScale, n.y * texelsPerUnit));
 }
@@ -92,15 +92,15 @@ vec3 planeWorldNormal(ReliefMap map, vec3 n) {
 // patches (cells
 // between four samples) the segment crosses, in ray order, each solved as a quadratic,
 // from one cell to its neighbour across the boundary the ray meets first (a 2D DDA, as
-// in the reference tracer). Neighbouring patches share an edge (neighbourCorners).
+// in the reference tracer). Neighbouring patches share an edge (mr_neighbourCorners).
 // `corners` and `cell` are the patch of the hit.
-float planeIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+float mr_planeIntersectLeaf(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
                          inout int fetches, out vec4 corners, out ivec2 cell) {
-    cell = cellAt((origin + ta * dir).xy);
-    ivec2 lastCell = cellAt((origin + tb * dir).xy);
+    cell = mr_cellAt((origin + ta * dir).xy);
+    ivec2 lastCell = mr_cellAt((origin + tb * dir).xy);
     ivec2 toward = ivec2(sign(vec2(lastCell - cell)));
     ivec2 cells = abs(lastCell - cell);
-    corners = cellCorners(map, heights, cell, fetches);
+    corners = mr_cellCorners(map, heights, cell, fetches);
     float t0 = ta;
     for (int piece = 0; piece <= cells.x + cells.y; ++piece) {
         // Where the ray leaves this cell towards lastCell, per axis (tb: it does not).
@@ -112,11 +112,11 @@ float planeIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir
             }
         }
         float t1 = min(exits.x, exits.y);
-        float tau = intersectPatch(corners, vec2(cell) + 0.5, origin + t0 * dir, dir, t1 - t0);
+        float tau = mr_intersectPatch(corners, vec2(cell) + 0.5, origin + t0 * dir, dir, t1 - t0);
         if (tau >= 0.0) return t0 + tau;
         if (t1 >= tb) break;
         int axis = exits.x <= exits.y ? 0 : 1;
-        corners = neighbourCorners(map, heights, cell, axis, toward[axis], corners, fetches);
+        corners = mr_neighbourCorners(map, heights, cell, axis, toward[axis], corners, fetches);
         t0 = t1;
     }
     return -1.0;

@@ -6,17 +6,17 @@
 // include/microrelief/base/BaseSurface.h; a new base is one file in each, and a branch here.
 //
 // The tracers work in the base's frame, where the ray is a straight line o + t d with the
-// world's t (baseFramePoint, baseFrameVector). For a segment [ta, tb] of it the seam gives
-// its footprint on the map and its lowest height above the base (baseFootprint), both
+// world's t (mr_baseFramePoint, mr_baseFrameVector). For a segment [ta, tb] of it the seam gives
+// its footprint on the map and its lowest height above the base (mr_baseFootprint), both
 // bounds, never samples: on a curved base the path in (X, Y, h) is a curve, but the angle
 // about the axis is monotone along a line, the distance from the axis or the centre is
 // convex along it, and the latitude has at most one interior extremum, so each extreme
 // over the segment is at an end or at one interior point found in closed form. It gives
 // the ray's interval in the bounding shell and the face it enters through
-// (baseClipToShell), the exact first hit over a leaf (baseIntersectLeaf), and the hit's
-// map point and normal (baseMapPoint, baseTopNormal, baseWorldNormal).
+// (mr_baseClipToShell), the exact first hit over a leaf (mr_baseIntersectLeaf), and the hit's
+// map point and normal (mr_baseMapPoint, mr_baseTopNormal, mr_baseWorldNormal).
 //
-// The exact hit on a curved base (intersectLeafCells): along the ray the surface is no
+// The exact hit on a curved base (mr_intersectLeafCells): along the ray the surface is no
 // longer a polynomial in t. The leaf walks the cells its path crosses, in order, each
 // cell's stretch ending where the path crosses a boundary (a half-plane of constant u, a
 // plane or a cone of constant v), found in closed form; in each cell it subdivides the
@@ -41,7 +41,7 @@
 #include "relief_patch.glsl"
 
 // The curved leaf's subdivision of one cell's stretch of the ray: down to pieces
-// kCurvedFinalLength long in the frame, or 2^-10 of the stretch at most. Over a piece of
+// MR_CURVED_FINAL_LENGTH long in the frame, or 2^-10 of the stretch at most. Over a piece of
 // length w the gap g(t) between patch and ray departs from the parabola through its ends
 // and middle by at most |g'''| w^3 / 125 (interpolation at three points w / 2 apart).
 // g''' is dominated by the radial distance's, |r'''| <= 3 |d|^3 / r^2 along a line, over
@@ -52,179 +52,179 @@
 #ifndef MICRORELIEF_CELL_DEPTH
 #define MICRORELIEF_CELL_DEPTH 10
 #endif
-const float kCurvedFinalLength = 1.0 / 128.0;
+const float MR_CURVED_FINAL_LENGTH = 1.0 / 128.0;
 // The biquadratic surface along a piece of the path D texels wide departs from the parabola
 // through its ends and middle by about its third derivative times (D / 2)^3 / 9 sqrt(3): a
 // bicubic's is bounded by the map's range, and with D = 2^-6 that is 2.6e-7 of it.
-const float kBiquadraticFinalFootprint = 1.0 / 64.0;
+const float MR_BIQUADRATIC_FINAL_FOOTPRINT = 1.0 / 64.0;
 // The patch's bound, padded by its own float rounding (a few ulp of the net's entries).
-const float kPatchTopMargin = 1.0 / 1048576.0;
+const float MR_PATCH_TOP_MARGIN = 1.0 / 1048576.0;
 
-vec3 baseFramePoint(ReliefMap map, vec3 world) {
+vec3 mr_baseFramePoint(mr_ReliefMap map, vec3 world) {
 #if MICRORELIEF_BASE == 0
-    return worldToMapPoint(map, world);
+    return mr_worldToMapPoint(map, world);
 #else
-    return curvedFramePoint(map, world);
+    return mr_curvedFramePoint(map, world);
 #endif
 }
 
-vec3 baseFrameVector(ReliefMap map, vec3 world) {
+vec3 mr_baseFrameVector(mr_ReliefMap map, vec3 world) {
 #if MICRORELIEF_BASE == 0
-    return worldToMapVector(map, world);
+    return mr_worldToMapVector(map, world);
 #else
-    return curvedFrameVector(map, world);
+    return mr_curvedFrameVector(map, world);
 #endif
 }
 
-vec3 baseWorldPoint(ReliefMap map, vec3 q) {
+vec3 mr_baseWorldPoint(mr_ReliefMap map, vec3 q) {
 #if MICRORELIEF_BASE == 0
-    return mapToWorldPoint(map, q);
+    return mr_mapToWorldPoint(map, q);
 #else
-    return curvedWorldPoint(map, q);
+    return mr_curvedWorldPoint(map, q);
 #endif
 }
 
 // Y of a frame point (curved bases), and the map point (X, Y, h): X in [0, W) on a
 // curved base.
-float baseMapY(ReliefMap map, vec3 q) {
+float mr_baseMapY(mr_ReliefMap map, vec3 q) {
 #if MICRORELIEF_BASE == 1
-    return cylinderMapY(map, q);
+    return mr_cylinderMapY(map, q);
 #elif MICRORELIEF_BASE == 2
-    return ellipsoidMapY(map, q);
+    return mr_ellipsoidMapY(map, q);
 #else
     return q.y;
 #endif
 }
 
-vec3 baseMapPoint(ReliefMap map, vec3 q) {
+vec3 mr_baseMapPoint(mr_ReliefMap map, vec3 q) {
 #if MICRORELIEF_BASE == 1
-    return vec3(curvedMapX(map, q), cylinderMapY(map, q), (cylinderRadial(q) - 1.0) / map.heightScale);
+    return vec3(mr_curvedMapX(map, q), mr_cylinderMapY(map, q), (mr_cylinderRadial(q) - 1.0) / map.heightScale);
 #elif MICRORELIEF_BASE == 2
-    return vec3(curvedMapX(map, q), ellipsoidMapY(map, q), (ellipsoidRadial(q) - 1.0) / map.heightScale);
+    return vec3(mr_curvedMapX(map, q), mr_ellipsoidMapY(map, q), (mr_ellipsoidRadial(q) - 1.0) / map.heightScale);
 #else
     return q;
 #endif
 }
 
 // The ray's interval in the bounding shell (empty when x > y); the face it enters through
-// (RELIEF_WALL_X, _WALL_Y, _BOTTOM, _CAP, or RELIEF_MISS: the top face or the curved
+// (MR_RELIEF_WALL_X, _WALL_Y, _BOTTOM, _CAP, or MR_RELIEF_MISS: the top face or the curved
 // shell); whether it leaves through the plane's floor going down.
-vec2 baseClipToShell(ReliefMap map, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
-    entryFace = RELIEF_MISS;
+vec2 mr_baseClipToShell(mr_ReliefMap map, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
+    entryFace = MR_RELIEF_MISS;
     floorExit = false;
 #if MICRORELIEF_BASE == 1
-    return cylinderClipToShell(map, origin, dir, entryFace);
+    return mr_cylinderClipToShell(map, origin, dir, entryFace);
 #elif MICRORELIEF_BASE == 2
-    return ellipsoidClipToShell(map, origin, dir);
+    return mr_ellipsoidClipToShell(map, origin, dir);
 #else
-    return planeClipToShell(map, origin, dir, entryFace, floorExit);
+    return mr_planeClipToShell(map, origin, dir, entryFace, floorExit);
 #endif
 }
 
 // A segment's end as the footprint needs it, computed once per end (a walk's neighbouring
 // segments share theirs): the map point on the plane; (X, Y, radial distance) on a curved
 // base.
-vec3 baseEnd(ReliefMap map, vec3 q) {
+vec3 mr_baseEnd(mr_ReliefMap map, vec3 q) {
 #if MICRORELIEF_BASE == 1
-    return cylinderEnd(map, q);
+    return mr_cylinderEnd(map, q);
 #elif MICRORELIEF_BASE == 2
-    return ellipsoidEnd(map, q);
+    return mr_ellipsoidEnd(map, q);
 #else
     return q;
 #endif
 }
 
-// The footprint of [ta, tb], whose ends are `ea`, `eb` (baseEnd).
-BaseFootprint baseFootprintOf(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
+// The footprint of [ta, tb], whose ends are `ea`, `eb` (mr_baseEnd).
+mr_BaseFootprint mr_baseFootprintOf(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
 #if MICRORELIEF_BASE == 1
-    return cylinderFootprint(map, origin, dir, ta, tb, ea, eb);
+    return mr_cylinderFootprint(map, origin, dir, ta, tb, ea, eb);
 #elif MICRORELIEF_BASE == 2
-    return ellipsoidFootprint(map, origin, dir, ta, tb, ea, eb);
+    return mr_ellipsoidFootprint(map, origin, dir, ta, tb, ea, eb);
 #else
-    return planeFootprint(ea, eb);
+    return mr_planeFootprint(ea, eb);
 #endif
 }
 
-BaseFootprint baseFootprint(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
-    return baseFootprintOf(map, origin, dir, ta, tb, baseEnd(map, origin + ta * dir), baseEnd(map, origin + tb * dir));
+mr_BaseFootprint mr_baseFootprint(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+    return mr_baseFootprintOf(map, origin, dir, ta, tb, mr_baseEnd(map, origin + ta * dir), mr_baseEnd(map, origin + tb * dir));
 }
 
-// baseFootprint(...).lowest alone: the lowest height over [ta, tb], never above it.
-float baseLowest(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+// mr_baseFootprint(...).lowest alone: the lowest height over [ta, tb], never above it.
+float mr_baseLowest(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
 #if MICRORELIEF_BASE == 1
-    return (cylinderLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+    return (mr_cylinderLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
 #elif MICRORELIEF_BASE == 2
-    return (ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+    return (mr_ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
 #else
-    return planeLowest(origin, dir, ta, tb);
+    return mr_planeLowest(origin, dir, ta, tb);
 #endif
 }
 
 // The first t in [ta, tb] at which the ray is at or below height h (map units), never
 // later than the exact one; ta where it starts there or does not get that low.
-float baseDescendTo(ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float h) {
+float mr_baseDescendTo(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float h) {
 #if MICRORELIEF_BASE == 0
-    return planeDescendTo(origin, dir, ta, tb, h);
+    return mr_planeDescendTo(origin, dir, ta, tb, h);
 #else
-    float radius = 1.0 + map.heightScale * h + kCurvedRadiusMargin;
+    float radius = 1.0 + map.heightScale * h + MR_CURVED_RADIUS_MARGIN;
 #if MICRORELIEF_BASE == 1
-    vec2 inside = curvedInsideRadius(vec3(origin.x, 0.0, origin.z), vec3(dir.x, 0.0, dir.z), radius);
+    vec2 inside = mr_curvedInsideRadius(vec3(origin.x, 0.0, origin.z), vec3(dir.x, 0.0, dir.z), radius);
 #else
-    vec2 inside = curvedInsideRadius(origin, dir, radius);
+    vec2 inside = mr_curvedInsideRadius(origin, dir, radius);
 #endif
     return inside.x > ta && inside.x <= tb ? inside.x : ta;
 #endif
 }
 
-// Where the latitude turns (kCurvedNever on the plane and the cylinder).
-float baseTurnY(vec3 origin, vec3 dir) {
+// Where the latitude turns (MR_CURVED_NEVER on the plane and the cylinder).
+float mr_baseTurnY(vec3 origin, vec3 dir) {
 #if MICRORELIEF_BASE == 2
-    return ellipsoidTurnY(origin, dir);
+    return mr_ellipsoidTurnY(origin, dir);
 #else
-    return kCurvedNever;
+    return MR_CURVED_NEVER;
 #endif
 }
 
 // The outward normal (not unit) in the frame at frame point q of the top surface, whose
 // map gradient there is (dh/dX, dh/dY); of the face a ray entered through.
-vec3 baseTopNormal(ReliefMap map, vec3 q, vec2 gradient) {
+vec3 mr_baseTopNormal(mr_ReliefMap map, vec3 q, vec2 gradient) {
 #if MICRORELIEF_BASE == 1
-    return cylinderTopNormal(map, q, gradient);
+    return mr_cylinderTopNormal(map, q, gradient);
 #elif MICRORELIEF_BASE == 2
-    return ellipsoidTopNormal(map, q, gradient);
+    return mr_ellipsoidTopNormal(map, q, gradient);
 #else
-    return planeTopNormal(gradient);
+    return mr_planeTopNormal(gradient);
 #endif
 }
 
-vec3 baseFaceNormal(ReliefMap map, int face, vec3 q, vec3 dir) {
+vec3 mr_baseFaceNormal(mr_ReliefMap map, int face, vec3 q, vec3 dir) {
 #if MICRORELIEF_BASE == 0
-    return planeFaceNormal(face, dir);
+    return mr_planeFaceNormal(face, dir);
 #else
-    return cylinderFaceNormal(q);  // the cylinder's caps: the only faces a curved shell has
+    return mr_cylinderFaceNormal(q);  // the cylinder's caps: the only faces a curved shell has
 #endif
 }
 
 // A frame normal as a world-space unit vector.
-vec3 baseWorldNormal(ReliefMap map, vec3 n) {
+vec3 mr_baseWorldNormal(mr_ReliefMap map, vec3 n) {
 #if MICRORELIEF_BASE == 0
-    return planeWorldNormal(map, n);
+    return mr_planeWorldNormal(map, n);
 #else
-    return curvedWorldNormal(map, n);
+    return mr_curvedWorldNormal(map, n);
 #endif
 }
 
 // The frame point of map point (X, Y, h): the surface point of the base at (u, v),
 // raised by h along the base's normal.
-vec3 baseSurfacePoint(ReliefMap map, vec3 m) {
+vec3 mr_baseSurfacePoint(mr_ReliefMap map, vec3 m) {
 #if MICRORELIEF_BASE == 0
     return m;
 #else
-    float phi = 2.0 * kCurvedPi * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
+    float phi = 2.0 * MR_CURVED_PI * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
 #if MICRORELIEF_BASE == 1
     return vec3(r * sin(phi), 1.0 - 2.0 * m.y / map.size.y, r * cos(phi));
 #else
-    float theta = kCurvedPi * m.y / map.size.y;
+    float theta = MR_CURVED_PI * m.y / map.size.y;
     return r * vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
 #endif
 #endif
@@ -232,24 +232,24 @@ vec3 baseSurfacePoint(ReliefMap map, vec3 m) {
 
 // The base's tangent frame at map point m: the frame point's derivatives along X, Y and h
 // (orthogonal on every base: map space's axes on the plane).
-void baseTangentFrame(ReliefMap map, vec3 m, out vec3 alongX, out vec3 alongY, out vec3 alongH) {
+void mr_baseTangentFrame(mr_ReliefMap map, vec3 m, out vec3 alongX, out vec3 alongY, out vec3 alongH) {
 #if MICRORELIEF_BASE == 0
     alongX = vec3(1.0, 0.0, 0.0);
     alongY = vec3(0.0, 1.0, 0.0);
     alongH = vec3(0.0, 0.0, 1.0);
 #else
-    float phi = 2.0 * kCurvedPi * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
+    float phi = 2.0 * MR_CURVED_PI * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
     vec3 ePhi = vec3(cos(phi), 0.0, -sin(phi));
 #if MICRORELIEF_BASE == 1
-    alongX = r * (2.0 * kCurvedPi / map.size.x) * ePhi;
+    alongX = r * (2.0 * MR_CURVED_PI / map.size.x) * ePhi;
     alongY = vec3(0.0, -2.0 / map.size.y, 0.0);
     alongH = map.heightScale * vec3(sin(phi), 0.0, cos(phi));
 #else
-    float theta = kCurvedPi * m.y / map.size.y;
+    float theta = MR_CURVED_PI * m.y / map.size.y;
     vec3 w = vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
     vec3 eTheta = vec3(cos(theta) * sin(phi), -sin(theta), cos(theta) * cos(phi));
-    alongX = r * sin(theta) * (2.0 * kCurvedPi / map.size.x) * ePhi;
-    alongY = r * (kCurvedPi / map.size.y) * eTheta;
+    alongX = r * sin(theta) * (2.0 * MR_CURVED_PI / map.size.x) * ePhi;
+    alongY = r * (MR_CURVED_PI / map.size.y) * eTheta;
     alongH = map.heightScale * w;
 #endif
 #endif
@@ -259,119 +259,119 @@ void baseTangentFrame(ReliefMap map, vec3 m, out vec3 alongX, out vec3 alongY, o
 // on a curved surface: map space (X, Y, h) taken as flat from that point on, the ray's
 // direction expressed in the base's tangent frame there, blind to the curvature beyond.
 // False when the ray misses the shell. `tEntry` is where it enters (or 0 inside it).
-bool baseTangentRay(ReliefMap map, vec3 origin, vec3 dir, out vec3 localOrigin, out vec3 localDir,
+bool mr_baseTangentRay(mr_ReliefMap map, vec3 origin, vec3 dir, out vec3 localOrigin, out vec3 localDir,
                     out float tEntry) {
     int entryFace;
     bool floorExit;
-    vec2 range = baseClipToShell(map, origin, dir, entryFace, floorExit);
+    vec2 range = mr_baseClipToShell(map, origin, dir, entryFace, floorExit);
     tEntry = max(range.x, 0.0);
-    localOrigin = baseMapPoint(map, origin + tEntry * dir);
+    localOrigin = mr_baseMapPoint(map, origin + tEntry * dir);
     localDir = vec3(0.0);
     if (tEntry > range.y) return false;
     vec3 alongX, alongY, alongH;
-    baseTangentFrame(map, localOrigin, alongX, alongY, alongH);
+    mr_baseTangentFrame(map, localOrigin, alongX, alongY, alongH);
     localDir = vec3(dot(dir, alongX) / dot(alongX, alongX), dot(dir, alongY) / dot(alongY, alongY),
                     dot(dir, alongH) / dot(alongH, alongH));
     return true;
 }
 
 // The leaf's walk over the cells its path crosses, for every base and both
-// interpolations but the plane's bilinear surface (whose leaf is planeIntersectLeaf):
-// where the path crosses the cell boundaries X = i + kPatchOffset and Y = j + kPatchOffset
+// interpolations but the plane's bilinear surface (whose leaf is mr_planeIntersectLeaf):
+// where the path crosses the cell boundaries X = i + MR_PATCH_OFFSET and Y = j + MR_PATCH_OFFSET
 // (relief_patch.glsl), and which way it goes.
-bool baseXIncreases(vec3 origin, vec3 dir) {
+bool mr_baseXIncreases(vec3 origin, vec3 dir) {
 #if MICRORELIEF_BASE == 0
     return dir.x > 0.0;
 #else
-    return curvedXIncreases(origin, dir);
+    return mr_curvedXIncreases(origin, dir);
 #endif
 }
 
-float baseCrossX(ReliefMap map, vec3 origin, vec3 dir, float boundary) {
+float mr_baseCrossX(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary) {
 #if MICRORELIEF_BASE == 0
-    return planeCrossX(origin, dir, boundary);
+    return mr_planeCrossX(origin, dir, boundary);
 #else
-    return curvedCrossX(map, origin, dir, boundary);
+    return mr_curvedCrossX(map, origin, dir, boundary);
 #endif
 }
 
 // On the plane and the cylinder each Y boundary is crossed once (any t); on the
 // ellipsoid, the crossing on the branch [from, to] of the line where Y is monotone.
-float baseCrossY(ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
+float mr_baseCrossY(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
 #if MICRORELIEF_BASE == 2
-    return ellipsoidCrossY(map, origin, dir, boundary, from, to);
+    return mr_ellipsoidCrossY(map, origin, dir, boundary, from, to);
 #elif MICRORELIEF_BASE == 1
-    return cylinderCrossY(map, origin, dir, boundary);
+    return mr_cylinderCrossY(map, origin, dir, boundary);
 #else
-    return planeCrossY(origin, dir, boundary);
+    return mr_planeCrossY(origin, dir, boundary);
 #endif
 }
 
 // When a piece of a cell's stretch is final (see the header): on a curved base once it is
-// kCurvedFinalLength long in the frame, and for the biquadratic surface once its footprint
-// is kBiquadraticFinalFootprint texels wide; the bilinear surface along a straight path is
+// MR_CURVED_FINAL_LENGTH long in the frame, and for the biquadratic surface once its footprint
+// is MR_BIQUADRATIC_FINAL_FOOTPRINT texels wide; the bilinear surface along a straight path is
 // a quadratic the parabola holds exactly.
 #if MICRORELIEF_BASE == 0
-const float kFinalLength = 1e30;
+const float MR_FINAL_LENGTH = 1e30;
 #else
-const float kFinalLength = kCurvedFinalLength;
+const float MR_FINAL_LENGTH = MR_CURVED_FINAL_LENGTH;
 #endif
 #if MICRORELIEF_INTERPOLATION == 1
-const float kFinalFootprint = kBiquadraticFinalFootprint;
+const float MR_FINAL_FOOTPRINT = MR_BIQUADRATIC_FINAL_FOOTPRINT;
 #else
-const float kFinalFootprint = 1e30;
+const float MR_FINAL_FOOTPRINT = 1e30;
 #endif
 
 // Map point m in the local coordinates of `cell`, with its height: (fx, fy, h).
-vec3 cellLocalPoint(ReliefMap map, ivec2 cell, vec3 m) { return vec3(patchLocal(map, cell, m.xy), m.z); }
+vec3 mr_cellLocalPoint(mr_ReliefMap map, ivec2 cell, vec3 m) { return vec3(mr_patchLocal(map, cell, m.xy), m.z); }
 
 // Patch minus ray: >= 0 where the ray is on or under the surface.
-float cellGap(ReliefPatch cellPatch, vec3 local) { return patchValue(cellPatch, clamp(local.xy, 0.0, 1.0)) - local.z; }
+float mr_cellGap(mr_ReliefPatch cellPatch, vec3 local) { return mr_patchValue(cellPatch, clamp(local.xy, 0.0, 1.0)) - local.z; }
 
 // The first t in [c0, c1] where the ray meets the patch `cellPatch` of `cell`, or -1 (see the
 // header). `startPoint`: the map point at c0, known from the cell before; `endPoint`: the
 // one at c1, found here (the next cell's start). The walk carries the local coordinates of
 // the current piece's ends, so that each step computes one new point: the middle it
 // descends to, or the end of the piece it moves on to. Every margin pads a bound outwards.
-float cellStretchHit(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, ReliefPatch cellPatch, float c0, float c1,
+float mr_cellStretchHit(mr_ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, mr_ReliefPatch cellPatch, float c0, float c1,
                      vec3 startPoint, out vec3 endPoint) {
 #if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 1
     // The plane's path is straight: the gap is one quartic (biquadratic_patch.glsl).
-    endPoint = baseMapPoint(map, origin + c1 * dir);
-    vec3 pa = cellLocalPoint(map, cell, startPoint), pb = cellLocalPoint(map, cell, endPoint);
-    Quartic gap = biquadraticPathGap(cellPatch, pa, pb);
+    endPoint = mr_baseMapPoint(map, origin + c1 * dir);
+    vec3 pa = mr_cellLocalPoint(map, cell, startPoint), pb = mr_cellLocalPoint(map, cell, endPoint);
+    mr_Quartic gap = mr_biquadraticPathGap(cellPatch, pa, pb);
     float footprint = max(abs(pb.x - pa.x), abs(pb.y - pa.y));
-    float s = quarticFirstHit(gap, kFinalFootprint / max(footprint, 1e-30), kPatchTopMargin * map.maxHeight);
+    float s = mr_quarticFirstHit(gap, MR_FINAL_FOOTPRINT / max(footprint, 1e-30), MR_PATCH_TOP_MARGIN * map.maxHeight);
     return s < 0.0 ? -1.0 : c0 + s * (c1 - c0);
 #else
-    vec2 margin = vec2(curvedMarginX(map), curvedMarginY(map));
-    float topMargin = kPatchTopMargin * map.maxHeight;
-    float finalLength = kFinalLength / length(dir);
+    vec2 margin = vec2(mr_curvedMarginX(map), mr_curvedMarginY(map));
+    float topMargin = MR_PATCH_TOP_MARGIN * map.maxHeight;
+    float finalLength = MR_FINAL_LENGTH / length(dir);
     int depth = 0;
     uint index = 0u;
     float a = c0, b = c1;
-    endPoint = baseMapPoint(map, origin + c1 * dir);
-    vec3 fa = cellLocalPoint(map, cell, startPoint), fb = cellLocalPoint(map, cell, endPoint);
+    endPoint = mr_baseMapPoint(map, origin + c1 * dir);
+    vec3 fa = mr_cellLocalPoint(map, cell, startPoint), fb = mr_cellLocalPoint(map, cell, endPoint);
     // A walk of the binary tree of pieces visits each at most once.
     for (int guard = 0; guard < (2 << MICRORELIEF_CELL_DEPTH); ++guard) {
         vec2 lo = min(fa.xy, fb.xy), hi = max(fa.xy, fb.xy);
-        float top = patchTop(cellPatch, lo - margin, hi + margin) + topMargin;
-        bool may = baseLowest(map, origin, dir, a, b) <= top;
+        float top = mr_patchTop(cellPatch, lo - margin, hi + margin) + topMargin;
+        bool may = mr_baseLowest(map, origin, dir, a, b) <= top;
         bool last = depth == MICRORELIEF_CELL_DEPTH ||
-                    (b - a <= finalLength && max(hi.x - lo.x, hi.y - lo.y) <= kFinalFootprint);
+                    (b - a <= finalLength && max(hi.x - lo.x, hi.y - lo.y) <= MR_FINAL_FOOTPRINT);
         if (may && !last) {
             // Into the near half.
             depth += 1;
             index *= 2u;
             b = 0.5 * (a + b);
-            fb = cellLocalPoint(map, cell, baseMapPoint(map, origin + b * dir));
+            fb = mr_cellLocalPoint(map, cell, mr_baseMapPoint(map, origin + b * dir));
             continue;
         }
         if (may) {
             float m = 0.5 * (a + b);
-            float ga = cellGap(cellPatch, fa), gb = cellGap(cellPatch, fb);
-            float gm = cellGap(cellPatch, cellLocalPoint(map, cell, baseMapPoint(map, origin + m * dir)));
-            float s = parabolaFirstRoot(ga, gm, gb);
+            float ga = mr_cellGap(cellPatch, fa), gb = mr_cellGap(cellPatch, fb);
+            float gm = mr_cellGap(cellPatch, mr_cellLocalPoint(map, cell, mr_baseMapPoint(map, origin + m * dir)));
+            float s = mr_parabolaFirstRoot(ga, gm, gb);
             if (s >= 0.0) return a + s * (b - a);
         }
         // Past this piece: on to its successor in order, as high up as it is unvisited.
@@ -384,7 +384,7 @@ float cellStretchHit(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, ReliefPat
         a = b;
         fa = fb;
         b = index + 1u == (1u << uint(depth)) ? c1 : c0 + float(index + 1u) * ((c1 - c0) * exp2(-float(depth)));
-        fb = cellLocalPoint(map, cell, baseMapPoint(map, origin + b * dir));
+        fb = mr_cellLocalPoint(map, cell, mr_baseMapPoint(map, origin + b * dir));
     }
     return -1.0;
 #endif
@@ -396,38 +396,38 @@ float cellStretchHit(ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, ReliefPat
 // so that each boundary is crossed once on it: a crossing found there but behind the
 // current t means rounding put the start just past it, and the walk steps on at once.
 // `cellPatch` and `cell` are the patch of the hit.
-float walkLeafCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
-                    float branchFrom, float branchTo, inout int fetches, out ReliefPatch cellPatch, out ivec2 cell) {
+float mr_walkLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
+                    float branchFrom, float branchTo, inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
     int width = int(map.size.x);
     // Cells in Y: -1..H - 1 between sample centres, 0..H - 1 over texel squares.
-    int firstRow = kPatchOffset > 0.0 ? -1 : 0, lastRow = int(map.size.y) - 1;
-    vec3 start = baseMapPoint(map, origin + from * dir);
-    cell = patchCellAt(map, start.xy);
+    int firstRow = MR_PATCH_OFFSET > 0.0 ? -1 : 0, lastRow = int(map.size.y) - 1;
+    vec3 start = mr_baseMapPoint(map, origin + from * dir);
+    cell = mr_patchCellAt(map, start.xy);
     cell.y = clamp(cell.y, firstRow, lastRow);
 #if MICRORELIEF_BASE == 0
     cell.x = clamp(cell.x, firstRow, width - 1);
 #endif
-    bool xUp = baseXIncreases(origin, dir);
-    float yTo = baseMapY(map, origin + to * dir);
+    bool xUp = mr_baseXIncreases(origin, dir);
+    float yTo = mr_baseMapY(map, origin + to * dir);
     bool yMoves = yTo != start.y, yUp = yTo > start.y;
     float t0 = from;
     vec3 point = start;  // the map point at t0
-    cellPatch = ReliefPatch(0.0);
+    cellPatch = mr_ReliefPatch(0.0);
     for (int piece = 0; piece < width + int(map.size.y) + 4; ++piece) {
         float t1 = to;
         bool stepX = false, stepY = false;
         // A curved map one sample wide has no boundary in X: its one cell goes all the way
         // round.
         float tx = MICRORELIEF_BASE == 0 || width > 1
-                       ? baseCrossX(map, origin, dir, float(cell.x) + kPatchOffset + (xUp ? 1.0 : 0.0))
-                       : kCurvedNever;
+                       ? mr_baseCrossX(map, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0))
+                       : MR_CURVED_NEVER;
         if (tx <= t1) {
             t1 = max(tx, t0);
             stepX = true;
         }
-        float yBoundary = float(cell.y) + kPatchOffset + (yUp ? 1.0 : 0.0);
+        float yBoundary = float(cell.y) + MR_PATCH_OFFSET + (yUp ? 1.0 : 0.0);
         if (yMoves && yBoundary > 0.0 && yBoundary < map.size.y) {
-            float ty = baseCrossY(map, origin, dir, yBoundary, branchFrom, branchTo);
+            float ty = mr_baseCrossY(map, origin, dir, yBoundary, branchFrom, branchTo);
             if (ty <= t1) {
                 float t = max(ty, t0);
                 stepX = stepX && t == t1;
@@ -435,9 +435,9 @@ float walkLeafCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, flo
                 stepY = true;
             }
         }
-        cellPatch = patchAt(map, heights, cell, fetches);
+        cellPatch = mr_patchAt(map, heights, cell, fetches);
         vec3 next;
-        float tHit = cellStretchHit(map, origin, dir, cell, cellPatch, t0, t1, point, next);
+        float tHit = mr_cellStretchHit(map, origin, dir, cell, cellPatch, t0, t1, point, next);
         if (tHit >= 0.0) return tHit;
         point = next;
         if (!stepX && !stepY) break;  // the stretch ended at `to`
@@ -455,17 +455,17 @@ float walkLeafCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, flo
 // The exact first hit over [ta, tb] by the cells the path crosses: the latitude turns at
 // most once along a line, so the leaf is walked in two pieces at most, X and Y monotone on
 // each.
-float intersectLeafCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                         inout int fetches, out ReliefPatch cellPatch, out ivec2 cell) {
-    float turn = baseTurnY(origin, dir);
+float mr_intersectLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+                         inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
+    float turn = mr_baseTurnY(origin, dir);
     float from = ta, to = turn > ta && turn < tb ? turn : tb;
     float tHit = -1.0;
     for (int piece = 0; piece < 2; ++piece) {
         // The branch of the line, before or after the turn, that holds [from, to].
-        bool beforeTurn = turn != kCurvedNever && turn >= to;
-        float branchFrom = beforeTurn || turn == kCurvedNever ? -kCurvedNever : turn;
-        float branchTo = beforeTurn ? turn : kCurvedNever;
-        tHit = walkLeafCells(map, heights, origin, dir, from, to, branchFrom, branchTo, fetches, cellPatch, cell);
+        bool beforeTurn = turn != MR_CURVED_NEVER && turn >= to;
+        float branchFrom = beforeTurn || turn == MR_CURVED_NEVER ? -MR_CURVED_NEVER : turn;
+        float branchTo = beforeTurn ? turn : MR_CURVED_NEVER;
+        tHit = mr_walkLeafCells(map, heights, origin, dir, from, to, branchFrom, branchTo, fetches, cellPatch, cell);
         if (tHit >= 0.0 || to >= tb) break;
         from = to;
         to = tb;
@@ -475,12 +475,12 @@ float intersectLeafCells(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir
 
 // The exact first hit on the surface over [ta, tb], or -1; `corners` and `cell` are the
 // patch of the hit.
-float baseIntersectLeaf(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                        inout int fetches, out ReliefPatch cellPatch, out ivec2 cell) {
+float mr_baseIntersectLeaf(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+                        inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
 #if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 0
-    return planeIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
+    return mr_planeIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
 #else
-    return intersectLeafCells(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
+    return mr_intersectLeafCells(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
 #endif
 }
 

@@ -7,7 +7,7 @@
 // cells -1 and W - 1 (H - 1) are the clamped half-texel borders, flat across the edge.
 // On a curved base (MICRORELIEF_BASE != 0) u wraps: the texture's S wrap is REPEAT, cell
 // W - 1 joins sample W - 1 to sample 0 across the seam, and cell indices are kept in
-// 0..W - 1 (wrapCell).
+// 0..W - 1 (mr_wrapCell).
 #ifndef MICRORELIEF_BILINEAR_PATCH_GLSL
 #define MICRORELIEF_BILINEAR_PATCH_GLSL
 
@@ -24,7 +24,7 @@
 #endif
 
 // The four corner samples of cell `cell`: x = h00, y = h10, z = h01, w = h11.
-vec4 cellCorners(ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
+vec4 mr_cellCorners(mr_ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
 #if MICRORELIEF_TEXTURE_GATHER
     // The bilinear footprint of the point midway between the cell's four samples is
     // exactly those samples, clamped at the edges as CLAMP_TO_EDGE clamps them.
@@ -48,11 +48,11 @@ vec4 cellCorners(ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches
 // The corners of the neighbour of `cell` one `step` (+1 or -1) along `axis`, given the
 // corners of `cell`; `cell` moves. The two cells share an edge: without gathering, only
 // the far edge's two samples are read.
-vec4 neighbourCorners(ReliefMap map, sampler2D heights, inout ivec2 cell, int axis, int step, vec4 corners,
+vec4 mr_neighbourCorners(mr_ReliefMap map, sampler2D heights, inout ivec2 cell, int axis, int step, vec4 corners,
                       inout int fetches) {
     cell[axis] += step;
 #if MICRORELIEF_TEXTURE_GATHER
-    return cellCorners(map, heights, cell, fetches);
+    return mr_cellCorners(map, heights, cell, fetches);
 #else
     ivec2 last = ivec2(map.size) - 1;
     ivec2 c0 = clamp(cell, ivec2(0), last), c1 = clamp(cell + 1, ivec2(0), last);
@@ -71,7 +71,7 @@ vec4 neighbourCorners(ReliefMap map, sampler2D heights, inout ivec2 cell, int ax
 }
 
 // A cell index in 0..W - 1 on a curved base (u wraps); unchanged on the plane.
-ivec2 wrapCell(ReliefMap map, ivec2 cell) {
+ivec2 mr_wrapCell(mr_ReliefMap map, ivec2 cell) {
 #if MICRORELIEF_BASE != 0
     int width = int(map.size.x);
     cell.x -= width * int(floor(float(cell.x) / float(width)));
@@ -80,11 +80,11 @@ ivec2 wrapCell(ReliefMap map, ivec2 cell) {
 }
 
 // The cell that holds map point `xy` (ties go to the cell on the positive side).
-ivec2 cellAt(vec2 xy) { return ivec2(floor(xy - 0.5)); }
+ivec2 mr_cellAt(vec2 xy) { return ivec2(floor(xy - 0.5)); }
 
 // Map point `xy` in the local coordinates of `cell`, whose sample h00 is at the origin; on
 // a curved base the seam cell W - 1 holds the points just past X = 0 too.
-vec2 cellLocal(ReliefMap map, ivec2 cell, vec2 xy) {
+vec2 mr_cellLocal(mr_ReliefMap map, ivec2 cell, vec2 xy) {
     vec2 f = xy - (vec2(cell) + 0.5);
 #if MICRORELIEF_BASE != 0
     f.x -= map.size.x * floor(f.x / map.size.x + 0.5);
@@ -93,35 +93,35 @@ vec2 cellLocal(ReliefMap map, ivec2 cell, vec2 xy) {
 }
 
 // Height of the patch with corners `h` at local coordinates f in [0, 1]^2.
-float patchHeight(vec4 h, vec2 f) {
+float mr_patchHeight(vec4 h, vec2 f) {
     return mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
 }
 
 // Gradient (dh/dX, dh/dY) of the patch at f.
-vec2 patchGradient(vec4 h, vec2 f) {
+vec2 mr_patchGradient(vec4 h, vec2 f) {
     return vec2(mix(h.y - h.x, h.w - h.z, f.y), mix(h.z - h.x, h.w - h.y, f.x));
 }
 
 // h(X, Y): the surface height at a map point.
-float surfaceHeight(ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
-    ivec2 cell = wrapCell(map, cellAt(xy));
-    return patchHeight(cellCorners(map, heights, cell, fetches), clamp(cellLocal(map, cell, xy), 0.0, 1.0));
+float mr_surfaceHeight(mr_ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
+    ivec2 cell = mr_wrapCell(map, mr_cellAt(xy));
+    return mr_patchHeight(mr_cellCorners(map, heights, cell, fetches), clamp(mr_cellLocal(map, cell, xy), 0.0, 1.0));
 }
 
 // The patch's max over the rectangle [lo, hi] of local coordinates (clamped to the
 // patch): bilinear, so linear along each axis, it peaks at a corner of any rectangle.
-float patchMaxOver(vec4 h, vec2 lo, vec2 hi) {
+float mr_patchMaxOver(vec4 h, vec2 lo, vec2 hi) {
     lo = clamp(lo, 0.0, 1.0);
     hi = clamp(hi, 0.0, 1.0);
-    return max(max(patchHeight(h, lo), patchHeight(h, vec2(hi.x, lo.y))),
-               max(patchHeight(h, vec2(lo.x, hi.y)), patchHeight(h, hi)));
+    return max(max(mr_patchHeight(h, lo), mr_patchHeight(h, vec2(hi.x, lo.y))),
+               max(mr_patchHeight(h, vec2(lo.x, hi.y)), mr_patchHeight(h, hi)));
 }
 
 // The first root tau in [0, tauMax] of patch(start.xy + tau dir.xy) = start.z + tau dir.z
 // for the patch with corners `h` whose origin (sample h00) is at `cellOrigin`, or -1.
 // Along a ray the patch height is quadratic in tau (the paper's "exact bilinear
 // interpolation at the last level"), so this is a quadratic, solved stably.
-float intersectPatch(vec4 h, vec2 cellOrigin, vec3 start, vec3 dir, float tauMax) {
+float mr_intersectPatch(vec4 h, vec2 cellOrigin, vec3 start, vec3 dir, float tauMax) {
     vec2 f = start.xy - cellOrigin;
     float b = h.y - h.x, c = h.z - h.x, d = h.x - h.y - h.z + h.w;
     // g(tau) = A tau^2 + B tau + C = patch height - ray height: < 0 above the surface,

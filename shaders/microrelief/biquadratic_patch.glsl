@@ -17,7 +17,7 @@
 #include "relief_map.glsl"
 
 // One sample, its column clamped or wrapped, its row clamped.
-float biquadraticSample(ReliefMap map, sampler2D heights, ivec2 p) {
+float mr_biquadraticSample(mr_ReliefMap map, sampler2D heights, ivec2 p) {
     ivec2 last = ivec2(map.size) - 1;
 #if MICRORELIEF_BASE != 0
     p.x = p.x < 0 ? p.x + last.x + 1 : p.x > last.x ? p.x - last.x - 1 : p.x;
@@ -31,7 +31,7 @@ float biquadraticSample(ReliefMap map, sampler2D heights, ivec2 p) {
 // The Bezier net of texel square `square` (net[a][b]: column a, row b, as a mat3 is
 // indexed). The 3 x 3 samples are four textureGathers of 2 x 2 samples each where the GL
 // has them (one fetch each), nine texelFetch otherwise.
-mat3 biquadraticNet(ReliefMap map, sampler2D heights, ivec2 square, inout int fetches) {
+mat3 mr_biquadraticNet(mr_ReliefMap map, sampler2D heights, ivec2 square, inout int fetches) {
     mat3 c;
 #if MICRORELIEF_TEXTURE_GATHER
     // Each gather reads the 2 x 2 samples whose centres surround the point between them:
@@ -48,7 +48,7 @@ mat3 biquadraticNet(ReliefMap map, sampler2D heights, ivec2 square, inout int fe
     c[2] = vec3(g10.z, g10.y, g11.y);
 #else
     for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) c[a][b] = biquadraticSample(map, heights, square + ivec2(a - 1, b - 1));
+        for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(map, heights, square + ivec2(a - 1, b - 1));
     }
     fetches += 9;
 #endif
@@ -65,43 +65,43 @@ mat3 biquadraticNet(ReliefMap map, sampler2D heights, ivec2 square, inout int fe
 }
 
 // The quadratic Bernstein polynomials at u.
-vec3 quadraticBernstein(float u) {
+vec3 mr_quadraticBernstein(float u) {
     float w = 1.0 - u;
     return vec3(w * w, 2.0 * u * w, u * u);
 }
 
 // The net summed along v with weights w: (sum over b of net[a][b] w[b]) for each column a.
-vec3 netAlongV(mat3 net, vec3 w) { return vec3(dot(net[0], w), dot(net[1], w), dot(net[2], w)); }
+vec3 mr_netAlongV(mat3 net, vec3 w) { return vec3(dot(net[0], w), dot(net[1], w), dot(net[2], w)); }
 
 // Height of the patch at local (u, v): the sum of net[a][b] B_a(u) B_b(v).
-float biquadraticHeight(mat3 net, vec2 uv) {
-    return dot(quadraticBernstein(uv.x), netAlongV(net, quadraticBernstein(uv.y)));
+float mr_biquadraticHeight(mat3 net, vec2 uv) {
+    return dot(mr_quadraticBernstein(uv.x), mr_netAlongV(net, mr_quadraticBernstein(uv.y)));
 }
 
 // Gradient (dh/du, dh/dv) = (dh/dX, dh/dY) of the patch at local (u, v).
-vec2 biquadraticGradient(mat3 net, vec2 uv) {
-    vec3 bu = quadraticBernstein(uv.x), bv = quadraticBernstein(uv.y);
+vec2 mr_biquadraticGradient(mat3 net, vec2 uv) {
+    vec3 bu = mr_quadraticBernstein(uv.x), bv = mr_quadraticBernstein(uv.y);
     vec3 du = vec3(-2.0 * (1.0 - uv.x), 2.0 - 4.0 * uv.x, 2.0 * uv.x);
     vec3 dv = vec3(-2.0 * (1.0 - uv.y), 2.0 - 4.0 * uv.y, 2.0 * uv.y);
-    return vec2(dot(du, netAlongV(net, bv)), dot(bu, netAlongV(net, dv)));
+    return vec2(dot(du, mr_netAlongV(net, bv)), dot(bu, mr_netAlongV(net, dv)));
 }
 
 // The Bezier points over [a, b] of a quadratic whose Bezier points over [0, 1] are p: its
 // values and polar form at (a, a), (a, b), (b, b). Column k holds the weights of p0, p1,
 // p2 in the k-th point.
-mat3 quadraticRestriction(float a, float b) {
+mat3 mr_quadraticRestriction(float a, float b) {
     // The polar form of the Bernstein basis: (1-a)(1-b), a(1-b) + b(1-a), ab.
     vec3 polar = vec3((1.0 - a) * (1.0 - b), a * (1.0 - b) + b * (1.0 - a), a * b);
-    return mat3(quadraticBernstein(a), polar, quadraticBernstein(b));
+    return mat3(mr_quadraticBernstein(a), polar, mr_quadraticBernstein(b));
 }
 
 // The patch's max over the rectangle [lo, hi] of local coordinates (clamped to the
 // square): never below it, since the patch over the rectangle lies in the convex hull of
 // the rectangle's own Bezier net (the net restricted to it), whose largest entry this is.
-float biquadraticMaxOver(mat3 net, vec2 lo, vec2 hi) {
+float mr_biquadraticMaxOver(mat3 net, vec2 lo, vec2 hi) {
     lo = clamp(lo, 0.0, 1.0);
     hi = clamp(hi, 0.0, 1.0);
-    mat3 su = quadraticRestriction(lo.x, hi.x), sv = quadraticRestriction(lo.y, hi.y);
+    mat3 su = mr_quadraticRestriction(lo.x, hi.x), sv = mr_quadraticRestriction(lo.y, hi.y);
     float top = -1e30;
     for (int k = 0; k < 3; ++k) {
         // Restricted along u: column k of the sub-net, still over [0, 1] in v.
@@ -117,7 +117,7 @@ float biquadraticMaxOver(mat3 net, vec2 lo, vec2 hi) {
 // Over a stretch of a straight ray inside one texel square, from local point fa to fb
 // (u, v and the ray's height z, each linear in s in [0, 1]), the gap g(s) = patch(u, v) - z
 // is a quartic in s. Its Bernstein coefficients come from the net: restricting each axis
-// to the path's range (quadraticRestriction) gives a biquadratic net over [0, 1]^2 whose
+// to the path's range (mr_quadraticRestriction) gives a biquadratic net over [0, 1]^2 whose
 // diagonal is the path, and the diagonal of a tensor-product quadratic is the quartic with
 // coefficients N00, (N10 + N01) / 2, (N20 + 4 N11 + N02) / 6, (N21 + N12) / 2, N22. The
 // quartic lies within the convex hull of its coefficients over any piece, which bounds it
@@ -125,14 +125,14 @@ float biquadraticMaxOver(mat3 net, vec2 lo, vec2 hi) {
 // point): a piece whose coefficients are all below zero holds no hit.
 
 // A quartic's five coefficients: (c0, c1, c2, c3) and c4.
-struct Quartic {
+struct mr_Quartic {
     vec4 c;
     float c4;
 };
 
 // The coefficients of g over [0, 1].
-Quartic biquadraticPathGap(mat3 net, vec3 fa, vec3 fb) {
-    mat3 su = quadraticRestriction(fa.x, fb.x), sv = quadraticRestriction(fa.y, fb.y);
+mr_Quartic mr_biquadraticPathGap(mat3 net, vec3 fa, vec3 fb) {
+    mat3 su = mr_quadraticRestriction(fa.x, fb.x), sv = mr_quadraticRestriction(fa.y, fb.y);
     // n[k][l]: restricted along u (columns k) and v (rows l).
     mat3 n;
     for (int k = 0; k < 3; ++k) {
@@ -142,12 +142,12 @@ Quartic biquadraticPathGap(mat3 net, vec3 fa, vec3 fb) {
     vec4 z = fa.z + vec4(0.0, 0.25, 0.5, 0.75) * (fb.z - fa.z);
     vec4 diagonal = vec4(n[0][0], 0.5 * (n[1][0] + n[0][1]), (n[2][0] + 4.0 * n[1][1] + n[0][2]) / 6.0,
                          0.5 * (n[2][1] + n[1][2]));
-    return Quartic(diagonal - z, n[2][2] - fb.z);
+    return mr_Quartic(diagonal - z, n[2][2] - fb.z);
 }
 
 // The coefficients over [sa, sb] of the quartic whose coefficients over [0, 1] are q: de
 // Casteljau at sa keeps the right part, then at the piece's end within it the left part.
-Quartic quarticPiece(Quartic q, float sa, float sb) {
+mr_Quartic mr_quarticPiece(mr_Quartic q, float sa, float sb) {
     // Right of sa: the last point of each level.
     vec4 l1 = mix(q.c, vec4(q.c.yzw, q.c4), sa);  // 4 points of level 1
     vec3 l2 = mix(l1.xyz, l1.yzw, sa);
@@ -161,11 +161,11 @@ Quartic quarticPiece(Quartic q, float sa, float sb) {
     vec3 m2 = mix(m1.xyz, m1.yzw, tau);
     vec2 m3 = mix(m2.xy, m2.yz, tau);
     float m4 = mix(m3.x, m3.y, tau);
-    return Quartic(vec4(r.x, m1.x, m2.x, m3.x), m4);
+    return mr_Quartic(vec4(r.x, m1.x, m2.x, m3.x), m4);
 }
 
 // The quartic at s in [0, 1]: de Casteljau.
-float quarticValue(Quartic q, float s) {
+float mr_quarticValue(mr_Quartic q, float s) {
     vec4 l1 = mix(q.c, vec4(q.c.yzw, q.c4), s);
     vec3 l2 = mix(l1.xyz, l1.yzw, s);
     vec2 l3 = mix(l2.xy, l2.yz, s);
@@ -175,12 +175,12 @@ float quarticValue(Quartic q, float s) {
 // The one root of a quartic that rises from q(0) < 0 to q(1) >= 0 with coefficients that
 // never fall (so it is monotone): regula falsi with the Illinois rule, the bracket [lo, hi]
 // (q(lo) < 0 <= q(hi)) shrinking superlinearly, until it is 2^-18 of the piece wide.
-float quarticRisingRoot(Quartic q) {
+float mr_quarticRisingRoot(mr_Quartic q) {
     float lo = 0.0, hi = 1.0, qlo = q.c.x, qhi = q.c4;
     int side = 0;
     for (int k = 0; k < 16 && hi - lo > 1.0 / 262144.0; ++k) {
         float s = clamp((lo * qhi - hi * qlo) / (qhi - qlo), lo, hi);
-        float qs = quarticValue(q, s);
+        float qs = mr_quarticValue(q, s);
         if (qs >= 0.0) {
             hi = s;
             qhi = qs;
@@ -198,34 +198,34 @@ float quarticRisingRoot(Quartic q) {
 
 // Pieces 2^-12 of the stretch at the finest (a tenth of the final footprint on the
 // longest stretch a square holds).
-const int kQuarticDepth = 12;
+const int MR_QUARTIC_DEPTH = 12;
 
 // The first s in [0, 1] where g(s) >= 0 (the ray on or under the patch), or -1: the binary
 // tree of pieces in order, each skipped when all its coefficients are below -margin (the
 // float rounding of the net and of the restriction), down to pieces `finalWidth` wide,
-// solved by the parabola through their ends and middle (base_surface.glsl: cellStretchHit).
-float quarticFirstHit(Quartic g, float finalWidth, float margin) {
+// solved by the parabola through their ends and middle (base_surface.glsl: mr_cellStretchHit).
+float mr_quarticFirstHit(mr_Quartic g, float finalWidth, float margin) {
     int depth = 0;
     uint index = 0u;
-    for (int guard = 0; guard < (2 << kQuarticDepth); ++guard) {
+    for (int guard = 0; guard < (2 << MR_QUARTIC_DEPTH); ++guard) {
         float scale = exp2(-float(depth));
         float sa = float(index) * scale, sb = float(index + 1u) * scale;
-        Quartic c = depth == 0 ? g : quarticPiece(g, sa, sb);
+        mr_Quartic c = depth == 0 ? g : mr_quarticPiece(g, sa, sb);
         float top = max(max(max(c.c.x, c.c.y), max(c.c.z, c.c.w)), c.c4);
         if (top >= -margin) {
             if (c.c.x >= 0.0) return sa;
             // Rising all the way to a point in the solid: one root, found directly.
             vec4 rise = vec4(c.c.yzw, c.c4) - c.c;
             if (c.c4 >= 0.0 && all(greaterThanEqual(rise, vec4(0.0))))
-                return sa + (sb - sa) * quarticRisingRoot(c);
-            if (sb - sa > finalWidth && depth < kQuarticDepth) {
+                return sa + (sb - sa) * mr_quarticRisingRoot(c);
+            if (sb - sa > finalWidth && depth < MR_QUARTIC_DEPTH) {
                 depth += 1;
                 index *= 2u;
                 continue;
             }
             // The final piece: the parabola through s = 0, 1/2, 1 of it.
             float middle = (dot(c.c, vec4(1.0, 4.0, 6.0, 4.0)) + c.c4) / 16.0;
-            float s = parabolaFirstRoot(c.c.x, middle, c.c4);
+            float s = mr_parabolaFirstRoot(c.c.x, middle, c.c4);
             if (s >= 0.0) return sa + s * (sb - sa);
         }
         // On to the next piece in order, as high up as it is unvisited.

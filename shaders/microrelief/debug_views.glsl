@@ -6,16 +6,16 @@
 
 #include "precision.glsl"
 
-const int DEBUG_VIEW_SHADED = 0;
-const int DEBUG_VIEW_ITERATIONS = 1;  // segments visited, heat map
-const int DEBUG_VIEW_LEVEL = 2;       // pyramid level of the last segment
-const int DEBUG_VIEW_NORMAL = 3;      // world normal, n * 0.5 + 0.5
-const int DEBUG_VIEW_DEPTH = 4;       // distance from the eye, near bright
-const int DEBUG_VIEW_POSITION = 5;    // world position over the relief's box
+const int MR_DEBUG_VIEW_SHADED = 0;
+const int MR_DEBUG_VIEW_ITERATIONS = 1;  // segments visited, heat map
+const int MR_DEBUG_VIEW_LEVEL = 2;       // pyramid level of the last segment
+const int MR_DEBUG_VIEW_NORMAL = 3;      // world normal, n * 0.5 + 0.5
+const int MR_DEBUG_VIEW_DEPTH = 4;       // distance from the eye, near bright
+const int MR_DEBUG_VIEW_POSITION = 5;    // world position over the relief's box
 
 // A perceptually ordered map from 0 (dark blue) through green and yellow to 1 (red):
 // a cubic fit of the "turbo" colormap (A. Mikhailov, 2019), good enough for a heat map.
-vec3 heatColor(float x) {
+vec3 mr_heatColor(float x) {
     x = clamp(x, 0.0, 1.0);
     vec4 v4 = vec4(1.0, x, x * x, x * x * x);
     vec2 v2 = v4.zw * v4.z;
@@ -29,11 +29,11 @@ vec3 heatColor(float x) {
 }
 
 // `value` in [0, scale] as a heat colour, scale > 0.
-vec3 debugScalar(float value, float scale) { return heatColor(value / max(scale, 1e-6)); }
+vec3 mr_debugScalar(float value, float scale) { return mr_heatColor(value / max(scale, 1e-6)); }
 
-vec3 debugNormal(vec3 n) { return n * 0.5 + 0.5; }
+vec3 mr_debugNormal(vec3 n) { return n * 0.5 + 0.5; }
 
 // Position inside the box [boxMin, boxMax] as RGB.
-vec3 debugPosition(vec3 p, vec3 boxMin, vec3 boxMax) { return clamp((p - boxMin) / max(boxMax - boxMin, vec3(1e-6)), 0.0, 1.0); }
+vec3 mr_debugPosition(vec3 p, vec3 boxMin, vec3 boxMax) { return clamp((p - boxMin) / max(boxMax - boxMin, vec3(1e-6)), 0.0, 1.0); }
 
 #endif

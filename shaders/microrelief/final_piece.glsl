@@ -1,7 +1,7 @@
 // final_piece.glsl: the first root over a final piece of subdivision, where the gap g
 // between the surface and the ray is held to the parabola through g(0), g(1/2), g(1)
 // (the leaves of base_surface.glsl and biquadratic_patch.glsl; C++: SurfacePatch.h,
-// parabolaFirstRoot).
+// mr_parabolaFirstRoot).
 #ifndef MICRORELIEF_FINAL_PIECE_GLSL
 #define MICRORELIEF_FINAL_PIECE_GLSL
 
@@ -11,7 +11,7 @@
 // (the ray on or under the surface), or -1. A sign change at the ends or the middle
 // gives the root by interpolation; without one, a concave parabola that reaches 0 is a
 // ray touching the surface: a hit in the closed solid, at its first root.
-float parabolaFirstRoot(float ga, float gm, float gb) {
+float mr_parabolaFirstRoot(float ga, float gm, float gb) {
     if (ga >= 0.0) return 0.0;
     if (gm >= 0.0) return 0.5 * ga / (ga - gm);
     if (gb >= 0.0) return 0.5 + 0.5 * gm / (gm - gb);

@@ -25,21 +25,21 @@
 
 // One sample of the march: ray parameter t and g = surface height - ray height
 // (g >= 0: on or under the surface, inside the solid).
-struct LayerSample {
+struct mr_LayerSample {
     float t;
     float g;
 };
 
-LayerSample layerSampleAt(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float t,
-                          inout ReliefHit hit) {
+mr_LayerSample mr_layerSampleAt(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float t,
+                          inout mr_ReliefHit hit) {
     vec3 p = origin + t * dir;
     hit.iterations += 1;
-    return LayerSample(t, reliefHeight(map, heights, p.xy, hit.fetches) - p.z);
+    return mr_LayerSample(t, mr_reliefHeight(map, heights, p.xy, hit.fetches) - p.z);
 }
 
 // The ray direction in the tangent frame of the published methods: map (X, Y, h) axes in
 // world units (map_space.glsl), unit length. Its z is the cosine to the base normal.
-vec3 tangentSpaceDirection(ReliefMap map, vec3 dir) {
+vec3 mr_tangentSpaceDirection(mr_ReliefMap map, vec3 dir) {
     vec3 w = vec3(dir.xy / max(map.size.x, map.size.y), dir.z * map.heightScale);
     return w / max(length(w), 1e-30);
 }
@@ -47,16 +47,16 @@ vec3 tangentSpaceDirection(ReliefMap map, vec3 dir) {
 // Marches the layers from where the ray enters the box. True when a sample lies under
 // the surface: `below` is the first such sample and `above` the one before it (equal
 // to `below` when the very first sample is under). False for a miss.
-bool marchLayers(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, int layers,
-                 inout ReliefHit hit, out LayerSample above, out LayerSample below) {
+bool mr_marchLayers(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, int layers,
+                 inout mr_ReliefHit hit, out mr_LayerSample above, out mr_LayerSample below) {
     int entryAxis, exitAxis;
-    vec2 range = clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
+    vec2 range = mr_clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
     float tNear = max(range.x, 0.0), tFar = range.y;
-    above = LayerSample(tNear, -1.0);
+    above = mr_LayerSample(tNear, -1.0);
     below = above;
     if (tNear > tFar) return false;
     hit.stopLevel = 0;
-    below = layerSampleAt(map, heights, origin, dir, tNear, hit);
+    below = mr_layerSampleAt(map, heights, origin, dir, tNear, hit);
     above = below;
     if (below.g >= 0.0) return true;
     // Layers lie below the entry: a ray that does not descend (or a flat box) never
@@ -77,7 +77,7 @@ bool marchLayers(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, int la
             t = tFar;                       // rounded past the floor
         }
         above = below;
-        below = layerSampleAt(map, heights, origin, dir, t, hit);
+        below = mr_layerSampleAt(map, heights, origin, dir, t, hit);
         if (floorLayer) below.g = max(below.g, 0.0);  // rounding of h at tFar
         if (below.g >= 0.0) return true;
     }

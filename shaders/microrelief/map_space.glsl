@@ -11,27 +11,27 @@
 #include "relief_map.glsl"
 
 // World point -> map point (X, Y, h).
-vec3 worldToMapPoint(ReliefMap map, vec3 p) {
+vec3 mr_worldToMapPoint(mr_ReliefMap map, vec3 p) {
     float texelsPerUnit = max(map.size.x, map.size.y);
     return vec3(p.x * texelsPerUnit + 0.5 * map.size.x, p.z * texelsPerUnit + 0.5 * map.size.y,
                 p.y / map.heightScale);
 }
 
 // World direction -> map direction (the linear part of G).
-vec3 worldToMapVector(ReliefMap map, vec3 v) {
+vec3 mr_worldToMapVector(mr_ReliefMap map, vec3 v) {
     float texelsPerUnit = max(map.size.x, map.size.y);
     return vec3(v.x * texelsPerUnit, v.z * texelsPerUnit, v.y / map.heightScale);
 }
 
 // Map point -> world point (G^-1).
-vec3 mapToWorldPoint(ReliefMap map, vec3 m) {
+vec3 mr_mapToWorldPoint(mr_ReliefMap map, vec3 m) {
     float unitsPerTexel = 1.0 / max(map.size.x, map.size.y);
     return vec3((m.x - 0.5 * map.size.x) * unitsPerTexel, m.z * map.heightScale,
                 (m.y - 0.5 * map.size.y) * unitsPerTexel);
 }
 
 // Map-space surface gradient (dh/dX, dh/dY) -> world normal of y = s h(u, v).
-vec3 mapGradientToWorldNormal(ReliefMap map, vec2 gradient) {
+vec3 mr_mapGradientToWorldNormal(mr_ReliefMap map, vec2 gradient) {
     float slope = map.heightScale * max(map.size.x, map.size.y);
     return normalize(vec3(-slope * gradient.x, 1.0, -slope * gradient.y));
 }

@@ -7,7 +7,7 @@
 //    bilinear surface over map-space X in [p 2^k, (p+1) 2^k), Y in [q 2^k, (q+1) 2^k);
 //  * the overlapping one (the windows): level k texel (p, q) holds the max of aligned
 //    texels p..p+1 by q..q+1 of level k, twice as wide, so that windows overlap by half.
-// The multilevel traversal reads the windows (footprintBound), maxmip the quadtree. On a
+// The multilevel traversal reads the windows (mr_footprintBound), maxmip the quadtree. On a
 // curved base the finest level bounds the surface across the seam u = 0 (MaxPyramid's
 // wrapU) and a footprint that crosses the seam is read as its two parts.
 #ifndef MICRORELIEF_MAX_PYRAMID_GLSL
@@ -17,7 +17,7 @@
 
 // The finest texel that holds map point p, clamped to the map (not its padding); the
 // level-k texel holding it is this shifted right by k.
-ivec2 finestTexelAt(ReliefMap map, vec2 p) {
+ivec2 mr_finestTexelAt(mr_ReliefMap map, vec2 p) {
     return clamp(ivec2(floor(p)), ivec2(0), ivec2(map.size) - 1);
 }
 
@@ -30,7 +30,7 @@ ivec2 finestTexelAt(ReliefMap map, vec2 p) {
 #endif
 
 // One pyramid texel.
-float pyramidTexel(ReliefMap map, sampler2D pyramid, ivec2 texel, int level, inout int fetches) {
+float mr_pyramidTexel(mr_ReliefMap map, sampler2D pyramid, ivec2 texel, int level, inout int fetches) {
     fetches += 1;
 #if MICRORELIEF_PYRAMID_TEXEL_FETCH
     return texelFetch(pyramid, texel, level).r;
@@ -41,7 +41,7 @@ float pyramidTexel(ReliefMap map, sampler2D pyramid, ivec2 texel, int level, ino
 }
 
 // floor(log2(n)) for n >= 1, exactly; 0 for n = 0.
-int floorLog2(int n) {
+int mr_floorLog2(int n) {
 #if __VERSION__ >= 400
     return max(findMSB(n), 0);
 #else
@@ -56,9 +56,9 @@ int floorLog2(int n) {
 // The level whose windows hold a footprint of finest texels lo..hi (lo <= hi per axis):
 // the finest level k at which it spans at most one level-k texel boundary per axis. A
 // span of d texels does once d < 2^k, so with m = floor(log2 d) that is m or m + 1.
-int windowLevel(ReliefMap map, ivec2 lo, ivec2 hi) {
+int mr_windowLevel(mr_ReliefMap map, ivec2 lo, ivec2 hi) {
     ivec2 span = hi - lo;
-    int level = floorLog2(max(span.x, span.y));
+    int level = mr_floorLog2(max(span.x, span.y));
     if (any(greaterThan((hi >> level) - (lo >> level), ivec2(1)))) level += 1;
     return min(level, map.levelCount - 1);
 }
@@ -66,27 +66,27 @@ int windowLevel(ReliefMap map, ivec2 lo, ivec2 hi) {
 // The bound of the pyramid over the finest texels lo..hi: one texel of the overlapping
 // pyramid `windows` (texel (p, q) of level k: the max over finest texels
 // [p 2^k, (p+2) 2^k) x [q 2^k, (q+2) 2^k)), the window at the lower corner of the
-// footprint, at the level of detail the footprint chooses (windowLevel). The footprint
+// footprint, at the level of detail the footprint chooses (mr_windowLevel). The footprint
 // lies inside that window, so the bound is conservative, and one textureLod reads it, as
 // the paper has it. `level` is set to the level read.
-float windowOver(ReliefMap map, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
-    level = windowLevel(map, lo, hi);
-    return pyramidTexel(map, windows, lo >> level, level, fetches);
+float mr_windowOver(mr_ReliefMap map, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
+    level = mr_windowLevel(map, lo, hi);
+    return mr_pyramidTexel(map, windows, lo >> level, level, fetches);
 }
 
 // The bound over a segment's footprint, the map rectangle [lo, hi] (base_surface.glsl):
 // the window that holds its texels; on a curved base, a rectangle that reaches past
 // X = W wraps across the seam, and the larger of the windows over its two parts,
 // [lo.x, W) and [0, hi.x - W], bounds it (two fetches, for the segments that cross it).
-float footprintBound(ReliefMap map, sampler2D windows, vec2 lo, vec2 hi, out int level, inout int fetches) {
+float mr_footprintBound(mr_ReliefMap map, sampler2D windows, vec2 lo, vec2 hi, out int level, inout int fetches) {
 #if MICRORELIEF_BASE != 0
     if (hi.x >= map.size.x) {
-        ivec2 tlo = finestTexelAt(map, lo), thi = finestTexelAt(map, hi - vec2(map.size.x, 0.0));
-        float right = windowOver(map, windows, tlo, ivec2(int(map.size.x) - 1, thi.y), level, fetches);
-        return max(right, windowOver(map, windows, ivec2(0, tlo.y), thi, level, fetches));
+        ivec2 tlo = mr_finestTexelAt(map, lo), thi = mr_finestTexelAt(map, hi - vec2(map.size.x, 0.0));
+        float right = mr_windowOver(map, windows, tlo, ivec2(int(map.size.x) - 1, thi.y), level, fetches);
+        return max(right, mr_windowOver(map, windows, ivec2(0, tlo.y), thi, level, fetches));
     }
 #endif
-    return windowOver(map, windows, finestTexelAt(map, lo), finestTexelAt(map, hi), level, fetches);
+    return mr_windowOver(map, windows, mr_finestTexelAt(map, lo), mr_finestTexelAt(map, hi), level, fetches);
 }
 
 #endif

@@ -4,7 +4,7 @@
 //
 // Inputs in map space (relief_map.glsl): X, Y in texels, h in map height units, the ray
 // origin + t dir (t as in world space); `pyramid` the max pyramid (layout: max_pyramid.glsl),
-// `heights` the W x H samples (bilinear_patch.glsl). Output, as traceMultilevel's: the
+// `heights` the W x H samples (bilinear_patch.glsl). Output, as mr_traceMultilevel's: the
 // exact first point t >= 0 of the ray in the solid, on the top surface, a side wall or
 // the bottom face, with the same statistics (iterations = nodes visited).
 //
@@ -27,52 +27,52 @@
 // Which way the ray moves over the map, per axis (+1, -1 or 0), and the branch of its line
 // on which that holds: on the plane and the cylinder the whole line; on an ellipsoid the
 // latitude turns once, at `turn`, and Y's way flips there (the walk stays in its node).
-struct MaxMipCourse {
+struct mr_MaxMipCourse {
     ivec2 step;
     vec2 branch;
-    float turn;  // kCurvedNever where Y never turns
+    float turn;  // MR_CURVED_NEVER where Y never turns
 };
 
-MaxMipCourse maxMipCourse(ReliefMap map, vec3 origin, vec3 dir, float tFar) {
+mr_MaxMipCourse mr_maxMipCourse(mr_ReliefMap map, vec3 origin, vec3 dir, float tFar) {
 #if MICRORELIEF_BASE == 0
-    return MaxMipCourse(ivec2(sign(dir.xy)), vec2(-kCurvedNever, kCurvedNever), kCurvedNever);
+    return mr_MaxMipCourse(ivec2(sign(dir.xy)), vec2(-MR_CURVED_NEVER, MR_CURVED_NEVER), MR_CURVED_NEVER);
 #else
     // The branch of the line the segment starts on: before the turn, or after it where the
     // turn lies behind the start (the cones Y = const are crossed once per branch, and a
     // crossing on the other branch, behind the start, must not count).
-    float turn = baseTurnY(origin, dir);
-    vec2 branch = vec2(-kCurvedNever, kCurvedNever);
+    float turn = mr_baseTurnY(origin, dir);
+    vec2 branch = vec2(-MR_CURVED_NEVER, MR_CURVED_NEVER);
     if (turn <= 0.0) {
         branch.x = turn;
-        turn = kCurvedNever;
+        turn = MR_CURVED_NEVER;
     } else if (turn < tFar) {
         branch.y = turn;
     } else {
-        branch.y = min(turn, kCurvedNever);
-        turn = kCurvedNever;
+        branch.y = min(turn, MR_CURVED_NEVER);
+        turn = MR_CURVED_NEVER;
     }
     // Y's way before the turn (or on the whole segment): from its value at the start to its
     // value where the branch ends.
-    float yStart = baseMapY(map, origin), yEnd = baseMapY(map, origin + min(turn, tFar) * dir);
+    float yStart = mr_baseMapY(map, origin), yEnd = mr_baseMapY(map, origin + min(turn, tFar) * dir);
     int stepY = yEnd > yStart ? 1 : yEnd < yStart ? -1 : 0;
-    return MaxMipCourse(ivec2(curvedXIncreases(origin, dir) ? 1 : -1, stepY), branch, turn);
+    return mr_MaxMipCourse(ivec2(mr_curvedXIncreases(origin, dir) ? 1 : -1, stepY), branch, turn);
 #endif
 }
 
 // Past the turn: Y goes the other way, on the branch after it.
-void maxMipTurn(inout MaxMipCourse course) {
+void mr_maxMipTurn(inout mr_MaxMipCourse course) {
     course.step.y = -course.step.y;
-    course.branch = vec2(course.turn, kCurvedNever);
-    course.turn = kCurvedNever;
+    course.branch = vec2(course.turn, MR_CURVED_NEVER);
+    course.turn = MR_CURVED_NEVER;
 }
 
 // Ray parameter where the ray leaves node `node` at `level` through a side of its column,
-// per axis (kCurvedNever along an axis it does not leave by). On a curved base the sides
+// per axis (MR_CURVED_NEVER along an axis it does not leave by). On a curved base the sides
 // are a half-plane of constant X through the axis (the map's seam, X = W, past its last
 // column) and a plane or cone of constant Y, met in closed form (base_surface.glsl).
-vec2 maxMipNodeExits(ReliefMap map, ivec2 node, int level, vec3 origin, vec3 dir, MaxMipCourse course) {
+vec2 mr_maxMipNodeExits(mr_ReliefMap map, ivec2 node, int level, vec3 origin, vec3 dir, mr_MaxMipCourse course) {
     float size = exp2(float(level));
-    vec2 exits = vec2(kCurvedNever);
+    vec2 exits = vec2(MR_CURVED_NEVER);
 #if MICRORELIEF_BASE == 0
     for (int axis = 0; axis < 2; ++axis) {
         if (dir[axis] == 0.0) continue;
@@ -87,18 +87,18 @@ vec2 maxMipNodeExits(ReliefMap map, ivec2 node, int level, vec3 origin, vec3 dir
     // would be its exit again and again.)
     if (((int(map.size.x) - 1) >> level) > 0) {
         float side = course.step.x > 0 ? min(float(node.x + 1) * size, map.size.x) : float(node.x) * size;
-        exits.x = curvedCrossX(map, origin, dir, side);
+        exits.x = mr_curvedCrossX(map, origin, dir, side);
     }
     float side = (float(node.y) + (course.step.y > 0 ? 1.0 : 0.0)) * size;
     if (course.step.y != 0 && side > 0.0 && side < map.size.y)
-        exits.y = baseCrossY(map, origin, dir, side, course.branch.x, course.branch.y);
+        exits.y = mr_baseCrossY(map, origin, dir, side, course.branch.x, course.branch.y);
 #endif
     return exits;
 }
 
 // The child of `node` (at `level` > 0) holding map point p; on the midline, the child the
 // ray moves into.
-ivec2 maxMipChildAt(ivec2 node, int level, vec2 p, ivec2 step) {
+ivec2 mr_maxMipChildAt(ivec2 node, int level, vec2 p, ivec2 step) {
     float halfSize = exp2(float(level - 1));
     ivec2 child = 2 * node;
     for (int axis = 0; axis < 2; ++axis) {
@@ -109,15 +109,15 @@ ivec2 maxMipChildAt(ivec2 node, int level, vec2 p, ivec2 step) {
 }
 
 // The node's max height: one texel of the pyramid.
-float maxMipNodeHeight(ReliefMap map, sampler2D pyramid, ivec2 node, int level, inout int fetches) {
+float mr_maxMipNodeHeight(mr_ReliefMap map, sampler2D pyramid, ivec2 node, int level, inout int fetches) {
     ivec2 levelSize = max(ivec2(1), map.pyramidSize >> level);
-    return pyramidTexel(map, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
+    return mr_pyramidTexel(map, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
 }
 
 // Into the neighbour of `node` across the side(s) of its column the ray leaves through
 // at tExit; up one level when that neighbour has a different parent. On a curved base the
 // nodes wrap in X: past the last column that holds map texels comes column 0.
-void maxMipNextNode(ReliefMap map, inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit,
+void mr_maxMipNextNode(mr_ReliefMap map, inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit,
                     ivec2 step) {
     ivec2 next = node + ivec2(exits.x <= tExit ? step.x : 0, exits.y <= tExit ? step.y : 0);
 #if MICRORELIEF_BASE != 0
@@ -135,43 +135,43 @@ void maxMipNextNode(ReliefMap map, inout ivec2 node, inout int level, int topLev
 
 // The quadtree walk over the segment origin + t dir, t in [0, tFar], of a ray that leaves
 // the box through its floor when `floorExit`; fills `hit` with local t. The loops have the shape of
-// traceMultilevel's (multilevel_trace.glsl): an inner one walks nodes down to a finest
+// mr_traceMultilevel's (multilevel_trace.glsl): an inner one walks nodes down to a finest
 // texel the ray meets, an outer one solves it, so that pixels in SIMD lanes pay for
 // their leaves once per outer pass, not on every node.
-void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir, float tFar,
-                bool floorExit, inout ReliefHit hit) {
+void mr_walkMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir, float tFar,
+                bool floorExit, inout mr_ReliefHit hit) {
     float t = 0.0;  // where the ray is in the current node
     int topLevel = map.levelCount - 1;
     int level = topLevel;
     ivec2 node = ivec2(0);  // the root covers the whole map
     bool finished = false, solved = false;
     float tHit = -1.0;
-    ReliefPatch corners;
+    mr_ReliefPatch corners;
     ivec2 cell;
     int iteration = 0;
     vec2 exits = vec2(0.0);  // where the ray leaves the current node's column, per axis
     float tExit = 0.0;
-    MaxMipCourse course = maxMipCourse(map, origin, dir, tFar);
+    mr_MaxMipCourse course = mr_maxMipCourse(map, origin, dir, tFar);
     while (!finished) {
         // Down the walk to a finest texel whose box the ray meets, or to the walk's end.
         bool atLeaf = false;
         while (iteration < map.maxIterations) {
             iteration += 1;
             hit.stopLevel = level;
-            exits = maxMipNodeExits(map, node, level, origin, dir, course);
+            exits = mr_maxMipNodeExits(map, node, level, origin, dir, course);
             // Where Y turns the node's side ahead in Y changes: a stop of its own.
             float tStop = min(min(exits.x, exits.y), course.turn);
             tExit = min(max(tStop, t), tFar);
-            float top = maxMipNodeHeight(map, pyramid, node, level, hit.fetches);
-            if (baseLowest(map, origin, dir, t, tExit) <= top) {
+            float top = mr_maxMipNodeHeight(map, pyramid, node, level, hit.fetches);
+            if (mr_baseLowest(map, origin, dir, t, tExit) <= top) {
                 if (level == 0) {
                     atLeaf = true;
                     break;
                 }
                 // Step onto the box top (only a ray coming down can be above it here), then
                 // go down into the child that holds that point.
-                t = baseDescendTo(map, origin, dir, t, tExit, top);
-                node = maxMipChildAt(node, level, baseMapPoint(map, origin + t * dir).xy, course.step);
+                t = mr_baseDescendTo(map, origin, dir, t, tExit, top);
+                node = mr_maxMipChildAt(node, level, mr_baseMapPoint(map, origin + t * dir).xy, course.step);
                 level -= 1;
                 continue;
             }
@@ -180,25 +180,25 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
                 break;
             }
             if (tExit == course.turn) {
-                maxMipTurn(course);  // the same node, on the branch after the turn
+                mr_maxMipTurn(course);  // the same node, on the branch after the turn
             } else {
-                maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
+                mr_maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
             }
             t = tExit;
         }
         if (!atLeaf) break;  // finished, or out of iterations
         // At level 0 the texel spans parts of up to four bilinear patches; the ray is
         // solved exactly against those it crosses, in order.
-        tHit = baseIntersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
+        tHit = mr_baseIntersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (tExit >= tFar) {
             finished = true;
         } else {
             if (tExit == course.turn) {
-                maxMipTurn(course);
+                mr_maxMipTurn(course);
             } else {
-                maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
+                mr_maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
             }
             t = tExit;
         }
@@ -207,20 +207,20 @@ void walkMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin
     if (!finished) {
         hit.exhausted = true;
     } else if (solved) {
-        setTopHit(hit, map, origin, dir, tHit, corners, cell);
+        mr_setTopHit(hit, map, origin, dir, tHit, corners, cell);
     } else {
-        setWalkEndHit(hit, map, heights, origin, dir, tFar, floorExit);  // out of the box
+        mr_setWalkEndHit(hit, map, heights, origin, dir, tFar, floorExit);  // out of the box
     }
 }
 
-ReliefHit traceMaxMip(ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
-    ReliefHit hit = reliefMissHit();
+mr_ReliefHit mr_traceMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
+    mr_ReliefHit hit = mr_reliefMissHit();
     vec3 start;
     float tStart, span;
     bool floorExit;
-    if (enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
-        walkMaxMip(map, pyramid, heights, start, dir, span, floorExit, hit);
-        measureFromEye(hit, tStart);
+    if (mr_enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
+        mr_walkMaxMip(map, pyramid, heights, start, dir, span, floorExit, hit);
+        mr_measureFromEye(hit, tStart);
     }
     return hit;
 }

@@ -15,8 +15,8 @@
 // hit). Otherwise it is split, near half first (eq. 8: Pn_i = Pn_i-1,
 // Pf_i = (Pn_i-1 + Pf_i-1) / 2), until the footprint is a few texels wide at most
 // (MICRORELIEF_LEAF_TEXELS); there the ray is solved exactly against the bilinear patches
-// it crosses (baseIntersectLeaf). The footprint and the lowest point come from the base
-// surface (baseFootprint): on the plane the ends of the segment, on a curved base bounds
+// it crosses (mr_baseIntersectLeaf). The footprint and the lowest point come from the base
+// surface (mr_baseFootprint): on the plane the ends of the segment, on a curved base bounds
 // of the curve the segment's path draws in (X, Y, h).
 //
 // GLSL has no recursion. A segment is named by its depth d and index k along the
@@ -46,18 +46,18 @@
 
 // A segment's bound when its parent's is not known (the root, and a near half reached
 // from the far half before it).
-const float kNoBound = 3.4e38;
+const float MR_NO_BOUND = 3.4e38;
 
 // The walk past segment (depth, index), done with: on to index + 1 at this depth. After
 // a near half that is its sibling, under the same parent. After a far half it is a near
 // half under another parent, whose bound is not known, and the walk climbs to that
 // parent, twice as long, when `climb` says so. False past the root's end.
-bool nextSegment(inout int depth, inout uint index, inout float parentBound, bool climb) {
+bool mr_nextSegment(inout int depth, inout uint index, inout float parentBound, bool climb) {
     bool farHalf = (index & 1u) == 1u;
     index += 1u;
     if ((index >> depth) != 0u) return false;
     if (farHalf) {
-        parentBound = kNoBound;
+        parentBound = MR_NO_BOUND;
         if (climb) {
             index >>= 1;
             depth -= 1;
@@ -77,26 +77,26 @@ bool nextSegment(inout int depth, inout uint index, inout float parentBound, boo
 // single loop, every step would pay for the leaf of any lane that needs one (llvmpipe runs
 // both sides of every branch, a GPU's warp the taken ones), here a block of pixels pays
 // for its leaves once per outer pass.
-void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 start, vec3 dir, float span,
-                      float tStart, bool floorExit, inout ReliefHit hit) {
+void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights, vec3 start, vec3 dir, float span,
+                      float tStart, bool floorExit, inout mr_ReliefHit hit) {
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments
     // share their end parameter bit for bit and no gap can open between them.
     const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
     int depth = 0;
     uint index = 0u;
-    // A bound over the parent's path, so over this segment's too (kNoBound: not known).
-    float parentBound = kNoBound;
+    // A bound over the parent's path, so over this segment's too (MR_NO_BOUND: not known).
+    float parentBound = MR_NO_BOUND;
     // The outcome, reported after the loops (which keeps their bodies small): a hit at
     // tHit >= 0, solved exactly on the patch `corners` of `cell` or else taken as is.
     bool finished = false, solved = false;
     float tHit = -1.0;
-    ReliefPatch corners;
+    mr_ReliefPatch corners;
     ivec2 cell;
     int iteration = 0;
     float ta = 0.0, tb = 0.0;  // the current segment
     float leafBound = 0.0;     // the bound of the leaf the inner loop stopped at
-    // The last segment's ends and what the footprint needs of them (baseEnd, curved bases:
+    // The last segment's ends and what the footprint needs of them (mr_baseEnd, curved bases:
     // transcendental): the walk's next segment starts where the last one started (its
     // near half) or ended.
     float lastA = -1.0, lastB = -1.0;
@@ -110,8 +110,8 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             ta = span * (float(index << shift) * kUnit);
             tb = span * (float((index + 1u) << shift) * kUnit);
 #if MICRORELIEF_BASE != 0
-            vec3 ea = ta == lastA ? endA : ta == lastB ? endB : baseEnd(map, start + ta * dir);
-            vec3 eb = tb == lastB ? endB : baseEnd(map, start + tb * dir);
+            vec3 ea = ta == lastA ? endA : ta == lastB ? endB : mr_baseEnd(map, start + ta * dir);
+            vec3 eb = tb == lastB ? endB : mr_baseEnd(map, start + tb * dir);
             lastA = ta;
             lastB = tb;
             endA = ea;
@@ -119,7 +119,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
 #else
             vec3 ea = start + ta * dir, eb = start + tb * dir;  // on the plane, the ends are all
 #endif
-            BaseFootprint footprint = baseFootprintOf(map, start, dir, ta, tb, ea, eb);
+            mr_BaseFootprint footprint = mr_baseFootprintOf(map, start, dir, ta, tb, ea, eb);
             // A segment down to the floor (h = 0, in the solid) may hit; one above its
             // parent's bound cannot; any other is bounded by one window of the pyramid at
             // the level its footprint chooses (paper, fig. 6), two where a curved base's
@@ -130,7 +130,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             int level = -1;
             float bound = parentBound;
             if (!mayHit && footprint.lowest <= parentBound) {
-                bound = min(bound, footprintBound(map, windows, footprint.lo, footprint.hi, level, hit.fetches));
+                bound = min(bound, mr_footprintBound(map, windows, footprint.lo, footprint.hi, level, hit.fetches));
                 hit.stopLevel = level;
                 mayHit = footprint.lowest <= bound;
             }
@@ -141,7 +141,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
                     // texels wide, projects to less than the tolerated pixel error, so its
                     // max box stands for the surface here: the hit is where the ray comes
                     // down to it.
-                    tHit = baseDescendTo(map, start, dir, ta, tb, bound);
+                    tHit = mr_baseDescendTo(map, start, dir, ta, tb, bound);
                     finished = true;
                     break;
                 }
@@ -157,7 +157,7 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
                 depth += 1;
                 index *= 2u;
                 parentBound = bound;
-                if (baseLowest(map, start, dir, ta, 0.5 * (ta + tb)) > bound) index += 1u;
+                if (mr_baseLowest(map, start, dir, ta, 0.5 * (ta + tb)) > bound) index += 1u;
                 continue;
             }
             // Discarded. After a far half the walk climbs when the segment cleared its
@@ -166,18 +166,18 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
             // surface it stays at this depth. (The paper's recursion would climb to the
             // coarsest segment starting there, and so near the surface come back down
             // through levels whose bounds seldom reject.)
-            if (!nextSegment(depth, index, parentBound, footprint.lowest - bound > 2.0 * footprint.drop)) {
+            if (!mr_nextSegment(depth, index, parentBound, footprint.lowest - bound > 2.0 * footprint.drop)) {
                 finished = true;
                 break;
             }
         }
         if (!atLeaf) break;  // finished, or out of iterations
         // No hit before the ray comes down to the leaf's bound: solve from there.
-        float tFrom = baseDescendTo(map, start, dir, ta, tb, leafBound);
-        tHit = baseIntersectLeaf(map, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
+        float tFrom = mr_baseDescendTo(map, start, dir, ta, tb, leafBound);
+        tHit = mr_baseIntersectLeaf(map, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
-        } else if (!nextSegment(depth, index, parentBound, false)) {
+        } else if (!mr_nextSegment(depth, index, parentBound, false)) {
             finished = true;
         }
     }
@@ -185,22 +185,22 @@ void subdivideSegment(ReliefMap map, sampler2D windows, sampler2D heights, vec3 
     if (!finished) {
         hit.exhausted = true;
     } else if (solved) {
-        setTopHit(hit, map, start, dir, tHit, corners, cell);
+        mr_setTopHit(hit, map, start, dir, tHit, corners, cell);
     } else if (tHit >= 0.0) {
-        setTopHitAt(hit, map, heights, tHit, start + tHit * dir);
+        mr_setTopHitAt(hit, map, heights, tHit, start + tHit * dir);
     } else {
-        setWalkEndHit(hit, map, heights, start, dir, span, floorExit);  // past the root's end
+        mr_setWalkEndHit(hit, map, heights, start, dir, span, floorExit);  // past the root's end
     }
 }
 
-ReliefHit traceMultilevel(ReliefMap map, sampler2D windows, sampler2D heights, vec3 origin, vec3 dir) {
-    ReliefHit hit = reliefMissHit();
+mr_ReliefHit mr_traceMultilevel(mr_ReliefMap map, sampler2D windows, sampler2D heights, vec3 origin, vec3 dir) {
+    mr_ReliefHit hit = mr_reliefMissHit();
     vec3 start;
     float tStart, span;
     bool floorExit;
-    if (enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
-        subdivideSegment(map, windows, heights, start, dir, span, tStart, floorExit, hit);
-        measureFromEye(hit, tStart);
+    if (mr_enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
+        mr_subdivideSegment(map, windows, heights, start, dir, span, tStart, floorExit, hit);
+        mr_measureFromEye(hit, tStart);
     }
     return hit;
 }

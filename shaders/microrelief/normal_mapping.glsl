@@ -5,7 +5,7 @@
 //
 // Inputs in map space (relief_map.glsl): X, Y in texels, h in map height units, the ray
 // origin + t dir (t as in world space); `heights` the W x H samples (bilinear_patch.glsl).
-// Output: a RELIEF_TOP hit on the plane h = maxHeight inside the footprint, seen from
+// Output: a MR_RELIEF_TOP hit on the plane h = maxHeight inside the footprint, seen from
 // above, with the bilinear surface's normal there; a miss otherwise.
 //
 // Wrong by design: no parallax, no occlusion, no silhouette, no side walls or bottom
@@ -16,8 +16,8 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
-ReliefHit traceNormalMapping(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir) {
-    ReliefHit hit = reliefMissHit();
+mr_ReliefHit mr_traceNormalMapping(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir) {
+    mr_ReliefHit hit = mr_reliefMissHit();
     // The proxy is one-sided: only a ray going down meets its front face.
     if (!(dir.z < 0.0)) return hit;
     float t = (map.maxHeight - origin.z) / dir.z;
@@ -26,7 +26,7 @@ ReliefHit traceNormalMapping(ReliefMap map, sampler2D heights, vec3 origin, vec3
     if (t < 0.0 || !inFootprint) return hit;
     hit.iterations = 1;
     hit.stopLevel = 0;
-    setMapTopHitAt(hit, map, heights, t, vec3(p.xy, map.maxHeight));
+    mr_setMapTopHitAt(hit, map, heights, t, vec3(p.xy, map.maxHeight));
     return hit;
 }
 

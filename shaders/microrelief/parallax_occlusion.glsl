@@ -21,17 +21,17 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
-ReliefHit traceParallaxOcclusion(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir,
+mr_ReliefHit mr_traceParallaxOcclusion(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir,
                                  int minSamples, int maxSamples) {
-    ReliefHit hit = reliefMissHit();
-    float cosView = abs(tangentSpaceDirection(map, dir).z);
+    mr_ReliefHit hit = mr_reliefMissHit();
+    float cosView = abs(mr_tangentSpaceDirection(map, dir).z);
     int layers = int(mix(float(maxSamples), float(minSamples), cosView));
-    LayerSample above, below;
-    if (!marchLayers(map, heights, origin, dir, layers, hit, above, below)) return hit;
+    mr_LayerSample above, below;
+    if (!mr_marchLayers(map, heights, origin, dir, layers, hit, above, below)) return hit;
     // g = surface - ray is linear in t along the segment in this approximation: its root.
     float t = below.t;
     if (below.g > above.g) t = mix(below.t, above.t, below.g / (below.g - above.g));
-    setMapTopHitAt(hit, map, heights, t, origin + t * dir);
+    mr_setMapTopHitAt(hit, map, heights, t, origin + t * dir);
     return hit;
 }
 

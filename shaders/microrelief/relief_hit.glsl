@@ -1,12 +1,12 @@
-// relief_hit.glsl: the answer every relief tracer of the library gives (ReliefHit), and
+// relief_hit.glsl: the answer every relief tracer of the library gives (mr_ReliefHit), and
 // the pieces they share to fill it: the ray's interval in the relief's bounding shell
 // (base_surface.glsl), the empty answer, a hit on a side wall, the bottom face or a cap
 // where the ray enters, and a hit on the top surface (relief_patch.glsl) with its normal.
 //
 // Inputs are in the base's frame (relief_map.glsl): map space on the plane, the canonical
 // frame on a curved base; t is the ray parameter, the same in world and frame. The normal
-// a hit carries is in the frame and not unit (baseTopNormal, baseFaceNormal);
-// reliefWorldNormal() turns it into a world unit vector.
+// a hit carries is in the frame and not unit (mr_baseTopNormal, mr_baseFaceNormal);
+// mr_reliefWorldNormal() turns it into a world unit vector.
 #ifndef MICRORELIEF_RELIEF_HIT_GLSL
 #define MICRORELIEF_RELIEF_HIT_GLSL
 
@@ -14,11 +14,11 @@
 #include "relief_map.glsl"
 #include "relief_patch.glsl"
 
-struct ReliefHit {
-    int kind;         // RELIEF_MISS, RELIEF_TOP, ... (relief_map.glsl)
+struct mr_ReliefHit {
+    int kind;         // MR_RELIEF_MISS, MR_RELIEF_TOP, ... (relief_map.glsl)
     float t;          // ray parameter of the hit (the same in world and frame)
     vec3 position;    // the hit point in the base's frame
-    vec3 normal;      // outward normal in the frame, not unit: use reliefWorldNormal
+    vec3 normal;      // outward normal in the frame, not unit: use mr_reliefWorldNormal
     int iterations;   // segments visited
     int fetches;      // texels read (pyramid and samples)
     int stopLevel;    // pyramid level of the last segment examined
@@ -26,9 +26,9 @@ struct ReliefHit {
 };
 
 // No hit yet, nothing read.
-ReliefHit reliefMissHit() {
-    ReliefHit hit;
-    hit.kind = RELIEF_MISS;
+mr_ReliefHit mr_reliefMissHit() {
+    mr_ReliefHit hit;
+    hit.kind = MR_RELIEF_MISS;
     hit.t = -1.0;
     hit.position = vec3(0.0);
     hit.normal = vec3(0.0, 0.0, 1.0);
@@ -40,19 +40,19 @@ ReliefHit reliefMissHit() {
 }
 
 // Fills `hit` as a hit on the top surface at parameter t, in the patch `cellPatch` of `cell`.
-void setTopHit(inout ReliefHit hit, ReliefMap map, vec3 origin, vec3 dir, float t, ReliefPatch cellPatch, ivec2 cell) {
-    hit.kind = RELIEF_TOP;
+void mr_setTopHit(inout mr_ReliefHit hit, mr_ReliefMap map, vec3 origin, vec3 dir, float t, mr_ReliefPatch cellPatch, ivec2 cell) {
+    hit.kind = MR_RELIEF_TOP;
     hit.t = t;
     hit.position = origin + t * dir;
-    hit.normal = baseTopNormal(map, hit.position, reliefSlope(map, cellPatch, cell, baseMapPoint(map, hit.position).xy));
+    hit.normal = mr_baseTopNormal(map, hit.position, mr_reliefSlope(map, cellPatch, cell, mr_baseMapPoint(map, hit.position).xy));
 }
 
 // A top-surface hit reported at frame point `position` with ray parameter `t`, the normal
 // taken from the surface's gradient there (what a normal map would give).
-void setTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t, vec3 position) {
-    ivec2 cell = patchCellAt(map, baseMapPoint(map, position).xy);
-    // setTopHit with a zero direction reports `position` itself.
-    setTopHit(hit, map, position, vec3(0.0), 0.0, patchAt(map, heights, cell, hit.fetches), cell);
+void mr_setTopHitAt(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heights, float t, vec3 position) {
+    ivec2 cell = mr_patchCellAt(map, mr_baseMapPoint(map, position).xy);
+    // mr_setTopHit with a zero direction reports `position` itself.
+    mr_setTopHit(hit, map, position, vec3(0.0), 0.0, mr_patchAt(map, heights, cell, hit.fetches), cell);
     hit.t = t;
 }
 
@@ -60,11 +60,11 @@ void setTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t,
 // step-based peers, which march in the tangent frame of the base (on a curved base blind
 // to its curvature: relief.frag maps their answer onto the base). `mapPoint` is reported
 // with the map-space normal (-dh/dX, -dh/dY, 1) of the bilinear surface there. On the
-// plane, map space is the frame, and this is setTopHitAt.
-void setMapTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float t, vec3 mapPoint) {
-    ivec2 cell = patchCellAt(map, mapPoint.xy);
-    vec2 g = reliefSlope(map, patchAt(map, heights, cell, hit.fetches), cell, mapPoint.xy);
-    hit.kind = RELIEF_TOP;
+// plane, map space is the frame, and this is mr_setTopHitAt.
+void mr_setMapTopHitAt(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heights, float t, vec3 mapPoint) {
+    ivec2 cell = mr_patchCellAt(map, mapPoint.xy);
+    vec2 g = mr_reliefSlope(map, mr_patchAt(map, heights, cell, hit.fetches), cell, mapPoint.xy);
+    hit.kind = MR_RELIEF_TOP;
     hit.t = t;
     hit.position = mapPoint;
     hit.normal = vec3(-g, 1.0);
@@ -74,24 +74,24 @@ void setMapTopHitAt(inout ReliefHit hit, ReliefMap map, sampler2D heights, float
 // that leaves the plane's box through its floor hits it at the exit point (where the
 // surface is 0). The exact root lies right at the end of the walk, where rounding can push
 // it out of the last leaf's range; this is where it is caught. Any other ray misses.
-void setWalkEndHit(inout ReliefHit hit, ReliefMap map, sampler2D heights, vec3 start, vec3 dir, float tExit,
+void mr_setWalkEndHit(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heights, vec3 start, vec3 dir, float tExit,
                    bool floorExit) {
-    if (floorExit) setTopHitAt(hit, map, heights, tExit, start + tExit * dir);
+    if (floorExit) mr_setTopHitAt(hit, map, heights, tExit, start + tExit * dir);
 }
 
 // A ray entering the shell through a side wall, the bottom face or a cap at a point on or
 // under the surface hits the solid right there. True, with `hit` filled, in that case.
-bool entryFaceHit(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float tEnter, int entryFace,
-                  inout ReliefHit hit) {
-    if (tEnter < 0.0 || entryFace == RELIEF_MISS) return false;
+bool mr_entryFaceHit(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float tEnter, int entryFace,
+                  inout mr_ReliefHit hit) {
+    if (tEnter < 0.0 || entryFace == MR_RELIEF_MISS) return false;
     vec3 entry = origin + tEnter * dir;
-    vec3 m = baseMapPoint(map, entry);
-    bool throughBottom = entryFace == RELIEF_BOTTOM;  // h = 0: always in the solid
-    if (!throughBottom && m.z > reliefHeight(map, heights, m.xy, hit.fetches)) return false;
+    vec3 m = mr_baseMapPoint(map, entry);
+    bool throughBottom = entryFace == MR_RELIEF_BOTTOM;  // h = 0: always in the solid
+    if (!throughBottom && m.z > mr_reliefHeight(map, heights, m.xy, hit.fetches)) return false;
     hit.kind = entryFace;
     hit.t = tEnter;
     hit.position = entry;
-    hit.normal = baseFaceNormal(map, entryFace, entry, dir);
+    hit.normal = mr_baseFaceNormal(map, entryFace, entry, dir);
     hit.stopLevel = 0;
     return true;
 }
@@ -105,24 +105,24 @@ bool entryFaceHit(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float
 // inside it), and the ray goes on as start + t dir for t in [0, span]; its parameter from
 // the eye is tStart + t. Working from the entry keeps positions near the relief exact
 // however far away the eye is. `floorExit`: the ray leaves the plane's box through the
-// floor going down (setWalkEndHit).
-bool enterReliefShell(ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, inout ReliefHit hit,
+// floor going down (mr_setWalkEndHit).
+bool mr_enterReliefShell(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, inout mr_ReliefHit hit,
                       out vec3 start, out float tStart, out float span, out bool floorExit) {
     int entryFace;
-    vec2 range = baseClipToShell(map, origin, dir, entryFace, floorExit);
+    vec2 range = mr_baseClipToShell(map, origin, dir, entryFace, floorExit);
     tStart = max(range.x, 0.0);
     span = range.y - tStart;
     start = origin + tStart * dir;
     if (span < 0.0) return false;
-    return !entryFaceHit(map, heights, origin, dir, range.x, entryFace, hit);
+    return !mr_entryFaceHit(map, heights, origin, dir, range.x, entryFace, hit);
 }
 
-// A hit found from `start` (enterReliefShell) as a parameter from the eye.
-void measureFromEye(inout ReliefHit hit, float tStart) {
-    if (hit.kind != RELIEF_MISS) hit.t += tStart;
+// A hit found from `start` (mr_enterReliefShell) as a parameter from the eye.
+void mr_measureFromEye(inout mr_ReliefHit hit, float tStart) {
+    if (hit.kind != MR_RELIEF_MISS) hit.t += tStart;
 }
 
 // The world-space unit normal of a hit.
-vec3 reliefWorldNormal(ReliefMap map, ReliefHit hit) { return baseWorldNormal(map, hit.normal); }
+vec3 mr_reliefWorldNormal(mr_ReliefMap map, mr_ReliefHit hit) { return mr_baseWorldNormal(map, hit.normal); }
 
 #endif

@@ -23,7 +23,7 @@
 #endif
 #include "precision.glsl"
 
-struct ReliefMap {
+struct mr_ReliefMap {
     vec2 size;           // W, H: height map size in texels
     ivec2 pyramidSize;   // finest pyramid level size (W, H rounded up to powers of two)
     int levelCount;      // number of pyramid levels, the last one 1x1
@@ -37,20 +37,20 @@ struct ReliefMap {
                          // (R, L / 2, R) for a cylinder, (A, B, C) for an ellipsoid
 };
 
-// What a ray meets: the kinds of ReliefHit (relief_hit.glsl), also naming the face of the
-// bounding shell a ray enters through (RELIEF_MISS there: the top face or the curved
+// What a ray meets: the kinds of mr_ReliefHit (relief_hit.glsl), also naming the face of the
+// bounding shell a ray enters through (MR_RELIEF_MISS there: the top face or the curved
 // shell, where the traversal starts).
-const int RELIEF_MISS = 0;
-const int RELIEF_TOP = 1;     // the relief surface
-const int RELIEF_WALL_X = 2;  // the plane: a side wall X = 0 or X = W
-const int RELIEF_WALL_Y = 3;  // the plane: a side wall Y = 0 or Y = H
-const int RELIEF_BOTTOM = 4;  // the plane: the bottom face h = 0
-const int RELIEF_CAP = 5;     // the cylinder: a flat cap, y = +-1 in the frame
+const int MR_RELIEF_MISS = 0;
+const int MR_RELIEF_TOP = 1;     // the relief surface
+const int MR_RELIEF_WALL_X = 2;  // the plane: a side wall X = 0 or X = W
+const int MR_RELIEF_WALL_Y = 3;  // the plane: a side wall Y = 0 or Y = H
+const int MR_RELIEF_BOTTOM = 4;  // the plane: the bottom face h = 0
+const int MR_RELIEF_CAP = 5;     // the cylinder: a flat cap, y = +-1 in the frame
 
 // What the traversal knows of a segment of the ray (base_surface.glsl): a rectangle of
 // map space that holds its path (hi.x may exceed W on a curved base: the rectangle wraps
 // across u = 0), its lowest height above the base, and how much its height changes.
-struct BaseFootprint {
+struct mr_BaseFootprint {
     vec2 lo;
     vec2 hi;
     float lowest;

@@ -7,8 +7,8 @@
 //
 // A patch is the surface over one cell: bilinear cells lie between sample centres, cell
 // (i, j) over X in [i + 1/2, i + 3/2]; biquadratic cells are texel squares, X in [i, i + 1].
-// kPatchOffset is where cell 0 starts; local coordinates run over [0, 1]^2 across a cell.
-// ReliefPatch is the patch's type: the four corner samples, or the 3 x 3 Bezier net.
+// MR_PATCH_OFFSET is where cell 0 starts; local coordinates run over [0, 1]^2 across a cell.
+// mr_ReliefPatch is the patch's type: the four corner samples, or the 3 x 3 Bezier net.
 #ifndef MICRORELIEF_RELIEF_PATCH_GLSL
 #define MICRORELIEF_RELIEF_PATCH_GLSL
 
@@ -17,72 +17,72 @@
 #include "relief_map.glsl"
 
 #if MICRORELIEF_INTERPOLATION == 1
-#define ReliefPatch mat3
-const float kPatchOffset = 0.0;
+#define mr_ReliefPatch mat3
+const float MR_PATCH_OFFSET = 0.0;
 #else
-#define ReliefPatch vec4
-const float kPatchOffset = 0.5;
+#define mr_ReliefPatch vec4
+const float MR_PATCH_OFFSET = 0.5;
 #endif
 
 // The cell holding map point xy (ties to the cell on the positive side), its column kept
 // in 0..W - 1 on a curved base.
-ivec2 patchCellAt(ReliefMap map, vec2 xy) { return wrapCell(map, ivec2(floor(xy - kPatchOffset))); }
+ivec2 mr_patchCellAt(mr_ReliefMap map, vec2 xy) { return mr_wrapCell(map, ivec2(floor(xy - MR_PATCH_OFFSET))); }
 
 // Map point xy in the local coordinates of `cell`; on a curved base the seam cell holds
 // the points just past X = 0 too.
-vec2 patchLocal(ReliefMap map, ivec2 cell, vec2 xy) {
-    vec2 f = xy - (vec2(cell) + kPatchOffset);
+vec2 mr_patchLocal(mr_ReliefMap map, ivec2 cell, vec2 xy) {
+    vec2 f = xy - (vec2(cell) + MR_PATCH_OFFSET);
 #if MICRORELIEF_BASE != 0
     f.x -= map.size.x * floor(f.x / map.size.x + 0.5);
 #endif
     return f;
 }
 
-ReliefPatch patchAt(ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
+mr_ReliefPatch mr_patchAt(mr_ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
 #if MICRORELIEF_INTERPOLATION == 1
-    return biquadraticNet(map, heights, cell, fetches);
+    return mr_biquadraticNet(map, heights, cell, fetches);
 #else
-    return cellCorners(map, heights, cell, fetches);
+    return mr_cellCorners(map, heights, cell, fetches);
 #endif
 }
 
 // Height and gradient (per texel) of the patch at local coordinates f.
-float patchValue(ReliefPatch cellPatch, vec2 f) {
+float mr_patchValue(mr_ReliefPatch cellPatch, vec2 f) {
 #if MICRORELIEF_INTERPOLATION == 1
-    return biquadraticHeight(cellPatch, f);
+    return mr_biquadraticHeight(cellPatch, f);
 #else
-    return patchHeight(cellPatch, f);
+    return mr_patchHeight(cellPatch, f);
 #endif
 }
 
-vec2 patchSlope(ReliefPatch cellPatch, vec2 f) {
+vec2 mr_patchSlope(mr_ReliefPatch cellPatch, vec2 f) {
 #if MICRORELIEF_INTERPOLATION == 1
-    return biquadraticGradient(cellPatch, f);
+    return mr_biquadraticGradient(cellPatch, f);
 #else
-    return patchGradient(cellPatch, f);
+    return mr_patchGradient(cellPatch, f);
 #endif
 }
 
 // The patch's max over the local rectangle [lo, hi], never below it.
-float patchTop(ReliefPatch cellPatch, vec2 lo, vec2 hi) {
+float mr_patchTop(mr_ReliefPatch cellPatch, vec2 lo, vec2 hi) {
 #if MICRORELIEF_INTERPOLATION == 1
-    return biquadraticMaxOver(cellPatch, lo, hi);
+    return mr_biquadraticMaxOver(cellPatch, lo, hi);
 #else
-    return patchMaxOver(cellPatch, lo, hi);
+    return mr_patchMaxOver(cellPatch, lo, hi);
 #endif
 }
 
 // h(X, Y): the surface height at a map point.
-float reliefHeight(ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
-    ivec2 cell = patchCellAt(map, xy);
-    return patchValue(patchAt(map, heights, cell, fetches), clamp(patchLocal(map, cell, xy), 0.0, 1.0));
+float mr_reliefHeight(mr_ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
+    ivec2 cell = mr_patchCellAt(map, xy);
+    return mr_patchValue(mr_patchAt(map, heights, cell, fetches), clamp(mr_patchLocal(map, cell, xy), 0.0, 1.0));
 }
 
 // The map gradient of the surface at map point xy of `cell`: on the plane the bilinear
 // surface's clamped border cells are flat across the edge (the biquadratic surface is
 // flat there by itself: its edge control points repeat).
-vec2 reliefSlope(ReliefMap map, ReliefPatch cellPatch, ivec2 cell, vec2 xy) {
-    vec2 g = patchSlope(cellPatch, clamp(patchLocal(map, cell, xy), 0.0, 1.0));
+vec2 mr_reliefSlope(mr_ReliefMap map, mr_ReliefPatch cellPatch, ivec2 cell, vec2 xy) {
+    vec2 g = mr_patchSlope(cellPatch, clamp(mr_patchLocal(map, cell, xy), 0.0, 1.0));
 #if MICRORELIEF_INTERPOLATION == 0
 #if MICRORELIEF_BASE == 0
     if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;

@@ -1,19 +1,19 @@
 // shading.glsl: one directional light on a neutral material, Lambert diffuse plus a
 // Blinn-Phong highlight and a sky/ground ambient, so that relief reads at a glance.
 // Directions are world-space unit vectors: n the surface normal, l towards the light,
-// v towards the viewer. Output is linear radiance; encodeSrgb() for 8-bit pictures.
+// v towards the viewer. Output is linear radiance; mr_encodeSrgb() for 8-bit pictures.
 #ifndef MICRORELIEF_SHADING_GLSL
 #define MICRORELIEF_SHADING_GLSL
 
 #include "precision.glsl"
 
-struct ReliefMaterial {
+struct mr_ReliefMaterial {
     vec3 albedo;      // diffuse reflectance, linear
     float specular;   // Blinn-Phong highlight strength
     float shininess;  // Blinn-Phong exponent
 };
 
-vec3 shadeRelief(ReliefMaterial material, vec3 n, vec3 l, vec3 v, vec3 lightColor) {
+vec3 mr_shadeRelief(mr_ReliefMaterial material, vec3 n, vec3 l, vec3 v, vec3 lightColor) {
     float diffuse = max(dot(n, l), 0.0);
     vec3 h = normalize(l + v);
     float highlight = diffuse > 0.0 ? pow(max(dot(n, h), 0.0), material.shininess) : 0.0;
@@ -22,7 +22,7 @@ vec3 shadeRelief(ReliefMaterial material, vec3 n, vec3 l, vec3 v, vec3 lightColo
     return material.albedo * (ambient + diffuse * lightColor) + material.specular * highlight * lightColor;
 }
 
-vec3 encodeSrgb(vec3 linear) {
+vec3 mr_encodeSrgb(vec3 linear) {
     vec3 c = clamp(linear, 0.0, 1.0);
     return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }

@@ -12,7 +12,7 @@ namespace {
 constexpr int kMaxDepth = 24;        // MICRORELIEF_MAX_DEPTH
 constexpr double kLeafTexels = 4.0;  // MICRORELIEF_LEAF_TEXELS
 
-// bilinear_patch.glsl: intersectPatch.
+// bilinear_patch.glsl: mr_intersectPatch.
 double intersectPatch(const SurfacePatch& c, const glm::dvec3& start, const glm::dvec3& dir,
                       double tauMax) {
     const double fx = start.x - (c.i + 0.5), fy = start.y - (c.j + 0.5);
@@ -62,7 +62,7 @@ SurfacePatch MultilevelTracer::patchAt(int i, int j, int& fetches) const {
     return SurfacePatch::at(map_, i, j, base_->wrapsU(), interpolation_);
 }
 
-// relief_hit.glsl: setTopHit's normal, in the base's frame.
+// relief_hit.glsl: mr_setTopHit's normal, in the base's frame.
 glm::dvec3 MultilevelTracer::topNormal(const SurfacePatch& patch,
                                        const glm::dvec3& framePoint) const {
     const glm::dvec3 m = base_->mapPoint(framePoint);
@@ -117,7 +117,7 @@ auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, 
     return std::nullopt;
 }
 
-// base_surface.glsl: intersectLeafCells. The latitude turns at most once along a line:
+// base_surface.glsl: mr_intersectLeafCells. The latitude turns at most once along a line:
 // split there, so that on each piece X and Y are both monotone and the cells the path
 // crosses are walked in order.
 auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double tb,
@@ -133,7 +133,7 @@ auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double
     return walkLeafCells(ray, ta, tb, turn && *turn <= ta ? after : before, fetches);
 }
 
-// base_surface.glsl: walkLeafCells. A DDA over the cells of a path whose X and Y are
+// base_surface.glsl: mr_walkLeafCells. A DDA over the cells of a path whose X and Y are
 // monotone on [from, to]: each cell's stretch ends where the path crosses the cell's
 // boundary ahead in X (a half-plane through the axis, a plane on the plane) or in Y (a
 // plane or a cone), found in closed form. `branch` is the branch of the line holding
@@ -190,7 +190,7 @@ auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to
     return std::nullopt;
 }
 
-// base_surface.glsl: cellStretchHit. The first t in [c0, c1] where the ray is on or under
+// base_surface.glsl: mr_cellStretchHit. The first t in [c0, c1] where the ray is on or under
 // the cell's patch, g(t) = patch(X(t), Y(t)) - h(t) >= 0. Along a curved path, or for the
 // biquadratic surface, g is not a quadratic, so the stretch is subdivided as the traversal
 // subdivides the ray, near half first, each piece discarded when its lowest height (exact:
@@ -285,7 +285,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
         return hit;
     };
 
-    // relief_hit.glsl: enterReliefShell.
+    // relief_hit.glsl: mr_enterReliefShell.
     const ShellSpan span = base_->clip(ray);
     const double tNear = std::max(span.tEnter, 0.0);
     if (span.empty() || tNear > span.tExit) return finish(std::nullopt);
@@ -304,7 +304,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
         }
     }
 
-    // From the shell's entry on, as the shader works (relief_hit.glsl: enterReliefShell).
+    // From the shell's entry on, as the shader works (relief_hit.glsl: mr_enterReliefShell).
     const FrameRay fromEntry{ray.at(tNear), ray.dir};
     if (auto hit = subdivideSegment(fromEntry, span.tExit - tNear, span.floorExit, stats)) {
         return finish(makeHit(HitFace::Top, tNear + hit->t, hit->normal));
@@ -312,7 +312,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
     return finish(std::nullopt);
 }
 
-// multilevel_trace.glsl: subdivideSegment, over ray.origin + t ray.dir, t in [0, span].
+// multilevel_trace.glsl: mr_subdivideSegment, over ray.origin + t ray.dir, t in [0, span].
 // The shader splits this loop in two (segments inside, the leaf outside) for the sake of
 // SIMD lanes; the segments and their order are the same, and a GL test compares them
 // per pixel.

@@ -128,7 +128,7 @@ Path randomPath(const HeightMap& map, std::mt19937& random) {
 
 // pathGap's quartic is the patch minus the ray along the path, quarticPiece's coefficients
 // are the same quartic over a sub-piece, and their convex hull bounds it there: the bound
-// the plane's biquadratic leaf skips pieces by (biquadratic_patch.glsl: quarticFirstHit).
+// the plane's biquadratic leaf skips pieces by (biquadratic_patch.glsl: mr_quarticFirstHit).
 TEST(SurfacePatch, PathGapIsTheGapAndItsPiecesHullsBoundIt) {
     const HeightMap map = synth::whiteNoise(9, 9, 11);
     std::mt19937 random(3);

@@ -107,6 +107,50 @@ TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
     }
 }
 
+// Names that cannot collide with an engine's own (glslify, LYGIA): every function the
+// library defines (as glslang's tree lists them: "Function Definition: name("), and every
+// struct, constant and macro at file scope, carries the prefix: mr_ for functions,
+// structs and types, MR_ for constants, MICRORELIEF_ for option macros.
+TEST(GlslLibrary, EveryPublicNameCarriesThePrefix) {
+    test::ScratchDir dir;
+    const std::regex function(R"(Function Definition: (\w+)\()");
+    const std::regex declaration(
+        R"(^(?:struct\s+(\w+)|const\s+\w+\s+(\w+)\s*=|#\s*define\s+(\w+)))");
+    int functions = 0;
+    for (const auto& file : libraryFiles()) {
+        const std::filesystem::path wrapper = dir / ("names_" + file.stem().string() + ".frag");
+        std::ofstream(wrapper) << "#include \"" << file.string() << "\"\n"
+                               << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
+        std::string tree;
+        ASSERT_EQ(
+            validate(dir, assembleShader(wrapper, "330 core"), "frag", file.stem().string(), &tree),
+            "");
+        for (std::sregex_iterator it(tree.begin(), tree.end(), function), end; it != end; ++it) {
+            const std::string name = (*it)[1];
+            if (name == "main") continue;
+            ++functions;
+            EXPECT_EQ(name.rfind("mr_", 0), 0u) << file.filename() << ": function " << name;
+        }
+        std::istringstream lines(readText(file));
+        std::string line;
+        while (std::getline(lines, line)) {
+            std::smatch m;
+            if (!std::regex_search(line, m, declaration)) continue;
+            if (m[1].matched)
+                EXPECT_EQ(m[1].str().rfind("mr_", 0), 0u) << file.filename() << ": " << line;
+            if (m[2].matched)
+                EXPECT_EQ(m[2].str().rfind("MR_", 0), 0u) << file.filename() << ": " << line;
+            // A macro is an option (MICRORELIEF_) or a type chosen by one (mr_ReliefPatch).
+            if (m[3].matched) {
+                EXPECT_TRUE(m[3].str().rfind("MICRORELIEF_", 0) == 0 ||
+                            m[3].str().rfind("mr_", 0) == 0)
+                    << file.filename() << ": " << line;
+            }
+        }
+    }
+    EXPECT_GT(functions, 100);  // the tree was read: the library defines many
+}
+
 // GLSL ES 3.00 fragment shaders default int to mediump, which holds +-2^15 only, and
 // sampler2D to lowp: the 24-bit segment indices and the R32F texels need highp. Every
 // file, compiled as ES with no precision of the host's, must run at highp throughout:

@@ -68,7 +68,7 @@ public:
 
     // The level whose windows hold a footprint of finest texels lo..hi (per axis, lo <=
     // hi): the finest level k at which the footprint spans at most one level-k texel
-    // boundary per axis (max_pyramid.glsl: windowLevel).
+    // boundary per axis (max_pyramid.glsl: mr_windowLevel).
     int windowLevel(glm::ivec2 lo, glm::ivec2 hi) const;
 
     // The bound over the segment from a to b that the shader reads (max_pyramid.glsl:
@@ -78,7 +78,7 @@ public:
     double segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const;
 
     // The bound over a footprint rectangle [lo, hi] of map points (lo <= hi per axis), the
-    // curved bases' form of segmentBound (max_pyramid.glsl: footprintBound): one window,
+    // curved bases' form of segmentBound (max_pyramid.glsl: mr_footprintBound): one window,
     // or on a wrapped map whose rectangle reaches past X = W (hi.x >= W, lo.x < W), the
     // larger of the windows over its two parts, [lo.x, W) and [0, hi.x - W]. `level` is
     // the level of the last window read.

@@ -46,14 +46,14 @@ struct SurfacePatch {
 // The first s in [0, 1] where the parabola through (0, ga), (1/2, gm), (1, gb) reaches 0,
 // or nullopt: a sign change at the ends or the middle interpolated; without one, a concave
 // parabola that reaches 0 is a touching ray, a hit in the closed solid
-// (final_piece.glsl: parabolaFirstRoot). The final pieces of the leaves' subdivisions.
+// (final_piece.glsl: mr_parabolaFirstRoot). The final pieces of the leaves' subdivisions.
 std::optional<double> parabolaFirstRoot(double ga, double gm, double gb);
 
 // A quartic's Bernstein coefficients over [sa, sb] from those over [0, 1] (de Casteljau),
 // its value at s, and its first point with g(s) >= 0, or nullopt: the pieces in order, each
 // skipped when all its coefficients are below -margin (the convex hull bounds the quartic),
 // a rising piece solved by regula falsi, others halved down to `finalWidth` and solved by
-// the parabola through their ends and middle (biquadratic_patch.glsl: quarticFirstHit).
+// the parabola through their ends and middle (biquadratic_patch.glsl: mr_quarticFirstHit).
 SurfacePatch::Quartic quarticPiece(const SurfacePatch::Quartic& q, double sa, double sb);
 double quarticValue(const SurfacePatch::Quartic& q, double s);
 std::optional<double> quarticFirstHit(const SurfacePatch::Quartic& q, double finalWidth,

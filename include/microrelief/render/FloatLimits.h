@@ -11,7 +11,7 @@
 //  1. World coordinates that float cannot carry: the box corners, the eye and the depth
 //     range are uniforms. Camera vectors and the relief's top s * max h: within
 //     kMaxWorldCoordinate.
-//  2. Overflow in the exact patch solve (bilinear_patch.glsl, intersectPatch): B^2 and
+//  2. Overflow in the exact patch solve (bilinear_patch.glsl, mr_intersectPatch): B^2 and
 //     4AC are products of (height difference * dir.xy) and dir.h terms; they must stay
 //     below 2^128. Bounded by max h * Dxy <= 2^58 and Dh <= 2^58, Dxy and Dh the largest
 //     |dir.xy|, |dir.h| over the picture's rays.

@@ -1,13 +1,31 @@
 // relief.frag: one ray per pixel through the pixel centre, traced by the multilevel
 // method (microrelief/multilevel_trace.glsl) or, for comparison, one of its peers,
 // shaded, with the world position of the hit and the traversal's statistics as extra
-// outputs. Misses are discarded; hits write gl_FragDepth, so the relief
-// depth-composites with other geometry.
+// outputs. Misses are discarded; hits write gl_FragDepth for the caller's projection and
+// depth convention, so the relief depth-composites with other geometry. The colour is
+// linear: an sRGB framebuffer encodes it (OffscreenTarget's is one).
 //
 // Host defines: MICRORELIEF_METHOD (0 multilevel, 1 normal, 2 offset, 3 steep, 4 pom,
 // 5 relief, 6 maxmip); MICRORELIEF_BASE (0 plane, 1 cylinder, 2 ellipsoid:
 // base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
-// writes texel reads to the statistics and keeps misses (so they are counted too).
+// writes texel reads to the statistics and keeps misses (so they are counted too);
+// MICRORELIEF_DEPTH_LAYOUT, what the depth written promises against the rasterised
+// proxy's (0 nothing, 1 greater or equal, 2 less or equal), which keeps early depth tests
+// where the GL has conservative depth (GL 4.2, ARB_conservative_depth).
+#ifndef MICRORELIEF_DEPTH_LAYOUT
+#define MICRORELIEF_DEPTH_LAYOUT 0
+#endif
+#if MICRORELIEF_DEPTH_LAYOUT != 0 && __VERSION__ < 420 && defined(GL_ARB_conservative_depth)
+#extension GL_ARB_conservative_depth : enable
+#endif
+#if MICRORELIEF_DEPTH_LAYOUT != 0 && (__VERSION__ >= 420 || defined(GL_ARB_conservative_depth))
+#if MICRORELIEF_DEPTH_LAYOUT == 1
+layout(depth_greater) out float gl_FragDepth;
+#else
+layout(depth_less) out float gl_FragDepth;
+#endif
+#endif
+
 #include "microrelief/map_space.glsl"
 #include "microrelief/multilevel_trace.glsl"
 
@@ -24,55 +42,30 @@
 #endif
 #include "microrelief/debug_views.glsl"
 #include "microrelief/shading.glsl"
+#include "relief_parameters.glsl"
 
 // The multilevel elevation map (max_pyramid.glsl), nearest mipmaps: the aligned levels
-// (maxmip's quadtree) and the overlapping ones (the multilevel method's windows).
+// (maxmip's quadtree) and the overlapping ones (the multilevel method's windows), on
+// texture units 0 and 2; the samples on unit 1 (ReliefShader binds them).
 uniform sampler2D maxPyramid;
 uniform sampler2D windowPyramid;
 uniform sampler2D heightSamples;
 
-uniform vec2 reliefSize;
-uniform ivec2 pyramidSize;
-uniform int pyramidLevels;
-uniform float reliefMaxHeight;
-uniform float heightScale;
-uniform int maxIterations;
-uniform vec3 frameScale;     // curved bases: world size of the canonical frame's unit
-uniform vec3 reliefBoxMin;   // the proxy box, world space (the position debug view)
-uniform vec3 reliefBoxMax;
-
-uniform vec3 eye;
-uniform vec3 cameraRight;    // scaled by tan(fovx / 2)
-uniform vec3 cameraUp;       // scaled by tan(fovy / 2)
-uniform vec3 cameraForward;  // unit
-uniform vec2 viewportSize;   // the whole picture's, in pixels
-uniform vec2 tileOrigin;     // where the drawn tile sits in it (0, 0: the whole picture)
-uniform mat4 viewProjection;
-
-uniform vec3 lightDirection;  // towards the light, unit
-uniform vec3 albedo;
-uniform int debugView;        // DEBUG_VIEW_*; 0 is the shaded picture
-
-uniform int methodSteps;         // peers' quality knob: layers, samples or linear steps
-uniform int methodMinSteps;      // pom: samples when looking straight down
-uniform int methodRefineSteps;   // relief: binary search steps
-uniform float pixelErrorTolerance;  // multilevel: stop at windows narrower than this many pixels
-
-mr_ReliefHit traceInFrame(mr_ReliefMap map, vec3 origin, vec3 dir) {
+mr_ReliefHit traceInFrame(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
 #if MICRORELIEF_METHOD == 1
-    return mr_traceNormalMapping(map, heightSamples, origin, dir);
+    return mr_traceNormalMapping(relief, heightSamples, origin, dir);
 #elif MICRORELIEF_METHOD == 2
-    return mr_traceParallaxOffset(map, heightSamples, origin, dir);
+    return mr_traceParallaxOffset(relief, heightSamples, origin, dir);
 #elif MICRORELIEF_METHOD == 3
-    return mr_traceSteepParallax(map, heightSamples, origin, dir, methodSteps);
+    return mr_traceSteepParallax(relief, heightSamples, origin, dir, methodSteps);
 #elif MICRORELIEF_METHOD == 4
-    return mr_traceParallaxOcclusion(map, heightSamples, origin, dir, methodMinSteps, methodSteps);
+    return mr_traceParallaxOcclusion(relief, heightSamples, origin, dir, methodMinSteps, methodSteps);
 #elif MICRORELIEF_METHOD == 5
-    return mr_traceReliefMapping(map, heightSamples, origin, dir, methodSteps, methodRefineSteps);
+    return mr_traceReliefMapping(relief, heightSamples, origin, dir, methodSteps, methodRefineSteps);
 #elif MICRORELIEF_METHOD == 6
-    return mr_traceMaxMip(map, maxPyramid, heightSamples, origin, dir);
+    return mr_traceMaxMip(relief, query, maxPyramid, heightSamples, origin, dir);
 #else
-    return mr_traceMultilevel(map, windowPyramid, heightSamples, origin, dir);
+    return mr_traceMultilevel(relief, query, windowPyramid, heightSamples, origin, dir);
 #endif
 }
 
@@ -81,22 +74,41 @@ mr_ReliefHit traceInFrame(mr_ReliefMap map, vec3 origin, vec3 dir) {
 // on; their answer, a map point, is then placed on the base (off the ray, like offset's).
 #define MICRORELIEF_TANGENT_PEER (MICRORELIEF_BASE != 0 && (MICRORELIEF_METHOD == 4 || MICRORELIEF_METHOD == 5))
 
-mr_ReliefHit traceRay(mr_ReliefMap map, vec3 origin, vec3 dir) {
+mr_ReliefHit traceRay(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
 #if MICRORELIEF_TANGENT_PEER
     vec3 localOrigin, localDir;
     float tEntry;
-    if (!mr_baseTangentRay(map, origin, dir, localOrigin, localDir, tEntry)) return mr_reliefMissHit();
-    mr_ReliefHit hit = traceInFrame(map, localOrigin, localDir);
+    if (!mr_baseTangentRay(relief, origin, dir, localOrigin, localDir, tEntry)) return mr_reliefMissHit();
+    mr_ReliefHit hit = traceInFrame(relief, query, localOrigin, localDir);
     if (hit.kind == MR_RELIEF_TOP) {
-        vec3 q = mr_baseSurfacePoint(map, hit.position);
-        hit.normal = mr_baseTopNormal(map, q, -hit.normal.xy);
+        vec3 q = mr_baseSurfacePoint(relief, hit.position);
+        hit.normal = mr_baseTopNormal(relief, q, -hit.normal.xy);
         hit.position = q;
         hit.t += tEntry;
     }
     return hit;
 #else
-    return traceInFrame(map, origin, dir);
+    return traceInFrame(relief, query, origin, dir);
 #endif
+}
+
+// The window depth of world point p as the fixed-function path makes it for the caller's
+// projection (viewProjection), clip-space convention (depthZeroToOne) and glDepthRange,
+// which reversed-Z needs nothing more for. Held to the promise of the depth layout: the
+// proxy face the fragment comes from lies on the ray before the hit (front faces, layout
+// greater with a standard depth test) or after it (back faces, from inside the box), so
+// the bound only ever moves a hit on that face by rounding.
+float windowDepth(vec3 p) {
+    vec4 clip = viewProjection * vec4(p, 1.0);
+    float ndc = clip.z / clip.w;
+    float unit = depthZeroToOne != 0 ? ndc : 0.5 + 0.5 * ndc;
+    float depth = clamp(gl_DepthRange.near + gl_DepthRange.diff * unit, 0.0, 1.0);
+#if MICRORELIEF_DEPTH_LAYOUT == 1
+    depth = max(depth, gl_FragCoord.z);
+#elif MICRORELIEF_DEPTH_LAYOUT == 2
+    depth = min(depth, gl_FragCoord.z);
+#endif
+    return depth;
 }
 
 layout(location = 0) out vec4 outColor;
@@ -107,14 +119,18 @@ void main() {
     // Integer + 0.5 plus an integer: exact, so a tile's pixel casts the whole picture's ray.
     vec2 ndc = (gl_FragCoord.xy + tileOrigin) / viewportSize * 2.0 - 1.0;
     vec3 dir = cameraForward + ndc.x * cameraRight + ndc.y * cameraUp;
+    mr_Relief relief = mr_Relief(mr_ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight),
+                                 mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
     // Level-of-detail cone: a span of w finest texels (a pyramid window) projects to less
-    // than pixelErrorTolerance pixels once w <= lodCone * t (t along this unnormalised ray).
+    // than pixelErrorTolerance pixels once w <= lodCone * t (t along this unnormalised ray;
+    // the pixel's width in object units, where the map's texels are counted, follows the
+    // ray's direction there).
     float pixelAngle = 2.0 * length(cameraUp) / viewportSize.y;
-    float lodCone = pixelErrorTolerance * pixelAngle * length(dir) * max(reliefSize.x, reliefSize.y);
-    mr_ReliefMap map = mr_ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, heightScale, maxIterations,
-                              lodCone, frameScale);
+    float objectLength = length(mat3(worldToObject) * dir);
+    float lodCone = pixelErrorTolerance * pixelAngle * objectLength * max(reliefSize.x, reliefSize.y);
+    mr_RayQuery query = mr_RayQuery(tMin, tMax, false, maxIterations, lodCone);
 
-    mr_ReliefHit hit = traceRay(map, mr_baseFramePoint(map, eye), mr_baseFrameVector(map, dir));
+    mr_ReliefHit hit = traceRay(relief, query, mr_baseFramePoint(relief, eye), mr_baseFrameVector(relief, dir));
 #ifdef MICRORELIEF_COUNT_FETCHES
     float fetches = float(hit.fetches);
 #else
@@ -133,7 +149,7 @@ void main() {
         // Keep the statistics of missed rays; the picture of this variant is not used.
         outColor = vec4(0.0);
         outPosition = vec4(0.0);
-        gl_FragDepth = 1.0;
+        gl_FragDepth = gl_FragCoord.z;
         return;
 #else
         discard;
@@ -143,12 +159,12 @@ void main() {
 #if MICRORELIEF_METHOD == 2 || MICRORELIEF_TANGENT_PEER
     // Parallax offset's answer is not on the ray (it shifts the texture lookup instead),
     // nor is a tangent-frame peer's on a curved base.
-    vec3 world = mr_baseWorldPoint(map, hit.position);
+    vec3 world = mr_baseWorldPoint(relief, hit.position);
 #else
     vec3 world = eye + hit.t * dir;  // on the ray exactly, without a round trip through map space
 #endif
-    vec3 n = mr_reliefWorldNormal(map, hit);
-    vec3 color;
+    vec3 n = mr_reliefWorldNormal(relief, hit);
+    vec3 color;  // display RGB for the debug views
     if (debugView == MR_DEBUG_VIEW_ITERATIONS) {
         // Scaled to the cost of a few levels' worth of segments; saturates red beyond.
         color = mr_debugScalar(float(hit.iterations), 8.0 * float(pyramidLevels));
@@ -159,14 +175,16 @@ void main() {
     } else if (debugView == MR_DEBUG_VIEW_DEPTH) {
         float distance = length(world - eye), far = length(eye) + 1.5;
         color = vec3(1.0 - clamp(distance / far, 0.0, 1.0));
-    } else if (debugView == MR_DEBUG_VIEW_POSITION) {
-        color = mr_debugPosition(world, reliefBoxMin, reliefBoxMax);
     } else {
-        mr_ReliefMaterial material = mr_ReliefMaterial(albedo, 0.25, 48.0);
-        color = mr_encodeSrgb(mr_shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0)));
+        color = mr_debugPosition(mr_baseObjectPoint(relief, world), reliefBoxMin, reliefBoxMax);
     }
-    outColor = vec4(color, 1.0);
+    // The output is linear: a debug view's display colour is decoded, so that the sRGB
+    // target gives it back.
+    mr_ReliefMaterial material = mr_ReliefMaterial(albedo, 0.25, 48.0);
+    vec3 linear = debugView == MR_DEBUG_VIEW_SHADED
+                      ? mr_shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0))
+                      : mr_decodeSrgb(color);
+    outColor = vec4(linear, 1.0);
     outPosition = vec4(world, 1.0);
-    vec4 clip = viewProjection * vec4(world, 1.0);
-    gl_FragDepth = clamp(0.5 + 0.5 * clip.z / clip.w, 0.0, 1.0);
+    gl_FragDepth = windowDepth(world);
 }

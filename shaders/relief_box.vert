@@ -1,8 +1,8 @@
-// relief_box.vert: the proxy geometry, the relief's bounding box in world space. Each
-// fragment of its back faces (drawn with front faces culled, so that the eye may be
+// relief_box.vert: the proxy geometry, the relief's bounding box in object space, placed by
+// the model transform. Each fragment of its front faces (its back faces when the eye is
 // inside the box) casts its own ray in relief.frag.
+#include "relief_parameters.glsl"
+
 layout(location = 0) in vec3 boxCorner;
 
-uniform mat4 viewProjection;
-
-void main() { gl_Position = viewProjection * vec4(boxCorner, 1.0); }
+void main() { gl_Position = viewProjection * (objectToWorld * vec4(boxCorner, 1.0)); }

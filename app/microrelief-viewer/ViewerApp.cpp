@@ -11,6 +11,7 @@
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
+#include "microrelief/gl/StateGuard.h"
 #include "microrelief/heightmap/HeightMapFile.h"
 #include "microrelief/image/ImageFile.h"
 
@@ -332,7 +333,10 @@ void ViewerApp::renderView() {
     target_->clear(state_.scene.job.background);
     const double start = now();
     timer_->begin();
-    renderer_->draw(cameraFrame(), state_.scene.job.shading);
+    {
+        const gl::SrgbWrites srgb(window_->gl());  // the relief's linear colour, encoded
+        renderer_->draw(cameraFrame(), state_.scene.job.shading);
+    }
     timer_->end();
     // The wall-clock time to glFinish as well: software rasterisers (llvmpipe) answer
     // timer queries without timing the rasterisation, and read about 0 there.

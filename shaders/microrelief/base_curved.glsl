@@ -20,19 +20,19 @@ const float MR_CURVED_PI = 3.14159265358979;
 const float MR_CURVED_RADIUS_MARGIN = 1.0 / 524288.0;  // 2^-19
 const float MR_CURVED_NEVER = 1e30;                    // a crossing that does not happen
 
-float mr_curvedMarginX(mr_ReliefMap map) { return 1.0 / 1024.0 + map.size.x * (1.0 / 524288.0); }
-float mr_curvedMarginY(mr_ReliefMap map) { return 1.0 / 1024.0 + map.size.y * (1.0 / 524288.0); }
+float mr_curvedMarginX(mr_Relief relief) { return 1.0 / 1024.0 + relief.map.size.x * (1.0 / 524288.0); }
+float mr_curvedMarginY(mr_Relief relief) { return 1.0 / 1024.0 + relief.map.size.y * (1.0 / 524288.0); }
 
-vec3 mr_curvedFramePoint(mr_ReliefMap map, vec3 world) { return world / map.frameScale; }
-vec3 mr_curvedFrameVector(mr_ReliefMap map, vec3 world) { return world / map.frameScale; }
-vec3 mr_curvedWorldPoint(mr_ReliefMap map, vec3 q) { return q * map.frameScale; }
-// The inverse transpose of diag(frameScale).
-vec3 mr_curvedWorldNormal(mr_ReliefMap map, vec3 n) { return normalize(n / map.frameScale); }
+vec3 mr_curvedFramePoint(mr_Relief relief, vec3 object) { return object / relief.placement.frameScale; }
+vec3 mr_curvedFrameVector(mr_Relief relief, vec3 object) { return object / relief.placement.frameScale; }
+vec3 mr_curvedObjectPoint(mr_Relief relief, vec3 q) { return q * relief.placement.frameScale; }
+// The inverse transpose of diag(frameScale); not unit.
+vec3 mr_curvedObjectNormal(mr_Relief relief, vec3 n) { return n / relief.placement.frameScale; }
 
 // X of frame point q, in [0, W). On the axis (where atan(0, 0) is undefined) u = 0.5.
-float mr_curvedMapX(mr_ReliefMap map, vec3 q) {
+float mr_curvedMapX(mr_Relief relief, vec3 q) {
     bool onAxis = q.x == 0.0 && q.z == 0.0;
-    return map.size.x * fract(0.5 + atan(q.x, onAxis ? 1.0 : q.z) * (0.5 / MR_CURVED_PI));
+    return relief.map.size.x * fract(0.5 + atan(q.x, onAxis ? 1.0 : q.z) * (0.5 / MR_CURVED_PI));
 }
 
 // Whether X grows along the line: d(atan(x, z))/dt = (z dx - x dz) / (x^2 + z^2), whose
@@ -43,8 +43,8 @@ bool mr_curvedXIncreases(vec3 origin, vec3 dir) { return origin.z * dir.x - orig
 // axis (points lambda (sin phi, y, cos phi), lambda >= 0), MR_CURVED_NEVER where it does not.
 // The line meets the half-plane's plane once at most, so any t is that crossing: a walk
 // that finds it behind its start has rounded past it already.
-float mr_curvedCrossX(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary) {
-    float phi = 2.0 * MR_CURVED_PI * (boundary / map.size.x - 0.5);
+float mr_curvedCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary) {
+    float phi = 2.0 * MR_CURVED_PI * (boundary / relief.map.size.x - 0.5);
     float s = sin(phi), c = cos(phi);
     float rate = s * dir.z - c * dir.x;
     if (rate == 0.0) return MR_CURVED_NEVER;
@@ -58,8 +58,8 @@ float mr_curvedCrossX(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary) {
 // a turn, so the path covers exactly the shorter arc between its ends. Near half a turn
 // the segment passes next to the axis (where rounding could pick the wrong arc, and one
 // through it jumps by half a turn): all of u then. lo in [0, W), hi up to lo + W.
-vec2 mr_curvedRangeX(mr_ReliefMap map, float xa, float xb) {
-    float w = map.size.x, margin = mr_curvedMarginX(map);
+vec2 mr_curvedRangeX(mr_Relief relief, float xa, float xb) {
+    float w = relief.map.size.x, margin = mr_curvedMarginX(relief);
     float arc = xb - xa;
     if (arc > 0.5 * w) arc -= w;
     if (arc < -0.5 * w) arc += w;

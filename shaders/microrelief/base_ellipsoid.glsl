@@ -12,10 +12,10 @@ float mr_ellipsoidRadial(vec3 q) { return length(q); }
 
 // The polar angle as atan(|q.xz|, q.y): well conditioned at the poles, where acos(q.y / r)
 // would lose half the digits. At the centre (undefined) the equator.
-float mr_ellipsoidMapY(mr_ReliefMap map, vec3 q) {
+float mr_ellipsoidMapY(mr_Relief relief, vec3 q) {
     float rho = length(q.xz);
     bool atCentre = rho == 0.0 && q.y == 0.0;
-    return map.size.y * atan(rho, atCentre ? 0.0 : q.y) / MR_CURVED_PI;
+    return relief.map.size.y * atan(rho, atCentre ? 0.0 : q.y) / MR_CURVED_PI;
 }
 
 // The smallest distance from the centre over [ta, tb] (convex along a line: the nearest
@@ -36,11 +36,11 @@ float mr_ellipsoidTurnY(vec3 origin, vec3 dir) {
 
 // The Y range over [ta, tb] whose ends have Y = ya and yb: theirs, and the turn's if it
 // lies inside.
-vec2 mr_ellipsoidRangeY(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float ya, float yb) {
+vec2 mr_ellipsoidRangeY(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb, float ya, float yb) {
     vec2 range = vec2(min(ya, yb), max(ya, yb));
     float turn = mr_ellipsoidTurnY(origin, dir);
     if (turn > ta && turn < tb) {
-        float y = mr_ellipsoidMapY(map, origin + turn * dir);
+        float y = mr_ellipsoidMapY(relief, origin + turn * dir);
         range = vec2(min(range.x, y), max(range.y, y));
     }
     return range;
@@ -50,8 +50,8 @@ vec2 mr_ellipsoidRangeY(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float
 // crosses the cone of constant Y = boundary, cos^2 |p_xz|^2 = sin^2 p_y^2 on the nappe
 // where p_y has the sign of cos; MR_CURVED_NEVER if none. The equator's cone is the plane
 // y = 0 (the quadratic's double root there would lose half the digits).
-float mr_ellipsoidCrossY(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
-    float theta = MR_CURVED_PI * boundary / map.size.y;
+float mr_ellipsoidCrossY(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float from, float to) {
+    float theta = MR_CURVED_PI * boundary / relief.map.size.y;
     float c = cos(theta), s = sin(theta);
     if (abs(c) < 1e-6) {
         float t = dir.y == 0.0 ? MR_CURVED_NEVER : -origin.y / dir.y;
@@ -81,24 +81,24 @@ float mr_ellipsoidCrossY(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary
 
 // The bounding shell: the ball of radius 1 + s maxHeight. It is entered through the
 // shell itself, never a face.
-vec2 mr_ellipsoidClipToShell(mr_ReliefMap map, vec3 origin, vec3 dir) {
-    return mr_curvedInsideRadius(origin, dir, 1.0 + map.heightScale * map.maxHeight);
+vec2 mr_ellipsoidClipToShell(mr_Relief relief, vec3 origin, vec3 dir) {
+    return mr_curvedInsideRadius(origin, dir, 1.0 + relief.placement.heightScale * relief.map.maxHeight);
 }
 
 // A segment's ends as (X, Y, distance from the centre), what its footprint is made of.
-vec3 mr_ellipsoidEnd(mr_ReliefMap map, vec3 q) { return vec3(mr_curvedMapX(map, q), mr_ellipsoidMapY(map, q), mr_ellipsoidRadial(q)); }
+vec3 mr_ellipsoidEnd(mr_Relief relief, vec3 q) { return vec3(mr_curvedMapX(relief, q), mr_ellipsoidMapY(relief, q), mr_ellipsoidRadial(q)); }
 
 // The footprint of [ta, tb] from its ends `ea`, `eb` (mr_ellipsoidEnd).
-mr_BaseFootprint mr_ellipsoidFootprint(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
-    vec2 x = mr_curvedRangeX(map, ea.x, eb.x);
-    vec2 y = mr_ellipsoidRangeY(map, origin, dir, ta, tb, ea.y, eb.y) + vec2(-1.0, 1.0) * mr_curvedMarginY(map);
-    float lowest = (mr_ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
-    return mr_BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest, abs(eb.z - ea.z) / map.heightScale);
+mr_BaseFootprint mr_ellipsoidFootprint(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
+    vec2 x = mr_curvedRangeX(relief, ea.x, eb.x);
+    vec2 y = mr_ellipsoidRangeY(relief, origin, dir, ta, tb, ea.y, eb.y) + vec2(-1.0, 1.0) * mr_curvedMarginY(relief);
+    float lowest = (mr_ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / relief.placement.heightScale;
+    return mr_BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest, abs(eb.z - ea.z) / relief.placement.heightScale);
 }
 
 // q = r w(theta, phi) with r = 1 + s h: the outward normal is r w - r_theta e_theta -
 // r_phi / sin(theta) e_phi, with r_theta = s H / pi dh/dY and r_phi = s W / 2 pi dh/dX.
-vec3 mr_ellipsoidTopNormal(mr_ReliefMap map, vec3 q, vec2 gradient) {
+vec3 mr_ellipsoidTopNormal(mr_Relief relief, vec3 q, vec2 gradient) {
     float r = length(q);
     if (r == 0.0) return vec3(0.0, 1.0, 0.0);
     vec3 w = q / r;
@@ -106,8 +106,8 @@ vec3 mr_ellipsoidTopNormal(mr_ReliefMap map, vec3 q, vec2 gradient) {
     vec2 phi = sinTheta > 0.0 ? w.xz / sinTheta : vec2(0.0, 1.0);  // (sin, cos) of phi
     vec3 eTheta = vec3(cosTheta * phi.x, -sinTheta, cosTheta * phi.y);
     vec3 ePhi = vec3(phi.y, 0.0, -phi.x);
-    float rTheta = map.heightScale * map.size.y / MR_CURVED_PI * gradient.y;
-    float rPhi = map.heightScale * map.size.x / (2.0 * MR_CURVED_PI) * gradient.x;
+    float rTheta = relief.placement.heightScale * relief.map.size.y / MR_CURVED_PI * gradient.y;
+    float rPhi = relief.placement.heightScale * relief.map.size.x / (2.0 * MR_CURVED_PI) * gradient.x;
     return r * w - rTheta * eTheta - rPhi / max(sinTheta, 1e-6) * ePhi;
 }
 

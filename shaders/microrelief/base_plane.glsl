@@ -14,8 +14,8 @@
 // it, and which slab the entry and the exit cross (0: X, 1: Y, 2: h). Empty when x > y.
 // Under a curved base (the step-based peers' local frame, layer_march.glsl) X wraps and
 // has no walls.
-vec2 mr_clipToReliefBox(mr_ReliefMap map, vec3 origin, vec3 dir, out int entryAxis, out int exitAxis) {
-    vec3 lo = vec3(0.0), hi = vec3(map.size, map.maxHeight);
+vec2 mr_clipToReliefBox(mr_Relief relief, vec3 origin, vec3 dir, out int entryAxis, out int exitAxis) {
+    vec3 lo = vec3(0.0), hi = vec3(relief.map.size, relief.map.maxHeight);
     float tEnter = -1e30, tExit = 1e30;
     entryAxis = -1;
     exitAxis = -1;
@@ -36,9 +36,9 @@ vec2 mr_clipToReliefBox(mr_ReliefMap map, vec3 origin, vec3 dir, out int entryAx
 // The box as the bounding shell: the face the ray enters through (a wall, the bottom, or
 // MR_RELIEF_MISS for the top face, where the traversal starts) and whether it leaves through
 // the floor going down (it meets h = 0, inside the solid, there).
-vec2 mr_planeClipToShell(mr_ReliefMap map, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
+vec2 mr_planeClipToShell(mr_Relief relief, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
     int entryAxis, exitAxis;
-    vec2 range = mr_clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
+    vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);
     entryFace = entryAxis == 0   ? MR_RELIEF_WALL_X
                 : entryAxis == 1 ? MR_RELIEF_WALL_Y
                 : entryAxis == 2 && dir.z > 0.0 ? MR_RELIEF_BOTTOM
@@ -80,11 +80,11 @@ vec3 mr_planeFaceNormal(int face, vec3 dir) {
     return n;
 }
 
-// A map-space normal in world space: the inverse transpose of G's scales, (X, Y, h) ->
-// (x, z, y).
-vec3 mr_planeWorldNormal(mr_ReliefMap map, vec3 n) {
-    float texelsPerUnit = max(map.size.x, map.size.y);
-    return normalize(vec3(n.x * texelsPerUnit, n.z / map.heightScale, n.y * texelsPerUnit));
+// A map-space normal in object space: the inverse transpose of G's scales, (X, Y, h) ->
+// (x, z, y); not unit.
+vec3 mr_planeObjectNormal(mr_Relief relief, vec3 n) {
+    float texelsPerUnit = max(relief.map.size.x, relief.map.size.y);
+    return vec3(n.x * texelsPerUnit, n.z / relief.placement.heightScale, n.y * texelsPerUnit);
 }
 
 // Exact first hit on the bilinear surface along [ta, tb], or -1 (the plane's own leaf for
@@ -94,13 +94,13 @@ vec3 mr_planeWorldNormal(mr_ReliefMap map, vec3 n) {
 // from one cell to its neighbour across the boundary the ray meets first (a 2D DDA, as
 // in the reference tracer). Neighbouring patches share an edge (mr_neighbourCorners).
 // `corners` and `cell` are the patch of the hit.
-float mr_planeIntersectLeaf(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+float mr_planeIntersectLeaf(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
                          inout int fetches, out vec4 corners, out ivec2 cell) {
     cell = mr_cellAt((origin + ta * dir).xy);
     ivec2 lastCell = mr_cellAt((origin + tb * dir).xy);
     ivec2 toward = ivec2(sign(vec2(lastCell - cell)));
     ivec2 cells = abs(lastCell - cell);
-    corners = mr_cellCorners(map, heights, cell, fetches);
+    corners = mr_cellCorners(relief, heights, cell, fetches);
     float t0 = ta;
     for (int piece = 0; piece <= cells.x + cells.y; ++piece) {
         // Where the ray leaves this cell towards lastCell, per axis (tb: it does not).
@@ -116,7 +116,7 @@ float mr_planeIntersectLeaf(mr_ReliefMap map, sampler2D heights, vec3 origin, ve
         if (tau >= 0.0) return t0 + tau;
         if (t1 >= tb) break;
         int axis = exits.x <= exits.y ? 0 : 1;
-        corners = mr_neighbourCorners(map, heights, cell, axis, toward[axis], corners, fetches);
+        corners = mr_neighbourCorners(relief, heights, cell, axis, toward[axis], corners, fetches);
         t0 = t1;
     }
     return -1.0;

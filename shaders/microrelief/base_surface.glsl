@@ -60,47 +60,59 @@ const float MR_BIQUADRATIC_FINAL_FOOTPRINT = 1.0 / 64.0;
 // The patch's bound, padded by its own float rounding (a few ulp of the net's entries).
 const float MR_PATCH_TOP_MARGIN = 1.0 / 1048576.0;
 
-vec3 mr_baseFramePoint(mr_ReliefMap map, vec3 world) {
+// Between the world and the base's frame, in two steps: the model transform
+// (mr_ReliefPlacement: the world to the relief's object space, an affine map, so t is
+// kept), then the base's own (map space on the plane, the canonical frame on a curved
+// base). With the identity for a model both steps are exact in float (a product with
+// ones and zeros), so the model costs nothing in accuracy where it is not used.
+vec3 mr_baseObjectPoint(mr_Relief relief, vec3 world) {
+    return (relief.placement.worldToObject * vec4(world, 1.0)).xyz;
+}
+
+vec3 mr_baseFramePoint(mr_Relief relief, vec3 world) {
+    vec3 object = mr_baseObjectPoint(relief, world);
 #if MICRORELIEF_BASE == 0
-    return mr_worldToMapPoint(map, world);
+    return mr_objectToMapPoint(relief, object);
 #else
-    return mr_curvedFramePoint(map, world);
+    return mr_curvedFramePoint(relief, object);
 #endif
 }
 
-vec3 mr_baseFrameVector(mr_ReliefMap map, vec3 world) {
+vec3 mr_baseFrameVector(mr_Relief relief, vec3 world) {
+    vec3 object = mat3(relief.placement.worldToObject) * world;
 #if MICRORELIEF_BASE == 0
-    return mr_worldToMapVector(map, world);
+    return mr_objectToMapVector(relief, object);
 #else
-    return mr_curvedFrameVector(map, world);
+    return mr_curvedFrameVector(relief, object);
 #endif
 }
 
-vec3 mr_baseWorldPoint(mr_ReliefMap map, vec3 q) {
+vec3 mr_baseWorldPoint(mr_Relief relief, vec3 q) {
 #if MICRORELIEF_BASE == 0
-    return mr_mapToWorldPoint(map, q);
+    vec3 object = mr_mapToObjectPoint(relief, q);
 #else
-    return mr_curvedWorldPoint(map, q);
+    vec3 object = mr_curvedObjectPoint(relief, q);
 #endif
+    return (relief.placement.objectToWorld * vec4(object, 1.0)).xyz;
 }
 
 // Y of a frame point (curved bases), and the map point (X, Y, h): X in [0, W) on a
 // curved base.
-float mr_baseMapY(mr_ReliefMap map, vec3 q) {
+float mr_baseMapY(mr_Relief relief, vec3 q) {
 #if MICRORELIEF_BASE == 1
-    return mr_cylinderMapY(map, q);
+    return mr_cylinderMapY(relief, q);
 #elif MICRORELIEF_BASE == 2
-    return mr_ellipsoidMapY(map, q);
+    return mr_ellipsoidMapY(relief, q);
 #else
     return q.y;
 #endif
 }
 
-vec3 mr_baseMapPoint(mr_ReliefMap map, vec3 q) {
+vec3 mr_baseMapPoint(mr_Relief relief, vec3 q) {
 #if MICRORELIEF_BASE == 1
-    return vec3(mr_curvedMapX(map, q), mr_cylinderMapY(map, q), (mr_cylinderRadial(q) - 1.0) / map.heightScale);
+    return vec3(mr_curvedMapX(relief, q), mr_cylinderMapY(relief, q), (mr_cylinderRadial(q) - 1.0) / relief.placement.heightScale);
 #elif MICRORELIEF_BASE == 2
-    return vec3(mr_curvedMapX(map, q), mr_ellipsoidMapY(map, q), (mr_ellipsoidRadial(q) - 1.0) / map.heightScale);
+    return vec3(mr_curvedMapX(relief, q), mr_ellipsoidMapY(relief, q), (mr_ellipsoidRadial(q) - 1.0) / relief.placement.heightScale);
 #else
     return q;
 #endif
@@ -109,52 +121,52 @@ vec3 mr_baseMapPoint(mr_ReliefMap map, vec3 q) {
 // The ray's interval in the bounding shell (empty when x > y); the face it enters through
 // (MR_RELIEF_WALL_X, _WALL_Y, _BOTTOM, _CAP, or MR_RELIEF_MISS: the top face or the curved
 // shell); whether it leaves through the plane's floor going down.
-vec2 mr_baseClipToShell(mr_ReliefMap map, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
+vec2 mr_baseClipToShell(mr_Relief relief, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
     entryFace = MR_RELIEF_MISS;
     floorExit = false;
 #if MICRORELIEF_BASE == 1
-    return mr_cylinderClipToShell(map, origin, dir, entryFace);
+    return mr_cylinderClipToShell(relief, origin, dir, entryFace);
 #elif MICRORELIEF_BASE == 2
-    return mr_ellipsoidClipToShell(map, origin, dir);
+    return mr_ellipsoidClipToShell(relief, origin, dir);
 #else
-    return mr_planeClipToShell(map, origin, dir, entryFace, floorExit);
+    return mr_planeClipToShell(relief, origin, dir, entryFace, floorExit);
 #endif
 }
 
 // A segment's end as the footprint needs it, computed once per end (a walk's neighbouring
 // segments share theirs): the map point on the plane; (X, Y, radial distance) on a curved
 // base.
-vec3 mr_baseEnd(mr_ReliefMap map, vec3 q) {
+vec3 mr_baseEnd(mr_Relief relief, vec3 q) {
 #if MICRORELIEF_BASE == 1
-    return mr_cylinderEnd(map, q);
+    return mr_cylinderEnd(relief, q);
 #elif MICRORELIEF_BASE == 2
-    return mr_ellipsoidEnd(map, q);
+    return mr_ellipsoidEnd(relief, q);
 #else
     return q;
 #endif
 }
 
 // The footprint of [ta, tb], whose ends are `ea`, `eb` (mr_baseEnd).
-mr_BaseFootprint mr_baseFootprintOf(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
+mr_BaseFootprint mr_baseFootprintOf(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
 #if MICRORELIEF_BASE == 1
-    return mr_cylinderFootprint(map, origin, dir, ta, tb, ea, eb);
+    return mr_cylinderFootprint(relief, origin, dir, ta, tb, ea, eb);
 #elif MICRORELIEF_BASE == 2
-    return mr_ellipsoidFootprint(map, origin, dir, ta, tb, ea, eb);
+    return mr_ellipsoidFootprint(relief, origin, dir, ta, tb, ea, eb);
 #else
     return mr_planeFootprint(ea, eb);
 #endif
 }
 
-mr_BaseFootprint mr_baseFootprint(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
-    return mr_baseFootprintOf(map, origin, dir, ta, tb, mr_baseEnd(map, origin + ta * dir), mr_baseEnd(map, origin + tb * dir));
+mr_BaseFootprint mr_baseFootprint(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb) {
+    return mr_baseFootprintOf(relief, origin, dir, ta, tb, mr_baseEnd(relief, origin + ta * dir), mr_baseEnd(relief, origin + tb * dir));
 }
 
 // mr_baseFootprint(...).lowest alone: the lowest height over [ta, tb], never above it.
-float mr_baseLowest(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb) {
+float mr_baseLowest(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb) {
 #if MICRORELIEF_BASE == 1
-    return (mr_cylinderLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+    return (mr_cylinderLowestRadial(origin, dir, ta, tb) - 1.0) / relief.placement.heightScale;
 #elif MICRORELIEF_BASE == 2
-    return (mr_ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / map.heightScale;
+    return (mr_ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / relief.placement.heightScale;
 #else
     return mr_planeLowest(origin, dir, ta, tb);
 #endif
@@ -162,11 +174,11 @@ float mr_baseLowest(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb)
 
 // The first t in [ta, tb] at which the ray is at or below height h (map units), never
 // later than the exact one; ta where it starts there or does not get that low.
-float mr_baseDescendTo(mr_ReliefMap map, vec3 origin, vec3 dir, float ta, float tb, float h) {
+float mr_baseDescendTo(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb, float h) {
 #if MICRORELIEF_BASE == 0
     return mr_planeDescendTo(origin, dir, ta, tb, h);
 #else
-    float radius = 1.0 + map.heightScale * h + MR_CURVED_RADIUS_MARGIN;
+    float radius = 1.0 + relief.placement.heightScale * h + MR_CURVED_RADIUS_MARGIN;
 #if MICRORELIEF_BASE == 1
     vec2 inside = mr_curvedInsideRadius(vec3(origin.x, 0.0, origin.z), vec3(dir.x, 0.0, dir.z), radius);
 #else
@@ -187,17 +199,17 @@ float mr_baseTurnY(vec3 origin, vec3 dir) {
 
 // The outward normal (not unit) in the frame at frame point q of the top surface, whose
 // map gradient there is (dh/dX, dh/dY); of the face a ray entered through.
-vec3 mr_baseTopNormal(mr_ReliefMap map, vec3 q, vec2 gradient) {
+vec3 mr_baseTopNormal(mr_Relief relief, vec3 q, vec2 gradient) {
 #if MICRORELIEF_BASE == 1
-    return mr_cylinderTopNormal(map, q, gradient);
+    return mr_cylinderTopNormal(relief, q, gradient);
 #elif MICRORELIEF_BASE == 2
-    return mr_ellipsoidTopNormal(map, q, gradient);
+    return mr_ellipsoidTopNormal(relief, q, gradient);
 #else
     return mr_planeTopNormal(gradient);
 #endif
 }
 
-vec3 mr_baseFaceNormal(mr_ReliefMap map, int face, vec3 q, vec3 dir) {
+vec3 mr_baseFaceNormal(mr_Relief relief, int face, vec3 q, vec3 dir) {
 #if MICRORELIEF_BASE == 0
     return mr_planeFaceNormal(face, dir);
 #else
@@ -205,26 +217,28 @@ vec3 mr_baseFaceNormal(mr_ReliefMap map, int face, vec3 q, vec3 dir) {
 #endif
 }
 
-// A frame normal as a world-space unit vector.
-vec3 mr_baseWorldNormal(mr_ReliefMap map, vec3 n) {
+// A frame normal as a world-space unit vector: the frame's inverse transpose into object
+// space, then the model's (the transpose of worldToObject's linear part).
+vec3 mr_baseWorldNormal(mr_Relief relief, vec3 n) {
 #if MICRORELIEF_BASE == 0
-    return mr_planeWorldNormal(map, n);
+    vec3 object = mr_planeObjectNormal(relief, n);
 #else
-    return mr_curvedWorldNormal(map, n);
+    vec3 object = mr_curvedObjectNormal(relief, n);
 #endif
+    return normalize(transpose(mat3(relief.placement.worldToObject)) * object);
 }
 
 // The frame point of map point (X, Y, h): the surface point of the base at (u, v),
 // raised by h along the base's normal.
-vec3 mr_baseSurfacePoint(mr_ReliefMap map, vec3 m) {
+vec3 mr_baseSurfacePoint(mr_Relief relief, vec3 m) {
 #if MICRORELIEF_BASE == 0
     return m;
 #else
-    float phi = 2.0 * MR_CURVED_PI * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
+    float phi = 2.0 * MR_CURVED_PI * (m.x / relief.map.size.x - 0.5), r = 1.0 + relief.placement.heightScale * m.z;
 #if MICRORELIEF_BASE == 1
-    return vec3(r * sin(phi), 1.0 - 2.0 * m.y / map.size.y, r * cos(phi));
+    return vec3(r * sin(phi), 1.0 - 2.0 * m.y / relief.map.size.y, r * cos(phi));
 #else
-    float theta = MR_CURVED_PI * m.y / map.size.y;
+    float theta = MR_CURVED_PI * m.y / relief.map.size.y;
     return r * vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
 #endif
 #endif
@@ -232,25 +246,25 @@ vec3 mr_baseSurfacePoint(mr_ReliefMap map, vec3 m) {
 
 // The base's tangent frame at map point m: the frame point's derivatives along X, Y and h
 // (orthogonal on every base: map space's axes on the plane).
-void mr_baseTangentFrame(mr_ReliefMap map, vec3 m, out vec3 alongX, out vec3 alongY, out vec3 alongH) {
+void mr_baseTangentFrame(mr_Relief relief, vec3 m, out vec3 alongX, out vec3 alongY, out vec3 alongH) {
 #if MICRORELIEF_BASE == 0
     alongX = vec3(1.0, 0.0, 0.0);
     alongY = vec3(0.0, 1.0, 0.0);
     alongH = vec3(0.0, 0.0, 1.0);
 #else
-    float phi = 2.0 * MR_CURVED_PI * (m.x / map.size.x - 0.5), r = 1.0 + map.heightScale * m.z;
+    float phi = 2.0 * MR_CURVED_PI * (m.x / relief.map.size.x - 0.5), r = 1.0 + relief.placement.heightScale * m.z;
     vec3 ePhi = vec3(cos(phi), 0.0, -sin(phi));
 #if MICRORELIEF_BASE == 1
-    alongX = r * (2.0 * MR_CURVED_PI / map.size.x) * ePhi;
-    alongY = vec3(0.0, -2.0 / map.size.y, 0.0);
-    alongH = map.heightScale * vec3(sin(phi), 0.0, cos(phi));
+    alongX = r * (2.0 * MR_CURVED_PI / relief.map.size.x) * ePhi;
+    alongY = vec3(0.0, -2.0 / relief.map.size.y, 0.0);
+    alongH = relief.placement.heightScale * vec3(sin(phi), 0.0, cos(phi));
 #else
-    float theta = MR_CURVED_PI * m.y / map.size.y;
+    float theta = MR_CURVED_PI * m.y / relief.map.size.y;
     vec3 w = vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
     vec3 eTheta = vec3(cos(theta) * sin(phi), -sin(theta), cos(theta) * cos(phi));
-    alongX = r * sin(theta) * (2.0 * MR_CURVED_PI / map.size.x) * ePhi;
-    alongY = r * (MR_CURVED_PI / map.size.y) * eTheta;
-    alongH = map.heightScale * w;
+    alongX = r * sin(theta) * (2.0 * MR_CURVED_PI / relief.map.size.x) * ePhi;
+    alongY = r * (MR_CURVED_PI / relief.map.size.y) * eTheta;
+    alongH = relief.placement.heightScale * w;
 #endif
 #endif
 }
@@ -259,17 +273,17 @@ void mr_baseTangentFrame(mr_ReliefMap map, vec3 m, out vec3 alongX, out vec3 alo
 // on a curved surface: map space (X, Y, h) taken as flat from that point on, the ray's
 // direction expressed in the base's tangent frame there, blind to the curvature beyond.
 // False when the ray misses the shell. `tEntry` is where it enters (or 0 inside it).
-bool mr_baseTangentRay(mr_ReliefMap map, vec3 origin, vec3 dir, out vec3 localOrigin, out vec3 localDir,
+bool mr_baseTangentRay(mr_Relief relief, vec3 origin, vec3 dir, out vec3 localOrigin, out vec3 localDir,
                     out float tEntry) {
     int entryFace;
     bool floorExit;
-    vec2 range = mr_baseClipToShell(map, origin, dir, entryFace, floorExit);
+    vec2 range = mr_baseClipToShell(relief, origin, dir, entryFace, floorExit);
     tEntry = max(range.x, 0.0);
-    localOrigin = mr_baseMapPoint(map, origin + tEntry * dir);
+    localOrigin = mr_baseMapPoint(relief, origin + tEntry * dir);
     localDir = vec3(0.0);
     if (tEntry > range.y) return false;
     vec3 alongX, alongY, alongH;
-    mr_baseTangentFrame(map, localOrigin, alongX, alongY, alongH);
+    mr_baseTangentFrame(relief, localOrigin, alongX, alongY, alongH);
     localDir = vec3(dot(dir, alongX) / dot(alongX, alongX), dot(dir, alongY) / dot(alongY, alongY),
                     dot(dir, alongH) / dot(alongH, alongH));
     return true;
@@ -287,21 +301,21 @@ bool mr_baseXIncreases(vec3 origin, vec3 dir) {
 #endif
 }
 
-float mr_baseCrossX(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary) {
+float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary) {
 #if MICRORELIEF_BASE == 0
     return mr_planeCrossX(origin, dir, boundary);
 #else
-    return mr_curvedCrossX(map, origin, dir, boundary);
+    return mr_curvedCrossX(relief, origin, dir, boundary);
 #endif
 }
 
 // On the plane and the cylinder each Y boundary is crossed once (any t); on the
 // ellipsoid, the crossing on the branch [from, to] of the line where Y is monotone.
-float mr_baseCrossY(mr_ReliefMap map, vec3 origin, vec3 dir, float boundary, float from, float to) {
+float mr_baseCrossY(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float from, float to) {
 #if MICRORELIEF_BASE == 2
-    return mr_ellipsoidCrossY(map, origin, dir, boundary, from, to);
+    return mr_ellipsoidCrossY(relief, origin, dir, boundary, from, to);
 #elif MICRORELIEF_BASE == 1
-    return mr_cylinderCrossY(map, origin, dir, boundary);
+    return mr_cylinderCrossY(relief, origin, dir, boundary);
 #else
     return mr_planeCrossY(origin, dir, boundary);
 #endif
@@ -323,7 +337,7 @@ const float MR_FINAL_FOOTPRINT = 1e30;
 #endif
 
 // Map point m in the local coordinates of `cell`, with its height: (fx, fy, h).
-vec3 mr_cellLocalPoint(mr_ReliefMap map, ivec2 cell, vec3 m) { return vec3(mr_patchLocal(map, cell, m.xy), m.z); }
+vec3 mr_cellLocalPoint(mr_Relief relief, ivec2 cell, vec3 m) { return vec3(mr_patchLocal(relief, cell, m.xy), m.z); }
 
 // Patch minus ray: >= 0 where the ray is on or under the surface.
 float mr_cellGap(mr_ReliefPatch cellPatch, vec3 local) { return mr_patchValue(cellPatch, clamp(local.xy, 0.0, 1.0)) - local.z; }
@@ -333,30 +347,30 @@ float mr_cellGap(mr_ReliefPatch cellPatch, vec3 local) { return mr_patchValue(ce
 // one at c1, found here (the next cell's start). The walk carries the local coordinates of
 // the current piece's ends, so that each step computes one new point: the middle it
 // descends to, or the end of the piece it moves on to. Every margin pads a bound outwards.
-float mr_cellStretchHit(mr_ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, mr_ReliefPatch cellPatch, float c0, float c1,
+float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_ReliefPatch cellPatch, float c0, float c1,
                      vec3 startPoint, out vec3 endPoint) {
 #if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 1
     // The plane's path is straight: the gap is one quartic (biquadratic_patch.glsl).
-    endPoint = mr_baseMapPoint(map, origin + c1 * dir);
-    vec3 pa = mr_cellLocalPoint(map, cell, startPoint), pb = mr_cellLocalPoint(map, cell, endPoint);
+    endPoint = mr_baseMapPoint(relief, origin + c1 * dir);
+    vec3 pa = mr_cellLocalPoint(relief, cell, startPoint), pb = mr_cellLocalPoint(relief, cell, endPoint);
     mr_Quartic gap = mr_biquadraticPathGap(cellPatch, pa, pb);
     float footprint = max(abs(pb.x - pa.x), abs(pb.y - pa.y));
-    float s = mr_quarticFirstHit(gap, MR_FINAL_FOOTPRINT / max(footprint, 1e-30), MR_PATCH_TOP_MARGIN * map.maxHeight);
+    float s = mr_quarticFirstHit(gap, MR_FINAL_FOOTPRINT / max(footprint, 1e-30), MR_PATCH_TOP_MARGIN * relief.map.maxHeight);
     return s < 0.0 ? -1.0 : c0 + s * (c1 - c0);
 #else
-    vec2 margin = vec2(mr_curvedMarginX(map), mr_curvedMarginY(map));
-    float topMargin = MR_PATCH_TOP_MARGIN * map.maxHeight;
+    vec2 margin = vec2(mr_curvedMarginX(relief), mr_curvedMarginY(relief));
+    float topMargin = MR_PATCH_TOP_MARGIN * relief.map.maxHeight;
     float finalLength = MR_FINAL_LENGTH / length(dir);
     int depth = 0;
     uint index = 0u;
     float a = c0, b = c1;
-    endPoint = mr_baseMapPoint(map, origin + c1 * dir);
-    vec3 fa = mr_cellLocalPoint(map, cell, startPoint), fb = mr_cellLocalPoint(map, cell, endPoint);
+    endPoint = mr_baseMapPoint(relief, origin + c1 * dir);
+    vec3 fa = mr_cellLocalPoint(relief, cell, startPoint), fb = mr_cellLocalPoint(relief, cell, endPoint);
     // A walk of the binary tree of pieces visits each at most once.
     for (int guard = 0; guard < (2 << MICRORELIEF_CELL_DEPTH); ++guard) {
         vec2 lo = min(fa.xy, fb.xy), hi = max(fa.xy, fb.xy);
         float top = mr_patchTop(cellPatch, lo - margin, hi + margin) + topMargin;
-        bool may = mr_baseLowest(map, origin, dir, a, b) <= top;
+        bool may = mr_baseLowest(relief, origin, dir, a, b) <= top;
         bool last = depth == MICRORELIEF_CELL_DEPTH ||
                     (b - a <= finalLength && max(hi.x - lo.x, hi.y - lo.y) <= MR_FINAL_FOOTPRINT);
         if (may && !last) {
@@ -364,13 +378,13 @@ float mr_cellStretchHit(mr_ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, mr_
             depth += 1;
             index *= 2u;
             b = 0.5 * (a + b);
-            fb = mr_cellLocalPoint(map, cell, mr_baseMapPoint(map, origin + b * dir));
+            fb = mr_cellLocalPoint(relief, cell, mr_baseMapPoint(relief, origin + b * dir));
             continue;
         }
         if (may) {
             float m = 0.5 * (a + b);
             float ga = mr_cellGap(cellPatch, fa), gb = mr_cellGap(cellPatch, fb);
-            float gm = mr_cellGap(cellPatch, mr_cellLocalPoint(map, cell, mr_baseMapPoint(map, origin + m * dir)));
+            float gm = mr_cellGap(cellPatch, mr_cellLocalPoint(relief, cell, mr_baseMapPoint(relief, origin + m * dir)));
             float s = mr_parabolaFirstRoot(ga, gm, gb);
             if (s >= 0.0) return a + s * (b - a);
         }
@@ -384,7 +398,7 @@ float mr_cellStretchHit(mr_ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, mr_
         a = b;
         fa = fb;
         b = index + 1u == (1u << uint(depth)) ? c1 : c0 + float(index + 1u) * ((c1 - c0) * exp2(-float(depth)));
-        fb = mr_cellLocalPoint(map, cell, mr_baseMapPoint(map, origin + b * dir));
+        fb = mr_cellLocalPoint(relief, cell, mr_baseMapPoint(relief, origin + b * dir));
     }
     return -1.0;
 #endif
@@ -396,38 +410,38 @@ float mr_cellStretchHit(mr_ReliefMap map, vec3 origin, vec3 dir, ivec2 cell, mr_
 // so that each boundary is crossed once on it: a crossing found there but behind the
 // current t means rounding put the start just past it, and the walk steps on at once.
 // `cellPatch` and `cell` are the patch of the hit.
-float mr_walkLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
+float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
                     float branchFrom, float branchTo, inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
-    int width = int(map.size.x);
+    int width = int(relief.map.size.x);
     // Cells in Y: -1..H - 1 between sample centres, 0..H - 1 over texel squares.
-    int firstRow = MR_PATCH_OFFSET > 0.0 ? -1 : 0, lastRow = int(map.size.y) - 1;
-    vec3 start = mr_baseMapPoint(map, origin + from * dir);
-    cell = mr_patchCellAt(map, start.xy);
+    int firstRow = MR_PATCH_OFFSET > 0.0 ? -1 : 0, lastRow = int(relief.map.size.y) - 1;
+    vec3 start = mr_baseMapPoint(relief, origin + from * dir);
+    cell = mr_patchCellAt(relief, start.xy);
     cell.y = clamp(cell.y, firstRow, lastRow);
 #if MICRORELIEF_BASE == 0
     cell.x = clamp(cell.x, firstRow, width - 1);
 #endif
     bool xUp = mr_baseXIncreases(origin, dir);
-    float yTo = mr_baseMapY(map, origin + to * dir);
+    float yTo = mr_baseMapY(relief, origin + to * dir);
     bool yMoves = yTo != start.y, yUp = yTo > start.y;
     float t0 = from;
     vec3 point = start;  // the map point at t0
     cellPatch = mr_ReliefPatch(0.0);
-    for (int piece = 0; piece < width + int(map.size.y) + 4; ++piece) {
+    for (int piece = 0; piece < width + int(relief.map.size.y) + 4; ++piece) {
         float t1 = to;
         bool stepX = false, stepY = false;
         // A curved map one sample wide has no boundary in X: its one cell goes all the way
         // round.
         float tx = MICRORELIEF_BASE == 0 || width > 1
-                       ? mr_baseCrossX(map, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0))
+                       ? mr_baseCrossX(relief, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0))
                        : MR_CURVED_NEVER;
         if (tx <= t1) {
             t1 = max(tx, t0);
             stepX = true;
         }
         float yBoundary = float(cell.y) + MR_PATCH_OFFSET + (yUp ? 1.0 : 0.0);
-        if (yMoves && yBoundary > 0.0 && yBoundary < map.size.y) {
-            float ty = mr_baseCrossY(map, origin, dir, yBoundary, branchFrom, branchTo);
+        if (yMoves && yBoundary > 0.0 && yBoundary < relief.map.size.y) {
+            float ty = mr_baseCrossY(relief, origin, dir, yBoundary, branchFrom, branchTo);
             if (ty <= t1) {
                 float t = max(ty, t0);
                 stepX = stepX && t == t1;
@@ -435,9 +449,9 @@ float mr_walkLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 di
                 stepY = true;
             }
         }
-        cellPatch = mr_patchAt(map, heights, cell, fetches);
+        cellPatch = mr_patchAt(relief, heights, cell, fetches);
         vec3 next;
-        float tHit = mr_cellStretchHit(map, origin, dir, cell, cellPatch, t0, t1, point, next);
+        float tHit = mr_cellStretchHit(relief, origin, dir, cell, cellPatch, t0, t1, point, next);
         if (tHit >= 0.0) return tHit;
         point = next;
         if (!stepX && !stepY) break;  // the stretch ended at `to`
@@ -455,7 +469,7 @@ float mr_walkLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 di
 // The exact first hit over [ta, tb] by the cells the path crosses: the latitude turns at
 // most once along a line, so the leaf is walked in two pieces at most, X and Y monotone on
 // each.
-float mr_intersectLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+float mr_intersectLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
                          inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
     float turn = mr_baseTurnY(origin, dir);
     float from = ta, to = turn > ta && turn < tb ? turn : tb;
@@ -465,7 +479,7 @@ float mr_intersectLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, ve
         bool beforeTurn = turn != MR_CURVED_NEVER && turn >= to;
         float branchFrom = beforeTurn || turn == MR_CURVED_NEVER ? -MR_CURVED_NEVER : turn;
         float branchTo = beforeTurn ? turn : MR_CURVED_NEVER;
-        tHit = mr_walkLeafCells(map, heights, origin, dir, from, to, branchFrom, branchTo, fetches, cellPatch, cell);
+        tHit = mr_walkLeafCells(relief, heights, origin, dir, from, to, branchFrom, branchTo, fetches, cellPatch, cell);
         if (tHit >= 0.0 || to >= tb) break;
         from = to;
         to = tb;
@@ -475,12 +489,12 @@ float mr_intersectLeafCells(mr_ReliefMap map, sampler2D heights, vec3 origin, ve
 
 // The exact first hit on the surface over [ta, tb], or -1; `corners` and `cell` are the
 // patch of the hit.
-float mr_baseIntersectLeaf(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
+float mr_baseIntersectLeaf(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
                         inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
 #if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 0
-    return mr_planeIntersectLeaf(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
+    return mr_planeIntersectLeaf(relief, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
 #else
-    return mr_intersectLeafCells(map, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
+    return mr_intersectLeafCells(relief, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
 #endif
 }
 

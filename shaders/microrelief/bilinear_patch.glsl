@@ -24,15 +24,15 @@
 #endif
 
 // The four corner samples of cell `cell`: x = h00, y = h10, z = h01, w = h11.
-vec4 mr_cellCorners(mr_ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
+vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
 #if MICRORELIEF_TEXTURE_GATHER
     // The bilinear footprint of the point midway between the cell's four samples is
     // exactly those samples, clamped at the edges as CLAMP_TO_EDGE clamps them.
     fetches += 1;
-    vec4 g = textureGather(heights, (vec2(cell) + 1.0) / map.size);
+    vec4 g = textureGather(heights, (vec2(cell) + 1.0) / relief.map.size);
     return vec4(g.w, g.z, g.x, g.y);  // gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0)
 #else
-    ivec2 last = ivec2(map.size) - 1;
+    ivec2 last = ivec2(relief.map.size) - 1;
     ivec2 c0 = clamp(cell, ivec2(0), last);
     ivec2 c1 = clamp(cell + 1, ivec2(0), last);
 #if MICRORELIEF_BASE != 0
@@ -48,13 +48,13 @@ vec4 mr_cellCorners(mr_ReliefMap map, sampler2D heights, ivec2 cell, inout int f
 // The corners of the neighbour of `cell` one `step` (+1 or -1) along `axis`, given the
 // corners of `cell`; `cell` moves. The two cells share an edge: without gathering, only
 // the far edge's two samples are read.
-vec4 mr_neighbourCorners(mr_ReliefMap map, sampler2D heights, inout ivec2 cell, int axis, int step, vec4 corners,
+vec4 mr_neighbourCorners(mr_Relief relief, sampler2D heights, inout ivec2 cell, int axis, int step, vec4 corners,
                       inout int fetches) {
     cell[axis] += step;
 #if MICRORELIEF_TEXTURE_GATHER
-    return mr_cellCorners(map, heights, cell, fetches);
+    return mr_cellCorners(relief, heights, cell, fetches);
 #else
-    ivec2 last = ivec2(map.size) - 1;
+    ivec2 last = ivec2(relief.map.size) - 1;
     ivec2 c0 = clamp(cell, ivec2(0), last), c1 = clamp(cell + 1, ivec2(0), last);
     fetches += 2;
     if (axis == 0) {
@@ -71,9 +71,9 @@ vec4 mr_neighbourCorners(mr_ReliefMap map, sampler2D heights, inout ivec2 cell, 
 }
 
 // A cell index in 0..W - 1 on a curved base (u wraps); unchanged on the plane.
-ivec2 mr_wrapCell(mr_ReliefMap map, ivec2 cell) {
+ivec2 mr_wrapCell(mr_Relief relief, ivec2 cell) {
 #if MICRORELIEF_BASE != 0
-    int width = int(map.size.x);
+    int width = int(relief.map.size.x);
     cell.x -= width * int(floor(float(cell.x) / float(width)));
 #endif
     return cell;
@@ -84,10 +84,10 @@ ivec2 mr_cellAt(vec2 xy) { return ivec2(floor(xy - 0.5)); }
 
 // Map point `xy` in the local coordinates of `cell`, whose sample h00 is at the origin; on
 // a curved base the seam cell W - 1 holds the points just past X = 0 too.
-vec2 mr_cellLocal(mr_ReliefMap map, ivec2 cell, vec2 xy) {
+vec2 mr_cellLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
     vec2 f = xy - (vec2(cell) + 0.5);
 #if MICRORELIEF_BASE != 0
-    f.x -= map.size.x * floor(f.x / map.size.x + 0.5);
+    f.x -= relief.map.size.x * floor(f.x / relief.map.size.x + 0.5);
 #endif
     return f;
 }
@@ -103,9 +103,9 @@ vec2 mr_patchGradient(vec4 h, vec2 f) {
 }
 
 // h(X, Y): the surface height at a map point.
-float mr_surfaceHeight(mr_ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
-    ivec2 cell = mr_wrapCell(map, mr_cellAt(xy));
-    return mr_patchHeight(mr_cellCorners(map, heights, cell, fetches), clamp(mr_cellLocal(map, cell, xy), 0.0, 1.0));
+float mr_surfaceHeight(mr_Relief relief, sampler2D heights, vec2 xy, inout int fetches) {
+    ivec2 cell = mr_wrapCell(relief, mr_cellAt(xy));
+    return mr_patchHeight(mr_cellCorners(relief, heights, cell, fetches), clamp(mr_cellLocal(relief, cell, xy), 0.0, 1.0));
 }
 
 // The patch's max over the rectangle [lo, hi] of local coordinates (clamped to the

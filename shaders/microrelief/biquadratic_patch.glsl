@@ -17,8 +17,8 @@
 #include "relief_map.glsl"
 
 // One sample, its column clamped or wrapped, its row clamped.
-float mr_biquadraticSample(mr_ReliefMap map, sampler2D heights, ivec2 p) {
-    ivec2 last = ivec2(map.size) - 1;
+float mr_biquadraticSample(mr_Relief relief, sampler2D heights, ivec2 p) {
+    ivec2 last = ivec2(relief.map.size) - 1;
 #if MICRORELIEF_BASE != 0
     p.x = p.x < 0 ? p.x + last.x + 1 : p.x > last.x ? p.x - last.x - 1 : p.x;
 #else
@@ -31,12 +31,12 @@ float mr_biquadraticSample(mr_ReliefMap map, sampler2D heights, ivec2 p) {
 // The Bezier net of texel square `square` (net[a][b]: column a, row b, as a mat3 is
 // indexed). The 3 x 3 samples are four textureGathers of 2 x 2 samples each where the GL
 // has them (one fetch each), nine texelFetch otherwise.
-mat3 mr_biquadraticNet(mr_ReliefMap map, sampler2D heights, ivec2 square, inout int fetches) {
+mat3 mr_biquadraticNet(mr_Relief relief, sampler2D heights, ivec2 square, inout int fetches) {
     mat3 c;
 #if MICRORELIEF_TEXTURE_GATHER
     // Each gather reads the 2 x 2 samples whose centres surround the point between them:
     // samples (i - 1..i, j - 1..j) around (i, j) in texel coordinates, and so on.
-    vec2 size = map.size;
+    vec2 size = relief.map.size;
     vec4 g00 = textureGather(heights, (vec2(square) + vec2(0.0, 0.0)) / size);
     vec4 g10 = textureGather(heights, (vec2(square) + vec2(1.0, 0.0)) / size);
     vec4 g01 = textureGather(heights, (vec2(square) + vec2(0.0, 1.0)) / size);
@@ -48,7 +48,7 @@ mat3 mr_biquadraticNet(mr_ReliefMap map, sampler2D heights, ivec2 square, inout 
     c[2] = vec3(g10.z, g10.y, g11.y);
 #else
     for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(map, heights, square + ivec2(a - 1, b - 1));
+        for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(relief, heights, square + ivec2(a - 1, b - 1));
     }
     fetches += 9;
 #endif

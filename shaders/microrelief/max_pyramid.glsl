@@ -17,8 +17,8 @@
 
 // The finest texel that holds map point p, clamped to the map (not its padding); the
 // level-k texel holding it is this shifted right by k.
-ivec2 mr_finestTexelAt(mr_ReliefMap map, vec2 p) {
-    return clamp(ivec2(floor(p)), ivec2(0), ivec2(map.size) - 1);
+ivec2 mr_finestTexelAt(mr_Relief relief, vec2 p) {
+    return clamp(ivec2(floor(p)), ivec2(0), ivec2(relief.map.size) - 1);
 }
 
 // How a pyramid texel is read. 0 (default): textureLod at the texel's centre with
@@ -30,12 +30,12 @@ ivec2 mr_finestTexelAt(mr_ReliefMap map, vec2 p) {
 #endif
 
 // One pyramid texel.
-float mr_pyramidTexel(mr_ReliefMap map, sampler2D pyramid, ivec2 texel, int level, inout int fetches) {
+float mr_pyramidTexel(mr_Relief relief, sampler2D pyramid, ivec2 texel, int level, inout int fetches) {
     fetches += 1;
 #if MICRORELIEF_PYRAMID_TEXEL_FETCH
     return texelFetch(pyramid, texel, level).r;
 #else
-    vec2 levelSize = vec2(max(ivec2(1), map.pyramidSize >> level));
+    vec2 levelSize = vec2(max(ivec2(1), relief.map.pyramidSize >> level));
     return textureLod(pyramid, (vec2(texel) + 0.5) / levelSize, float(level)).r;
 #endif
 }
@@ -56,11 +56,11 @@ int mr_floorLog2(int n) {
 // The level whose windows hold a footprint of finest texels lo..hi (lo <= hi per axis):
 // the finest level k at which it spans at most one level-k texel boundary per axis. A
 // span of d texels does once d < 2^k, so with m = floor(log2 d) that is m or m + 1.
-int mr_windowLevel(mr_ReliefMap map, ivec2 lo, ivec2 hi) {
+int mr_windowLevel(mr_Relief relief, ivec2 lo, ivec2 hi) {
     ivec2 span = hi - lo;
     int level = mr_floorLog2(max(span.x, span.y));
     if (any(greaterThan((hi >> level) - (lo >> level), ivec2(1)))) level += 1;
-    return min(level, map.levelCount - 1);
+    return min(level, relief.map.levelCount - 1);
 }
 
 // The bound of the pyramid over the finest texels lo..hi: one texel of the overlapping
@@ -69,24 +69,24 @@ int mr_windowLevel(mr_ReliefMap map, ivec2 lo, ivec2 hi) {
 // footprint, at the level of detail the footprint chooses (mr_windowLevel). The footprint
 // lies inside that window, so the bound is conservative, and one textureLod reads it, as
 // the paper has it. `level` is set to the level read.
-float mr_windowOver(mr_ReliefMap map, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
-    level = mr_windowLevel(map, lo, hi);
-    return mr_pyramidTexel(map, windows, lo >> level, level, fetches);
+float mr_windowOver(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
+    level = mr_windowLevel(relief, lo, hi);
+    return mr_pyramidTexel(relief, windows, lo >> level, level, fetches);
 }
 
 // The bound over a segment's footprint, the map rectangle [lo, hi] (base_surface.glsl):
 // the window that holds its texels; on a curved base, a rectangle that reaches past
 // X = W wraps across the seam, and the larger of the windows over its two parts,
 // [lo.x, W) and [0, hi.x - W], bounds it (two fetches, for the segments that cross it).
-float mr_footprintBound(mr_ReliefMap map, sampler2D windows, vec2 lo, vec2 hi, out int level, inout int fetches) {
+float mr_footprintBound(mr_Relief relief, sampler2D windows, vec2 lo, vec2 hi, out int level, inout int fetches) {
 #if MICRORELIEF_BASE != 0
-    if (hi.x >= map.size.x) {
-        ivec2 tlo = mr_finestTexelAt(map, lo), thi = mr_finestTexelAt(map, hi - vec2(map.size.x, 0.0));
-        float right = mr_windowOver(map, windows, tlo, ivec2(int(map.size.x) - 1, thi.y), level, fetches);
-        return max(right, mr_windowOver(map, windows, ivec2(0, tlo.y), thi, level, fetches));
+    if (hi.x >= relief.map.size.x) {
+        ivec2 tlo = mr_finestTexelAt(relief, lo), thi = mr_finestTexelAt(relief, hi - vec2(relief.map.size.x, 0.0));
+        float right = mr_windowOver(relief, windows, tlo, ivec2(int(relief.map.size.x) - 1, thi.y), level, fetches);
+        return max(right, mr_windowOver(relief, windows, ivec2(0, tlo.y), thi, level, fetches));
     }
 #endif
-    return mr_windowOver(map, windows, mr_finestTexelAt(map, lo), mr_finestTexelAt(map, hi), level, fetches);
+    return mr_windowOver(relief, windows, mr_finestTexelAt(relief, lo), mr_finestTexelAt(relief, hi), level, fetches);
 }
 
 #endif

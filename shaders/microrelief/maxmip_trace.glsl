@@ -23,6 +23,7 @@
 #include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "relief_query.glsl"
 
 // Which way the ray moves over the map, per axis (+1, -1 or 0), and the branch of its line
 // on which that holds: on the plane and the cylinder the whole line; on an ellipsoid the
@@ -33,7 +34,7 @@ struct mr_MaxMipCourse {
     float turn;  // MR_CURVED_NEVER where Y never turns
 };
 
-mr_MaxMipCourse mr_maxMipCourse(mr_ReliefMap map, vec3 origin, vec3 dir, float tFar) {
+mr_MaxMipCourse mr_maxMipCourse(mr_Relief relief, vec3 origin, vec3 dir, float tFar) {
 #if MICRORELIEF_BASE == 0
     return mr_MaxMipCourse(ivec2(sign(dir.xy)), vec2(-MR_CURVED_NEVER, MR_CURVED_NEVER), MR_CURVED_NEVER);
 #else
@@ -53,7 +54,7 @@ mr_MaxMipCourse mr_maxMipCourse(mr_ReliefMap map, vec3 origin, vec3 dir, float t
     }
     // Y's way before the turn (or on the whole segment): from its value at the start to its
     // value where the branch ends.
-    float yStart = mr_baseMapY(map, origin), yEnd = mr_baseMapY(map, origin + min(turn, tFar) * dir);
+    float yStart = mr_baseMapY(relief, origin), yEnd = mr_baseMapY(relief, origin + min(turn, tFar) * dir);
     int stepY = yEnd > yStart ? 1 : yEnd < yStart ? -1 : 0;
     return mr_MaxMipCourse(ivec2(mr_curvedXIncreases(origin, dir) ? 1 : -1, stepY), branch, turn);
 #endif
@@ -70,7 +71,7 @@ void mr_maxMipTurn(inout mr_MaxMipCourse course) {
 // per axis (MR_CURVED_NEVER along an axis it does not leave by). On a curved base the sides
 // are a half-plane of constant X through the axis (the map's seam, X = W, past its last
 // column) and a plane or cone of constant Y, met in closed form (base_surface.glsl).
-vec2 mr_maxMipNodeExits(mr_ReliefMap map, ivec2 node, int level, vec3 origin, vec3 dir, mr_MaxMipCourse course) {
+vec2 mr_maxMipNodeExits(mr_Relief relief, ivec2 node, int level, vec3 origin, vec3 dir, mr_MaxMipCourse course) {
     float size = exp2(float(level));
     vec2 exits = vec2(MR_CURVED_NEVER);
 #if MICRORELIEF_BASE == 0
@@ -85,13 +86,13 @@ vec2 mr_maxMipNodeExits(mr_ReliefMap map, ivec2 node, int level, vec3 origin, ve
     // has no side in X, and crossing the seam keeps the ray in it. (Its only side would be
     // the seam, which a line crosses once: once crossed, the same crossing, behind the ray,
     // would be its exit again and again.)
-    if (((int(map.size.x) - 1) >> level) > 0) {
-        float side = course.step.x > 0 ? min(float(node.x + 1) * size, map.size.x) : float(node.x) * size;
-        exits.x = mr_curvedCrossX(map, origin, dir, side);
+    if (((int(relief.map.size.x) - 1) >> level) > 0) {
+        float side = course.step.x > 0 ? min(float(node.x + 1) * size, relief.map.size.x) : float(node.x) * size;
+        exits.x = mr_curvedCrossX(relief, origin, dir, side);
     }
     float side = (float(node.y) + (course.step.y > 0 ? 1.0 : 0.0)) * size;
-    if (course.step.y != 0 && side > 0.0 && side < map.size.y)
-        exits.y = mr_baseCrossY(map, origin, dir, side, course.branch.x, course.branch.y);
+    if (course.step.y != 0 && side > 0.0 && side < relief.map.size.y)
+        exits.y = mr_baseCrossY(relief, origin, dir, side, course.branch.x, course.branch.y);
 #endif
     return exits;
 }
@@ -109,19 +110,19 @@ ivec2 mr_maxMipChildAt(ivec2 node, int level, vec2 p, ivec2 step) {
 }
 
 // The node's max height: one texel of the pyramid.
-float mr_maxMipNodeHeight(mr_ReliefMap map, sampler2D pyramid, ivec2 node, int level, inout int fetches) {
-    ivec2 levelSize = max(ivec2(1), map.pyramidSize >> level);
-    return mr_pyramidTexel(map, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
+float mr_maxMipNodeHeight(mr_Relief relief, sampler2D pyramid, ivec2 node, int level, inout int fetches) {
+    ivec2 levelSize = max(ivec2(1), relief.map.pyramidSize >> level);
+    return mr_pyramidTexel(relief, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
 }
 
 // Into the neighbour of `node` across the side(s) of its column the ray leaves through
 // at tExit; up one level when that neighbour has a different parent. On a curved base the
 // nodes wrap in X: past the last column that holds map texels comes column 0.
-void mr_maxMipNextNode(mr_ReliefMap map, inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit,
+void mr_maxMipNextNode(mr_Relief relief, inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit,
                     ivec2 step) {
     ivec2 next = node + ivec2(exits.x <= tExit ? step.x : 0, exits.y <= tExit ? step.y : 0);
 #if MICRORELIEF_BASE != 0
-    int lastColumn = (int(map.size.x) - 1) >> level;
+    int lastColumn = (int(relief.map.size.x) - 1) >> level;
     if (next.x > lastColumn) next.x = 0;
     if (next.x < 0) next.x = lastColumn;
 #endif
@@ -138,10 +139,10 @@ void mr_maxMipNextNode(mr_ReliefMap map, inout ivec2 node, inout int level, int 
 // mr_traceMultilevel's (multilevel_trace.glsl): an inner one walks nodes down to a finest
 // texel the ray meets, an outer one solves it, so that pixels in SIMD lanes pay for
 // their leaves once per outer pass, not on every node.
-void mr_walkMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir, float tFar,
-                bool floorExit, inout mr_ReliefHit hit) {
+void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, sampler2D pyramid, sampler2D heights, vec3 origin,
+                   vec3 dir, float tFar, bool floorExit, inout mr_ReliefHit hit) {
     float t = 0.0;  // where the ray is in the current node
-    int topLevel = map.levelCount - 1;
+    int topLevel = relief.map.levelCount - 1;
     int level = topLevel;
     ivec2 node = ivec2(0);  // the root covers the whole map
     bool finished = false, solved = false;
@@ -151,27 +152,27 @@ void mr_walkMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
     int iteration = 0;
     vec2 exits = vec2(0.0);  // where the ray leaves the current node's column, per axis
     float tExit = 0.0;
-    mr_MaxMipCourse course = mr_maxMipCourse(map, origin, dir, tFar);
+    mr_MaxMipCourse course = mr_maxMipCourse(relief, origin, dir, tFar);
     while (!finished) {
         // Down the walk to a finest texel whose box the ray meets, or to the walk's end.
         bool atLeaf = false;
-        while (iteration < map.maxIterations) {
+        while (iteration < query.maxIterations) {
             iteration += 1;
             hit.stopLevel = level;
-            exits = mr_maxMipNodeExits(map, node, level, origin, dir, course);
+            exits = mr_maxMipNodeExits(relief, node, level, origin, dir, course);
             // Where Y turns the node's side ahead in Y changes: a stop of its own.
             float tStop = min(min(exits.x, exits.y), course.turn);
             tExit = min(max(tStop, t), tFar);
-            float top = mr_maxMipNodeHeight(map, pyramid, node, level, hit.fetches);
-            if (mr_baseLowest(map, origin, dir, t, tExit) <= top) {
+            float top = mr_maxMipNodeHeight(relief, pyramid, node, level, hit.fetches);
+            if (mr_baseLowest(relief, origin, dir, t, tExit) <= top) {
                 if (level == 0) {
                     atLeaf = true;
                     break;
                 }
                 // Step onto the box top (only a ray coming down can be above it here), then
                 // go down into the child that holds that point.
-                t = mr_baseDescendTo(map, origin, dir, t, tExit, top);
-                node = mr_maxMipChildAt(node, level, mr_baseMapPoint(map, origin + t * dir).xy, course.step);
+                t = mr_baseDescendTo(relief, origin, dir, t, tExit, top);
+                node = mr_maxMipChildAt(node, level, mr_baseMapPoint(relief, origin + t * dir).xy, course.step);
                 level -= 1;
                 continue;
             }
@@ -182,14 +183,14 @@ void mr_walkMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
             if (tExit == course.turn) {
                 mr_maxMipTurn(course);  // the same node, on the branch after the turn
             } else {
-                mr_maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
+                mr_maxMipNextNode(relief, node, level, topLevel, exits, tExit, course.step);
             }
             t = tExit;
         }
         if (!atLeaf) break;  // finished, or out of iterations
         // At level 0 the texel spans parts of up to four bilinear patches; the ray is
         // solved exactly against those it crosses, in order.
-        tHit = mr_baseIntersectLeaf(map, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
+        tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (tExit >= tFar) {
@@ -198,7 +199,7 @@ void mr_walkMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
             if (tExit == course.turn) {
                 mr_maxMipTurn(course);
             } else {
-                mr_maxMipNextNode(map, node, level, topLevel, exits, tExit, course.step);
+                mr_maxMipNextNode(relief, node, level, topLevel, exits, tExit, course.step);
             }
             t = tExit;
         }
@@ -206,20 +207,24 @@ void mr_walkMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 
     hit.iterations = iteration;
     if (!finished) {
         hit.exhausted = true;
+    } else if (solved && query.anyHit) {
+        mr_setAnyHit(hit, origin, dir, tHit);
     } else if (solved) {
-        mr_setTopHit(hit, map, origin, dir, tHit, corners, cell);
+        mr_setTopHit(hit, relief, origin, dir, tHit, corners, cell);
     } else {
-        mr_setWalkEndHit(hit, map, heights, origin, dir, tFar, floorExit);  // out of the box
+        mr_setWalkEndHit(hit, relief, heights, origin, dir, tFar, floorExit);  // out of the box
     }
 }
 
-mr_ReliefHit mr_traceMaxMip(mr_ReliefMap map, sampler2D pyramid, sampler2D heights, vec3 origin, vec3 dir) {
+// As mr_traceMultilevel, over the aligned pyramid.
+mr_ReliefHit mr_traceMaxMip(mr_Relief relief, mr_RayQuery query, sampler2D pyramid, sampler2D heights, vec3 origin,
+                            vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     vec3 start;
     float tStart, span;
     bool floorExit;
-    if (mr_enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
-        mr_walkMaxMip(map, pyramid, heights, start, dir, span, floorExit, hit);
+    if (mr_enterReliefShell(relief, query, heights, origin, dir, hit, start, tStart, span, floorExit)) {
+        mr_walkMaxMip(relief, query, pyramid, heights, start, dir, span, floorExit, hit);
         mr_measureFromEye(hit, tStart);
     }
     return hit;

@@ -30,6 +30,7 @@
 #include "max_pyramid.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "relief_query.glsl"
 
 // Deeper than any footprint needs (2^24 texels); segment ends stay exact in float.
 #ifndef MICRORELIEF_MAX_DEPTH
@@ -77,8 +78,8 @@ bool mr_nextSegment(inout int depth, inout uint index, inout float parentBound, 
 // single loop, every step would pay for the leaf of any lane that needs one (llvmpipe runs
 // both sides of every branch, a GPU's warp the taken ones), here a block of pixels pays
 // for its leaves once per outer pass.
-void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights, vec3 start, vec3 dir, float span,
-                      float tStart, bool floorExit, inout mr_ReliefHit hit) {
+void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, sampler2D windows, sampler2D heights, vec3 start,
+                         vec3 dir, float span, float tStart, bool floorExit, inout mr_ReliefHit hit) {
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments
     // share their end parameter bit for bit and no gap can open between them.
@@ -104,14 +105,14 @@ void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights,
     while (!finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
-        while (iteration < map.maxIterations) {
+        while (iteration < query.maxIterations) {
             iteration += 1;
             int shift = MICRORELIEF_MAX_DEPTH - depth;
             ta = span * (float(index << shift) * kUnit);
             tb = span * (float((index + 1u) << shift) * kUnit);
 #if MICRORELIEF_BASE != 0
-            vec3 ea = ta == lastA ? endA : ta == lastB ? endB : mr_baseEnd(map, start + ta * dir);
-            vec3 eb = tb == lastB ? endB : mr_baseEnd(map, start + tb * dir);
+            vec3 ea = ta == lastA ? endA : ta == lastB ? endB : mr_baseEnd(relief, start + ta * dir);
+            vec3 eb = tb == lastB ? endB : mr_baseEnd(relief, start + tb * dir);
             lastA = ta;
             lastB = tb;
             endA = ea;
@@ -119,7 +120,7 @@ void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights,
 #else
             vec3 ea = start + ta * dir, eb = start + tb * dir;  // on the plane, the ends are all
 #endif
-            mr_BaseFootprint footprint = mr_baseFootprintOf(map, start, dir, ta, tb, ea, eb);
+            mr_BaseFootprint footprint = mr_baseFootprintOf(relief, start, dir, ta, tb, ea, eb);
             // A segment down to the floor (h = 0, in the solid) may hit; one above its
             // parent's bound cannot; any other is bounded by one window of the pyramid at
             // the level its footprint chooses (paper, fig. 6), two where a curved base's
@@ -130,18 +131,18 @@ void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights,
             int level = -1;
             float bound = parentBound;
             if (!mayHit && footprint.lowest <= parentBound) {
-                bound = min(bound, mr_footprintBound(map, windows, footprint.lo, footprint.hi, level, hit.fetches));
+                bound = min(bound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level, hit.fetches));
                 hit.stopLevel = level;
                 mayHit = footprint.lowest <= bound;
             }
             if (mayHit) {
-                if (map.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= map.lodCone * (tStart + ta)) {
+                if (query.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= query.lodCone * (tStart + ta)) {
                     // Accuracy-controlled level of detail (paper, section II: "under
                     // criterion of required accuracy"): the window read, 2^(level+1)
                     // texels wide, projects to less than the tolerated pixel error, so its
                     // max box stands for the surface here: the hit is where the ray comes
                     // down to it.
-                    tHit = mr_baseDescendTo(map, start, dir, ta, tb, bound);
+                    tHit = mr_baseDescendTo(relief, start, dir, ta, tb, bound);
                     finished = true;
                     break;
                 }
@@ -157,7 +158,7 @@ void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights,
                 depth += 1;
                 index *= 2u;
                 parentBound = bound;
-                if (mr_baseLowest(map, start, dir, ta, 0.5 * (ta + tb)) > bound) index += 1u;
+                if (mr_baseLowest(relief, start, dir, ta, 0.5 * (ta + tb)) > bound) index += 1u;
                 continue;
             }
             // Discarded. After a far half the walk climbs when the segment cleared its
@@ -173,8 +174,8 @@ void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights,
         }
         if (!atLeaf) break;  // finished, or out of iterations
         // No hit before the ray comes down to the leaf's bound: solve from there.
-        float tFrom = mr_baseDescendTo(map, start, dir, ta, tb, leafBound);
-        tHit = mr_baseIntersectLeaf(map, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
+        float tFrom = mr_baseDescendTo(relief, start, dir, ta, tb, leafBound);
+        tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (!mr_nextSegment(depth, index, parentBound, false)) {
@@ -184,22 +185,27 @@ void mr_subdivideSegment(mr_ReliefMap map, sampler2D windows, sampler2D heights,
     hit.iterations = iteration;
     if (!finished) {
         hit.exhausted = true;
+    } else if (query.anyHit && tHit >= 0.0) {
+        mr_setAnyHit(hit, start, dir, tHit);
     } else if (solved) {
-        mr_setTopHit(hit, map, start, dir, tHit, corners, cell);
+        mr_setTopHit(hit, relief, start, dir, tHit, corners, cell);
     } else if (tHit >= 0.0) {
-        mr_setTopHitAt(hit, map, heights, tHit, start + tHit * dir);
+        mr_setTopHitAt(hit, relief, heights, tHit, start + tHit * dir);
     } else {
-        mr_setWalkEndHit(hit, map, heights, start, dir, span, floorExit);  // past the root's end
+        mr_setWalkEndHit(hit, relief, heights, start, dir, span, floorExit);  // past the root's end
     }
 }
 
-mr_ReliefHit mr_traceMultilevel(mr_ReliefMap map, sampler2D windows, sampler2D heights, vec3 origin, vec3 dir) {
+// The first hit of the ray origin + t dir (in the base's frame: mr_baseFramePoint,
+// mr_baseFrameVector) with the relief's solid that `query` asks for.
+mr_ReliefHit mr_traceMultilevel(mr_Relief relief, mr_RayQuery query, sampler2D windows, sampler2D heights,
+                                vec3 origin, vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     vec3 start;
     float tStart, span;
     bool floorExit;
-    if (mr_enterReliefShell(map, heights, origin, dir, hit, start, tStart, span, floorExit)) {
-        mr_subdivideSegment(map, windows, heights, start, dir, span, tStart, floorExit, hit);
+    if (mr_enterReliefShell(relief, query, heights, origin, dir, hit, start, tStart, span, floorExit)) {
+        mr_subdivideSegment(relief, query, windows, heights, start, dir, span, tStart, floorExit, hit);
         mr_measureFromEye(hit, tStart);
     }
     return hit;

@@ -16,17 +16,17 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
-mr_ReliefHit mr_traceNormalMapping(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir) {
+mr_ReliefHit mr_traceNormalMapping(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     // The proxy is one-sided: only a ray going down meets its front face.
     if (!(dir.z < 0.0)) return hit;
-    float t = (map.maxHeight - origin.z) / dir.z;
+    float t = (relief.map.maxHeight - origin.z) / dir.z;
     vec3 p = origin + t * dir;
-    bool inFootprint = all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThanEqual(p.xy, map.size));
+    bool inFootprint = all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThanEqual(p.xy, relief.map.size));
     if (t < 0.0 || !inFootprint) return hit;
     hit.iterations = 1;
     hit.stopLevel = 0;
-    mr_setMapTopHitAt(hit, map, heights, t, vec3(p.xy, map.maxHeight));
+    mr_setMapTopHitAt(hit, relief, heights, t, vec3(p.xy, relief.map.maxHeight));
     return hit;
 }
 

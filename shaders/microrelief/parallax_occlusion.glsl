@@ -21,17 +21,17 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
-mr_ReliefHit mr_traceParallaxOcclusion(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir,
+mr_ReliefHit mr_traceParallaxOcclusion(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir,
                                  int minSamples, int maxSamples) {
     mr_ReliefHit hit = mr_reliefMissHit();
-    float cosView = abs(mr_tangentSpaceDirection(map, dir).z);
+    float cosView = abs(mr_tangentSpaceDirection(relief, dir).z);
     int layers = int(mix(float(maxSamples), float(minSamples), cosView));
     mr_LayerSample above, below;
-    if (!mr_marchLayers(map, heights, origin, dir, layers, hit, above, below)) return hit;
+    if (!mr_marchLayers(relief, heights, origin, dir, layers, hit, above, below)) return hit;
     // g = surface - ray is linear in t along the segment in this approximation: its root.
     float t = below.t;
     if (below.g > above.g) t = mix(below.t, above.t, below.g / (below.g - above.g));
-    mr_setMapTopHitAt(hit, map, heights, t, origin + t * dir);
+    mr_setMapTopHitAt(hit, relief, heights, t, origin + t * dir);
     return hit;
 }
 

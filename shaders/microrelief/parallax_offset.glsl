@@ -26,30 +26,30 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
-mr_ReliefHit mr_traceParallaxOffset(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir) {
+mr_ReliefHit mr_traceParallaxOffset(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     int entryAxis, exitAxis;
-    vec2 range = mr_clipToReliefBox(map, origin, dir, entryAxis, exitAxis);
+    vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);
     float tNear = max(range.x, 0.0);
     if (tNear > range.y) return hit;
     vec3 entry = origin + tNear * dir;
     hit.iterations = 1;
     hit.stopLevel = 0;
-    float h0 = mr_reliefHeight(map, heights, entry.xy, hit.fetches);
+    float h0 = mr_reliefHeight(relief, heights, entry.xy, hit.fetches);
     if (entry.z <= h0) {
-        mr_setMapTopHitAt(hit, map, heights, tNear, entry);  // entered under the surface
+        mr_setMapTopHitAt(hit, relief, heights, tNear, entry);  // entered under the surface
         return hit;
     }
     if (!(dir.z < 0.0)) return hit;
     // Welsh 2004: shift = d V.xy, not d V.xy / V.z, with d and V in world units; here V
     // points along the ray (into the relief), so the shift is away from the eye.
-    vec3 view = mr_tangentSpaceDirection(map, dir);
-    float depthInTexels = (entry.z - h0) * map.heightScale * max(map.size.x, map.size.y);
+    vec3 view = mr_tangentSpaceDirection(relief, dir);
+    float depthInTexels = (entry.z - h0) * relief.placement.heightScale * max(relief.map.size.x, relief.map.size.y);
     vec2 shifted = entry.xy + depthInTexels * view.xy;
     bool inFootprint =
-        all(greaterThanEqual(shifted, vec2(0.0))) && all(lessThanEqual(shifted, map.size));
+        all(greaterThanEqual(shifted, vec2(0.0))) && all(lessThanEqual(shifted, relief.map.size));
     if (!inFootprint) return hit;
-    mr_setMapTopHitAt(hit, map, heights, (h0 - origin.z) / dir.z, vec3(shifted, h0));
+    mr_setMapTopHitAt(hit, relief, heights, (h0 - origin.z) / dir.z, vec3(shifted, h0));
     return hit;
 }
 

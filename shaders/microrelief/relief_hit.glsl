@@ -13,6 +13,7 @@
 #include "base_surface.glsl"
 #include "relief_map.glsl"
 #include "relief_patch.glsl"
+#include "relief_query.glsl"
 
 struct mr_ReliefHit {
     int kind;         // MR_RELIEF_MISS, MR_RELIEF_TOP, ... (relief_map.glsl)
@@ -40,19 +41,19 @@ mr_ReliefHit mr_reliefMissHit() {
 }
 
 // Fills `hit` as a hit on the top surface at parameter t, in the patch `cellPatch` of `cell`.
-void mr_setTopHit(inout mr_ReliefHit hit, mr_ReliefMap map, vec3 origin, vec3 dir, float t, mr_ReliefPatch cellPatch, ivec2 cell) {
+void mr_setTopHit(inout mr_ReliefHit hit, mr_Relief relief, vec3 origin, vec3 dir, float t, mr_ReliefPatch cellPatch, ivec2 cell) {
     hit.kind = MR_RELIEF_TOP;
     hit.t = t;
     hit.position = origin + t * dir;
-    hit.normal = mr_baseTopNormal(map, hit.position, mr_reliefSlope(map, cellPatch, cell, mr_baseMapPoint(map, hit.position).xy));
+    hit.normal = mr_baseTopNormal(relief, hit.position, mr_reliefSlope(relief, cellPatch, cell, mr_baseMapPoint(relief, hit.position).xy));
 }
 
 // A top-surface hit reported at frame point `position` with ray parameter `t`, the normal
 // taken from the surface's gradient there (what a normal map would give).
-void mr_setTopHitAt(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heights, float t, vec3 position) {
-    ivec2 cell = mr_patchCellAt(map, mr_baseMapPoint(map, position).xy);
+void mr_setTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heights, float t, vec3 position) {
+    ivec2 cell = mr_patchCellAt(relief, mr_baseMapPoint(relief, position).xy);
     // mr_setTopHit with a zero direction reports `position` itself.
-    mr_setTopHit(hit, map, position, vec3(0.0), 0.0, mr_patchAt(map, heights, cell, hit.fetches), cell);
+    mr_setTopHit(hit, relief, position, vec3(0.0), 0.0, mr_patchAt(relief, heights, cell, hit.fetches), cell);
     hit.t = t;
 }
 
@@ -61,9 +62,9 @@ void mr_setTopHitAt(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heights,
 // to its curvature: relief.frag maps their answer onto the base). `mapPoint` is reported
 // with the map-space normal (-dh/dX, -dh/dY, 1) of the bilinear surface there. On the
 // plane, map space is the frame, and this is mr_setTopHitAt.
-void mr_setMapTopHitAt(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heights, float t, vec3 mapPoint) {
-    ivec2 cell = mr_patchCellAt(map, mapPoint.xy);
-    vec2 g = mr_reliefSlope(map, mr_patchAt(map, heights, cell, hit.fetches), cell, mapPoint.xy);
+void mr_setMapTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heights, float t, vec3 mapPoint) {
+    ivec2 cell = mr_patchCellAt(relief, mapPoint.xy);
+    vec2 g = mr_reliefSlope(relief, mr_patchAt(relief, heights, cell, hit.fetches), cell, mapPoint.xy);
     hit.kind = MR_RELIEF_TOP;
     hit.t = t;
     hit.position = mapPoint;
@@ -74,47 +75,69 @@ void mr_setMapTopHitAt(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heigh
 // that leaves the plane's box through its floor hits it at the exit point (where the
 // surface is 0). The exact root lies right at the end of the walk, where rounding can push
 // it out of the last leaf's range; this is where it is caught. Any other ray misses.
-void mr_setWalkEndHit(inout mr_ReliefHit hit, mr_ReliefMap map, sampler2D heights, vec3 start, vec3 dir, float tExit,
+void mr_setWalkEndHit(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heights, vec3 start, vec3 dir, float tExit,
                    bool floorExit) {
-    if (floorExit) mr_setTopHitAt(hit, map, heights, tExit, start + tExit * dir);
+    if (floorExit) mr_setTopHitAt(hit, relief, heights, tExit, start + tExit * dir);
 }
 
 // A ray entering the shell through a side wall, the bottom face or a cap at a point on or
-// under the surface hits the solid right there. True, with `hit` filled, in that case.
-bool mr_entryFaceHit(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, float tEnter, int entryFace,
-                  inout mr_ReliefHit hit) {
-    if (tEnter < 0.0 || entryFace == MR_RELIEF_MISS) return false;
+// under the surface, within the query's range, hits the solid right there. True, with
+// `hit` filled, in that case.
+bool mr_entryFaceHit(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float tEnter, int entryFace,
+                  float tMin, inout mr_ReliefHit hit) {
+    if (tEnter < tMin || entryFace == MR_RELIEF_MISS) return false;
     vec3 entry = origin + tEnter * dir;
-    vec3 m = mr_baseMapPoint(map, entry);
+    vec3 m = mr_baseMapPoint(relief, entry);
     bool throughBottom = entryFace == MR_RELIEF_BOTTOM;  // h = 0: always in the solid
-    if (!throughBottom && m.z > mr_reliefHeight(map, heights, m.xy, hit.fetches)) return false;
+    if (!throughBottom && m.z > mr_reliefHeight(relief, heights, m.xy, hit.fetches)) return false;
     hit.kind = entryFace;
     hit.t = tEnter;
     hit.position = entry;
-    hit.normal = mr_baseFaceNormal(map, entryFace, entry, dir);
+    hit.normal = mr_baseFaceNormal(relief, entryFace, entry, dir);
     hit.stopLevel = 0;
     return true;
 }
 
-// The start every exact tracer shares. Clips the ray to the relief's bounding shell and,
-// when it comes in from outside through a side wall, the bottom face or a cap at a point
-// on or under the surface, fills `hit` with that entry (the solid is hit right there;
-// entering through the top face or the curved shell is a question for the traversal, and
-// from inside the shell the eye is outside the solid, by the spec). Returns true when there
-// is a segment left to trace: `start` is where the ray enters the shell (or the eye,
-// inside it), and the ray goes on as start + t dir for t in [0, span]; its parameter from
-// the eye is tStart + t. Working from the entry keeps positions near the relief exact
-// however far away the eye is. `floorExit`: the ray leaves the plane's box through the
-// floor going down (mr_setWalkEndHit).
-bool mr_enterReliefShell(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, inout mr_ReliefHit hit,
-                      out vec3 start, out float tStart, out float span, out bool floorExit) {
+// The start every exact tracer shares. Clips the ray to the relief's bounding shell and to
+// the query's range [tMin, tMax]. When the ray comes in from outside through a side wall,
+// the bottom face or a cap at a point on or under the surface, fills `hit` with that entry
+// (the solid is hit right there; entering through the top face or the curved shell is a
+// question for the traversal). When the range starts inside the shell (an eye in the box,
+// a shadow ray from the surface) at a point in the solid, that point is the hit: the
+// closed solid holds it. Returns true when there is a segment left to trace: `start` is
+// where the range enters the shell, and the ray goes on as start + t dir for t in
+// [0, span]; its parameter from the ray's origin is tStart + t. Working from the entry
+// keeps positions near the relief exact however far away the eye is. `floorExit`: the
+// ray leaves the plane's box through the floor going down within the range
+// (mr_setWalkEndHit).
+bool mr_enterReliefShell(mr_Relief relief, mr_RayQuery query, sampler2D heights, vec3 origin, vec3 dir,
+                         inout mr_ReliefHit hit, out vec3 start, out float tStart, out float span,
+                         out bool floorExit) {
     int entryFace;
-    vec2 range = mr_baseClipToShell(map, origin, dir, entryFace, floorExit);
-    tStart = max(range.x, 0.0);
-    span = range.y - tStart;
+    vec2 range = mr_baseClipToShell(relief, origin, dir, entryFace, floorExit);
+    tStart = max(range.x, query.tMin);
+    float tEnd = min(range.y, query.tMax);
+    floorExit = floorExit && tEnd == range.y;
+    span = tEnd - tStart;
     start = origin + tStart * dir;
     if (span < 0.0) return false;
-    return !mr_entryFaceHit(map, heights, origin, dir, range.x, entryFace, hit);
+    if (mr_entryFaceHit(relief, heights, origin, dir, range.x, entryFace, query.tMin, hit)) return false;
+    if (tStart > range.x) {
+        vec3 m = mr_baseMapPoint(relief, start);
+        if (m.z <= mr_reliefHeight(relief, heights, m.xy, hit.fetches)) {
+            mr_setTopHitAt(hit, relief, heights, tStart, start);
+            return false;
+        }
+    }
+    return true;
+}
+
+// A hit at `t` (from `start`, as mr_measureFromEye will count it) as an any-hit query
+// reports it: the point, no normal.
+void mr_setAnyHit(inout mr_ReliefHit hit, vec3 start, vec3 dir, float t) {
+    hit.kind = MR_RELIEF_TOP;
+    hit.t = t;
+    hit.position = start + t * dir;
 }
 
 // A hit found from `start` (mr_enterReliefShell) as a parameter from the eye.
@@ -123,6 +146,6 @@ void mr_measureFromEye(inout mr_ReliefHit hit, float tStart) {
 }
 
 // The world-space unit normal of a hit.
-vec3 mr_reliefWorldNormal(mr_ReliefMap map, mr_ReliefHit hit) { return mr_baseWorldNormal(map, hit.normal); }
+vec3 mr_reliefWorldNormal(mr_Relief relief, mr_ReliefHit hit) { return mr_baseWorldNormal(relief, hit.normal); }
 
 #endif

@@ -2,14 +2,19 @@
 //
 // Map space is where the traversal reads the map: (X, Y) = (u W, v H) are texel
 // coordinates of the height map (texel i covers X in [i, i+1], its sample sits at
-// X = i + 0.5) and the third coordinate is the height h in map units (world height /
+// X = i + 0.5) and the third coordinate is the height h in map units (object height /
 // height scale on the plane, a fraction of the canonical radius on a curved base).
+//
+// The relief's object space is the world of the scene convention (scene-and-cli.md): the
+// base surface and the map over it where the spec puts them. The model transform of
+// mr_ReliefPlacement takes it into the world; the tracers take their ray in the world and
+// report t, which an affine transform keeps.
 //
 // The base surface (base_surface.glsl) is chosen by the host with MICRORELIEF_BASE: 0 the
 // plane y = 0, 1 a cylinder, 2 an ellipsoid (scene-and-cli.md, "Base surfaces"). The
 // traversal runs in the base's frame, where the ray is a straight line with the world's
 // t: map space itself on the plane (the relief occupies X in [0, W], Y in [0, H],
-// 0 <= h <= h(X, Y)), the canonical frame q = world / frameScale on a curved base.
+// 0 <= h <= h(X, Y)), the canonical frame q = object / frameScale on a curved base.
 #ifndef MICRORELIEF_RELIEF_MAP_GLSL
 #define MICRORELIEF_RELIEF_MAP_GLSL
 
@@ -23,18 +28,34 @@
 #endif
 #include "precision.glsl"
 
+// The relief is three things, each set by whoever knows it:
+//  * mr_ReliefMap, the map's data: what the host uploaded (the samples and the two max
+//    pyramids, their sizes and levels) and the largest height, the pyramid's top;
+//  * mr_ReliefPlacement, where that map sits: over which base surface (the macro
+//    MICRORELIEF_BASE and the base's sizes), how high its heights rise, and the model
+//    transform that places the relief's object space in the world (any affine map, the
+//    paper's M);
+//  * mr_RayQuery, what one ray asks of it (relief_query.glsl): a t range, the closest
+//    hit or any hit, a budget, a level-of-detail cone.
+// mr_Relief holds the first two: the surface every function of the library describes.
 struct mr_ReliefMap {
     vec2 size;           // W, H: height map size in texels
     ivec2 pyramidSize;   // finest pyramid level size (W, H rounded up to powers of two)
     int levelCount;      // number of pyramid levels, the last one 1x1
-    float maxHeight;     // the map's maximum height (pyramid top), in map units
-    float heightScale;   // s: world height of map height 1 (plane); radius fraction (curved)
-    int maxIterations;   // traversal budget; running out is reported, never silent
-    float lodCone;       // accuracy-controlled level of detail: a level-k segment at ray
-                         // parameter t may stand for the surface once 2^k <= lodCone * t;
-                         // 0 is exact (multilevel_trace.glsl)
-    vec3 frameScale;     // curved bases: world size of the canonical frame's unit,
+    float maxHeight;     // the map's maximum height (the pyramid's top texel), in map units
+};
+
+struct mr_ReliefPlacement {
+    mat4 objectToWorld;  // the model transform, affine (the last row 0, 0, 0, 1)
+    mat4 worldToObject;  // its inverse
+    float heightScale;   // s: object height of map height 1 (plane); radius fraction (curved)
+    vec3 frameScale;     // curved bases: object size of the canonical frame's unit,
                          // (R, L / 2, R) for a cylinder, (A, B, C) for an ellipsoid
+};
+
+struct mr_Relief {
+    mr_ReliefMap map;
+    mr_ReliefPlacement placement;
 };
 
 // What a ray meets: the kinds of mr_ReliefHit (relief_hit.glsl), also naming the face of the

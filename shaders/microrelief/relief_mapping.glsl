@@ -25,22 +25,22 @@
 #define MICRORELIEF_MAX_BINARY_STEPS 32
 #endif
 
-mr_ReliefHit mr_traceReliefMapping(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir,
+mr_ReliefHit mr_traceReliefMapping(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir,
                              int linearSteps, int binarySteps) {
     mr_ReliefHit hit = mr_reliefMissHit();
     mr_LayerSample above, below;
-    if (!mr_marchLayers(map, heights, origin, dir, linearSteps, hit, above, below)) return hit;
+    if (!mr_marchLayers(relief, heights, origin, dir, linearSteps, hit, above, below)) return hit;
     int steps = below.t > above.t ? clamp(binarySteps, 0, MICRORELIEF_MAX_BINARY_STEPS) : 0;
     for (int step = 0; step < steps; ++step) {
         float tMiddle = 0.5 * (above.t + below.t);
-        mr_LayerSample middle = mr_layerSampleAt(map, heights, origin, dir, tMiddle, hit);
+        mr_LayerSample middle = mr_layerSampleAt(relief, heights, origin, dir, tMiddle, hit);
         if (middle.g >= 0.0) {
             below = middle;
         } else {
             above = middle;
         }
     }
-    mr_setMapTopHitAt(hit, map, heights, below.t, origin + below.t * dir);
+    mr_setMapTopHitAt(hit, relief, heights, below.t, origin + below.t * dir);
     return hit;
 }
 

@@ -26,23 +26,23 @@ const float MR_PATCH_OFFSET = 0.5;
 
 // The cell holding map point xy (ties to the cell on the positive side), its column kept
 // in 0..W - 1 on a curved base.
-ivec2 mr_patchCellAt(mr_ReliefMap map, vec2 xy) { return mr_wrapCell(map, ivec2(floor(xy - MR_PATCH_OFFSET))); }
+ivec2 mr_patchCellAt(mr_Relief relief, vec2 xy) { return mr_wrapCell(relief, ivec2(floor(xy - MR_PATCH_OFFSET))); }
 
 // Map point xy in the local coordinates of `cell`; on a curved base the seam cell holds
 // the points just past X = 0 too.
-vec2 mr_patchLocal(mr_ReliefMap map, ivec2 cell, vec2 xy) {
+vec2 mr_patchLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
     vec2 f = xy - (vec2(cell) + MR_PATCH_OFFSET);
 #if MICRORELIEF_BASE != 0
-    f.x -= map.size.x * floor(f.x / map.size.x + 0.5);
+    f.x -= relief.map.size.x * floor(f.x / relief.map.size.x + 0.5);
 #endif
     return f;
 }
 
-mr_ReliefPatch mr_patchAt(mr_ReliefMap map, sampler2D heights, ivec2 cell, inout int fetches) {
+mr_ReliefPatch mr_patchAt(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
 #if MICRORELIEF_INTERPOLATION == 1
-    return mr_biquadraticNet(map, heights, cell, fetches);
+    return mr_biquadraticNet(relief, heights, cell, fetches);
 #else
-    return mr_cellCorners(map, heights, cell, fetches);
+    return mr_cellCorners(relief, heights, cell, fetches);
 #endif
 }
 
@@ -73,21 +73,21 @@ float mr_patchTop(mr_ReliefPatch cellPatch, vec2 lo, vec2 hi) {
 }
 
 // h(X, Y): the surface height at a map point.
-float mr_reliefHeight(mr_ReliefMap map, sampler2D heights, vec2 xy, inout int fetches) {
-    ivec2 cell = mr_patchCellAt(map, xy);
-    return mr_patchValue(mr_patchAt(map, heights, cell, fetches), clamp(mr_patchLocal(map, cell, xy), 0.0, 1.0));
+float mr_reliefHeight(mr_Relief relief, sampler2D heights, vec2 xy, inout int fetches) {
+    ivec2 cell = mr_patchCellAt(relief, xy);
+    return mr_patchValue(mr_patchAt(relief, heights, cell, fetches), clamp(mr_patchLocal(relief, cell, xy), 0.0, 1.0));
 }
 
 // The map gradient of the surface at map point xy of `cell`: on the plane the bilinear
 // surface's clamped border cells are flat across the edge (the biquadratic surface is
 // flat there by itself: its edge control points repeat).
-vec2 mr_reliefSlope(mr_ReliefMap map, mr_ReliefPatch cellPatch, ivec2 cell, vec2 xy) {
-    vec2 g = mr_patchSlope(cellPatch, clamp(mr_patchLocal(map, cell, xy), 0.0, 1.0));
+vec2 mr_reliefSlope(mr_Relief relief, mr_ReliefPatch cellPatch, ivec2 cell, vec2 xy) {
+    vec2 g = mr_patchSlope(cellPatch, clamp(mr_patchLocal(relief, cell, xy), 0.0, 1.0));
 #if MICRORELIEF_INTERPOLATION == 0
 #if MICRORELIEF_BASE == 0
-    if (cell.x < 0 || cell.x >= int(map.size.x) - 1) g.x = 0.0;
+    if (cell.x < 0 || cell.x >= int(relief.map.size.x) - 1) g.x = 0.0;
 #endif
-    if (cell.y < 0 || cell.y >= int(map.size.y) - 1) g.y = 0.0;
+    if (cell.y < 0 || cell.y >= int(relief.map.size.y) - 1) g.y = 0.0;
 #endif
     return g;
 }

@@ -19,11 +19,11 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 
-mr_ReliefHit mr_traceSteepParallax(mr_ReliefMap map, sampler2D heights, vec3 origin, vec3 dir, int layers) {
+mr_ReliefHit mr_traceSteepParallax(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, int layers) {
     mr_ReliefHit hit = mr_reliefMissHit();
     mr_LayerSample above, below;
-    if (mr_marchLayers(map, heights, origin, dir, layers, hit, above, below)) {
-        mr_setMapTopHitAt(hit, map, heights, below.t, origin + below.t * dir);
+    if (mr_marchLayers(relief, heights, origin, dir, layers, hit, above, below)) {
+        mr_setMapTopHitAt(hit, relief, heights, below.t, origin + below.t * dir);
     }
     return hit;
 }

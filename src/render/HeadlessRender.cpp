@@ -5,6 +5,7 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/gl/StateGuard.h"
 #include "microrelief/render/FloatLimits.h"
 
 namespace microrelief {
@@ -65,13 +66,15 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         throwRuntime("HeadlessRenderer::render: the map was set for another interpolation");
     if (job.base != renderer_->base()) renderer_->setBase(job.base);
     renderer_->setMethod(job.method);  // compiled once per method, then looked up
+    renderer_->setModel(job.model);
     if (heightScale_ != job.heightScale) {
         renderer_->setHeightScale(job.heightScale);
         heightScale_ = job.heightScale;
     }
     const CameraFrame camera = resolveCamera(
         job.camera, job.width, job.height,
-        sceneRadius(reliefExtent(mapWidth_, mapHeight_, maxHeight_, job.heightScale, job.base)));
+        sceneRadius(reliefExtent(mapWidth_, mapHeight_, maxHeight_, job.heightScale, job.base),
+                    job.model.objectToWorld()));
 
     // Tiles no larger than the GL's viewport and renderbuffer limits, and kDefaultTileSide
     // (a 4096 x 4096 target holds 640 MB of attachments; llvmpipe fails to complete one of
@@ -110,7 +113,10 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
             const PictureTile part{x, y, std::min(tile, job.width - x),
                                    std::min(tile, job.height - y)};
             target_->clear(job.background);
-            renderer_->draw(camera, job.shading, part);
+            {
+                const gl::SrgbWrites srgb(gl);  // the relief's linear colour, encoded
+                renderer_->draw(camera, job.shading, part);
+            }
             target_->readInto(frame, part.x, part.y, part.width, part.height);
         }
     }

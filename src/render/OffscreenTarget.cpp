@@ -5,6 +5,7 @@
 #include <string>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/gl/StateGuard.h"
 
 namespace microrelief {
 
@@ -21,11 +22,6 @@ gl::Texture makeAttachment(const GL& gl, GLenum internalFormat, GLenum format, G
     return texture;
 }
 
-float srgbEncode(float linear) {
-    const float c = std::fmin(std::fmax(linear, 0.0f), 1.0f);
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
-
 }  // namespace
 
 OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
@@ -40,7 +36,7 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
                       " per side)");
     }
     framebuffer_ = gl::Framebuffer::create(gl_);
-    color_ = makeAttachment(gl_, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
+    color_ = makeAttachment(gl_, GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
     position_ = makeAttachment(gl_, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
     stats_ = makeAttachment(gl_, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
     depth_ = gl::Renderbuffer::create(gl_);
@@ -70,8 +66,8 @@ void OffscreenTarget::bind() const {
 
 void OffscreenTarget::clear(const glm::vec3& background) const {
     bind();
-    const float color[4] = {srgbEncode(background.r), srgbEncode(background.g),
-                            srgbEncode(background.b), 1.0f};
+    const gl::SrgbWrites srgb(gl_);  // the linear background, encoded by the GL
+    const float color[4] = {background.r, background.g, background.b, 1.0f};
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const float farDepth = 1.0f;
     gl_.ClearBufferfv(GL_COLOR, 0, color);

@@ -8,64 +8,10 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "microrelief/core/Error.h"
-#include "microrelief/gl/ShaderProgram.h"
+#include "microrelief/gl/StateGuard.h"
 #include "microrelief/trace/MultilevelTracer.h"
 
 namespace microrelief {
-
-namespace {
-constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level",
-                                           "normal", "depth",      "position"};
-constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep",
-                                        "pom",        "relief", "maxmip"};
-
-// The enum value whose name is `name`, by position in `names`; throws Error(BadInput)
-// naming the flag and the choices.
-template <class Enum, std::size_t N>
-Enum parseName(const char* const (&names)[N], const std::string& name, const char* flag) {
-    std::string choices;
-    for (std::size_t k = 0; k < N; ++k) {
-        if (name == names[k]) return static_cast<Enum>(k);
-        choices += std::string(k == 0 ? "" : k + 1 == N ? " or " : ", ") + names[k];
-    }
-    throwBadInput(std::string("unknown ") + flag + " '" + name + "' (expected " + choices + ")");
-}
-}  // namespace
-
-Method parseMethod(const std::string& name) {
-    return parseName<Method>(kMethodNames, name, "--method");
-}
-
-const char* methodName(Method method) {
-    return kMethodNames[static_cast<int>(method)];
-}
-
-bool methodHasSteps(Method method) {
-    return method == Method::Steep || method == Method::Pom || method == Method::Relief;
-}
-
-bool methodTracesTheSolid(Method method) {
-    return method == Method::Multilevel || method == Method::MaxMip;
-}
-
-bool methodRunsOnBase(Method method, const BaseShape& base) {
-    return !base.curved() || method == Method::Multilevel || method == Method::MaxMip ||
-           method == Method::Pom || method == Method::Relief;
-}
-
-void checkMethodSupportsBase(Method method, const BaseShape& base) {
-    if (methodRunsOnBase(method, base)) return;
-    throwBadInput(std::string("--method ") + methodName(method) + " does not run on --base " +
-                  baseName(base) + " (curved bases take multilevel, maxmip, pom and relief)");
-}
-
-DebugView parseDebugView(const std::string& name) {
-    return parseName<DebugView>(kDebugViewNames, name, "--view");
-}
-
-const char* debugViewName(DebugView view) {
-    return kDebugViewNames[static_cast<int>(view)];
-}
 
 ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
                                const MethodSettings& method)
@@ -74,51 +20,41 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
     pyramidTexture_ = gl::Texture::create(gl_);
     windowTexture_ = gl::Texture::create(gl_);
     sampleTexture_ = gl::Texture::create(gl_);
+    parameterBuffer_ = gl::Buffer::create(gl_);
     boxArray_ = gl::VertexArray::create(gl_);
     boxVertices_ = gl::Buffer::create(gl_);
     boxIndices_ = gl::Buffer::create(gl_);
 }
 
-ReliefRenderer::CompiledProgram ReliefRenderer::compile(const ProgramKey& key) const {
-    const auto [method, countFetches, base, interpolation] = key;
-    // GLSL 4.00 core where the GL has it (a patch's four samples in one textureGather:
-    // bilinear_patch.glsl), else 3.30 core, the oldest with explicit output locations.
-    GLint major = 0;
-    gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
-    const std::string version = major >= 4 ? "400 core" : "330 core";
-    std::vector<ShaderDefine> defines = {
-        {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(method))},
-        {"MICRORELIEF_BASE", std::to_string(static_cast<int>(base))},
-        {"MICRORELIEF_INTERPOLATION", std::to_string(static_cast<int>(interpolation))}};
-    if (countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
-    const gl::Shader vertex = gl::compileShader(
-        gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "relief_box.vert", version));
-    const gl::Shader fragment = gl::compileShader(
-        gl_, GL_FRAGMENT_SHADER, assembleShader(shaderDir_ / "relief.frag", version, defines));
-    return {gl::linkProgram(gl_, vertex, fragment,
-                            std::string("relief (") + methodName(method) + ", " +
-                                baseName(BaseShape{base}) + ", " +
-                                interpolationName(interpolation) + ")"),
-            {}};
+ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
+                                             BaseKind base, Interpolation interpolation,
+                                             bool frontFaces) const {
+    // A front face lies on the ray before its hit, a back face after it: the depth written
+    // is at least the face's (front) or at most (back) under a standard depth test, the
+    // other way round under reversed-Z.
+    const bool greater = frontFaces != depth_.reversed;
+    return {settings.method, base, interpolation, countFetches,
+            greater ? DepthLayout::Greater : DepthLayout::Less};
 }
 
 void ReliefRenderer::reloadShaders() {
-    const ProgramKey key{method_.method, countFetches_, base_.kind, interpolation_};
-    CompiledProgram fresh = compile(key);  // throws before anything changes
+    const ReliefShaderConfig config =
+        configFor(method_, countFetches_, base_.kind, interpolation_, true);
+    ReliefShader fresh(gl_, shaderDir_, config);  // throws before anything changes
     programs_.clear();
-    current_ = &(programs_[key] = std::move(fresh));
+    programs_.emplace(config, std::move(fresh));
 }
 
-ReliefRenderer::CompiledProgram& ReliefRenderer::program(const ProgramKey& key) {
-    auto found = programs_.find(key);
+ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
+    auto found = programs_.find(config);
     if (found == programs_.end())
-        found = programs_.emplace(key, compile(key)).first;  // throws: nothing changes
+        found = programs_.emplace(config, ReliefShader(gl_, shaderDir_, config)).first;
     return found->second;
 }
 
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
     checkMethodSupportsBase(settings.method, base_);
-    current_ = &program({settings.method, countFetches, base_.kind, interpolation_});
+    program(configFor(settings, countFetches, base_.kind, interpolation_, true));  // may throw
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -131,15 +67,9 @@ void ReliefRenderer::setBase(const BaseShape& base) {
             "be uploaded again (setHeightMap)");
     }
     checkMethodSupportsBase(method_.method, base);
-    current_ = &program({method_.method, countFetches_, base.kind, interpolation_});
+    program(configFor(method_, countFetches_, base.kind, interpolation_, true));  // may throw
     base_ = base;
     if (mapWidth_ > 0) uploadBox();
-}
-
-GLint ReliefRenderer::uniform(const char* name) {
-    auto [it, inserted] = current_->uniforms.try_emplace(name, -1);
-    if (inserted) it->second = gl_.GetUniformLocation(current_->program.id(), name);
-    return it->second;
 }
 
 namespace {
@@ -173,7 +103,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
                       ")");
     }
     // Both throw before anything changes (the program is compiled, or looked up, first).
-    CompiledProgram& next = program({method_.method, countFetches_, base.kind, interpolation});
+    program(configFor(method_, countFetches_, base.kind, interpolation, true));
     const MaxPyramid pyramid = [&] {
         try {
             // On the GPU from here on; only its shape is kept.
@@ -183,7 +113,6 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
                          std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
         }
     }();
-    current_ = &next;  // std::map: the reference stays valid
     base_ = base;
     wrapsU_ = base.wrapsU();
     interpolation_ = interpolation;
@@ -195,6 +124,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     maxHeight_ = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
     maxIterations_ = traversalBudget(map.width, map.height);
 
+    const gl::StateGuard saved(gl_);
     gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
     for (bool windows : {false, true}) {
         gl_.BindTexture(GL_TEXTURE_2D, (windows ? windowTexture_ : pyramidTexture_).id());
@@ -209,7 +139,6 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
     uploadLevel(gl_, 0, map.width, map.height, map.samples.data());
     setSamplerState(gl_, GL_NEAREST, 0, wrapsU_);
-    gl_.BindTexture(GL_TEXTURE_2D, 0);
     uploadBox();
 }
 
@@ -224,12 +153,15 @@ void ReliefRenderer::uploadBox() {
     const ReliefExtent extent =
         reliefExtent(mapWidth_, mapHeight_, maxHeight_, heightScale_, base_);
     const glm::vec3 lo = glm::vec3(extent.min) - 1e-3f, hi = glm::vec3(extent.max) + 1e-3f;
+    boxMin_ = lo;
+    boxMax_ = hi;
     const std::array<float, 24> corners = {lo.x, lo.y, lo.z, hi.x, lo.y, lo.z, hi.x, lo.y,
                                            hi.z, lo.x, lo.y, hi.z, lo.x, hi.y, lo.z, hi.x,
                                            hi.y, lo.z, hi.x, hi.y, hi.z, lo.x, hi.y, hi.z};
     // Outward-facing counter-clockwise triangles, two per face.
     const std::array<GLushort, 36> indices = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
                                               1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0};
+    const gl::StateGuard saved(gl_);
     gl_.BindVertexArray(boxArray_.id());
     gl_.BindBuffer(GL_ARRAY_BUFFER, boxVertices_.id());
     gl_.BufferData(GL_ARRAY_BUFFER, sizeof(corners), corners.data(), GL_STATIC_DRAW);
@@ -237,83 +169,95 @@ void ReliefRenderer::uploadBox() {
     gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(indices), indices.data(), GL_STATIC_DRAW);
     gl_.EnableVertexAttribArray(0);
     gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-    gl_.BindVertexArray(0);
 }
 
-void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading,
-                          const PictureTile& tile) {
-    if (mapWidth_ == 0) return;
-    gl_.UseProgram(current_->program.id());
-    const glm::vec3 eye(camera.eye), right(camera.right), up(camera.up), forward(camera.forward);
+bool ReliefRenderer::eyeOutsideBox(const glm::dvec3& eye) const {
+    // Outside the drawn box grown by a margin: an eye just outside it may see its front
+    // faces cut by the near plane (depth clamping keeps them), one inside must never get
+    // front faces (none would cover the pixels around it). The margin is relative, far
+    // above float rounding of the box and the model.
+    const glm::dvec3 p = model_.pointToObject(eye);
+    const glm::dvec3 margin = 1e-4 * (boxMax_ - boxMin_) + 1e-6;
+    return glm::any(glm::lessThan(p, boxMin_ - margin)) ||
+           glm::any(glm::greaterThan(p, boxMax_ + margin));
+}
+
+ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
+                                            const ShadingOptions& shading,
+                                            const PictureTile& t) const {
     // A tile: the same clip space, scaled and shifted in x and y so that the tile fills
     // the viewport (rows z and w are untouched, so the depth is the whole picture's to
     // the bit); the shader adds the tile's origin to gl_FragCoord, so each pixel casts
     // the ray it casts in the whole picture.
-    const PictureTile whole{0, 0, camera.width, camera.height};
-    const PictureTile& t = tile.width > 0 ? tile : whole;
     glm::dmat4 toTile(1.0);
     toTile[0][0] = static_cast<double>(camera.width) / t.width;
     toTile[1][1] = static_cast<double>(camera.height) / t.height;
     toTile[3][0] = static_cast<double>(camera.width - 2 * t.x - t.width) / t.width;
     toTile[3][1] = static_cast<double>(camera.height - 2 * t.y - t.height) / t.height;
-    const glm::mat4 viewProjection(toTile * camera.viewProjection);
 
-    gl_.Uniform1i(uniform("maxPyramid"), 0);
-    gl_.Uniform1i(uniform("heightSamples"), 1);
-    gl_.Uniform1i(uniform("windowPyramid"), 2);
-    gl_.Uniform2f(uniform("reliefSize"), static_cast<float>(mapWidth_),
-                  static_cast<float>(mapHeight_));
-    gl_.Uniform2i(uniform("pyramidSize"), pyramidWidth_, pyramidHeight_);
-    gl_.Uniform1i(uniform("pyramidLevels"), pyramidLevels_);
-    gl_.Uniform1f(uniform("reliefMaxHeight"), maxHeight_);
-    gl_.Uniform1f(uniform("heightScale"), heightScale_);
-    gl_.Uniform1i(uniform("maxIterations"), maxIterations_);
+    ReliefParameters p;
+    p.viewProjection = glm::mat4(toTile * camera.viewProjection);
+    p.objectToWorld = glm::mat4(model_.objectToWorld());
+    p.worldToObject = glm::mat4(model_.worldToObject());
+    p.eye = glm::vec3(camera.eye);
+    p.cameraRight = glm::vec3(camera.right);
+    p.cameraUp = glm::vec3(camera.up);
+    p.cameraForward = glm::vec3(camera.forward);
+    p.pixelErrorTolerance = method_.pixelError;
+    p.heightScale = heightScale_;
+    p.reliefMaxHeight = maxHeight_;
+    p.frameScale = glm::vec3(base_.frameScale());
     const ReliefExtent extent =
         reliefExtent(mapWidth_, mapHeight_, maxHeight_, heightScale_, base_);
-    gl_.Uniform3fv(uniform("frameScale"), 1, glm::value_ptr(glm::vec3(base_.frameScale())));
-    gl_.Uniform3fv(uniform("reliefBoxMin"), 1, glm::value_ptr(glm::vec3(extent.min)));
-    gl_.Uniform3fv(uniform("reliefBoxMax"), 1, glm::value_ptr(glm::vec3(extent.max)));
-    gl_.Uniform3fv(uniform("eye"), 1, glm::value_ptr(eye));
-    gl_.Uniform3fv(uniform("cameraRight"), 1, glm::value_ptr(right));
-    gl_.Uniform3fv(uniform("cameraUp"), 1, glm::value_ptr(up));
-    gl_.Uniform3fv(uniform("cameraForward"), 1, glm::value_ptr(forward));
-    gl_.Uniform2f(uniform("viewportSize"), static_cast<float>(camera.width),
-                  static_cast<float>(camera.height));
-    gl_.Uniform2f(uniform("tileOrigin"), static_cast<float>(t.x), static_cast<float>(t.y));
-    gl_.UniformMatrix4fv(uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-    gl_.Uniform3fv(uniform("lightDirection"), 1,
-                   glm::value_ptr(glm::normalize(shading.lightDirection)));
-    gl_.Uniform3fv(uniform("albedo"), 1, glm::value_ptr(shading.albedo));
-    gl_.Uniform1i(uniform("debugView"), static_cast<int>(shading.view));
-    gl_.Uniform1i(uniform("methodSteps"), method_.steps);
-    gl_.Uniform1i(uniform("methodMinSteps"), method_.minSteps);
-    gl_.Uniform1i(uniform("methodRefineSteps"), method_.refineSteps);
-    gl_.Uniform1f(uniform("pixelErrorTolerance"), method_.pixelError);
+    p.reliefBoxMin = glm::vec3(extent.min);
+    p.reliefBoxMax = glm::vec3(extent.max);
+    p.pyramidLevels = pyramidLevels_;
+    p.maxIterations = maxIterations_;
+    p.lightDirection = glm::normalize(shading.lightDirection);
+    p.debugView = static_cast<int>(shading.view);
+    p.albedo = shading.albedo;
+    p.methodSteps = method_.steps;
+    p.methodMinSteps = method_.minSteps;
+    p.methodRefineSteps = method_.refineSteps;
+    p.reliefSize = glm::vec2(mapWidth_, mapHeight_);
+    p.pyramidSize = glm::ivec2(pyramidWidth_, pyramidHeight_);
+    p.viewportSize = glm::vec2(camera.width, camera.height);
+    p.tileOrigin = glm::vec2(t.x, t.y);
+    p.depthZeroToOne = depth_.zeroToOne ? 1 : 0;
+    return p;
+}
 
-    gl_.ActiveTexture(GL_TEXTURE0);
-    gl_.BindTexture(GL_TEXTURE_2D, pyramidTexture_.id());
-    gl_.ActiveTexture(GL_TEXTURE1);
-    gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
-    gl_.ActiveTexture(GL_TEXTURE2);
-    gl_.BindTexture(GL_TEXTURE_2D, windowTexture_.id());
+void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading,
+                          const PictureTile& tile) {
+    if (mapWidth_ == 0) return;
+    const PictureTile whole{0, 0, camera.width, camera.height};
+    const PictureTile& t = tile.width > 0 ? tile : whole;
+    // Front faces from outside the box, back faces from inside it: exactly one fragment
+    // per pixel the box covers either way (it is convex), and the depth layout the
+    // program promises holds for the faces drawn.
+    const bool frontFaces = eyeOutsideBox(camera.eye);
+    ReliefShader& shader =
+        program(configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces));
 
-    // Back faces only: exactly one fragment per pixel the box covers, also with the eye
-    // inside the box. Depth clamping keeps faces nearer than the near plane.
+    const gl::StateGuard saved(gl_);
+    const ReliefParameters values = parameters(camera, shading, t);
+    gl_.BindBuffer(GL_UNIFORM_BUFFER, parameterBuffer_.id());
+    gl_.BufferData(GL_UNIFORM_BUFFER, sizeof values, &values, GL_STREAM_DRAW);
+    shader.use();
+    shader.bindParameters(parameterBuffer_.id())
+        .bindMaxPyramid(pyramidTexture_.id())
+        .bindHeights(sampleTexture_.id())
+        .bindWindowPyramid(windowTexture_.id());
+
+    // Depth clamping keeps faces nearer than the near plane (an eye close to the box).
     gl_.Enable(GL_CULL_FACE);
-    gl_.CullFace(GL_FRONT);
+    gl_.CullFace(frontFaces ? GL_BACK : GL_FRONT);
     gl_.Enable(GL_DEPTH_TEST);
-    gl_.DepthFunc(GL_LESS);
+    gl_.DepthFunc(depth_.reversed ? GL_GREATER : GL_LESS);
     gl_.Enable(GL_DEPTH_CLAMP);
     gl_.Viewport(0, 0, t.width, t.height);
-
     gl_.BindVertexArray(boxArray_.id());
     gl_.DrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, nullptr);
-    gl_.BindVertexArray(0);
-
-    gl_.Disable(GL_DEPTH_CLAMP);
-    gl_.Disable(GL_CULL_FACE);
-    gl_.ActiveTexture(GL_TEXTURE0);
-    gl_.UseProgram(0);
 }
 
 }  // namespace microrelief

@@ -265,7 +265,7 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
     }
 }
 
-std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
+std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, const RayQuery& query,
                                                      TraversalStats* statsOut) const {
     TraversalStats stats;
     const FrameRay ray = base_->frameRay(worldRay);
@@ -285,15 +285,17 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
         return hit;
     };
 
-    // relief_hit.glsl: mr_enterReliefShell.
+    // relief_hit.glsl: mr_enterReliefShell, with the query's range.
     const ShellSpan span = base_->clip(ray);
-    const double tNear = std::max(span.tEnter, 0.0);
-    if (span.empty() || tNear > span.tExit) return finish(std::nullopt);
-    if (span.tEnter >= 0.0 && span.entry != ShellFace::None) {
+    const double tNear = std::max(span.tEnter, query.tMin);
+    const double tFar = std::min(span.tExit, query.tMax);
+    if (span.empty() || tNear > tFar) return finish(std::nullopt);
+    const int surfaceFetches = interpolation_ == Interpolation::Biquadratic ? 4 : 1;
+    if (span.tEnter >= query.tMin && span.entry != ShellFace::None) {
         // Through a wall, a cap or the bottom: a hit right there when below the surface.
         const glm::dvec3 m = base_->mapPoint(ray.at(tNear));
         const bool bottom = span.entry == ShellFace::Bottom;  // h = 0: always in the solid
-        if (bottom || (stats.fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1,
+        if (bottom || (stats.fetches += surfaceFetches,
                        m.z <= map_.surface(m.x, m.y, base_->wrapsU(), interpolation_))) {
             stats.stopLevel = 0;
             const HitFace face = span.entry == ShellFace::WallX   ? HitFace::WallX
@@ -303,10 +305,24 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay,
             return finish(makeHit(face, tNear, base_->faceNormal(span.entry, ray)));
         }
     }
+    if (tNear > span.tEnter) {
+        // The range starts inside the shell: at a point in the solid, that point is the hit.
+        const glm::dvec3 start = ray.at(tNear);
+        const glm::dvec3 m = base_->mapPoint(start);
+        stats.fetches += surfaceFetches;
+        if (m.z <= map_.surface(m.x, m.y, base_->wrapsU(), interpolation_)) {
+            const double offset = SurfacePatch::offset(interpolation_);
+            const SurfacePatch patch =
+                patchAt(static_cast<int>(std::floor(m.x - offset)),
+                        static_cast<int>(std::floor(m.y - offset)), stats.fetches);
+            return finish(makeHit(HitFace::Top, tNear, topNormal(patch, start)));
+        }
+    }
 
-    // From the shell's entry on, as the shader works (relief_hit.glsl: mr_enterReliefShell).
+    // From the range's start on, as the shader works (relief_hit.glsl: mr_enterReliefShell).
     const FrameRay fromEntry{ray.at(tNear), ray.dir};
-    if (auto hit = subdivideSegment(fromEntry, span.tExit - tNear, span.floorExit, stats)) {
+    const bool floorExit = span.floorExit && tFar == span.tExit;
+    if (auto hit = subdivideSegment(fromEntry, tFar - tNear, floorExit, stats)) {
         return finish(makeHit(HitFace::Top, tNear + hit->t, hit->normal));
     }
     return finish(std::nullopt);

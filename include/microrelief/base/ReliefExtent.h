@@ -19,7 +19,8 @@ ReliefExtent reliefExtent(int width, int height, double maxHeight, double height
                           const BaseShape& base = {});
 // Scans the map for its max.
 ReliefExtent reliefExtent(const HeightMap& map, double heightScale, const BaseShape& base = {});
-// The radius resolveCamera gets for this relief (it sets the depth range only).
-double sceneRadius(const ReliefExtent& extent);
+// The radius resolveCamera gets for this relief (it sets the depth range only): about
+// the world's origin, of the box placed by `objectToWorld` (the model transform).
+double sceneRadius(const ReliefExtent& extent, const glm::dmat4& objectToWorld = glm::dmat4(1.0));
 
 }  // namespace microrelief

@@ -9,6 +9,7 @@
 #include "microrelief/context/GlContext.h"
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/Camera.h"
+#include "microrelief/render/ModelTransform.h"
 #include "microrelief/render/OffscreenTarget.h"
 #include "microrelief/render/ReliefRenderer.h"
 
@@ -29,6 +30,7 @@ struct RenderJob {
     float heightScale = 0.1f;
     BaseShape base;  // the surface the map is laid over (--base, --radius, --length, --radii)
     Interpolation interpolation = Interpolation::Bilinear;  // the last level (--interpolation)
+    ModelTransform model;  // where the relief sits in the world (--model)
     ShadingOptions shading;
     MethodSettings method;
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB

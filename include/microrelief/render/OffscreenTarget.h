@@ -1,7 +1,7 @@
-// A framebuffer object with the outputs of relief.frag: the shaded picture (RGBA8,
-// sRGB-encoded by the shader), the world position AOV and the traversal statistics
-// (RGBA32F each), and a depth buffer. Reads come back top row first, the orientation
-// of every output image.
+// A framebuffer object with the outputs of relief.frag: the shaded picture (SRGB8_ALPHA8:
+// the shader's linear colour encoded by the GL while sRGB writes are on, gl::SrgbWrites),
+// the world position AOV and the traversal statistics (RGBA32F each), and a depth buffer. Reads
+// come back top row first, the orientation of every output image.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -18,8 +18,8 @@ public:
     OffscreenTarget(const GL& gl, int width, int height);
 
     void bind() const;
-    // Clears the picture to `background` (linear RGB, encoded to sRGB here), the AOV and
-    // statistics to 0 and depth to 1.
+    // Clears the picture to `background` (linear RGB, encoded to sRGB by the GL), the AOV
+    // and statistics to 0 and depth to 1.
     void clear(const glm::vec3& background) const;
     RenderedFrame read() const;
     // The lower-left width x height pixels of this target into `frame` (a picture of its

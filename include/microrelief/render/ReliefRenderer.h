@@ -8,8 +8,6 @@
 #include <filesystem>
 #include <map>
 #include <string>
-#include <tuple>
-#include <unordered_map>
 #include <utility>
 
 #include <glm/glm.hpp>
@@ -17,57 +15,14 @@
 #include "microrelief/base/BaseShape.h"
 #include "microrelief/base/ReliefExtent.h"
 #include "microrelief/gl/Objects.h"
+#include "microrelief/gl/ReliefShader.h"
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/heightmap/MaxPyramid.h"
 #include "microrelief/render/Camera.h"
+#include "microrelief/render/Method.h"
+#include "microrelief/render/ModelTransform.h"
 
 namespace microrelief {
-
-// How each pixel's ray is traced (relief.frag's MICRORELIEF_METHOD): the paper's
-// multilevel method, or one of the peers it is measured against.
-enum class Method { Multilevel = 0, Normal, Offset, Steep, Pom, Relief, MaxMip };
-
-// "multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip"; throws Error(BadInput).
-Method parseMethod(const std::string& name);
-const char* methodName(Method method);
-// Whether a method's quality knob is a step count (steep, pom, relief).
-bool methodHasSteps(Method method);
-// Whether a method traces the whole solid, side walls and bottom face included
-// (multilevel, maxmip); the others know the top surface only.
-bool methodTracesTheSolid(Method method);
-// Whether a method runs on a base: every method on the plane; on a curved base the exact
-// ones (multilevel, maxmip) and the peers engines ship there, pom and relief stepping in
-// the base's tangent frame. Otherwise throws Error(BadInput) naming both flags.
-void checkMethodSupportsBase(Method method, const BaseShape& base);
-bool methodRunsOnBase(Method method, const BaseShape& base);
-
-struct MethodSettings {
-    Method method = Method::Multilevel;
-    int steps = 64;           // steep: layers; pom: samples at grazing angles; relief: linear steps
-    int minSteps = 16;        // pom: samples looking straight down (setSteps: a quarter, >= 4)
-    int refineSteps = 8;      // relief: binary search steps
-    float pixelError = 0.0f;  // multilevel: tolerated error in pixels; 0 is exact
-
-    // The step budget and what follows from it, the one rule every program uses.
-    void setSteps(int n) {
-        steps = n;
-        minSteps = std::min(n, std::max(4, n / 4));
-    }
-};
-
-// What relief.frag writes to the picture (debug_views.glsl).
-enum class DebugView { Shaded = 0, Iterations, Level, Normal, Depth, Position };
-
-// "shaded", "iterations", "level", "normal", "depth", "position"; throws Error(BadInput).
-DebugView parseDebugView(const std::string& name);
-const char* debugViewName(DebugView view);
-
-struct ShadingOptions {
-    glm::vec3 lightDirection =
-        glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards the light
-    glm::vec3 albedo{0.60f, 0.58f, 0.55f};
-    DebugView view = DebugView::Shaded;
-};
 
 // The part of the picture one draw covers, in GL window coordinates of the whole
 // picture (origin at the bottom left): the bound framebuffer holds width x height
@@ -79,8 +34,8 @@ struct PictureTile {
 
 class ReliefRenderer {
 public:
-    // `shaderDir` holds relief_box.vert, relief.frag and microrelief/; `method` is the
-    // program compiled first.
+    // `shaderDir` holds relief_box.vert, relief.frag, relief_parameters.glsl and
+    // microrelief/; `method` is the program compiled first.
     ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
                    const MethodSettings& method = {});
 
@@ -99,50 +54,62 @@ public:
     const BaseShape& base() const { return base_; }
     Interpolation interpolation() const { return interpolation_; }
 
+    // Where the relief sits in the world (the identity: where the spec puts it).
+    void setModel(const ModelTransform& model) { model_ = model; }
+    const ModelTransform& model() const { return model_; }
+    // The depth convention of the caller's projection and framebuffer (the default:
+    // OpenGL's [-1, 1] clip depth, a standard depth test).
+    void setDepthConvention(const DepthConvention& depth) { depth_ = depth; }
+    const DepthConvention& depthConvention() const { return depth_; }
+
     // Recompiles the current program from the files; on failure throws and keeps the
     // previous program. Other programs compiled before are dropped (they may be stale).
     void reloadShaders();
 
-    // Chooses the tracing method; each (method, instrumentation) pair is compiled once
+    // Chooses the tracing method; each configuration (ReliefShaderConfig) is compiled once
     // and kept. Step counts and the pixel error are uniforms. `countFetches` selects the
     // instrumented variant that writes texel reads to the statistics output. On a
     // compile failure throws and keeps the method that works.
     void setMethod(const MethodSettings& settings, bool countFetches = false);
     const MethodSettings& method() const { return method_; }
 
-    // Draws the picture `camera` describes, or the tile of it given: the same rays, so a
-    // picture drawn in tiles is the one drawn whole, pixel for pixel.
+    // Draws the picture `camera` describes, or the tile of it given, into the bound
+    // framebuffer, which must have relief.frag's three colour outputs (OffscreenTarget);
+    // the colour is linear, for an sRGB target with GL_FRAMEBUFFER_SRGB on. The same rays
+    // whole or in tiles, so a picture drawn in tiles is the one drawn whole, pixel for
+    // pixel. GL state: the draw sets what it needs (program, vertex array, the uniform
+    // buffer at binding 0, textures on units 0 to 2, face culling, the depth test and its
+    // function, depth clamping, the viewport) and restores each as it found it.
     void draw(const CameraFrame& camera, const ShadingOptions& shading,
               const PictureTile& tile = {});
 
     int maxIterations() const { return maxIterations_; }
 
 private:
-    // A linked program and the uniform locations looked up in it so far.
-    struct CompiledProgram {
-        gl::Program program;
-        std::unordered_map<std::string, GLint> uniforms;
-    };
-    // Method, counts fetches, base, interpolation.
-    using ProgramKey = std::tuple<Method, bool, BaseKind, Interpolation>;
-
-    CompiledProgram compile(const ProgramKey& key) const;
-    // The program for the key, compiled on first use; throws and changes nothing on failure.
-    CompiledProgram& program(const ProgramKey& key);
-    GLint uniform(const char* name);
+    ReliefShaderConfig configFor(const MethodSettings& settings, bool countFetches, BaseKind base,
+                                 Interpolation interpolation, bool frontFaces) const;
+    // The program for the configuration, compiled on first use; throws and changes
+    // nothing on failure.
+    ReliefShader& program(const ReliefShaderConfig& config);
+    // Whether the eye lies outside the proxy box (with a margin): then its front faces
+    // are drawn, else its back faces.
+    bool eyeOutsideBox(const glm::dvec3& eye) const;
+    ReliefParameters parameters(const CameraFrame& camera, const ShadingOptions& shading,
+                                const PictureTile& tile) const;
     void uploadBox();
 
     const GL& gl_;
     std::filesystem::path shaderDir_;
-    std::map<ProgramKey, CompiledProgram> programs_;
-    CompiledProgram* current_ = nullptr;
+    std::map<ReliefShaderConfig, ReliefShader> programs_;
     gl::Texture pyramidTexture_;  // aligned max levels (maxmip)
     gl::Texture windowTexture_;   // overlapping max levels (multilevel)
     gl::Texture sampleTexture_;
+    gl::Buffer parameterBuffer_;  // MicroreliefParameters
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;
     gl::Buffer boxIndices_;
-    int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
+    glm::dvec3 boxMin_{0.0}, boxMax_{0.0};  // the proxy box drawn, object space
+    int mapWidth_ = 0, mapHeight_ = 0;      // 0: no map yet
     int pyramidWidth_ = 0, pyramidHeight_ = 0, pyramidLevels_ = 0;
     float maxHeight_ = 0.0f;
     float heightScale_ = 0.1f;
@@ -152,6 +119,8 @@ private:
     BaseShape base_;
     bool wrapsU_ = false;  // the addressing the map's pyramid was built with
     Interpolation interpolation_ = Interpolation::Bilinear;  // the surface it bounds
+    ModelTransform model_;
+    DepthConvention depth_;
 };
 
 }  // namespace microrelief

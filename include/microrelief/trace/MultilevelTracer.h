@@ -4,6 +4,7 @@
 // collision queries, and as a twin that tests hold the shader to.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -37,6 +38,16 @@ struct ReliefHit {
     double height = 0.0;  // h of the hit's map point (the map's value there, on the surface)
 };
 
+// What one ray asks of the relief, beside the ray (relief_query.glsl's mr_RayQuery): the
+// first point of the closed solid with t in [tMin, tMax] (the start itself when it lies in
+// the solid), or with anyHit only whether there is one (the shader then skips the normal;
+// here the hit is the same either way, these traversals being near-first).
+struct RayQuery {
+    double tMin = 0.0;
+    double tMax = std::numeric_limits<double>::infinity();
+    bool anyHit = false;
+};
+
 class MultilevelTracer {
 public:
     // Builds the max pyramid of `map` laid over `base`, for the surface `interpolation` makes
@@ -45,7 +56,12 @@ public:
                      Interpolation interpolation = Interpolation::Bilinear);
 
     // The first hit of `ray` (world space) with the relief solid, or nothing.
-    std::optional<ReliefHit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const;
+    std::optional<ReliefHit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const {
+        return intersect(ray, RayQuery{}, stats);
+    }
+    // The hit `query` asks for.
+    std::optional<ReliefHit> intersect(const Ray& ray, const RayQuery& query,
+                                       TraversalStats* stats = nullptr) const;
 
     const HeightMap& map() const { return map_; }
     const MaxPyramid& pyramid() const { return pyramid_; }

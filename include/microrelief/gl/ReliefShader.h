@@ -1,0 +1,137 @@
+// The relief program as a typed shader object (Magnum's Shaders::PhongGL): one
+// configuration of relief_box.vert and relief.frag compiled and linked, its texture units
+// and its uniform block fixed once in the constructor, the textures bound through named
+// calls, and the block (MicroreliefParameters, shaders/relief_parameters.glsl) mirrored by
+// ReliefParameters. ReliefRenderer draws with it; an engine that keeps its own geometry
+// and buffers may draw with it too.
+#pragma once
+
+#include <compare>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "microrelief/base/BaseShape.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/Method.h"
+
+namespace microrelief {
+
+// What the depth a fragment writes promises against the depth of the proxy face it comes
+// from (relief.frag's MICRORELIEF_DEPTH_LAYOUT): nothing, greater or equal (a front face,
+// the hit behind it, with a standard depth test), or less or equal (a back face, the hit
+// before it; or a front face under reversed-Z). With the promise the GL may keep its early
+// depth test (conservative depth, GL 4.2 or ARB_conservative_depth).
+enum class DepthLayout { Any = 0, Greater = 1, Less = 2 };
+
+// The caller's depth convention, which gl_FragDepth follows: the clip-space range of z / w
+// ([-1, 1], OpenGL's default, or [0, 1] after glClipControl(..., GL_ZERO_TO_ONE)) and
+// whether near maps to the far end of the depth range (reversed-Z: a projection that
+// does so, a depth test of GL_GREATER and a depth cleared to 0). The window depth is
+// glDepthRange applied to the first, as the fixed-function path does; the projection
+// itself is the caller's (CameraFrame::viewProjection).
+struct DepthConvention {
+    bool zeroToOne = false;
+    bool reversed = false;
+
+    bool operator==(const DepthConvention&) const = default;
+};
+
+// One variant of the program: relief.frag's macros.
+struct ReliefShaderConfig {
+    Method method = Method::Multilevel;
+    BaseKind base = BaseKind::Plane;
+    Interpolation interpolation = Interpolation::Bilinear;
+    bool countFetches = false;  // the instrumented variant: texel reads in the statistics
+    DepthLayout depthLayout = DepthLayout::Any;
+
+    auto operator<=>(const ReliefShaderConfig&) const = default;
+};
+
+// The uniform block MicroreliefParameters, std140: each vec3 is followed by the scalar
+// that fills its 16-byte slot, two vec2 share one (shaders/relief_parameters.glsl says what
+// each member is). A GL test holds every offset to the linked program's.
+struct ReliefParameters {
+    glm::mat4 viewProjection{1.0f};
+    glm::mat4 objectToWorld{1.0f};
+    glm::mat4 worldToObject{1.0f};
+    glm::vec3 eye{0.0f};
+    float pixelErrorTolerance = 0.0f;
+    glm::vec3 cameraRight{0.0f};
+    float heightScale = 0.1f;
+    glm::vec3 cameraUp{0.0f};
+    float reliefMaxHeight = 0.0f;
+    glm::vec3 cameraForward{0.0f};
+    float tMin = 0.0f;
+    glm::vec3 frameScale{1.0f};
+    float tMax = 3.4e38f;
+    glm::vec3 reliefBoxMin{0.0f};
+    int pyramidLevels = 0;
+    glm::vec3 reliefBoxMax{0.0f};
+    int maxIterations = 0;
+    glm::vec3 lightDirection{0.0f, 1.0f, 0.0f};
+    int debugView = 0;
+    glm::vec3 albedo{0.6f};
+    int methodSteps = 64;
+    glm::vec2 reliefSize{0.0f};
+    glm::ivec2 pyramidSize{0};
+    glm::vec2 viewportSize{0.0f};
+    glm::vec2 tileOrigin{0.0f};
+    int methodMinSteps = 16;
+    int methodRefineSteps = 8;
+    int depthZeroToOne = 0;
+    int blockPadding = 0;
+};
+static_assert(sizeof(ReliefParameters) == 384, "std140 size of MicroreliefParameters");
+static_assert(offsetof(ReliefParameters, eye) == 192);
+static_assert(offsetof(ReliefParameters, reliefSize) == 336);
+static_assert(offsetof(ReliefParameters, methodMinSteps) == 368);
+
+class ReliefShader {
+public:
+    // The fixed bindings: the aligned max pyramid (maxmip), the samples and the
+    // overlapping pyramid (multilevel) on texture units 0, 1 and 2, the parameters on
+    // uniform buffer binding 0.
+    static constexpr GLuint kMaxPyramidUnit = 0;
+    static constexpr GLuint kHeightsUnit = 1;
+    static constexpr GLuint kWindowPyramidUnit = 2;
+    static constexpr GLuint kParametersBinding = 0;
+
+    // Compiles `config` of relief_box.vert and relief.frag from `shaderDir` (the folder
+    // holding them and microrelief/), as GLSL 4.00 core where the GL has it (a patch's
+    // samples in one textureGather), else 3.30 core. Throws Error(Runtime) with the
+    // compiler's log mapped to the files on failure. Leaves the current program as it was.
+    ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
+                 const ReliefShaderConfig& config);
+
+    // Bind textures to this program's units (glActiveTexture + glBindTexture), and the
+    // parameters' buffer to its binding; they change GL state the caller may restore.
+    ReliefShader& bindMaxPyramid(GLuint texture);
+    ReliefShader& bindHeights(GLuint texture);
+    ReliefShader& bindWindowPyramid(GLuint texture);
+    ReliefShader& bindParameters(GLuint buffer);
+    void use() const;
+
+    const ReliefShaderConfig& config() const { return config_; }
+    GLuint id() const { return program_.id(); }
+    // The byte offset of a member of MicroreliefParameters in the linked program, -1 if
+    // the compiler dropped it (unused): what the tests compare ReliefParameters with.
+    GLint parameterOffset(const std::string& member) const;
+    // The block's size in the linked program.
+    GLint parametersSize() const;
+
+private:
+    ReliefShader& bindTexture(GLuint unit, GLuint texture);
+
+    const GL* gl_;
+    ReliefShaderConfig config_;
+    gl::Program program_;
+};
+
+// "relief (multilevel, plane, bilinear)": a configuration in messages.
+std::string describe(const ReliefShaderConfig& config);
+
+}  // namespace microrelief

@@ -1,0 +1,51 @@
+// The GL state the library's draws and uploads change, saved on construction and
+// restored on destruction (bgfx's explicit state, made scoped): a library that draws in
+// an engine's context leaves it as it found it. What it covers is listed below; anything
+// else the library leaves alone.
+#pragma once
+
+#include "microrelief/gl/Gl.h"
+
+namespace microrelief::gl {
+
+class StateGuard {
+public:
+    explicit StateGuard(const GL& gl);
+    ~StateGuard();
+    StateGuard(const StateGuard&) = delete;
+    StateGuard& operator=(const StateGuard&) = delete;
+
+    // Texture units whose GL_TEXTURE_2D binding is saved: 0 .. kUnits - 1.
+    static constexpr int kUnits = 3;
+
+private:
+    const GL& gl_;
+    GLint program_ = 0, vertexArray_ = 0, arrayBuffer_ = 0;
+    GLint uniformBuffer_ = 0, uniformBinding0_ = 0;
+    GLint activeTexture_ = 0, textures_[kUnits] = {};
+    GLint unpackAlignment_ = 4;
+    GLboolean cullFace_ = GL_FALSE, depthTest_ = GL_FALSE, depthClamp_ = GL_FALSE;
+    GLint cullFaceMode_ = GL_BACK, depthFunc_ = GL_LESS;
+    GLint viewport_[4] = {};
+};
+
+// sRGB writes (GL_FRAMEBUFFER_SRGB) on for a scope, as they were after it: the relief's
+// colour is linear, and a target with an sRGB colour format encodes it only while they
+// are on (clears included).
+class SrgbWrites {
+public:
+    explicit SrgbWrites(const GL& gl) : gl_(gl), was_(gl.IsEnabled(GL_FRAMEBUFFER_SRGB)) {
+        gl_.Enable(GL_FRAMEBUFFER_SRGB);
+    }
+    ~SrgbWrites() {
+        if (!was_) gl_.Disable(GL_FRAMEBUFFER_SRGB);
+    }
+    SrgbWrites(const SrgbWrites&) = delete;
+    SrgbWrites& operator=(const SrgbWrites&) = delete;
+
+private:
+    const GL& gl_;
+    GLboolean was_;
+};
+
+}  // namespace microrelief::gl

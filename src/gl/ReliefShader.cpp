@@ -1,0 +1,91 @@
+#include "microrelief/gl/ReliefShader.h"
+
+#include <vector>
+
+#include "microrelief/core/Error.h"
+#include "microrelief/gl/ShaderProgram.h"
+
+namespace microrelief {
+
+std::string describe(const ReliefShaderConfig& config) {
+    return std::string("relief (") + methodName(config.method) + ", " +
+           baseName(BaseShape{config.base}) + ", " + interpolationName(config.interpolation) + ")";
+}
+
+ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
+                           const ReliefShaderConfig& config)
+    : gl_(&gl), config_(config) {
+    GLint major = 0;
+    gl.GetIntegerv(GL_MAJOR_VERSION, &major);
+    const std::string version = major >= 4 ? "400 core" : "330 core";
+    std::vector<ShaderDefine> defines = {
+        {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(config.method))},
+        {"MICRORELIEF_BASE", std::to_string(static_cast<int>(config.base))},
+        {"MICRORELIEF_INTERPOLATION", std::to_string(static_cast<int>(config.interpolation))},
+        {"MICRORELIEF_DEPTH_LAYOUT", std::to_string(static_cast<int>(config.depthLayout))}};
+    if (config.countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
+    const gl::Shader vertex = gl::compileShader(
+        gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "relief_box.vert", version));
+    const gl::Shader fragment = gl::compileShader(
+        gl, GL_FRAGMENT_SHADER, assembleShader(shaderDir / "relief.frag", version, defines));
+    program_ = gl::linkProgram(gl, vertex, fragment, describe(config));
+
+    // The units and the block binding, once: glUniform* needs the program current.
+    GLint previous = 0;
+    gl.GetIntegerv(GL_CURRENT_PROGRAM, &previous);
+    gl.UseProgram(program_.id());
+    gl.Uniform1i(gl::uniform(gl, program_, "maxPyramid"), kMaxPyramidUnit);
+    gl.Uniform1i(gl::uniform(gl, program_, "heightSamples"), kHeightsUnit);
+    gl.Uniform1i(gl::uniform(gl, program_, "windowPyramid"), kWindowPyramidUnit);
+    gl.UseProgram(static_cast<GLuint>(previous));
+    const GLuint block = gl.GetUniformBlockIndex(program_.id(), "MicroreliefParameters");
+    if (block == GL_INVALID_INDEX)
+        throwRuntime(describe(config) + ": the program has no MicroreliefParameters block");
+    gl.UniformBlockBinding(program_.id(), block, kParametersBinding);
+}
+
+ReliefShader& ReliefShader::bindTexture(GLuint unit, GLuint texture) {
+    gl_->ActiveTexture(GL_TEXTURE0 + unit);
+    gl_->BindTexture(GL_TEXTURE_2D, texture);
+    return *this;
+}
+
+ReliefShader& ReliefShader::bindMaxPyramid(GLuint texture) {
+    return bindTexture(kMaxPyramidUnit, texture);
+}
+
+ReliefShader& ReliefShader::bindHeights(GLuint texture) {
+    return bindTexture(kHeightsUnit, texture);
+}
+
+ReliefShader& ReliefShader::bindWindowPyramid(GLuint texture) {
+    return bindTexture(kWindowPyramidUnit, texture);
+}
+
+ReliefShader& ReliefShader::bindParameters(GLuint buffer) {
+    gl_->BindBufferBase(GL_UNIFORM_BUFFER, kParametersBinding, buffer);
+    return *this;
+}
+
+void ReliefShader::use() const {
+    gl_->UseProgram(program_.id());
+}
+
+GLint ReliefShader::parameterOffset(const std::string& member) const {
+    const GLchar* name = member.c_str();
+    GLuint index = GL_INVALID_INDEX;
+    gl_->GetUniformIndices(program_.id(), 1, &name, &index);
+    if (index == GL_INVALID_INDEX) return -1;
+    GLint offset = -1;
+    gl_->GetActiveUniformsiv(program_.id(), 1, &index, GL_UNIFORM_OFFSET, &offset);
+    return offset;
+}
+
+GLint ReliefShader::parametersSize() const {
+    const GLuint block = gl_->GetUniformBlockIndex(program_.id(), "MicroreliefParameters");
+    GLint size = 0;
+    gl_->GetActiveUniformBlockiv(program_.id(), block, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
+    return size;
+}
+
+}  // namespace microrelief

@@ -27,7 +27,7 @@ constexpr const char* kProgram = "microrelief-render";
 void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
                    const RenderJob& job) {
     const Accuracy a = compareWithReference(
-        frame, camera, ReliefGeometry{&map, job.heightScale, job.base, job.interpolation});
+        frame, camera, ReliefGeometry{&map, job.heightScale, job.base, job.interpolation, job.model});
     std::printf(
         "accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n",
         a.pixels, a.referenceHits);
@@ -48,7 +48,7 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
 void warnIfEyeInsideTheSolid(const HeightMap& map, const RenderJob& job,
                              const std::filesystem::path& heightFile) {
     const Camera& camera = job.camera;
-    const ReferenceHit hit = traceReference({&map, job.heightScale, job.base, job.interpolation},
+    const ReferenceHit hit = traceReference({&map, job.heightScale, job.base, job.interpolation, job.model},
                                             Ray{camera.eye, camera.target - camera.eye});
     if (hit && hit.t == 0.0) {
         logWarning("--eye lies inside the relief's solid (under the surface of " +

@@ -33,9 +33,12 @@ std::optional<PickResult> ReliefPicker::pick(const CameraFrame& camera, int colu
     if (!tracer_)
         tracer_ = std::make_unique<MultilevelTracer>(*map_, heightScale_, base_, interpolation_);
     TraversalStats stats;
-    const std::optional<ReliefHit> hit = tracer_->intersect(camera.pixelRay(column, row), &stats);
+    // In the relief's object space, where the twin works; t is the world ray's.
+    const Ray ray = camera.pixelRay(column, row);
+    const std::optional<ReliefHit> hit = tracer_->intersect(model_.toObject(ray), &stats);
     if (!hit) return std::nullopt;
-    return PickResult{hit->uv, hit->height, hit->position, hit->face, stats.iterations};
+    return PickResult{hit->uv, hit->height, ray.origin + hit->t * ray.direction, hit->face,
+                      stats.iterations};
 }
 
 }  // namespace microrelief

@@ -8,6 +8,7 @@
 
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/Camera.h"
+#include "microrelief/render/ModelTransform.h"
 #include "microrelief/trace/MultilevelTracer.h"
 
 namespace microrelief {
@@ -27,6 +28,8 @@ public:
     void setHeightScale(double heightScale);
     void setBase(const BaseShape& base);
     void setInterpolation(Interpolation interpolation);
+    // Where the relief sits in the world (the renderer's model transform).
+    void setModel(const ModelTransform& model) { model_ = model; }
 
     // The hit along the ray through pixel (column, row) of `camera`, or nothing.
     std::optional<PickResult> pick(const CameraFrame& camera, int column, int row);
@@ -36,6 +39,7 @@ private:
     double heightScale_ = 0.1;
     BaseShape base_;
     Interpolation interpolation_ = Interpolation::Bilinear;
+    ModelTransform model_;
     std::unique_ptr<MultilevelTracer> tracer_;
 };
 

@@ -62,7 +62,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     // A degenerate camera is a bad argument: refuse it before any window opens.
     resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
                   sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
-                                           options.scene.job.heightScale, options.scene.job.base)));
+                                           options.scene.job.heightScale, options.scene.job.base),
+                              options.scene.job.model.objectToWorld()));
 
     state_.mapName = file.filename().string();
     setupWindow();
@@ -71,6 +72,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     renderer_ = std::make_unique<ReliefRenderer>(gl, shaders);
     renderer_->setMethod(options.scene.job.method);
     renderer_->setHeightScale(options.scene.job.heightScale);
+    renderer_->setModel(options.scene.job.model);
     renderer_->setHeightMap(*map_, file.string(), options.scene.job.base,
                             options.scene.job.interpolation);
     timer_ = std::make_unique<GpuTimer>(gl);
@@ -79,6 +81,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     picker_.setHeightScale(options.scene.job.heightScale);
     picker_.setBase(options.scene.job.base);
     picker_.setInterpolation(options.scene.job.interpolation);
+    picker_.setModel(options.scene.job.model);
 
     if (state_.scene.heightFile)
         state_.scene.heightFile = std::filesystem::absolute(*state_.scene.heightFile);
@@ -569,7 +572,8 @@ CameraFrame ViewerApp::cameraFrame() const {
     return resolveCamera(
         controller_.camera(), size.x, size.y,
         sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
-                                 state_.scene.job.heightScale, state_.scene.job.base)));
+                                 state_.scene.job.heightScale, state_.scene.job.base),
+                    state_.scene.job.model.objectToWorld()));
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {

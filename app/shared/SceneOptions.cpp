@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -15,9 +16,10 @@
 
 namespace microrelief {
 
-glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
+std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
+                                    std::size_t count, const std::string& what) {
     const auto invalid = [&] {
-        throwBadInput(flag + " expects three numbers x,y,z, got '" + text + "'");
+        throwBadInput(flag + " expects " + what + ", got '" + text + "'");
     };
     std::vector<double> values;
     std::stringstream in(text);
@@ -33,7 +35,12 @@ glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
         if (used == 0 || used != part.size() || !std::isfinite(value)) invalid();
         values.push_back(value);
     }
-    if (values.size() != 3 || text.back() == ',') invalid();
+    if (values.size() != count || text.empty() || text.back() == ',') invalid();
+    return values;
+}
+
+glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
+    const std::vector<double> values = parseNumberList(flag, text, 3, "three numbers x,y,z");
     // The shader gets these as floats; camera coordinates beyond the limit also make
     // exact hits impossible (render/FloatLimits.h).
     for (double value : values) {
@@ -166,6 +173,9 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
     app.add_option("--fovy", job_.camera.fovyDegrees, "Vertical field of view in degrees")
         ->capture_default_str();
     app.add_option("--size", size_, "Picture size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option("--model", model_,
+                   "Where the relief sits in the world: a 3 x 4 affine matrix, 12 numbers in rows "
+                   "(m00,m01,m02,tx,m10,...,tz); default: the identity");
 }
 
 void SceneFlags::addShading(CLI::App& app) {
@@ -275,6 +285,13 @@ void SceneFlags::apply() {
         throwBadInput("--fovy must lie strictly between 0 and 180 degrees");
     }
     if (load_.channel < 0) throwBadInput("--channel must be >= 0");
+    if (!model_.empty()) {
+        const std::vector<double> rows = parseNumberList(
+            "--model", model_, 12, "12 numbers: a 3 x 4 matrix in rows, comma-separated");
+        std::array<double, 12> m{};
+        std::copy(rows.begin(), rows.end(), m.begin());
+        job_.model = ModelTransform::fromRows(m);
+    }
 }
 
 std::string shellQuote(const std::string& text) {
@@ -317,6 +334,11 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     line += " --up=" + exactVector(job.camera.up);
     flag("--fovy", exactText(job.camera.fovyDegrees));
     flag("--size", std::to_string(job.width) + "x" + std::to_string(job.height));
+    if (!job.model.isIdentity()) {
+        std::string rows;
+        for (double value : job.model.rows()) rows += (rows.empty() ? "" : ",") + exactNumber(value);
+        line += " --model=" + rows;
+    }
     line += " --light=" + exactVector(job.shading.lightDirection);
     flag("--method", methodName(job.method.method));
     const MethodSettings defaults;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -36,7 +37,7 @@ public:
         : SceneFlags(options.heightFile, options.load, options.job) {}
 
     // --height --channel --normalize --height-scale --interpolation --base --radius --length
-    // --radii --eye --target --up --fovy --size
+    // --radii --eye --target --up --fovy --size --model
     void addMapAndCamera(CLI::App& app);
     // --light --method --steps --pixel-error --view --background
     void addShading(CLI::App& app);
@@ -50,10 +51,14 @@ private:
     HeightMapLoadOptions& load_;
     RenderJob& job_;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
-    std::string base_ = "plane", radii_, interpolation_ = "bilinear";
+    std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_;
     std::optional<double> radius_, length_;
 };
 
+// "a,b,c,..." -> exactly `count` finite numbers; throws Error(BadInput) naming `flag` and
+// saying it expects `what`.
+std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
+                                    std::size_t count, const std::string& what);
 // "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.
 glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text);
 // "WxH" -> width, height, each side from 1 to `maxSide`; throws Error(BadInput), for a

@@ -450,14 +450,35 @@ ReferenceHit traceBelow(const ReliefGeometry& relief, const Ray& ray, double top
 
 }  // namespace
 
-ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray) {
-    if (relief.base.curved()) {
-        return detail::traceCurvedReference(relief, detail::curvedBoundaries(relief), ray,
-                                            relief.heightScale * relief.map->maxValue());
+namespace {
+
+// The hit of `ray` (world) by `traceObject` in the relief's object space: the ray taken
+// there by the model transform, which keeps t; the position is the world ray's at that t,
+// the normal through the inverse transpose.
+template <class TraceObject>
+ReferenceHit throughModel(const ModelTransform& model, const Ray& ray, TraceObject traceObject) {
+    if (model.isIdentity()) return traceObject(ray);
+    ReferenceHit hit = traceObject(model.toObject(ray));
+    if (hit) {
+        hit.position = ray.origin + hit.t * ray.direction;
+        hit.normal = model.normalToWorld(hit.normal);
     }
-    // Without a known top the walk covers every cell under the ray's path over the
-    // footprint; the exact per-cell cull keeps the cells above the relief cheap.
-    return traceBelow(relief, ray, kInfinity);
+    return hit;
+}
+
+}  // namespace
+
+ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray) {
+    return throughModel(relief.model, ray, [&](const Ray& objectRay) {
+        if (relief.base.curved()) {
+            return detail::traceCurvedReference(relief, detail::curvedBoundaries(relief),
+                                                objectRay,
+                                                relief.heightScale * relief.map->maxValue());
+        }
+        // Without a known top the walk covers every cell under the ray's path over the
+        // footprint; the exact per-cell cull keeps the cells above the relief cheap.
+        return traceBelow(relief, objectRay, kInfinity);
+    });
 }
 
 ReferenceTracer::ReferenceTracer(const ReliefGeometry& relief)
@@ -466,8 +487,11 @@ ReferenceTracer::ReferenceTracer(const ReliefGeometry& relief)
 }
 
 ReferenceHit ReferenceTracer::trace(const Ray& ray) const {
-    if (relief_.base.curved()) return detail::traceCurvedReference(relief_, boundaries_, ray, top_);
-    return traceBelow(relief_, ray, top_);
+    return throughModel(relief_.model, ray, [&](const Ray& objectRay) {
+        if (relief_.base.curved())
+            return detail::traceCurvedReference(relief_, boundaries_, objectRay, top_);
+        return traceBelow(relief_, objectRay, top_);
+    });
 }
 
 }  // namespace microrelief

@@ -17,6 +17,7 @@
 #include "microrelief/base/BaseShape.h"
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/Camera.h"
+#include "microrelief/render/ModelTransform.h"
 
 namespace microrelief {
 
@@ -44,6 +45,9 @@ struct ReliefGeometry {
     double heightScale = 0.1;
     BaseShape base = {};
     Interpolation interpolation = Interpolation::Bilinear;
+    // Where the relief sits in the world: rays and hits are the world's, the solid above
+    // is in object space (render/ModelTransform.h).
+    ModelTransform model = {};
 };
 
 // The exact first hit of `ray` (world space) with the relief solid: its first point with

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <utility>
 
 #include "microrelief/core/Error.h"
 
@@ -24,7 +25,11 @@ std::string readText(const std::filesystem::path& file) {
 
 class Assembler {
 public:
-    explicit Assembler(ShaderSource& out) : out_(out) {}
+    // `bundleRoot` empty: #line markers for the compiler's messages (assembleShader); else
+    // one readable file for engines without an include resolver (bundleShader): a comment
+    // naming each spliced file by its path from the root, no markers.
+    explicit Assembler(ShaderSource& out, std::filesystem::path bundleRoot = {})
+        : out_(out), bundleRoot_(std::move(bundleRoot)) {}
 
     void splice(const std::filesystem::path& file, int depth) {
         if (depth > kMaxIncludeDepth)
@@ -35,6 +40,7 @@ public:
         static const std::regex include(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
         std::string line;
         int number = 0;
+        if (bundling()) banner("begin", file);
         lineMarker(1, index);
         while (std::getline(lines, line)) {
             ++number;
@@ -59,17 +65,27 @@ public:
             out_.text += line;
             out_.text += '\n';
         }
+        if (bundling()) banner("end", file);
     }
 
 private:
+    bool bundling() const { return !bundleRoot_.empty(); }
+
+    void banner(const char* what, const std::filesystem::path& file) {
+        out_.text += std::string("// ---- ") + what + " " +
+                     file.lexically_relative(bundleRoot_).generic_string() + " ----\n";
+    }
+
     // `#line L S` numbers the line after it L in source string S. Not every compiler
     // reports S (Mesa reports 0), so the file is in L too: L = index * kLineStride + line.
     void lineMarker(int line, int index) {
+        if (bundling()) return;
         out_.text += "#line " + std::to_string(index * kLineStride + line) + " " +
                      std::to_string(index) + "\n";
     }
 
     ShaderSource& out_;
+    std::filesystem::path bundleRoot_;
 };
 
 }  // namespace
@@ -83,6 +99,14 @@ ShaderSource assembleShader(const std::filesystem::path& file, const std::string
         source.text += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
     Assembler(source).splice(file.lexically_normal(), 0);
     return source;
+}
+
+std::string bundleShader(const std::filesystem::path& file, const std::filesystem::path& root) {
+    ShaderSource source;
+    const std::filesystem::path start = file.lexically_normal();
+    const std::filesystem::path base = root.empty() ? start.parent_path() : root.lexically_normal();
+    Assembler(source, base).splice(start, 0);
+    return source.text;
 }
 
 std::string mapCompilerLog(const std::string& log,

@@ -107,6 +107,33 @@ TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
     }
 }
 
+// The single-file tracers the build makes for engines without an include resolver
+// (share/microrelief/shaders/single/): no #include and no #line left, and each compiles
+// pasted after a bare #version, as 3.30, 4.00 and ES 3.00.
+TEST(GlslLibrary, SingleFileTracersCompileWithoutAResolver) {
+    test::ScratchDir dir;
+    int count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(MICRORELIEF_SINGLE_GLSL_DIR)) {
+        const std::string text = readText(entry.path());
+        ++count;
+        EXPECT_EQ(text.find("#include"), std::string::npos) << entry.path().filename();
+        EXPECT_EQ(text.find("#line"), std::string::npos) << entry.path().filename();
+        for (const char* version : kDialects) {
+            const std::filesystem::path file =
+                dir / ("single_" + entry.path().stem().string() + ".frag");
+            std::ofstream(file) << "#version " << version << "\n"
+                                << text
+                                << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
+            const std::string command = std::string(GLSLANG_VALIDATOR) + " " + file.string() +
+                                        " > " + (dir / "single.log").string() + " 2>&1";
+            EXPECT_EQ(std::system(command.c_str()), 0)
+                << entry.path().filename() << " as GLSL " << version << ":\n"
+                << readText(dir / "single.log");
+        }
+    }
+    EXPECT_EQ(count, 7);  // every tracer: multilevel, maxmip and the five peers
+}
+
 // Names that cannot collide with an engine's own (glslify, LYGIA): every function the
 // library defines (as glslang's tree lists them: "Function Definition: name("), and every
 // struct, constant and macro at file scope, carries the prefix: mr_ for functions,

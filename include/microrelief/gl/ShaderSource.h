@@ -28,6 +28,13 @@ struct ShaderDefine {
 ShaderSource assembleShader(const std::filesystem::path& file, const std::string& version,
                             const std::vector<ShaderDefine>& defines = {});
 
+// `file` with its includes spliced in the same way, as one text an engine without an
+// include resolver can paste after its own `#version` and option `#define`s: no #version,
+// no #line, each spliced file between "// ---- begin <path> ----" and "// ---- end ..."
+// comments, its path relative to `root` (default: the file's folder). The library's
+// single-file tracers (share/microrelief/shaders/single/) are made so at build time.
+std::string bundleShader(const std::filesystem::path& file, const std::filesystem::path& root = {});
+
 // Rewrites the "<index>:<line>(<col>)" (Mesa) and "<index>(<line>)" (NVIDIA, glslang
 // "ERROR: <index>:<line>:") prefixes of a compiler log into "<file>:<line>".
 std::string mapCompilerLog(const std::string& log, const std::vector<std::filesystem::path>& files);

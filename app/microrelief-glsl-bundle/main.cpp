@@ -1,0 +1,73 @@
+// microrelief-glsl-bundle: a GLSL file with its #include "..." files spliced in, as one
+// file for engines that have no include resolver (gl/ShaderSource.h: bundleShader). The
+// build makes the library's single-file tracers with it (share/microrelief/shaders/single).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "microrelief/Version.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/gl/ShaderSource.h"
+
+namespace {
+
+// Written beside the target and renamed over it: a reader never sees half a file.
+void writeAtomically(const std::filesystem::path& file, const std::string& text) {
+    const std::filesystem::path temporary = file.string() + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out) {
+            std::error_code ignored;
+            std::filesystem::remove(temporary, ignored);
+            microrelief::throwRuntime(file.string() + ": cannot write");
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(temporary, file, ec);
+    if (ec) {
+        std::filesystem::remove(temporary, ec);
+        microrelief::throwRuntime(file.string() + ": cannot write (" + ec.message() + ")");
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Splices a GLSL file's #include \"...\" files into one file (each once, marked by "
+        "comments; no #version, no #line): the microrelief GLSL library for engines without an "
+        "include resolver."};
+    std::filesystem::path input, root, output;
+    app.add_option("file", input, "The GLSL file to bundle")->required();
+    app.add_option("--root", root,
+                   "Name spliced files relative to this folder (default: the file's)");
+    app.add_option("--out", output, "Output file (default: standard output)");
+    app.set_version_flag("--version",
+                         std::string("microrelief-glsl-bundle ") + MICRORELIEF_VERSION_STRING);
+    CLI11_PARSE(app, argc, argv);
+    try {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(input, ec))
+            microrelief::throwBadInput(input.string() + ": not a regular file");
+        const std::string header = "// " + input.filename().string() +
+                                   " of the microrelief GLSL library, its includes spliced in by "
+                                   "microrelief-glsl-bundle " MICRORELIEF_VERSION_STRING
+                                   ". Prepend #version and any option #defines.\n";
+        const std::string text = header + microrelief::bundleShader(input, root);
+        if (output.empty()) {
+            std::cout << text;
+        } else {
+            writeAtomically(output, text);
+        }
+    } catch (const microrelief::Error& e) {
+        std::fprintf(stderr, "microrelief-glsl-bundle: error: %s\n", e.what());
+        return e.exitStatus();
+    }
+    return 0;
+}

@@ -17,9 +17,6 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
                                const MethodSettings& method)
     : gl_(gl), shaderDir_(shaderDir), method_(method) {
     reloadShaders();
-    pyramidTexture_ = gl::Texture::create(gl_);
-    windowTexture_ = gl::Texture::create(gl_);
-    sampleTexture_ = gl::Texture::create(gl_);
     parameterBuffer_ = gl::Buffer::create(gl_);
     boxArray_ = gl::VertexArray::create(gl_);
     boxVertices_ = gl::Buffer::create(gl_);
@@ -61,7 +58,7 @@ void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches
 
 void ReliefRenderer::setBase(const BaseShape& base) {
     validateBaseShape(base);
-    if (mapWidth_ > 0 && base.wrapsU() != wrapsU_) {
+    if (textures_ && base.wrapsU() != textures_->wrapsU()) {
         throwRuntime(
             "ReliefRenderer::setBase: between the plane and a curved base the map must "
             "be uploaded again (setHeightMap)");
@@ -69,89 +66,34 @@ void ReliefRenderer::setBase(const BaseShape& base) {
     checkMethodSupportsBase(method_.method, base);
     program(configFor(method_, countFetches_, base.kind, interpolation_, true));  // may throw
     base_ = base;
-    if (mapWidth_ > 0) uploadBox();
+    if (textures_) uploadBox();
 }
-
-namespace {
-
-void uploadLevel(const GL& gl, int level, int width, int height, const float* data) {
-    gl.TexImage2D(GL_TEXTURE_2D, level, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, data);
-}
-
-// The samples of a curved base repeat in S, so that a patch's textureGather at the seam
-// reads column W - 1 and column 0 (bilinear_patch.glsl); everything else clamps.
-void setSamplerState(const GL& gl, GLint minFilter, int maxLevel, bool repeatS = false) {
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, maxLevel);
-}
-
-}  // namespace
 
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                   const BaseShape& base, Interpolation interpolation) {
     validateBaseShape(base);
     checkMethodSupportsBase(method_.method, base);
-    GLint maxSize = 0;
-    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    if (map.width > maxSize || map.height > maxSize) {
-        throwBadInput(source + ": " + std::to_string(map.width) + "x" + std::to_string(map.height) +
-                      " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) +
-                      ")");
-    }
-    // Both throw before anything changes (the program is compiled, or looked up, first).
+    // Both throw before anything changes: the program is compiled (or looked up) first,
+    // the textures are made before the old ones go.
     program(configFor(method_, countFetches_, base.kind, interpolation, true));
-    const MaxPyramid pyramid = [&] {
-        try {
-            // On the GPU from here on; only its shape is kept.
-            return MaxPyramid(map, base.wrapsU(), interpolation);
-        } catch (const std::bad_alloc&) {
-            throwRuntime(source + ": not enough memory for the max pyramid of its " +
-                         std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
-        }
-    }();
+    textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation));
     base_ = base;
-    wrapsU_ = base.wrapsU();
     interpolation_ = interpolation;
-    mapWidth_ = map.width;
-    mapHeight_ = map.height;
-    pyramidWidth_ = pyramid.levelWidth(0);
-    pyramidHeight_ = pyramid.levelHeight(0);
-    pyramidLevels_ = pyramid.levelCount();
-    maxHeight_ = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
     maxIterations_ = traversalBudget(map.width, map.height);
-
-    const gl::StateGuard saved(gl_);
-    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (bool windows : {false, true}) {
-        gl_.BindTexture(GL_TEXTURE_2D, (windows ? windowTexture_ : pyramidTexture_).id());
-        for (int level = 0; level < pyramid.levelCount(); ++level) {
-            uploadLevel(
-                gl_, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
-                (windows ? pyramid.windowLevelData(level) : pyramid.levelData(level)).data());
-        }
-        setSamplerState(gl_, GL_NEAREST_MIPMAP_NEAREST, pyramid.levelCount() - 1);
-    }
-
-    gl_.BindTexture(GL_TEXTURE_2D, sampleTexture_.id());
-    uploadLevel(gl_, 0, map.width, map.height, map.samples.data());
-    setSamplerState(gl_, GL_NEAREST, 0, wrapsU_);
     uploadBox();
 }
 
 void ReliefRenderer::setHeightScale(float scale) {
     heightScale_ = scale;
-    if (mapWidth_ > 0) uploadBox();
+    if (textures_) uploadBox();
 }
 
 void ReliefRenderer::uploadBox() {
     // A small margin keeps every pixel whose ray meets the exact box inside the
     // rasterised proxy; the shader clips the ray to the exact shell itself.
+    const ReliefMapShape& shape = textures_->shape();
     const ReliefExtent extent =
-        reliefExtent(mapWidth_, mapHeight_, maxHeight_, heightScale_, base_);
+        reliefExtent(shape.size.x, shape.size.y, shape.maxHeight, heightScale_, base_);
     const glm::vec3 lo = glm::vec3(extent.min) - 1e-3f, hi = glm::vec3(extent.max) + 1e-3f;
     boxMin_ = lo;
     boxMax_ = hi;
@@ -204,14 +146,15 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.cameraUp = glm::vec3(camera.up);
     p.cameraForward = glm::vec3(camera.forward);
     p.pixelErrorTolerance = method_.pixelError;
+    const ReliefMapShape& shape = textures_->shape();
     p.heightScale = heightScale_;
-    p.reliefMaxHeight = maxHeight_;
+    p.reliefMaxHeight = shape.maxHeight;
     p.frameScale = glm::vec3(base_.frameScale());
     const ReliefExtent extent =
-        reliefExtent(mapWidth_, mapHeight_, maxHeight_, heightScale_, base_);
+        reliefExtent(shape.size.x, shape.size.y, shape.maxHeight, heightScale_, base_);
     p.reliefBoxMin = glm::vec3(extent.min);
     p.reliefBoxMax = glm::vec3(extent.max);
-    p.pyramidLevels = pyramidLevels_;
+    p.pyramidLevels = shape.levelCount;
     p.maxIterations = maxIterations_;
     p.lightDirection = glm::normalize(shading.lightDirection);
     p.debugView = static_cast<int>(shading.view);
@@ -219,8 +162,8 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.methodSteps = method_.steps;
     p.methodMinSteps = method_.minSteps;
     p.methodRefineSteps = method_.refineSteps;
-    p.reliefSize = glm::vec2(mapWidth_, mapHeight_);
-    p.pyramidSize = glm::ivec2(pyramidWidth_, pyramidHeight_);
+    p.reliefSize = glm::vec2(shape.size);
+    p.pyramidSize = shape.pyramidSize;
     p.viewportSize = glm::vec2(camera.width, camera.height);
     p.tileOrigin = glm::vec2(t.x, t.y);
     p.depthZeroToOne = depth_.zeroToOne ? 1 : 0;
@@ -229,7 +172,7 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
 
 void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading,
                           const PictureTile& tile) {
-    if (mapWidth_ == 0) return;
+    if (!textures_) return;
     const PictureTile whole{0, 0, camera.width, camera.height};
     const PictureTile& t = tile.width > 0 ? tile : whole;
     // Front faces from outside the box, back faces from inside it: exactly one fragment
@@ -245,9 +188,9 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.BufferData(GL_UNIFORM_BUFFER, sizeof values, &values, GL_STREAM_DRAW);
     shader.use();
     shader.bindParameters(parameterBuffer_.id())
-        .bindMaxPyramid(pyramidTexture_.id())
-        .bindHeights(sampleTexture_.id())
-        .bindWindowPyramid(windowTexture_.id());
+        .bindMaxPyramid(textures_->maxPyramid())
+        .bindHeights(textures_->samples())
+        .bindWindowPyramid(textures_->windowPyramid());
 
     // Depth clamping keeps faces nearer than the near plane (an eye close to the box).
     gl_.Enable(GL_CULL_FACE);

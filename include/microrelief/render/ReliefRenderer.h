@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -16,6 +17,7 @@
 #include "microrelief/base/ReliefExtent.h"
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/ReliefShader.h"
+#include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/heightmap/MaxPyramid.h"
 #include "microrelief/render/Camera.h"
@@ -101,23 +103,17 @@ private:
     const GL& gl_;
     std::filesystem::path shaderDir_;
     std::map<ReliefShaderConfig, ReliefShader> programs_;
-    gl::Texture pyramidTexture_;  // aligned max levels (maxmip)
-    gl::Texture windowTexture_;   // overlapping max levels (multilevel)
-    gl::Texture sampleTexture_;
-    gl::Buffer parameterBuffer_;  // MicroreliefParameters
+    std::optional<ReliefTextures> textures_;  // the map's; none yet
+    gl::Buffer parameterBuffer_;              // MicroreliefParameters
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;
     gl::Buffer boxIndices_;
     glm::dvec3 boxMin_{0.0}, boxMax_{0.0};  // the proxy box drawn, object space
-    int mapWidth_ = 0, mapHeight_ = 0;      // 0: no map yet
-    int pyramidWidth_ = 0, pyramidHeight_ = 0, pyramidLevels_ = 0;
-    float maxHeight_ = 0.0f;
     float heightScale_ = 0.1f;
     int maxIterations_ = 0;
     MethodSettings method_;
     bool countFetches_ = false;
     BaseShape base_;
-    bool wrapsU_ = false;  // the addressing the map's pyramid was built with
     Interpolation interpolation_ = Interpolation::Bilinear;  // the surface it bounds
     ModelTransform model_;
     DepthConvention depth_;

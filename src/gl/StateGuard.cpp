@@ -19,6 +19,7 @@ StateGuard::StateGuard(const GL& gl) : gl_(gl) {
     depthTest_ = gl.IsEnabled(GL_DEPTH_TEST);
     depthClamp_ = gl.IsEnabled(GL_DEPTH_CLAMP);
     gl.GetIntegerv(GL_CULL_FACE_MODE, &cullFaceMode_);
+    gl.GetIntegerv(GL_FRONT_FACE, &frontFace_);
     gl.GetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
     gl.GetIntegerv(GL_VIEWPORT, viewport_);
 }
@@ -51,6 +52,7 @@ StateGuard::~StateGuard() {
     setEnabled(gl, GL_DEPTH_TEST, depthTest_);
     setEnabled(gl, GL_DEPTH_CLAMP, depthClamp_);
     gl.CullFace(static_cast<GLenum>(cullFaceMode_));
+    gl.FrontFace(static_cast<GLenum>(frontFace_));
     gl.DepthFunc(static_cast<GLenum>(depthFunc_));
     gl.Viewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
 }

@@ -41,7 +41,7 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
     stats_ = makeAttachment(gl_, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
     depth_ = gl::Renderbuffer::create(gl_);
     gl_.BindRenderbuffer(GL_RENDERBUFFER, depth_.id());
-    gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
 
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
@@ -64,16 +64,16 @@ void OffscreenTarget::bind() const {
     gl_.Viewport(0, 0, width_, height_);
 }
 
-void OffscreenTarget::clear(const glm::vec3& background) const {
+void OffscreenTarget::clear(const glm::vec3& background, float depth) const {
     bind();
     const gl::SrgbWrites srgb(gl_);  // the linear background, encoded by the GL
     const float color[4] = {background.r, background.g, background.b, 1.0f};
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    const float farDepth = 1.0f;
+
     gl_.ClearBufferfv(GL_COLOR, 0, color);
     gl_.ClearBufferfv(GL_COLOR, 1, zero);
     gl_.ClearBufferfv(GL_COLOR, 2, zero);
-    gl_.ClearBufferfv(GL_DEPTH, 0, &farDepth);
+    gl_.ClearBufferfv(GL_DEPTH, 0, &depth);
 }
 
 RenderedFrame OffscreenTarget::read() const {
@@ -86,6 +86,21 @@ RenderedFrame OffscreenTarget::read() const {
     frame.stats.resize(count);
     readInto(frame, 0, 0, width_, height_);
     return frame;
+}
+
+std::vector<float> OffscreenTarget::readDepth() const {
+    std::vector<float> depth(static_cast<std::size_t>(width_) * height_);
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    // Top row first, as the other outputs.
+    std::vector<float> flipped(depth.size());
+    for (int r = 0; r < height_; ++r) {
+        std::copy_n(depth.begin() + static_cast<std::ptrdiff_t>(r) * width_, width_,
+                    flipped.begin() + static_cast<std::ptrdiff_t>(height_ - 1 - r) * width_);
+    }
+    return flipped;
 }
 
 void OffscreenTarget::readInto(RenderedFrame& frame, int x, int y, int width, int height) const {

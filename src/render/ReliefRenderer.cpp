@@ -192,9 +192,12 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
         .bindHeights(textures_->samples())
         .bindWindowPyramid(textures_->windowPyramid());
 
-    // Depth clamping keeps faces nearer than the near plane (an eye close to the box).
+    // Depth clamping keeps faces nearer than the near plane (an eye close to the box). A
+    // model that mirrors (a negative determinant) turns the box's winding round.
+    const bool mirrored = glm::determinant(glm::dmat3(model_.objectToWorld())) < 0.0;
     gl_.Enable(GL_CULL_FACE);
-    gl_.CullFace(frontFaces ? GL_BACK : GL_FRONT);
+    gl_.FrontFace(GL_CCW);  // the box's outward faces wind counter-clockwise
+    gl_.CullFace(frontFaces != mirrored ? GL_BACK : GL_FRONT);
     gl_.Enable(GL_DEPTH_TEST);
     gl_.DepthFunc(depth_.reversed ? GL_GREATER : GL_LESS);
     gl_.Enable(GL_DEPTH_CLAMP);

@@ -25,7 +25,7 @@ private:
     GLint activeTexture_ = 0, textures_[kUnits] = {};
     GLint unpackAlignment_ = 4;
     GLboolean cullFace_ = GL_FALSE, depthTest_ = GL_FALSE, depthClamp_ = GL_FALSE;
-    GLint cullFaceMode_ = GL_BACK, depthFunc_ = GL_LESS;
+    GLint cullFaceMode_ = GL_BACK, frontFace_ = GL_CCW, depthFunc_ = GL_LESS;
     GLint viewport_[4] = {};
 };
 

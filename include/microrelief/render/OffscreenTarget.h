@@ -1,8 +1,11 @@
 // A framebuffer object with the outputs of relief.frag: the shaded picture (SRGB8_ALPHA8:
 // the shader's linear colour encoded by the GL while sRGB writes are on, gl::SrgbWrites),
-// the world position AOV and the traversal statistics (RGBA32F each), and a depth buffer. Reads
+// the world position AOV and the traversal statistics (RGBA32F each), and a 32-bit float
+// depth buffer (reversed-Z keeps its precision there). Reads
 // come back top row first, the orientation of every output image.
 #pragma once
+
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -19,9 +22,11 @@ public:
 
     void bind() const;
     // Clears the picture to `background` (linear RGB, encoded to sRGB by the GL), the AOV
-    // and statistics to 0 and depth to 1.
-    void clear(const glm::vec3& background) const;
+    // and statistics to 0 and depth to `depth` (1, the far end; 0 under reversed-Z).
+    void clear(const glm::vec3& background, float depth = 1.0f) const;
     RenderedFrame read() const;
+    // The depth buffer (32-bit float), window depths, top row first.
+    std::vector<float> readDepth() const;
     // The lower-left width x height pixels of this target into `frame` (a picture of its
     // own size, allocated by the caller), as the tile whose lower-left corner is at GL
     // window position (x, y) of that picture.

@@ -80,8 +80,9 @@ public:
     // the colour is linear, for an sRGB target with GL_FRAMEBUFFER_SRGB on. The same rays
     // whole or in tiles, so a picture drawn in tiles is the one drawn whole, pixel for
     // pixel. GL state: the draw sets what it needs (program, vertex array, the uniform
-    // buffer at binding 0, textures on units 0 to 2, face culling, the depth test and its
-    // function, depth clamping, the viewport) and restores each as it found it.
+    // buffer at binding 0, textures on units 0 to 2, face culling and winding, the depth test
+    // and its function, depth clamping, the viewport) and restores each as it found it
+    // (gl/StateGuard.h). The depth mask stays the caller's: with it off nothing is written.
     void draw(const CameraFrame& camera, const ShadingOptions& shading,
               const PictureTile& tile = {});
 

@@ -102,9 +102,11 @@ bool mr_entryFaceHit(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir,
 // the query's range [tMin, tMax]. When the ray comes in from outside through a side wall,
 // the bottom face or a cap at a point on or under the surface, fills `hit` with that entry
 // (the solid is hit right there; entering through the top face or the curved shell is a
-// question for the traversal). When the range starts inside the shell (an eye in the box,
-// a shadow ray from the surface) at a point in the solid, that point is the hit: the
-// closed solid holds it. Returns true when there is a segment left to trace: `start` is
+// question for the traversal). A range that starts inside the shell at a point in the
+// solid (an eye under the surface, a shadow ray started on it) is hit at that start: the
+// traversal finds it with no test of its own, the start lying under every bound and each
+// leaf solver reporting the first point of its stretch in the solid, its start included
+// (a GL test holds every base and last level to it). Returns true when there is a segment left to trace: `start` is
 // where the range enters the shell, and the ray goes on as start + t dir for t in
 // [0, span]; its parameter from the ray's origin is tStart + t. Working from the entry
 // keeps positions near the relief exact however far away the eye is. `floorExit`: the
@@ -121,15 +123,7 @@ bool mr_enterReliefShell(mr_Relief relief, mr_RayQuery query, sampler2D heights,
     span = tEnd - tStart;
     start = origin + tStart * dir;
     if (span < 0.0) return false;
-    if (mr_entryFaceHit(relief, heights, origin, dir, range.x, entryFace, query.tMin, hit)) return false;
-    if (tStart > range.x) {
-        vec3 m = mr_baseMapPoint(relief, start);
-        if (m.z <= mr_reliefHeight(relief, heights, m.xy, hit.fetches)) {
-            mr_setTopHitAt(hit, relief, heights, tStart, start);
-            return false;
-        }
-    }
-    return true;
+    return !mr_entryFaceHit(relief, heights, origin, dir, range.x, entryFace, query.tMin, hit);
 }
 
 // A hit at `t` (from `start`, as mr_measureFromEye will count it) as an any-hit query

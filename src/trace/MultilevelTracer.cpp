@@ -305,20 +305,6 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, const 
             return finish(makeHit(face, tNear, base_->faceNormal(span.entry, ray)));
         }
     }
-    if (tNear > span.tEnter) {
-        // The range starts inside the shell: at a point in the solid, that point is the hit.
-        const glm::dvec3 start = ray.at(tNear);
-        const glm::dvec3 m = base_->mapPoint(start);
-        stats.fetches += surfaceFetches;
-        if (m.z <= map_.surface(m.x, m.y, base_->wrapsU(), interpolation_)) {
-            const double offset = SurfacePatch::offset(interpolation_);
-            const SurfacePatch patch =
-                patchAt(static_cast<int>(std::floor(m.x - offset)),
-                        static_cast<int>(std::floor(m.y - offset)), stats.fetches);
-            return finish(makeHit(HitFace::Top, tNear, topNormal(patch, start)));
-        }
-    }
-
     // From the range's start on, as the shader works (relief_hit.glsl: mr_enterReliefShell).
     const FrameRay fromEntry{ray.at(tNear), ray.dir};
     const bool floorExit = span.floorExit && tFar == span.tExit;

@@ -42,7 +42,10 @@ install(FILES ${PROJECT_BINARY_DIR}/microreliefConfig.cmake
         DESTINATION ${MICRORELIEF_CMAKE_DIR})
 
 # pkg-config, one file per component (the archives are static, so each file's Requires
-# name what its archive needs at link time).
+# name what its archive needs at link time). The prefix is found from the file's own
+# place (${pcfiledir}), so an install moved elsewhere still works.
+file(RELATIVE_PATH MICRORELIEF_PC_TO_PREFIX "/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/")
+string(REGEX REPLACE "/$" "" MICRORELIEF_PC_TO_PREFIX "${MICRORELIEF_PC_TO_PREFIX}")
 foreach(component core io gl headless glfw)
   configure_file(${PROJECT_SOURCE_DIR}/cmake/pkgconfig/microrelief-${component}.pc.in
                  ${PROJECT_BINARY_DIR}/pkgconfig/microrelief-${component}.pc @ONLY)

@@ -28,8 +28,9 @@ public:
     // `bundleRoot` empty: #line markers for the compiler's messages (assembleShader); else
     // one readable file for engines without an include resolver (bundleShader): a comment
     // naming each spliced file by its path from the root, no markers.
-    explicit Assembler(ShaderSource& out, std::filesystem::path bundleRoot = {})
-        : out_(out), bundleRoot_(std::move(bundleRoot)) {}
+    explicit Assembler(ShaderSource& out, std::filesystem::path bundleRoot = {},
+                       std::vector<std::filesystem::path> includeDirs = {})
+        : out_(out), bundleRoot_(std::move(bundleRoot)), includeDirs_(std::move(includeDirs)) {}
 
     void splice(const std::filesystem::path& file, int depth) {
         if (depth > kMaxIncludeDepth)
@@ -47,10 +48,8 @@ public:
             if (!line.empty() && line.back() == '\r') line.pop_back();
             std::smatch match;
             if (std::regex_match(line, match, include)) {
-                const std::filesystem::path target =
-                    (file.parent_path() / match[1].str()).lexically_normal();
-                std::error_code ec;
-                if (!std::filesystem::exists(target, ec)) {
+                const std::filesystem::path target = resolve(file, match[1].str());
+                if (target.empty()) {
                     throwRuntime(file.string() + ":" + std::to_string(number) + ": #include \"" +
                                  match[1].str() + "\" not found");
                 }
@@ -71,6 +70,19 @@ public:
 private:
     bool bundling() const { return !bundleRoot_.empty(); }
 
+    // The including file's folder first, then the search folders, in order; empty when
+    // none holds `name`.
+    std::filesystem::path resolve(const std::filesystem::path& from, const std::string& name) const {
+        std::error_code ec;
+        const std::filesystem::path local = (from.parent_path() / name).lexically_normal();
+        if (std::filesystem::exists(local, ec)) return local;
+        for (const std::filesystem::path& dir : includeDirs_) {
+            const std::filesystem::path candidate = (dir / name).lexically_normal();
+            if (std::filesystem::exists(candidate, ec)) return candidate;
+        }
+        return {};
+    }
+
     void banner(const char* what, const std::filesystem::path& file) {
         out_.text += std::string("// ---- ") + what + " " +
                      file.lexically_relative(bundleRoot_).generic_string() + " ----\n";
@@ -86,26 +98,29 @@ private:
 
     ShaderSource& out_;
     std::filesystem::path bundleRoot_;
+    std::vector<std::filesystem::path> includeDirs_;
 };
 
 }  // namespace
 
 ShaderSource assembleShader(const std::filesystem::path& file, const std::string& version,
-                            const std::vector<ShaderDefine>& defines) {
+                            const std::vector<ShaderDefine>& defines,
+                            const std::vector<std::filesystem::path>& includeDirs) {
     ShaderSource source;
     source.version = version;
     source.text = "#version " + version + "\n";
     for (const ShaderDefine& d : defines)
         source.text += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
-    Assembler(source).splice(file.lexically_normal(), 0);
+    Assembler(source, {}, includeDirs).splice(file.lexically_normal(), 0);
     return source;
 }
 
-std::string bundleShader(const std::filesystem::path& file, const std::filesystem::path& root) {
+std::string bundleShader(const std::filesystem::path& file, const std::filesystem::path& root,
+                         const std::vector<std::filesystem::path>& includeDirs) {
     ShaderSource source;
     const std::filesystem::path start = file.lexically_normal();
     const std::filesystem::path base = root.empty() ? start.parent_path() : root.lexically_normal();
-    Assembler(source, base).splice(start, 0);
+    Assembler(source, base, includeDirs).splice(start, 0);
     return source.text;
 }
 

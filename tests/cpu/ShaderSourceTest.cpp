@@ -48,6 +48,29 @@ TEST(ShaderSource, NestedIncludesResolveAgainstTheIncludingFile) {
     EXPECT_NE(source.text.find("float b()"), std::string::npos);
 }
 
+// An engine's shader in its own folder reaches the library through a search folder; the
+// including file's own folder still comes first.
+TEST(ShaderSource, IncludesFallBackToTheSearchFoldersInOrder) {
+    test::ScratchDir dir;
+    writeText(dir / "library/microrelief/a.glsl", "float fromLibrary;\n");
+    writeText(dir / "other/microrelief/a.glsl", "float fromOther;\n");
+    writeText(dir / "engine/microrelief/local.glsl", "float local;\n");
+    writeText(dir / "engine/main.frag",
+              "#include \"microrelief/a.glsl\"\n#include \"microrelief/local.glsl\"\n");
+    const ShaderSource source =
+        assembleShader(dir / "engine/main.frag", "330 core", {}, {dir / "library", dir / "other"});
+    EXPECT_NE(source.text.find("float fromLibrary;"), std::string::npos);
+    EXPECT_EQ(source.text.find("float fromOther;"), std::string::npos);
+    EXPECT_NE(source.text.find("float local;"), std::string::npos);
+    EXPECT_THROW(assembleShader(dir / "engine/main.frag", "330 core"), Error);  // no search folder
+    // The bundle for engines without a resolver: no #line, each file between comments.
+    const std::string bundle =
+        bundleShader(dir / "engine/main.frag", dir / "engine", {dir / "library"});
+    EXPECT_EQ(bundle.find("#line"), std::string::npos);
+    EXPECT_NE(bundle.find("// ---- begin main.frag ----"), std::string::npos);
+    EXPECT_NE(bundle.find("float fromLibrary;"), std::string::npos);
+}
+
 TEST(ShaderSource, MissingIncludeNamesFileAndLine) {
     test::ScratchDir dir;
     writeText(dir / "main.frag", "\n\n#include \"nope.glsl\"\n");

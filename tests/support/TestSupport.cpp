@@ -1,5 +1,6 @@
 #include "TestSupport.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -113,6 +114,56 @@ std::string missingBackendMessage(Backend backend) {
                : "the " + name +
                      " backend is absent: failing (set MICRORELIEF_ALLOW_MISSING_GL=" + name +
                      " to skip its tests instead)";
+}
+
+Image readImage(const std::filesystem::path& file) {
+    Image image;
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) return image;
+    image.width = in->spec().width;
+    image.height = in->spec().height;
+    image.channels = in->spec().nchannels;
+    image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * image.channels);
+    in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.pixels.data());
+    return image;
+}
+
+Difference difference(const Image& a, const Image& b, int x0, int y0, int x1, int y1) {
+    Difference d;
+    double sum = 0.0;
+    for (int row = y0; row < y1; ++row) {
+        for (int column = x0; column < x1; ++column) {
+            for (int c = 0; c < 3; ++c) {
+                const int delta = std::abs(a.at(column, row, c) - b.at(column, row, c));
+                d.max = std::max(d.max, delta);
+                d.overOne += delta > 1;
+                sum += delta;
+            }
+        }
+    }
+    d.mean = sum / (3.0 * (x1 - x0) * (y1 - y0));
+    return d;
+}
+
+std::string keepForInspection(const std::string& folderName, const std::string& name,
+                              const Image& actual, const Image& expected) {
+    const std::filesystem::path folder = std::filesystem::current_path() / folderName;
+    std::filesystem::create_directories(folder);
+    Image diff = actual;
+    for (std::size_t k = 0; k < diff.pixels.size() && k < expected.pixels.size(); ++k) {
+        diff.pixels[k] = static_cast<std::uint8_t>(
+            std::min(255, 8 * std::abs(actual.pixels[k] - expected.pixels[k])));
+    }
+    for (const auto& [suffix, image] :
+         {std::pair{"actual", &actual}, {"expected", &expected}, {"diff", &diff}}) {
+        writeImageAtomically(folder / (name + "-" + suffix + ".png"), {image->width,
+                                                                       image->height,
+                                                                       image->channels,
+                                                                       PixelType::UInt8,
+                                                                       image->pixels.data(),
+                                                                       {}});
+    }
+    return (folder / (name + "-{actual,expected,diff}.png")).string();
 }
 
 }  // namespace microrelief::test

@@ -51,6 +51,32 @@ RunResult runCommand(const std::string& command, const std::filesystem::path& sc
 void expectOneLineFailure(const RunResult& r, const std::string& program, int status,
                           const std::string& mentions);
 
+// An 8-bit picture read back from a file (any format OpenImageIO reads), row 0 the top.
+struct Image {
+    int width = 0, height = 0, channels = 0;
+    std::vector<std::uint8_t> pixels;
+    std::uint8_t at(int column, int row, int channel) const {
+        return pixels[(static_cast<std::size_t>(row) * width + column) * channels + channel];
+    }
+};
+// Empty (width 0) when the file cannot be read.
+Image readImage(const std::filesystem::path& file);
+
+// Two pictures' RGB channels compared over the rectangle [x0, x1) x [y0, y1): the largest
+// difference, the mean, and how many channel values differ by more than one level.
+struct Difference {
+    int max = 0;
+    double mean = 0.0;
+    std::size_t overOne = 0;
+};
+Difference difference(const Image& a, const Image& b, int x0, int y0, int x1, int y1);
+
+// Actual, expected and their difference (amplified 8 times) written to
+// <current folder>/<folder>/<name>-{actual,expected,diff}.png for a human to see; returns
+// that pattern for the failure message.
+std::string keepForInspection(const std::string& folder, const std::string& name,
+                              const Image& actual, const Image& expected);
+
 // Whether this run may go without a GL backend: MICRORELIEF_ALLOW_MISSING_GL lists the
 // ones that may be absent (comma-separated: egl, osmesa, or all). Unset (as in .ci/run),
 // a missing backend fails the suite instead of skipping every test that needs it, so a

@@ -36,67 +36,13 @@ constexpr double kMeanChannelDifference = 0.05;
 // glvnd's description of Mesa's EGL (Debian's libegl-mesa0).
 constexpr const char* kMesaEglVendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
 
-struct Image {
-    int width = 0, height = 0, channels = 0;
-    std::vector<std::uint8_t> pixels;
-    std::uint8_t at(int column, int row, int channel) const {
-        return pixels[(static_cast<std::size_t>(row) * width + column) * channels + channel];
-    }
-};
+using test::difference;
+using test::Difference;
+using test::Image;
+using test::readImage;
 
-Image readImage(const std::filesystem::path& file) {
-    Image image;
-    auto in = OIIO::ImageInput::open(file.string());
-    if (!in) return image;
-    image.width = in->spec().width;
-    image.height = in->spec().height;
-    image.channels = in->spec().nchannels;
-    image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * image.channels);
-    in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.pixels.data());
-    return image;
-}
-
-struct Difference {
-    int max = 0;
-    double mean = 0.0;
-};
-
-// Over the RGB channels of the rectangle [x0, x1) x [y0, y1).
-Difference difference(const Image& a, const Image& b, int x0, int y0, int x1, int y1) {
-    Difference d;
-    double sum = 0.0;
-    for (int row = y0; row < y1; ++row) {
-        for (int column = x0; column < x1; ++column) {
-            for (int c = 0; c < 3; ++c) {
-                const int delta = std::abs(a.at(column, row, c) - b.at(column, row, c));
-                d.max = std::max(d.max, delta);
-                sum += delta;
-            }
-        }
-    }
-    d.mean = sum / (3.0 * (x1 - x0) * (y1 - y0));
-    return d;
-}
-
-// Actual, expected and a diff (amplified 8 times) beside the test log, for a human to see.
 std::string keepForInspection(const std::string& name, const Image& actual, const Image& expected) {
-    const std::filesystem::path folder = std::filesystem::current_path() / "viewer-failures";
-    std::filesystem::create_directories(folder);
-    Image diff = actual;
-    for (std::size_t k = 0; k < diff.pixels.size(); ++k) {
-        diff.pixels[k] = static_cast<std::uint8_t>(
-            std::min(255, 8 * std::abs(actual.pixels[k] - expected.pixels[k])));
-    }
-    for (const auto& [suffix, image] :
-         {std::pair{"actual", &actual}, {"expected", &expected}, {"diff", &diff}}) {
-        writeImageAtomically(folder / (name + "-" + suffix + ".png"), {image->width,
-                                                                       image->height,
-                                                                       image->channels,
-                                                                       PixelType::UInt8,
-                                                                       image->pixels.data(),
-                                                                       {}});
-    }
-    return (folder / (name + "-{actual,expected,diff}.png")).string();
+    return test::keepForInspection("viewer-failures", name, actual, expected);
 }
 
 struct RunResult {

@@ -22,18 +22,22 @@ struct ShaderDefine {
 };
 
 // Reads `file`, resolving each `#include "relative/path"` against the including file's
-// folder (each file spliced once per include; the files' own include guards make
-// repeats empty). Throws Error(Runtime) naming the file for a missing include or an
-// include cycle.
+// folder, then against each of `includeDirs` in order (an engine's shader in its own
+// folder includes "microrelief/multilevel_trace.glsl" with the library's shader folder,
+// microrelief_SHADER_DIR, here). Each file is spliced once, however often it is included
+// (the library's include guards would make repeats empty anyway). Throws Error(Runtime)
+// naming the file and line for a missing include, or for an include cycle.
 ShaderSource assembleShader(const std::filesystem::path& file, const std::string& version,
-                            const std::vector<ShaderDefine>& defines = {});
+                            const std::vector<ShaderDefine>& defines = {},
+                            const std::vector<std::filesystem::path>& includeDirs = {});
 
 // `file` with its includes spliced in the same way, as one text an engine without an
 // include resolver can paste after its own `#version` and option `#define`s: no #version,
 // no #line, each spliced file between "// ---- begin <path> ----" and "// ---- end ..."
 // comments, its path relative to `root` (default: the file's folder). The library's
 // single-file tracers (share/microrelief/shaders/single/) are made so at build time.
-std::string bundleShader(const std::filesystem::path& file, const std::filesystem::path& root = {});
+std::string bundleShader(const std::filesystem::path& file, const std::filesystem::path& root = {},
+                         const std::vector<std::filesystem::path>& includeDirs = {});
 
 // Rewrites the "<index>:<line>(<col>)" (Mesa) and "<index>(<line>)" (NVIDIA, glslang
 // "ERROR: <index>:<line>:") prefixes of a compiler log into "<file>:<line>".

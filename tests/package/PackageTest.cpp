@@ -1,0 +1,148 @@
+// The installed package, used the way an engine uses it (issue 13): the build installed
+// into a scratch prefix; examples/headless configured with find_package(microrelief)
+// against it, built and run, its picture held to microrelief-render's for the same
+// camera; a program that links microrelief::core alone, built through find_package and
+// through pkg-config, run, and its binary checked to load no GL, EGL, OpenImageIO or
+// GLFW library. One scratch install serves every test (it takes a while).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "TestSupport.h"
+#include "microrelief/Version.h"
+
+using namespace microrelief;
+
+namespace {
+
+const std::string kCmake = MICRORELIEF_CMAKE_COMMAND;
+const std::string kGenerator = MICRORELIEF_CMAKE_GENERATOR;
+const std::filesystem::path kBuild = MICRORELIEF_BUILD_DIR;
+const std::filesystem::path kSource = MICRORELIEF_SOURCE_DIR;
+
+std::string quote(const std::filesystem::path& path) {
+    return "'" + path.string() + "'";
+}
+
+class Package : public ::testing::Test {
+protected:
+    // Installed once for the suite.
+    static void SetUpTestSuite() {
+        scratch_ = std::make_unique<test::ScratchDir>();
+        const test::RunResult r = test::runCommand(
+            kCmake + " --install " + quote(kBuild) + " --prefix " + quote(prefix()),
+            *scratch_ / "");
+        installed_ = r.status == 0;
+        installLog_ = r.out + r.err;
+    }
+    static void TearDownTestSuite() { scratch_.reset(); }
+
+    void SetUp() override { ASSERT_TRUE(installed_) << "cmake --install failed:\n" << installLog_; }
+
+    static std::filesystem::path prefix() { return *scratch_ / "prefix"; }
+
+    // Configures and builds the CMake project in `source` against the install; its build
+    // folder.
+    static std::filesystem::path buildAgainstInstall(const std::filesystem::path& source,
+                                                     const std::string& name) {
+        const std::filesystem::path build = *scratch_ / name;
+        const test::RunResult configure = test::runCommand(
+            kCmake + " -S " + quote(source) + " -B " + quote(build) + " -G '" + kGenerator +
+                "' -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" + quote(prefix()),
+            *scratch_ / "");
+        EXPECT_EQ(configure.status, 0) << configure.out << configure.err;
+        const test::RunResult compile =
+            test::runCommand(kCmake + " --build " + quote(build), *scratch_ / "");
+        EXPECT_EQ(compile.status, 0) << compile.out << compile.err;
+        return build;
+    }
+
+    static std::unique_ptr<test::ScratchDir> scratch_;
+    static bool installed_;
+    static std::string installLog_;
+};
+
+std::unique_ptr<test::ScratchDir> Package::scratch_;
+bool Package::installed_ = false;
+std::string Package::installLog_;
+
+// The example's own shader traces with the library and shades as microrelief-render
+// does, through the same camera: the same float rays, the same library code, the same
+// hits. They differ in how the numbers reach the shader (uniforms, a uniform block) and in
+// the proxy (a full-screen triangle, the box), so the colours may differ by rounding: at
+// most one level in any channel for 0.1 % of channel values (a level is 1/255), a mean
+// below 0.02 levels, and nothing beyond 2 levels. A hit that turned into a miss would be
+// tens of levels off.
+TEST_F(Package, ExampleBuiltAgainstTheInstallRendersWhatTheRendererRenders) {
+    const std::filesystem::path build =
+        buildAgainstInstall(kSource / "examples" / "headless", "example");
+    struct View {
+        const char* name;
+        std::string camera;
+    };
+    for (const View& v :
+         {View{"default", "--size 320x180"},
+          View{"close", "--eye 0.3,0.18,0.32 --target 0,0,0 --fovy 50 --size 200x150"}}) {
+        const std::filesystem::path example = *scratch_ / (std::string(v.name) + "-example.png");
+        const std::filesystem::path render = *scratch_ / (std::string(v.name) + "-render.png");
+        const test::RunResult a = test::runCommand(
+            quote(build / "relief-headless") + " " + v.camera + " --out " + quote(example),
+            *scratch_ / "");
+        ASSERT_EQ(a.status, 0) << a.out << a.err;
+        const test::RunResult b = test::runCommand(
+            quote(MICRORELIEF_RENDER_EXE) + " -q " + v.camera + " --out " + quote(render),
+            *scratch_ / "");
+        ASSERT_EQ(b.status, 0) << b.out << b.err;
+        const test::Image actual = test::readImage(example), expected = test::readImage(render);
+        ASSERT_EQ(actual.width, expected.width);
+        ASSERT_EQ(actual.height, expected.height);
+        const test::Difference d =
+            test::difference(actual, expected, 0, 0, actual.width, actual.height);
+        const std::size_t values = 3u * actual.width * actual.height;
+        std::printf("    %s: max %d levels, mean %.4f, %zu of %zu values more than 1 apart\n",
+                    v.name, d.max, d.mean, d.overOne, values);
+        const bool ok = d.max <= 2 && d.mean < 0.02 && d.overOne * 1000 <= values;
+        EXPECT_TRUE(ok) << v.name << ": "
+                        << test::keepForInspection("package-failures", v.name, actual, expected);
+    }
+}
+
+// microrelief::core needs the C++ standard library and GLM only: a program that links it
+// alone loads no GL, EGL, OpenImageIO or GLFW library, however it is built.
+void expectCoreOnly(const test::RunResult& run, const test::RunResult& ldd) {
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    EXPECT_NE(run.out.find("hit at y = 0.0499"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("microrelief " MICRORELIEF_VERSION_STRING), std::string::npos)
+        << run.out;
+    ASSERT_EQ(ldd.status, 0) << ldd.err;
+    for (const char* library : {"libGL", "libEGL", "libOpenGL", "libOpenImageIO", "libglfw"})
+        EXPECT_EQ(ldd.out.find(library), std::string::npos) << library << " in\n" << ldd.out;
+    EXPECT_NE(ldd.out.find("libstdc++"), std::string::npos) << ldd.out;  // ldd did list it
+}
+
+TEST_F(Package, CoreAloneThroughFindPackageLinksNoGlOrImageLibrary) {
+    const std::filesystem::path build =
+        buildAgainstInstall(kSource / "tests" / "package" / "core_only", "core-only");
+    const std::filesystem::path program = build / "core-only";
+    expectCoreOnly(test::runCommand(quote(program), *scratch_ / ""),
+                   test::runCommand("ldd " + quote(program), *scratch_ / ""));
+}
+
+TEST_F(Package, CoreAloneThroughPkgConfig) {
+    const std::filesystem::path program = *scratch_ / "core-only-pc";
+    const std::string flags = "PKG_CONFIG_PATH=" + quote(prefix() / "lib" / "pkgconfig") + " " +
+                              MICRORELIEF_PKG_CONFIG + " --cflags --libs microrelief-core";
+    const test::RunResult compile =
+        test::runCommand(std::string(MICRORELIEF_CXX_COMPILER) + " -std=c++20 " +
+                             quote(kSource / "tests" / "package" / "core_only" / "main.cpp") +
+                             " -o " + quote(program) + " $(" + flags + ")",
+                         *scratch_ / "");
+    ASSERT_EQ(compile.status, 0) << compile.out << compile.err;
+    expectCoreOnly(test::runCommand(quote(program), *scratch_ / ""),
+                   test::runCommand("ldd " + quote(program), *scratch_ / ""));
+}
+
+}  // namespace

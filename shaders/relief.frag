@@ -9,6 +9,7 @@
 // 5 relief, 6 maxmip); MICRORELIEF_BASE (0 plane, 1 cylinder, 2 ellipsoid:
 // base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
 // writes texel reads to the statistics and keeps misses (so they are counted too);
+// MICRORELIEF_SHADOWS (0 none, 1 hard, 2 soft: shadow.glsl; the exact methods only);
 // MICRORELIEF_DEPTH_LAYOUT, what the depth written promises against the rasterised
 // proxy's (0 nothing, 1 greater or equal, 2 less or equal), which keeps early depth tests
 // where the GL has conservative depth (GL 4.2, ARB_conservative_depth).
@@ -40,8 +41,12 @@ layout(depth_less) out float gl_FragDepth;
 #ifndef MICRORELIEF_METHOD
 #define MICRORELIEF_METHOD 0
 #endif
+#ifndef MICRORELIEF_SHADOWS
+#define MICRORELIEF_SHADOWS 0
+#endif
 #include "microrelief/debug_views.glsl"
 #include "microrelief/shading.glsl"
+#include "microrelief/shadow.glsl"
 #include "relief_parameters.glsl"
 
 // The multilevel elevation map (max_pyramid.glsl), nearest mipmaps: the aligned levels
@@ -111,9 +116,38 @@ float windowDepth(vec3 p) {
     return depth;
 }
 
+// How much of the light reaches `hit` (world direction or vector `toLight`): 1 without
+// shadows; the hard shadow's 0 or 1, or the soft shadow's estimate (shadow.glsl), traced
+// by the multilevel method whichever exact method traced the picture. A shadow ray that
+// runs out of its budget marks the hit exhausted, as a primary ray would.
+float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bool pointLight) {
+#if MICRORELIEF_SHADOWS != 0 && (MICRORELIEF_METHOD == 0 || MICRORELIEF_METHOD == 6)
+    // The shadow ray in the frame: to a point light's frame position (t = 1 there), or
+    // along a direction for ever.
+    vec3 frameToLight = pointLight ? mr_baseFramePoint(relief, lightPosition.xyz) - hit.position
+                                   : mr_baseFrameVector(relief, toLight);
+    float tMaxLight = pointLight ? 1.0 : MR_T_INFINITY;
+#if MICRORELIEF_SHADOWS == 2
+    // Object-space angles: heights of the frame in object units, the ray's object length.
+    float heightToObject = heightScale;
+#if MICRORELIEF_BASE != 0
+    heightToObject *= (frameScale.x + frameScale.y + frameScale.z) / 3.0;
+#endif
+    return mr_softShadow(relief, windowPyramid, heightSamples, hit, frameToLight, tMaxLight, lightTanRadius,
+                         heightToObject, length(mat3(worldToObject) * toLight), hit.fetches, hit.exhausted);
+#else
+    return mr_hardShadow(relief, windowPyramid, heightSamples, hit, frameToLight, tMaxLight, hit.fetches,
+                         hit.exhausted);
+#endif
+#else
+    return 1.0;
+#endif
+}
+
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outPosition;  // world hit position, 1
 layout(location = 2) out vec4 outStats;     // iterations, fetches, stop level, exhausted
+layout(location = 3) out vec4 outShadow;    // how much of the light reaches the hit (1 lit)
 
 void main() {
     // Integer + 0.5 plus an integer: exact, so a tile's pixel casts the whole picture's ray.
@@ -141,6 +175,7 @@ void main() {
         // Never silent: a traversal cut short by the budget shows as magenta.
         outColor = vec4(1.0, 0.0, 1.0, 1.0);
         outPosition = vec4(0.0);
+        outShadow = vec4(0.0);
         gl_FragDepth = gl_FragCoord.z;
         return;
     }
@@ -149,6 +184,7 @@ void main() {
         // Keep the statistics of missed rays; the picture of this variant is not used.
         outColor = vec4(0.0);
         outPosition = vec4(0.0);
+        outShadow = vec4(0.0);
         gl_FragDepth = gl_FragCoord.z;
         return;
 #else
@@ -164,6 +200,22 @@ void main() {
     vec3 world = eye + hit.t * dir;  // on the ray exactly, without a round trip through map space
 #endif
     vec3 n = mr_reliefWorldNormal(relief, hit);
+    // Towards the light: a direction, or a point light's position from the hit (then the
+    // shadow ray ends at the light, t = 1).
+    bool pointLight = lightPosition.w > 0.5;
+    vec3 toLight = pointLight ? lightPosition.xyz - world : lightDirection;
+    float visibility = lightVisibility(relief, hit, toLight, pointLight);
+    outShadow = vec4(visibility, 0.0, 0.0, 1.0);
+#ifdef MICRORELIEF_COUNT_FETCHES
+    outStats.y = float(hit.fetches);  // the shadow ray's reads too
+#endif
+    if (hit.exhausted) {  // the shadow ray's budget ran out
+        outStats.w = 1.0;
+        outColor = vec4(1.0, 0.0, 1.0, 1.0);
+        outPosition = vec4(0.0);
+        gl_FragDepth = gl_FragCoord.z;
+        return;
+    }
     vec3 color;  // display RGB for the debug views
     if (debugView == MR_DEBUG_VIEW_ITERATIONS) {
         // Scaled to the cost of a few levels' worth of segments; saturates red beyond.
@@ -182,7 +234,7 @@ void main() {
     // target gives it back.
     mr_ReliefMaterial material = mr_ReliefMaterial(albedo, 0.25, 48.0);
     vec3 linear = debugView == MR_DEBUG_VIEW_SHADED
-                      ? mr_shadeRelief(material, n, lightDirection, normalize(-dir), vec3(1.0))
+                      ? mr_shadeRelief(material, n, normalize(toLight), normalize(-dir), vec3(visibility))
                       : mr_decodeSrgb(color);
     outColor = vec4(linear, 1.0);
     outPosition = vec4(world, 1.0);

@@ -34,4 +34,9 @@ layout(std140) uniform MicroreliefParameters {
     int methodRefineSteps;  // relief: binary search steps
     int depthZeroToOne;   // 1: clip-space depth in [0, 1] (glClipControl), 0: [-1, 1]
     int blockPadding;
+    vec4 lightPosition;   // xyz: a point light, world; w: 1 for it, 0 for lightDirection's
+    float lightTanRadius;  // soft shadows: tan of the light's angular radius
+    float lightPadding0;
+    float lightPadding1;
+    float lightPadding2;
 };

@@ -1,5 +1,7 @@
 #include "BatchRender.h"
 
+#include "Aov.h"
+
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -224,14 +226,8 @@ int runBatch(const RenderOptions& o) {
             const std::vector<std::uint8_t> rgb =
                 rgbFromRgba(pixels.color, pixels.width, pixels.height);
             batch.write(f.out, {pixels.width, pixels.height, 3, PixelType::UInt8, rgb.data(), {}});
-            if (f.aov) {
-                batch.write(*f.aov, {pixels.width,
-                                     pixels.height,
-                                     4,
-                                     PixelType::Float,
-                                     pixels.position.data(),
-                                     {"R", "G", "B", "A"}});
-            }
+            if (f.aov)
+                writeAov(batch, *f.aov, pixels, frame.scene.job.shading.shadows != ShadowMode::Off);
             batch.commit();
         } catch (const Error&) {
             progress.clear();

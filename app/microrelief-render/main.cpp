@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "Aov.h"
 #include "BatchRender.h"
 #include "Options.h"
 #include "microrelief/context/HeadlessContext.h"
@@ -82,14 +83,7 @@ int run(const RenderOptions& o) {
     ImageWriteBatch batch;
     const std::vector<std::uint8_t> rgb = rgbFromRgba(frame.color, frame.width, frame.height);
     batch.write(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
-    if (o.aov) {
-        batch.write(*o.aov, {frame.width,
-                             frame.height,
-                             4,
-                             PixelType::Float,
-                             frame.position.data(),
-                             {"R", "G", "B", "A"}});
-    }
+    if (o.aov) writeAov(batch, *o.aov, frame, o.job.shading.shadows != ShadowMode::Off);
     batch.commit();
 
     if (o.compareReference) printAccuracy(frame, result.camera, map, o.job);

@@ -18,9 +18,7 @@ namespace microrelief {
 
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
                                     std::size_t count, const std::string& what) {
-    const auto invalid = [&] {
-        throwBadInput(flag + " expects " + what + ", got '" + text + "'");
-    };
+    const auto invalid = [&] { throwBadInput(flag + " expects " + what + ", got '" + text + "'"); };
     std::vector<double> values;
     std::stringstream in(text);
     std::string part;
@@ -181,6 +179,15 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
 void SceneFlags::addShading(CLI::App& app) {
     app.add_option("--light", light_,
                    "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
+    app.add_option("--light-position", lightPosition_,
+                   "A point light at x,y,z (world) instead of the directional light");
+    app.add_option("--shadows", shadows_,
+                   "Self-shadows: off, hard (exact: a second trace towards the light) or soft (an "
+                   "estimate for a round light of --light-size); multilevel and maxmip")
+        ->capture_default_str();
+    app.add_option("--light-size", job_.shading.lightSizeDegrees,
+                   "Soft shadows: the light's angular diameter in degrees (the sun's is 0.53)")
+        ->capture_default_str();
     app.add_option(
            "--method", method_,
            "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
@@ -263,6 +270,18 @@ void SceneFlags::apply() {
         checkDirection("--light", light_, light);
         job_.shading.lightDirection = glm::vec3(light);
     }
+    if (!lightPosition_.empty()) {
+        if (!light_.empty()) throwBadInput("--light and --light-position are two lights: give one");
+        job_.shading.lightPosition = glm::vec3(parseVectorFlag("--light-position", lightPosition_));
+    }
+    job_.shading.shadows = parseShadowMode(shadows_);
+    if (job_.shading.shadows != ShadowMode::Off && !methodTracesTheSolid(job_.method.method)) {
+        throwBadInput(std::string("--shadows ") + shadowModeName(job_.shading.shadows) +
+                      " takes the exact methods, multilevel and maxmip (not --method " +
+                      methodName(job_.method.method) + ")");
+    }
+    if (!(job_.shading.lightSizeDegrees > 0.0f && job_.shading.lightSizeDegrees < 90.0f))
+        throwBadInput("--light-size must lie strictly between 0 and 90 degrees");
     // Any side here; checkPictureSize states the limits, sides and pixels, in one message.
     parseSizeFlag(size_, job_.width, job_.height, 1 << 30);
     checkPictureSize(job_.width, job_.height);
@@ -336,10 +355,20 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     flag("--size", std::to_string(job.width) + "x" + std::to_string(job.height));
     if (!job.model.isIdentity()) {
         std::string rows;
-        for (double value : job.model.rows()) rows += (rows.empty() ? "" : ",") + exactNumber(value);
+        for (double value : job.model.rows())
+            rows += (rows.empty() ? "" : ",") + exactNumber(value);
         line += " --model=" + rows;
     }
-    line += " --light=" + exactVector(job.shading.lightDirection);
+    if (job.shading.lightPosition) {
+        line += " --light-position=" + exactVector(*job.shading.lightPosition);
+    } else {
+        line += " --light=" + exactVector(job.shading.lightDirection);
+    }
+    if (job.shading.shadows != ShadowMode::Off) {
+        flag("--shadows", shadowModeName(job.shading.shadows));
+        if (job.shading.shadows == ShadowMode::Soft)
+            flag("--light-size", exactText(job.shading.lightSizeDegrees));
+    }
     flag("--method", methodName(job.method.method));
     const MethodSettings defaults;
     if (job.method.steps != defaults.steps) flag("--steps", std::to_string(job.method.steps));

@@ -39,7 +39,8 @@ public:
     // --height --channel --normalize --height-scale --interpolation --base --radius --length
     // --radii --eye --target --up --fovy --size --model
     void addMapAndCamera(CLI::App& app);
-    // --light --method --steps --pixel-error --view --background
+    // --light --light-position --shadows --light-size --method --steps --pixel-error --view
+    // --background
     void addShading(CLI::App& app);
 
     // After app.parse(): validates and fills the targets. Throws Error(BadInput) with a
@@ -51,6 +52,7 @@ private:
     HeightMapLoadOptions& load_;
     RenderJob& job_;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
+    std::string lightPosition_, shadows_ = "off";
     std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_;
     std::optional<double> radius_, length_;
 };

@@ -22,7 +22,8 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
         {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(config.method))},
         {"MICRORELIEF_BASE", std::to_string(static_cast<int>(config.base))},
         {"MICRORELIEF_INTERPOLATION", std::to_string(static_cast<int>(config.interpolation))},
-        {"MICRORELIEF_DEPTH_LAYOUT", std::to_string(static_cast<int>(config.depthLayout))}};
+        {"MICRORELIEF_DEPTH_LAYOUT", std::to_string(static_cast<int>(config.depthLayout))},
+        {"MICRORELIEF_SHADOWS", std::to_string(static_cast<int>(config.shadows))}};
     if (config.countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex = gl::compileShader(
         gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "relief_box.vert", version));

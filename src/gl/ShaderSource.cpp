@@ -72,7 +72,8 @@ private:
 
     // The including file's folder first, then the search folders, in order; empty when
     // none holds `name`.
-    std::filesystem::path resolve(const std::filesystem::path& from, const std::string& name) const {
+    std::filesystem::path resolve(const std::filesystem::path& from,
+                                  const std::string& name) const {
         std::error_code ec;
         const std::filesystem::path local = (from.parent_path() / name).lexically_normal();
         if (std::filesystem::exists(local, ec)) return local;

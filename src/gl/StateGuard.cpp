@@ -36,7 +36,11 @@ void setEnabled(const GL& gl, GLenum capability, GLboolean enabled) {
 
 StateGuard::~StateGuard() {
     const GL& gl = gl_;
-    gl.UseProgram(static_cast<GLuint>(program_));
+    // A program deleted while it was current lives on only while it stays current: once
+    // the draw replaced it, its name is gone and cannot be made current again.
+    gl.UseProgram(program_ != 0 && gl.IsProgram(static_cast<GLuint>(program_))
+                      ? static_cast<GLuint>(program_)
+                      : 0);
     gl.BindVertexArray(static_cast<GLuint>(vertexArray_));
     gl.BindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(arrayBuffer_));
     // Binding 0 first: glBindBufferBase also sets the generic binding, restored after it.

@@ -220,7 +220,8 @@ void ImageWriteBatch::write(const std::filesystem::path& file, const ImageData& 
                                                                   : OIIO::TypeDesc::UINT8;
     OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
     if (!image.channelNames.empty()) spec.channelnames = image.channelNames;
-    if (image.channels == 4) spec.alpha_channel = 3;
+    const bool namedAlpha = image.channelNames.size() > 3 && image.channelNames[3] == "A";
+    if (image.channels == 4 || namedAlpha) spec.alpha_channel = 3;
     const bool ok = output->open(temporary.string(), spec) &&
                     output->write_image(type, image.pixels) && output->close();
     if (!ok) {

@@ -103,6 +103,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         frame.color.resize(count);
         frame.position.resize(count);
         frame.stats.resize(count);
+        frame.shadow.resize(count / 4);
     } catch (const std::bad_alloc&) {
         throwRuntime("not enough memory for a " + std::to_string(job.width) + "x" +
                      std::to_string(job.height) + " picture (" +

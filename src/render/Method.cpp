@@ -7,6 +7,7 @@ namespace microrelief {
 namespace {
 constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level",
                                            "normal", "depth",      "position"};
+constexpr const char* kShadowModeNames[] = {"off", "hard", "soft"};
 constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep",
                                         "pom",        "relief", "maxmip"};
 
@@ -48,6 +49,14 @@ void checkMethodSupportsBase(Method method, const BaseShape& base) {
     if (methodRunsOnBase(method, base)) return;
     throwBadInput(std::string("--method ") + methodName(method) + " does not run on --base " +
                   baseName(base) + " (curved bases take multilevel, maxmip, pom and relief)");
+}
+
+ShadowMode parseShadowMode(const std::string& name) {
+    return parseName<ShadowMode>(kShadowModeNames, name, "--shadows");
+}
+
+const char* shadowModeName(ShadowMode mode) {
+    return kShadowModeNames[static_cast<int>(mode)];
 }
 
 DebugView parseDebugView(const std::string& name) {

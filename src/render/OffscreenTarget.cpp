@@ -39,6 +39,7 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
     color_ = makeAttachment(gl_, GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
     position_ = makeAttachment(gl_, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
     stats_ = makeAttachment(gl_, GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
+    shadow_ = makeAttachment(gl_, GL_R32F, GL_RED, GL_FLOAT, width, height);
     depth_ = gl::Renderbuffer::create(gl_);
     gl_.BindRenderbuffer(GL_RENDERBUFFER, depth_.id());
     gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
@@ -48,9 +49,11 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, position_.id(),
                              0);
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, stats_.id(), 0);
+    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_TEXTURE_2D, shadow_.id(), 0);
     gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    gl_.DrawBuffers(3, buffers);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                              GL_COLOR_ATTACHMENT3};
+    gl_.DrawBuffers(4, buffers);
     const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -73,6 +76,7 @@ void OffscreenTarget::clear(const glm::vec3& background, float depth) const {
     gl_.ClearBufferfv(GL_COLOR, 0, color);
     gl_.ClearBufferfv(GL_COLOR, 1, zero);
     gl_.ClearBufferfv(GL_COLOR, 2, zero);
+    gl_.ClearBufferfv(GL_COLOR, 3, zero);
     gl_.ClearBufferfv(GL_DEPTH, 0, &depth);
 }
 
@@ -84,6 +88,7 @@ RenderedFrame OffscreenTarget::read() const {
     frame.color.resize(count);
     frame.position.resize(count);
     frame.stats.resize(count);
+    frame.shadow.resize(count / 4);
     readInto(frame, 0, 0, width_, height_);
     return frame;
 }
@@ -105,7 +110,7 @@ std::vector<float> OffscreenTarget::readDepth() const {
 
 void OffscreenTarget::readInto(RenderedFrame& frame, int x, int y, int width, int height) const {
     std::vector<std::uint8_t> color(static_cast<std::size_t>(width) * height * 4);
-    std::vector<float> position(color.size()), stats(color.size());
+    std::vector<float> position(color.size()), stats(color.size()), shadow(color.size() / 4);
     gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -114,6 +119,8 @@ void OffscreenTarget::readInto(RenderedFrame& frame, int x, int y, int width, in
     gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, position.data());
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT2);
     gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, stats.data());
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT3);
+    gl_.ReadPixels(0, 0, width, height, GL_RED, GL_FLOAT, shadow.data());
     gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     // GL's row 0 is the bottom of the picture; ours is the top: tile row r is GL row
     // y + r of the picture, its row frame.height - 1 - (y + r).
@@ -125,6 +132,7 @@ void OffscreenTarget::readInto(RenderedFrame& frame, int x, int y, int width, in
         std::copy_n(color.begin() + from, rowValues, frame.color.begin() + to);
         std::copy_n(position.begin() + from, rowValues, frame.position.begin() + to);
         std::copy_n(stats.begin() + from, rowValues, frame.stats.begin() + to);
+        std::copy_n(shadow.begin() + from / 4, width, frame.shadow.begin() + to / 4);
     }
 }
 

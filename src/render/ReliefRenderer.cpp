@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -25,13 +26,19 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
 
 ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
                                              BaseKind base, Interpolation interpolation,
-                                             bool frontFaces) const {
+                                             bool frontFaces, ShadowMode shadows) const {
     // A front face lies on the ray before its hit, a back face after it: the depth written
     // is at least the face's (front) or at most (back) under a standard depth test, the
     // other way round under reversed-Z.
     const bool greater = frontFaces != depth_.reversed;
-    return {settings.method, base, interpolation, countFetches,
-            greater ? DepthLayout::Greater : DepthLayout::Less};
+    // Shadows are the exact methods' (a second trace through the multilevel tracer).
+    if (!methodTracesTheSolid(settings.method)) shadows = ShadowMode::Off;
+    return {settings.method,
+            base,
+            interpolation,
+            countFetches,
+            greater ? DepthLayout::Greater : DepthLayout::Less,
+            shadows};
 }
 
 void ReliefRenderer::reloadShaders() {
@@ -157,6 +164,9 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.pyramidLevels = shape.levelCount;
     p.maxIterations = maxIterations_;
     p.lightDirection = glm::normalize(shading.lightDirection);
+    if (shading.lightPosition) p.lightPosition = glm::vec4(*shading.lightPosition, 1.0f);
+    p.lightTanRadius = static_cast<float>(
+        std::tan(0.5 * glm::radians(static_cast<double>(shading.lightSizeDegrees))));
     p.debugView = static_cast<int>(shading.view);
     p.albedo = shading.albedo;
     p.methodSteps = method_.steps;
@@ -179,8 +189,8 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     // per pixel the box covers either way (it is convex), and the depth layout the
     // program promises holds for the faces drawn.
     const bool frontFaces = eyeOutsideBox(camera.eye);
-    ReliefShader& shader =
-        program(configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces));
+    ReliefShader& shader = program(
+        configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces, shading.shadows));
 
     const gl::StateGuard saved(gl_);
     const ReliefParameters values = parameters(camera, shading, t);

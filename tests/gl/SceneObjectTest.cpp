@@ -413,6 +413,11 @@ TEST_F(SceneObject, DrawLeavesTheGlStateAsItFoundIt) {
     int hits = 0;
     for (std::size_t k = 3; k < frame.position.size(); k += 4) hits += frame.position[k] > 0.5f;
     EXPECT_GT(hits, 100);
+    // The caller's objects die with this scope: leave none of them bound (a program
+    // deleted while current would outlive the test).
+    g.UseProgram(0);
+    g.BindVertexArray(0);
+    EXPECT_EQ(g.GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 // ReliefParameters (C++) and the MicroreliefParameters block the linker laid out (std140)

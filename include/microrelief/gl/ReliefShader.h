@@ -47,6 +47,7 @@ struct ReliefShaderConfig {
     Interpolation interpolation = Interpolation::Bilinear;
     bool countFetches = false;  // the instrumented variant: texel reads in the statistics
     DepthLayout depthLayout = DepthLayout::Any;
+    ShadowMode shadows = ShadowMode::Off;
 
     auto operator<=>(const ReliefShaderConfig&) const = default;
 };
@@ -84,8 +85,11 @@ struct ReliefParameters {
     int methodRefineSteps = 8;
     int depthZeroToOne = 0;
     int blockPadding = 0;
+    glm::vec4 lightPosition{0.0f};  // w: 1 for a point light
+    float lightTanRadius = 0.0f;
+    float lightPadding0 = 0.0f, lightPadding1 = 0.0f, lightPadding2 = 0.0f;
 };
-static_assert(sizeof(ReliefParameters) == 384, "std140 size of MicroreliefParameters");
+static_assert(sizeof(ReliefParameters) == 416, "std140 size of MicroreliefParameters");
 static_assert(offsetof(ReliefParameters, eye) == 192);
 static_assert(offsetof(ReliefParameters, reliefSize) == 336);
 static_assert(offsetof(ReliefParameters, methodMinSteps) == 368);

@@ -17,11 +17,11 @@ namespace microrelief {
 
 // The largest picture renderHeadless makes, refused up front beyond: sides up to 65536
 // and at most 16384 x 16384 pixels, which the frame holds in memory at
-// kFrameBytesPerPixel (colour, the position AOV and the statistics: 9.7 GiB at the
+// kFrameBytesPerPixel (colour, the position AOV, the statistics and the shadow: 10 GiB at the
 // limit). Larger than the GL's own limits, it is drawn in tiles of kDefaultTileSide.
 inline constexpr int kMaxPictureSide = 65536;
 inline constexpr long long kMaxPicturePixels = 16384LL * 16384;
-inline constexpr int kFrameBytesPerPixel = 4 + 16 + 16;
+inline constexpr int kFrameBytesPerPixel = 4 + 16 + 16 + 4;
 inline constexpr int kDefaultTileSide = 4096;
 
 struct RenderJob {

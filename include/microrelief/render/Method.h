@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -52,9 +53,21 @@ enum class DebugView { Shaded = 0, Iterations, Level, Normal, Depth, Position };
 DebugView parseDebugView(const std::string& name);
 const char* debugViewName(DebugView view);
 
+// Self-shadows (shadow.glsl): none; hard, exact (a second trace from each hit towards the
+// light); or soft, an estimate for a round light of some angular size.
+enum class ShadowMode { Off = 0, Hard = 1, Soft = 2 };
+
+// "off", "hard", "soft"; throws Error(BadInput) naming --shadows.
+ShadowMode parseShadowMode(const std::string& name);
+const char* shadowModeName(ShadowMode mode);
+
 struct ShadingOptions {
     glm::vec3 lightDirection =
-        glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards the light
+        glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards a directional light
+    // A point light at this world position instead (--light-position).
+    std::optional<glm::vec3> lightPosition;
+    ShadowMode shadows = ShadowMode::Off;
+    float lightSizeDegrees = 1.0f;  // soft shadows: the light's angular diameter
     glm::vec3 albedo{0.60f, 0.58f, 0.55f};
     DebugView view = DebugView::Shaded;
 };

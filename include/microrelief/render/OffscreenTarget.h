@@ -1,7 +1,8 @@
 // A framebuffer object with the outputs of relief.frag: the shaded picture (SRGB8_ALPHA8:
 // the shader's linear colour encoded by the GL while sRGB writes are on, gl::SrgbWrites),
-// the world position AOV and the traversal statistics (RGBA32F each), and a 32-bit float
-// depth buffer (reversed-Z keeps its precision there). Reads
+// the world position AOV and the traversal statistics (RGBA32F each), the light's share
+// at each hit (R32F: the shadow AOV), and a 32-bit float depth buffer (reversed-Z keeps
+// its precision there). Reads
 // come back top row first, the orientation of every output image.
 #pragma once
 
@@ -39,7 +40,7 @@ private:
     const GL& gl_;
     int width_, height_;
     gl::Framebuffer framebuffer_;
-    gl::Texture color_, position_, stats_;
+    gl::Texture color_, position_, stats_, shadow_;
     gl::Renderbuffer depth_;
 };
 

@@ -90,7 +90,8 @@ public:
 
 private:
     ReliefShaderConfig configFor(const MethodSettings& settings, bool countFetches, BaseKind base,
-                                 Interpolation interpolation, bool frontFaces) const;
+                                 Interpolation interpolation, bool frontFaces,
+                                 ShadowMode shadows = ShadowMode::Off) const;
     // The program for the configuration, compiled on first use; throws and changes
     // nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);

@@ -1,0 +1,140 @@
+// shadow.glsl: how much of a light reaches a hit on the relief, by a second trace from
+// the hit towards the light through the same tracer (mr_traceMultilevel, an any-hit query
+// over the ray's range to the light): hard shadows, exact; and soft ones, estimated from
+// the same pyramid for a light of some angular size.
+//
+// All in the base's frame (relief_map.glsl): the hit's position and normal as the tracer
+// reports them (mr_ReliefHit), the direction towards the light from mr_baseFrameVector.
+#ifndef MICRORELIEF_SHADOW_GLSL
+#define MICRORELIEF_SHADOW_GLSL
+
+#include "base_surface.glsl"
+#include "multilevel_trace.glsl"
+#include "relief_hit.glsl"
+#include "relief_map.glsl"
+#include "relief_query.glsl"
+
+// Where a shadow ray starts: the hit moved off the surface along its frame normal by 2^-8
+// of a texel (the plane's frame is map space, where a texel is 1; a curved base's texel is
+// 2 pi / W around its unit radius). A point on the surface is in the closed solid, so a
+// ray started there would meet its own surface at once; the hit's position in the frame is
+// exact to a few ulp of the map's size (2^-11 texel at 4096 texels, less below), and the
+// surface under a moved point moves with its slope, so 2^-8 clears both on any slope up to
+// a few map units per texel. An occluder thinner than that offset, right at the hit, is
+// the only thing the ray could step over; the side facing away from the light never
+// reaches this far (mr_hardShadow).
+float mr_shadowOffset(mr_Relief relief) {
+#if MICRORELIEF_BASE == 0
+    return 1.0 / 256.0;
+#else
+    return 6.28318531 / relief.map.size.x / 256.0;
+#endif
+}
+
+vec3 mr_shadowRayStart(mr_Relief relief, mr_ReliefHit hit) {
+    return hit.position + mr_shadowOffset(relief) * normalize(hit.normal);
+}
+
+// 1 where the light reaches `hit` (its frame position and normal), 0 where the relief
+// blocks it: a surface facing away from the light (its frame normal against `toLight`)
+// is in its own shadow; else an any-hit trace from mr_shadowRayStart along `toLight`,
+// t in [0, tMax] (the light at tMax; a directional light at MR_T_INFINITY). `exhausted`
+// is set when the shadow ray runs out of its budget (reported, as a primary ray's is).
+float mr_hardShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_ReliefHit hit, vec3 toLight,
+                    float tMax, inout int fetches, inout bool exhausted) {
+    if (dot(hit.normal, toLight) <= 0.0) return 0.0;
+    mr_ReliefHit blocker = mr_traceMultilevel(relief, mr_anyHitQuery(relief.map, 0.0, tMax), windows, heights,
+                                              mr_shadowRayStart(relief, hit), toLight);
+    fetches += blocker.fetches;
+    exhausted = exhausted || blocker.exhausted;
+    return blocker.kind == MR_RELIEF_MISS ? 1.0 : 0.0;
+}
+
+// The fraction of a disk of unit radius above the line y = -x (x clamped to [-1, 1]): the
+// part of a round light left visible by a straight occluding edge x radii below its centre.
+float mr_diskAbove(float x) {
+    x = clamp(x, -1.0, 1.0);
+    return (acos(-x) + x * sqrt(1.0 - x * x)) / 3.14159265;
+}
+
+// A soft shadow: an estimate of the fraction of a round light of angular radius atan(tanRadius)
+// that reaches `hit`. It approximates the light as seen past a single straight occluding
+// edge: the smallest angle m by which the shadow ray (towards the light's centre) clears
+// the surface below it, over its whole length, the occluder's edge m below the light's
+// centre, and the visible fraction that of a disk cut by a straight line there
+// (mr_diskAbove(m / radius)). It takes in what lies under the central ray (a horizon along
+// the light's azimuth), not the occluders beside it; the angles are object-space heights
+// over distances (`heightToObject`: object units per map unit of height; `objectPerT`: the
+// object length of the ray's direction).
+//
+// The walk is the multilevel traversal's (multilevel_trace.glsl), with the penumbra cone
+// for a hit: a segment whose lowest point clears the pyramid's bound by more than the
+// light's radius at its distance cannot change the result and is discarded; a leaf is
+// measured at five points and solved exactly (mr_baseIntersectLeaf), so that a blocked
+// ray always counts as below the surface. As the radius goes to 0 every lit point sees the
+// whole light and every blocked one none: the hard shadow (a GL test holds it to that).
+float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_ReliefHit hit, vec3 toLight,
+                    float tMax, float tanRadius, float heightToObject, float objectPerT, inout int fetches,
+                    inout bool exhausted) {
+    if (dot(hit.normal, toLight) <= 0.0) return 0.0;
+    mr_RayQuery query = mr_anyHitQuery(relief.map, 0.0, tMax);
+    mr_ReliefHit entry = mr_reliefMissHit();
+    vec3 start;
+    float tStart, span;
+    bool floorExit;
+    vec3 from = mr_shadowRayStart(relief, hit);
+    if (!mr_enterReliefShell(relief, query, heights, from, toLight, entry, start, tStart, span, floorExit)) {
+        return entry.kind == MR_RELIEF_MISS ? 1.0 : 0.0;  // out of the shell at once, or in through a wall
+    }
+    const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
+    float margin = 3.4e38;  // the smallest clearance angle found so far (tangent)
+    int depth = 0;
+    uint index = 0u;
+    float parentBound = MR_NO_BOUND;
+    for (int iteration = 0; iteration < query.maxIterations; ++iteration) {
+        if (margin <= -tanRadius) return 0.0;  // the whole light is behind the surface
+        int shift = MICRORELIEF_MAX_DEPTH - depth;
+        float ta = span * (float(index << shift) * kUnit);
+        float tb = span * (float((index + 1u) << shift) * kUnit);
+        mr_BaseFootprint footprint = mr_baseFootprintOf(relief, start, toLight, ta, tb,
+                                                        mr_baseEnd(relief, start + ta * toLight),
+                                                        mr_baseEnd(relief, start + tb * toLight));
+        int level;
+        float bound = min(parentBound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level, fetches));
+        // The clearance over this segment is at least (lowest - bound) over the distance
+        // (the far end's when that is positive, the near end's when not).
+        float clear = footprint.lowest - bound;
+        float near = max(tStart + ta, 1e-30) * objectPerT, far = (tStart + tb) * objectPerT;
+        float lowestAngle = clear * heightToObject / (clear >= 0.0 ? far : near);
+        bool matters = lowestAngle < tanRadius;
+        vec2 extents = footprint.hi - footprint.lo;
+        if (matters && max(extents.x, extents.y) > float(MICRORELIEF_LEAF_TEXELS) && depth < MICRORELIEF_MAX_DEPTH) {
+            depth += 1;
+            index *= 2u;
+            parentBound = bound;
+            continue;
+        }
+        if (matters) {
+            // A leaf: measured at five points, and solved exactly for a hit.
+            for (int k = 0; k <= 4; ++k) {
+                float t = mix(ta, tb, 0.25 * float(k));
+                vec3 m = mr_baseMapPoint(relief, start + t * toLight);
+                float gap = m.z - mr_reliefHeight(relief, heights, m.xy, fetches);
+                margin = min(margin, gap * heightToObject / max((tStart + t) * objectPerT, 1e-30));
+            }
+            mr_ReliefPatch corners;
+            ivec2 cell;
+            if (mr_baseIntersectLeaf(relief, heights, start, toLight, ta, tb, fetches, corners, cell) >= 0.0) {
+                margin = min(margin, -1e-3 * tanRadius);  // blocked: below the surface somewhere
+            }
+        }
+        if (!mr_nextSegment(depth, index, parentBound, false)) {
+            if (floorExit) margin = min(margin, -1e-3 * tanRadius);  // down through the floor
+            return mr_diskAbove(margin / tanRadius);
+        }
+    }
+    exhausted = true;
+    return mr_diskAbove(margin / tanRadius);
+}
+
+#endif

@@ -10,6 +10,7 @@
 // base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
 // writes texel reads to the statistics and keeps misses (so they are counted too);
 // MICRORELIEF_SHADOWS (0 none, 1 hard, 2 soft: shadow.glsl; the exact methods only);
+// MICRORELIEF_ALBEDO_MAP (1: the surface's colour from the albedo texture);
 // MICRORELIEF_DEPTH_LAYOUT, what the depth written promises against the rasterised
 // proxy's (0 nothing, 1 greater or equal, 2 less or equal), which keeps early depth tests
 // where the GL has conservative depth (GL 4.2, ARB_conservative_depth).
@@ -55,6 +56,56 @@ layout(depth_less) out float gl_FragDepth;
 uniform sampler2D maxPyramid;
 uniform sampler2D windowPyramid;
 uniform sampler2D heightSamples;
+uniform sampler2D albedoMap;  // unit 3: the surface's colour over (u, v), mipmapped
+
+#ifndef MICRORELIEF_ALBEDO_MAP
+#define MICRORELIEF_ALBEDO_MAP 0
+#endif
+
+// A world displacement `delta` at frame point q as a displacement of the map point (X, Y):
+// linear on the plane; on a curved base the difference of the two ends' map points (delta
+// is a pixel's footprint, small), X taken the short way round the seam.
+vec2 mapDelta(mr_Relief relief, vec3 q, vec3 delta) {
+    vec3 dq = mr_baseFrameVector(relief, delta);
+#if MICRORELIEF_BASE == 0
+    return dq.xy;
+#else
+    vec2 d = mr_baseMapPoint(relief, q + dq).xy - mr_baseMapPoint(relief, q).xy;
+    d.x -= relief.map.size.x * floor(d.x / relief.map.size.x + 0.5);
+    return d;
+#endif
+}
+
+// The surface's colour at the hit: the albedo texture at the hit's (u, v), filtered over
+// the pixel's footprint there. The footprint comes from ray differentials (Igehy, "Tracing
+// Ray Differentials", SIGGRAPH 1999): one pixel's step of the ray direction, dD, moves the
+// hit on its tangent plane by t (dD - (n . dD) / (n . D) D); mapped to (u, v), the two
+// steps are textureGrad's derivatives, from which the GL picks the level and, where it
+// can, filters anisotropically along the longer one.
+vec3 surfaceAlbedo(mr_Relief relief, mr_ReliefHit hit, vec3 dir, vec3 n) {
+#if MICRORELIEF_ALBEDO_MAP
+    vec3 m = mr_baseMapPoint(relief, hit.position);
+    vec2 uv = m.xy / relief.map.size;
+    vec2 halfTexel = 0.5 / vec2(textureSize(albedoMap, 0));
+#if MICRORELIEF_BASE == 0
+    uv = clamp(uv, halfTexel, 1.0 - halfTexel);  // the map's edges clamp (the texture repeats)
+#else
+    uv.y = clamp(uv.y, halfTexel.y, 1.0 - halfTexel.y);  // u wraps round the base
+#endif
+    if (albedoFinest != 0) return textureLod(albedoMap, uv, 0.0).rgb;
+    vec2 pixel = 2.0 / viewportSize;
+    vec3 dDx = cameraRight * pixel.x, dDy = cameraUp * pixel.y;
+    float nd = dot(n, dir);
+    nd = abs(nd) < 1e-8 ? (nd < 0.0 ? -1e-8 : 1e-8) : nd;
+    vec3 dPx = hit.t * (dDx - dot(n, dDx) / nd * dir);
+    vec3 dPy = hit.t * (dDy - dot(n, dDy) / nd * dir);
+    vec2 gx = mapDelta(relief, hit.position, dPx) / relief.map.size;
+    vec2 gy = mapDelta(relief, hit.position, dPy) / relief.map.size;
+    return textureGrad(albedoMap, uv, gx, gy).rgb;
+#else
+    return albedo;
+#endif
+}
 
 mr_ReliefHit traceInFrame(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
 #if MICRORELIEF_METHOD == 1
@@ -232,7 +283,7 @@ void main() {
     }
     // The output is linear: a debug view's display colour is decoded, so that the sRGB
     // target gives it back.
-    mr_ReliefMaterial material = mr_ReliefMaterial(albedo, 0.25, 48.0);
+    mr_ReliefMaterial material = mr_ReliefMaterial(surfaceAlbedo(relief, hit, dir, n), 0.25, 48.0);
     vec3 linear = debugView == MR_DEBUG_VIEW_SHADED
                       ? mr_shadeRelief(material, n, normalize(toLight), normalize(-dir), vec3(visibility))
                       : mr_decodeSrgb(color);

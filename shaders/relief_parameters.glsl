@@ -36,7 +36,7 @@ layout(std140) uniform MicroreliefParameters {
     int blockPadding;
     vec4 lightPosition;   // xyz: a point light, world; w: 1 for it, 0 for lightDirection's
     float lightTanRadius;  // soft shadows: tan of the light's angular radius
-    float lightPadding0;
-    float lightPadding1;
-    float lightPadding2;
+    int albedoFinest;     // 1: the albedo's finest level only (no filtering; tests compare)
+    float blockPadding1;
+    float blockPadding2;
 };

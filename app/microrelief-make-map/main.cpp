@@ -1,6 +1,8 @@
 // microrelief-make-map: writes one of the procedural height maps of synth/ as a 16-bit
-// PNG (or any format by extension). The bundled assets/cobbles.png is
-//   microrelief-make-map cobbles --size 256x256 --out assets/cobbles.png
+// PNG (or any format by extension), and for cobbles and planet a matching albedo. The
+// bundled assets/cobbles.png and assets/cobbles-albedo.png are
+//   microrelief-make-map cobbles --size 256x256 --out assets/cobbles.png \
+//       --albedo assets/cobbles-albedo.png
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -11,14 +13,37 @@
 
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/image/AlbedoFile.h"
 #include "microrelief/image/ImageFile.h"
 #include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 
+namespace {
+
+// 8-bit sRGB for the integer formats, linear float for OpenEXR.
+void writeAlbedo(const std::filesystem::path& file, const AlbedoImage& albedo) {
+    const std::size_t pixels = static_cast<std::size_t>(albedo.width) * albedo.height;
+    if (file.extension() == ".exr") {
+        writeImageAtomically(file, {albedo.width, albedo.height, 4, PixelType::Float,
+                                    albedo.linear.data(), {"R", "G", "B", "A"}});
+        return;
+    }
+    std::vector<std::uint8_t> rgb(pixels * 3);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        for (int c = 0; c < 3; ++c) {
+            rgb[3 * p + c] = static_cast<std::uint8_t>(
+                std::lround(linearToSrgb(albedo.linear[4 * p + c]) * 255.0f));
+        }
+    }
+    writeImageAtomically(file, {albedo.width, albedo.height, 3, PixelType::UInt8, rgb.data(), {}});
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     CLI::App app{"Writes a procedural height map.", "microrelief-make-map"};
-    std::string name = "cobbles", size = "256x256", out;
+    std::string name = "cobbles", size = "256x256", out, albedoOut, albedoSize;
     std::uint32_t seed = 1;
     std::string known;
     for (const std::string& n : synth::names()) known += (known.empty() ? "" : ", ") + n;
@@ -26,6 +51,10 @@ int main(int argc, char** argv) {
     app.add_option("--size", size, "WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--seed", seed, "Random seed")->capture_default_str();
     app.add_option("--out", out, "Output image (16-bit for PNG/TIFF, float for EXR)")->required();
+    app.add_option("--albedo", albedoOut,
+                   "Also write the map's colour texture here (cobbles and planet; 8-bit sRGB for "
+                   "PNG, linear float for EXR)");
+    app.add_option("--albedo-size", albedoSize, "The albedo's WIDTHxHEIGHT (default: twice the map's)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -40,6 +69,14 @@ int main(int argc, char** argv) {
         parseSizeFlag(size, width, height, kMaxHeightMapSide,
                       "the largest height map microrelief loads");
         const HeightMap map = synth::byName(name, width, height, seed);
+        if (!albedoOut.empty()) {
+            int aw = 2 * width, ah = 2 * height;
+            if (!albedoSize.empty())
+                parseSizeFlag(albedoSize, aw, ah, kMaxAlbedoSide, "the largest albedo microrelief loads");
+            aw = std::min(aw, kMaxAlbedoSide);
+            ah = std::min(ah, kMaxAlbedoSide);
+            writeAlbedo(albedoOut, synth::albedo(name, aw, ah, width, height, seed));
+        }
         // Float for EXR; otherwise 16 bits, which PNG and TIFF store as they are.
         if (std::filesystem::path(out).extension() == ".exr") {
             writeImageAtomically(out,
@@ -53,7 +90,7 @@ int main(int argc, char** argv) {
             writeImageAtomically(out, {width, height, 1, PixelType::UInt16, words.data(), {"Y"}});
         }
         std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width << "x"
-                  << height << ")\n";
+                  << height << ")" << (albedoOut.empty() ? "" : " and " + albedoOut) << "\n";
         return 0;
     } catch (const Error& e) {
         std::cerr << "microrelief-make-map: error: " << e.what() << '\n';

@@ -18,6 +18,7 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
 #include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/image/AlbedoFile.h"
 #include "microrelief/image/ImageFile.h"
 
 namespace microrelief {
@@ -158,7 +159,7 @@ MapKey mapKey(const SceneOptions& scene) {
 
 int runBatch(const RenderOptions& o) {
     const auto start = Clock::now();
-    const SceneOptions base{o.heightFile, o.load, o.job};
+    const SceneOptions& base = o.scene;
     const std::vector<PathFrame> path = o.batch.cameras ? readCameraFile(*o.batch.cameras, base)
                                                         : turntablePath(base, o.batch.turntable);
     const Shard shard = o.batch.shard.value_or(Shard{});
@@ -182,6 +183,8 @@ int runBatch(const RenderOptions& o) {
     std::unique_ptr<GlContext> context;
     std::optional<HeadlessRenderer> renderer;
     std::optional<MapKey> loaded;
+    // The albedo file set on the renderer (itself optional: none); unset before the first.
+    std::optional<std::optional<std::filesystem::path>> loadedAlbedo;
     int rendered = 0, skipped = 0, mapsLoaded = 0;
 
     for (const FrameFiles& f : files) {
@@ -210,6 +213,17 @@ int runBatch(const RenderOptions& o) {
                                        frame.scene.job.interpolation);
                 loaded = key;
                 ++mapsLoaded;
+            }
+            if (const std::optional<std::filesystem::path> albedo = albedoPath(frame.scene);
+                albedo != loadedAlbedo) {
+                loadedAlbedo.reset();
+                if (albedo) {
+                    const AlbedoImage image = loadAlbedo(*albedo);
+                    renderer->setAlbedo(&image, albedo->string());
+                } else {
+                    renderer->setAlbedo(nullptr, "");
+                }
+                loadedAlbedo = albedo;
             }
             const HeadlessResult result = renderer->render(frame.scene.job);
             const RenderedFrame& pixels = result.frame;

@@ -45,7 +45,7 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
 
     // The map, camera and shading flags are shared with microrelief-viewer, whose "copy as
     // command" writes them for this program (app/shared/SceneOptions.h).
-    SceneFlags scene(o.heightFile, o.load, o.job);
+    SceneFlags scene(o.scene);
     std::string backend = "auto", aov;
     std::string out = o.out.string();
     scene.addMapAndCamera(app);

@@ -8,6 +8,7 @@
 
 #include "CommandLine.h"
 #include "FrameSelection.h"
+#include "SceneOptions.h"
 #include "microrelief/context/HeadlessContext.h"
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/HeadlessRender.h"
@@ -28,9 +29,7 @@ struct BatchOptions {
 };
 
 struct RenderOptions {
-    std::optional<std::filesystem::path> heightFile;  // empty: the bundled default map
-    HeightMapLoadOptions load;
-    RenderJob job;
+    SceneOptions scene;  // the map, its colours, the camera and the shading
     std::filesystem::path out = "out/microrelief.png";  // with a path: a FramePattern
     std::optional<std::filesystem::path> aov;
     BatchOptions batch;

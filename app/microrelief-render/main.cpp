@@ -14,6 +14,7 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
 #include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/image/AlbedoFile.h"
 #include "microrelief/image/ImageFile.h"
 #include "microrelief/trace/Accuracy.h"
 #include "microrelief/trace/ReferenceTracer.h"
@@ -28,7 +29,8 @@ constexpr const char* kProgram = "microrelief-render";
 void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
                    const RenderJob& job) {
     const Accuracy a = compareWithReference(
-        frame, camera, ReliefGeometry{&map, job.heightScale, job.base, job.interpolation, job.model});
+        frame, camera,
+        ReliefGeometry{&map, job.heightScale, job.base, job.interpolation, job.model});
     std::printf(
         "accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n",
         a.pixels, a.referenceHits);
@@ -49,8 +51,9 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
 void warnIfEyeInsideTheSolid(const HeightMap& map, const RenderJob& job,
                              const std::filesystem::path& heightFile) {
     const Camera& camera = job.camera;
-    const ReferenceHit hit = traceReference({&map, job.heightScale, job.base, job.interpolation, job.model},
-                                            Ray{camera.eye, camera.target - camera.eye});
+    const ReferenceHit hit =
+        traceReference({&map, job.heightScale, job.base, job.interpolation, job.model},
+                       Ray{camera.eye, camera.target - camera.eye});
     if (hit && hit.t == 0.0) {
         logWarning("--eye lies inside the relief's solid (under the surface of " +
                    heightFile.filename().string() +
@@ -66,15 +69,20 @@ int run(const RenderOptions& o) {
     }
     checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov}
                              : std::vector{o.out});
-    const std::filesystem::path heightFile = o.heightFile ? *o.heightFile : defaultHeightMapPath();
-    const HeightMap map = loadHeightMap(heightFile, o.load);
+    const std::filesystem::path heightFile =
+        o.scene.heightFile ? *o.scene.heightFile : defaultHeightMapPath();
+    const HeightMap map = loadHeightMap(heightFile, o.scene.load);
+    const std::optional<std::filesystem::path> albedoFile = albedoPath(o.scene);
+    const std::optional<AlbedoImage> albedo =
+        albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
 
     const auto context = createHeadlessContext(o.backend);
     if (o.verbose)
         logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
                 context->description());
-    const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.job);
-    warnIfEyeInsideTheSolid(map, o.job, heightFile);  // the camera checked by now
+    const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.scene.job,
+                                                 albedo ? &*albedo : nullptr);
+    warnIfEyeInsideTheSolid(map, o.scene.job, heightFile);  // the camera checked by now
     const RenderedFrame& frame = result.frame;
 
     std::size_t exhausted = 0;
@@ -83,10 +91,10 @@ int run(const RenderOptions& o) {
     ImageWriteBatch batch;
     const std::vector<std::uint8_t> rgb = rgbFromRgba(frame.color, frame.width, frame.height);
     batch.write(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
-    if (o.aov) writeAov(batch, *o.aov, frame, o.job.shading.shadows != ShadowMode::Off);
+    if (o.aov) writeAov(batch, *o.aov, frame, o.scene.job.shading.shadows != ShadowMode::Off);
     batch.commit();
 
-    if (o.compareReference) printAccuracy(frame, result.camera, map, o.job);
+    if (o.compareReference) printAccuracy(frame, result.camera, map, o.scene.job);
     if (exhausted > 0) {
         logWarning(std::to_string(exhausted) +
                    " pixel(s) ran out of the iteration budget (shown magenta)");

@@ -4,15 +4,18 @@
 #include <imgui.h>
 
 #include <algorithm>
+
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <glm/gtc/constants.hpp>
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
 #include "microrelief/gl/StateGuard.h"
 #include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/image/AlbedoFile.h"
 #include "microrelief/image/ImageFile.h"
 
 namespace microrelief {
@@ -59,6 +62,10 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     map_ = std::make_shared<const HeightMap>(loadHeightMap(file, options.scene.load));
     mapMaxHeight_ = map_->maxValue();  // once per map, not per frame
     loadedWith_ = options.scene.load;
+    // A bad albedo is a bad argument too: refused before any window opens.
+    const std::optional<std::filesystem::path> albedoFile = albedoPath(options.scene);
+    const std::optional<AlbedoImage> albedo =
+        albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
     // A degenerate camera is a bad argument: refuse it before any window opens.
     resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
                   sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
@@ -82,6 +89,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     picker_.setBase(options.scene.job.base);
     picker_.setInterpolation(options.scene.job.interpolation);
     picker_.setModel(options.scene.job.model);
+    if (albedo) renderer_->setAlbedo(&*albedo, albedoFile->string());
+    state_.albedoName = albedoFile ? albedoFile->filename().string() : "";
 
     if (state_.scene.heightFile)
         state_.scene.heightFile = std::filesystem::absolute(*state_.scene.heightFile);
@@ -280,7 +289,22 @@ void ViewerApp::handleMouse() {
     const bool panning = ImGui::IsMouseDown(ImGuiMouseButton_Right) ||
                          ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
                          (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift);
-    if (panning) {
+    const bool movingLight = ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
+                             glfwGetKey(window_->window(), GLFW_KEY_L) == GLFW_PRESS;
+    if (movingLight && (dx != 0.0 || dy != 0.0)) {
+        // L held: the drag turns the light about the vertical (across) and raises or
+        // lowers it (up and down), a quarter turn per 400 window units.
+        ShadingOptions& shading = state_.scene.job.shading;
+        const glm::dvec3 l = glm::normalize(glm::dvec3(shading.lightDirection));
+        const double azimuth = std::atan2(l.z, l.x) + dx * (glm::half_pi<double>() / 400.0);
+        const double elevation = std::clamp(
+            std::asin(std::clamp(l.y, -1.0, 1.0)) - dy * (glm::half_pi<double>() / 400.0),
+            glm::radians(0.5), glm::radians(89.5));
+        shading.lightDirection =
+            glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+                      std::cos(elevation) * std::sin(azimuth));
+        shading.lightPosition.reset();
+    } else if (panning) {
         // The picture's height in window units, which is what the mouse moves in.
         controller_.pan(dx, dy,
                         viewSize().y * viewRect().scale * io.DisplaySize.y / framebufferSize().y);
@@ -295,6 +319,7 @@ void ViewerApp::handleMouse() {
 void ViewerApp::applyPanel(const PanelActions& a) {
     if (a.openMap) openMap(*a.openMap);
     if (a.reloadMap) openMap(state_.scene.heightFile);
+    if (a.albedoChanged) applyAlbedo();
     if (a.heightScaleChanged) {
         renderer_->setHeightScale(state_.scene.job.heightScale);
         picker_.setHeightScale(state_.scene.job.heightScale);
@@ -424,10 +449,30 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     state_.mapHeight = map_->height;
     state_.mapError.clear();
     state_.iterationBudget = renderer_->maxIterations();
+    applyAlbedo();  // the bundled map's colours come and go with it
     ++mapGeneration_;
     glfwSetWindowTitle(window_->window(), ("microrelief-viewer: " + state_.mapName).c_str());
     note("opened " + path.string() + " (" + std::to_string(map_->width) + "x" +
          std::to_string(map_->height) + ")");
+}
+
+void ViewerApp::applyAlbedo() {
+    const std::optional<std::filesystem::path> file = albedoPath(state_.scene);
+    try {
+        if (file) {
+            const AlbedoImage albedo = loadAlbedo(*file);
+            renderer_->setAlbedo(&albedo, file->string());
+        } else {
+            renderer_->setAlbedo(nullptr);
+        }
+        state_.albedoName = file ? file->filename().string() : "";
+    } catch (const Error& e) {
+        // The colours go; the relief stays.
+        renderer_->setAlbedo(nullptr);
+        state_.albedoName.clear();
+        note(std::string("cannot open the albedo: ") + e.what());
+    }
+    ++mapGeneration_;
 }
 
 void ViewerApp::reloadShaders() {
@@ -580,23 +625,26 @@ ViewerApp::RenderKey ViewerApp::renderKey() const {
     const Camera& c = controller_.camera();
     const RenderJob& job = state_.scene.job;
     const glm::ivec2 size = viewSize();
-    return {c.eye,
-            c.target,
-            c.up,
-            c.fovyDegrees,
-            size.x,
-            size.y,
-            job.heightScale,
-            job.shading.lightDirection,
-            job.shading.albedo,
-            job.background,
-            job.shading.view,
-            renderer_->method().method,
-            renderer_->method().steps,
-            renderer_->method().minSteps,
-            renderer_->method().pixelError,
-            mapGeneration_,
-            shaderGeneration_};
+    return {
+        c.eye,
+        c.target,
+        c.up,
+        c.fovyDegrees,
+        size.x,
+        size.y,
+        job.heightScale,
+        job.shading.lightDirection,
+        job.shading.albedo,
+        job.background,
+        methodTracesTheSolid(renderer_->method().method) ? job.shading.shadows : ShadowMode::Off,
+        job.shading.lightSizeDegrees,
+        job.shading.view,
+        renderer_->method().method,
+        renderer_->method().steps,
+        renderer_->method().minSteps,
+        renderer_->method().pixelError,
+        mapGeneration_,
+        shaderGeneration_};
 }
 
 }  // namespace microrelief

@@ -45,6 +45,8 @@ private:
         int width, height;
         float heightScale;
         glm::vec3 light, albedo, background;
+        ShadowMode shadows;
+        float lightSize;
         DebugView view;
         Method method;
         int steps, minSteps;
@@ -73,6 +75,8 @@ private:
     void writeAutomationOutputs();
 
     void openMap(const std::optional<std::filesystem::path>& file);
+    // The colours the scene asks for (albedoPath), loaded into the renderer, or none.
+    void applyAlbedo();
     void reloadShaders();
     void setMethod();
     // The base surface in the panel's state; `frame`: point the view at the new object.

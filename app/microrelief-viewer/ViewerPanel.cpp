@@ -88,6 +88,15 @@ void mapSection(ViewerState& s, PanelActions& actions) {
         s.scene.job.heightScale = std::max(s.scene.job.heightScale, 1e-4f);
         actions.heightScaleChanged = true;
     }
+    bool colours = !s.scene.noAlbedo;
+    if (ImGui::Checkbox("Colours (albedo)", &colours)) {
+        s.scene.noAlbedo = !colours;
+        actions.albedoChanged = true;
+    }
+    if (!s.albedoName.empty()) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("%s", s.albedoName.c_str());
+    }
     baseControls(s.scene.job.base, actions);
     int interpolation = s.scene.job.interpolation == Interpolation::Biquadratic ? 1 : 0;
     const char* const interpolations[] = {"bilinear", "biquadratic (smooth)"};
@@ -110,9 +119,22 @@ void lightControls(ShadingOptions& shading) {
     float elevation = glm::degrees(std::asin(std::clamp(l.y, -1.0f, 1.0f)));
     const bool moved = ImGui::SliderFloat("Light azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg") |
                        ImGui::SliderFloat("Light elevation", &elevation, -90.0f, 90.0f, "%.0f deg");
-    if (!moved) return;
-    const float a = glm::radians(azimuth), e = glm::radians(elevation);
-    shading.lightDirection = {std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a)};
+    if (moved) {
+        const float a = glm::radians(azimuth), e = glm::radians(elevation);
+        shading.lightDirection = {std::cos(e) * std::cos(a), std::sin(e),
+                                  std::cos(e) * std::sin(a)};
+        shading.lightPosition.reset();  // the sliders move a directional light
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Or hold L and drag in the view");
+    int shadows = static_cast<int>(shading.shadows);
+    const char* const modes[] = {"off", "hard (exact)", "soft (estimate)"};
+    if (ImGui::Combo("Shadows", &shadows, modes, IM_ARRAYSIZE(modes)))
+        shading.shadows = static_cast<ShadowMode>(shadows);
+    if (shading.shadows == ShadowMode::Soft) {
+        ImGui::SliderFloat("Light size", &shading.lightSizeDegrees, 0.05f, 20.0f, "%.2f deg",
+                           ImGuiSliderFlags_Logarithmic);
+        shading.lightSizeDegrees = std::clamp(shading.lightSizeDegrees, 0.01f, 89.0f);
+    }
 }
 
 // The tracer: the paper's multilevel method, or a peer to compare it with.

@@ -26,6 +26,7 @@ struct ViewerState {
 
     // Shown only.
     std::string mapName;
+    std::string albedoName;  // the colours in use, empty for none
     int mapWidth = 0, mapHeight = 0;
     std::string mapError;     // the last failed load; the previous map stays
     std::string shaderError;  // the last failed compile (file:line); the previous program runs
@@ -48,6 +49,7 @@ struct PanelActions {
     bool baseChanged = false;           // a size of the base surface
     bool baseKindChanged = false;       // another base surface: the view frames it
     bool interpolationChanged = false;  // the last level: the pyramid is built anew
+    bool albedoChanged = false;         // colours on or off
     bool fovyChanged = false;
     bool methodChanged = false;
     bool screenshot = false;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/render/FloatLimits.h"
 
@@ -147,6 +148,11 @@ SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightM
 void SceneFlags::addMapAndCamera(CLI::App& app) {
     app.add_option("--height", height_,
                    "Height map image (any format OpenImageIO reads); default: the bundled map");
+    if (albedoFile_) {
+        app.add_option("--albedo", albedo_,
+                       "The map's colours: an image over its (u, v), any size (sRGB unless float), "
+                       "or none; default: the bundled map's own with the bundled map");
+    }
     app.add_option("--channel", load_.channel, "Image channel holding the heights")
         ->capture_default_str();
     app.add_flag("--normalize", load_.normalize, "Map the map's [min, max] to [0, 1]");
@@ -259,6 +265,10 @@ BaseShape parseBase(const std::string& name, const std::optional<double>& radius
 
 void SceneFlags::apply() {
     if (!height_.empty()) heightFile_ = height_;
+    if (albedoFile_ && !albedo_.empty()) {
+        *noAlbedo_ = albedo_ == "none";
+        *albedoFile_ = *noAlbedo_ ? std::nullopt : std::optional<std::filesystem::path>(albedo_);
+    }
     job_.base = parseBase(base_, radius_, length_, radii_);
     job_.interpolation = parseInterpolation(interpolation_);
     job_.camera.eye = parseVectorFlag("--eye", eye_);
@@ -323,6 +333,13 @@ std::string shellQuote(const std::string& text) {
     return quoted + "'";
 }
 
+std::optional<std::filesystem::path> albedoPath(const SceneOptions& options) {
+    if (options.noAlbedo) return std::nullopt;
+    if (options.albedoFile) return options.albedoFile;
+    if (!options.heightFile) return defaultAlbedoPath();
+    return std::nullopt;
+}
+
 std::string renderCommandLine(const SceneOptions& o, const std::string& program) {
     const RenderJob& job = o.job;
     std::string line = program;
@@ -330,6 +347,8 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
         line += " " + name + (value.empty() ? "" : " " + shellQuote(value));
     };
     if (o.heightFile) flag("--height", o.heightFile->string());
+    if (o.albedoFile) flag("--albedo", o.albedoFile->string());
+    if (o.noAlbedo) flag("--albedo", "none");
     if (o.load.channel != 0) flag("--channel", std::to_string(o.load.channel));
     if (o.load.normalize) flag("--normalize", "");
     flag("--height-scale", exactText(job.heightScale));

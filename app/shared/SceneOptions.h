@@ -21,6 +21,10 @@ namespace microrelief {
 
 struct SceneOptions {
     std::optional<std::filesystem::path> heightFile;  // empty: the bundled default map
+    // The map's colours: a file, or none; unset: the bundled map's own colours with the
+    // bundled map, none with any other.
+    std::optional<std::filesystem::path> albedoFile;
+    bool noAlbedo = false;  // --albedo none
     HeightMapLoadOptions load;
     RenderJob job;  // camera, size, height scale, shading, background
 };
@@ -34,7 +38,10 @@ public:
     SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load,
                RenderJob& job);
     explicit SceneFlags(SceneOptions& options)
-        : SceneFlags(options.heightFile, options.load, options.job) {}
+        : SceneFlags(options.heightFile, options.load, options.job) {
+        albedoFile_ = &options.albedoFile;
+        noAlbedo_ = &options.noAlbedo;
+    }
 
     // --height --channel --normalize --height-scale --interpolation --base --radius --length
     // --radii --eye --target --up --fovy --size --model
@@ -52,7 +59,9 @@ private:
     HeightMapLoadOptions& load_;
     RenderJob& job_;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
-    std::string lightPosition_, shadows_ = "off";
+    std::string lightPosition_, shadows_ = "off", albedo_;
+    std::optional<std::filesystem::path>* albedoFile_ = nullptr;  // --albedo, where registered
+    bool* noAlbedo_ = nullptr;
     std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_;
     std::optional<double> radius_, length_;
 };
@@ -72,6 +81,10 @@ void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide
 std::string exactNumber(double value);
 // "x,y,z" with exactNumber() components.
 std::string exactVector(const glm::dvec3& v);
+
+// The albedo file `options` render with: --albedo's, or the bundled map's own with the
+// bundled map and no --albedo; none for --albedo none or another map without one.
+std::optional<std::filesystem::path> albedoPath(const SceneOptions& options);
 
 // The microrelief-render command line (without --out) that renders `options` again, every
 // value written exactly: `program --height FILE --height-scale 0.1 --eye x,y,z ...`.

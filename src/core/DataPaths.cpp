@@ -28,4 +28,8 @@ std::filesystem::path defaultHeightMapPath() {
     return dataDirectory() / "assets" / "cobbles.png";
 }
 
+std::filesystem::path defaultAlbedoPath() {
+    return dataDirectory() / "assets" / "cobbles-albedo.png";
+}
+
 }  // namespace microrelief

@@ -23,7 +23,8 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
         {"MICRORELIEF_BASE", std::to_string(static_cast<int>(config.base))},
         {"MICRORELIEF_INTERPOLATION", std::to_string(static_cast<int>(config.interpolation))},
         {"MICRORELIEF_DEPTH_LAYOUT", std::to_string(static_cast<int>(config.depthLayout))},
-        {"MICRORELIEF_SHADOWS", std::to_string(static_cast<int>(config.shadows))}};
+        {"MICRORELIEF_SHADOWS", std::to_string(static_cast<int>(config.shadows))},
+        {"MICRORELIEF_ALBEDO_MAP", config.albedoMap ? "1" : "0"}};
     if (config.countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex = gl::compileShader(
         gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "relief_box.vert", version));
@@ -38,6 +39,7 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
     gl.Uniform1i(gl::uniform(gl, program_, "maxPyramid"), kMaxPyramidUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "heightSamples"), kHeightsUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "windowPyramid"), kWindowPyramidUnit);
+    gl.Uniform1i(gl::uniform(gl, program_, "albedoMap"), kAlbedoUnit);
     gl.UseProgram(static_cast<GLuint>(previous));
     const GLuint block = gl.GetUniformBlockIndex(program_.id(), "MicroreliefParameters");
     if (block == GL_INVALID_INDEX)
@@ -61,6 +63,10 @@ ReliefShader& ReliefShader::bindHeights(GLuint texture) {
 
 ReliefShader& ReliefShader::bindWindowPyramid(GLuint texture) {
     return bindTexture(kWindowPyramidUnit, texture);
+}
+
+ReliefShader& ReliefShader::bindAlbedo(GLuint texture) {
+    return bindTexture(kAlbedoUnit, texture);
 }
 
 ReliefShader& ReliefShader::bindParameters(GLuint buffer) {

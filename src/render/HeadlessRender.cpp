@@ -48,6 +48,11 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
     maxHeight_ = map.maxValue();
 }
 
+void HeadlessRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {
+    context_.makeCurrent();
+    renderer_->setAlbedo(albedo, source);
+}
+
 HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     checkHeightScale(job.heightScale);
     checkPictureSize(job.width, job.height);
@@ -129,7 +134,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
 }
 
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
-                              const RenderJob& job) {
+                              const RenderJob& job, const AlbedoImage* albedo) {
     // Refused before the pyramid is built; render checks them again.
     checkHeightScale(job.heightScale);
     checkPictureSize(job.width, job.height);
@@ -138,6 +143,7 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     // GL objects live in this scope and die before the context does.
     HeadlessRenderer renderer(context, job.method);
     renderer.setHeightMap(map, source, job.base, job.interpolation);
+    if (albedo) renderer.setAlbedo(albedo, source + " (albedo)");
     return renderer.render(job);
 }
 

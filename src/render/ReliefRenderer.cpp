@@ -26,7 +26,8 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
 
 ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
                                              BaseKind base, Interpolation interpolation,
-                                             bool frontFaces, ShadowMode shadows) const {
+                                             bool frontFaces, ShadowMode shadows,
+                                             bool albedoMap) const {
     // A front face lies on the ray before its hit, a back face after it: the depth written
     // is at least the face's (front) or at most (back) under a standard depth test, the
     // other way round under reversed-Z.
@@ -38,7 +39,8 @@ ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, boo
             interpolation,
             countFetches,
             greater ? DepthLayout::Greater : DepthLayout::Less,
-            shadows};
+            shadows,
+            albedoMap};
 }
 
 void ReliefRenderer::reloadShaders() {
@@ -88,6 +90,14 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     interpolation_ = interpolation;
     maxIterations_ = traversalBudget(map.width, map.height);
     uploadBox();
+}
+
+void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {
+    if (!albedo) {
+        albedo_.reset();
+        return;
+    }
+    albedo_.emplace(AlbedoTexture(gl_, *albedo, source));  // made before the old one goes
 }
 
 void ReliefRenderer::setHeightScale(float scale) {
@@ -165,6 +175,7 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.maxIterations = maxIterations_;
     p.lightDirection = glm::normalize(shading.lightDirection);
     if (shading.lightPosition) p.lightPosition = glm::vec4(*shading.lightPosition, 1.0f);
+    p.albedoFinest = shading.albedoFinestLevel ? 1 : 0;
     p.lightTanRadius = static_cast<float>(
         std::tan(0.5 * glm::radians(static_cast<double>(shading.lightSizeDegrees))));
     p.debugView = static_cast<int>(shading.view);
@@ -189,8 +200,8 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     // per pixel the box covers either way (it is convex), and the depth layout the
     // program promises holds for the faces drawn.
     const bool frontFaces = eyeOutsideBox(camera.eye);
-    ReliefShader& shader = program(
-        configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces, shading.shadows));
+    ReliefShader& shader = program(configFor(method_, countFetches_, base_.kind, interpolation_,
+                                             frontFaces, shading.shadows, albedo_.has_value()));
 
     const gl::StateGuard saved(gl_);
     const ReliefParameters values = parameters(camera, shading, t);
@@ -201,6 +212,7 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
         .bindMaxPyramid(textures_->maxPyramid())
         .bindHeights(textures_->samples())
         .bindWindowPyramid(textures_->windowPyramid());
+    if (albedo_) shader.bindAlbedo(albedo_->id());
 
     // Depth clamping keeps faces nearer than the near plane (an eye close to the box). A
     // model that mirrors (a negative determinant) turns the box's winding round.

@@ -93,7 +93,7 @@ TEST_F(Package, ExampleBuiltAgainstTheInstallRendersWhatTheRendererRenders) {
             *scratch_ / "");
         ASSERT_EQ(a.status, 0) << a.out << a.err;
         const test::RunResult b = test::runCommand(
-            quote(MICRORELIEF_RENDER_EXE) + " -q " + v.camera + " --out " + quote(render),
+            quote(MICRORELIEF_RENDER_EXE) + " -q --albedo none " + v.camera + " --out " + quote(render),
             *scratch_ / "");
         ASSERT_EQ(b.status, 0) << b.out << b.err;
         const test::Image actual = test::readImage(example), expected = test::readImage(render);

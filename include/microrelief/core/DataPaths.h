@@ -10,5 +10,6 @@ namespace microrelief {
 std::filesystem::path dataDirectory();
 std::filesystem::path shaderDirectory();       // dataDirectory() / "shaders"
 std::filesystem::path defaultHeightMapPath();  // the bundled default map
+std::filesystem::path defaultAlbedoPath();     // its colours
 
 }  // namespace microrelief

@@ -48,6 +48,7 @@ struct ReliefShaderConfig {
     bool countFetches = false;  // the instrumented variant: texel reads in the statistics
     DepthLayout depthLayout = DepthLayout::Any;
     ShadowMode shadows = ShadowMode::Off;
+    bool albedoMap = false;  // the surface's colour from an albedo texture (unit 3)
 
     auto operator<=>(const ReliefShaderConfig&) const = default;
 };
@@ -87,7 +88,8 @@ struct ReliefParameters {
     int blockPadding = 0;
     glm::vec4 lightPosition{0.0f};  // w: 1 for a point light
     float lightTanRadius = 0.0f;
-    float lightPadding0 = 0.0f, lightPadding1 = 0.0f, lightPadding2 = 0.0f;
+    int albedoFinest = 0;
+    float blockPadding1 = 0.0f, blockPadding2 = 0.0f;
 };
 static_assert(sizeof(ReliefParameters) == 416, "std140 size of MicroreliefParameters");
 static_assert(offsetof(ReliefParameters, eye) == 192);
@@ -96,12 +98,13 @@ static_assert(offsetof(ReliefParameters, methodMinSteps) == 368);
 
 class ReliefShader {
 public:
-    // The fixed bindings: the aligned max pyramid (maxmip), the samples and the
-    // overlapping pyramid (multilevel) on texture units 0, 1 and 2, the parameters on
+    // The fixed bindings: the aligned max pyramid (maxmip), the samples, the overlapping
+    // pyramid (multilevel) and the albedo on texture units 0 to 3, the parameters on
     // uniform buffer binding 0.
     static constexpr GLuint kMaxPyramidUnit = 0;
     static constexpr GLuint kHeightsUnit = 1;
     static constexpr GLuint kWindowPyramidUnit = 2;
+    static constexpr GLuint kAlbedoUnit = 3;
     static constexpr GLuint kParametersBinding = 0;
 
     // Compiles `config` of relief_box.vert and relief.frag from `shaderDir` (the folder
@@ -116,6 +119,7 @@ public:
     ReliefShader& bindMaxPyramid(GLuint texture);
     ReliefShader& bindHeights(GLuint texture);
     ReliefShader& bindWindowPyramid(GLuint texture);
+    ReliefShader& bindAlbedo(GLuint texture);
     ReliefShader& bindParameters(GLuint buffer);
     void use() const;
 

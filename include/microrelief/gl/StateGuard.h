@@ -16,7 +16,7 @@ public:
     StateGuard& operator=(const StateGuard&) = delete;
 
     // Texture units whose GL_TEXTURE_2D binding is saved: 0 .. kUnits - 1.
-    static constexpr int kUnits = 3;
+    static constexpr int kUnits = 4;
 
 private:
     const GL& gl_;

@@ -57,6 +57,8 @@ public:
     // interpolation, set the map again.
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear);
+    // The map's colours (image/Albedo.h), or none (the shading's one colour). Throws Error.
+    void setAlbedo(const AlbedoImage* albedo, const std::string& source);
     // Renders `job` of the current map. Throws Error.
     HeadlessResult render(const RenderJob& job);
 
@@ -74,6 +76,6 @@ void checkPictureSize(int width, int height);
 
 // `source` names the map in error messages. Throws Error.
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
-                              const RenderJob& job);
+                              const RenderJob& job, const AlbedoImage* albedo = nullptr);
 
 }  // namespace microrelief

@@ -67,8 +67,11 @@ struct ShadingOptions {
     // A point light at this world position instead (--light-position).
     std::optional<glm::vec3> lightPosition;
     ShadowMode shadows = ShadowMode::Off;
-    float lightSizeDegrees = 1.0f;  // soft shadows: the light's angular diameter
-    glm::vec3 albedo{0.60f, 0.58f, 0.55f};
+    float lightSizeDegrees = 1.0f;          // soft shadows: the light's angular diameter
+    glm::vec3 albedo{0.60f, 0.58f, 0.55f};  // without an albedo texture
+    // With one: filtered over each pixel's footprint, or its finest level only (what a
+    // supersampled reference takes, per ray).
+    bool albedoFinestLevel = false;
     DebugView view = DebugView::Shaded;
 };
 

@@ -15,6 +15,7 @@
 
 #include "microrelief/base/BaseShape.h"
 #include "microrelief/base/ReliefExtent.h"
+#include "microrelief/gl/AlbedoTexture.h"
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
@@ -56,6 +57,12 @@ public:
     const BaseShape& base() const { return base_; }
     Interpolation interpolation() const { return interpolation_; }
 
+    // The surface's colour from `albedo` over the map's (u, v) (image/Albedo.h), or, with
+    // nothing, the shading's one colour. Throws Error(BadInput) naming `source` for a
+    // texture larger than the GL takes, keeping the one it had.
+    void setAlbedo(const AlbedoImage* albedo, const std::string& source = "the albedo");
+    bool hasAlbedo() const { return albedo_.has_value(); }
+
     // Where the relief sits in the world (the identity: where the spec puts it).
     void setModel(const ModelTransform& model) { model_ = model; }
     const ModelTransform& model() const { return model_; }
@@ -91,7 +98,8 @@ public:
 private:
     ReliefShaderConfig configFor(const MethodSettings& settings, bool countFetches, BaseKind base,
                                  Interpolation interpolation, bool frontFaces,
-                                 ShadowMode shadows = ShadowMode::Off) const;
+                                 ShadowMode shadows = ShadowMode::Off,
+                                 bool albedoMap = false) const;
     // The program for the configuration, compiled on first use; throws and changes
     // nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);
@@ -106,7 +114,8 @@ private:
     std::filesystem::path shaderDir_;
     std::map<ReliefShaderConfig, ReliefShader> programs_;
     std::optional<ReliefTextures> textures_;  // the map's; none yet
-    gl::Buffer parameterBuffer_;              // MicroreliefParameters
+    std::optional<AlbedoTexture> albedo_;
+    gl::Buffer parameterBuffer_;  // MicroreliefParameters
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;
     gl::Buffer boxIndices_;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/image/Albedo.h"
 
 namespace microrelief::synth {
 
@@ -32,6 +33,12 @@ HeightMap planet(int width, int height, std::uint32_t seed);
 
 // Names accepted by byName(): cobbles, noise, white, spike, wall, step, flat, planet.
 std::vector<std::string> names();
+
+// A matching colour texture for the map `name` of mapWidth x mapHeight (the same seed):
+// coloured stones and their joints for "cobbles", seas, land, rock, snow and ice for
+// "planet"; width x height pixels, linear RGB. Throws Error(BadInput) for other maps.
+AlbedoImage albedo(const std::string& name, int width, int height, int mapWidth, int mapHeight,
+                   std::uint32_t seed);
 // Throws Error(BadInput) for an unknown name.
 HeightMap byName(const std::string& name, int width, int height, std::uint32_t seed);
 

@@ -1,0 +1,24 @@
+// Opening an image file for reading, with the checks every input of the project gets
+// before OpenImageIO reads a pixel (README, "Reliability"): a regular file, a PNG or
+// OpenEXR header that states a size within the limit (from the header, before anything is
+// allocated), a PNG whose structure libpng would accept, and the reader the extension
+// names, and only that one. Private to microrelief::io.
+#pragma once
+
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace microrelief {
+
+// Throws Error(BadInput) naming the file and the reason; `what` ("a height map", "an
+// albedo") in the size message.
+std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& file, int maxSide,
+                                                   const std::string& what);
+
+// OpenImageIO's messages on one line.
+std::string oneLine(std::string text);
+
+}  // namespace microrelief

@@ -8,7 +8,7 @@ find_program(GLAD_EXECUTABLE glad REQUIRED
 
 set(GLAD_OUT ${PROJECT_BINARY_DIR}/glad)
 set(GLAD_API "gl:core=3.3")
-set(GLAD_EXTENSIONS "GL_KHR_debug,GL_ARB_clip_control,GL_ARB_texture_filter_anisotropic,GL_EXT_texture_filter_anisotropic")
+set(GLAD_EXTENSIONS "GL_KHR_debug,GL_ARB_clip_control")
 
 add_custom_command(
   OUTPUT ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/include/glad/gl.h

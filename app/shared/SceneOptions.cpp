@@ -285,11 +285,6 @@ void SceneFlags::apply() {
         job_.shading.lightPosition = glm::vec3(parseVectorFlag("--light-position", lightPosition_));
     }
     job_.shading.shadows = parseShadowMode(shadows_);
-    if (job_.shading.shadows != ShadowMode::Off && !methodTracesTheSolid(job_.method.method)) {
-        throwBadInput(std::string("--shadows ") + shadowModeName(job_.shading.shadows) +
-                      " takes the exact methods, multilevel and maxmip (not --method " +
-                      methodName(job_.method.method) + ")");
-    }
     if (!(job_.shading.lightSizeDegrees > 0.0f && job_.shading.lightSizeDegrees < 90.0f))
         throwBadInput("--light-size must lie strictly between 0 and 90 degrees");
     // Any side here; checkPictureSize states the limits, sides and pixels, in one message.
@@ -298,6 +293,11 @@ void SceneFlags::apply() {
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
     checkMethodSupportsBase(job_.method.method, job_.base);
+    if (job_.shading.shadows != ShadowMode::Off && !methodTracesTheSolid(job_.method.method)) {
+        throwBadInput(std::string("--shadows ") + shadowModeName(job_.shading.shadows) +
+                      " takes the exact methods, multilevel and maxmip (not --method " +
+                      methodName(job_.method.method) + ")");
+    }
     if (job_.method.steps < 1 || job_.method.steps > 65536)
         throwBadInput("--steps must lie in 1..65536");
     job_.method.setSteps(job_.method.steps);

@@ -33,13 +33,6 @@ AlbedoTexture::AlbedoTexture(const GL& gl, const AlbedoImage& image, const std::
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    // GL_TEXTURE_MAX_ANISOTROPY: the same enum in the ARB (core in GL 4.6) and EXT extensions.
-    if (gl.ARB_texture_filter_anisotropic || gl.EXT_texture_filter_anisotropic) {
-        GLfloat most = 1.0f;
-        gl.GetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &most);
-        anisotropy_ = std::min(16.0f, most);
-        gl.TexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY, anisotropy_);
-    }
 }
 
 }  // namespace microrelief

@@ -133,6 +133,50 @@ TEST_F(RenderCli, BadArgumentsExitTwo) {
     expectFailure(run(small + "--aov " + (dir / "x.png").string()), 2, "x.png");
 }
 
+// The material and light flags (issue 14): each bad value refused with one line naming
+// the flag, nothing written; the albedo's file through the same checks as a height map's.
+TEST_F(RenderCli, BadMaterialAndShadowFlagsExitTwoAndWriteNothing) {
+    const auto out = dir / "never.png";
+    const std::string to = " --out " + out.string();
+    expectFailure(run(small + "--shadows sharp" + to), 2, "--shadows");
+    expectFailure(run(small + "--shadows hard --method pom" + to), 2, "--shadows");
+    expectFailure(run(small + "--light-size 0" + to), 2, "--light-size");
+    expectFailure(run(small + "--light-size 120" + to), 2, "--light-size");
+    expectFailure(run(small + "--light 0,1,0 --light-position 0,1,0" + to), 2, "--light-position");
+    expectFailure(run(small + "--albedo " + (dir / "missing.png").string() + to), 2, "missing.png");
+    expectFailure(run(small + "--albedo /dev/zero" + to), 2, "/dev/zero");
+    test::writeBytes(dir / "broken.png", {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0});
+    expectFailure(run(small + "--albedo " + (dir / "broken.png").string() + to), 2, "broken.png");
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// With shadows on, the AOV's fifth channel `shadow`: 1 lit, 0 shadowed or a miss; some
+// hits of each with a low light; without shadows four channels, as before.
+TEST_F(RenderCli, ShadowsAddTheShadowChannelToTheAov) {
+    const auto out = dir / "lit.png", aov = dir / "lit.exr";
+    const test::RunResult r = run(small + "--shadows hard --light=-0.9,0.2,-0.3 --out " +
+                                  out.string() + " --aov " + aov.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto input = OIIO::ImageInput::open(aov.string());
+    ASSERT_TRUE(input);
+    ASSERT_EQ(input->spec().nchannels, 5);
+    EXPECT_EQ(input->spec().channelnames, (std::vector<std::string>{"R", "G", "B", "A", "shadow"}));
+    std::vector<float> pixels(48 * 32 * 5);
+    ASSERT_TRUE(input->read_image(0, 0, 0, 5, OIIO::TypeDesc::FLOAT, pixels.data()));
+    int lit = 0, shadowed = 0;
+    for (std::size_t p = 0; p < pixels.size(); p += 5) {
+        const float shadow = pixels[p + 4];
+        EXPECT_TRUE(shadow == 0.0f || shadow == 1.0f) << shadow;
+        if (pixels[p + 3] == 0.0f) {
+            EXPECT_EQ(shadow, 0.0f);  // misses
+            continue;
+        }
+        (shadow > 0.5f ? lit : shadowed) += 1;
+    }
+    EXPECT_GT(lit, 20);
+    EXPECT_GT(shadowed, 20);
+}
+
 // The base surface's flags (scene-and-cli.md, "Base surfaces"): an unknown base, a size
 // that is zero, negative or not finite, a size flag the base has not: exit 2, one line
 // naming the flag, nothing written.

@@ -455,7 +455,12 @@ TEST_F(SceneObject, ParametersBlockMatchesItsMirror) {
                                                            MEMBER(methodMinSteps),
                                                            MEMBER(methodRefineSteps),
                                                            MEMBER(depthZeroToOne),
-                                                           MEMBER(blockPadding)};
+                                                           MEMBER(blockPadding),
+                                                           MEMBER(lightPosition),
+                                                           MEMBER(lightTanRadius),
+                                                           MEMBER(albedoFinest),
+                                                           MEMBER(blockPadding1),
+                                                           MEMBER(blockPadding2)};
 #undef MEMBER
     for (const auto& [name, offset] : members)
         EXPECT_EQ(shader.parameterOffset(name), static_cast<GLint>(offset)) << name;

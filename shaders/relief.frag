@@ -5,7 +5,7 @@
 // depth convention, so the relief depth-composites with other geometry. The colour is
 // linear: an sRGB framebuffer encodes it (OffscreenTarget's is one).
 //
-// Host defines: MICRORELIEF_METHOD (0 multilevel, 1 normal, 2 offset, 3 steep, 4 pom,
+// Host defines: MICRORELIEF_TILING (the map repeated: relief_map.glsl); MICRORELIEF_METHOD (0 multilevel, 1 normal, 2 offset, 3 steep, 4 pom,
 // 5 relief, 6 maxmip); MICRORELIEF_BASE (0 plane, 1 cylinder, 2 ellipsoid:
 // base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
 // writes texel reads to the statistics and keeps misses (so they are counted too);
@@ -118,13 +118,15 @@ vec3 filteredAlbedo(vec2 uv, vec2 gx, vec2 gy) {
 // steps are the footprint's axes (filteredAlbedo).
 vec3 surfaceAlbedo(mr_Relief relief, mr_ReliefHit hit, vec3 dir, vec3 n) {
 #if MICRORELIEF_ALBEDO_MAP
+    // (u, v) of the tile the hit is in: the albedo repeats with the map's tiles.
     vec3 m = mr_baseMapPoint(relief, hit.position);
-    vec2 uv = m.xy / relief.map.size;
+    vec2 tileSize = mr_tileSize(relief.map), tiles = relief.map.size / tileSize;
+    vec2 uv = m.xy / tileSize;
     vec2 halfTexel = 0.5 / vec2(textureSize(albedoMap, 0));
 #if MICRORELIEF_BASE == 0
-    uv = clamp(uv, halfTexel, 1.0 - halfTexel);  // the map's edges clamp (the texture repeats)
+    uv = clamp(uv, halfTexel, tiles - halfTexel);  // the map's edges clamp (the texture repeats)
 #else
-    uv.y = clamp(uv.y, halfTexel.y, 1.0 - halfTexel.y);  // u wraps round the base
+    uv.y = clamp(uv.y, halfTexel.y, tiles.y - halfTexel.y);  // u wraps round the base
 #endif
     if (albedoFinest != 0) return finestAlbedo(uv);
     vec2 pixel = 2.0 / viewportSize;
@@ -133,8 +135,8 @@ vec3 surfaceAlbedo(mr_Relief relief, mr_ReliefHit hit, vec3 dir, vec3 n) {
     nd = abs(nd) < 1e-8 ? (nd < 0.0 ? -1e-8 : 1e-8) : nd;
     vec3 dPx = hit.t * (dDx - dot(n, dDx) / nd * dir);
     vec3 dPy = hit.t * (dDy - dot(n, dDy) / nd * dir);
-    vec2 gx = mapDelta(relief, hit.position, dPx) / relief.map.size;
-    vec2 gy = mapDelta(relief, hit.position, dPy) / relief.map.size;
+    vec2 gx = mapDelta(relief, hit.position, dPx) / tileSize;
+    vec2 gy = mapDelta(relief, hit.position, dPy) / tileSize;
     return filteredAlbedo(uv, gx, gy);
 #else
     return albedo;
@@ -238,7 +240,7 @@ void main() {
     // Integer + 0.5 plus an integer: exact, so a tile's pixel casts the whole picture's ray.
     vec2 ndc = (gl_FragCoord.xy + tileOrigin) / viewportSize * 2.0 - 1.0;
     vec3 dir = cameraForward + ndc.x * cameraRight + ndc.y * cameraUp;
-    mr_Relief relief = mr_Relief(mr_ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight),
+    mr_Relief relief = mr_Relief(mr_ReliefMap(reliefSize, pyramidSize, pyramidLevels, reliefMaxHeight, reliefTiles),
                                  mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
     // Level-of-detail cone: a span of w finest texels (a pyramid window) projects to less
     // than pixelErrorTolerance pixels once w <= lodCone * t (t along this unnormalised ray;

@@ -26,7 +26,7 @@ layout(std140) uniform MicroreliefParameters {
     int debugView;        // MR_DEBUG_VIEW_*; 0 is the shaded picture
     vec3 albedo;          // linear
     int methodSteps;      // peers' quality knob: layers, samples or linear steps
-    vec2 reliefSize;      // W, H
+    vec2 reliefSize;      // W, H (tiled N x M: N W, M H)
     ivec2 pyramidSize;    // the finest level's size (W, H rounded up to powers of two)
     vec2 viewportSize;    // the whole picture's, in pixels
     vec2 tileOrigin;      // where the drawn tile sits in it (0, 0: the whole picture)
@@ -37,6 +37,5 @@ layout(std140) uniform MicroreliefParameters {
     vec4 lightPosition;   // xyz: a point light, world; w: 1 for it, 0 for lightDirection's
     float lightTanRadius;  // soft shadows: tan of the light's angular radius
     int albedoFinest;     // 1: the albedo's finest level only (no filtering; tests compare)
-    float blockPadding1;
-    float blockPadding2;
+    ivec2 reliefTiles;    // N, M: the map repeated N x M times (reliefSize is the whole)
 };

@@ -148,11 +148,16 @@ bool complete(const std::filesystem::path& file) {
 // The map a frame draws, as loaded: file, load options, whether its pyramid wraps in u (a
 // curved base; between the plane and a curved base the map is uploaded again) and the
 // surface it bounds (the interpolation).
-using MapKey = std::tuple<std::filesystem::path, int, bool, bool, Interpolation>;
+using MapKey = std::tuple<std::filesystem::path, int, bool, bool, Interpolation, int, int>;
 
 MapKey mapKey(const SceneOptions& scene) {
-    return {scene.heightFile ? *scene.heightFile : defaultHeightMapPath(), scene.load.channel,
-            scene.load.normalize, scene.job.base.wrapsU(), scene.job.interpolation};
+    return {scene.heightFile ? *scene.heightFile : defaultHeightMapPath(),
+            scene.load.channel,
+            scene.load.normalize,
+            scene.job.base.wrapsU(),
+            scene.job.interpolation,
+            scene.job.tiles.x,
+            scene.job.tiles.y};
 }
 
 }  // namespace
@@ -210,7 +215,7 @@ int runBatch(const RenderOptions& o) {
                 loaded.reset();
                 const HeightMap map = loadHeightMap(std::get<0>(key), frame.scene.load);
                 renderer->setHeightMap(map, std::get<0>(key).string(), frame.scene.job.base,
-                                       frame.scene.job.interpolation);
+                                       frame.scene.job.interpolation, frame.scene.job.tiles);
                 loaded = key;
                 ++mapsLoaded;
             }

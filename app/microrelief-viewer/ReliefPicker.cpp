@@ -19,6 +19,12 @@ void ReliefPicker::setBase(const BaseShape& base) {
     tracer_.reset();
 }
 
+void ReliefPicker::setTiles(glm::ivec2 tiles) {
+    if (tiles == tiles_) return;
+    tiles_ = tiles;
+    tracer_.reset();
+}
+
 void ReliefPicker::setInterpolation(Interpolation interpolation) {
     if (interpolation == interpolation_) return;
     interpolation_ = interpolation;
@@ -31,7 +37,8 @@ std::optional<PickResult> ReliefPicker::pick(const CameraFrame& camera, int colu
     // Built lazily: dragging the height-scale slider must not rebuild the pyramid for
     // every intermediate value.
     if (!tracer_)
-        tracer_ = std::make_unique<MultilevelTracer>(*map_, heightScale_, base_, interpolation_);
+        tracer_ =
+            std::make_unique<MultilevelTracer>(*map_, heightScale_, base_, interpolation_, tiles_);
     TraversalStats stats;
     // In the relief's object space, where the twin works; t is the world ray's.
     const Ray ray = camera.pixelRay(column, row);

@@ -28,6 +28,8 @@ public:
     void setHeightScale(double heightScale);
     void setBase(const BaseShape& base);
     void setInterpolation(Interpolation interpolation);
+    // The map repeated across the base (--tile).
+    void setTiles(glm::ivec2 tiles);
     // Where the relief sits in the world (the renderer's model transform).
     void setModel(const ModelTransform& model) { model_ = model; }
 
@@ -40,6 +42,7 @@ private:
     BaseShape base_;
     Interpolation interpolation_ = Interpolation::Bilinear;
     ModelTransform model_;
+    glm::ivec2 tiles_{1, 1};
     std::unique_ptr<MultilevelTracer> tracer_;
 };
 

@@ -68,7 +68,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
         albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
     // A degenerate camera is a bad argument: refuse it before any window opens.
     resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
-                  sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
+                  sceneRadius(reliefExtent(map_->width * state_.scene.job.tiles.x,
+                                           map_->height * state_.scene.job.tiles.y, mapMaxHeight_,
                                            options.scene.job.heightScale, options.scene.job.base),
                               options.scene.job.model.objectToWorld()));
 
@@ -81,7 +82,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     renderer_->setHeightScale(options.scene.job.heightScale);
     renderer_->setModel(options.scene.job.model);
     renderer_->setHeightMap(*map_, file.string(), options.scene.job.base,
-                            options.scene.job.interpolation);
+                            options.scene.job.interpolation, options.scene.job.tiles);
     timer_ = std::make_unique<GpuTimer>(gl);
     watcher_ = std::make_unique<ShaderWatcher>(shaders);
     picker_.setMap(map_);
@@ -89,6 +90,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     picker_.setBase(options.scene.job.base);
     picker_.setInterpolation(options.scene.job.interpolation);
     picker_.setModel(options.scene.job.model);
+    picker_.setTiles(options.scene.job.tiles);
     if (albedo) renderer_->setAlbedo(&*albedo, albedoFile->string());
     state_.albedoName = albedoFile ? albedoFile->filename().string() : "";
 
@@ -431,7 +433,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     try {
         auto map = std::make_shared<const HeightMap>(loadHeightMap(path, state_.scene.load));
         renderer_->setHeightMap(*map, path.string(), state_.scene.job.base,
-                                state_.scene.job.interpolation);
+                                state_.scene.job.interpolation, state_.scene.job.tiles);
         map_ = std::move(map);
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
@@ -504,15 +506,19 @@ void ViewerApp::setMethod() {
 
 void ViewerApp::setInterpolation() {
     const Interpolation interpolation = state_.scene.job.interpolation;
+    const glm::ivec2 tiles = state_.scene.job.tiles;
     try {
-        // Another surface between the samples: another finest level, so a new pyramid.
-        renderer_->setHeightMap(*map_, state_.mapName, state_.scene.job.base, interpolation);
+        // Another surface between the samples (another finest level) or other tiles (another
+        // addressing): a new pyramid.
+        renderer_->setHeightMap(*map_, state_.mapName, state_.scene.job.base, interpolation, tiles);
     } catch (const Error& e) {
-        state_.scene.job.interpolation = renderer_->interpolation();  // the one that works
-        note(std::string("last level not changed: ") + e.what());
+        state_.scene.job.interpolation = renderer_->interpolation();  // the ones that work
+        state_.scene.job.tiles = renderer_->tiles();
+        note(std::string("last level or tiles not changed: ") + e.what());
         return;
     }
     picker_.setInterpolation(interpolation);
+    picker_.setTiles(tiles);
     ++mapGeneration_;
     note(std::string("last level: ") + interpolationName(interpolation));
 }
@@ -522,7 +528,8 @@ void ViewerApp::setBase(bool frame) {
     try {
         // Between the plane and a curved base the pyramid is built anew (u wraps).
         if (base.wrapsU() != renderer_->base().wrapsU()) {
-            renderer_->setHeightMap(*map_, state_.mapName, base, state_.scene.job.interpolation);
+            renderer_->setHeightMap(*map_, state_.mapName, base, state_.scene.job.interpolation,
+                                    state_.scene.job.tiles);
         } else {
             renderer_->setBase(base);
         }
@@ -616,7 +623,8 @@ CameraFrame ViewerApp::cameraFrame() const {
     const glm::ivec2 size = viewSize();
     return resolveCamera(
         controller_.camera(), size.x, size.y,
-        sceneRadius(reliefExtent(map_->width, map_->height, mapMaxHeight_,
+        sceneRadius(reliefExtent(map_->width * state_.scene.job.tiles.x,
+                                 map_->height * state_.scene.job.tiles.y, mapMaxHeight_,
                                  state_.scene.job.heightScale, state_.scene.job.base),
                     state_.scene.job.model.objectToWorld()));
 }

@@ -109,6 +109,12 @@ void mapSection(ViewerState& s, PanelActions& actions) {
         ImGui::SetTooltip(
             "The surface between the samples: bilinear patches (a facet per texel),\n"
             "or the quadratic B-spline of the samples (smooth normals)");
+    int tiles[2] = {s.scene.job.tiles.x, s.scene.job.tiles.y};
+    if (ImGui::InputInt2("Tiles", tiles, ImGuiInputTextFlags_EnterReturnsTrue)) {
+        s.scene.job.tiles = glm::clamp(glm::ivec2(tiles[0], tiles[1]), 1, kMaxTiles);
+        actions.interpolationChanged = true;  // a new pyramid, as for another last level
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The map repeated N x M times (Enter to apply)");
 }
 
 // The light as azimuth and elevation, written back only when the user moves a slider,

@@ -171,6 +171,10 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
                    "Cylinder radius (default 0.3) or sphere radius (default 0.5), world units");
     app.add_option("--length", length_, "Cylinder length along y (default 1), world units");
     app.add_option("--radii", radii_, "Ellipsoid radii A,B,C along x, y, z (default 0.5,0.5,0.5)");
+    app.add_option(
+        "--tile", tile_,
+        "Repeat the map N,M times across the base (N around a curved base), as the N x M "
+        "larger image made by repeating it (default 1,1)");
     app.add_option("--eye", eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
     app.add_option("--target", target_, "Point the camera looks at, x,y,z")->capture_default_str();
     app.add_option("--up", up_, "Camera up direction x,y,z")->capture_default_str();
@@ -263,6 +267,18 @@ BaseShape parseBase(const std::string& name, const std::optional<double>& radius
 
 }  // namespace
 
+glm::ivec2 parseTiles(const std::string& text) {
+    const std::vector<double> counts =
+        parseNumberList("--tile", text, 2, "two whole numbers N,M of at least 1");
+    for (double n : counts) {
+        if (n != std::floor(n) || n < 1.0 || n > kMaxTiles) {
+            throwBadInput("--tile " + text + ": each count must be a whole number from 1 to " +
+                          std::to_string(kMaxTiles));
+        }
+    }
+    return {static_cast<int>(counts[0]), static_cast<int>(counts[1])};
+}
+
 void SceneFlags::apply() {
     if (!height_.empty()) heightFile_ = height_;
     if (albedoFile_ && !albedo_.empty()) {
@@ -271,6 +287,7 @@ void SceneFlags::apply() {
     }
     job_.base = parseBase(base_, radius_, length_, radii_);
     job_.interpolation = parseInterpolation(interpolation_);
+    if (!tile_.empty()) job_.tiles = parseTiles(tile_);
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
@@ -293,6 +310,7 @@ void SceneFlags::apply() {
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
     checkMethodSupportsBase(job_.method.method, job_.base);
+    checkMethodSupportsTiles(job_.method.method, job_.tiles);
     if (job_.shading.shadows != ShadowMode::Off && !methodTracesTheSolid(job_.method.method)) {
         throwBadInput(std::string("--shadows ") + shadowModeName(job_.shading.shadows) +
                       " takes the exact methods, multilevel and maxmip (not --method " +
@@ -354,6 +372,8 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     flag("--height-scale", exactText(job.heightScale));
     if (job.interpolation != Interpolation::Bilinear)
         flag("--interpolation", interpolationName(job.interpolation));
+    if (job.tiles != glm::ivec2(1, 1))
+        flag("--tile", std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y));
     const std::string base = baseName(job.base);
     if (job.base.kind == BaseKind::Cylinder) {
         flag("--base", base);

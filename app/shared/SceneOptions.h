@@ -44,7 +44,7 @@ public:
     }
 
     // --height --channel --normalize --height-scale --interpolation --base --radius --length
-    // --radii --eye --target --up --fovy --size --model
+    // --radii --tile --eye --target --up --fovy --size --model
     void addMapAndCamera(CLI::App& app);
     // --light --light-position --shadows --light-size --method --steps --pixel-error --view
     // --background
@@ -62,7 +62,7 @@ private:
     std::string lightPosition_, shadows_ = "off", albedo_;
     std::optional<std::filesystem::path>* albedoFile_ = nullptr;  // --albedo, where registered
     bool* noAlbedo_ = nullptr;
-    std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_;
+    std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_, tile_;
     std::optional<double> radius_, length_;
 };
 
@@ -70,6 +70,11 @@ private:
 // saying it expects `what`.
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
                                     std::size_t count, const std::string& what);
+// --tile's "N,M": each a whole number from 1 to kMaxTiles (the whole map's side in float
+// map coordinates stays exact to 2^-7 of a texel at 256 tiles of a 256 map: README,
+// "Tiling"); throws Error(BadInput).
+inline constexpr int kMaxTiles = 4096;
+glm::ivec2 parseTiles(const std::string& text);
 // "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.
 glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text);
 // "WxH" -> width, height, each side from 1 to `maxSide`; throws Error(BadInput), for a

@@ -22,7 +22,7 @@ void main() {
     vec2 ndc = gl_FragCoord.xy / viewport * 2.0 - 1.0;
     vec3 dir = forward + ndc.x * right + ndc.y * up;
     // The map where the scene convention puts it: no model transform, the plane y = 0.
-    mr_Relief relief = mr_Relief(mr_ReliefMap(mapSize, pyramidSize, levelCount, maxHeight),
+    mr_Relief relief = mr_Relief(mr_ReliefMap(mapSize, pyramidSize, levelCount, maxHeight, ivec2(1)),
                                  mr_ReliefPlacement(mat4(1.0), mat4(1.0), heightScale, vec3(1.0)));
     mr_ReliefHit hit = mr_traceMultilevel(relief, mr_closestHitQuery(relief.map), windows, heights,
                                           mr_baseFramePoint(relief, eye), mr_baseFrameVector(relief, dir));

@@ -11,6 +11,7 @@
 #ifndef MICRORELIEF_BILINEAR_PATCH_GLSL
 #define MICRORELIEF_BILINEAR_PATCH_GLSL
 
+#include "map_addressing.glsl"
 #include "relief_map.glsl"
 
 // How a cell's four samples are read: 1, one textureGather (GLSL 4.00, ES 3.10 and up);
@@ -23,9 +24,29 @@
 #endif
 #endif
 
+// The four corner samples of a tiled map's cell one by one (mr_sampleTexel).
+vec4 mr_tiledCellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
+    fetches += 4;
+    return vec4(texelFetch(heights, mr_sampleTexel(relief, cell), 0).r,
+                texelFetch(heights, mr_sampleTexel(relief, cell + ivec2(1, 0)), 0).r,
+                texelFetch(heights, mr_sampleTexel(relief, cell + ivec2(0, 1)), 0).r,
+                texelFetch(heights, mr_sampleTexel(relief, cell + 1), 0).r);
+}
+
 // The four corner samples of cell `cell`: x = h00, y = h10, z = h01, w = h11.
 vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
+#if MICRORELIEF_TILING
 #if MICRORELIEF_TEXTURE_GATHER
+    // Inside the map the REPEATing texture carries a gather across a seam between tiles;
+    // at the map's own clamped edges the samples are read one by one.
+    if (mr_samplesInside(relief, cell, cell + 1)) {
+        fetches += 1;
+        vec4 g = textureGather(heights, (vec2(mr_sampleTexel(relief, cell)) + 1.0) / mr_tileSize(relief.map));
+        return vec4(g.w, g.z, g.x, g.y);
+    }
+#endif
+    return mr_tiledCellCorners(relief, heights, cell, fetches);
+#elif MICRORELIEF_TEXTURE_GATHER
     // The bilinear footprint of the point midway between the cell's four samples is
     // exactly those samples, clamped at the edges as CLAMP_TO_EDGE clamps them.
     fetches += 1;
@@ -51,7 +72,7 @@ vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int f
 vec4 mr_neighbourCorners(mr_Relief relief, sampler2D heights, inout ivec2 cell, int axis, int step, vec4 corners,
                       inout int fetches) {
     cell[axis] += step;
-#if MICRORELIEF_TEXTURE_GATHER
+#if MICRORELIEF_TEXTURE_GATHER || MICRORELIEF_TILING
     return mr_cellCorners(relief, heights, cell, fetches);
 #else
     ivec2 last = ivec2(relief.map.size) - 1;

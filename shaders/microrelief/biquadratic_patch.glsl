@@ -14,18 +14,12 @@
 
 #include "bilinear_patch.glsl"
 #include "final_piece.glsl"
+#include "map_addressing.glsl"
 #include "relief_map.glsl"
 
-// One sample, its column clamped or wrapped, its row clamped.
+// One sample, its column clamped or wrapped, its row clamped (map_addressing.glsl).
 float mr_biquadraticSample(mr_Relief relief, sampler2D heights, ivec2 p) {
-    ivec2 last = ivec2(relief.map.size) - 1;
-#if MICRORELIEF_BASE != 0
-    p.x = p.x < 0 ? p.x + last.x + 1 : p.x > last.x ? p.x - last.x - 1 : p.x;
-#else
-    p.x = clamp(p.x, 0, last.x);
-#endif
-    p.y = clamp(p.y, 0, last.y);
-    return texelFetch(heights, p, 0).r;
+    return texelFetch(heights, mr_sampleTexel(relief, p), 0).r;
 }
 
 // The Bezier net of texel square `square` (net[a][b]: column a, row b, as a mat3 is
@@ -34,24 +28,35 @@ float mr_biquadraticSample(mr_Relief relief, sampler2D heights, ivec2 p) {
 mat3 mr_biquadraticNet(mr_Relief relief, sampler2D heights, ivec2 square, inout int fetches) {
     mat3 c;
 #if MICRORELIEF_TEXTURE_GATHER
-    // Each gather reads the 2 x 2 samples whose centres surround the point between them:
-    // samples (i - 1..i, j - 1..j) around (i, j) in texel coordinates, and so on.
-    vec2 size = relief.map.size;
-    vec4 g00 = textureGather(heights, (vec2(square) + vec2(0.0, 0.0)) / size);
-    vec4 g10 = textureGather(heights, (vec2(square) + vec2(1.0, 0.0)) / size);
-    vec4 g01 = textureGather(heights, (vec2(square) + vec2(0.0, 1.0)) / size);
-    vec4 g11 = textureGather(heights, (vec2(square) + vec2(1.0, 1.0)) / size);
-    fetches += 4;
-    // Gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0).
-    c[0] = vec3(g00.w, g00.x, g01.x);
-    c[1] = vec3(g00.z, g00.y, g01.y);
-    c[2] = vec3(g10.z, g10.y, g11.y);
+#if MICRORELIEF_TILING
+    // A tiled map gathers inside the map (the texture REPEATs across the seams between
+    // tiles) and reads its clamped edges one by one.
+    bool gather = mr_samplesInside(relief, square - 1, square + 1);
+    vec2 size = mr_tileSize(relief.map), corner = vec2(mr_sampleTexel(relief, square));
 #else
-    for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(relief, heights, square + ivec2(a - 1, b - 1));
-    }
-    fetches += 9;
+    bool gather = true;
+    vec2 size = relief.map.size, corner = vec2(square);
 #endif
+    if (gather) {
+        // Each gather reads the 2 x 2 samples whose centres surround the point between
+        // them: samples (i - 1..i, j - 1..j) around (i, j) in texel coordinates, and so on.
+        vec4 g00 = textureGather(heights, (corner + vec2(0.0, 0.0)) / size);
+        vec4 g10 = textureGather(heights, (corner + vec2(1.0, 0.0)) / size);
+        vec4 g01 = textureGather(heights, (corner + vec2(0.0, 1.0)) / size);
+        vec4 g11 = textureGather(heights, (corner + vec2(1.0, 1.0)) / size);
+        fetches += 4;
+        // Gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0).
+        c[0] = vec3(g00.w, g00.x, g01.x);
+        c[1] = vec3(g00.z, g00.y, g01.y);
+        c[2] = vec3(g10.z, g10.y, g11.y);
+    } else
+#endif
+    {
+        for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(relief, heights, square + ivec2(a - 1, b - 1));
+        }
+        fetches += 9;
+    }
     // B-spline control points to the Bezier net, along each axis.
     mat3 rows;
     for (int b = 0; b < 3; ++b) {

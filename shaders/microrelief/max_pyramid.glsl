@@ -74,11 +74,49 @@ float mr_windowOver(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, out
     return mr_pyramidTexel(relief, windows, lo >> level, level, fetches);
 }
 
+#if MICRORELIEF_TILING
+// The bound over the finest texels lo..hi of a tiled map (lo <= hi; hi.x may pass the
+// map's width round a curved base): per axis, the texels of one tile they cover, taken
+// into the tile: one range, two where the footprint crosses a seam between tiles (the end
+// of one tile, the start of the next), or the whole tile where it spans one. The windows
+// over the (at most four) rectangles these make bound the footprint, the pyramid's finest
+// level bounding each tile's texel squares across its seams (MaxPyramid's tiled
+// addressing). A footprint wider than a tile reads the tile's top; so a view costs the
+// levels the tiles add above a tile, and no more.
+float mr_tiledWindows(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
+    ivec2 tile = ivec2(mr_tileSize(relief.map));
+    ivec2 span = hi - lo;
+    ivec2 a = lo - tile * (lo / tile), b = a + span;
+    if (span.x >= tile.x - 1) {
+        a.x = 0;
+        b.x = tile.x - 1;
+    }
+    if (span.y >= tile.y - 1) {
+        a.y = 0;
+        b.y = tile.y - 1;
+    }
+    ivec2 end = min(b, tile - 1);
+    bvec2 split = greaterThanEqual(b, tile);
+    float bound = mr_windowOver(relief, windows, a, end, level, fetches);
+    if (split.x) bound = max(bound, mr_windowOver(relief, windows, ivec2(0, a.y), ivec2(b.x - tile.x, end.y), level, fetches));
+    if (split.y) bound = max(bound, mr_windowOver(relief, windows, ivec2(a.x, 0), ivec2(end.x, b.y - tile.y), level, fetches));
+    if (split.x && split.y) bound = max(bound, mr_windowOver(relief, windows, ivec2(0), b - tile, level, fetches));
+    return bound;
+}
+#endif
+
 // The bound over a segment's footprint, the map rectangle [lo, hi] (base_surface.glsl):
 // the window that holds its texels; on a curved base, a rectangle that reaches past
 // X = W wraps across the seam, and the larger of the windows over its two parts,
 // [lo.x, W) and [0, hi.x - W], bounds it (two fetches, for the segments that cross it).
 float mr_footprintBound(mr_Relief relief, sampler2D windows, vec2 lo, vec2 hi, out int level, inout int fetches) {
+#if MICRORELIEF_TILING
+    ivec2 tlo = mr_finestTexelAt(relief, lo), thi = mr_finestTexelAt(relief, hi);
+#if MICRORELIEF_BASE != 0
+    if (hi.x >= relief.map.size.x) thi.x = int(floor(hi.x));  // past the seam: the tile's period takes it round
+#endif
+    return mr_tiledWindows(relief, windows, tlo, thi, level, fetches);
+#else
 #if MICRORELIEF_BASE != 0
     if (hi.x >= relief.map.size.x) {
         ivec2 tlo = mr_finestTexelAt(relief, lo), thi = mr_finestTexelAt(relief, hi - vec2(relief.map.size.x, 0.0));
@@ -87,6 +125,7 @@ float mr_footprintBound(mr_Relief relief, sampler2D windows, vec2 lo, vec2 hi, o
     }
 #endif
     return mr_windowOver(relief, windows, mr_finestTexelAt(relief, lo), mr_finestTexelAt(relief, hi), level, fetches);
+#endif
 }
 
 #endif

@@ -39,11 +39,30 @@
 //    hit or any hit, a budget, a level-of-detail cone.
 // mr_Relief holds the first two: the surface every function of the library describes.
 struct mr_ReliefMap {
-    vec2 size;           // W, H: height map size in texels
-    ivec2 pyramidSize;   // finest pyramid level size (W, H rounded up to powers of two)
+    vec2 size;           // the map's size in texels: W, H, or N W by M H tiled N x M
+    ivec2 pyramidSize;   // finest pyramid level size (a tile's W, H rounded up to powers of two)
     int levelCount;      // number of pyramid levels, the last one 1x1
     float maxHeight;     // the map's maximum height (the pyramid's top texel), in map units
+    ivec2 tiles;         // N, M: the textures hold one tile, size / tiles texels, repeated
+                         // N x M times over the base (MICRORELIEF_TILING; else 1, 1)
 };
+
+// Tiling (--tile N,M): the map is its tile repeated N x M times, as if the N x M larger
+// image made by repeating it had been uploaded, and addressed so (map_addressing.glsl,
+// max_pyramid.glsl): a compile-time choice, so that an untiled map's reads stay as they
+// were.
+#ifndef MICRORELIEF_TILING
+#define MICRORELIEF_TILING 0
+#endif
+
+// The size of one tile in texels: the textures' size.
+vec2 mr_tileSize(mr_ReliefMap map) {
+#if MICRORELIEF_TILING
+    return map.size / vec2(map.tiles);
+#else
+    return map.size;
+#endif
+}
 
 struct mr_ReliefPlacement {
     mat4 objectToWorld;  // the model transform, affine (the last row 0, 0, 0, 1)

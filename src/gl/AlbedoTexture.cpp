@@ -13,9 +13,9 @@ AlbedoTexture::AlbedoTexture(const GL& gl, const AlbedoImage& image, const std::
     GLint maxSize = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (image.width > maxSize || image.height > maxSize) {
-        throwBadInput(source + ": " + std::to_string(image.width) + "x" +
-                      std::to_string(image.height) + " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" +
-                      std::to_string(maxSize) + ")");
+        throwBadInput(
+            source + ": " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+            " is larger than this GPU's GL_MAX_TEXTURE_SIZE (" + std::to_string(maxSize) + ")");
     }
     texture_ = gl::Texture::create(gl);
     const gl::StateGuard saved(gl);
@@ -25,8 +25,8 @@ AlbedoTexture::AlbedoTexture(const GL& gl, const AlbedoImage& image, const std::
         gl.TexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, image.width, image.height, 0, GL_RGBA,
                       GL_UNSIGNED_BYTE, image.bytes.data());
     } else {
-        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, image.width, image.height, 0, GL_RGBA,
-                      GL_FLOAT, image.linear.data());
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, image.width, image.height, 0, GL_RGBA, GL_FLOAT,
+                      image.linear.data());
     }
     gl.GenerateMipmap(GL_TEXTURE_2D);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);

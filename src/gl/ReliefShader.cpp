@@ -24,7 +24,8 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
         {"MICRORELIEF_INTERPOLATION", std::to_string(static_cast<int>(config.interpolation))},
         {"MICRORELIEF_DEPTH_LAYOUT", std::to_string(static_cast<int>(config.depthLayout))},
         {"MICRORELIEF_SHADOWS", std::to_string(static_cast<int>(config.shadows))},
-        {"MICRORELIEF_ALBEDO_MAP", config.albedoMap ? "1" : "0"}};
+        {"MICRORELIEF_ALBEDO_MAP", config.albedoMap ? "1" : "0"},
+        {"MICRORELIEF_TILING", config.tiled ? "1" : "0"}};
     if (config.countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
     const gl::Shader vertex = gl::compileShader(
         gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "relief_box.vert", version));

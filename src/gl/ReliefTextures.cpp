@@ -17,10 +17,10 @@ void checkTextureSize(const GL& gl, const HeightMap& map, const std::string& sou
     }
 }
 
-MaxPyramid buildPyramid(const HeightMap& map, const std::string& source, bool wrapU,
-                        Interpolation interpolation) {
+MaxPyramid buildPyramid(const HeightMap& map, const std::string& source,
+                        const MapAddressing& addressing, Interpolation interpolation) {
     try {
-        return MaxPyramid(map, wrapU, interpolation);
+        return MaxPyramid(map, addressing, interpolation);
     } catch (const std::bad_alloc&) {
         throwRuntime(source + ": not enough memory for the max pyramid of its " +
                      std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
@@ -32,12 +32,14 @@ void uploadLevel(const GL& gl, int level, int width, int height, const float* da
 }
 
 // The samples of a curved base repeat in S, so that a patch's textureGather at the seam
-// reads column W - 1 and column 0 (bilinear_patch.glsl); everything else clamps.
-void setSamplerState(const GL& gl, GLint minFilter, int maxLevel, bool repeatS = false) {
+// reads column W - 1 and column 0 (bilinear_patch.glsl); a tiled map's repeat in both, so
+// that a gather across a seam between tiles reads the next tile; everything else clamps.
+void setSamplerState(const GL& gl, GLint minFilter, int maxLevel, bool repeatS = false,
+                     bool repeatT = false) {
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, maxLevel);
 }
@@ -45,22 +47,24 @@ void setSamplerState(const GL& gl, GLint minFilter, int maxLevel, bool repeatS =
 }  // namespace
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
-                               bool wrapU, Interpolation interpolation)
+                               bool wrapU, Interpolation interpolation, glm::ivec2 tiles)
     : wrapU_(wrapU), interpolation_(interpolation) {
     checkTextureSize(gl, map, source);
+    shape_.tiles = tiles;
     // On the GPU from here on; only its shape is kept.
-    upload(gl, map, buildPyramid(map, source, wrapU, interpolation));
+    upload(gl, map, buildPyramid(map, source, {wrapU, tiles.x, tiles.y}, interpolation));
 }
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
                                Interpolation interpolation)
     : wrapU_(pyramid.wrapsU()), interpolation_(interpolation) {
+    shape_.tiles = {pyramid.addressing().tilesX, pyramid.addressing().tilesY};
     checkTextureSize(gl, map, "the map");
     upload(gl, map, pyramid);
 }
 
 void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid) {
-    shape_.size = {map.width, map.height};
+    shape_.size = glm::ivec2(map.width, map.height) * shape_.tiles;
     shape_.pyramidSize = {pyramid.levelWidth(0), pyramid.levelHeight(0)};
     shape_.levelCount = pyramid.levelCount();
     shape_.maxHeight = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
@@ -81,7 +85,8 @@ void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid
     }
     gl.BindTexture(GL_TEXTURE_2D, samples_.id());
     uploadLevel(gl, 0, map.width, map.height, map.samples.data());
-    setSamplerState(gl, GL_NEAREST, 0, wrapU_);
+    const bool tiled = shape_.tiles != glm::ivec2(1, 1);
+    setSamplerState(gl, GL_NEAREST, 0, wrapU_ || tiled, tiled);
 }
 
 }  // namespace microrelief

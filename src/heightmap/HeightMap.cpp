@@ -19,19 +19,38 @@ float HeightMap::wrapped(int i, int j) const {
     return at(column < 0 ? column + width : column, std::clamp(j, 0, height - 1));
 }
 
+float HeightMap::sample(int i, int j, const MapAddressing& a) const {
+    const int w = width * a.tilesX, h = height * a.tilesY;
+    if (a.wrapU) {
+        i %= w;
+        if (i < 0) i += w;
+    } else {
+        i = std::clamp(i, 0, w - 1);
+    }
+    j = std::clamp(j, 0, h - 1);
+    return at(i % width, j % height);
+}
+
 double HeightMap::surface(double x, double y, bool wrapU) const {
-    // Sample centres sit at half-integers: shift so that sample i is at integer i.
-    const double sx = x - 0.5, sy = y - 0.5;
-    const double fx0 = std::floor(sx), fy0 = std::floor(sy);
-    const int i = static_cast<int>(fx0), j = static_cast<int>(fy0);
-    const double fx = sx - fx0, fy = sy - fy0;
-    const double h00 = sample(i, j, wrapU), h10 = sample(i + 1, j, wrapU);
-    const double h01 = sample(i, j + 1, wrapU), h11 = sample(i + 1, j + 1, wrapU);
-    return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
+    return surface(x, y, MapAddressing{wrapU}, Interpolation::Bilinear);
 }
 
 double HeightMap::surface(double x, double y, bool wrapU, Interpolation interpolation) const {
-    if (interpolation == Interpolation::Bilinear) return surface(x, y, wrapU);
+    return surface(x, y, MapAddressing{wrapU}, interpolation);
+}
+
+double HeightMap::surface(double x, double y, const MapAddressing& a,
+                          Interpolation interpolation) const {
+    if (interpolation == Interpolation::Bilinear) {
+        // Sample centres sit at half-integers: shift so that sample i is at integer i.
+        const double sx = x - 0.5, sy = y - 0.5;
+        const double fx0 = std::floor(sx), fy0 = std::floor(sy);
+        const int i = static_cast<int>(fx0), j = static_cast<int>(fy0);
+        const double fx = sx - fx0, fy = sy - fy0;
+        const double h00 = sample(i, j, a), h10 = sample(i + 1, j, a);
+        const double h01 = sample(i, j + 1, a), h11 = sample(i + 1, j + 1, a);
+        return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
+    }
     // The texel square holding (x, y), and the position in it from its sample.
     const double fx0 = std::floor(x), fy0 = std::floor(y);
     const int i = static_cast<int>(fx0), j = static_cast<int>(fy0);
@@ -40,7 +59,7 @@ double HeightMap::surface(double x, double y, bool wrapU, Interpolation interpol
     quadraticWeights(y - fy0 - 0.5, wy);
     double h = 0.0;
     for (int b = 0; b < 3; ++b) {
-        for (int a = 0; a < 3; ++a) h += wx[a] * wy[b] * sample(i - 1 + a, j - 1 + b, wrapU);
+        for (int c = 0; c < 3; ++c) h += wx[c] * wy[b] * sample(i - 1 + c, j - 1 + b, a);
     }
     return h;
 }

@@ -17,7 +17,7 @@ int ceilPowerOfTwo(int n) {
 // The exact max of the bilinear surface over texel square (i, j): the nine points where
 // the patches that meet the square have their corners (see MaxPyramid.h). Computed in
 // double and rounded up to float, so that the bound is never an ulp below the surface.
-float texelSquareMax(const HeightMap& map, int i, int j, bool wrapU) {
+float texelSquareMax(const HeightMap& map, int i, int j, const MapAddressing& wrapU) {
     double best = 0.0;
     for (int dj = -1; dj <= 1; ++dj) {
         for (int di = -1; di <= 1; ++di) {
@@ -43,7 +43,7 @@ float texelSquareMax(const HeightMap& map, int i, int j, bool wrapU) {
 // the net's max bounds it. Tighter than the 3 x 3 samples' max (the net's entries are
 // averages of them), and attained at the square's corners when a corner entry is the
 // largest. Computed in double, rounded up to float.
-float texelSquareBezierMax(const HeightMap& map, int i, int j, bool wrapU) {
+float texelSquareBezierMax(const HeightMap& map, int i, int j, const MapAddressing& wrapU) {
     double c[3][3];
     for (int b = 0; b < 3; ++b) {
         for (int a = 0; a < 3; ++a) c[b][a] = map.sample(i - 1 + a, j - 1 + b, wrapU);
@@ -68,16 +68,42 @@ float texelSquareBezierMax(const HeightMap& map, int i, int j, bool wrapU) {
 }  // namespace
 
 MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU, Interpolation interpolation)
-    : mapWidth_(map.width), mapHeight_(map.height), wrapU_(wrapU) {
+    : MaxPyramid(map, MapAddressing{wrapU}, interpolation) {}
+
+MaxPyramid::MaxPyramid(const HeightMap& map, const MapAddressing& addressing,
+                       Interpolation interpolation)
+    : mapWidth_(map.width),
+      mapHeight_(map.height),
+      wrapU_(addressing.wrapU),
+      addressing_(addressing) {
+    // A tiled map's texel occurs once in every tile: with neighbours from the tiles beside
+    // it inside the whole, clamped to itself at the whole's edges. The first and the last
+    // tile's occurrences have both kinds (the first's left and the last's right edge
+    // clamp, the first's right and the last's left edge meet the next tile), the others
+    // repeat them, so the max over those two per axis bounds the surface over every
+    // occurrence of the texel square. Untiled, that is the one occurrence.
+    const int lastTileX = (addressing.tilesX - 1) * map.width,
+              lastTileY = (addressing.tilesY - 1) * map.height;
+    const int offsetsX = lastTileX > 0 ? 2 : 1, offsetsY = lastTileY > 0 ? 2 : 1;
+    const auto bound = [&](int i, int j) {
+        float best = 0.0f;
+        for (int y = 0; y < offsetsY; ++y) {
+            for (int x = 0; x < offsetsX; ++x) {
+                const int ox = x * lastTileX, oy = y * lastTileY;
+                best = std::max(best, interpolation == Interpolation::Biquadratic
+                                          ? texelSquareBezierMax(map, i + ox, j + oy, addressing)
+                                          : texelSquareMax(map, i + ox, j + oy, addressing));
+            }
+        }
+        return best;
+    };
     const int pw = ceilPowerOfTwo(map.width), ph = ceilPowerOfTwo(map.height);
     widths_.push_back(pw);
     heights_.push_back(ph);
     std::vector<float> finest(static_cast<std::size_t>(pw) * ph, 0.0f);
     for (int j = 0; j < map.height; ++j) {
         for (int i = 0; i < map.width; ++i)
-            finest[static_cast<std::size_t>(j) * pw + i] =
-                interpolation == Interpolation::Biquadratic ? texelSquareBezierMax(map, i, j, wrapU)
-                                                            : texelSquareMax(map, i, j, wrapU);
+            finest[static_cast<std::size_t>(j) * pw + i] = bound(i, j);
     }
     levels_.push_back(std::move(finest));
 
@@ -122,8 +148,8 @@ MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU, Interpolation interpola
 }
 
 glm::ivec2 MaxPyramid::finestTexelAt(glm::dvec2 p) const {
-    return {std::clamp(static_cast<int>(std::floor(p.x)), 0, mapWidth_ - 1),
-            std::clamp(static_cast<int>(std::floor(p.y)), 0, mapHeight_ - 1)};
+    return {std::clamp(static_cast<int>(std::floor(p.x)), 0, mapWidth_ * addressing_.tilesX - 1),
+            std::clamp(static_cast<int>(std::floor(p.y)), 0, mapHeight_ * addressing_.tilesY - 1)};
 }
 
 int MaxPyramid::windowLevel(glm::ivec2 lo, glm::ivec2 hi) const {
@@ -147,7 +173,36 @@ double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fet
     return windowOver(glm::min(ta, tb), glm::max(ta, tb), level, fetches);
 }
 
+double MaxPyramid::tiledWindows(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const {
+    // max_pyramid.glsl: mr_tiledWindows. Per axis the tile's texels the footprint covers:
+    // one range, two across a seam between tiles, or the whole tile.
+    const glm::ivec2 tile(mapWidth_, mapHeight_), span = hi - lo;
+    glm::ivec2 a = lo - tile * (lo / tile), b = a + span;
+    for (int axis = 0; axis < 2; ++axis) {
+        if (span[axis] >= tile[axis] - 1) {
+            a[axis] = 0;
+            b[axis] = tile[axis] - 1;
+        }
+    }
+    const glm::ivec2 end = glm::min(b, tile - 1);
+    const bool splitX = b.x >= tile.x, splitY = b.y >= tile.y;
+    double bound = windowOver(a, end, level, fetches);
+    if (splitX)
+        bound = std::max(bound, windowOver({0, a.y}, {b.x - tile.x, end.y}, level, fetches));
+    if (splitY)
+        bound = std::max(bound, windowOver({a.x, 0}, {end.x, b.y - tile.y}, level, fetches));
+    if (splitX && splitY) bound = std::max(bound, windowOver({0, 0}, b - tile, level, fetches));
+    return bound;
+}
+
 double MaxPyramid::footprintBound(glm::dvec2 lo, glm::dvec2 hi, int& level, int& fetches) const {
+    if (addressing_.tiled()) {
+        const glm::ivec2 tlo = finestTexelAt(lo);
+        glm::ivec2 thi = finestTexelAt(hi);
+        if (wrapU_ && hi.x >= mapWidth_ * addressing_.tilesX)
+            thi.x = static_cast<int>(std::floor(hi.x));  // past the seam
+        return tiledWindows(tlo, thi, level, fetches);
+    }
     if (!wrapU_ || hi.x < mapWidth_)
         return windowOver(finestTexelAt(lo), finestTexelAt(hi), level, fetches);
     // Across the seam: [lo.x, W) and [0, hi.x - W], each held by a window of its own.

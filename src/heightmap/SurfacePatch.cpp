@@ -24,6 +24,11 @@ glm::dmat3 restriction(double a, double b) {
 
 SurfacePatch SurfacePatch::at(const HeightMap& map, int i, int j, bool wrapU,
                               Interpolation interpolation) {
+    return at(map, i, j, MapAddressing{wrapU}, interpolation);
+}
+
+SurfacePatch SurfacePatch::at(const HeightMap& map, int i, int j, const MapAddressing& wrapU,
+                              Interpolation interpolation) {
     SurfacePatch p;
     p.interpolation = interpolation;
     p.i = i;

@@ -32,9 +32,9 @@ AlbedoImage loadAlbedo(const std::filesystem::path& file) {
         // Read the first (up to) four channels, then spread grey to RGB and fill alpha.
         auto expand = [&](auto& out, auto one) {
             std::vector<std::remove_reference_t<decltype(out[0])>> read(pixels * used);
-            const bool ok = input->read_image(0, 0, 0, used,
-                                              eightBit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT,
-                                              read.data());
+            const bool ok = input->read_image(
+                0, 0, 0, used, eightBit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT,
+                read.data());
             if (!ok) {
                 const std::string reason = oneLine(input->geterror());
                 throwBadInput(name + ": cannot read the pixels (" +

@@ -39,12 +39,13 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
 }
 
 void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,
-                                    const BaseShape& base, Interpolation interpolation) {
+                                    const BaseShape& base, Interpolation interpolation,
+                                    glm::ivec2 tiles) {
     context_.makeCurrent();
-    renderer_->setHeightMap(map, source, base, interpolation);
+    renderer_->setHeightMap(map, source, base, interpolation, tiles);
     source_ = source;
-    mapWidth_ = map.width;
-    mapHeight_ = map.height;
+    mapWidth_ = map.width * tiles.x;  // the whole, tiles included
+    mapHeight_ = map.height * tiles.y;
     maxHeight_ = map.maxValue();
 }
 
@@ -69,6 +70,8 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     // base the pyramid is built anew (setHeightMap).
     if (job.interpolation != renderer_->interpolation())
         throwRuntime("HeadlessRenderer::render: the map was set for another interpolation");
+    if (job.tiles != renderer_->tiles())
+        throwRuntime("HeadlessRenderer::render: the map was set for other tiles");
     if (job.base != renderer_->base()) renderer_->setBase(job.base);
     renderer_->setMethod(job.method);  // compiled once per method, then looked up
     renderer_->setModel(job.model);
@@ -138,11 +141,12 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     // Refused before the pyramid is built; render checks them again.
     checkHeightScale(job.heightScale);
     checkPictureSize(job.width, job.height);
-    checkFloatLimits({map.width, map.height, map.maxValue()}, job.heightScale, job.camera,
+    checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxValue()},
+                     job.heightScale, job.camera,
                      resolveCamera(job.camera, job.width, job.height, 1.0), source);
     // GL objects live in this scope and die before the context does.
     HeadlessRenderer renderer(context, job.method);
-    renderer.setHeightMap(map, source, job.base, job.interpolation);
+    renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
     if (albedo) renderer.setAlbedo(albedo, source + " (albedo)");
     return renderer.render(job);
 }

@@ -59,6 +59,13 @@ const char* shadowModeName(ShadowMode mode) {
     return kShadowModeNames[static_cast<int>(mode)];
 }
 
+void checkMethodSupportsTiles(Method method, glm::ivec2 tiles) {
+    if (method != Method::MaxMip || tiles == glm::ivec2(1, 1)) return;
+    throwBadInput(
+        "--method maxmip does not take --tile (its quadtree is the map's own; the "
+        "multilevel method and the step-based peers do)");
+}
+
 DebugView parseDebugView(const std::string& name) {
     return parseName<DebugView>(kDebugViewNames, name, "--view");
 }

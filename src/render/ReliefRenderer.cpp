@@ -26,8 +26,8 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
 
 ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
                                              BaseKind base, Interpolation interpolation,
-                                             bool frontFaces, ShadowMode shadows,
-                                             bool albedoMap) const {
+                                             bool frontFaces, ShadowMode shadows, bool albedoMap,
+                                             bool tiled) const {
     // A front face lies on the ray before its hit, a back face after it: the depth written
     // is at least the face's (front) or at most (back) under a standard depth test, the
     // other way round under reversed-Z.
@@ -40,12 +40,13 @@ ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, boo
             countFetches,
             greater ? DepthLayout::Greater : DepthLayout::Less,
             shadows,
-            albedoMap};
+            albedoMap,
+            tiled};
 }
 
 void ReliefRenderer::reloadShaders() {
-    const ReliefShaderConfig config =
-        configFor(method_, countFetches_, base_.kind, interpolation_, true);
+    const ReliefShaderConfig config = configFor(method_, countFetches_, base_.kind, interpolation_,
+                                                true, ShadowMode::Off, false, tiled());
     ReliefShader fresh(gl_, shaderDir_, config);  // throws before anything changes
     programs_.clear();
     programs_.emplace(config, std::move(fresh));
@@ -60,7 +61,9 @@ ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
 
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
     checkMethodSupportsBase(settings.method, base_);
-    program(configFor(settings, countFetches, base_.kind, interpolation_, true));  // may throw
+    checkMethodSupportsTiles(settings.method, tiles());
+    program(configFor(settings, countFetches, base_.kind, interpolation_, true, ShadowMode::Off,
+                      false, tiled()));  // may throw
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -73,22 +76,28 @@ void ReliefRenderer::setBase(const BaseShape& base) {
             "be uploaded again (setHeightMap)");
     }
     checkMethodSupportsBase(method_.method, base);
-    program(configFor(method_, countFetches_, base.kind, interpolation_, true));  // may throw
+    program(configFor(method_, countFetches_, base.kind, interpolation_, true, ShadowMode::Off,
+                      false,
+                      tiled()));  // may throw
     base_ = base;
     if (textures_) uploadBox();
 }
 
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
-                                  const BaseShape& base, Interpolation interpolation) {
+                                  const BaseShape& base, Interpolation interpolation,
+                                  glm::ivec2 tiles) {
     validateBaseShape(base);
     checkMethodSupportsBase(method_.method, base);
+    checkMethodSupportsTiles(method_.method, tiles);
+    if (tiles.x < 1 || tiles.y < 1) throwBadInput("--tile: counts must be at least 1");
     // Both throw before anything changes: the program is compiled (or looked up) first,
     // the textures are made before the old ones go.
-    program(configFor(method_, countFetches_, base.kind, interpolation, true));
-    textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation));
+    program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
+                      false, tiles != glm::ivec2(1, 1)));
+    textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, tiles));
     base_ = base;
     interpolation_ = interpolation;
-    maxIterations_ = traversalBudget(map.width, map.height);
+    maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
     uploadBox();
 }
 
@@ -176,6 +185,7 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.lightDirection = glm::normalize(shading.lightDirection);
     if (shading.lightPosition) p.lightPosition = glm::vec4(*shading.lightPosition, 1.0f);
     p.albedoFinest = shading.albedoFinestLevel ? 1 : 0;
+    p.reliefTiles = shape.tiles;
     p.lightTanRadius = static_cast<float>(
         std::tan(0.5 * glm::radians(static_cast<double>(shading.lightSizeDegrees))));
     p.debugView = static_cast<int>(shading.view);
@@ -200,8 +210,9 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     // per pixel the box covers either way (it is convex), and the depth layout the
     // program promises holds for the faces drawn.
     const bool frontFaces = eyeOutsideBox(camera.eye);
-    ReliefShader& shader = program(configFor(method_, countFetches_, base_.kind, interpolation_,
-                                             frontFaces, shading.shadows, albedo_.has_value()));
+    ReliefShader& shader =
+        program(configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces,
+                          shading.shadows, albedo_.has_value(), tiled()));
 
     const gl::StateGuard saved(gl_);
     const ReliefParameters values = parameters(camera, shading, t);

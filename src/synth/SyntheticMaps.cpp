@@ -165,7 +165,8 @@ HeightMap cobbles(int width, int height, std::uint32_t seed) {
             const double x = (i + 0.5) / longer * kCobbleCells,
                          y = (j + 0.5) / longer * kCobbleCells;
             const Cobble c = cobbleAt(x, y, seed);
-            const double dome = std::sqrt(1.0 - (1.0 - c.edge) * (1.0 - c.edge));  // rounded shoulders
+            const double dome =
+                std::sqrt(1.0 - (1.0 - c.edge) * (1.0 - c.edge));  // rounded shoulders
             const double h = dome * (0.72 + 0.2 * c.stone) + 0.08 * c.grain * dome + 0.03 * c.grain;
             map.at(i, j) = static_cast<float>(std::clamp(h, 0.0, 1.0));
         }
@@ -250,11 +251,13 @@ Rgb planetColour(double u, double v, std::uint32_t seed) {
     const double h = planetHeight(p);
     Rgb colour = mix({0.01, 0.03, 0.12}, {0.03, 0.12, 0.25}, p.coast > 0.0 ? 1.0 : 0.6);
     if (p.coast > 0.0) {
-        colour = mix({0.08, 0.20, 0.05}, {0.30, 0.24, 0.13}, std::clamp((h - 0.15) / 0.3, 0.0, 1.0));
+        colour =
+            mix({0.08, 0.20, 0.05}, {0.30, 0.24, 0.13}, std::clamp((h - 0.15) / 0.3, 0.0, 1.0));
         colour = mix(colour, {0.35, 0.34, 0.33}, std::clamp((h - 0.45) / 0.25, 0.0, 1.0));
         colour = mix(colour, {0.85, 0.86, 0.88}, std::clamp((h - 0.75) / 0.15, 0.0, 1.0));
     }
-    return mix(colour, {0.80, 0.83, 0.88}, std::clamp((std::abs(p.latitude) - 0.95) / 0.02, 0.0, 1.0));
+    return mix(colour, {0.80, 0.83, 0.88},
+               std::clamp((std::abs(p.latitude) - 0.95) / 0.02, 0.0, 1.0));
 }
 
 }  // namespace
@@ -278,7 +281,8 @@ AlbedoImage albedo(const std::string& name, int width, int height, int mapWidth,
                                                v * mapHeight / longer * kCobbleCells, seed)
                                 : planetColour(u, v, seed);
             float* out = &image.linear[(static_cast<std::size_t>(j) * width + i) * 4];
-            for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(rgb[static_cast<std::size_t>(c)]);
+            for (int c = 0; c < 3; ++c)
+                out[c] = static_cast<float>(rgb[static_cast<std::size_t>(c)]);
             out[3] = 1.0f;
         }
     }

@@ -44,14 +44,17 @@ int traversalBudget(int width, int height) {
 }
 
 MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base,
-                                   Interpolation interpolation)
+                                   Interpolation interpolation, glm::ivec2 tiles)
     : map_(std::move(map)),
       interpolation_(interpolation),
-      pyramid_(map_, base.wrapsU(), interpolation),
+      addressing_{base.wrapsU(), tiles.x, tiles.y},
+      width_(map_.width * tiles.x),
+      height_(map_.height * tiles.y),
+      pyramid_(map_, addressing_, interpolation),
       heightScale_(heightScale),
-      base_(BaseSurface::make(base, map_.width, map_.height, heightScale,
+      base_(BaseSurface::make(base, width_, height_, heightScale,
                               pyramid_.texel(pyramid_.levelCount() - 1, 0, 0))),
-      maxIterations_(traversalBudget(map_.width, map_.height)) {}
+      maxIterations_(traversalBudget(width_, height_)) {}
 
 // Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
 // per bilinear patch and four per biquadratic one (relief_patch.glsl), one texel per
@@ -59,7 +62,7 @@ MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const Base
 // samples i-1..i+1), wrapped in i on a curved base, clamped otherwise.
 SurfacePatch MultilevelTracer::patchAt(int i, int j, int& fetches) const {
     fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1;
-    return SurfacePatch::at(map_, i, j, base_->wrapsU(), interpolation_);
+    return SurfacePatch::at(map_, i, j, addressing_, interpolation_);
 }
 
 // relief_hit.glsl: mr_setTopHit's normal, in the base's frame.
@@ -68,14 +71,14 @@ glm::dvec3 MultilevelTracer::topNormal(const SurfacePatch& patch,
     const glm::dvec3 m = base_->mapPoint(framePoint);
     const double offset = SurfacePatch::offset(interpolation_);
     double fx = m.x - (patch.i + offset);
-    if (base_->wrapsU()) fx -= map_.width * std::round(fx / map_.width);
+    if (base_->wrapsU()) fx -= width_ * std::round(fx / width_);
     const glm::dvec2 f(std::clamp(fx, 0.0, 1.0), std::clamp(m.y - (patch.j + offset), 0.0, 1.0));
     glm::dvec2 g = patch.gradient(f);
     // Clamped bilinear border cells are flat across the edge (in u only where it does not
     // wrap); the biquadratic surface is flat at the edge by itself.
     if (interpolation_ == Interpolation::Bilinear) {
-        if (!base_->wrapsU() && (patch.i < 0 || patch.i >= map_.width - 1)) g.x = 0.0;
-        if (patch.j < 0 || patch.j >= map_.height - 1) g.y = 0.0;
+        if (!base_->wrapsU() && (patch.i < 0 || patch.i >= width_ - 1)) g.x = 0.0;
+        if (patch.j < 0 || patch.j >= height_ - 1) g.y = 0.0;
     }
     return base_->topNormal(framePoint, g);
 }
@@ -143,7 +146,7 @@ auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double
 auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to, glm::dvec2 branch,
                                      int& fetches) const -> std::optional<LeafHit> {
     const BaseSurface& base = *base_;
-    const int w = map_.width, h = map_.height;
+    const int w = width_, h = height_;
     const double offset = SurfacePatch::offset(interpolation_);
     const int firstCell = offset > 0.0 ? -1 : 0;  // bilinear border cells at -1
     const glm::dvec3 start = base.mapPoint(ray.at(from));
@@ -205,7 +208,7 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
                                                        const SurfacePatch& patch, double c0,
                                                        double c1) const {
     const BaseSurface& base = *base_;
-    const int w = map_.width;
+    const int w = width_;
     const double offset = SurfacePatch::offset(interpolation_);
     const double finalFootprint = interpolation_ == Interpolation::Biquadratic
                                       ? kBiquadraticFinalFootprint
@@ -280,7 +283,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, const 
         hit.position = worldRay.origin + t * worldRay.direction;
         hit.normal = base_->worldNormal(frameNormal);
         const glm::dvec3 m = base_->mapPoint(ray.at(t));
-        hit.uv = {m.x / map_.width, m.y / map_.height};
+        hit.uv = {m.x / width_, m.y / height_};
         hit.height = m.z;
         return hit;
     };
@@ -296,7 +299,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, const 
         const glm::dvec3 m = base_->mapPoint(ray.at(tNear));
         const bool bottom = span.entry == ShellFace::Bottom;  // h = 0: always in the solid
         if (bottom || (stats.fetches += surfaceFetches,
-                       m.z <= map_.surface(m.x, m.y, base_->wrapsU(), interpolation_))) {
+                       m.z <= map_.surface(m.x, m.y, addressing_, interpolation_))) {
             stats.stopLevel = 0;
             const HitFace face = span.entry == ShellFace::WallX   ? HitFace::WallX
                                  : span.entry == ShellFace::WallY ? HitFace::WallZ

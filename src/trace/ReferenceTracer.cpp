@@ -471,8 +471,7 @@ ReferenceHit throughModel(const ModelTransform& model, const Ray& ray, TraceObje
 ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray) {
     return throughModel(relief.model, ray, [&](const Ray& objectRay) {
         if (relief.base.curved()) {
-            return detail::traceCurvedReference(relief, detail::curvedBoundaries(relief),
-                                                objectRay,
+            return detail::traceCurvedReference(relief, detail::curvedBoundaries(relief), objectRay,
                                                 relief.heightScale * relief.map->maxValue());
         }
         // Without a known top the walk covers every cell under the ray's path over the

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <random>
 
 #include "microrelief/heightmap/MaxPyramid.h"
@@ -265,6 +266,61 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
                         }
                         ASSERT_GE(p.segmentBound(lo, hi, level, fetches), along - 1e-12);
                     }
+                }
+            }
+        }
+    }
+}
+
+// A tiled map (issue 14) is the larger image made by repeating it: the tile's pyramid must
+// bound the whole's surface over every occurrence of every texel square (inside the whole,
+// where neighbours come from the next tile, and at its clamped edges), and every footprint
+// over the whole, seams between tiles included (wrapped round a curved base, up to once
+// round the whole), on both last levels.
+TEST(MaxPyramid, TiledBoundsCoverTheWholeSurface) {
+    std::mt19937 random(91);
+    for (const bool wrapU : {false, true}) {
+        for (const Interpolation interpolation :
+             {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+            for (const auto [w, h, tx, ty] :
+                 {std::array{5, 3, 3, 2}, std::array{7, 6, 2, 3}, std::array{1, 4, 4, 1}}) {
+                const HeightMap map =
+                    synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 7 + h));
+                const MapAddressing addressing{wrapU, tx, ty};
+                const MaxPyramid p(map, addressing, interpolation);
+                const int W = w * tx, H = h * ty;
+                const auto denseMax = [&](double x0, double y0, double x1, double y1, int steps) {
+                    double best = 0.0;
+                    for (int b = 0; b <= steps; ++b)
+                        for (int a = 0; a <= steps; ++a)
+                            best = std::max(best, map.surface(x0 + (x1 - x0) * a / steps,
+                                                              y0 + (y1 - y0) * b / steps,
+                                                              addressing, interpolation));
+                    return best;
+                };
+                const std::string name = std::to_string(w) + "x" + std::to_string(h) + " tiled " +
+                                         std::to_string(tx) + "x" + std::to_string(ty) +
+                                         (wrapU ? " wrapped " : " ") +
+                                         interpolationName(interpolation);
+                for (int j = 0; j < H; ++j) {
+                    for (int i = 0; i < W; ++i) {
+                        ASSERT_GE(p.texel(0, i % w, j % h) + 1e-12,
+                                  denseMax(i, j, i + 1, j + 1, 16))
+                            << name << ": texel square " << i << "," << j;
+                    }
+                }
+                std::uniform_real_distribution<double> x(0.0, W), y(0.0, H), unit(0.0, 1.0);
+                for (int trial = 0; trial < 300; ++trial) {
+                    const glm::dvec2 lo(x(random), y(random));
+                    const double reach = std::max(W, H) * unit(random) * unit(random);
+                    glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
+                    hi.y = std::min(hi.y, static_cast<double>(H));
+                    hi.x = std::min(hi.x, wrapU ? lo.x + W - 1e-9 : static_cast<double>(W));
+                    int level = -1, fetches = 0;
+                    ASSERT_GE(p.footprintBound(lo, hi, level, fetches),
+                              denseMax(lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
+                        << name << " [" << lo.x << "," << lo.y << "] - [" << hi.x << "," << hi.y
+                        << "]";
                 }
             }
         }

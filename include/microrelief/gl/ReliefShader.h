@@ -49,6 +49,7 @@ struct ReliefShaderConfig {
     DepthLayout depthLayout = DepthLayout::Any;
     ShadowMode shadows = ShadowMode::Off;
     bool albedoMap = false;  // the surface's colour from an albedo texture (unit 3)
+    bool tiled = false;      // the map repeated (MICRORELIEF_TILING)
 
     auto operator<=>(const ReliefShaderConfig&) const = default;
 };
@@ -89,7 +90,7 @@ struct ReliefParameters {
     glm::vec4 lightPosition{0.0f};  // w: 1 for a point light
     float lightTanRadius = 0.0f;
     int albedoFinest = 0;
-    float blockPadding1 = 0.0f, blockPadding2 = 0.0f;
+    glm::ivec2 reliefTiles{1, 1};
 };
 static_assert(sizeof(ReliefParameters) == 416, "std140 size of MicroreliefParameters");
 static_assert(offsetof(ReliefParameters, eye) == 192);

@@ -30,6 +30,18 @@ inline void quadraticWeights(double f, double w[3]) {
     w[2] = 0.5 * (0.5 + f) * (0.5 + f);
 }
 
+// How a map's samples are addressed (scene-and-cli.md): clamped to the edge beyond the
+// map, u wrapped round a curved base, and the map repeated tilesX x tilesY times
+// (--tile): then its samples are those of the larger image made by repeating it, and
+// indices run over that image (i in [0, tilesX W)).
+struct MapAddressing {
+    bool wrapU = false;
+    int tilesX = 1, tilesY = 1;
+
+    bool tiled() const { return tilesX > 1 || tilesY > 1; }
+    bool operator==(const MapAddressing&) const = default;
+};
+
 struct HeightMap {
     int width = 0;
     int height = 0;
@@ -50,6 +62,8 @@ struct HeightMap {
     float wrapped(int i, int j) const;
     // clamped() or wrapped(): how a base surface addresses its map.
     float sample(int i, int j, bool wrapU) const { return wrapU ? wrapped(i, j) : clamped(i, j); }
+    // Sample (i, j) of the map as `addressing` has it (i, j over the tiled whole).
+    float sample(int i, int j, const MapAddressing& addressing) const;
 
     // h(X, Y) in texel space (X = u W, Y = v H): the bilinear surface of the spec, with
     // column W - 1 joined to column 0 when `wrapU` (a curved base).
@@ -57,16 +71,19 @@ struct HeightMap {
     // The same for either interpolation: the biquadratic one sums the 3 x 3 samples around
     // the texel square holding (X, Y), clamped or wrapped as sample() has it.
     double surface(double x, double y, bool wrapU, Interpolation interpolation) const;
+    // The same over the tiled whole (x in [0, tilesX W]).
+    double surface(double x, double y, const MapAddressing& addressing,
+                   Interpolation interpolation) const;
 
     float maxValue() const;
     float minValue() const;
 };
 
-// The largest map side loadHeightMap (heightmap/HeightMapFile.h) accepts, checked from the file's header before any
-// sample is read or allocated: 16384, the GL_MAX_TEXTURE_SIZE of llvmpipe and of most
-// desktop GPUs (and the least that OpenGL 4.1 and later guarantee), so that a map's
-// samples take at most 1 GiB (its pyramid about 2.7 GiB more) before a GL context
-// exists. The renderer checks the GPU's own, possibly lower, limit when it uploads.
+// The largest map side loadHeightMap (heightmap/HeightMapFile.h) accepts, checked from the file's
+// header before any sample is read or allocated: 16384, the GL_MAX_TEXTURE_SIZE of llvmpipe and of
+// most desktop GPUs (and the least that OpenGL 4.1 and later guarantee), so that a map's samples
+// take at most 1 GiB (its pyramid about 2.7 GiB more) before a GL context exists. The renderer
+// checks the GPU's own, possibly lower, limit when it uploads.
 inline constexpr int kMaxHeightMapSide = 16384;
 // More channels than any height map needs; OpenImageIO reads whole pixels, so this
 // bounds what it holds per scanline.

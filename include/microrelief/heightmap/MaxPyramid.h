@@ -45,6 +45,10 @@ public:
     // Bezier control net of the patch over each texel square, see MaxPyramid.cpp).
     explicit MaxPyramid(const HeightMap& map, bool wrapU = false,
                         Interpolation interpolation = Interpolation::Bilinear);
+    // A tiled map's pyramid (`addressing`'s tiles): the tile's, its finest level bounding
+    // each texel square wherever the tile repeats, across the seams between tiles and at
+    // the whole's clamped edges; footprints are taken into the tile (footprintBound).
+    MaxPyramid(const HeightMap& map, const MapAddressing& addressing, Interpolation interpolation);
 
     int mapWidth() const { return mapWidth_; }
     int mapHeight() const { return mapHeight_; }
@@ -84,13 +88,17 @@ public:
     // the level of the last window read.
     double footprintBound(glm::dvec2 lo, glm::dvec2 hi, int& level, int& fetches) const;
     bool wrapsU() const { return wrapU_; }
+    const MapAddressing& addressing() const { return addressing_; }
 
 private:
     // The window at windowLevel over the finest texels lo..hi, one fetch.
     double windowOver(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const;
+    // A tiled map's bound over its finest texels lo..hi (max_pyramid.glsl: mr_tiledWindows).
+    double tiledWindows(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const;
 
     int mapWidth_, mapHeight_;
     bool wrapU_ = false;
+    MapAddressing addressing_;
     std::vector<int> widths_, heights_;
     std::vector<std::vector<float>> levels_;
     std::vector<std::vector<float>> windows_;

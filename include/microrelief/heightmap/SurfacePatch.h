@@ -27,6 +27,9 @@ struct SurfacePatch {
     // The patch of cell (i, j), its samples wrapped in i when `wrapU`, clamped otherwise.
     static SurfacePatch at(const HeightMap& map, int i, int j, bool wrapU,
                            Interpolation interpolation);
+    // The same over a map addressed as `addressing` has it (tiled: i, j over the whole).
+    static SurfacePatch at(const HeightMap& map, int i, int j, const MapAddressing& addressing,
+                           Interpolation interpolation);
 
     double height(glm::dvec2 f) const;
     glm::dvec2 gradient(glm::dvec2 f) const;  // (dh/dX, dh/dY), per texel

@@ -30,7 +30,8 @@ struct RenderJob {
     float heightScale = 0.1f;
     BaseShape base;  // the surface the map is laid over (--base, --radius, --length, --radii)
     Interpolation interpolation = Interpolation::Bilinear;  // the last level (--interpolation)
-    ModelTransform model;  // where the relief sits in the world (--model)
+    ModelTransform model;    // where the relief sits in the world (--model)
+    glm::ivec2 tiles{1, 1};  // the map repeated N x M times across the base (--tile)
     ShadingOptions shading;
     MethodSettings method;
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB
@@ -56,7 +57,8 @@ public:
     // or another curved base; between the plane and a curved base, or for another
     // interpolation, set the map again.
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
-                      Interpolation interpolation = Interpolation::Bilinear);
+                      Interpolation interpolation = Interpolation::Bilinear,
+                      glm::ivec2 tiles = {1, 1});
     // The map's colours (image/Albedo.h), or none (the shading's one colour). Throws Error.
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
     // Renders `job` of the current map. Throws Error.

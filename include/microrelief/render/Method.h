@@ -30,6 +30,9 @@ bool methodTracesTheSolid(Method method);
 // ones (multilevel, maxmip) and the peers engines ship there, pom and relief stepping in
 // the base's tangent frame. Otherwise throws Error(BadInput) naming both flags.
 void checkMethodSupportsBase(Method method, const BaseShape& base);
+// Whether a method takes a tiled map (--tile): every method but maxmip, whose quadtree is
+// the map's own. Otherwise throws Error(BadInput) naming both flags.
+void checkMethodSupportsTiles(Method method, glm::ivec2 tiles);
 bool methodRunsOnBase(Method method, const BaseShape& base);
 
 struct MethodSettings {

@@ -43,11 +43,14 @@ public:
                    const MethodSettings& method = {});
 
     // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base), of
-    // the surface `interpolation` makes of it, and uploads it with the samples. Throws
-    // Error(BadInput) when the map exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that
-    // base; `source` names the map in that message.
+    // the surface `interpolation` makes of it, the map repeated `tiles` times across the
+    // base (--tile), and uploads it with the samples. Throws Error(BadInput) when the map
+    // exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that base or tiles;
+    // `source` names the map in that message.
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
-                      Interpolation interpolation = Interpolation::Bilinear);
+                      Interpolation interpolation = Interpolation::Bilinear,
+                      glm::ivec2 tiles = {1, 1});
+    glm::ivec2 tiles() const { return textures_ ? textures_->tiles() : glm::ivec2(1, 1); }
     void setHeightScale(float scale);
     // Another base of the same addressing as the map was uploaded with (the curved bases
     // among themselves, a new size of the same one); a change between the plane and a
@@ -97,9 +100,9 @@ public:
 
 private:
     ReliefShaderConfig configFor(const MethodSettings& settings, bool countFetches, BaseKind base,
-                                 Interpolation interpolation, bool frontFaces,
-                                 ShadowMode shadows = ShadowMode::Off,
-                                 bool albedoMap = false) const;
+                                 Interpolation interpolation, bool frontFaces, ShadowMode shadows,
+                                 bool albedoMap, bool tiled) const;
+    bool tiled() const { return tiles() != glm::ivec2(1, 1); }
     // The program for the configuration, compiled on first use; throws and changes
     // nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);

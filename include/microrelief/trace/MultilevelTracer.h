@@ -51,9 +51,11 @@ struct RayQuery {
 class MultilevelTracer {
 public:
     // Builds the max pyramid of `map` laid over `base`, for the surface `interpolation` makes
-    // of it; the map is copied (the tracer owns its data).
+    // of it, the map repeated `tiles` times across the base (--tile); the map is copied
+    // (the tracer owns its data).
     MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base = {},
-                     Interpolation interpolation = Interpolation::Bilinear);
+                     Interpolation interpolation = Interpolation::Bilinear,
+                     glm::ivec2 tiles = {1, 1});
 
     // The first hit of `ray` (world space) with the relief solid, or nothing.
     std::optional<ReliefHit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const {
@@ -92,6 +94,8 @@ private:
 
     HeightMap map_;
     Interpolation interpolation_;
+    MapAddressing addressing_;
+    int width_, height_;  // the whole map's, tiles included
     MaxPyramid pyramid_;
     double heightScale_;
     std::unique_ptr<BaseSurface> base_;

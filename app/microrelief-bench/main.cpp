@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "Benchmark.h"
+#include "Materials.h"
 #include "Report.h"
 #include "SceneOptions.h"
 #include "microrelief/context/HeadlessContext.h"
@@ -105,7 +106,7 @@ auto parseList(const std::string& list, const std::string& single, const std::st
 int main(int argc, char** argv) {
     CLI::App app{"Measures the multilevel method against its peers: time, texel fetches, accuracy.",
                  "microrelief-bench"};
-    bool quick = false;
+    bool quick = false, materials = false;
     std::string size = "512x512", backend = "auto", outDir = "out/bench";
     std::string methodList = "multilevel,maxmip,normal,offset,steep,pom,relief";
     std::string baseList = "plane,cylinder,sphere";
@@ -114,6 +115,9 @@ int main(int argc, char** argv) {
     app.add_flag("--quick", quick,
                  "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
                  "(minutes on a CPU)");
+    app.add_flag("--materials", materials,
+                 "Only what materials cost: shadows (hard, soft) against none, and the map tiled "
+                 "1x1, 16x16 and 256x256 (materials.csv, materials.md)");
     app.add_option("--size", size,
                    "Picture size WIDTHxHEIGHT (default 512x512; 256x256 with --quick)");
     app.add_option("--frames", options.frames,
@@ -175,6 +179,15 @@ int main(int argc, char** argv) {
         checkOutputFolder(outDir);
 
         const auto context = createHeadlessContext(parseBackend(backend));
+        if (materials) {
+            const std::vector<MaterialRow> rows = runMaterialsBenchmark(
+                *context, options.width, options.height, options.frames, quick);
+            std::cout << '\n' << writeMaterials(outDir, context->renderer(), rows);
+            std::cout << "microrelief-bench: wrote "
+                      << (std::filesystem::path(outDir) / "materials.csv").string()
+                      << " and materials.md\n";
+            return 0;
+        }
         RunInfo info{context->renderer(), today(),
                      "microrelief-bench" + std::string(quick ? " --quick" : "")};
         const std::vector<BenchMap> maps = loadMaps(options);

@@ -37,15 +37,23 @@ vec4 mr_tiledCellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout 
 vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
 #if MICRORELIEF_TILING
 #if MICRORELIEF_TEXTURE_GATHER
-    // Inside the map the REPEATing texture carries a gather across a seam between tiles;
-    // at the map's own clamped edges the samples are read one by one.
-    if (mr_samplesInside(relief, cell, cell + 1)) {
-        fetches += 1;
-        vec4 g = textureGather(heights, (vec2(mr_sampleTexel(relief, cell)) + 1.0) / mr_tileSize(relief.map));
-        return vec4(g.w, g.z, g.x, g.y);
-    }
+    // One gather of the REPEATing texture, from the cell's first sample on, reads its four
+    // samples, across a seam between tiles too. At the map's own clamped edges the gather
+    // reads the edge sample and the next one (or the wrapped one), where the clamped map
+    // repeats the edge sample: the selects put that right, without a branch (which a
+    // software rasteriser would run on both sides).
+    fetches += 1;
+    vec4 g = textureGather(heights, (vec2(mr_sampleTexel(relief, cell)) + 1.0) / mr_tileSize(relief.map));
+    vec4 h = vec4(g.w, g.z, g.x, g.y);
+    ivec2 last = ivec2(relief.map.size) - 1;
+#if MICRORELIEF_BASE == 0
+    h.yw = (cell.x < 0 || cell.x >= last.x) ? h.xz : h.yw;
 #endif
+    h.zw = (cell.y < 0 || cell.y >= last.y) ? h.xy : h.zw;
+    return h;
+#else
     return mr_tiledCellCorners(relief, heights, cell, fetches);
+#endif
 #elif MICRORELIEF_TEXTURE_GATHER
     // The bilinear footprint of the point midway between the cell's four samples is
     // exactly those samples, clamped at the edges as CLAMP_TO_EDGE clamps them.

@@ -29,15 +29,14 @@ mat3 mr_biquadraticNet(mr_Relief relief, sampler2D heights, ivec2 square, inout 
     mat3 c;
 #if MICRORELIEF_TEXTURE_GATHER
 #if MICRORELIEF_TILING
-    // A tiled map gathers inside the map (the texture REPEATs across the seams between
-    // tiles) and reads its clamped edges one by one.
-    bool gather = mr_samplesInside(relief, square - 1, square + 1);
+    // A tiled map's REPEATing texture carries the gathers across the seams between tiles,
+    // from the square's sample clamped to the map; at the map's own clamped edges the
+    // gathered columns and rows are then chosen as the clamped map has them (below).
     vec2 size = mr_tileSize(relief.map), corner = vec2(mr_sampleTexel(relief, square));
 #else
-    bool gather = true;
     vec2 size = relief.map.size, corner = vec2(square);
 #endif
-    if (gather) {
+    {
         // Each gather reads the 2 x 2 samples whose centres surround the point between
         // them: samples (i - 1..i, j - 1..j) around (i, j) in texel coordinates, and so on.
         vec4 g00 = textureGather(heights, (corner + vec2(0.0, 0.0)) / size);
@@ -49,14 +48,32 @@ mat3 mr_biquadraticNet(mr_Relief relief, sampler2D heights, ivec2 square, inout 
         c[0] = vec3(g00.w, g00.x, g01.x);
         c[1] = vec3(g00.z, g00.y, g01.y);
         c[2] = vec3(g10.z, g10.y, g11.y);
-    } else
-#endif
-    {
-        for (int a = 0; a < 3; ++a) {
-            for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(relief, heights, square + ivec2(a - 1, b - 1));
-        }
-        fetches += 9;
     }
+#if MICRORELIEF_TILING
+    // Gathered column k holds sample s - 1 + k of the clamped square s; the square's column
+    // a needs sample clamp(square - 1 + a), which is column clamp(square - 1 + a) - s + 1:
+    // never the wrapped column 0 when s is the first sample, nor 2 when it is the last.
+    ivec2 last = ivec2(relief.map.size) - 1, s = clamp(square, ivec2(0), last);
+    mat3 gathered = c;
+    for (int k = 0; k < 3; ++k) {
+        ivec2 pick = clamp(square - 1 + k, ivec2(0), last) - s + 1;
+#if MICRORELIEF_BASE != 0
+        pick.x = k;  // u wraps: the gathered columns are the square's
+#endif
+        c[k] = gathered[pick.x];
+    }
+    gathered = c;
+    for (int k = 0; k < 3; ++k) {
+        int pick = clamp(square.y - 1 + k, 0, last.y) - s.y + 1;
+        for (int a = 0; a < 3; ++a) c[a][k] = gathered[a][pick];
+    }
+#endif
+#else
+    for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(relief, heights, square + ivec2(a - 1, b - 1));
+    }
+    fetches += 9;
+#endif
     // B-spline control points to the Bezier net, along each axis.
     mat3 rows;
     for (int b = 0; b < 3; ++b) {

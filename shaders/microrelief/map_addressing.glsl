@@ -24,16 +24,4 @@ ivec2 mr_sampleTexel(mr_Relief relief, ivec2 p) {
     return p;
 }
 
-// Whether the samples lo..hi (inclusive) are the map's own on every clamped side: then a
-// textureGather of a tiled map's REPEATing texture, centred on mr_sampleTexel(lo), reads
-// them; at the map's clamped edges, where a sample repeats the edge's, it would wrap.
-bool mr_samplesInside(mr_Relief relief, ivec2 lo, ivec2 hi) {
-    ivec2 last = ivec2(relief.map.size) - 1;
-#if MICRORELIEF_BASE != 0
-    return lo.y >= 0 && hi.y <= last.y;
-#else
-    return all(greaterThanEqual(lo, ivec2(0))) && all(lessThanEqual(hi, last));
-#endif
-}
-
 #endif

@@ -174,8 +174,8 @@ double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fet
 }
 
 double MaxPyramid::tiledWindows(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const {
-    // max_pyramid.glsl: mr_tiledWindows. Per axis the tile's texels the footprint covers:
-    // one range, two across a seam between tiles, or the whole tile.
+    // max_pyramid.glsl: mr_tiledWindows. Per axis the tile's texels the footprint covers, or
+    // the whole tile; across a seam between tiles the tile's top.
     const glm::ivec2 tile(mapWidth_, mapHeight_), span = hi - lo;
     glm::ivec2 a = lo - tile * (lo / tile), b = a + span;
     for (int axis = 0; axis < 2; ++axis) {
@@ -184,15 +184,8 @@ double MaxPyramid::tiledWindows(glm::ivec2 lo, glm::ivec2 hi, int& level, int& f
             b[axis] = tile[axis] - 1;
         }
     }
-    const glm::ivec2 end = glm::min(b, tile - 1);
-    const bool splitX = b.x >= tile.x, splitY = b.y >= tile.y;
-    double bound = windowOver(a, end, level, fetches);
-    if (splitX)
-        bound = std::max(bound, windowOver({0, a.y}, {b.x - tile.x, end.y}, level, fetches));
-    if (splitY)
-        bound = std::max(bound, windowOver({a.x, 0}, {end.x, b.y - tile.y}, level, fetches));
-    if (splitX && splitY) bound = std::max(bound, windowOver({0, 0}, b - tile, level, fetches));
-    return bound;
+    const bool split = b.x >= tile.x || b.y >= tile.y;
+    return split ? windowOver({0, 0}, tile - 1, level, fetches) : windowOver(a, b, level, fetches);
 }
 
 double MaxPyramid::footprintBound(glm::dvec2 lo, glm::dvec2 hi, int& level, int& fetches) const {

@@ -1,0 +1,47 @@
+// The benchmark's clocks: a draw timed by a GL timer query and by the wall clock to
+// glFinish (llvmpipe answers timer queries without timing its rasteriser, so only the
+// second means anything there), and the median of a series.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "microrelief/gl/Objects.h"
+
+namespace microrelief::bench {
+
+inline double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+class Timer {
+public:
+    explicit Timer(const GL& gl) : gl_(gl), query_(gl::Query::create(gl)) {}
+
+    // GPU and wall milliseconds of one draw.
+    std::pair<double, double> time(const std::function<void()>& draw) {
+        gl_.Finish();
+        const auto start = std::chrono::steady_clock::now();
+        gl_.BeginQuery(GL_TIME_ELAPSED, query_.id());
+        draw();
+        gl_.EndQuery(GL_TIME_ELAPSED);
+        gl_.Finish();
+        const double wall =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        GLuint64 ns = 0;
+        gl_.GetQueryObjectui64v(query_.id(), GL_QUERY_RESULT, &ns);
+        return {ns * 1e-6, wall};
+    }
+
+private:
+    const GL& gl_;
+    gl::Query query_;
+};
+
+}  // namespace microrelief::bench

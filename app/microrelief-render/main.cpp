@@ -26,11 +26,14 @@ namespace {
 constexpr const char* kProgram = "microrelief-render";
 
 // --compare-reference: the accuracy sweep's figures for this one view.
+// A tiled map is compared with its larger image, made by repeating it.
 void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
                    const RenderJob& job) {
-    const Accuracy a = compareWithReference(
-        frame, camera,
-        ReliefGeometry{&map, job.heightScale, job.base, job.interpolation, job.model});
+    const bool tiled = job.tiles != glm::ivec2(1, 1);
+    const HeightMap whole = tiled ? repeatMap(map, job.tiles.x, job.tiles.y) : HeightMap();
+    const Accuracy a = compareWithReference(frame, camera,
+                                            ReliefGeometry{tiled ? &whole : &map, job.heightScale,
+                                                           job.base, job.interpolation, job.model});
     std::printf(
         "accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n",
         a.pixels, a.referenceHits);
@@ -51,9 +54,13 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
 void warnIfEyeInsideTheSolid(const HeightMap& map, const RenderJob& job,
                              const std::filesystem::path& heightFile) {
     const Camera& camera = job.camera;
-    const ReferenceHit hit =
-        traceReference({&map, job.heightScale, job.base, job.interpolation, job.model},
-                       Ray{camera.eye, camera.target - camera.eye});
+    // A tiled map from its larger image, where that is not too large to make.
+    const bool tiled = job.tiles != glm::ivec2(1, 1);
+    if (tiled && map.samples.size() * job.tiles.x * job.tiles.y > (std::size_t(1) << 24)) return;
+    const HeightMap whole = tiled ? repeatMap(map, job.tiles.x, job.tiles.y) : HeightMap();
+    const ReferenceHit hit = traceReference(
+        {tiled ? &whole : &map, job.heightScale, job.base, job.interpolation, job.model},
+        Ray{camera.eye, camera.target - camera.eye});
     if (hit && hit.t == 0.0) {
         logWarning("--eye lies inside the relief's solid (under the surface of " +
                    heightFile.filename().string() +
@@ -72,6 +79,13 @@ int run(const RenderOptions& o) {
     const std::filesystem::path heightFile =
         o.scene.heightFile ? *o.scene.heightFile : defaultHeightMapPath();
     const HeightMap map = loadHeightMap(heightFile, o.scene.load);
+    if (o.compareReference && o.scene.job.tiles != glm::ivec2(1, 1) &&
+        map.samples.size() * o.scene.job.tiles.x * o.scene.job.tiles.y > (std::size_t(1) << 26)) {
+        throwBadInput(
+            "--compare-reference with --tile compares with the larger image the tiles "
+            "make, at most 67108864 samples (this one would have " +
+            std::to_string(map.samples.size() * o.scene.job.tiles.x * o.scene.job.tiles.y) + ")");
+    }
     const std::optional<std::filesystem::path> albedoFile = albedoPath(o.scene);
     const std::optional<AlbedoImage> albedo =
         albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;

@@ -119,6 +119,21 @@ void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options,
     }
 }
 
+HeightMap repeatMap(const HeightMap& tile, int tilesX, int tilesY, std::size_t maxSamples) {
+    const std::size_t samples =
+        tile.samples.size() * static_cast<std::size_t>(tilesX) * static_cast<std::size_t>(tilesY);
+    if (samples > maxSamples) {
+        throwBadInput("the map tiled " + std::to_string(tilesX) + " x " + std::to_string(tilesY) +
+                      " would be " + std::to_string(samples) + " samples, more than the " +
+                      std::to_string(maxSamples) + " it may be repeated to");
+    }
+    HeightMap whole(tile.width * tilesX, tile.height * tilesY);
+    for (int j = 0; j < whole.height; ++j)
+        for (int i = 0; i < whole.width; ++i)
+            whole.at(i, j) = tile.at(i % tile.width, j % tile.height);
+    return whole;
+}
+
 namespace {
 
 // heightMapFromSamples for either sample type: `scale` maps a stored value to [0, 1].

@@ -137,15 +137,6 @@ TEST_F(Materials, AlbedoFilteredOverThePixelFootprintAtGrazingAngles) {
 
 namespace {
 
-// The N x M larger image made by repeating `tile`.
-HeightMap repeated(const HeightMap& tile, glm::ivec2 tiles) {
-    HeightMap whole(tile.width * tiles.x, tile.height * tiles.y);
-    for (int j = 0; j < whole.height; ++j)
-        for (int i = 0; i < whole.width; ++i)
-            whole.at(i, j) = tile.at(i % tile.width, j % tile.height);
-    return whole;
-}
-
 // A map tiled N x M is the N x M larger image made by repeating it (issue 14): per pixel,
 // the tiled picture's hits against the exact reference on the larger image, at the
 // thresholds of every other view (hit/miss 0.1 % of pixels, off by more than half a
@@ -197,7 +188,7 @@ TEST_F(Materials, TiledMapIsTheLargerImageMadeByRepeatingIt) {
         job.heightScale = 0.05f;
         RenderJob tiledJob = job;
         tiledJob.tiles = c.tiles;
-        const HeightMap whole = repeated(tile, c.tiles);
+        const HeightMap whole = repeatMap(tile, c.tiles.x, c.tiles.y);
         const HeadlessResult tiled = renderHeadless(test::glContext(), tile, "tile", tiledJob);
         const HeadlessResult single = renderHeadless(test::glContext(), whole, "whole", job);
         const test::Accuracy a = test::compareWithReference(

@@ -95,6 +95,11 @@ struct HeightMapLoadOptions {
     int maxSide = kMaxHeightMapSide;  // larger maps are refused from the header
 };
 
+// The larger image made by repeating `tile` tilesX x tilesY times: what a tiled map is
+// (MapAddressing). Throws Error(BadInput) beyond `maxSamples` samples.
+HeightMap repeatMap(const HeightMap& tile, int tilesX, int tilesY,
+                    std::size_t maxSamples = std::size_t(1) << 26);
+
 // The checks and normalisation loadHeightMap applies after reading; `source` names the
 // map in messages. Exposed for maps built in memory.
 void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options, const std::string& source);

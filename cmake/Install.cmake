@@ -17,7 +17,7 @@ install(DIRECTORY ${GLAD_OUT}/include/
 
 # One export set per component, so that a program asking for core finds no GL, EGL or
 # OpenImageIO dependency to resolve. microrelief_glad travels with gl.
-foreach(component core io gl headless glfw)
+foreach(component IN LISTS MICRORELIEF_COMPONENTS)
   set(targets microrelief_${component})
   if(component STREQUAL "gl")
     list(APPEND targets microrelief_glad)
@@ -46,7 +46,7 @@ install(FILES ${PROJECT_BINARY_DIR}/microreliefConfig.cmake
 # place (${pcfiledir}), so an install moved elsewhere still works.
 file(RELATIVE_PATH MICRORELIEF_PC_TO_PREFIX "/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/")
 string(REGEX REPLACE "/$" "" MICRORELIEF_PC_TO_PREFIX "${MICRORELIEF_PC_TO_PREFIX}")
-foreach(component core io gl headless glfw)
+foreach(component IN LISTS MICRORELIEF_COMPONENTS)
   configure_file(${PROJECT_SOURCE_DIR}/cmake/pkgconfig/microrelief-${component}.pc.in
                  ${PROJECT_BINARY_DIR}/pkgconfig/microrelief-${component}.pc @ONLY)
   install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/microrelief-${component}.pc

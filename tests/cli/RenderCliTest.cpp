@@ -133,8 +133,8 @@ TEST_F(RenderCli, BadArgumentsExitTwo) {
     expectFailure(run(small + "--aov " + (dir / "x.png").string()), 2, "x.png");
 }
 
-// The material and light flags (issue 14): each bad value refused with one line naming
-// the flag, nothing written; the albedo's file through the same checks as a height map's.
+// The material, tiling, model and light flags (issues 13, 14): each bad value refused with one line
+// naming the flag, nothing written; the albedo's file through the same checks as a height map's.
 TEST_F(RenderCli, BadMaterialAndShadowFlagsExitTwoAndWriteNothing) {
     const auto out = dir / "never.png";
     const std::string to = " --out " + out.string();
@@ -143,6 +143,12 @@ TEST_F(RenderCli, BadMaterialAndShadowFlagsExitTwoAndWriteNothing) {
     expectFailure(run(small + "--light-size 0" + to), 2, "--light-size");
     expectFailure(run(small + "--light-size 120" + to), 2, "--light-size");
     expectFailure(run(small + "--light 0,1,0 --light-position 0,1,0" + to), 2, "--light-position");
+    expectFailure(run(small + "--tile 0,2" + to), 2, "--tile");
+    expectFailure(run(small + "--tile 2.5,2" + to), 2, "--tile");
+    expectFailure(run(small + "--tile 2" + to), 2, "--tile");
+    expectFailure(run(small + "--tile 2,2 --method maxmip" + to), 2, "--tile");
+    expectFailure(run(small + "--model 1,0,0,0,0,1,0,0,0,0,1" + to), 2, "--model");
+    expectFailure(run(small + "--model 1,0,0,0,0,0,0,0,0,0,1,0" + to), 2, "--model");
     expectFailure(run(small + "--albedo " + (dir / "missing.png").string() + to), 2, "missing.png");
     expectFailure(run(small + "--albedo /dev/zero" + to), 2, "/dev/zero");
     test::writeBytes(dir / "broken.png", {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0});

@@ -1,6 +1,7 @@
 #include "microrelief/gl/ReliefTextures.h"
 
 #include "microrelief/core/Error.h"
+#include "microrelief/gl/PyramidBuilder.h"
 #include "microrelief/gl/StateGuard.h"
 
 namespace microrelief {
@@ -59,29 +60,89 @@ ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyra
     upload(gl, map, pyramid);
 }
 
-void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid) {
+ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
+                               bool wrapU, Interpolation interpolation, PyramidBuilder& builder)
+    : wrapU_(wrapU), interpolation_(interpolation) {
+    checkTextureSize(gl, map, source);
+    allocate(gl, map, static_cast<int>(pyramidLevelSizes(map.width, map.height).size()));
+    builder.build(*this);
+}
+
+void ReliefTextures::allocate(const GL& gl, const HeightMap& map, int levelCount) {
     shape_.size = {map.width, map.height};
-    shape_.pyramidSize = {pyramid.levelWidth(0), pyramid.levelHeight(0)};
-    shape_.levelCount = pyramid.levelCount();
-    shape_.maxHeight = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
+    levelSizes_ = pyramidLevelSizes(map.width, map.height);
+    shape_.pyramidSize = levelSizes_.front();
+    shape_.levelCount = levelCount;
     samples_ = gl::Texture::create(gl);
     windows_ = gl::Texture::create(gl);
     aligned_ = gl::Texture::create(gl);
 
-    const gl::StateGuard saved(gl);
+    const gl::StateGuard saved(gl);  // unit 0's binding and the active unit among it
+    gl.ActiveTexture(GL_TEXTURE0);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (bool windows : {false, true}) {
-        gl.BindTexture(GL_TEXTURE_2D, (windows ? windows_ : aligned_).id());
-        for (int level = 0; level < pyramid.levelCount(); ++level) {
-            uploadLevel(
-                gl, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
-                (windows ? pyramid.windowLevelData(level) : pyramid.levelData(level)).data());
-        }
-        setSamplerState(gl, GL_NEAREST_MIPMAP_NEAREST, pyramid.levelCount() - 1);
+    for (const gl::Texture* pyramid : {&aligned_, &windows_}) {
+        gl.BindTexture(GL_TEXTURE_2D, pyramid->id());
+        for (int level = 0; level < levelCount; ++level)
+            uploadLevel(gl, level, levelSizes_[level].x, levelSizes_[level].y, nullptr);
+        setSamplerState(gl, GL_NEAREST_MIPMAP_NEAREST, levelCount - 1);
     }
     gl.BindTexture(GL_TEXTURE_2D, samples_.id());
     uploadLevel(gl, 0, map.width, map.height, map.samples.data());
     setSamplerState(gl, GL_NEAREST, 0, wrapU_);
+}
+
+void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid) {
+    allocate(gl, map, pyramid.levelCount());
+    shape_.maxHeight = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
+    const gl::StateGuard saved(gl);  // unit 0's binding and the active unit among it
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (bool windows : {false, true}) {
+        gl.BindTexture(GL_TEXTURE_2D, (windows ? windows_ : aligned_).id());
+        for (int level = 0; level < pyramid.levelCount(); ++level) {
+            gl.TexSubImage2D(
+                GL_TEXTURE_2D, level, 0, 0, pyramid.levelWidth(level), pyramid.levelHeight(level),
+                GL_RED, GL_FLOAT,
+                (windows ? pyramid.windowLevelData(level) : pyramid.levelData(level)).data());
+        }
+    }
+}
+
+void ReliefTextures::writeSamples(const GL& gl, const TexelRect& rect, const float* values) {
+    const gl::StateGuard saved(gl);  // unit 0's binding and the active unit among it
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl.BindTexture(GL_TEXTURE_2D, samples_.id());
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, rect.x0, rect.y0, rect.width(), rect.height(), GL_RED,
+                     GL_FLOAT, values);
+}
+
+std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int width,
+                                    int height) {
+    std::vector<float> values(static_cast<std::size_t>(width) * height);
+    const gl::PassGuard saved(gl);
+    const gl::Framebuffer framebuffer = gl::Framebuffer::create(gl);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture,
+                            level);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadPixels(0, 0, width, height, GL_RED, GL_FLOAT, values.data());
+    return values;
+}
+
+HeightMap ReliefTextures::readSamples(const GL& gl) const {
+    HeightMap map(shape_.size.x, shape_.size.y);
+    map.samples = readTextureLevel(gl, samples_.id(), 0, map.width, map.height);
+    return map;
+}
+
+std::vector<float> ReliefTextures::readAlignedLevel(const GL& gl, int level) const {
+    return readTextureLevel(gl, aligned_.id(), level, levelSizes_[level].x, levelSizes_[level].y);
+}
+
+std::vector<float> ReliefTextures::readWindowLevel(const GL& gl, int level) const {
+    return readTextureLevel(gl, windows_.id(), level, levelSizes_[level].x, levelSizes_[level].y);
 }
 
 }  // namespace microrelief

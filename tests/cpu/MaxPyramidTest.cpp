@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "microrelief/heightmap/MaxPyramid.h"
@@ -269,4 +273,164 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
             }
         }
     }
+}
+
+namespace {
+
+// A float >= 0 as the exact integer value * 2^149 (up to 2^278): ten 32-bit limbs, least
+// significant first. Enough to add two and compare, the reference for roundUpMean.
+using Exact = std::array<std::uint64_t, 10>;
+
+Exact exactValue(float x) {
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(x) & 0x7fffffffu;
+    const std::uint32_t e = bits >> 23;
+    const std::uint64_t f = e == 0 ? bits : (bits & 0x7fffffu) | 0x800000u;
+    const int shift = static_cast<int>(std::max(e, 1u)) - 1;  // value * 2^149 = f * 2^shift
+    Exact n{};
+    n[shift / 32] = (f << (shift % 32)) & 0xffffffffu;
+    if (shift / 32 + 1 < 10) n[shift / 32 + 1] = (f << (shift % 32)) >> 32;
+    return n;
+}
+
+Exact add(const Exact& a, const Exact& b) {
+    Exact s{};
+    std::uint64_t carry = 0;
+    for (int k = 0; k < 10; ++k) {
+        const std::uint64_t t = a[k] + b[k] + carry;
+        s[k] = t & 0xffffffffu;
+        carry = t >> 32;
+    }
+    return s;
+}
+
+int compare(const Exact& a, const Exact& b) {
+    for (int k = 9; k >= 0; --k) {
+        if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
+    }
+    return 0;
+}
+
+// roundUpMean(a, b) is the smallest float r with 2 r >= a + b, exactly.
+void expectExactRoundUpMean(float a, float b) {
+    const float r = roundUpMean(a, b);
+    const Exact sum = add(exactValue(a), exactValue(b));
+    ASSERT_GE(compare(add(exactValue(r), exactValue(r)), sum), 0)
+        << "below the mean: " << a << ", " << b << " -> " << r;
+    if (r > 0.0f) {
+        const float below = std::bit_cast<float>(std::bit_cast<std::uint32_t>(r) - 1u);
+        ASSERT_LT(compare(add(exactValue(below), exactValue(below)), sum), 0)
+            << "not the smallest: " << std::hexfloat << a << ", " << b << " -> " << r;
+    }
+}
+
+}  // namespace
+
+// The bound's arithmetic (and the GPU builder's, which runs the same integer code): the
+// mean of two floats rounded up, exactly, across the whole range of floats >= 0 (zeros,
+// denormals, the largest), for pairs far apart and close together.
+TEST(MaxPyramid, RoundUpMeanIsTheExactMeanRoundedUp) {
+    std::mt19937 random(99);
+    std::uniform_int_distribution<std::uint32_t> anyBits(0, 0x7f7fffffu), low(0, 0x00ffffffu),
+        offset(0, 1u << 26);
+    const auto fromBits = [](std::uint32_t bits) { return std::bit_cast<float>(bits); };
+    const std::vector<float> special = {0.0f,
+                                        -0.0f,
+                                        1.0f,
+                                        0.5f,
+                                        0.1f,
+                                        0.7f,
+                                        fromBits(1),
+                                        fromBits(0x7fffff),
+                                        fromBits(0x800000),
+                                        fromBits(0x7f7fffff),
+                                        1.0f / 65535.0f,
+                                        65535.0f};
+    for (float a : special)
+        for (float b : special) expectExactRoundUpMean(a, b);
+    for (int trial = 0; trial < 200000; ++trial) {
+        const std::uint32_t a = anyBits(random);
+        expectExactRoundUpMean(fromBits(a), fromBits(anyBits(random)));
+        // Neighbours within a few binades: the sums that keep every bit.
+        const std::uint32_t near = std::min(a + offset(random), 0x7f7fffffu);
+        expectExactRoundUpMean(fromBits(a), fromBits(near));
+        expectExactRoundUpMean(fromBits(low(random)), fromBits(low(random)));  // denormals
+    }
+    EXPECT_EQ(roundUpMean(1.0f, 0.0f), 0.5f);
+    EXPECT_EQ(roundUpMean(0.25f, 0.75f), 0.5f);
+    EXPECT_EQ(roundUpMean(1.0f, std::ldexp(1.0f, -24)), std::nextafter(0.5f, 1.0f));
+}
+
+// The double rounding the bound used to have: the mean of 2^-60 and 1 rounded in double
+// to 0.5 exactly, below the surface's 0.5 + 2^-61 at the edge between the two samples.
+TEST(MaxPyramid, BoundHoldsAcrossAnyRangeOfHeights) {
+    HeightMap map(2, 1);
+    map.samples = {std::ldexp(1.0f, -60), 1.0f};
+    const MaxPyramid p(map);
+    EXPECT_EQ(p.texel(0, 0, 0), std::nextafter(0.5f, 1.0f));
+    EXPECT_EQ(p.texel(0, 1, 0), 1.0f);
+}
+
+// Both surfaces take the same nine values: the bilinear peaks are the biquadratic net.
+TEST(MaxPyramid, BothInterpolationsHaveTheSameFinestLevel) {
+    const HeightMap map = synth::whiteNoise(23, 17, 5);
+    for (const bool wrapU : {false, true}) {
+        const MaxPyramid a(map, wrapU, Interpolation::Bilinear);
+        const MaxPyramid b(map, wrapU, Interpolation::Biquadratic);
+        EXPECT_EQ(a.levelData(0), b.levelData(0));
+    }
+}
+
+// Edits in place: after random rectangles of samples change, update() leaves the pyramid
+// that a build from scratch of the new map makes, texel for texel, on every level of both
+// pyramids, on the plane and wrapped round the seam (rectangles at either edge included).
+TEST(MaxPyramid, UpdateAfterAnEditEqualsABuildFromScratch) {
+    std::mt19937 random(4321);
+    const std::vector<std::pair<int, int>> sizes = {{1, 1},   {2, 3},   {7, 5},
+                                                    {33, 17}, {64, 64}, {100, 9}};
+    for (const bool wrapU : {false, true}) {
+        for (auto [w, h] : sizes) {
+            HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 7 + h));
+            MaxPyramid pyramid(map, wrapU);
+            std::uniform_real_distribution<float> value(0.0f, 1.0f);
+            for (int edit = 0; edit < 30; ++edit) {
+                std::uniform_int_distribution<int> x(0, w - 1), y(0, h - 1);
+                int x0 = x(random), x1 = x(random), y0 = y(random), y1 = y(random);
+                if (edit % 5 == 0) x0 = 0;  // at the seam's either side
+                if (edit % 5 == 1) x1 = w - 1;
+                const TexelRect rect{std::min(x0, x1), std::min(y0, y1), std::max(x0, x1) + 1,
+                                     std::max(y0, y1) + 1};
+                for (int j = rect.y0; j < rect.y1; ++j)
+                    for (int i = rect.x0; i < rect.x1; ++i)
+                        map.at(i, j) = edit % 3 == 0 ? 0.0f : value(random);
+                pyramid.update(map, rect);
+                const MaxPyramid rebuilt(map, wrapU);
+                for (int level = 0; level < rebuilt.levelCount(); ++level) {
+                    ASSERT_EQ(pyramid.levelData(level), rebuilt.levelData(level))
+                        << w << "x" << h << (wrapU ? " wrapped" : "") << ", edit " << edit
+                        << ", level " << level;
+                    ASSERT_EQ(pyramid.windowLevelData(level), rebuilt.windowLevelData(level))
+                        << w << "x" << h << (wrapU ? " wrapped" : "") << ", edit " << edit
+                        << ", window level " << level;
+                }
+            }
+        }
+    }
+}
+
+// The regions are what the GPU builder draws: two rectangles at most per level, the finest
+// one the samples' rectangle grown by one texel, wrapping round the seam.
+TEST(MaxPyramid, UpdateRegionsGrowByOneTexelAndWrap) {
+    const auto planeRegions = pyramidUpdateRegions(16, 8, false, {0, 3, 2, 4});
+    ASSERT_EQ(planeRegions.aligned[0].size(), 1u);
+    EXPECT_EQ(planeRegions.aligned[0][0], (TexelRect{0, 2, 3, 5}));
+    EXPECT_EQ(planeRegions.windows[0][0], (TexelRect{0, 1, 3, 5}));
+    EXPECT_EQ(planeRegions.aligned[1][0], (TexelRect{0, 1, 2, 3}));
+    const auto curvedRegions = pyramidUpdateRegions(16, 8, true, {0, 3, 2, 4});
+    ASSERT_EQ(curvedRegions.aligned[0].size(), 2u);
+    EXPECT_EQ(curvedRegions.aligned[0][0], (TexelRect{0, 2, 3, 5}));
+    EXPECT_EQ(curvedRegions.aligned[0][1], (TexelRect{15, 2, 16, 5}));
+    const auto top = curvedRegions.aligned.back();
+    ASSERT_EQ(top.size(), 1u);
+    EXPECT_EQ(top[0], (TexelRect{0, 0, 1, 1}));
+    EXPECT_TRUE(pyramidUpdateRegions(16, 8, false, {5, 5, 5, 9}).aligned[0].empty());
 }

@@ -254,3 +254,27 @@ TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
         }
     }
 }
+
+// The GPU pyramid builder's passes (shaders/pyramid/, gl/PyramidBuilder.h): GLSL 3.30 core
+// as the builder compiles them, and as they stand as GLSL ES 3.00 (a WebGL 2 page reuses
+// them), there at highp throughout: the bound's integer arithmetic needs 32-bit uints.
+TEST(GlslLibrary, PyramidPassesCompileAsGlsl330AndEs300) {
+    test::ScratchDir dir;
+    int count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(kShaders / "pyramid")) {
+        const std::string stage = entry.path().extension().string().substr(1);
+        ++count;
+        for (const char* version : {"330 core", "300 es"}) {
+            const ShaderSource source = assembleShader(entry.path(), version, {}, {kShaders});
+            std::string tree;
+            const std::string errors =
+                validate(dir, source, stage, entry.path().stem().string(), &tree);
+            EXPECT_TRUE(errors.empty())
+                << entry.path().filename() << " as GLSL " << version << ":\n"
+                << errors;
+            if (std::string(version) == "300 es" && stage == "frag")
+                EXPECT_EQ(belowHighp(tree), "") << entry.path().filename();
+        }
+    }
+    EXPECT_EQ(count, 4);  // the triangle, the finest level, the windows, the aligned levels
+}

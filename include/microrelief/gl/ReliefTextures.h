@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -24,6 +25,8 @@ struct ReliefMapShape {
     float maxHeight = 0.0f;     // the pyramid's top texel: the surface's max, map units
 };
 
+class PyramidBuilder;
+
 class ReliefTextures {
 public:
     // Builds the max pyramid of `map` for the surface `interpolation` makes of it (wrapped
@@ -36,6 +39,10 @@ public:
     // The same from a pyramid the caller built of `map`.
     ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
                    Interpolation interpolation);
+    // The same with the pyramids built on the GPU by `builder` (gl/PyramidBuilder.h): the
+    // same texels, from the samples once they are on the GPU.
+    ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
+                   Interpolation interpolation, PyramidBuilder& builder);
 
     GLuint samples() const { return samples_.id(); }
     GLuint windowPyramid() const { return windows_.id(); }
@@ -44,14 +51,34 @@ public:
     const ReliefMapShape& shape() const { return shape_; }
     bool wrapsU() const { return wrapU_; }
     Interpolation interpolation() const { return interpolation_; }
+    // The pyramids' level sizes, finest first (pyramidLevelSizes).
+    const std::vector<glm::ivec2>& levelSizes() const { return levelSizes_; }
+
+    // The samples inside `rect` (map texels) replaced by `values`, rect.width() a row, row
+    // 0 first: an edit from the host. The pyramids are the caller's to bring up to date
+    // (PyramidBuilder::update). The GL state it changes is restored.
+    void writeSamples(const GL& gl, const TexelRect& rect, const float* values);
+    // What the GPU holds, read back (through a framebuffer, as GL ES has it): the samples
+    // as a map, a level of the aligned or the overlapping pyramid, row 0 first.
+    HeightMap readSamples(const GL& gl) const;
+    std::vector<float> readAlignedLevel(const GL& gl, int level) const;
+    std::vector<float> readWindowLevel(const GL& gl, int level) const;
 
 private:
+    friend class PyramidBuilder;  // writes maxHeight after a build or an update
+
+    void allocate(const GL& gl, const HeightMap& map, int levelCount);
     void upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid);
 
     gl::Texture samples_, windows_, aligned_;
     ReliefMapShape shape_;
+    std::vector<glm::ivec2> levelSizes_;
     bool wrapU_ = false;
     Interpolation interpolation_ = Interpolation::Bilinear;
 };
+
+// Level `level` (width x height) of a single-channel float texture, read back through a
+// framebuffer, row 0 first. The GL state it changes is restored.
+std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int width, int height);
 
 }  // namespace microrelief

@@ -3,12 +3,11 @@
 // segment lying above a level's max over its footprint can be discarded whole.
 //
 // Two differences from the paper's sample pyramid make it exact for our surface:
-//  * It bounds the bilinear surface, not just the samples. Finest level texel (i, j)
-//    covers the texel square [i, i+1] x [j, j+1] in texel space (X = u W, Y = v H) and
-//    holds the surface's maximum over that square. The square straddles four bilinear
-//    cells; on each the bilinear patch is linear along both axes, so its max over a
-//    sub-rectangle sits at a corner, and the nine corner points (texel corners, edge
-//    midpoints, the sample itself) give the exact maximum.
+//  * It bounds the surface, not just the samples. Finest level texel (i, j) covers the
+//    texel square [i, i+1] x [j, j+1] in texel space (X = u W, Y = v H) and holds a bound
+//    of the surface over that square (texelSquareBound): the largest of nine values, the
+//    sample and the averages of its neighbours, which are the bilinear surface's peaks
+//    there and the biquadratic piece's Bezier net alike, each rounded up to a float.
 //  * Any size reduces. Levels are stored padded to powers of two, Pw = 2^ceil(log2 W)
 //    by Ph = 2^ceil(log2 H), with padding texels 0 (no surface there; heights are >= 0).
 //    Level k is max(1, Pw >> k) by max(1, Ph >> k), GL's own mip sizes, and its texel
@@ -28,6 +27,10 @@
 // take their neighbours from the other side of the map (wrapU), and a footprint that
 // crosses the seam is read as its two parts (footprintBound). Coarser levels and the
 // padding are as on the plane: no window reaches across the seam.
+//
+// The same texels come out of the GPU builder (gl/PyramidBuilder.h), bit for bit: every
+// value is computed in integer arithmetic on the floats' bits, which a GPU does exactly as
+// a CPU does (no rounding mode, no flushed denormals, no reassociation can change it).
 #pragma once
 
 #include <vector>
@@ -38,13 +41,68 @@
 
 namespace microrelief {
 
+// A rectangle of texels [x0, x1) x [y0, y1).
+struct TexelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool operator==(const TexelRect&) const = default;
+};
+
+// The smallest float not below (a + b) / 2, for finite a, b >= 0 (-0 is taken as 0):
+// the exact mean rounded up, computed on the floats' bits in 32-bit integers (the
+// mantissas aligned with three guard bits and a sticky bit for what falls below them;
+// see MaxPyramid.cpp). shaders/microrelief/pyramid_bound.glsl is the same code in GLSL.
+float roundUpMean(float a, float b);
+
+// The finest level's texel (i, j): a bound of the surface over texel square
+// [i, i+1] x [j, j+1] built from the 3 x 3 samples around sample (i, j) (clamped, or
+// wrapped in u when `wrapU`), never below the surface, for either interpolation. The
+// nine values are the sample, the means of its neighbours along each axis and of the
+// 2 x 2 blocks it shares (rows first, then columns, each rounded up by roundUpMean):
+//  * bilinear: the surface's peaks over the square. The square straddles four bilinear
+//    cells; on each the patch is linear along both axes, so its max over a sub-rectangle
+//    sits at a corner, and the nine corner points (texel corners, edge midpoints, the
+//    sample) are these means;
+//  * biquadratic: the piece's Bezier control net, which is per axis (c0 + c1) / 2, c1,
+//    (c1 + c2) / 2 of its three control points; the piece lies in the net's convex hull.
+// Each mean is rounded up, and a mean of rounded-up values is at least the mean of the
+// exact ones, so the bound is at least the exact maximum (it is that maximum rounded up,
+// or an ulp or two above when a row's mean was rounded before the column's), and at most
+// the largest of the nine samples.
+float texelSquareBound(const HeightMap& map, int i, int j, bool wrapU);
+
+// The pyramid's level sizes for a W x H map, finest first (the layout at the top of this
+// file): W and H rounded up to powers of two, then halved with GL's max(1, n >> 1) down
+// to 1 x 1.
+std::vector<glm::ivec2> pyramidLevelSizes(int mapWidth, int mapHeight);
+
+// The texels to compute again, per level, when the samples inside `changed` (map texels)
+// change: the finest texels whose 3 x 3 samples reach into it (across the seam when
+// `wrapU`), then on each level the windows that hold a changed aligned texel, and on the
+// next the parents of the changed aligned texels. aligned[k] and windows[k] list at most
+// two rectangles each (two where the region wraps round the seam), none where nothing
+// changes. MaxPyramid::update and the GPU builder (gl/PyramidBuilder.h) compute these.
+struct PyramidRegions {
+    std::vector<std::vector<TexelRect>> aligned, windows;
+};
+PyramidRegions pyramidUpdateRegions(int mapWidth, int mapHeight, bool wrapU,
+                                    const TexelRect& changed);
+
 class MaxPyramid {
 public:
     // `wrapU`: the map's u is periodic (a curved base), column W - 1 joins column 0.
-    // `interpolation`: the surface the finest level bounds (biquadratic: the max of the
-    // Bezier control net of the patch over each texel square, see MaxPyramid.cpp).
+    // `interpolation`: the surface the finest level bounds; both take the same nine values
+    // (texelSquareBound), so it does not change the texels.
     explicit MaxPyramid(const HeightMap& map, bool wrapU = false,
                         Interpolation interpolation = Interpolation::Bilinear);
+
+    // After samples of `map` (the same size as before) changed inside `changed`: the
+    // texels whose bounds read them, on every level (pyramidUpdateRegions), computed
+    // again. The result is the pyramid of the new map, texel for texel.
+    void update(const HeightMap& map, const TexelRect& changed);
 
     int mapWidth() const { return mapWidth_; }
     int mapHeight() const { return mapHeight_; }
@@ -86,6 +144,9 @@ public:
     bool wrapsU() const { return wrapU_; }
 
 private:
+    void reduceLevel(int level, const TexelRect& rect);
+    void computeWindows(int level, const TexelRect& rect);
+
     // The window at windowLevel over the finest texels lo..hi, one fetch.
     double windowOver(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const;
 

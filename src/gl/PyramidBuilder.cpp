@@ -28,6 +28,26 @@ void samplerOnUnitZero(const GL& gl, const gl::Program& program, const char* nam
     gl.Uniform1i(gl::uniform(gl, program, name), 0);
 }
 
+// Overlapping or touching rectangles become their bounding box, until none do: many dabs
+// (an undone stroke) draw each coarse texel once, not once per dab. Drawing a texel that
+// did not change is harmless: it gets the value it has.
+void mergeTouching(std::vector<TexelRect>& rects) {
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t a = 0; a < rects.size() && !merged; ++a) {
+            for (std::size_t b = a + 1; b < rects.size() && !merged; ++b) {
+                const TexelRect &r = rects[a], &s = rects[b];
+                if (r.x0 <= s.x1 && s.x0 <= r.x1 && r.y0 <= s.y1 && s.y0 <= r.y1) {
+                    rects[a] = {std::min(r.x0, s.x0), std::min(r.y0, s.y0), std::max(r.x1, s.x1),
+                                std::max(r.y1, s.y1)};
+                    rects.erase(rects.begin() + static_cast<std::ptrdiff_t>(b));
+                    merged = true;
+                }
+            }
+        }
+    }
+}
+
 }  // namespace
 
 PyramidBuilder::PyramidBuilder(const GL& gl, const std::filesystem::path& shaderDir) : gl_(gl) {
@@ -54,12 +74,20 @@ void PyramidBuilder::build(ReliefTextures& textures) {
         whole.aligned.push_back({{0, 0, size.x, size.y}});
         whole.windows.push_back({{0, 0, size.x, size.y}});
     }
-    run(textures, whole);
+    run(textures, std::vector<PyramidRegions>{whole});
 }
 
 void PyramidBuilder::update(ReliefTextures& textures, const TexelRect& changed) {
+    update(textures, std::vector<TexelRect>{changed});
+}
+
+void PyramidBuilder::update(ReliefTextures& textures, const std::vector<TexelRect>& changed) {
     const ReliefMapShape& shape = textures.shape();
-    run(textures, pyramidUpdateRegions(shape.size.x, shape.size.y, textures.wrapsU(), changed));
+    std::vector<PyramidRegions> regions;
+    for (const TexelRect& rect : changed)
+        regions.push_back(
+            pyramidUpdateRegions(shape.size.x, shape.size.y, textures.wrapsU(), rect));
+    run(textures, regions);
 }
 
 void PyramidBuilder::attach(GLuint texture, int level) {
@@ -73,13 +101,29 @@ void PyramidBuilder::draw(const TexelRect& rect) {
     gl_.DrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void PyramidBuilder::run(ReliefTextures& textures, const PyramidRegions& regions) {
+void PyramidBuilder::run(ReliefTextures& textures, const std::vector<PyramidRegions>& all) {
     const gl::PassGuard saved(gl_);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
     gl_.BindVertexArray(vertexArray_.id());
     gl_.ActiveTexture(GL_TEXTURE0);
     const GLuint aligned = textures.maxPyramid(), windows = textures.windowPyramid();
-    const int levels = static_cast<int>(regions.aligned.size());
+    const int levels = textures.shape().levelCount;
+    // Level by level, every region's texels of a level before the next level's.
+    PyramidRegions regions;
+    regions.aligned.resize(levels);
+    regions.windows.resize(levels);
+    for (const PyramidRegions& r : all) {
+        for (int level = 0; level < levels; ++level) {
+            regions.aligned[level].insert(regions.aligned[level].end(), r.aligned[level].begin(),
+                                          r.aligned[level].end());
+            regions.windows[level].insert(regions.windows[level].end(), r.windows[level].begin(),
+                                          r.windows[level].end());
+        }
+    }
+    for (int level = 0; level < levels; ++level) {
+        mergeTouching(regions.aligned[level]);
+        mergeTouching(regions.windows[level]);
+    }
     for (int level = 0; level < levels; ++level) {
         if (!regions.aligned[level].empty()) {
             attach(aligned, level);

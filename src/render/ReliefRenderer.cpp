@@ -70,16 +70,39 @@ void ReliefRenderer::setBase(const BaseShape& base) {
 }
 
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
-                                  const BaseShape& base, Interpolation interpolation) {
+                                  const BaseShape& base, Interpolation interpolation,
+                                  PyramidBuild build) {
     validateBaseShape(base);
     checkMethodSupportsBase(method_.method, base);
     // Both throw before anything changes: the program is compiled (or looked up) first,
     // the textures are made before the old ones go.
     program(configFor(method_, countFetches_, base.kind, interpolation, true));
-    textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation));
+    if (build == PyramidBuild::Gpu) {
+        textures_.emplace(
+            ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, pyramidBuilder()));
+    } else {
+        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation));
+    }
     base_ = base;
     interpolation_ = interpolation;
     maxIterations_ = traversalBudget(map.width, map.height);
+    uploadBox();
+}
+
+PyramidBuilder& ReliefRenderer::pyramidBuilder() {
+    if (!builder_) builder_.emplace(gl_, shaderDir_);
+    return *builder_;
+}
+
+void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
+    if (!textures_) return;
+    pyramidBuilder().update(*textures_, changed);
+    uploadBox();
+}
+
+void ReliefRenderer::heightsReplaced() {
+    if (!textures_) return;
+    pyramidBuilder().build(*textures_);
     uploadBox();
 }
 

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/ReliefTextures.h"
@@ -36,9 +37,11 @@ public:
     // After the samples inside `changed` (map texels; clipped to the map) changed: the
     // texels whose bounds read them, on every level, and maxHeight.
     void update(ReliefTextures& textures, const TexelRect& changed);
+    // The same after changes inside several rectangles (a dab over a curved base's seam).
+    void update(ReliefTextures& textures, const std::vector<TexelRect>& changed);
 
 private:
-    void run(ReliefTextures& textures, const PyramidRegions& regions);
+    void run(ReliefTextures& textures, const std::vector<PyramidRegions>& regions);
     void attach(GLuint texture, int level);
     void draw(const TexelRect& rect);
 

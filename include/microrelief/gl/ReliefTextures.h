@@ -27,6 +27,10 @@ struct ReliefMapShape {
 
 class PyramidBuilder;
 
+// Where a map's max pyramids are built: on the CPU (MaxPyramid, then uploaded) or on the
+// GPU from the uploaded samples (gl/PyramidBuilder.h). The texels are the same.
+enum class PyramidBuild { Cpu, Gpu };
+
 class ReliefTextures {
 public:
     // Builds the max pyramid of `map` for the surface `interpolation` makes of it (wrapped

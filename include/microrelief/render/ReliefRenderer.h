@@ -16,6 +16,7 @@
 #include "microrelief/base/BaseShape.h"
 #include "microrelief/base/ReliefExtent.h"
 #include "microrelief/gl/Objects.h"
+#include "microrelief/gl/PyramidBuilder.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/heightmap/HeightMap.h"
@@ -45,8 +46,25 @@ public:
     // the surface `interpolation` makes of it, and uploads it with the samples. Throws
     // Error(BadInput) when the map exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that
     // base; `source` names the map in that message.
+    // `build`: the pyramid made on the CPU and uploaded, or on the GPU from the samples
+    // (the same texels; see gl/PyramidBuilder.h).
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
-                      Interpolation interpolation = Interpolation::Bilinear);
+                      Interpolation interpolation = Interpolation::Bilinear,
+                      PyramidBuild build = PyramidBuild::Cpu);
+
+    // A map that changes on the GPU (sculpting, animation). The map's textures, for a pass
+    // of the caller's that draws into the samples (null before setHeightMap).
+    ReliefTextures* textures() { return textures_ ? &*textures_ : nullptr; }
+    const ReliefTextures* textures() const { return textures_ ? &*textures_ : nullptr; }
+    // After the caller changed the samples inside `changed` (map texels): the pyramids
+    // brought up to date on the GPU over those texels only, and the box fitted to the
+    // map's new maximum. heightsReplaced: every sample changed, the pyramids built anew.
+    void heightsChanged(const std::vector<TexelRect>& changed);
+    void heightsReplaced();
+    // The surface's maximum, map units: the pyramid's top texel.
+    float maxHeight() const { return textures_ ? textures_->shape().maxHeight : 0.0f; }
+    // The GPU pyramid builder this renderer uses, made on first use.
+    PyramidBuilder& pyramidBuilder();
     void setHeightScale(float scale);
     // Another base of the same addressing as the map was uploaded with (the curved bases
     // among themselves, a new size of the same one); a change between the plane and a
@@ -105,6 +123,7 @@ private:
     std::filesystem::path shaderDir_;
     std::map<ReliefShaderConfig, ReliefShader> programs_;
     std::optional<ReliefTextures> textures_;  // the map's; none yet
+    std::optional<PyramidBuilder> builder_;   // made for the first GPU build
     gl::Buffer parameterBuffer_;              // MicroreliefParameters
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;

@@ -108,6 +108,13 @@ void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid
     }
 }
 
+std::size_t ReliefTextures::gpuBytes() const {
+    std::size_t texels = static_cast<std::size_t>(shape_.size.x) * shape_.size.y;
+    for (const glm::ivec2 size : levelSizes_)
+        texels += 2 * static_cast<std::size_t>(size.x) * size.y;  // aligned and windows
+    return texels * sizeof(float);
+}
+
 void ReliefTextures::writeSamples(const GL& gl, const TexelRect& rect, const float* values) {
     const gl::StateGuard saved(gl);  // unit 0's binding and the active unit among it
     gl.ActiveTexture(GL_TEXTURE0);

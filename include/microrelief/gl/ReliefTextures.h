@@ -55,6 +55,9 @@ public:
     const ReliefMapShape& shape() const { return shape_; }
     bool wrapsU() const { return wrapU_; }
     Interpolation interpolation() const { return interpolation_; }
+    // What the three textures take in GPU memory, bytes: the samples and every level of
+    // both pyramids.
+    std::size_t gpuBytes() const;
     // The pyramids' level sizes, finest first (pyramidLevelSizes).
     const std::vector<glm::ivec2>& levelSizes() const { return levelSizes_; }
 

@@ -27,7 +27,8 @@ constexpr const char* kProgram = "microrelief-render";
 void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
                    const RenderJob& job) {
     const Accuracy a = compareWithReference(
-        frame, camera, ReliefGeometry{&map, job.heightScale, job.base, job.interpolation, job.model});
+        frame, camera,
+        ReliefGeometry{&map, job.heightScale, job.base, job.interpolation, job.model});
     std::printf(
         "accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n",
         a.pixels, a.referenceHits);
@@ -48,8 +49,9 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
 void warnIfEyeInsideTheSolid(const HeightMap& map, const RenderJob& job,
                              const std::filesystem::path& heightFile) {
     const Camera& camera = job.camera;
-    const ReferenceHit hit = traceReference({&map, job.heightScale, job.base, job.interpolation, job.model},
-                                            Ray{camera.eye, camera.target - camera.eye});
+    const ReferenceHit hit =
+        traceReference({&map, job.heightScale, job.base, job.interpolation, job.model},
+                       Ray{camera.eye, camera.target - camera.eye});
     if (hit && hit.t == 0.0) {
         logWarning("--eye lies inside the relief's solid (under the surface of " +
                    heightFile.filename().string() +
@@ -73,7 +75,9 @@ int run(const RenderOptions& o) {
         logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
                 context->description());
     const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.job);
-    warnIfEyeInsideTheSolid(map, o.job, heightFile);  // the camera checked by now
+    // An animated relief is held to the heights the GPU evaluated, read back.
+    const HeightMap& traced = result.animatedMap ? *result.animatedMap : map;
+    warnIfEyeInsideTheSolid(traced, o.job, heightFile);  // the camera checked by now
     const RenderedFrame& frame = result.frame;
 
     std::size_t exhausted = 0;
@@ -92,7 +96,7 @@ int run(const RenderOptions& o) {
     }
     batch.commit();
 
-    if (o.compareReference) printAccuracy(frame, result.camera, map, o.job);
+    if (o.compareReference) printAccuracy(frame, result.camera, traced, o.job);
     if (exhausted > 0) {
         logWarning(std::to_string(exhausted) +
                    " pixel(s) ran out of the iteration budget (shown magenta)");

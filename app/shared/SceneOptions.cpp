@@ -12,15 +12,14 @@
 #include <vector>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/render/AnimatedHeights.h"
 #include "microrelief/render/FloatLimits.h"
 
 namespace microrelief {
 
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
                                     std::size_t count, const std::string& what) {
-    const auto invalid = [&] {
-        throwBadInput(flag + " expects " + what + ", got '" + text + "'");
-    };
+    const auto invalid = [&] { throwBadInput(flag + " expects " + what + ", got '" + text + "'"); };
     std::vector<double> values;
     std::stringstream in(text);
     std::string part;
@@ -167,6 +166,10 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
                    "Cylinder radius (default 0.3) or sphere radius (default 0.5), world units");
     app.add_option("--length", length_, "Cylinder length along y (default 1), world units");
     app.add_option("--radii", radii_, "Ellipsoid radii A,B,C along x, y, z (default 0.5,0.5,0.5)");
+    app.add_option("--animate", animate_,
+                   "An animated relief over the map's grid, evaluated on the GPU: waves, ripples, "
+                   "or flood (the map under rising and falling water)");
+    app.add_option("--time", time_, "With --animate: the moment drawn, seconds (default 0)");
     app.add_option("--eye", eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
     app.add_option("--target", target_, "Point the camera looks at, x,y,z")->capture_default_str();
     app.add_option("--up", up_, "Camera up direction x,y,z")->capture_default_str();
@@ -254,6 +257,15 @@ void SceneFlags::apply() {
     if (!height_.empty()) heightFile_ = height_;
     job_.base = parseBase(base_, radius_, length_, radii_);
     job_.interpolation = parseInterpolation(interpolation_);
+    if (!animate_.empty()) {
+        AnimatedHeights::checkName(animate_);
+        job_.animation = animate_;
+    }
+    if (time_) {
+        if (animate_.empty()) throwBadInput("--time needs --animate NAME");
+        if (!std::isfinite(*time_)) throwBadInput("--time must be a finite number of seconds");
+        job_.time = *time_;
+    }
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
@@ -328,6 +340,10 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
         flag("--base", base);
         line += " --radii=" + exactVector(job.base.radii);
     }
+    if (!job.animation.empty()) {
+        flag("--animate", job.animation);
+        line += " --time=" + exactNumber(job.time);
+    }
     // "=" keeps a leading minus from reading as a flag in any parser.
     line += " --eye=" + exactVector(job.camera.eye);
     line += " --target=" + exactVector(job.camera.target);
@@ -336,7 +352,8 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     flag("--size", std::to_string(job.width) + "x" + std::to_string(job.height));
     if (!job.model.isIdentity()) {
         std::string rows;
-        for (double value : job.model.rows()) rows += (rows.empty() ? "" : ",") + exactNumber(value);
+        for (double value : job.model.rows())
+            rows += (rows.empty() ? "" : ",") + exactNumber(value);
         line += " --model=" + rows;
     }
     line += " --light=" + exactVector(job.shading.lightDirection);

@@ -37,7 +37,7 @@ public:
         : SceneFlags(options.heightFile, options.load, options.job) {}
 
     // --height --channel --normalize --height-scale --interpolation --base --radius --length
-    // --radii --eye --target --up --fovy --size --model
+    // --radii --animate --time --eye --target --up --fovy --size --model
     void addMapAndCamera(CLI::App& app);
     // --light --method --steps --pixel-error --view --background
     void addShading(CLI::App& app);
@@ -52,7 +52,8 @@ private:
     RenderJob& job_;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
     std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_;
-    std::optional<double> radius_, length_;
+    std::optional<double> radius_, length_, time_;
+    std::string animate_;
 };
 
 // "a,b,c,..." -> exactly `count` finite numbers; throws Error(BadInput) naming `flag` and

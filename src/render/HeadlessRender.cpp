@@ -41,7 +41,13 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
 void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                     const BaseShape& base, Interpolation interpolation) {
     context_.makeCurrent();
-    renderer_->setHeightMap(map, source, base, interpolation);
+    try {
+        renderer_->setHeightMap(map, source, base, interpolation, PyramidBuild::Gpu);
+    } catch (const Error& e) {
+        if (e.kind() == ErrorKind::BadInput) throw;  // the map's fault, not the GL's
+        renderer_->setHeightMap(map, source, base, interpolation, PyramidBuild::Cpu);
+    }
+    if (animated_) animated_->forgetMap();
     source_ = source;
     mapWidth_ = map.width;
     mapHeight_ = map.height;
@@ -71,6 +77,16 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         renderer_->setHeightScale(job.heightScale);
         heightScale_ = job.heightScale;
     }
+    if (animated_ && animated_->evaluated() && animated_->name() != job.animation) {
+        animated_->restore(*renderer_);  // another field, or the map's own heights again
+        maxHeight_ = renderer_->maxHeight();
+    }
+    if (!job.animation.empty()) {
+        if (!animated_ || animated_->name() != job.animation)
+            animated_ = std::make_unique<AnimatedHeights>(gl, shaderDirectory(), job.animation);
+        animated_->evaluate(*renderer_, job.time);
+        maxHeight_ = renderer_->maxHeight();
+    }
     const CameraFrame camera = resolveCamera(
         job.camera, job.width, job.height,
         sceneRadius(reliefExtent(mapWidth_, mapHeight_, maxHeight_, job.heightScale, job.base),
@@ -94,7 +110,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         target_.emplace(gl, targetWidth, targetHeight);
     }
 
-    HeadlessResult result{{}, camera};
+    HeadlessResult result{{}, camera, std::nullopt};
     RenderedFrame& frame = result.frame;
     try {
         const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
@@ -120,6 +136,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
             target_->readInto(frame, part.x, part.y, part.width, part.height);
         }
     }
+    if (!job.animation.empty()) result.animatedMap = renderer_->textures()->readSamples(gl);
     gl.Finish();
     const GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)

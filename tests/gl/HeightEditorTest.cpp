@@ -15,6 +15,7 @@
 #include "GlTestBackend.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
+#include "microrelief/render/AnimatedHeights.h"
 #include "microrelief/render/HeightEditor.h"
 #include "microrelief/render/OffscreenTarget.h"
 #include "microrelief/render/ReliefRenderer.h"
@@ -211,4 +212,42 @@ TEST_F(Sculpting, EachBrushDoesWhatItSays) {
     EXPECT_EQ(h.at(36, 15), 0.5f);
     expectPyramidOf(column, h, "the seam");
     EXPECT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// An animated relief (render/AnimatedHeights.h): at each moment the pyramids, built anew on
+// the GPU, equal a CPU build of the field read back, and the hits match that field's exact
+// reference; the moments differ; restore() gives the map back, bit for bit.
+TEST_F(Sculpting, AnimatedReliefIsRebuiltEveryFrameAndTracedExactly) {
+    const HeightMap map = synth::cobbles(61, 47, 2);
+    const Camera view = test::orbitCamera(30.0, 40.0, 1.5);
+    for (const BaseShape& base : {BaseShape::plane(), BaseShape::sphere()}) {
+        for (const std::string& name : AnimatedHeights::names()) {
+            const std::string what = name + " on the " + baseName(base);
+            OffscreenTarget target(gl(), 80, 80);
+            ReliefRenderer renderer(gl(), shaderDirectory());
+            renderer.setHeightMap(map, "cobbles", base, Interpolation::Bilinear, PyramidBuild::Gpu);
+            AnimatedHeights animated(gl(), shaderDirectory(), name);
+            std::vector<HeightMap> moments;
+            for (const double time : {0.0, 1.3, 4.9}) {
+                animated.evaluate(renderer, time);
+                moments.push_back(renderer.textures()->readSamples(gl()));
+                expectPyramidOf(renderer, moments.back(), what + " at " + std::to_string(time));
+                const CameraFrame camera = resolveCamera(view, 80, 80, 2.0);
+                target.clear(glm::vec3(0.0f));
+                renderer.draw(camera, ShadingOptions{});
+                const Accuracy accuracy = compareWithReference(
+                    target.read(), camera, ReliefGeometry{&moments.back(), 0.1, base});
+                EXPECT_LE(accuracy.coverageMismatchPercent(), kMaxCoverageMismatchPercent)
+                    << what << ": " << accuracy.summary();
+                EXPECT_LE(accuracy.offHalfTexelPercent(), kMaxOffHalfTexelPercent)
+                    << what << ": " << accuracy.summary();
+                EXPECT_EQ(accuracy.exhausted, 0u) << what;
+            }
+            EXPECT_FALSE(sameBits(moments[0], moments[1])) << what;
+            EXPECT_FALSE(sameBits(moments[1], moments[2])) << what;
+            animated.restore(renderer);
+            EXPECT_TRUE(sameBits(renderer.textures()->readSamples(gl()), map)) << what;
+            expectPyramidOf(renderer, map, what + ", restored");
+        }
+    }
 }

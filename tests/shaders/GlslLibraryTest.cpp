@@ -255,13 +255,19 @@ TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
     }
 }
 
-// The GPU pyramid builder's passes (shaders/pyramid/, gl/PyramidBuilder.h): GLSL 3.30 core
-// as the builder compiles them, and as they stand as GLSL ES 3.00 (a WebGL 2 page reuses
-// them), there at highp throughout: the bound's integer arithmetic needs 32-bit uints.
-TEST(GlslLibrary, PyramidPassesCompileAsGlsl330AndEs300) {
+// The GPU pyramid builder's passes (shaders/pyramid/, gl/PyramidBuilder.h) and the height
+// edits' (shaders/edit/: the brush, the animated fields): GLSL 3.30 core as the library
+// compiles them, and as they stand as GLSL ES 3.00 (a WebGL 2 page reuses them), there at
+// highp throughout: the bound's integer arithmetic needs 32-bit uints.
+TEST(GlslLibrary, PyramidAndEditPassesCompileAsGlsl330AndEs300) {
     test::ScratchDir dir;
     int count = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(kShaders / "pyramid")) {
+    std::vector<std::filesystem::path> files;
+    for (const char* folder : {"pyramid", "edit"})
+        for (const auto& entry : std::filesystem::directory_iterator(kShaders / folder))
+            files.push_back(entry.path());
+    for (const std::filesystem::path& path : files) {
+        const std::filesystem::directory_entry entry(path);
         const std::string stage = entry.path().extension().string().substr(1);
         ++count;
         for (const char* version : {"330 core", "300 es"}) {
@@ -276,5 +282,6 @@ TEST(GlslLibrary, PyramidPassesCompileAsGlsl330AndEs300) {
                 EXPECT_EQ(belowHighp(tree), "") << entry.path().filename();
         }
     }
-    EXPECT_EQ(count, 4);  // the triangle, the finest level, the windows, the aligned levels
+    // The triangle, the finest level, the windows, the aligned levels; the brush, the fields.
+    EXPECT_EQ(count, 6);
 }

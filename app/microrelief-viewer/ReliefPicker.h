@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/Camera.h"
@@ -28,6 +29,9 @@ public:
     void setHeightScale(double heightScale);
     void setBase(const BaseShape& base);
     void setInterpolation(Interpolation interpolation);
+    // The map's samples changed inside `changed` (sculpting): the tracer, if built, takes
+    // them from `map` (the same map, edited) and brings its pyramid up to date.
+    void mapChanged(std::shared_ptr<const HeightMap> map, const std::vector<TexelRect>& changed);
     // Where the relief sits in the world (the renderer's model transform).
     void setModel(const ModelTransform& model) { model_ = model; }
 

@@ -126,7 +126,11 @@ void ReliefTextures::writeSamples(const GL& gl, const TexelRect& rect, const flo
 
 std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int width,
                                     int height) {
-    std::vector<float> values(static_cast<std::size_t>(width) * height);
+    return readTextureRect(gl, texture, level, {0, 0, width, height});
+}
+
+std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, const TexelRect& rect) {
+    std::vector<float> values(static_cast<std::size_t>(rect.width()) * rect.height());
     const gl::PassGuard saved(gl);
     const gl::Framebuffer framebuffer = gl::Framebuffer::create(gl);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
@@ -134,8 +138,12 @@ std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int
                             level);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadPixels(0, 0, width, height, GL_RED, GL_FLOAT, values.data());
+    gl.ReadPixels(rect.x0, rect.y0, rect.width(), rect.height(), GL_RED, GL_FLOAT, values.data());
     return values;
+}
+
+std::vector<float> ReliefTextures::readSamples(const GL& gl, const TexelRect& rect) const {
+    return readTextureRect(gl, samples_.id(), 0, rect);
 }
 
 HeightMap ReliefTextures::readSamples(const GL& gl) const {

@@ -194,10 +194,10 @@ void HeightEditor::endStroke() {
     strokeOpen_ = false;
 }
 
-bool HeightEditor::undo(ReliefRenderer& renderer) {
+std::vector<TexelRect> HeightEditor::undo(ReliefRenderer& renderer) {
     endStroke();
     ReliefTextures* textures = renderer.textures();
-    if (strokes_.empty() || !textures) return false;
+    if (strokes_.empty() || !textures) return {};
     std::vector<TexelRect> changed;
     const std::vector<Change>& stroke = strokes_.back();
     for (auto change = stroke.rbegin(); change != stroke.rend(); ++change) {
@@ -206,7 +206,7 @@ bool HeightEditor::undo(ReliefRenderer& renderer) {
     }
     strokes_.pop_back();
     renderer.heightsChanged(changed);
-    return true;
+    return changed;
 }
 
 int HeightEditor::undoSteps() const {

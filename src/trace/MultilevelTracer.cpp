@@ -53,6 +53,17 @@ MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const Base
                               pyramid_.texel(pyramid_.levelCount() - 1, 0, 0))),
       maxIterations_(traversalBudget(map_.width, map_.height)) {}
 
+void MultilevelTracer::mapChanged(const HeightMap& map, const TexelRect& changed) {
+    const TexelRect c{std::max(changed.x0, 0), std::max(changed.y0, 0),
+                      std::min(changed.x1, map_.width), std::min(changed.y1, map_.height)};
+    for (int j = c.y0; j < c.y1; ++j)
+        for (int i = c.x0; i < c.x1; ++i) map_.at(i, j) = map.at(i, j);
+    pyramid_.update(map_, c);
+    const double top = pyramid_.texel(pyramid_.levelCount() - 1, 0, 0);
+    if (top != base_->maxHeight())
+        base_ = BaseSurface::make(base_->shape(), map_.width, map_.height, heightScale_, top);
+}
+
 // Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
 // per bilinear patch and four per biquadratic one (relief_patch.glsl), one texel per
 // pyramid read. Cells lie between samples i..i+1 (bilinear) or over texel square i (its

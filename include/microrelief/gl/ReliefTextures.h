@@ -68,6 +68,8 @@ public:
     // What the GPU holds, read back (through a framebuffer, as GL ES has it): the samples
     // as a map, a level of the aligned or the overlapping pyramid, row 0 first.
     HeightMap readSamples(const GL& gl) const;
+    // The samples inside `rect`, rect.width() a row, row 0 first.
+    std::vector<float> readSamples(const GL& gl, const TexelRect& rect) const;
     std::vector<float> readAlignedLevel(const GL& gl, int level) const;
     std::vector<float> readWindowLevel(const GL& gl, int level) const;
 
@@ -87,5 +89,7 @@ private:
 // Level `level` (width x height) of a single-channel float texture, read back through a
 // framebuffer, row 0 first. The GL state it changes is restored.
 std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int width, int height);
+// The texels inside `rect` of that level, the same way.
+std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, const TexelRect& rect);
 
 }  // namespace microrelief

@@ -51,8 +51,8 @@ public:
     // The dabs since the last endStroke are one step of undo.
     void endStroke();
     // The samples before the last stroke, back exactly as they were, and the pyramids over
-    // them; false when there is nothing to undo.
-    bool undo(ReliefRenderer& renderer);
+    // them; returns the samples it wrote back, none when there was nothing to undo.
+    std::vector<TexelRect> undo(ReliefRenderer& renderer);
     int undoSteps() const;
     // Forgets the history (another map).
     void clear();

@@ -23,11 +23,12 @@ struct RebuildOptions {
 
 struct RebuildRow {
     int mapSize = 0;
-    double fullRebuildMs = 0.0;  // median, wall time to glFinish (the top read back)
-    double brushUpdateMs = 0.0;  // median over dabs of 64 x 64 samples
-    double frameTraceMs = 0.0;   // median frame, multilevel exact, 45 degrees
-    double cpuBuildMs = 0.0;     // MaxPyramid on the CPU and the upload, once
-    double bytesPerTexel = 0.0;  // the samples and both pyramids, per map texel
+    double fullRebuildMs = 0.0;            // median, wall time to glFinish (the top read back)
+    double brushUpdateMs = 0.0;            // median over dabs of 64 x 64 samples
+    double frameTraceMs = 0.0;             // median frame, multilevel exact, 45 degrees
+    double cpuBuildMs = 0.0;               // MaxPyramid on the CPU and the upload, once
+    double bytesPerTexel = 0.0;            // the samples and the windows, per map texel
+    double bytesPerTexelWithMaxMip = 0.0;  // and the aligned pyramid, where maxmip runs
     int width = 0, height = 0;
 };
 
@@ -35,7 +36,8 @@ void runRebuild(GlContext& context, const RebuildOptions& options,
                 const std::function<void(const RebuildRow&)>& report);
 
 // rebuild.csv: map_size, full_rebuild_ms, brush_update_ms, frame_trace_ms, renderer, and the
-// ratios, the CPU build, bytes per texel and the frame's size. Written whole or not at all.
+// ratios, the CPU build, bytes per texel (with and without maxmip's pyramid) and the frame's
+// size. Written whole or not at all.
 void writeRebuildCsv(const std::filesystem::path& file, const std::string& renderer,
                      const std::vector<RebuildRow>& rows);
 // The same as a Markdown table, returned.

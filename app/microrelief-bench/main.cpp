@@ -203,10 +203,10 @@ int main(int argc, char** argv) {
                 std::printf(
                     "%5d: full rebuild %9.2f ms, 64x64 dab %7.3f ms, frame %8.2f ms (rebuild / "
                     "frame %.2f, dab / frame %.3f), CPU build + upload %8.1f ms, %.2f GPU bytes "
-                    "per texel\n",
+                    "per texel (%.2f with maxmip)\n",
                     r.mapSize, r.fullRebuildMs, r.brushUpdateMs, r.frameTraceMs,
                     r.fullRebuildMs / r.frameTraceMs, r.brushUpdateMs / r.frameTraceMs,
-                    r.cpuBuildMs, r.bytesPerTexel);
+                    r.cpuBuildMs, r.bytesPerTexel, r.bytesPerTexelWithMaxMip);
                 std::fflush(stdout);
             });
             const std::string table = rebuildTable(context->renderer(), today(), rows);

@@ -65,7 +65,8 @@ uint mr_sampleBits(sampler2D heights, ivec2 size, ivec2 p, bool wrapU) {
 }
 
 // The finest level's texel (i, j) of a W x H map: see the top of this file. The largest
-// of the nine is taken on the bits, which order as the values do.
+// of the nine is taken on the bits, which order as the values do. Not rounded for
+// storage (mr_storedHalf).
 float mr_texelSquareBound(sampler2D heights, ivec2 size, ivec2 texel, bool wrapU) {
     uint rows[9];
     for (int b = 0; b < 3; ++b) {
@@ -82,6 +83,54 @@ float mr_texelSquareBound(sampler2D heights, ivec2 size, ivec2 texel, bool wrapU
                                               mr_roundUpMeanBits(rows[3 + a], rows[6 + a]))));
     }
     return uintBitsToFloat(best);
+}
+
+// The finest windows' bound (max_pyramid.glsl): the largest of the texel bounds of texels
+// (i, j) to (i + 1, j + 1) that lie in the W x H map, as bits. Their nine values share a
+// 5 x 5 lattice over the 4 x 4 samples round them: the row means of each sample row
+// (rows first, as for one texel), then the means down the lattice's columns; each texel's
+// nine are a 3 x 3 part of it, computed in the same order, so the same bits.
+uint mr_texelBlockBoundBits(sampler2D heights, ivec2 size, ivec2 texel, bool wrapU) {
+    uint rows[20];  // 4 sample rows x 5: mean, sample, mean, sample, mean
+    for (int b = 0; b < 4; ++b) {
+        uint c0 = mr_sampleBits(heights, size, texel + ivec2(-1, b - 1), wrapU);
+        uint c1 = mr_sampleBits(heights, size, texel + ivec2(0, b - 1), wrapU);
+        uint c2 = mr_sampleBits(heights, size, texel + ivec2(1, b - 1), wrapU);
+        uint c3 = mr_sampleBits(heights, size, texel + ivec2(2, b - 1), wrapU);
+        rows[5 * b] = mr_roundUpMeanBits(c0, c1);
+        rows[5 * b + 1] = c1;
+        rows[5 * b + 2] = mr_roundUpMeanBits(c1, c2);
+        rows[5 * b + 3] = c2;
+        rows[5 * b + 4] = mr_roundUpMeanBits(c2, c3);
+    }
+    // Lattice columns 0..2 belong to texel column i, 2..4 to i + 1; rows alike. Fixed
+    // loops and masks rather than bounds that vary: the loops unroll and the array stays
+    // in registers (with a varying bound llvmpipe kept it in memory: four times slower).
+    bool nextColumn = texel.x + 1 < size.x, nextRow = texel.y + 1 < size.y;
+    uint best = 0u;
+    for (int c = 0; c < 5; ++c) {
+        uint column = max(mr_roundUpMeanBits(rows[c], rows[5 + c]),
+                          max(rows[5 + c], mr_roundUpMeanBits(rows[5 + c], rows[10 + c])));
+        uint below = max(rows[10 + c], mr_roundUpMeanBits(rows[10 + c], rows[15 + c]));
+        column = nextRow ? max(column, below) : column;
+        best = (c < 3 || nextColumn) ? max(best, column) : best;
+    }
+    return best;
+}
+
+// A bound as the GPU stores it (MaxPyramid.h: storedBound, BoundPrecision::Half), divided
+// by 2^S: rounded up to 11 significant bits, at least 2^-14 when not 0, so a normal half
+// exactly (the conversion to R16F is exact, whatever its rounding), +inf past a half's
+// range (which a stale S can give; the builder then builds again with a fitting one).
+float mr_storedHalf(uint boundBits, int scaleExponent) {
+    if (boundBits == 0u) return 0.0;
+    uint rounded = (boundBits + 0x1fffu) & ~0x1fffu;
+    uint smallest = uint(scaleExponent - 14 + 127) << 23u;
+    uint bits = max(rounded, smallest);
+    if (bits >= 0x7f800000u) return uintBitsToFloat(0x7f800000u);
+    int exponent = int(bits >> 23u) - scaleExponent;  // biased, after the division
+    if (exponent > 127 + 15) return uintBitsToFloat(0x7f800000u);  // 65536 or more
+    return uintBitsToFloat((uint(exponent) << 23u) | (bits & 0x7fffffu));
 }
 
 #endif

@@ -85,6 +85,29 @@ float texelSquareBound(const HeightMap& map, int i, int j, bool wrapU) {
     return std::bit_cast<float>(best);
 }
 
+int pyramidScaleExponent(float top) {
+    const int e = static_cast<int>(std::bit_cast<std::uint32_t>(top) >> 23) - 127;
+    return std::clamp(e - 14, -112, 113);
+}
+
+namespace {
+
+// The smallest float with 11 significant bits (a half's) not below the float of `bits`
+// (>= 0): the low 13 mantissa bits rounded up; a carry runs into the exponent field, which
+// is the next binade's first value.
+std::uint32_t roundUpToHalfBits(std::uint32_t bits) {
+    return (bits + 0x1fffu) & ~0x1fffu;
+}
+
+}  // namespace
+
+float storedBound(float bound, BoundPrecision precision, int scaleExponent) {
+    const std::uint32_t bits = magnitudeBits(bound);
+    if (precision == BoundPrecision::Float || bits == 0) return std::bit_cast<float>(bits);
+    const std::uint32_t smallest = static_cast<std::uint32_t>(scaleExponent - 14 + 127) << 23;
+    return std::bit_cast<float>(std::max(roundUpToHalfBits(bits), smallest));
+}
+
 std::vector<glm::ivec2> pyramidLevelSizes(int mapWidth, int mapHeight) {
     std::vector<glm::ivec2> sizes;
     for (glm::ivec2 size(ceilPowerOfTwo(mapWidth), ceilPowerOfTwo(mapHeight));;
@@ -94,52 +117,98 @@ std::vector<glm::ivec2> pyramidLevelSizes(int mapWidth, int mapHeight) {
     }
 }
 
-MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU, Interpolation /*interpolation*/)
-    : mapWidth_(map.width), mapHeight_(map.height), wrapU_(wrapU) {
-    for (const glm::ivec2 size : pyramidLevelSizes(map.width, map.height)) {
-        widths_.push_back(size.x);
-        heights_.push_back(size.y);
-        levels_.emplace_back(static_cast<std::size_t>(size.x) * size.y, 0.0f);
-        windows_.emplace_back(static_cast<std::size_t>(size.x) * size.y, 0.0f);
-    }
-    for (int j = 0; j < map.height; ++j) {
-        for (int i = 0; i < map.width; ++i)
-            levels_[0][static_cast<std::size_t>(j) * widths_[0] + i] =
-                texelSquareBound(map, i, j, wrapU);
-    }
-    for (int level = 0; level < levelCount(); ++level) {
-        if (level > 0) reduceLevel(level, {0, 0, widths_[level], heights_[level]});
-        computeWindows(level, {0, 0, widths_[level], heights_[level]});
+std::vector<glm::ivec2> windowLevelSizes(int mapWidth, int mapHeight) {
+    std::vector<glm::ivec2> sizes;
+    for (glm::ivec2 size(mapWidth, mapHeight);; size = glm::max(size >> 1, glm::ivec2(1))) {
+        sizes.push_back(size);
+        if (size == glm::ivec2(1)) return sizes;
     }
 }
 
-void MaxPyramid::reduceLevel(int level, const TexelRect& rect) {
-    const int cw = widths_[level - 1], ch = heights_[level - 1], w = widths_[level];
+MaxPyramid::MaxPyramid(const HeightMap& map, bool wrapU, Interpolation /*interpolation*/,
+                       BoundPrecision precision)
+    : mapWidth_(map.width), mapHeight_(map.height), wrapU_(wrapU), precision_(precision) {
+    sizes_ = pyramidLevelSizes(map.width, map.height);
+    windowSizes_ = windowLevelSizes(map.width, map.height);
+    for (const glm::ivec2 size : sizes_) levels_.emplace_back(std::size_t(size.x) * size.y, 0.0f);
+    for (const glm::ivec2 size : windowSizes_) {
+        blocks_.emplace_back(std::size_t(size.x) * size.y, 0.0f);
+        windows_.emplace_back(std::size_t(size.x) * size.y, 0.0f);
+    }
+    build(map);
+}
+
+void MaxPyramid::build(const HeightMap& map) {
+    // S comes from the top, which is the largest sample (no bound exceeds its nine samples,
+    // and the square of the largest sample has it among them) rounded up.
+    scaleExponent_ = precision_ == BoundPrecision::Half
+                         ? pyramidScaleExponent(std::bit_cast<float>(
+                               roundUpToHalfBits(magnitudeBits(map.maxValue()))))
+                         : 0;
+    computeFinest(map, {0, 0, mapWidth_, mapHeight_});
+    for (int level = 0; level < windowLevelCount(); ++level) {
+        if (level > 0) reduceBlocks(level, {0, 0, windowSizes_[level].x, windowSizes_[level].y});
+        computeWindows(level, {0, 0, windowSizes_[level].x, windowSizes_[level].y});
+    }
+    for (int level = 1; level < levelCount(); ++level)
+        reduceAligned(level, {0, 0, sizes_[level].x, sizes_[level].y});
+}
+
+void MaxPyramid::computeFinest(const HeightMap& map, const TexelRect& rect) {
+    for (int j = rect.y0; j < rect.y1; ++j) {
+        for (int i = rect.x0; i < rect.x1; ++i) {
+            const float bound =
+                storedBound(texelSquareBound(map, i, j, wrapU_), precision_, scaleExponent_);
+            blocks_[0][static_cast<std::size_t>(j) * mapWidth_ + i] = bound;
+            levels_[0][static_cast<std::size_t>(j) * sizes_[0].x + i] = bound;
+        }
+    }
+}
+
+void MaxPyramid::reduceAligned(int level, const TexelRect& rect) {
+    const glm::ivec2 c = sizes_[level - 1];
     const std::vector<float>& child = levels_[level - 1];
-    std::vector<float>& parent = levels_[level];
     for (int q = rect.y0; q < rect.y1; ++q) {
         for (int p = rect.x0; p < rect.x1; ++p) {
             float best = 0.0f;
-            for (int cq = 2 * q; cq <= std::min(2 * q + 1, ch - 1); ++cq) {
-                for (int cp = 2 * p; cp <= std::min(2 * p + 1, cw - 1); ++cp)
-                    best = std::max(best, child[static_cast<std::size_t>(cq) * cw + cp]);
+            for (int cq = 2 * q; cq <= std::min(2 * q + 1, c.y - 1); ++cq) {
+                for (int cp = 2 * p; cp <= std::min(2 * p + 1, c.x - 1); ++cp)
+                    best = std::max(best, child[static_cast<std::size_t>(cq) * c.x + cp]);
             }
-            parent[static_cast<std::size_t>(q) * w + p] = best;
+            levels_[level][static_cast<std::size_t>(q) * sizes_[level].x + p] = best;
+        }
+    }
+}
+
+void MaxPyramid::reduceBlocks(int level, const TexelRect& rect) {
+    // Block p's children are 2p and 2p + 1, and for the last block of a row (or column)
+    // every child from 2p on: an odd count's last child too.
+    const glm::ivec2 c = windowSizes_[level - 1], size = windowSizes_[level];
+    const std::vector<float>& child = blocks_[level - 1];
+    for (int q = rect.y0; q < rect.y1; ++q) {
+        const int qEnd = q == size.y - 1 ? c.y - 1 : std::min(2 * q + 1, c.y - 1);
+        for (int p = rect.x0; p < rect.x1; ++p) {
+            const int pEnd = p == size.x - 1 ? c.x - 1 : std::min(2 * p + 1, c.x - 1);
+            float best = 0.0f;
+            for (int cq = 2 * q; cq <= qEnd; ++cq) {
+                for (int cp = 2 * p; cp <= pEnd; ++cp)
+                    best = std::max(best, child[static_cast<std::size_t>(cq) * c.x + cp]);
+            }
+            blocks_[level][static_cast<std::size_t>(q) * size.x + p] = best;
         }
     }
 }
 
 void MaxPyramid::computeWindows(int level, const TexelRect& rect) {
-    // Each texel the max of the 2 x 2 aligned texels from it on; past a level's last row or
-    // column there is no surface (0, like the padding).
-    const int w = widths_[level], h = heights_[level];
-    const std::vector<float>& aligned = levels_[level];
+    // Each window the max of the 2 x 2 blocks from it on (those that exist).
+    const glm::ivec2 size = windowSizes_[level];
+    const std::vector<float>& blocks = blocks_[level];
     auto at = [&](int p, int q) {
-        return p < w && q < h ? aligned[static_cast<std::size_t>(q) * w + p] : 0.0f;
+        return p < size.x && q < size.y ? blocks[static_cast<std::size_t>(q) * size.x + p] : 0.0f;
     };
     for (int q = rect.y0; q < rect.y1; ++q) {
         for (int p = rect.x0; p < rect.x1; ++p) {
-            windows_[level][static_cast<std::size_t>(q) * w + p] =
+            windows_[level][static_cast<std::size_t>(q) * size.x + p] =
                 std::max({at(p, q), at(p + 1, q), at(p, q + 1), at(p + 1, q + 1)});
         }
     }
@@ -162,11 +231,12 @@ void mergeRects(std::vector<TexelRect>& rects) {
 
 }  // namespace
 
-PyramidRegions pyramidUpdateRegions(int width, int height, bool wrapU, const TexelRect& changed) {
+PyramidRegions pyramidUpdateRegions(const std::vector<glm::ivec2>& levelSizes, int width,
+                                    int height, bool wrapU, const TexelRect& changed) {
     PyramidRegions regions;
     const TexelRect c{std::max(changed.x0, 0), std::max(changed.y0, 0), std::min(changed.x1, width),
                       std::min(changed.y1, height)};
-    const int levelCount = static_cast<int>(pyramidLevelSizes(width, height).size());
+    const int levelCount = static_cast<int>(levelSizes.size());
     regions.aligned.resize(levelCount);
     regions.windows.resize(levelCount);
     if (c.empty()) return regions;
@@ -185,11 +255,16 @@ PyramidRegions pyramidUpdateRegions(int width, int height, bool wrapU, const Tex
         finest.push_back({c.x0 - 1, y0, c.x1 + 1, y1});
     }
     for (int level = 0; level < levelCount; ++level) {
+        const glm::ivec2 size = levelSizes[level];
         if (level > 0) {
-            // Parents of the changed texels of the level below.
-            for (const TexelRect& r : regions.aligned[level - 1])
-                regions.aligned[level].push_back(
-                    {r.x0 >> 1, r.y0 >> 1, ((r.x1 - 1) >> 1) + 1, ((r.y1 - 1) >> 1) + 1});
+            // Parents of the changed texels of the level below; the last of a row or column
+            // also holds what lies past it (the blocks' remainder).
+            for (const TexelRect& r : regions.aligned[level - 1]) {
+                regions.aligned[level].push_back({std::min(r.x0 >> 1, size.x - 1),
+                                                  std::min(r.y0 >> 1, size.y - 1),
+                                                  std::min((r.x1 - 1) >> 1, size.x - 1) + 1,
+                                                  std::min((r.y1 - 1) >> 1, size.y - 1) + 1});
+            }
             mergeRects(regions.aligned[level]);
         }
         // Windows p..p+1 hold texel p: the ones starting one before each changed texel.
@@ -202,19 +277,24 @@ PyramidRegions pyramidUpdateRegions(int width, int height, bool wrapU, const Tex
 }
 
 void MaxPyramid::update(const HeightMap& map, const TexelRect& changed) {
-    const PyramidRegions regions = pyramidUpdateRegions(mapWidth_, mapHeight_, wrapU_, changed);
-    for (const TexelRect& r : regions.aligned[0]) {
-        for (int j = r.y0; j < r.y1; ++j) {
-            for (int i = r.x0; i < r.x1; ++i)
-                levels_[0][static_cast<std::size_t>(j) * widths_[0] + i] =
-                    texelSquareBound(map, i, j, wrapU_);
-        }
-    }
-    for (int level = 0; level < levelCount(); ++level) {
+    const PyramidRegions blocks =
+        pyramidUpdateRegions(windowSizes_, mapWidth_, mapHeight_, wrapU_, changed);
+    for (const TexelRect& r : blocks.aligned[0]) computeFinest(map, r);
+    for (int level = 0; level < windowLevelCount(); ++level) {
         if (level > 0) {
-            for (const TexelRect& r : regions.aligned[level]) reduceLevel(level, r);
+            for (const TexelRect& r : blocks.aligned[level]) reduceBlocks(level, r);
         }
-        for (const TexelRect& r : regions.windows[level]) computeWindows(level, r);
+        for (const TexelRect& r : blocks.windows[level]) computeWindows(level, r);
+    }
+    // A top in another binade has another S, and with it another least bound: all again.
+    if (precision_ == BoundPrecision::Half && pyramidScaleExponent(maxHeight()) != scaleExponent_) {
+        build(map);
+        return;
+    }
+    const PyramidRegions aligned =
+        pyramidUpdateRegions(sizes_, mapWidth_, mapHeight_, wrapU_, changed);
+    for (int level = 1; level < levelCount(); ++level) {
+        for (const TexelRect& r : aligned.aligned[level]) reduceAligned(level, r);
     }
 }
 
@@ -230,13 +310,15 @@ int MaxPyramid::windowLevel(glm::ivec2 lo, glm::ivec2 hi) const {
     int level = span > 0 ? std::bit_width(span) - 1 : 0;  // floor(log2 span), like findMSB
     const glm::ivec2 crossed = (hi >> level) - (lo >> level);
     if (crossed.x > 1 || crossed.y > 1) ++level;
-    return std::min(level, levelCount() - 1);
+    return std::min(level, windowLevelCount() - 1);
 }
 
 double MaxPyramid::windowOver(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const {
     level = windowLevel(lo, hi);
     ++fetches;
-    return window(level, lo.x >> level, lo.y >> level);
+    // The last window of a row or column holds what lies past it (its blocks' remainder).
+    const glm::ivec2 p = glm::min(lo >> level, windowSizes_[level] - 1);
+    return window(level, p.x, p.y);
 }
 
 double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const {

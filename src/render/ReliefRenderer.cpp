@@ -52,6 +52,9 @@ ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
     checkMethodSupportsBase(settings.method, base_);
     program(configFor(settings, countFetches, base_.kind, interpolation_, true));  // may throw
+    // The aligned pyramid is made only for the peer that walks it.
+    if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
+        textures_->addMaxMipPyramid(gl_, pyramidBuilder());
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -77,11 +80,12 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     // Both throw before anything changes: the program is compiled (or looked up) first,
     // the textures are made before the old ones go.
     program(configFor(method_, countFetches_, base.kind, interpolation, true));
+    const bool maxMip = method_.method == Method::MaxMip;
     if (build == PyramidBuild::Gpu) {
-        textures_.emplace(
-            ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, pyramidBuilder()));
+        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation,
+                                         pyramidBuilder(), maxMip));
     } else {
-        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation));
+        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, maxMip));
     }
     base_ = base;
     interpolation_ = interpolation;
@@ -169,7 +173,10 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.cameraUp = glm::vec3(camera.up);
     p.cameraForward = glm::vec3(camera.forward);
     p.pixelErrorTolerance = method_.pixelError;
-    const ReliefMapShape& shape = textures_->shape();
+    // The multilevel method reads the windows, maxmip its aligned quadtree: each its own
+    // pyramid's size and levels.
+    const ReliefMapShape shape =
+        method_.method == Method::MaxMip ? textures_->maxMipShape() : textures_->shape();
     p.heightScale = heightScale_;
     p.reliefMaxHeight = shape.maxHeight;
     p.frameScale = glm::vec3(base_.frameScale());

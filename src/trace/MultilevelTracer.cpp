@@ -47,7 +47,8 @@ MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const Base
                                    Interpolation interpolation)
     : map_(std::move(map)),
       interpolation_(interpolation),
-      pyramid_(map_, base.wrapsU(), interpolation),
+      // The bounds the shader reads: the GPU's half floats (MaxPyramid.h).
+      pyramid_(map_, base.wrapsU(), interpolation, BoundPrecision::Half),
       heightScale_(heightScale),
       base_(BaseSurface::make(base, map_.width, map_.height, heightScale,
                               pyramid_.texel(pyramid_.levelCount() - 1, 0, 0))),

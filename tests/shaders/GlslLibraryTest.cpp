@@ -282,6 +282,7 @@ TEST(GlslLibrary, PyramidAndEditPassesCompileAsGlsl330AndEs300) {
                 EXPECT_EQ(belowHighp(tree), "") << entry.path().filename();
         }
     }
-    // The triangle, the finest level, the windows, the aligned levels; the brush, the fields.
-    EXPECT_EQ(count, 6);
+    // The triangle, the finest windows (at once, and from a band's bounds), the finest
+    // bounds, the coarser windows and aligned levels; the brush, the fields.
+    EXPECT_EQ(count, 8);
 }

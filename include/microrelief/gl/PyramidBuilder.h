@@ -1,19 +1,27 @@
-// Both max pyramids built on the GPU from the samples texture, in fragment passes (GLSL
+// The max pyramids built on the GPU from the samples texture, in fragment passes (GLSL
 // 3.30 core, and GLSL ES 3.00 as they stand: shaders/pyramid/), texel for texel what
-// MaxPyramid builds on the CPU, bit for bit (heightmap/MaxPyramid.h): the same finest
-// level (microrelief/pyramid_bound.glsl, integer arithmetic on the floats' bits), the same
-// padding and level sizes, wrapped in u on a curved base, for either interpolation.
+// MaxPyramid (BoundPrecision::Half) keeps, bit for bit: the same finest bounds
+// (microrelief/pyramid_bound.glsl, integer arithmetic on the floats' bits, rounded up to
+// halves), the same level sizes, wrapped in u on a curved base, for either interpolation;
+// stored as R16F halves divided by 2^S (MaxPyramid.h: pyramidScaleExponent).
 //
 // The passes, one draw each over the texels they compute:
-//  * the aligned pyramid's finest level from the 3 x 3 samples around each texel (0 in
-//    the padding);
-//  * on each level k, the windows from the aligned texels (max of 2 x 2);
-//  * the aligned level k + 1 from the windows of level k: its texel (p, q) is window
-//    (2p, 2q), the max of its four children, one read.
-// No pass reads the texture it writes, so there is no feedback loop to avoid, and no
-// scratch memory. After a change inside a rectangle of the samples only the texels whose
-// bounds read it are drawn again, on every level (pyramidUpdateRegions). Then the top
-// texel is read back: the map's new maximum, which the box and the tracer need.
+//  * the windows' finest level: on maps of 256 rows or more in bands of 64 rows, the band's
+//    finest bounds from the 3 x 3 samples round each texel into a scratch texture (the
+//    band's width by 65 rows), then each window the max of its 2 x 2; elsewhere (small
+//    maps, edits) each window from the 4 x 4 samples round its 2 x 2 texels at once;
+//  * each coarser level of windows from the level below (windows 2p, 2p + 2 of it, and
+//    the odd last block's window where a level's last block absorbs it);
+//  * where maxmip runs, the aligned pyramid (padded to powers of two): its finest level
+//    from the 3 x 3 samples round each texel (0 in the padding), each coarser level the max
+//    of four children of the level below.
+// A level is drawn from the level below it of the same texture with the texture's base and
+// max level set to the level read, so no pass samples what it writes (no feedback loop),
+// and the only scratch memory is the band's. After a change inside a rectangle of the samples only
+// the texels whose bounds read it are drawn again, on every level (pyramidUpdateRegions). Then the
+// top texel is read back: the map's new maximum, which the box and the tracer need, and the check
+// that S still fits it (when the top moved to another binade, every texel is drawn again with the
+// new S).
 #pragma once
 
 #include <filesystem>
@@ -31,9 +39,12 @@ public:
     // Throws Error(Runtime) when they do not compile, or the GL cannot render to R32F.
     PyramidBuilder(const GL& gl, const std::filesystem::path& shaderDir);
 
-    // Every texel of both pyramids of `textures`, from its samples; then its shape's
-    // maxHeight. The GL state it changes is restored (gl::PassGuard).
+    // Every texel of the pyramids of `textures` (the windows, and the aligned pyramid where
+    // it has one), from its samples; then its shape's maxHeight. The GL state it changes is
+    // restored (gl::PassGuard).
     void build(ReliefTextures& textures);
+    // The aligned pyramid alone (just made for maxmip), with the windows' S.
+    void buildAligned(ReliefTextures& textures);
     // After the samples inside `changed` (map texels; clipped to the map) changed: the
     // texels whose bounds read them, on every level, and maxHeight.
     void update(ReliefTextures& textures, const TexelRect& changed);
@@ -41,13 +52,23 @@ public:
     void update(ReliefTextures& textures, const std::vector<TexelRect>& changed);
 
 private:
-    void run(ReliefTextures& textures, const std::vector<PyramidRegions>& regions);
+    void begin();
+    void drawAll(ReliefTextures& textures);
+    void drawWindowBands(ReliefTextures& textures);
+    void drawWindows(ReliefTextures& textures, const std::vector<std::vector<TexelRect>>& windows);
+    void drawAligned(ReliefTextures& textures, const PyramidRegions& regions);
+    void useFinest(const gl::Program& program, int k, const ReliefTextures& textures);
+    float readTop(const ReliefTextures& textures);
+    void settleScale(ReliefTextures& textures);
     void attach(GLuint texture, int level);
     void draw(const TexelRect& rect);
 
     const GL& gl_;
-    gl::Program finest_, windows_, aligned_;
-    GLint finestMapSize_ = -1, finestWrapU_ = -1, windowsLevel_ = -1, alignedLevel_ = -1;
+    gl::Program windowFinest_, windowBlocks_, windows_, alignedFinest_, aligned_;
+    GLint finestMapSize_[2] = {-1, -1}, finestWrapU_[2] = {-1, -1}, finestScale_[2] = {-1, -1};
+    GLint windowsLevel_ = -1, alignedOrigin_ = -1, blocksMapSize_ = -1, blocksFirstRow_ = -1;
+    gl::Texture scratch_;  // a band's finest bounds (drawWindowBands)
+    int scratchWidth_ = 0;
     gl::VertexArray vertexArray_;
     gl::Framebuffer framebuffer_;
 };

@@ -127,7 +127,7 @@ std::string rebuildTable(const std::string& renderer, const std::string& date,
            << fixed(r.brushUpdateMs, 2) << " | " << fixed(r.frameTraceMs, 1) << " | "
            << fixed(r.fullRebuildMs / r.frameTraceMs, 2) << " | "
            << fixed(r.brushUpdateMs / r.frameTraceMs, 3) << " | " << fixed(r.cpuBuildMs, 0) << " | "
-           << fixed(r.bytesPerTexel, 2) << " |\n";
+           << fixed(r.bytesPerTexel, 2) << " (" << fixed(r.bytesPerTexelWithMaxMip, 2) << ") |\n";
     }
     return md.str();
 }

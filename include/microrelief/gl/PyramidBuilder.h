@@ -15,13 +15,13 @@
 //  * where maxmip runs, the aligned pyramid (padded to powers of two): its finest level
 //    from the 3 x 3 samples round each texel (0 in the padding), each coarser level the max
 //    of four children of the level below.
-// A level is drawn from the level below it of the same texture with the texture's base and
-// max level set to the level read, so no pass samples what it writes (no feedback loop),
-// and the only scratch memory is the band's. After a change inside a rectangle of the samples only
-// the texels whose bounds read it are drawn again, on every level (pyramidUpdateRegions). Then the
-// top texel is read back: the map's new maximum, which the box and the tracer need, and the check
-// that S still fits it (when the top moved to another binade, every texel is drawn again with the
-// new S).
+// A level is drawn from the level below it of the same texture with the sampled range
+// ending at the level read, so no pass samples what it writes (no feedback loop), and the
+// only scratch memory is the band's. After a change inside a rectangle of the samples only
+// the texels whose bounds read it are drawn again, on every level (pyramidUpdateRegions).
+// Then the top texel is read back: the map's new maximum, which the box and the tracer
+// need, and the check that S still fits it (when the top moved to another binade, every
+// texel is drawn again with the new S).
 #pragma once
 
 #include <filesystem>
@@ -36,7 +36,8 @@ namespace microrelief {
 class PyramidBuilder {
 public:
     // Compiles the passes from `shaderDir` (the folder holding pyramid/ and microrelief/).
-    // Throws Error(Runtime) when they do not compile, or the GL cannot render to R32F.
+    // Throws Error(Runtime) when they do not compile; a build throws it where the GL cannot
+    // render into R16F.
     PyramidBuilder(const GL& gl, const std::filesystem::path& shaderDir);
 
     // Every texel of the pyramids of `textures` (the windows, and the aligned pyramid where

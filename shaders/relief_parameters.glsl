@@ -27,7 +27,7 @@ layout(std140) uniform MicroreliefParameters {
     vec3 albedo;          // linear
     int methodSteps;      // peers' quality knob: layers, samples or linear steps
     vec2 reliefSize;      // W, H (tiled N x M: N W, M H)
-    ivec2 pyramidSize;    // the finest level's size (W, H rounded up to powers of two)
+    ivec2 pyramidSize;    // the finest level's size: a tile's W, H (windows); maxmip W, H rounded up to powers of two
     vec2 viewportSize;    // the whole picture's, in pixels
     vec2 tileOrigin;      // where the drawn tile sits in it (0, 0: the whole picture)
     int methodMinSteps;   // pom: samples when looking straight down

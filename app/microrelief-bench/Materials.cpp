@@ -103,7 +103,7 @@ std::vector<MaterialRow> runMaterialsBenchmark(GlContext& context, int width, in
     std::vector<double> ms;
     for (int n : counts) {
         renderer.setHeightScale(0.1f / n);
-        renderer.setHeightMap(tile, "cobbles", {}, Interpolation::Bilinear, {n, n});
+        renderer.setHeightMap(tile, "cobbles", {}, Interpolation::Bilinear, PyramidBuild::Cpu, {n, n});
         const ReliefExtent extent =
             reliefExtent(256 * n, 256 * n, tile.maxValue(), 0.1 / n, BaseShape{});
         const CameraFrame camera =

@@ -13,8 +13,6 @@
 
 namespace microrelief::bench {
 
-namespace {
-
 // Text files get the same whole-or-nothing treatment as images.
 void writeTextAtomically(const std::filesystem::path& file, const std::string& text) {
     std::filesystem::create_directories(file.parent_path().empty() ? "." : file.parent_path());
@@ -41,6 +39,8 @@ std::string fixed(double value, int digits) {
     std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
     return buffer;
 }
+
+namespace {
 
 // A peer reaches the multilevel method's accuracy when neither of its figures is worse
 // by more than 0.01 percentage points: a handful of pixels at these sizes (7 of 65 536

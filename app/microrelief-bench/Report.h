@@ -16,6 +16,12 @@ struct RunInfo {
     std::string command;   // how it was run
 };
 
+// `text` into `file`, whole or not at all (a temporary beside it, renamed).
+void writeTextAtomically(const std::filesystem::path& file, const std::string& text);
+// A CSV field in quotes; a number with `digits` decimals.
+std::string csvQuote(const std::string& text);
+std::string fixed(double value, int digits);
+
 // Rewrites the whole CSV atomically (called after every measurement, so a long run
 // that is interrupted keeps what it measured).
 void writeCsv(const std::filesystem::path& file, const RunInfo& info,

@@ -11,6 +11,7 @@
 
 #include "Benchmark.h"
 #include "Materials.h"
+#include "Rebuild.h"
 #include "Report.h"
 #include "SceneOptions.h"
 #include "microrelief/context/HeadlessContext.h"
@@ -112,6 +113,13 @@ int main(int argc, char** argv) {
     std::string baseList = "plane,cylinder,sphere";
     std::string interpolationList = "bilinear,biquadratic";
     BenchOptions options;
+    bool rebuild = false;
+    std::string rebuildSizes = "1024,2048,4096,8192";
+    app.add_flag("--rebuild", rebuild,
+                 "Instead: what a changing map costs, the pyramids rebuilt on the GPU in full and "
+                 "after a 64x64 brush dab, beside a frame's trace of the same map (rebuild.csv)");
+    app.add_option("--rebuild-sizes", rebuildSizes, "Map sizes for --rebuild, comma-separated")
+        ->capture_default_str();
     app.add_flag("--quick", quick,
                  "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
                  "(minutes on a CPU)");
@@ -177,6 +185,42 @@ int main(int argc, char** argv) {
             throwBadInput(
                 "--methods names no method (a comma-separated list: multilevel,maxmip,...)");
         checkOutputFolder(outDir);
+        if (rebuild && materials) throwBadInput("--rebuild and --materials: one at a time");
+        if (rebuild) {
+            RebuildOptions rebuildOptions;
+            rebuildOptions.width = options.width;
+            rebuildOptions.height = options.height;
+            rebuildOptions.frames = options.frames;
+            rebuildOptions.mapSizes =
+                parseList(rebuildSizes, "--size", "--rebuild-sizes", [](const std::string& text) {
+                    int w = 0, h = 0;
+                    parseSizeFlag(text + "x" + text, w, h);
+                    return w;
+                });
+            if (rebuildOptions.mapSizes.empty())
+                throwBadInput("--rebuild-sizes names no size (a comma-separated list: 1024,...)");
+            const auto context = createHeadlessContext(parseBackend(backend));
+            const std::filesystem::path folder = outDir;
+            std::vector<RebuildRow> rows;
+            runRebuild(*context, rebuildOptions, [&](const RebuildRow& r) {
+                rows.push_back(r);
+                writeRebuildCsv(folder / "rebuild.csv", context->renderer(), rows);
+                std::printf(
+                    "%5d: full rebuild %9.2f ms, 64x64 dab %7.3f ms, frame %8.2f ms (rebuild / "
+                    "frame %.2f, dab / frame %.3f), CPU build + upload %8.1f ms, %.2f GPU bytes "
+                    "per texel (%.2f with maxmip)\n",
+                    r.mapSize, r.fullRebuildMs, r.brushUpdateMs, r.frameTraceMs,
+                    r.fullRebuildMs / r.frameTraceMs, r.brushUpdateMs / r.frameTraceMs,
+                    r.cpuBuildMs, r.bytesPerTexel, r.bytesPerTexelWithMaxMip);
+                std::fflush(stdout);
+            });
+            const std::string table = rebuildTable(context->renderer(), today(), rows);
+            writeTextAtomically(folder / "rebuild.md", table);
+            std::cout << '\n'
+                      << table << "microrelief-bench: wrote " << (folder / "rebuild.csv").string()
+                      << " and rebuild.md\n";
+            return 0;
+        }
 
         const auto context = createHeadlessContext(parseBackend(backend));
         if (materials) {

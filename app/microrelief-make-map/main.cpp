@@ -1,8 +1,8 @@
 // microrelief-make-map: writes one of the procedural height maps of synth/ as a 16-bit
 // PNG (or any format by extension), and for cobbles and planet a matching albedo. The
 // bundled assets/cobbles.png and assets/cobbles-albedo.png are
-//   microrelief-make-map cobbles --size 256x256 --out assets/cobbles.png \
-//       --albedo assets/cobbles-albedo.png
+//   microrelief-make-map cobbles --size 256x256 --out assets/cobbles.png
+//       --albedo assets/cobbles-albedo.png (one command)
 #include <CLI/CLI.hpp>
 
 #include <algorithm>

@@ -96,7 +96,9 @@ int run(const RenderOptions& o) {
                 context->description());
     const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.scene.job,
                                                  albedo ? &*albedo : nullptr);
-    warnIfEyeInsideTheSolid(map, o.scene.job, heightFile);  // the camera checked by now
+    // An animated relief is held to the heights the GPU evaluated, read back.
+    const HeightMap& traced = result.animatedMap ? *result.animatedMap : map;
+    warnIfEyeInsideTheSolid(traced, o.scene.job, heightFile);  // the camera checked by now
     const RenderedFrame& frame = result.frame;
 
     std::size_t exhausted = 0;
@@ -108,7 +110,7 @@ int run(const RenderOptions& o) {
     if (o.aov) writeAov(batch, *o.aov, frame, o.scene.job.shading.shadows != ShadowMode::Off);
     batch.commit();
 
-    if (o.compareReference) printAccuracy(frame, result.camera, map, o.scene.job);
+    if (o.compareReference) printAccuracy(frame, result.camera, traced, o.scene.job);
     if (exhausted > 0) {
         logWarning(std::to_string(exhausted) +
                    " pixel(s) ran out of the iteration budget (shown magenta)");

@@ -7,6 +7,13 @@ void ReliefPicker::setMap(std::shared_ptr<const HeightMap> map) {
     tracer_.reset();
 }
 
+void ReliefPicker::mapChanged(std::shared_ptr<const HeightMap> map,
+                              const std::vector<TexelRect>& changed) {
+    map_ = std::move(map);
+    if (!tracer_) return;  // built from the edited map when it is next needed
+    for (const TexelRect& rect : changed) tracer_->mapChanged(*map_, rect);
+}
+
 void ReliefPicker::setHeightScale(double heightScale) {
     if (heightScale == heightScale_) return;
     heightScale_ = heightScale;

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/Camera.h"
@@ -30,6 +31,9 @@ public:
     void setInterpolation(Interpolation interpolation);
     // The map repeated across the base (--tile).
     void setTiles(glm::ivec2 tiles);
+    // The map's samples changed inside `changed` (sculpting): the tracer, if built, takes
+    // them from `map` (the same map, edited) and brings its pyramid up to date.
+    void mapChanged(std::shared_ptr<const HeightMap> map, const std::vector<TexelRect>& changed);
     // Where the relief sits in the world (the renderer's model transform).
     void setModel(const ModelTransform& model) { model_ = model; }
 

@@ -10,6 +10,8 @@
 #include <ctime>
 #include <glm/gtc/constants.hpp>
 
+#include "MapFile.h"
+#include "microrelief/base/BaseSurface.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
@@ -59,7 +61,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.vsync = options.vsync && options.frames == 0;
     state_.panelVisible = options.panel;
     const std::filesystem::path file = options.scene.heightFile.value_or(defaultHeightMapPath());
-    map_ = std::make_shared<const HeightMap>(loadHeightMap(file, options.scene.load));
+    map_ = std::make_shared<HeightMap>(loadHeightMap(file, options.scene.load));
     mapMaxHeight_ = map_->maxValue();  // once per map, not per frame
     loadedWith_ = options.scene.load;
     // A bad albedo is a bad argument too: refused before any window opens.
@@ -82,9 +84,20 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     renderer_->setHeightScale(options.scene.job.heightScale);
     renderer_->setModel(options.scene.job.model);
     renderer_->setHeightMap(*map_, file.string(), options.scene.job.base,
-                            options.scene.job.interpolation, options.scene.job.tiles);
+                            options.scene.job.interpolation, PyramidBuild::Gpu,
+                            options.scene.job.tiles);
     timer_ = std::make_unique<GpuTimer>(gl);
     watcher_ = std::make_unique<ShaderWatcher>(shaders);
+    editor_ = std::make_unique<HeightEditor>(gl, shaders);
+    footprint_ = std::make_unique<BrushFootprint>(gl, shaders);
+    if (!options.scene.job.animation.empty()) {
+        animated_ = std::make_unique<AnimatedHeights>(gl, shaders, options.scene.job.animation);
+        animate(0.0);
+    }
+    state_.sculpt = options.sculpt && sculptable();
+    state_.brush = options.brush;
+    state_.savePath =
+        (std::filesystem::path("out") / (file.stem().string() + "-edited.exr")).string();
     picker_.setMap(map_);
     picker_.setHeightScale(options.scene.job.heightScale);
     picker_.setBase(options.scene.job.base);
@@ -147,6 +160,7 @@ void ViewerApp::setupWindow() {
 
 int ViewerApp::run() {
     int drawn = 0;
+    runScript();
     lastFrameTime_ = now();
     while (!glfwWindowShouldClose(window_->window()) &&
            (options_.frames == 0 || drawn < options_.frames)) {
@@ -173,7 +187,8 @@ int ViewerApp::run() {
 void ViewerApp::writeAutomationOutputs() {
     const GLenum error = window_->gl().GetError();
     if (error != GL_NO_ERROR) throwRuntime("GL error " + gl::enumHex(error) + " while rendering");
-    ImageWriteBatch batch;  // both files or neither
+    if (options_.saveMap) saveMap(*options_.saveMap);  // throws: a failed save fails the run
+    ImageWriteBatch batch;                             // both files or neither
     std::vector<std::uint8_t> view;
     if (options_.screenshot) {
         const RenderedFrame picture = target_->read();
@@ -221,7 +236,9 @@ void ViewerApp::frame() {
 
     imgui_->beginFrame();
     handleInput(seconds);
+    if (animated_) animate(seconds);
     updatePick();
+    sculpt();
     state_.yawDegrees = controller_.yawDegrees();
     state_.pitchDegrees = controller_.pitchDegrees();
     state_.scene.job.camera = controller_.camera();
@@ -265,6 +282,27 @@ void ViewerApp::handleKey(int key) {
             break;
         case GLFW_KEY_V:
             setVsync(!state_.vsync);
+            break;
+        case GLFW_KEY_B:
+            state_.sculpt = !state_.sculpt && sculptable();
+            if (!sculptable())
+                note(animated_ ? "sculpting: not while the relief is animated (--animate)"
+                               : "sculpting: an untiled map only (Tiles 1, 1)");
+            break;
+        case GLFW_KEY_Z:
+            if (ImGui::GetIO().KeyCtrl) undo();
+            break;
+        case GLFW_KEY_S:
+            if (ImGui::GetIO().KeyCtrl && !state_.flyMode) saveMap(state_.savePath);
+            break;
+        case GLFW_KEY_LEFT_BRACKET:
+            state_.brush.radius = std::max(state_.brush.radius * 0.8, 0.5);
+            break;
+        case GLFW_KEY_RIGHT_BRACKET:
+            state_.brush.radius = std::min(state_.brush.radius * 1.25, 512.0);
+            break;
+        case GLFW_KEY_SPACE:
+            state_.playing = !state_.playing;
             break;
         default:
             if (key >= GLFW_KEY_1 && key <= GLFW_KEY_6)
@@ -310,7 +348,8 @@ void ViewerApp::handleMouse() {
         // The picture's height in window units, which is what the mouse moves in.
         controller_.pan(dx, dy,
                         viewSize().y * viewRect().scale * io.DisplaySize.y / framebufferSize().y);
-    } else if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && (dx != 0.0 || dy != 0.0)) {
+    } else if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && (dx != 0.0 || dy != 0.0) &&
+               (!state_.sculpt || io.KeyAlt)) {  // in sculpt mode the left button paints
         state_.flyMode ? controller_.look(dx, dy) : controller_.orbit(dx, dy);
     }
     if (io.MouseWheel != 0.0f) controller_.zoom(io.MouseWheel);
@@ -335,6 +374,8 @@ void ViewerApp::applyPanel(const PanelActions& a) {
     if (a.screenshot) takeScreenshot();
     if (a.copyCommand) copyCommand();
     if (a.vsyncChanged) setVsync(state_.vsync);
+    if (a.undo) undo();
+    if (a.saveMap) saveMap(state_.savePath);
 }
 
 void ViewerApp::updatePick() {
@@ -348,7 +389,152 @@ void ViewerApp::updatePick() {
     const ViewRect rect = viewRect();
     const int column = static_cast<int>(std::floor((x - rect.x) / rect.scale));
     const int row = static_cast<int>(std::floor((y - rect.y) / rect.scale));
-    state_.pick = picker_.pick(cameraFrame(), column, row);
+    state_.pick =
+        animated_ ? pickFromPicture(column, row) : picker_.pick(cameraFrame(), column, row);
+}
+
+std::optional<PickResult> ViewerApp::pickFromPicture(int column, int row) const {
+    if (!target_ || column < 0 || row < 0 || column >= target_->width() || row >= target_->height())
+        return std::nullopt;
+    const glm::vec4 hit = target_->positionAt(column, row);
+    if (hit.w < 0.5f) return std::nullopt;
+    const RenderJob& job = state_.scene.job;
+    const auto surface = BaseSurface::make(job.base, map_->width, map_->height, job.heightScale,
+                                           renderer_->maxHeight());
+    const glm::dvec3 object = job.model.pointToObject(glm::dvec3(hit));
+    const glm::dvec3 p = surface->mapPoint(object / job.base.frameScale());
+    PickResult pick;
+    pick.uv = glm::dvec2(p.x / map_->width, p.y / map_->height);
+    pick.height = p.z;
+    pick.position = glm::dvec3(hit);
+    return pick;
+}
+
+void ViewerApp::sculpt() {
+    const bool painting = state_.sculpt && sculptable() && !imgui_->wantsMouse() &&
+                          ImGui::IsMouseDown(ImGuiMouseButton_Left) && !ImGui::GetIO().KeyAlt &&
+                          !ImGui::GetIO().KeyShift;
+    if (!painting) {
+        if (strokeActive_) endStroke();
+        return;
+    }
+    if (!state_.pick || state_.pick->face != HitFace::Top) return;  // not over the surface
+    dabAt(state_.pick->uv * glm::dvec2(map_->width, map_->height), ImGui::GetIO().KeyCtrl);
+}
+
+void ViewerApp::dabAt(const glm::dvec2& mapPoint, bool invert) {
+    Brush brush = state_.brush;
+    if (!strokeActive_) {
+        strokeActive_ = true;
+        flattenLevel_ =
+            static_cast<float>(map_->surface(mapPoint.x, mapPoint.y, state_.scene.job.base.wrapsU(),
+                                             state_.scene.job.interpolation));
+    }
+    brush.level = flattenLevel_;
+    if (invert && brush.mode == BrushMode::Raise)
+        brush.mode = BrushMode::Lower;
+    else if (invert && brush.mode == BrushMode::Lower)
+        brush.mode = BrushMode::Raise;
+    try {
+        mapEdited(editor_->dab(*renderer_, mapPoint, brush));
+    } catch (const Error& e) {
+        note(std::string("brush: ") + e.what());
+    }
+}
+
+void ViewerApp::endStroke() {
+    editor_->endStroke();
+    strokeActive_ = false;
+    state_.undoSteps = editor_->undoSteps();
+}
+
+void ViewerApp::mapEdited(const std::vector<TexelRect>& changed) {
+    if (changed.empty()) return;
+    const ReliefTextures& textures = *renderer_->textures();
+    for (const TexelRect& rect : changed) {
+        const std::vector<float> values = textures.readSamples(window_->gl(), rect);
+        for (int j = rect.y0; j < rect.y1; ++j)
+            std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(j - rect.y0) * rect.width(),
+                        rect.width(), &map_->at(rect.x0, j));
+    }
+    picker_.mapChanged(map_, changed);
+    mapMaxHeight_ = renderer_->maxHeight();
+    state_.undoSteps = editor_->undoSteps();
+    state_.mapEdited = true;
+    ++mapGeneration_;
+}
+
+void ViewerApp::undo() {
+    if (strokeActive_) endStroke();
+    const std::vector<TexelRect> changed = editor_->undo(*renderer_);
+    if (changed.empty()) return;
+    mapEdited(changed);
+    note("undone: " + std::to_string(state_.undoSteps) + " stroke(s) left to undo");
+}
+
+void ViewerApp::saveMap(const std::filesystem::path& file) {
+    const bool automated = options_.saveMap.has_value() && file == *options_.saveMap;
+    try {
+        // An animated relief's heights are the field's, read back; a sculpted map's are its
+        // mirror, kept equal to the GPU's samples dab by dab.
+        const HeightMap map = animated_ ? renderer_->textures()->readSamples(window_->gl()) : *map_;
+        saveHeightMap(map, file);
+    } catch (const Error& e) {
+        if (automated) throw;
+        note(std::string("map not saved: ") + e.what());
+        return;
+    }
+    state_.mapEdited = false;
+    note("saved the map to " + file.string());
+}
+
+void ViewerApp::runScript() {
+    for (const ScriptedStroke& stroke : options_.strokes) {
+        Brush brush = state_.brush;
+        brush.mode = stroke.mode;
+        const glm::dvec2 size(map_->width, map_->height);
+        const glm::dvec2 from = stroke.from * size, to = stroke.to * size;
+        // Dabs a quarter of the radius apart along the stroke, as a hand's would fall.
+        const int dabs = std::max(
+            1, static_cast<int>(std::ceil(glm::length(to - from) / (0.25 * brush.radius))) + 1);
+        const Brush saved = state_.brush;
+        state_.brush = brush;
+        for (int k = 0; k < dabs; ++k)
+            dabAt(dabs == 1 ? from : glm::mix(from, to, static_cast<double>(k) / (dabs - 1)),
+                  false);
+        state_.brush = saved;
+        endStroke();
+    }
+    for (int k = 0; k < options_.undo; ++k) undo();
+}
+
+void ViewerApp::animate(double seconds) {
+    RenderJob& job = state_.scene.job;
+    // A script (--frames) steps 1/30 s a frame from --time, so its last frame is known; a
+    // person sees the time pass.
+    if (state_.playing && animatedFrames_ > 0)
+        job.time += options_.frames > 0 ? 1.0 / 30.0 : std::min(seconds, 0.25);
+    ++animatedFrames_;
+    animated_->evaluate(*renderer_, job.time);
+    mapMaxHeight_ = renderer_->maxHeight();
+    ++mapGeneration_;
+}
+
+void ViewerApp::drawFootprint() {
+    if (!state_.sculpt || !sculptable() || !state_.pick || state_.pick->face != HitFace::Top)
+        return;
+    const RenderJob& job = state_.scene.job;
+    const glm::dvec2 centre = state_.pick->uv * glm::dvec2(map_->width, map_->height);
+    const std::vector<glm::vec3> ring =
+        footprintRing(*map_, job.base, job.interpolation, job.heightScale, job.model, centre,
+                      state_.brush.radius);
+    const CameraFrame camera = cameraFrame();
+    target_->bind();
+    window_->gl().Viewport(0, 0, target_->width(), target_->height());
+    const bool lowering = state_.brush.mode == BrushMode::Lower;
+    footprint_->draw(
+        ring, glm::mat4(camera.viewProjection), glm::vec3(camera.eye),
+        lowering ? glm::vec4(0.3f, 0.6f, 1.0f, 1.0f) : glm::vec4(1.0f, 0.75f, 0.2f, 1.0f));
 }
 
 void ViewerApp::renderView() {
@@ -359,7 +545,8 @@ void ViewerApp::renderView() {
         rendered_.reset();
     }
     const RenderKey key = renderKey();
-    if (rendered_ == key && !state_.continuous) return;
+    // Sculpting re-traces every frame: the footprint follows the cursor over a fresh picture.
+    if (rendered_ == key && !state_.continuous && !state_.sculpt) return;
     target_->clear(state_.scene.job.background);
     const double start = now();
     timer_->begin();
@@ -368,6 +555,7 @@ void ViewerApp::renderView() {
         renderer_->draw(cameraFrame(), state_.scene.job.shading);
     }
     timer_->end();
+    drawFootprint();
     // The wall-clock time to glFinish as well: software rasterisers (llvmpipe) answer
     // timer queries without timing the rasterisation, and read about 0 there.
     window_->gl().Finish();
@@ -431,9 +619,10 @@ std::vector<std::uint8_t> ViewerApp::readWindow(int& width, int& height) const {
 void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     const std::filesystem::path path = file.value_or(defaultHeightMapPath());
     try {
-        auto map = std::make_shared<const HeightMap>(loadHeightMap(path, state_.scene.load));
+        auto map = std::make_shared<HeightMap>(loadHeightMap(path, state_.scene.load));
         renderer_->setHeightMap(*map, path.string(), state_.scene.job.base,
-                                state_.scene.job.interpolation, state_.scene.job.tiles);
+                                state_.scene.job.interpolation, PyramidBuild::Gpu,
+                                state_.scene.job.tiles);
         map_ = std::move(map);
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
@@ -444,6 +633,15 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         return;
     }
     picker_.setMap(map_);
+    editor_->clear();
+    state_.undoSteps = 0;
+    state_.mapEdited = false;
+    state_.savePath =
+        (std::filesystem::path("out") / (path.stem().string() + "-edited.exr")).string();
+    if (animated_) {
+        animated_->forgetMap();
+        animate(0.0);
+    }
     loadedWith_ = state_.scene.load;
     state_.scene.heightFile = file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
     state_.mapName = path.filename().string();
@@ -510,7 +708,8 @@ void ViewerApp::setInterpolation() {
     try {
         // Another surface between the samples (another finest level) or other tiles (another
         // addressing): a new pyramid.
-        renderer_->setHeightMap(*map_, state_.mapName, state_.scene.job.base, interpolation, tiles);
+        renderer_->setHeightMap(*map_, state_.mapName, state_.scene.job.base, interpolation,
+                                PyramidBuild::Gpu, tiles);
     } catch (const Error& e) {
         state_.scene.job.interpolation = renderer_->interpolation();  // the ones that work
         state_.scene.job.tiles = renderer_->tiles();
@@ -529,7 +728,7 @@ void ViewerApp::setBase(bool frame) {
         // Between the plane and a curved base the pyramid is built anew (u wraps).
         if (base.wrapsU() != renderer_->base().wrapsU()) {
             renderer_->setHeightMap(*map_, state_.mapName, base, state_.scene.job.interpolation,
-                                    state_.scene.job.tiles);
+                                    PyramidBuild::Gpu, state_.scene.job.tiles);
         } else {
             renderer_->setBase(base);
         }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "BrushFootprint.h"
 #include "CameraController.h"
 #include "FrameStats.h"
 #include "ImGuiLayer.h"
@@ -17,6 +18,8 @@
 #include "ViewerOptions.h"
 #include "ViewerPanel.h"
 #include "microrelief/context/GlfwContext.h"
+#include "microrelief/render/AnimatedHeights.h"
+#include "microrelief/render/HeightEditor.h"
 #include "microrelief/render/OffscreenTarget.h"
 #include "microrelief/render/ReliefRenderer.h"
 
@@ -74,6 +77,29 @@ private:
     // --screenshot and --window-screenshot, after the last frame.
     void writeAutomationOutputs();
 
+    // Sculpting: a dab at the cursor while the left button paints, the stroke ended when it
+    // is let go; the samples a dab or an undo changed read back into the map's CPU mirror
+    // (map_), which the picker and the footprint use and "Save map" writes.
+    void sculpt();
+    // The brush paints an untiled map that is not animated (a tiled map's picks land on
+    // the whole, the brush on one tile; an animated one's heights are the field's).
+    bool sculptable() const {
+        return !animated_ && state_.scene.job.tiles == glm::ivec2(1, 1);
+    }
+    void dabAt(const glm::dvec2& mapPoint, bool invert);
+    void endStroke();
+    void mapEdited(const std::vector<TexelRect>& changed);
+    void undo();
+    void saveMap(const std::filesystem::path& file);
+    // --stroke and --undo, before the first frame.
+    void runScript();
+    void drawFootprint();
+    // --animate: the field at the current time, every frame.
+    void animate(double seconds);
+    // What the picture shows under pixel (column, row): its position AOV, for an animated
+    // relief (which the CPU twin does not follow).
+    std::optional<PickResult> pickFromPicture(int column, int row) const;
+
     void openMap(const std::optional<std::filesystem::path>& file);
     // The colours the scene asks for (albedoPath), loaded into the renderer, or none.
     void applyAlbedo();
@@ -98,8 +124,8 @@ private:
     ViewerOptions options_;
     ViewerState state_;
     HeightMapLoadOptions loadedWith_;  // the options the current map was loaded with
-    std::shared_ptr<const HeightMap> map_;
-    float mapMaxHeight_ = 0.0f;  // map_'s largest sample
+    std::shared_ptr<HeightMap> map_;   // the CPU mirror of the samples on the GPU (edited)
+    float mapMaxHeight_ = 0.0f;        // the surface's top: map_'s largest sample
     CameraController controller_;
     ReliefPicker picker_;
     float uiScale_ = 1.0f;
@@ -109,7 +135,10 @@ private:
     double lastStatisticsTime_ = -1.0, lastFrameTime_ = 0.0;
     int framesToDraw_ = 0;  // frames to draw before waiting for events again
     std::optional<std::filesystem::path> droppedFile_;
-    std::vector<int> pressedKeys_;            // GLFW key codes pressed since the last frame
+    bool strokeActive_ = false;
+    float flattenLevel_ = 0.0f;     // the height under a stroke's first dab
+    int animatedFrames_ = 0;        // frames since the animation started (scripts: 1/30 s each)
+    std::vector<int> pressedKeys_;  // GLFW key codes pressed since the last frame
     std::vector<std::uint8_t> windowPixels_;  // --window-screenshot, RGB
     int windowPixelsWidth_ = 0, windowPixelsHeight_ = 0;
 
@@ -120,6 +149,9 @@ private:
     std::unique_ptr<OffscreenTarget> target_;
     std::unique_ptr<GpuTimer> timer_;
     std::unique_ptr<ShaderWatcher> watcher_;
+    std::unique_ptr<HeightEditor> editor_;
+    std::unique_ptr<AnimatedHeights> animated_;
+    std::unique_ptr<BrushFootprint> footprint_;
 };
 
 // Where the viewer reads and watches shaders: --shader-dir, else the source tree's

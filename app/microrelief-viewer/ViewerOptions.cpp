@@ -2,6 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
+
+#include "MapFile.h"
 #include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/image/ImageFile.h"
@@ -9,6 +12,69 @@
 namespace microrelief {
 
 namespace {
+
+// The text of the sculpting flags, checked after the parse.
+struct SculptFlags {
+    std::vector<std::string> strokes;
+    std::string saveMap;
+    double radius = 8.0, strength = 0.02;
+};
+
+void addSculptFlags(CLI::App& app, ViewerOptions& o, SculptFlags& f) {
+    app.add_flag("--sculpt", o.sculpt, "Start in sculpt mode (B toggles it)");
+    app.add_option("--brush-radius", f.radius, "The brush's radius, map texels")
+        ->capture_default_str();
+    app.add_option("--brush-strength", f.strength,
+                   "The brush's strength: raise, lower: map units a dab at its centre; smooth, "
+                   "flatten: the fraction of the way a dab moves (at most 1)")
+        ->capture_default_str();
+    app.add_option("--stroke", f.strokes,
+                   "For scripts: a brush stroke MODE,U0,V0,U1,V1 (raise, lower, smooth, flatten; "
+                   "map uv from and to) drawn before the first frame; may repeat")
+        ->take_all();
+    app.add_option("--undo", o.undo, "For scripts: undo this many strokes after --stroke");
+    app.add_option("--save-map", f.saveMap,
+                   "After the last frame, write the edited map: FILE.png (16 bits, heights 0 to 1) "
+                   "or FILE.exr (float)");
+}
+
+BrushMode parseBrushMode(const std::string& name) {
+    for (BrushMode mode :
+         {BrushMode::Raise, BrushMode::Lower, BrushMode::Smooth, BrushMode::Flatten}) {
+        if (name == brushModeName(mode)) return mode;
+    }
+    throwBadInput("--stroke: unknown brush '" + name +
+                  "' (expected raise, lower, smooth, flatten)");
+}
+
+void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
+    if (!(f.radius > 0.0) || !std::isfinite(f.radius) || f.radius > 1e5)
+        throwBadInput("--brush-radius must be a positive number of texels (up to 100000)");
+    if (!(f.strength > 0.0) || !std::isfinite(f.strength) || f.strength > 1e6)
+        throwBadInput("--brush-strength must be a positive number (up to 1e6)");
+    o.brush.radius = f.radius;
+    o.brush.strength = static_cast<float>(f.strength);
+    for (const std::string& text : f.strokes) {
+        const auto comma = text.find(',');
+        ScriptedStroke stroke;
+        stroke.mode = parseBrushMode(text.substr(0, comma));
+        const std::vector<double> uv =
+            parseNumberList("--stroke", comma == std::string::npos ? "" : text.substr(comma + 1), 4,
+                            "MODE,U0,V0,U1,V1 (map uv, 0 to 1)");
+        for (double value : uv) {
+            if (value < 0.0 || value > 1.0)
+                throwBadInput("--stroke " + text + ": map uv must lie in 0 to 1");
+        }
+        stroke.from = {uv[0], uv[1]};
+        stroke.to = {uv[2], uv[3]};
+        o.strokes.push_back(stroke);
+    }
+    if (o.undo < 0) throwBadInput("--undo must be 0 or more");
+    if (!f.saveMap.empty()) {
+        o.saveMap = f.saveMap;
+        checkMapExtension(*o.saveMap);
+    }
+}
 
 void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
                     std::string& windowScreenshot, std::string& shaderDir, bool& noVsync,
@@ -70,15 +136,19 @@ ParseResult<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     SceneFlags scene(o.scene);
     std::string screenshot, windowScreenshot, shaderDir;
     bool noVsync = false, noPanel = false;
+    SculptFlags sculpt;
     scene.addMapAndCamera(app);
     scene.addShading(app);
     addViewerFlags(app, o, screenshot, windowScreenshot, shaderDir, noVsync, noPanel);
+    addSculptFlags(app, o, sculpt);
     app.set_version_flag("--version",
                          std::string("microrelief-viewer ") + MICRORELIEF_VERSION_STRING);
     app.allow_windows_style_options(false);
 
     return parseCommandLine<ViewerOptions>(app, argc, argv, [&] {
         finish(o, scene, screenshot, windowScreenshot, shaderDir, noVsync, noPanel);
+        finishSculpt(o, sculpt);
+        if ((!o.strokes.empty() || o.undo > 0 || o.saveMap) && o.frames == 0) o.frames = 1;
         return o;
     });
 }

@@ -9,13 +9,33 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "SceneOptions.h"
+#include "microrelief/render/HeightEditor.h"
 
 namespace microrelief {
 
+// --stroke MODE,U0,V0,U1,V1: a brush stroke a script draws, from map point (u0, v0) to
+// (u1, v1), with --brush-radius and --brush-strength.
+struct ScriptedStroke {
+    BrushMode mode = BrushMode::Raise;
+    glm::dvec2 from{0.0}, to{0.0};  // map uv
+};
+
 struct ViewerOptions {
     SceneOptions scene;
+    // Sculpting: the brush the panel starts with, --sculpt to start in sculpt mode.
+    Brush brush;
+    bool sculpt = false;
+    // For scripts and tests, before the first frame: strokes, then --undo N of them; after
+    // the last frame (--frames), --save-map FILE writes the edited map (16-bit PNG or
+    // float EXR, atomically).
+    std::vector<ScriptedStroke> strokes;
+    int undo = 0;
+    std::optional<std::filesystem::path> saveMap;
     // --frames N: render N frames, then write the screenshots asked for and exit 0.
     int frames = 0;  // 0: run until the window closes
     // --screenshot FILE: the 3D view (no panel) after the last frame, rendered at

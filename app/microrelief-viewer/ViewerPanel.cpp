@@ -11,7 +11,14 @@
 namespace microrelief {
 
 const ControlHelp kControls[] = {
-    {"Left drag", "Orbit about the target (fly mode: look around)"},
+    {"Left drag", "Orbit about the target (fly mode: look around; sculpt mode: paint)"},
+    {"B", "Sculpt mode on/off: the left button paints with the brush (panel: Sculpt)"},
+    {"Alt+left drag", "Sculpt mode: orbit"},
+    {"Ctrl+left drag", "Sculpt mode: raise lowers and lower raises"},
+    {"[ and ]", "Sculpt mode: a smaller or larger brush"},
+    {"Ctrl+Z", "Undo the last stroke"},
+    {"Ctrl+S", "Save the edited map (panel: Sculpt)"},
+    {"Space", "--animate: play or pause the animation"},
     {"Right or middle drag, Shift+left drag", "Pan"},
     {"Scroll", "Zoom; close in, the target moves along (into the box)"},
     {"Double-click", "Orbit about the point under the cursor"},
@@ -231,6 +238,56 @@ void statsSection(ViewerState& s) {
     }
 }
 
+// The brush and the edited map: the modes, radius and strength, undo and saving.
+void sculptSection(ViewerState& s, PanelActions& actions) {
+    if (!s.scene.job.animation.empty()) return;  // the field overwrites the samples
+    if (!ImGui::CollapsingHeader("Sculpt", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::Checkbox("Sculpt with the left button (B)", &s.sculpt);
+    int mode = static_cast<int>(s.brush.mode);
+    for (int m = 0; m < 4; ++m) {
+        if (m > 0) ImGui::SameLine();
+        ImGui::RadioButton(brushModeName(static_cast<BrushMode>(m)), &mode, m);
+    }
+    s.brush.mode = static_cast<BrushMode>(mode);
+    float radius = static_cast<float>(s.brush.radius);
+    if (ImGui::SliderFloat("Radius", &radius, 1.0f, 512.0f, "%.1f texels",
+                           ImGuiSliderFlags_Logarithmic))
+        s.brush.radius = std::max(radius, 0.5f);
+    const bool fraction = s.brush.mode == BrushMode::Smooth || s.brush.mode == BrushMode::Flatten;
+    if (ImGui::SliderFloat("Strength", &s.brush.strength, fraction ? 0.01f : 0.0005f,
+                           fraction ? 1.0f : 0.5f,
+                           fraction ? "%.2f of the way a dab" : "%.4f map units a dab",
+                           ImGuiSliderFlags_Logarithmic))
+        s.brush.strength = std::max(s.brush.strength, 1e-5f);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(fraction ? "How far a dab moves a sample at the brush's centre:\n"
+                                     "towards its neighbours' mean (smooth) or the height\n"
+                                     "under the stroke's first dab (flatten)"
+                                   : "How much a dab raises or lowers the map at its centre\n"
+                                     "(map units; the falloff is (1 - d^2)^2)");
+    ImGui::BeginDisabled(s.undoSteps == 0);
+    if (ImGui::Button("Undo (Ctrl+Z)")) actions.undo = true;
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::Text("%d stroke%s to undo", s.undoSteps, s.undoSteps == 1 ? "" : "s");
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.62f);
+    ImGui::InputText("##save", &s.savePath);
+    ImGui::SameLine();
+    if (ImGui::Button("Save map (Ctrl+S)")) actions.saveMap = true;
+    ImGui::TextDisabled(s.mapEdited ? "edited, not saved (.png: 16 bits, .exr: float)"
+                                    : "as opened or saved");
+}
+
+// An animated relief: its time, playing or paused.
+void animationSection(ViewerState& s) {
+    if (s.scene.job.animation.empty()) return;
+    if (!ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::Text("%s, its pyramid rebuilt on the GPU every frame", s.scene.job.animation.c_str());
+    ImGui::Checkbox("Play (Space)", &s.playing);
+    float time = static_cast<float>(s.scene.job.time);
+    if (ImGui::DragFloat("Time", &time, 0.01f, 0.0f, 0.0f, "%.3f s")) s.scene.job.time = time;
+}
+
 void actionsSection(ViewerState& s, PanelActions& actions) {
     if (!ImGui::CollapsingHeader("Output", ImGuiTreeNodeFlags_DefaultOpen)) return;
     if (ImGui::Button("Screenshot (F12)")) actions.screenshot = true;
@@ -309,6 +366,8 @@ PanelActions drawPanel(ViewerState& state, float uiScale) {
         errorBanner(state);
         mapSection(state, actions);
         viewSection(state, actions);
+        sculptSection(state, actions);
+        animationSection(state);
         statsSection(state);
         actionsSection(state, actions);
         shaderSection(state, actions);

@@ -10,6 +10,7 @@
 #include "FrameStats.h"
 #include "ReliefPicker.h"
 #include "SceneOptions.h"
+#include "microrelief/render/HeightEditor.h"
 
 namespace microrelief {
 
@@ -23,6 +24,13 @@ struct ViewerState {
     bool flyMode = false;
     bool panelVisible = true;
     std::string typedPath;  // the panel's path field
+
+    // Sculpting (B): the left button paints with `brush` on the relief under the cursor.
+    bool sculpt = false;
+    Brush brush;
+    std::string savePath;  // where "Save map" writes (.png 16-bit or .exr float)
+    // An animated relief (--animate): scene.job.time advances while it plays.
+    bool playing = true;
 
     // Shown only.
     std::string mapName;
@@ -38,6 +46,8 @@ struct ViewerState {
     IterationStats iterations;
     int iterationBudget = 0;
     std::optional<PickResult> pick;
+    int undoSteps = 0;
+    bool mapEdited = false;  // sculpted since it was opened or saved
     double yawDegrees = 0.0, pitchDegrees = 0.0;
     std::deque<std::string> log;  // newest last
 };
@@ -57,6 +67,8 @@ struct PanelActions {
     bool resetView = false;
     bool reloadShaders = false;
     bool vsyncChanged = false;
+    bool undo = false;
+    bool saveMap = false;
 };
 
 // Draws the panel (when visible) and the hover read-out near the cursor. `uiScale`

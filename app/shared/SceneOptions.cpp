@@ -13,6 +13,7 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/render/AnimatedHeights.h"
 #include "microrelief/render/FloatLimits.h"
 
 namespace microrelief {
@@ -175,6 +176,10 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
         "--tile", tile_,
         "Repeat the map N,M times across the base (N around a curved base), as the N x M "
         "larger image made by repeating it (default 1,1)");
+    app.add_option("--animate", animate_,
+                   "An animated relief over the map's grid, evaluated on the GPU: waves, ripples, "
+                   "or flood (the map under rising and falling water)");
+    app.add_option("--time", time_, "With --animate: the moment drawn, seconds (default 0)");
     app.add_option("--eye", eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
     app.add_option("--target", target_, "Point the camera looks at, x,y,z")->capture_default_str();
     app.add_option("--up", up_, "Camera up direction x,y,z")->capture_default_str();
@@ -288,6 +293,17 @@ void SceneFlags::apply() {
     job_.base = parseBase(base_, radius_, length_, radii_);
     job_.interpolation = parseInterpolation(interpolation_);
     if (!tile_.empty()) job_.tiles = parseTiles(tile_);
+    if (!animate_.empty()) {
+        AnimatedHeights::checkName(animate_);
+        if (job_.tiles != glm::ivec2(1, 1))
+            throwBadInput("--animate and --tile: an animated height field does not tile");
+        job_.animation = animate_;
+    }
+    if (time_) {
+        if (animate_.empty()) throwBadInput("--time needs --animate NAME");
+        if (!std::isfinite(*time_)) throwBadInput("--time must be a finite number of seconds");
+        job_.time = *time_;
+    }
     job_.camera.eye = parseVectorFlag("--eye", eye_);
     job_.camera.target = parseVectorFlag("--target", target_);
     job_.camera.up = parseVectorFlag("--up", up_);
@@ -385,6 +401,10 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     } else if (job.base.kind == BaseKind::Ellipsoid) {
         flag("--base", base);
         line += " --radii=" + exactVector(job.base.radii);
+    }
+    if (!job.animation.empty()) {
+        flag("--animate", job.animation);
+        line += " --time=" + exactNumber(job.time);
     }
     // "=" keeps a leading minus from reading as a flag in any parser.
     line += " --eye=" + exactVector(job.camera.eye);

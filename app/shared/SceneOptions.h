@@ -44,7 +44,7 @@ public:
     }
 
     // --height --channel --normalize --height-scale --interpolation --base --radius --length
-    // --radii --tile --eye --target --up --fovy --size --model
+    // --radii --tile --animate --time --eye --target --up --fovy --size --model
     void addMapAndCamera(CLI::App& app);
     // --light --light-position --shadows --light-size --method --steps --pixel-error --view
     // --background
@@ -63,7 +63,8 @@ private:
     std::optional<std::filesystem::path>* albedoFile_ = nullptr;  // --albedo, where registered
     bool* noAlbedo_ = nullptr;
     std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_, tile_;
-    std::optional<double> radius_, length_;
+    std::optional<double> radius_, length_, time_;
+    std::string animate_;
 };
 
 // "a,b,c,..." -> exactly `count` finite numbers; throws Error(BadInput) naming `flag` and

@@ -1,12 +1,15 @@
 // max_pyramid.glsl: reading the multilevel elevation map (paper, section II-III, fig. 6).
 //
-// Two pyramids, single-channel float textures with nearest filtering
-// (GL_NEAREST_MIPMAP_NEAREST), of the same sizes (W, H rounded up to powers of two, then
-// halved down to 1 x 1), built by MaxPyramid:
-//  * the aligned one (the quadtree): level k texel (p, q) holds the maximum of the
-//    bilinear surface over map-space X in [p 2^k, (p+1) 2^k), Y in [q 2^k, (q+1) 2^k);
-//  * the overlapping one (the windows): level k texel (p, q) holds the max of aligned
-//    texels p..p+1 by q..q+1 of level k, twice as wide, so that windows overlap by half.
+// Two pyramids, single-channel half-float textures (R16F) with nearest filtering
+// (GL_NEAREST_MIPMAP_NEAREST), built by MaxPyramid, their bounds divided by 2^S
+// (mr_pyramidScale, from the top, mr_ReliefMap's maxHeight):
+//  * the aligned one (the quadtree, maxmip's), W, H rounded up to powers of two and halved
+//    down to 1 x 1: level k texel (p, q) holds the maximum of the surface over map-space
+//    X in [p 2^k, (p+1) 2^k), Y in [q 2^k, (q+1) 2^k);
+//  * the overlapping one (the windows, the multilevel method's), GL's mip sizes of W x H:
+//    level k texel (p, q) holds the max of blocks p..p+1 by q..q+1 of level k, block (p, q)
+//    covering finest texels [p 2^k, (p+1) 2^k) x [q 2^k, (q+1) 2^k), the last of a row or
+//    column to the map's edge; twice as wide as a block, so that windows overlap by half.
 // The multilevel traversal reads the windows (mr_footprintBound), maxmip the quadtree. On a
 // curved base the finest level bounds the surface across the seam u = 0 (MaxPyramid's
 // wrapU) and a footprint that crosses the seam is read as its two parts.
@@ -29,14 +32,23 @@ ivec2 mr_finestTexelAt(mr_Relief relief, vec2 p) {
 #define MICRORELIEF_PYRAMID_TEXEL_FETCH 0
 #endif
 
-// One pyramid texel.
+// 2^S: the pyramids hold bound / 2^S as halves, S = e - 14 for the top's binary exponent
+// e (clamped to [-112, 113]), so the top lies below 2^15 and every nonzero bound at or
+// above 2^-14, a half's normal range (MaxPyramid.h: pyramidScaleExponent). Exact: a power
+// of two built from its bits, and a product with it exact too.
+float mr_pyramidScale(mr_Relief relief) {
+    int e = int(floatBitsToUint(relief.map.maxHeight) >> 23u) - 127;
+    return uintBitsToFloat(uint(clamp(e - 14, -112, 113) + 127) << 23u);
+}
+
+// One pyramid texel: the bound it stands for, map units.
 float mr_pyramidTexel(mr_Relief relief, sampler2D pyramid, ivec2 texel, int level, inout int fetches) {
     fetches += 1;
 #if MICRORELIEF_PYRAMID_TEXEL_FETCH
-    return texelFetch(pyramid, texel, level).r;
+    return texelFetch(pyramid, texel, level).r * mr_pyramidScale(relief);
 #else
     vec2 levelSize = vec2(max(ivec2(1), relief.map.pyramidSize >> level));
-    return textureLod(pyramid, (vec2(texel) + 0.5) / levelSize, float(level)).r;
+    return textureLod(pyramid, (vec2(texel) + 0.5) / levelSize, float(level)).r * mr_pyramidScale(relief);
 #endif
 }
 
@@ -68,10 +80,13 @@ int mr_windowLevel(mr_Relief relief, ivec2 lo, ivec2 hi) {
 // [p 2^k, (p+2) 2^k) x [q 2^k, (q+2) 2^k)), the window at the lower corner of the
 // footprint, at the level of detail the footprint chooses (mr_windowLevel). The footprint
 // lies inside that window, so the bound is conservative, and one textureLod reads it, as
-// the paper has it. `level` is set to the level read.
+// the paper has it. The last window of a row or column holds what lies past it (its last
+// block reaches to the map's edge), so the index is clamped to the level. `level` is set
+// to the level read.
 float mr_windowOver(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
     level = mr_windowLevel(relief, lo, hi);
-    return mr_pyramidTexel(relief, windows, lo >> level, level, fetches);
+    ivec2 last = max(ivec2(1), relief.map.pyramidSize >> level) - 1;
+    return mr_pyramidTexel(relief, windows, min(lo >> level, last), level, fetches);
 }
 
 #if MICRORELIEF_TILING

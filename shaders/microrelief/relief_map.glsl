@@ -40,7 +40,7 @@
 // mr_Relief holds the first two: the surface every function of the library describes.
 struct mr_ReliefMap {
     vec2 size;           // the map's size in texels: W, H, or N W by M H tiled N x M
-    ivec2 pyramidSize;   // finest pyramid level size (a tile's W, H rounded up to powers of two)
+    ivec2 pyramidSize;   // finest pyramid level size: a tile's W, H (the windows); maxmip W, H rounded up to powers of two
     int levelCount;      // number of pyramid levels, the last one 1x1
     float maxHeight;     // the map's maximum height (the pyramid's top texel), in map units
     ivec2 tiles;         // N, M: the textures hold one tile, size / tiles texels, repeated

@@ -1,6 +1,11 @@
 #include "microrelief/gl/ReliefTextures.h"
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
 #include "microrelief/core/Error.h"
+#include "microrelief/gl/PyramidBuilder.h"
 #include "microrelief/gl/StateGuard.h"
 
 namespace microrelief {
@@ -20,15 +25,21 @@ void checkTextureSize(const GL& gl, const HeightMap& map, const std::string& sou
 MaxPyramid buildPyramid(const HeightMap& map, const std::string& source,
                         const MapAddressing& addressing, Interpolation interpolation) {
     try {
-        return MaxPyramid(map, addressing, interpolation);
+        return MaxPyramid(map, addressing, interpolation, BoundPrecision::Half);
     } catch (const std::bad_alloc&) {
         throwRuntime(source + ": not enough memory for the max pyramid of its " +
                      std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
     }
 }
 
-void uploadLevel(const GL& gl, int level, int width, int height, const float* data) {
-    gl.TexImage2D(GL_TEXTURE_2D, level, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, data);
+// A float that is a half exactly (0, a normal half, +inf: what the pyramids hold divided
+// by 2^S) as the half's bits, for an upload that no driver's conversion can round.
+std::uint16_t halfBits(float value) {
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
+    if (bits == 0) return 0;
+    if (bits >= 0x7f800000u) return 0x7c00u;
+    const int exponent = static_cast<int>(bits >> 23) - 127 + 15;
+    return static_cast<std::uint16_t>((exponent << 10) | ((bits & 0x7fffffu) >> 13));
 }
 
 // The samples of a curved base repeat in S, so that a patch's textureGather at the seam
@@ -44,49 +55,201 @@ void setSamplerState(const GL& gl, GLint minFilter, int maxLevel, bool repeatS =
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, maxLevel);
 }
 
+// A pyramid texture of R16F levels of `sizes`, empty.
+gl::Texture allocatePyramid(const GL& gl, const std::vector<glm::ivec2>& sizes) {
+    gl::Texture texture = gl::Texture::create(gl);
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    for (int level = 0; level < static_cast<int>(sizes.size()); ++level) {
+        gl.TexImage2D(GL_TEXTURE_2D, level, GL_R16F, sizes[level].x, sizes[level].y, 0, GL_RED,
+                      GL_HALF_FLOAT, nullptr);
+    }
+    setSamplerState(gl, GL_NEAREST_MIPMAP_NEAREST, static_cast<int>(sizes.size()) - 1);
+    return texture;
+}
+
+// A pyramid level (the bounds as MaxPyramid keeps them) into the bound texture, as halves.
+void uploadHalves(const GL& gl, int level, const glm::ivec2& size, const std::vector<float>& bounds,
+                  int scaleExponent) {
+    std::vector<std::uint16_t> halves(bounds.size());
+    for (std::size_t k = 0; k < bounds.size(); ++k)
+        halves[k] = halfBits(std::ldexp(bounds[k], -scaleExponent));
+    gl.TexSubImage2D(GL_TEXTURE_2D, level, 0, 0, size.x, size.y, GL_RED, GL_HALF_FLOAT,
+                     halves.data());
+}
+
 }  // namespace
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
-                               bool wrapU, Interpolation interpolation, glm::ivec2 tiles)
+                               bool wrapU, Interpolation interpolation, bool withMaxMip,
+                               glm::ivec2 tiles)
     : wrapU_(wrapU), interpolation_(interpolation) {
     checkTextureSize(gl, map, source);
     shape_.tiles = tiles;
     // On the GPU from here on; only its shape is kept.
-    upload(gl, map, buildPyramid(map, source, {wrapU, tiles.x, tiles.y}, interpolation));
+    upload(gl, map, buildPyramid(map, source, {wrapU, tiles.x, tiles.y}, interpolation),
+           withMaxMip);
 }
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
-                               Interpolation interpolation)
+                               Interpolation interpolation, bool withMaxMip)
     : wrapU_(pyramid.wrapsU()), interpolation_(interpolation) {
     shape_.tiles = {pyramid.addressing().tilesX, pyramid.addressing().tilesY};
     checkTextureSize(gl, map, "the map");
-    upload(gl, map, pyramid);
+    if (pyramid.precision() != BoundPrecision::Half)
+        throwRuntime("ReliefTextures: the GPU holds a pyramid of BoundPrecision::Half");
+    upload(gl, map, pyramid, withMaxMip);
 }
 
-void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid) {
-    shape_.size = glm::ivec2(map.width, map.height) * shape_.tiles;
-    shape_.pyramidSize = {pyramid.levelWidth(0), pyramid.levelHeight(0)};
-    shape_.levelCount = pyramid.levelCount();
-    shape_.maxHeight = pyramid.texel(pyramid.levelCount() - 1, 0, 0);
-    samples_ = gl::Texture::create(gl);
-    windows_ = gl::Texture::create(gl);
-    aligned_ = gl::Texture::create(gl);
+ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
+                               bool wrapU, Interpolation interpolation, PyramidBuilder& builder,
+                               bool withMaxMip)
+    : wrapU_(wrapU), interpolation_(interpolation) {
+    checkTextureSize(gl, map, source);
+    allocate(gl, map);
+    if (withMaxMip) allocateAligned(gl);
+    // S from the samples at hand (the top is their largest, rounded up), so the build
+    // fits at once; the builder checks it against the top it reads back.
+    scaleExponent_ = pyramidScaleExponent(
+        storedBound(map.maxValue(), BoundPrecision::Half, pyramidScaleExponent(map.maxValue())));
+    builder.build(*this);
+}
 
-    const gl::StateGuard saved(gl);
+void ReliefTextures::allocate(const GL& gl, const HeightMap& map) {
+    shape_.size = {map.width, map.height};
+    levelSizes_ = windowLevelSizes(map.width, map.height);
+    shape_.pyramidSize = levelSizes_.front();
+    shape_.levelCount = static_cast<int>(levelSizes_.size());
+    const gl::StateGuard saved(gl);  // unit 0's binding and the active unit among it
+    gl.ActiveTexture(GL_TEXTURE0);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (bool windows : {false, true}) {
-        gl.BindTexture(GL_TEXTURE_2D, (windows ? windows_ : aligned_).id());
-        for (int level = 0; level < pyramid.levelCount(); ++level) {
-            uploadLevel(
-                gl, level, pyramid.levelWidth(level), pyramid.levelHeight(level),
-                (windows ? pyramid.windowLevelData(level) : pyramid.levelData(level)).data());
-        }
-        setSamplerState(gl, GL_NEAREST_MIPMAP_NEAREST, pyramid.levelCount() - 1);
-    }
+    windows_ = allocatePyramid(gl, levelSizes_);
+    samples_ = gl::Texture::create(gl);
     gl.BindTexture(GL_TEXTURE_2D, samples_.id());
-    uploadLevel(gl, 0, map.width, map.height, map.samples.data());
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, map.width, map.height, 0, GL_RED, GL_FLOAT,
+                  map.samples.data());
     const bool tiled = shape_.tiles != glm::ivec2(1, 1);
     setSamplerState(gl, GL_NEAREST, 0, wrapU_ || tiled, tiled);
+}
+
+void ReliefTextures::allocateAligned(const GL& gl) {
+    const gl::StateGuard saved(gl);
+    gl.ActiveTexture(GL_TEXTURE0);
+    aligned_ = allocatePyramid(gl, pyramidLevelSizes(shape_.size.x, shape_.size.y));
+}
+
+void ReliefTextures::addMaxMipPyramid(const GL& gl, PyramidBuilder& builder) {
+    if (aligned_) return;
+    allocateAligned(gl);
+    builder.buildAligned(*this);
+}
+
+ReliefMapShape ReliefTextures::maxMipShape() const {
+    const std::vector<glm::ivec2> sizes = pyramidLevelSizes(shape_.size.x, shape_.size.y);
+    return {shape_.size, sizes.front(), static_cast<int>(sizes.size()), shape_.maxHeight};
+}
+
+void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
+                            bool withMaxMip) {
+    allocate(gl, map);
+    if (withMaxMip) allocateAligned(gl);
+    uploadPyramid(gl, pyramid);
+}
+
+void ReliefTextures::rebuildFromSamples(const GL& gl) {
+    const HeightMap map = readSamples(gl);
+    uploadPyramid(gl, buildPyramid(map, "the edited map",
+                                   {wrapU_, shape_.tiles.x, shape_.tiles.y}, interpolation_));
+}
+
+void ReliefTextures::uploadPyramid(const GL& gl, const MaxPyramid& pyramid) {
+    shape_.maxHeight = pyramid.maxHeight();
+    scaleExponent_ = pyramid.scaleExponent();
+    const gl::StateGuard saved(gl);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    gl.BindTexture(GL_TEXTURE_2D, windows_.id());
+    for (int level = 0; level < pyramid.windowLevelCount(); ++level)
+        uploadHalves(gl, level, levelSizes_[level], pyramid.windowLevelData(level), scaleExponent_);
+    if (!aligned_) return;
+    gl.BindTexture(GL_TEXTURE_2D, aligned_.id());
+    for (int level = 0; level < pyramid.levelCount(); ++level) {
+        uploadHalves(gl, level, {pyramid.levelWidth(level), pyramid.levelHeight(level)},
+                     pyramid.levelData(level), scaleExponent_);
+    }
+}
+
+std::size_t ReliefTextures::gpuBytes(const GL& gl) const {
+    // Asked of the GL, level by level: what it allocated, not what we meant it to.
+    const gl::StateGuard saved(gl);
+    gl.ActiveTexture(GL_TEXTURE0);
+    std::size_t bytes = 0;
+    for (const gl::Texture* texture : {&samples_, &windows_, &aligned_}) {
+        if (!*texture) continue;
+        gl.BindTexture(GL_TEXTURE_2D, texture->id());
+        for (int level = 0;; ++level) {
+            GLint width = 0, height = 0, format = 0;
+            gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &width);
+            if (width == 0) break;
+            gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
+            gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+            const std::size_t texelBytes = format == GL_R16F ? 2 : format == GL_R32F ? 4 : 16;
+            bytes += static_cast<std::size_t>(width) * height * texelBytes;
+        }
+    }
+    return bytes;
+}
+
+void ReliefTextures::writeSamples(const GL& gl, const TexelRect& rect, const float* values) {
+    const gl::StateGuard saved(gl);  // unit 0's binding and the active unit among it
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl.BindTexture(GL_TEXTURE_2D, samples_.id());
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, rect.x0, rect.y0, rect.width(), rect.height(), GL_RED,
+                     GL_FLOAT, values);
+}
+
+std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int width,
+                                    int height) {
+    return readTextureRect(gl, texture, level, {0, 0, width, height});
+}
+
+std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, const TexelRect& rect) {
+    std::vector<float> values(static_cast<std::size_t>(rect.width()) * rect.height());
+    const gl::PassGuard saved(gl);
+    const gl::Framebuffer framebuffer = gl::Framebuffer::create(gl);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture,
+                            level);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadPixels(rect.x0, rect.y0, rect.width(), rect.height(), GL_RED, GL_FLOAT, values.data());
+    return values;
+}
+
+HeightMap ReliefTextures::readSamples(const GL& gl) const {
+    HeightMap map(shape_.size.x, shape_.size.y);
+    map.samples = readTextureLevel(gl, samples_.id(), 0, map.width, map.height);
+    return map;
+}
+
+std::vector<float> ReliefTextures::readSamples(const GL& gl, const TexelRect& rect) const {
+    return readTextureRect(gl, samples_.id(), 0, rect);
+}
+
+std::vector<float> ReliefTextures::readScaled(const GL& gl, GLuint texture, int level,
+                                              const glm::ivec2& size) const {
+    std::vector<float> values = readTextureLevel(gl, texture, level, size.x, size.y);
+    for (float& value : values) value = std::ldexp(value, scaleExponent_);
+    return values;
+}
+
+std::vector<float> ReliefTextures::readAlignedLevel(const GL& gl, int level) const {
+    const std::vector<glm::ivec2> sizes = pyramidLevelSizes(shape_.size.x, shape_.size.y);
+    return readScaled(gl, aligned_.id(), level, sizes[level]);
+}
+
+std::vector<float> ReliefTextures::readWindowLevel(const GL& gl, int level) const {
+    return readScaled(gl, windows_.id(), level, levelSizes_[level]);
 }
 
 }  // namespace microrelief

@@ -36,11 +36,11 @@ void setEnabled(const GL& gl, GLenum capability, GLboolean enabled) {
 
 StateGuard::~StateGuard() {
     const GL& gl = gl_;
-    // A program deleted while it was current lives on only while it stays current: once
-    // the draw replaced it, its name is gone and cannot be made current again.
-    gl.UseProgram(program_ != 0 && gl.IsProgram(static_cast<GLuint>(program_))
-                      ? static_cast<GLuint>(program_)
-                      : 0);
+    // A program the caller deleted while it was current lives only as long as it stays
+    // current: once a draw here switched away from it, it is gone, and binding its name
+    // again would be an error (GL_INVALID_VALUE). No program is what is left of it.
+    const bool programLives = program_ == 0 || gl.IsProgram(static_cast<GLuint>(program_));
+    gl.UseProgram(programLives ? static_cast<GLuint>(program_) : 0u);
     gl.BindVertexArray(static_cast<GLuint>(vertexArray_));
     gl.BindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(arrayBuffer_));
     // Binding 0 first: glBindBufferBase also sets the generic binding, restored after it.
@@ -59,6 +59,33 @@ StateGuard::~StateGuard() {
     gl.FrontFace(static_cast<GLenum>(frontFace_));
     gl.DepthFunc(static_cast<GLenum>(depthFunc_));
     gl.Viewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+}
+
+PassGuard::PassGuard(const GL& gl) : state_(gl), gl_(gl) {
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
+    gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
+    gl.GetIntegerv(GL_PACK_ALIGNMENT, &packAlignment_);
+    blend_ = gl.IsEnabled(GL_BLEND);
+    scissor_ = gl.IsEnabled(GL_SCISSOR_TEST);
+    discard_ = gl.IsEnabled(GL_RASTERIZER_DISCARD);
+    gl.GetBooleanv(GL_COLOR_WRITEMASK, colorMask_);
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.Disable(GL_RASTERIZER_DISCARD);
+    gl.Disable(GL_CULL_FACE);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+PassGuard::~PassGuard() {
+    const GL& gl = gl_;
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer_));
+    gl.PixelStorei(GL_PACK_ALIGNMENT, packAlignment_);
+    setEnabled(gl, GL_BLEND, blend_);
+    setEnabled(gl, GL_SCISSOR_TEST, scissor_);
+    setEnabled(gl, GL_RASTERIZER_DISCARD, discard_);
+    gl.ColorMask(colorMask_[0], colorMask_[1], colorMask_[2], colorMask_[3]);
 }
 
 }  // namespace microrelief::gl

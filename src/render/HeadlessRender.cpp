@@ -42,7 +42,13 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
                                     const BaseShape& base, Interpolation interpolation,
                                     glm::ivec2 tiles) {
     context_.makeCurrent();
-    renderer_->setHeightMap(map, source, base, interpolation, tiles);
+    try {
+        renderer_->setHeightMap(map, source, base, interpolation, PyramidBuild::Gpu, tiles);
+    } catch (const Error& e) {
+        if (e.kind() == ErrorKind::BadInput) throw;  // the map's fault, not the GL's
+        renderer_->setHeightMap(map, source, base, interpolation, PyramidBuild::Cpu, tiles);
+    }
+    if (animated_) animated_->forgetMap();
     source_ = source;
     mapWidth_ = map.width * tiles.x;  // the whole, tiles included
     mapHeight_ = map.height * tiles.y;
@@ -72,12 +78,26 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         throwRuntime("HeadlessRenderer::render: the map was set for another interpolation");
     if (job.tiles != renderer_->tiles())
         throwRuntime("HeadlessRenderer::render: the map was set for other tiles");
+    if (!job.animation.empty() && job.tiles != glm::ivec2(1, 1)) {
+        // The animated field is written on the GPU, whose pyramid builder bounds one map.
+        throwBadInput("--animate and --tile: an animated height field does not tile");
+    }
     if (job.base != renderer_->base()) renderer_->setBase(job.base);
     renderer_->setMethod(job.method);  // compiled once per method, then looked up
     renderer_->setModel(job.model);
     if (heightScale_ != job.heightScale) {
         renderer_->setHeightScale(job.heightScale);
         heightScale_ = job.heightScale;
+    }
+    if (animated_ && animated_->evaluated() && animated_->name() != job.animation) {
+        animated_->restore(*renderer_);  // another field, or the map's own heights again
+        maxHeight_ = renderer_->maxHeight();
+    }
+    if (!job.animation.empty()) {
+        if (!animated_ || animated_->name() != job.animation)
+            animated_ = std::make_unique<AnimatedHeights>(gl, shaderDirectory(), job.animation);
+        animated_->evaluate(*renderer_, job.time);
+        maxHeight_ = renderer_->maxHeight();
     }
     const CameraFrame camera = resolveCamera(
         job.camera, job.width, job.height,
@@ -102,7 +122,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         target_.emplace(gl, targetWidth, targetHeight);
     }
 
-    HeadlessResult result{{}, camera};
+    HeadlessResult result{{}, camera, std::nullopt};
     RenderedFrame& frame = result.frame;
     try {
         const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
@@ -129,6 +149,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
             target_->readInto(frame, part.x, part.y, part.width, part.height);
         }
     }
+    if (!job.animation.empty()) result.animatedMap = renderer_->textures()->readSamples(gl);
     gl.Finish();
     const GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)

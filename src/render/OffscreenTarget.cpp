@@ -108,6 +108,21 @@ std::vector<float> OffscreenTarget::readDepth() const {
     return flipped;
 }
 
+glm::vec4 OffscreenTarget::positionAt(int column, int row) const {
+    glm::vec4 position(0.0f);
+    if (column < 0 || row < 0 || column >= width_ || row >= height_) return position;
+    GLint previous = 0, alignment = 4;
+    gl_.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+    gl_.GetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl_.ReadPixels(column, height_ - 1 - row, 1, 1, GL_RGBA, GL_FLOAT, &position.x);
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, alignment);
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
+    return position;
+}
+
 void OffscreenTarget::readInto(RenderedFrame& frame, int x, int y, int width, int height) const {
     std::vector<std::uint8_t> color(static_cast<std::size_t>(width) * height * 4);
     std::vector<float> position(color.size()), stats(color.size()), shadow(color.size() / 4);

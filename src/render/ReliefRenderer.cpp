@@ -64,6 +64,9 @@ void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches
     checkMethodSupportsTiles(settings.method, tiles());
     program(configFor(settings, countFetches, base_.kind, interpolation_, true, ShadowMode::Off,
                       false, tiled()));  // may throw
+    // The aligned pyramid is made only for the peer that walks it.
+    if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
+        textures_->addMaxMipPyramid(gl_, pyramidBuilder());
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -85,7 +88,7 @@ void ReliefRenderer::setBase(const BaseShape& base) {
 
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                   const BaseShape& base, Interpolation interpolation,
-                                  glm::ivec2 tiles) {
+                                  PyramidBuild build, glm::ivec2 tiles) {
     validateBaseShape(base);
     checkMethodSupportsBase(method_.method, base);
     checkMethodSupportsTiles(method_.method, tiles);
@@ -94,7 +97,15 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     // the textures are made before the old ones go.
     program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
                       false, tiles != glm::ivec2(1, 1)));
-    textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, tiles));
+    const bool maxMip = method_.method == Method::MaxMip;
+    // The GPU builder bounds texel squares within one map: a tiled one's is the CPU's.
+    if (build == PyramidBuild::Gpu && tiles == glm::ivec2(1, 1)) {
+        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation,
+                                         pyramidBuilder(), maxMip));
+    } else {
+        textures_.emplace(
+            ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, maxMip, tiles));
+    }
     base_ = base;
     interpolation_ = interpolation;
     maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
@@ -107,6 +118,31 @@ void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& sou
         return;
     }
     albedo_.emplace(AlbedoTexture(gl_, *albedo, source));  // made before the old one goes
+}
+
+PyramidBuilder& ReliefRenderer::pyramidBuilder() {
+    if (!builder_) builder_.emplace(gl_, shaderDir_);
+    return *builder_;
+}
+
+void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
+    if (!textures_) return;
+    if (tiled()) {
+        textures_->rebuildFromSamples(gl_);  // the GPU builder bounds one map, not tiles
+    } else {
+        pyramidBuilder().update(*textures_, changed);
+    }
+    uploadBox();
+}
+
+void ReliefRenderer::heightsReplaced() {
+    if (!textures_) return;
+    if (tiled()) {
+        textures_->rebuildFromSamples(gl_);
+    } else {
+        pyramidBuilder().build(*textures_);
+    }
+    uploadBox();
 }
 
 void ReliefRenderer::setHeightScale(float scale) {
@@ -172,7 +208,10 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.cameraUp = glm::vec3(camera.up);
     p.cameraForward = glm::vec3(camera.forward);
     p.pixelErrorTolerance = method_.pixelError;
-    const ReliefMapShape& shape = textures_->shape();
+    // The multilevel method reads the windows, maxmip its aligned quadtree: each its own
+    // pyramid's size and levels.
+    const ReliefMapShape shape =
+        method_.method == Method::MaxMip ? textures_->maxMipShape() : textures_->shape();
     p.heightScale = heightScale_;
     p.reliefMaxHeight = shape.maxHeight;
     p.frameScale = glm::vec3(base_.frameScale());

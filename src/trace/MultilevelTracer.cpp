@@ -50,11 +50,23 @@ MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const Base
       addressing_{base.wrapsU(), tiles.x, tiles.y},
       width_(map_.width * tiles.x),
       height_(map_.height * tiles.y),
-      pyramid_(map_, addressing_, interpolation),
+      // The bounds the shader reads: the GPU's half floats (MaxPyramid.h).
+      pyramid_(map_, addressing_, interpolation, BoundPrecision::Half),
       heightScale_(heightScale),
       base_(BaseSurface::make(base, width_, height_, heightScale,
                               pyramid_.texel(pyramid_.levelCount() - 1, 0, 0))),
       maxIterations_(traversalBudget(width_, height_)) {}
+
+void MultilevelTracer::mapChanged(const HeightMap& map, const TexelRect& changed) {
+    const TexelRect c{std::max(changed.x0, 0), std::max(changed.y0, 0),
+                      std::min(changed.x1, map_.width), std::min(changed.y1, map_.height)};
+    for (int j = c.y0; j < c.y1; ++j)
+        for (int i = c.x0; i < c.x1; ++i) map_.at(i, j) = map.at(i, j);
+    pyramid_.update(map_, c);
+    const double top = pyramid_.texel(pyramid_.levelCount() - 1, 0, 0);
+    if (top != base_->maxHeight())
+        base_ = BaseSurface::make(base_->shape(), width_, height_, heightScale_, top);
+}
 
 // Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
 // per bilinear patch and four per biquadratic one (relief_patch.glsl), one texel per

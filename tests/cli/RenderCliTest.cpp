@@ -222,6 +222,38 @@ TEST_F(RenderCli, EveryBaseRendersExactly) {
     }
 }
 
+// --animate NAME --time T (issue 16): each field renders, held by --compare-reference to
+// the heights the GPU evaluated; another moment is another picture; the same one the same
+// picture; bad names and times refused with one line and nothing written.
+TEST_F(RenderCli, AnimatedReliefsRenderExactlyAtAnyTime) {
+    const std::string view = small + "--eye 0.8,0.55,0.85 --target 0,0,0 --compare-reference ";
+    for (const char* field : {"waves", "ripples", "flood"}) {
+        for (const char* time : {"0", "2.75"}) {
+            const auto out = dir / (std::string(field) + "-" + time + ".png");
+            const test::RunResult r =
+                run(view + "--animate " + field + " --time " + time + " --base " +
+                    (time[0] == '0' ? "plane" : "cylinder") + " --out " + out.string());
+            ASSERT_EQ(r.status, 0) << field << ": " << r.err;
+            EXPECT_NE(r.out.find("hit/miss disagreement               0 px"), std::string::npos)
+                << field << " at " << time << ":\n"
+                << r.out;
+        }
+    }
+    const auto a = dir / "a.png", b = dir / "b.png", c = dir / "c.png";
+    ASSERT_EQ(run(small + "--animate waves --time 1 --out " + a.string()).status, 0);
+    ASSERT_EQ(run(small + "--animate waves --time 1 --out " + b.string()).status, 0);
+    ASSERT_EQ(run(small + "--animate waves --time 1.5 --out " + c.string()).status, 0);
+    EXPECT_EQ(test::readBytes(a), test::readBytes(b));
+    EXPECT_NE(test::readBytes(a), test::readBytes(c));
+
+    const auto never = " --out " + (dir / "never.png").string();
+    expectFailure(run(small + "--animate tides" + never), 2, "--animate 'tides'");
+    expectFailure(run(small + "--time 2" + never), 2, "--time needs --animate");
+    expectFailure(run(small + "--animate waves --time nan" + never), 2, "--time");
+    expectFailure(run(small + "--animate waves --time inf" + never), 2, "--time");
+    EXPECT_FALSE(std::filesystem::exists(dir / "never.png"));
+}
+
 TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     const auto out = dir / "keep.png";
     test::writeBytes(out, {'o', 'l', 'd'});

@@ -2,6 +2,8 @@
 // folders refused before any work (issue 15), with the spec's one-line failure.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <OpenImageIO/imageio.h>
 
 #include "TestSupport.h"
@@ -63,6 +65,45 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--interpolations bicubic --out-dir " + (dir / "b").string(),
                   "unknown --interpolations 'bicubic'");
     EXPECT_FALSE(std::filesystem::exists(dir / "b"));
+}
+
+// --rebuild (issue 16): rebuild.csv with a row per map size and the columns the issue
+// names; bad size lists refused before any work. What the figures are is the benchmark's
+// business: here only that they are there and are numbers.
+TEST_F(ToolsCli, BenchRebuildWritesItsCsv) {
+    const auto out = " --out-dir " + (dir / "r").string();
+    for (const char* bad : {"''", "0", "abc", "64,,32"}) {
+        const test::RunResult r =
+            run(MICRORELIEF_BENCH_EXE, std::string("--rebuild --rebuild-sizes ") + bad + out);
+        test::expectOneLineFailure(r, "microrelief-bench", 2, "--rebuild-sizes");
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "r"));
+    const test::RunResult r =
+        run(MICRORELIEF_BENCH_EXE, "--rebuild --rebuild-sizes 64,33 --size 48x40" + out);
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::istringstream csv(test::readText(dir / "r" / "rebuild.csv"));
+    std::string header, line;
+    std::getline(csv, header);
+    EXPECT_EQ(header.rfind("map_size,full_rebuild_ms,brush_update_ms,frame_trace_ms,renderer,", 0),
+              0u)
+        << header;
+    std::vector<std::string> rows;
+    while (std::getline(csv, line)) rows.push_back(line);
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].rfind("64,", 0), 0u);
+    EXPECT_EQ(rows[1].rfind("33,", 0), 0u);
+    for (const std::string& row : rows) {
+        std::istringstream fields(row);
+        std::string size, full, brush, frame;
+        std::getline(fields, size, ',');
+        std::getline(fields, full, ',');
+        std::getline(fields, brush, ',');
+        std::getline(fields, frame, ',');
+        EXPECT_GT(std::stod(full), 0.0) << row;
+        EXPECT_GT(std::stod(brush), 0.0) << row;
+        EXPECT_GT(std::stod(frame), 0.0) << row;
+    }
+    EXPECT_TRUE(std::filesystem::exists(dir / "r" / "rebuild.md"));
 }
 
 }  // namespace

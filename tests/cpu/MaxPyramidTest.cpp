@@ -5,7 +5,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
 #include <random>
+#include <string>
 
 #include "microrelief/heightmap/MaxPyramid.h"
 #include "microrelief/synth/SyntheticMaps.h"
@@ -31,6 +35,15 @@ double sampledMax(const HeightMap& map, double x0, double y0, double x1, double 
 
 TEST(MaxPyramid, LevelSizesForOddNonSquareMaps) {
     const MaxPyramid p(HeightMap(300, 77));
+    // The windows: GL's mip sizes of 300 x 77, no padding.
+    ASSERT_EQ(p.windowLevelCount(), 9);
+    EXPECT_EQ(p.windowLevelWidth(0), 300);
+    EXPECT_EQ(p.windowLevelHeight(0), 77);
+    EXPECT_EQ(p.windowLevelWidth(3), 37);
+    EXPECT_EQ(p.windowLevelHeight(3), 9);
+    EXPECT_EQ(p.windowLevelWidth(8), 1);
+    EXPECT_EQ(p.windowLevelHeight(8), 1);
+    // The aligned levels (maxmip's):
     // Padded to 512 x 128, then halved with GL's max(1, n >> k) down to 1 x 1.
     ASSERT_EQ(p.levelCount(), 10);
     EXPECT_EQ(p.levelWidth(0), 512);
@@ -189,19 +202,79 @@ TEST(MaxPyramid, WindowLevelIsTheFinestWhoseWindowHoldsTheFootprint) {
     EXPECT_EQ(p.windowLevel({0, 0}, {63, 63}), 5);  // the whole map: 2 x 2 level-5 texels
 }
 
-TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoAlignedTexels) {
-    const HeightMap map = synth::whiteNoise(13, 6, 77);  // padded to 16 x 8
-    const MaxPyramid p(map);
-    for (int level = 0; level < p.levelCount(); ++level) {
-        const int w = p.levelWidth(level), h = p.levelHeight(level);
-        for (int q = 0; q < h; ++q) {
-            for (int pp = 0; pp < w; ++pp) {
-                float expected = 0.0f;
-                for (int dq = 0; dq < 2; ++dq)
-                    for (int dp = 0; dp < 2; ++dp)
-                        if (pp + dp < w && q + dq < h)
-                            expected = std::max(expected, p.texel(level, pp + dp, q + dq));
-                ASSERT_EQ(p.window(level, pp, q), expected) << level << ": " << pp << "," << q;
+// The windows (issue 16: no padding): GL's mip sizes of W x H; each block the max of the
+// finest texels it covers, the last of a row or column reaching to the map's edge; each
+// window the max of the 2 x 2 blocks from it on.
+TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoBlocksWithoutPadding) {
+    const HeightMap map = synth::whiteNoise(13, 6, 77);
+    for (const BoundPrecision precision : {BoundPrecision::Float, BoundPrecision::Half}) {
+        const MaxPyramid p(map, false, Interpolation::Bilinear, precision);
+        ASSERT_EQ(p.windowLevelCount(), 4);  // 13 x 6, 6 x 3, 3 x 1, 1 x 1
+        EXPECT_EQ(p.windowLevelWidth(1), 6);
+        EXPECT_EQ(p.windowLevelHeight(1), 3);
+        EXPECT_EQ(p.windowLevelWidth(2), 3);
+        EXPECT_EQ(p.windowLevelHeight(2), 1);
+        for (int level = 0; level < p.windowLevelCount(); ++level) {
+            const int w = p.windowLevelWidth(level), h = p.windowLevelHeight(level);
+            for (int q = 0; q < h; ++q) {
+                for (int pp = 0; pp < w; ++pp) {
+                    // The block: finest texels from (pp, q) << level, to the map's edge for
+                    // the last of a row or column.
+                    const int x1 = pp == w - 1 ? map.width : (pp + 1) << level;
+                    const int y1 = q == h - 1 ? map.height : (q + 1) << level;
+                    float block = 0.0f;
+                    for (int j = q << level; j < y1; ++j)
+                        for (int i = pp << level; i < x1; ++i)
+                            block = std::max(block, p.texel(0, i, j));
+                    ASSERT_EQ(p.block(level, pp, q), block) << level << ": " << pp << "," << q;
+                    float window = 0.0f;
+                    for (int dq = 0; dq < 2; ++dq)
+                        for (int dp = 0; dp < 2; ++dp)
+                            if (pp + dp < w && q + dq < h)
+                                window = std::max(window, p.block(level, pp + dp, q + dq));
+                    ASSERT_EQ(p.window(level, pp, q), window) << level << ": " << pp << "," << q;
+                }
+            }
+        }
+        EXPECT_EQ(p.window(p.windowLevelCount() - 1, 0, 0), p.texel(p.levelCount() - 1, 0, 0));
+    }
+}
+
+// Half precision (what the GPU holds): each finest bound rounded up to 11 significant bits
+// and at least 2^(S - 14), S from the top: still a bound, at most 2^-10 of it above, and
+// divided by 2^S a normal half (the top below 2^15).
+TEST(MaxPyramid, HalfPrecisionRoundsEveryBoundUpOntoTheHalfGrid) {
+    std::mt19937 random(5);
+    for (const float scale : {1.0f, 1e-30f, 3e4f, 1e30f}) {
+        HeightMap map = synth::whiteNoise(29, 17, 3);
+        for (float& h : map.samples) h *= scale;
+        map.at(4, 4) = 0.0f;
+        map.at(5, 4) = std::ldexp(scale, -60);  // far below the top: raised to the least bound
+        const MaxPyramid exact(map, false, Interpolation::Bilinear, BoundPrecision::Float);
+        const MaxPyramid half(map, false, Interpolation::Bilinear, BoundPrecision::Half);
+        const int s = half.scaleExponent();
+        EXPECT_EQ(s, pyramidScaleExponent(half.maxHeight()));
+        EXPECT_LT(std::ldexp(half.maxHeight(), -s), 32768.0f);
+        if (s > pyramidScaleExponent(0.0f)) {  // not held up by the clamp (1e-30)
+            EXPECT_GE(std::ldexp(half.maxHeight(), -s), 16384.0f) << scale;
+        }
+        for (int j = 0; j < map.height; ++j) {
+            for (int i = 0; i < map.width; ++i) {
+                const float a = exact.texel(0, i, j), b = half.texel(0, i, j);
+                ASSERT_GE(b, a) << scale << ": " << i << "," << j;
+                if (a == 0.0f) {
+                    ASSERT_EQ(b, 0.0f);
+                    continue;
+                }
+                const float stored = std::ldexp(b, -s);  // a normal half, exactly
+                ASSERT_GE(stored, std::ldexp(1.0f, -14));
+                ASSERT_EQ(stored,
+                          std::ldexp(std::round(std::ldexp(stored, 10 - std::ilogb(stored))),
+                                     std::ilogb(stored) - 10))
+                    << "not on the half grid: " << stored;
+                if (a >= std::ldexp(1.0f, s - 14)) {
+                    ASSERT_LE(b, a * (1.0f + std::ldexp(1.0f, -10))) << scale;
+                }
             }
         }
     }
@@ -325,4 +398,207 @@ TEST(MaxPyramid, TiledBoundsCoverTheWholeSurface) {
             }
         }
     }
+}
+
+namespace {
+
+// A float >= 0 as the exact integer value * 2^149 (up to 2^278): ten 32-bit limbs, least
+// significant first. Enough to add two and compare, the reference for roundUpMean.
+using Exact = std::array<std::uint64_t, 10>;
+
+Exact exactValue(float x) {
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(x) & 0x7fffffffu;
+    const std::uint32_t e = bits >> 23;
+    const std::uint64_t f = e == 0 ? bits : (bits & 0x7fffffu) | 0x800000u;
+    const int shift = static_cast<int>(std::max(e, 1u)) - 1;  // value * 2^149 = f * 2^shift
+    Exact n{};
+    n[shift / 32] = (f << (shift % 32)) & 0xffffffffu;
+    if (shift / 32 + 1 < 10) n[shift / 32 + 1] = (f << (shift % 32)) >> 32;
+    return n;
+}
+
+Exact add(const Exact& a, const Exact& b) {
+    Exact s{};
+    std::uint64_t carry = 0;
+    for (int k = 0; k < 10; ++k) {
+        const std::uint64_t t = a[k] + b[k] + carry;
+        s[k] = t & 0xffffffffu;
+        carry = t >> 32;
+    }
+    return s;
+}
+
+int compare(const Exact& a, const Exact& b) {
+    for (int k = 9; k >= 0; --k) {
+        if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
+    }
+    return 0;
+}
+
+// roundUpMean(a, b) is the smallest float r with 2 r >= a + b, exactly.
+void expectExactRoundUpMean(float a, float b) {
+    const float r = roundUpMean(a, b);
+    const Exact sum = add(exactValue(a), exactValue(b));
+    ASSERT_GE(compare(add(exactValue(r), exactValue(r)), sum), 0)
+        << "below the mean: " << a << ", " << b << " -> " << r;
+    if (r > 0.0f) {
+        const float below = std::bit_cast<float>(std::bit_cast<std::uint32_t>(r) - 1u);
+        ASSERT_LT(compare(add(exactValue(below), exactValue(below)), sum), 0)
+            << "not the smallest: " << std::hexfloat << a << ", " << b << " -> " << r;
+    }
+}
+
+}  // namespace
+
+// The bound's arithmetic (and the GPU builder's, which runs the same integer code): the
+// mean of two floats rounded up, exactly, across the whole range of floats >= 0 (zeros,
+// denormals, the largest), for pairs far apart and close together.
+TEST(MaxPyramid, RoundUpMeanIsTheExactMeanRoundedUp) {
+    std::mt19937 random(99);
+    std::uniform_int_distribution<std::uint32_t> anyBits(0, 0x7f7fffffu), low(0, 0x00ffffffu),
+        offset(0, 1u << 26);
+    const auto fromBits = [](std::uint32_t bits) { return std::bit_cast<float>(bits); };
+    const std::vector<float> special = {0.0f,
+                                        -0.0f,
+                                        1.0f,
+                                        0.5f,
+                                        0.1f,
+                                        0.7f,
+                                        fromBits(1),
+                                        fromBits(0x7fffff),
+                                        fromBits(0x800000),
+                                        fromBits(0x7f7fffff),
+                                        1.0f / 65535.0f,
+                                        65535.0f};
+    for (float a : special)
+        for (float b : special) expectExactRoundUpMean(a, b);
+    for (int trial = 0; trial < 200000; ++trial) {
+        const std::uint32_t a = anyBits(random);
+        expectExactRoundUpMean(fromBits(a), fromBits(anyBits(random)));
+        // Neighbours within a few binades: the sums that keep every bit.
+        const std::uint32_t near = std::min(a + offset(random), 0x7f7fffffu);
+        expectExactRoundUpMean(fromBits(a), fromBits(near));
+        expectExactRoundUpMean(fromBits(low(random)), fromBits(low(random)));  // denormals
+    }
+    EXPECT_EQ(roundUpMean(1.0f, 0.0f), 0.5f);
+    EXPECT_EQ(roundUpMean(0.25f, 0.75f), 0.5f);
+    EXPECT_EQ(roundUpMean(1.0f, std::ldexp(1.0f, -24)), std::nextafter(0.5f, 1.0f));
+}
+
+// The double rounding the bound used to have: the mean of 2^-60 and 1 rounded in double
+// to 0.5 exactly, below the surface's 0.5 + 2^-61 at the edge between the two samples.
+TEST(MaxPyramid, BoundHoldsAcrossAnyRangeOfHeights) {
+    HeightMap map(2, 1);
+    map.samples = {std::ldexp(1.0f, -60), 1.0f};
+    const MaxPyramid p(map);
+    EXPECT_EQ(p.texel(0, 0, 0), std::nextafter(0.5f, 1.0f));
+    EXPECT_EQ(p.texel(0, 1, 0), 1.0f);
+}
+
+// Both surfaces take the same nine values: the bilinear peaks are the biquadratic net.
+TEST(MaxPyramid, BothInterpolationsHaveTheSameFinestLevel) {
+    const HeightMap map = synth::whiteNoise(23, 17, 5);
+    for (const bool wrapU : {false, true}) {
+        const MaxPyramid a(map, wrapU, Interpolation::Bilinear);
+        const MaxPyramid b(map, wrapU, Interpolation::Biquadratic);
+        EXPECT_EQ(a.levelData(0), b.levelData(0));
+    }
+}
+
+// Edits in place: after random rectangles of samples change, update() leaves the pyramid
+// that a build from scratch of the new map makes, texel for texel, on every level of both
+// pyramids, on the plane and wrapped round the seam (rectangles at either edge included).
+TEST(MaxPyramid, UpdateAfterAnEditEqualsABuildFromScratch) {
+    std::mt19937 random(4321);
+    const std::vector<std::pair<int, int>> sizes = {{1, 1},   {2, 3},   {7, 5},
+                                                    {33, 17}, {64, 64}, {100, 9}};
+    for (const BoundPrecision precision : {BoundPrecision::Float, BoundPrecision::Half}) {
+        for (const bool wrapU : {false, true}) {
+            for (auto [w, h] : sizes) {
+                HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 7 + h));
+                MaxPyramid pyramid(map, wrapU, Interpolation::Bilinear, precision);
+                std::uniform_real_distribution<float> value(0.0f, 1.0f);
+                for (int edit = 0; edit < 30; ++edit) {
+                    std::uniform_int_distribution<int> x(0, w - 1), y(0, h - 1);
+                    int x0 = x(random), x1 = x(random), y0 = y(random), y1 = y(random);
+                    if (edit % 5 == 0) x0 = 0;  // at the seam's either side
+                    if (edit % 5 == 1) x1 = w - 1;
+                    const TexelRect rect{std::min(x0, x1), std::min(y0, y1), std::max(x0, x1) + 1,
+                                         std::max(y0, y1) + 1};
+                    // Zeros, values in [0, 1), and a raise far above: the top changes binade.
+                    const float scale = edit % 7 == 6 ? 100.0f : 1.0f;
+                    for (int j = rect.y0; j < rect.y1; ++j)
+                        for (int i = rect.x0; i < rect.x1; ++i)
+                            map.at(i, j) = edit % 3 == 0 ? 0.0f : scale * value(random);
+                    pyramid.update(map, rect);
+                    const MaxPyramid rebuilt(map, wrapU, Interpolation::Bilinear, precision);
+                    const std::string what = std::to_string(w) + "x" + std::to_string(h) +
+                                             (wrapU ? " wrapped" : "") +
+                                             (precision == BoundPrecision::Half ? ", half" : "") +
+                                             ", edit " + std::to_string(edit);
+                    ASSERT_EQ(pyramid.scaleExponent(), rebuilt.scaleExponent()) << what;
+                    for (int level = 0; level < rebuilt.levelCount(); ++level)
+                        ASSERT_EQ(pyramid.levelData(level), rebuilt.levelData(level))
+                            << what << ", level " << level;
+                    for (int level = 0; level < rebuilt.windowLevelCount(); ++level) {
+                        ASSERT_EQ(pyramid.blockLevelData(level), rebuilt.blockLevelData(level))
+                            << what << ", block level " << level;
+                        ASSERT_EQ(pyramid.windowLevelData(level), rebuilt.windowLevelData(level))
+                            << what << ", window level " << level;
+                    }
+                }
+            }
+        }
+    }
+}
+
+// The bound the traversal reads (one window, at the level the footprint chooses) never
+// falls below the surface along a segment with the bounds the GPU holds (half precision),
+// on maps whose last blocks absorb odd remainders (issue 16's layout), wrapped or not.
+TEST(MaxPyramid, HalfPrecisionWindowsCoverTheSurfaceAlongAnySegment) {
+    std::mt19937 random(99);
+    const std::vector<std::pair<int, int>> sizes = {{1, 1},   {3, 5},   {17, 4},
+                                                    {31, 33}, {100, 7}, {65, 129}};
+    for (auto [w, h] : sizes) {
+        const HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 3 + h));
+        for (const bool wrapU : {false, true}) {
+            const MaxPyramid p(map, wrapU, Interpolation::Bilinear, BoundPrecision::Half);
+            std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0);
+            for (int trial = 0; trial < 1500; ++trial) {
+                const glm::dvec2 lo(x(random), y(random));
+                const double reach = std::max(w, h) * unit(random) * unit(random);
+                glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
+                hi = glm::min(hi, glm::dvec2(wrapU ? lo.x + w - 1e-9 : w, h));
+                int level = -1, fetches = 0;
+                const double bound = p.footprintBound(lo, hi, level, fetches);
+                double dense = 0.0;
+                for (int b = 0; b <= 24; ++b)
+                    for (int a = 0; a <= 24; ++a)
+                        dense = std::max(dense, map.surface(lo.x + (hi.x - lo.x) * a / 24,
+                                                            lo.y + (hi.y - lo.y) * b / 24, wrapU));
+                ASSERT_GE(bound, dense - 1e-12)
+                    << w << "x" << h << (wrapU ? " wrapped" : "") << " [" << lo.x << "," << lo.y
+                    << "] - [" << hi.x << "," << hi.y << "]";
+            }
+        }
+    }
+}
+
+// The regions are what the GPU builder draws: two rectangles at most per level, the finest
+// one the samples' rectangle grown by one texel, wrapping round the seam.
+TEST(MaxPyramid, UpdateRegionsGrowByOneTexelAndWrap) {
+    const auto sizes = pyramidLevelSizes(16, 8);
+    const auto planeRegions = pyramidUpdateRegions(sizes, 16, 8, false, {0, 3, 2, 4});
+    ASSERT_EQ(planeRegions.aligned[0].size(), 1u);
+    EXPECT_EQ(planeRegions.aligned[0][0], (TexelRect{0, 2, 3, 5}));
+    EXPECT_EQ(planeRegions.windows[0][0], (TexelRect{0, 1, 3, 5}));
+    EXPECT_EQ(planeRegions.aligned[1][0], (TexelRect{0, 1, 2, 3}));
+    const auto curvedRegions = pyramidUpdateRegions(sizes, 16, 8, true, {0, 3, 2, 4});
+    ASSERT_EQ(curvedRegions.aligned[0].size(), 2u);
+    EXPECT_EQ(curvedRegions.aligned[0][0], (TexelRect{0, 2, 3, 5}));
+    EXPECT_EQ(curvedRegions.aligned[0][1], (TexelRect{15, 2, 16, 5}));
+    const auto top = curvedRegions.aligned.back();
+    ASSERT_EQ(top.size(), 1u);
+    EXPECT_EQ(top[0], (TexelRect{0, 0, 1, 1}));
+    EXPECT_TRUE(pyramidUpdateRegions(sizes, 16, 8, false, {5, 5, 5, 9}).aligned[0].empty());
 }

@@ -250,3 +250,34 @@ TEST(MultilevelTracer, MeanFetchesStayWithinTwoPerLevelOnTheBenchRelief) {
         EXPECT_LE(fetches / rays, 2.0 * (std::log2(n) + 1.0)) << n;
     }
 }
+
+// A dynamic map (issue 16): after rectangles of samples change, mapChanged() leaves the
+// twin answering every ray as a twin built of the new map does, hit for hit, to the bit
+// (the same pyramid, the same shell), on the plane and a cylinder, a raise above the old
+// top included (the shell grows).
+TEST(MultilevelTracer, MapChangedAnswersAsATwinOfTheNewMap) {
+    for (const BaseShape& base : {BaseShape::plane(), BaseShape::cylinder()}) {
+        HeightMap map = synth::cobbles(48, 40, 4);
+        MultilevelTracer twin(map, 0.1, base);
+        std::mt19937 random(11);
+        std::uniform_real_distribution<double> unit(-1.0, 1.0);
+        for (int edit = 0; edit < 6; ++edit) {
+            const TexelRect rect{3 * edit, 2 * edit, 3 * edit + 9, 2 * edit + 7};
+            for (int j = rect.y0; j < rect.y1; ++j)
+                for (int i = rect.x0; i < rect.x1; ++i)
+                    map.at(i, j) = edit == 2 ? 2.5f : 0.5f * static_cast<float>(unit(random) + 1.0);
+            twin.mapChanged(map, rect);
+            const MultilevelTracer fresh(map, 0.1, base);
+            for (int k = 0; k < 300; ++k) {
+                const glm::dvec3 eye(1.2 * unit(random), 0.4 + 0.5 * unit(random),
+                                     1.2 * unit(random));
+                const Ray ray{eye, glm::dvec3(0.3 * unit(random), 0.0, 0.3 * unit(random)) - eye};
+                const auto a = twin.intersect(ray), b = fresh.intersect(ray);
+                ASSERT_EQ(a.has_value(), b.has_value()) << baseName(base) << ", edit " << edit;
+                if (a) {
+                    ASSERT_EQ(a->t, b->t) << baseName(base) << ", edit " << edit;
+                }
+            }
+        }
+    }
+}

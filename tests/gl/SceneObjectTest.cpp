@@ -200,7 +200,9 @@ protected:
             EXPECT_LE(flips, size * size / 500);
             EXPECT_LE(far, size * size / 500);
             EXPECT_GT(hits, 300);
-            if (q.tMin > 0.0) EXPECT_GT(startsInside, 50);  // the range does start in the solid
+            if (q.tMin > 0.0) {
+                EXPECT_GT(startsInside, 50);  // the range does start in the solid
+            }
         }
     }
 };

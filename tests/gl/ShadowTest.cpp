@@ -165,8 +165,12 @@ TEST_F(Shadows, SoftShadowsBecomeTheHardShadowAsTheLightShrinks) {
         EXPECT_LE(penumbra, previousPenumbra) << size;
         previous = mean;
         previousPenumbra = penumbra;
-        if (size >= 8.0f) EXPECT_GT(penumbra, hits / 100) << size;
-        if (size < 0.01f) EXPECT_LE(far * 1000, hits) << size;
+        if (size >= 8.0f) {
+            EXPECT_GT(penumbra, hits / 100) << size;
+        }
+        if (size < 0.01f) {
+            EXPECT_LE(far * 1000, hits) << size;
+        }
     }
 }
 

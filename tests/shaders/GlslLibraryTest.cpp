@@ -163,10 +163,12 @@ TEST(GlslLibrary, EveryPublicNameCarriesThePrefix) {
         while (std::getline(lines, line)) {
             std::smatch m;
             if (!std::regex_search(line, m, declaration)) continue;
-            if (m[1].matched)
+            if (m[1].matched) {
                 EXPECT_EQ(m[1].str().rfind("mr_", 0), 0u) << file.filename() << ": " << line;
-            if (m[2].matched)
+            }
+            if (m[2].matched) {
                 EXPECT_EQ(m[2].str().rfind("MR_", 0), 0u) << file.filename() << ": " << line;
+            }
             // A macro is an option (MICRORELIEF_) or a type chosen by one (mr_ReliefPatch).
             if (m[3].matched) {
                 EXPECT_TRUE(m[3].str().rfind("MICRORELIEF_", 0) == 0 ||
@@ -253,4 +255,37 @@ TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
                                         << errors;
         }
     }
+}
+
+// The GPU pyramid builder's passes (shaders/pyramid/, gl/PyramidBuilder.h) and the height
+// edits' (shaders/edit/: the brush, the animated fields): GLSL 3.30 core as the library
+// compiles them, and as they stand as GLSL ES 3.00 (a WebGL 2 page reuses them), there at
+// highp throughout: the bound's integer arithmetic needs 32-bit uints.
+TEST(GlslLibrary, PyramidAndEditPassesCompileAsGlsl330AndEs300) {
+    test::ScratchDir dir;
+    int count = 0;
+    std::vector<std::filesystem::path> files;
+    for (const char* folder : {"pyramid", "edit"})
+        for (const auto& entry : std::filesystem::directory_iterator(kShaders / folder))
+            files.push_back(entry.path());
+    for (const std::filesystem::path& path : files) {
+        const std::filesystem::directory_entry entry(path);
+        const std::string stage = entry.path().extension().string().substr(1);
+        ++count;
+        for (const char* version : {"330 core", "300 es"}) {
+            const ShaderSource source = assembleShader(entry.path(), version, {}, {kShaders});
+            std::string tree;
+            const std::string errors =
+                validate(dir, source, stage, entry.path().stem().string(), &tree);
+            EXPECT_TRUE(errors.empty())
+                << entry.path().filename() << " as GLSL " << version << ":\n"
+                << errors;
+            if (std::string(version) == "300 es" && stage == "frag") {
+                EXPECT_EQ(belowHighp(tree), "") << entry.path().filename();
+            }
+        }
+    }
+    // The triangle, the finest windows (at once, and from a band's bounds), the finest
+    // bounds, the coarser windows and aligned levels; the brush, the fields.
+    EXPECT_EQ(count, 8);
 }

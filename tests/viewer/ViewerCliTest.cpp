@@ -55,6 +55,21 @@ TEST_F(ViewerCli, BadArgumentsExitTwo) {
     expectFailure(run("--screenshot " + (dir / "x.unknownext").string()), 2, "x.unknownext");
 }
 
+// The sculpting flags (issue 16): a bad brush, stroke, undo count or map file is a bad
+// argument, refused before any window opens.
+TEST_F(ViewerCli, BadSculptingFlagsExitTwo) {
+    expectFailure(run("--stroke dig,0,0,1,1"), 2, "unknown brush 'dig'");
+    expectFailure(run("--stroke raise,0,0,1"), 2, "--stroke");
+    expectFailure(run("--stroke raise,0,0,1,1.5"), 2, "0 to 1");
+    expectFailure(run("--stroke raise,0,0,1,nan"), 2, "--stroke");
+    expectFailure(run("--brush-radius 0"), 2, "--brush-radius");
+    expectFailure(run("--brush-strength -1"), 2, "--brush-strength");
+    expectFailure(run("--brush-strength inf"), 2, "--brush-strength");
+    expectFailure(run("--undo -1"), 2, "--undo");
+    expectFailure(run("--save-map " + (dir / "m.tif").string()), 2, "m.tif");
+    expectFailure(run("--animate tides"), 2, "--animate 'tides'");
+}
+
 TEST_F(ViewerCli, BadMapsAndCamerasExitTwoBeforeAnyWindow) {
     expectFailure(run("--height " + (dir / "missing.png").string()), 2, "missing.png");
     // OpenImageIO's probes used to read /dev/zero forever (issue 15).

@@ -10,10 +10,13 @@
 #include <thread>
 
 #include "CameraController.h"
+#include "MapFile.h"
 #include "ReliefPicker.h"
 #include "ShaderWatcher.h"
 #include "TestSupport.h"
 #include "ViewerOptions.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/heightmap/HeightMapFile.h"
 #include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
@@ -159,6 +162,8 @@ TEST(CopyAsCommand, TheRenderCommandLineReadsBackExactly) {
     scene.job.method.method = Method::Relief;
     scene.job.method.steps = 23;
     scene.job.method.pixelError = 0.7f;
+    scene.job.animation = "ripples";
+    scene.job.time = 1.0 / 3.0 + 40.0;  // a time the animation reached: no short form
 
     const std::string line = renderCommandLine(scene, "microrelief-viewer");
     const SceneOptions back = parseWords(splitWords(line)).scene;
@@ -177,6 +182,8 @@ TEST(CopyAsCommand, TheRenderCommandLineReadsBackExactly) {
     EXPECT_EQ(back.job.background, scene.job.background) << line;
     EXPECT_EQ(back.job.method.method, Method::Relief);
     EXPECT_EQ(back.job.method.steps, 23);
+    EXPECT_EQ(back.job.animation, "ripples") << line;
+    EXPECT_EQ(back.job.time, scene.job.time) << line;
     EXPECT_EQ(back.job.method.pixelError, 0.7f);
 }
 
@@ -255,6 +262,39 @@ TEST(ShaderWatcher, SeesEditsNewFilesAndRemovals) {
     std::filesystem::remove(dir / "microrelief" / "new.glsl");
     EXPECT_TRUE(watcher.changed(now));
     EXPECT_FALSE(watcher.changed(std::chrono::hours(1))) << "looks at most once an interval";
+}
+
+// Saving an edited map: a float EXR holds every sample exactly; a 16-bit PNG the nearest of
+// its 65536 levels; a map above 1 is refused for a PNG before anything is written, so the
+// file that was there stays as it was; other formats are refused.
+TEST(MapFile, SavesExactlyOrRefusesAndLeavesTheOldFile) {
+    test::ScratchDir dir;
+    HeightMap map = synth::whiteNoise(37, 21, 4);
+    map.at(3, 4) = 0.0f;
+    map.at(5, 6) = 1.0f;
+    saveHeightMap(map, dir / "map.exr");
+    EXPECT_EQ(loadHeightMap(dir / "map.exr").samples, map.samples);
+    saveHeightMap(map, dir / "map.png");
+    const HeightMap png = loadHeightMap(dir / "map.png");
+    ASSERT_EQ(png.samples.size(), map.samples.size());
+    for (std::size_t k = 0; k < map.samples.size(); ++k)
+        ASSERT_NEAR(png.samples[k], map.samples[k], 0.5f / 65535.0f + 1e-7f) << k;
+    EXPECT_EQ(png.at(5, 6), 1.0f);
+
+    test::writeBytes(dir / "old.png", {'o', 'l', 'd'});
+    map.at(7, 7) = 1.5f;
+    try {
+        saveHeightMap(map, dir / "old.png");
+        ADD_FAILURE() << "a map above 1 was saved as a 16-bit PNG";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find("save as .exr"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(test::readBytes(dir / "old.png"), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
+    EXPECT_THROW(saveHeightMap(map, dir / "map.tif"), Error);
+    EXPECT_FALSE(std::filesystem::exists(dir / "map.tif"));
+    saveHeightMap(map, dir / "old.exr");  // the float map keeps 1.5
+    EXPECT_EQ(loadHeightMap(dir / "old.exr").at(7, 7), 1.5f);
 }
 
 }  // namespace

@@ -14,7 +14,9 @@
 #include <sstream>
 
 #include "TestSupport.h"
+#include "microrelief/core/DataPaths.h"
 #include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/heightmap/HeightMapFile.h"
 #include "microrelief/image/ImageFile.h"
 #include "microrelief/synth/SyntheticMaps.h"
 
@@ -70,8 +72,10 @@ protected:
 
     // Renders `flags` in the viewer, then the command line it prints with
     // microrelief-render, and compares the two pictures. Returns the viewer's picture.
+    // `renderExtra` goes to microrelief-render after the printed command (a map saved by
+    // the viewer in place of the one it opened).
     Image compareWithRender(const std::string& name, const std::string& flags,
-                            const std::string& extra = "") {
+                            const std::string& extra = "", const std::string& renderExtra = "") {
         const auto viewerPicture = dir / (name + "-viewer.png"),
                    renderPicture = dir / (name + "-render.png");
         // The renderer's shaders: the build tree's copy, which microrelief-render reads too.
@@ -92,7 +96,8 @@ protected:
                 : std::string();
         const std::string command = software + "LIBGL_ALWAYS_SOFTWARE=1 " + MICRORELIEF_RENDER_EXE +
                                     printed.substr(std::string("microrelief-render").size());
-        const RunResult render = run(command + " --quiet --out " + renderPicture.string());
+        const RunResult render =
+            run(command + " " + renderExtra + " --quiet --out " + renderPicture.string());
         EXPECT_EQ(render.status, 0) << command << "\n" << render.err;
         const Image actual = readImage(viewerPicture), expected = readImage(renderPicture);
         EXPECT_GT(actual.width, 0) << name;
@@ -203,6 +208,76 @@ TEST_F(ViewerUnderX, WindowScreenshotShowsThePanelOverTheView) {
     EXPECT_GT(difference(shot, view, 20, 20, 300, 200).mean, 10.0) << "no panel at the top left";
     const Difference right = difference(shot, view, 560, 0, 640, 400);
     EXPECT_LE(right.max, 0) << "the view around the panel must be the 3D view as rendered";
+}
+
+// Sculpting (issue 16): strokes of every brush, drawn by a script before the first frame,
+// then the map saved; microrelief-render given the saved map and the printed view draws
+// the viewer's picture, so what the viewer traces after the edits is the edited map,
+// exactly (and the saved file is that map).
+TEST_F(ViewerUnderX, SculptedReliefRendersAsItsSavedMap) {
+    const auto saved = dir / "sculpted.exr";
+    const std::string strokes =
+        "--brush-radius 14 --brush-strength 0.15 --stroke raise,0.2,0.3,0.8,0.6 "
+        "--stroke lower,0.3,0.8,0.7,0.2 --stroke smooth,0.1,0.5,0.9,0.5 "
+        "--stroke flatten,0.5,0.1,0.5,0.9 --save-map " +
+        saved.string();
+    // The viewer keeps the bundled map's colours while it sculpts; the render is given them too.
+    const Image sculpted =
+        compareWithRender("sculpted", "--size 200x150", strokes,
+                          "--height " + saved.string() + " --albedo " + defaultAlbedoPath().string());
+    // And the edits show: the unedited map is another picture.
+    const Image plain = compareWithRender("unsculpted", "--size 200x150");
+    ASSERT_EQ(sculpted.width, plain.width);
+    EXPECT_GT(difference(sculpted, plain, 0, 0, plain.width, plain.height).mean, 1.0);
+}
+
+// Undo returns the exact map: strokes, as many undos, and the saved map is the opened one,
+// sample for sample.
+TEST_F(ViewerUnderX, UndoReturnsTheOpenedMapExactly) {
+    const auto saved = dir / "undone.exr";
+    const RunResult r = run(std::string(MICRORELIEF_VIEWER_EXE) +
+                            " --size 64x48 --brush-radius 20 --brush-strength 0.4"
+                            " --stroke raise,0.1,0.1,0.9,0.9 --stroke smooth,0.9,0.1,0.1,0.9"
+                            " --stroke lower,0.5,0,0.5,1 --undo 3 --save-map " +
+                            saved.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const HeightMap opened = loadHeightMap(defaultHeightMapPath());
+    const HeightMap undone = loadHeightMap(saved);
+    EXPECT_EQ(undone.samples, opened.samples);
+
+    const auto partly = dir / "partly.exr";
+    const RunResult two = run(std::string(MICRORELIEF_VIEWER_EXE) +
+                              " --size 64x48 --brush-radius 20 --brush-strength 0.4"
+                              " --stroke raise,0.1,0.1,0.9,0.9 --stroke lower,0.5,0,0.5,1 --undo 1"
+                              " --save-map " +
+                              partly.string());
+    ASSERT_EQ(two.status, 0) << two.err;
+    EXPECT_NE(loadHeightMap(partly).samples, opened.samples);  // one stroke is left
+}
+
+// A save that fails leaves the file that was there as it was: a map raised above 1, which a
+// 16-bit PNG cannot hold, is refused (exit 2, one line naming the file) before anything is
+// written.
+TEST_F(ViewerUnderX, AFailedSaveLeavesTheOldFileUntouched) {
+    const auto file = dir / "keep.png";
+    test::writeBytes(file, {'o', 'l', 'd'});
+    const RunResult r = run(std::string(MICRORELIEF_VIEWER_EXE) +
+                            " --size 64x48 --brush-radius 10 --brush-strength 2"
+                            " --stroke raise,0.5,0.5,0.6,0.5 --save-map " +
+                            file.string());
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("keep.png"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("save as .exr"), std::string::npos) << r.err;
+    EXPECT_EQ(test::readBytes(file), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+// An animated relief: the viewer's last frame is microrelief-render's at the time the
+// viewer prints (a script steps 1/30 s a frame from --time).
+TEST_F(ViewerUnderX, AnimatedReliefCarriesOverAtItsTime) {
+    compareWithRender("waves", "--animate waves --time 1.25 --size 160x120");
+    compareWithRender("flood", "--animate flood --time 3 --size 160x120 --eye 0.5,0.4,0.6");
 }
 
 }  // namespace

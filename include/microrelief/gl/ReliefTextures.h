@@ -1,13 +1,18 @@
 // The map's data on the GPU, as the relief shaders read it (docs/engine.md, "Textures"):
 // the samples, R32F with nearest filtering, clamped (repeating in s on a curved base, whose
-// u wraps, and in both directions tiled: relief_map.glsl's MICRORELIEF_TILING), and both
-// max pyramids (heightmap/MaxPyramid.h), R32F mip chains of W and H
-// rounded up to powers of two down to 1 x 1, nearest-mipmap-nearest, clamped: the aligned
-// levels (the maxmip peer's quadtree) and the overlapping windows (the multilevel
-// method's). With them, the numbers mr_ReliefMap (relief_map.glsl) holds about them.
+// u wraps, and in both directions tiled: relief_map.glsl's MICRORELIEF_TILING); the
+// overlapping windows the multilevel method reads (heightmap/MaxPyramid.h), an R16F mip
+// chain of GL's own sizes of W x H down to 1 x 1, its bounds divided by 2^S; and, only
+// where the maxmip peer runs, the aligned levels of its quadtree, R16F as well, padded to
+// powers of two. Nearest-mipmap-nearest, clamped. With them, the numbers mr_ReliefMap
+// (relief_map.glsl) holds about them. About 6.7 bytes a map texel with the windows alone
+// (4 the samples, 2.67 the windows), whatever the size. A tiled map's textures hold one
+// tile.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -26,35 +31,101 @@ struct ReliefMapShape {
     glm::ivec2 tiles{1, 1};     // N, M: the textures hold one tile
 };
 
+class PyramidBuilder;
+
+// Where a map's max pyramids are built: on the CPU (MaxPyramid, then uploaded) or on the
+// GPU from the uploaded samples (gl/PyramidBuilder.h). The texels are the same.
+enum class PyramidBuild { Cpu, Gpu };
+
 class ReliefTextures {
 public:
     // Builds the max pyramid of `map` for the surface `interpolation` makes of it (wrapped
-    // in u when `wrapU`: a curved base) and uploads it with the samples. Throws
-    // Error(BadInput) naming `source` when the map exceeds GL_MAX_TEXTURE_SIZE,
-    // Error(Runtime) when memory runs out. The GL state it changes (texture bindings,
-    // unpack alignment) is restored.
+    // in u when `wrapU`: a curved base) and uploads it with the samples; the aligned levels
+    // too when `withMaxMip`. Throws Error(BadInput) naming `source` when the map exceeds
+    // GL_MAX_TEXTURE_SIZE, Error(Runtime) when memory runs out. The GL state it changes
+    // (texture bindings, unpack alignment) is restored.
     ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
-                   Interpolation interpolation, glm::ivec2 tiles = {1, 1});
-    // The same from a pyramid the caller built of `map`.
+                   Interpolation interpolation, bool withMaxMip = false,
+                   glm::ivec2 tiles = {1, 1});
+    // The same from a pyramid the caller built of `map` (BoundPrecision::Half, what the
+    // textures hold; tiled as its addressing has it).
     ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
-                   Interpolation interpolation);
+                   Interpolation interpolation, bool withMaxMip = false);
+    // The same with the pyramids built on the GPU by `builder` (gl/PyramidBuilder.h): the
+    // same texels, from the samples once they are on the GPU. Untiled: the builder's
+    // passes bound each texel square within the one map.
+    ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
+                   Interpolation interpolation, PyramidBuilder& builder, bool withMaxMip = false);
 
     GLuint samples() const { return samples_.id(); }
     GLuint windowPyramid() const { return windows_.id(); }
+    // The aligned pyramid, or 0 where none was made (addMaxMipPyramid makes it).
     GLuint maxPyramid() const { return aligned_.id(); }
+    bool hasMaxMipPyramid() const { return static_cast<bool>(aligned_); }
+    // The aligned pyramid for the maxmip peer, built on the GPU from the samples.
+    void addMaxMipPyramid(const GL& gl, PyramidBuilder& builder);
 
-    const ReliefMapShape& shape() const { return shape_; }
+    // The multilevel method's mr_ReliefMap (the windows: pyramidSize W x H, their levels;
+    // size the whole, N W x M H tiled N x M).
+    ReliefMapShape shape() const {
+        ReliefMapShape whole = shape_;
+        whole.size *= whole.tiles;
+        return whole;
+    }
+    // maxmip's: the aligned pyramid's size (W, H rounded up to powers of two) and levels.
+    ReliefMapShape maxMipShape() const;
     bool wrapsU() const { return wrapU_; }
     glm::ivec2 tiles() const { return shape_.tiles; }
     Interpolation interpolation() const { return interpolation_; }
+    // S: the pyramids hold bound / 2^S (MaxPyramid.h: pyramidScaleExponent of maxHeight;
+    // the shaders derive it from mr_ReliefMap's maxHeight the same way).
+    int scaleExponent() const { return scaleExponent_; }
+    // What the textures take in GPU memory, bytes: the samples and every level of the
+    // pyramids, as the GL reports their sizes and formats.
+    std::size_t gpuBytes(const GL& gl) const;
+    // The windows' level sizes, finest first (windowLevelSizes).
+    const std::vector<glm::ivec2>& levelSizes() const { return levelSizes_; }
+
+    // The samples inside `rect` (map texels) replaced by `values`, rect.width() a row, row
+    // 0 first: an edit from the host. The pyramids are the caller's to bring up to date
+    // (PyramidBuilder::update). The GL state it changes is restored.
+    void writeSamples(const GL& gl, const TexelRect& rect, const float* values);
+    // The pyramids built again on the CPU from the samples the GPU holds (read back), for
+    // a tiled map, whose bounds the GPU builder does not make. The GL state it changes is
+    // restored.
+    void rebuildFromSamples(const GL& gl);
+    // What the GPU holds, read back (through a framebuffer, as GL ES has it): the samples
+    // as a map, a level of the aligned or the overlapping pyramid as the bounds it stands
+    // for (the halves times 2^S), row 0 first.
+    HeightMap readSamples(const GL& gl) const;
+    // The samples inside `rect`, rect.width() a row, row 0 first.
+    std::vector<float> readSamples(const GL& gl, const TexelRect& rect) const;
+    std::vector<float> readAlignedLevel(const GL& gl, int level) const;
+    std::vector<float> readWindowLevel(const GL& gl, int level) const;
 
 private:
-    void upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid);
+    friend class PyramidBuilder;  // writes S and maxHeight after a build or an update
+
+    void allocate(const GL& gl, const HeightMap& map);
+    void allocateAligned(const GL& gl);
+    void upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid, bool withMaxMip);
+    // The pyramid's levels into the allocated textures, its top and S into the shape.
+    void uploadPyramid(const GL& gl, const MaxPyramid& pyramid);
+    std::vector<float> readScaled(const GL& gl, GLuint texture, int level,
+                                  const glm::ivec2& size) const;
 
     gl::Texture samples_, windows_, aligned_;
-    ReliefMapShape shape_;
+    ReliefMapShape shape_;  // size: one tile's, W x H (shape() has the whole's)
+    std::vector<glm::ivec2> levelSizes_;
+    int scaleExponent_ = 0;
     bool wrapU_ = false;
     Interpolation interpolation_ = Interpolation::Bilinear;
 };
+
+// Level `level` (width x height) of a single-channel float texture (R32F, R16F), read back
+// through a framebuffer as floats, row 0 first. The GL state it changes is restored.
+std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int width, int height);
+// The texels inside `rect` of that level, the same way.
+std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, const TexelRect& rect);
 
 }  // namespace microrelief

@@ -29,6 +29,27 @@ private:
     GLint viewport_[4] = {};
 };
 
+// What an offscreen pass of the library's own (the GPU pyramid builder, the height
+// brush: gl/PyramidBuilder.h, render/HeightEditor.h) needs beyond StateGuard, saved and set for
+// a scope and restored after it: the draw and read framebuffers, blending, the scissor
+// test, the colour write mask, rasteriser discard and the pack alignment; culling and the
+// depth test off (StateGuard restores those). Its draws then write every texel they cover
+// as the fragment shader computes it, whatever state the caller left.
+class PassGuard {
+public:
+    explicit PassGuard(const GL& gl);
+    ~PassGuard();
+    PassGuard(const PassGuard&) = delete;
+    PassGuard& operator=(const PassGuard&) = delete;
+
+private:
+    StateGuard state_;
+    const GL& gl_;
+    GLint drawFramebuffer_ = 0, readFramebuffer_ = 0, packAlignment_ = 4;
+    GLboolean blend_ = GL_FALSE, scissor_ = GL_FALSE, discard_ = GL_FALSE;
+    GLboolean colorMask_[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+};
+
 // sRGB writes (GL_FRAMEBUFFER_SRGB) on for a scope, as they were after it: the relief's
 // colour is linear, and a target with an sRGB colour format encodes it only while they
 // are on (clears included).

@@ -82,8 +82,8 @@ struct HeightMap {
 // The largest map side loadHeightMap (heightmap/HeightMapFile.h) accepts, checked from the file's
 // header before any sample is read or allocated: 16384, the GL_MAX_TEXTURE_SIZE of llvmpipe and of
 // most desktop GPUs (and the least that OpenGL 4.1 and later guarantee), so that a map's samples
-// take at most 1 GiB (its pyramid about 2.7 GiB more) before a GL context exists. The renderer
-// checks the GPU's own, possibly lower, limit when it uploads.
+// take at most 1 GiB (its pyramid 0.67 GiB more on the GPU) before a GL context exists. The
+// renderer checks the GPU's own, possibly lower, limit when it uploads.
 inline constexpr int kMaxHeightMapSide = 16384;
 // More channels than any height map needs; OpenImageIO reads whole pixels, so this
 // bounds what it holds per scanline.

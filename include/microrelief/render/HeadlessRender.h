@@ -3,11 +3,13 @@
 // pictures in one context (microrelief-render's camera paths) along the same path.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "microrelief/context/GlContext.h"
 #include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/AnimatedHeights.h"
 #include "microrelief/render/Camera.h"
 #include "microrelief/render/ModelTransform.h"
 #include "microrelief/render/OffscreenTarget.h"
@@ -36,11 +38,18 @@ struct RenderJob {
     MethodSettings method;
     glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB
     int tileSide = 0;  // 0: kDefaultTileSide (or the GL's limit, if lower); tests set less
+    // --animate NAME, --time T: the heights of an animated field (render/AnimatedHeights.h)
+    // at T seconds, evaluated on the GPU over the map's grid; empty: the map's own.
+    std::string animation;
+    double time = 0.0;
 };
 
 struct HeadlessResult {
     RenderedFrame frame;
     CameraFrame camera;  // the rays the picture was traced with
+    // With an animation, the heights it traced (read back from the GPU): the map to hold
+    // the picture to.
+    std::optional<HeightMap> animatedMap;
 };
 
 // Pictures of one map at a time, keeping what they share from one to the next: the
@@ -52,7 +61,9 @@ public:
     // Compiles `method`'s program first. Throws Error.
     explicit HeadlessRenderer(GlContext& context, const MethodSettings& method = {});
 
-    // Uploads the map and builds its pyramid for `base` (wrapped in u on a curved base);
+    // Uploads the map and builds its pyramid for `base` (wrapped in u on a curved base), on
+    // the GPU (gl/PyramidBuilder.h; on the CPU where the GL cannot render into R16F, and
+    // for a map tiled `tiles` times, whose bounds the GPU builder does not make);
     // `source` names it in error messages. A job may then take another size of that base,
     // or another curved base; between the plane and a curved base, or for another
     // interpolation, set the map again.
@@ -72,6 +83,7 @@ private:
     int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
     double maxHeight_ = 0.0;
     std::optional<float> heightScale_;  // the scale the renderer has
+    std::unique_ptr<AnimatedHeights> animated_;
 };
 // Throws Error(BadInput) for a picture size beyond the limits above.
 void checkPictureSize(int width, int height);

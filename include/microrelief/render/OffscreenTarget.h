@@ -33,6 +33,10 @@ public:
     // window position (x, y) of that picture.
     void readInto(RenderedFrame& frame, int x, int y, int width, int height) const;
 
+    // The position AOV of one pixel (column, row; row 0 the top): x, y, z of the hit and 1,
+    // or 0 where the ray missed. A one-pixel read, for picking what the picture shows.
+    glm::vec4 positionAt(int column, int row) const;
+
     int width() const { return width_; }
     int height() const { return height_; }
 

@@ -17,6 +17,7 @@
 #include "microrelief/base/ReliefExtent.h"
 #include "microrelief/gl/AlbedoTexture.h"
 #include "microrelief/gl/Objects.h"
+#include "microrelief/gl/PyramidBuilder.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/heightmap/HeightMap.h"
@@ -47,10 +48,28 @@ public:
     // base (--tile), and uploads it with the samples. Throws Error(BadInput) when the map
     // exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that base or tiles;
     // `source` names the map in that message.
+    // `build`: the pyramid made on the CPU and uploaded, or on the GPU from the samples
+    // (the same texels; see gl/PyramidBuilder.h). A tiled map's is made on the CPU.
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
-                      glm::ivec2 tiles = {1, 1});
+                      PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
     glm::ivec2 tiles() const { return textures_ ? textures_->tiles() : glm::ivec2(1, 1); }
+
+    // A map that changes on the GPU (sculpting, animation). The map's textures, for a pass
+    // of the caller's that draws into the samples (null before setHeightMap).
+    ReliefTextures* textures() { return textures_ ? &*textures_ : nullptr; }
+    const ReliefTextures* textures() const { return textures_ ? &*textures_ : nullptr; }
+    // After the caller changed the samples inside `changed` (map texels): the pyramids
+    // brought up to date on the GPU over those texels only, and the box fitted to the
+    // map's new maximum. heightsReplaced: every sample changed, the pyramids built anew.
+    // A tiled map's pyramids are built again on the CPU from the samples read back (the
+    // GPU builder bounds one map, not tiles): fine for the small tiles tiling is for.
+    void heightsChanged(const std::vector<TexelRect>& changed);
+    void heightsReplaced();
+    // The surface's maximum, map units: the pyramid's top texel.
+    float maxHeight() const { return textures_ ? textures_->shape().maxHeight : 0.0f; }
+    // The GPU pyramid builder this renderer uses, made on first use.
+    PyramidBuilder& pyramidBuilder();
     void setHeightScale(float scale);
     // Another base of the same addressing as the map was uploaded with (the curved bases
     // among themselves, a new size of the same one); a change between the plane and a
@@ -118,7 +137,8 @@ private:
     std::map<ReliefShaderConfig, ReliefShader> programs_;
     std::optional<ReliefTextures> textures_;  // the map's; none yet
     std::optional<AlbedoTexture> albedo_;
-    gl::Buffer parameterBuffer_;  // MicroreliefParameters
+    std::optional<PyramidBuilder> builder_;   // made for the first GPU build
+    gl::Buffer parameterBuffer_;              // MicroreliefParameters
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;
     gl::Buffer boxIndices_;

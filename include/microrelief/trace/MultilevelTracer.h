@@ -65,6 +65,11 @@ public:
     std::optional<ReliefHit> intersect(const Ray& ray, const RayQuery& query,
                                        TraversalStats* stats = nullptr) const;
 
+    // After samples of the map changed inside `changed` (a dynamic map: sculpting): the new
+    // samples there copied from `map` (the same size), the pyramid brought up to date over
+    // them (MaxPyramid::update), the base's shell fitted to the new maximum.
+    void mapChanged(const HeightMap& map, const TexelRect& changed);
+
     const HeightMap& map() const { return map_; }
     const MaxPyramid& pyramid() const { return pyramid_; }
     const BaseSurface& base() const { return *base_; }

@@ -88,6 +88,7 @@ float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_R
     }
     const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
     float margin = 3.4e38;  // the smallest clearance angle found so far (tangent)
+    float descent = 0.0;    // the last leaf's slope, where it goes down (tangent)
     int depth = 0;
     uint index = 0u;
     float parentBound = MR_NO_BOUND;
@@ -116,20 +117,34 @@ float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_R
         }
         if (matters) {
             // A leaf: measured at five points, and solved exactly for a hit.
+            float heightA = 0.0, heightB = 0.0;
             for (int k = 0; k <= 4; ++k) {
                 float t = mix(ta, tb, 0.25 * float(k));
                 vec3 m = mr_baseMapPoint(relief, start + t * toLight);
                 float gap = m.z - mr_reliefHeight(relief, heights, m.xy, fetches);
                 margin = min(margin, gap * heightToObject / max((tStart + t) * objectPerT, 1e-30));
+                if (k == 0) heightA = m.z;
+                if (k == 4) heightB = m.z;
             }
-            mr_ReliefPatch corners;
+            // The ray's own slope over the leaf (negative going down): where it leaves
+            // through the floor, the light's centre is that far below the floor's horizon.
+            descent = min((heightB - heightA) * heightToObject / max((tb - ta) * objectPerT, 1e-30), 0.0);
+            mr_ReliefPatch cellPatch;
             ivec2 cell;
-            if (mr_baseIntersectLeaf(relief, heights, start, toLight, ta, tb, fetches, corners, cell) >= 0.0) {
-                margin = min(margin, -1e-3 * tanRadius);  // blocked: below the surface somewhere
+            float tHit = mr_baseIntersectLeaf(relief, heights, start, toLight, ta, tb, fetches, cellPatch, cell);
+            if (tHit >= 0.0) {
+                // Blocked, though the five points may all lie above a surface thinner
+                // than their spacing: the ray passes at least as far below the occluder as
+                // the hit lies below the top of the patch it hit (never above it), so the
+                // light's centre is hidden by that angle, and as the light shrinks every
+                // blocked ray sees none of it.
+                float below = mr_baseMapPoint(relief, start + tHit * toLight).z -
+                              mr_patchTop(cellPatch, vec2(0.0), vec2(1.0));
+                margin = min(margin, min(below, 0.0) * heightToObject / max((tStart + tHit) * objectPerT, 1e-30));
             }
         }
         if (!mr_nextSegment(depth, index, parentBound, false)) {
-            if (floorExit) margin = min(margin, -1e-3 * tanRadius);  // down through the floor
+            if (floorExit) margin = min(margin, descent);  // down through the floor
             return mr_diskAbove(margin / tanRadius);
         }
     }

@@ -92,7 +92,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     footprint_ = std::make_unique<BrushFootprint>(gl, shaders);
     if (!options.scene.job.animation.empty()) {
         animated_ = std::make_unique<AnimatedHeights>(gl, shaders, options.scene.job.animation);
-        animate(0.0);
+        evaluateAnimation();  // at --time: the first frame drawn shows it
     }
     state_.sculpt = options.sculpt && sculptable();
     state_.brush = options.brush;
@@ -515,7 +515,11 @@ void ViewerApp::animate(double seconds) {
     if (state_.playing && animatedFrames_ > 0)
         job.time += options_.frames > 0 ? 1.0 / 30.0 : std::min(seconds, 0.25);
     ++animatedFrames_;
-    animated_->evaluate(*renderer_, job.time);
+    evaluateAnimation();
+}
+
+void ViewerApp::evaluateAnimation() {
+    animated_->evaluate(*renderer_, state_.scene.job.time);
     mapMaxHeight_ = renderer_->maxHeight();
     ++mapGeneration_;
 }
@@ -640,7 +644,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         (std::filesystem::path("out") / (path.stem().string() + "-edited.exr")).string();
     if (animated_) {
         animated_->forgetMap();
-        animate(0.0);
+        evaluateAnimation();
     }
     loadedWith_ = state_.scene.load;
     state_.scene.heightFile = file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;

@@ -83,9 +83,7 @@ private:
     void sculpt();
     // The brush paints an untiled map that is not animated (a tiled map's picks land on
     // the whole, the brush on one tile; an animated one's heights are the field's).
-    bool sculptable() const {
-        return !animated_ && state_.scene.job.tiles == glm::ivec2(1, 1);
-    }
+    bool sculptable() const { return !animated_ && state_.scene.job.tiles == glm::ivec2(1, 1); }
     void dabAt(const glm::dvec2& mapPoint, bool invert);
     void endStroke();
     void mapEdited(const std::vector<TexelRect>& changed);
@@ -94,8 +92,11 @@ private:
     // --stroke and --undo, before the first frame.
     void runScript();
     void drawFootprint();
-    // --animate: the field at the current time, every frame.
+    // --animate: the field at the current time, every frame (the first frame drawn at
+    // --time, later ones on by the time that passed).
     void animate(double seconds);
+    // The field evaluated at the scene's time, the time left as it is.
+    void evaluateAnimation();
     // What the picture shows under pixel (column, row): its position AOV, for an animated
     // relief (which the CPU twin does not follow).
     std::optional<PickResult> pickFromPicture(int column, int row) const;

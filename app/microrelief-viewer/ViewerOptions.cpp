@@ -26,7 +26,7 @@ void addSculptFlags(CLI::App& app, ViewerOptions& o, SculptFlags& f) {
         ->capture_default_str();
     app.add_option("--brush-strength", f.strength,
                    "The brush's strength: raise, lower: map units a dab at its centre; smooth, "
-                   "flatten: the fraction of the way a dab moves (at most 1)")
+                   "flatten: the fraction of the way a dab moves (above 1 it moves all the way)")
         ->capture_default_str();
     app.add_option("--stroke", f.strokes,
                    "For scripts: a brush stroke MODE,U0,V0,U1,V1 (raise, lower, smooth, flatten; "
@@ -70,6 +70,15 @@ void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
         o.strokes.push_back(stroke);
     }
     if (o.undo < 0) throwBadInput("--undo must be 0 or more");
+    // As the window's B key: the brush paints one map, neither repeated nor overwritten by
+    // an animated field every frame.
+    const bool sculpting = o.sculpt || !o.strokes.empty() || o.undo > 0;
+    if (sculpting && o.scene.job.tiles != glm::ivec2(1, 1))
+        throwBadInput(
+            "--sculpt, --stroke and --undo: the viewer sculpts an untiled map only (--tile 1,1)");
+    if (sculpting && !o.scene.job.animation.empty())
+        throwBadInput(
+            "--sculpt, --stroke and --undo: an animated relief cannot be sculpted (--animate)");
     if (!f.saveMap.empty()) {
         o.saveMap = f.saveMap;
         checkMapExtension(*o.saveMap);

@@ -242,7 +242,16 @@ void statsSection(ViewerState& s) {
 void sculptSection(ViewerState& s, PanelActions& actions) {
     if (!s.scene.job.animation.empty()) return;  // the field overwrites the samples
     if (!ImGui::CollapsingHeader("Sculpt", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    // The brush paints one map; a tiled map's pyramid is rebuilt whole after each edit.
+    const bool tiled = s.scene.job.tiles != glm::ivec2(1, 1);
+    if (tiled) s.sculpt = false;
+    ImGui::BeginDisabled(tiled);
     ImGui::Checkbox("Sculpt with the left button (B)", &s.sculpt);
+    ImGui::EndDisabled();
+    if (tiled) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(an untiled map only: Tiles 1, 1)");
+    }
     int mode = static_cast<int>(s.brush.mode);
     for (int m = 0; m < 4; ++m) {
         if (m > 0) ImGui::SameLine();

@@ -68,6 +68,11 @@ TEST_F(ViewerCli, BadSculptingFlagsExitTwo) {
     expectFailure(run("--undo -1"), 2, "--undo");
     expectFailure(run("--save-map " + (dir / "m.tif").string()), 2, "m.tif");
     expectFailure(run("--animate tides"), 2, "--animate 'tides'");
+    // The brush paints one map: not a tiled one, nor an animated field.
+    expectFailure(run("--tile 2,2 --stroke raise,0.2,0.5,0.8,0.5"), 2, "untiled map only");
+    expectFailure(run("--tile 2,1 --sculpt"), 2, "untiled map only");
+    expectFailure(run("--animate waves --stroke raise,0.2,0.5,0.8,0.5"), 2, "animated relief");
+    expectFailure(run("--animate flood --undo 1"), 2, "animated relief");
 }
 
 TEST_F(ViewerCli, BadMapsAndCamerasExitTwoBeforeAnyWindow) {

@@ -222,9 +222,9 @@ TEST_F(ViewerUnderX, SculptedReliefRendersAsItsSavedMap) {
         "--stroke flatten,0.5,0.1,0.5,0.9 --save-map " +
         saved.string();
     // The viewer keeps the bundled map's colours while it sculpts; the render is given them too.
-    const Image sculpted =
-        compareWithRender("sculpted", "--size 200x150", strokes,
-                          "--height " + saved.string() + " --albedo " + defaultAlbedoPath().string());
+    const Image sculpted = compareWithRender(
+        "sculpted", "--size 200x150", strokes,
+        "--height " + saved.string() + " --albedo " + defaultAlbedoPath().string());
     // And the edits show: the unedited map is another picture.
     const Image plain = compareWithRender("unsculpted", "--size 200x150");
     ASSERT_EQ(sculpted.width, plain.width);
@@ -278,6 +278,15 @@ TEST_F(ViewerUnderX, AFailedSaveLeavesTheOldFileUntouched) {
 TEST_F(ViewerUnderX, AnimatedReliefCarriesOverAtItsTime) {
     compareWithRender("waves", "--animate waves --time 1.25 --size 160x120");
     compareWithRender("flood", "--animate flood --time 3 --size 160x120 --eye 0.5,0.4,0.6");
+    // The first frame is drawn at --time itself; the third two steps on.
+    for (const auto& [frames, time] :
+         {std::pair{"1", " --time=1.25 "}, {"3", " --time=1.3166666666666669 "}}) {
+        const RunResult r =
+            run(std::string(MICRORELIEF_VIEWER_EXE) + " --animate waves --time 1.25" +
+                " --size 64x48 --print-command --frames " + frames);
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_NE(lastLine(r.out).find(time), std::string::npos) << frames << ": " << r.out;
+    }
 }
 
 }  // namespace

@@ -11,24 +11,30 @@
 
 uniform sampler2D base;  // the map's own samples (flood)
 uniform ivec2 mapSize;   // W, H
-uniform float time;      // seconds
-uniform int field;       // 0 waves, 1 ripples, 2 flood
+// The phases the fields' motions have reached, each reduced modulo 2 pi on the host in
+// double (AnimatedHeights::evaluate): a float time would put a 5 rad/s phase off by a
+// thousandth of a radian past 1000 s, and a GPU's sin is only accurate over a few periods.
+uniform vec4 wavePhase;       // waves' four motions
+uniform vec4 floodWavePhase;  // the flood's waves, running at twice the speed
+uniform float ripplePhase;    // ripples' rings
+uniform float floodPhase;     // the flood's water level
+uniform int field;            // 0 waves, 1 ripples, 2 flood
 
 layout(location = 0) out vec4 height;
 
 const float kTau = 6.28318530718;
 
-float waves(vec2 uv, float t) {
+float waves(vec2 uv, vec4 motion) {
     const vec4 kx = vec4(3.0, -2.0, 5.0, 1.0), ky = vec4(1.0, 4.0, -3.0, 7.0);
-    const vec4 speed = vec4(1.1, 1.7, 2.3, 0.9), amplitude = vec4(1.0, 0.6, 0.35, 0.25);
-    vec4 phase = kTau * (kx * uv.x + ky * uv.y) - speed * t + vec4(0.0, 1.3, 2.1, 4.0);
+    const vec4 amplitude = vec4(1.0, 0.6, 0.35, 0.25);
+    vec4 phase = kTau * (kx * uv.x + ky * uv.y) - motion + vec4(0.0, 1.3, 2.1, 4.0);
     return 0.5 + 0.5 * dot(amplitude, sin(phase)) / dot(amplitude, vec4(1.0));
 }
 
-float ripples(vec2 uv, float t) {
+float ripples(vec2 uv, float motion) {
     vec2 aspect = vec2(mapSize) / float(max(mapSize.x, mapSize.y));
     float r = length((uv - 0.5) * aspect);
-    return 0.5 + 0.4 * sin(45.0 * r - 5.0 * t) * exp(-4.0 * r);
+    return 0.5 + 0.4 * sin(45.0 * r - motion) * exp(-4.0 * r);
 }
 
 void main() {
@@ -36,11 +42,11 @@ void main() {
     vec2 uv = (vec2(texel) + 0.5) / vec2(mapSize);
     float h;
     if (field == 0) {
-        h = waves(uv, time);
+        h = waves(uv, wavePhase);
     } else if (field == 1) {
-        h = ripples(uv, time);
+        h = ripples(uv, ripplePhase);
     } else {
-        float water = 0.45 + 0.3 * sin(0.6 * time) + 0.03 * (waves(uv * 2.0, 2.0 * time) - 0.5);
+        float water = 0.45 + 0.3 * sin(floodPhase) + 0.03 * (waves(uv * 2.0, floodWavePhase) - 0.5);
         h = max(texelFetch(base, texel, 0).r, water);
     }
     height = vec4(clamp(h, 0.0, 1e6), 0.0, 0.0, 0.0);

@@ -10,6 +10,21 @@
 
 namespace microrelief {
 
+namespace {
+
+// The fields' angular speeds, radians a second (animate.frag): the four waves, the
+// ripples' rings, the flood's water level; the flood's waves run at twice the waves'.
+constexpr double kWaveSpeeds[4] = {1.1, 1.7, 2.3, 0.9};
+constexpr double kRippleSpeed = 5.0;
+constexpr double kFloodLevelSpeed = 0.6;
+
+// speed * seconds modulo 2 pi, in double: exact to 1e-6 rad within kMaxAnimationSeconds.
+float phase(double speed, double seconds) {
+    return static_cast<float>(std::fmod(speed * seconds, 6.283185307179586));
+}
+
+}  // namespace
+
 const std::vector<std::string>& AnimatedHeights::names() {
     static const std::vector<std::string> list = {"waves", "ripples", "flood"};
     return list;
@@ -37,7 +52,10 @@ AnimatedHeights::AnimatedHeights(const GL& gl, const std::filesystem::path& shad
         assembleShader(shaderDir / "edit" / "animate.frag", version, {}, {shaderDir}));
     program_ = gl::linkProgram(gl, vertex, fragment, "animated heights (" + name + ")");
     mapSize_ = gl::uniform(gl, program_, "mapSize");
-    time_ = gl::uniform(gl, program_, "time");
+    wavePhase_ = gl::uniform(gl, program_, "wavePhase");
+    floodWavePhase_ = gl::uniform(gl, program_, "floodWavePhase");
+    ripplePhase_ = gl::uniform(gl, program_, "ripplePhase");
+    floodPhase_ = gl::uniform(gl, program_, "floodPhase");
     fieldLocation_ = gl::uniform(gl, program_, "field");
     const gl::StateGuard saved(gl);
     gl.UseProgram(program_.id());
@@ -71,7 +89,15 @@ void AnimatedHeights::evaluate(ReliefRenderer& renderer, double seconds) {
         gl_.BindVertexArray(vertexArray_.id());
         gl_.UseProgram(program_.id());
         gl_.Uniform2i(mapSize_, size.x, size.y);
-        gl_.Uniform1f(time_, static_cast<float>(seconds));
+        glm::vec4 waves, floodWaves;
+        for (int k = 0; k < 4; ++k) {
+            waves[k] = phase(kWaveSpeeds[k], seconds);
+            floodWaves[k] = phase(2.0 * kWaveSpeeds[k], seconds);
+        }
+        gl_.Uniform4f(wavePhase_, waves.x, waves.y, waves.z, waves.w);
+        gl_.Uniform4f(floodWavePhase_, floodWaves.x, floodWaves.y, floodWaves.z, floodWaves.w);
+        gl_.Uniform1f(ripplePhase_, phase(kRippleSpeed, seconds));
+        gl_.Uniform1f(floodPhase_, phase(kFloodLevelSpeed, seconds));
         gl_.Uniform1i(fieldLocation_, field_);
         gl_.Viewport(0, 0, size.x, size.y);
         gl_.DrawArrays(GL_TRIANGLES, 0, 3);

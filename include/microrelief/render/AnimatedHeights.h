@@ -20,6 +20,10 @@ namespace microrelief {
 
 class ReliefRenderer;
 
+// The largest |time| an animated relief is drawn at, in seconds (about 32 years): its
+// phases are reduced on the host in double, whose time is then exact to 1.2e-7 s.
+constexpr double kMaxAnimationSeconds = 1e9;
+
 class AnimatedHeights {
 public:
     // The fields' names, in the order above.
@@ -47,7 +51,8 @@ private:
     std::string name_;
     int field_ = 0;
     gl::Program program_;
-    GLint mapSize_ = -1, time_ = -1, fieldLocation_ = -1;
+    GLint mapSize_ = -1, wavePhase_ = -1, floodWavePhase_ = -1, ripplePhase_ = -1, floodPhase_ = -1;
+    GLint fieldLocation_ = -1;
     gl::VertexArray vertexArray_;
     gl::Framebuffer framebuffer_;
     gl::Texture base_;

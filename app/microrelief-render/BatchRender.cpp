@@ -80,19 +80,21 @@ std::vector<FrameFiles> frameFiles(const RenderOptions& o, std::size_t pathLengt
     return files;
 }
 
-// Every map file a selected frame names is there, before anything is drawn (what is in
+// Every map and albedo file a selected frame names is there, before anything is drawn (what is in
 // it is checked when it is loaded).
 void checkMapFiles(const std::vector<PathFrame>& path, const std::vector<int>& frames) {
     std::set<std::filesystem::path> checked;
     for (const int frame : frames) {
-        const auto& file = path[frame].scene.heightFile;
-        if (!file || !checked.insert(*file).second) continue;
-        std::error_code ec;
-        const auto status = std::filesystem::status(*file, ec);
-        if (!std::filesystem::exists(status))
-            throwBadInput(path[frame].origin + ": " + file->string() + ": no such file");
-        if (!std::filesystem::is_regular_file(status))
-            throwBadInput(path[frame].origin + ": " + file->string() + ": not a regular file");
+        for (const auto* file : {&path[frame].scene.heightFile, &path[frame].scene.albedoFile}) {
+            if (!*file || !checked.insert(**file).second) continue;
+            std::error_code ec;
+            const auto status = std::filesystem::status(**file, ec);
+            if (!std::filesystem::exists(status))
+                throwBadInput(path[frame].origin + ": " + (*file)->string() + ": no such file");
+            if (!std::filesystem::is_regular_file(status))
+                throwBadInput(path[frame].origin + ": " + (*file)->string() +
+                              ": not a regular file");
+        }
     }
 }
 

@@ -301,7 +301,9 @@ void SceneFlags::apply() {
     }
     if (time_) {
         if (animate_.empty()) throwBadInput("--time needs --animate NAME");
-        if (!std::isfinite(*time_)) throwBadInput("--time must be a finite number of seconds");
+        if (!(std::abs(*time_) <= kMaxAnimationSeconds))
+            throwBadInput("--time must be a number of seconds within +-1e9, got " +
+                          exactNumber(*time_));
         job_.time = *time_;
     }
     job_.camera.eye = parseVectorFlag("--eye", eye_);
@@ -370,7 +372,11 @@ std::string shellQuote(const std::string& text) {
 std::optional<std::filesystem::path> albedoPath(const SceneOptions& options) {
     if (options.noAlbedo) return std::nullopt;
     if (options.albedoFile) return options.albedoFile;
-    if (!options.heightFile) return defaultAlbedoPath();
+    // The bundled map's colours go with its stones: not with waves or ripples, which
+    // replace its heights (flood keeps them, under water).
+    const std::string& animation = options.job.animation;
+    if (!options.heightFile && animation != "waves" && animation != "ripples")
+        return defaultAlbedoPath();
     return std::nullopt;
 }
 
@@ -423,11 +429,13 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     } else {
         line += " --light=" + exactVector(job.shading.lightDirection);
     }
-    if (job.shading.shadows != ShadowMode::Off) {
+    if (job.shading.shadows != ShadowMode::Off)
         flag("--shadows", shadowModeName(job.shading.shadows));
-        if (job.shading.shadows == ShadowMode::Soft)
-            flag("--light-size", exactText(job.shading.lightSizeDegrees));
-    }
+    // Whenever it is not the default, shadows or not: a camera-file row that turns soft
+    // shadows on keeps the command line's light size.
+    if (job.shading.shadows == ShadowMode::Soft ||
+        job.shading.lightSizeDegrees != ShadingOptions{}.lightSizeDegrees)
+        flag("--light-size", exactText(job.shading.lightSizeDegrees));
     flag("--method", methodName(job.method.method));
     const MethodSettings defaults;
     if (job.method.steps != defaults.steps) flag("--steps", std::to_string(job.method.steps));

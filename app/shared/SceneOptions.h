@@ -89,7 +89,8 @@ std::string exactNumber(double value);
 std::string exactVector(const glm::dvec3& v);
 
 // The albedo file `options` render with: --albedo's, or the bundled map's own with the
-// bundled map and no --albedo; none for --albedo none or another map without one.
+// bundled map and no --albedo (unless --animate waves or ripples replaces its heights);
+// none for --albedo none or another map without one.
 std::optional<std::filesystem::path> albedoPath(const SceneOptions& options);
 
 // The microrelief-render command line (without --out) that renders `options` again, every

@@ -59,6 +59,14 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const Camera& ca
     //    the same bound on |eye.y| T (whatever s is: a thin relief seen from afar is as
     //    exact as a thick one, measured with s down to 1e-7).
     const double entryLimit = std::ldexp(1.0, 18);
+    // Half the map alone at the limit leaves no eye anywhere: say so, not where the eye is.
+    if (0.5 * std::max(map.width, map.height) >= entryLimit) {
+        throwBadInput(source + ": " + std::to_string(map.width) + " x " +
+                      std::to_string(map.height) +
+                      " texels (with --tile, the tiled whole) is 2^19 = 524288 or more a side, "
+                      "beyond which float keeps no ray's entry into the relief's box to 1/32 "
+                      "texel; use fewer tiles or a smaller map");
+    }
     const double eyeTexels = std::max({std::abs(camera.eye.x) * texelsPerUnit + 0.5 * map.width,
                                        std::abs(camera.eye.z) * texelsPerUnit + 0.5 * map.height,
                                        std::abs(camera.eye.y) * texelsPerUnit});

@@ -408,6 +408,13 @@ TEST_F(BatchCli, PathFlagsThatCannotWorkExitTwoAndWriteNothing) {
                                     << (dir / "nope.png").string() << "\n";
     expectFailure(run(small + "--cameras " + (dir / "cams.csv").string() + pattern), 2,
                   "line 2 (frame 0): " + (dir / "nope.png").string() + ": no such file");
+    // An albedo a later row names is checked before the first frame too.
+    std::ofstream(dir / "cams.csv") << "eye_x,eye_y,eye_z,target_x,target_y,target_z,flags\n"
+                                       "0.9,0.6,0.5,0,0,0,\n"
+                                       "0.9,0.6,0.5,0,0,0,--albedo "
+                                    << (dir / "nope.png").string() << "\n";
+    expectFailure(run(small + "--cameras " + (dir / "cams.csv").string() + pattern), 2,
+                  "line 3 (frame 1): " + (dir / "nope.png").string() + ": no such file");
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 

@@ -339,13 +339,17 @@ TEST(CameraFile, RowFlagsGoOnTopOfTheCommandLinesSceneExactly) {
     base.heightFile = "maps/a.png";
     base.load.normalize = true;
     base.job.method.setSteps(100);
+    base.job.shading.lightSizeDegrees = 5.0f;  // used only once a row turns soft shadows on
     const std::string text = kColumns +
                              ",flags\n"
                              "1,1,1,0,0,0,\"--light -1,1,0 --normalize --height-scale 0.2\"\n"
                              "1,1,1,0,0,0,--height maps/b.png --channel 1 --size 32x16\n"
-                             "1,1,1,0,0,0,--method maxmip --view iterations\n";
+                             "1,1,1,0,0,0,--method maxmip --view iterations\n"
+                             "1,1,1,0,0,0,--shadows soft\n";
     const std::vector<PathFrame> path = parseCameraFile(text, "cams.csv", base);
-    ASSERT_EQ(path.size(), 3u);
+    ASSERT_EQ(path.size(), 4u);
+    EXPECT_EQ(path[3].scene.job.shading.shadows, ShadowMode::Soft);
+    EXPECT_EQ(path[3].scene.job.shading.lightSizeDegrees, 5.0f);
     const RenderJob& a = path[0].scene.job;
     EXPECT_EQ(path[0].flags, "--light -1,1,0 --normalize --height-scale 0.2");
     EXPECT_EQ(a.shading.lightDirection, glm::vec3(-1, 1, 0));

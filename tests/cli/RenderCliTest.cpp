@@ -147,6 +147,8 @@ TEST_F(RenderCli, BadMaterialAndShadowFlagsExitTwoAndWriteNothing) {
     expectFailure(run(small + "--tile 2.5,2" + to), 2, "--tile");
     expectFailure(run(small + "--tile 2" + to), 2, "--tile");
     expectFailure(run(small + "--tile 2,2 --method maxmip" + to), 2, "--tile");
+    // A whole too wide for float's entry point anywhere names the tiles, not the eye.
+    expectFailure(run(small + "--tile 2048,2048 --eye 0.01,0.02,0.01" + to), 2, "with --tile");
     expectFailure(run(small + "--model 1,0,0,0,0,1,0,0,0,0,1" + to), 2, "--model");
     expectFailure(run(small + "--model 1,0,0,0,0,0,0,0,0,0,1,0" + to), 2, "--model");
     expectFailure(run(small + "--albedo " + (dir / "missing.png").string() + to), 2, "missing.png");
@@ -251,6 +253,7 @@ TEST_F(RenderCli, AnimatedReliefsRenderExactlyAtAnyTime) {
     expectFailure(run(small + "--time 2" + never), 2, "--time needs --animate");
     expectFailure(run(small + "--animate waves --time nan" + never), 2, "--time");
     expectFailure(run(small + "--animate waves --time inf" + never), 2, "--time");
+    expectFailure(run(small + "--animate waves --time=-2e9" + never), 2, "within +-1e9");
     EXPECT_FALSE(std::filesystem::exists(dir / "never.png"));
 }
 

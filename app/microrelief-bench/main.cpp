@@ -125,11 +125,11 @@ int main(int argc, char** argv) {
                  "(minutes on a CPU)");
     app.add_flag("--materials", materials,
                  "Only what materials cost: shadows (hard, soft) against none, and the map tiled "
-                 "1x1, 16x16 and 256x256 (materials.csv, materials.md)");
+                 "1x1, 2x2, 16x16 and 256x256 (materials.csv, materials.md)");
     app.add_option("--size", size,
                    "Picture size WIDTHxHEIGHT (default 512x512; 256x256 with --quick)");
     app.add_option("--frames", options.frames,
-                   "Timed frames per measurement, after two warm-up frames")
+                   "Timed frames per measurement, after two warm-up frames (at least 10)")
         ->capture_default_str();
     app.add_option("--methods", methodList, "Comma-separated methods")->capture_default_str();
     app.add_option("--bases", baseList,
@@ -193,9 +193,14 @@ int main(int argc, char** argv) {
             rebuildOptions.frames = options.frames;
             rebuildOptions.mapSizes =
                 parseList(rebuildSizes, "--size", "--rebuild-sizes", [](const std::string& text) {
-                    int w = 0, h = 0;
-                    parseSizeFlag(text + "x" + text, w, h);
-                    return w;
+                    // A side in texels: digits only, 1 to 65536 (the maps are square).
+                    const bool digits = !text.empty() && text.size() <= 5 &&
+                                        text.find_first_not_of("0123456789") == std::string::npos;
+                    const int side = digits ? std::stoi(text) : 0;
+                    if (side < 1 || side > 65536)
+                        throwBadInput("--rebuild-sizes: '" + text +
+                                      "' is not a map side (a whole number of texels, 1 to 65536)");
+                    return side;
                 });
             if (rebuildOptions.mapSizes.empty())
                 throwBadInput("--rebuild-sizes names no size (a comma-separated list: 1024,...)");

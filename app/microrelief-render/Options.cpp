@@ -54,7 +54,8 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
                    "pattern: {frame}, {frame:04d} (default out/microrelief-{frame:04d}.png)")
         ->capture_default_str();
     app.add_option("--aov", aov,
-                   "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss");
+                   "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss; with "
+                   "--shadows a fifth channel, shadow: 1 lit, 0 shadowed or a miss");
     scene.addShading(app);
     app.add_option("--backend", backend, "GL backend: auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();

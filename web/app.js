@@ -152,6 +152,7 @@ function syncPanel() {
     $('light-size').value = v.lightSize;
     document.querySelector('[data-soft]').hidden = v.shadows !== 'soft';
     $('fovy').value = v.fovy;
+    $('resolution').value = String(v.resolution);
 }
 
 function sizeCanvas() {
@@ -166,7 +167,9 @@ function sizeCanvas() {
     }
     canvas.style.width = `${css[0]}px`;
     canvas.style.height = `${css[1]}px`;
-    const w = Math.max(1, Math.round(css[0] * dpr)), h = Math.max(1, Math.round(css[1] * dpr));
+    // One ray a device pixel, or a 1/resolution of them (the canvas scales the picture up).
+    const w = Math.max(1, Math.round((css[0] * dpr) / v.resolution));
+    const h = Math.max(1, Math.round((css[1] * dpr) / v.resolution));
     if (canvas.width !== w || canvas.height !== h) {
         canvas.width = w;
         canvas.height = h;
@@ -200,6 +203,7 @@ function edit(change) {
     }
     syncPanel();
     syncUrl();
+    sizeCanvas();
     requestRender();
 }
 
@@ -220,7 +224,6 @@ function wirePanel() {
         v.base = $('base').value;
         v.radius = v.length = v.radii = null;
         if (!scene.methodRunsOnBase(v.method, scene.viewBase(v))) v.method = 'multilevel';
-        if (v.base !== 'plane' && v.target.every((c, k) => c === scene.defaultView().target[k])) v.target = [0, 0, 0];
     });
     on('radius', 'change', (v) => (v.radius = number('radius')));
     on('length', 'change', (v) => (v.length = number('length')));
@@ -242,6 +245,7 @@ function wirePanel() {
     on('shadows', 'change', (v) => (v.shadows = $('shadows').value));
     on('light-size', 'change', (v) => (v.lightSize = Math.fround(number('light-size'))));
     on('fovy', 'change', (v) => (v.fovy = number('fovy')));
+    on('resolution', 'change', (v) => (v.resolution = Number($('resolution').value)));
     $('reset').addEventListener('click', () => edit((v) => Object.assign(v, {
         eye: app.initialView.eye, target: app.initialView.target, up: app.initialView.up, fovy: app.initialView.fovy,
     })));

@@ -237,6 +237,7 @@ export function defaultView() {
         lightSize: 1,
         background: toFloat([0.11, 0.12, 0.14]),
         albedo: true,  // the bundled map's colours with the bundled map
+        resolution: 1,  // 1, 2 or 4: the picture has a 1/resolution of the canvas's pixels
         clean: false,
     };
 }
@@ -286,6 +287,7 @@ export function viewFromQuery(search) {
     get('light-size', (t) => (v.lightSize = f32(numbers('light-size', t, 1)[0])));
     get('background', (t) => (v.background = toFloat(numbers('background', t, 3))));
     get('albedo', (t) => (v.albedo = choice('albedo', t, ['none', 'map']) === 'map'));
+    get('resolution', (t) => (v.resolution = Number(choice('resolution', t, ['1', '2', '4']))));
     get('clean', (t) => (v.clean = t === '1'));
     checkView(v);
     return v;
@@ -352,6 +354,7 @@ export function queryFromView(v) {
     if (v.lightSize !== d.lightSize) q.set('light-size', exactFloat(v.lightSize));
     if (v.background.some((c, k) => c !== d.background[k])) q.set('background', vectorText(v.background, exactFloat));
     if (!v.albedo) q.set('albedo', 'none');
+    if (v.resolution !== 1) q.set('resolution', String(v.resolution));
     if (v.clean) q.set('clean', '1');
     return q.toString().replace(/%2C/g, ',');
 }

@@ -338,6 +338,43 @@ TEST_F(WebPage, ViewsSetInTheUrlMatchTheRenderer) {
         << page.at(bad, "error");
 }
 
+// The orbit camera: a drag turns the view, the wheel zooms, a Shift drag pans (the browser's
+// own mouse events). The view lands in the URL and in the command line: the URL opened
+// again shows the same picture to the bit, and the command draws it as the thresholds
+// above allow.
+TEST_F(WebPage, OrbitZoomAndPanWriteTheViewToTheUrl) {
+    const int width = 200, height = 150;
+    const PageRun moved = runPage(
+        "[" + open("", width, height) +
+        ", {\"wait\": \"ready\"}, {\"drag\": [100, 75, 160, 60]}, {\"wheel\": [100, 75, -200]},"
+        " {\"drag\": [100, 75, 80, 90], \"shift\": true}, {\"wait\": \"frames\", \"above\": 1},"
+        " {\"screenshot\": " +
+        jsonString((dir / "moved.png").string()) +
+        "}, {\"eval\": \"location.search.slice(1)\"},"
+        " {\"eval\": \"document.getElementById('command').textContent\"}]");
+    ASSERT_EQ(moved.at(5, "state"), "ready") << moved.at(5, "error");
+    const std::string query = moved.at(7, "value"), command = moved.at(8, "value");
+    EXPECT_EQ(query.find("eye=0.8,0.5,0.85&"), std::string::npos)
+        << "the eye did not move: " << query;
+    EXPECT_EQ(query.find("target=0,-0.03,0&"), std::string::npos)
+        << "the target did not pan: " << query;
+
+    const PageRun again =
+        runPage("[{\"open\": " + jsonString(query) + ", \"size\": [" + std::to_string(width) +
+                ", " + std::to_string(height) + "]}, {\"wait\": \"ready\"}, {\"screenshot\": " +
+                jsonString((dir / "again.png").string()) + "}]");
+    ASSERT_EQ(again.at(1, "state"), "ready") << again.at(1, "error");
+    const Image a = readImage(dir / "moved.png"), b = readImage(dir / "again.png");
+    ASSERT_GT(a.width, 0);
+    ASSERT_EQ(a.width, b.width);
+    EXPECT_EQ(a.pixels, b.pixels) << "the URL does not hold the view: " << query;
+
+    const std::string program = "microrelief-render ";
+    ASSERT_EQ(command.rfind(program, 0), 0u) << command;
+    render(command.substr(program.size()), dir / "moved-render.png");
+    expectSamePicture("orbited", dir / "moved.png", dir / "moved-render.png", command);
+}
+
 // Files that are not height maps, dropped on the page or chosen with its file input (the
 // browser's own drag events carrying the file; the file input set as a user sets it, which
 // fires its change event): each refused with the file's name and the reason, shown on the

@@ -17,6 +17,9 @@ WebSocket), WebGL 2 through SwiftShader, and runs a list of steps from a JSON fi
                                       it (Input.dispatchDragEvent with the file's path)
   {"choose": "FILE"}                  FILE set on the page's file input, as a user
                                       chooses it (DOM.setFileInputFiles: a change event)
+  {"drag": [X0, Y0, X1, Y1]}          a left-button drag in 4 moves (Shift held with
+                                      "shift": true), as the mouse makes it
+  {"wheel": [X, Y, DY]}               a wheel turn of DY pixels at (X, Y)
   {"eval": "EXPRESSION"}              its value (JSON) in the result
 
 Writes {"steps": [...], "log": [...]} to --out: each step's outcome (a wait's state,
@@ -245,6 +248,20 @@ def run_steps(browser, base_url, steps, timeout):
             node = browser.send("DOM.querySelector", {"nodeId": document["root"]["nodeId"], "selector": "#file"})
             browser.send("DOM.setFileInputFiles", {"nodeId": node["nodeId"],
                                                    "files": [str(pathlib.Path(step["choose"]).resolve())]})
+        elif "drag" in step:
+            x0, y0, x1, y1 = step["drag"]
+            modifiers = 8 if step.get("shift") else 0
+            mouse = lambda kind, x, y, buttons: browser.send("Input.dispatchMouseEvent", {
+                "type": kind, "x": x, "y": y, "button": "left", "buttons": buttons,
+                "clickCount": 1, "modifiers": modifiers})
+            mouse("mousePressed", x0, y0, 1)
+            for k in range(1, 5):
+                mouse("mouseMoved", x0 + (x1 - x0) * k / 4, y0 + (y1 - y0) * k / 4, 1)
+            mouse("mouseReleased", x1, y1, 0)
+        elif "wheel" in step:
+            x, y, dy = step["wheel"]
+            browser.send("Input.dispatchMouseEvent", {"type": "mouseWheel", "x": x, "y": y,
+                                                      "deltaX": 0, "deltaY": dy})
         elif "eval" in step:
             outcome["value"] = browser.evaluate(step["eval"])
         else:

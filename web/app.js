@@ -423,6 +423,10 @@ async function start() {
         fail('this browser gives the page no WebGL 2 context');
         return;
     }
+    canvas.addEventListener('webglcontextlost', (event) => {
+        event.preventDefault();
+        fail('the WebGL context was lost (the GPU was reset or is needed elsewhere): reload the page');
+    });
     wirePanel();
     wireCamera();
     sizeCanvas();

@@ -6,6 +6,7 @@
 // Bad files go through the page's own drop and file-input paths (the browser's drag
 // events with the file, the file input set as a user sets it) and must leave the map.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <cstdio>
@@ -172,17 +173,35 @@ std::vector<std::uint8_t> bigEndian16(std::initializer_list<unsigned> values) {
 
 class WebPage : public ::testing::Test {
 protected:
+    // Chromium and python3: where CMake found them, else in /usr/bin or on PATH now (a build
+    // configured before scripts/setup.sh installed them).
     void SetUp() override {
+        chromium_ = findProgram(MICRORELIEF_CHROMIUM, "chromium");
+        python_ = findProgram(MICRORELIEF_PYTHON3, "python3");
         for (const auto& [program, package] :
-             {std::pair{std::string(MICRORELIEF_CHROMIUM), "chromium"},
-              std::pair{std::string(MICRORELIEF_PYTHON3), "python3"}}) {
-            if (!program.empty() && std::filesystem::exists(program)) continue;
+             {std::pair{chromium_, "chromium"}, std::pair{python_, "python3"}}) {
+            if (!program.empty()) continue;
             const char* allow = std::getenv("MICRORELIEF_ALLOW_MISSING_BROWSER");
             const std::string why = std::string("no ") + package + " (Debian package " + package +
-                                    "; bash scripts/setup.sh installs it, then configure again)";
+                                    "; bash scripts/setup.sh installs it)";
             if (allow && std::string(allow) == "1") GTEST_SKIP() << why;
             FAIL() << why << "; MICRORELIEF_ALLOW_MISSING_BROWSER=1 skips these tests instead";
         }
+    }
+
+    static std::string findProgram(const std::string& configured, const std::string& name) {
+        std::vector<std::filesystem::path> candidates = {configured, "/usr/bin/" + name};
+        const char* path = std::getenv("PATH");
+        std::istringstream dirs(path ? path : "");
+        for (std::string d; std::getline(dirs, d, ':');)
+            if (!d.empty()) candidates.push_back(std::filesystem::path(d) / name);
+        for (const std::filesystem::path& candidate : candidates) {
+            std::error_code ec;
+            if (!candidate.empty() && std::filesystem::is_regular_file(candidate, ec) &&
+                access(candidate.c_str(), X_OK) == 0)
+                return candidate.string();
+        }
+        return {};
     }
 
     // Runs `steps` (a JSON array of drive_chromium.py's steps) in one browser.
@@ -191,10 +210,10 @@ protected:
                    json = dir / "result.json";
         std::ofstream(stepsFile) << steps;
         std::filesystem::remove(flat);
-        const std::string command = std::string(MICRORELIEF_PYTHON3) + " " + MICRORELIEF_DRIVER +
-                                    " --chromium " + MICRORELIEF_CHROMIUM + " --root " +
-                                    quote(MICRORELIEF_WEB_ROOT) + " --steps " + stepsFile.string() +
-                                    " --out " + json.string() + " --flat " + flat.string();
+        const std::string command = python_ + " " + MICRORELIEF_DRIVER + " --chromium " +
+                                    chromium_ + " --root " + quote(MICRORELIEF_WEB_ROOT) +
+                                    " --steps " + stepsFile.string() + " --out " + json.string() +
+                                    " --flat " + flat.string();
         const test::RunResult run = test::runCommand(command, dir.path());
         PageRun page;
         page.status = run.status;
@@ -261,6 +280,7 @@ protected:
     }
 
     test::ScratchDir dir;
+    std::string chromium_, python_;
 };
 
 // A view as the page's URL and as microrelief-render's flags.

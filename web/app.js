@@ -48,6 +48,12 @@ function mapError(message) {
     $('map-error').hidden = !message;
 }
 
+// A value the panel refused (the view stays as it was).
+function inputError(message) {
+    $('input-error').textContent = message;
+    $('input-error').hidden = !message;
+}
+
 // ---- the map ----
 
 async function fetchBytes(url) {
@@ -185,11 +191,11 @@ function edit(change) {
         change(next);
         scene.checkView(next);
     } catch (e) {
-        mapError(e.message);
+        inputError(e.message);
         syncPanel();
         return;
     }
-    mapError('');
+    inputError('');
     const before = app.view;
     app.view = next;
     const wraps = scene.wrapsU(scene.viewBase(next));

@@ -31,6 +31,7 @@ when one could not (a wait timed out, Chromium died), saying why on stderr.
 """
 import argparse
 import base64
+import fcntl
 import json
 import os
 import pathlib
@@ -79,25 +80,24 @@ class Browser:
     def __init__(self, chromium, profile):
         to_browser_r, self.to_browser = os.pipe()
         self.from_browser, from_browser_w = os.pipe()
-        # The protocol's descriptors must be 3 and 4 in the browser: moved out of the way
-        # first, then into place in the child.
-        high_r, high_w = os.dup(to_browser_r), os.dup(from_browser_w)
+        # The browser reads the protocol on descriptor 3 and writes it on 4. Its ends are
+        # moved above those numbers first (close-on-exec, as Python's own descriptors
+        # are), then copied into place in the child, where dup2's copies survive exec.
+        child_r = fcntl.fcntl(to_browser_r, fcntl.F_DUPFD_CLOEXEC, 10)
+        child_w = fcntl.fcntl(from_browser_w, fcntl.F_DUPFD_CLOEXEC, 10)
         os.close(to_browser_r)
         os.close(from_browser_w)
-        high_r2, high_w2 = fcntl_dup_above(high_r, 100), fcntl_dup_above(high_w, 101)
-        os.close(high_r)
-        os.close(high_w)
 
         def place():
-            os.dup2(high_r2, 3)
-            os.dup2(high_w2, 4)
+            os.dup2(child_r, 3)
+            os.dup2(child_w, 4)
 
         self.process = subprocess.Popen(
             [chromium, *FLAGS, f"--user-data-dir={profile}", "about:blank"],
             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-            pass_fds=(3, 4, high_r2, high_w2), preexec_fn=place)
-        os.close(high_r2)
-        os.close(high_w2)
+            close_fds=False, preexec_fn=place)
+        os.close(child_r)
+        os.close(child_w)
         self.stderr_lines = []
         threading.Thread(target=self._drain_stderr, daemon=True).start()
         self.messages = queue.Queue()
@@ -175,18 +175,13 @@ class Browser:
     def close(self):
         try:
             self.send("Browser.close", session=False, timeout=5)
-        except StepFailed:
+        except (StepFailed, OSError):  # gone already
             pass
         try:
             self.process.wait(timeout=10)
         except subprocess.TimeoutExpired:
             self.process.kill()
             self.process.wait()
-
-
-def fcntl_dup_above(fd, lowest):
-    import fcntl
-    return fcntl.fcntl(fd, fcntl.F_DUPFD, lowest)
 
 
 def page_log(events):

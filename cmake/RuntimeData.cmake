@@ -13,3 +13,6 @@ endfunction()
 
 microrelief_stage_runtime_data(shaders)
 microrelief_stage_runtime_data(assets)
+# The WebGL 2 page (web/): it reads ../shaders and ../assets beside it, so it runs from the
+# build tree and an install as from the source tree (scripts/web.sh, web/serve.py).
+microrelief_stage_runtime_data(web)

@@ -15,6 +15,7 @@ packages=(
   libopenimageio-dev openimageio-tools zlib1g-dev
   libgtest-dev libcli11-dev python3-glad glslang-tools
   libimgui-dev xvfb xauth
+  chromium python3
 )
 read -r -a extra <<< "${MICRORELIEF_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")

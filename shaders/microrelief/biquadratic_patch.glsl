@@ -232,7 +232,9 @@ float mr_quarticFirstHit(mr_Quartic g, float finalWidth, float margin) {
     for (int guard = 0; guard < (2 << MR_QUARTIC_DEPTH); ++guard) {
         float scale = exp2(-float(depth));
         float sa = float(index) * scale, sb = float(index + 1u) * scale;
-        mr_Quartic c = depth == 0 ? g : mr_quarticPiece(g, sa, sb);
+        // Not `depth == 0 ? g : ...`: GLSL ES (WebGL) allows no ?: on structures.
+        mr_Quartic c = g;
+        if (depth != 0) c = mr_quarticPiece(g, sa, sb);
         float top = max(max(max(c.c.x, c.c.y), max(c.c.z, c.c.w)), c.c4);
         if (top >= -margin) {
             if (c.c.x >= 0.0) return sa;

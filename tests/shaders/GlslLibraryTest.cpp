@@ -257,15 +257,16 @@ TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
     }
 }
 
-// The GPU pyramid builder's passes (shaders/pyramid/, gl/PyramidBuilder.h) and the height
-// edits' (shaders/edit/: the brush, the animated fields): GLSL 3.30 core as the library
-// compiles them, and as they stand as GLSL ES 3.00 (a WebGL 2 page reuses them), there at
-// highp throughout: the bound's integer arithmetic needs 32-bit uints.
+// The GPU pyramid builder's passes (shaders/pyramid/, gl/PyramidBuilder.h), the height
+// edits' (shaders/edit/: the brush, the animated fields) and the web page's own
+// (shaders/web/): GLSL 3.30 core as the library compiles them, and as they stand as GLSL
+// ES 3.00 (the WebGL 2 page, web/, runs the pyramid passes and its own), there at highp
+// throughout: the bound's integer arithmetic needs 32-bit uints.
 TEST(GlslLibrary, PyramidAndEditPassesCompileAsGlsl330AndEs300) {
     test::ScratchDir dir;
     int count = 0;
     std::vector<std::filesystem::path> files;
-    for (const char* folder : {"pyramid", "edit"})
+    for (const char* folder : {"pyramid", "edit", "web"})
         for (const auto& entry : std::filesystem::directory_iterator(kShaders / folder))
             files.push_back(entry.path());
     for (const std::filesystem::path& path : files) {
@@ -286,6 +287,7 @@ TEST(GlslLibrary, PyramidAndEditPassesCompileAsGlsl330AndEs300) {
         }
     }
     // The triangle, the finest windows (at once, and from a band's bounds), the finest
-    // bounds, the coarser windows and aligned levels; the brush, the fields.
-    EXPECT_EQ(count, 8);
+    // bounds, the coarser windows and aligned levels; the brush, the fields; the page's
+    // presentation.
+    EXPECT_EQ(count, 9);
 }

@@ -1,0 +1,585 @@
+// The WebGL 2 page (web/) in a real browser: Debian's Chromium, headless, WebGL 2 through
+// SwiftShader, driven over the DevTools protocol (drive_chromium.py), the page served from
+// a local HTTP server the driver starts (web/serve.py, the server scripts/web.sh runs).
+// Each view is set in the URL; its screenshot is compared with microrelief-render's
+// picture of the same view, and the page's "open in microrelief-render" line is run too.
+// Bad files go through the page's own drop and file-input paths (the browser's drag
+// events with the file, the file input set as a user sets it) and must leave the map.
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "TestSupport.h"
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/image/ImageFile.h"
+#include "microrelief/synth/SyntheticMaps.h"
+
+using namespace microrelief;
+
+namespace {
+
+// The page and microrelief-render trace the same rays (the page computes the camera and
+// every uniform as the C++ does, in doubles, then floats) through the same GLSL, on two
+// software GPUs: SwiftShader (ANGLE's translation of GLSL ES 3.00) here, llvmpipe there.
+// Both are IEEE single precision, but their pow, exp2, atan, sqrt and division may differ
+// in the last bits, and the albedo's mipmaps are made and filtered by each GL its own way.
+// Measured over the views below: at most 1 level in any channel without the albedo, up to
+// 5 with it (trilinear filtering of the bundled colours) and, in one view of a step-based
+// peer on a curved base, 1 pixel of 43 200 off by 21 (a ray between two layers); 8 to 55 %
+// of the pixels 1 level apart, the mean 0.03 to 0.34 levels. So:
+//  * a pixel is "different" when a channel differs by more than 8 levels (3 % of the range:
+//    well above rounding and filtering, well below what another surface, normal or light
+//    gives), and at most 0.2 % of the pixels may be (a ray that grazes an edge may hit on
+//    one GPU and miss on the other);
+//  * the mean difference stays below 0.6 levels (rounding moves at most one level in about
+//    half the channels).
+// A page that shows nothing (the background), an error, a relief of another height scale
+// or map, or another camera fails both by far.
+constexpr int kDifferentLevels = 8;
+constexpr double kMaxDifferentPixels = 0.002;
+constexpr double kMaxMeanDifference = 0.6;
+
+// glvnd's description of Mesa's EGL: microrelief-render on the software device, whatever
+// GPU the machine has, as the page's SwiftShader is software too.
+constexpr const char* kMesaEglVendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
+
+using test::Image;
+using test::readImage;
+
+std::string quote(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string jsonString(const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "\"";
+}
+
+// What the driver reports: "STEP.KEY" -> value, and the page's console errors.
+struct PageRun {
+    int status = -1;
+    std::map<std::string, std::string> values;
+    std::vector<std::string> log;
+    std::string err;
+
+    std::string at(int step, const std::string& key) const {
+        const auto found = values.find(std::to_string(step) + "." + key);
+        return found == values.end() ? std::string() : found->second;
+    }
+};
+
+std::string unescape(const std::string& text) {
+    std::string out;
+    for (std::size_t k = 0; k < text.size(); ++k) {
+        if (text[k] == '\\' && k + 1 < text.size()) {
+            out += text[++k] == 'n' ? '\n' : text[k];
+        } else {
+            out += text[k];
+        }
+    }
+    return out;
+}
+
+// Per pixel: the largest channel difference; the mean over channels.
+struct PictureDifference {
+    double differentPixels = 0.0;  // fraction of pixels with a channel over kDifferentLevels
+    double mean = 0.0;             // levels, over all channels
+    int max = 0;
+};
+
+PictureDifference compare(const Image& a, const Image& b) {
+    PictureDifference d;
+    double sum = 0.0;
+    std::size_t different = 0;
+    for (int row = 0; row < a.height; ++row) {
+        for (int column = 0; column < a.width; ++column) {
+            int largest = 0;
+            for (int c = 0; c < 3; ++c) {
+                const int delta = std::abs(a.at(column, row, c) - b.at(column, row, c));
+                largest = std::max(largest, delta);
+                sum += delta;
+            }
+            different += largest > kDifferentLevels;
+            d.max = std::max(d.max, largest);
+        }
+    }
+    const double pixels = static_cast<double>(a.width) * a.height;
+    d.differentPixels = different / pixels;
+    d.mean = sum / (3.0 * pixels);
+    return d;
+}
+
+// A PNG written byte by byte: `rows` unfiltered (filter type 0), `chunks` (name, body)
+// between IHDR and IDAT. For what OpenImageIO does not write: alpha with gamma, tRNS,
+// palettes and grey of fewer than 8 bits.
+void writePng(const std::filesystem::path& file, int width, int height, int depth, int colorType,
+              const std::vector<std::vector<std::uint8_t>>& rows,
+              const std::vector<std::pair<std::string, std::vector<std::uint8_t>>>& chunks = {}) {
+    std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    const auto u32 = [](std::vector<std::uint8_t>& v, std::uint32_t x) {
+        for (int shift = 24; shift >= 0; shift -= 8)
+            v.push_back(static_cast<std::uint8_t>(x >> shift));
+    };
+    const auto chunk = [&](const std::string& name, const std::vector<std::uint8_t>& body) {
+        u32(out, static_cast<std::uint32_t>(body.size()));
+        std::vector<std::uint8_t> typed(name.begin(), name.end());
+        typed.insert(typed.end(), body.begin(), body.end());
+        out.insert(out.end(), typed.begin(), typed.end());
+        u32(out,
+            static_cast<std::uint32_t>(crc32(0, typed.data(), static_cast<uInt>(typed.size()))));
+    };
+    std::vector<std::uint8_t> header;
+    u32(header, static_cast<std::uint32_t>(width));
+    u32(header, static_cast<std::uint32_t>(height));
+    header.insert(header.end(), {static_cast<std::uint8_t>(depth),
+                                 static_cast<std::uint8_t>(colorType), 0, 0, 0});
+    chunk("IHDR", header);
+    for (const auto& [name, body] : chunks) chunk(name, body);
+    std::vector<std::uint8_t> raw;
+    for (const auto& row : rows) {
+        raw.push_back(0);
+        raw.insert(raw.end(), row.begin(), row.end());
+    }
+    uLongf size = compressBound(static_cast<uLong>(raw.size()));
+    std::vector<std::uint8_t> packed(size);
+    compress(packed.data(), &size, raw.data(), static_cast<uLong>(raw.size()));
+    packed.resize(size);
+    chunk("IDAT", packed);
+    chunk("IEND", {});
+    test::writeBytes(file, out);
+}
+
+std::vector<std::uint8_t> bigEndian16(std::initializer_list<unsigned> values) {
+    std::vector<std::uint8_t> bytes;
+    for (unsigned v : values)
+        bytes.insert(bytes.end(),
+                     {static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)});
+    return bytes;
+}
+
+class WebPage : public ::testing::Test {
+protected:
+    // Chromium and python3: where CMake found them, else in /usr/bin or on PATH now (a build
+    // configured before scripts/setup.sh installed them).
+    void SetUp() override {
+        chromium_ = findProgram(MICRORELIEF_CHROMIUM, "chromium");
+        python_ = findProgram(MICRORELIEF_PYTHON3, "python3");
+        for (const auto& [program, package] :
+             {std::pair{chromium_, "chromium"}, std::pair{python_, "python3"}}) {
+            if (!program.empty()) continue;
+            const char* allow = std::getenv("MICRORELIEF_ALLOW_MISSING_BROWSER");
+            const std::string why = std::string("no ") + package + " (Debian package " + package +
+                                    "; bash scripts/setup.sh installs it)";
+            if (allow && std::string(allow) == "1") GTEST_SKIP() << why;
+            FAIL() << why << "; MICRORELIEF_ALLOW_MISSING_BROWSER=1 skips these tests instead";
+        }
+    }
+
+    static std::string findProgram(const std::string& configured, const std::string& name) {
+        std::vector<std::filesystem::path> candidates = {configured, "/usr/bin/" + name};
+        const char* path = std::getenv("PATH");
+        std::istringstream dirs(path ? path : "");
+        for (std::string d; std::getline(dirs, d, ':');)
+            if (!d.empty()) candidates.push_back(std::filesystem::path(d) / name);
+        for (const std::filesystem::path& candidate : candidates) {
+            std::error_code ec;
+            if (!candidate.empty() && std::filesystem::is_regular_file(candidate, ec) &&
+                access(candidate.c_str(), X_OK) == 0)
+                return candidate.string();
+        }
+        return {};
+    }
+
+    // Runs `steps` (a JSON array of drive_chromium.py's steps) in one browser.
+    PageRun runPage(const std::string& steps) {
+        const auto stepsFile = dir / "steps.json", flat = dir / "result.txt",
+                   json = dir / "result.json";
+        std::ofstream(stepsFile) << steps;
+        std::filesystem::remove(flat);
+        const std::string command = python_ + " " + MICRORELIEF_DRIVER + " --chromium " +
+                                    chromium_ + " --root " + quote(MICRORELIEF_WEB_ROOT) +
+                                    " --steps " + stepsFile.string() + " --out " + json.string() +
+                                    " --flat " + flat.string();
+        const test::RunResult run = test::runCommand(command, dir.path());
+        PageRun page;
+        page.status = run.status;
+        page.err = run.err;
+        std::ifstream in(flat);
+        std::string line;
+        while (std::getline(in, line)) {
+            const std::size_t tab = line.find('\t');
+            if (tab == std::string::npos) continue;
+            const std::string key = line.substr(0, tab), value = unescape(line.substr(tab + 1));
+            if (key == "log") {
+                page.log.push_back(value);
+            } else {
+                page.values[key] = value;
+            }
+        }
+        EXPECT_EQ(page.status, 0) << "the browser did not run every step:\n" << page.err;
+        return page;
+    }
+
+    // microrelief-render with `flags` (the rest of a command line) into `out`.
+    void render(const std::string& flags, const std::filesystem::path& out) {
+        const std::string software =
+            std::filesystem::exists(kMesaEglVendor)
+                ? std::string("__EGL_VENDOR_LIBRARY_FILENAMES=") + kMesaEglVendor + " "
+                : std::string();
+        const test::RunResult r =
+            test::runCommand(software + "LIBGL_ALWAYS_SOFTWARE=1 " + MICRORELIEF_RENDER_EXE + " " +
+                                 flags + " --quiet --out " + out.string(),
+                             dir.path());
+        EXPECT_EQ(r.status, 0) << flags << "\n" << r.err;
+    }
+
+    // The page's picture against microrelief-render's, within the thresholds above.
+    void expectSamePicture(const std::string& name, const std::filesystem::path& page,
+                           const std::filesystem::path& rendered, const std::string& how) {
+        const Image actual = readImage(page), expected = readImage(rendered);
+        ASSERT_GT(actual.width, 0) << name << ": no screenshot";
+        ASSERT_GT(expected.width, 0) << name << ": no picture from microrelief-render";
+        ASSERT_EQ(actual.width, expected.width) << name;
+        ASSERT_EQ(actual.height, expected.height) << name;
+        const PictureDifference d = compare(actual, expected);
+        std::printf("    %-22s different pixels %.4f %%, mean %.4f levels, max %d\n", name.c_str(),
+                    100.0 * d.differentPixels, d.mean, d.max);
+        if (d.differentPixels > kMaxDifferentPixels || d.mean > kMaxMeanDifference) {
+            ADD_FAILURE() << name << ": the page's picture differs from microrelief-render's ("
+                          << 100.0 * d.differentPixels << " % of pixels over " << kDifferentLevels
+                          << " levels, mean " << d.mean << " levels); see "
+                          << test::keepForInspection("web-failures", name, actual, expected)
+                          << "\n  " << how;
+        }
+    }
+
+    static std::string size(int width, int height) {
+        return std::to_string(width) + "x" + std::to_string(height);
+    }
+
+    // The step that opens the page on `query` at W x H, canvas alone (clean=1).
+    static std::string open(const std::string& query, int width, int height) {
+        return "{\"open\": " +
+               jsonString("clean=1&size=" + size(width, height) +
+                          (query.empty() ? "" : "&" + query)) +
+               ", \"size\": [" + std::to_string(width) + ", " + std::to_string(height) + "]}";
+    }
+
+    test::ScratchDir dir;
+    std::string chromium_, python_;
+};
+
+// A view as the page's URL and as microrelief-render's flags.
+struct View {
+    std::string name, query, flags;
+    int width, height;
+};
+
+// Several cameras in the URL, each picture against microrelief-render's: the default view
+// (the bundled colours), grazing with hard shadows, straight down with the spec's
+// orientation, the maxmip and pom peers, a cylinder with the biquadratic last level, a
+// sphere with soft shadows.
+TEST_F(WebPage, ViewsSetInTheUrlMatchTheRenderer) {
+    const std::vector<View> views = {
+        {"default", "", "", 240, 180},
+        {"grazing-shadows", "eye=0.75,0.1,0.55&target=-0.2,0.02,-0.1&fovy=50&shadows=hard",
+         "--eye=0.75,0.1,0.55 --target=-0.2,0.02,-0.1 --fovy 50 --shadows hard", 240, 180},
+        {"top-down", "eye=0,1.6,0&target=0,0,0&up=0,0,-1&albedo=none",
+         "--eye=0,1.6,0 --target=0,0,0 --up=0,0,-1 --albedo none", 160, 160},
+        {"maxmip", "method=maxmip&albedo=none&eye=-0.7,0.45,0.6&light=0.3,0.5,0.8",
+         "--method maxmip --albedo none --eye=-0.7,0.45,0.6 --light=0.3,0.5,0.8", 200, 150},
+        {"pom", "method=pom&steps=24&eye=0.5,0.7,-0.6",
+         "--method pom --steps 24 --eye=0.5,0.7,-0.6", 200, 150},
+        {"cylinder-biquadratic",
+         "base=cylinder&radius=0.25&length=0.9&interpolation=biquadratic&eye=0.7,0.4,0.9&target=0,"
+         "0,0",
+         "--base cylinder --radius 0.25 --length 0.9 --interpolation biquadratic "
+         "--eye=0.7,0.4,0.9 --target=0,0,0",
+         200, 150},
+        {"sphere-soft-shadows",
+         "base=sphere&shadows=soft&light-size=4&albedo=none&target=0,0,0&height-scale=0.15",
+         "--base sphere --shadows soft --light-size 4 --albedo none --target=0,0,0 "
+         "--height-scale 0.15",
+         200, 150},
+    };
+    // One browser for all: each view opened, awaited, photographed, its command read.
+    std::string steps = "[";
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        const View& v = views[k];
+        steps += (k ? ", " : "") + open(v.query, v.width, v.height) +
+                 ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+                 jsonString((dir / (v.name + "-page.png")).string()) +
+                 "}, {\"eval\": \"document.getElementById('command').textContent\"}";
+    }
+    // And a URL with a bad value: an error on the page, nothing else.
+    steps += ", " + open("method=fastest", 64, 48) + ", {\"wait\": \"ready\"}]";
+    const PageRun page = runPage(steps);
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        const View& v = views[k];
+        const int step = 4 * static_cast<int>(k);
+        SCOPED_TRACE(v.name);
+        ASSERT_EQ(page.at(step + 1, "state"), "ready") << page.at(step + 1, "error");
+        EXPECT_EQ(page.at(step + 1, "map"), "cobbles.png");
+        const auto rendered = dir / (v.name + "-render.png");
+        const std::string flags = v.flags + " --size " + size(v.width, v.height);
+        render(flags, rendered);
+        expectSamePicture(v.name, dir / (v.name + "-page.png"), rendered,
+                          "microrelief-render " + flags);
+
+        // The page's "open in microrelief-render" line draws the test's picture exactly.
+        const std::string command = page.at(step + 3, "value");
+        const std::string program = "microrelief-render ";
+        ASSERT_EQ(command.rfind(program, 0), 0u) << command;
+        const auto printed = dir / (v.name + "-printed.png");
+        render(command.substr(program.size()), printed);
+        const Image a = readImage(printed), b = readImage(rendered);
+        ASSERT_EQ(a.width, b.width) << command;
+        EXPECT_EQ(a.pixels, b.pixels) << "the page's command draws another picture: " << command;
+    }
+    const int bad = 4 * static_cast<int>(views.size()) + 1;
+    EXPECT_EQ(page.at(bad, "state"), "error");
+    EXPECT_NE(page.at(bad, "error").find("method=fastest"), std::string::npos)
+        << page.at(bad, "error");
+}
+
+// The orbit camera: a drag turns the view, the wheel zooms, a Shift drag pans (the browser's
+// own mouse events). The view lands in the URL and in the command line: the URL opened
+// again shows the same picture to the bit, and the command draws it as the thresholds
+// above allow.
+TEST_F(WebPage, OrbitZoomAndPanWriteTheViewToTheUrl) {
+    const int width = 200, height = 150;
+    const PageRun moved = runPage(
+        "[" + open("", width, height) +
+        ", {\"wait\": \"ready\"}, {\"drag\": [100, 75, 160, 60]}, {\"wheel\": [100, 75, -200]},"
+        " {\"drag\": [100, 75, 80, 90], \"shift\": true}, {\"wait\": \"frames\", \"above\": 1},"
+        " {\"screenshot\": " +
+        jsonString((dir / "moved.png").string()) +
+        "}, {\"eval\": \"location.search.slice(1)\"},"
+        " {\"eval\": \"document.getElementById('command').textContent\"}]");
+    ASSERT_EQ(moved.at(5, "state"), "ready") << moved.at(5, "error");
+    const std::string query = moved.at(7, "value"), command = moved.at(8, "value");
+    EXPECT_EQ(query.find("eye=0.8,0.5,0.85&"), std::string::npos)
+        << "the eye did not move: " << query;
+    EXPECT_EQ(query.find("target=0,-0.03,0&"), std::string::npos)
+        << "the target did not pan: " << query;
+
+    const PageRun again =
+        runPage("[{\"open\": " + jsonString(query) + ", \"size\": [" + std::to_string(width) +
+                ", " + std::to_string(height) + "]}, {\"wait\": \"ready\"}, {\"screenshot\": " +
+                jsonString((dir / "again.png").string()) + "}]");
+    ASSERT_EQ(again.at(1, "state"), "ready") << again.at(1, "error");
+    const Image a = readImage(dir / "moved.png"), b = readImage(dir / "again.png");
+    ASSERT_GT(a.width, 0);
+    ASSERT_EQ(a.width, b.width);
+    EXPECT_EQ(a.pixels, b.pixels) << "the URL does not hold the view: " << query;
+
+    const std::string program = "microrelief-render ";
+    ASSERT_EQ(command.rfind(program, 0), 0u) << command;
+    render(command.substr(program.size()), dir / "moved-render.png");
+    expectSamePicture("orbited", dir / "moved.png", dir / "moved-render.png", command);
+}
+
+// Files that are not height maps, dropped on the page or chosen with its file input (the
+// browser's own drag events carrying the file; the file input set as a user sets it, which
+// fires its change event): each refused with the file's name and the reason, shown on the
+// page, and the bundled map kept, its picture unchanged to the last bit.
+TEST_F(WebPage, BadFilesShowAnErrorAndKeepTheMap) {
+    const std::filesystem::path corpus = MICRORELIEF_FUZZ_CORPUS_DIR;
+    test::writeBytes(dir / "notes.txt",
+                     {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'});
+    // The bundled map cut in the middle of its image data.
+    const std::vector<std::uint8_t> whole = test::readBytes(defaultHeightMapPath());
+    test::writeBytes(dir / "cut.png",
+                     std::vector<std::uint8_t>(whole.begin(), whole.begin() + whole.size() / 2));
+    struct Bad {
+        std::filesystem::path file;
+        const char* how;
+        const char* reason;
+    };
+    const std::vector<Bad> bad = {
+        {dir / "notes.txt", "drop", "not a PNG file"},
+        {dir / "cut.png", "choose", "truncated"},
+        {corpus / "bad_idat_crc.png", "drop", "bad CRC"},
+        {corpus / "truncated_in_idat.png", "choose", "truncated"},
+        {corpus / "short_data.png", "drop", "not enough image data"},
+        {corpus / "claims_65535x40000.png", "choose", "larger than"},
+        {corpus / "adam7_3x3.png", "drop", "interlaced"},
+        {corpus / "bad_filter.png", "choose", "bad filter type"},
+    };
+    std::string steps = "[" + open("", 200, 150) + ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+                        jsonString((dir / "before.png").string()) + "}";
+    for (std::size_t k = 0; k < bad.size(); ++k) {
+        steps += ", {\"" + std::string(bad[k].how) + "\": " + jsonString(bad[k].file.string()) +
+                 "}, {\"wait\": \"opened\", \"above\": " + std::to_string(k) + "}";
+    }
+    steps += ", {\"screenshot\": " + jsonString((dir / "after.png").string()) + "}]";
+    const PageRun page = runPage(steps);
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+
+    for (std::size_t k = 0; k < bad.size(); ++k) {
+        const int step = 4 + 2 * static_cast<int>(k);
+        const std::string name = bad[k].file.filename().string();
+        const std::string message = page.at(step, "mapError");
+        SCOPED_TRACE(name + " (" + bad[k].how + ")");
+        EXPECT_EQ(message.rfind(name + ": ", 0), 0u) << "the message names the file: " << message;
+        EXPECT_NE(message.find(bad[k].reason), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+        EXPECT_EQ(page.at(step, "shownMapError"), message) << "shown on the page";
+        EXPECT_EQ(page.at(step, "map"), "cobbles.png") << "the map was kept";
+        EXPECT_EQ(page.at(step, "state"), "ready");
+    }
+    const Image before = readImage(dir / "before.png"), after = readImage(dir / "after.png");
+    ASSERT_GT(before.width, 0);
+    ASSERT_EQ(before.width, after.width);
+    EXPECT_EQ(before.pixels, after.pixels) << "the picture changed after a refused file";
+}
+
+// Maps that are good, dropped or chosen: each becomes the map, its samples exactly what
+// microrelief-render's loader reads through OpenImageIO: 8 and 16 bits; grey, grey and
+// alpha, RGB, RGBA, palettes, grey of 1 to 4 bits; alpha multiplied in (every 8-bit value
+// and alpha pair, in integers, and with a gAMA chunk's gamma, which an sRGB chunk
+// overrides), tRNS keys and palette alphas. And a non-square 16-bit map's picture matches
+// microrelief-render's.
+TEST_F(WebPage, DroppedMapsAreTheLoadersSamplesAndRenderAlike) {
+    const std::filesystem::path corpus = MICRORELIEF_FUZZ_CORPUS_DIR;
+    const HeightMap noise = synth::valueNoise(96, 64, 12.0, 3, 7);
+    test::writeMap(dir / "noise16.png", noise, PixelType::UInt16);
+    test::writeMap(dir / "noise8.png", synth::valueNoise(9, 7, 3.0, 2, 3), PixelType::UInt8);
+    // Every 8-bit (value, alpha) pair: value x, alpha y.
+    std::vector<std::vector<std::uint8_t>> pairs8(256);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x)
+            pairs8[y].insert(pairs8[y].end(),
+                             {static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(y)});
+    writePng(dir / "alpha8.png", 256, 256, 8, 4, pairs8);
+    writePng(dir / "alpha8-gamma.png", 256, 256, 8, 4, pairs8,
+             {{"gAMA", {0, 0, 0xb1, 0x8f}}});  // 45455: 2.2
+    writePng(dir / "alpha8-gamma-srgb.png", 256, 256, 8, 4, pairs8,
+             {{"gAMA", {0, 0, 0xd9, 0x04}}, {"sRGB", {0}}});
+    // 16-bit grey and alpha, RGBA: scattered values, alphas from 0 to 65535.
+    std::vector<std::vector<std::uint8_t>> grey16(32), rgba16(16);
+    std::uint32_t state = 12345;
+    const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 16; };
+    for (auto& row : grey16)
+        for (int x = 0; x < 64; ++x) {
+            const unsigned alpha = x % 8 == 0 ? (x % 16 ? 65535u : 0u) : next();
+            const auto bytes = bigEndian16({next(), alpha});
+            row.insert(row.end(), bytes.begin(), bytes.end());
+        }
+    writePng(dir / "alpha16.png", 64, 32, 16, 4, grey16);
+    writePng(dir / "alpha16-gamma.png", 64, 32, 16, 4, grey16,
+             {{"gAMA", {0, 0, 0xd9, 0x04}}});  // 55556: 1.8
+    for (auto& row : rgba16)
+        for (int x = 0; x < 8; ++x) {
+            const auto bytes = bigEndian16({next(), next(), next(), next()});
+            row.insert(row.end(), bytes.begin(), bytes.end());
+        }
+    writePng(dir / "rgba16.png", 8, 16, 16, 6, rgba16);
+    // tRNS: a 2-bit grey key, an RGB key at 16 bits, a palette's alphas (4 colours, 2 bits).
+    writePng(dir / "grey2-trns.png", 4, 2, 2, 0, {{0x1b}, {0xe4}}, {{"tRNS", {0, 2}}});
+    writePng(dir / "rgb16-trns.png", 3, 1, 16, 2, {bigEndian16({1, 2, 3, 4, 5, 6, 1, 2, 4})},
+             {{"tRNS", bigEndian16({1, 2, 3})}});
+    writePng(
+        dir / "palette2-trns.png", 4, 2, 2, 3, {{0x1b}, {0xb1}},
+        {{"PLTE", {10, 20, 30, 200, 100, 50, 255, 255, 255, 0, 0, 0}}, {"tRNS", {255, 128, 0}}});
+    writePng(dir / "grey4.png", 4, 1, 4, 0, {{0x3c, 0xf0}});
+
+    const std::vector<std::filesystem::path> maps = {
+        dir / "noise8.png",        dir / "alpha8.png",
+        dir / "alpha8-gamma.png",  dir / "alpha8-gamma-srgb.png",
+        dir / "alpha16.png",       dir / "alpha16-gamma.png",
+        dir / "rgba16.png",        dir / "grey2-trns.png",
+        dir / "rgb16-trns.png",    dir / "palette2-trns.png",
+        dir / "grey4.png",         corpus / "rgba8_2x2.png",
+        corpus / "grey16_3x2.png", corpus / "palette1_8x2.png",
+        dir / "noise16.png",
+    };
+    const int width = 200, height = 150;
+    std::string steps = "[" + open("", width, height) + ", {\"wait\": \"ready\"}";
+    for (std::size_t k = 0; k < maps.size(); ++k) {
+        steps += std::string(", {\"") + (k % 2 ? "choose" : "drop") +
+                 "\": " + jsonString(maps[k].string()) +
+                 "}, {\"wait\": \"opened\", \"above\": " + std::to_string(k) +
+                 "}, {\"eval\": \"Array.from(microrelief.map.samples).join(' ')\"}";
+    }
+    steps += ", {\"screenshot\": " + jsonString((dir / "noise16-page.png").string()) +
+             "}, {\"eval\": \"document.getElementById('command').textContent\"}]";
+    const PageRun page = runPage(steps);
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+
+    for (std::size_t k = 0; k < maps.size(); ++k) {
+        const int step = 3 + 3 * static_cast<int>(k);
+        const std::string name = maps[k].filename().string();
+        SCOPED_TRACE(name);
+        EXPECT_EQ(page.at(step, "mapError"), "");
+        EXPECT_EQ(page.at(step, "map"), name);
+        EXPECT_EQ(page.at(step, "state"), "ready") << page.at(step, "error");
+        const HeightMap expected = loadHeightMap(maps[k]);
+        std::istringstream values(page.at(step + 1, "value"));
+        std::vector<float> samples;
+        for (double value; values >> value;) samples.push_back(static_cast<float>(value));
+        ASSERT_EQ(samples.size(), expected.samples.size());
+        std::size_t differ = 0, first = samples.size();
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            if (samples[i] == expected.samples[i]) continue;
+            ++differ;
+            first = std::min(first, i);
+        }
+        EXPECT_EQ(differ, 0u) << "the page's samples differ from the loader's, first at " << first
+                              << ": " << (differ ? samples[first] : 0.0f) << " against "
+                              << (differ ? expected.samples[first] : 0.0f);
+    }
+    // The last map's picture: the page's command names the file as dropped.
+    const std::string command = page.at(3 + 3 * static_cast<int>(maps.size()), "value");
+    EXPECT_NE(command.find("--height noise16.png "), std::string::npos) << command;
+    const auto rendered = dir / "noise16-render.png";
+    const std::string flags =
+        "--height " + (dir / "noise16.png").string() + " --size " + size(width, height);
+    render(flags, rendered);
+    expectSamePicture("noise16", dir / "noise16-page.png", rendered, "microrelief-render " + flags);
+}
+
+// Every variant of relief.frag the page offers (each method on each base it runs on, both
+// last levels, shadows, the albedo) compiles and links under the browser's WebGL 2 (ANGLE's
+// GLSL ES 3.00 front end, stricter than glslangValidator).
+TEST_F(WebPage, EveryVariantCompilesInTheBrowser) {
+    const std::string loop =
+        "(async () => { const failed = []; let count = 0;"
+        " for (const base of ['plane', 'cylinder', 'ellipsoid'])"
+        " for (const method of ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', "
+        "'maxmip'])"
+        " for (const interpolation of ['bilinear', 'biquadratic'])"
+        " for (const shadows of ['off', 'hard', 'soft'])"
+        " for (const albedoMap of [false, true]) {"
+        "  if (base !== 'plane' && !['multilevel', 'maxmip', 'pom', 'relief'].includes(method)) "
+        "continue;"
+        "  if (shadows !== 'off' && !['multilevel', 'maxmip'].includes(method)) continue;"
+        "  ++count;"
+        "  try { await microrelief.renderer.program({method, base, interpolation, shadows, "
+        "albedoMap}); }"
+        "  catch (e) { failed.push(e.message); } }"
+        " return count + ' ' + failed.join(' // '); })()";
+    const PageRun page = runPage("[" + open("", 32, 24) +
+                                 ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(loop) + "}]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    // 7 methods x 2 levels x 2 albedos on the plane, 4 on each curved base, shadows for 2.
+    EXPECT_EQ(page.at(2, "value"), "108 ");
+}
+
+}  // namespace

@@ -1,0 +1,460 @@
+// app.js: the page. The map (the bundled one, or a PNG dropped or chosen), the view (from
+// and to the URL), the panel, the orbit camera, and drawing on demand through
+// relief_gl.js. Its state is on <html> for scripts and tests: data-state "loading",
+// "ready" (a picture of the current view is on the canvas) or "error" (none can be: the
+// reason in #error); data-map, the map's name; data-map-error, why the last map offered was
+// refused (the previous one stays); data-opened, how many files dropped or chosen were
+// dealt with (shown or refused); data-frames, how many pictures were drawn.
+import {decodePng, heightsFromPng, PngError} from './png.js';
+import {ReliefRenderer} from './relief_gl.js';
+import * as scene from './scene.js';
+
+const root = document.documentElement;
+const $ = (id) => document.getElementById(id);
+const kShaderRoot = new URL('../shaders/', document.baseURI).href;
+const kDefaultMap = new URL('../assets/cobbles.png', document.baseURI).href;
+const kDefaultAlbedo = new URL('../assets/cobbles-albedo.png', document.baseURI).href;
+
+const app = {
+    view: null,
+    initialView: null,
+    renderer: null,
+    map: null,  // {name, bundled, width, height, samples}
+    albedoImage: null,  // the bundled map's colours, RGBA
+    frames: 0,
+    opened: 0,
+    dirty: false,
+    drawing: false,
+    fatal: false,
+};
+window.microrelief = app;  // for the console and tests
+
+function setState(state) {
+    root.dataset.state = state;
+    $('status').textContent = {loading: 'Loading\u2026', ready: 'Ready.', error: 'Error.'}[state];
+}
+
+function fail(message) {
+    app.fatal = true;
+    $('error').textContent = message;
+    $('error').hidden = false;
+    setState('error');
+    console.error(message);
+}
+
+function mapError(message) {
+    root.dataset.mapError = message;
+    $('map-error').textContent = message;
+    $('map-error').hidden = !message;
+}
+
+// A value the panel refused (the view stays as it was).
+function inputError(message) {
+    $('input-error').textContent = message;
+    $('input-error').hidden = !message;
+}
+
+// ---- the map ----
+
+async function fetchBytes(url) {
+    const response = await fetch(url, {cache: 'no-store'});
+    if (!response.ok) throw new PngError(`cannot read it (HTTP ${response.status})`);
+    return new Uint8Array(await response.arrayBuffer());
+}
+
+// A map from a PNG file's bytes: {width, height, samples}. Throws PngError.
+async function mapFromBytes(bytes) {
+    const png = await decodePng(bytes);
+    return {width: png.width, height: png.height, samples: heightsFromPng(png, 0)};
+}
+
+// An albedo's RGBA bytes (AlbedoFile.cpp: grey spread to RGB, alpha 255), 8-bit only.
+async function albedoFromBytes(bytes) {
+    const png = await decodePng(bytes);
+    if (png.bitDepth !== 8) throw new PngError('the page takes 8-bit albedos');
+    const count = png.width * png.height, rgba = new Uint8Array(count * 4), used = Math.min(png.channels, 4);
+    for (let p = 0; p < count; ++p) {
+        for (let c = 0; c < 3; ++c) rgba[4 * p + c] = png.values[p * png.channels + (used < 3 ? 0 : c)];
+        rgba[4 * p + 3] = 255;
+    }
+    return {width: png.width, height: png.height, rgba};
+}
+
+// Makes `map` the current one: its textures and pyramids first, then the switch.
+function useMap(map) {
+    app.renderer.setMap(map.samples, map.width, map.height, scene.wrapsU(scene.viewBase(app.view)), app.view.method === 'maxmip');
+    app.map = map;
+    app.mapWrapsU = scene.wrapsU(scene.viewBase(app.view));
+    root.dataset.map = map.name;
+    $('map-name').textContent = `${map.name}: ${map.width} x ${map.height}`;
+    app.renderer.setAlbedo(map.bundled && app.view.albedo ? app.albedoImage : null);
+}
+
+// A file dropped or chosen: decoded, checked, then shown; on failure the current map stays
+// and the reason shows, naming the file.
+async function openFile(file) {
+    mapError('');
+    try {
+        const bytes = new Uint8Array(await file.arrayBuffer());
+        const decoded = await mapFromBytes(bytes);
+        useMap({...decoded, name: file.name, bundled: false});
+        syncPanel();
+        requestRender();
+    } catch (e) {
+        const reason = e instanceof PngError ? e.message : `cannot be shown (${e.message})`;
+        mapError(`${file.name}: ${reason}`);
+        // The previous map is still there, and so is its picture.
+    }
+    root.dataset.opened = String(++app.opened);
+}
+
+// ---- the view and the panel ----
+
+function syncUrl() {
+    const query = scene.queryFromView(app.view);
+    history.replaceState(null, '', `${location.pathname}?${query}`);
+}
+
+function pixels() {
+    const canvas = $('canvas');
+    return [canvas.width, canvas.height];
+}
+
+function commandLine() {
+    return scene.renderCommandLine(app.view, app.map && !app.map.bundled ? app.map.name : null, pixels());
+}
+
+function lightAngles(light) {
+    const l = scene.normalize(light);
+    return [Math.atan2(l[2], l[0]) / scene.kDegree, Math.asin(Math.min(1, Math.max(-1, l[1]))) / scene.kDegree];
+}
+
+function syncPanel() {
+    const v = app.view;
+    $('height-scale').value = scene.exactFloat(v.heightScale);
+    $('interpolation').value = v.interpolation;
+    $('base').value = v.base;
+    const base = scene.viewBase(v);
+    $('radius').value = base.kind === 'cylinder' ? base.radius : base.kind === 'ellipsoid' ? base.radii[0] : '';
+    $('length').value = base.kind === 'cylinder' ? base.length : '';
+    $('radii').value = base.kind === 'ellipsoid' ? base.radii.join(',') : '';
+    for (const label of document.querySelectorAll('[data-base]'))
+        label.hidden = !label.dataset.base.split(' ').includes(v.base);
+    $('albedo').checked = v.albedo;
+    $('albedo').disabled = !(app.map && app.map.bundled);
+    const method = $('method');
+    for (const option of method.options) option.disabled = !scene.methodRunsOnBase(option.value, base);
+    method.value = v.method;
+    $('steps').value = v.steps;
+    document.querySelector('[data-steps]').hidden = !scene.methodHasSteps(v.method);
+    $('pixel-error').value = v.pixelError;
+    document.querySelector('[data-pixel-error]').hidden = v.method !== 'multilevel';
+    $('view').value = v.view;
+    const [azimuth, elevation] = lightAngles(v.light);
+    $('light-azimuth').value = Math.round(azimuth);
+    $('light-elevation').value = Math.round(elevation);
+    $('shadows').value = v.shadows;
+    for (const option of $('shadows').options) option.disabled = option.value !== 'off' && !scene.methodTracesTheSolid(v.method);
+    $('light-size').value = v.lightSize;
+    document.querySelector('[data-soft]').hidden = v.shadows !== 'soft';
+    $('fovy').value = v.fovy;
+    $('resolution').value = String(v.resolution);
+}
+
+function sizeCanvas() {
+    const canvas = $('canvas'), v = app.view;
+    const dpr = window.devicePixelRatio || 1;
+    let css;
+    if (v.size) {
+        css = v.size;
+    } else {
+        const stage = $('stage');
+        css = [Math.max(1, stage.clientWidth), Math.max(1, stage.clientHeight)];
+    }
+    canvas.style.width = `${css[0]}px`;
+    canvas.style.height = `${css[1]}px`;
+    // One ray a device pixel, or a 1/resolution of them (the canvas scales the picture up).
+    const w = Math.max(1, Math.round((css[0] * dpr) / v.resolution));
+    const h = Math.max(1, Math.round((css[1] * dpr) / v.resolution));
+    if (canvas.width !== w || canvas.height !== h) {
+        canvas.width = w;
+        canvas.height = h;
+        requestRender();
+    }
+}
+
+// A change from the panel: `change` edits a copy of the view; the copy is checked as the
+// CLI checks its flags, and kept only when it passes (else the panel shows why).
+function edit(change) {
+    const next = structuredClone(app.view);
+    try {
+        change(next);
+        scene.checkView(next);
+    } catch (e) {
+        inputError(e.message);
+        syncPanel();
+        return;
+    }
+    inputError('');
+    const before = app.view;
+    app.view = next;
+    const wraps = scene.wrapsU(scene.viewBase(next));
+    try {
+        if (app.map && wraps !== app.mapWrapsU) useMap(app.map);  // the seam: the pyramid wraps in u or not
+        else if (app.map && next.albedo !== before.albedo) app.renderer.setAlbedo(app.map.bundled && next.albedo ? app.albedoImage : null);
+        if (next.method === 'maxmip') app.renderer.ensureMaxMip();
+    } catch (e) {
+        fail(e.message);
+        return;
+    }
+    syncPanel();
+    syncUrl();
+    sizeCanvas();
+    requestRender();
+}
+
+function number(id) {
+    const value = Number($(id).value);
+    if ($(id).value.trim() === '' || !Number.isFinite(value)) throw new Error(`${id}: not a number`);
+    return value;
+}
+
+function wirePanel() {
+    const method = $('method');
+    for (const m of scene.kMethods) method.add(new Option(m, m));
+    for (const v of scene.kViews) $('view').add(new Option(v, v));
+    const on = (id, event, change) => $(id).addEventListener(event, () => edit(change));
+    on('height-scale', 'change', (v) => (v.heightScale = Math.fround(number('height-scale'))));
+    on('interpolation', 'change', (v) => (v.interpolation = $('interpolation').value));
+    on('base', 'change', (v) => {
+        v.base = $('base').value;
+        v.radius = v.length = v.radii = null;
+        if (!scene.methodRunsOnBase(v.method, scene.viewBase(v))) v.method = 'multilevel';
+    });
+    on('radius', 'change', (v) => (v.radius = number('radius')));
+    on('length', 'change', (v) => (v.length = number('length')));
+    on('radii', 'change', (v) => (v.radii = $('radii').value.split(',').map(Number)));
+    on('albedo', 'change', (v) => (v.albedo = $('albedo').checked));
+    on('method', 'change', (v) => {
+        v.method = method.value;
+        if (!scene.methodTracesTheSolid(v.method)) v.shadows = 'off';
+    });
+    on('steps', 'change', (v) => (v.steps = number('steps')));
+    on('pixel-error', 'change', (v) => (v.pixelError = Math.fround(number('pixel-error'))));
+    on('view', 'change', (v) => (v.view = $('view').value));
+    const light = (v) => {
+        const a = number('light-azimuth') * scene.kDegree, e = number('light-elevation') * scene.kDegree;
+        v.light = scene.toFloat([Math.cos(e) * Math.cos(a), Math.sin(e), Math.cos(e) * Math.sin(a)]);
+    };
+    on('light-azimuth', 'input', light);
+    on('light-elevation', 'input', light);
+    on('shadows', 'change', (v) => (v.shadows = $('shadows').value));
+    on('light-size', 'change', (v) => (v.lightSize = Math.fround(number('light-size'))));
+    on('fovy', 'change', (v) => (v.fovy = number('fovy')));
+    on('resolution', 'change', (v) => (v.resolution = Number($('resolution').value)));
+    $('reset').addEventListener('click', () => edit((v) => Object.assign(v, {
+        eye: app.initialView.eye, target: app.initialView.target, up: app.initialView.up, fovy: app.initialView.fovy,
+    })));
+    $('continuous').addEventListener('change', requestRender);
+    $('copy').addEventListener('click', () => navigator.clipboard?.writeText($('command').textContent));
+    $('file').addEventListener('change', () => {
+        const file = $('file').files[0];
+        if (file) openFile(file);
+    });
+    // Drops anywhere on the page.
+    const stage = $('stage');
+    window.addEventListener('dragover', (event) => {
+        event.preventDefault();
+        stage.classList.add('drop');
+    });
+    window.addEventListener('dragleave', () => stage.classList.remove('drop'));
+    window.addEventListener('drop', (event) => {
+        event.preventDefault();
+        stage.classList.remove('drop');
+        const file = event.dataTransfer?.files?.[0];
+        if (file) openFile(file);
+    });
+}
+
+// ---- the orbit camera ----
+
+// Turntable: yaw about world y through the target, pitch short of the poles (the
+// viewer's CameraController); the first turn makes up the world's y.
+const kPitchLimit = 89.5;
+
+function orbit(v, dx, dy) {
+    const offset = scene.sub(v.eye, v.target);
+    const distance = scene.length(offset);
+    let yaw = Math.atan2(offset[2], offset[0]);
+    let pitch = Math.asin(Math.min(1, Math.max(-1, offset[1] / distance)));
+    yaw += dx * 0.008;
+    pitch = Math.min(kPitchLimit * scene.kDegree, Math.max(-kPitchLimit * scene.kDegree, pitch + dy * 0.008));
+    v.eye = scene.add(v.target, scene.scale([Math.cos(pitch) * Math.cos(yaw), Math.sin(pitch), Math.cos(pitch) * Math.sin(yaw)], distance));
+    v.up = [0, 1, 0];
+}
+
+function pan(v, dx, dy, heightPixels) {
+    const frame = scene.resolveCamera(v, 1, 1, 1);
+    const distance = scene.length(scene.sub(v.target, v.eye));
+    const perPixel = (2 * scene.length(frame.up) * distance) / heightPixels;
+    const right = scene.normalize(frame.right), up = scene.normalize(frame.up);
+    const move = scene.add(scene.scale(right, -dx * perPixel), scene.scale(up, dy * perPixel));
+    v.eye = scene.add(v.eye, move);
+    v.target = scene.add(v.target, move);
+}
+
+function zoom(v, steps) {
+    const offset = scene.sub(v.eye, v.target);
+    const distance = scene.length(offset);
+    const wanted = distance * Math.exp(steps * 0.0015);
+    if (wanted < 1e-3) {
+        // Close in, the target travels with the eye, into the relief's box.
+        const forward = scene.scale(offset, -1 / distance);
+        const move = scene.scale(forward, distance - wanted);
+        v.eye = scene.add(v.eye, move);
+        v.target = scene.add(v.target, move);
+        return;
+    }
+    v.eye = scene.add(v.target, scene.scale(offset, wanted / distance));
+}
+
+function wireCamera() {
+    const canvas = $('canvas');
+    let drag = null;
+    canvas.addEventListener('contextmenu', (event) => event.preventDefault());
+    canvas.addEventListener('pointerdown', (event) => {
+        drag = {x: event.clientX, y: event.clientY, pan: event.shiftKey || event.button !== 0};
+        canvas.setPointerCapture(event.pointerId);
+    });
+    canvas.addEventListener('pointermove', (event) => {
+        if (!drag) return;
+        const dx = event.clientX - drag.x, dy = event.clientY - drag.y;
+        drag.x = event.clientX;
+        drag.y = event.clientY;
+        if (dx === 0 && dy === 0) return;
+        edit((v) => (drag.pan ? pan(v, dx, dy, canvas.clientHeight) : orbit(v, -dx, dy)));
+    });
+    const end = () => (drag = null);
+    canvas.addEventListener('pointerup', end);
+    canvas.addEventListener('pointercancel', end);
+    canvas.addEventListener('wheel', (event) => {
+        event.preventDefault();
+        edit((v) => zoom(v, event.deltaY));
+    }, {passive: false});
+}
+
+// ---- drawing ----
+
+// A new picture is wanted: the state is "loading" until it is on the screen.
+function requestRender() {
+    app.dirty = true;
+    if (app.fatal) return;
+    setState('loading');
+    if (!app.drawing) requestAnimationFrame(frame);
+}
+
+async function frame() {
+    if (app.fatal || !app.map || !app.dirty || app.drawing) return;
+    app.drawing = true;
+    app.dirty = false;
+    const view = app.view;
+    const config = {
+        method: view.method,
+        base: view.base === 'sphere' ? 'ellipsoid' : view.base,
+        interpolation: view.interpolation,
+        shadows: scene.methodTracesTheSolid(view.method) ? view.shadows : 'off',
+        albedoMap: !!app.renderer.albedo,
+    };
+    let program;
+    try {
+        program = await app.renderer.program(config);
+    } catch (e) {
+        app.drawing = false;
+        fail(e.message);
+        return;
+    }
+    if (app.view !== view) {
+        // Changed while the program compiled: draw the newer view.
+        app.drawing = false;
+        app.dirty = true;
+        requestAnimationFrame(frame);
+        return;
+    }
+    const gl = app.renderer.gl;
+    const size = pixels();
+    const start = performance.now();
+    try {
+        app.renderer.draw(program, view, size);
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the picture
+    } catch (e) {
+        app.drawing = false;
+        fail(`drawing failed: ${e.message}`);
+        return;
+    }
+    const error = gl.getError();
+    if (error !== gl.NO_ERROR) {
+        app.drawing = false;
+        fail(`WebGL error 0x${error.toString(16)} while drawing`);
+        return;
+    }
+    const elapsed = performance.now() - start;
+    ++app.frames;
+    root.dataset.frames = String(app.frames);
+    $('frame-time').textContent = `${elapsed.toFixed(1)} ms at ${size[0]} x ${size[1]} (wall time to finish)`;
+    $('command').textContent = commandLine();
+    app.drawing = false;
+    if ($('continuous').checked) app.dirty = true;
+    // Ready once this picture is on the screen: after the next frame is composited.
+    requestAnimationFrame(() => {
+        if (app.fatal) return;
+        if (app.dirty) frame();
+        else setState('ready');
+    });
+}
+
+// ---- start ----
+
+async function start() {
+    try {
+        app.view = scene.viewFromQuery(location.search);
+    } catch (e) {
+        fail(`the URL: ${e.message}`);
+        return;
+    }
+    app.initialView = structuredClone(app.view);
+    root.classList.toggle('clean', app.view.clean);
+    const canvas = $('canvas');
+    const gl = canvas.getContext('webgl2', {antialias: false, alpha: false, depth: false, preserveDrawingBuffer: true});
+    if (!gl) {
+        fail('this browser gives the page no WebGL 2 context');
+        return;
+    }
+    canvas.addEventListener('webglcontextlost', (event) => {
+        event.preventDefault();
+        fail('the WebGL context was lost (the GPU was reset or is needed elsewhere): reload the page');
+    });
+    wirePanel();
+    wireCamera();
+    sizeCanvas();
+    new ResizeObserver(sizeCanvas).observe($('stage'));
+    try {
+        app.renderer = await ReliefRenderer.create(gl, kShaderRoot);
+    } catch (e) {
+        fail(e.message);
+        return;
+    }
+    try {
+        const [heights, albedo] = await Promise.all([fetchBytes(kDefaultMap), fetchBytes(kDefaultAlbedo)]);
+        app.albedoImage = await albedoFromBytes(albedo);
+        useMap({...(await mapFromBytes(heights)), name: 'cobbles.png', bundled: true});
+        if (app.view.method === 'maxmip') app.renderer.ensureMaxMip();
+    } catch (e) {
+        fail(`${kDefaultMap}: ${e.message}`);
+        return;
+    }
+    syncPanel();
+    syncUrl();
+    requestRender();
+}
+
+start();

@@ -1,0 +1,410 @@
+// scene.js: the scene as microrelief-render has it (shared/spec/scene-and-cli.md), in the
+// page's JavaScript: the camera resolved to rays (src/render/Camera.cpp), the base
+// surfaces' sizes and boxes (src/base/BaseShape.cpp, ReliefExtent.cpp), the pyramids'
+// level sizes and scale (src/heightmap/MaxPyramid.cpp), the methods' names and rules
+// (src/render/Method.cpp), and the view as a URL query and as a command line
+// (app/shared/SceneOptions.cpp). The arithmetic follows the C++ step for step, in doubles
+// where it has doubles and in floats (Math.fround) where it has floats, so that the page
+// hands the shader the uniforms microrelief-render hands it.
+
+const f32 = Math.fround;
+
+// ---- vectors, as GLM computes them (no SIMD): double unless said ----
+export const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+export const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+export const scale = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
+export const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+export const length = (a) => Math.sqrt(dot(a, a));
+export const normalize = (a) => scale(a, 1 / Math.sqrt(dot(a, a)));  // glm: v * inversesqrt(dot(v, v))
+export const cross = (x, y) => [x[1] * y[2] - y[1] * x[2], x[2] * y[0] - y[2] * x[0], x[0] * y[1] - y[0] * x[1]];
+
+// The same in float: every operation rounded as a float vec3 computes it.
+export const toFloat = (a) => a.map(f32);
+export function normalizeFloat(v) {
+    const a = toFloat(v);
+    const d = f32(f32(f32(a[0] * a[0]) + f32(a[1] * a[1])) + f32(a[2] * a[2]));
+    const inverse = f32(1 / f32(Math.sqrt(d)));
+    return a.map((c) => f32(c * inverse));
+}
+
+const kRadiansPerDegree = 0.01745329251994329576923690768489;  // glm::radians
+
+// ---- the camera (src/render/Camera.cpp: resolveCamera) ----
+
+// {eye, forward, right, up, viewProjection (16 doubles, column-major), width, height}.
+// Throws Error for a degenerate camera, with the CLI's words.
+export function resolveCamera(camera, width, height, sceneRadius) {
+    if (!(camera.fovy > 0 && camera.fovy < 180)) throw new Error('fovy must lie strictly between 0 and 180 degrees');
+    const view = sub(camera.target, camera.eye);
+    const distance = length(view);
+    if (!(distance > 0) || !Number.isFinite(distance)) throw new Error('eye and target must differ');
+    const forward = scale(view, 1 / distance);
+    const side = cross(forward, camera.up);
+    if (!(length(side) > 1e-9 * length(camera.up))) throw new Error('up must not be parallel to the view direction');
+    const right = normalize(side);
+    const up = cross(right, forward);
+    const tanY = Math.tan(camera.fovy * kRadiansPerDegree * 0.5);
+    const aspect = width / height;
+
+    const centre = length(camera.eye);
+    const zFar = centre + 2 * sceneRadius;
+    const zNear = Math.max(1e-4 * zFar, centre - 2 * sceneRadius);
+    const projection = perspective(camera.fovy * kRadiansPerDegree, aspect, zNear, zFar);
+    const viewMatrix = lookAt(camera.eye, add(camera.eye, forward), up);
+    return {
+        eye: camera.eye,
+        forward,
+        right: scale(right, tanY * aspect),
+        up: scale(up, tanY),
+        viewProjection: multiply(projection, viewMatrix),
+        width,
+        height,
+    };
+}
+
+// glm::perspective (right-handed, clip depth [-1, 1]), column-major.
+function perspective(fovy, aspect, zNear, zFar) {
+    const tanHalf = Math.tan(fovy / 2);
+    const m = new Array(16).fill(0);
+    m[0] = 1 / (aspect * tanHalf);
+    m[5] = 1 / tanHalf;
+    m[10] = -(zFar + zNear) / (zFar - zNear);
+    m[11] = -1;
+    m[14] = -(2 * zFar * zNear) / (zFar - zNear);
+    return m;
+}
+
+// glm::lookAt (right-handed), column-major.
+function lookAt(eye, centre, upVector) {
+    const f = normalize(sub(centre, eye));
+    const s = normalize(cross(f, upVector));
+    const u = cross(s, f);
+    return [s[0], u[0], -f[0], 0, s[1], u[1], -f[1], 0, s[2], u[2], -f[2], 0, -dot(s, eye), -dot(u, eye), dot(f, eye), 1];
+}
+
+function multiply(a, b) {
+    const m = new Array(16).fill(0);
+    for (let c = 0; c < 4; ++c)
+        for (let r = 0; r < 4; ++r)
+            m[c * 4 + r] = a[r] * b[c * 4] + a[4 + r] * b[c * 4 + 1] + a[8 + r] * b[c * 4 + 2] + a[12 + r] * b[c * 4 + 3];
+    return m;
+}
+
+// ---- base surfaces (src/base/BaseShape.cpp) ----
+
+export const kBaseKinds = {plane: 0, cylinder: 1, ellipsoid: 2, sphere: 2};
+
+// {kind: 'plane' | 'cylinder' | 'ellipsoid', radius, length, radii}; `name` is --base's.
+export function baseShape(name, sizes = {}) {
+    if (!(name in kBaseKinds)) throw new Error(`unknown base '${name}' (expected plane, cylinder, ellipsoid or sphere)`);
+    const positive = (value, flag) => {
+        if (!(value > 0) || !Number.isFinite(value)) throw new Error(`${flag} must be a positive finite number`);
+        return value;
+    };
+    if (name === 'cylinder')
+        return {kind: 'cylinder', radius: positive(sizes.radius ?? 0.3, 'radius'), length: positive(sizes.length ?? 1, 'length')};
+    if (name === 'sphere') {
+        const r = positive(sizes.radius ?? 0.5, 'radius');
+        return {kind: 'ellipsoid', radii: [r, r, r]};
+    }
+    if (name === 'ellipsoid') return {kind: 'ellipsoid', radii: (sizes.radii ?? [0.5, 0.5, 0.5]).map((r) => positive(r, 'radii'))};
+    return {kind: 'plane'};
+}
+
+export function baseName(base) {
+    if (base.kind === 'ellipsoid') return base.radii[0] === base.radii[1] && base.radii[1] === base.radii[2] ? 'sphere' : 'ellipsoid';
+    return base.kind;
+}
+
+export const wrapsU = (base) => base.kind !== 'plane';
+
+export function frameScale(base) {
+    if (base.kind === 'cylinder') return [base.radius, 0.5 * base.length, base.radius];
+    if (base.kind === 'ellipsoid') return base.radii.slice();
+    return [1, 1, 1];
+}
+
+// The relief's object-space box for a top of `top` (s max h): {min, max, top}.
+export function reliefExtent(mapWidth, mapHeight, maxHeight, heightScale, base) {
+    const top = heightScale * maxHeight;
+    let high;
+    if (base.kind === 'cylinder') high = [base.radius * (1 + top), 0.5 * base.length, base.radius * (1 + top)];
+    else if (base.kind === 'ellipsoid') high = base.radii.map((r) => r * (1 + top));
+    else {
+        const longer = Math.max(mapWidth, mapHeight);
+        high = [(0.5 * mapWidth) / longer, top, (0.5 * mapHeight) / longer];
+    }
+    const low = base.kind === 'plane' ? [-high[0], 0, -high[2]] : high.map((c) => -c);
+    return {min: low, max: high, top};
+}
+
+// Twice the largest coordinate of the box's corners (the model is the identity here).
+export function sceneRadius(extent) {
+    let radius = 0;
+    for (const c of [...extent.min, ...extent.max]) radius = Math.max(radius, Math.abs(c));
+    return 2 * radius;
+}
+
+// ---- the pyramids (src/heightmap/MaxPyramid.cpp) ----
+
+const floatBits = (() => {
+    const f = new Float32Array(1), u = new Uint32Array(f.buffer);
+    return {
+        bits(value) {
+            f[0] = value;
+            return u[0];
+        },
+        value(bits) {
+            u[0] = bits >>> 0;
+            return f[0];
+        },
+    };
+})();
+
+// GL's mip sizes of W x H down to 1 x 1: the windows' levels.
+export function windowLevelSizes(width, height) {
+    const sizes = [];
+    for (let w = width, h = height; ; w = Math.max(w >> 1, 1), h = Math.max(h >> 1, 1)) {
+        sizes.push([w, h]);
+        if (w === 1 && h === 1) return sizes;
+    }
+}
+
+const ceilPowerOfTwo = (n) => 2 ** Math.ceil(Math.log2(n));
+
+// The aligned levels (maxmip's quadtree): W and H rounded up to powers of two, halved.
+export function pyramidLevelSizes(width, height) {
+    return windowLevelSizes(ceilPowerOfTwo(width), ceilPowerOfTwo(height));
+}
+
+// S for a pyramid whose top is `top`: e - 14 for its binary exponent e, clamped.
+export function pyramidScaleExponent(top) {
+    const e = (floatBits.bits(top) >>> 23) - 127;
+    return Math.min(Math.max(e - 14, -112), 113);
+}
+
+// The top's bound as the GPU keeps it (storedBound, BoundPrecision::Half): the value
+// rounded up to 11 significant bits, at least the least normal half times 2^S.
+export function storedHalfBound(bound, scaleExponent) {
+    const bits = floatBits.bits(Math.abs(bound)) & 0x7fffffff;
+    if (bits === 0) return 0;
+    const smallest = ((scaleExponent - 14 + 127) << 23) >>> 0;
+    return floatBits.value(Math.max(((bits + 0x1fff) & ~0x1fff) >>> 0, smallest));
+}
+
+// S for the samples at hand, as ReliefTextures takes it before a GPU build.
+export function initialScaleExponent(maxSample) {
+    return pyramidScaleExponent(storedHalfBound(maxSample, pyramidScaleExponent(maxSample)));
+}
+
+export const traversalBudget = (width, height) => 8 * (width + height) + 256;
+
+// ---- methods, views and shadows (src/render/Method.cpp) ----
+
+export const kMethods = ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', 'maxmip'];
+export const kViews = ['shaded', 'iterations', 'level', 'normal', 'depth', 'position'];
+export const kShadows = ['off', 'hard', 'soft'];
+export const kInterpolations = ['bilinear', 'biquadratic'];
+export const methodHasSteps = (m) => m === 'steep' || m === 'pom' || m === 'relief';
+export const methodTracesTheSolid = (m) => m === 'multilevel' || m === 'maxmip';
+export const methodRunsOnBase = (m, base) =>
+    base.kind === 'plane' || m === 'multilevel' || m === 'maxmip' || m === 'pom' || m === 'relief';
+
+// ---- the view: defaults, URL query, command line ----
+
+export const kDefaultLight = normalizeFloat([-0.45, 0.8, -0.35]);
+
+// microrelief-render's defaults (app/shared/SceneOptions.cpp, HeadlessRender.h).
+export function defaultView() {
+    return {
+        eye: [0.8, 0.5, 0.85],
+        target: [0, -0.03, 0],
+        up: [0, 1, 0],
+        fovy: 45,
+        size: null,  // [W, H] in CSS pixels; null: the canvas fills the page's view area
+        heightScale: f32(0.1),
+        base: 'plane',
+        radius: null,
+        length: null,
+        radii: null,
+        interpolation: 'bilinear',
+        method: 'multilevel',
+        steps: 64,
+        pixelError: 0,
+        view: 'shaded',
+        light: kDefaultLight.slice(),  // floats, towards the light
+        shadows: 'off',
+        lightSize: 1,
+        background: toFloat([0.11, 0.12, 0.14]),
+        albedo: true,  // the bundled map's colours with the bundled map
+        resolution: 1,  // 1, 2 or 4: the picture has a 1/resolution of the canvas's pixels
+        clean: false,
+    };
+}
+
+function numbers(name, text, count) {
+    const parts = text.split(',');
+    const values = parts.map((p) => (p.trim() === '' ? NaN : Number(p)));
+    if (values.length !== count || values.some((v) => !Number.isFinite(v)))
+        throw new Error(`${name}=${text}: expected ${count} comma-separated number${count > 1 ? 's' : ''}`);
+    return values;
+}
+
+function choice(name, text, choices) {
+    if (!choices.includes(text)) throw new Error(`${name}=${text}: expected ${choices.join(', ')}`);
+    return text;
+}
+
+// The view from a URL query (location.search): every key the page knows, each checked;
+// throws Error naming the key for a bad value. Unknown keys are ignored.
+export function viewFromQuery(search) {
+    const q = new URLSearchParams(search);
+    const v = defaultView();
+    const get = (key, parse) => {
+        if (q.has(key)) parse(q.get(key));
+    };
+    get('eye', (t) => (v.eye = numbers('eye', t, 3)));
+    get('target', (t) => (v.target = numbers('target', t, 3)));
+    get('up', (t) => (v.up = numbers('up', t, 3)));
+    get('fovy', (t) => (v.fovy = numbers('fovy', t, 1)[0]));
+    get('size', (t) => {
+        const m = /^(\d+)x(\d+)$/.exec(t);
+        if (!m || +m[1] < 1 || +m[2] < 1 || +m[1] > 8192 || +m[2] > 8192) throw new Error(`size=${t}: expected WxH, each from 1 to 8192`);
+        v.size = [+m[1], +m[2]];
+    });
+    get('height-scale', (t) => (v.heightScale = f32(numbers('height-scale', t, 1)[0])));
+    get('base', (t) => (v.base = choice('base', t, Object.keys(kBaseKinds))));
+    get('radius', (t) => (v.radius = numbers('radius', t, 1)[0]));
+    get('length', (t) => (v.length = numbers('length', t, 1)[0]));
+    get('radii', (t) => (v.radii = numbers('radii', t, 3)));
+    get('interpolation', (t) => (v.interpolation = choice('interpolation', t, kInterpolations)));
+    get('method', (t) => (v.method = choice('method', t, kMethods)));
+    get('steps', (t) => (v.steps = numbers('steps', t, 1)[0]));
+    get('pixel-error', (t) => (v.pixelError = f32(numbers('pixel-error', t, 1)[0])));
+    get('view', (t) => (v.view = choice('view', t, kViews)));
+    get('light', (t) => (v.light = toFloat(numbers('light', t, 3))));
+    get('shadows', (t) => (v.shadows = choice('shadows', t, kShadows)));
+    get('light-size', (t) => (v.lightSize = f32(numbers('light-size', t, 1)[0])));
+    get('background', (t) => (v.background = toFloat(numbers('background', t, 3))));
+    get('albedo', (t) => (v.albedo = choice('albedo', t, ['none', 'map']) === 'map'));
+    get('resolution', (t) => (v.resolution = Number(choice('resolution', t, ['1', '2', '4']))));
+    get('clean', (t) => (v.clean = t === '1'));
+    checkView(v);
+    return v;
+}
+
+// The checks microrelief-render makes of the same flags.
+export function checkView(v) {
+    if (!(v.fovy > 0 && v.fovy < 180)) throw new Error('fovy must lie strictly between 0 and 180 degrees');
+    if (!(v.heightScale > 0) || !Number.isFinite(v.heightScale)) throw new Error('height-scale must be a positive number');
+    if (!Number.isInteger(v.steps) || v.steps < 1 || v.steps > 65536) throw new Error('steps must be a whole number in 1..65536');
+    if (!(v.pixelError >= 0)) throw new Error('pixel-error must be a number >= 0');
+    if (!(v.lightSize > 0 && v.lightSize < 90)) throw new Error('light-size must lie strictly between 0 and 90 degrees');
+    if (v.light.every((c) => c === 0)) throw new Error('light must not be zero');
+    if (v.background.some((c) => c < 0)) throw new Error('background must be >= 0');
+    const base = viewBase(v);
+    if (!methodRunsOnBase(v.method, base))
+        throw new Error(`method ${v.method} does not run on base ${v.base} (curved bases take multilevel, maxmip, pom and relief)`);
+    if (v.shadows !== 'off' && !methodTracesTheSolid(v.method))
+        throw new Error(`shadows ${v.shadows} take the exact methods, multilevel and maxmip (not method ${v.method})`);
+}
+
+export function viewBase(v) {
+    return baseShape(v.base, {radius: v.radius ?? undefined, length: v.length ?? undefined, radii: v.radii ?? undefined});
+}
+
+// pom's samples looking straight down: MethodSettings::setSteps.
+export const minSteps = (steps) => Math.min(steps, Math.max(4, Math.floor(steps / 4)));
+
+// The shortest decimal text that reads back as the double `x` (JavaScript's own).
+export const exactNumber = (x) => String(x);
+
+// The shortest decimal text that reads back as the float `x`.
+export function exactFloat(x) {
+    for (let digits = 1; digits <= 9; ++digits) {
+        const text = x.toPrecision(digits);
+        if (f32(Number(text)) === x) return String(Number(text));
+    }
+    return String(x);
+}
+
+const vectorText = (v, text = exactNumber) => v.map(text).join(',');
+
+// The view as a URL query: what differs from the defaults, and always the camera.
+export function queryFromView(v) {
+    const d = defaultView();
+    const q = new URLSearchParams();
+    q.set('eye', vectorText(v.eye));
+    q.set('target', vectorText(v.target));
+    if (v.up.some((c, k) => c !== d.up[k])) q.set('up', vectorText(v.up));
+    q.set('fovy', exactNumber(v.fovy));
+    if (v.size) q.set('size', `${v.size[0]}x${v.size[1]}`);
+    if (v.heightScale !== d.heightScale) q.set('height-scale', exactFloat(v.heightScale));
+    if (v.base !== 'plane') q.set('base', v.base);
+    if (v.radius !== null) q.set('radius', exactNumber(v.radius));
+    if (v.length !== null) q.set('length', exactNumber(v.length));
+    if (v.radii !== null) q.set('radii', vectorText(v.radii));
+    if (v.interpolation !== d.interpolation) q.set('interpolation', v.interpolation);
+    q.set('method', v.method);
+    if (v.steps !== d.steps) q.set('steps', String(v.steps));
+    if (v.pixelError !== d.pixelError) q.set('pixel-error', exactFloat(v.pixelError));
+    if (v.view !== d.view) q.set('view', v.view);
+    if (v.light.some((c, k) => c !== d.light[k])) q.set('light', vectorText(v.light, exactFloat));
+    if (v.shadows !== d.shadows) q.set('shadows', v.shadows);
+    if (v.lightSize !== d.lightSize) q.set('light-size', exactFloat(v.lightSize));
+    if (v.background.some((c, k) => c !== d.background[k])) q.set('background', vectorText(v.background, exactFloat));
+    if (!v.albedo) q.set('albedo', 'none');
+    if (v.resolution !== 1) q.set('resolution', String(v.resolution));
+    if (v.clean) q.set('clean', '1');
+    return q.toString().replace(/%2C/g, ',');
+}
+
+// `text` quoted for a POSIX shell where it needs it (SceneOptions.cpp: shellQuote).
+export function shellQuote(text) {
+    if (text !== '' && /^[A-Za-z0-9_\-+=.,/:@%]+$/.test(text)) return text;
+    return `'${text.replace(/'/g, `'\\''`)}'`;
+}
+
+// The microrelief-render command that draws this view, as the viewer's "copy as command"
+// writes it (SceneOptions.cpp: renderCommandLine). `map` is null for the bundled map, else
+// the file's name (the page never learns a dropped file's folder); `pixels` the picture's
+// size in pixels.
+export function renderCommandLine(v, map, pixels) {
+    const parts = ['microrelief-render'];
+    const flag = (name, value) => parts.push(value === undefined ? name : `${name} ${shellQuote(value)}`);
+    if (map !== null) flag('--height', map);
+    if (map === null && !v.albedo) flag('--albedo', 'none');
+    flag('--height-scale', exactFloat(v.heightScale));
+    if (v.interpolation !== 'bilinear') flag('--interpolation', v.interpolation);
+    const base = viewBase(v);
+    if (base.kind === 'cylinder') {
+        flag('--base', 'cylinder');
+        flag('--radius', exactNumber(base.radius));
+        flag('--length', exactNumber(base.length));
+    } else if (baseName(base) === 'sphere') {
+        flag('--base', 'sphere');
+        flag('--radius', exactNumber(base.radii[0]));
+    } else if (base.kind === 'ellipsoid') {
+        flag('--base', 'ellipsoid');
+        parts.push(`--radii=${vectorText(base.radii)}`);
+    }
+    // "=" keeps a leading minus from reading as a flag.
+    parts.push(`--eye=${vectorText(v.eye)}`, `--target=${vectorText(v.target)}`, `--up=${vectorText(v.up)}`);
+    flag('--fovy', exactNumber(v.fovy));
+    flag('--size', `${pixels[0]}x${pixels[1]}`);
+    parts.push(`--light=${vectorText(v.light, exactFloat)}`);
+    if (v.shadows !== 'off') {
+        flag('--shadows', v.shadows);
+        if (v.shadows === 'soft') flag('--light-size', exactFloat(v.lightSize));
+    }
+    flag('--method', v.method);
+    if (v.steps !== 64) flag('--steps', String(v.steps));
+    if (v.pixelError !== 0) flag('--pixel-error', exactFloat(v.pixelError));
+    flag('--view', v.view);
+    const d = defaultView();
+    if (v.background.some((c, k) => c !== d.background[k])) flag('--background', vectorText(v.background, exactFloat));
+    return parts.join(' ');
+}
+
+// Radians per degree, for the panel's angles.
+export const kDegree = Math.PI / 180;

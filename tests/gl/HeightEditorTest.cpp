@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "GlTestBackend.h"
+#include "SweepCases.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/render/AnimatedHeights.h"
@@ -26,23 +27,14 @@ using namespace microrelief;
 
 namespace {
 
-// The thresholds of every accuracy test (RenderTest.cpp): hit/miss may flip for at most
+// The thresholds of every accuracy test (SweepCases.h): hit/miss may flip for at most
 // 0.1 % of pixels (rays grazing a ridge), hits off by more than half a texel for at most
 // 0.2 % of hit pixels, none out of budget.
-constexpr double kMaxCoverageMismatchPercent = 0.1;
-constexpr double kMaxOffHalfTexelPercent = 0.2;
+using test::kMaxCoverageMismatchPercent;
+using test::kMaxOffHalfTexelPercent;
 
-class Sculpting : public ::testing::Test {
+class Sculpting : public test::GlTest {
 protected:
-    void SetUp() override {
-        if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
-        test::glContext().makeCurrent();
-        while (gl().GetError() != GL_NO_ERROR) {
-        }
-    }
-    static const GL& gl() { return test::glContext().gl(); }
-
     static void expectPyramidOf(const ReliefRenderer& renderer, const HeightMap& map,
                                 const std::string& what) {
         const ReliefTextures& textures = *renderer.textures();

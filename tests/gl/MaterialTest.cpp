@@ -16,13 +16,7 @@ using namespace microrelief;
 
 namespace {
 
-class Materials : public ::testing::Test {
-protected:
-    void SetUp() override {
-        if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
-    }
-};
+class Materials : public test::GlTest {};
 
 // A black and white checker of `square`-texel squares, linear float.
 AlbedoImage checker(int side, int square) {

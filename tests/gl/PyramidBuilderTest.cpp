@@ -25,17 +25,8 @@ using namespace microrelief;
 
 namespace {
 
-class GpuPyramid : public ::testing::Test {
+class GpuPyramid : public test::GlTest {
 protected:
-    void SetUp() override {
-        if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
-        test::glContext().makeCurrent();
-        while (gl().GetError() != GL_NO_ERROR) {
-        }  // what the tests before left: each checks its own
-    }
-    static const GL& gl() { return test::glContext().gl(); }
-
     // The first texel where the GPU's level differs from the CPU's, or "".
     static std::string firstDifference(const std::vector<float>& gpu, const std::vector<float>& cpu,
                                        int width) {

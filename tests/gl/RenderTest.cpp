@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "GlTestBackend.h"
+#include "SweepCases.h"
 #include "TestSupport.h"
 #include "microrelief/context/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
@@ -23,12 +24,12 @@ using namespace microrelief;
 
 namespace {
 
-// Thresholds for every view (issue 3): hit/miss may flip only for rays that graze a
-// ridge or a silhouette edge, at most 0.1 % of pixels; positions may be off by more
-// than half a texel for at most 0.2 % of hit pixels (the same grazing rays, whose hit
-// jumps to a farther surface). Nothing may run out of the iteration budget.
-constexpr double kMaxCoverageMismatchPercent = 0.1;
-constexpr double kMaxOffHalfTexelPercent = 0.2;
+// Thresholds for every view (issue 3, SweepCases.h): hit/miss may flip only for rays
+// that graze a ridge or a silhouette edge; positions may be off by more than half a texel
+// only for the same grazing rays, whose hit jumps to a farther surface. Nothing may run
+// out of the iteration budget.
+using test::kMaxCoverageMismatchPercent;
+using test::kMaxOffHalfTexelPercent;
 
 class Render : public ::testing::Test {
 protected:

@@ -93,15 +93,8 @@ std::optional<double> referenceInRange(const ReferenceTracer& reference, const R
     return tMin + hit.t;
 }
 
-class SceneObject : public ::testing::Test {
+class SceneObject : public test::GlTest {
 protected:
-    void SetUp() override {
-        if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
-        test::glContext().makeCurrent();
-    }
-    static const GL& gl() { return test::glContext().gl(); }
-
     // Range queries through an engine's own shader (kRangeQueryMain) against the reference,
     // for one base and last level (RangeQueriesFromAnEnginesOwnShader).
     void expectRangeQueries(const std::string& single, const HeightMap& map, const BaseShape& base,

@@ -17,13 +17,7 @@ using namespace microrelief;
 
 namespace {
 
-class Shadows : public ::testing::Test {
-protected:
-    void SetUp() override {
-        if (!isBackendPresent(test::glBackend()))
-            GTEST_SKIP() << test::missingBackendMessage(test::glBackend());
-    }
-};
+class Shadows : public test::GlTest {};
 
 // A direction towards a light `elevation` degrees above the base plane.
 glm::dvec3 lightAt(double elevationDeg, double azimuthDeg) {

@@ -83,7 +83,7 @@ private:
     void sculpt();
     // The brush paints an untiled map that is not animated (a tiled map's picks land on
     // the whole, the brush on one tile; an animated one's heights are the field's).
-    bool sculptable() const { return !animated_ && state_.scene.job.tiles == glm::ivec2(1, 1); }
+    bool sculptable() const { return microrelief::sculptable(state_.scene.job); }
     void dabAt(const glm::dvec2& mapPoint, bool invert);
     void endStroke();
     void mapEdited(const std::vector<TexelRect>& changed);

@@ -70,8 +70,7 @@ void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
         o.strokes.push_back(stroke);
     }
     if (o.undo < 0) throwBadInput("--undo must be 0 or more");
-    // As the window's B key: the brush paints one map, neither repeated nor overwritten by
-    // an animated field every frame.
+    // As the window's B key (sculptable): one reason each.
     const bool sculpting = o.sculpt || !o.strokes.empty() || o.undo > 0;
     if (sculpting && o.scene.job.tiles != glm::ivec2(1, 1))
         throwBadInput(

@@ -25,6 +25,13 @@ struct ScriptedStroke {
     glm::dvec2 from{0.0}, to{0.0};  // map uv
 };
 
+// Whether the viewer sculpts this scene's map: one map, neither repeated (--tile) nor
+// replaced by an animated field every frame (--animate). --sculpt, --stroke and --undo
+// are refused otherwise, and the B key says why.
+inline bool sculptable(const RenderJob& job) {
+    return job.animation.empty() && job.tiles == glm::ivec2(1, 1);
+}
+
 struct ViewerOptions {
     SceneOptions scene;
     // Sculpting: the brush the panel starts with, --sculpt to start in sculpt mode.

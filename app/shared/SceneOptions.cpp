@@ -372,10 +372,9 @@ std::string shellQuote(const std::string& text) {
 std::optional<std::filesystem::path> albedoPath(const SceneOptions& options) {
     if (options.noAlbedo) return std::nullopt;
     if (options.albedoFile) return options.albedoFile;
-    // The bundled map's colours go with its stones: not with waves or ripples, which
-    // replace its heights (flood keeps them, under water).
+    // The bundled map's colours go with its stones: not with a field that replaces them.
     const std::string& animation = options.job.animation;
-    if (!options.heightFile && animation != "waves" && animation != "ripples")
+    if (!options.heightFile && (animation.empty() || AnimatedHeights::showsTheMap(animation)))
         return defaultAlbedoPath();
     return std::nullopt;
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "microrelief/heightmap/MaxPyramid.h"
 #include "microrelief/synth/SyntheticMaps.h"
@@ -18,17 +19,33 @@ using namespace microrelief;
 
 namespace {
 
-// The surface's max over [x0, x1] x [y0, y1], by dense sampling (a lower bound of the
-// true max, which is what a bound must exceed).
-double sampledMax(const HeightMap& map, double x0, double y0, double x1, double y1, int steps) {
+// The max of surface(x, y) over [x0, x1] x [y0, y1], by dense sampling (a lower bound of
+// the true max, which is what a bound must exceed).
+template <class Surface>
+double denseMax(const Surface& surface, double x0, double y0, double x1, double y1, int steps) {
     double best = 0.0;
     for (int b = 0; b <= steps; ++b) {
-        for (int a = 0; a <= steps; ++a) {
-            best =
-                std::max(best, map.surface(x0 + (x1 - x0) * a / steps, y0 + (y1 - y0) * b / steps));
-        }
+        for (int a = 0; a <= steps; ++a)
+            best = std::max(best, surface(x0 + (x1 - x0) * a / steps, y0 + (y1 - y0) * b / steps));
     }
     return best;
+}
+
+double sampledMax(const HeightMap& map, double x0, double y0, double x1, double y1, int steps) {
+    return denseMax([&](double x, double y) { return map.surface(x, y); }, x0, y0, x1, y1, steps);
+}
+
+// A random footprint [lo, hi] over a w x h map, from a point to up to the map's longer
+// side on (short ones more often): past X = w only on a wrapped map, and never more than
+// once round.
+std::pair<glm::dvec2, glm::dvec2> randomFootprint(std::mt19937& random, int w, int h, bool wrapU) {
+    std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0);
+    const glm::dvec2 lo(x(random), y(random));
+    const double reach = std::max(w, h) * unit(random) * unit(random);
+    glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
+    hi.y = std::min(hi.y, static_cast<double>(h));
+    hi.x = std::min(hi.x, wrapU ? lo.x + w - 1e-9 : static_cast<double>(w));
+    return {lo, hi};
 }
 
 }  // namespace
@@ -298,14 +315,6 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
                 const auto surface = [&](double x, double y) {
                     return map.surface(x, y, wrapU, Interpolation::Biquadratic);
                 };
-                const auto denseMax = [&](double x0, double y0, double x1, double y1, int steps) {
-                    double best = 0.0;
-                    for (int b = 0; b <= steps; ++b)
-                        for (int a = 0; a <= steps; ++a)
-                            best = std::max(best, surface(x0 + (x1 - x0) * a / steps,
-                                                          y0 + (y1 - y0) * b / steps));
-                    return best;
-                };
                 for (int j = 0; j < h; ++j) {
                     for (int i = 0; i < w; ++i) {
                         double samples = 0.0;
@@ -314,21 +323,16 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
                                 samples =
                                     std::max<double>(samples, map.sample(i + a, j + b, wrapU));
                         const double texel = p.texel(0, i, j);
-                        ASSERT_GE(texel + 1e-12, denseMax(i, j, i + 1, j + 1, 24)) << i << "," << j;
+                        ASSERT_GE(texel + 1e-12, denseMax(surface, i, j, i + 1, j + 1, 24))
+                            << i << "," << j;
                         ASSERT_LE(texel, samples + 1e-6) << i << "," << j;
                     }
                 }
-                std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0);
                 for (int trial = 0; trial < 400; ++trial) {
-                    const glm::dvec2 lo(x(random), y(random));
-                    const double reach = std::max(w, h) * unit(random) * unit(random);
-                    glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
-                    hi.y = std::min(hi.y, static_cast<double>(h));
-                    // Past X = W only on the wrapped map, and never more than once round.
-                    hi.x = std::min(hi.x, wrapU ? lo.x + w - 1e-9 : static_cast<double>(w));
+                    const auto [lo, hi] = randomFootprint(random, w, h, wrapU);
                     int level = -1, fetches = 0;
                     const double bound = p.footprintBound(lo, hi, level, fetches);
-                    ASSERT_GE(bound, denseMax(lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
+                    ASSERT_GE(bound, denseMax(surface, lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
                         << w << "x" << h << (wrapU ? " wrapped" : "") << " [" << lo.x << "," << lo.y
                         << "] - [" << hi.x << "," << hi.y << "]";
                     if (!wrapU) {  // the plane's reads: along the segment lo -> hi
@@ -362,14 +366,8 @@ TEST(MaxPyramid, TiledBoundsCoverTheWholeSurface) {
                 const MapAddressing addressing{wrapU, tx, ty};
                 const MaxPyramid p(map, addressing, interpolation);
                 const int W = w * tx, H = h * ty;
-                const auto denseMax = [&](double x0, double y0, double x1, double y1, int steps) {
-                    double best = 0.0;
-                    for (int b = 0; b <= steps; ++b)
-                        for (int a = 0; a <= steps; ++a)
-                            best = std::max(best, map.surface(x0 + (x1 - x0) * a / steps,
-                                                              y0 + (y1 - y0) * b / steps,
-                                                              addressing, interpolation));
-                    return best;
+                const auto surface = [&](double x, double y) {
+                    return map.surface(x, y, addressing, interpolation);
                 };
                 const std::string name = std::to_string(w) + "x" + std::to_string(h) + " tiled " +
                                          std::to_string(tx) + "x" + std::to_string(ty) +
@@ -378,20 +376,15 @@ TEST(MaxPyramid, TiledBoundsCoverTheWholeSurface) {
                 for (int j = 0; j < H; ++j) {
                     for (int i = 0; i < W; ++i) {
                         ASSERT_GE(p.texel(0, i % w, j % h) + 1e-12,
-                                  denseMax(i, j, i + 1, j + 1, 16))
+                                  denseMax(surface, i, j, i + 1, j + 1, 16))
                             << name << ": texel square " << i << "," << j;
                     }
                 }
-                std::uniform_real_distribution<double> x(0.0, W), y(0.0, H), unit(0.0, 1.0);
                 for (int trial = 0; trial < 300; ++trial) {
-                    const glm::dvec2 lo(x(random), y(random));
-                    const double reach = std::max(W, H) * unit(random) * unit(random);
-                    glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
-                    hi.y = std::min(hi.y, static_cast<double>(H));
-                    hi.x = std::min(hi.x, wrapU ? lo.x + W - 1e-9 : static_cast<double>(W));
+                    const auto [lo, hi] = randomFootprint(random, W, H, wrapU);
                     int level = -1, fetches = 0;
                     ASSERT_GE(p.footprintBound(lo, hi, level, fetches),
-                              denseMax(lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
+                              denseMax(surface, lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
                         << name << " [" << lo.x << "," << lo.y << "] - [" << hi.x << "," << hi.y
                         << "]";
                 }

@@ -30,6 +30,9 @@ public:
     static const std::vector<std::string>& names();
     // Throws Error(BadInput), naming --animate and the names, for an unknown one.
     static void checkName(const std::string& name);
+    // Whether the field shows the map's own heights (flood) rather than replacing them
+    // (waves, ripples): the map's colours then still belong on it.
+    static bool showsTheMap(const std::string& name) { return name == "flood"; }
 
     // Compiles the field's pass from `shaderDir`. Throws Error.
     AnimatedHeights(const GL& gl, const std::filesystem::path& shaderDir, const std::string& name);

@@ -404,12 +404,51 @@ float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_
 #endif
 }
 
+// The walk of mr_walkLeafCells past the cell whose stretch ended at t1 (map point `next`),
+// stepping in X, in Y or both as it left; false when the stretch ended at the walk's end.
+bool mr_nextLeafCell(mr_Relief relief, int width, bool xUp, bool yUp, bool stepX, bool stepY, float t1, vec3 next,
+                     inout ivec2 cell, inout float t0, inout vec3 point) {
+    if (!stepX && !stepY) return false;  // the stretch ended at `to`
+#if MICRORELIEF_BASE == 0
+    if (stepX) cell.x += xUp ? 1 : -1;
+#else
+    if (stepX) cell.x = xUp ? (cell.x + 1 == width ? 0 : cell.x + 1) : (cell.x == 0 ? width - 1 : cell.x - 1);
+#endif
+    if (stepY) cell.y += yUp ? 1 : -1;
+    t0 = t1;
+    point = next;
+    return true;
+}
+
+// Whether the ray may meet the patch over [c0, c1] at all: the first test of
+// mr_cellStretchHit's, on the whole stretch (the straight path's quartic on the plane's
+// biquadratic surface, else the patch's max over the stretch's footprint against its lowest
+// point), with the same margins. False only where mr_cellStretchHit would return -1 at once.
+bool mr_cellStretchMayHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_ReliefPatch cellPatch, float c0,
+                          float c1, vec3 startPoint, vec3 endPoint) {
+    vec3 fa = mr_cellLocalPoint(relief, cell, startPoint), fb = mr_cellLocalPoint(relief, cell, endPoint);
+#if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 1
+    mr_Quartic gap = mr_biquadraticPathGap(cellPatch, fa, fb);
+    return max(max(max(gap.c.x, gap.c.y), max(gap.c.z, gap.c.w)), gap.c4) >= -MR_PATCH_TOP_MARGIN * relief.map.maxHeight;
+#else
+    vec2 margin = vec2(mr_curvedMarginX(relief), mr_curvedMarginY(relief));
+    float top = mr_patchTop(cellPatch, min(fa.xy, fb.xy) - margin, max(fa.xy, fb.xy) + margin) +
+                MR_PATCH_TOP_MARGIN * relief.map.maxHeight;
+    return mr_baseLowest(relief, origin, dir, c0, c1) <= top;
+#endif
+}
+
 // The cells of the path over [from, to], where X and Y are both monotone, in order: each
 // cell's stretch ends where the path crosses its boundary ahead in X or in Y. [branchFrom,
 // branchTo] is the whole branch of the line that holds [from, to] on which Y is monotone,
 // so that each boundary is crossed once on it: a crossing found there but behind the
 // current t means rounding put the start just past it, and the walk steps on at once.
 // `cellPatch` and `cell` are the patch of the hit.
+//
+// Two loops, as in the traversal (multilevel_trace.glsl): the inner one walks cells with
+// the cheap test of mr_cellStretchMayHit until one may hold a hit, the outer one solves
+// it, so that a block of pixels pays for the exact solve once per pass rather than at
+// every cell where any of its pixels needs it.
 float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
                     float branchFrom, float branchTo, inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
     int width = int(relief.map.size.x);
@@ -424,44 +463,52 @@ float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 di
     bool xUp = mr_baseXIncreases(origin, dir);
     float yTo = mr_baseMapY(relief, origin + to * dir);
     bool yMoves = yTo != start.y, yUp = yTo > start.y;
-    float t0 = from;
-    vec3 point = start;  // the map point at t0
+    float t0 = from, t1 = to;
+    vec3 point = start, next = start;  // the map points at t0 and t1
+    bool stepX = false, stepY = false;
     cellPatch = mr_ReliefPatch(0.0);
-    for (int piece = 0; piece < width + int(relief.map.size.y) + 4; ++piece) {
-        float t1 = to;
-        bool stepX = false, stepY = false;
-        // A curved map one sample wide has no boundary in X: its one cell goes all the way
-        // round.
-        float tx = MICRORELIEF_BASE == 0 || width > 1
-                       ? mr_baseCrossX(relief, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0))
-                       : MR_CURVED_NEVER;
-        if (tx <= t1) {
-            t1 = max(tx, t0);
-            stepX = true;
-        }
-        float yBoundary = float(cell.y) + MR_PATCH_OFFSET + (yUp ? 1.0 : 0.0);
-        if (yMoves && yBoundary > 0.0 && yBoundary < relief.map.size.y) {
-            float ty = mr_baseCrossY(relief, origin, dir, yBoundary, branchFrom, branchTo);
-            if (ty <= t1) {
-                float t = max(ty, t0);
-                stepX = stepX && t == t1;
-                t1 = t;
-                stepY = true;
+    int piece = 0, pieces = width + int(relief.map.size.y) + 4;
+    bool walking = true;
+    while (walking) {
+        // Along the cells to one the ray may meet.
+        bool may = false;
+        for (; piece < pieces; ++piece) {
+            t1 = to;
+            stepX = false;
+            stepY = false;
+            // A curved map one sample wide has no boundary in X: its one cell goes all the way
+            // round.
+            float tx = MICRORELIEF_BASE == 0 || width > 1
+                           ? mr_baseCrossX(relief, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0))
+                           : MR_CURVED_NEVER;
+            if (tx <= t1) {
+                t1 = max(tx, t0);
+                stepX = true;
             }
+            float yBoundary = float(cell.y) + MR_PATCH_OFFSET + (yUp ? 1.0 : 0.0);
+            if (yMoves && yBoundary > 0.0 && yBoundary < relief.map.size.y) {
+                float ty = mr_baseCrossY(relief, origin, dir, yBoundary, branchFrom, branchTo);
+                if (ty <= t1) {
+                    float t = max(ty, t0);
+                    stepX = stepX && t == t1;
+                    t1 = t;
+                    stepY = true;
+                }
+            }
+            cellPatch = mr_patchAt(relief, heights, cell, fetches);
+            next = mr_baseMapPoint(relief, origin + t1 * dir);
+            may = mr_cellStretchMayHit(relief, origin, dir, cell, cellPatch, t0, t1, point, next);
+            if (may) break;
+            walking = mr_nextLeafCell(relief, width, xUp, yUp, stepX, stepY, t1, next, cell, t0, point);
+            if (!walking) break;
         }
-        cellPatch = mr_patchAt(relief, heights, cell, fetches);
-        vec3 next;
-        float tHit = mr_cellStretchHit(relief, origin, dir, cell, cellPatch, t0, t1, point, next);
+        if (!may) break;
+        // The exact solve of the cell found.
+        vec3 end;
+        float tHit = mr_cellStretchHit(relief, origin, dir, cell, cellPatch, t0, t1, point, end);
         if (tHit >= 0.0) return tHit;
-        point = next;
-        if (!stepX && !stepY) break;  // the stretch ended at `to`
-#if MICRORELIEF_BASE == 0
-        if (stepX) cell.x += xUp ? 1 : -1;
-#else
-        if (stepX) cell.x = xUp ? (cell.x + 1 == width ? 0 : cell.x + 1) : (cell.x == 0 ? width - 1 : cell.x - 1);
-#endif
-        if (stepY) cell.y += yUp ? 1 : -1;
-        t0 = t1;
+        walking = mr_nextLeafCell(relief, width, xUp, yUp, stepX, stepY, t1, next, cell, t0, point);
+        piece += 1;
     }
     return -1.0;
 }

@@ -406,7 +406,7 @@ float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_
 
 // The walk of mr_walkLeafCells past the cell whose stretch ended at t1 (map point `next`),
 // stepping in X, in Y or both as it left; false when the stretch ended at the walk's end.
-bool mr_nextLeafCell(mr_Relief relief, int width, bool xUp, bool yUp, bool stepX, bool stepY, float t1, vec3 next,
+bool mr_nextLeafCell(int width, bool xUp, bool yUp, bool stepX, bool stepY, float t1, vec3 next,
                      inout ivec2 cell, inout float t0, inout vec3 point) {
     if (!stepX && !stepY) return false;  // the stretch ended at `to`
 #if MICRORELIEF_BASE == 0
@@ -499,7 +499,7 @@ float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 di
             next = mr_baseMapPoint(relief, origin + t1 * dir);
             may = mr_cellStretchMayHit(relief, origin, dir, cell, cellPatch, t0, t1, point, next);
             if (may) break;
-            walking = mr_nextLeafCell(relief, width, xUp, yUp, stepX, stepY, t1, next, cell, t0, point);
+            walking = mr_nextLeafCell(width, xUp, yUp, stepX, stepY, t1, next, cell, t0, point);
             if (!walking) break;
         }
         if (!may) break;
@@ -507,7 +507,7 @@ float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 di
         vec3 end;
         float tHit = mr_cellStretchHit(relief, origin, dir, cell, cellPatch, t0, t1, point, end);
         if (tHit >= 0.0) return tHit;
-        walking = mr_nextLeafCell(relief, width, xUp, yUp, stepX, stepY, t1, next, cell, t0, point);
+        walking = mr_nextLeafCell(width, xUp, yUp, stepX, stepY, t1, next, cell, t0, point);
         piece += 1;
     }
     return -1.0;

@@ -154,7 +154,8 @@ auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double
 // plane or a cone), found in closed form. `branch` is the branch of the line holding
 // [from, to] on which Y is monotone, where each boundary is crossed once: a crossing found
 // on it behind the current t means rounding put the walk's start just past it, and the
-// walk steps on.
+// walk steps on. (The shader splits the walk in two loops, cells tested in the inner one and
+// solved in the outer; it visits and reads the same cells in the same order.)
 auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to, glm::dvec2 branch,
                                      int& fetches) const -> std::optional<LeafHit> {
     const BaseSurface& base = *base_;

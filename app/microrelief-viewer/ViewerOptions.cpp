@@ -70,14 +70,14 @@ void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
         o.strokes.push_back(stroke);
     }
     if (o.undo < 0) throwBadInput("--undo must be 0 or more");
-    // As the window's B key (sculptable): one reason each.
-    const bool sculpting = o.sculpt || !o.strokes.empty() || o.undo > 0;
-    if (sculpting && o.scene.job.tiles != glm::ivec2(1, 1))
-        throwBadInput(
-            "--sculpt, --stroke and --undo: the viewer sculpts an untiled map only (--tile 1,1)");
-    if (sculpting && !o.scene.job.animation.empty())
-        throwBadInput(
-            "--sculpt, --stroke and --undo: an animated relief cannot be sculpted (--animate)");
+    // The window's rule (sculptable), refused with the reason that applies.
+    if ((o.sculpt || !o.strokes.empty() || o.undo > 0) && !sculptable(o.scene.job)) {
+        throwBadInput(o.scene.job.animation.empty()
+                          ? "--sculpt, --stroke and --undo: the viewer sculpts an untiled map only "
+                            "(--tile 1,1)"
+                          : "--sculpt, --stroke and --undo: an animated relief cannot be sculpted "
+                            "(--animate)");
+    }
     if (!f.saveMap.empty()) {
         o.saveMap = f.saveMap;
         checkMapExtension(*o.saveMap);

@@ -343,15 +343,14 @@ vec3 mr_cellLocalPoint(mr_Relief relief, ivec2 cell, vec3 m) { return vec3(mr_pa
 float mr_cellGap(mr_ReliefPatch cellPatch, vec3 local) { return mr_patchValue(cellPatch, clamp(local.xy, 0.0, 1.0)) - local.z; }
 
 // The first t in [c0, c1] where the ray meets the patch `cellPatch` of `cell`, or -1 (see the
-// header). `startPoint`: the map point at c0, known from the cell before; `endPoint`: the
-// one at c1, found here (the next cell's start). The walk carries the local coordinates of
+// header). `startPoint` and `endPoint`: the map points at c0 and c1, which the walk has
+// (mr_walkLeafCells: each cell's end is the next one's start). The walk carries the local coordinates of
 // the current piece's ends, so that each step computes one new point: the middle it
 // descends to, or the end of the piece it moves on to. Every margin pads a bound outwards.
 float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_ReliefPatch cellPatch, float c0, float c1,
-                     vec3 startPoint, out vec3 endPoint) {
+                     vec3 startPoint, vec3 endPoint) {
 #if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 1
     // The plane's path is straight: the gap is one quartic (biquadratic_patch.glsl).
-    endPoint = mr_baseMapPoint(relief, origin + c1 * dir);
     vec3 pa = mr_cellLocalPoint(relief, cell, startPoint), pb = mr_cellLocalPoint(relief, cell, endPoint);
     mr_Quartic gap = mr_biquadraticPathGap(cellPatch, pa, pb);
     float footprint = max(abs(pb.x - pa.x), abs(pb.y - pa.y));
@@ -364,7 +363,6 @@ float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_
     int depth = 0;
     uint index = 0u;
     float a = c0, b = c1;
-    endPoint = mr_baseMapPoint(relief, origin + c1 * dir);
     vec3 fa = mr_cellLocalPoint(relief, cell, startPoint), fb = mr_cellLocalPoint(relief, cell, endPoint);
     // A walk of the binary tree of pieces visits each at most once.
     for (int guard = 0; guard < (2 << MICRORELIEF_CELL_DEPTH); ++guard) {
@@ -504,8 +502,7 @@ float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 di
         }
         if (!may) break;
         // The exact solve of the cell found.
-        vec3 end;
-        float tHit = mr_cellStretchHit(relief, origin, dir, cell, cellPatch, t0, t1, point, end);
+        float tHit = mr_cellStretchHit(relief, origin, dir, cell, cellPatch, t0, t1, point, next);
         if (tHit >= 0.0) return tHit;
         walking = mr_nextLeafCell(width, xUp, yUp, stepX, stepY, t1, next, cell, t0, point);
         piece += 1;

@@ -65,6 +65,14 @@ vec3 mr_cylinderTopNormal(mr_Relief relief, vec3 q, vec2 gradient) {
     return rho * eRho - rhoPhi * ePhi - vec3(0.0, rho * rhoY, 0.0);
 }
 
+// Frame point q moved `by` map units of height away from the axis (s by in the frame).
+vec3 mr_cylinderRaise(mr_Relief relief, vec3 q, float by) {
+    float rho = mr_cylinderRadial(q);
+    if (rho == 0.0) return q;
+    vec2 xz = q.xz * (1.0 + relief.placement.heightScale * by / rho);
+    return vec3(xz.x, q.y, xz.y);
+}
+
 vec3 mr_cylinderFaceNormal(vec3 q) { return vec3(0.0, q.y > 0.0 ? 1.0 : -1.0, 0.0); }
 
 #endif

@@ -96,6 +96,12 @@ mr_BaseFootprint mr_ellipsoidFootprint(mr_Relief relief, vec3 origin, vec3 dir, 
     return mr_BaseFootprint(vec2(x.x, y.x), vec2(x.y, y.y), lowest, abs(eb.z - ea.z) / relief.placement.heightScale);
 }
 
+// Frame point q moved `by` map units of height away from the centre (s by in the frame).
+vec3 mr_ellipsoidRaise(mr_Relief relief, vec3 q, float by) {
+    float r = mr_ellipsoidRadial(q);
+    return r > 0.0 ? q * (1.0 + relief.placement.heightScale * by / r) : q;
+}
+
 // q = r w(theta, phi) with r = 1 + s h: the outward normal is r w - r_theta e_theta -
 // r_phi / sin(theta) e_phi, with r_theta = s H / pi dh/dY and r_phi = s W / 2 pi dh/dX.
 vec3 mr_ellipsoidTopNormal(mr_Relief relief, vec3 q, vec2 gradient) {

@@ -70,6 +70,9 @@ float mr_planeCrossY(vec3 origin, vec3 dir, float boundary) {
     return dir.y == 0.0 ? 1e30 : (boundary - origin.y) / dir.y;
 }
 
+// Frame point q moved `by` map units of height up (map space: h itself).
+vec3 mr_planeRaise(vec3 q, float by) { return vec3(q.xy, q.z + by); }
+
 // Map space normals: (-dh/dX, -dh/dY, 1) on top, the axis of a face.
 vec3 mr_planeTopNormal(vec2 gradient) { return vec3(-gradient, 1.0); }
 

@@ -118,6 +118,18 @@ vec3 mr_baseMapPoint(mr_Relief relief, vec3 q) {
 #endif
 }
 
+// Frame point q moved `by` map units up the base's height axis: the same (X, Y) in exact
+// arithmetic, the height h + by (float rounding may move X and Y by an ulp on a curved base).
+vec3 mr_baseRaise(mr_Relief relief, vec3 q, float by) {
+#if MICRORELIEF_BASE == 1
+    return mr_cylinderRaise(relief, q, by);
+#elif MICRORELIEF_BASE == 2
+    return mr_ellipsoidRaise(relief, q, by);
+#else
+    return mr_planeRaise(q, by);
+#endif
+}
+
 // The ray's interval in the bounding shell (empty when x > y); the face it enters through
 // (MR_RELIEF_WALL_X, _WALL_Y, _BOTTOM, _CAP, or MR_RELIEF_MISS: the top face or the curved
 // shell); whether it leaves through the plane's floor going down.

@@ -221,10 +221,9 @@ float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bo
     heightToObject *= (frameScale.x + frameScale.y + frameScale.z) / 3.0;
 #endif
     return mr_softShadow(relief, windowPyramid, heightSamples, hit, frameToLight, tMaxLight, lightTanRadius,
-                         heightToObject, length(mat3(worldToObject) * toLight), hit.fetches, hit.exhausted);
+                         heightToObject, length(mat3(worldToObject) * toLight), hit.exhausted);
 #else
-    return mr_hardShadow(relief, windowPyramid, heightSamples, hit, frameToLight, tMaxLight, hit.fetches,
-                         hit.exhausted);
+    return mr_hardShadow(relief, windowPyramid, heightSamples, hit, frameToLight, tMaxLight, hit.exhausted);
 #endif
 #else
     return 1.0;
@@ -253,7 +252,7 @@ void main() {
 
     mr_ReliefHit hit = traceRay(relief, query, mr_baseFramePoint(relief, eye), mr_baseFrameVector(relief, dir));
 #ifdef MICRORELIEF_COUNT_FETCHES
-    float fetches = float(hit.fetches);
+    float fetches = float(mr_fetchCount);
 #else
     float fetches = 0.0;  // the counting is dead code without the instrumented variant
 #endif
@@ -294,7 +293,7 @@ void main() {
     float visibility = lightVisibility(relief, hit, toLight, pointLight);
     outShadow = vec4(visibility, 0.0, 0.0, 1.0);
 #ifdef MICRORELIEF_COUNT_FETCHES
-    outStats.y = float(hit.fetches);  // the shadow ray's reads too
+    outStats.y = float(mr_fetchCount);  // the shadow ray's reads too
 #endif
     if (hit.exhausted) {  // the shadow ray's budget ran out
         outStats.w = 1.0;

@@ -9,6 +9,7 @@
 #include "bilinear_patch.glsl"
 #include "map_space.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
 // Ray against the box [0, W] x [0, H] x [0, maxHeight]: the parameter interval inside
 // it, and which slab the entry and the exit cross (0: X, 1: Y, 2: h). Empty when x > y.
@@ -97,13 +98,13 @@ vec3 mr_planeObjectNormal(mr_Relief relief, vec3 n) {
 // from one cell to its neighbour across the boundary the ray meets first (a 2D DDA, as
 // in the reference tracer). Neighbouring patches share an edge (mr_neighbourCorners).
 // `corners` and `cell` are the patch of the hit.
-float mr_planeIntersectLeaf(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                         inout int fetches, out vec4 corners, out ivec2 cell) {
+float mr_planeIntersectLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, float ta, float tb,
+                         out vec4 corners, out ivec2 cell) {
     cell = mr_cellAt((origin + ta * dir).xy);
     ivec2 lastCell = mr_cellAt((origin + tb * dir).xy);
     ivec2 toward = ivec2(sign(vec2(lastCell - cell)));
     ivec2 cells = abs(lastCell - cell);
-    corners = mr_cellCorners(relief, heights, cell, fetches);
+    corners = mr_cellCorners(relief, heights, cell);
     float t0 = ta;
     for (int piece = 0; piece <= cells.x + cells.y; ++piece) {
         // Where the ray leaves this cell towards lastCell, per axis (tb: it does not).
@@ -119,7 +120,7 @@ float mr_planeIntersectLeaf(mr_Relief relief, sampler2D heights, vec3 origin, ve
         if (tau >= 0.0) return t0 + tau;
         if (t1 >= tb) break;
         int axis = exits.x <= exits.y ? 0 : 1;
-        corners = mr_neighbourCorners(relief, heights, cell, axis, toward[axis], corners, fetches);
+        corners = mr_neighbourCorners(relief, heights, cell, axis, toward[axis], corners);
         t0 = t1;
     }
     return -1.0;

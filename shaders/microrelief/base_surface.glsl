@@ -39,6 +39,7 @@
 #include "map_space.glsl"
 #include "relief_map.glsl"
 #include "relief_patch.glsl"
+#include "texture_reads.glsl"
 
 // The curved leaf's subdivision of one cell's stretch of the ray: down to pieces
 // MR_CURVED_FINAL_LENGTH long in the frame, or 2^-10 of the stretch at most. Over a piece of
@@ -459,8 +460,8 @@ bool mr_cellStretchMayHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, m
 // the cheap test of mr_cellStretchMayHit until one may hold a hit, the outer one solves
 // it, so that a block of pixels pays for the exact solve once per pass rather than at
 // every cell where any of its pixels needs it.
-float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float from, float to,
-                    float branchFrom, float branchTo, inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
+float mr_walkLeafCells(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, float from, float to,
+                    float branchFrom, float branchTo, out mr_ReliefPatch cellPatch, out ivec2 cell) {
     int width = int(relief.map.size.x);
     // Cells in Y: -1..H - 1 between sample centres, 0..H - 1 over texel squares.
     int firstRow = MR_PATCH_OFFSET > 0.0 ? -1 : 0, lastRow = int(relief.map.size.y) - 1;
@@ -505,7 +506,7 @@ float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 di
                     stepY = true;
                 }
             }
-            cellPatch = mr_patchAt(relief, heights, cell, fetches);
+            cellPatch = mr_patchAt(relief, heights, cell);
             next = mr_baseMapPoint(relief, origin + t1 * dir);
             may = mr_cellStretchMayHit(relief, origin, dir, cell, cellPatch, t0, t1, point, next);
             if (may) break;
@@ -525,8 +526,8 @@ float mr_walkLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 di
 // The exact first hit over [ta, tb] by the cells the path crosses: the latitude turns at
 // most once along a line, so the leaf is walked in two pieces at most, X and Y monotone on
 // each.
-float mr_intersectLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                         inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
+float mr_intersectLeafCells(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, float ta, float tb,
+                         out mr_ReliefPatch cellPatch, out ivec2 cell) {
     float turn = mr_baseTurnY(origin, dir);
     float from = ta, to = turn > ta && turn < tb ? turn : tb;
     float tHit = -1.0;
@@ -535,7 +536,7 @@ float mr_intersectLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, ve
         bool beforeTurn = turn != MR_CURVED_NEVER && turn >= to;
         float branchFrom = beforeTurn || turn == MR_CURVED_NEVER ? -MR_CURVED_NEVER : turn;
         float branchTo = beforeTurn ? turn : MR_CURVED_NEVER;
-        tHit = mr_walkLeafCells(relief, heights, origin, dir, from, to, branchFrom, branchTo, fetches, cellPatch, cell);
+        tHit = mr_walkLeafCells(relief, heights, origin, dir, from, to, branchFrom, branchTo, cellPatch, cell);
         if (tHit >= 0.0 || to >= tb) break;
         from = to;
         to = tb;
@@ -545,12 +546,12 @@ float mr_intersectLeafCells(mr_Relief relief, sampler2D heights, vec3 origin, ve
 
 // The exact first hit on the surface over [ta, tb], or -1; `corners` and `cell` are the
 // patch of the hit.
-float mr_baseIntersectLeaf(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float ta, float tb,
-                        inout int fetches, out mr_ReliefPatch cellPatch, out ivec2 cell) {
+float mr_baseIntersectLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, float ta, float tb,
+                        out mr_ReliefPatch cellPatch, out ivec2 cell) {
 #if MICRORELIEF_BASE == 0 && MICRORELIEF_INTERPOLATION == 0
-    return mr_planeIntersectLeaf(relief, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
+    return mr_planeIntersectLeaf(relief, heights, origin, dir, ta, tb, cellPatch, cell);
 #else
-    return mr_intersectLeafCells(relief, heights, origin, dir, ta, tb, fetches, cellPatch, cell);
+    return mr_intersectLeafCells(relief, heights, origin, dir, ta, tb, cellPatch, cell);
 #endif
 }
 

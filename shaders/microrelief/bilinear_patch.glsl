@@ -11,30 +11,25 @@
 #ifndef MICRORELIEF_BILINEAR_PATCH_GLSL
 #define MICRORELIEF_BILINEAR_PATCH_GLSL
 
+#include "fetch_count.glsl"
 #include "map_addressing.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
-// How a cell's four samples are read: 1, one textureGather (GLSL 4.00, ES 3.10 and up);
-// 0, four texelFetch. `fetches` counts texture instructions: 1 or 4 per cell.
-#ifndef MICRORELIEF_TEXTURE_GATHER
-#if (!defined(GL_ES) && __VERSION__ >= 400) || (defined(GL_ES) && __VERSION__ >= 310)
-#define MICRORELIEF_TEXTURE_GATHER 1
-#else
-#define MICRORELIEF_TEXTURE_GATHER 0
-#endif
-#endif
+// A cell's four samples are one gather or four single reads (texture_reads.glsl:
+// MICRORELIEF_TEXTURE_GATHER), counted as 1 or 4 fetches (fetch_count.glsl).
 
 // The four corner samples of a tiled map's cell one by one (mr_sampleTexel).
-vec4 mr_tiledCellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
-    fetches += 4;
-    return vec4(texelFetch(heights, mr_sampleTexel(relief, cell), 0).r,
-                texelFetch(heights, mr_sampleTexel(relief, cell + ivec2(1, 0)), 0).r,
-                texelFetch(heights, mr_sampleTexel(relief, cell + ivec2(0, 1)), 0).r,
-                texelFetch(heights, mr_sampleTexel(relief, cell + 1), 0).r);
+vec4 mr_tiledCellCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
+    MICRORELIEF_FETCHED(4);
+    return vec4(MICRORELIEF_READ_SAMPLE(heights, mr_sampleTexel(relief, cell)),
+                MICRORELIEF_READ_SAMPLE(heights, mr_sampleTexel(relief, cell + ivec2(1, 0))),
+                MICRORELIEF_READ_SAMPLE(heights, mr_sampleTexel(relief, cell + ivec2(0, 1))),
+                MICRORELIEF_READ_SAMPLE(heights, mr_sampleTexel(relief, cell + 1)));
 }
 
 // The four corner samples of cell `cell`: x = h00, y = h10, z = h01, w = h11.
-vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
+vec4 mr_cellCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
 #if MICRORELIEF_TILING
 #if MICRORELIEF_TEXTURE_GATHER
     // One gather of the REPEATing texture, from the cell's first sample on, reads its four
@@ -42,8 +37,8 @@ vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int f
     // reads the edge sample and the next one (or the wrapped one), where the clamped map
     // repeats the edge sample: the selects put that right, without a branch (which a
     // software rasteriser would run on both sides).
-    fetches += 1;
-    vec4 g = textureGather(heights, (vec2(mr_sampleTexel(relief, cell)) + 1.0) / mr_tileSize(relief.map));
+    MICRORELIEF_FETCHED(1);
+    vec4 g = MICRORELIEF_GATHER_SAMPLES(heights, (vec2(mr_sampleTexel(relief, cell)) + 1.0) / mr_tileSize(relief.map));
     vec4 h = vec4(g.w, g.z, g.x, g.y);
     ivec2 last = ivec2(relief.map.size) - 1;
 #if MICRORELIEF_BASE == 0
@@ -52,13 +47,13 @@ vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int f
     h.zw = (cell.y < 0 || cell.y >= last.y) ? h.xy : h.zw;
     return h;
 #else
-    return mr_tiledCellCorners(relief, heights, cell, fetches);
+    return mr_tiledCellCorners(relief, heights, cell);
 #endif
 #elif MICRORELIEF_TEXTURE_GATHER
     // The bilinear footprint of the point midway between the cell's four samples is
     // exactly those samples, clamped at the edges as CLAMP_TO_EDGE clamps them.
-    fetches += 1;
-    vec4 g = textureGather(heights, (vec2(cell) + 1.0) / relief.map.size);
+    MICRORELIEF_FETCHED(1);
+    vec4 g = MICRORELIEF_GATHER_SAMPLES(heights, (vec2(cell) + 1.0) / relief.map.size);
     return vec4(g.w, g.z, g.x, g.y);  // gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0)
 #else
     ivec2 last = ivec2(relief.map.size) - 1;
@@ -68,32 +63,31 @@ vec4 mr_cellCorners(mr_Relief relief, sampler2D heights, ivec2 cell, inout int f
     c0.x = cell.x;
     c1.x = cell.x + 1 > last.x ? 0 : cell.x + 1;
 #endif
-    fetches += 4;
-    return vec4(texelFetch(heights, c0, 0).r, texelFetch(heights, ivec2(c1.x, c0.y), 0).r,
-                texelFetch(heights, ivec2(c0.x, c1.y), 0).r, texelFetch(heights, c1, 0).r);
+    MICRORELIEF_FETCHED(4);
+    return vec4(MICRORELIEF_READ_SAMPLE(heights, c0), MICRORELIEF_READ_SAMPLE(heights, ivec2(c1.x, c0.y)),
+                MICRORELIEF_READ_SAMPLE(heights, ivec2(c0.x, c1.y)), MICRORELIEF_READ_SAMPLE(heights, c1));
 #endif
 }
 
 // The corners of the neighbour of `cell` one `step` (+1 or -1) along `axis`, given the
 // corners of `cell`; `cell` moves. The two cells share an edge: without gathering, only
 // the far edge's two samples are read.
-vec4 mr_neighbourCorners(mr_Relief relief, sampler2D heights, inout ivec2 cell, int axis, int step, vec4 corners,
-                      inout int fetches) {
+vec4 mr_neighbourCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, inout ivec2 cell, int axis, int step, vec4 corners) {
     cell[axis] += step;
 #if MICRORELIEF_TEXTURE_GATHER || MICRORELIEF_TILING
-    return mr_cellCorners(relief, heights, cell, fetches);
+    return mr_cellCorners(relief, heights, cell);
 #else
     ivec2 last = ivec2(relief.map.size) - 1;
     ivec2 c0 = clamp(cell, ivec2(0), last), c1 = clamp(cell + 1, ivec2(0), last);
-    fetches += 2;
+    MICRORELIEF_FETCHED(2);
     if (axis == 0) {
         int x = step > 0 ? c1.x : c0.x;
-        vec2 fresh = vec2(texelFetch(heights, ivec2(x, c0.y), 0).r, texelFetch(heights, ivec2(x, c1.y), 0).r);
+        vec2 fresh = vec2(MICRORELIEF_READ_SAMPLE(heights, ivec2(x, c0.y)), MICRORELIEF_READ_SAMPLE(heights, ivec2(x, c1.y)));
         vec2 kept = step > 0 ? corners.yw : corners.xz;
         return step > 0 ? vec4(kept.x, fresh.x, kept.y, fresh.y) : vec4(fresh.x, kept.x, fresh.y, kept.y);
     }
     int y = step > 0 ? c1.y : c0.y;
-    vec2 fresh = vec2(texelFetch(heights, ivec2(c0.x, y), 0).r, texelFetch(heights, ivec2(c1.x, y), 0).r);
+    vec2 fresh = vec2(MICRORELIEF_READ_SAMPLE(heights, ivec2(c0.x, y)), MICRORELIEF_READ_SAMPLE(heights, ivec2(c1.x, y)));
     vec2 kept = step > 0 ? corners.zw : corners.xy;
     return step > 0 ? vec4(kept, fresh) : vec4(fresh, kept);
 #endif
@@ -132,9 +126,9 @@ vec2 mr_patchGradient(vec4 h, vec2 f) {
 }
 
 // h(X, Y): the surface height at a map point.
-float mr_surfaceHeight(mr_Relief relief, sampler2D heights, vec2 xy, inout int fetches) {
+float mr_surfaceHeight(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 xy) {
     ivec2 cell = mr_wrapCell(relief, mr_cellAt(xy));
-    return mr_patchHeight(mr_cellCorners(relief, heights, cell, fetches), clamp(mr_cellLocal(relief, cell, xy), 0.0, 1.0));
+    return mr_patchHeight(mr_cellCorners(relief, heights, cell), clamp(mr_cellLocal(relief, cell, xy), 0.0, 1.0));
 }
 
 // The patch's max over the rectangle [lo, hi] of local coordinates (clamped to the

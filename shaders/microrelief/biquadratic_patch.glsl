@@ -13,19 +13,21 @@
 #define MICRORELIEF_BIQUADRATIC_PATCH_GLSL
 
 #include "bilinear_patch.glsl"
+#include "fetch_count.glsl"
 #include "final_piece.glsl"
 #include "map_addressing.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
 // One sample, its column clamped or wrapped, its row clamped (map_addressing.glsl).
-float mr_biquadraticSample(mr_Relief relief, sampler2D heights, ivec2 p) {
-    return texelFetch(heights, mr_sampleTexel(relief, p), 0).r;
+float mr_biquadraticSample(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 p) {
+    return MICRORELIEF_READ_SAMPLE(heights, mr_sampleTexel(relief, p));
 }
 
 // The Bezier net of texel square `square` (net[a][b]: column a, row b, as a mat3 is
 // indexed). The 3 x 3 samples are four textureGathers of 2 x 2 samples each where the GL
 // has them (one fetch each), nine texelFetch otherwise.
-mat3 mr_biquadraticNet(mr_Relief relief, sampler2D heights, ivec2 square, inout int fetches) {
+mat3 mr_biquadraticNet(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 square) {
     mat3 c;
 #if MICRORELIEF_TEXTURE_GATHER
 #if MICRORELIEF_TILING
@@ -39,11 +41,11 @@ mat3 mr_biquadraticNet(mr_Relief relief, sampler2D heights, ivec2 square, inout 
     {
         // Each gather reads the 2 x 2 samples whose centres surround the point between
         // them: samples (i - 1..i, j - 1..j) around (i, j) in texel coordinates, and so on.
-        vec4 g00 = textureGather(heights, (corner + vec2(0.0, 0.0)) / size);
-        vec4 g10 = textureGather(heights, (corner + vec2(1.0, 0.0)) / size);
-        vec4 g01 = textureGather(heights, (corner + vec2(0.0, 1.0)) / size);
-        vec4 g11 = textureGather(heights, (corner + vec2(1.0, 1.0)) / size);
-        fetches += 4;
+        vec4 g00 = MICRORELIEF_GATHER_SAMPLES(heights, (corner + vec2(0.0, 0.0)) / size);
+        vec4 g10 = MICRORELIEF_GATHER_SAMPLES(heights, (corner + vec2(1.0, 0.0)) / size);
+        vec4 g01 = MICRORELIEF_GATHER_SAMPLES(heights, (corner + vec2(0.0, 1.0)) / size);
+        vec4 g11 = MICRORELIEF_GATHER_SAMPLES(heights, (corner + vec2(1.0, 1.0)) / size);
+        MICRORELIEF_FETCHED(4);
         // Gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0).
         c[0] = vec3(g00.w, g00.x, g01.x);
         c[1] = vec3(g00.z, g00.y, g01.y);
@@ -72,7 +74,7 @@ mat3 mr_biquadraticNet(mr_Relief relief, sampler2D heights, ivec2 square, inout 
     for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b) c[a][b] = mr_biquadraticSample(relief, heights, square + ivec2(a - 1, b - 1));
     }
-    fetches += 9;
+    MICRORELIEF_FETCHED(9);
 #endif
     // B-spline control points to the Bezier net, along each axis.
     mat3 rows;

@@ -17,6 +17,7 @@
 #include "relief_patch.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
 // Upper bound on any sample count a caller asks for: every loop stays bounded.
 #ifndef MICRORELIEF_MAX_LAYERS
@@ -30,11 +31,11 @@ struct mr_LayerSample {
     float g;
 };
 
-mr_LayerSample mr_layerSampleAt(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float t,
+mr_LayerSample mr_layerSampleAt(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, float t,
                           inout mr_ReliefHit hit) {
     vec3 p = origin + t * dir;
     hit.iterations += 1;
-    return mr_LayerSample(t, mr_reliefHeight(relief, heights, p.xy, hit.fetches) - p.z);
+    return mr_LayerSample(t, mr_reliefHeight(relief, heights, p.xy) - p.z);
 }
 
 // The ray direction in the tangent frame of the published methods: map (X, Y, h) axes in
@@ -47,7 +48,7 @@ vec3 mr_tangentSpaceDirection(mr_Relief relief, vec3 dir) {
 // Marches the layers from where the ray enters the box. True when a sample lies under
 // the surface: `below` is the first such sample and `above` the one before it (equal
 // to `below` when the very first sample is under). False for a miss.
-bool mr_marchLayers(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, int layers,
+bool mr_marchLayers(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, int layers,
                  inout mr_ReliefHit hit, out mr_LayerSample above, out mr_LayerSample below) {
     int entryAxis, exitAxis;
     vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);

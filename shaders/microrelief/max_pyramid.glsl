@@ -16,21 +16,15 @@
 #ifndef MICRORELIEF_MAX_PYRAMID_GLSL
 #define MICRORELIEF_MAX_PYRAMID_GLSL
 
+#include "fetch_count.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
 // The finest texel that holds map point p, clamped to the map (not its padding); the
 // level-k texel holding it is this shifted right by k.
 ivec2 mr_finestTexelAt(mr_Relief relief, vec2 p) {
     return clamp(ivec2(floor(p)), ivec2(0), ivec2(relief.map.size) - 1);
 }
-
-// How a pyramid texel is read. 0 (default): textureLod at the texel's centre with
-// nearest filtering, the ordinary texture path, as the paper has it ("the same mechanism
-// as for the usual texture"). 1: texelFetch of the same texel, which skips the sampler's
-// coordinate work (a quarter faster on llvmpipe; the same on most GPUs).
-#ifndef MICRORELIEF_PYRAMID_TEXEL_FETCH
-#define MICRORELIEF_PYRAMID_TEXEL_FETCH 0
-#endif
 
 // 2^S: the pyramids hold bound / 2^S as halves, S = e - 14 for the top's binary exponent
 // e (clamped to [-112, 113]), so the top lies below 2^15 and every nonzero bound at or
@@ -42,14 +36,10 @@ float mr_pyramidScale(mr_Relief relief) {
 }
 
 // One pyramid texel: the bound it stands for, map units.
-float mr_pyramidTexel(mr_Relief relief, sampler2D pyramid, ivec2 texel, int level, inout int fetches) {
-    fetches += 1;
-#if MICRORELIEF_PYRAMID_TEXEL_FETCH
-    return texelFetch(pyramid, texel, level).r * mr_pyramidScale(relief);
-#else
+float mr_pyramidTexel(mr_Relief relief, MICRORELIEF_SAMPLER pyramid, ivec2 texel, int level) {
+    MICRORELIEF_FETCHED(1);
     vec2 levelSize = vec2(max(ivec2(1), relief.map.pyramidSize >> level));
-    return textureLod(pyramid, (vec2(texel) + 0.5) / levelSize, float(level)).r * mr_pyramidScale(relief);
-#endif
+    return MICRORELIEF_READ_PYRAMID(pyramid, texel, level, levelSize) * mr_pyramidScale(relief);
 }
 
 // floor(log2(n)) for n >= 1, exactly; 0 for n = 0.
@@ -83,10 +73,10 @@ int mr_windowLevel(mr_Relief relief, ivec2 lo, ivec2 hi) {
 // the paper has it. The last window of a row or column holds what lies past it (its last
 // block reaches to the map's edge), so the index is clamped to the level. `level` is set
 // to the level read.
-float mr_windowOver(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
+float mr_windowOver(mr_Relief relief, MICRORELIEF_SAMPLER windows, ivec2 lo, ivec2 hi, out int level) {
     level = mr_windowLevel(relief, lo, hi);
     ivec2 last = max(ivec2(1), relief.map.pyramidSize >> level) - 1;
-    return mr_pyramidTexel(relief, windows, min(lo >> level, last), level, fetches);
+    return mr_pyramidTexel(relief, windows, min(lo >> level, last), level);
 }
 
 #if MICRORELIEF_TILING
@@ -100,7 +90,7 @@ float mr_windowOver(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, out
 // on every segment, 2.2x the untiled time where this costs 1.7x on llvmpipe; the looser
 // bound only sends the few segments that cross a seam a level or two further down). So a
 // view costs the levels the tiles add above a tile, and no more.
-float mr_tiledWindows(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, out int level, inout int fetches) {
+float mr_tiledWindows(mr_Relief relief, MICRORELIEF_SAMPLER windows, ivec2 lo, ivec2 hi, out int level) {
     ivec2 tile = ivec2(mr_tileSize(relief.map));
     ivec2 span = hi - lo;
     ivec2 a = lo - tile * (lo / tile), b = a + span;
@@ -113,7 +103,7 @@ float mr_tiledWindows(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, o
         b.y = tile.y - 1;
     }
     bool split = any(greaterThanEqual(b, tile));
-    return mr_windowOver(relief, windows, split ? ivec2(0) : a, split ? tile - 1 : b, level, fetches);
+    return mr_windowOver(relief, windows, split ? ivec2(0) : a, split ? tile - 1 : b, level);
 }
 #endif
 
@@ -121,22 +111,22 @@ float mr_tiledWindows(mr_Relief relief, sampler2D windows, ivec2 lo, ivec2 hi, o
 // the window that holds its texels; on a curved base, a rectangle that reaches past
 // X = W wraps across the seam, and the larger of the windows over its two parts,
 // [lo.x, W) and [0, hi.x - W], bounds it (two fetches, for the segments that cross it).
-float mr_footprintBound(mr_Relief relief, sampler2D windows, vec2 lo, vec2 hi, out int level, inout int fetches) {
+float mr_footprintBound(mr_Relief relief, MICRORELIEF_SAMPLER windows, vec2 lo, vec2 hi, out int level) {
 #if MICRORELIEF_TILING
     ivec2 tlo = mr_finestTexelAt(relief, lo), thi = mr_finestTexelAt(relief, hi);
 #if MICRORELIEF_BASE != 0
     if (hi.x >= relief.map.size.x) thi.x = int(floor(hi.x));  // past the seam: the tile's period takes it round
 #endif
-    return mr_tiledWindows(relief, windows, tlo, thi, level, fetches);
+    return mr_tiledWindows(relief, windows, tlo, thi, level);
 #else
 #if MICRORELIEF_BASE != 0
     if (hi.x >= relief.map.size.x) {
         ivec2 tlo = mr_finestTexelAt(relief, lo), thi = mr_finestTexelAt(relief, hi - vec2(relief.map.size.x, 0.0));
-        float right = mr_windowOver(relief, windows, tlo, ivec2(int(relief.map.size.x) - 1, thi.y), level, fetches);
-        return max(right, mr_windowOver(relief, windows, ivec2(0, tlo.y), thi, level, fetches));
+        float right = mr_windowOver(relief, windows, tlo, ivec2(int(relief.map.size.x) - 1, thi.y), level);
+        return max(right, mr_windowOver(relief, windows, ivec2(0, tlo.y), thi, level));
     }
 #endif
-    return mr_windowOver(relief, windows, mr_finestTexelAt(relief, lo), mr_finestTexelAt(relief, hi), level, fetches);
+    return mr_windowOver(relief, windows, mr_finestTexelAt(relief, lo), mr_finestTexelAt(relief, hi), level);
 #endif
 }
 

@@ -24,6 +24,7 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 #include "relief_query.glsl"
+#include "texture_reads.glsl"
 
 // Which way the ray moves over the map, per axis (+1, -1 or 0), and the branch of its line
 // on which that holds: on the plane and the cylinder the whole line; on an ellipsoid the
@@ -110,9 +111,9 @@ ivec2 mr_maxMipChildAt(ivec2 node, int level, vec2 p, ivec2 step) {
 }
 
 // The node's max height: one texel of the pyramid.
-float mr_maxMipNodeHeight(mr_Relief relief, sampler2D pyramid, ivec2 node, int level, inout int fetches) {
+float mr_maxMipNodeHeight(mr_Relief relief, MICRORELIEF_SAMPLER pyramid, ivec2 node, int level) {
     ivec2 levelSize = max(ivec2(1), relief.map.pyramidSize >> level);
-    return mr_pyramidTexel(relief, pyramid, clamp(node, ivec2(0), levelSize - 1), level, fetches);
+    return mr_pyramidTexel(relief, pyramid, clamp(node, ivec2(0), levelSize - 1), level);
 }
 
 // Into the neighbour of `node` across the side(s) of its column the ray leaves through
@@ -139,7 +140,7 @@ void mr_maxMipNextNode(mr_Relief relief, inout ivec2 node, inout int level, int 
 // mr_traceMultilevel's (multilevel_trace.glsl): an inner one walks nodes down to a finest
 // texel the ray meets, an outer one solves it, so that pixels in SIMD lanes pay for
 // their leaves once per outer pass, not on every node.
-void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, sampler2D pyramid, sampler2D heights, vec3 origin,
+void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyramid, MICRORELIEF_SAMPLER heights, vec3 origin,
                    vec3 dir, float tFar, bool floorExit, inout mr_ReliefHit hit) {
     float t = 0.0;  // where the ray is in the current node
     int topLevel = relief.map.levelCount - 1;
@@ -163,7 +164,7 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, sampler2D pyramid, sampl
             // Where Y turns the node's side ahead in Y changes: a stop of its own.
             float tStop = min(min(exits.x, exits.y), course.turn);
             tExit = min(max(tStop, t), tFar);
-            float top = mr_maxMipNodeHeight(relief, pyramid, node, level, hit.fetches);
+            float top = mr_maxMipNodeHeight(relief, pyramid, node, level);
             if (mr_baseLowest(relief, origin, dir, t, tExit) <= top) {
                 if (level == 0) {
                     atLeaf = true;
@@ -190,7 +191,7 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, sampler2D pyramid, sampl
         if (!atLeaf) break;  // finished, or out of iterations
         // At level 0 the texel spans parts of up to four bilinear patches; the ray is
         // solved exactly against those it crosses, in order.
-        tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, hit.fetches, corners, cell);
+        tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (tExit >= tFar) {
@@ -217,7 +218,7 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, sampler2D pyramid, sampl
 }
 
 // As mr_traceMultilevel, over the aligned pyramid.
-mr_ReliefHit mr_traceMaxMip(mr_Relief relief, mr_RayQuery query, sampler2D pyramid, sampler2D heights, vec3 origin,
+mr_ReliefHit mr_traceMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyramid, MICRORELIEF_SAMPLER heights, vec3 origin,
                             vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     vec3 start;

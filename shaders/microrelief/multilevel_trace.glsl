@@ -31,6 +31,7 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 #include "relief_query.glsl"
+#include "texture_reads.glsl"
 
 // Deeper than any footprint needs (2^24 texels); segment ends stay exact in float.
 #ifndef MICRORELIEF_MAX_DEPTH
@@ -78,7 +79,7 @@ bool mr_nextSegment(inout int depth, inout uint index, inout float parentBound, 
 // single loop, every step would pay for the leaf of any lane that needs one (llvmpipe runs
 // both sides of every branch, a GPU's warp the taken ones), here a block of pixels pays
 // for its leaves once per outer pass.
-void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, sampler2D windows, sampler2D heights, vec3 start,
+void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights, vec3 start,
                          vec3 dir, float span, float tStart, bool floorExit, inout mr_ReliefHit hit) {
     // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
     // float conversions and the power-of-two scale are exact, so neighbouring segments
@@ -131,7 +132,7 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, sampler2D windows,
             int level = -1;
             float bound = parentBound;
             if (!mayHit && footprint.lowest <= parentBound) {
-                bound = min(bound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level, hit.fetches));
+                bound = min(bound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level));
                 hit.stopLevel = level;
                 mayHit = footprint.lowest <= bound;
             }
@@ -175,7 +176,7 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, sampler2D windows,
         if (!atLeaf) break;  // finished, or out of iterations
         // No hit before the ray comes down to the leaf's bound: solve from there.
         float tFrom = mr_baseDescendTo(relief, start, dir, ta, tb, leafBound);
-        tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, tb, hit.fetches, corners, cell);
+        tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, tb, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
         } else if (!mr_nextSegment(depth, index, parentBound, false)) {
@@ -198,7 +199,7 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, sampler2D windows,
 
 // The first hit of the ray origin + t dir (in the base's frame: mr_baseFramePoint,
 // mr_baseFrameVector) with the relief's solid that `query` asks for.
-mr_ReliefHit mr_traceMultilevel(mr_Relief relief, mr_RayQuery query, sampler2D windows, sampler2D heights,
+mr_ReliefHit mr_traceMultilevel(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights,
                                 vec3 origin, vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     vec3 start;

@@ -15,8 +15,9 @@
 
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
-mr_ReliefHit mr_traceNormalMapping(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir) {
+mr_ReliefHit mr_traceNormalMapping(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     // The proxy is one-sided: only a ray going down meets its front face.
     if (!(dir.z < 0.0)) return hit;

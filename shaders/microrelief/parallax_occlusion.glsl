@@ -20,8 +20,9 @@
 #include "layer_march.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
-mr_ReliefHit mr_traceParallaxOcclusion(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir,
+mr_ReliefHit mr_traceParallaxOcclusion(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir,
                                  int minSamples, int maxSamples) {
     mr_ReliefHit hit = mr_reliefMissHit();
     float cosView = abs(mr_tangentSpaceDirection(relief, dir).z);

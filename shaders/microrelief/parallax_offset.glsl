@@ -25,8 +25,9 @@
 #include "layer_march.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
-mr_ReliefHit mr_traceParallaxOffset(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir) {
+mr_ReliefHit mr_traceParallaxOffset(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     int entryAxis, exitAxis;
     vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);
@@ -35,7 +36,7 @@ mr_ReliefHit mr_traceParallaxOffset(mr_Relief relief, sampler2D heights, vec3 or
     vec3 entry = origin + tNear * dir;
     hit.iterations = 1;
     hit.stopLevel = 0;
-    float h0 = mr_reliefHeight(relief, heights, entry.xy, hit.fetches);
+    float h0 = mr_reliefHeight(relief, heights, entry.xy);
     if (entry.z <= h0) {
         mr_setMapTopHitAt(hit, relief, heights, tNear, entry);  // entered under the surface
         return hit;

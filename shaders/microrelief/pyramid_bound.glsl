@@ -17,6 +17,7 @@
 #define MICRORELIEF_PYRAMID_BOUND_GLSL
 
 #include "precision.glsl"
+#include "texture_reads.glsl"
 
 // The bits of the smallest float not below (a + b) / 2, from the bits of a and b
 // (floats >= 0). Each float is f * 2^(Q - 150), f its 24-bit significand (a denormal: its
@@ -58,16 +59,16 @@ float mr_roundUpMean(float a, float b) {
 // Sample (i, j) of the W x H map `heights` (texelFetch, level 0), the sign bit cleared:
 // rows clamped to the edge, columns clamped too, or wrapped round when `wrapU` (a curved
 // base's periodic u).
-uint mr_sampleBits(sampler2D heights, ivec2 size, ivec2 p, bool wrapU) {
+uint mr_sampleBits(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 p, bool wrapU) {
     p.y = clamp(p.y, 0, size.y - 1);
     p.x = wrapU ? (p.x < 0 ? p.x + size.x : (p.x >= size.x ? p.x - size.x : p.x)) : clamp(p.x, 0, size.x - 1);
-    return floatBitsToUint(texelFetch(heights, p, 0).r) & 0x7fffffffu;
+    return floatBitsToUint(MICRORELIEF_READ_SAMPLE(heights, p)) & 0x7fffffffu;
 }
 
 // The finest level's texel (i, j) of a W x H map: see the top of this file. The largest
 // of the nine is taken on the bits, which order as the values do. Not rounded for
 // storage (mr_storedHalf).
-float mr_texelSquareBound(sampler2D heights, ivec2 size, ivec2 texel, bool wrapU) {
+float mr_texelSquareBound(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 texel, bool wrapU) {
     uint rows[9];
     for (int b = 0; b < 3; ++b) {
         uint c0 = mr_sampleBits(heights, size, texel + ivec2(-1, b - 1), wrapU);
@@ -90,7 +91,7 @@ float mr_texelSquareBound(sampler2D heights, ivec2 size, ivec2 texel, bool wrapU
 // 5 x 5 lattice over the 4 x 4 samples round them: the row means of each sample row
 // (rows first, as for one texel), then the means down the lattice's columns; each texel's
 // nine are a 3 x 3 part of it, computed in the same order, so the same bits.
-uint mr_texelBlockBoundBits(sampler2D heights, ivec2 size, ivec2 texel, bool wrapU) {
+uint mr_texelBlockBoundBits(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 texel, bool wrapU) {
     uint rows[20];  // 4 sample rows x 5: mean, sample, mean, sample, mean
     for (int b = 0; b < 4; ++b) {
         uint c0 = mr_sampleBits(heights, size, texel + ivec2(-1, b - 1), wrapU);

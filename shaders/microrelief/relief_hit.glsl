@@ -14,6 +14,7 @@
 #include "relief_map.glsl"
 #include "relief_patch.glsl"
 #include "relief_query.glsl"
+#include "texture_reads.glsl"
 
 struct mr_ReliefHit {
     int kind;         // MR_RELIEF_MISS, MR_RELIEF_TOP, ... (relief_map.glsl)
@@ -21,7 +22,6 @@ struct mr_ReliefHit {
     vec3 position;    // the hit point in the base's frame
     vec3 normal;      // outward normal in the frame, not unit: use mr_reliefWorldNormal
     int iterations;   // segments visited
-    int fetches;      // texels read (pyramid and samples)
     int stopLevel;    // pyramid level of the last segment examined
     bool exhausted;   // the iteration budget ran out: the result is not trustworthy
 };
@@ -34,7 +34,6 @@ mr_ReliefHit mr_reliefMissHit() {
     hit.position = vec3(0.0);
     hit.normal = vec3(0.0, 0.0, 1.0);
     hit.iterations = 0;
-    hit.fetches = 0;
     hit.stopLevel = -1;
     hit.exhausted = false;
     return hit;
@@ -50,10 +49,10 @@ void mr_setTopHit(inout mr_ReliefHit hit, mr_Relief relief, vec3 origin, vec3 di
 
 // A top-surface hit reported at frame point `position` with ray parameter `t`, the normal
 // taken from the surface's gradient there (what a normal map would give).
-void mr_setTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heights, float t, vec3 position) {
+void mr_setTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, MICRORELIEF_SAMPLER heights, float t, vec3 position) {
     ivec2 cell = mr_patchCellAt(relief, mr_baseMapPoint(relief, position).xy);
     // mr_setTopHit with a zero direction reports `position` itself.
-    mr_setTopHit(hit, relief, position, vec3(0.0), 0.0, mr_patchAt(relief, heights, cell, hit.fetches), cell);
+    mr_setTopHit(hit, relief, position, vec3(0.0), 0.0, mr_patchAt(relief, heights, cell), cell);
     hit.t = t;
 }
 
@@ -62,9 +61,9 @@ void mr_setTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heights,
 // to its curvature: relief.frag maps their answer onto the base). `mapPoint` is reported
 // with the map-space normal (-dh/dX, -dh/dY, 1) of the bilinear surface there. On the
 // plane, map space is the frame, and this is mr_setTopHitAt.
-void mr_setMapTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heights, float t, vec3 mapPoint) {
+void mr_setMapTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, MICRORELIEF_SAMPLER heights, float t, vec3 mapPoint) {
     ivec2 cell = mr_patchCellAt(relief, mapPoint.xy);
-    vec2 g = mr_reliefSlope(relief, mr_patchAt(relief, heights, cell, hit.fetches), cell, mapPoint.xy);
+    vec2 g = mr_reliefSlope(relief, mr_patchAt(relief, heights, cell), cell, mapPoint.xy);
     hit.kind = MR_RELIEF_TOP;
     hit.t = t;
     hit.position = mapPoint;
@@ -75,7 +74,7 @@ void mr_setMapTopHitAt(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heigh
 // that leaves the plane's box through its floor hits it at the exit point (where the
 // surface is 0). The exact root lies right at the end of the walk, where rounding can push
 // it out of the last leaf's range; this is where it is caught. Any other ray misses.
-void mr_setWalkEndHit(inout mr_ReliefHit hit, mr_Relief relief, sampler2D heights, vec3 start, vec3 dir, float tExit,
+void mr_setWalkEndHit(inout mr_ReliefHit hit, mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 start, vec3 dir, float tExit,
                    bool floorExit) {
     if (floorExit) mr_setTopHitAt(hit, relief, heights, tExit, start + tExit * dir);
 }
@@ -83,13 +82,13 @@ void mr_setWalkEndHit(inout mr_ReliefHit hit, mr_Relief relief, sampler2D height
 // A ray entering the shell through a side wall, the bottom face or a cap at a point on or
 // under the surface, within the query's range, hits the solid right there. True, with
 // `hit` filled, in that case.
-bool mr_entryFaceHit(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, float tEnter, int entryFace,
+bool mr_entryFaceHit(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, float tEnter, int entryFace,
                   float tMin, inout mr_ReliefHit hit) {
     if (tEnter < tMin || entryFace == MR_RELIEF_MISS) return false;
     vec3 entry = origin + tEnter * dir;
     vec3 m = mr_baseMapPoint(relief, entry);
     bool throughBottom = entryFace == MR_RELIEF_BOTTOM;  // h = 0: always in the solid
-    if (!throughBottom && m.z > mr_reliefHeight(relief, heights, m.xy, hit.fetches)) return false;
+    if (!throughBottom && m.z > mr_reliefHeight(relief, heights, m.xy)) return false;
     hit.kind = entryFace;
     hit.t = tEnter;
     hit.position = entry;
@@ -112,7 +111,7 @@ bool mr_entryFaceHit(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir,
 // keeps positions near the relief exact however far away the eye is. `floorExit`: the
 // ray leaves the plane's box through the floor going down within the range
 // (mr_setWalkEndHit).
-bool mr_enterReliefShell(mr_Relief relief, mr_RayQuery query, sampler2D heights, vec3 origin, vec3 dir,
+bool mr_enterReliefShell(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir,
                          inout mr_ReliefHit hit, out vec3 start, out float tStart, out float span,
                          out bool floorExit) {
     int entryFace;

@@ -19,13 +19,14 @@
 #include "layer_march.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
 // Beyond float precision of the interval: any larger count is clamped to it.
 #ifndef MICRORELIEF_MAX_BINARY_STEPS
 #define MICRORELIEF_MAX_BINARY_STEPS 32
 #endif
 
-mr_ReliefHit mr_traceReliefMapping(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir,
+mr_ReliefHit mr_traceReliefMapping(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir,
                              int linearSteps, int binarySteps) {
     mr_ReliefHit hit = mr_reliefMissHit();
     mr_LayerSample above, below;

@@ -15,6 +15,7 @@
 #include "bilinear_patch.glsl"
 #include "biquadratic_patch.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
 #if MICRORELIEF_INTERPOLATION == 1
 #define mr_ReliefPatch mat3
@@ -38,11 +39,11 @@ vec2 mr_patchLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
     return f;
 }
 
-mr_ReliefPatch mr_patchAt(mr_Relief relief, sampler2D heights, ivec2 cell, inout int fetches) {
+mr_ReliefPatch mr_patchAt(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
 #if MICRORELIEF_INTERPOLATION == 1
-    return mr_biquadraticNet(relief, heights, cell, fetches);
+    return mr_biquadraticNet(relief, heights, cell);
 #else
-    return mr_cellCorners(relief, heights, cell, fetches);
+    return mr_cellCorners(relief, heights, cell);
 #endif
 }
 
@@ -73,9 +74,9 @@ float mr_patchTop(mr_ReliefPatch cellPatch, vec2 lo, vec2 hi) {
 }
 
 // h(X, Y): the surface height at a map point.
-float mr_reliefHeight(mr_Relief relief, sampler2D heights, vec2 xy, inout int fetches) {
+float mr_reliefHeight(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 xy) {
     ivec2 cell = mr_patchCellAt(relief, xy);
-    return mr_patchValue(mr_patchAt(relief, heights, cell, fetches), clamp(mr_patchLocal(relief, cell, xy), 0.0, 1.0));
+    return mr_patchValue(mr_patchAt(relief, heights, cell), clamp(mr_patchLocal(relief, cell, xy), 0.0, 1.0));
 }
 
 // The map gradient of the surface at map point xy of `cell`: on the plane the bilinear

@@ -13,6 +13,7 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 #include "relief_query.glsl"
+#include "texture_reads.glsl"
 
 // How far above the surface a shadow ray starts, in map units of height (the plane's h;
 // on a curved base the distance from the axis or the centre, less 1, over s): enough that
@@ -40,12 +41,12 @@ float mr_shadowClearance(mr_Relief relief) {
 // the exact ray meets: a start 1/256 of a map unit up (an earlier version: about 0.1 texel
 // of world height at scale 0.1 on a 256 map) let light through to 1 % to 2 % of the hits
 // under grazing lights (ShadowTest's grazing sweep, from the renderer's own hits).
-vec3 mr_shadowRayStart(mr_Relief relief, sampler2D heights, vec3 position, inout int fetches) {
+vec3 mr_shadowRayStart(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 position) {
     float clearance = mr_shadowClearance(relief);
     vec3 start = position;
     for (int attempt = 0; attempt < 4; ++attempt) {
         vec3 m = mr_baseMapPoint(relief, start);
-        float gap = m.z - mr_reliefHeight(relief, heights, m.xy, fetches);
+        float gap = m.z - mr_reliefHeight(relief, heights, m.xy);
         if (gap >= clearance) break;
         start = mr_baseRaise(relief, start, 2.0 * clearance - gap);
     }
@@ -62,13 +63,12 @@ bool mr_shadowRayNeeded(mr_ReliefHit hit) { return hit.kind == MR_RELIEF_TOP; }
 // is in its own shadow; else an any-hit trace from mr_shadowRayStart along `toLight`,
 // t in [0, tMax] (the light at tMax; a directional light at MR_T_INFINITY). `exhausted`
 // is set when the shadow ray runs out of its budget (reported, as a primary ray's is).
-float mr_hardShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_ReliefHit hit, vec3 toLight,
-                    float tMax, inout int fetches, inout bool exhausted) {
+float mr_hardShadow(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights, mr_ReliefHit hit, vec3 toLight,
+                    float tMax, inout bool exhausted) {
     if (dot(hit.normal, toLight) <= 0.0) return 0.0;
     if (!mr_shadowRayNeeded(hit)) return 1.0;
     mr_ReliefHit blocker = mr_traceMultilevel(relief, mr_anyHitQuery(relief.map, 0.0, tMax), windows, heights,
-                                              mr_shadowRayStart(relief, heights, hit.position, fetches), toLight);
-    fetches += blocker.fetches;
+                                              mr_shadowRayStart(relief, heights, hit.position), toLight);
     exhausted = exhausted || blocker.exhausted;
     return blocker.kind == MR_RELIEF_MISS ? 1.0 : 0.0;
 }
@@ -96,8 +96,8 @@ float mr_diskAbove(float x) {
 // measured at five points and solved exactly (mr_baseIntersectLeaf), so that a blocked
 // ray always counts as below the surface. As the radius goes to 0 every lit point sees the
 // whole light and every blocked one none: the hard shadow (a GL test holds it to that).
-float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_ReliefHit hit, vec3 toLight,
-                    float tMax, float tanRadius, float heightToObject, float objectPerT, inout int fetches,
+float mr_softShadow(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights, mr_ReliefHit hit, vec3 toLight,
+                    float tMax, float tanRadius, float heightToObject, float objectPerT,
                     inout bool exhausted) {
     if (dot(hit.normal, toLight) <= 0.0) return 0.0;
     if (!mr_shadowRayNeeded(hit)) return 1.0;
@@ -106,7 +106,7 @@ float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_R
     vec3 start;
     float tStart, span;
     bool floorExit;
-    vec3 from = mr_shadowRayStart(relief, heights, hit.position, fetches);
+    vec3 from = mr_shadowRayStart(relief, heights, hit.position);
     if (!mr_enterReliefShell(relief, query, heights, from, toLight, entry, start, tStart, span, floorExit)) {
         return entry.kind == MR_RELIEF_MISS ? 1.0 : 0.0;  // out of the shell at once, or in through a wall
     }
@@ -125,7 +125,7 @@ float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_R
                                                         mr_baseEnd(relief, start + ta * toLight),
                                                         mr_baseEnd(relief, start + tb * toLight));
         int level;
-        float bound = min(parentBound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level, fetches));
+        float bound = min(parentBound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level));
         // The clearance over this segment is at least (lowest - bound) over the distance
         // (the far end's when that is positive, the near end's when not).
         float clear = footprint.lowest - bound;
@@ -145,7 +145,7 @@ float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_R
             for (int k = 0; k <= 4; ++k) {
                 float t = mix(ta, tb, 0.25 * float(k));
                 vec3 m = mr_baseMapPoint(relief, start + t * toLight);
-                float gap = m.z - mr_reliefHeight(relief, heights, m.xy, fetches);
+                float gap = m.z - mr_reliefHeight(relief, heights, m.xy);
                 margin = min(margin, gap * heightToObject / max((tStart + t) * objectPerT, 1e-30));
                 if (k == 0) heightA = m.z;
                 if (k == 4) heightB = m.z;
@@ -155,7 +155,7 @@ float mr_softShadow(mr_Relief relief, sampler2D windows, sampler2D heights, mr_R
             descent = min((heightB - heightA) * heightToObject / max((tb - ta) * objectPerT, 1e-30), 0.0);
             mr_ReliefPatch cellPatch;
             ivec2 cell;
-            float tHit = mr_baseIntersectLeaf(relief, heights, start, toLight, ta, tb, fetches, cellPatch, cell);
+            float tHit = mr_baseIntersectLeaf(relief, heights, start, toLight, ta, tb, cellPatch, cell);
             if (tHit >= 0.0) {
                 // Blocked, though the five points may all lie above a surface thinner
                 // than their spacing: the ray passes at least as far below the occluder as

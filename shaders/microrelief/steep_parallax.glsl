@@ -18,8 +18,9 @@
 #include "layer_march.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
+#include "texture_reads.glsl"
 
-mr_ReliefHit mr_traceSteepParallax(mr_Relief relief, sampler2D heights, vec3 origin, vec3 dir, int layers) {
+mr_ReliefHit mr_traceSteepParallax(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, int layers) {
     mr_ReliefHit hit = mr_reliefMissHit();
     mr_LayerSample above, below;
     if (mr_marchLayers(relief, heights, origin, dir, layers, hit, above, below)) {

@@ -103,16 +103,20 @@ def check_file(path, root):
     checked = 0
     with open(path, encoding="utf-8") as f:
         text = f.read()
-    for number, line in enumerate(prose_lines(text), 1):
-        targets = [m.group(1) for m in LINK.finditer(line)]
+    lines = prose_lines(text)
+    prose = "\n".join(lines)
+    found = []  # (line number, target): a link's text may run over several lines
+    for match in LINK.finditer(prose):
+        found.append((prose.count("\n", 0, match.start()) + 1, match.group(1)))
+    for number, line in enumerate(lines, 1):
         reference = REFERENCE.match(line)
         if reference:
-            targets.append(reference.group(1))
-        for target in targets:
-            checked += 1
-            problem = check_target(path, target)
-            if problem:
-                problems.append(f"{os.path.relpath(path, root)}:{number}: {target}: {problem}")
+            found.append((number, reference.group(1)))
+    for number, target in sorted(found):
+        checked += 1
+        problem = check_target(path, target)
+        if problem:
+            problems.append(f"{os.path.relpath(path, root)}:{number}: {target}: {problem}")
     return checked, problems
 
 

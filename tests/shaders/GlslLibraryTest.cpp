@@ -87,6 +87,57 @@ TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330And400AndEs300) {
     }
 }
 
+// The read hooks (texture_reads.glsl) let a host read its own way without forking a file:
+// the tracers, the shadows and a step-based peer compile with every texture a layer of a
+// texture array, read only through the host's macros (docs/engine.md's example).
+TEST(GlslLibrary, ReadHooksLetAHostReadTextureArrays) {
+    test::ScratchDir dir;
+    for (const char* version : {"400 core", "300 es"}) {
+        for (const char* tracer :
+             {"multilevel_trace", "maxmip_trace", "shadow", "relief_mapping"}) {
+            const std::filesystem::path wrapper = dir / (std::string("arrays_") + tracer + ".frag");
+            std::ofstream(wrapper)
+                << "#define MICRORELIEF_SAMPLER sampler2DArray\n"
+                << "#define MICRORELIEF_READ_SAMPLE(t, p) texelFetch(t, ivec3(p, reliefLayer), "
+                   "0).r\n"
+                << "#define MICRORELIEF_GATHER_SAMPLES(t, uv) textureGather(t, vec3(uv, "
+                   "float(reliefLayer)))\n"
+                << "#define MICRORELIEF_READ_PYRAMID(t, p, level, size) texelFetch(t, ivec3(p, "
+                   "reliefLayer), level).r\n"
+                << "#ifdef GL_ES\nprecision highp sampler2DArray;\nprecision highp int;\n#endif\n"
+                << "uniform int reliefLayer;\n"
+                << "#include \""
+                << (kShaders / "microrelief" / (std::string(tracer) + ".glsl")).string() << "\"\n"
+                << "uniform sampler2DArray windows, heights;\nout vec4 fragColor;\n"
+                << "void main() {\n"
+                << "    mr_Relief relief = mr_Relief(mr_ReliefMap(vec2(64.0), ivec2(64), 7, 1.0, "
+                   "ivec2(1)),\n"
+                << "        mr_ReliefPlacement(mat4(1.0), mat4(1.0), 0.1, vec3(1.0)));\n"
+                << "    vec3 o = vec3(gl_FragCoord.xy, 2.0), d = vec3(0.3, 0.2, -1.0);\n"
+                << (std::string(tracer) == "relief_mapping"
+                        ? "    mr_ReliefHit hit = mr_traceReliefMapping(relief, heights, o, d, 32, "
+                          "8);\n"
+                    : std::string(tracer) == "maxmip_trace"
+                        ? "    mr_ReliefHit hit = mr_traceMaxMip(relief, "
+                          "mr_closestHitQuery(relief.map), "
+                          "windows, heights, o, d);\n"
+                        : "    mr_ReliefHit hit = mr_traceMultilevel(relief, "
+                          "mr_closestHitQuery(relief.map), "
+                          "windows, heights, o, d);\n")
+                << (std::string(tracer) == "shadow"
+                        ? "    bool out_ = false;\n    float lit = mr_hardShadow(relief, windows, "
+                          "heights, hit, "
+                          "vec3(0.2, 0.1, 1.0), MR_T_INFINITY, out_);\n"
+                        : "    float lit = 1.0;\n")
+                << "    fragColor = vec4(hit.position, lit);\n}\n";
+            const ShaderSource source = assembleShader(wrapper, version);
+            const std::string errors =
+                validate(dir, source, "frag", std::string("arrays_") + tracer);
+            EXPECT_TRUE(errors.empty()) << tracer << " as GLSL " << version << ":\n" << errors;
+        }
+    }
+}
+
 TEST(GlslLibrary, LibraryFilesAreFunctionLibraries) {
     // No #version, no uniforms, no in/out at file scope; a file-named include guard.
     // File scope only (unindented): an indented "out" is a function parameter.

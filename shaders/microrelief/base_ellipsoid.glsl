@@ -8,6 +8,9 @@
 #include "base_curved.glsl"
 #include "relief_map.glsl"
 
+// The ray's path over the map is a curve: leaf_walk.glsl subdivides a leaf's stretches.
+#define MICRORELIEF_BASE_STRAIGHT_PATH 0
+
 float mr_ellipsoidRadial(vec3 q) { return length(q); }
 
 // The polar angle as atan(|q.xz|, q.y): well conditioned at the poles, where acos(q.y / r)
@@ -27,11 +30,11 @@ float mr_ellipsoidLowestRadial(vec3 origin, vec3 dir, float ta, float tb) {
 
 // Where the latitude turns: q.y / |q| along o + t d has the derivative N(t) / |p|^3 with N
 // linear in t, N(t) = dy |o|^2 - oy (o.d) + t (dy (o.d) - oy |d|^2); its one root is the
-// latitude's only interior extremum (MR_CURVED_NEVER if none).
+// latitude's only interior extremum (MR_NEVER if none).
 float mr_ellipsoidTurnY(vec3 origin, vec3 dir) {
     float od = dot(origin, dir);
     float slope = dir.y * od - origin.y * dot(dir, dir);
-    return slope == 0.0 ? MR_CURVED_NEVER : -(dir.y * dot(origin, origin) - origin.y * od) / slope;
+    return slope == 0.0 ? MR_NEVER : -(dir.y * dot(origin, origin) - origin.y * od) / slope;
 }
 
 // The Y range over [ta, tb] whose ends have Y = ya and yb: theirs, and the turn's if it
@@ -48,29 +51,29 @@ vec2 mr_ellipsoidRangeY(mr_Relief relief, vec3 origin, vec3 dir, float ta, float
 
 // The t in [from, to] (where Y is monotone, so there is one at most) at which the line
 // crosses the cone of constant Y = boundary, cos^2 |p_xz|^2 = sin^2 p_y^2 on the nappe
-// where p_y has the sign of cos; MR_CURVED_NEVER if none. The equator's cone is the plane
+// where p_y has the sign of cos; MR_NEVER if none. The equator's cone is the plane
 // y = 0 (the quadratic's double root there would lose half the digits).
 float mr_ellipsoidCrossY(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float from, float to) {
     float theta = MR_CURVED_PI * boundary / relief.map.size.y;
     float c = cos(theta), s = sin(theta);
     if (abs(c) < 1e-6) {
-        float t = dir.y == 0.0 ? MR_CURVED_NEVER : -origin.y / dir.y;
-        return t >= from && t <= to ? t : MR_CURVED_NEVER;
+        float t = dir.y == 0.0 ? MR_NEVER : -origin.y / dir.y;
+        return t >= from && t <= to ? t : MR_NEVER;
     }
     float c2 = c * c, s2 = s * s;
     float a = c2 * dot(dir.xz, dir.xz) - s2 * dir.y * dir.y;
     float b = c2 * dot(origin.xz, dir.xz) - s2 * origin.y * dir.y;
     float k = c2 * dot(origin.xz, origin.xz) - s2 * origin.y * origin.y;
-    vec2 roots = vec2(MR_CURVED_NEVER);
+    vec2 roots = vec2(MR_NEVER);
     if (a == 0.0) {
         if (b != 0.0) roots.x = -k / (2.0 * b);
     } else {
         float disc = b * b - a * k;
-        if (disc < 0.0) return MR_CURVED_NEVER;
+        if (disc < 0.0) return MR_NEVER;
         float q = -(b + (b >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
-        roots = vec2(q / a, q != 0.0 ? k / q : MR_CURVED_NEVER);
+        roots = vec2(q / a, q != 0.0 ? k / q : MR_NEVER);
     }
-    float first = MR_CURVED_NEVER;
+    float first = MR_NEVER;
     for (int r = 0; r < 2; ++r) {
         float t = roots[r];
         bool nappe = (origin.y + t * dir.y) * c >= 0.0;
@@ -116,5 +119,78 @@ vec3 mr_ellipsoidTopNormal(mr_Relief relief, vec3 q, vec2 gradient) {
     float rPhi = relief.placement.heightScale * relief.map.size.x / (2.0 * MR_CURVED_PI) * gradient.x;
     return r * w - rTheta * eTheta - rPhi / max(sinTheta, 1e-6) * ePhi;
 }
+
+// base_surface.glsl's set of mr_base* functions, for the ellipsoid.
+vec3 mr_baseObjectToFrame(mr_Relief relief, vec3 object) { return mr_curvedFramePoint(relief, object); }
+vec3 mr_baseObjectToFrameVector(mr_Relief relief, vec3 object) { return mr_curvedFrameVector(relief, object); }
+vec3 mr_baseFrameToObject(mr_Relief relief, vec3 q) { return mr_curvedObjectPoint(relief, q); }
+vec3 mr_baseObjectNormal(mr_Relief relief, vec3 n) { return mr_curvedObjectNormal(relief, n); }
+
+float mr_baseMapY(mr_Relief relief, vec3 q) { return mr_ellipsoidMapY(relief, q); }
+vec3 mr_baseMapPoint(mr_Relief relief, vec3 q) {
+    return vec3(mr_curvedMapX(relief, q), mr_ellipsoidMapY(relief, q), (mr_ellipsoidRadial(q) - 1.0) / relief.placement.heightScale);
+}
+vec2 mr_baseMapMargin(mr_Relief relief) { return vec2(mr_curvedMarginX(relief), mr_curvedMarginY(relief)); }
+vec3 mr_baseRaise(mr_Relief relief, vec3 q, float by) { return mr_ellipsoidRaise(relief, q, by); }
+
+// The ball has no face: a ray comes in through the shell itself.
+vec2 mr_baseClipToShell(mr_Relief relief, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
+    entryFace = MR_RELIEF_MISS;
+    floorExit = false;
+    return mr_ellipsoidClipToShell(relief, origin, dir);
+}
+
+vec3 mr_baseEnd(mr_Relief relief, vec3 q) { return mr_ellipsoidEnd(relief, q); }
+
+mr_BaseFootprint mr_baseFootprintOf(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb, vec3 ea, vec3 eb) {
+    return mr_ellipsoidFootprint(relief, origin, dir, ta, tb, ea, eb);
+}
+
+float mr_baseLowest(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb) {
+    return (mr_ellipsoidLowestRadial(origin, dir, ta, tb) - 1.0) / relief.placement.heightScale;
+}
+
+// Where the line first comes within the centre distance of height h (padded by the radius
+// margin: never later than the exact one).
+float mr_baseDescendTo(mr_Relief relief, vec3 origin, vec3 dir, float ta, float tb, float h) {
+    float radius = 1.0 + relief.placement.heightScale * h + MR_CURVED_RADIUS_MARGIN;
+    vec2 inside = mr_curvedInsideRadius(origin, dir, radius);
+    return inside.x > ta && inside.x <= tb ? inside.x : ta;
+}
+
+float mr_baseTurnY(vec3 origin, vec3 dir) { return mr_ellipsoidTurnY(origin, dir); }
+
+vec3 mr_baseTopNormal(mr_Relief relief, vec3 q, vec2 gradient) { return mr_ellipsoidTopNormal(relief, q, gradient); }
+// Never asked for (no face); the cylinder's cap normal, as a caller would read it.
+vec3 mr_baseFaceNormal(mr_Relief relief, int face, vec3 q, vec3 dir) { return vec3(0.0, q.y > 0.0 ? 1.0 : -1.0, 0.0); }
+
+// q = r (sin theta sin phi, cos theta, sin theta cos phi) with r = 1 + s h,
+// theta = pi Y / H, phi = 2 pi (X / W - 0.5).
+vec3 mr_baseSurfacePoint(mr_Relief relief, vec3 m) {
+    float phi = 2.0 * MR_CURVED_PI * (m.x / relief.map.size.x - 0.5), r = 1.0 + relief.placement.heightScale * m.z;
+    float theta = MR_CURVED_PI * m.y / relief.map.size.y;
+    return r * vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
+}
+
+void mr_baseTangentFrame(mr_Relief relief, vec3 m, out vec3 alongX, out vec3 alongY, out vec3 alongH) {
+    float phi = 2.0 * MR_CURVED_PI * (m.x / relief.map.size.x - 0.5), r = 1.0 + relief.placement.heightScale * m.z;
+    vec3 ePhi = vec3(cos(phi), 0.0, -sin(phi));
+    float theta = MR_CURVED_PI * m.y / relief.map.size.y;
+    vec3 w = vec3(sin(theta) * sin(phi), cos(theta), sin(theta) * cos(phi));
+    vec3 eTheta = vec3(cos(theta) * sin(phi), -sin(theta), cos(theta) * cos(phi));
+    alongX = r * sin(theta) * (2.0 * MR_CURVED_PI / relief.map.size.x) * ePhi;
+    alongY = r * (MR_CURVED_PI / relief.map.size.y) * eTheta;
+    alongH = relief.placement.heightScale * w;
+}
+
+bool mr_baseXIncreases(vec3 origin, vec3 dir) { return mr_curvedXIncreases(origin, dir); }
+float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary) { return mr_curvedCrossX(relief, origin, dir, boundary); }
+// A cone of constant Y may be crossed twice along a line: the crossing on the branch
+// [from, to] where Y is monotone.
+float mr_baseCrossY(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float from, float to) {
+    return mr_ellipsoidCrossY(relief, origin, dir, boundary, from, to);
+}
+
+const float MR_BASE_FINAL_LENGTH = MR_CURVED_FINAL_LENGTH;
 
 #endif

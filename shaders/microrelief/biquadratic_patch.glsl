@@ -227,7 +227,7 @@ const int MR_QUARTIC_DEPTH = 12;
 // The first s in [0, 1] where g(s) >= 0 (the ray on or under the patch), or -1: the binary
 // tree of pieces in order, each skipped when all its coefficients are below -margin (the
 // float rounding of the net and of the restriction), down to pieces `finalWidth` wide,
-// solved by the parabola through their ends and middle (base_surface.glsl: mr_cellStretchHit).
+// solved by the parabola through their ends and middle (leaf_walk.glsl: mr_cellStretchHit).
 float mr_quarticFirstHit(mr_Quartic g, float finalWidth, float margin) {
     int depth = 0;
     uint index = 0u;

@@ -1,6 +1,6 @@
 // final_piece.glsl: the first root over a final piece of subdivision, where the gap g
 // between the surface and the ray is held to the parabola through g(0), g(1/2), g(1)
-// (the leaves of base_surface.glsl and biquadratic_patch.glsl; C++: SurfacePatch.h,
+// (the leaves of leaf_walk.glsl and biquadratic_patch.glsl; C++: SurfacePatch.h,
 // mr_parabolaFirstRoot).
 #ifndef MICRORELIEF_FINAL_PIECE_GLSL
 #define MICRORELIEF_FINAL_PIECE_GLSL

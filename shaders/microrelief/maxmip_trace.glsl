@@ -14,10 +14,11 @@
 // into the neighbour at the same level, and goes up one level when that neighbour has a
 // different parent. If the ray meets the box it steps onto the box (its top) and goes down
 // into the child there. At level 0 the texel spans parts of up to four bilinear patches;
-// the ray is solved exactly against those it crosses, in order (intersectLeaf).
+// the ray is solved exactly against those it crosses, in order (mr_baseIntersectLeaf).
 #ifndef MICRORELIEF_MAXMIP_TRACE_GLSL
 #define MICRORELIEF_MAXMIP_TRACE_GLSL
 
+#include "leaf_walk.glsl"
 #include "relief_patch.glsl"
 #include "max_pyramid.glsl"
 #include "multilevel_trace.glsl"
@@ -32,49 +33,49 @@
 struct mr_MaxMipCourse {
     ivec2 step;
     vec2 branch;
-    float turn;  // MR_CURVED_NEVER where Y never turns
+    float turn;  // MR_NEVER where Y never turns
 };
 
 mr_MaxMipCourse mr_maxMipCourse(mr_Relief relief, vec3 origin, vec3 dir, float tFar) {
 #if MICRORELIEF_BASE == 0
-    return mr_MaxMipCourse(ivec2(sign(dir.xy)), vec2(-MR_CURVED_NEVER, MR_CURVED_NEVER), MR_CURVED_NEVER);
+    return mr_MaxMipCourse(ivec2(sign(dir.xy)), vec2(-MR_NEVER, MR_NEVER), MR_NEVER);
 #else
     // The branch of the line the segment starts on: before the turn, or after it where the
     // turn lies behind the start (the cones Y = const are crossed once per branch, and a
     // crossing on the other branch, behind the start, must not count).
     float turn = mr_baseTurnY(origin, dir);
-    vec2 branch = vec2(-MR_CURVED_NEVER, MR_CURVED_NEVER);
+    vec2 branch = vec2(-MR_NEVER, MR_NEVER);
     if (turn <= 0.0) {
         branch.x = turn;
-        turn = MR_CURVED_NEVER;
+        turn = MR_NEVER;
     } else if (turn < tFar) {
         branch.y = turn;
     } else {
-        branch.y = min(turn, MR_CURVED_NEVER);
-        turn = MR_CURVED_NEVER;
+        branch.y = min(turn, MR_NEVER);
+        turn = MR_NEVER;
     }
     // Y's way before the turn (or on the whole segment): from its value at the start to its
     // value where the branch ends.
     float yStart = mr_baseMapY(relief, origin), yEnd = mr_baseMapY(relief, origin + min(turn, tFar) * dir);
     int stepY = yEnd > yStart ? 1 : yEnd < yStart ? -1 : 0;
-    return mr_MaxMipCourse(ivec2(mr_curvedXIncreases(origin, dir) ? 1 : -1, stepY), branch, turn);
+    return mr_MaxMipCourse(ivec2(mr_baseXIncreases(origin, dir) ? 1 : -1, stepY), branch, turn);
 #endif
 }
 
 // Past the turn: Y goes the other way, on the branch after it.
 void mr_maxMipTurn(inout mr_MaxMipCourse course) {
     course.step.y = -course.step.y;
-    course.branch = vec2(course.turn, MR_CURVED_NEVER);
-    course.turn = MR_CURVED_NEVER;
+    course.branch = vec2(course.turn, MR_NEVER);
+    course.turn = MR_NEVER;
 }
 
 // Ray parameter where the ray leaves node `node` at `level` through a side of its column,
-// per axis (MR_CURVED_NEVER along an axis it does not leave by). On a curved base the sides
+// per axis (MR_NEVER along an axis it does not leave by). On a curved base the sides
 // are a half-plane of constant X through the axis (the map's seam, X = W, past its last
 // column) and a plane or cone of constant Y, met in closed form (base_surface.glsl).
 vec2 mr_maxMipNodeExits(mr_Relief relief, ivec2 node, int level, vec3 origin, vec3 dir, mr_MaxMipCourse course) {
     float size = exp2(float(level));
-    vec2 exits = vec2(MR_CURVED_NEVER);
+    vec2 exits = vec2(MR_NEVER);
 #if MICRORELIEF_BASE == 0
     for (int axis = 0; axis < 2; ++axis) {
         if (dir[axis] == 0.0) continue;
@@ -89,7 +90,7 @@ vec2 mr_maxMipNodeExits(mr_Relief relief, ivec2 node, int level, vec3 origin, ve
     // would be its exit again and again.)
     if (((int(relief.map.size.x) - 1) >> level) > 0) {
         float side = course.step.x > 0 ? min(float(node.x + 1) * size, relief.map.size.x) : float(node.x) * size;
-        exits.x = mr_curvedCrossX(relief, origin, dir, side);
+        exits.x = mr_baseCrossX(relief, origin, dir, side);
     }
     float side = (float(node.y) + (course.step.y > 0 ? 1.0 : 0.0)) * size;
     if (course.step.y != 0 && side > 0.0 && side < relief.map.size.y)

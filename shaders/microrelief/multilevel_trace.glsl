@@ -26,6 +26,7 @@
 #define MICRORELIEF_MULTILEVEL_TRACE_GLSL
 
 #include "base_surface.glsl"
+#include "leaf_walk.glsl"
 #include "relief_patch.glsl"
 #include "max_pyramid.glsl"
 #include "relief_hit.glsl"
@@ -39,7 +40,7 @@
 #endif
 
 // The subdivision stops at segments whose footprint is at most this many texels wide and
-// solves them exactly against the bilinear patches they cross (intersectLeaf). 1 is the
+// solves them exactly against the patches they cross (mr_baseIntersectLeaf). 1 is the
 // paper's order (down to the finest level); a few texels cost fewer segments and fewer
 // leaves for the same exact hit (README, "Performance": 4 was the best across map sizes).
 #ifndef MICRORELIEF_LEAF_TEXELS

@@ -77,6 +77,10 @@ struct mr_Relief {
     mr_ReliefPlacement placement;
 };
 
+// A ray parameter that is never reached: a crossing that does not happen, a turn that
+// does not exist.
+const float MR_NEVER = 1e30;
+
 // What a ray meets: the kinds of mr_ReliefHit (relief_hit.glsl), also naming the face of the
 // bounding shell a ray enters through (MR_RELIEF_MISS there: the top face or the curved
 // shell, where the traversal starts).

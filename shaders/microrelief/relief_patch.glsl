@@ -25,6 +25,10 @@ const float MR_PATCH_OFFSET = 0.0;
 const float MR_PATCH_OFFSET = 0.5;
 #endif
 
+// A patch's bound (mr_patchTop) is padded by this much of the map's largest height: its own
+// float rounding, a few ulp of the net's entries.
+const float MR_PATCH_TOP_MARGIN = 1.0 / 1048576.0;
+
 // The cell holding map point xy (ties to the cell on the positive side), its column kept
 // in 0..W - 1 on a curved base.
 ivec2 mr_patchCellAt(mr_Relief relief, vec2 xy) { return mr_wrapCell(relief, ivec2(floor(xy - MR_PATCH_OFFSET))); }

@@ -9,6 +9,7 @@
 #define MICRORELIEF_SHADOW_GLSL
 
 #include "base_surface.glsl"
+#include "leaf_walk.glsl"
 #include "multilevel_trace.glsl"
 #include "relief_hit.glsl"
 #include "relief_map.glsl"

@@ -95,7 +95,7 @@ glm::dvec3 MultilevelTracer::topNormal(const SurfacePatch& patch,
     return base_->topNormal(framePoint, g);
 }
 
-// multilevel_trace.glsl: intersectLeaf, on the plane. The cells the segment crosses, in
+// leaf_walk.glsl: mr_intersectStraightLeaf, on the plane. The cells the segment crosses, in
 // ray order, each solved exactly; from a cell to the neighbour across the boundary the
 // ray meets first.
 auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, int& fetches) const
@@ -132,7 +132,7 @@ auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, 
     return std::nullopt;
 }
 
-// base_surface.glsl: mr_intersectLeafCells. The latitude turns at most once along a line:
+// leaf_walk.glsl: mr_intersectLeafCells. The latitude turns at most once along a line:
 // split there, so that on each piece X and Y are both monotone and the cells the path
 // crosses are walked in order.
 auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double tb,
@@ -148,7 +148,7 @@ auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double
     return walkLeafCells(ray, ta, tb, turn && *turn <= ta ? after : before, fetches);
 }
 
-// base_surface.glsl: mr_walkLeafCells. A DDA over the cells of a path whose X and Y are
+// leaf_walk.glsl: mr_walkLeafCells. A DDA over the cells of a path whose X and Y are
 // monotone on [from, to]: each cell's stretch ends where the path crosses the cell's
 // boundary ahead in X (a half-plane through the axis, a plane on the plane) or in Y (a
 // plane or a cone), found in closed form. `branch` is the branch of the line holding
@@ -206,7 +206,7 @@ auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to
     return std::nullopt;
 }
 
-// base_surface.glsl: mr_cellStretchHit. The first t in [c0, c1] where the ray is on or under
+// leaf_walk.glsl: mr_cellStretchHit. The first t in [c0, c1] where the ray is on or under
 // the cell's patch, g(t) = patch(X(t), Y(t)) - h(t) >= 0. Along a curved path, or for the
 // biquadratic surface, g is not a quadratic, so the stretch is subdivided as the traversal
 // subdivides the ray, near half first, each piece discarded when its lowest height (exact:

@@ -95,7 +95,7 @@ public:
     // A frame normal in world space, unit.
     virtual glm::dvec3 worldNormal(const glm::dvec3& frameNormal) const = 0;
 
-    // The leaf's walk over cells (base_surface.glsl, mr_walkLeafCells). The t at which the path
+    // The leaf's walk over cells (leaf_walk.glsl, mr_walkLeafCells). The t at which the path
     // crosses the cell boundary X = boundary, any t (each is crossed once along a line: a
     // walk that finds it behind its start has rounded past it), or nullopt.
     virtual std::optional<double> crossX(const FrameRay& ray, double boundary) const = 0;

@@ -15,7 +15,7 @@
 //     4AC are products of (height difference * dir.xy) and dir.h terms; they must stay
 //     below 2^128. Bounded by max h * Dxy <= 2^58 and Dh <= 2^58, Dxy and Dh the largest
 //     |dir.xy|, |dir.h| over the picture's rays.
-//  3. Precision of the entry point (relief_hit.glsl, enterReliefBox): the ray is moved
+//  3. Precision of the entry point (relief_hit.glsl, mr_enterReliefShell): the ray is moved
 //     from the eye to where it enters the box, start = origin + tStart dir, which keeps
 //     about 2 ulps of |origin| as its error. Exactness (hits within half a texel; the
 //     accuracy sweep measures 0.018 texels at p99) wants the hit moved by less than 1/32

@@ -2,18 +2,20 @@
 # Serves the WebGL 2 page (web/) from a local HTTP server and prints its URL.
 # Usage: bash scripts/web.sh [--port N] [--root DIR]
 #   --port N    the port (default: a free one)
-#   --root DIR  the folder holding web/, shaders/ and assets/ (default: this repository;
+#   --root DIR  the folder holding web/, shaders/ and assets/ (default: the build tree's
+#               share/microrelief, built first by scripts/setup.sh where it is missing;
 #               an installed <prefix>/share/microrelief works too)
-# The page needs nothing built: it reads shaders/ and assets/ as they are, so an edited
-# shader shows on the next reload. It needs Debian's python3 for the server (installed by
+# The page reads the GLSL as it is staged there, and the uniform block's layout module
+# that the build generates (web/relief_layout.js): after editing a shader, run
+# `cmake --build build` and reload. It needs Debian's python3 for the server (installed by
 # scripts/setup.sh) and a browser with WebGL 2. Ctrl-C stops the server.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-serve_root="$root"
+serve_root=""
 port=0
 
-usage() { sed -n '2,9p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,11p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 while (($#)); do
   case "$1" in
     --port) [ $# -ge 2 ] || { echo "web.sh: error: --port needs a number" >&2; exit 2; }; port="$2"; shift 2 ;;
@@ -27,6 +29,13 @@ done
 if ! [[ "$port" =~ ^[0-9]+$ ]] || ((port > 65535)); then
   echo "web.sh: error: --port $port: expected a number from 0 to 65535" >&2
   exit 2
+fi
+if [ -z "$serve_root" ]; then
+  serve_root="${MICRORELIEF_BUILD_DIR:-$root/build}/share/microrelief"
+  if [ ! -f "$serve_root/web/relief_layout.js" ]; then
+    echo "web.sh: building the page's generated files first (scripts/setup.sh)" >&2
+    bash "$root/scripts/setup.sh" >&2
+  fi
 fi
 if [ ! -f "$serve_root/web/index.html" ]; then
   echo "web.sh: error: $serve_root: no web/index.html there (--root names the folder holding web/)" >&2

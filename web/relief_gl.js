@@ -11,7 +11,9 @@
 //    and S settled;
 //  * ReliefRenderer: relief_box.vert and relief.frag (the method, base, interpolation,
 //    shadows and albedo as the C++ renderer's #defines), the uniform block
-//    MicroreliefParameters filled at the offsets of ReliefParameters, the proxy box drawn
+//    MicroreliefParameters filled through relief_layout.js (generated at build time from
+//    shaders/relief_parameters.glsl, beside this file in the build tree and an install),
+//    the proxy box drawn
 //    with front faces from outside and back faces from inside (src/render/ReliefRenderer.cpp);
 //    into an SRGB8_ALPHA8 target as OffscreenTarget's (the GL encodes the linear colour and
 //    the background), then shown on the canvas by shaders/web/present.frag.
@@ -19,12 +21,12 @@
 // WebGL 2 renders into R16F only with EXT_color_buffer_float (the builder's passes need it,
 // and reading the top back as floats); without it there is no pyramid and the page says so.
 import {ShaderFiles, mapCompilerLog} from './shader_source.js';
+import {kParametersSize, writeParameters} from './relief_layout.js';
 import * as scene from './scene.js';
 
 const kBandRows = 64, kBandsFrom = 4 * kBandRows;
 const kUnits = {maxPyramid: 0, heightSamples: 1, windowPyramid: 2, albedoMap: 3};
 const kParametersBinding = 0;
-const kParametersSize = 416;  // std140 size of MicroreliefParameters (ReliefShader.h)
 
 export class GlError extends Error {}
 
@@ -540,45 +542,44 @@ export class ReliefRenderer {
         for (let unit = 3; unit >= 0; --unit) bind(unit, null);
     }
 
-    // MicroreliefParameters, std140, at ReliefParameters' offsets (ReliefRenderer::parameters).
+    // MicroreliefParameters (ReliefRenderer::parameters), laid out by the module generated
+    // from shaders/relief_parameters.glsl.
     parameters(view, camera, shape, base, pixels) {
-        const buffer = new ArrayBuffer(kParametersSize);
-        const f = new Float32Array(buffer), i = new Int32Array(buffer);
-        const vec = (offset, v) => f.set(v, offset / 4);
         const identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
-        vec(0, camera.viewProjection);
-        vec(64, identity);   // objectToWorld: the page places the relief at the origin
-        vec(128, identity);  // worldToObject
-        vec(192, camera.eye);
-        f[204 / 4] = view.pixelError;
-        vec(208, camera.right);
-        f[220 / 4] = view.heightScale;
-        vec(224, camera.up);
-        f[236 / 4] = shape.maxHeight;
-        vec(240, camera.forward);
-        f[252 / 4] = 0;  // tMin
-        vec(256, scene.frameScale(base));
-        f[268 / 4] = 3.4e38;  // tMax
         const extent = scene.reliefExtent(shape.size[0], shape.size[1], shape.maxHeight, view.heightScale, base);
-        vec(272, extent.min);
-        i[284 / 4] = shape.levelCount;
-        vec(288, extent.max);
-        i[300 / 4] = scene.traversalBudget(shape.size[0], shape.size[1]);
-        vec(304, scene.normalizeFloat(view.light));
-        i[316 / 4] = scene.kViews.indexOf(view.view);
-        vec(320, scene.toFloat([0.6, 0.58, 0.55]));  // ShadingOptions::albedo, without a texture
-        i[332 / 4] = view.steps;
-        vec(336, shape.size);
-        i.set(shape.pyramidSize, 344 / 4);
-        vec(352, pixels);
-        vec(360, [0, 0]);  // tileOrigin: the whole picture
-        i[368 / 4] = scene.minSteps(view.steps);
-        i[372 / 4] = 8;  // relief mapping's binary steps
-        i[376 / 4] = 0;  // depthZeroToOne: WebGL's clip depth is [-1, 1]
-        vec(384, [0, 0, 0, 0]);  // lightPosition: a directional light
-        f[400 / 4] = Math.tan(0.5 * view.lightSize * 0.01745329251994329576923690768489);
-        i[404 / 4] = 0;  // albedoFinest: filtered over the pixel's footprint
-        i.set([1, 1], 408 / 4);  // reliefTiles
-        return buffer;
+        return writeParameters({
+            viewProjection: camera.viewProjection,
+            objectToWorld: identity,  // the page places the relief at the origin
+            worldToObject: identity,
+            eye: camera.eye,
+            pixelErrorTolerance: view.pixelError,
+            cameraRight: camera.right,
+            heightScale: view.heightScale,
+            cameraUp: camera.up,
+            reliefMaxHeight: shape.maxHeight,
+            cameraForward: camera.forward,
+            tMin: 0,
+            frameScale: scene.frameScale(base),
+            tMax: 3.4e38,
+            reliefBoxMin: extent.min,
+            pyramidLevels: shape.levelCount,
+            reliefBoxMax: extent.max,
+            maxIterations: scene.traversalBudget(shape.size[0], shape.size[1]),
+            lightDirection: scene.normalizeFloat(view.light),
+            debugView: scene.kViews.indexOf(view.view),
+            albedo: scene.toFloat([0.6, 0.58, 0.55]),  // ShadingOptions::albedo, without a texture
+            methodSteps: view.steps,
+            reliefSize: shape.size,
+            pyramidSize: shape.pyramidSize,
+            viewportSize: pixels,
+            tileOrigin: [0, 0],  // the whole picture
+            methodMinSteps: scene.minSteps(view.steps),
+            methodRefineSteps: 8,  // relief mapping's binary steps
+            depthZeroToOne: 0,  // WebGL's clip depth is [-1, 1]
+            lightPosition: [0, 0, 0, 0],  // a directional light
+            lightTanRadius: Math.tan(0.5 * view.lightSize * 0.01745329251994329576923690768489),
+            albedoFinest: 0,  // filtered over the pixel's footprint
+            reliefTiles: [1, 1],
+        });
     }
 }

@@ -1,4 +1,4 @@
-// scene.js: the scene as microrelief-render has it (shared/spec/scene-and-cli.md), in the
+// scene.js: the scene as microrelief-render has it (docs/scene-and-cli.md), in the
 // page's JavaScript: the camera resolved to rays (src/render/Camera.cpp), the base
 // surfaces' sizes and boxes (src/base/BaseShape.cpp, ReliefExtent.cpp), the pyramids'
 // level sizes and scale (src/heightmap/MaxPyramid.cpp), the methods' names and rules
@@ -6,6 +6,8 @@
 // (app/shared/SceneOptions.cpp). The arithmetic follows the C++ step for step, in doubles
 // where it has doubles and in floats (Math.fround) where it has floats, so that the page
 // hands the shader the uniforms microrelief-render hands it.
+
+import {kBudgetBase, kBudgetPerTexel} from './relief_layout.js';
 
 const f32 = Math.fround;
 
@@ -197,7 +199,7 @@ export function initialScaleExponent(maxSample) {
     return pyramidScaleExponent(storedHalfBound(maxSample, pyramidScaleExponent(maxSample)));
 }
 
-export const traversalBudget = (width, height) => 8 * (width + height) + 256;
+export const traversalBudget = (width, height) => kBudgetPerTexel * (width + height) + kBudgetBase;
 
 // ---- methods, views and shadows (src/render/Method.cpp) ----
 

@@ -34,11 +34,14 @@ struct mr_RayQuery {
 // A t beyond every ray's end.
 const float MR_T_INFINITY = 3.4e38;
 
-// The budget a traversal of a W x H map gets (the C++ traversalBudget): a ray visits about
-// two segments per finest texel it crosses plus their ancestors, so 8 (W + H) + 256 is
-// several times what any ray needs; running out means a bug.
+// The budget a traversal of a W x H map gets (the C++ traversalBudget, the page's): a ray
+// visits about two segments per finest texel it crosses plus their ancestors, so
+// 8 (W + H) + 256 is several times what any ray needs; running out means a bug.
+const int MR_BUDGET_PER_TEXEL = 8;
+const int MR_BUDGET_BASE = 256;
+
 int mr_traversalBudget(mr_ReliefMap map) {
-    return 8 * (int(map.size.x) + int(map.size.y)) + 256;
+    return MR_BUDGET_PER_TEXEL * (int(map.size.x) + int(map.size.y)) + MR_BUDGET_BASE;
 }
 
 // The closest hit over [0, inf), exact, within the map's budget: a primary ray.

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "microrelief/base/BaseSurface.h"
+#include "microrelief/core/GlslConstants.h"
 
 namespace microrelief {
 
@@ -40,6 +41,9 @@ double CurvedSurface::mapX(const glm::dvec3& q) const {
     const double u = 0.5 + std::atan2(q.x, q.z) / (2.0 * std::numbers::pi);
     return width_ * (u - std::floor(u));
 }
+
+// base_curved.glsl: MR_CURVED_FINAL_LENGTH, the curvature's bound on a final piece.
+double CurvedSurface::finalLength() const { return glsl::kCurvedFinalLength; }
 
 bool CurvedSurface::xIncreases(const FrameRay& ray) const {
     // d(atan2(x, z))/dt = (z dx - x dz) / (x^2 + z^2): its sign is constant along a line.

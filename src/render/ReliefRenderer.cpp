@@ -208,6 +208,8 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.cameraUp = glm::vec3(camera.up);
     p.cameraForward = glm::vec3(camera.forward);
     p.pixelErrorTolerance = method_.pixelError;
+    p.tMin = 0.0f;  // the rays' range: a picture's, the whole ray (MR_T_INFINITY)
+    p.tMax = 3.4e38f;
     // The multilevel method reads the windows, maxmip its aligned quadtree: each its own
     // pyramid's size and levels.
     const ReliefMapShape shape =

@@ -5,12 +5,16 @@
 #include <cstdint>
 #include <limits>
 
+#include "microrelief/core/GlslConstants.h"
+
 namespace microrelief {
 
 namespace {
 
-constexpr int kMaxDepth = 24;        // MICRORELIEF_MAX_DEPTH
-constexpr double kLeafTexels = 4.0;  // MICRORELIEF_LEAF_TEXELS
+using glsl::kBiquadraticFinalFootprint;
+using glsl::kCellDepth;
+using glsl::kLeafTexels;
+using glsl::kMaxDepth;
 
 // bilinear_patch.glsl: mr_intersectPatch.
 double intersectPatch(const SurfacePatch& c, const glm::dvec3& start, const glm::dvec3& dir,
@@ -40,7 +44,7 @@ double intersectPatch(const SurfacePatch& c, const glm::dvec3& start, const glm:
 }  // namespace
 
 int traversalBudget(int width, int height) {
-    return 8 * (width + height) + 256;
+    return glsl::kBudgetPerTexel * (width + height) + glsl::kBudgetBase;
 }
 
 MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const BaseShape& base,
@@ -206,7 +210,10 @@ auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to
     return std::nullopt;
 }
 
-// leaf_walk.glsl: mr_cellStretchHit. The first t in [c0, c1] where the ray is on or under
+// leaf_walk.glsl: mr_cellStretchHit (MICRORELIEF_CELL_DEPTH, MR_BIQUADRATIC_FINAL_FOOTPRINT,
+// the base's final length): down to pieces 2^-7 long in the frame on a curved base and 2^-6
+// texel wide for the biquadratic surface, or 2^-10 of the stretch, then a quadratic model
+// of the gap. The first t in [c0, c1] where the ray is on or under
 // the cell's patch, g(t) = patch(X(t), Y(t)) - h(t) >= 0. Along a curved path, or for the
 // biquadratic surface, g is not a quadratic, so the stretch is subdivided as the traversal
 // subdivides the ray, near half first, each piece discarded when its lowest height (exact:

@@ -415,48 +415,14 @@ TEST_F(SceneObject, DrawLeavesTheGlStateAsItFoundIt) {
     EXPECT_EQ(g.GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
-// ReliefParameters (C++) and the MicroreliefParameters block the linker laid out (std140)
-// agree on every member's offset and on the block's size.
+// ReliefParameters (C++, generated from shaders/relief_parameters.glsl) and the
+// MicroreliefParameters block the linker laid out (std140) agree on every member's offset
+// and on the block's size.
 TEST_F(SceneObject, ParametersBlockMatchesItsMirror) {
     const ReliefShader shader(gl(), shaderDirectory(), ReliefShaderConfig{});
     EXPECT_EQ(shader.parametersSize(), static_cast<GLint>(sizeof(ReliefParameters)));
-#define MEMBER(name) \
-    { #name, offsetof(ReliefParameters, name) }
-    const std::pair<const char*, std::size_t> members[] = {MEMBER(viewProjection),
-                                                           MEMBER(objectToWorld),
-                                                           MEMBER(worldToObject),
-                                                           MEMBER(eye),
-                                                           MEMBER(pixelErrorTolerance),
-                                                           MEMBER(cameraRight),
-                                                           MEMBER(heightScale),
-                                                           MEMBER(cameraUp),
-                                                           MEMBER(reliefMaxHeight),
-                                                           MEMBER(cameraForward),
-                                                           MEMBER(tMin),
-                                                           MEMBER(frameScale),
-                                                           MEMBER(tMax),
-                                                           MEMBER(reliefBoxMin),
-                                                           MEMBER(pyramidLevels),
-                                                           MEMBER(reliefBoxMax),
-                                                           MEMBER(maxIterations),
-                                                           MEMBER(lightDirection),
-                                                           MEMBER(debugView),
-                                                           MEMBER(albedo),
-                                                           MEMBER(methodSteps),
-                                                           MEMBER(reliefSize),
-                                                           MEMBER(pyramidSize),
-                                                           MEMBER(viewportSize),
-                                                           MEMBER(tileOrigin),
-                                                           MEMBER(methodMinSteps),
-                                                           MEMBER(methodRefineSteps),
-                                                           MEMBER(depthZeroToOne),
-                                                           MEMBER(blockPadding),
-                                                           MEMBER(lightPosition),
-                                                           MEMBER(lightTanRadius),
-                                                           MEMBER(albedoFinest),
-                                                           MEMBER(reliefTiles)};
-#undef MEMBER
-    for (const auto& [name, offset] : members)
+    EXPECT_GT(std::size(kReliefParameterMembers), 30u);
+    for (const auto& [name, offset] : kReliefParameterMembers)
         EXPECT_EQ(shader.parameterOffset(name), static_cast<GLint>(offset)) << name;
 }
 

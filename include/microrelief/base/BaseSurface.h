@@ -150,7 +150,7 @@ public:
     double mapX(const glm::dvec3& q) const;
     std::optional<double> crossX(const FrameRay& ray, double boundary) const override;
     bool xIncreases(const FrameRay& ray) const override;
-    double finalLength() const override { return 1.0 / 128.0; }
+    double finalLength() const override;
 
     // The distance that sets the height: from the axis (cylinder) or the centre.
     virtual double radial(const glm::dvec3& q) const = 0;

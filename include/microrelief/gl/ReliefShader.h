@@ -15,6 +15,7 @@
 
 #include "microrelief/base/BaseShape.h"
 #include "microrelief/gl/Objects.h"
+#include "microrelief/gl/ReliefParameters.h"
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/Method.h"
 
@@ -54,48 +55,10 @@ struct ReliefShaderConfig {
     auto operator<=>(const ReliefShaderConfig&) const = default;
 };
 
-// The uniform block MicroreliefParameters, std140: each vec3 is followed by the scalar
-// that fills its 16-byte slot, two vec2 share one (shaders/relief_parameters.glsl says what
-// each member is). A GL test holds every offset to the linked program's.
-struct ReliefParameters {
-    glm::mat4 viewProjection{1.0f};
-    glm::mat4 objectToWorld{1.0f};
-    glm::mat4 worldToObject{1.0f};
-    glm::vec3 eye{0.0f};
-    float pixelErrorTolerance = 0.0f;
-    glm::vec3 cameraRight{0.0f};
-    float heightScale = 0.1f;
-    glm::vec3 cameraUp{0.0f};
-    float reliefMaxHeight = 0.0f;
-    glm::vec3 cameraForward{0.0f};
-    float tMin = 0.0f;
-    glm::vec3 frameScale{1.0f};
-    float tMax = 3.4e38f;
-    glm::vec3 reliefBoxMin{0.0f};
-    int pyramidLevels = 0;
-    glm::vec3 reliefBoxMax{0.0f};
-    int maxIterations = 0;
-    glm::vec3 lightDirection{0.0f, 1.0f, 0.0f};
-    int debugView = 0;
-    glm::vec3 albedo{0.6f};
-    int methodSteps = 64;
-    glm::vec2 reliefSize{0.0f};
-    glm::ivec2 pyramidSize{0};
-    glm::vec2 viewportSize{0.0f};
-    glm::vec2 tileOrigin{0.0f};
-    int methodMinSteps = 16;
-    int methodRefineSteps = 8;
-    int depthZeroToOne = 0;
-    int blockPadding = 0;
-    glm::vec4 lightPosition{0.0f};  // w: 1 for a point light
-    float lightTanRadius = 0.0f;
-    int albedoFinest = 0;
-    glm::ivec2 reliefTiles{1, 1};
-};
-static_assert(sizeof(ReliefParameters) == 416, "std140 size of MicroreliefParameters");
-static_assert(offsetof(ReliefParameters, eye) == 192);
-static_assert(offsetof(ReliefParameters, reliefSize) == 336);
-static_assert(offsetof(ReliefParameters, methodMinSteps) == 368);
+// The uniform block MicroreliefParameters, std140, is ReliefParameters
+// (microrelief/gl/ReliefParameters.h), generated at build time from
+// shaders/relief_parameters.glsl, which says what each member is; a GL test holds every
+// offset to the linked program's too.
 
 class ReliefShader {
 public:

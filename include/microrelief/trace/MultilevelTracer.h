@@ -112,11 +112,4 @@ private:
 // 8 (W + H) + 256 is several times what any ray needs; running out means a bug.
 int traversalBudget(int width, int height);
 
-// The leaf's subdivision of one cell's stretch (leaf_walk.glsl, MICRORELIEF_CELL_DEPTH,
-// kCurvedFinalLength, kBiquadraticFinalFootprint): down to pieces 2^-7 long in the frame on
-// a curved base and 2^-6 texel wide for the biquadratic surface, or 2^-10 of the stretch,
-// then a quadratic model of the gap.
-constexpr int kCellDepth = 10;
-constexpr double kBiquadraticFinalFootprint = 1.0 / 64.0;
-
 }  // namespace microrelief

@@ -1,0 +1,48 @@
+# What C++, JavaScript and GLSL must agree on, written once and generated at build time by
+# cmake/generate_contracts.py (Python 3, standard library only); nothing generated is
+# committed:
+#  * the uniform block MicroreliefParameters, written in shaders/relief_parameters.glsl:
+#    the C++ struct (include/microrelief/gl/ReliefParameters.h, with a static_assert on
+#    every offset) and an ES module (share/microrelief/web/relief_layout.js: the offsets
+#    and a writer) for the page and any JavaScript host;
+#  * the GLSL library's constants that the C++ twin shares, listed below as
+#    FILE:GLSL_NAME:CppName (include/microrelief/core/GlslConstants.h, namespace
+#    microrelief::glsl, and the same module).
+# Adding a member to the block is a line in the GLSL; sharing another constant, a line here.
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+
+set(MICRORELIEF_SHARED_CONSTANTS
+  multilevel_trace.glsl:MICRORELIEF_MAX_DEPTH:kMaxDepth
+  multilevel_trace.glsl:MICRORELIEF_LEAF_TEXELS:kLeafTexels
+  leaf_walk.glsl:MICRORELIEF_CELL_DEPTH:kCellDepth
+  leaf_walk.glsl:MR_BIQUADRATIC_FINAL_FOOTPRINT:kBiquadraticFinalFootprint
+  base_curved.glsl:MR_CURVED_FINAL_LENGTH:kCurvedFinalLength
+  relief_query.glsl:MR_BUDGET_PER_TEXEL:kBudgetPerTexel
+  relief_query.glsl:MR_BUDGET_BASE:kBudgetBase)
+
+set(MICRORELIEF_PARAMETERS_HEADER ${PROJECT_BINARY_DIR}/include/microrelief/gl/ReliefParameters.h)
+set(MICRORELIEF_CONSTANTS_HEADER ${PROJECT_BINARY_DIR}/include/microrelief/core/GlslConstants.h)
+set(MICRORELIEF_LAYOUT_MODULE ${PROJECT_BINARY_DIR}/${MICRORELIEF_DATA_SUBDIR}/web/relief_layout.js)
+set(constant_files)
+foreach(spec IN LISTS MICRORELIEF_SHARED_CONSTANTS)
+  string(REPLACE ":" ";" parts ${spec})
+  list(GET parts 0 file)
+  list(APPEND constant_files ${PROJECT_SOURCE_DIR}/shaders/microrelief/${file})
+endforeach()
+list(REMOVE_DUPLICATES constant_files)
+add_custom_command(
+  OUTPUT ${MICRORELIEF_PARAMETERS_HEADER} ${MICRORELIEF_CONSTANTS_HEADER} ${MICRORELIEF_LAYOUT_MODULE}
+  COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/generate_contracts.py
+          --block ${PROJECT_SOURCE_DIR}/shaders/relief_parameters.glsl
+          --shaders ${PROJECT_SOURCE_DIR}/shaders/microrelief
+          --constants ${MICRORELIEF_SHARED_CONSTANTS}
+          --struct ${MICRORELIEF_PARAMETERS_HEADER}
+          --constants-header ${MICRORELIEF_CONSTANTS_HEADER}
+          --js ${MICRORELIEF_LAYOUT_MODULE}
+  DEPENDS ${PROJECT_SOURCE_DIR}/cmake/generate_contracts.py
+          ${PROJECT_SOURCE_DIR}/shaders/relief_parameters.glsl ${constant_files}
+  COMMENT "Generating the uniform block's C++ and JavaScript layouts and the shared constants"
+  VERBATIM)
+add_custom_target(microrelief_contracts ALL
+  DEPENDS ${MICRORELIEF_PARAMETERS_HEADER} ${MICRORELIEF_CONSTANTS_HEADER} ${MICRORELIEF_LAYOUT_MODULE})
+install(FILES ${MICRORELIEF_LAYOUT_MODULE} DESTINATION ${MICRORELIEF_DATA_SUBDIR}/web)

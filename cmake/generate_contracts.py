@@ -1,0 +1,252 @@
+#!/usr/bin/env python3
+"""generate_contracts.py: what C++, JavaScript and GLSL must agree on, generated from the
+one place it is written, at build time (cmake/Contracts.cmake runs it; nothing it writes
+is committed):
+
+  * the uniform block MicroreliefParameters, written in shaders/relief_parameters.glsl:
+    its std140 layout as a C++ struct with a static_assert on every member's offset
+    (--struct) and as an ES module with the offsets and a writer (--js);
+  * constants of the GLSL library that the C++ twin shares (--constants): each
+    `#define NAME value` or `const type NAME = value;` named on the command line, read
+    from the GLSL file that defines it, as a constexpr in C++ (--constants-header) and an
+    export of the same ES module.
+
+Python 3 standard library only. A block or constant this script cannot read is an error
+that names the file and the line, so the build stops rather than guess.
+"""
+import argparse
+import ast
+import operator
+import pathlib
+import re
+import sys
+
+# std140 (OpenGL 4.6 core, 7.6.2.2): base alignment and size in bytes of each type the
+# block may hold; the C++ type that mirrors it, with glm's tight packing (alignof 4).
+TYPES = {
+    "float": (4, 4, "float", 1, "f32"),
+    "int": (4, 4, "std::int32_t", 1, "i32"),
+    "uint": (4, 4, "std::uint32_t", 1, "u32"),
+    "vec2": (8, 8, "glm::vec2", 2, "f32"),
+    "vec3": (16, 12, "glm::vec3", 3, "f32"),
+    "vec4": (16, 16, "glm::vec4", 4, "f32"),
+    "ivec2": (8, 8, "glm::ivec2", 2, "i32"),
+    "ivec3": (16, 12, "glm::ivec3", 3, "i32"),
+    "ivec4": (16, 16, "glm::ivec4", 4, "i32"),
+    "mat4": (16, 64, "glm::mat4", 16, "f32"),
+}
+
+
+def fail(where, message):
+    sys.exit(f"generate_contracts.py: error: {where}: {message}")
+
+
+def read_block(path):
+    """The members of the std140 uniform block in `path`: (type, name, comment, line)."""
+    lines = pathlib.Path(path).read_text().splitlines()
+    members, inside, name = [], False, None
+    for number, line in enumerate(lines, 1):
+        code = line.split("//", 1)[0].strip()
+        comment = line.split("//", 1)[1].strip() if "//" in line else ""
+        if not inside:
+            m = re.match(r"layout\(std140\)\s+uniform\s+(\w+)\s*\{$", code)
+            if m:
+                inside, name = True, m.group(1)
+            continue
+        if code == "};":
+            return name, members
+        if not code:
+            if comment and members:  # a comment that goes on from the member above
+                members[-1][2] += " " + comment
+            continue
+        m = re.fullmatch(r"(\w+)\s+(\w+)\s*;", code)
+        if not m:
+            fail(f"{path}:{number}", f"not a member this generator reads: '{code}' (one 'type name;' a line)")
+        if m.group(1) not in TYPES:
+            fail(f"{path}:{number}", f"type {m.group(1)} is not one the generator lays out ({', '.join(TYPES)})")
+        members.append([m.group(1), m.group(2), comment, number])
+    fail(path, "no 'layout(std140) uniform NAME {' ... '};' block")
+
+
+def layout(members):
+    """std140 offsets, and the block's size (a multiple of 16)."""
+    offset, placed = 0, []
+    for type_, name, comment, line in members:
+        align, size = TYPES[type_][0], TYPES[type_][1]
+        offset = (offset + align - 1) // align * align
+        placed.append((type_, name, comment, line, offset))
+        offset += size
+    return placed, (offset + 15) // 16 * 16
+
+
+def cpp_struct(block, placed, size, source):
+    out = [
+        f"// Generated from {source} by cmake/generate_contracts.py: do not edit; edit the block.",
+        f"// {block}, std140, as a C++ struct: what ReliefShader's programs read from uniform",
+        "// buffer binding 0. Members are value-initialised (matrices to the identity); explicit",
+        "// padding keeps every member at its std140 offset, which the asserts below hold.",
+        "#pragma once",
+        "",
+        "#include <cstddef>",
+        "#include <cstdint>",
+        "",
+        "#include <glm/glm.hpp>",
+        "",
+        "namespace microrelief {",
+        "",
+        "struct ReliefParameters {",
+    ]
+    natural, pads = 0, 0
+    for type_, name, comment, line, offset in placed:
+        if offset > natural:
+            out.append(f"    std::uint8_t padding{pads}_[{offset - natural}] = {{}};")
+            pads += 1
+        cpp = TYPES[type_][2]
+        init = "{1.0f}" if type_ == "mat4" else "{}"
+        text = f"    {cpp} {name}{init};"
+        out.append(f"{text}  // {comment}" if comment else text)
+        natural = offset + TYPES[type_][1]
+    if size > natural:
+        out.append(f"    std::uint8_t padding{pads}_[{size - natural}] = {{}};")
+    out += ["};", "", f'static_assert(sizeof(ReliefParameters) == {size}, "std140 size of {block}");']
+    for type_, name, comment, line, offset in placed:
+        out.append(f"static_assert(offsetof(ReliefParameters, {name}) == {offset});")
+    out += ["", "// Every member's name and std140 offset, in order: what a test holds the linked program to.",
+            "struct ReliefParameterMember {", "    const char* name;", "    std::size_t offset;", "};",
+            "inline constexpr ReliefParameterMember kReliefParameterMembers[] = {"]
+    for type_, name, comment, line, offset in placed:
+        out.append(f'    {{"{name}", {offset}}},')
+    out += ["};", "", "}  // namespace microrelief", ""]
+    return "\n".join(out)
+
+
+OPERATORS = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv}
+
+
+def evaluate(expression, where):
+    """A constant's value: numbers and + - * / only."""
+    def value(node):
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+            return node.value
+        if isinstance(node, ast.BinOp) and type(node.op) in OPERATORS:
+            return OPERATORS[type(node.op)](value(node.left), value(node.right))
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return -value(node.operand)
+        fail(where, f"'{expression}' is not a number or arithmetic of numbers")
+    return value(ast.parse(expression.replace("u", ""), mode="eval").body)
+
+
+def read_constant(shaders, spec):
+    """(C++ name, GLSL name, value, is it an integer, where) of FILE:NAME:cppName."""
+    file, name, cpp = spec.split(":")
+    path = pathlib.Path(shaders) / file
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        m = re.match(rf"\s*#\s*define\s+{name}\s+(.+?)\s*(//.*)?$", line) or re.match(
+            rf"\s*const\s+(?:highp\s+)?(?:float|int|uint)\s+{name}\s*=\s*(.+?);\s*(//.*)?$", line)
+        if m:
+            where = f"{path}:{number}"
+            text = m.group(1)
+            integer = re.fullmatch(r"-?\d+u?", text) is not None
+            return cpp, name, evaluate(text, where), integer, f"{file}:{number}", text
+    fail(path, f"defines no {name} (#define {name} ... or const ... {name} = ...;)")
+
+
+def cpp_constants(constants):
+    out = [
+        "// Generated by cmake/generate_contracts.py from the GLSL library: do not edit; edit the",
+        "// GLSL. The constants the C++ twin (trace/, base/) shares with the shaders, each the",
+        "// value its GLSL file gives.",
+        "#pragma once",
+        "",
+        "namespace microrelief::glsl {",
+        "",
+    ]
+    for cpp, name, value, integer, where, text in constants:
+        out.append(f"// {name} ({where}): {text}")
+        out.append(f"inline constexpr int {cpp} = {int(value)};" if integer
+                   else f"inline constexpr double {cpp} = {float(value)!r};")
+    out += ["", "}  // namespace microrelief::glsl", ""]
+    return "\n".join(out)
+
+
+def js_module(block, placed, size, constants, source):
+    out = [
+        f"// Generated from {source} and the GLSL library by cmake/generate_contracts.py: do not",
+        f"// edit. The uniform block {block} (std140) and the library's shared constants, for the",
+        "// page and any JavaScript host that fills the block.",
+        "",
+        f"export const kParametersBlock = '{block}';",
+        f"export const kParametersSize = {size};",
+        "",
+        "// Each member: its byte offset, its GLSL type, how many 32-bit components, and their kind.",
+        "export const kParameters = Object.freeze({",
+    ]
+    for type_, name, comment, line, offset in placed:
+        count, kind = TYPES[type_][3], TYPES[type_][4]
+        out.append(f"    {name}: Object.freeze({{offset: {offset}, type: '{type_}', count: {count}, kind: '{kind}'}}),")
+    out += [
+        "});",
+        "",
+        "// The block's bytes for `values` (member name -> a number or an array of them; a matrix",
+        "// in column-major order). A member not given is 0; a name that is not a member, or the",
+        "// wrong number of components, is an error.",
+        "export function writeParameters(values) {",
+        "    const buffer = new ArrayBuffer(kParametersSize);",
+        "    const view = new DataView(buffer);",
+        "    for (const [name, value] of Object.entries(values)) {",
+        "        const member = kParameters[name];",
+        "        if (!member) throw new Error(`${kParametersBlock} has no member ${name}`);",
+        "        const components = typeof value === 'number' || typeof value === 'boolean' ? [Number(value)] : Array.from(value);",
+        "        if (components.length !== member.count) {",
+        "            throw new Error(`${kParametersBlock}.${name}: ${member.count} components, not ${components.length}`);",
+        "        }",
+        "        components.forEach((c, k) => {",
+        "            const at = member.offset + 4 * k;",
+        "            if (member.kind === 'f32') view.setFloat32(at, c, true);",
+        "            else if (member.kind === 'i32') view.setInt32(at, c, true);",
+        "            else view.setUint32(at, c, true);",
+        "        });",
+        "    }",
+        "    return buffer;",
+        "}",
+        "",
+        "// The GLSL library's constants that hosts share (each with its file and line).",
+    ]
+    for cpp, name, value, integer, where, text in constants:
+        out.append(f"export const {cpp} = {int(value) if integer else float(value)!r};  // {name}, {where}")
+    out.append("")
+    return "\n".join(out)
+
+
+def write_if_changed(path, text):
+    """Writes `text` to `path` unless it holds it already (so that nothing rebuilds for an
+    unchanged contract), through a temporary file and a rename."""
+    path = pathlib.Path(path)
+    if path.exists() and path.read_text() == text:
+        return
+    path.parent.mkdir(parents=True, exist_ok=True)
+    temporary = path.with_name(f".{path.name}.tmp")
+    temporary.write_text(text)
+    temporary.replace(path)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--block", required=True, help="the GLSL file holding the uniform block")
+    parser.add_argument("--shaders", required=True, help="shaders/microrelief, where --constants' files are")
+    parser.add_argument("--constants", nargs="*", default=[], help="FILE:GLSL_NAME:CppName, each")
+    parser.add_argument("--struct", required=True, help="the C++ header of the block to write")
+    parser.add_argument("--constants-header", required=True, help="the C++ header of the constants to write")
+    parser.add_argument("--js", required=True, help="the ES module to write")
+    args = parser.parse_args()
+    source = pathlib.Path(args.block).name
+    block, members = read_block(args.block)
+    placed, size = layout(members)
+    constants = [read_constant(args.shaders, spec) for spec in args.constants]
+    write_if_changed(args.struct, cpp_struct(block, placed, size, source))
+    write_if_changed(args.constants_header, cpp_constants(constants))
+    write_if_changed(args.js, js_module(block, placed, size, constants, source))
+
+
+if __name__ == "__main__":
+    main()

@@ -303,21 +303,26 @@ TEST_F(BatchCli, SkipExistingLeavesCompleteFramesAlone) {
     const std::string args =
         small + "--turntable 6 --out '" + (out / "v{frame}.png").string() + "' --skip-existing";
     ASSERT_EQ(run(args).status, 0);
-    // A file there is complete (files are renamed into place whole): left alone, even
-    // one that is no picture at all; a missing or empty one is drawn.
+    // A file there is checked before it is kept (issue 25): a whole picture is left alone;
+    // one that is no picture at all, a missing one and an empty one are drawn, each that
+    // is there with a warning naming it.
+    const std::vector<std::uint8_t> whole = test::readBytes(out / "v1.png");
     test::writeBytes(out / "v2.png", {'o', 'l', 'd'});
     std::filesystem::remove(out / "v4.png");
     test::writeBytes(out / "v5.png", {});
     const test::RunResult r = run(args);
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_NE(r.out.find("2 rendered, 4 skipped"), std::string::npos) << r.out;
-    EXPECT_EQ(test::readBytes(out / "v2.png"), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
-    EXPECT_EQ(readPixels(out / "v4.png").width, 64);
-    EXPECT_EQ(readPixels(out / "v5.png").width, 64);
+    EXPECT_NE(r.out.find("3 rendered, 3 skipped"), std::string::npos) << r.out;
+    EXPECT_EQ(r.errLines(), 2) << r.err;
+    for (const char* name : {"v2.png: not a whole image", "v5.png: not a whole image"})
+        EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_EQ(test::readBytes(out / "v1.png"), whole);
+    for (const char* name : {"v2.png", "v4.png", "v5.png"})
+        EXPECT_EQ(readPixels(out / name).width, 64) << name;
     const std::vector<ManifestRow> rows = readManifest(out / "manifest.csv");
     ASSERT_EQ(rows.size(), 12u);
     for (int f = 0; f < 6; ++f)
-        EXPECT_EQ(rows[6 + f].status, f == 4 || f == 5 ? "rendered" : "skipped") << f;
+        EXPECT_EQ(rows[6 + f].status, f == 2 || f == 4 || f == 5 ? "rendered" : "skipped") << f;
 
     // With every frame there no GL is needed: it runs where no backend is.
     const test::RunResult none = run(args,

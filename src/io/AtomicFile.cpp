@@ -353,8 +353,14 @@ void FileWriteBatch::commit() {
         s->renamed();  // the temporary is the target now
         moved.back().replaced = true;
     }
+    // Every target is new and whole: from here a signal only removes the old files moved
+    // aside, and leaves the new ones, which a reader may already have seen.
+    for (Moved& m : moved) {
+        registry.remove(m.slot);
+        m.slot = m.backup.empty() ? -1 : registry.add(Action::Unlink, m.backup);
+    }
     // The renames on disk: each target's folder, and the folder above each folder this
-    // batch made (its new name). Until then the old files stay, to be put back.
+    // batch made (its new name). Until then the old files stay, to be put back if it fails.
     std::set<std::filesystem::path> folders;
     for (const auto& s : staged_) folders.insert(s->target().parent_path());
     for (const auto& [folder, slot] : createdFolders_) folders.insert(folder.parent_path());
@@ -365,11 +371,6 @@ void FileWriteBatch::commit() {
                          (folder.empty() ? std::string(".") : folder.string()) + ": " +
                          systemMessage(error) + ")");
         }
-    }
-    // Every target is new: from here a signal only removes the old files moved aside.
-    for (Moved& m : moved) {
-        registry.remove(m.slot);
-        m.slot = m.backup.empty() ? -1 : registry.add(Action::Unlink, m.backup);
     }
     for (const Moved& m : moved) {
         std::error_code ignored;

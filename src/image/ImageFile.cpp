@@ -5,12 +5,12 @@
 #include <sys/stat.h>
 
 #include <cstddef>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <vector>
 
 #include "image/CheckedImageInput.h"
+#include "image/CutOffCheck.h"
 #include "microrelief/core/Error.h"
 
 namespace microrelief {
@@ -73,35 +73,6 @@ struct FileIdentity {
         return resolved == other.resolved || (inode && other.inode && *inode == *other.inode);
     }
 };
-
-// The end of a TGA 2.0 file, which OpenImageIO writes: the extension and developer area
-// offsets, then "TRUEVISION-XFILE." and a null.
-const std::vector<unsigned char> kTargaFooter = {'T', 'R', 'U', 'E', 'V', 'I', 'S', 'I', 'O',
-                                                 'N', '-', 'X', 'F', 'I', 'L', 'E', '.', 0};
-
-bool endsWith(const std::filesystem::path& file, const std::vector<unsigned char>& tail) {
-    std::ifstream in(file, std::ios::binary | std::ios::ate);
-    const std::streamoff size = in.tellg();
-    if (!in || size < static_cast<std::streamoff>(tail.size())) return false;
-    std::vector<unsigned char> end(tail.size());
-    in.seekg(size - static_cast<std::streamoff>(tail.size()));
-    in.read(reinterpret_cast<char*>(end.data()), static_cast<std::streamsize>(end.size()));
-    return in && end == tail;
-}
-
-// An IFF file is one FORM (or FOR4) chunk: its length, big-endian after the tag, covers
-// the rest of the file.
-bool iffLengthFits(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary | std::ios::ate);
-    const std::streamoff size = in.tellg();
-    unsigned char head[8] = {};
-    in.seekg(0);
-    in.read(reinterpret_cast<char*>(head), 8);
-    if (!in) return false;
-    const std::uint64_t length = (std::uint64_t{head[4]} << 24) | (std::uint64_t{head[5]} << 16) |
-                                 (std::uint64_t{head[6]} << 8) | std::uint64_t{head[7]};
-    return 8 + length <= static_cast<std::uint64_t>(size);
-}
 
 }  // namespace
 
@@ -198,13 +169,7 @@ std::optional<std::string> imageFileDefect(const std::filesystem::path& file) {
         // The checks every input gets (a regular file; a PNG's chunks, CRCs and inflated
         // data; an OpenEXR header within the file), then what a decoder misses.
         auto input = openCheckedImage(file, std::numeric_limits<int>::max(), "an image");
-        const std::string format = input->format_name();
-        if (format == "jpeg" && !endsWith(file, {0xff, 0xd9}))
-            return "no JPEG end-of-image marker: the file is cut off";
-        if (format == "targa" && !endsWith(file, kTargaFooter))
-            return "no TGA footer: the file is cut off";
-        if (format == "iff" && !iffLengthFits(file))
-            return "shorter than its FORM chunk says: the file is cut off";
+        if (auto defect = cutOffDefect(file, input->format_name())) return defect;
         std::vector<std::byte> pixels(input->spec().image_bytes(true));
         if (!input->read_image(0, 0, 0, -1, OIIO::TypeUnknown, pixels.data())) {
             const std::string reason = oneLine(input->geterror());

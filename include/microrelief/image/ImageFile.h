@@ -62,8 +62,9 @@ void writeImageAtomically(const std::filesystem::path& file, const ImageData& im
 // Why `file` is not a whole image, or nothing when it is: what --skip-existing asks of a
 // frame before it keeps it. A PNG's every chunk (its length within the file, its CRC,
 // IEND last) and its image data inflated; an OpenEXR file's header, then every pixel
-// read; a JPEG's end-of-image marker and a TGA's footer (their decoders take a cut-off
-// file for whole), then every pixel; any other format decoded in full.
+// read; where a decoder takes a cut-off file for whole, the end its structure gives (a
+// JPEG's end-of-image marker, a TGA's footer, a GIF's trailer, an IFF's FORM length, a
+// TIFF's directories and strips), then every pixel; any other format decoded in full.
 std::optional<std::string> imageFileDefect(const std::filesystem::path& file);
 
 }  // namespace microrelief

@@ -205,6 +205,7 @@ void StagedFile::fail(int error) const {
 }
 
 void StagedFile::writeAt(const void* data, std::size_t size, std::uint64_t offset) {
+    size_ = std::max(size_, offset + size);  // asked for, whether or not it gets there
     if (error_ != 0 || fd_ < 0) return;
     const char* bytes = static_cast<const char*>(data);
     while (size > 0) {
@@ -217,7 +218,6 @@ void StagedFile::writeAt(const void* data, std::size_t size, std::uint64_t offse
         bytes += n;
         size -= static_cast<std::size_t>(n);
         offset += static_cast<std::uint64_t>(n);
-        size_ = std::max(size_, offset);
     }
 }
 
@@ -231,8 +231,8 @@ void StagedFile::finish() {
     if (finished_) return;
     if (error_ != 0) fail(error_);
     if (::fsync(fd_) != 0) fail(errno);
-    // What the file system holds, not what the writes said: the two agree or the file is
-    // not what was written.
+    // What the file system holds against what the writer asked for: a second, independent
+    // check that every write got there, should a failure ever go unrecorded.
     struct stat info {};
     if (::fstat(fd_, &info) != 0) fail(errno);
     if (static_cast<std::uint64_t>(info.st_size) != size_) {

@@ -7,7 +7,7 @@
 //   - every write(2) is checked, and the first failure (ENOSPC, EFBIG under `ulimit -f`,
 //     EIO) sticks: later writes are not tried, and finish() reports it;
 //   - finish() flushes the file to the disk (fsync), compares the size the file system
-//     reports with the bytes written, and checks close(2);
+//     reports with the extent the writes asked for, and checks close(2);
 //   - commit() renames the temporaries over their targets and then syncs the folders,
 //     so the new names are on disk too; a folder or other non-regular file at a target
 //     is refused, never moved away;
@@ -45,7 +45,7 @@ public:
     void write(std::string_view bytes) { writeAt(bytes.data(), bytes.size(), size_); }
     // What is there, for writers that read back what they wrote (TIFF may).
     std::size_t readAt(void* data, std::size_t size, std::uint64_t offset) const;
-    // The end of the furthest write: the file's size once every write has succeeded.
+    // The end of the furthest write asked for: the file's size when every write succeeds.
     std::uint64_t size() const { return size_; }
     bool failed() const { return error_ != 0; }
 

@@ -68,6 +68,23 @@ TEST(OutputTargets, AFolderThatIsAFileIsRefusedUpFront) {
     EXPECT_THROW(checkOutputTargets({dir / "file.txt/deep/x.png"}), Error);
 }
 
+// OpenImageIO writers that cannot write through a proxy open the file themselves, where
+// no write can be checked: their formats are refused before any work.
+TEST(OutputTargets, FormatsWhoseWritesCannotBeCheckedAreRefused) {
+    test::ScratchDir dir;
+    for (const char* name : {"x.sgi", "x.ico", "x.rla"}) {
+        try {
+            checkOutputTargets({dir / name});
+            ADD_FAILURE() << name << " was not refused";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+            EXPECT_NE(std::string(e.what()).find("cannot write through a checked stream"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 TEST(ImageWriteBatch, AFailedBatchRemovesTheFoldersItMade) {
     test::ScratchDir dir;
     test::writeBytes(dir / "file.txt", {'x'});

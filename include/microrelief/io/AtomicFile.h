@@ -110,8 +110,8 @@ void checkReplaceable(const std::filesystem::path& file);
 std::optional<std::filesystem::path> abandonedTemporaryTarget(const std::filesystem::path& file);
 
 // write(2) until every byte is written, retrying EINTR; false with errno set otherwise
-// (a short write followed by a failure reports the failure). For files that are appended
-// to in place (the batch manifest); the rest go through StagedFile.
+// (a short write followed by a failure reports the failure). For what is written in place:
+// the batch manifest, appended to, and standard output; files go through StagedFile.
 bool writeAll(int fd, const void* data, std::size_t size);
 
 }  // namespace microrelief

@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "Benchmark.h"
+#include "Report.h"
 #include "Timing.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
@@ -164,11 +164,8 @@ std::string writeMaterials(const std::filesystem::path& folder, const std::strin
         md << line;
     }
     for (const auto& [name, text] :
-         {std::pair{"materials.csv", csv.str()}, {"materials.md", md.str()}}) {
-        const std::filesystem::path file = folder / name, temporary = file.string() + ".tmp";
-        std::ofstream(temporary) << text;
-        std::filesystem::rename(temporary, file);
-    }
+         {std::pair{"materials.csv", csv.str()}, {"materials.md", md.str()}})
+        writeTextAtomically(folder / name, text);
     return md.str();
 }
 

@@ -3,29 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
 #include <sstream>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/io/AtomicFile.h"
 
 namespace microrelief::bench {
 
-// Text files get the same whole-or-nothing treatment as images.
+// Text files get the same whole-or-nothing treatment as images (io/AtomicFile.h).
 void writeTextAtomically(const std::filesystem::path& file, const std::string& text) {
-    std::filesystem::create_directories(file.parent_path().empty() ? "." : file.parent_path());
-    const std::filesystem::path temporary =
-        file.parent_path() / ("." + file.filename().string() + ".tmp");
-    {
-        std::ofstream out(temporary, std::ios::binary);
-        out << text;
-        if (!out) throwRuntime(file.string() + ": cannot write");
-    }
-    std::error_code ec;
-    std::filesystem::rename(temporary, file, ec);
-    if (ec) throwRuntime(file.string() + ": cannot move into place (" + ec.message() + ")");
+    writeFileAtomically(file, text);
 }
 
 std::string csvQuote(const std::string& text) {

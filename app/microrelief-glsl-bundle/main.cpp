@@ -3,7 +3,9 @@
 // build makes the library's single-file tracers with it (share/microrelief/shaders/single).
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,31 +14,7 @@
 #include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/gl/ShaderSource.h"
-
-namespace {
-
-// Written beside the target and renamed over it: a reader never sees half a file.
-void writeAtomically(const std::filesystem::path& file, const std::string& text) {
-    const std::filesystem::path temporary = file.string() + ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            microrelief::throwRuntime(file.string() + ": cannot write");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temporary, file, ec);
-    if (ec) {
-        std::filesystem::remove(temporary, ec);
-        microrelief::throwRuntime(file.string() + ": cannot write (" + ec.message() + ")");
-    }
-}
-
-}  // namespace
+#include "microrelief/io/AtomicFile.h"
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -61,9 +39,13 @@ int main(int argc, char** argv) {
                                    ". Prepend #version and any option #defines.\n";
         const std::string text = header + microrelief::bundleShader(input, root);
         if (output.empty()) {
-            std::cout << text;
+            // Checked as a file is: standard output may be one, on a full disk.
+            if (!microrelief::writeAll(1, text.data(), text.size()))
+                microrelief::throwRuntime(std::string("standard output: cannot write (") +
+                                          std::strerror(errno) + ")");
         } else {
-            writeAtomically(output, text);
+            // Whole or not at all, through a temporary of its own beside the target.
+            microrelief::writeFileAtomically(output, text);
         }
     } catch (const microrelief::Error& e) {
         std::fprintf(stderr, "microrelief-glsl-bundle: error: %s\n", e.what());

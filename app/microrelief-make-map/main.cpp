@@ -22,11 +22,16 @@ using namespace microrelief;
 namespace {
 
 // 8-bit sRGB for the integer formats, linear float for OpenEXR.
-void writeAlbedo(const std::filesystem::path& file, const AlbedoImage& albedo) {
+void writeAlbedo(ImageWriteBatch& batch, const std::filesystem::path& file,
+                 const AlbedoImage& albedo) {
     const std::size_t pixels = static_cast<std::size_t>(albedo.width) * albedo.height;
     if (file.extension() == ".exr") {
-        writeImageAtomically(file, {albedo.width, albedo.height, 4, PixelType::Float,
-                                    albedo.linear.data(), {"R", "G", "B", "A"}});
+        batch.write(file, {albedo.width,
+                           albedo.height,
+                           4,
+                           PixelType::Float,
+                           albedo.linear.data(),
+                           {"R", "G", "B", "A"}});
         return;
     }
     std::vector<std::uint8_t> rgb(pixels * 3);
@@ -36,7 +41,7 @@ void writeAlbedo(const std::filesystem::path& file, const AlbedoImage& albedo) {
                 std::lround(linearToSrgb(albedo.linear[4 * p + c]) * 255.0f));
         }
     }
-    writeImageAtomically(file, {albedo.width, albedo.height, 3, PixelType::UInt8, rgb.data(), {}});
+    batch.write(file, {albedo.width, albedo.height, 3, PixelType::UInt8, rgb.data(), {}});
 }
 
 }  // namespace
@@ -68,27 +73,31 @@ int main(int argc, char** argv) {
         // limit, 1 GiB of samples and 512 MiB of 16-bit words.
         parseSizeFlag(size, width, height, kMaxHeightMapSide,
                       "the largest height map microrelief loads");
+        // Before any work: formats, folders in the way, one file given twice.
+        checkOutputTargets(albedoOut.empty() ? std::vector<std::filesystem::path>{out}
+                                             : std::vector<std::filesystem::path>{out, albedoOut});
         const HeightMap map = synth::byName(name, width, height, seed);
+        ImageWriteBatch batch;  // the map and its albedo: both or neither
         if (!albedoOut.empty()) {
             int aw = 2 * width, ah = 2 * height;
             if (!albedoSize.empty())
                 parseSizeFlag(albedoSize, aw, ah, kMaxAlbedoSide, "the largest albedo microrelief loads");
             aw = std::min(aw, kMaxAlbedoSide);
             ah = std::min(ah, kMaxAlbedoSide);
-            writeAlbedo(albedoOut, synth::albedo(name, aw, ah, width, height, seed));
+            writeAlbedo(batch, albedoOut, synth::albedo(name, aw, ah, width, height, seed));
         }
         // Float for EXR; otherwise 16 bits, which PNG and TIFF store as they are.
         if (std::filesystem::path(out).extension() == ".exr") {
-            writeImageAtomically(out,
-                                 {width, height, 1, PixelType::Float, map.samples.data(), {"Y"}});
+            batch.write(out, {width, height, 1, PixelType::Float, map.samples.data(), {"Y"}});
         } else {
             std::vector<std::uint16_t> words(map.samples.size());
             for (std::size_t k = 0; k < words.size(); ++k) {
                 words[k] = static_cast<std::uint16_t>(
                     std::lround(std::clamp(map.samples[k], 0.0f, 1.0f) * 65535.0f));
             }
-            writeImageAtomically(out, {width, height, 1, PixelType::UInt16, words.data(), {"Y"}});
+            batch.write(out, {width, height, 1, PixelType::UInt16, words.data(), {"Y"}});
         }
+        batch.commit();
         std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width << "x"
                   << height << ")" << (albedoOut.empty() ? "" : " and " + albedoOut) << "\n";
         return 0;

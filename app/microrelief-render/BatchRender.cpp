@@ -71,9 +71,7 @@ std::vector<FrameFiles> frameFiles(const RenderOptions& o, std::size_t pathLengt
                 throwBadInput(file->string() + ": the name of two outputs (frames " +
                               std::to_string(at->second) + " and " + std::to_string(frame) + ")");
             }
-            std::error_code ec;
-            if (std::filesystem::is_directory(*file, ec))
-                throwBadInput(file->string() + ": is a directory");
+            checkReplaceable(*file);  // a folder, FIFO or device: refused before any frame
         }
         files.push_back(std::move(f));
     }
@@ -139,12 +137,18 @@ std::string plural(int n, const std::string& noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
-// A file as an earlier run left it: there, and not empty. Files are renamed into place
-// only when whole, so a file that is there is complete.
-bool complete(const std::filesystem::path& file) {
+// A file as an earlier run left it, whole: checked, not trusted. This program renames
+// files into place only when they are on disk, but a file there may come from a version
+// that did not, a disk that lost what it said it had, or another program.
+bool complete(const std::filesystem::path& file, BatchProgress& progress) {
     std::error_code ec;
-    return std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) > 0 &&
-           !ec;
+    if (!std::filesystem::exists(file, ec)) return false;
+    const std::optional<std::string> defect = imageFileDefect(file);
+    if (defect) {
+        progress.clear();
+        logWarning(file.string() + ": not a whole image (" + *defect + "); drawing it again");
+    }
+    return !defect;
 }
 
 // The map a frame draws, as loaded: file, load options, whether its pyramid wraps in u (a
@@ -198,7 +202,8 @@ int runBatch(const RenderOptions& o) {
         const PathFrame& frame = path[f.frame];
         const std::string camera =
             cameraFlags(frame.scene.job.camera) + (frame.flags.empty() ? "" : " " + frame.flags);
-        if (o.batch.skipExisting && complete(f.out) && (!f.aov || complete(*f.aov))) {
+        if (o.batch.skipExisting && complete(f.out, progress) &&
+            (!f.aov || complete(*f.aov, progress))) {
             manifest.append({f.frame, f.out.string(), camera, 0.0, "skipped"});
             ++skipped;
             progress.frameDone(false, 0.0);

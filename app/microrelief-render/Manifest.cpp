@@ -12,6 +12,7 @@
 
 #include "Csv.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/io/AtomicFile.h"
 
 namespace microrelief {
 
@@ -38,7 +39,13 @@ ManifestWriter::ManifestWriter(const std::filesystem::path& file) : file_(file) 
     }
     if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
         throwBadInput(file.string() + ": the manifest is not a regular file");
-    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    // Made here or there before: a new manifest whose header cannot be written goes again.
+    bool made = true;
+    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC, 0644);
+    if (fd_ < 0 && errno == EEXIST) {
+        made = false;
+        fd_ = ::open(file.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
+    }
     if (fd_ < 0) throwRuntime(file.string() + ": cannot open the manifest (" + systemError() + ")");
     struct stat info {};
     if (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode)) {
@@ -47,7 +54,14 @@ ManifestWriter::ManifestWriter(const std::filesystem::path& file) : file_(file) 
         throwBadInput(file.string() + ": the manifest is not a regular file");
     }
     if (info.st_size == 0) {
-        writeAll(std::string(kManifestHeader) + "\n");
+        try {
+            append(std::string(kManifestHeader) + "\n");
+        } catch (const Error&) {
+            ::close(fd_);
+            fd_ = -1;
+            if (made) ::unlink(file.c_str());
+            throw;
+        }
         return;
     }
     // An existing manifest: ours (its header), and ending in a newline so that the next
@@ -62,25 +76,36 @@ ManifestWriter::ManifestWriter(const std::filesystem::path& file) : file_(file) 
                       kManifestHeader + "')");
     }
     char last = '\n';
-    if (::pread(fd_, &last, 1, info.st_size - 1) == 1 && last != '\n') writeAll("\n");
+    if (::pread(fd_, &last, 1, info.st_size - 1) == 1 && last != '\n') {
+        try {
+            append("\n");
+        } catch (const Error&) {
+            ::close(fd_);
+            fd_ = -1;
+            throw;
+        }
+    }
 }
 
 ManifestWriter::~ManifestWriter() {
     if (fd_ >= 0) ::close(fd_);
 }
 
-void ManifestWriter::writeAll(const std::string& text) {
-    std::size_t done = 0;
-    while (done < text.size()) {
-        const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throwRuntime(file_.string() + ": cannot write (" + systemError() + ")");
-        done += static_cast<std::size_t>(n);
+void ManifestWriter::append(const std::string& text) {
+    struct stat before {};
+    const bool sized = ::fstat(fd_, &before) == 0;
+    // On disk before the row counts: a frame is "rendered" once the disk says so.
+    if (writeAll(fd_, text.data(), text.size()) && ::fdatasync(fd_) == 0) return;
+    const std::string reason = systemError();
+    // A row written in part comes off again: the manifest stays as it was, byte for byte.
+    if (sized && ::ftruncate(fd_, before.st_size) != 0) {
+        // Left torn: readManifest skips a line with no newline, and the next run ends it.
     }
+    throwRuntime(file_.string() + ": cannot write (" + reason + ")");
 }
 
 void ManifestWriter::append(const ManifestRow& row) {
-    writeAll(manifestLine(row));
+    append(manifestLine(row));
 }
 
 std::vector<ManifestRow> readManifest(const std::filesystem::path& file) {

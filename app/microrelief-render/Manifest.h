@@ -3,9 +3,10 @@
 // found it complete) or "failed".
 //
 // Appended, not rewritten: each row goes to the file, opened O_APPEND, in one write(2)
-// once the frame's files are in place, so a shard killed at any moment leaves a
-// readable manifest of every frame it finished, and a restarted shard appends its rows
-// after them (the header is written once, when the file is new). A reader takes a
+// (checked, and synced to the disk; a row that fails comes off again) once the frame's
+// files are in place, so a shard killed at any moment leaves a readable manifest of
+// every frame it finished, and a restarted shard appends its rows after them (the
+// header is written once, when the file is new). A reader takes a
 // frame's last row; a torn last line (power cut) is ended before the next row and is
 // skipped by readManifest.
 #pragma once
@@ -41,7 +42,8 @@ public:
     const std::filesystem::path& file() const { return file_; }
 
 private:
-    void writeAll(const std::string& text);
+    // Every byte and fdatasync, or Error(Runtime) with the file as it was before.
+    void append(const std::string& text);
     std::filesystem::path file_;
     int fd_ = -1;
 };

@@ -157,6 +157,13 @@ ParseResult<ViewerOptions> parseViewerOptions(int argc, char** argv) {
         finish(o, scene, screenshot, windowScreenshot, shaderDir, noVsync, noPanel);
         finishSculpt(o, sculpt);
         if ((!o.strokes.empty() || o.undo > 0 || o.saveMap) && o.frames == 0) o.frames = 1;
+        // Before the window opens, as microrelief-render does: no folder or device where a
+        // file goes (it would be moved away), and no file given for two outputs (the last
+        // written would replace the first).
+        std::vector<std::filesystem::path> outputs;
+        for (const auto* file : {&o.saveMap, &o.screenshot, &o.windowScreenshot})
+            if (*file) outputs.push_back(**file);
+        checkOutputTargets(outputs);
         return o;
     });
 }

@@ -1,136 +1,58 @@
 #include "microrelief/image/ImageFile.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <signal.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
-#include <algorithm>
-#include <array>
-#include <atomic>
-#include <cerrno>
-#include <charconv>
-#include <csignal>
-#include <cstring>
-#include <mutex>
+#include <cstddef>
+#include <limits>
 #include <optional>
 #include <vector>
 
+#include "image/CheckedImageInput.h"
+#include "image/CutOffCheck.h"
 #include "microrelief/core/Error.h"
 
 namespace microrelief {
 
 namespace {
 
-std::string oneLine(std::string text) {
-    std::replace(text.begin(), text.end(), '\n', ' ');
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
-}
-
-// ".name.tmp-<pid>-<n>.ext": hidden, unique per process and call, and keeping the
-// extension, from which OpenImageIO picks the format.
-std::filesystem::path temporaryBeside(const std::filesystem::path& target) {
-    static std::atomic<int> counter{0};
-    const std::string name = "." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) +
-                             "-" + std::to_string(counter++) + target.extension().string();
-    return target.parent_path() / name;
-}
-
-// What a signal must undo: files and folders of unfinished batches, registered while they
-// exist. A fixed table of fixed buffers, claimed with atomics, because the handler may
-// only use what is async-signal-safe: no allocation, no locks, unlink/rename/rmdir.
-class CleanupRegistry {
+// OpenImageIO 2.4's PNG, BMP and TGA writers do not check what fwrite returns, and their
+// close() cannot tell: on a full disk they report success over a cut-off file; libjpeg's
+// error handler prints its own message and exits the process (issue 25). So no writer
+// is given a file to open: each writes through this proxy into a StagedFile, which checks
+// every write and keeps the first failure, and StagedFile::finish reports it. The proxy
+// tells the writer every write succeeded, so that no writer takes an error path of its
+// own (libjpeg's exit among them); what it writes after a failure goes nowhere. Streamed
+// rather than encoded into memory first (OpenImageIO's IOVecOutput would also do): a
+// 16384 x 16384 map costs no second copy. Byte for byte what each writer puts in a file
+// of its own (compared for every format checkImageExtension lets through).
+class StagedFileProxy final : public OIIO::Filesystem::IOProxy {
 public:
-    enum class Action : int { Unlink, Restore, RemoveFolder };
-
-    static CleanupRegistry& instance() {
-        static CleanupRegistry registry;  // constructed before any handler is installed
-        return registry;
+    explicit StagedFileProxy(StagedFile& file)
+        : IOProxy(file.target().string(), IOProxy::Write), file_(file) {}
+    const char* proxytype() const override { return "microrelief::StagedFile"; }
+    size_t write(const void* data, size_t size) override {
+        const size_t written = pwrite(data, size, m_pos);
+        m_pos += static_cast<int64_t>(written);
+        return written;
     }
-
-    // Returns the slot, or -1 when the table is full or a path is too long (the normal
-    // paths then still clean up; only a signal would leave that one file).
-    int add(Action action, const std::filesystem::path& path,
-            const std::filesystem::path& target = {}) {
-        installHandlers();
-        const std::string a = path.string(), b = target.string();
-        if (a.size() >= kPathSize || b.size() >= kPathSize) return -1;
-        for (int k = 0; k < kSlots; ++k) {
-            int expected = kFree;
-            if (!slots_[k].state.compare_exchange_strong(expected, kFilling)) continue;
-            std::memcpy(slots_[k].path, a.c_str(), a.size() + 1);
-            std::memcpy(slots_[k].target, b.c_str(), b.size() + 1);
-            slots_[k].action = action;
-            slots_[k].state.store(kLive, std::memory_order_release);
-            return k;
-        }
-        return -1;
+    size_t pwrite(const void* data, size_t size, int64_t offset) override {
+        file_.writeAt(data, size, static_cast<std::uint64_t>(offset));
+        return size;
     }
-
-    void remove(int slot) {
-        if (slot >= 0) slots_[slot].state.store(kFree, std::memory_order_release);
+    size_t read(void* data, size_t size) override {
+        const size_t got = pread(data, size, m_pos);
+        m_pos += static_cast<int64_t>(got);
+        return got;
     }
-
-    // From the signal handler: files first (remove unfinished ones, put moved-aside ones
-    // back), then the folders a batch made, deepest first, as far as they are empty.
-    void undoAll() {
-        for (Slot& s : slots_) {
-            if (s.state.load(std::memory_order_acquire) != kLive) continue;
-            if (s.action == Action::Unlink) ::unlink(s.path);
-            if (s.action == Action::Restore) ::rename(s.path, s.target);
-        }
-        for (int pass = 0; pass < kSlots; ++pass) {
-            bool removed = false;
-            for (int k = kSlots - 1; k >= 0; --k) {
-                Slot& s = slots_[k];
-                if (s.state.load(std::memory_order_acquire) != kLive ||
-                    s.action != Action::RemoveFolder)
-                    continue;
-                if (::rmdir(s.path) == 0) {
-                    s.state.store(kFree, std::memory_order_release);
-                    removed = true;
-                }
-            }
-            if (!removed) break;
-        }
+    size_t pread(void* data, size_t size, int64_t offset) override {
+        return file_.readAt(data, size, static_cast<std::uint64_t>(offset));
     }
+    size_t size() const override { return static_cast<size_t>(file_.size()); }
 
 private:
-    static constexpr int kSlots = 64;
-    static constexpr std::size_t kPathSize = 4096;
-    static constexpr int kFree = 0, kFilling = 1, kLive = 2;
-    struct Slot {
-        std::atomic<int> state{kFree};
-        Action action = Action::Unlink;
-        char path[kPathSize];
-        char target[kPathSize];
-    };
-
-    static void onSignal(int signal) {
-        instance().undoAll();
-        // Then die of the signal as if it had never been caught (the exit status says so).
-        std::signal(signal, SIG_DFL);
-        std::raise(signal);
-    }
-
-    void installHandlers() {
-        static std::once_flag once;
-        std::call_once(once, [] {
-            struct sigaction action {};
-            action.sa_handler = onSignal;
-            sigemptyset(&action.sa_mask);
-            for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
-                struct sigaction previous {};
-                // A signal the program ignores (nohup, a shell's background job) stays so.
-                if (::sigaction(signal, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN)
-                    continue;
-                ::sigaction(signal, &action, nullptr);
-            }
-        });
-    }
-
-    std::array<Slot, kSlots> slots_;
+    StagedFile& file_;
 };
 
 // A path as the file system sees it: symbolic links and "..", resolved as far as the
@@ -163,56 +85,17 @@ void checkImageExtension(const std::filesystem::path& file) {
         OIIO::geterror();  // clear the pending message
         throwBadInput(file.string() + ": no image format for the extension '" + extension + "'");
     }
-}
-
-ImageWriteBatch::~ImageWriteBatch() {
-    CleanupRegistry& registry = CleanupRegistry::instance();
-    for (const Staged& s : staged_) {
-        std::error_code ignored;
-        std::filesystem::remove(s.temporary, ignored);
-        registry.remove(s.slot);
+    // Without a proxy the writer opens the file itself, and some report success on a full
+    // disk: a format whose every byte cannot be checked is not written.
+    if (!output->supports("ioproxy")) {
+        throwBadInput(file.string() + ": OpenImageIO's " + output->format_name() +
+                      " writer cannot write through a checked stream, so a full disk could go "
+                      "unnoticed (write .png, .exr, .tif, .jpg, .bmp or .tga)");
     }
-    // The folders this batch made, deepest first; remove() leaves a folder that is not
-    // empty (another program's file, or an earlier committed batch's).
-    for (auto it = createdFolders_.rbegin(); it != createdFolders_.rend(); ++it) {
-        std::error_code ignored;
-        if (!committed_) std::filesystem::remove(it->first, ignored);
-        registry.remove(it->second);
-    }
-}
-
-void ImageWriteBatch::createFolders(const std::filesystem::path& file) {
-    const std::filesystem::path folder = file.parent_path();
-    if (folder.empty()) return;
-    // Each missing folder from the outermost in, made one at a time, so that the batch
-    // knows which it made and can take them away again if the job fails.
-    std::vector<std::filesystem::path> missing;
-    std::error_code ec;
-    for (std::filesystem::path p = folder; !p.empty() && !std::filesystem::exists(p, ec);
-         p = p.parent_path()) {
-        missing.push_back(p);
-        if (p == p.parent_path()) break;
-    }
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-        if (!std::filesystem::create_directory(*it, ec) && ec) {
-            throwRuntime(file.string() + ": cannot create the folder " + it->string() + " (" +
-                         ec.message() + ")");
-        }
-        createdFolders_.push_back(
-            {*it, CleanupRegistry::instance().add(CleanupRegistry::Action::RemoveFolder, *it)});
-    }
-    if (!std::filesystem::is_directory(folder, ec))
-        throwRuntime(file.string() + ": " + folder.string() + " is not a folder");
 }
 
 void ImageWriteBatch::write(const std::filesystem::path& file, const ImageData& image) {
-    createFolders(file);
-    const std::filesystem::path temporary = temporaryBeside(file);
-    // Registered before the file exists: a signal from here on removes it.
-    staged_.push_back(
-        {file, temporary,
-         CleanupRegistry::instance().add(CleanupRegistry::Action::Unlink, temporary)});
-
+    StagedFile& staged = files_.stage(file);
     auto output = OIIO::ImageOutput::create(file.string());
     if (!output) throwBadInput(file.string() + ": no image format for this extension");
     const OIIO::TypeDesc type = image.type == PixelType::Float    ? OIIO::TypeDesc::FLOAT
@@ -222,82 +105,25 @@ void ImageWriteBatch::write(const std::filesystem::path& file, const ImageData& 
     if (!image.channelNames.empty()) spec.channelnames = image.channelNames;
     const bool namedAlpha = image.channelNames.size() > 3 && image.channelNames[3] == "A";
     if (image.channels == 4 || namedAlpha) spec.alpha_channel = 3;
-    const bool ok = output->open(temporary.string(), spec) &&
+    StagedFileProxy proxy(staged);
+    const bool ok = output->set_ioproxy(&proxy) && output->open(file.string(), spec) &&
                     output->write_image(type, image.pixels) && output->close();
-    if (!ok) {
-        const std::string reason = oneLine(output->geterror());
+    const std::string reason = ok ? std::string() : oneLine(output->geterror());
+    output.reset();  // a writer's destructor may still write (through the proxy)
+    // The proxy's failure first (finish() throws it): it is what went wrong, whatever the
+    // writer made of it.
+    if (!ok && !staged.failed()) {
         throwRuntime(file.string() + ": cannot write (" +
                      (reason.empty() ? "unknown error" : reason) + ")");
     }
-}
-
-void ImageWriteBatch::commit() {
-    // Move each existing target aside first, so that a rename failing half-way can be
-    // undone: either every target is the new file, or every target is as it was. The
-    // registry knows how to undo each step, so that a signal half-way undoes them too.
-    CleanupRegistry& registry = CleanupRegistry::instance();
-    using Action = CleanupRegistry::Action;
-    struct Moved {
-        std::filesystem::path target, backup;
-        bool replaced = false;
-        int slot = -1;  // puts the old file back, or removes the new one
-    };
-    std::vector<Moved> moved;
-    auto rollBack = [&moved, &registry] {
-        for (auto it = moved.rbegin(); it != moved.rend(); ++it) {
-            std::error_code ignored;
-            if (it->replaced) std::filesystem::remove(it->target, ignored);
-            if (!it->backup.empty()) std::filesystem::rename(it->backup, it->target, ignored);
-            registry.remove(it->slot);
-        }
-    };
-    for (Staged& s : staged_) {
-        Moved m{s.target, {}};
-        std::error_code ec;
-        if (std::filesystem::exists(s.target, ec)) {
-            m.backup = temporaryBeside(s.target);
-            m.slot = registry.add(Action::Restore, m.backup, s.target);
-            std::filesystem::rename(s.target, m.backup, ec);
-            if (ec) {
-                registry.remove(m.slot);
-                rollBack();
-                throwRuntime(s.target.string() + ": cannot replace the existing file (" +
-                             ec.message() + ")");
-            }
-        } else {
-            m.slot = registry.add(Action::Unlink, s.target);
-        }
-        moved.push_back(m);
-        std::filesystem::rename(s.temporary, s.target, ec);
-        if (ec) {
-            rollBack();
-            throwRuntime(s.target.string() + ": cannot move the finished file into place (" +
-                         ec.message() + ")");
-        }
-        registry.remove(s.slot);  // the temporary is the target now
-        s.slot = -1;
-        moved.back().replaced = true;
-    }
-    // Every target is new: from here a signal only removes the old files moved aside.
-    for (Moved& m : moved) {
-        registry.remove(m.slot);
-        m.slot = m.backup.empty() ? -1 : registry.add(Action::Unlink, m.backup);
-    }
-    for (const Moved& m : moved) {
-        std::error_code ignored;
-        if (!m.backup.empty()) std::filesystem::remove(m.backup, ignored);
-        registry.remove(m.slot);
-    }
-    staged_.clear();
-    committed_ = true;
+    staged.finish();
 }
 
 void checkOutputTargets(const std::vector<std::filesystem::path>& files) {
     std::vector<FileIdentity> identities;
     for (std::size_t k = 0; k < files.size(); ++k) {
         std::error_code ec;
-        if (std::filesystem::is_directory(files[k], ec))
-            throwBadInput(files[k].string() + ": is a directory");
+        checkReplaceable(files[k]);
         checkImageExtension(files[k]);
         // The nearest part of the folder that exists must be a folder, or the folders
         // cannot be made.
@@ -338,27 +164,26 @@ void writeImageAtomically(const std::filesystem::path& file, const ImageData& im
     batch.commit();
 }
 
-std::optional<std::filesystem::path> abandonedTemporaryTarget(const std::filesystem::path& file) {
-    // The name temporaryBeside gives: ".<stem>.tmp-<pid>-<n><extension>".
-    const std::string name = file.filename().string();
-    const std::size_t tag = name.rfind(".tmp-");
-    if (name.size() < 2 || name[0] != '.' || tag == std::string::npos || tag < 1)
+std::optional<std::string> imageFileDefect(const std::filesystem::path& file) {
+    try {
+        // The checks every input gets (a regular file; a PNG's chunks, CRCs and inflated
+        // data; an OpenEXR header within the file), then what a decoder misses.
+        auto input = openCheckedImage(file, std::numeric_limits<int>::max(), "an image");
+        if (auto defect = cutOffDefect(file, input->format_name())) return defect;
+        std::vector<std::byte> pixels(input->spec().image_bytes(true));
+        if (!input->read_image(0, 0, 0, -1, OIIO::TypeUnknown, pixels.data())) {
+            const std::string reason = oneLine(input->geterror());
+            return "cannot decode every pixel (" + (reason.empty() ? "unknown error" : reason) +
+                   ")";
+        }
         return std::nullopt;
-    const char* p = name.data() + tag + 5;
-    const char* end = name.data() + name.size();
-    long pid = 0, n = 0;
-    auto read = std::from_chars(p, end, pid);
-    if (read.ec != std::errc() || read.ptr == end || *read.ptr != '-' || pid <= 0)
-        return std::nullopt;
-    read = std::from_chars(read.ptr + 1, end, n);
-    if (read.ec != std::errc()) return std::nullopt;
-    const std::string extension(read.ptr, end);
-    if (!extension.empty() && (extension[0] != '.' || extension.find('.', 1) != std::string::npos))
-        return std::nullopt;
-    // A process that still runs may yet rename it (kill with signal 0 only asks).
-    if (pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
-        return std::nullopt;
-    return file.parent_path() / (name.substr(1, tag - 1) + extension);
+    } catch (const Error& e) {
+        // openCheckedImage's messages name the file first; the caller names it again.
+        const std::string message = e.what(), name = file.string() + ": ";
+        return message.rfind(name, 0) == 0 ? message.substr(name.size()) : message;
+    } catch (const std::bad_alloc&) {
+        return "too large to decode in memory";
+    }
 }
 
 }  // namespace microrelief

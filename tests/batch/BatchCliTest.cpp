@@ -303,21 +303,26 @@ TEST_F(BatchCli, SkipExistingLeavesCompleteFramesAlone) {
     const std::string args =
         small + "--turntable 6 --out '" + (out / "v{frame}.png").string() + "' --skip-existing";
     ASSERT_EQ(run(args).status, 0);
-    // A file there is complete (files are renamed into place whole): left alone, even
-    // one that is no picture at all; a missing or empty one is drawn.
+    // A file there is checked before it is kept (issue 25): a whole picture is left alone;
+    // one that is no picture at all, a missing one and an empty one are drawn, each that
+    // is there with a warning naming it.
+    const std::vector<std::uint8_t> whole = test::readBytes(out / "v1.png");
     test::writeBytes(out / "v2.png", {'o', 'l', 'd'});
     std::filesystem::remove(out / "v4.png");
     test::writeBytes(out / "v5.png", {});
     const test::RunResult r = run(args);
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_NE(r.out.find("2 rendered, 4 skipped"), std::string::npos) << r.out;
-    EXPECT_EQ(test::readBytes(out / "v2.png"), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
-    EXPECT_EQ(readPixels(out / "v4.png").width, 64);
-    EXPECT_EQ(readPixels(out / "v5.png").width, 64);
+    EXPECT_NE(r.out.find("3 rendered, 3 skipped"), std::string::npos) << r.out;
+    EXPECT_EQ(r.errLines(), 2) << r.err;
+    for (const char* name : {"v2.png: not a whole image", "v5.png: not a whole image"})
+        EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_EQ(test::readBytes(out / "v1.png"), whole);
+    for (const char* name : {"v2.png", "v4.png", "v5.png"})
+        EXPECT_EQ(readPixels(out / name).width, 64) << name;
     const std::vector<ManifestRow> rows = readManifest(out / "manifest.csv");
     ASSERT_EQ(rows.size(), 12u);
     for (int f = 0; f < 6; ++f)
-        EXPECT_EQ(rows[6 + f].status, f == 4 || f == 5 ? "rendered" : "skipped") << f;
+        EXPECT_EQ(rows[6 + f].status, f == 2 || f == 4 || f == 5 ? "rendered" : "skipped") << f;
 
     // With every frame there no GL is needed: it runs where no backend is.
     const test::RunResult none = run(args,
@@ -332,6 +337,94 @@ TEST_F(BatchCli, SkipExistingLeavesCompleteFramesAlone) {
                       "MICRORELIEF_OSMESA_LIBRARY=/nonexistent.so"),
                   1, "no GL backend");
     EXPECT_EQ(readManifest(out / "manifest.csv").back().status, "failed");
+    EXPECT_EQ(hiddenFiles(out), std::vector<std::string>{});
+}
+
+// A full disk (a file size limit smaller than a frame, as tests/cli/FullDiskCliTest.cpp
+// has it): the last frame fails with one line and exit 1, is marked failed and never
+// rendered, and no cut-off file or temporary is left for --skip-existing to keep.
+TEST_F(BatchCli, AFullDiskFailsTheFrameAndNeverMarksItRendered) {
+    const auto out = dir / "f";
+    const std::string args =
+        small + "--turntable 3 --out '" + (out / "v{frame}.png").string() + "' --skip-existing";
+    ASSERT_EQ(run(args).status, 0);
+    const std::uint64_t limit = std::filesystem::file_size(out / "v2.png") / 2;
+    ASSERT_GT(limit, std::filesystem::file_size(out / "manifest.csv") + 1000);  // rows fit
+    std::filesystem::remove(out / "v2.png");
+    const test::RunResult r = test::runCommandWithFileSizeLimit(kRender + " " + args, limit);
+    expectFailure(r, 1, (out / "v2.png").string() + ": cannot write (File too large)");
+    EXPECT_FALSE(std::filesystem::exists(out / "v2.png"));
+    EXPECT_EQ(hiddenFiles(out), std::vector<std::string>{});
+    const std::vector<ManifestRow> rows = readManifest(out / "manifest.csv");
+    ASSERT_EQ(rows.size(), 6u);
+    EXPECT_EQ(rows[3].status, "skipped");
+    EXPECT_EQ(rows[4].status, "skipped");
+    EXPECT_EQ(rows[5].frame, 2);
+    EXPECT_EQ(rows[5].status, "failed");
+}
+
+// Frames an earlier version left cut off on a full disk (it renamed whatever the writer
+// left): each is drawn again, with a warning naming it (pictures the same bytes as the
+// first time, AOVs the same pixels: OpenEXR stamps the time); a whole frame is kept.
+TEST_F(BatchCli, SkipExistingDrawsCutOffFramesAgain) {
+    const auto out = dir / "c", first = dir / "first";
+    const std::string args = small + "--turntable 5 --out '" + (out / "v{frame}.png").string() +
+                             "' --aov '" + (out / "v{frame}.exr").string() + "' --skip-existing";
+    ASSERT_EQ(run(args).status, 0);
+    std::filesystem::copy(out, first);
+    auto cut = [&](const std::string& name, std::uint64_t size) {
+        std::filesystem::resize_file(out / name, size);
+    };
+    const auto size = [&](const std::string& name) {
+        return std::filesystem::file_size(out / name);
+    };
+    cut("v0.png", size("v0.png") / 2);  // in the image data
+    cut("v1.png", size("v1.png") - 1);  // the last byte of IEND's CRC
+    std::vector<std::uint8_t> flipped = test::readBytes(out / "v2.png");
+    flipped[flipped.size() / 2] ^= 0x10;  // whole length, one byte wrong
+    test::writeBytes(out / "v2.png", flipped);
+    cut("v3.exr", size("v3.exr") - 1);  // the AOV, its last pixel block
+    const std::filesystem::file_time_type kept = std::filesystem::last_write_time(out / "v4.exr");
+    const test::RunResult r = run(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("4 rendered, 1 skipped"), std::string::npos) << r.out;
+    EXPECT_EQ(r.errLines(), 4) << r.err;
+    for (const char* name : {"v0.png", "v1.png", "v2.png", "v3.exr"}) {
+        EXPECT_NE(r.err.find(std::string(name) + ": not a whole image"), std::string::npos)
+            << name << "\n"
+            << r.err;
+    }
+    for (int f = 0; f < 5; ++f) {
+        const std::string name = "v" + std::to_string(f);
+        EXPECT_EQ(test::readBytes(out / (name + ".png")), test::readBytes(first / (name + ".png")))
+            << name;
+        expectSamePixels(out / (name + ".exr"), first / (name + ".exr"));
+    }
+    EXPECT_EQ(std::filesystem::last_write_time(out / "v4.exr"), kept);
+    const std::vector<ManifestRow> rows = readManifest(out / "manifest.csv");
+    ASSERT_EQ(rows.size(), 10u);
+    for (int f = 0; f < 5; ++f) EXPECT_EQ(rows[5 + f].status, f == 4 ? "skipped" : "rendered") << f;
+}
+
+// A manifest that cannot take the next row (the limit just above its size): the run
+// fails with one line naming it, and the manifest is as it was, byte for byte (the part of
+// the row that was written comes off again).
+TEST_F(BatchCli, AManifestThatCannotGrowStaysAsItWas) {
+    const auto out = dir / "m";
+    const std::string args =
+        small + "--turntable 1 --out '" + (out / "v{frame}.png").string() + "'";
+    ASSERT_EQ(run(args).status, 0);
+    const std::uint64_t limit = 2 * std::filesystem::file_size(out / "v0.png");  // a frame fits
+    const auto manifest = out / "manifest.csv";
+    // Padded to 20 bytes below the limit with a line that is no row (readers skip it).
+    const std::uint64_t size = std::filesystem::file_size(manifest);
+    ASSERT_LT(size + 100, limit);
+    std::ofstream(manifest, std::ios::app) << std::string(limit - 20 - size - 1, 'x') << "\n";
+    const std::vector<std::uint8_t> before = test::readBytes(manifest);
+    ASSERT_EQ(before.size(), limit - 20);
+    const test::RunResult r = test::runCommandWithFileSizeLimit(kRender + " " + args, limit);
+    expectFailure(r, 1, manifest.string() + ": cannot write (File too large)");
+    EXPECT_EQ(test::readBytes(manifest), before);
     EXPECT_EQ(hiddenFiles(out), std::vector<std::string>{});
 }
 

@@ -2,10 +2,15 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -72,6 +77,67 @@ RunResult runCommand(const std::string& command, const std::filesystem::path& sc
     const std::filesystem::path out = scratch / "stdout", err = scratch / "stderr";
     const int raw = std::system((command + " > " + out.string() + " 2> " + err.string()).c_str());
     return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, readText(out), readText(err)};
+}
+
+RunResult runCommandWithFileSizeLimit(const std::string& command, std::uint64_t bytes) {
+    // stdout and stderr through pipes, which the limit does not apply to: in files, the
+    // error line itself would be cut at the limit.
+    int out[2], err[2];
+    if (::pipe(out) != 0) return {};
+    if (::pipe(err) != 0) {
+        ::close(out[0]);
+        ::close(out[1]);
+        return {};
+    }
+    const rlimit limit{static_cast<rlim_t>(bytes), static_cast<rlim_t>(bytes)};
+    const pid_t pid = ::fork();
+    if (pid == 0) {  // only async-signal-safe calls until exec
+        ::dup2(out[1], 1);
+        ::dup2(err[1], 2);
+        for (int fd : {out[0], out[1], err[0], err[1]}) ::close(fd);
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(126);
+        ::signal(SIGXFSZ, SIG_IGN);
+        ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::close(out[1]);
+    ::close(err[1]);
+    RunResult result;
+    pollfd open[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
+    std::string* text[2] = {&result.out, &result.err};
+    for (int left = 2; left > 0 && pid > 0;) {
+        if (::poll(open, 2, -1) < 0 && errno != EINTR) break;
+        for (int k = 0; k < 2; ++k) {
+            if (open[k].fd < 0 || open[k].revents == 0) continue;
+            char buffer[4096];
+            const ssize_t n = ::read(open[k].fd, buffer, sizeof buffer);
+            if (n > 0) {
+                text[k]->append(buffer, static_cast<std::size_t>(n));
+            } else if (n == 0 || errno != EINTR) {
+                ::close(open[k].fd);
+                open[k].fd = -1;
+                --left;
+            }
+        }
+    }
+    for (const pollfd& p : open)
+        if (p.fd >= 0) ::close(p.fd);
+    int raw = 0;
+    if (pid < 0 || ::waitpid(pid, &raw, 0) != pid) return result;
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return result;
+}
+
+std::vector<std::string> hiddenFilesIn(const std::filesystem::path& folder) {
+    std::vector<std::string> hidden;
+    std::error_code ec;
+    for (auto it = std::filesystem::directory_iterator(folder, ec);
+         !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name[0] == '.') hidden.push_back(name);
+    }
+    std::sort(hidden.begin(), hidden.end());
+    return hidden;
 }
 
 void expectOneLineFailure(const RunResult& r, const std::string& program, int status,

@@ -45,6 +45,14 @@ struct RunResult {
     int errLines() const;
 };
 RunResult runCommand(const std::string& command, const std::filesystem::path& scratch);
+// The same under a file size limit of `bytes` (RLIMIT_FSIZE, as `ulimit -f` sets it): a
+// disk full for every file that would grow past it, without privileges. SIGXFSZ is
+// ignored in the child, so that a write past the limit fails with EFBIG instead of
+// killing the program (the programs ignore it themselves; the tests do not rely on it).
+// stdout and stderr come through pipes, which the limit does not cut.
+RunResult runCommandWithFileSizeLimit(const std::string& command, std::uint64_t bytes);
+// The hidden files in `folder` (the writers' temporaries are hidden: ".name.tmp-...").
+std::vector<std::string> hiddenFilesIn(const std::filesystem::path& folder);
 
 // The spec's failure shape: exit `status`, exactly one stderr line starting
 // "<program>: error: " and mentioning `mentions`.

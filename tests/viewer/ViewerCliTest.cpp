@@ -75,6 +75,23 @@ TEST_F(ViewerCli, BadSculptingFlagsExitTwo) {
     expectFailure(run("--animate flood --undo 1"), 2, "animated relief");
 }
 
+// Outputs that cannot be written as asked (issue 25), refused as microrelief-render refuses
+// them and before any window (there is no display here, which would be the error
+// otherwise): a folder at the path (it was moved away and "saved"), one file for two
+// outputs (the map replaced the screenshot).
+TEST_F(ViewerCli, OutputsThatCannotBeWrittenExitTwoBeforeAnyWindow) {
+    const std::string folder = (dir / "d.png").string(), same = (dir / "same.png").string();
+    std::filesystem::create_directory(folder);
+    for (const char* flag : {"--save-map ", "--screenshot ", "--window-screenshot "})
+        expectFailure(run(flag + folder), 2, folder + ": is a directory");
+    expectFailure(run("--save-map " + same + " --screenshot " + same), 2, "given for two outputs");
+    expectFailure(run("--screenshot " + same + " --window-screenshot " + same), 2,
+                  "given for two outputs");
+    EXPECT_TRUE(std::filesystem::is_directory(folder));
+    EXPECT_FALSE(std::filesystem::exists(same));
+    EXPECT_EQ(test::hiddenFilesIn(dir.path()), std::vector<std::string>{});
+}
+
 TEST_F(ViewerCli, BadMapsAndCamerasExitTwoBeforeAnyWindow) {
     expectFailure(run("--height " + (dir / "missing.png").string()), 2, "missing.png");
     // OpenImageIO's probes used to read /dev/zero forever (issue 15).

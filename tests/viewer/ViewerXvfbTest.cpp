@@ -273,6 +273,39 @@ TEST_F(ViewerUnderX, AFailedSaveLeavesTheOldFileUntouched) {
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
+// A full disk (a file size limit below each output, as tests/cli/FullDiskCliTest.cpp has
+// it): --save-map onto the very map the viewer opened fails with one line and exit 1 and
+// leaves that map as it was, byte for byte; so does --screenshot; no temporary is left.
+TEST_F(ViewerUnderX, AFullDiskLeavesTheMapAndTheScreenshotAsTheyWere) {
+    const auto map = dir / "map.png", shot = dir / "shot.bmp";
+    test::writeMap(map, synth::valueNoise(128, 128, 4, 2, 7), PixelType::UInt16);
+    const std::vector<std::uint8_t> original = test::readBytes(map);
+    const std::string viewer = std::string(MICRORELIEF_VIEWER_EXE) + " --size 64x48 ";
+    const test::RunResult save = test::runCommandWithFileSizeLimit(
+        viewer + "--height " + map.string() + " --stroke raise,0.2,0.5,0.8,0.5 --save-map " +
+            map.string(),
+        original.size() / 2);
+    test::expectOneLineFailure(save, "microrelief-viewer", 1,
+                               map.string() + ": cannot write (File too large)");
+    EXPECT_EQ(test::readBytes(map), original);
+
+    // 64 x 48 RGB as a BMP: 9270 bytes.
+    const std::vector<std::uint8_t> old = {'o', 'l', 'd'};
+    test::writeBytes(shot, old);
+    const test::RunResult screenshot =
+        test::runCommandWithFileSizeLimit(viewer + "--screenshot " + shot.string(), 4096);
+    test::expectOneLineFailure(screenshot, "microrelief-viewer", 1,
+                               shot.string() + ": cannot write (File too large)");
+    EXPECT_EQ(test::readBytes(shot), old);
+    EXPECT_EQ(test::hiddenFilesIn(dir.path()), std::vector<std::string>{});
+    // The premise: without the limit both are written.
+    EXPECT_EQ(run(viewer + "--height " + map.string() + " --save-map " + map.string() +
+                  " --screenshot " + shot.string())
+                  .status,
+              0);
+    EXPECT_GT(std::filesystem::file_size(shot), 4096u);
+}
+
 // An animated relief: the viewer's last frame is microrelief-render's at the time the
 // viewer prints (a script steps 1/30 s a frame from --time).
 TEST_F(ViewerUnderX, AnimatedReliefCarriesOverAtItsTime) {

@@ -1,6 +1,7 @@
 // Writing pictures and AOVs through OpenImageIO, whole or not at all: each file is
 // written to a temporary file in its target's folder and renamed over the target only
-// when every file of the job has been written (scene-and-cli.md, "Outputs").
+// when every file of the job has been written and is on disk (scene-and-cli.md,
+// "Outputs"; io/AtomicFile.h says what "written" means).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +9,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "microrelief/io/AtomicFile.h"
 
 namespace microrelief {
 
@@ -22,44 +25,30 @@ struct ImageData {
     std::vector<std::string> channelNames;  // empty: OpenImageIO's defaults (R, G, B, A)
 };
 
-// Throws Error(BadInput) if no OpenImageIO writer handles the path's extension.
+// Throws Error(BadInput) if no OpenImageIO writer handles the path's extension, or if
+// its writer cannot write through a checked stream (whose every write is checked: the
+// formats microrelief writes, io/AtomicFile.h).
 void checkImageExtension(const std::filesystem::path& file);
 
-// Before any work: every output has a known image extension, is not a folder, lies in a
-// folder that exists or can be made, and no two outputs are the same file: compared as
-// resolved paths (symbolic links and ".." followed, std::filesystem::weakly_canonical)
-// and, where the file exists, by device and inode (hard links). Throws Error(BadInput)
-// naming the file.
+// Before any work: every output has a known image extension, is not a folder or other
+// non-regular file (a FIFO, a device), lies in a folder that exists or can be made, and
+// no two outputs are the same file: compared as resolved paths (symbolic links and ".."
+// followed, std::filesystem::weakly_canonical) and, where the file exists, by device and
+// inode (hard links). Throws Error(BadInput) naming the file.
 void checkOutputTargets(const std::vector<std::filesystem::path>& files);
 
-// A set of files written together: write() stages each one beside its target, commit()
-// renames them all into place, restoring the old files if any rename fails. Whatever
-// was not committed is removed on destruction, folders write() made included, so a
-// failed run leaves no new or changed file and no new folder. SIGINT, SIGTERM and SIGHUP
-// do the same: a handler, installed with the first batch, undoes every unfinished batch
-// of the process (temporaries removed, files moved aside put back, new folders removed)
-// from a table of fixed buffers, and the process then dies of the signal.
+// Pictures written together, as FileWriteBatch writes files: write() encodes each one
+// into its temporary, commit() renames them all into place; what was not committed is
+// removed on destruction or on a signal, folders write() made included.
 class ImageWriteBatch {
 public:
-    ImageWriteBatch() = default;
-    ImageWriteBatch(const ImageWriteBatch&) = delete;
-    ImageWriteBatch& operator=(const ImageWriteBatch&) = delete;
-    ~ImageWriteBatch();
-
-    // Creates the target's folder if needed. Throws Error(Runtime) naming the file.
+    // Creates the target's folder if needed. Throws Error(Runtime) naming the file,
+    // Error(BadInput) for a folder or other non-regular file at the target.
     void write(const std::filesystem::path& file, const ImageData& image);
-    void commit();
+    void commit() { files_.commit(); }
 
 private:
-    void createFolders(const std::filesystem::path& file);
-
-    struct Staged {
-        std::filesystem::path target, temporary;
-        int slot = -1;  // in the signal handler's table: removes the temporary
-    };
-    std::vector<Staged> staged_;
-    std::vector<std::pair<std::filesystem::path, int>> createdFolders_;  // outermost first
-    bool committed_ = false;
+    FileWriteBatch files_;
 };
 
 // RGBA8 rows -> RGB rows (the pictures are opaque); `flipRows` turns GL's bottom-up rows
@@ -70,10 +59,12 @@ std::vector<std::uint8_t> rgbFromRgba(const std::vector<std::uint8_t>& rgba, int
 // One file, atomically.
 void writeImageAtomically(const std::filesystem::path& file, const ImageData& image);
 
-// The target whose temporary `file` is, when it is one of ImageWriteBatch's temporary
-// files and the process that wrote it is gone: a writer killed before its rename
-// (SIGKILL, a power cut) leaves it behind. Else nothing (not a temporary, or one that a
-// running process on this machine may still rename).
-std::optional<std::filesystem::path> abandonedTemporaryTarget(const std::filesystem::path& file);
+// Why `file` is not a whole image, or nothing when it is: what --skip-existing asks of a
+// frame before it keeps it. A PNG's every chunk (its length within the file, its CRC,
+// IEND last) and its image data inflated; an OpenEXR file's header, then every pixel
+// read; where a decoder takes a cut-off file for whole, the end its structure gives (a
+// JPEG's end-of-image marker, a TGA's footer, a GIF's trailer, an IFF's FORM length, a
+// TIFF's directories and strips), then every pixel; any other format decoded in full.
+std::optional<std::string> imageFileDefect(const std::filesystem::path& file);
 
 }  // namespace microrelief

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "CameraPath.h"
+#include "EyeInside.h"
 #include "FramePattern.h"
 #include "Manifest.h"
 #include "Progress.h"
@@ -20,6 +21,7 @@
 #include "microrelief/heightmap/HeightMapFile.h"
 #include "microrelief/image/AlbedoFile.h"
 #include "microrelief/image/ImageFile.h"
+#include "microrelief/render/FloatLimits.h"
 
 namespace microrelief {
 
@@ -80,18 +82,18 @@ std::vector<FrameFiles> frameFiles(const RenderOptions& o, std::size_t pathLengt
 
 // Every map and albedo file a selected frame names is there, before anything is drawn (what is in
 // it is checked when it is loaded).
-void checkMapFiles(const std::vector<PathFrame>& path, const std::vector<int>& frames) {
+void checkMapFiles(const CameraPath& path, const std::vector<int>& frames) {
     std::set<std::filesystem::path> checked;
-    for (const int frame : frames) {
-        for (const auto* file : {&path[frame].scene.heightFile, &path[frame].scene.albedoFile}) {
+    for (const int k : frames) {
+        const PathFrame frame = path.frame(k);
+        for (const auto* file : {&frame.scene.heightFile, &frame.scene.albedoFile}) {
             if (!*file || !checked.insert(**file).second) continue;
             std::error_code ec;
             const auto status = std::filesystem::status(**file, ec);
             if (!std::filesystem::exists(status))
-                throwBadInput(path[frame].origin + ": " + (*file)->string() + ": no such file");
+                throwBadInput(frame.origin + ": " + (*file)->string() + ": no such file");
             if (!std::filesystem::is_regular_file(status))
-                throwBadInput(path[frame].origin + ": " + (*file)->string() +
-                              ": not a regular file");
+                throwBadInput(frame.origin + ": " + (*file)->string() + ": not a regular file");
         }
     }
 }
@@ -166,18 +168,67 @@ MapKey mapKey(const SceneOptions& scene) {
             scene.job.tiles.y};
 }
 
+// A map as loaded for a frame, kept from the check before the first frame to the first
+// frame that draws it (no second load where the whole path draws one map).
+struct LoadedMap {
+    MapKey key;
+    HeightMap map;
+};
+
+// Every selected frame, checked before the first is drawn, its errors naming its row: the
+// maps it draws load (each once) and, with its camera, stay within what the shader's
+// float arithmetic holds (render/FloatLimits.h); its albedo loads. An animated frame's
+// heights are known once evaluated: its limits are checked when it is drawn. Returns the
+// last map loaded.
+std::optional<LoadedMap> checkFrames(const CameraPath& path, const std::vector<int>& frames) {
+    std::map<MapKey, MapExtent> extents;
+    std::set<std::filesystem::path> albedos;
+    std::optional<LoadedMap> last;
+    for (const int k : frames) {
+        const PathFrame frame = path.frame(k);
+        const RenderJob& job = frame.scene.job;
+        try {
+            const MapKey key = mapKey(frame.scene);
+            auto extent = extents.find(key);
+            if (extent == extents.end()) {
+                last.reset();
+                last = LoadedMap{key, loadHeightMap(std::get<0>(key), frame.scene.load)};
+                extent = extents
+                             .emplace(key, MapExtent{last->map.width * job.tiles.x,
+                                                     last->map.height * job.tiles.y,
+                                                     last->map.maxValue()})
+                             .first;
+            }
+            checkPictureSize(job.width, job.height);
+            if (job.animation.empty()) {
+                checkFloatLimits(extent->second, job.heightScale, job.base, job.model, job.camera,
+                                 resolveCamera(job.camera, job.width, job.height, 1.0),
+                                 std::get<0>(key).string());
+            }
+            if (const auto albedo = albedoPath(frame.scene);
+                albedo && albedos.insert(*albedo).second)
+                loadAlbedo(*albedo);  // what is in it: its pixels, finite
+        } catch (const Error& e) {
+            throw Error(e.kind(), frame.origin + ": " + e.what());
+        }
+    }
+    return last;
+}
+
 }  // namespace
 
 int runBatch(const RenderOptions& o) {
     const auto start = Clock::now();
     const SceneOptions& base = o.scene;
-    const std::vector<PathFrame> path = o.batch.cameras ? readCameraFile(*o.batch.cameras, base)
-                                                        : turntablePath(base, o.batch.turntable);
+    // Frames are made one at a time as they are drawn: a path of a million views holds none.
+    const CameraPath path = o.batch.cameras ? CameraPath(readCameraFile(*o.batch.cameras, base))
+                                            : CameraPath::turntable(base, o.batch.turntable);
     const Shard shard = o.batch.shard.value_or(Shard{});
-    const std::vector<int> frames =
-        selectFrames(static_cast<int>(path.size()), o.batch.frames, shard);
+    const std::vector<int> frames = selectFrames(path.size(), o.batch.frames, shard);
     const std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
     checkMapFiles(path, frames);
+    std::optional<LoadedMap> checkedMap = checkFrames(path, frames);
+    if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(kLightSizeUnused);
     const std::filesystem::path manifestPath = manifestFile(o);
     for (const FrameFiles& f : files) {
         if (manifestPath.lexically_normal() == f.out.lexically_normal() ||
@@ -194,12 +245,15 @@ int runBatch(const RenderOptions& o) {
     std::unique_ptr<GlContext> context;
     std::optional<HeadlessRenderer> renderer;
     std::optional<MapKey> loaded;
+    std::optional<HeightMap> map;  // the map drawn, for the eye's check
+    int eyeInside = 0;             // frames whose eye lies inside the solid
+    std::string firstEyeInside;
     // The albedo file set on the renderer (itself optional: none); unset before the first.
     std::optional<std::optional<std::filesystem::path>> loadedAlbedo;
     int rendered = 0, skipped = 0, mapsLoaded = 0;
 
     for (const FrameFiles& f : files) {
-        const PathFrame& frame = path[f.frame];
+        const PathFrame frame = path.frame(f.frame);
         const std::string camera =
             cameraFlags(frame.scene.job.camera) + (frame.flags.empty() ? "" : " " + frame.flags);
         if (o.batch.skipExisting && complete(f.out, progress) &&
@@ -220,8 +274,14 @@ int runBatch(const RenderOptions& o) {
             }
             if (const MapKey key = mapKey(frame.scene); key != loaded) {
                 loaded.reset();
-                const HeightMap map = loadHeightMap(std::get<0>(key), frame.scene.load);
-                renderer->setHeightMap(map, std::get<0>(key).string(), frame.scene.job.base,
+                map.reset();
+                if (checkedMap && checkedMap->key == key) {
+                    map = std::move(checkedMap->map);
+                } else {
+                    map = loadHeightMap(std::get<0>(key), frame.scene.load);
+                }
+                checkedMap.reset();
+                renderer->setHeightMap(*map, std::get<0>(key).string(), frame.scene.job.base,
                                        frame.scene.job.interpolation, frame.scene.job.tiles);
                 loaded = key;
                 ++mapsLoaded;
@@ -239,6 +299,10 @@ int runBatch(const RenderOptions& o) {
             }
             const HeadlessResult result = renderer->render(frame.scene.job);
             const RenderedFrame& pixels = result.frame;
+            if (eyeInsideTheSolid(result.animatedMap ? *result.animatedMap : *map,
+                                  frame.scene.job) &&
+                eyeInside++ == 0)
+                firstEyeInside = frame.origin;
 
             std::size_t exhausted = 0;
             for (std::size_t p = 3; p < pixels.stats.size(); p += 4)
@@ -255,7 +319,7 @@ int runBatch(const RenderOptions& o) {
             if (f.aov)
                 writeAov(batch, *f.aov, pixels, frame.scene.job.shading.shadows != ShadowMode::Off);
             batch.commit();
-        } catch (const Error&) {
+        } catch (const Error& e) {
             progress.clear();
             try {
                 manifest.append(
@@ -263,6 +327,9 @@ int runBatch(const RenderOptions& o) {
             } catch (const Error&) {
                 // The frame's own error is the one to report.
             }
+            // The row's data at fault: say which row (a GL or disk failure is no row's).
+            if (e.kind() == ErrorKind::BadInput)
+                throw Error(e.kind(), frame.origin + ": " + e.what());
             throw;
         }
         const double seconds = secondsSince(frameStart);
@@ -271,6 +338,12 @@ int runBatch(const RenderOptions& o) {
         progress.frameDone(true, seconds);
     }
     progress.finish();
+    if (eyeInside > 0) {
+        logWarning(plural(eyeInside, "frame") + " of " + std::to_string(files.size()) +
+                   " drawn with the eye inside the relief's solid (under its surface; first: " +
+                   firstEyeInside +
+                   "): the pictures are undefined there; move the eye above the surface");
+    }
 
     if (!o.quiet) {
         const double seconds = secondsSince(start);

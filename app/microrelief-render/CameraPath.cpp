@@ -10,7 +10,9 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
+#include "CommandLine.h"
 #include "Csv.h"
 #include "microrelief/core/Error.h"
 
@@ -68,6 +70,11 @@ SceneOptions applyRowFlags(const SceneOptions& base, const std::string& flags,
     const auto parse = [&](CLI::App& app, const std::string& line) {
         try {
             app.parse(line, false);
+        } catch (const CLI::CallForHelp&) {
+            // CLI11 would say "This should be caught in your main function".
+            throwBadInput(where +
+                          "flags: --help is not a row flag (a row's flags are map and "
+                          "shading flags, such as --height or --light)");
         } catch (const CLI::ParseError& e) {
             throwBadInput(where + "flags: " + e.what());
         }
@@ -80,6 +87,7 @@ SceneOptions applyRowFlags(const SceneOptions& base, const std::string& flags,
         scene.addMapAndCamera(app);
         scene.addShading(app);
         parse(app, flags);
+        refuseEmptyValues(app, where + "flags: ");
         for (const char* camera : {"--eye", "--target", "--up", "--fovy"}) {
             if (app.count(camera) > 0)
                 throwBadInput(where + "flags: " + camera +
@@ -453,35 +461,59 @@ std::string cameraFlags(const Camera& camera) {
            " --up=" + exactVector(camera.up) + " --fovy " + exactNumber(camera.fovyDegrees);
 }
 
+PathFrame turntableFrame(const SceneOptions& base, int views, int k) {
+    PathFrame frame;
+    frame.scene = base;
+    frame.origin = "--turntable frame " + std::to_string(k);
+    Camera& camera = frame.scene.job.camera;
+    if (k > 0) {
+        const double angle = 2.0 * kPi * k / views;
+        camera.eye = camera.target + turnAboutY(camera.eye - camera.target, angle);
+        camera.up = turnAboutY(camera.up, angle);
+    }
+    // Frame 0 is the command line's camera, whose flags name the problem.
+    if (k == 0) {
+        resolveCamera(camera, 1, 1, 1.0);
+    } else {
+        checkCamera(camera, frame.origin + ": ");
+    }
+    return frame;
+}
+
 std::vector<PathFrame> turntablePath(const SceneOptions& base, int views) {
     if (views < 1) throwBadInput("--turntable needs at least 1 view");
     std::vector<PathFrame> path;
     path.reserve(static_cast<std::size_t>(views));
-    for (int k = 0; k < views; ++k) {
-        PathFrame frame;
-        frame.scene = base;
-        frame.origin = "--turntable frame " + std::to_string(k);
-        Camera& camera = frame.scene.job.camera;
-        if (k > 0) {
-            const double angle = 2.0 * kPi * k / views;
-            camera.eye = camera.target + turnAboutY(camera.eye - camera.target, angle);
-            camera.up = turnAboutY(camera.up, angle);
-        }
-        // Frame 0 is the command line's camera, whose flags name the problem.
-        if (k == 0) {
-            resolveCamera(camera, 1, 1, 1.0);
-        } else {
-            checkCamera(camera, frame.origin + ": ");
-        }
-        path.push_back(std::move(frame));
-    }
+    for (int k = 0; k < views; ++k) path.push_back(turntableFrame(base, views, k));
     return path;
+}
+
+CameraPath CameraPath::turntable(const SceneOptions& base, int views) {
+    if (views < 1) throwBadInput("--turntable needs at least 1 view");
+    turntableFrame(base, views, 0);  // the command line's camera: refused now, not later
+    CameraPath path;
+    path.base_ = base;
+    path.views_ = views;
+    return path;
+}
+
+PathFrame CameraPath::frame(int k) const {
+    return base_ ? turntableFrame(*base_, views_, k) : rows_.at(static_cast<std::size_t>(k));
+}
+
+bool CameraPath::anySoftShadows() const {
+    if (base_) return base_->job.shading.shadows == ShadowMode::Soft;
+    return std::any_of(rows_.begin(), rows_.end(), [](const PathFrame& f) {
+        return f.scene.job.shading.shadows == ShadowMode::Soft;
+    });
 }
 
 std::vector<PathFrame> parseCameraFile(const std::string& text, const std::string& source,
                                        const SceneOptions& base) {
     std::vector<PathFrame> path;
-    std::istringstream in(text);
+    // A byte order mark (spreadsheets save "CSV UTF-8" with one) is no part of the header.
+    const std::string_view bom = "\xEF\xBB\xBF";
+    std::istringstream in(text.compare(0, bom.size(), bom) == 0 ? text.substr(bom.size()) : text);
     std::string line;
     int lineNumber = 0;
     std::optional<CsvLayout> csv;

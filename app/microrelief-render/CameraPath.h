@@ -20,7 +20,9 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "SceneOptions.h"
@@ -38,11 +40,36 @@ struct PathFrame {
 // axis through the target, counter-clockwise seen from above; frame 0 is the command
 // line's camera as given. Throws Error(BadInput) for a degenerate camera.
 std::vector<PathFrame> turntablePath(const SceneOptions& base, int views);
+// Frame k of that turntable alone. Throws Error(BadInput) for a degenerate camera.
+PathFrame turntableFrame(const SceneOptions& base, int views, int k);
+
+// The frames of a path, made when asked for: a turntable holds only its command line's
+// scene (a million views cost nothing until drawn), a camera file its rows (each checked
+// as it was read).
+class CameraPath {
+public:
+    // Throws Error(BadInput) for no views or a degenerate camera at frame 0.
+    static CameraPath turntable(const SceneOptions& base, int views);
+    explicit CameraPath(std::vector<PathFrame> rows) : rows_(std::move(rows)) {}
+
+    int size() const { return base_ ? views_ : static_cast<int>(rows_.size()); }
+    // Frame k, 0 <= k < size(). Throws Error(BadInput) for a degenerate turntable camera.
+    PathFrame frame(int k) const;
+    // Whether any frame draws soft shadows (and so uses --light-size).
+    bool anySoftShadows() const;
+
+private:
+    CameraPath() = default;
+    std::vector<PathFrame> rows_;
+    std::optional<SceneOptions> base_;  // a turntable's
+    int views_ = 0;
+};
 
 // --cameras FILE. Throws Error(BadInput) naming the file, the line and the reason for a
 // missing or unreadable file, a missing or unknown column, a field that is not a
 // finite number, a degenerate camera (eye = target, up along the view, fovy outside
-// (0, 180)) or bad row flags: before any frame is drawn.
+// (0, 180)) or bad row flags (--help among them): before any frame is drawn. A UTF-8
+// byte order mark before the first line (as spreadsheets write) is skipped.
 std::vector<PathFrame> readCameraFile(const std::filesystem::path& file, const SceneOptions& base);
 // The same from the file's text; `source` names the file in messages.
 std::vector<PathFrame> parseCameraFile(const std::string& text, const std::string& source,

@@ -99,6 +99,7 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         o.out = out;
         if (!aov.empty()) o.aov = aov;
         applyBatchFlags(app, o, cameras, frames, shard, manifest);
+        o.lightSizeGiven = app.count("--light-size") > 0;
         return o;
     });
 }

@@ -37,7 +37,12 @@ struct RenderOptions {
     bool compareReference = false;  // print accuracy figures against the CPU reference
     bool quiet = false;
     bool verbose = false;
+    bool lightSizeGiven = false;  // --light-size on the command line
 };
+
+// The warning for a --light-size that no frame uses (soft shadows are off).
+inline constexpr const char* kLightSizeUnused =
+    "--light-size sets the light of soft shadows, and --shadows is not soft: it changes nothing";
 
 ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv);
 

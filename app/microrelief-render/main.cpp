@@ -8,6 +8,7 @@
 
 #include "Aov.h"
 #include "BatchRender.h"
+#include "EyeInside.h"
 #include "Options.h"
 #include "microrelief/context/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
@@ -48,26 +49,6 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
     std::printf("  out of the iteration budget  %8zu px\n", a.exhausted);
 }
 
-// The scene contract keeps the eye outside the relief's solid; from inside it no picture
-// is defined (the methods and the reference disagree on what the rays meet), so say so.
-// The exact reference answers: a ray from inside the solid hits it at t = 0.
-void warnIfEyeInsideTheSolid(const HeightMap& map, const RenderJob& job,
-                             const std::filesystem::path& heightFile) {
-    const Camera& camera = job.camera;
-    // A tiled map from its larger image, where that is not too large to make.
-    const bool tiled = job.tiles != glm::ivec2(1, 1);
-    if (tiled && map.samples.size() * job.tiles.x * job.tiles.y > (std::size_t(1) << 24)) return;
-    const HeightMap whole = tiled ? repeatMap(map, job.tiles.x, job.tiles.y) : HeightMap();
-    const ReferenceHit hit = traceReference(
-        {tiled ? &whole : &map, job.heightScale, job.base, job.interpolation, job.model},
-        Ray{camera.eye, camera.target - camera.eye});
-    if (hit && hit.t == 0.0) {
-        logWarning("--eye lies inside the relief's solid (under the surface of " +
-                   heightFile.filename().string() +
-                   "): the picture is undefined there; move the eye above the surface");
-    }
-}
-
 int run(const RenderOptions& o) {
     if (o.batch.active()) return runBatch(o);  // a camera path: many frames
     const auto start = std::chrono::steady_clock::now();
@@ -76,6 +57,8 @@ int run(const RenderOptions& o) {
     }
     checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov}
                              : std::vector{o.out});
+    if (o.lightSizeGiven && o.scene.job.shading.shadows != ShadowMode::Soft)
+        logWarning(kLightSizeUnused);
     const std::filesystem::path heightFile =
         o.scene.heightFile ? *o.scene.heightFile : defaultHeightMapPath();
     const HeightMap map = loadHeightMap(heightFile, o.scene.load);
@@ -98,7 +81,11 @@ int run(const RenderOptions& o) {
                                                  albedo ? &*albedo : nullptr);
     // An animated relief is held to the heights the GPU evaluated, read back.
     const HeightMap& traced = result.animatedMap ? *result.animatedMap : map;
-    warnIfEyeInsideTheSolid(traced, o.scene.job, heightFile);  // the camera checked by now
+    if (eyeInsideTheSolid(traced, o.scene.job)) {  // the camera checked by now
+        logWarning("--eye lies inside the relief's solid (under the surface of " +
+                   heightFile.filename().string() +
+                   "): the picture is undefined there; move the eye above the surface");
+    }
     const RenderedFrame& frame = result.frame;
 
     std::size_t exhausted = 0;

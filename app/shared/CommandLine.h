@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <iostream>
 #include <new>
@@ -14,8 +15,22 @@
 
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
+#include "microrelief/core/Text.h"
 
 namespace microrelief {
+
+// An option given an empty value (--cameras '', --height "") means nothing a program can
+// do, and taking it as absent (the default map, no camera path) does something the user
+// did not ask for: refused, with `where` in front. Flags take no value and pass.
+inline void refuseEmptyValues(const CLI::App& app, const std::string& where = "") {
+    for (const CLI::Option* option : app.get_options()) {
+        if (option->count() == 0 || option->get_type_size_min() == 0) continue;
+        for (const std::string& value : option->results()) {
+            if (value.empty())
+                throwBadInput(where + option->get_name() + " needs a value, got an empty one");
+        }
+    }
+}
 
 template <class Options>
 struct ParseResult {
@@ -44,6 +59,7 @@ ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv,
         return result;
     }
     try {
+        refuseEmptyValues(app);
         result.options = finish();
     } catch (const Error& e) {
         result.exitStatus = 2;
@@ -58,8 +74,10 @@ ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv,
 template <class Options>
 int runProgram(const char* program, ParseResult<Options>&& parsed,
                const std::function<int(const Options&)>& body) {
+    // Messages quote what users gave (file names, fields of a camera file): escaped, so
+    // that a CR, a NUL or bytes that are no UTF-8 cannot garble or split the one line.
     auto fail = [program](int status, const std::string& message) {
-        std::cerr << program << ": error: " << message << '\n';
+        std::cerr << program << ": error: " << printable(message) << '\n';
         return status;
     };
     if (!parsed.options) {
@@ -68,10 +86,16 @@ int runProgram(const char* program, ParseResult<Options>&& parsed,
         return 0;
     }
     const bool verbose = parsed.options->verbose;
+    // A log message of several lines (a shader compiler's) keeps them, each escaped.
     setLogSink([program, verbose](LogLevel level, const std::string& message) {
         if (level == LogLevel::Info && !verbose) return;
-        std::cerr << program << ": " << (level == LogLevel::Warning ? "warning: " : "") << message
-                  << '\n';
+        std::size_t start = 0;
+        do {
+            const std::size_t end = std::min(message.find('\n', start), message.size());
+            std::cerr << program << ": " << (level == LogLevel::Warning ? "warning: " : "")
+                      << printable(std::string_view(message).substr(start, end - start)) << '\n';
+            start = end + 1;
+        } while (start < message.size());
     });
     try {
         return body(*parsed.options);

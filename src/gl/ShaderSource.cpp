@@ -1,12 +1,18 @@
 #include "microrelief/gl/ShaderSource.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
 #include <regex>
 #include <sstream>
 #include <utility>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 
 namespace microrelief {
 
@@ -15,30 +21,130 @@ namespace {
 constexpr int kMaxIncludeDepth = 32;
 constexpr int kLineStride = 100000;  // line numbers per file in the assembled source
 
-std::string readText(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throwRuntime(file.string() + ": cannot open shader source");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+// The whole text of a regular file of at most kMaxShaderFileBytes. Opened without
+// blocking and checked on the descriptor before a byte is read: a FIFO cannot hang the
+// program, a device (/dev/zero) cannot fill its memory, a folder is not read as empty
+// text. Throws Error with the reason alone; the caller names the file.
+std::string readShaderFile(const std::filesystem::path& file) {
+    const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) throwBadInput(std::string("cannot open (") + std::strerror(errno) + ")");
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    struct stat info {};
+    if (::fstat(fd, &info) != 0)
+        throwBadInput(std::string("cannot read (") + std::strerror(errno) + ")");
+    if (S_ISDIR(info.st_mode)) throwBadInput("a folder, not a file");
+    if (!S_ISREG(info.st_mode)) throwBadInput("not a regular file (a FIFO, socket or device)");
+    const std::string limit = "the " + std::to_string(kMaxShaderFileBytes) +
+                              " bytes a shader source may have (ShaderSource.h)";
+    if (info.st_size > kMaxShaderFileBytes)
+        throwBadInput(std::to_string(info.st_size) + " bytes, more than " + limit);
+    // The size, and one byte more: a file that grew since fstat is caught too.
+    std::string text(static_cast<std::size_t>(info.st_size) + 1, '\0');
+    std::size_t used = 0;
+    while (used < text.size()) {
+        const ssize_t got = ::read(fd, text.data() + used, text.size() - used);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) throwBadInput(std::string("cannot read (") + std::strerror(errno) + ")");
+        if (got == 0) break;
+        used += static_cast<std::size_t>(got);
+    }
+    if (used > static_cast<std::size_t>(kMaxShaderFileBytes))
+        throwBadInput("grew past " + limit + " while read");
+    text.resize(used);
+    return text;
+}
+
+// `path` lies inside `root`, both canonical (absolute, links resolved, no "." or "..").
+bool isWithin(const std::filesystem::path& path, const std::filesystem::path& root) {
+    const std::filesystem::path relative = path.lexically_relative(root);
+    return !relative.empty() && *relative.begin() != "..";
+}
+
+// The folder a file is in: "." for a bare name.
+std::filesystem::path folderOf(const std::filesystem::path& file) {
+    return file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+}
+
+std::filesystem::path realPath(const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::path resolved = std::filesystem::weakly_canonical(path, ec);
+    return ec ? std::filesystem::absolute(path, ec).lexically_normal() : resolved;
+}
+
+// An `#include` line's file name, or why the line is no include this resolver takes:
+// only `#include "relative/path"`, alone on its line.
+struct IncludeLine {
+    bool isInclude = false;  // the line is an #include directive, good or bad
+    std::string name;        // the quoted name, when good
+    std::string problem;     // why not, when bad
+};
+
+IncludeLine parseInclude(const std::string& line) {
+    // [\s\S]: a CR inside the line is part of it ('.' stops at one).
+    static const std::regex directive(R"(^\s*#\s*include\b([\s\S]*)$)");
+    static const std::regex quoted(R"re(^\s*"([^"]*)"\s*$)re");
+    std::smatch match;
+    if (!std::regex_match(line, match, directive)) return {};
+    const std::string rest = match[1].str();
+    IncludeLine include{true, {}, {}};
+    std::smatch name;
+    const std::size_t first = rest.find_first_not_of(" \t");
+    if (std::regex_match(rest, name, quoted)) {
+        include.name = name[1].str();
+        if (include.name.empty()) include.problem = "an empty file name";
+    } else if (first != std::string::npos && rest[first] == '<') {
+        include.problem = "#include <...> is not resolved here; write #include \"...\"";
+    } else if (first != std::string::npos && rest[first] == '"' &&
+               rest.find('"', first + 1) == std::string::npos) {
+        include.problem = "the file name's quote is not closed";
+    } else if (first != std::string::npos && rest[first] == '"') {
+        include.problem = "text after the file name (#include \"file\" stands alone on its line)";
+    } else {
+        include.problem = "expected #include \"file\"";
+    }
+    return include;
 }
 
 class Assembler {
 public:
     // `bundleRoot` empty: #line markers for the compiler's messages (assembleShader); else
     // one readable file for engines without an include resolver (bundleShader): a comment
-    // naming each spliced file by its path from the root, no markers.
-    explicit Assembler(ShaderSource& out, std::filesystem::path bundleRoot = {},
-                       std::vector<std::filesystem::path> includeDirs = {})
-        : out_(out), bundleRoot_(std::move(bundleRoot)), includeDirs_(std::move(includeDirs)) {}
+    // naming each spliced file by its path from the root, no markers. Every spliced file
+    // lies inside `roots` (ShaderSource.h).
+    // `kind`: what a bad include is, the user's input (a file handed to the bundler) or
+    // the environment's fault (the program's own shaders).
+    Assembler(ShaderSource& out, ErrorKind kind, std::vector<std::filesystem::path> roots,
+              std::filesystem::path bundleRoot = {},
+              std::vector<std::filesystem::path> includeDirs = {})
+        : out_(out),
+          kind_(kind),
+          bundleRoot_(std::move(bundleRoot)),
+          includeDirs_(std::move(includeDirs)) {
+        for (const std::filesystem::path& root : roots) roots_.push_back(realPath(root));
+    }
 
-    void splice(const std::filesystem::path& file, int depth) {
+    // The file to start from: its own errors name it alone.
+    void start(const std::filesystem::path& file) {
+        std::string text;
+        try {
+            text = readShaderFile(file);
+        } catch (const Error& e) {
+            throw Error(kind_, printable(file.string()) + ": " + e.what());
+        }
+        splice(file, text, 0);
+    }
+
+private:
+    void splice(const std::filesystem::path& file, const std::string& text, int depth) {
         if (depth > kMaxIncludeDepth)
-            throwRuntime(file.string() + ": #include nested too deeply (a cycle?)");
+            throw Error(kind_,
+                        printable(file.string()) + ": #include nested too deeply (a cycle?)");
         const int index = static_cast<int>(out_.files.size());
         out_.files.push_back(file);
-        std::istringstream lines(readText(file));
-        static const std::regex include(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+        std::istringstream lines(text);
         std::string line;
         int number = 0;
         if (bundling()) banner("begin", file);
@@ -46,43 +152,76 @@ public:
         while (std::getline(lines, line)) {
             ++number;
             if (!line.empty() && line.back() == '\r') line.pop_back();
-            std::smatch match;
-            if (std::regex_match(line, match, include)) {
-                const std::filesystem::path target = resolve(file, match[1].str());
-                if (target.empty()) {
-                    throwRuntime(file.string() + ":" + std::to_string(number) + ": #include \"" +
-                                 match[1].str() + "\" not found");
-                }
-                // Each file once, as its include guard would have it anyway: the source
-                // stays small however often the library's files include each other.
-                if (std::find(out_.files.begin(), out_.files.end(), target) == out_.files.end()) {
-                    splice(target, depth + 1);
-                }
-                lineMarker(number + 1, index);
+            const IncludeLine include = parseInclude(line);
+            if (!include.isInclude) {
+                out_.text += line;
+                out_.text += '\n';
                 continue;
             }
-            out_.text += line;
-            out_.text += '\n';
+            // "file:line: #include "name": reason", one line whatever the file holds.
+            const auto refuse = [&](const std::string& reason) {
+                throw Error(kind_, printable(file.string()) + ":" + std::to_string(number) + ": " +
+                                       printable(line.substr(line.find('#'))) + ": " + reason);
+            };
+            if (!include.problem.empty()) refuse(include.problem);
+            const std::filesystem::path target = resolve(file, include.name, refuse);
+            // Each file once, as its include guard would have it anyway: the source
+            // stays small however often the library's files include each other.
+            if (std::find(out_.files.begin(), out_.files.end(), target) == out_.files.end()) {
+                std::string included;
+                try {
+                    included = readShaderFile(target);
+                } catch (const Error& e) {
+                    refuse(e.what());
+                }
+                splice(target, included, depth + 1);
+            }
+            lineMarker(number + 1, index);
         }
         if (bundling()) banner("end", file);
     }
 
-private:
     bool bundling() const { return !bundleRoot_.empty(); }
 
-    // The including file's folder first, then the search folders, in order; empty when
-    // none holds `name`.
-    std::filesystem::path resolve(const std::filesystem::path& from,
-                                  const std::string& name) const {
-        std::error_code ec;
-        const std::filesystem::path local = (from.parent_path() / name).lexically_normal();
-        if (std::filesystem::exists(local, ec)) return local;
-        for (const std::filesystem::path& dir : includeDirs_) {
-            const std::filesystem::path candidate = (dir / name).lexically_normal();
-            if (std::filesystem::exists(candidate, ec)) return candidate;
+    // The including file's folder first, then the search folders, in order: the first
+    // that holds `name`. A name that is absolute, or that leads out of every root
+    // (through ".." or a symbolic link), is refused, not looked up further.
+    template <class Refuse>
+    std::filesystem::path resolve(const std::filesystem::path& from, const std::string& name,
+                                  const Refuse& refuse) const {
+        if (name.find_first_of(std::string("\0", 1) + "\\") != std::string::npos ||
+            printable(name) != name)
+            refuse("control characters or a backslash in the file name");
+        const std::filesystem::path relative(name);
+        if (relative.is_absolute())
+            refuse(
+                "an absolute path (a name is relative to the including file's folder or a "
+                "search folder)");
+        std::vector<std::filesystem::path> folders{folderOf(from)};
+        folders.insert(folders.end(), includeDirs_.begin(), includeDirs_.end());
+        for (const std::filesystem::path& folder : folders) {
+            const std::filesystem::path candidate = (folder / relative).lexically_normal();
+            std::error_code ec;
+            if (!std::filesystem::exists(candidate, ec)) continue;
+            const std::filesystem::path real = realPath(candidate);
+            if (std::none_of(roots_.begin(), roots_.end(),
+                             [&](const auto& root) { return isWithin(real, root); })) {
+                refuse(printable(real.string()) + " is outside the shader folders (" + rootList() +
+                       ")");
+            }
+            return candidate;
         }
+        refuse("not found (looked in " + folderList(folders) + ")");
         return {};
     }
+
+    static std::string folderList(const std::vector<std::filesystem::path>& folders) {
+        std::string list;
+        for (const auto& folder : folders)
+            list += (list.empty() ? "" : ", ") + printable(folder.empty() ? "." : folder.string());
+        return list;
+    }
+    std::string rootList() const { return folderList(roots_); }
 
     void banner(const char* what, const std::filesystem::path& file) {
         out_.text += std::string("// ---- ") + what + " " +
@@ -98,6 +237,8 @@ private:
     }
 
     ShaderSource& out_;
+    ErrorKind kind_;
+    std::vector<std::filesystem::path> roots_;  // canonical
     std::filesystem::path bundleRoot_;
     std::vector<std::filesystem::path> includeDirs_;
 };
@@ -112,7 +253,10 @@ ShaderSource assembleShader(const std::filesystem::path& file, const std::string
     source.text = "#version " + version + "\n";
     for (const ShaderDefine& d : defines)
         source.text += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
-    Assembler(source, {}, includeDirs).splice(file.lexically_normal(), 0);
+    const std::filesystem::path start = file.lexically_normal();
+    std::vector<std::filesystem::path> roots{folderOf(start)};
+    roots.insert(roots.end(), includeDirs.begin(), includeDirs.end());
+    Assembler(source, ErrorKind::Runtime, roots, {}, includeDirs).start(start);
     return source;
 }
 
@@ -120,8 +264,14 @@ std::string bundleShader(const std::filesystem::path& file, const std::filesyste
                          const std::vector<std::filesystem::path>& includeDirs) {
     ShaderSource source;
     const std::filesystem::path start = file.lexically_normal();
-    const std::filesystem::path base = root.empty() ? start.parent_path() : root.lexically_normal();
-    Assembler(source, base, includeDirs).splice(start, 0);
+    const std::filesystem::path base = root.empty() ? folderOf(start) : root.lexically_normal();
+    if (!isWithin(realPath(start), realPath(base))) {
+        throwBadInput(printable(file.string()) + ": not inside the root " +
+                      printable(base.string()) + " its includes are taken from");
+    }
+    std::vector<std::filesystem::path> roots{base};
+    roots.insert(roots.end(), includeDirs.begin(), includeDirs.end());
+    Assembler(source, ErrorKind::BadInput, roots, base, includeDirs).start(start);
     return source.text;
 }
 

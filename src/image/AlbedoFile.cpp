@@ -1,6 +1,7 @@
 #include "microrelief/image/AlbedoFile.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -10,6 +11,27 @@
 #include "microrelief/core/Error.h"
 
 namespace microrelief {
+
+namespace {
+
+// A float albedo's colour channels must be finite: the GL filters NaN and infinity into
+// black (or spreads them over the neighbours a texel is filtered with), a picture wrong
+// without a word. The first bad texel, as an image viewer numbers it (row 0 the first).
+template <class T>
+void refuseNonFinite(const std::string& name, const std::vector<T>& read, int used, int width) {
+    const int colours = std::min(used, 3);  // a 4th channel is read, then replaced by 1
+    for (std::size_t k = 0; k < read.size(); ++k) {
+        const int channel = static_cast<int>(k % used);
+        if (channel >= colours || std::isfinite(static_cast<double>(read[k]))) continue;
+        const std::size_t texel = k / used;
+        throwBadInput(name + ": texel (column " + std::to_string(texel % width) + ", row " +
+                      std::to_string(texel / width) + "), channel " + std::to_string(channel) +
+                      " is " + (std::isnan(static_cast<double>(read[k])) ? "NaN" : "infinite") +
+                      "; an albedo's colours must be finite numbers");
+    }
+}
+
+}  // namespace
 
 AlbedoImage loadAlbedo(const std::filesystem::path& file) {
     const std::string name = file.string();
@@ -40,6 +62,7 @@ AlbedoImage loadAlbedo(const std::filesystem::path& file) {
                 throwBadInput(name + ": cannot read the pixels (" +
                               (reason.empty() ? "truncated or corrupt" : reason) + ")");
             }
+            if (isFloat) refuseNonFinite(name, read, used, spec.width);
             out.resize(pixels * 4);
             for (std::size_t p = 0; p < pixels; ++p) {
                 const auto* in = &read[p * used];

@@ -67,8 +67,8 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     {
         // Before any GL work: the float range and precision the shader needs.
         const CameraFrame frame = resolveCamera(job.camera, job.width, job.height, 1.0);
-        checkFloatLimits({mapWidth_, mapHeight_, maxHeight_}, job.heightScale, job.camera, frame,
-                         source_);
+        checkFloatLimits({mapWidth_, mapHeight_, maxHeight_}, job.heightScale, job.base, job.model,
+                         job.camera, frame, source_);
     }
     context_.makeCurrent();
     const GL& gl = context_.gl();
@@ -163,7 +163,7 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     checkHeightScale(job.heightScale);
     checkPictureSize(job.width, job.height);
     checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxValue()},
-                     job.heightScale, job.camera,
+                     job.heightScale, job.base, job.model, job.camera,
                      resolveCamera(job.camera, job.width, job.height, 1.0), source);
     // GL objects live in this scope and die before the context does.
     HeadlessRenderer renderer(context, job.method);

@@ -30,6 +30,7 @@ ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGe
     ReferencePicture picture;
     picture.width = camera.width;
     picture.texelsPerUnit = 1.0 / relief.base.texelSize(relief.map->width, relief.map->height);
+    picture.worldToObject = glm::dmat3(relief.model.worldToObject());
     picture.hits.reserve(static_cast<std::size_t>(camera.width) * camera.height);
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
@@ -79,7 +80,8 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
                 continue;
             }
             if (!tested.hit) continue;
-            const double error = glm::length(tested.position - *exact) * reference.texelsPerUnit;
+            const double error = glm::length(reference.worldToObject * (tested.position - *exact)) *
+                                 reference.texelsPerUnit;
             errors.push_back(error);
             const double pixelWidth = glm::length(*exact - camera.eye) * pixelWidthPerUnit;
             pixelErrors.push_back(glm::length(tested.position - *exact) /

@@ -8,10 +8,13 @@
 #include <OpenImageIO/imageio.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <thread>
@@ -546,3 +549,149 @@ TEST_F(BatchCli, ProgressOnATerminalOnly) {
 }
 
 }  // namespace
+
+// ---- issue 25: what the renderer refuses, refused for every row before the first frame ----
+
+// Rows whose camera and map pass the file's own checks but not the renderer's (an eye too far
+// for float, a field of view float cannot divide into pixels, a map that does not load, an
+// albedo holding NaN): each named by its file and line, the bad row last, nothing written.
+TEST_F(BatchCli, RowsTheRendererRefusesAreRefusedBeforeTheFirstFrame) {
+    std::ofstream(dir / "corrupt.png") << "not a PNG at all";
+    {
+        const std::vector<float> rgb = {0.5f, 0.5f, 0.5f, std::nanf(""), 0.5f, 0.5f};
+        auto out = OIIO::ImageOutput::create((dir / "nan.exr").string());
+        ASSERT_TRUE(out && out->open((dir / "nan.exr").string(),
+                                     OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::FLOAT)));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
+        out->close();
+    }
+    const std::string columns = "eye_x,eye_y,eye_z,target_x,target_y,target_z,fovy,flags\n";
+    const std::string good = "0.9,0.6,0.5,0,0,0,,\n";
+    const struct {
+        std::string name, row, reason;
+    } cases[] = {
+        {"far.csv", "5000,0.6,0.5,0,0,0,,", "too far"},
+        {"fovy.csv", "0.9,0.6,0.5,0,0,0,1e-37,", "--fovy 1e-37 at a picture 48 pixels high"},
+        {"map.csv", "0.9,0.6,0.5,0,0,0,,--height " + (dir / "corrupt.png").string(),
+         (dir / "corrupt.png").string()},
+        {"albedo.csv", "0.9,0.6,0.5,0,0,0,,--albedo " + (dir / "nan.exr").string(),
+         "texel (column 1, row 0), channel 0 is NaN"},
+        {"help.csv", "0.9,0.6,0.5,0,0,0,,--help", "--help is not a row flag"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        std::ofstream(dir / c.name) << columns << good << good << c.row << "\n";
+        const auto out = dir / ("out-" + c.name);
+        const test::RunResult r = run(small + "--cameras " + (dir / c.name).string() + " --out '" +
+                                      (out / "v{frame}.png").string() + "'");
+        expectFailure(r, 2, (dir / c.name).string() + ": line 4 (frame 2): ");
+        EXPECT_NE(r.err.find(c.reason), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << "no frame written, no manifest";
+    }
+}
+
+// A byte order mark before the header (a spreadsheet's "CSV UTF-8") is read past.
+TEST_F(BatchCli, CameraFilesWithAByteOrderMarkRender) {
+    std::ofstream(dir / "bom.csv") << "\xEF\xBB\xBF"
+                                      "eye_x,eye_y,eye_z,target_x,target_y,target_z\n"
+                                      "0.9,0.6,0.5,0,0,0\n0.6,0.6,0.9,0,0,0\n";
+    const test::RunResult r = run(small + "-q --cameras " + (dir / "bom.csv").string() +
+                                  " --out '" + (dir / "v{frame}.png").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "v0.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "v1.png"));
+}
+
+// The eye under the surface is warned of for paths as for one picture: once a run, how
+// many frames, and the first.
+TEST_F(BatchCli, EyesInsideTheSolidAreSummedUpOnceARun) {
+    std::ofstream(dir / "in.csv") << "eye_x,eye_y,eye_z,target_x,target_y,target_z\n"
+                                     "0.9,0.6,0.5,0,0,0\n"
+                                     "0.05,0.005,0.05,-0.3,0,-0.3\n"
+                                     "0.05,0.005,0.06,-0.3,0,-0.3\n";
+    const test::RunResult r = run(small + "-q --cameras " + (dir / "in.csv").string() + " --out '" +
+                                  (dir / "v{frame}.png").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.errLines(), 1) << r.err;
+    EXPECT_NE(r.err.find("warning: 2 frames of 3 drawn with the eye inside the relief's solid"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("first: " + (dir / "in.csv").string() + ": line 3 (frame 1)"),
+              std::string::npos)
+        << r.err;
+    const test::RunResult outside =
+        run(small + "-q --turntable 2 --out '" + (dir / "t{frame}.png").string() + "'");
+    ASSERT_EQ(outside.status, 0) << outside.err;
+    EXPECT_EQ(outside.err, "");
+}
+
+// --light-size sizes the soft shadows' light: given without them it is warned of, unless a
+// row of the camera file turns soft shadows on.
+TEST_F(BatchCli, ALightSizeNoFrameUsesIsWarnedOf) {
+    const std::string warning = "warning: --light-size sets the light of soft shadows";
+    const std::string out = " --out '" + (dir / "v{frame}.png").string() + "'";
+    const test::RunResult turntable = run(small + "-q --turntable 2 --light-size 2" + out);
+    ASSERT_EQ(turntable.status, 0) << turntable.err;
+    EXPECT_NE(turntable.err.find(warning), std::string::npos) << turntable.err;
+    const test::RunResult soft =
+        run(small + "-q --turntable 2 --light-size 2 --shadows soft" + out);
+    EXPECT_EQ(soft.err.find(warning), std::string::npos) << soft.err;
+    std::ofstream(dir / "soft.csv") << "eye_x,eye_y,eye_z,target_x,target_y,target_z,flags\n"
+                                       "0.9,0.6,0.5,0,0,0,\n"
+                                       "0.9,0.6,0.5,0,0,0,--shadows soft\n";
+    const test::RunResult row =
+        run(small + "-q --light-size 2 --cameras " + (dir / "soft.csv").string() + out);
+    ASSERT_EQ(row.status, 0) << row.err;
+    EXPECT_EQ(row.err.find(warning), std::string::npos) << row.err;
+    std::ofstream(dir / "hard.csv") << "eye_x,eye_y,eye_z,target_x,target_y,target_z,flags\n"
+                                       "0.9,0.6,0.5,0,0,0,--shadows hard\n";
+    const test::RunResult none =
+        run(small + "-q --light-size 2 --cameras " + (dir / "hard.csv").string() + out);
+    EXPECT_NE(none.err.find(warning), std::string::npos) << none.err;
+}
+
+// Path flags given an empty value mean no path, no range, no manifest: refused, not ignored.
+TEST_F(BatchCli, EmptyPathFlagsAreRefused) {
+    const std::string out = " --out '" + (dir / "none" / "v{frame}.png").string() + "'";
+    for (const char* flag : {"--cameras", "--frames", "--shard", "--manifest"}) {
+        const std::string path = std::string(flag) == "--cameras" ? "" : " --turntable 2";
+        expectFailure(run(small + path + " " + flag + " ''" + out), 2,
+                      std::string(flag) + " needs a value, got an empty one");
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "none"));
+}
+
+// The largest resident size of `command` run through the shell, in kilobytes, measured in
+// a child of its own (getrusage's children figure is a maximum over all of them).
+long peakKilobytes(const std::string& command) {
+    int channel[2];
+    if (pipe(channel) != 0) return -1;
+    const pid_t child = fork();
+    if (child == 0) {
+        close(channel[0]);
+        const int status = std::system(command.c_str());
+        struct rusage usage {};
+        getrusage(RUSAGE_CHILDREN, &usage);
+        const long peak = status == 0 ? usage.ru_maxrss : -1;
+        if (write(channel[1], &peak, sizeof peak) != sizeof peak) _exit(1);
+        _exit(0);
+    }
+    close(channel[1]);
+    long peak = -1;
+    if (read(channel[0], &peak, sizeof peak) != sizeof peak) peak = -1;
+    close(channel[0]);
+    waitpid(child, nullptr, 0);
+    return peak;
+}
+
+// A turntable of a million views with --frames 5 holds the frames it draws, not a million
+// (981 MB before: 750 bytes a view never drawn).
+TEST_F(BatchCli, AMillionViewTurntableHoldsOnlyTheFramesItDraws) {
+    const std::string out = " --out '" + (dir / "v{frame}.png").string() + "' > /dev/null";
+    const long few = peakKilobytes(kRender + small + "-q --turntable 5 --frames 0-4" + out);
+    const long million = peakKilobytes(kRender + small + "-q --turntable 1000000 --frames 5" + out);
+    ASSERT_GT(few, 0);
+    ASSERT_GT(million, 0);
+    // The two runs differ by a million views only; 64 MB is 67 bytes a view.
+    EXPECT_LT(million, few + 64 * 1024) << few << " KB for 5 views, " << million << " KB";
+}

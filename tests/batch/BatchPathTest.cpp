@@ -460,6 +460,44 @@ TEST(CameraFile, BadJsonLinesNameTheFileTheLineAndTheReason) {
         "line 2 (frame 1)", "--target is not a row flag");
 }
 
+// Issue 25: a spreadsheet's "CSV UTF-8" starts with a byte order mark, which is no part of
+// the first column's name; --help and empty values in row flags get a plain reason, not
+// CLI11's internal text or the default taken silently.
+TEST(CameraFile, AByteOrderMarkIsSkippedAndHelpOrEmptyRowFlagsAreRefused) {
+    const SceneOptions base;
+    const auto parse = [&](const std::string& text) {
+        return parseCameraFile(text, "cams.csv", base);
+    };
+    const std::vector<PathFrame> path = parse("\xEF\xBB\xBF" + kColumns + "\n1,2,3,0,0,0\n");
+    ASSERT_EQ(path.size(), 1u);
+    EXPECT_EQ(path[0].scene.job.camera.eye, glm::dvec3(1, 2, 3));
+    const auto jsonl = parseCameraFile("\xEF\xBB\xBF{\"eye\": [1, 2, 3], \"target\": [0, 0, 0]}\n",
+                                       "cams.jsonl", base);
+    ASSERT_EQ(jsonl.size(), 1u);
+    for (const char* help : {"--help", "-h", "--light 0,1,0 --help"}) {
+        EXPECT_BAD_INPUT(parse(kColumns + ",flags\n1,1,1,0,0,0,\"" + help + "\"\n"),
+                         "cams.csv: line 2 (frame 0): flags: --help is not a row flag");
+    }
+    EXPECT_BAD_INPUT(parse(kColumns + ",flags\n1,1,1,0,0,0,--height ''\n"),
+                     "line 2 (frame 0): flags: --height");
+}
+
+// A turntable's frames are made when asked for, each the one turntablePath makes.
+TEST(Turntable, APathOfAMillionViewsHoldsNoFrame) {
+    const SceneOptions base = baseScene();
+    const CameraPath path = CameraPath::turntable(base, 1000000);
+    EXPECT_EQ(path.size(), 1000000);
+    const std::vector<PathFrame> eight = turntablePath(base, 8);
+    const CameraPath lazy = CameraPath::turntable(base, 8);
+    for (int k = 0; k < 8; ++k) {
+        EXPECT_EQ(lazy.frame(k).scene.job.camera.eye, eight[k].scene.job.camera.eye) << k;
+        EXPECT_EQ(lazy.frame(k).origin, eight[k].origin) << k;
+    }
+    EXPECT_EQ(path.frame(250000).scene.job.camera.eye,
+              turntablePath(base, 4)[1].scene.job.camera.eye);
+    EXPECT_BAD_INPUT(CameraPath::turntable(base, 0), "--turntable");
+}
+
 TEST(CameraFile, FilesThatAreNotThereOrNotFiles) {
     test::ScratchDir dir;
     EXPECT_BAD_INPUT(readCameraFile(dir / "missing.csv", {}), "missing.csv", "no such file");

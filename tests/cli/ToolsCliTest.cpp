@@ -1,7 +1,10 @@
-// microrelief-make-map and microrelief-bench as a user meets them: sizes and output
-// folders refused before any work (issue 15), with the spec's one-line failure.
+// microrelief-make-map, microrelief-bench and microrelief-glsl-bundle as a user meets
+// them: sizes and output folders refused before any work (issue 15), includes from
+// outside the root (issue 25), with the spec's one-line failure.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <fstream>
 #include <sstream>
 
 #include <OpenImageIO/imageio.h>
@@ -107,3 +110,81 @@ TEST_F(ToolsCli, BenchRebuildWritesItsCsv) {
 }
 
 }  // namespace
+
+// microrelief-glsl-bundle's includes (issue 25): only regular files inside the root (or a
+// search folder), named relative to it, are spliced. Each hostile include is refused in
+// one line naming the including file, its line and the reason: a device that never ends,
+// a FIFO that never opens for writing (under `timeout`, so a hang fails rather than
+// stalls), paths out of the root by "..", by an absolute name or by a link, a folder,
+// include forms the bundler does not take, a file larger than a shader.
+TEST_F(ToolsCli, GlslBundleSplicesOnlyRegularFilesInsideTheRoot) {
+    const std::filesystem::path root = dir / "root";
+    std::filesystem::create_directories(root / "sub");
+    std::filesystem::create_directories(root / "lib");
+    const auto write = [](const std::filesystem::path& file, const std::string& text) {
+        std::ofstream(file, std::ios::binary) << text;
+    };
+    write(dir / "outside.glsl", "float secretOutside;\n");
+    write(root / "lib/a.glsl", "float fromA;\n");
+    write(root / "sub/inner.glsl", "#include \"../lib/a.glsl\"\nfloat fromInner;\n");
+    ASSERT_EQ(::mkfifo((root / "fifo.glsl").c_str(), 0600), 0);
+    std::filesystem::create_symlink("../outside.glsl", root / "out-link.glsl");
+    std::filesystem::create_symlink("/dev/zero", root / "zero-link.glsl");
+    std::filesystem::create_symlink("fifo.glsl", root / "fifo-link.glsl");
+    {
+        std::ofstream(root / "big.glsl") << "// big\n";
+        std::filesystem::resize_file(root / "big.glsl", (4 << 20) + 1);  // sparse: no 4 MB written
+    }
+    const auto bundle = [&](const std::string& include) {
+        write(root / "main.glsl", "// main\n" + include + "\nvoid main() {}\n");
+        return run("timeout 20 " MICRORELIEF_GLSL_BUNDLE_EXE,
+                   (root / "main.glsl").string() + " --root " + root.string());
+    };
+
+    const test::RunResult good = bundle("#include \"sub/inner.glsl\"");
+    ASSERT_EQ(good.status, 0) << good.err;
+    EXPECT_NE(good.out.find("float fromA;"), std::string::npos);  // "../" within the root
+    EXPECT_NE(good.out.find("float fromInner;"), std::string::npos);
+
+    const struct {
+        std::string include, reason;
+    } cases[] = {
+        {"#include \"/dev/zero\"", "an absolute path"},
+        {"#include \"" + (dir / "outside.glsl").string() + "\"", "an absolute path"},
+        {"#include \"../../../../../../../../etc/passwd\"", "is outside the shader folders"},
+        {"#include \"../outside.glsl\"", "is outside the shader folders"},
+        {"#include \"sub/../../outside.glsl\"", "is outside the shader folders"},
+        {"#include \"out-link.glsl\"", "is outside the shader folders"},
+        {"#include \"zero-link.glsl\"", "is outside the shader folders"},
+        {"#include \"fifo.glsl\"", "not a regular file"},
+        {"#include \"fifo-link.glsl\"", "not a regular file"},
+        {"#include \"sub\"", "a folder, not a file"},
+        {"#include \".\"", "a folder, not a file"},
+        {"#include \"big.glsl\"", "more than the 4194304 bytes"},
+        {"#include \"nope.glsl\"", "not found"},
+        {"#include \"lib/a.glsl", "quote is not closed"},
+        {"#include <lib/a.glsl>", "#include <...> is not resolved here"},
+        {"#include lib/a.glsl", "expected #include \"file\""},
+        {"  #  include \"lib/a.glsl\" junk", "text after the file name"},
+        {"#include \"\"", "an empty file name"},
+        {"#include \"a\rb\x01.glsl\"", "control characters"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.include);
+        const test::RunResult r = bundle(c.include);
+        test::expectOneLineFailure(r, "microrelief-glsl-bundle", 2, "main.glsl:2: #");
+        EXPECT_NE(r.err.find(c.reason), std::string::npos) << r.err;
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(r.err.find('\r'), std::string::npos) << "a raw CR in the message";
+        EXPECT_EQ(r.err.find('\x01'), std::string::npos) << "a raw control character";
+    }
+    // The file to bundle itself: a FIFO or a folder is refused without waiting on it.
+    for (const char* file : {"fifo.glsl", "sub"}) {
+        const test::RunResult r = run("timeout 20 " MICRORELIEF_GLSL_BUNDLE_EXE,
+                                      (root / file).string() + " --root " + root.string());
+        test::expectOneLineFailure(r, "microrelief-glsl-bundle", 2, "not a regular file");
+    }
+    const test::RunResult elsewhere = run(
+        MICRORELIEF_GLSL_BUNDLE_EXE, (dir / "outside.glsl").string() + " --root " + root.string());
+    test::expectOneLineFailure(elsewhere, "microrelief-glsl-bundle", 2, "not inside the root");
+}

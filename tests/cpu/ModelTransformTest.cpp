@@ -55,3 +55,36 @@ TEST(ModelTransform, SingularNonAffineAndNonFiniteMatricesAreRefused) {
     EXPECT_THROW(ModelTransform{tiny}, Error);
     EXPECT_NO_THROW(ModelTransform(glm::scale(glm::dmat4(1.0), glm::dvec3(-1.0, 1e-3, 1e3))));
 }
+
+// Issue 25: a determinant of 1 is no singular matrix. An invertible but ill-conditioned one
+// is called so, with its condition number; the scales FloatLimits bounds are exact for the
+// identity and a diagonal.
+TEST(ModelTransform, IllConditionedIsNotCalledSingularAndScalesAreKnown) {
+    const auto message = [](const glm::dmat4& m) {
+        try {
+            ModelTransform{m};
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string stretched =
+        message(glm::scale(glm::dmat4(1.0), glm::dvec3(1e7, 1e-7, 1.0)));  // determinant 1
+    EXPECT_NE(stretched.find("ill-conditioned (condition number 1e+14"), std::string::npos)
+        << stretched;
+    EXPECT_EQ(stretched.find("singular"), std::string::npos) << stretched;
+    glm::dmat4 flat(1.0);
+    flat[2][2] = 0.0;
+    EXPECT_NE(message(flat).find("singular"), std::string::npos);
+    EXPECT_EQ(ModelTransform().largestScale(), 1.0);
+    EXPECT_EQ(ModelTransform().smallestScale(), 1.0);
+    const ModelTransform uneven(glm::scale(glm::dmat4(1.0), glm::dvec3(-2.0, 1e-3, 1e3)));
+    EXPECT_NEAR(uneven.largestScale(), 1e3, 1e-9);
+    EXPECT_NEAR(uneven.smallestScale(), 1e-3, 1e-15);
+    // Sheared: the singular values of [[1, 1e3], [0, 1]] in x, y: 1e3 and 1e-3 (to 1e-6).
+    glm::dmat4 sheared(1.0);
+    sheared[1][0] = 1e3;
+    const ModelTransform shear(sheared);
+    EXPECT_NEAR(shear.largestScale() * shear.smallestScale(), 1.0, 1e-9);
+    EXPECT_NEAR(shear.largestScale(), 1000.001, 1e-3);
+}

@@ -107,3 +107,35 @@ TEST(ShaderSource, CompilerLogsMapToFiles) {
     EXPECT_EQ(mapCompilerLog("ERROR: 1:100003: 'x' : undeclared identifier", files),
               "ERROR: shaders/microrelief/x.glsl:3: 'x' : undeclared identifier\n");
 }
+
+// The renderer's own assembly takes includes by the bundler's rules (issue 25): inside the
+// start file's folder or a search folder, regular files only; the error names the
+// including file and line, and is the environment's (Runtime: the program's shaders are
+// broken), not the user's.
+TEST(ShaderSource, IncludesOutsideTheFoldersOrNotRegularFilesAreRefused) {
+    test::ScratchDir dir;
+    writeText(dir / "outside.glsl", "float outside;\n");
+    writeText(dir / "lib/a.glsl", "float a;\n");
+    std::filesystem::create_directories(dir / "app/folder");
+    for (const auto& [include, reason] : std::vector<std::pair<std::string, std::string>>{
+             {"#include \"" + (dir / "lib/a.glsl").string() + "\"", "an absolute path"},
+             {"#include \"../outside.glsl\"", "is outside the shader folders"},
+             {"#include \"folder\"", "a folder, not a file"},
+             {"#include <a.glsl>", "#include <...>"}}) {
+        writeText(dir / "app/main.frag", "// main\n" + include + "\n");
+        try {
+            assembleShader(dir / "app/main.frag", "330 core", {}, {dir / "lib"});
+            ADD_FAILURE() << include << ": expected an error";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::Runtime) << include;
+            const std::string message = e.what();
+            EXPECT_NE(message.find("main.frag:2: #include"), std::string::npos) << message;
+            EXPECT_NE(message.find(reason), std::string::npos) << message;
+        }
+    }
+    // A search folder's file by its name there is inside: spliced.
+    writeText(dir / "app/main.frag", "#include \"a.glsl\"\n");
+    EXPECT_NE(
+        assembleShader(dir / "app/main.frag", "330 core", {}, {dir / "lib"}).text.find("float a;"),
+        std::string::npos);
+}

@@ -27,6 +27,13 @@ std::vector<std::filesystem::path> libraryFiles() {
     return files;
 }
 
+// A wrapper's include of a library file the way an engine writes it: by its name under
+// the shader folder, which goes to assembleShader as a search folder (an absolute
+// include is refused).
+std::string includeOf(const std::filesystem::path& libraryFile) {
+    return "#include \"microrelief/" + libraryFile.filename().string() + "\"\n";
+}
+
 std::string readText(const std::filesystem::path& file) {
     std::ifstream in(file);
     std::ostringstream text;
@@ -77,9 +84,9 @@ TEST(GlslLibrary, EveryFileCompilesAloneAsGlsl330And400AndEs300) {
         for (const char* version : kDialects) {
             const std::filesystem::path wrapper = dir / ("use_" + file.stem().string() + ".frag");
             std::ofstream(wrapper)
-                << "#include \"" << file.string() << "\"\n"
+                << includeOf(file)
                 << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
-            const ShaderSource source = assembleShader(wrapper, version);
+            const ShaderSource source = assembleShader(wrapper, version, {}, {kShaders});
             const std::string errors = validate(dir, source, "frag", file.stem().string());
             EXPECT_TRUE(errors.empty()) << file.filename() << " as GLSL " << version << ":\n"
                                         << errors;
@@ -106,8 +113,7 @@ TEST(GlslLibrary, ReadHooksLetAHostReadTextureArrays) {
                    "reliefLayer), level).r\n"
                 << "#ifdef GL_ES\nprecision highp sampler2DArray;\nprecision highp int;\n#endif\n"
                 << "uniform int reliefLayer;\n"
-                << "#include \""
-                << (kShaders / "microrelief" / (std::string(tracer) + ".glsl")).string() << "\"\n"
+                << includeOf(kShaders / "microrelief" / (std::string(tracer) + ".glsl"))
                 << "uniform sampler2DArray windows, heights;\nout vec4 fragColor;\n"
                 << "void main() {\n"
                 << "    mr_Relief relief = mr_Relief(mr_ReliefMap(vec2(64.0), ivec2(64), 7, 1.0, "
@@ -197,12 +203,12 @@ TEST(GlslLibrary, EveryPublicNameCarriesThePrefix) {
     int functions = 0;
     for (const auto& file : libraryFiles()) {
         const std::filesystem::path wrapper = dir / ("names_" + file.stem().string() + ".frag");
-        std::ofstream(wrapper) << "#include \"" << file.string() << "\"\n"
+        std::ofstream(wrapper) << includeOf(file)
                                << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
         std::string tree;
-        ASSERT_EQ(
-            validate(dir, assembleShader(wrapper, "330 core"), "frag", file.stem().string(), &tree),
-            "");
+        ASSERT_EQ(validate(dir, assembleShader(wrapper, "330 core", {}, {kShaders}), "frag",
+                           file.stem().string(), &tree),
+                  "");
         for (std::sregex_iterator it(tree.begin(), tree.end(), function), end; it != end; ++it) {
             const std::string name = (*it)[1];
             if (name == "main") continue;
@@ -239,11 +245,11 @@ TEST(GlslLibrary, EveryFileRunsAtHighpUnderGlslEs) {
     test::ScratchDir dir;
     for (const auto& file : libraryFiles()) {
         const std::filesystem::path wrapper = dir / ("es_" + file.stem().string() + ".frag");
-        std::ofstream(wrapper) << "#include \"" << file.string() << "\"\n"
+        std::ofstream(wrapper) << includeOf(file)
                                << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
         std::string tree;
-        const std::string errors =
-            validate(dir, assembleShader(wrapper, "300 es"), "frag", file.stem().string(), &tree);
+        const std::string errors = validate(dir, assembleShader(wrapper, "300 es", {}, {kShaders}),
+                                            "frag", file.stem().string(), &tree);
         ASSERT_TRUE(errors.empty()) << file.filename() << ":\n" << errors;
         EXPECT_EQ(belowHighp(tree), "") << file.filename();
     }
@@ -297,11 +303,10 @@ TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
             const char* es = kDialects[2];  // the library states its own precision
             const std::filesystem::path wrapper = dir / "use_relief_hit.frag";
             std::ofstream(wrapper)
-                << "#include \"" << (kShaders / "microrelief" / "relief_hit.glsl").string()
-                << "\"\n"
+                << includeOf(kShaders / "microrelief" / "relief_hit.glsl")
                 << "out vec4 fragColor;\nvoid main() { fragColor = vec4(1.0); }\n";
-            const std::string errors =
-                validate(dir, assembleShader(wrapper, es, defines), "frag", "relief_hit");
+            const std::string errors = validate(
+                dir, assembleShader(wrapper, es, defines, {kShaders}), "frag", "relief_hit");
             EXPECT_TRUE(errors.empty()) << "relief_hit.glsl as ES 3.00, " << variant << ":\n"
                                         << errors;
         }

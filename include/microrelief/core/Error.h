@@ -15,12 +15,21 @@ enum class ErrorKind {
 
 class Error : public std::runtime_error {
 public:
-    Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+    // A NUL in the message (from a file's field) is written "\x00": what() is a C string,
+    // which would end there. The rest of the escaping is the printer's (core/Text.h).
+    Error(ErrorKind kind, const std::string& message)
+        : std::runtime_error(withoutNul(message)), kind_(kind) {}
 
     ErrorKind kind() const { return kind_; }
     int exitStatus() const { return kind_ == ErrorKind::BadInput ? 2 : 1; }
 
 private:
+    static std::string withoutNul(std::string message) {
+        for (std::size_t at = message.find('\0'); at != std::string::npos;
+             at = message.find('\0', at + 4))
+            message.replace(at, 1, "\\x00");
+        return message;
+    }
     ErrorKind kind_;
 };
 

@@ -14,7 +14,8 @@ inline constexpr int kMaxAlbedoSide = 16384;
 // a size from the header within kMaxAlbedoSide before anything is allocated, a PNG that
 // libpng would accept). Grey, grey and alpha, RGB and RGBA images are taken (the alpha is
 // not used); 8-bit ones stay sRGB-encoded, 16-bit integer ones are decoded from sRGB to
-// linear, float ones are linear already. Throws Error(BadInput) naming the file and the
+// linear, float ones are linear already and must be finite (a NaN or an infinity is
+// refused, naming the first such texel). Throws Error(BadInput) naming the file and the
 // reason, Error(Runtime) naming it when memory runs out.
 AlbedoImage loadAlbedo(const std::filesystem::path& file);
 

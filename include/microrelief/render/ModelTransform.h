@@ -13,12 +13,18 @@
 
 namespace microrelief {
 
+// The largest condition number (largest over smallest scale of the linear part) a model
+// may have.
+inline constexpr double kMaxModelCondition = 1e12;
+
 class ModelTransform {
 public:
     ModelTransform() = default;  // the identity
     // Throws Error(BadInput) when `objectToWorld` is not affine (its last row is not
-    // 0, 0, 0, 1), holds a value that is not finite, or is singular or nearly so (its
-    // linear part's condition number beyond 1e12).
+    // 0, 0, 0, 1), holds a value that is not finite, is singular (not invertible), or is
+    // ill-conditioned (its linear part's condition number beyond kMaxModelCondition; the
+    // message gives it). How large or small it may scale the relief depends on the map
+    // and the camera: render/FloatLimits.h.
     explicit ModelTransform(const glm::dmat4& objectToWorld);
     // A 3 x 4 matrix in rows (--model: 12 numbers, row-major, the last row of the 4 x 4
     // implied): x' = m0 x + m1 y + m2 z + m3, and so on.
@@ -28,6 +34,10 @@ public:
     const glm::dmat4& objectToWorld() const { return objectToWorld_; }
     const glm::dmat4& worldToObject() const { return worldToObject_; }
     bool isIdentity() const { return objectToWorld_ == glm::dmat4(1.0); }
+    // The most and the least the linear part stretches a vector: its largest and smallest
+    // singular values (1 and 1 for the identity, exactly).
+    double largestScale() const { return largestScale_; }
+    double smallestScale() const { return smallestScale_; }
 
     // The ray in object space, with the same t.
     Ray toObject(const Ray& world) const;
@@ -39,6 +49,7 @@ public:
 private:
     glm::dmat4 objectToWorld_{1.0};
     glm::dmat4 worldToObject_{1.0};
+    double largestScale_ = 1.0, smallestScale_ = 1.0;
 };
 
 }  // namespace microrelief

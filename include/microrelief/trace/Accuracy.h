@@ -54,8 +54,11 @@ struct PixelHit {
 // reusable for any number of tracers of the same view.
 struct ReferencePicture {
     int width = 0;
-    // Errors are reported in texels: 1 / BaseShape::texelSize, max(W, H) on the plane.
+    // Errors are reported in texels of the relief's object space: 1 / BaseShape::texelSize
+    // (max(W, H) on the plane) per object unit, a world difference taken there first by
+    // the model's inverse (a relief grown 1e5 times has texels 1e5 times as wide).
     double texelsPerUnit = 1.0;
+    glm::dmat3 worldToObject{1.0};
     std::vector<std::optional<glm::dvec3>> hits;  // row-major, world positions
     // Row-major: the pixel's ray does not come into the relief's box through a side wall
     // or the bottom face (it comes through the top face, starts inside, or misses the box).

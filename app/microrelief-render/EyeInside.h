@@ -1,0 +1,17 @@
+// The scene contract keeps the eye outside the relief's solid; from inside it no picture
+// is defined (the methods and the reference disagree on what the rays meet). Asked of the
+// exact reference: a ray from inside the solid hits it at t = 0. Single pictures warn of
+// it; camera paths sum up the frames it concerns once a run.
+#pragma once
+
+#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/render/HeadlessRender.h"
+
+namespace microrelief {
+
+// Whether `job`'s eye lies inside the solid of `map` (the heights drawn: an animated
+// field's as evaluated) over its base, tiles and model. A tiled map whose larger image
+// would exceed 2^24 samples is not checked (false).
+bool eyeInsideTheSolid(const HeightMap& map, const RenderJob& job);
+
+}  // namespace microrelief

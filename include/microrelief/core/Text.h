@@ -1,0 +1,17 @@
+// Text from outside (a file name, a camera file's field, a shader's #include line) as it
+// may go into a one-line message: control characters, DEL and bytes that are no UTF-8
+// written as escapes, so a CR cannot overwrite the line on a terminal, a NUL cannot cut
+// it short and a newline cannot split it.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace microrelief {
+
+// `text` with \r, \n, \t as themselves escaped ("\\r"), other control characters, DEL and
+// every byte that is not part of well-formed UTF-8 as "\\xNN"; valid UTF-8 (accents, "°")
+// unchanged.
+std::string printable(std::string_view text);
+
+}  // namespace microrelief

@@ -136,7 +136,7 @@ TEST(GlslLibrary, ReadHooksLetAHostReadTextureArrays) {
                           "vec3(0.2, 0.1, 1.0), MR_T_INFINITY, out_);\n"
                         : "    float lit = 1.0;\n")
                 << "    fragColor = vec4(hit.position, lit);\n}\n";
-            const ShaderSource source = assembleShader(wrapper, version);
+            const ShaderSource source = assembleShader(wrapper, version, {}, {kShaders});
             const std::string errors =
                 validate(dir, source, "frag", std::string("arrays_") + tracer);
             EXPECT_TRUE(errors.empty()) << tracer << " as GLSL " << version << ":\n" << errors;

@@ -555,9 +555,10 @@ TEST_F(RenderCli, MessagesEscapeControlCharactersAndBytesThatAreNoUtf8) {
     EXPECT_EQ(r.err.find('\r'), std::string::npos);
     EXPECT_EQ(run(small + "--height '' --out " + (dir / "x.png").string()).status, 2);
     // A camera file's field with a NUL, a CR and a byte that is no UTF-8.
+    static constexpr char kRow[] = "1,2\0x\rz\xfe,3,0,0,0\n";
     std::ofstream(dir / "cams.csv", std::ios::binary)
         << "eye_x,eye_y,eye_z,target_x,target_y,target_z\n"
-        << std::string("1,2\0x\rz\xfe,3,0,0,0\n", 30);
+        << std::string(kRow, sizeof kRow - 1);  // the whole row, its NUL included
     const test::RunResult field = run(small + "--cameras " + (dir / "cams.csv").string() +
                                       " --out '" + (dir / "v{frame}.png").string() + "'");
     expectFailure(field, 2, "eye_y: '2\\x00x\\rz\\xFE' is not a number");

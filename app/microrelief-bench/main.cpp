@@ -93,7 +93,7 @@ auto parseList(const std::string& list, const std::string& single, const std::st
         try {
             items.push_back(parse(name));
         } catch (const Error& e) {
-            std::string message = e.what();
+            std::string message = e.message(flagName);
             if (const auto at = message.find(single); at != std::string::npos)
                 message.replace(at, single.size(), flag);
             throw Error(e.kind(), message);
@@ -266,6 +266,6 @@ int main(int argc, char** argv) {
         return 0;
     } catch (const Error& e) {
         std::cerr << "microrelief-bench: error: " << e.what() << '\n';
-        return e.exitStatus();
+        return exitStatusOf(e.kind());
     }
 }

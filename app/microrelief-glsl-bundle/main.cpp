@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
         }
     } catch (const microrelief::Error& e) {
         std::fprintf(stderr, "microrelief-glsl-bundle: error: %s\n", e.what());
-        return e.exitStatus();
+        return exitStatusOf(e.kind());
     }
     return 0;
 }

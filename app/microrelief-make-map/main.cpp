@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
         return 0;
     } catch (const Error& e) {
         std::cerr << "microrelief-make-map: error: " << e.what() << '\n';
-        return e.exitStatus();
+        return exitStatusOf(e.kind());
     } catch (const std::bad_alloc&) {
         std::cerr << "microrelief-make-map: error: " << out << ": not enough memory for a " << size
                   << " map\n";

@@ -86,7 +86,10 @@ void checkMapFiles(const CameraPath& path, const std::vector<int>& frames) {
     std::set<std::filesystem::path> checked;
     for (const int k : frames) {
         const PathFrame frame = path.frame(k);
-        for (const auto* file : {&frame.scene.heightFile, &frame.scene.albedoFile}) {
+        const AlbedoSource& albedo = frame.scene.job.albedo;
+        const std::optional<std::filesystem::path> albedoFile =
+            albedo.kind == AlbedoSource::Kind::File ? std::optional(albedo.file) : std::nullopt;
+        for (const auto* file : {&frame.scene.job.map.file, &albedoFile}) {
             if (!*file || !checked.insert(**file).second) continue;
             std::error_code ec;
             const auto status = std::filesystem::status(**file, ec);
@@ -159,9 +162,9 @@ bool complete(const std::filesystem::path& file, BatchProgress& progress) {
 using MapKey = std::tuple<std::filesystem::path, int, bool, bool, Interpolation, int, int>;
 
 MapKey mapKey(const SceneOptions& scene) {
-    return {scene.heightFile ? *scene.heightFile : defaultHeightMapPath(),
-            scene.load.channel,
-            scene.load.normalize,
+    return {scene.job.map.file ? *scene.job.map.file : defaultHeightMapPath(),
+            scene.job.map.load.channel,
+            scene.job.map.load.normalize,
             scene.job.base.wrapsU(),
             scene.job.interpolation,
             scene.job.tiles.x,
@@ -192,7 +195,7 @@ std::optional<LoadedMap> checkFrames(const CameraPath& path, const std::vector<i
             auto extent = extents.find(key);
             if (extent == extents.end()) {
                 last.reset();
-                last = LoadedMap{key, loadHeightMap(std::get<0>(key), frame.scene.load)};
+                last = LoadedMap{key, loadHeightMap(std::get<0>(key), frame.scene.job.map.load)};
                 extent = extents
                              .emplace(key, MapExtent{last->map.width * job.tiles.x,
                                                      last->map.height * job.tiles.y,
@@ -205,11 +208,11 @@ std::optional<LoadedMap> checkFrames(const CameraPath& path, const std::vector<i
                                  resolveCamera(job.camera, job.width, job.height, 1.0),
                                  std::get<0>(key).string());
             }
-            if (const auto albedo = albedoPath(frame.scene);
+            if (const auto albedo = albedoPath(frame.scene.job);
                 albedo && albedos.insert(*albedo).second)
                 loadAlbedo(*albedo);  // what is in it: its pixels, finite
         } catch (const Error& e) {
-            throw Error(e.kind(), frame.origin + ": " + e.what());
+            throw e.after(frame.origin + ": ");
         }
     }
     return last;
@@ -278,7 +281,7 @@ int runBatch(const RenderOptions& o) {
                 if (checkedMap && checkedMap->key == key) {
                     map = std::move(checkedMap->map);
                 } else {
-                    map = loadHeightMap(std::get<0>(key), frame.scene.load);
+                    map = loadHeightMap(std::get<0>(key), frame.scene.job.map.load);
                 }
                 checkedMap.reset();
                 renderer->setHeightMap(*map, std::get<0>(key).string(), frame.scene.job.base,
@@ -286,7 +289,7 @@ int runBatch(const RenderOptions& o) {
                 loaded = key;
                 ++mapsLoaded;
             }
-            if (const std::optional<std::filesystem::path> albedo = albedoPath(frame.scene);
+            if (const std::optional<std::filesystem::path> albedo = albedoPath(frame.scene.job);
                 albedo != loadedAlbedo) {
                 loadedAlbedo.reset();
                 if (albedo) {
@@ -329,7 +332,7 @@ int runBatch(const RenderOptions& o) {
             }
             // The row's data at fault: say which row (a GL or disk failure is no row's).
             if (e.kind() == ErrorKind::BadInput)
-                throw Error(e.kind(), frame.origin + ": " + e.what());
+                throw e.after(frame.origin + ": ");
             throw;
         }
         const double seconds = secondsSince(frameStart);

@@ -31,7 +31,7 @@ void checkCamera(const Camera& camera, const std::string& where) {
     try {
         resolveCamera(camera, 1, 1, 1.0);  // the rules a picture is drawn by
     } catch (const Error& e) {
-        throwBadInput(where + e.what());
+        throw e.after(where);
     }
 }
 
@@ -63,50 +63,36 @@ struct RowCamera {
     std::string flags;
 };
 
-// The row's flags on top of the command line's scene, through the one parser of the
-// map, camera and shading flags (SceneFlags).
+// The row's flags on top of the command line's scene: the flags' parser (SceneFlags)
+// seeded with the scene's fields, so that a row's flag sets its field and every other
+// field keeps the scene's value.
 SceneOptions applyRowFlags(const SceneOptions& base, const std::string& flags,
                            const std::string& where) {
-    const auto parse = [&](CLI::App& app, const std::string& line) {
-        try {
-            app.parse(line, false);
-        } catch (const CLI::CallForHelp&) {
-            // CLI11 would say "This should be caught in your main function".
-            throwBadInput(where +
-                          "flags: --help is not a row flag (a row's flags are map and "
-                          "shading flags, such as --height or --light)");
-        } catch (const CLI::ParseError& e) {
-            throwBadInput(where + "flags: " + e.what());
-        }
-    };
-    {
-        // The row's flags alone: their own mistakes, and no camera flags.
-        SceneOptions scratch;
-        CLI::App app;
-        SceneFlags scene(scratch);
-        scene.addMapAndCamera(app);
-        scene.addShading(app);
-        parse(app, flags);
-        refuseEmptyValues(app, where + "flags: ");
-        for (const char* camera : {"--eye", "--target", "--up", "--fovy"}) {
-            if (app.count(camera) > 0)
-                throwBadInput(where + "flags: " + camera +
-                              " is not a row flag (the camera comes from the columns)");
-        }
-    }
-    // The command line's scene, written exactly, then the row's flags: the last value
-    // of a flag wins.
-    SceneOptions row;
+    SceneOptions row = base;
     CLI::App app;
-    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     SceneFlags scene(row);
     scene.addMapAndCamera(app);
     scene.addShading(app);
-    parse(app, renderCommandLine(base, "") + " " + flags);
+    try {
+        app.parse(flags, false);
+    } catch (const CLI::CallForHelp&) {
+        // CLI11 would say "This should be caught in your main function".
+        throwBadInput(where +
+                      "flags: --help is not a row flag (a row's flags are map and "
+                      "shading flags, such as --height or --light)");
+    } catch (const CLI::ParseError& e) {
+        throwBadInput(where + "flags: " + e.what());
+    }
+    refuseEmptyValues(app, where + "flags: ");
+    for (const char* field : {"camera.eye", "camera.target", "camera.up", "camera.fovyDegrees"}) {
+        if (app.count(flagName(field)) > 0)
+            throwBadInput(where + "flags: " + flagName(field) +
+                          " is not a row flag (the camera comes from the columns)");
+    }
     try {
         scene.apply();
     } catch (const Error& e) {
-        throwBadInput(where + "flags: " + e.what());
+        throw e.after(where + "flags: ");
     }
     return row;
 }

@@ -60,8 +60,8 @@ int run(const RenderOptions& o) {
     if (o.lightSizeGiven && o.scene.job.shading.shadows != ShadowMode::Soft)
         logWarning(kLightSizeUnused);
     const std::filesystem::path heightFile =
-        o.scene.heightFile ? *o.scene.heightFile : defaultHeightMapPath();
-    const HeightMap map = loadHeightMap(heightFile, o.scene.load);
+        o.scene.job.map.file ? *o.scene.job.map.file : defaultHeightMapPath();
+    const HeightMap map = loadHeightMap(heightFile, o.scene.job.map.load);
     if (o.compareReference && o.scene.job.tiles != glm::ivec2(1, 1) &&
         map.samples.size() * o.scene.job.tiles.x * o.scene.job.tiles.y > (std::size_t(1) << 26)) {
         throwBadInput(
@@ -69,7 +69,7 @@ int run(const RenderOptions& o) {
             "make, at most 67108864 samples (this one would have " +
             std::to_string(map.samples.size() * o.scene.job.tiles.x * o.scene.job.tiles.y) + ")");
     }
-    const std::optional<std::filesystem::path> albedoFile = albedoPath(o.scene);
+    const std::optional<std::filesystem::path> albedoFile = albedoPath(o.scene.job);
     const std::optional<AlbedoImage> albedo =
         albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
 

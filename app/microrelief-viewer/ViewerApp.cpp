@@ -60,12 +60,12 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.scene = options.scene;
     state_.vsync = options.vsync && options.frames == 0;
     state_.panelVisible = options.panel;
-    const std::filesystem::path file = options.scene.heightFile.value_or(defaultHeightMapPath());
-    map_ = std::make_shared<HeightMap>(loadHeightMap(file, options.scene.load));
+    const std::filesystem::path file = options.scene.job.map.file.value_or(defaultHeightMapPath());
+    map_ = std::make_shared<HeightMap>(loadHeightMap(file, options.scene.job.map.load));
     mapMaxHeight_ = map_->maxValue();  // once per map, not per frame
-    loadedWith_ = options.scene.load;
+    loadedWith_ = options.scene.job.map.load;
     // A bad albedo is a bad argument too: refused before any window opens.
-    const std::optional<std::filesystem::path> albedoFile = albedoPath(options.scene);
+    const std::optional<std::filesystem::path> albedoFile = albedoPath(options.scene.job);
     const std::optional<AlbedoImage> albedo =
         albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
     // A degenerate camera is a bad argument: refuse it before any window opens.
@@ -107,8 +107,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     if (albedo) renderer_->setAlbedo(&*albedo, albedoFile->string());
     state_.albedoName = albedoFile ? albedoFile->filename().string() : "";
 
-    if (state_.scene.heightFile)
-        state_.scene.heightFile = std::filesystem::absolute(*state_.scene.heightFile);
+    if (state_.scene.job.map.file)
+        state_.scene.job.map.file = std::filesystem::absolute(*state_.scene.job.map.file);
     state_.mapWidth = map_->width;
     state_.mapHeight = map_->height;
     state_.iterationBudget = renderer_->maxIterations();
@@ -359,7 +359,7 @@ void ViewerApp::handleMouse() {
 
 void ViewerApp::applyPanel(const PanelActions& a) {
     if (a.openMap) openMap(*a.openMap);
-    if (a.reloadMap) openMap(state_.scene.heightFile);
+    if (a.reloadMap) openMap(state_.scene.job.map.file);
     if (a.albedoChanged) applyAlbedo();
     if (a.heightScaleChanged) {
         renderer_->setHeightScale(state_.scene.job.heightScale);
@@ -623,7 +623,7 @@ std::vector<std::uint8_t> ViewerApp::readWindow(int& width, int& height) const {
 void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     const std::filesystem::path path = file.value_or(defaultHeightMapPath());
     try {
-        auto map = std::make_shared<HeightMap>(loadHeightMap(path, state_.scene.load));
+        auto map = std::make_shared<HeightMap>(loadHeightMap(path, state_.scene.job.map.load));
         renderer_->setHeightMap(*map, path.string(), state_.scene.job.base,
                                 state_.scene.job.interpolation, PyramidBuild::Gpu,
                                 state_.scene.job.tiles);
@@ -631,7 +631,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
         // The current map stays, and so do the options it was loaded with.
-        state_.scene.load = loadedWith_;
+        state_.scene.job.map.load = loadedWith_;
         state_.mapError = e.what();
         note(std::string("cannot open: ") + e.what());
         return;
@@ -646,8 +646,8 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         animated_->forgetMap();
         evaluateAnimation();
     }
-    loadedWith_ = state_.scene.load;
-    state_.scene.heightFile = file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
+    loadedWith_ = state_.scene.job.map.load;
+    state_.scene.job.map.file = file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
     state_.mapName = path.filename().string();
     state_.mapWidth = map_->width;
     state_.mapHeight = map_->height;
@@ -661,7 +661,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
 }
 
 void ViewerApp::applyAlbedo() {
-    const std::optional<std::filesystem::path> file = albedoPath(state_.scene);
+    const std::optional<std::filesystem::path> file = albedoPath(state_.scene.job);
     try {
         if (file) {
             const AlbedoImage albedo = loadAlbedo(*file);

@@ -85,19 +85,23 @@ void mapSection(ViewerState& s, PanelActions& actions) {
                                  ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SameLine();
     if ((ImGui::Button("Open") || entered) && !s.typedPath.empty()) actions.openMap = s.typedPath;
-    if (ImGui::InputInt("Channel", &s.scene.load.channel)) {
-        s.scene.load.channel = std::max(s.scene.load.channel, 0);
+    if (ImGui::InputInt("Channel", &s.scene.job.map.load.channel)) {
+        s.scene.job.map.load.channel = std::max(s.scene.job.map.load.channel, 0);
         actions.reloadMap = true;
     }
-    if (ImGui::Checkbox("Normalise to [0, 1]", &s.scene.load.normalize)) actions.reloadMap = true;
+    if (ImGui::Checkbox("Normalise to [0, 1]", &s.scene.job.map.load.normalize)) actions.reloadMap = true;
     if (ImGui::SliderFloat("Height scale", &s.scene.job.heightScale, 0.001f, 1.0f, "%.4f",
                            ImGuiSliderFlags_Logarithmic)) {
         s.scene.job.heightScale = std::max(s.scene.job.heightScale, 1e-4f);
         actions.heightScaleChanged = true;
     }
-    bool colours = !s.scene.noAlbedo;
+    AlbedoSource& albedo = s.scene.job.albedo;
+    bool colours = albedo.kind != AlbedoSource::Kind::None;
     if (ImGui::Checkbox("Colours (albedo)", &colours)) {
-        s.scene.noAlbedo = !colours;
+        // Off keeps the file, so that on brings it back.
+        albedo.kind = !colours              ? AlbedoSource::Kind::None
+                      : albedo.file.empty() ? AlbedoSource::Kind::Default
+                                            : AlbedoSource::Kind::File;
         actions.albedoChanged = true;
     }
     if (!s.albedoName.empty()) {

@@ -16,6 +16,7 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
 #include "microrelief/core/Text.h"
+#include "SceneOptions.h"
 
 namespace microrelief {
 
@@ -63,7 +64,7 @@ ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv,
         result.options = finish();
     } catch (const Error& e) {
         result.exitStatus = 2;
-        result.message = e.what();
+        result.message = e.message(flagName);
     }
     return result;
 }
@@ -100,7 +101,7 @@ int runProgram(const char* program, ParseResult<Options>&& parsed,
     try {
         return body(*parsed.options);
     } catch (const Error& e) {
-        return fail(e.exitStatus(), e.what());
+        return fail(exitStatusOf(e.kind()), e.message(flagName));
     } catch (const std::bad_alloc&) {
         // Where a file is at stake the library names it (an Error); this is the rest.
         return fail(1, "out of memory");

@@ -13,10 +13,63 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/render/AnimatedHeights.h"
 #include "microrelief/render/FloatLimits.h"
+#include "microrelief/scene/Scene.h"
 
 namespace microrelief {
+
+namespace {
+
+// The scene's fields and the flags that set them: each flag's name written once, here.
+struct FieldFlag {
+    const char* field;
+    const char* flag;
+};
+constexpr FieldFlag kFieldFlags[] = {
+    {"map.file", "--height"},
+    {"albedo", "--albedo"},
+    {"map.load.channel", "--channel"},
+    {"map.load.normalize", "--normalize"},
+    {"heightScale", "--height-scale"},
+    {"interpolation", "--interpolation"},
+    {"base", "--base"},
+    {"base.radius", "--radius"},
+    {"base.length", "--length"},
+    {"base.radii", "--radii"},
+    {"tiles", "--tile"},
+    {"animation", "--animate"},
+    {"time", "--time"},
+    {"camera.eye", "--eye"},
+    {"camera.target", "--target"},
+    {"camera.up", "--up"},
+    {"camera.fovyDegrees", "--fovy"},
+    {"size", "--size"},
+    {"model", "--model"},
+    {"shading.lightDirection", "--light"},
+    {"shading.lightPosition", "--light-position"},
+    {"shading.shadows", "--shadows"},
+    {"shading.lightSizeDegrees", "--light-size"},
+    {"method", "--method"},
+    {"method.steps", "--steps"},
+    {"method.pixelError", "--pixel-error"},
+    {"shading.view", "--view"},
+    {"background", "--background"},
+};
+
+// The flag of a field in the table (a programming error when there is none).
+const char* flag(const char* field) {
+    for (const FieldFlag& f : kFieldFlags)
+        if (std::string_view(f.field) == field) return f.flag;
+    std::abort();
+}
+
+}  // namespace
+
+std::string flagName(const std::string& field) {
+    for (const FieldFlag& f : kFieldFlags)
+        if (field == f.field) return f.flag;
+    return field;
+}
 
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
                                     std::size_t count, const std::string& what) {
@@ -98,12 +151,6 @@ std::string exactText(T value) {
     return exact ? shortest : toChars(value, std::numeric_limits<T>::max_digits10);
 }
 
-std::string vectorText(const glm::dvec3& v) {
-    std::ostringstream out;
-    out << v.x << ',' << v.y << ',' << v.z;
-    return out.str();
-}
-
 std::string exactVector(const glm::vec3& v) {
     return exactText(v.x) + ',' + exactText(v.y) + ',' + exactText(v.z);
 }
@@ -118,112 +165,126 @@ std::string exactVector(const glm::dvec3& v) {
     return exactText(v.x) + ',' + exactText(v.y) + ',' + exactText(v.z);
 }
 
-namespace {
 
-// A direction the shader normalises in float: not zero, and not so short that its
-// squared length underflows (render/FloatLimits.h).
-void checkDirection(const std::string& flag, const std::string& text, const glm::dvec3& v) {
-    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    if (largest == 0.0) throwBadInput(flag + " must not be zero");
-    if (largest < kMinDirectionComponent) {
-        throwBadInput(flag + " " + text + ": its largest component must be at least " +
-                      exactNumber(kMinDirectionComponent) + " (the shader normalises it in float)");
-    }
-}
-
-}  // namespace
-
-SceneFlags::SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load,
-                       RenderJob& job)
-    : heightFile_(heightFile),
-      load_(load),
-      job_(job),
-      eye_(vectorText(job.camera.eye)),
-      target_(vectorText(job.camera.target)),
-      up_(vectorText(job.camera.up)),
+// The flags' text seeded from the job's fields, written exactly, so that a parse that
+// gives some flags changes those fields and keeps the rest (a camera file's row over the
+// command line's scene); the defaults --help shows are these texts.
+SceneFlags::SceneFlags(RenderJob& job, bool withAlbedo)
+    : job_(job),
+      withAlbedo_(withAlbedo),
+      eye_(exactVector(job.camera.eye)),
+      target_(exactVector(job.camera.target)),
+      up_(exactVector(job.camera.up)),
       size_(std::to_string(job.width) + "x" + std::to_string(job.height)),
       method_(methodName(job.method.method)),
       view_(debugViewName(job.shading.view)),
-      background_(vectorText(glm::dvec3(job.background))) {}
+      background_(exactVector(job.background)) {
+    if (job.map.file) height_ = job.map.file->string();
+    if (job.albedo.kind == AlbedoSource::Kind::File) albedo_ = job.albedo.file.string();
+    if (job.albedo.kind == AlbedoSource::Kind::None) albedo_ = "none";
+    base_ = baseName(job.base);
+    if (job.base.kind == BaseKind::Cylinder) {
+        radius_ = job.base.radius;
+        length_ = job.base.length;
+    } else if (base_ == "sphere") {
+        radius_ = job.base.radii.x;
+    } else if (job.base.kind == BaseKind::Ellipsoid) {
+        radii_ = exactVector(job.base.radii);
+    }
+    interpolation_ = interpolationName(job.interpolation);
+    if (job.tiles != glm::ivec2(1, 1))
+        tile_ = std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y);
+    animate_ = job.animation;
+    if (!job.animation.empty()) time_ = job.time;
+    if (job.shading.lightPosition) {
+        lightPosition_ = exactVector(*job.shading.lightPosition);
+    } else if (job.shading.lightDirection != ShadingOptions{}.lightDirection) {
+        light_ = exactVector(job.shading.lightDirection);
+    }
+    shadows_ = shadowModeName(job.shading.shadows);
+    if (!job.model.isIdentity()) {
+        for (double value : job.model.rows()) model_ += (model_.empty() ? "" : ",") + exactNumber(value);
+    }
+}
 
 void SceneFlags::addMapAndCamera(CLI::App& app) {
-    app.add_option("--height", height_,
+    app.add_option(flag("map.file"), height_,
                    "Height map image (any format OpenImageIO reads); default: the bundled map");
-    if (albedoFile_) {
-        app.add_option("--albedo", albedo_,
+    if (withAlbedo_) {
+        app.add_option(flag("albedo"), albedo_,
                        "The map's colours: an image over its (u, v), any size (sRGB unless float), "
                        "or none; default: the bundled map's own with the bundled map");
     }
-    app.add_option("--channel", load_.channel, "Image channel holding the heights")
+    app.add_option(flag("map.load.channel"), job_.map.load.channel, "Image channel holding the heights")
         ->capture_default_str();
-    app.add_flag("--normalize", load_.normalize, "Map the map's [min, max] to [0, 1]");
-    app.add_option("--height-scale", job_.heightScale,
+    app.add_flag(flag("map.load.normalize"), job_.map.load.normalize, "Map the map's [min, max] to [0, 1]");
+    app.add_option(flag("heightScale"), job_.heightScale,
                    "World height of map value 1 (the map spans 1 unit)")
         ->capture_default_str();
-    app.add_option("--interpolation", interpolation_,
+    app.add_option(flag("interpolation"), interpolation_,
                    "The last level: bilinear, or biquadratic (the quadratic B-spline of the "
                    "samples: smooth)")
         ->capture_default_str();
-    app.add_option("--base", base_,
+    app.add_option(flag("base"), base_,
                    "Base surface the map is laid over: plane, cylinder (axis y), ellipsoid or "
                    "sphere (u wraps around the y axis)")
         ->capture_default_str();
-    app.add_option("--radius", radius_,
+    app.add_option(flag("base.radius"), radius_,
                    "Cylinder radius (default 0.3) or sphere radius (default 0.5), world units");
-    app.add_option("--length", length_, "Cylinder length along y (default 1), world units");
-    app.add_option("--radii", radii_, "Ellipsoid radii A,B,C along x, y, z (default 0.5,0.5,0.5)");
+    app.add_option(flag("base.length"), length_, "Cylinder length along y (default 1), world units");
+    app.add_option(flag("base.radii"), radii_, "Ellipsoid radii A,B,C along x, y, z (default 0.5,0.5,0.5)");
     app.add_option(
-        "--tile", tile_,
+        flag("tiles"), tile_,
         "Repeat the map N,M times across the base (N around a curved base), as the N x M "
         "larger image made by repeating it (default 1,1)");
-    app.add_option("--animate", animate_,
+    app.add_option(flag("animation"), animate_,
                    "An animated relief over the map's grid, evaluated on the GPU: waves, ripples, "
                    "or flood (the map under rising and falling water)");
-    app.add_option("--time", time_, "With --animate: the moment drawn, seconds (default 0)");
-    app.add_option("--eye", eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
-    app.add_option("--target", target_, "Point the camera looks at, x,y,z")->capture_default_str();
-    app.add_option("--up", up_, "Camera up direction x,y,z")->capture_default_str();
-    app.add_option("--fovy", job_.camera.fovyDegrees, "Vertical field of view in degrees")
+    app.add_option(flag("time"), time_, "With --animate: the moment drawn, seconds (default 0)");
+    app.add_option(flag("camera.eye"), eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
+    app.add_option(flag("camera.target"), target_, "Point the camera looks at, x,y,z")->capture_default_str();
+    app.add_option(flag("camera.up"), up_, "Camera up direction x,y,z")->capture_default_str();
+    app.add_option(flag("camera.fovyDegrees"), job_.camera.fovyDegrees, "Vertical field of view in degrees")
         ->capture_default_str();
-    app.add_option("--size", size_, "Picture size WIDTHxHEIGHT")->capture_default_str();
-    app.add_option("--model", model_,
+    app.add_option(flag("size"), size_, "Picture size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option(flag("model"), model_,
                    "Where the relief sits in the world: a 3 x 4 affine matrix, 12 numbers in rows "
                    "(m00,m01,m02,tx,m10,...,tz); default: the identity");
 }
 
 void SceneFlags::addShading(CLI::App& app) {
-    app.add_option("--light", light_,
+    app.add_option(flag("shading.lightDirection"), light_,
                    "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
-    app.add_option("--light-position", lightPosition_,
+    app.add_option(flag("shading.lightPosition"), lightPosition_,
                    "A point light at x,y,z (world) instead of the directional light");
-    app.add_option("--shadows", shadows_,
+    app.add_option(flag("shading.shadows"), shadows_,
                    "Self-shadows: off, hard (exact: a second trace towards the light) or soft (an "
                    "estimate for a round light of --light-size); multilevel and maxmip")
         ->capture_default_str();
-    app.add_option("--light-size", job_.shading.lightSizeDegrees,
+    app.add_option(flag("shading.lightSizeDegrees"), job_.shading.lightSizeDegrees,
                    "Soft shadows: the light's angular diameter in degrees (the sun's is 0.53)")
         ->capture_default_str();
     app.add_option(
-           "--method", method_,
+           flag("method"), method_,
            "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
            "normal, offset, steep, pom, relief, maxmip")
         ->capture_default_str();
     app.add_option(
-           "--steps", job_.method.steps,
+           flag("method.steps"), job_.method.steps,
            "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps")
         ->capture_default_str();
     app.add_option(
-           "--pixel-error", job_.method.pixelError,
+           flag("method.pixelError"), job_.method.pixelError,
            "multilevel: stop at pyramid levels whose windows project to less than this many pixels "
            "(0: exact)")
         ->capture_default_str();
     app.add_option(
-           "--view", view_,
+           flag("shading.view"), view_,
            "What the picture shows: shaded, or a debug view of the method: iterations (segments "
            "visited, heat map), level (pyramid level where the ray stopped), normal, depth, "
            "position")
         ->capture_default_str();
-    app.add_option("--background", background_, "Background colour r,g,b (linear, 0 to 1)")
+    app.add_option(flag("background"), background_, "Background colour r,g,b (linear, 0 to 1)")
         ->capture_default_str();
 }
 
@@ -285,78 +346,55 @@ glm::ivec2 parseTiles(const std::string& text) {
 }
 
 void SceneFlags::apply() {
-    if (!height_.empty()) heightFile_ = height_;
-    if (albedoFile_ && !albedo_.empty()) {
-        *noAlbedo_ = albedo_ == "none";
-        *albedoFile_ = *noAlbedo_ ? std::nullopt : std::optional<std::filesystem::path>(albedo_);
+    // The flags' text into the job's fields; each parse error names its flag. What is
+    // wrong with the values then is the scene's to say, field by field (validateScene).
+    if (!height_.empty()) job_.map.file = height_;
+    if (withAlbedo_ && !albedo_.empty()) {
+        job_.albedo = albedo_ == "none" ? AlbedoSource{AlbedoSource::Kind::None, {}}
+                                        : AlbedoSource{AlbedoSource::Kind::File, albedo_};
     }
     job_.base = parseBase(base_, radius_, length_, radii_);
     job_.interpolation = parseInterpolation(interpolation_);
     if (!tile_.empty()) job_.tiles = parseTiles(tile_);
-    if (!animate_.empty()) {
-        AnimatedHeights::checkName(animate_);
-        if (job_.tiles != glm::ivec2(1, 1))
-            throwBadInput("--animate and --tile: an animated height field does not tile");
-        job_.animation = animate_;
-    }
+    if (!animate_.empty()) job_.animation = animate_;
     if (time_) {
         if (animate_.empty()) throwBadInput("--time needs --animate NAME");
-        if (!(std::abs(*time_) <= kMaxAnimationSeconds))
-            throwBadInput("--time must be a number of seconds within +-1e9, got " +
-                          exactNumber(*time_));
         job_.time = *time_;
     }
-    job_.camera.eye = parseVectorFlag("--eye", eye_);
-    job_.camera.target = parseVectorFlag("--target", target_);
-    job_.camera.up = parseVectorFlag("--up", up_);
-    checkDirection("--up", up_, job_.camera.up);
+    job_.camera.eye = parseVectorFlag(flag("camera.eye"), eye_);
+    job_.camera.target = parseVectorFlag(flag("camera.target"), target_);
+    job_.camera.up = parseVectorFlag(flag("camera.up"), up_);
+    // The lights are checked in double, before they are stored in float (scene/Scene.h).
     if (!light_.empty()) {
-        const glm::dvec3 light = parseVectorFlag("--light", light_);
-        checkDirection("--light", light_, light);
+        const glm::dvec3 light = parseVectorFlag(flag("shading.lightDirection"), light_);
+        std::vector<FieldError> errors;
+        checkDirection(errors, "shading.lightDirection", light);
+        throwIfInvalid(errors);
         job_.shading.lightDirection = glm::vec3(light);
     }
     if (!lightPosition_.empty()) {
         if (!light_.empty()) throwBadInput("--light and --light-position are two lights: give one");
-        job_.shading.lightPosition = glm::vec3(parseVectorFlag("--light-position", lightPosition_));
+        const glm::dvec3 position = parseVectorFlag(flag("shading.lightPosition"), lightPosition_);
+        std::vector<FieldError> errors;
+        checkPoint(errors, "shading.lightPosition", position);
+        throwIfInvalid(errors);
+        job_.shading.lightPosition = glm::vec3(position);
     }
     job_.shading.shadows = parseShadowMode(shadows_);
-    if (!(job_.shading.lightSizeDegrees > 0.0f && job_.shading.lightSizeDegrees < 90.0f))
-        throwBadInput("--light-size must lie strictly between 0 and 90 degrees");
-    // Any side here; checkPictureSize states the limits, sides and pixels, in one message.
+    // Any side here; the scene states the limits, sides and pixels, in one message.
     parseSizeFlag(size_, job_.width, job_.height, 1 << 30);
-    checkPictureSize(job_.width, job_.height);
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
-    checkMethodSupportsBase(job_.method.method, job_.base);
-    checkMethodSupportsTiles(job_.method.method, job_.tiles);
-    if (job_.shading.shadows != ShadowMode::Off && !methodTracesTheSolid(job_.method.method)) {
-        throwBadInput(std::string("--shadows ") + shadowModeName(job_.shading.shadows) +
-                      " takes the exact methods, multilevel and maxmip (not --method " +
-                      methodName(job_.method.method) + ")");
-    }
-    if (job_.method.steps < 1 || job_.method.steps > 65536)
-        throwBadInput("--steps must lie in 1..65536");
-    job_.method.setSteps(job_.method.steps);
-    if (!(job_.method.pixelError >= 0.0f) || !std::isfinite(job_.method.pixelError)) {
-        throwBadInput("--pixel-error must be a number >= 0");
-    }
-    job_.background = glm::vec3(parseVectorFlag("--background", background_));
-    if (glm::any(glm::lessThan(job_.background, glm::vec3(0.0f))))
-        throwBadInput("--background must be >= 0");
-    if (!(job_.heightScale > 0.0f) || !std::isfinite(job_.heightScale)) {
-        throwBadInput("--height-scale must be a positive number");
-    }
-    if (!(job_.camera.fovyDegrees > 0.0 && job_.camera.fovyDegrees < 180.0)) {
-        throwBadInput("--fovy must lie strictly between 0 and 180 degrees");
-    }
-    if (load_.channel < 0) throwBadInput("--channel must be >= 0");
+    if (job_.method.steps >= 1 && job_.method.steps <= 65536) job_.method.setSteps(job_.method.steps);
+    job_.background = glm::vec3(parseVectorFlag(flag("background"), background_));
     if (!model_.empty()) {
         const std::vector<double> rows = parseNumberList(
-            "--model", model_, 12, "12 numbers: a 3 x 4 matrix in rows, comma-separated");
+            flag("model"), model_, 12, "12 numbers: a 3 x 4 matrix in rows, comma-separated");
         std::array<double, 12> m{};
         std::copy(rows.begin(), rows.end(), m.begin());
         job_.model = ModelTransform::fromRows(m);
     }
+    throwIfInvalid(validateScene(job_, job_));
 }
 
 std::string shellQuote(const std::string& text) {
@@ -369,12 +407,22 @@ std::string shellQuote(const std::string& text) {
     return quoted + "'";
 }
 
-std::optional<std::filesystem::path> albedoPath(const SceneOptions& options) {
-    if (options.noAlbedo) return std::nullopt;
-    if (options.albedoFile) return options.albedoFile;
+std::filesystem::path heightMapPath(const ReliefDesc& relief) {
+    return relief.map.file ? *relief.map.file : defaultHeightMapPath();
+}
+
+std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief) {
+    switch (relief.albedo.kind) {
+        case AlbedoSource::Kind::None:
+            return std::nullopt;
+        case AlbedoSource::Kind::File:
+            return relief.albedo.file;
+        case AlbedoSource::Kind::Default:
+            break;
+    }
     // The bundled map's colours go with its stones: not with a field that replaces them.
-    const std::string& animation = options.job.animation;
-    if (!options.heightFile && (animation.empty() || AnimatedHeights::showsTheMap(animation)))
+    if (relief.map.bundled() &&
+        (relief.animation.empty() || animatedFieldShowsTheMap(relief.animation)))
         return defaultAlbedoPath();
     return std::nullopt;
 }
@@ -382,67 +430,72 @@ std::optional<std::filesystem::path> albedoPath(const SceneOptions& options) {
 std::string renderCommandLine(const SceneOptions& o, const std::string& program) {
     const RenderJob& job = o.job;
     std::string line = program;
-    const auto flag = [&](const std::string& name, const std::string& value) {
-        line += " " + name + (value.empty() ? "" : " " + shellQuote(value));
+    // Each field's flag by name (kFieldFlags); `value` quoted, or after "=" where a
+    // leading minus must not read as a flag in any parser.
+    const auto add = [&](const char* field, const std::string& value) {
+        line += std::string(" ") + flag(field) + (value.empty() ? "" : " " + shellQuote(value));
     };
-    if (o.heightFile) flag("--height", o.heightFile->string());
-    if (o.albedoFile) flag("--albedo", o.albedoFile->string());
-    if (o.noAlbedo) flag("--albedo", "none");
-    if (o.load.channel != 0) flag("--channel", std::to_string(o.load.channel));
-    if (o.load.normalize) flag("--normalize", "");
-    flag("--height-scale", exactText(job.heightScale));
+    const auto assign = [&](const char* field, const std::string& value) {
+        line += std::string(" ") + flag(field) + "=" + value;
+    };
+    if (job.map.file) add("map.file", job.map.file->string());
+    if (job.albedo.kind == AlbedoSource::Kind::File) add("albedo", job.albedo.file.string());
+    if (job.albedo.kind == AlbedoSource::Kind::None) add("albedo", "none");
+    if (job.map.load.channel != 0) add("map.load.channel", std::to_string(job.map.load.channel));
+    if (job.map.load.normalize) add("map.load.normalize", "");
+    add("heightScale", exactText(job.heightScale));
     if (job.interpolation != Interpolation::Bilinear)
-        flag("--interpolation", interpolationName(job.interpolation));
+        add("interpolation", interpolationName(job.interpolation));
     if (job.tiles != glm::ivec2(1, 1))
-        flag("--tile", std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y));
+        add("tiles", std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y));
     const std::string base = baseName(job.base);
     if (job.base.kind == BaseKind::Cylinder) {
-        flag("--base", base);
-        flag("--radius", exactText(job.base.radius));
-        flag("--length", exactText(job.base.length));
+        add("base", base);
+        add("base.radius", exactText(job.base.radius));
+        add("base.length", exactText(job.base.length));
     } else if (base == "sphere") {
-        flag("--base", base);
-        flag("--radius", exactText(job.base.radii.x));
+        add("base", base);
+        add("base.radius", exactText(job.base.radii.x));
     } else if (job.base.kind == BaseKind::Ellipsoid) {
-        flag("--base", base);
-        line += " --radii=" + exactVector(job.base.radii);
+        add("base", base);
+        assign("base.radii", exactVector(job.base.radii));
     }
     if (!job.animation.empty()) {
-        flag("--animate", job.animation);
-        line += " --time=" + exactNumber(job.time);
+        add("animation", job.animation);
+        assign("time", exactNumber(job.time));
     }
     // "=" keeps a leading minus from reading as a flag in any parser.
-    line += " --eye=" + exactVector(job.camera.eye);
-    line += " --target=" + exactVector(job.camera.target);
-    line += " --up=" + exactVector(job.camera.up);
-    flag("--fovy", exactText(job.camera.fovyDegrees));
-    flag("--size", std::to_string(job.width) + "x" + std::to_string(job.height));
+    assign("camera.eye", exactVector(job.camera.eye));
+    assign("camera.target", exactVector(job.camera.target));
+    assign("camera.up", exactVector(job.camera.up));
+    add("camera.fovyDegrees", exactText(job.camera.fovyDegrees));
+    add("size", std::to_string(job.width) + "x" + std::to_string(job.height));
     if (!job.model.isIdentity()) {
         std::string rows;
         for (double value : job.model.rows())
             rows += (rows.empty() ? "" : ",") + exactNumber(value);
-        line += " --model=" + rows;
+        assign("model", rows);
     }
     if (job.shading.lightPosition) {
-        line += " --light-position=" + exactVector(*job.shading.lightPosition);
+        assign("shading.lightPosition", exactVector(*job.shading.lightPosition));
     } else {
-        line += " --light=" + exactVector(job.shading.lightDirection);
+        assign("shading.lightDirection", exactVector(job.shading.lightDirection));
     }
     if (job.shading.shadows != ShadowMode::Off)
-        flag("--shadows", shadowModeName(job.shading.shadows));
+        add("shading.shadows", shadowModeName(job.shading.shadows));
     // Whenever it is not the default, shadows or not: a camera-file row that turns soft
     // shadows on keeps the command line's light size.
     if (job.shading.shadows == ShadowMode::Soft ||
         job.shading.lightSizeDegrees != ShadingOptions{}.lightSizeDegrees)
-        flag("--light-size", exactText(job.shading.lightSizeDegrees));
-    flag("--method", methodName(job.method.method));
+        add("shading.lightSizeDegrees", exactText(job.shading.lightSizeDegrees));
+    add("method", methodName(job.method.method));
     const MethodSettings defaults;
-    if (job.method.steps != defaults.steps) flag("--steps", std::to_string(job.method.steps));
+    if (job.method.steps != defaults.steps) add("method.steps", std::to_string(job.method.steps));
     if (job.method.pixelError != defaults.pixelError)
-        flag("--pixel-error", exactText(job.method.pixelError));
-    flag("--view", debugViewName(job.shading.view));
+        add("method.pixelError", exactText(job.method.pixelError));
+    add("shading.view", debugViewName(job.shading.view));
     // Only when changed: the command stays short, and runs on renderers without the flag.
-    if (job.background != RenderJob{}.background) flag("--background", exactVector(job.background));
+    if (job.background != RenderJob{}.background) add("background", exactVector(job.background));
     return line;
 }
 

@@ -1,6 +1,9 @@
-// The flags that describe a view of a height map (scene-and-cli.md): the map, the camera
-// and the shading. microrelief-render and microrelief-viewer register them through this
-// one file, so the viewer's "copy as command" writes exactly what the renderer parses.
+// The flags that describe a view of a height map (scene-and-cli.md): the programs' names
+// for the fields of the library's scene values (scene/Scene.h: ReliefDesc, ViewDesc).
+// microrelief-render and microrelief-viewer register them through this one file, so the
+// viewer's "copy as command" writes exactly what the renderer parses; each flag's name is
+// written once, in the table of fields and flags (flagName), which also names the flag
+// in every error the library reports about a field.
 #pragma once
 
 #include <filesystem>
@@ -20,14 +23,13 @@ class App;
 namespace microrelief {
 
 struct SceneOptions {
-    std::optional<std::filesystem::path> heightFile;  // empty: the bundled default map
-    // The map's colours: a file, or none; unset: the bundled map's own colours with the
-    // bundled map, none with any other.
-    std::optional<std::filesystem::path> albedoFile;
-    bool noAlbedo = false;  // --albedo none
-    HeightMapLoadOptions load;
-    RenderJob job;  // camera, size, height scale, shading, background
+    RenderJob job;  // the relief (its map file, colours, base, ...) and the view of it
 };
+
+// The flag that sets a scene field ("camera.eye" -> "--eye"); a field no flag sets is
+// written as the field itself. What the programs print for {field} in the library's
+// errors (core/Error.h).
+std::string flagName(const std::string& field);
 
 // Registers the flags on a CLI11 app and turns their text into the options after the
 // parse. Two groups, so a program can place its own flags between them in --help.
@@ -35,13 +37,9 @@ class SceneFlags {
 public:
     // The targets hold the defaults shown in --help and receive the parsed values; they
     // must outlive the parse.
-    SceneFlags(std::optional<std::filesystem::path>& heightFile, HeightMapLoadOptions& load,
-               RenderJob& job);
-    explicit SceneFlags(SceneOptions& options)
-        : SceneFlags(options.heightFile, options.load, options.job) {
-        albedoFile_ = &options.albedoFile;
-        noAlbedo_ = &options.noAlbedo;
-    }
+    // `withAlbedo`: register --albedo too (the programs that draw colours).
+    explicit SceneFlags(RenderJob& job, bool withAlbedo = false);
+    explicit SceneFlags(SceneOptions& options) : SceneFlags(options.job, true) {}
 
     // --height --channel --normalize --height-scale --interpolation --base --radius --length
     // --radii --tile --animate --time --eye --target --up --fovy --size --model
@@ -50,18 +48,15 @@ public:
     // --background
     void addShading(CLI::App& app);
 
-    // After app.parse(): validates and fills the targets. Throws Error(BadInput) with a
-    // message naming the flag.
+    // After app.parse(): fills the job from the flags' text and validates it
+    // (validateScene). Throws Error(BadInput) with a message naming the flag.
     void apply();
 
 private:
-    std::optional<std::filesystem::path>& heightFile_;
-    HeightMapLoadOptions& load_;
     RenderJob& job_;
+    bool withAlbedo_;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
     std::string lightPosition_, shadows_ = "off", albedo_;
-    std::optional<std::filesystem::path>* albedoFile_ = nullptr;  // --albedo, where registered
-    bool* noAlbedo_ = nullptr;
     std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_, tile_;
     std::optional<double> radius_, length_, time_;
     std::string animate_;
@@ -71,10 +66,8 @@ private:
 // saying it expects `what`.
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
                                     std::size_t count, const std::string& what);
-// --tile's "N,M": each a whole number from 1 to kMaxTiles (the whole map's side in float
-// map coordinates stays exact to 2^-7 of a texel at 256 tiles of a 256 map: README,
-// "Tiling"); throws Error(BadInput).
-inline constexpr int kMaxTiles = 4096;
+// --tile's "N,M": each a whole number from 1 to kMaxTiles (scene/Scene.h); throws
+// Error(BadInput).
 glm::ivec2 parseTiles(const std::string& text);
 // "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.
 glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text);
@@ -88,10 +81,12 @@ std::string exactNumber(double value);
 // "x,y,z" with exactNumber() components.
 std::string exactVector(const glm::dvec3& v);
 
-// The albedo file `options` render with: --albedo's, or the bundled map's own with the
-// bundled map and no --albedo (unless --animate waves or ripples replaces its heights);
-// none for --albedo none or another map without one.
-std::optional<std::filesystem::path> albedoPath(const SceneOptions& options);
+// The height map file `relief` draws: its own, or the bundled default map.
+std::filesystem::path heightMapPath(const ReliefDesc& relief);
+// The albedo file `relief` draws with: its own, or the bundled map's with the bundled map
+// (unless an animated field, waves or ripples, replaces its heights); none for
+// AlbedoSource::Kind::None or another map without one.
+std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief);
 
 // The microrelief-render command line (without --out) that renders `options` again, every
 // value written exactly: `program --height FILE --height-scale 0.1 --eye x,y,z ...`.

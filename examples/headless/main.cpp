@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
         return run(parse(argc, argv));
     } catch (const Error& e) {
         std::fprintf(stderr, "relief-headless: error: %s\n", e.what());
-        return e.exitStatus();
+        return exitStatusOf(e.kind());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "relief-headless: error: %s\n", e.what());
         return 1;

@@ -72,7 +72,7 @@ BaseKind parseBaseKind(const std::string& name) {
     if (name == "plane") return BaseKind::Plane;
     if (name == "cylinder") return BaseKind::Cylinder;
     if (name == "ellipsoid" || name == "sphere") return BaseKind::Ellipsoid;
-    throwBadInput("unknown --base '" + name + "' (expected plane, cylinder, ellipsoid or sphere)");
+    throwBadInput("unknown {base} '" + name + "' (expected plane, cylinder, ellipsoid or sphere)");
 }
 
 std::string baseName(const BaseShape& shape) {
@@ -95,11 +95,11 @@ void validateBaseShape(const BaseShape& shape) {
     };
     switch (shape.kind) {
         case BaseKind::Cylinder:
-            positive(shape.radius, "--radius");
-            positive(shape.length, "--length");
+            positive(shape.radius, "{base.radius}");
+            positive(shape.length, "{base.length}");
             break;
         case BaseKind::Ellipsoid:
-            for (int axis = 0; axis < 3; ++axis) positive(shape.radii[axis], "--radii");
+            for (int axis = 0; axis < 3; ++axis) positive(shape.radii[axis], "{base.radii}");
             break;
         case BaseKind::Plane:
             break;

@@ -67,7 +67,7 @@ double HeightMap::surface(double x, double y, const MapAddressing& a,
 Interpolation parseInterpolation(const std::string& name) {
     if (name == "bilinear") return Interpolation::Bilinear;
     if (name == "biquadratic") return Interpolation::Biquadratic;
-    throwBadInput("unknown --interpolation '" + name + "' (expected bilinear or biquadratic)");
+    throwBadInput("unknown {interpolation} '" + name + "' (expected bilinear or biquadratic)");
 }
 
 const char* interpolationName(Interpolation interpolation) {
@@ -93,7 +93,7 @@ void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options,
             if (!std::isfinite(h)) {
                 throwBadInput(source +
                               ": the height map holds a non-finite value (NaN or Inf); "
-                              "--normalize cannot map it");
+                              "{map.load.normalize} cannot map it");
             }
             lo = std::min(lo, h);
             hi = std::max(hi, h);
@@ -112,8 +112,8 @@ void prepareHeights(HeightMap& map, const HeightMapLoadOptions& options,
         message << source << ": sample (" << i << ", " << j << ") is " << h
                 << "; heights must be finite and >= 0 ("
                 << (std::isfinite(h)
-                        ? "try --normalize to map [min, max] to [0, 1]"
-                        : "--normalize rescales finite maps only: repair the map first")
+                        ? "try {map.load.normalize} to map [min, max] to [0, 1]"
+                        : "{map.load.normalize} rescales finite maps only: repair the map first")
                 << ")";
         throwBadInput(message.str());
     }

@@ -20,7 +20,7 @@ HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOp
                       std::to_string(kMaxHeightMapChannels) + " a height map may have");
     }
     if (options.channel < 0 || options.channel >= spec.nchannels) {
-        throwBadInput(name + ": --channel " + std::to_string(options.channel) +
+        throwBadInput(name + ": {map.load.channel} " + std::to_string(options.channel) +
                       " is out of range; the image has " + std::to_string(spec.nchannels) +
                       " channel(s)");
     }

@@ -25,24 +25,19 @@ float phase(double speed, double seconds) {
 
 }  // namespace
 
-const std::vector<std::string>& AnimatedHeights::names() {
-    static const std::vector<std::string> list = {"waves", "ripples", "flood"};
-    return list;
-}
-
 void AnimatedHeights::checkName(const std::string& name) {
-    const auto& list = names();
+    const auto& list = animatedFieldNames();
     if (std::find(list.begin(), list.end(), name) != list.end()) return;
     std::string known;
     for (const std::string& n : list) known += (known.empty() ? "" : ", ") + n;
-    throwBadInput("unknown --animate '" + name + "' (expected " + known + ")");
+    throwBadInput("unknown {animation} '" + name + "' (expected " + known + ")");
 }
 
 AnimatedHeights::AnimatedHeights(const GL& gl, const std::filesystem::path& shaderDir,
                                  const std::string& name)
     : gl_(gl), name_(name) {
     checkName(name);
-    const auto& list = names();
+    const auto& list = animatedFieldNames();
     field_ = static_cast<int>(std::find(list.begin(), list.end(), name) - list.begin());
     const std::string version = "330 core";
     const gl::Shader vertex = gl::compileShader(

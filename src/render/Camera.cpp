@@ -22,16 +22,16 @@ double CameraFrame::pixelWidthPerUnit() const {
 CameraFrame resolveCamera(const Camera& camera, int width, int height, double sceneRadius) {
     if (width <= 0 || height <= 0) throwBadInput("the picture size must be positive");
     if (!(camera.fovyDegrees > 0.0 && camera.fovyDegrees < 180.0)) {
-        throwBadInput("--fovy must lie strictly between 0 and 180 degrees");
+        throwBadInput("{camera.fovyDegrees} must lie strictly between 0 and 180 degrees");
     }
     const glm::dvec3 view = camera.target - camera.eye;
     const double distance = glm::length(view);
     if (!(distance > 0.0) || !std::isfinite(distance))
-        throwBadInput("--eye and --target must differ");
+        throwBadInput("{camera.eye} and {camera.target} must differ");
     const glm::dvec3 forward = view / distance;
     const glm::dvec3 side = glm::cross(forward, camera.up);
     if (!(glm::length(side) > 1e-9 * glm::length(camera.up))) {
-        throwBadInput("--up must not be parallel to the view direction");
+        throwBadInput("{camera.up} must not be parallel to the view direction");
     }
     const glm::dvec3 right = glm::normalize(side);
     const glm::dvec3 up = glm::cross(right, forward);

@@ -21,15 +21,15 @@ std::string number(double value) {
 std::string baseFlags(const BaseShape& base) {
     switch (base.kind) {
         case BaseKind::Cylinder:
-            return "--base cylinder --radius " + number(base.radius) + " --length " +
+            return "{base} cylinder {base.radius} " + number(base.radius) + " {base.length} " +
                    number(base.length);
         case BaseKind::Ellipsoid:
-            return "--base ellipsoid --radii " + number(base.radii.x) + "," + number(base.radii.y) +
+            return "{base} ellipsoid {base.radii} " + number(base.radii.x) + "," + number(base.radii.y) +
                    "," + number(base.radii.z);
         case BaseKind::Plane:
             break;
     }
-    return "--base plane";
+    return "{base} plane";
 }
 
 // Texels per unit of the base's frame, the most over its axes: on the plane the map's
@@ -91,12 +91,12 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
     //    curved base s is a fraction of the radius; the same bound keeps the frame's
     //    radial arithmetic finite.
     if (!(top <= kMaxWorldCoordinate)) {
-        throwBadInput(source + ": the relief's top (--height-scale " + number(heightScale) +
+        throwBadInput(source + ": the relief's top ({heightScale} " + number(heightScale) +
                       " x the largest height " + number(maxHeight) + " = " + number(top) +
                       (plane ? " world units" : " radii") + ") is beyond the " +
                       number(kMaxWorldCoordinate) +
-                      " the renderer's float arithmetic holds; lower --height-scale, or use "
-                      "--normalize and a --height-scale of the relief's height");
+                      " the renderer's float arithmetic holds; lower {heightScale}, or use "
+                      "{map.load.normalize} and a {heightScale} of the relief's height");
     }
     //    The box as placed, on any base and through the model: its farthest corner. A
     //    cylinder of --length 1e8 loses 12 % of its hits to the proxy box's clipping in
@@ -115,7 +115,7 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
         }
         if (!(farthest <= kMaxWorldCoordinate)) {
             throwBadInput(source + ": the relief's box on " + baseFlags(base) +
-                          (model.isIdentity() ? "" : " placed by --model") + " reaches " +
+                          (model.isIdentity() ? "" : " placed by {model}") + " reaches " +
                           number(farthest) + " world units from the origin, beyond the " +
                           number(kMaxWorldCoordinate) +
                           " the renderer's float arithmetic holds (box corners, depth range and "
@@ -140,14 +140,14 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
         const double dxy = longest * texelsPerUnit, dh = longest / heightScale;
         const double solveLimit = std::ldexp(1.0, 58);
         if (maxHeight * dxy > solveLimit || dh > solveLimit) {
-            throwBadInput(source + ": heights up to " + number(maxHeight) + " at --height-scale " +
+            throwBadInput(source + ": heights up to " + number(maxHeight) + " at {heightScale} " +
                           number(heightScale) +
                           " overflow the shader's float patch solve (largest height x " +
-                          number(dxy) + " texels per ray unit, and 1 / --height-scale x " +
+                          number(dxy) + " texels per ray unit, and 1 / {heightScale} x " +
                           number(longest) + ", must stay below 2^58); " +
                           (model.isIdentity()
-                               ? "use --normalize and a --height-scale of the relief's height"
-                               : "--model shrinks the relief by " + number(model.smallestScale()) +
+                               ? "use {map.load.normalize} and a {heightScale} of the relief's height"
+                               : "{model} shrinks the relief by " + number(model.smallestScale()) +
                                      ", which lengthens the rays in its object space as much"));
         }
     }
@@ -166,8 +166,8 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
         const double limit = std::ldexp(1.0, 62);
         if (!(longestNormal <= limit && shortestNormal >= 1.0 / limit)) {
             throwBadInput(std::string(model.isIdentity()
-                                          ? "--height-scale " + number(heightScale)
-                                          : "--model (scales " + number(model.smallestScale()) +
+                                          ? "{heightScale} " + number(heightScale)
+                                          : "{model} (scales " + number(model.smallestScale()) +
                                                 " to " + number(model.largestScale()) + ")") +
                           ": the relief's normals on " + source + " reach lengths from " +
                           number(shortestNormal) + " to " + number(longestNormal) +
@@ -194,7 +194,7 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
     // The map alone at the limit leaves no eye anywhere: say so, not where the eye is.
     if (mapReach >= entryLimit) {
         throwBadInput(source + ": " + std::to_string(map.width) + " x " +
-                      std::to_string(map.height) + " texels (with --tile, the tiled whole) on " +
+                      std::to_string(map.height) + " texels (with {tiles}, the tiled whole) on " +
                       baseFlags(base) + " is " + number(mapReach) +
                       " texels across its frame, 2^18 = 262144 or more, beyond which float keeps "
                       "no ray's entry into the relief's box to 1/32 texel; use fewer tiles or a "
@@ -208,10 +208,10 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
                           std::abs(eye.y) * texelsPerUnit})
               : std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}) * texelsPerUnit;
     if (eyeTexels > entryLimit) {
-        throwBadInput("--eye " + number(camera.eye.x) + "," + number(camera.eye.y) + "," +
+        throwBadInput("{camera.eye} " + number(camera.eye.x) + "," + number(camera.eye.y) + "," +
                       number(camera.eye.z) + " is too far from " + source +
                       (plane ? "" : " on " + baseFlags(base)) +
-                      (model.isIdentity() ? "" : " (placed by --model)") + " for exact hits: " +
+                      (model.isIdentity() ? "" : " (placed by {model})") + " for exact hits: " +
                       number(eyeTexels) + " texels away (" + number(texelsPerUnit) + " a " +
                       (plane ? "world unit" : "unit of the base's frame") +
                       "), more than the 2^18 = 262144 at which float keeps the ray's entry into "
@@ -229,11 +229,11 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
     if (!(pixelStep >= stepLimit)) {
         const double least =
             2.0 * std::atan(stepLimit * frame.height / 2.0) * 180.0 / std::numbers::pi;
-        throwBadInput("--fovy " + number(camera.fovyDegrees) + " at a picture " +
+        throwBadInput("{camera.fovyDegrees} " + number(camera.fovyDegrees) + " at a picture " +
                       std::to_string(frame.height) +
                       " pixels high: neighbouring pixels' rays differ by " + number(pixelStep) +
-                      ", less than the 2^-19 that float keeps apart; use --fovy " +
-                      number(least * 1.001) + " or more, or a smaller --size");
+                      ", less than the 2^-19 that float keeps apart; use {camera.fovyDegrees} " +
+                      number(least * 1.001) + " or more, or a smaller {size}");
     }
 }
 

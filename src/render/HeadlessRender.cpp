@@ -14,7 +14,7 @@ namespace {
 
 void checkHeightScale(float heightScale) {
     if (!(heightScale > 0.0f) || !std::isfinite(heightScale)) {
-        throwBadInput("--height-scale must be a positive number");
+        throwBadInput("{heightScale} must be a positive number");
     }
 }
 
@@ -24,7 +24,7 @@ void checkPictureSize(int width, int height) {
     const double pixels = static_cast<double>(width) * height;
     if (width <= 0 || height <= 0 || width > kMaxPictureSide || height > kMaxPictureSide ||
         pixels > static_cast<double>(kMaxPicturePixels)) {
-        throwBadInput("--size " + std::to_string(width) + "x" + std::to_string(height) +
+        throwBadInput("{size} " + std::to_string(width) + "x" + std::to_string(height) +
                       " is outside the pictures this program renders: sides up to " +
                       std::to_string(kMaxPictureSide) + ", at most " +
                       std::to_string(kMaxPicturePixels) + " pixels (16384 x 16384; " +
@@ -80,7 +80,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         throwRuntime("HeadlessRenderer::render: the map was set for other tiles");
     if (!job.animation.empty() && job.tiles != glm::ivec2(1, 1)) {
         // The animated field is written on the GPU, whose pyramid builder bounds one map.
-        throwBadInput("--animate and --tile: an animated height field does not tile");
+        throwBadInput("{animation} and {tiles}: an animated height field does not tile");
     }
     if (job.base != renderer_->base()) renderer_->setBase(job.base);
     renderer_->setMethod(job.method);  // compiled once per method, then looked up

@@ -25,7 +25,7 @@ Enum parseName(const char* const (&names)[N], const std::string& name, const cha
 }  // namespace
 
 Method parseMethod(const std::string& name) {
-    return parseName<Method>(kMethodNames, name, "--method");
+    return parseName<Method>(kMethodNames, name, "{method}");
 }
 
 const char* methodName(Method method) {
@@ -47,12 +47,12 @@ bool methodRunsOnBase(Method method, const BaseShape& base) {
 
 void checkMethodSupportsBase(Method method, const BaseShape& base) {
     if (methodRunsOnBase(method, base)) return;
-    throwBadInput(std::string("--method ") + methodName(method) + " does not run on --base " +
+    throwBadInput(std::string("{method} ") + methodName(method) + " does not run on {base} " +
                   baseName(base) + " (curved bases take multilevel, maxmip, pom and relief)");
 }
 
 ShadowMode parseShadowMode(const std::string& name) {
-    return parseName<ShadowMode>(kShadowModeNames, name, "--shadows");
+    return parseName<ShadowMode>(kShadowModeNames, name, "{shading.shadows}");
 }
 
 const char* shadowModeName(ShadowMode mode) {
@@ -62,12 +62,12 @@ const char* shadowModeName(ShadowMode mode) {
 void checkMethodSupportsTiles(Method method, glm::ivec2 tiles) {
     if (method != Method::MaxMip || tiles == glm::ivec2(1, 1)) return;
     throwBadInput(
-        "--method maxmip does not take --tile (its quadtree is the map's own; the "
+        "{method} maxmip does not take {tiles} (its quadtree is the map's own; the "
         "multilevel method and the step-based peers do)");
 }
 
 DebugView parseDebugView(const std::string& name) {
-    return parseName<DebugView>(kDebugViewNames, name, "--view");
+    return parseName<DebugView>(kDebugViewNames, name, "{shading.view}");
 }
 
 const char* debugViewName(DebugView view) {

@@ -41,12 +41,12 @@ ModelTransform::ModelTransform(const glm::dmat4& objectToWorld) : objectToWorld_
     for (int c = 0; c < 4; ++c) {
         for (int r = 0; r < 4; ++r) {
             if (!std::isfinite(objectToWorld[c][r]))
-                throwBadInput("--model: the matrix holds a value that is not finite");
+                throwBadInput("{model}: the matrix holds a value that is not finite");
         }
     }
     if (objectToWorld[0][3] != 0.0 || objectToWorld[1][3] != 0.0 || objectToWorld[2][3] != 0.0 ||
         objectToWorld[3][3] != 1.0) {
-        throwBadInput("--model: not an affine transform (its last row must be 0, 0, 0, 1)");
+        throwBadInput("{model}: not an affine transform (its last row must be 0, 0, 0, 1)");
     }
     const glm::dmat3 linear(objectToWorld);
     const glm::dmat3 inverse = glm::inverse(linear);
@@ -56,7 +56,7 @@ ModelTransform::ModelTransform(const glm::dmat4& objectToWorld) : objectToWorld_
         for (int r = 0; r < 3; ++r) finiteInverse = finiteInverse && std::isfinite(inverse[c][r]);
     if (determinant == 0.0 || !finiteInverse) {
         throwBadInput(
-            "--model: the matrix is singular (it flattens the relief; its 3 x 3 part must "
+            "{model}: the matrix is singular (it flattens the relief; its 3 x 3 part must "
             "be invertible)");
     }
     largestScale_ = largestSingularValue(linear);
@@ -65,7 +65,7 @@ ModelTransform::ModelTransform(const glm::dmat4& objectToWorld) : objectToWorld_
     // loses the relief: not "singular" (its determinant may be 1).
     const double condition = largestScale_ / smallestScale_;
     if (!(condition <= kMaxModelCondition)) {
-        throwBadInput("--model: the matrix is ill-conditioned (condition number " +
+        throwBadInput("{model}: the matrix is ill-conditioned (condition number " +
                       number(condition) + ": it scales one direction " + number(condition) +
                       " times more than another; at most " + number(kMaxModelCondition) +
                       ", beyond which its inverse loses the relief to rounding)");

@@ -31,7 +31,7 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
     gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
     const int limit = std::min({maxSize, maxViewport[0], maxViewport[1]});
     if (width <= 0 || height <= 0 || width > limit || height > limit) {
-        throwBadInput("--size " + std::to_string(width) + "x" + std::to_string(height) +
+        throwBadInput("{size} " + std::to_string(width) + "x" + std::to_string(height) +
                       " is outside what this GL renders (1 to " + std::to_string(limit) +
                       " per side)");
     }

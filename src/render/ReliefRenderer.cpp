@@ -92,7 +92,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     validateBaseShape(base);
     checkMethodSupportsBase(method_.method, base);
     checkMethodSupportsTiles(method_.method, tiles);
-    if (tiles.x < 1 || tiles.y < 1) throwBadInput("--tile: counts must be at least 1");
+    if (tiles.x < 1 || tiles.y < 1) throwBadInput("{tiles}: counts must be at least 1");
     // Both throw before anything changes: the program is compiled (or looked up) first,
     // the textures are made before the old ones go.
     program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,

@@ -22,19 +22,21 @@
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/image/ImageFile.h"
+#include "microrelief/scene/Scene.h"
 
 using namespace microrelief;
 
 namespace {
 
-// The message of the Error(BadInput) that `f` throws; fails the test if it throws none.
+// The message of the Error(BadInput) that `f` throws, its fields named by their flags as
+// microrelief-render prints it; fails the test if it throws none.
 template <class F>
 std::string badInputMessage(F&& f) {
     try {
         f();
     } catch (const Error& e) {
         EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
-        return e.what();
+        return e.message(flagName);
     }
     ADD_FAILURE() << "no error thrown";
     return {};
@@ -329,15 +331,15 @@ TEST(CameraFile, ReadsJsonLines) {
     EXPECT_EQ(path[1].scene.job.camera.target, glm::dvec3(0.5, -0.25, 1e-3));
     EXPECT_EQ(path[1].scene.job.camera.up, base.job.camera.up);
     EXPECT_EQ(path[1].scene.job.shading.view, DebugView::Normal);
-    ASSERT_TRUE(path[1].scene.heightFile);
-    EXPECT_EQ(*path[1].scene.heightFile, "m\xc3\xa4p.png");
+    ASSERT_TRUE(path[1].scene.job.map.file);
+    EXPECT_EQ(*path[1].scene.job.map.file, "m\xc3\xa4p.png");
     EXPECT_EQ(path[1].origin, "cams.jsonl: line 3 (frame 1)");
 }
 
 TEST(CameraFile, RowFlagsGoOnTopOfTheCommandLinesSceneExactly) {
     SceneOptions base = baseScene();
-    base.heightFile = "maps/a.png";
-    base.load.normalize = true;
+    base.job.map.file = "maps/a.png";
+    base.job.map.load.normalize = true;
     base.job.method.setSteps(100);
     base.job.shading.lightSizeDegrees = 5.0f;  // used only once a row turns soft shadows on
     const std::string text = kColumns +
@@ -357,14 +359,14 @@ TEST(CameraFile, RowFlagsGoOnTopOfTheCommandLinesSceneExactly) {
     // What the row leaves alone is the command line's, bit for bit: the background's
     // nine digits, the light of the other rows, the map and its load options.
     EXPECT_EQ(a.background, base.job.background);
-    EXPECT_EQ(*path[0].scene.heightFile, "maps/a.png");
-    EXPECT_TRUE(path[0].scene.load.normalize);
+    EXPECT_EQ(*path[0].scene.job.map.file, "maps/a.png");
+    EXPECT_TRUE(path[0].scene.job.map.load.normalize);
     EXPECT_EQ(a.method.steps, 100);
     EXPECT_EQ(a.camera.fovyDegrees, base.job.camera.fovyDegrees);
     const SceneOptions& b = path[1].scene;
-    EXPECT_EQ(*b.heightFile, "maps/b.png");
-    EXPECT_EQ(b.load.channel, 1);
-    EXPECT_TRUE(b.load.normalize);
+    EXPECT_EQ(*b.job.map.file, "maps/b.png");
+    EXPECT_EQ(b.job.map.load.channel, 1);
+    EXPECT_TRUE(b.job.map.load.normalize);
     EXPECT_EQ(b.job.width, 32);
     EXPECT_EQ(b.job.height, 16);
     EXPECT_EQ(b.job.shading.lightDirection, base.job.shading.lightDirection);
@@ -514,6 +516,17 @@ TEST(CameraFile, CameraFlagsAreExact) {
     EXPECT_EQ(cameraFlags(c),
               "--eye=0.30000000000000004,-1e-07,0.3333333333333333 --target=0,-0.03,0 "
               "--up=0,0,-1 --fovy 37.5");
+}
+
+// A message of the library names scene fields; microrelief-render prints each as its flag.
+// Every field has one but the samples in memory, which only a library user can give.
+TEST(SceneFlags, EveryFieldAMessageMayNameHasAFlag) {
+    for (const std::string& field : sceneFields()) {
+        if (field == "map.samples") continue;
+        EXPECT_EQ(flagName(field).rfind("--", 0), 0u) << field << " has no flag";
+    }
+    EXPECT_EQ(Error(ErrorKind::BadInput, "{camera.eye} and {camera.target} must differ").message(flagName),
+              "--eye and --target must differ");
 }
 
 // ---- CSV, manifest, progress ----

@@ -90,7 +90,7 @@ TEST(HeightMapLoad, ChannelSelectsTheChannel) {
     EXPECT_FLOAT_EQ(map.samples[1], 0.6f);
     options.channel = 3;
     const std::string message = badInputMessage([&] { loadHeightMap(dir / "rgb.exr", options); });
-    EXPECT_NE(message.find("--channel 3"), std::string::npos) << message;
+    EXPECT_NE(message.find("map.load.channel 3"), std::string::npos) << message;
     EXPECT_NE(message.find("3 channel"), std::string::npos) << message;
 }
 
@@ -119,7 +119,7 @@ TEST(HeightMapLoad, NegativeValueIsRefusedWithAHint) {
     const std::string message = badInputMessage([&] { loadHeightMap(dir / "neg.exr"); });
     EXPECT_NE(message.find("neg.exr"), std::string::npos) << message;
     EXPECT_NE(message.find("(1, 0)"), std::string::npos) << message;
-    EXPECT_NE(message.find("--normalize"), std::string::npos) << message;
+    EXPECT_NE(message.find("map.load.normalize"), std::string::npos) << message;
 }
 
 TEST(HeightMapLoad, NanAndInfAreRefused) {

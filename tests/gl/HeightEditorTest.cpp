@@ -216,7 +216,7 @@ TEST_F(Sculpting, AnimatedReliefIsRebuiltEveryFrameAndTracedExactly) {
     const HeightMap map = synth::cobbles(61, 47, 2);
     const Camera view = test::orbitCamera(30.0, 40.0, 1.5);
     for (const BaseShape& base : {BaseShape::plane(), BaseShape::sphere()}) {
-        for (const std::string& name : AnimatedHeights::names()) {
+        for (const std::string& name : animatedFieldNames()) {
             const std::string what = name + " on the " + baseName(base);
             OffscreenTarget target(gl(), 80, 80);
             ReliefRenderer renderer(gl(), shaderDirectory());

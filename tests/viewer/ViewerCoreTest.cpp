@@ -145,9 +145,9 @@ ViewerOptions parseWords(std::vector<std::string> words) {
 
 TEST(CopyAsCommand, TheRenderCommandLineReadsBackExactly) {
     SceneOptions scene;
-    scene.heightFile = "/maps/rock.exr";
-    scene.load.channel = 2;
-    scene.load.normalize = true;
+    scene.job.map.file = "/maps/rock.exr";
+    scene.job.map.load.channel = 2;
+    scene.job.map.load.normalize = true;
     scene.job.heightScale = 0.0734f;
     // Values a drag produces: no short decimal form.
     scene.job.camera.eye = {0.1 + 1.0 / 3.0, -std::sqrt(2.0) / 7.0, 1e-7 * M_PI};
@@ -167,9 +167,9 @@ TEST(CopyAsCommand, TheRenderCommandLineReadsBackExactly) {
 
     const std::string line = renderCommandLine(scene, "microrelief-viewer");
     const SceneOptions back = parseWords(splitWords(line)).scene;
-    EXPECT_EQ(back.heightFile, scene.heightFile);
-    EXPECT_EQ(back.load.channel, 2);
-    EXPECT_TRUE(back.load.normalize);
+    EXPECT_EQ(back.job.map.file, scene.job.map.file);
+    EXPECT_EQ(back.job.map.load.channel, 2);
+    EXPECT_TRUE(back.job.map.load.normalize);
     EXPECT_EQ(back.job.heightScale, scene.job.heightScale);
     EXPECT_EQ(back.job.camera.eye, scene.job.camera.eye) << line;
     EXPECT_EQ(back.job.camera.target, scene.job.camera.target) << line;
@@ -189,7 +189,7 @@ TEST(CopyAsCommand, TheRenderCommandLineReadsBackExactly) {
 
 TEST(CopyAsCommand, DefaultsStayOffTheLineAndPathsAreQuoted) {
     SceneOptions scene;
-    scene.heightFile = "/my maps/it's.png";
+    scene.job.map.file = "/my maps/it's.png";
     const std::string line = renderCommandLine(scene);
     EXPECT_EQ(line.rfind("microrelief-render ", 0), 0u) << line;
     EXPECT_NE(line.find("--height '/my maps/it'\\''s.png'"), std::string::npos) << line;

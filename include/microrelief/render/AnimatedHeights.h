@@ -15,24 +15,18 @@
 #include <glm/glm.hpp>
 
 #include "microrelief/gl/Objects.h"
+#include "microrelief/scene/Scene.h"
 
 namespace microrelief {
 
 class ReliefRenderer;
 
-// The largest |time| an animated relief is drawn at, in seconds (about 32 years): its
-// phases are reduced on the host in double, whose time is then exact to 1.2e-7 s.
-constexpr double kMaxAnimationSeconds = 1e9;
 
 class AnimatedHeights {
 public:
-    // The fields' names, in the order above.
-    static const std::vector<std::string>& names();
-    // Throws Error(BadInput), naming --animate and the names, for an unknown one.
+    // The fields (scene/Scene.h: animatedFieldNames, animatedFieldShowsTheMap).
+    // Throws Error(BadInput), naming the field and the names, for an unknown one.
     static void checkName(const std::string& name);
-    // Whether the field shows the map's own heights (flood) rather than replacing them
-    // (waves, ripples): the map's colours then still belong on it.
-    static bool showsTheMap(const std::string& name) { return name == "flood"; }
 
     // Compiles the field's pass from `shaderDir`. Throws Error.
     AnimatedHeights(const GL& gl, const std::filesystem::path& shaderDir, const std::string& name);

@@ -14,34 +14,18 @@
 #include "microrelief/render/ModelTransform.h"
 #include "microrelief/render/OffscreenTarget.h"
 #include "microrelief/render/ReliefRenderer.h"
+#include "microrelief/scene/Scene.h"
 
 namespace microrelief {
 
-// The largest picture renderHeadless makes, refused up front beyond: sides up to 65536
-// and at most 16384 x 16384 pixels, which the frame holds in memory at
-// kFrameBytesPerPixel (colour, the position AOV, the statistics and the shadow: 10 GiB at the
-// limit). Larger than the GL's own limits, it is drawn in tiles of kDefaultTileSide.
-inline constexpr int kMaxPictureSide = 65536;
-inline constexpr long long kMaxPicturePixels = 16384LL * 16384;
-inline constexpr int kFrameBytesPerPixel = 4 + 16 + 16 + 4;
+// Pictures larger than kDefaultTileSide (or the GL's limits) are drawn in tiles of it.
 inline constexpr int kDefaultTileSide = 4096;
 
-struct RenderJob {
-    Camera camera;
-    int width = 1280, height = 720;
-    float heightScale = 0.1f;
-    BaseShape base;  // the surface the map is laid over (--base, --radius, --length, --radii)
-    Interpolation interpolation = Interpolation::Bilinear;  // the last level (--interpolation)
-    ModelTransform model;    // where the relief sits in the world (--model)
-    glm::ivec2 tiles{1, 1};  // the map repeated N x M times across the base (--tile)
-    ShadingOptions shading;
-    MethodSettings method;
-    glm::vec3 background{0.11f, 0.12f, 0.14f};  // linear RGB
-    int tileSide = 0;  // 0: kDefaultTileSide (or the GL's limit, if lower); tests set less
-    // --animate NAME, --time T: the heights of an animated field (render/AnimatedHeights.h)
-    // at T seconds, evaluated on the GPU over the map's grid; empty: the map's own.
-    std::string animation;
-    double time = 0.0;
+// A picture to render: the relief (what it is and where it lies) and the view of it
+// (scene/Scene.h). The heights themselves are HeadlessRenderer's (setHeightMap), or
+// renderHeadless's argument.
+struct RenderJob : ReliefDesc, ViewDesc {
+    int tileSide = 0;  // 0: kDefaultTileSide (or the GL's limit, if lower)
 };
 
 struct HeadlessResult {

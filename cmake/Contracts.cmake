@@ -12,8 +12,8 @@
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
 
 set(MICRORELIEF_SHARED_CONSTANTS
-  multilevel_trace.glsl:MICRORELIEF_MAX_DEPTH:kMaxDepth
-  multilevel_trace.glsl:MICRORELIEF_LEAF_TEXELS:kLeafTexels
+  segment_walk.glsl:MICRORELIEF_MAX_DEPTH:kMaxDepth
+  segment_walk.glsl:MICRORELIEF_LEAF_TEXELS:kLeafTexels
   leaf_walk.glsl:MICRORELIEF_CELL_DEPTH:kCellDepth
   leaf_walk.glsl:MR_BIQUADRATIC_FINAL_FOOTPRINT:kBiquadraticFinalFootprint
   base_curved.glsl:MR_CURVED_FINAL_LENGTH:kCurvedFinalLength

@@ -19,9 +19,9 @@
 // surface (mr_baseFootprint): on the plane the ends of the segment, on a curved base bounds
 // of the curve the segment's path draws in (X, Y, h).
 //
-// GLSL has no recursion. A segment is named by its depth d and index k along the
-// root (t range [k, k+1] / 2^d of the root's), and the in-order walk needs no stack:
-// after a segment is done, k + 1 names the next one at depth d, or, halved, its parent.
+// The walk's mechanics (naming a segment by depth and index, placing it, its footprint and
+// bound, the leaf test, descending, stepping on) are segment_walk.glsl's, shared with the
+// soft shadow (shadow.glsl); what it does with each segment is here.
 #ifndef MICRORELIEF_MULTILEVEL_TRACE_GLSL
 #define MICRORELIEF_MULTILEVEL_TRACE_GLSL
 
@@ -32,42 +32,8 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 #include "relief_query.glsl"
+#include "segment_walk.glsl"
 #include "texture_reads.glsl"
-
-// Deeper than any footprint needs (2^24 texels); segment ends stay exact in float.
-#ifndef MICRORELIEF_MAX_DEPTH
-#define MICRORELIEF_MAX_DEPTH 24
-#endif
-
-// The subdivision stops at segments whose footprint is at most this many texels wide and
-// solves them exactly against the patches they cross (mr_baseIntersectLeaf). 1 is the
-// paper's order (down to the finest level); a few texels cost fewer segments and fewer
-// leaves for the same exact hit (README, "Performance": 4 was the best across map sizes).
-#ifndef MICRORELIEF_LEAF_TEXELS
-#define MICRORELIEF_LEAF_TEXELS 4.0
-#endif
-
-// A segment's bound when its parent's is not known (the root, and a near half reached
-// from the far half before it).
-const float MR_NO_BOUND = 3.4e38;
-
-// The walk past segment (depth, index), done with: on to index + 1 at this depth. After
-// a near half that is its sibling, under the same parent. After a far half it is a near
-// half under another parent, whose bound is not known, and the walk climbs to that
-// parent, twice as long, when `climb` says so. False past the root's end.
-bool mr_nextSegment(inout int depth, inout uint index, inout float parentBound, bool climb) {
-    bool farHalf = (index & 1u) == 1u;
-    index += 1u;
-    if ((index >> depth) != 0u) return false;
-    if (farHalf) {
-        parentBound = MR_NO_BOUND;
-        if (climb) {
-            index >>= 1;
-            depth -= 1;
-        }
-    }
-    return true;
-}
 
 // The binary subdivision of the segment start + t dir, t in [0, span] (`floorExit`: a ray
 // that leaves the plane's box through its floor); tStart is the segment's distance from
@@ -82,14 +48,7 @@ bool mr_nextSegment(inout int depth, inout uint index, inout float parentBound, 
 // for its leaves once per outer pass.
 void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights, vec3 start,
                          vec3 dir, float span, float tStart, bool floorExit, inout mr_ReliefHit hit) {
-    // Segment ends as integer positions along the root in units of 2^-MAX_DEPTH: the
-    // float conversions and the power-of-two scale are exact, so neighbouring segments
-    // share their end parameter bit for bit and no gap can open between them.
-    const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
-    int depth = 0;
-    uint index = 0u;
-    // A bound over the parent's path, so over this segment's too (MR_NO_BOUND: not known).
-    float parentBound = MR_NO_BOUND;
+    mr_SegmentWalk walk = mr_segmentWalk();
     // The outcome, reported after the loops (which keeps their bodies small): a hit at
     // tHit >= 0, solved exactly on the patch `corners` of `cell` or else taken as is.
     bool finished = false, solved = false;
@@ -97,59 +56,38 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
     mr_ReliefPatch corners;
     ivec2 cell;
     int iteration = 0;
-    float ta = 0.0, tb = 0.0;  // the current segment
-    float leafBound = 0.0;     // the bound of the leaf the inner loop stopped at
-    // The last segment's ends and what the footprint needs of them (mr_baseEnd, curved bases:
-    // transcendental): the walk's next segment starts where the last one started (its
-    // near half) or ended.
-    float lastA = -1.0, lastB = -1.0;
-    vec3 endA = vec3(0.0), endB = vec3(0.0);
+    float leafBound = 0.0;  // the bound of the leaf the inner loop stopped at
     while (!finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
         while (iteration < query.maxIterations) {
             iteration += 1;
-            int shift = MICRORELIEF_MAX_DEPTH - depth;
-            ta = span * (float(index << shift) * kUnit);
-            tb = span * (float((index + 1u) << shift) * kUnit);
-#if MICRORELIEF_BASE != 0
-            vec3 ea = ta == lastA ? endA : ta == lastB ? endB : mr_baseEnd(relief, start + ta * dir);
-            vec3 eb = tb == lastB ? endB : mr_baseEnd(relief, start + tb * dir);
-            lastA = ta;
-            lastB = tb;
-            endA = ea;
-            endB = eb;
-#else
-            vec3 ea = start + ta * dir, eb = start + tb * dir;  // on the plane, the ends are all
-#endif
-            mr_BaseFootprint footprint = mr_baseFootprintOf(relief, start, dir, ta, tb, ea, eb);
+            mr_BaseFootprint footprint = mr_walkFootprint(relief, walk, start, dir, span);
             // A segment down to the floor (h = 0, in the solid) may hit; one above its
-            // parent's bound cannot; any other is bounded by one window of the pyramid at
-            // the level its footprint chooses (paper, fig. 6), two where a curved base's
-            // footprint crosses the seam. Only a segment that ends where the ray leaves
+            // parent's bound cannot, and needs no fetch; any other is bounded by the
+            // pyramid (mr_walkBound). Only a segment that ends where the ray leaves
             // the plane's box through the floor reaches it; that is tested exactly, since
             // the height there rounds to either side of 0.
-            bool mayHit = floorExit && tb == span;
+            bool mayHit = floorExit && walk.tb == span;
             int level = -1;
-            float bound = parentBound;
-            if (!mayHit && footprint.lowest <= parentBound) {
-                bound = min(bound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level));
+            float bound = walk.parentBound;
+            if (!mayHit && footprint.lowest <= walk.parentBound) {
+                bound = mr_walkBound(relief, windows, walk, footprint, level);
                 hit.stopLevel = level;
                 mayHit = footprint.lowest <= bound;
             }
             if (mayHit) {
-                if (query.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= query.lodCone * (tStart + ta)) {
+                if (query.lodCone > 0.0 && level >= 0 && exp2(float(level + 1)) <= query.lodCone * (tStart + walk.ta)) {
                     // Accuracy-controlled level of detail (paper, section II: "under
                     // criterion of required accuracy"): the window read, 2^(level+1)
                     // texels wide, projects to less than the tolerated pixel error, so its
                     // max box stands for the surface here: the hit is where the ray comes
                     // down to it.
-                    tHit = mr_baseDescendTo(relief, start, dir, ta, tb, bound);
+                    tHit = mr_baseDescendTo(relief, start, dir, walk.ta, walk.tb, bound);
                     finished = true;
                     break;
                 }
-                vec2 extents = footprint.hi - footprint.lo;
-                if (max(extents.x, extents.y) <= float(MICRORELIEF_LEAF_TEXELS) || depth >= MICRORELIEF_MAX_DEPTH) {
+                if (mr_walkAtLeaf(walk, footprint)) {
                     atLeaf = true;
                     leafBound = bound;
                     break;
@@ -157,10 +95,7 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
                 // Descend into the near half (eq. 8), or straight into the far half when
                 // the near one lies wholly above this segment's bound (a falling ray that
                 // reaches the bound only past the midpoint).
-                depth += 1;
-                index *= 2u;
-                parentBound = bound;
-                if (mr_baseLowest(relief, start, dir, ta, 0.5 * (ta + tb)) > bound) index += 1u;
+                mr_walkDescend(walk, bound, mr_baseLowest(relief, start, dir, walk.ta, 0.5 * (walk.ta + walk.tb)) > bound);
                 continue;
             }
             // Discarded. After a far half the walk climbs when the segment cleared its
@@ -169,18 +104,18 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
             // surface it stays at this depth. (The paper's recursion would climb to the
             // coarsest segment starting there, and so near the surface come back down
             // through levels whose bounds seldom reject.)
-            if (!mr_nextSegment(depth, index, parentBound, footprint.lowest - bound > 2.0 * footprint.drop)) {
+            if (!mr_walkNext(walk, footprint.lowest - bound > 2.0 * footprint.drop)) {
                 finished = true;
                 break;
             }
         }
         if (!atLeaf) break;  // finished, or out of iterations
         // No hit before the ray comes down to the leaf's bound: solve from there.
-        float tFrom = mr_baseDescendTo(relief, start, dir, ta, tb, leafBound);
-        tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, tb, corners, cell);
+        float tFrom = mr_baseDescendTo(relief, start, dir, walk.ta, walk.tb, leafBound);
+        tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, walk.tb, corners, cell);
         if (tHit >= 0.0) {
             finished = solved = true;
-        } else if (!mr_nextSegment(depth, index, parentBound, false)) {
+        } else if (!mr_walkNext(walk, false)) {
             finished = true;
         }
     }

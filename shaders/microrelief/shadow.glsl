@@ -14,6 +14,7 @@
 #include "relief_hit.glsl"
 #include "relief_map.glsl"
 #include "relief_query.glsl"
+#include "segment_walk.glsl"
 #include "texture_reads.glsl"
 
 // How far above the surface a shadow ray starts, in map units of height (the plane's h;
@@ -91,9 +92,12 @@ float mr_diskAbove(float x) {
 // over distances (`heightToObject`: object units per map unit of height; `objectPerT`: the
 // object length of the ray's direction).
 //
-// The walk is the multilevel traversal's (multilevel_trace.glsl), with the penumbra cone
-// for a hit: a segment whose lowest point clears the pyramid's bound by more than the
-// light's radius at its distance cannot change the result and is discarded; a leaf is
+// The walk is the multilevel traversal's, through the same pieces (segment_walk.glsl:
+// mr_SegmentWalk), with the penumbra cone for a hit: a segment whose lowest point clears
+// the pyramid's bound by more than the light's radius at its distance cannot change the
+// result and is discarded. Here the clearance itself counts, not only whether there is
+// one, so every segment reads its bound (the traversal skips the read for a segment that
+// clears its parent's), and the walk goes near half first and never climbs. A leaf is
 // measured at five points and solved exactly (mr_baseIntersectLeaf), so that a blocked
 // ray always counts as below the surface. As the radius goes to 0 every lit point sees the
 // whole light and every blocked one none: the hard shadow (a GL test holds it to that).
@@ -111,33 +115,23 @@ float mr_softShadow(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_S
     if (!mr_enterReliefShell(relief, query, heights, from, toLight, entry, start, tStart, span, floorExit)) {
         return entry.kind == MR_RELIEF_MISS ? 1.0 : 0.0;  // out of the shell at once, or in through a wall
     }
-    const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
     float margin = 3.4e38;  // the smallest clearance angle found so far (tangent)
     float descent = 0.0;    // the last leaf's slope, where it goes down (tangent)
-    int depth = 0;
-    uint index = 0u;
-    float parentBound = MR_NO_BOUND;
+    mr_SegmentWalk walk = mr_segmentWalk();
     for (int iteration = 0; iteration < query.maxIterations; ++iteration) {
         if (margin <= -tanRadius) return 0.0;  // the whole light is behind the surface
-        int shift = MICRORELIEF_MAX_DEPTH - depth;
-        float ta = span * (float(index << shift) * kUnit);
-        float tb = span * (float((index + 1u) << shift) * kUnit);
-        mr_BaseFootprint footprint = mr_baseFootprintOf(relief, start, toLight, ta, tb,
-                                                        mr_baseEnd(relief, start + ta * toLight),
-                                                        mr_baseEnd(relief, start + tb * toLight));
+        mr_BaseFootprint footprint = mr_walkFootprint(relief, walk, start, toLight, span);
+        float ta = walk.ta, tb = walk.tb;
         int level;
-        float bound = min(parentBound, mr_footprintBound(relief, windows, footprint.lo, footprint.hi, level));
+        float bound = mr_walkBound(relief, windows, walk, footprint, level);
         // The clearance over this segment is at least (lowest - bound) over the distance
         // (the far end's when that is positive, the near end's when not).
         float clear = footprint.lowest - bound;
         float near = max(tStart + ta, 1e-30) * objectPerT, far = (tStart + tb) * objectPerT;
         float lowestAngle = clear * heightToObject / (clear >= 0.0 ? far : near);
         bool matters = lowestAngle < tanRadius;
-        vec2 extents = footprint.hi - footprint.lo;
-        if (matters && max(extents.x, extents.y) > float(MICRORELIEF_LEAF_TEXELS) && depth < MICRORELIEF_MAX_DEPTH) {
-            depth += 1;
-            index *= 2u;
-            parentBound = bound;
+        if (matters && !mr_walkAtLeaf(walk, footprint)) {
+            mr_walkDescend(walk, bound, false);
             continue;
         }
         if (matters) {
@@ -168,7 +162,7 @@ float mr_softShadow(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_S
                 margin = min(margin, min(below, 0.0) * heightToObject / max((tStart + tHit) * objectPerT, 1e-30));
             }
         }
-        if (!mr_nextSegment(depth, index, parentBound, false)) {
+        if (!mr_walkNext(walk, false)) {
             if (floorExit) margin = min(margin, descent);  // down through the floor
             return mr_diskAbove(margin / tanRadius);
         }

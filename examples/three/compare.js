@@ -17,10 +17,21 @@ export async function compare(canvas, view) {
     const relief = new Relief(map, {material, heightScale: view.heightScale, base, interpolation: view.interpolation, pixelError: view.pixelError});
     const scene = new THREE.Scene();
     scene.background = new THREE.Color().setRGB(0.11, 0.12, 0.14, THREE.LinearSRGBColorSpace);
+    if (view.model) {
+        relief.matrixAutoUpdate = false;
+        relief.matrix.set(...view.model, 0, 0, 0, 1);
+    }
     scene.add(relief);
-    // microrelief-render's depth range (Camera.cpp: resolveCamera), from the samples' box.
-    const extent = reliefExtent(map.width, map.height, map.maxSample, relief.heightScale, relief.base);
-    const radius = 2 * Math.max(...extent.min.map(Math.abs), ...extent.max.map(Math.abs));
+    scene.updateMatrixWorld();
+    // microrelief-render's depth range (Camera.cpp: resolveCamera), from the box's corners
+    // placed by the model (ReliefExtent.cpp: sceneRadius).
+    const extent = reliefExtent(map.width, map.height, map.maxHeight, relief.heightScale, relief.base);
+    let radius = 0;
+    for (let k = 0; k < 8; ++k) {
+        const corner = new THREE.Vector3(...[0, 1, 2].map((a) => ((k >> a) & 1 ? extent.max[a] : extent.min[a]))).applyMatrix4(relief.matrixWorld);
+        radius = Math.max(radius, Math.abs(corner.x), Math.abs(corner.y), Math.abs(corner.z));
+    }
+    radius *= 2;
     const centre = Math.hypot(...view.eye);
     const far = centre + 2 * radius, near = Math.max(1e-4 * far, centre - 2 * radius);
     const camera = new THREE.PerspectiveCamera(view.fovy, canvas.width / canvas.height, near, far);

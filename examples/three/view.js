@@ -2,7 +2,8 @@
 // eye=x,y,z target=x,y,z up=x,y,z fovy=DEG size=WxH clean=1, and for shading=microrelief
 // (the library's own shading: microrelief-render's picture, to hold against it) base=,
 // radius=, length=, radii=, interpolation=, height-scale=, light=x,y,z, shadows=off|hard,
-// albedo=none, pixel-error=, and pyramid=auto|gpu|cpu (how the max pyramid is built).
+// albedo=none, pixel-error=, model= (microrelief-render's --model: 12 numbers, a 3 x 4 affine
+// matrix in rows) and pyramid=auto|gpu|cpu (how the max pyramid is built).
 // A bad value is an error naming the key.
 const f32 = Math.fround;
 
@@ -32,7 +33,7 @@ export function viewFromUrl(search) {
         eye: [0.8, 0.5, 0.85], target: [0, -0.03, 0], up: [0, 1, 0], fovy: 45, size: null, clean: false,
         shading: 'three', base: 'plane', radius: undefined, length: undefined, radii: undefined,
         interpolation: 'bilinear', heightScale: f32(0.1), light: [-0.45, 0.8, -0.35], shadows: 'off',
-        albedo: true, pixelError: 0, pyramid: 'auto',
+        albedo: true, pixelError: 0, pyramid: 'auto', model: null,
     };
     const get = (key, parse) => {
         if (q.has(key)) parse(q.get(key));
@@ -62,6 +63,7 @@ export function viewFromUrl(search) {
     get('albedo', (t) => (v.albedo = choice('albedo', t, ['none', 'map']) === 'map'));
     get('pixel-error', (t) => (v.pixelError = f32(numbers('pixel-error', t, 1)[0])));
     get('pyramid', (t) => (v.pyramid = choice('pyramid', t, ['auto', 'gpu', 'cpu'])));
+    get('model', (t) => (v.model = numbers('model', t, 12)));
     if (v.light.every((c) => c === 0)) throw new Error('light must not be zero');
     v.light = normalizeFloat(v.light);
     return v;

@@ -4,7 +4,7 @@
 //   const relief = new Relief(map, {material: new ReliefStandardMaterial({albedoMap})});
 //   scene.add(relief);                                                   // a THREE.Mesh
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
-export {createReliefMap, ReliefGpuError, ReliefMap, readWindowLevel, windowLevelSizes} from './pyramid.js';
+export {createReliefMap, ReliefGpuError, ReliefMap, readTextureFloats, readWindowLevel, windowLevelSizes} from './pyramid.js';
 export {albedoFromBytes, loadAlbedo} from './albedo.js';
 export {patchFragment, patchVertex, ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 export {baseShape, cameraRays, Relief, reliefExtent} from './relief.js';

@@ -251,17 +251,22 @@ function gpuBuilder(renderer) {
     return builders.get(renderer);
 }
 
-// The texels of level `level` of a ReliefMap's windows (or any R16F/R32F texture), as floats
-// (bound / 2^S), read back through their bits: for tests and tools.
-export function readWindowLevel(reliefMap, level) {
-    const [w, h] = reliefMap.levelSizes[level];
-    const renderer = reliefMap.renderer;
+// The red channel of level `level` of `texture` (width x height texels: R16F, R32F, a depth
+// texture, ...) as floats, read back exactly through their bits (an RGBA8 target), with
+// `renderer`'s render target put back: for tests and tools.
+export function readTextureFloats(renderer, texture, level, width, height) {
     const previous = [renderer.getRenderTarget(), renderer.getActiveCubeFace(), renderer.getActiveMipmapLevel()];
     try {
-        return gpuBuilder(renderer).readFloats(reliefMap.windows, level, w, h);
+        return gpuBuilder(renderer).readFloats(texture, level, width, height);
     } finally {
         renderer.setRenderTarget(...previous);
     }
+}
+
+// The texels of level `level` of a ReliefMap's windows, as floats (bound / 2^S).
+export function readWindowLevel(reliefMap, level) {
+    const [w, h] = reliefMap.levelSizes[level];
+    return readTextureFloats(reliefMap.renderer, reliefMap.windows, level, w, h);
 }
 
 // ---- the CPU builder: the C++ MaxPyramid in WebAssembly ----

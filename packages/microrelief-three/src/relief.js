@@ -210,38 +210,78 @@ export class Relief extends THREE.Mesh {
         intersects.push({...hit, object: this, face: null, faceIndex: -1});
     }
 
-    // The first hit of the world ray origin + t direction (direction unit), t in [near, far].
+    // The first hit of the world ray origin + t direction (direction unit), t in [near, far]:
+    // {distance, point, uv, normal, worldNormal, kind, iterations}, or null for a miss.
     trace(origin, direction, near = 0, far = Infinity) {
+        const rays = this.traceRays([origin.x, origin.y, origin.z], [direction.x, direction.y, direction.z], [near, far]);
+        if (rays.kind[0] === 0 || rays.exhausted[0]) return null;
+        const worldNormal = new THREE.Vector3().fromArray(rays.normal, 0);
+        // three's Mesh gives the object-space normal: the world one through the model's transpose.
+        const normal = worldNormal.clone().transformDirection(_m.copy(this.matrixWorld).transpose());
+        return {distance: rays.t[0], point: new THREE.Vector3().fromArray(rays.point, 0), uv: new THREE.Vector2().fromArray(rays.uv, 0),
+                normal, worldNormal, kind: rays.kind[0], iterations: rays.iterations[0]};
+    }
+
+    // Many world rays at once, traced on the GPU by the library: `origins` and `directions`
+    // are 3 n numbers, `ranges` 2 n (tMin, tMax; t in units of each direction's length) or one
+    // pair for all. Returns typed arrays: t, kind (0 a miss, 1 the surface, 2 to 5 the box's
+    // walls, bottom or caps), exhausted, point (3 n, world), normal (3 n, world unit), uv
+    // (2 n, three's convention), iterations.
+    traceRays(origins, directions, ranges = [0, Infinity]) {
+        const n = origins.length / 3;
+        if (!Number.isInteger(n) || directions.length !== origins.length || (ranges.length !== 2 && ranges.length !== 2 * n))
+            throw new TypeError('Relief.traceRays: 3 n origins, 3 n directions and 2 or 2 n range values');
         const renderer = this.reliefMap.renderer;
         if (!pickResources) pickResources = makePickResources();
-        const {target, scene, camera, material} = pickResources;
+        const {scene, camera, material} = pickResources;
+        const width = Math.min(n, 1024), rows = Math.ceil(n / width);
+        const rayData = [new Float32Array(4 * width * rows), new Float32Array(4 * width * rows)];
+        for (let k = 0; k < n; ++k) {
+            const range = ranges.length === 2 ? ranges : ranges.slice(2 * k, 2 * k + 2);
+            rayData[0].set([origins[3 * k], origins[3 * k + 1], origins[3 * k + 2], range[0]], 4 * k);
+            rayData[1].set([directions[3 * k], directions[3 * k + 1], directions[3 * k + 2], Math.min(range[1], 3.4e38)], 4 * k);
+        }
+        const textures = rayData.map((data) => {
+            const texture = new THREE.DataTexture(data, width, rows, THREE.RGBAFormat, THREE.FloatType);
+            texture.needsUpdate = true;
+            return texture;
+        });
+        const target = new THREE.WebGLRenderTarget(width, 12 * rows, {depthBuffer: false, generateMipmaps: false});
         this.updateWorldMatrix(true, false);
-        Object.assign(material.uniforms, this.uniforms);
-        material.uniforms.mrObjectToWorld = {value: this.matrixWorld.clone()};
-        material.uniforms.mrWorldToObject = {value: this.matrixWorld.clone().invert()};
-        material.uniforms.mrPickOrigin.value.copy(origin);
-        material.uniforms.mrPickDir.value.copy(direction);
-        material.uniforms.mrPickRange.value.set(near, Math.min(far, 3.4e38));
-        material.defines = {MICRORELIEF_BASE: String({plane: 0, cylinder: 1, ellipsoid: 2}[this.base.kind]),
-                            MICRORELIEF_INTERPOLATION: this.interpolation === 'biquadratic' ? '1' : '0'};
-        material.needsUpdate = material.userData.key !== `${this.base.kind}:${this.interpolation}`;
-        material.userData.key = `${this.base.kind}:${this.interpolation}`;
+        const u = material.uniforms;
+        Object.assign(u, this.uniforms);
+        u.mrObjectToWorld = {value: this.matrixWorld.clone()};
+        u.mrWorldToObject = {value: this.matrixWorld.clone().invert()};
+        u.mrRayOrigins = {value: textures[0]};
+        u.mrRayDirections = {value: textures[1]};
+        u.mrRayRows = {value: rows};
+        const key = `${this.base.kind}:${this.interpolation}`;
+        if (material.userData.key !== key) {
+            material.defines = {MICRORELIEF_BASE: String({plane: 0, cylinder: 1, ellipsoid: 2}[this.base.kind]),
+                                MICRORELIEF_INTERPOLATION: this.interpolation === 'biquadratic' ? '1' : '0'};
+            material.userData.key = key;
+            material.needsUpdate = true;
+        }
         const previous = [renderer.getRenderTarget(), renderer.getActiveCubeFace(), renderer.getActiveMipmapLevel()];
-        const bytes = new Uint8Array(4 * 16);
+        const bytes = new Uint8Array(4 * width * 12 * rows);
         try {
             renderer.setRenderTarget(target);
             renderer.render(scene, camera);
-            renderer.readRenderTargetPixels(target, 0, 0, 16, 1, bytes);
+            renderer.readRenderTargetPixels(target, 0, 0, width, 12 * rows, bytes);
         } finally {
             renderer.setRenderTarget(...previous);
+            target.dispose();
+            for (const t of textures) t.dispose();
         }
-        const f = new Float32Array(bytes.buffer);
-        const [t, kind, exhausted] = f;
-        if (kind === 0 || exhausted !== 0) return null;
-        const worldNormal = new THREE.Vector3(f[6], f[7], f[8]);
-        const normal = worldNormal.clone().transformDirection(_m.copy(this.matrixWorld).transpose());
-        return {distance: t, point: new THREE.Vector3(f[3], f[4], f[5]), uv: new THREE.Vector2(f[9], f[10]),
-                normal, worldNormal, kind, iterations: f[11]};
+        const all = new Float32Array(bytes.buffer);
+        const field = (k) => all.subarray(k * width * rows, k * width * rows + n);
+        const interleave = (fields) => {
+            const out = new Float32Array(fields.length * n);
+            fields.forEach((f, c) => field(f).forEach((v, k) => (out[fields.length * k + c] = v)));
+            return out;
+        };
+        return {t: field(0).slice(), kind: field(1).slice(), exhausted: field(2).slice(), point: interleave([3, 4, 5]),
+                normal: interleave([6, 7, 8]), uv: interleave([9, 10]), iterations: field(11).slice()};
     }
 
     dispose() {
@@ -253,13 +293,13 @@ export class Relief extends THREE.Mesh {
 
 const _m = new THREE.Matrix4(), _inverse = new THREE.Matrix4(), _ray = new THREE.Ray();
 
-// A full-viewport triangle into a 16 x 1 RGBA8 target, tracing one ray (glsl/pick.frag).
+// A full-viewport triangle tracing a batch of rays (glsl/pick.frag), shared by all reliefs.
 function makePickResources() {
     const material = new THREE.ShaderMaterial({
         glslVersion: THREE.GLSL3,
         vertexShader: 'void main() { vec2 c = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)); gl_Position = vec4(c - 1.0, 0.0, 1.0); }',
         fragmentShader: library + glue.reliefThree.replace('varying vec4 mrClip;', 'vec4 mrClip;') + glue.pick,
-        uniforms: {mrPickOrigin: {value: new THREE.Vector3()}, mrPickDir: {value: new THREE.Vector3()}, mrPickRange: {value: new THREE.Vector2()}},
+        uniforms: {},
         depthTest: false,
         depthWrite: false,
     });
@@ -267,6 +307,5 @@ function makePickResources() {
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(9), 3));
     const mesh = new THREE.Mesh(geometry, material);
     mesh.frustumCulled = false;
-    const target = new THREE.WebGLRenderTarget(16, 1, {depthBuffer: false, generateMipmaps: false});
-    return {target, scene: mesh, camera: new THREE.Camera(), material};
+    return {scene: mesh, camera: new THREE.Camera(), material};
 }

@@ -300,4 +300,55 @@ TEST_F(ThreePage, AMeshCrossingTheReliefCutsItAtTheHitDepth) {
     }
 }
 
+// three's shadow maps and the relief (checks.js: shadows): a sphere's shadow falls on the
+// relief's hit points whose ray towards the light meets the sphere, and the relief's shadow
+// on a ground square falls where the ray from the ground towards the light meets the relief
+// (traced from the shadow map's orthographic camera). Points within 0.01 world units of
+// the answer changing (13 shadow-map texels of 0.8 mm: three's PCF filter and its bias
+// blur about two) are left out; every other one must agree.
+TEST_F(ThreePage, ShadowMapsFallWhereTheRaysTowardsTheLightAreBlocked) {
+    const View& v = viewNamed("oblique");
+    struct Case {
+        const char* what;
+        const char* light;
+        int step;
+    };
+    const std::vector<Case> cases = {{"receive", "[-0.45, 0.8, -0.35]", 2},
+                                     {"cast", "[-0.8, 0.35, -0.5]", 3}};
+    std::string steps = "[" + openCompare(v);
+    for (const Case& c : cases) {
+        std::string list = "[";
+        for (int row = 1; row < v.height; row += c.step)
+            for (int column = 1; column < v.width; column += c.step)
+                list += (list.size() > 1 ? ",[" : "[") + std::to_string(column) + "," +
+                        std::to_string(row) + "]";
+        steps +=
+            ", {\"eval\": " +
+            jsonString(std::string("threeChecks.shadows('") + c.what + "', " + list + "], " +
+                       c.light + ", [0.02, 0.3, 0.05], 0.01).flat().join(' ')") +
+            "}, {\"screenshot\": " + jsonString((dir / (std::string(c.what) + ".png")).string()) +
+            "}";
+    }
+    const PageRun page = runPage(steps + "]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        SCOPED_TRACE(cases[k].what);
+        const std::vector<double> answers = numbers(page.at(3 + 2 * static_cast<int>(k), "value"));
+        ASSERT_FALSE(answers.empty()) << page.at(3 + 2 * static_cast<int>(k), "value");
+        int shadowed = 0, lit = 0, wrong = 0;
+        for (std::size_t j = 0; j + 1 < answers.size(); j += 2) {
+            if (answers[j] < 0) continue;
+            (answers[j] == 1 ? shadowed : lit) += 1;
+            wrong += answers[j] != answers[j + 1];
+        }
+        std::printf(
+            "    %-8s %d points shadowed, %d lit by the geometry; the picture disagrees at %d\n",
+            cases[k].what, shadowed, lit, wrong);
+        EXPECT_EQ(wrong, 0);
+        EXPECT_GT(shadowed, 50) << "too few shadowed points to say anything";
+        EXPECT_GT(lit, 50) << "too few lit points to say anything";
+    }
+}
+
 }  // namespace

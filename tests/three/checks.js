@@ -73,6 +73,103 @@ window.threeChecks = (() => {
         });
     }
 
-    return {pick, depth};
+    // three's shadow maps and the relief, in a scene of its own drawn with the page's camera
+    // and map: a white ReliefStandardMaterial relief, an ambient light and a directional
+    // light towards `light` with a 2048-texel shadow map over [-0.8, 0.8]^2, and either
+    // (`what` 'receive') a sphere of radius 0.12 at `sphere`, casting but not drawn, onto the
+    // relief, or ('cast') the relief casting onto a ground square at y = -0.0005. The scene is
+    // drawn three times: the light off, the caster not casting, casting (what the canvas keeps). At each of
+    // `pixels` the hit point (the relief's: Relief.traceRays; the ground's: its plane met
+    // analytically where the relief is missed) and whether the drawing shows it shadowed
+    // (darker with the caster casting by more than half of what the light adds), and what the
+    // geometry says: the ray from the point towards the light meets the sphere (analytically)
+    // or the relief (traceRays). `margin`: a point whose answer changes within that distance
+    // (the sphere's outline, or the same ray from points moved by margin along x and z) is
+    // left out, as is one the light barely reaches (it adds under 24 levels).
+    // Returns [expected, seen] per pixel: 1 shadowed, 0 lit, -1 left out.
+    function shadows(what, pixels, light, sphereCentre, margin) {
+        const {THREE, renderer, camera, map, microrelief} = app();
+        const {width, height} = renderer.domElement;
+        const toLight = new THREE.Vector3(...light).normalize();
+        const scene = new THREE.Scene();
+        const relief = new microrelief.Relief(map, {material: new microrelief.ReliefStandardMaterial({color: 0xffffff, roughness: 1})});
+        const sun = new THREE.DirectionalLight(0xffffff, 2.5);
+        sun.position.copy(toLight).multiplyScalar(2);
+        sun.castShadow = true;
+        sun.shadow.mapSize.set(2048, 2048);
+        Object.assign(sun.shadow.camera, {left: -0.8, right: 0.8, bottom: -0.8, top: 0.8, near: 0.5, far: 4});
+        scene.add(sun, sun.target, new THREE.AmbientLight(0xffffff, 0.4), relief);
+        const radius = 0.12;
+        const sphere = new THREE.Mesh(new THREE.SphereGeometry(radius, 96, 48), new THREE.MeshBasicMaterial({colorWrite: false, depthWrite: false}));
+        sphere.position.set(...sphereCentre);
+        const ground = new THREE.Mesh(new THREE.PlaneGeometry(4, 4).rotateX(-Math.PI / 2), new THREE.MeshStandardMaterial({color: 0xffffff, roughness: 1}));
+        ground.position.y = -0.0005;
+        const caster = what === 'receive' ? sphere : relief;
+        if (what === 'receive') {
+            scene.add(sphere);
+            relief.receiveShadow = true;
+        } else {
+            scene.add(ground);
+            ground.receiveShadow = true;
+        }
+        const wasEnabled = renderer.shadowMap.enabled;
+        renderer.shadowMap.enabled = true;
+        const draw = (casting, intensity) => {
+            caster.castShadow = casting;
+            sun.intensity = intensity;
+            renderer.render(scene, camera);
+            const gl = renderer.getContext(), bytes = new Uint8Array(4 * width * height);
+            gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
+            return bytes;
+        };
+        const [dark, lit, shadowed] = [draw(false, 0), draw(false, 2.5), draw(true, 2.5)];  // the canvas keeps the last
+        renderer.shadowMap.enabled = wasEnabled;
+        // The camera's rays through the pixels, and where they meet the relief.
+        const raycaster = new THREE.Raycaster(), origins = [], directions = [];
+        for (const [column, row] of pixels) {
+            raycaster.setFromCamera(pixelNdc(column, row), camera);
+            origins.push(...raycaster.ray.origin.toArray());
+            directions.push(...raycaster.ray.direction.toArray());
+        }
+        scene.updateMatrixWorld();
+        const seen = relief.traceRays(origins, directions, [0, 100]);
+        const points = pixels.map((pixel, k) => {
+            if (what === 'receive') return seen.kind[k] === 1 ? new THREE.Vector3().fromArray(seen.point, 3 * k) : null;
+            if (seen.kind[k] !== 0) return null;
+            const ray = new THREE.Ray(new THREE.Vector3().fromArray(origins, 3 * k), new THREE.Vector3().fromArray(directions, 3 * k));
+            return ray.intersectPlane(new THREE.Plane(new THREE.Vector3(0, 1, 0), 0.0005), new THREE.Vector3());
+        });
+        // The geometry's answer at each point and at the points moved by margin.
+        let expected;
+        if (what === 'receive') {
+            expected = points.map((p) => {
+                if (!p) return -1;
+                const d = new THREE.Ray(p, toLight).distanceToPoint(sphere.position);
+                return Math.abs(d - radius) < margin ? -1 : Number(d < radius);
+            });
+        } else {
+            const offsets = [[0, 0], [margin, 0], [-margin, 0], [0, margin], [0, -margin]];
+            const from = [], towards = [];
+            for (const p of points)
+                for (const [dx, dz] of offsets) {
+                    from.push(...(p ? [p.x + dx, p.y + 0.0005, p.z + dz] : [0, -10, 0]));
+                    towards.push(...toLight.toArray());
+                }
+            const blocked = relief.traceRays(from, towards, [0, 100]).kind;
+            expected = points.map((p, k) => {
+                if (!p) return -1;
+                const answers = offsets.map((o, j) => Number(blocked[5 * k + j] !== 0));
+                return answers.every((a) => a === answers[0]) ? answers[0] : -1;
+            });
+        }
+        return pixels.map(([column, row], k) => {
+            const at = 4 * ((height - 1 - row) * width + column);
+            const added = lit[at] - dark[at];
+            if (expected[k] === -1 || added < 24) return [-1, -1];
+            return [expected[k], Number(lit[at] - shadowed[at] > added / 2)];
+        });
+    }
+
+    return {pick, depth, shadows};
 })();
 'ready';

@@ -351,4 +351,26 @@ TEST_F(ThreePage, ShadowMapsFallWhereTheRaysTowardsTheLightAreBlocked) {
     }
 }
 
+// Bad input (checks.js: refusals): a map larger than the GPU takes, a file that is no image,
+// a missing EXT_color_buffer_float for the GPU pyramid: each one error of the package's own
+// class naming the cause, and the scene's picture afterwards the same to the bit.
+TEST_F(ThreePage, BadInputIsOneClearErrorAndTheSceneKeepsDrawing) {
+    const View& v = viewNamed("oblique");
+    const PageRun page = runPage("[" + openCompare(v) +
+                                 ", {\"screenshot\": " + jsonString((dir / "before.png").string()) +
+                                 "}, {\"eval\": \"threeChecks.refusals()\"}, {\"screenshot\": " +
+                                 jsonString((dir / "after.png").string()) + "}]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    const std::string lines = page.at(4, "value");
+    std::printf("%s\n", lines.c_str());
+    for (const char* expected : {"too large: ReliefGpuError: samples: ", "MAX_TEXTURE_SIZE",
+                                 "not an image: HeightMapError: index.html: not a PNG",
+                                 "no extension: ReliefGpuError: ", "no EXT_color_buffer_float"})
+        EXPECT_NE(lines.find(expected), std::string::npos) << expected << "\n" << lines;
+    const test::Image before = test::readImage(dir / "before.png"),
+                      after = test::readImage(dir / "after.png");
+    ASSERT_GT(before.width, 0);
+    EXPECT_EQ(before.pixels, after.pixels) << "the scene changed after the refusals";
+}
+
 }  // namespace

@@ -170,6 +170,36 @@ window.threeChecks = (() => {
         });
     }
 
-    return {pick, depth, shadows};
+    // Bad input, each refused with one error while the scene keeps drawing: a map wider than
+    // the GPU's MAX_TEXTURE_SIZE, a file that is no image (the page's own HTML), and a GPU
+    // pyramid where EXT_color_buffer_float is missing (reported missing by the renderer's
+    // extension list for that call: SwiftShader has it). Then the scene is drawn again.
+    // Returns one line a case: "what: ErrorName: message".
+    async function refusals() {
+        const {microrelief, renderer, render} = app();
+        const lines = [];
+        const attempt = async (what, f) => {
+            try {
+                await f();
+                lines.push(`${what}: no error`);
+            } catch (e) {
+                lines.push(`${what}: ${e.name}: ${e.message}`);
+            }
+        };
+        const wide = renderer.capabilities.maxTextureSize + 1;
+        await attempt('too large', () => microrelief.createReliefMap(renderer, microrelief.heightsFromArray(new Float32Array(wide), wide, 1)));
+        await attempt('not an image', () => microrelief.loadHeights('index.html'));
+        const has = renderer.extensions.has;
+        renderer.extensions.has = (name) => name !== 'EXT_color_buffer_float' && has.call(renderer.extensions, name);
+        try {
+            await attempt('no extension', () => microrelief.createReliefMap(renderer, microrelief.heightsFromArray(new Float32Array(4), 2, 2), {pyramid: 'gpu'}));
+        } finally {
+            renderer.extensions.has = has;
+        }
+        render();
+        return lines.join('\n');
+    }
+
+    return {pick, depth, shadows, refusals};
 })();
 'ready';

@@ -15,7 +15,7 @@ packages=(
   libopenimageio-dev openimageio-tools zlib1g-dev
   libgtest-dev libcli11-dev python3-glad glslang-tools
   libimgui-dev xvfb xauth
-  chromium python3
+  chromium python3 emscripten
 )
 read -r -a extra <<< "${MICRORELIEF_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")
@@ -24,11 +24,24 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# node and npm for microrelief-three: Debian's nodejs and npm where neither program is there
+# (a node installed otherwise, with its own npm, is left alone).
+command -v node >/dev/null && command -v npm >/dev/null || missing+=(nodejs npm)
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
   if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# microrelief-three's three.js (packages/microrelief-three/package-lock.json), for its example
+# and the three tests: npm ci where node_modules is missing or older than the lock file; then
+# CMake stages it (a configure that ran before it is run again).
+three="$root/packages/microrelief-three"
+if [ ! -f "$three/node_modules/three/package.json" ] || [ "$three/package-lock.json" -nt "$three/node_modules/.package-lock.json" ]; then
+  echo "setup: npm ci in packages/microrelief-three"
+  (cd "$three" && npm ci --ignore-scripts --no-audit --no-fund >/dev/null)
+  [ ! -f "$build/build.ninja" ] || cmake "$build" >/dev/null
 fi
 
 if [ "${MICRORELIEF_SETUP_NO_BUILD:-0}" = 1 ]; then

@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 
+#include "BrowserTest.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/heightmap/HeightMap.h"
@@ -23,6 +24,10 @@
 #include "microrelief/synth/SyntheticMaps.h"
 
 using namespace microrelief;
+using browser::jsonString;
+using browser::PageRun;
+using test::Image;
+using test::readImage;
 
 namespace {
 
@@ -46,82 +51,6 @@ namespace {
 constexpr int kDifferentLevels = 8;
 constexpr double kMaxDifferentPixels = 0.002;
 constexpr double kMaxMeanDifference = 0.6;
-
-// glvnd's description of Mesa's EGL: microrelief-render on the software device, whatever
-// GPU the machine has, as the page's SwiftShader is software too.
-constexpr const char* kMesaEglVendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
-
-using test::Image;
-using test::readImage;
-
-std::string quote(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-std::string jsonString(const std::string& text) {
-    std::string out = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
-    }
-    return out + "\"";
-}
-
-// What the driver reports: "STEP.KEY" -> value, and the page's console errors.
-struct PageRun {
-    int status = -1;
-    std::map<std::string, std::string> values;
-    std::vector<std::string> log;
-    std::string err;
-
-    std::string at(int step, const std::string& key) const {
-        const auto found = values.find(std::to_string(step) + "." + key);
-        return found == values.end() ? std::string() : found->second;
-    }
-};
-
-std::string unescape(const std::string& text) {
-    std::string out;
-    for (std::size_t k = 0; k < text.size(); ++k) {
-        if (text[k] == '\\' && k + 1 < text.size()) {
-            out += text[++k] == 'n' ? '\n' : text[k];
-        } else {
-            out += text[k];
-        }
-    }
-    return out;
-}
-
-// Per pixel: the largest channel difference; the mean over channels.
-struct PictureDifference {
-    double differentPixels = 0.0;  // fraction of pixels with a channel over kDifferentLevels
-    double mean = 0.0;             // levels, over all channels
-    int max = 0;
-};
-
-PictureDifference compare(const Image& a, const Image& b) {
-    PictureDifference d;
-    double sum = 0.0;
-    std::size_t different = 0;
-    for (int row = 0; row < a.height; ++row) {
-        for (int column = 0; column < a.width; ++column) {
-            int largest = 0;
-            for (int c = 0; c < 3; ++c) {
-                const int delta = std::abs(a.at(column, row, c) - b.at(column, row, c));
-                largest = std::max(largest, delta);
-                sum += delta;
-            }
-            different += largest > kDifferentLevels;
-            d.max = std::max(d.max, largest);
-        }
-    }
-    const double pixels = static_cast<double>(a.width) * a.height;
-    d.differentPixels = different / pixels;
-    d.mean = sum / (3.0 * pixels);
-    return d;
-}
 
 // A PNG written byte by byte: `rows` unfiltered (filter type 0), `chunks` (name, body)
 // between IHDR and IDAT. For what OpenImageIO does not write: alpha with gamma, tRNS,
@@ -171,116 +100,10 @@ std::vector<std::uint8_t> bigEndian16(std::initializer_list<unsigned> values) {
     return bytes;
 }
 
-class WebPage : public ::testing::Test {
+class WebPage : public browser::BrowserTest {
 protected:
-    // Chromium and python3: where CMake found them, else in /usr/bin or on PATH now (a build
-    // configured before scripts/setup.sh installed them).
-    void SetUp() override {
-        chromium_ = findProgram(MICRORELIEF_CHROMIUM, "chromium");
-        python_ = findProgram(MICRORELIEF_PYTHON3, "python3");
-        for (const auto& [program, package] :
-             {std::pair{chromium_, "chromium"}, std::pair{python_, "python3"}}) {
-            if (!program.empty()) continue;
-            const char* allow = std::getenv("MICRORELIEF_ALLOW_MISSING_BROWSER");
-            const std::string why = std::string("no ") + package + " (Debian package " + package +
-                                    "; bash scripts/setup.sh installs it)";
-            if (allow && std::string(allow) == "1") GTEST_SKIP() << why;
-            FAIL() << why << "; MICRORELIEF_ALLOW_MISSING_BROWSER=1 skips these tests instead";
-        }
-    }
-
-    static std::string findProgram(const std::string& configured, const std::string& name) {
-        std::vector<std::filesystem::path> candidates = {configured, "/usr/bin/" + name};
-        const char* path = std::getenv("PATH");
-        std::istringstream dirs(path ? path : "");
-        for (std::string d; std::getline(dirs, d, ':');)
-            if (!d.empty()) candidates.push_back(std::filesystem::path(d) / name);
-        for (const std::filesystem::path& candidate : candidates) {
-            std::error_code ec;
-            if (!candidate.empty() && std::filesystem::is_regular_file(candidate, ec) &&
-                access(candidate.c_str(), X_OK) == 0)
-                return candidate.string();
-        }
-        return {};
-    }
-
-    // Runs `steps` (a JSON array of drive_chromium.py's steps) in one browser.
-    PageRun runPage(const std::string& steps) {
-        const auto stepsFile = dir / "steps.json", flat = dir / "result.txt",
-                   json = dir / "result.json";
-        std::ofstream(stepsFile) << steps;
-        std::filesystem::remove(flat);
-        const std::string command = python_ + " " + MICRORELIEF_DRIVER + " --chromium " +
-                                    chromium_ + " --root " + quote(MICRORELIEF_WEB_ROOT) +
-                                    " --steps " + stepsFile.string() + " --out " + json.string() +
-                                    " --flat " + flat.string();
-        const test::RunResult run = test::runCommand(command, dir.path());
-        PageRun page;
-        page.status = run.status;
-        page.err = run.err;
-        std::ifstream in(flat);
-        std::string line;
-        while (std::getline(in, line)) {
-            const std::size_t tab = line.find('\t');
-            if (tab == std::string::npos) continue;
-            const std::string key = line.substr(0, tab), value = unescape(line.substr(tab + 1));
-            if (key == "log") {
-                page.log.push_back(value);
-            } else {
-                page.values[key] = value;
-            }
-        }
-        EXPECT_EQ(page.status, 0) << "the browser did not run every step:\n" << page.err;
-        return page;
-    }
-
-    // microrelief-render with `flags` (the rest of a command line) into `out`.
-    void render(const std::string& flags, const std::filesystem::path& out) {
-        const std::string software =
-            std::filesystem::exists(kMesaEglVendor)
-                ? std::string("__EGL_VENDOR_LIBRARY_FILENAMES=") + kMesaEglVendor + " "
-                : std::string();
-        const test::RunResult r =
-            test::runCommand(software + "LIBGL_ALWAYS_SOFTWARE=1 " + MICRORELIEF_RENDER_EXE + " " +
-                                 flags + " --quiet --out " + out.string(),
-                             dir.path());
-        EXPECT_EQ(r.status, 0) << flags << "\n" << r.err;
-    }
-
-    // The page's picture against microrelief-render's, within the thresholds above.
-    void expectSamePicture(const std::string& name, const std::filesystem::path& page,
-                           const std::filesystem::path& rendered, const std::string& how) {
-        const Image actual = readImage(page), expected = readImage(rendered);
-        ASSERT_GT(actual.width, 0) << name << ": no screenshot";
-        ASSERT_GT(expected.width, 0) << name << ": no picture from microrelief-render";
-        ASSERT_EQ(actual.width, expected.width) << name;
-        ASSERT_EQ(actual.height, expected.height) << name;
-        const PictureDifference d = compare(actual, expected);
-        std::printf("    %-22s different pixels %.4f %%, mean %.4f levels, max %d\n", name.c_str(),
-                    100.0 * d.differentPixels, d.mean, d.max);
-        if (d.differentPixels > kMaxDifferentPixels || d.mean > kMaxMeanDifference) {
-            ADD_FAILURE() << name << ": the page's picture differs from microrelief-render's ("
-                          << 100.0 * d.differentPixels << " % of pixels over " << kDifferentLevels
-                          << " levels, mean " << d.mean << " levels); see "
-                          << test::keepForInspection("web-failures", name, actual, expected)
-                          << "\n  " << how;
-        }
-    }
-
-    static std::string size(int width, int height) {
-        return std::to_string(width) + "x" + std::to_string(height);
-    }
-
-    // The step that opens the page on `query` at W x H, canvas alone (clean=1).
-    static std::string open(const std::string& query, int width, int height) {
-        return "{\"open\": " +
-               jsonString("clean=1&size=" + size(width, height) +
-                          (query.empty() ? "" : "&" + query)) +
-               ", \"size\": [" + std::to_string(width) + ", " + std::to_string(height) + "]}";
-    }
-
-    test::ScratchDir dir;
-    std::string chromium_, python_;
+    static constexpr browser::PictureThresholds kLimits = {kDifferentLevels, kMaxDifferentPixels,
+                                                           kMaxMeanDifference};
 };
 
 // A view as the page's URL and as microrelief-render's flags.
@@ -340,7 +163,7 @@ TEST_F(WebPage, ViewsSetInTheUrlMatchTheRenderer) {
         const std::string flags = v.flags + " --size " + size(v.width, v.height);
         render(flags, rendered);
         expectSamePicture(v.name, dir / (v.name + "-page.png"), rendered,
-                          "microrelief-render " + flags);
+                          "microrelief-render " + flags, kLimits);
 
         // The page's "open in microrelief-render" line draws the test's picture exactly.
         const std::string command = page.at(step + 3, "value");
@@ -392,7 +215,7 @@ TEST_F(WebPage, OrbitZoomAndPanWriteTheViewToTheUrl) {
     const std::string program = "microrelief-render ";
     ASSERT_EQ(command.rfind(program, 0), 0u) << command;
     render(command.substr(program.size()), dir / "moved-render.png");
-    expectSamePicture("orbited", dir / "moved.png", dir / "moved-render.png", command);
+    expectSamePicture("orbited", dir / "moved.png", dir / "moved-render.png", command, kLimits);
 }
 
 // Files that are not height maps, dropped on the page or chosen with its file input (the
@@ -552,7 +375,8 @@ TEST_F(WebPage, DroppedMapsAreTheLoadersSamplesAndRenderAlike) {
     const std::string flags =
         "--height " + (dir / "noise16.png").string() + " --size " + size(width, height);
     render(flags, rendered);
-    expectSamePicture("noise16", dir / "noise16-page.png", rendered, "microrelief-render " + flags);
+    expectSamePicture("noise16", dir / "noise16-page.png", rendered, "microrelief-render " + flags,
+                      kLimits);
 }
 
 // Every variant of relief.frag the page offers (each method on each base it runs on, both

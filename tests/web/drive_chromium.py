@@ -7,6 +7,7 @@ Starts the page's own server (web/serve.py) on a free port, then Chromium with
 WebSocket), WebGL 2 through SwiftShader, and runs a list of steps from a JSON file:
 
   {"open": "QUERY", "size": [W, H]}   the page at web/?QUERY, viewport W x H at DPR 1
+                                      (web/PAGE?QUERY with "page": "PAGE", e.g. "three/")
   {"wait": "ready"}                   until <html data-state> is "ready" or "error"
   {"wait": "map-error"}               until <html data-map-error> is not empty
   {"wait": "frames", "above": N}      until data-frames > N and the state is settled
@@ -208,7 +209,7 @@ def run_steps(browser, base_url, steps, timeout):
                          {"width": size[0], "height": size[1], "deviceScaleFactor": 1, "mobile": False})
             for e in browser.events:
                 e["seen"] = True
-            navigation = browser.send("Page.navigate", {"url": base_url + "?" + step["open"]})
+            navigation = browser.send("Page.navigate", {"url": base_url + step.get("page", "") + "?" + step["open"]})
             if "errorText" in navigation:
                 raise StepFailed(f"opening the page: {navigation['errorText']}")
             browser.wait_event("Page.loadEventFired", timeout)

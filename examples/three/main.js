@@ -1,0 +1,79 @@
+// main.js: the page around the example. Reads the URL (view.js), sizes the canvas, runs
+// cobbles.js (the three-lit scene) or, with shading=microrelief, compare.js (the
+// library's own shading, to hold against microrelief-render), and reports its state as the
+// web page does (<html data-state="loading|ready|error">, #error) for the tests, which
+// find the scene's objects in window.microreliefThree.
+import * as THREE from 'three';
+import * as microrelief from 'microrelief-three';
+
+import {viewFromUrl} from './view.js';
+
+const root = document.documentElement;
+
+function fail(message) {
+    document.getElementById('error').textContent = message;
+    root.dataset.state = 'error';
+}
+
+async function start() {
+    let view;
+    try {
+        view = viewFromUrl(location.search);
+    } catch (e) {
+        fail(`the URL: ${e.message}`);
+        return;
+    }
+    root.classList.toggle('clean', view.clean);
+    const canvas = document.getElementById('canvas');
+    const size = () => view.size ?? [Math.max(1, innerWidth), Math.max(1, innerHeight)];
+    const [width, height] = size();
+    Object.assign(canvas.style, {width: `${width}px`, height: `${height}px`});
+    Object.assign(canvas, {width, height});
+    let app;
+    try {
+        const scene = view.shading === 'microrelief' ? (await import('./compare.js')).compare : (await import('./cobbles.js')).cobbles;
+        app = await scene(canvas, view);
+    } catch (e) {
+        console.error(e);
+        fail(e.message);
+        return;
+    }
+    const render = () => {
+        app.renderer.render(app.scene, app.camera);
+        const gl = app.renderer.getContext();
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the picture
+    };
+    // A shader three cannot compile is this page's error (three itself only logs it).
+    app.renderer.debug.onShaderError = (gl, program, vertex, fragment) => {
+        const report = [vertex, fragment].map((shader) => {
+            const log = (gl.getShaderInfoLog(shader) || '').trim();
+            const line = /ERROR: \d+:(\d+)/.exec(log);
+            if (!line) return log;
+            const lines = gl.getShaderSource(shader).split('\n'), at = Number(line[1]);
+            return `${log}\n${lines.slice(Math.max(0, at - 3), at + 2).map((l, k) => `${Math.max(1, at - 2) + k}: ${l}`).join('\n')}`;
+        });
+        fail(`a shader does not compile:\n${report.join('\n').trim() || gl.getProgramInfoLog(program)}`);
+    };
+    window.microreliefThree = {...app, view, THREE, microrelief, render};
+    if (!view.size) {
+        addEventListener('resize', () => {
+            const [w, h] = size();
+            Object.assign(canvas.style, {width: `${w}px`, height: `${h}px`});
+            app.renderer.setSize(w, h, false);
+            app.camera.aspect = w / h;
+            app.camera.updateProjectionMatrix();
+            render();
+        });
+    }
+    try {
+        render();
+    } catch (e) {
+        fail(`drawing failed: ${e.message}`);
+        return;
+    }
+    requestAnimationFrame(() => requestAnimationFrame(() => {
+        if (root.dataset.state !== 'error') root.dataset.state = 'ready';
+    }));
+}
+
+start();

@@ -1,0 +1,78 @@
+// view.js: the page's URL keys, the web page's (docs/browser.md) where they mean the same:
+// eye=x,y,z target=x,y,z up=x,y,z fovy=DEG size=WxH clean=1, and for shading=microrelief
+// (the library's own shading: microrelief-render's picture, to hold against it) base=,
+// radius=, length=, radii=, interpolation=, height-scale=, light=x,y,z, shadows=off|hard,
+// albedo=none, pixel-error=, model= (microrelief-render's --model: 12 numbers, a 3 x 4 affine
+// matrix in rows) and pyramid=auto|gpu|cpu (how the max pyramid is built).
+// A bad value is an error naming the key.
+const f32 = Math.fround;
+
+function numbers(key, text, count) {
+    const values = text.split(',').map((p) => (p.trim() === '' ? NaN : Number(p)));
+    if (values.length !== count || values.some((v) => !Number.isFinite(v)))
+        throw new Error(`${key}=${text}: expected ${count} comma-separated number${count > 1 ? 's' : ''}`);
+    return values;
+}
+
+function choice(key, text, choices) {
+    if (!choices.includes(text)) throw new Error(`${key}=${text}: expected ${choices.join(', ')}`);
+    return text;
+}
+
+// A float vector normalised in float arithmetic, as microrelief-render normalises --light.
+export function normalizeFloat(v) {
+    const a = v.map(f32);
+    const d = f32(f32(f32(a[0] * a[0]) + f32(a[1] * a[1])) + f32(a[2] * a[2]));
+    const inverse = f32(1 / f32(Math.sqrt(d)));
+    return a.map((c) => f32(c * inverse));
+}
+
+export function viewFromUrl(search) {
+    const q = new URLSearchParams(search);
+    const v = {
+        eye: [0.8, 0.5, 0.85], target: [0, -0.03, 0], up: [0, 1, 0], fovy: 45, size: null, clean: false,
+        shading: 'three', base: 'plane', radius: undefined, length: undefined, radii: undefined,
+        interpolation: 'bilinear', heightScale: f32(0.1), light: [-0.45, 0.8, -0.35], shadows: 'off',
+        albedo: true, pixelError: 0, pyramid: 'auto', model: null,
+    };
+    const get = (key, parse) => {
+        if (q.has(key)) parse(q.get(key));
+    };
+    get('eye', (t) => (v.eye = numbers('eye', t, 3)));
+    get('target', (t) => (v.target = numbers('target', t, 3)));
+    get('up', (t) => (v.up = numbers('up', t, 3)));
+    get('fovy', (t) => {
+        v.fovy = numbers('fovy', t, 1)[0];
+        if (!(v.fovy > 0 && v.fovy < 180)) throw new Error(`fovy=${t}: must lie strictly between 0 and 180 degrees`);
+    });
+    get('size', (t) => {
+        const m = /^(\d+)x(\d+)$/.exec(t);
+        if (!m || +m[1] < 1 || +m[2] < 1 || +m[1] > 8192 || +m[2] > 8192) throw new Error(`size=${t}: expected WxH, each from 1 to 8192`);
+        v.size = [+m[1], +m[2]];
+    });
+    get('clean', (t) => (v.clean = t === '1'));
+    get('shading', (t) => (v.shading = choice('shading', t, ['three', 'microrelief'])));
+    get('base', (t) => (v.base = choice('base', t, ['plane', 'cylinder', 'ellipsoid', 'sphere'])));
+    get('radius', (t) => (v.radius = numbers('radius', t, 1)[0]));
+    get('length', (t) => (v.length = numbers('length', t, 1)[0]));
+    get('radii', (t) => (v.radii = numbers('radii', t, 3)));
+    get('interpolation', (t) => (v.interpolation = choice('interpolation', t, ['bilinear', 'biquadratic'])));
+    get('height-scale', (t) => (v.heightScale = f32(numbers('height-scale', t, 1)[0])));
+    get('light', (t) => (v.light = numbers('light', t, 3)));
+    get('shadows', (t) => (v.shadows = choice('shadows', t, ['off', 'hard'])));
+    get('albedo', (t) => (v.albedo = choice('albedo', t, ['none', 'map']) === 'map'));
+    get('pixel-error', (t) => (v.pixelError = f32(numbers('pixel-error', t, 1)[0])));
+    get('pyramid', (t) => (v.pyramid = choice('pyramid', t, ['auto', 'gpu', 'cpu'])));
+    get('model', (t) => (v.model = numbers('model', t, 12)));
+    if (v.light.every((c) => c === 0)) throw new Error('light must not be zero');
+    v.light = normalizeFloat(v.light);
+    return v;
+}
+
+// The base as Relief takes it.
+export function viewBase(v) {
+    if (v.base === 'cylinder') return {kind: 'cylinder', radius: v.radius, length: v.length};
+    if (v.base === 'sphere') return {kind: 'sphere', radius: v.radius};
+    if (v.base === 'ellipsoid') return {kind: 'ellipsoid', radii: v.radii};
+    return 'plane';
+}

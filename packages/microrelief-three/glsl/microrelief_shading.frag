@@ -1,0 +1,54 @@
+// microrelief_shading.frag: ReliefShadingMaterial's fragment shader, the picture
+// microrelief-render draws (relief.frag's shaded view: mr_shadeRelief of one directional
+// light, the map's albedo by surfaceAlbedo, the hard self-shadow as an option) for a relief
+// in a three.js scene, written through three's output conversion (colour space; no tone
+// mapping by default). Spliced after the library, relief.frag's albedo functions and
+// relief_three.glsl by src/materials.js.
+//
+// options: MICRORELIEF_ALBEDO_MAP (1: the albedo texture, else `albedo`), MICRORELIEF_SHADOWS
+//          (0 off, 1 hard).
+uniform vec3 mrLightDirection;  // towards the light, world, unit
+uniform vec3 albedo;            // linear, without an albedo texture
+uniform sampler2D albedoMap;    // the map's colours, row 0 at v = 0 (flipY false), sRGB, mipmapped
+const int albedoFinest = 0;     // filtered over the pixel's footprint
+
+vec3 cameraRight, cameraUp;
+vec2 viewportSize;
+
+// MR_ALBEDO_FUNCTIONS (src/materials.js: relief.frag's mapDelta, finestAlbedo, filteredAlbedo, surfaceAlbedo)
+
+void main() {
+    mrPixel p;
+    if (mrFaceRejected() || !mrTracePixel(p)) discard;
+    if (p.exhausted) {
+        // Never silent: a traversal cut short by its budget shows magenta (relief.frag).
+        gl_FragColor = vec4(1.0, 0.0, 1.0, 1.0);
+        gl_FragDepth = gl_FragCoord.z;
+        return;
+    }
+    cameraRight = mrRayDirDx;
+    cameraUp = mrRayDirDy;
+    viewportSize = mrViewport.zw;
+    mr_Relief relief = mrRelief();
+    float visibility = 1.0;
+#if MICRORELIEF_SHADOWS == 1
+    bool exhausted = false;
+    visibility = mr_hardShadow(relief, mrWindows, mrHeights, p.hit, mr_baseFrameVector(relief, mrLightDirection),
+                               MR_T_INFINITY, exhausted);
+    if (exhausted) {
+        gl_FragColor = vec4(1.0, 0.0, 1.0, 1.0);
+        gl_FragDepth = gl_FragCoord.z;
+        return;
+    }
+#endif
+    mr_ReliefMaterial material = mr_ReliefMaterial(surfaceAlbedo(relief, p.hit, p.dir, p.normal), 0.25, 48.0);
+    gl_FragColor = vec4(mr_shadeRelief(material, p.normal, normalize(mrLightDirection), normalize(-p.dir), vec3(visibility)), 1.0);
+    vec4 clip;
+    float depth = mrWindowDepth(p.world, clip);
+#ifdef USE_LOGARITHMIC_DEPTH_BUFFER
+    depth = mrLogarithmicDepth(clip, depth);
+#endif
+    gl_FragDepth = depth;
+#include <tonemapping_fragment>
+#include <colorspace_fragment>
+}

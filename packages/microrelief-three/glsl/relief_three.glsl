@@ -1,0 +1,127 @@
+// relief_three.glsl: microrelief-three's glue between three.js and the library (the GLSL of
+// shaders/microrelief/, spliced before this file by scripts/build.mjs). One ray per pixel
+// through the pixel's own centre, traced by the multilevel method, for any three.js camera.
+//
+// use:   mrPixel p; if (mrFaceRejected() || !mrTracePixel(p)) discard;
+//        gl_FragDepth = mrWindowDepth(p.world, clip);
+// needs: the uniforms below (src/relief.js fills them, per relief and per draw).
+//
+// The camera's rays are affine in the pixel's NDC (x, y): origin o0 + x ox + y oy and
+// direction d0 + x dx + y dy, in the world. A perspective camera has ox = oy = 0 and o0 its
+// eye; an orthographic one (a directional light's shadow camera) has one direction and
+// origins on its near plane. JavaScript computes the six vectors in double from the
+// camera's projectionMatrixInverse and matrixWorld; with d0's component along the view
+// axis 1, t is the view depth and [near, far] the t range three would keep (mrRange).
+// The NDC is the pixel centre's, from gl_FragCoord and the viewport (mrViewport), never
+// an interpolated box position: rounding the interpolation moves a ray off its pixel
+// centre, and at silhouettes that flips whole pixels. Shadow passes, whose viewport three
+// sets behind the renderer's back, take it from the interpolated clip position (mrClip):
+// a shadow map samples far more coarsely than that rounding.
+#ifndef MICRORELIEF_THREE_GLSL
+#define MICRORELIEF_THREE_GLSL
+
+uniform sampler2D mrHeights;   // the samples, R32F, W x H (nearest; u repeats on a curved base)
+uniform sampler2D mrWindows;   // the windows pyramid, R16F, GL's mip sizes of W x H
+uniform vec2 mrMapSize;        // W, H
+uniform ivec2 mrPyramidSize;   // W, H
+uniform int mrLevelCount;      // floor(log2 max(W, H)) + 1
+uniform float mrMaxHeight;     // the pyramid's top texel, map units
+uniform mat4 mrObjectToWorld;  // the relief's matrixWorld
+uniform mat4 mrWorldToObject;  // its inverse (in double, then float)
+uniform float mrHeightScale;   // s
+uniform vec3 mrFrameScale;     // curved bases: (R, L / 2, R) or the ellipsoid's radii
+uniform float mrPixelError;    // level of detail in pixels (0: exact)
+
+// This draw's camera (the view's or a light's shadow camera).
+uniform vec3 mrRayOrigin, mrRayOriginDx, mrRayOriginDy;
+uniform vec3 mrRayDir, mrRayDirDx, mrRayDirDy;
+uniform vec4 mrViewport;        // x, y, width, height in window pixels; width 0: NDC from mrClip
+uniform vec2 mrRange;           // the t range: the camera's near and far
+uniform int mrFaces;            // which faces of the box run: 1 front, 2 back, 3 both
+uniform mat4 mrViewProjection;  // world to this camera's clip space
+uniform mat4 mrCameraToWorld;   // the camera's matrixWorld
+uniform mat4 mrWorldToCamera;   // its inverse: the view matrix of this draw
+uniform int mrPerspective;      // 1: a perspective projection (logarithmic depth applies)
+
+varying vec4 mrClip;  // the box's clip position, interpolated
+
+mr_Relief mrRelief() {
+    return mr_Relief(mr_ReliefMap(mrMapSize, mrPyramidSize, mrLevelCount, mrMaxHeight, ivec2(1)),
+                     mr_ReliefPlacement(mrObjectToWorld, mrWorldToObject, mrHeightScale, mrFrameScale));
+}
+
+// The box runs its front faces from outside, its back faces when the camera is inside or
+// the near plane cuts it, both where near and far both cut it (src/relief.js decides).
+bool mrFaceRejected() {
+    return mrFaces == 1 ? !gl_FrontFacing : (mrFaces == 2 ? gl_FrontFacing : false);
+}
+
+// The pixel centre in NDC, as relief.frag computes it: (gl_FragCoord + 0) / size * 2 - 1.
+vec2 mrPixelNdc() {
+    if (mrViewport.z > 0.0) return (gl_FragCoord.xy - mrViewport.xy) / mrViewport.zw * 2.0 - 1.0;
+    return mrClip.xy / mrClip.w;
+}
+
+struct mrPixel {
+    vec3 origin;       // world
+    vec3 dir;          // world, not unit
+    mr_ReliefHit hit;  // the library's answer, in the base's frame
+    bool exhausted;    // the traversal ran out of its budget (never silent: shown magenta)
+    vec3 world;        // the hit, world: origin + t dir
+    vec3 normal;       // world, unit
+    vec2 uv;           // three's convention: (u, 1 - v), the image's row 0 at uv.y = 1
+};
+
+// The pixel's ray traced; false where it misses the relief.
+bool mrTracePixel(out mrPixel p) {
+    vec2 ndc = mrPixelNdc();
+    p.origin = mrRayOrigin + ndc.x * mrRayOriginDx + ndc.y * mrRayOriginDy;
+    p.dir = mrRayDir + ndc.x * mrRayDirDx + ndc.y * mrRayDirDy;
+    mr_Relief relief = mrRelief();
+    // The level-of-detail cone of relief.frag: a window may stand for the surface once it
+    // projects to less than mrPixelError pixels (the view's camera only).
+    float lodCone = 0.0;
+    if (mrPixelError > 0.0 && mrViewport.z > 0.0) {
+        float pixelAngle = 2.0 * length(mrRayDirDy) / mrViewport.w;
+        float objectLength = length(mat3(mrWorldToObject) * p.dir);
+        lodCone = mrPixelError * pixelAngle * objectLength * max(mrMapSize.x, mrMapSize.y);
+    }
+    mr_RayQuery query = mr_RayQuery(mrRange.x, mrRange.y, false, mr_traversalBudget(relief.map), lodCone);
+    p.hit = mr_traceMultilevel(relief, query, mrWindows, mrHeights, mr_baseFramePoint(relief, p.origin),
+                               mr_baseFrameVector(relief, p.dir));
+    p.exhausted = p.hit.exhausted;
+    p.world = p.origin + max(p.hit.t, mrRange.x) * p.dir;
+    p.normal = vec3(0.0, 1.0, 0.0);
+    p.uv = vec2(0.0);
+    if (p.exhausted) return true;
+    if (p.hit.kind == MR_RELIEF_MISS) return false;
+    p.world = p.origin + p.hit.t * p.dir;  // on the ray exactly, as relief.frag has it
+    p.normal = mr_reliefWorldNormal(relief, p.hit);
+    vec3 m = mr_baseMapPoint(relief, p.hit.position);
+    p.uv = vec2(m.x / mrMapSize.x, 1.0 - m.y / mrMapSize.y);
+    return true;
+}
+
+// The window depth of world point `world` for this draw's camera, as the fixed function
+// makes it from a vertex there: clip z / w to [0, 1] (three's reversed depth buffer sets
+// the clip control to [0, 1] already), then the depth range. `clip` is the clip position.
+float mrWindowDepth(vec3 world, out vec4 clip) {
+    clip = mrViewProjection * vec4(world, 1.0);
+    float ndc = clip.z / clip.w;
+#ifdef USE_REVERSED_DEPTH_BUFFER
+    float unit = ndc;
+#else
+    float unit = 0.5 + 0.5 * ndc;
+#endif
+    return clamp(gl_DepthRange.near + gl_DepthRange.diff * unit, 0.0, 1.0);
+}
+
+// The depth three's logarithmic depth buffer writes for clip position `clip`
+// (logdepthbuf_fragment: log2(1 + w) * logDepthBufFC / 2 for a perspective camera).
+#ifdef USE_LOGARITHMIC_DEPTH_BUFFER
+float mrLogarithmicDepth(vec4 clip, float depth) {
+    return mrPerspective != 0 ? log2(1.0 + clip.w) * logDepthBufFC * 0.5 : depth;
+}
+#endif
+
+#endif

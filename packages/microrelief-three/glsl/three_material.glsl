@@ -1,0 +1,145 @@
+// three_material.glsl: the traced hit as three.js's own fragment shaders expect their
+// inputs (src/materials.js splices it before main() of MeshStandardMaterial,
+// MeshPhysicalMaterial, MeshDepthMaterial and MeshDistanceMaterial, and calls
+// mrBeginPixel() first thing in main()).
+//
+// three computes per vertex what its fragment shader reads: the view position, the normal,
+// the uvs, the fog depth, the shadow maps' coordinates, the logarithmic depth. On the proxy
+// box those would be the box's. src/materials.js turns each of those varyings into a plain
+// global and defines MR_HAS_<name> beside it (inside three's own #if, so the macro exists
+// exactly where the variable does); mrBeginPixel() then gives each one the value three's
+// vertex shader would have computed at the hit, from the hit's world position and normal.
+//
+// options: MR_SHADOW_PASS (a depth or distance material: exhausted rays cast nothing);
+//          MR_SELF_SHADOW (the library's exact hard shadow, mr_hardShadow, for each of
+//          three's punctual lights, on top of three's shadow maps); MR_ALBEDO_MAP (the
+//          map's colours by relief.frag's surfaceAlbedo, filtered over the pixel's
+//          footprint from ray differentials, multiplying diffuseColor).
+#ifndef MICRORELIEF_THREE_MATERIAL_GLSL
+#define MICRORELIEF_THREE_MATERIAL_GLSL
+
+mrPixel mrHitPixel;
+bool mrExhausted = false;
+
+// What relief.frag's surfaceAlbedo reads besides its arguments, for this draw's camera.
+vec3 cameraRight, cameraUp;
+vec2 viewportSize;
+#ifdef MR_ALBEDO_MAP
+#define MICRORELIEF_ALBEDO_MAP 1
+#define albedoMap mrAlbedoMap
+uniform sampler2D mrAlbedoMap;  // the map's colours, row 0 at v = 0 (flipY false), sRGB, mipmapped
+const int albedoFinest = 0;     // filtered over the pixel's footprint
+// MR_ALBEDO_FUNCTIONS (src/materials.js: relief.frag's mapDelta, finestAlbedo, filteredAlbedo, surfaceAlbedo)
+#endif
+
+void mrBeginPixel() {
+    if (mrFaceRejected() || !mrTracePixel(mrHitPixel)) discard;
+    mrExhausted = mrHitPixel.exhausted;
+#ifdef MR_SHADOW_PASS
+    if (mrExhausted) discard;  // no shadow from a ray that did not finish
+#endif
+    cameraRight = mrRayDirDx;
+    cameraUp = mrRayDirDy;
+    viewportSize = mrViewport.zw;
+    vec3 world = mrHitPixel.world, normal = mrHitPixel.normal;
+    vec4 clip;
+    float depth = mrExhausted ? gl_FragCoord.z : mrWindowDepth(world, clip);
+#ifdef USE_LOGARITHMIC_DEPTH_BUFFER
+    if (!mrExhausted) depth = mrLogarithmicDepth(clip, depth);
+#endif
+    gl_FragDepth = depth;
+    // In the camera's view space, where three lights: the view matrix of this draw.
+    mat4 worldToView = mrWorldToCamera;
+    vec3 viewHit = (worldToView * vec4(world, 1.0)).xyz;
+#ifdef MR_HAS_vViewPosition
+    vViewPosition = -viewHit;
+#endif
+#ifdef MR_HAS_vNormal
+    vNormal = normalize(mat3(worldToView) * normal);
+#endif
+#ifdef MR_HAS_vFogDepth
+    vFogDepth = -viewHit.z;
+#endif
+#ifdef MR_HAS_vClipPosition
+    vClipPosition = -viewHit;
+#endif
+#ifdef MR_HAS_vWorldPosition
+    vWorldPosition = world;
+#endif
+#ifdef MR_HAS_vHighPrecisionZW
+    vHighPrecisionZW = clip.zw;
+#endif
+#ifdef MR_HAS_vFragDepth
+    vFragDepth = 1.0 + clip.w;
+#endif
+#ifdef MR_HAS_vIsPerspective
+    vIsPerspective = float(mrPerspective);
+#endif
+#ifdef MR_HAS_vDirectionalShadowCoord
+    for (int i = 0; i < NUM_DIR_LIGHT_SHADOWS; ++i)
+        vDirectionalShadowCoord[i] = directionalShadowMatrix[i] * vec4(world + normal * directionalLightShadows[i].shadowNormalBias, 1.0);
+#endif
+#ifdef MR_HAS_vPointShadowCoord
+    for (int i = 0; i < NUM_POINT_LIGHT_SHADOWS; ++i)
+        vPointShadowCoord[i] = pointShadowMatrix[i] * vec4(world + normal * pointLightShadows[i].shadowNormalBias, 1.0);
+#endif
+#ifdef MR_HAS_vSpotLightCoord
+    for (int i = 0; i < NUM_SPOT_LIGHT_COORDS; ++i) {
+        vec3 p = world;
+#if defined(USE_SHADOWMAP) && NUM_SPOT_LIGHT_SHADOWS > 0
+        if (i < NUM_SPOT_LIGHT_SHADOWS) p += normal * spotLightShadows[i].shadowNormalBias;
+#endif
+        vSpotLightCoord[i] = spotLightMatrix[i] * vec4(p, 1.0);
+    }
+#endif
+#ifdef MR_HAS_vSunShadowWorldPosition
+    vSunShadowWorldPosition = vec4(world, -viewHit.z);
+#endif
+#ifdef MR_HAS_vSunShadowWorldNormal
+    vSunShadowWorldNormal = normal;
+#endif
+    // MR_UV_ASSIGNMENTS (src/materials.js: each uv varying of this shader, through its map's transform)
+}
+
+// The tangent frame at the hit in view space (three's getTangentFrame, which takes it from
+// screen-space derivatives that break at every silhouette): the map's u and v axes on the
+// surface (mr_baseTangentFrame) through the model, v flipped to three's uv, orthonormalised
+// against the shading normal.
+mat3 mrTangentFrame(vec3 normal, vec2 unusedUv) {
+    mr_Relief relief = mrRelief();
+    vec3 q = mrHitPixel.hit.position, alongX, alongY, alongH;
+    mr_baseTangentFrame(relief, mr_baseMapPoint(relief, q), alongX, alongY, alongH);
+    mat3 toView = mat3(mrWorldToCamera) * mat3(mrObjectToWorld);
+    vec3 origin = mr_baseFrameToObject(relief, q);
+    vec3 t = toView * (mr_baseFrameToObject(relief, q + alongX) - origin);
+    vec3 b = -(toView * (mr_baseFrameToObject(relief, q + alongY) - origin));
+    t = normalize(t - dot(t, normal) * normal);
+    vec3 c = cross(normal, t);
+    return mat3(t, dot(c, b) < 0.0 ? -c : c, normal);
+}
+
+// The library's exact hard shadow from the hit towards a light (1 lit, 0 shadowed): the
+// frame vector `frameToLight` up to tMax (relief.frag's lightVisibility).
+float mrSelfShadow(vec3 frameToLight, float tMax) {
+#ifdef MR_SELF_SHADOW
+    if (mrExhausted) return 1.0;
+    bool exhausted = false;
+    return mr_hardShadow(mrRelief(), mrWindows, mrHeights, mrHitPixel.hit, frameToLight, tMax, exhausted);
+#else
+    return 1.0;
+#endif
+}
+
+// three's lights are in view space: a direction towards a directional (or sun) light, the
+// position of a point or spot light.
+float mrSelfShadowDirection(vec3 viewDirection) {
+    return mrSelfShadow(mr_baseFrameVector(mrRelief(), mat3(mrCameraToWorld) * viewDirection), MR_T_INFINITY);
+}
+
+float mrSelfShadowPoint(vec3 viewPosition) {
+    mr_Relief relief = mrRelief();
+    vec3 world = (mrCameraToWorld * vec4(viewPosition, 1.0)).xyz;
+    return mrSelfShadow(mr_baseFramePoint(relief, world) - mrHitPixel.hit.position, 1.0);
+}
+
+#endif

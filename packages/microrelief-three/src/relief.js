@@ -1,0 +1,311 @@
+// relief.js: the relief as a three.js object. A Relief is a THREE.Mesh whose geometry is its
+// proxy box (the relief's object-space bounds, a small margin added) and whose material
+// traces the relief in every pixel the box covers. Its object space is microrelief's
+// (docs/scene-and-cli.md): on the plane the map spans x in [-a/2, a/2], z in [-b/2, b/2],
+// the longer side 1, heights y = s h; the curved bases are centred, their axis along y. Its
+// matrixWorld is the library's model transform (any affine one).
+//
+// Per draw (onBeforeRender, and onBeforeShadow for three's shadow maps) it hands its
+// materials the camera's rays (glsl/relief_three.glsl), which faces of the box run, the
+// camera's matrices and the viewport. Raycaster hits are traced by the same GLSL on the GPU
+// (raycast), so a pick returns the point, uv and normal the pixel shows.
+import * as THREE from 'three';
+
+import {glue, library} from '../generated/glsl.js';
+import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefStandardMaterial} from './materials.js';
+
+const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
+
+// The base surface: {kind: 'plane'} or {kind: 'cylinder', radius, length} or
+// {kind: 'ellipsoid', radii: [a, b, c]}; 'sphere' is an ellipsoid of equal radii. Strings
+// take microrelief-render's defaults (radius 0.3 and length 1; a sphere of radius 0.5).
+export function baseShape(base = 'plane') {
+    const spec = typeof base === 'string' ? {kind: base} : {...base};
+    const positive = (value, what) => {
+        if (!(value > 0) || !Number.isFinite(value)) throw new TypeError(`Relief: base ${what} must be a positive finite number`);
+        return value;
+    };
+    if (spec.kind === 'plane') return {kind: 'plane'};
+    if (spec.kind === 'cylinder') return {kind: 'cylinder', radius: positive(spec.radius ?? 0.3, 'radius'), length: positive(spec.length ?? 1, 'length')};
+    if (spec.kind === 'sphere') {
+        const r = positive(spec.radius ?? 0.5, 'radius');
+        return {kind: 'ellipsoid', radii: [r, r, r]};
+    }
+    if (spec.kind === 'ellipsoid') return {kind: 'ellipsoid', radii: (spec.radii ?? [0.5, 0.5, 0.5]).map((r) => positive(r, 'radii'))};
+    throw new TypeError(`Relief: unknown base '${spec.kind}' (expected plane, cylinder, ellipsoid or sphere)`);
+}
+
+function frameScale(base) {
+    if (base.kind === 'cylinder') return [base.radius, 0.5 * base.length, base.radius];
+    if (base.kind === 'ellipsoid') return base.radii.slice();
+    return [1, 1, 1];
+}
+
+// The relief's object-space bounds for a top of `maxHeight` (ReliefExtent.cpp).
+export function reliefExtent(width, height, maxHeight, heightScale, base) {
+    const top = heightScale * maxHeight;
+    let high;
+    if (base.kind === 'cylinder') high = [base.radius * (1 + top), 0.5 * base.length, base.radius * (1 + top)];
+    else if (base.kind === 'ellipsoid') high = base.radii.map((r) => r * (1 + top));
+    else {
+        const longer = Math.max(width, height);
+        high = [(0.5 * width) / longer, top, (0.5 * height) / longer];
+    }
+    const low = base.kind === 'plane' ? [-high[0], 0, -high[2]] : high.map((c) => -c);
+    return {min: low, max: high};
+}
+
+// The six vectors of glsl/relief_three.glsl for `camera`: its rays as affine functions of
+// the pixel's NDC, computed in double. Perspective: the eye, the direction through NDC
+// (0, 0) scaled to a unit component along the view axis (t is then the view depth) and its
+// steps per unit of NDC x and y. Otherwise (orthographic): origins on the near plane, one
+// unit direction, t from the near plane. Also the t range, [near, far].
+const _v = new THREE.Vector3(), _a = new THREE.Vector3(), _b = new THREE.Vector3(), _axis = new THREE.Vector3();
+function unproject(camera, x, y, z, target) {
+    return target.set(x, y, z).applyMatrix4(camera.projectionMatrixInverse).applyMatrix4(camera.matrixWorld);
+}
+
+export function cameraRays(camera) {
+    const e = camera.projectionMatrix.elements;
+    const perspective = e[11] === -1 && e[15] === 0;
+    // NDC depths of two points in front of the camera, whatever its depth convention.
+    const near = camera.near ?? 0.1, far = camera.far ?? 1000;
+    const ndcZ = (viewDepth) => _v.set(0, 0, -viewDepth).applyMatrix4(camera.projectionMatrix).z;
+    const zNear = ndcZ(near), zMid = ndcZ(0.5 * (near + far));
+    const rays = {perspective};
+    if (perspective) {
+        const eye = new THREE.Vector3().setFromMatrixPosition(camera.matrixWorld);
+        _axis.set(0, 0, -1).transformDirection(camera.matrixWorld);
+        const d0 = unproject(camera, 0, 0, zMid, new THREE.Vector3()).sub(eye);
+        const scale = 1 / d0.dot(_axis);
+        const dx = unproject(camera, 1, 0, zMid, new THREE.Vector3()).sub(unproject(camera, 0, 0, zMid, _a)).multiplyScalar(scale);
+        const dy = unproject(camera, 0, 1, zMid, new THREE.Vector3()).sub(unproject(camera, 0, 0, zMid, _a)).multiplyScalar(scale);
+        Object.assign(rays, {origin: eye, originDx: new THREE.Vector3(), originDy: new THREE.Vector3(),
+                             dir: d0.multiplyScalar(scale), dirDx: dx, dirDy: dy, range: [near, far]});
+    } else {
+        const o0 = unproject(camera, 0, 0, zNear, new THREE.Vector3());
+        const ox = unproject(camera, 1, 0, zNear, new THREE.Vector3()).sub(o0);
+        const oy = unproject(camera, 0, 1, zNear, new THREE.Vector3()).sub(o0);
+        const dir = unproject(camera, 0, 0, zMid, _b).sub(o0).normalize().clone();
+        Object.assign(rays, {origin: o0, originDx: ox, originDy: oy, dir, dirDx: new THREE.Vector3(), dirDy: new THREE.Vector3(),
+                             range: [0, far - near]});
+    }
+    return rays;
+}
+
+let pickResources = null;
+
+export class Relief extends THREE.Mesh {
+    // `reliefMap`: createReliefMap's. Options: material (a ReliefStandardMaterial,
+    // ReliefPhysicalMaterial or ReliefShadingMaterial of its own; a ReliefStandardMaterial
+    // by default), heightScale (s, 0.1), base ('plane', 'cylinder', 'sphere', 'ellipsoid',
+    // or {kind, radius, length, radii}), interpolation ('bilinear' or 'biquadratic'),
+    // pixelError (level of detail in pixels; 0 is exact).
+    constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
+        if (!reliefMap || !reliefMap.windows) throw new TypeError('Relief: the first argument must be a ReliefMap (createReliefMap)');
+        if (!(heightScale > 0) || !Number.isFinite(heightScale)) throw new TypeError('Relief: heightScale must be a positive finite number');
+        if (!['bilinear', 'biquadratic'].includes(interpolation)) throw new TypeError(`Relief: interpolation '${interpolation}' (expected bilinear or biquadratic)`);
+        if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
+        const shape = baseShape(base);
+        if ((shape.kind !== 'plane') !== reliefMap.wrapU)
+            throw new TypeError(`Relief: a ${shape.kind} base needs a map built with wrapU: ${shape.kind !== 'plane'} (its u ${shape.kind !== 'plane' ? 'wraps round' : 'does not wrap'})`);
+        super(new THREE.BufferGeometry(), material ?? new ReliefStandardMaterial());
+        this.isRelief = true;
+        this.type = 'Relief';
+        this.reliefMap = reliefMap;
+        this.base = shape;
+        this.interpolation = interpolation;
+        this.heightScale = Math.fround(heightScale);
+        const [w, h] = [reliefMap.width, reliefMap.height];
+        this.uniforms = {
+            mrHeights: {value: reliefMap.heights}, mrWindows: {value: reliefMap.windows},
+            mrMapSize: {value: new THREE.Vector2(w, h)}, mrPyramidSize: {value: new THREE.Vector2(w, h)},
+            mrLevelCount: {value: reliefMap.levelCount}, mrMaxHeight: {value: reliefMap.maxHeight},
+            mrObjectToWorld: {value: new THREE.Matrix4()}, mrWorldToObject: {value: new THREE.Matrix4()},
+            mrHeightScale: {value: this.heightScale}, mrFrameScale: {value: new THREE.Vector3(...frameScale(shape))},
+            mrPixelError: {value: pixelError},
+            mrRayOrigin: {value: new THREE.Vector3()}, mrRayOriginDx: {value: new THREE.Vector3()}, mrRayOriginDy: {value: new THREE.Vector3()},
+            mrRayDir: {value: new THREE.Vector3()}, mrRayDirDx: {value: new THREE.Vector3()}, mrRayDirDy: {value: new THREE.Vector3()},
+            mrViewport: {value: new THREE.Vector4()}, mrRange: {value: new THREE.Vector2()}, mrFaces: {value: 2},
+            mrViewProjection: {value: new THREE.Matrix4()}, mrCameraToWorld: {value: new THREE.Matrix4()},
+            mrWorldToCamera: {value: new THREE.Matrix4()}, mrPerspective: {value: 1},
+        };
+        // The box (ReliefRenderer::uploadBox): the bounds from the pyramid's top, grown.
+        const extent = reliefExtent(w, h, reliefMap.maxHeight, this.heightScale, shape);
+        const lo = extent.min.map((c) => Math.fround(Math.fround(c) - kBoxMargin));
+        const hi = extent.max.map((c) => Math.fround(Math.fround(c) + kBoxMargin));
+        this.box = new THREE.Box3(new THREE.Vector3(...lo), new THREE.Vector3(...hi));
+        const size = this.box.getSize(new THREE.Vector3()), centre = this.box.getCenter(new THREE.Vector3());
+        this.geometry = new THREE.BoxGeometry(size.x, size.y, size.z).translate(centre.x, centre.y, centre.z);
+        this.material.attachRelief(this);
+        this.customDepthMaterial = new ReliefDepthMaterial(this);
+        this.customDistanceMaterial = new ReliefDistanceMaterial(this);
+        this.onBeforeRender = (renderer, scene, camera) => this.prepareDraw(renderer, camera, true);
+        this.onBeforeShadow = (renderer, object, camera, shadowCamera) => this.prepareDraw(renderer, shadowCamera, false);
+    }
+
+    get pixelError() {
+        return this.uniforms.mrPixelError.value;
+    }
+
+    set pixelError(value) {
+        if (!(value >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
+        this.uniforms.mrPixelError.value = value;
+    }
+
+    // This draw's uniforms: the model, the camera's rays, which faces run, the viewport
+    // (the view's camera; a shadow pass takes its NDC from the clip position instead).
+    prepareDraw(renderer, camera, withViewport) {
+        const u = this.uniforms;
+        u.mrObjectToWorld.value.copy(this.matrixWorld);
+        u.mrWorldToObject.value.copy(this.matrixWorld).invert();
+        const rays = cameraRays(camera);
+        u.mrRayOrigin.value.copy(rays.origin);
+        u.mrRayOriginDx.value.copy(rays.originDx);
+        u.mrRayOriginDy.value.copy(rays.originDy);
+        u.mrRayDir.value.copy(rays.dir);
+        u.mrRayDirDx.value.copy(rays.dirDx);
+        u.mrRayDirDy.value.copy(rays.dirDy);
+        u.mrRange.value.set(...rays.range);
+        u.mrPerspective.value = rays.perspective ? 1 : 0;
+        u.mrViewProjection.value.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+        u.mrCameraToWorld.value.copy(camera.matrixWorld);
+        u.mrWorldToCamera.value.copy(camera.matrixWorldInverse);
+        // The viewport GL rasterises this draw into (three's own record of it starts empty
+        // until setSize, setViewport or setRenderTarget is called).
+        if (withViewport) u.mrViewport.value.fromArray(renderer.getContext().getParameter(renderer.getContext().VIEWPORT));
+        else u.mrViewport.value.set(0, 0, 0, 0);
+        u.mrFaces.value = this.facesFor(camera, rays.range);
+    }
+
+    // The box's back faces are never cut by the near plane: they run unless the far plane
+    // cuts the box; then its front faces, and both where near and far both cut it.
+    facesFor(camera, [near, far]) {
+        let nearest = Infinity, farthest = -Infinity;
+        const toView = _m.multiplyMatrices(camera.matrixWorldInverse, this.matrixWorld);
+        for (let k = 0; k < 8; ++k) {
+            _v.set(k & 1 ? this.box.max.x : this.box.min.x, k & 2 ? this.box.max.y : this.box.min.y, k & 4 ? this.box.max.z : this.box.min.z).applyMatrix4(toView);
+            nearest = Math.min(nearest, -_v.z);
+            farthest = Math.max(farthest, -_v.z);
+        }
+        if (camera.isOrthographicCamera || camera.projectionMatrix.elements[15] === 1) {
+            nearest -= camera.near;
+            farthest -= camera.near;
+            [near, far] = [0, far];
+        }
+        if (farthest <= far) return 2;
+        return nearest < near ? 3 : 1;
+    }
+
+    // three's Raycaster: the relief's own hit, traced on the GPU by the library (the same
+    // GLSL as the picture): {distance, point, uv (three's convention), normal (object space,
+    // as three's Mesh gives it), worldNormal, object}.
+    raycast(raycaster, intersects) {
+        if (this.material === undefined || this.reliefMap.renderer === undefined) return;
+        _inverse.copy(this.matrixWorld).invert();
+        _ray.copy(raycaster.ray).applyMatrix4(_inverse);
+        if (!_ray.intersectsBox(this.box)) return;
+        const hit = this.trace(raycaster.ray.origin, raycaster.ray.direction, raycaster.near, raycaster.far);
+        if (!hit) return;
+        intersects.push({...hit, object: this, face: null, faceIndex: -1});
+    }
+
+    // The first hit of the world ray origin + t direction (direction unit), t in [near, far]:
+    // {distance, point, uv, normal, worldNormal, kind, iterations}, or null for a miss.
+    trace(origin, direction, near = 0, far = Infinity) {
+        const rays = this.traceRays([origin.x, origin.y, origin.z], [direction.x, direction.y, direction.z], [near, far]);
+        if (rays.kind[0] === 0 || rays.exhausted[0]) return null;
+        const worldNormal = new THREE.Vector3().fromArray(rays.normal, 0);
+        // three's Mesh gives the object-space normal: the world one through the model's transpose.
+        const normal = worldNormal.clone().transformDirection(_m.copy(this.matrixWorld).transpose());
+        return {distance: rays.t[0], point: new THREE.Vector3().fromArray(rays.point, 0), uv: new THREE.Vector2().fromArray(rays.uv, 0),
+                normal, worldNormal, kind: rays.kind[0], iterations: rays.iterations[0]};
+    }
+
+    // Many world rays at once, traced on the GPU by the library: `origins` and `directions`
+    // are 3 n numbers, `ranges` 2 n (tMin, tMax; t in units of each direction's length) or one
+    // pair for all. Returns typed arrays: t, kind (0 a miss, 1 the surface, 2 to 5 the box's
+    // walls, bottom or caps), exhausted, point (3 n, world), normal (3 n, world unit), uv
+    // (2 n, three's convention), iterations.
+    traceRays(origins, directions, ranges = [0, Infinity]) {
+        const n = origins.length / 3;
+        if (!Number.isInteger(n) || directions.length !== origins.length || (ranges.length !== 2 && ranges.length !== 2 * n))
+            throw new TypeError('Relief.traceRays: 3 n origins, 3 n directions and 2 or 2 n range values');
+        const renderer = this.reliefMap.renderer;
+        if (!pickResources) pickResources = makePickResources();
+        const {scene, camera, material} = pickResources;
+        const width = Math.min(n, 1024), rows = Math.ceil(n / width);
+        const rayData = [new Float32Array(4 * width * rows), new Float32Array(4 * width * rows)];
+        for (let k = 0; k < n; ++k) {
+            const range = ranges.length === 2 ? ranges : ranges.slice(2 * k, 2 * k + 2);
+            rayData[0].set([origins[3 * k], origins[3 * k + 1], origins[3 * k + 2], range[0]], 4 * k);
+            rayData[1].set([directions[3 * k], directions[3 * k + 1], directions[3 * k + 2], Math.min(range[1], 3.4e38)], 4 * k);
+        }
+        const textures = rayData.map((data) => {
+            const texture = new THREE.DataTexture(data, width, rows, THREE.RGBAFormat, THREE.FloatType);
+            texture.needsUpdate = true;
+            return texture;
+        });
+        const target = new THREE.WebGLRenderTarget(width, 12 * rows, {depthBuffer: false, generateMipmaps: false});
+        this.updateWorldMatrix(true, false);
+        const u = material.uniforms;
+        Object.assign(u, this.uniforms);
+        u.mrObjectToWorld = {value: this.matrixWorld.clone()};
+        u.mrWorldToObject = {value: this.matrixWorld.clone().invert()};
+        u.mrRayOrigins = {value: textures[0]};
+        u.mrRayDirections = {value: textures[1]};
+        u.mrRayRows = {value: rows};
+        const key = `${this.base.kind}:${this.interpolation}`;
+        if (material.userData.key !== key) {
+            material.defines = {MICRORELIEF_BASE: String({plane: 0, cylinder: 1, ellipsoid: 2}[this.base.kind]),
+                                MICRORELIEF_INTERPOLATION: this.interpolation === 'biquadratic' ? '1' : '0'};
+            material.userData.key = key;
+            material.needsUpdate = true;
+        }
+        const previous = [renderer.getRenderTarget(), renderer.getActiveCubeFace(), renderer.getActiveMipmapLevel()];
+        const bytes = new Uint8Array(4 * width * 12 * rows);
+        try {
+            renderer.setRenderTarget(target);
+            renderer.render(scene, camera);
+            renderer.readRenderTargetPixels(target, 0, 0, width, 12 * rows, bytes);
+        } finally {
+            renderer.setRenderTarget(...previous);
+            target.dispose();
+            for (const t of textures) t.dispose();
+        }
+        const all = new Float32Array(bytes.buffer);
+        const field = (k) => all.subarray(k * width * rows, k * width * rows + n);
+        const interleave = (fields) => {
+            const out = new Float32Array(fields.length * n);
+            fields.forEach((f, c) => field(f).forEach((v, k) => (out[fields.length * k + c] = v)));
+            return out;
+        };
+        return {t: field(0).slice(), kind: field(1).slice(), exhausted: field(2).slice(), point: interleave([3, 4, 5]),
+                normal: interleave([6, 7, 8]), uv: interleave([9, 10]), iterations: field(11).slice()};
+    }
+
+    dispose() {
+        this.geometry.dispose();
+        this.customDepthMaterial.dispose();
+        this.customDistanceMaterial.dispose();
+    }
+}
+
+const _m = new THREE.Matrix4(), _inverse = new THREE.Matrix4(), _ray = new THREE.Ray();
+
+// A full-viewport triangle tracing a batch of rays (glsl/pick.frag), shared by all reliefs.
+function makePickResources() {
+    const material = new THREE.ShaderMaterial({
+        glslVersion: THREE.GLSL3,
+        vertexShader: 'void main() { vec2 c = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)); gl_Position = vec4(c - 1.0, 0.0, 1.0); }',
+        fragmentShader: library + glue.reliefThree.replace('varying vec4 mrClip;', 'vec4 mrClip;') + glue.pick,
+        uniforms: {},
+        depthTest: false,
+        depthWrite: false,
+    });
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(9), 3));
+    const mesh = new THREE.Mesh(geometry, material);
+    mesh.frustumCulled = false;
+    return {scene: mesh, camera: new THREE.Camera(), material};
+}

@@ -1,0 +1,376 @@
+// microrelief-three in a real browser (label three): examples/three's page, staged into the
+// build tree with the package (packages/microrelief-three/CMakeLists.txt), in Debian's
+// headless Chromium (WebGL 2 on SwiftShader), driven by tests/web/drive_chromium.py.
+// - shading=microrelief: the relief drawn by three with the library's own shading, for
+//   several cameras and bases, against microrelief-render's picture of the same flags;
+// - three's Raycaster at random pixels against microrelief-render's AOV positions;
+// - depth: a three.js plane crossing the relief; the depth three wrote equals the relief's
+//   exact hit depth (from the AOV) where the relief is in front, the plane's where it is.
+// The measurements inside the page are tests/three/checks.js.
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "BrowserTest.h"
+
+using namespace microrelief;
+using browser::jsonString;
+using browser::PageRun;
+
+namespace {
+
+// The same rays through the same GLSL on two software GPUs, so tests/web's thresholds and
+// reasons (WebPageTest.cpp: 8 levels, 0.2 % of pixels, a mean of 0.6 levels). Seen over these
+// views (Chromium on SwiftShader against llvmpipe, 2026-12-03): no pixel over 8 levels but in
+// the sphere (0.013 %: 2 pixels at grazing edges, up to 54 levels), means 0.05 to 0.16
+// levels. Seen red: the height scale 2 % off puts 0.16 to 11 % of the pixels over 8 levels
+// and the mean up to 2.8 levels (six of the seven views fail).
+constexpr browser::PictureThresholds kLimits = {8, 0.002, 0.6};
+
+// A hit position from the two GPUs: the same float ray, traced to the same root by the
+// same subdivision; they differ by the last bits of the ray's set-up (three's Raycaster
+// builds the ray in double, microrelief-render's shader in float) and of the root's
+// interpolation: seen at most 1.5e-6 world units. 1e-5 is a two-hundredth of a texel of the
+// 512-texel bundled map on its unit plane: a hit on the wrong cobble, a wrong height scale
+// (10 %: up to 0.01) or a box face instead of the surface is far outside it.
+constexpr double kPositionTolerance = 1e-5;
+// Pixels whose rays graze a silhouette may hit on one GPU and miss on the other: at most
+// this fraction of the picked pixels (1 in 200) may disagree on hit or miss.
+constexpr double kMaxHitMissDisagreement = 0.005;
+
+// Window depths (three's default: [0, 1], not reversed; a 32-bit float depth texture) with
+// the camera's depth range set to [0.25, 4] (microrelief-render's near plane, a ten-thousandth
+// of its far one, leaves the depth buffer a resolution of about 1e-3 world units here). The
+// AOV's hits and SwiftShader's differ by about 1e-6 world units, 3e-7 in window depth at a
+// distance of 1.3; a float's step near 1 is 6e-8. 2e-6 keeps those out and catches the box's
+// face written instead of the hit (1e-2 and more) or a hit a hundredth of the height scale
+// off (about 2e-4).
+constexpr double kDepthTolerance = 2e-6;
+// The plane's own depth, where it is in front, is the rasteriser's: vertices snapped to a
+// sub-pixel grid (SwiftShader: 1/16 pixel here) move it by up to a sixteenth of its depth's
+// change over one pixel, which reaches 1e-3 along the bottom rows: seen 1.5e-5.
+constexpr double kPlaneDepthTolerance = 1e-4;
+
+// A view as the page's URL and as microrelief-render's flags.
+struct View {
+    std::string name, query, flags;
+    int width, height;
+};
+
+// The cameras and bases of the issue: top, oblique (the default), grazing with the exact
+// shadows, the camera inside the box, an affine model transform, a cylinder with the
+// biquadratic last level, a sphere.
+const std::vector<View> kViews = {
+    {"oblique", "", "", 240, 180},
+    {"top-down", "eye=0,1.6,0&target=0,0,0&up=0,0,-1&albedo=none",
+     "--eye=0,1.6,0 --target=0,0,0 --up=0,0,-1 --albedo none", 160, 160},
+    {"grazing-shadows", "eye=0.75,0.1,0.55&target=-0.2,0.02,-0.1&fovy=50&shadows=hard",
+     "--eye=0.75,0.1,0.55 --target=-0.2,0.02,-0.1 --fovy 50 --shadows hard", 240, 180},
+    {"inside-the-box", "eye=0.12,0.085,0.2&target=-0.4,0.03,-0.35&fovy=70",
+     "--eye=0.12,0.085,0.2 --target=-0.4,0.03,-0.35 --fovy 70", 240, 180},
+    {"model", "model=0.8,-0.3,0,0.05,0.3,0.8,0,0.02,0,0,0.9,-0.03&eye=0.9,0.6,0.7&target=0,0,0",
+     "--model=0.8,-0.3,0,0.05,0.3,0.8,0,0.02,0,0,0.9,-0.03 --eye=0.9,0.6,0.7 --target=0,0,0", 240,
+     180},
+    {"cylinder-biquadratic",
+     "base=cylinder&radius=0.25&length=0.9&interpolation=biquadratic&eye=0.7,0.4,0.9&target=0,0,0",
+     "--base cylinder --radius 0.25 --length 0.9 --interpolation biquadratic --eye=0.7,0.4,0.9 "
+     "--target=0,0,0",
+     200, 150},
+    {"sphere", "base=sphere&albedo=none&target=0,0,0&height-scale=0.15&eye=0.9,0.5,0.9",
+     "--base sphere --albedo none --target=0,0,0 --height-scale 0.15 --eye=0.9,0.5,0.9", 200, 150},
+};
+
+const View& viewNamed(const std::string& name) {
+    for (const View& v : kViews)
+        if (v.name == name) return v;
+    std::abort();
+}
+
+// microrelief-render's AOV: per pixel x, y, z and 1 for a hit, 0 for a miss; row 0 the top.
+struct Aov {
+    int width = 0, height = 0;
+    std::vector<float> pixels;
+    const float* at(int column, int row) const {
+        return &pixels[(static_cast<std::size_t>(row) * width + column) * 4];
+    }
+};
+
+Aov readAov(const std::filesystem::path& file) {
+    Aov aov;
+    auto input = OIIO::ImageInput::open(file.string());
+    if (!input) return aov;
+    aov.width = input->spec().width;
+    aov.height = input->spec().height;
+    aov.pixels.resize(static_cast<std::size_t>(aov.width) * aov.height * 4);
+    if (!input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, aov.pixels.data())) return {};
+    return aov;
+}
+
+// The numbers of a space-separated list (NaN spelt as JavaScript does).
+std::vector<double> numbers(const std::string& text) {
+    std::vector<double> out;
+    std::istringstream in(text);
+    for (std::string token; in >> token;) out.push_back(std::strtod(token.c_str(), nullptr));
+    return out;
+}
+
+class ThreePage : public browser::BrowserTest {
+protected:
+    void SetUp() override {
+        failures_ = "three-failures";
+        browser::BrowserTest::SetUp();
+        if (HasFatalFailure() || IsSkipped()) return;
+        const std::filesystem::path page =
+            std::filesystem::path(MICRORELIEF_WEB_ROOT) / "web/three/index.html";
+        if (!std::filesystem::exists(page)) {
+            const char* allow = std::getenv("MICRORELIEF_ALLOW_MISSING_BROWSER");
+            const std::string why = "examples/three is not staged (" + page.string() +
+                                    "): configure with node and `npm ci` in "
+                                    "packages/microrelief-three (bash scripts/setup.sh)";
+            if (allow && std::string(allow) == "1") GTEST_SKIP() << why;
+            FAIL() << why;
+        }
+    }
+
+    // The steps that open examples/three on `query` (shading=microrelief) and load checks.js.
+    static std::string openCompare(const View& v) {
+        return open("shading=microrelief" + (v.query.empty() ? "" : "&" + v.query), v.width,
+                    v.height, "three/") +
+               ", {\"wait\": \"ready\"}, {\"eval\": " +
+               jsonString(test::readText(MICRORELIEF_CHECKS_JS)) + "}";
+    }
+
+    void renderWithAov(const View& v, const std::filesystem::path& aov) {
+        render(v.flags + " --size " + size(v.width, v.height) + " --aov " + aov.string(),
+               dir / (v.name + "-render.png"));
+    }
+};
+
+TEST_F(ThreePage, LibraryShadingMatchesTheRenderer) {
+    std::string steps = "[";
+    for (std::size_t k = 0; k < kViews.size(); ++k) {
+        const View& v = kViews[k];
+        steps += (k ? ", " : "") +
+                 open("shading=microrelief" + (v.query.empty() ? "" : "&" + v.query), v.width,
+                      v.height, "three/") +
+                 ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+                 jsonString((dir / (v.name + "-page.png")).string()) + "}";
+    }
+    const PageRun page = runPage(steps + "]");
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    for (std::size_t k = 0; k < kViews.size(); ++k) {
+        const View& v = kViews[k];
+        SCOPED_TRACE(v.name);
+        const int step = 3 * static_cast<int>(k);
+        ASSERT_EQ(page.at(step + 1, "state"), "ready") << page.at(step + 1, "error");
+        const auto rendered = dir / (v.name + "-render.png");
+        const std::string flags = v.flags + " --size " + size(v.width, v.height);
+        render(flags, rendered);
+        expectSamePicture(v.name, dir / (v.name + "-page.png"), rendered,
+                          "microrelief-render " + flags, kLimits);
+    }
+}
+
+// Raycaster.intersectObject(relief) through the centres of random pixels: the point is
+// microrelief-render's AOV position of that pixel; a miss is its miss.
+TEST_F(ThreePage, RaycasterHitsAreTheRenderersAovPositions) {
+    for (const char* name : {"oblique", "grazing-shadows", "model", "cylinder-biquadratic"}) {
+        const View& v = viewNamed(name);
+        SCOPED_TRACE(v.name);
+        constexpr int kPicks = 300;
+        std::uint32_t state = 12345;
+        const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
+        std::vector<std::pair<int, int>> pixels;
+        std::string list = "[";
+        for (int k = 0; k < kPicks; ++k) {
+            pixels.emplace_back(static_cast<int>(next() % v.width),
+                                static_cast<int>(next() % v.height));
+            list += (k ? ",[" : "[") + std::to_string(pixels.back().first) + "," +
+                    std::to_string(pixels.back().second) + "]";
+        }
+        list += "]";
+        const PageRun page = runPage(
+            "[" + openCompare(v) + ", {\"eval\": " +
+            jsonString("threeChecks.pick(" + list +
+                       ").map((h) => h ? [1, ...h.point] : [0, 0, 0, 0]).flat().join(' ')") +
+            "}]");
+        ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+        const std::vector<double> picked = numbers(page.at(3, "value"));
+        ASSERT_EQ(picked.size(), 4 * pixels.size()) << page.at(3, "value");
+        const auto aovFile = dir / (v.name + ".exr");
+        renderWithAov(v, aovFile);
+        const Aov aov = readAov(aovFile);
+        ASSERT_EQ(aov.width, v.width);
+        int hits = 0, disagreements = 0;
+        double largest = 0.0;
+        for (std::size_t k = 0; k < pixels.size(); ++k) {
+            const float* expected = aov.at(pixels[k].first, pixels[k].second);
+            const double* got = &picked[4 * k];
+            if ((expected[3] == 1.0f) != (got[0] == 1.0)) {
+                ++disagreements;
+                continue;
+            }
+            if (got[0] != 1.0) continue;
+            ++hits;
+            const double distance =
+                std::hypot(got[1] - expected[0], got[2] - expected[1], got[3] - expected[2]);
+            largest = std::max(largest, distance);
+            EXPECT_LE(distance, kPositionTolerance)
+                << "pixel " << pixels[k].first << "," << pixels[k].second << ": picked " << got[1]
+                << "," << got[2] << "," << got[3] << ", AOV " << expected[0] << "," << expected[1]
+                << "," << expected[2];
+        }
+        std::printf("    %-22s %d hits of %d, largest distance %.3g, hit/miss disagreements %d\n",
+                    v.name.c_str(), hits, kPicks, largest, disagreements);
+        EXPECT_GT(hits, 40) << "too few hits to say anything";
+        EXPECT_LE(disagreements, kMaxHitMissDisagreement * pixels.size());
+    }
+}
+
+// A plane crossing the relief, drawn by three (MeshBasicMaterial) in the same scene: at a
+// grid of pixels the depth three wrote is the nearer of the relief's exact hit (the AOV's
+// position projected by three's camera) and the plane's own depth.
+TEST_F(ThreePage, AMeshCrossingTheReliefCutsItAtTheHitDepth) {
+    for (const char* name : {"oblique", "model"}) {
+        const View& v = viewNamed(name);
+        SCOPED_TRACE(v.name);
+        const auto aovFile = dir / (v.name + ".exr");
+        renderWithAov(v, aovFile);
+        const Aov aov = readAov(aovFile);
+        ASSERT_EQ(aov.width, v.width);
+        std::vector<std::pair<int, int>> pixels;
+        std::string list = "[", points = "[";
+        for (int row = 3; row < v.height; row += 6) {
+            for (int column = 3; column < v.width; column += 6) {
+                pixels.emplace_back(column, row);
+                const float* p = aov.at(column, row);
+                list += (pixels.size() > 1 ? ",[" : "[") + std::to_string(column) + "," +
+                        std::to_string(row) + "]";
+                std::ostringstream point;
+                point.precision(9);
+                if (p[3] == 1.0f)
+                    point << "[" << p[0] << "," << p[1] << "," << p[2] << "]";
+                else
+                    point << "null";
+                points += (pixels.size() > 1 ? "," : "") + point.str();
+            }
+        }
+        list += "]";
+        points += "]";
+        // Just below the cobbles' tops, a little tilted: their tops stand above it, the rest under.
+        const std::string call =
+            "threeChecks.depth(" + list + ", " + points +
+            ", [0, 0.065, 0], [0.04, 1, 0.02], 0.25, 4).map((d) => [d.read, d.plane ?? "
+            "NaN, d.relief ?? NaN, d.edge ? 1 : 0]).flat().join(' ')";
+        const PageRun page = runPage(
+            "[" + openCompare(v) + ", {\"eval\": " + jsonString(call) + "}, {\"screenshot\": " +
+            jsonString((dir / (v.name + "-crossing.png")).string()) + "}]");
+        ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+        for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+        const std::vector<double> depths = numbers(page.at(3, "value"));
+        ASSERT_EQ(depths.size(), 4 * pixels.size()) << page.at(3, "value");
+        int reliefInFront = 0, planeInFront = 0, aovHits = 0;
+        double largestRelief = 0.0, largestPlane = 0.0;
+        for (std::size_t k = 0; k < pixels.size(); ++k) {
+            const double read = depths[4 * k], plane = depths[4 * k + 1],
+                         relief = depths[4 * k + 2];
+            if (depths[4 * k + 3] == 1.0) continue;  // on the square's edge
+            const double planeDepth = std::isnan(plane) || plane < 0.0 || plane > 1.0 ? 1.0 : plane;
+            const double reliefDepth = std::isnan(relief) ? 1.0 : relief;
+            const double expected = std::min(planeDepth, reliefDepth);
+            aovHits += !std::isnan(relief);
+            if (!std::isnan(relief) && std::abs(relief - planeDepth) > kDepthTolerance)
+                (relief < planeDepth ? reliefInFront : planeInFront) += 1;
+            double& largest = expected == reliefDepth ? largestRelief : largestPlane;
+            largest = std::max(largest, std::abs(read - expected));
+            EXPECT_NEAR(read, expected,
+                        expected == reliefDepth ? kDepthTolerance : kPlaneDepthTolerance)
+                << "pixel " << pixels[k].first << "," << pixels[k].second << ": relief " << relief
+                << ", plane " << plane;
+        }
+        std::printf(
+            "    %-10s %zu pixels, %d relief hits: relief in front at %d, the plane at %d; largest "
+            "depth difference %.3g (relief), %.3g (plane)\n",
+            v.name.c_str(), pixels.size(), aovHits, reliefInFront, planeInFront, largestRelief,
+            largestPlane);
+        EXPECT_GT(reliefInFront, 20) << "the plane must leave cobbles standing above it";
+        EXPECT_GT(planeInFront, 20) << "the plane must hide part of the relief";
+    }
+}
+
+// three's shadow maps and the relief (checks.js: shadows): a sphere's shadow falls on the
+// relief's hit points whose ray towards the light meets the sphere, and the relief's shadow
+// on a ground square falls where the ray from the ground towards the light meets the relief
+// (traced from the shadow map's orthographic camera). Points within 0.01 world units of
+// the answer changing (13 shadow-map texels of 0.8 mm: three's PCF filter and its bias
+// blur about two) are left out; every other one must agree.
+TEST_F(ThreePage, ShadowMapsFallWhereTheRaysTowardsTheLightAreBlocked) {
+    const View& v = viewNamed("oblique");
+    struct Case {
+        const char* what;
+        const char* light;
+        int step;
+    };
+    const std::vector<Case> cases = {{"receive", "[-0.45, 0.8, -0.35]", 2},
+                                     {"cast", "[-0.8, 0.35, -0.5]", 3}};
+    std::string steps = "[" + openCompare(v);
+    for (const Case& c : cases) {
+        std::string list = "[";
+        for (int row = 1; row < v.height; row += c.step)
+            for (int column = 1; column < v.width; column += c.step)
+                list += (list.size() > 1 ? ",[" : "[") + std::to_string(column) + "," +
+                        std::to_string(row) + "]";
+        steps +=
+            ", {\"eval\": " +
+            jsonString(std::string("threeChecks.shadows('") + c.what + "', " + list + "], " +
+                       c.light + ", [0.02, 0.3, 0.05], 0.01).flat().join(' ')") +
+            "}, {\"screenshot\": " + jsonString((dir / (std::string(c.what) + ".png")).string()) +
+            "}";
+    }
+    const PageRun page = runPage(steps + "]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        SCOPED_TRACE(cases[k].what);
+        const std::vector<double> answers = numbers(page.at(3 + 2 * static_cast<int>(k), "value"));
+        ASSERT_FALSE(answers.empty()) << page.at(3 + 2 * static_cast<int>(k), "value");
+        int shadowed = 0, lit = 0, wrong = 0;
+        for (std::size_t j = 0; j + 1 < answers.size(); j += 2) {
+            if (answers[j] < 0) continue;
+            (answers[j] == 1 ? shadowed : lit) += 1;
+            wrong += answers[j] != answers[j + 1];
+        }
+        std::printf(
+            "    %-8s %d points shadowed, %d lit by the geometry; the picture disagrees at %d\n",
+            cases[k].what, shadowed, lit, wrong);
+        EXPECT_EQ(wrong, 0);
+        EXPECT_GT(shadowed, 50) << "too few shadowed points to say anything";
+        EXPECT_GT(lit, 50) << "too few lit points to say anything";
+    }
+}
+
+// Bad input (checks.js: refusals): a map larger than the GPU takes, a file that is no image,
+// a missing EXT_color_buffer_float for the GPU pyramid: each one error of the package's own
+// class naming the cause, and the scene's picture afterwards the same to the bit.
+TEST_F(ThreePage, BadInputIsOneClearErrorAndTheSceneKeepsDrawing) {
+    const View& v = viewNamed("oblique");
+    const PageRun page = runPage("[" + openCompare(v) +
+                                 ", {\"screenshot\": " + jsonString((dir / "before.png").string()) +
+                                 "}, {\"eval\": \"threeChecks.refusals()\"}, {\"screenshot\": " +
+                                 jsonString((dir / "after.png").string()) + "}]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    const std::string lines = page.at(4, "value");
+    std::printf("%s\n", lines.c_str());
+    for (const char* expected : {"too large: ReliefGpuError: samples: ", "MAX_TEXTURE_SIZE",
+                                 "not an image: HeightMapError: index.html: not a PNG",
+                                 "no extension: ReliefGpuError: ", "no EXT_color_buffer_float"})
+        EXPECT_NE(lines.find(expected), std::string::npos) << expected << "\n" << lines;
+    const test::Image before = test::readImage(dir / "before.png"),
+                      after = test::readImage(dir / "after.png");
+    ASSERT_GT(before.width, 0);
+    EXPECT_EQ(before.pixels, after.pixels) << "the scene changed after the refusals";
+}
+
+}  // namespace

@@ -24,6 +24,7 @@
 #include "microrelief/render/Camera.h"
 #include "microrelief/render/Method.h"
 #include "microrelief/render/ModelTransform.h"
+#include "microrelief/scene/SceneFields.h"
 
 namespace microrelief {
 
@@ -100,12 +101,6 @@ void checkDirection(std::vector<FieldError>& errors, const std::string& field, c
 
 // Throws Error(BadInput) with the first of `errors`; nothing when there are none.
 void throwIfInvalid(const std::vector<FieldError>& errors);
-
-// The fields messages may name as {field}: every member path of ReliefDesc and ViewDesc
-// that a check concerns, and "size" (width and height together). A program names each
-// (microrelief-render: a flag; tests/batch checks it has one for all but map.samples).
-const std::vector<std::string>& sceneFields();
-bool isSceneField(const std::string& path);
 
 // The largest picture, refused up front beyond: sides up to 65536 and at most 16384 x
 // 16384 pixels, which a rendered frame holds in memory at kFrameBytesPerPixel (colour, the

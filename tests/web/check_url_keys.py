@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""The pages' URL keys are microrelief-render's flags (docs/browser.md, docs/three.md).
+
+check_url_keys.py RENDER SOURCE_DIR
+
+A page reads its view from the URL with get('key', ...) and offers a key's words with
+choice('key', t, [...]); the web page also writes the command line that draws its view
+(renderCommandLine: flag('--key', ...) and `--key=`). This check holds each against
+microrelief-render itself: every key that is not one of a page's own is a flag its --help
+lists, every word a page offers for a key is one the program takes (a 1x1 render with that
+flag alone), and every flag the command line writes is the program's. Where a key or a word
+is a page's own (the page's resolution, a clean picture, three's shading), it is listed
+below with the reason, and a listed one that is no longer in the page fails, so the list
+cannot go stale.
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+# Keys and words that belong to a page, not to microrelief-render.
+PAGE_KEYS = {
+    'web/scene.js': {
+        'resolution': 'the page draws at 1/N of its pixels while it moves',
+        'clean': 'the picture without the panel, for screenshots',
+    },
+    'examples/three/view.js': {
+        'clean': 'the picture without the panel, for screenshots',
+        'shading': "three.js's materials or the library's own shading",
+        'pyramid': 'where the page builds the max pyramid (GPU or WebAssembly)',
+    },
+}
+# albedo=map is the bundled map's colours, which microrelief-render draws without --albedo.
+PAGE_WORDS = {('albedo', 'map')}
+
+
+def fail(message):
+    print(f'check_url_keys: {message}')
+    sys.exit(1)
+
+
+def words_of(text, expression, page, key, problems):
+    """The words of a choice: a literal list, a constant list, or Object.keys of a constant."""
+    if expression.startswith('['):
+        return re.findall(r"'([^']*)'", expression)
+    match = re.fullmatch(r'(?:Object\.keys\((\w+)\)|(\w+))', expression)
+    name = match and (match.group(1) or match.group(2))
+    found = name and re.search(r'const ' + name + r' = ([\[{][^\]}]*[\]}])', text)
+    if not found:
+        problems.append(f'{page}: the words of key {key} ({expression}) are not a list the check can read')
+        return []
+    body = found.group(1)
+    if body.startswith('{'):
+        return re.findall(r'(\w+)\s*:', body)
+    return re.findall(r"'([^']*)'", body)
+
+
+def main():
+    render, source = sys.argv[1], sys.argv[2]
+    help_text = subprocess.run([render, '--help'], capture_output=True, text=True, check=True).stdout
+    flags = set(re.findall(r'(--[a-z][a-z-]*)', help_text))
+    if '--eye' not in flags:
+        fail(f'{render} --help lists no --eye: not the program expected')
+    problems = []
+    words_to_try = set()
+    for page, own in PAGE_KEYS.items():
+        text = open(os.path.join(source, page), encoding='utf-8').read()
+        keys = set(re.findall(r"\bget\('([a-z][a-z-]*)'", text))
+        if not keys:
+            problems.append(f'{page}: no get(\'key\', ...) found: the check no longer reads the page')
+        for key in sorted(keys):
+            if key in own:
+                continue
+            if f'--{key}' not in flags:
+                problems.append(f'{page}: URL key {key}: microrelief-render has no --{key}')
+        for key in sorted(set(own) - keys):
+            problems.append(f'{page}: {key} is listed as the page\'s own key but the page reads no such key')
+        offered = 0
+        for key, words in re.findall(r"choice\('([a-z][a-z-]*)', t, (\[[^\]]*\]|Object\.keys\(\w+\)|\w+)\)", text):
+            for word in words_of(text, words.strip(), page, key, problems):
+                offered += 1
+                if key not in own and (key, word) not in PAGE_WORDS:
+                    words_to_try.add((key, word))
+        if not offered:
+            problems.append(f'{page}: no choice(\'key\', t, words) found: the check no longer reads the page')
+        if page == 'web/scene.js':
+            written = set(re.findall(r"flag\('(--[a-z-]+)'", text)) | set(re.findall(r'`(--[a-z-]+)=', text))
+            if not written:
+                problems.append(f'{page}: renderCommandLine writes no flag the check can find')
+            for flag in sorted(written - flags):
+                problems.append(f'{page}: renderCommandLine writes {flag}, which microrelief-render does not take')
+    with tempfile.TemporaryDirectory() as scratch:
+        out = os.path.join(scratch, 'x.png')
+        for key, word in sorted(words_to_try):
+            run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', word, '--out', out],
+                                 capture_output=True, text=True)
+            if run.returncode != 0:
+                problems.append(f'{key}={word}: microrelief-render --{key} {word} fails: {run.stderr.strip()}')
+    if problems:
+        fail('\n  '.join([f'{len(problems)} disagreement(s):'] + problems))
+    print(f'check_url_keys: {len(flags)} flags; every key and word of the pages agrees '
+          f'({len(words_to_try)} words rendered)')
+
+
+if __name__ == '__main__':
+    main()

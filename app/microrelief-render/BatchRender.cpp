@@ -156,9 +156,10 @@ bool complete(const std::filesystem::path& file, BatchProgress& progress) {
     return !defect;
 }
 
-// The map a frame draws, as loaded: file, load options, whether its pyramid wraps in u (a
-// curved base; between the plane and a curved base the map is uploaded again) and the
-// surface it bounds (the interpolation).
+// The map a frame draws, as the check before the first frame loads it and bounds its extent:
+// file, load options, whether its pyramid wraps in u, the surface it bounds and the tiles
+// (what scene/Scene.h's samePyramid compares, as a key that orders; the renderer itself
+// asks needsHeights).
 using MapKey = std::tuple<std::filesystem::path, int, bool, bool, Interpolation, int, int>;
 
 MapKey mapKey(const SceneOptions& scene) {
@@ -247,7 +248,6 @@ int runBatch(const RenderOptions& o) {
                            !o.quiet && BatchProgress::stderrIsTerminal());
     std::unique_ptr<GlContext> context;
     std::optional<HeadlessRenderer> renderer;
-    std::optional<MapKey> loaded;
     std::optional<HeightMap> map;  // the map drawn, for the eye's check
     int eyeInside = 0;             // frames whose eye lies inside the solid
     std::string firstEyeInside;
@@ -275,18 +275,16 @@ int runBatch(const RenderOptions& o) {
                             context->description());
                 renderer.emplace(*context, frame.scene.job.method);
             }
-            if (const MapKey key = mapKey(frame.scene); key != loaded) {
-                loaded.reset();
-                map.reset();
-                if (checkedMap && checkedMap->key == key) {
-                    map = std::move(checkedMap->map);
-                } else {
-                    map = loadHeightMap(std::get<0>(key), frame.scene.job.map.load);
-                }
+            // A map is loaded and its pyramid built only for a frame whose relief has
+            // another pyramid than the last (scene/Scene.h: samePyramid).
+            if (renderer->needsHeights(frame.scene.job)) {
+                const MapKey key = mapKey(frame.scene);
+                HeightMap heights = checkedMap && checkedMap->key == key
+                                        ? std::move(checkedMap->map)
+                                        : loadHeightMap(std::get<0>(key), frame.scene.job.map.load);
                 checkedMap.reset();
-                renderer->setHeightMap(*map, std::get<0>(key).string(), frame.scene.job.base,
-                                       frame.scene.job.interpolation, frame.scene.job.tiles);
-                loaded = key;
+                renderer->setHeights(frame.scene.job, heights, std::get<0>(key).string());
+                map = std::move(heights);
                 ++mapsLoaded;
             }
             if (const std::optional<std::filesystem::path> albedo = albedoPath(frame.scene.job);

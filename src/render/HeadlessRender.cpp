@@ -49,10 +49,21 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
         renderer_->setHeightMap(map, source, base, interpolation, PyramidBuild::Cpu, tiles);
     }
     if (animated_) animated_->forgetMap();
+    heightsOf_.reset();
     source_ = source;
     mapWidth_ = map.width * tiles.x;  // the whole, tiles included
     mapHeight_ = map.height * tiles.y;
     maxHeight_ = map.maxValue();
+}
+
+void HeadlessRenderer::setHeights(const ReliefDesc& relief, const HeightMap& map,
+                                  const std::string& source) {
+    setHeightMap(map, source, relief.base, relief.interpolation, relief.tiles);
+    heightsOf_ = relief;
+}
+
+bool HeadlessRenderer::needsHeights(const ReliefDesc& relief) const {
+    return !heightsOf_ || !samePyramid(*heightsOf_, relief);
 }
 
 void HeadlessRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {

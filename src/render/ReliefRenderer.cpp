@@ -48,14 +48,17 @@ void ReliefRenderer::reloadShaders() {
     const ReliefShaderConfig config = configFor(method_, countFetches_, base_.kind, interpolation_,
                                                 true, ShadowMode::Off, false, tiled());
     ReliefShader fresh(gl_, shaderDir_, config);  // throws before anything changes
+    ++rebuilds_.programs;
     programs_.clear();
     programs_.emplace(config, std::move(fresh));
 }
 
 ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
     auto found = programs_.find(config);
-    if (found == programs_.end())
+    if (found == programs_.end()) {
         found = programs_.emplace(config, ReliefShader(gl_, shaderDir_, config)).first;
+        ++rebuilds_.programs;
+    }
     return found->second;
 }
 
@@ -106,6 +109,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
         textures_.emplace(
             ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, maxMip, tiles));
     }
+    ++rebuilds_.pyramids;
     base_ = base;
     interpolation_ = interpolation;
     maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
@@ -118,6 +122,7 @@ void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& sou
         return;
     }
     albedo_.emplace(AlbedoTexture(gl_, *albedo, source));  // made before the old one goes
+    ++rebuilds_.albedos;
 }
 
 PyramidBuilder& ReliefRenderer::pyramidBuilder() {
@@ -142,6 +147,7 @@ void ReliefRenderer::heightsReplaced() {
     } else {
         pyramidBuilder().build(*textures_);
     }
+    ++rebuilds_.pyramids;
     uploadBox();
 }
 

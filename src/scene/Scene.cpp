@@ -161,6 +161,11 @@ std::vector<FieldError> ViewDesc::validate() const {
     return errors;
 }
 
+bool samePyramid(const ReliefDesc& a, const ReliefDesc& b) {
+    return a.map == b.map && a.base.wrapsU() == b.base.wrapsU() &&
+           a.interpolation == b.interpolation && a.tiles == b.tiles;
+}
+
 std::vector<FieldError> validateTogether(const ReliefDesc& relief, const ViewDesc& view) {
     std::vector<FieldError> errors;
     collect(errors, "method", [&] { checkMethodSupportsBase(view.method.method, relief.base); });

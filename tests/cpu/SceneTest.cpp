@@ -169,3 +169,37 @@ TEST(Scene, ErrorsNameTheirFieldsAsTheReaderSpellsThem) {
               "cams.csv: line 2: --eye and --target must differ in {frame}.png {");
     EXPECT_EQ(Error(ErrorKind::Runtime, std::string("a\0b", 3)).message(flags), "a\\x00b");
 }
+
+// What a pyramid is built from: the heights, the addressing, the last level, the tiles;
+// nothing else of a relief.
+TEST(Scene, ReliefsShareAPyramidUnlessTheirHeightsAddressingLastLevelOrTilesDiffer) {
+    const ReliefDesc relief;
+    const std::vector<std::function<void(ReliefDesc&)>> kept = {
+        [](ReliefDesc& r) { r.heightScale = 0.3f; },
+        [](ReliefDesc& r) { r.model = ModelTransform::fromRows({2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}); },
+        [](ReliefDesc& r) { r.albedo.kind = AlbedoSource::Kind::None; },
+        [](ReliefDesc& r) { r.animation = "waves", r.time = 3.0; },
+    };
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+        ReliefDesc changed = relief;
+        kept[i](changed);
+        EXPECT_TRUE(samePyramid(changed, relief)) << "kept " << i;
+    }
+    ReliefDesc cylinder = relief, sphere = relief;
+    cylinder.base = BaseShape::cylinder(0.3, 1.0);
+    sphere.base = BaseShape::sphere(0.4);
+    EXPECT_TRUE(samePyramid(cylinder, sphere));  // u wraps on both
+    EXPECT_FALSE(samePyramid(cylinder, relief));  // and not on the plane
+    const std::vector<std::function<void(ReliefDesc&)>> rebuilt = {
+        [](ReliefDesc& r) { r.map.file = "b.png"; },
+        [](ReliefDesc& r) { r.map.load.channel = 2; },
+        [](ReliefDesc& r) { r.map.load.normalize = true; },
+        [](ReliefDesc& r) { r.interpolation = Interpolation::Biquadratic; },
+        [](ReliefDesc& r) { r.tiles = {1, 3}; },
+    };
+    for (std::size_t i = 0; i < rebuilt.size(); ++i) {
+        ReliefDesc changed = relief;
+        rebuilt[i](changed);
+        EXPECT_FALSE(samePyramid(changed, relief)) << "rebuilt " << i;
+    }
+}

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -248,6 +249,64 @@ TEST_F(SceneObject, ModelTransformRendersTheReferenceHits) {
         plain.model = ModelTransform();
         const HeadlessResult unmoved = renderHeadless(test::glContext(), map, "cobbles", plain);
         EXPECT_NE(r.frame.position, unmoved.frame.position) << c.name;
+    }
+}
+
+// One renderer across jobs builds only what a job changes: the pyramid for another map,
+// addressing, last level or tiles (scene/Scene.h: samePyramid), a program once for each
+// configuration; a camera, a height scale, a model, another size of the base or another
+// curved base are applied without building again. Each picture equals a fresh renderer's,
+// bit for bit: what is kept is what a new one would build.
+TEST_F(SceneObject, ARendererAcrossJobsRebuildsOnlyWhatEachChanges) {
+    const HeightMap map = synth::cobbles(48, 40, 7);
+    struct Step {
+        const char* name;
+        std::function<void(RenderJob&)> change;
+        bool heights;  // needsHeights, and one pyramid built
+        int programs;  // programs compiled
+    };
+    const std::vector<Step> steps = {
+        {"the camera", [](RenderJob& j) { j.camera = test::orbitCamera(35.0, 60.0, 1.6); }, false, 0},
+        {"the height scale", [](RenderJob& j) { j.heightScale = 0.2f; }, false, 0},
+        {"the model", [](RenderJob& j) { j.model = skewModel(false); }, false, 0},
+        {"a cylinder", [](RenderJob& j) { j.base = BaseShape::cylinder(0.3, 1.0); }, true, 1},
+        {"its radius", [](RenderJob& j) { j.base = BaseShape::cylinder(0.4, 1.0); }, false, 0},
+        {"a sphere", [](RenderJob& j) { j.base = BaseShape::sphere(0.45); }, false, 1},
+        {"the cylinder again", [](RenderJob& j) { j.base = BaseShape::cylinder(0.4, 1.0); }, false, 0},
+        {"biquadratic", [](RenderJob& j) { j.interpolation = Interpolation::Biquadratic; }, true, 1},
+        {"maxmip", [](RenderJob& j) { j.method.method = Method::MaxMip; }, false, 1},
+        {"hard shadows", [](RenderJob& j) {
+             j.method.method = Method::Multilevel;
+             j.shading.shadows = ShadowMode::Hard;
+         }, false, 1},
+        {"tiles", [](RenderJob& j) { j.tiles = {2, 1}, j.shading.shadows = ShadowMode::Off; }, true, 1},
+    };
+    RenderJob job;
+    job.width = 40;
+    job.height = 32;
+    job.camera = test::orbitCamera(40.0, 25.0, 1.7);
+    HeadlessRenderer renderer(test::glContext(), job.method);
+    ASSERT_TRUE(renderer.needsHeights(job));
+    renderer.setHeights(job, map, "cobbles");
+    EXPECT_FALSE(renderer.needsHeights(job));
+    (void)renderer.render(job);
+    EXPECT_EQ(renderer.rebuilds().pyramids, 1);
+    for (const Step& step : steps) {
+        step.change(job);
+        const RebuildCounts before = renderer.rebuilds();
+        EXPECT_EQ(renderer.needsHeights(job), step.heights) << step.name;
+        if (renderer.needsHeights(job)) renderer.setHeights(job, map, "cobbles");
+        const HeadlessResult kept = renderer.render(job);
+        const RebuildCounts after = renderer.rebuilds();
+        EXPECT_EQ(after.pyramids - before.pyramids, step.heights ? 1 : 0) << step.name;
+        EXPECT_EQ(after.programs - before.programs, step.programs) << step.name;
+        EXPECT_EQ(after.albedos, 0) << step.name;
+        const HeadlessResult fresh = renderHeadless(test::glContext(), map, "cobbles", job);
+        EXPECT_EQ(kept.frame.color, fresh.frame.color) << step.name;
+        EXPECT_EQ(kept.frame.position, fresh.frame.position) << step.name;
+        std::size_t hits = 0;  // the relief is in the picture
+        for (std::size_t i = 3; i < kept.frame.position.size(); i += 4) hits += kept.frame.position[i] > 0.5f;
+        EXPECT_GT(hits, 100u) << step.name;
     }
 }
 

@@ -54,6 +54,15 @@ public:
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       glm::ivec2 tiles = {1, 1});
+    // The same, for the relief a desc describes: `map` holds the heights its map source
+    // names (loaded by the caller). Then needsHeights says whether another relief needs
+    // heights of its own: no map yet, or one set for another pyramid (scene/Scene.h:
+    // samePyramid; after setHeightMap, always). A caller loads maps only when it does.
+    void setHeights(const ReliefDesc& relief, const HeightMap& map, const std::string& source);
+    bool needsHeights(const ReliefDesc& relief) const;
+    // What has been built so far (render/ReliefRenderer.h): render() of another job builds
+    // only what the job changed.
+    const RebuildCounts& rebuilds() const { return renderer_->rebuilds(); }
     // The map's colours (image/Albedo.h), or none (the shading's one colour). Throws Error.
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
     // Renders `job` of the current map. Throws Error.
@@ -64,6 +73,7 @@ private:
     std::optional<ReliefRenderer> renderer_;
     std::optional<OffscreenTarget> target_;
     std::string source_;
+    std::optional<ReliefDesc> heightsOf_;  // the relief setHeights built the pyramid for
     int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
     double maxHeight_ = 0.0;
     std::optional<float> heightScale_;  // the scale the renderer has

@@ -36,6 +36,16 @@ struct PictureTile {
     int width = 0, height = 0;
 };
 
+// What a renderer has built so far, for tests and tools that hold it to rebuilding only what
+// changed: max pyramids built whole (setHeightMap, heightsReplaced), programs compiled,
+// albedo textures uploaded.
+struct RebuildCounts {
+    int pyramids = 0;
+    int programs = 0;
+    int albedos = 0;
+    bool operator==(const RebuildCounts&) const = default;
+};
+
 class ReliefRenderer {
 public:
     // `shaderDir` holds relief_box.vert, relief.frag, relief_parameters.glsl and
@@ -116,6 +126,7 @@ public:
               const PictureTile& tile = {});
 
     int maxIterations() const { return maxIterations_; }
+    const RebuildCounts& rebuilds() const { return rebuilds_; }
 
 private:
     ReliefShaderConfig configFor(const MethodSettings& settings, bool countFetches, BaseKind base,
@@ -151,6 +162,7 @@ private:
     Interpolation interpolation_ = Interpolation::Bilinear;  // the surface it bounds
     ModelTransform model_;
     DepthConvention depth_;
+    RebuildCounts rebuilds_;
 };
 
 }  // namespace microrelief

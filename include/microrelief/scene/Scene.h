@@ -90,6 +90,13 @@ struct ViewDesc {
 // What the two must agree on: the method runs on the relief's base and tiles, shadows
 // take an exact method.
 std::vector<FieldError> validateTogether(const ReliefDesc& relief, const ViewDesc& view);
+// Whether two reliefs have one max pyramid: the same heights (the map source and how it is
+// loaded, the animation not counted: an animated field is written over the map's pyramid),
+// the same addressing (u wraps on every curved base, not on the plane), the same last level
+// and tiles. The rest of a relief (the base's kind among the curved ones and its sizes, the
+// height scale, the model, the albedo) a renderer applies without building the pyramid again.
+bool samePyramid(const ReliefDesc& a, const ReliefDesc& b);
+
 // Both, then together.
 std::vector<FieldError> validateScene(const ReliefDesc& relief, const ViewDesc& view);
 

@@ -10,6 +10,7 @@
 #include "microrelief/heightmap/HeightMap.h"
 #include "microrelief/render/Camera.h"
 #include "microrelief/render/ModelTransform.h"
+#include "microrelief/scene/Scene.h"
 #include "microrelief/trace/MultilevelTracer.h"
 
 namespace microrelief {
@@ -24,30 +25,25 @@ struct PickResult {
 
 class ReliefPicker {
 public:
-    // A new map or height scale; the tracer (its max pyramid) is rebuilt on the next pick.
-    void setMap(std::shared_ptr<const HeightMap> map);
-    void setHeightScale(double heightScale);
-    void setBase(const BaseShape& base);
-    void setInterpolation(Interpolation interpolation);
-    // The map repeated across the base (--tile).
-    void setTiles(glm::ivec2 tiles);
+    // The relief `relief` describes, over `heights` (the samples its map names, as the
+    // viewer holds them). The tracer (its max pyramid) is built again on the next pick only
+    // for other heights, height scale, base, last level or tiles; the model is applied as
+    // it is.
+    void apply(const ReliefDesc& relief, std::shared_ptr<const HeightMap> heights);
     // The map's samples changed inside `changed` (sculpting): the tracer, if built, takes
     // them from `map` (the same map, edited) and brings its pyramid up to date.
     void mapChanged(std::shared_ptr<const HeightMap> map, const std::vector<TexelRect>& changed);
-    // Where the relief sits in the world (the renderer's model transform).
-    void setModel(const ModelTransform& model) { model_ = model; }
 
     // The hit along the ray through pixel (column, row) of `camera`, or nothing.
     std::optional<PickResult> pick(const CameraFrame& camera, int column, int row);
+    // Tracers built so far: a test holds the picker to building only for what changed.
+    int tracersBuilt() const { return tracersBuilt_; }
 
 private:
     std::shared_ptr<const HeightMap> map_;
-    double heightScale_ = 0.1;
-    BaseShape base_;
-    Interpolation interpolation_ = Interpolation::Bilinear;
-    ModelTransform model_;
-    glm::ivec2 tiles_{1, 1};
+    ReliefDesc relief_;
     std::unique_ptr<MultilevelTracer> tracer_;
+    int tracersBuilt_ = 0;
 };
 
 }  // namespace microrelief

@@ -81,11 +81,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     const std::filesystem::path shaders = viewerShaderDirectory(options);
     renderer_ = std::make_unique<ReliefRenderer>(gl, shaders);
     renderer_->setMethod(options.scene.job.method);
-    renderer_->setHeightScale(options.scene.job.heightScale);
-    renderer_->setModel(options.scene.job.model);
-    renderer_->setHeightMap(*map_, file.string(), options.scene.job.base,
-                            options.scene.job.interpolation, PyramidBuild::Gpu,
-                            options.scene.job.tiles);
+    applyRelief(map_, file.string());
     timer_ = std::make_unique<GpuTimer>(gl);
     watcher_ = std::make_unique<ShaderWatcher>(shaders);
     editor_ = std::make_unique<HeightEditor>(gl, shaders);
@@ -98,12 +94,6 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.brush = options.brush;
     state_.savePath =
         (std::filesystem::path("out") / (file.stem().string() + "-edited.exr")).string();
-    picker_.setMap(map_);
-    picker_.setHeightScale(options.scene.job.heightScale);
-    picker_.setBase(options.scene.job.base);
-    picker_.setInterpolation(options.scene.job.interpolation);
-    picker_.setModel(options.scene.job.model);
-    picker_.setTiles(options.scene.job.tiles);
     if (albedo) renderer_->setAlbedo(&*albedo, albedoFile->string());
     state_.albedoName = albedoFile ? albedoFile->filename().string() : "";
 
@@ -361,10 +351,7 @@ void ViewerApp::applyPanel(const PanelActions& a) {
     if (a.openMap) openMap(*a.openMap);
     if (a.reloadMap) openMap(state_.scene.job.map.file);
     if (a.albedoChanged) applyAlbedo();
-    if (a.heightScaleChanged) {
-        renderer_->setHeightScale(state_.scene.job.heightScale);
-        picker_.setHeightScale(state_.scene.job.heightScale);
-    }
+    if (a.heightScaleChanged) changeRelief("height scale");
     if (a.baseChanged) setBase(a.baseKindChanged);
     if (a.interpolationChanged) setInterpolation();
     if (a.fovyChanged) controller_.setFovy(state_.scene.job.camera.fovyDegrees);
@@ -620,23 +607,39 @@ std::vector<std::uint8_t> ViewerApp::readWindow(int& width, int& height) const {
     return rgbFromRgba(rgba, width, height, true);
 }
 
+void ViewerApp::applyRelief(const std::shared_ptr<HeightMap>& heights, const std::string& source) {
+    const ReliefDesc& wanted = state_.scene.job;
+    if (!applied_ || heights != map_ || !samePyramid(*applied_, wanted)) {
+        renderer_->setHeightMap(*heights, source, wanted.base, wanted.interpolation,
+                                PyramidBuild::Gpu, wanted.tiles);
+    } else if (wanted.base != applied_->base) {
+        renderer_->setBase(wanted.base);
+    }
+    // Neither throws.
+    renderer_->setHeightScale(wanted.heightScale);
+    renderer_->setModel(wanted.model);
+    picker_.apply(wanted, heights);
+    applied_ = wanted;
+    ++mapGeneration_;
+}
+
 void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     const std::filesystem::path path = file.value_or(defaultHeightMapPath());
     try {
         auto map = std::make_shared<HeightMap>(loadHeightMap(path, state_.scene.job.map.load));
-        renderer_->setHeightMap(*map, path.string(), state_.scene.job.base,
-                                state_.scene.job.interpolation, PyramidBuild::Gpu,
-                                state_.scene.job.tiles);
+        state_.scene.job.map.file =
+            file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
+        applyRelief(map, path.string());
         map_ = std::move(map);
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
-        // The current map stays, and so do the options it was loaded with.
+        // The current map stays, and so do the file and options it was loaded with.
+        state_.scene.job.map = applied_->map;
         state_.scene.job.map.load = loadedWith_;
         state_.mapError = e.what();
         note(std::string("cannot open: ") + e.what());
         return;
     }
-    picker_.setMap(map_);
     editor_->clear();
     state_.undoSteps = 0;
     state_.mapEdited = false;
@@ -647,7 +650,6 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         evaluateAnimation();
     }
     loadedWith_ = state_.scene.job.map.load;
-    state_.scene.job.map.file = file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
     state_.mapName = path.filename().string();
     state_.mapWidth = map_->width;
     state_.mapHeight = map_->height;
@@ -706,44 +708,33 @@ void ViewerApp::setMethod() {
     }
 }
 
-void ViewerApp::setInterpolation() {
-    const Interpolation interpolation = state_.scene.job.interpolation;
-    const glm::ivec2 tiles = state_.scene.job.tiles;
+bool ViewerApp::changeRelief(const std::string& what) {
     try {
-        // Another surface between the samples (another finest level) or other tiles (another
-        // addressing): a new pyramid.
-        renderer_->setHeightMap(*map_, state_.mapName, state_.scene.job.base, interpolation,
-                                PyramidBuild::Gpu, tiles);
+        applyRelief(map_, state_.mapName);
+        return true;
     } catch (const Error& e) {
-        state_.scene.job.interpolation = renderer_->interpolation();  // the ones that work
-        state_.scene.job.tiles = renderer_->tiles();
-        note(std::string("last level or tiles not changed: ") + e.what());
-        return;
+        // The renderer keeps the relief that works; so does the panel.
+        ReliefDesc& relief = state_.scene.job;
+        relief.base = applied_->base;
+        relief.interpolation = applied_->interpolation;
+        relief.tiles = applied_->tiles;
+        relief.heightScale = applied_->heightScale;
+        note(what + " not changed: " + e.what());
+        return false;
     }
-    picker_.setInterpolation(interpolation);
-    picker_.setTiles(tiles);
-    ++mapGeneration_;
-    note(std::string("last level: ") + interpolationName(interpolation));
+}
+
+void ViewerApp::setInterpolation() {
+    // Another surface between the samples (another finest level) or other tiles (another
+    // addressing): a new pyramid.
+    if (changeRelief("last level or tiles"))
+        note(std::string("last level: ") + interpolationName(state_.scene.job.interpolation));
 }
 
 void ViewerApp::setBase(bool frame) {
-    const BaseShape base = state_.scene.job.base;
-    try {
-        // Between the plane and a curved base the pyramid is built anew (u wraps).
-        if (base.wrapsU() != renderer_->base().wrapsU()) {
-            renderer_->setHeightMap(*map_, state_.mapName, base, state_.scene.job.interpolation,
-                                    PyramidBuild::Gpu, state_.scene.job.tiles);
-        } else {
-            renderer_->setBase(base);
-        }
-    } catch (const Error& e) {
-        state_.scene.job.base = renderer_->base();  // the renderer keeps the base that works
-        note(std::string("base surface not changed: ") + e.what());
-        return;
-    }
-    picker_.setBase(base);
-    ++mapGeneration_;
-    if (!frame) return;
+    // Between the plane and a curved base the pyramid is built anew (u wraps).
+    if (!changeRelief("base surface") || !frame) return;
+    const BaseShape& base = state_.scene.job.base;
     // The new object fills the view from where the camera looks now: the target at the
     // middle of its box, the eye back along the view until the box's sphere fits.
     const ReliefExtent extent =
@@ -833,29 +824,15 @@ CameraFrame ViewerApp::cameraFrame() const {
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {
-    const Camera& c = controller_.camera();
-    const RenderJob& job = state_.scene.job;
+    RenderKey key{state_.scene.job, state_.scene.job, mapGeneration_, shaderGeneration_};
+    key.view.camera = controller_.camera();
     const glm::ivec2 size = viewSize();
-    return {
-        c.eye,
-        c.target,
-        c.up,
-        c.fovyDegrees,
-        size.x,
-        size.y,
-        job.heightScale,
-        job.shading.lightDirection,
-        job.shading.albedo,
-        job.background,
-        methodTracesTheSolid(renderer_->method().method) ? job.shading.shadows : ShadowMode::Off,
-        job.shading.lightSizeDegrees,
-        job.shading.view,
-        renderer_->method().method,
-        renderer_->method().steps,
-        renderer_->method().minSteps,
-        renderer_->method().pixelError,
-        mapGeneration_,
-        shaderGeneration_};
+    key.view.width = size.x;
+    key.view.height = size.y;
+    key.view.method = renderer_->method();
+    // Shadows take the exact methods: under a peer they change nothing drawn.
+    if (!methodTracesTheSolid(key.view.method.method)) key.view.shading.shadows = ShadowMode::Off;
+    return key;
 }
 
 }  // namespace microrelief

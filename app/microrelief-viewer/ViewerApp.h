@@ -42,18 +42,12 @@ public:
 
 private:
     // What the relief pass depends on: when none of it changed, the last picture stands.
+    // The scene as drawn (the controller's camera, the view's size, the method that
+    // compiled) and the generations of what changes under the same scene (edited heights,
+    // a colour file opened again, shaders reloaded).
     struct RenderKey {
-        glm::dvec3 eye, target, up;
-        double fovy;
-        int width, height;
-        float heightScale;
-        glm::vec3 light, albedo, background;
-        ShadowMode shadows;
-        float lightSize;
-        DebugView view;
-        Method method;
-        int steps, minSteps;
-        float pixelError;
+        ReliefDesc relief;
+        ViewDesc view;
         int mapGeneration, shaderGeneration;
         bool operator==(const RenderKey&) const = default;
     };
@@ -101,6 +95,17 @@ private:
     // relief (which the CPU twin does not follow).
     std::optional<PickResult> pickFromPicture(int column, int row) const;
 
+    // The relief of the scene (state_.scene.job) on the renderer and the picker, over
+    // `heights` (the samples its map names, as the viewer holds them; `source` names them):
+    // the pyramid built again only for other heights, addressing, last level or tiles
+    // (scene/Scene.h: samePyramid), else the base, height scale and model set on the one
+    // there is. Throws as the renderer does, having changed nothing. The one place the
+    // viewer hands a relief over.
+    void applyRelief(const std::shared_ptr<HeightMap>& heights, const std::string& source);
+    // applyRelief over the viewer's map after the panel changed the relief (`what`: the base,
+    // the last level, the tiles, the height scale); on an error the panel's relief goes back
+    // to the one the renderer kept, and a note says why. Whether it was applied.
+    bool changeRelief(const std::string& what);
     void openMap(const std::optional<std::filesystem::path>& file);
     // The colours the scene asks for (albedoPath), loaded into the renderer, or none.
     void applyAlbedo();
@@ -125,6 +130,7 @@ private:
     ViewerOptions options_;
     ViewerState state_;
     HeightMapLoadOptions loadedWith_;  // the options the current map was loaded with
+    std::optional<ReliefDesc> applied_;  // the relief the renderer and the picker hold
     std::shared_ptr<HeightMap> map_;   // the CPU mirror of the samples on the GPU (edited)
     float mapMaxHeight_ = 0.0f;        // the surface's top: map_'s largest sample
     CameraController controller_;

@@ -123,7 +123,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
     gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
-    const int tile = std::min({job.tileSide > 0 ? job.tileSide : kDefaultTileSide,
+    const int tile = std::min({maxTileSide_,
                                static_cast<int>(maxRenderbuffer), static_cast<int>(maxTexture),
                                static_cast<int>(maxViewport[0]), static_cast<int>(maxViewport[1])});
     if (tile < 1) throwRuntime("the GL reports no usable framebuffer size (a failed query)");

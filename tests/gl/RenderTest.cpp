@@ -247,9 +247,11 @@ TEST_F(Render, TiledPictureIsTheWholePictureBitForBit) {
     job.width = 150;
     job.height = 97;
     const HeadlessResult whole = renderHeadless(*context(), map, "cobbles", job);
+    HeadlessRenderer renderer(*context(), job.method);
+    renderer.setHeights(job, map, "cobbles");
     for (int side : {32, 97, 7}) {
-        job.tileSide = side;
-        const HeadlessResult tiled = renderHeadless(*context(), map, "cobbles", job);
+        renderer.setMaxTileSide(side);
+        const HeadlessResult tiled = renderer.render(job);
         EXPECT_EQ(tiled.frame.color, whole.frame.color) << side;
         EXPECT_EQ(tiled.frame.position, whole.frame.position) << side;
         EXPECT_EQ(tiled.frame.stats, whole.frame.stats) << side;

@@ -22,11 +22,9 @@ namespace microrelief {
 inline constexpr int kDefaultTileSide = 4096;
 
 // A picture to render: the relief (what it is and where it lies) and the view of it
-// (scene/Scene.h). The heights themselves are HeadlessRenderer's (setHeightMap), or
+// (scene/Scene.h). The heights themselves are HeadlessRenderer's (setHeights), or
 // renderHeadless's argument.
-struct RenderJob : ReliefDesc, ViewDesc {
-    int tileSide = 0;  // 0: kDefaultTileSide (or the GL's limit, if lower)
-};
+struct RenderJob : ReliefDesc, ViewDesc {};
 
 struct HeadlessResult {
     RenderedFrame frame;
@@ -67,6 +65,10 @@ public:
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
     // Renders `job` of the current map. Throws Error.
     HeadlessResult render(const RenderJob& job);
+    // The largest tile a picture is drawn in, pixels a side (kDefaultTileSide; the GL's
+    // limits cap it): a smaller one holds less memory at once. Any side draws the same
+    // picture, bit for bit.
+    void setMaxTileSide(int side) { maxTileSide_ = side > 0 ? side : kDefaultTileSide; }
 
 private:
     GlContext& context_;
@@ -78,6 +80,7 @@ private:
     double maxHeight_ = 0.0;
     std::optional<float> heightScale_;  // the scale the renderer has
     std::unique_ptr<AnimatedHeights> animated_;
+    int maxTileSide_ = kDefaultTileSide;
 };
 // Throws Error(BadInput) for a picture size beyond the limits above.
 void checkPictureSize(int width, int height);

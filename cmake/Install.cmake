@@ -10,10 +10,20 @@ set(MICRORELIEF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/microrelief)
 # others.
 configure_file(${PROJECT_SOURCE_DIR}/cmake/Version.h.in
                ${PROJECT_BINARY_DIR}/include/microrelief/Version.h @ONLY)
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/microrelief ${PROJECT_BINARY_DIR}/include/microrelief
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY ${GLAD_OUT}/include/
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/microrelief/third_party)
+install(FILES ${PROJECT_BINARY_DIR}/include/microrelief/Version.h
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/microrelief)
+# Each component's headers (its folder) and only those built; the headers generated at
+# build time (cmake/Contracts.cmake) into theirs.
+foreach(component IN LISTS MICRORELIEF_COMPONENTS)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/microrelief/${component}
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/microrelief)
+endforeach()
+install(FILES ${MICRORELIEF_CONSTANTS_HEADER} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/microrelief/core)
+if(MICRORELIEF_WANTS_gl)
+  install(FILES ${MICRORELIEF_PARAMETERS_HEADER} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/microrelief/gl)
+  install(DIRECTORY ${GLAD_OUT}/include/
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/microrelief/third_party)
+endif()
 
 # One export set per component, so that a program asking for core finds no GL, EGL or
 # OpenImageIO dependency to resolve. microrelief_glad travels with gl.

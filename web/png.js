@@ -3,13 +3,13 @@
 // A browser decodes images through <img>, a canvas or createImageBitmap to 8 bits a
 // channel, colour-managed: a 16-bit height map would lose its low byte and the relief
 // would differ from microrelief-render's. So the file is decoded here, as libpng does
-// for OpenImageIO: the chunks checked first (as src/heightmap/PngCheck.cpp does: lengths
+// for OpenImageIO: the chunks checked first (as src/io/PngCheck.cpp does: lengths
 // within the file, CRCs, IHDR first and valid, the size from IHDR within the limit before
 // anything is allocated, PLTE where a palette needs it, IDAT contiguous, IEND), the image
 // data inflated (the browser's DecompressionStream, zlib) to exactly the size IHDR
 // implies, every row's filter undone. Interlaced (Adam7) files are refused.
 //
-// Heights follow src/heightmap/HeightMapFile.cpp, which reads through OpenImageIO 2.4
+// Heights follow src/io/HeightMapFile.cpp, which reads through OpenImageIO 2.4
 // (Debian 12): channel 0, integer samples normalised by their type's range as OpenImageIO
 // does it, in float: v * float(1 / 255) or v * float(1 / 65535) (a product, not a
 // quotient: 167 of the bundled map's 65536 samples differ between the two). Before that,

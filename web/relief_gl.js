@@ -14,7 +14,7 @@
 //    MicroreliefParameters filled through relief_layout.js (generated at build time from
 //    shaders/relief_parameters.glsl, beside this file in the build tree and an install),
 //    the proxy box drawn
-//    with front faces from outside and back faces from inside (src/render/ReliefRenderer.cpp);
+//    with front faces from outside and back faces from inside (src/gl/ReliefRenderer.cpp);
 //    into an SRGB8_ALPHA8 target as OffscreenTarget's (the GL encodes the linear colour and
 //    the background), then shown on the canvas by shaders/web/present.frag.
 //
@@ -331,7 +331,7 @@ export class PyramidBuilder {
 }
 
 // The relief program's variants and their draw (src/gl/ReliefShader.cpp,
-// src/render/ReliefRenderer.cpp), and the picture's target and presentation.
+// src/gl/ReliefRenderer.cpp), and the picture's target and presentation.
 export class ReliefRenderer {
     static async create(gl, shaderRoot) {
         if (!gl.getExtension('EXT_color_buffer_float'))

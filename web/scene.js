@@ -1,8 +1,8 @@
 // scene.js: the scene as microrelief-render has it (docs/scene-and-cli.md), in the
-// page's JavaScript: the camera resolved to rays (src/render/Camera.cpp), the base
-// surfaces' sizes and boxes (src/base/BaseShape.cpp, ReliefExtent.cpp), the pyramids'
-// level sizes and scale (src/heightmap/MaxPyramid.cpp), the methods' names and rules
-// (src/render/Method.cpp), and the view as a URL query and as a command line
+// page's JavaScript: the camera resolved to rays (src/core/scene/Camera.cpp), the base
+// surfaces' sizes and boxes (src/core/base/BaseShape.cpp, ReliefExtent.cpp), the pyramids'
+// level sizes and scale (src/core/heightmap/MaxPyramid.cpp), the methods' names and rules
+// (src/core/scene/Method.cpp), and the view as a URL query and as a command line
 // (app/shared/SceneOptions.cpp). The arithmetic follows the C++ step for step, in doubles
 // where it has doubles and in floats (Math.fround) where it has floats, so that the page
 // hands the shader the uniforms microrelief-render hands it.
@@ -31,7 +31,7 @@ export function normalizeFloat(v) {
 
 const kRadiansPerDegree = 0.01745329251994329576923690768489;  // glm::radians
 
-// ---- the camera (src/render/Camera.cpp: resolveCamera) ----
+// ---- the camera (src/core/scene/Camera.cpp: resolveCamera) ----
 
 // {eye, forward, right, up, viewProjection (16 doubles, column-major), width, height}.
 // Throws Error for a degenerate camera, with the CLI's words.
@@ -92,7 +92,7 @@ function multiply(a, b) {
     return m;
 }
 
-// ---- base surfaces (src/base/BaseShape.cpp) ----
+// ---- base surfaces (src/core/base/BaseShape.cpp) ----
 
 export const kBaseKinds = {plane: 0, cylinder: 1, ellipsoid: 2, sphere: 2};
 
@@ -147,7 +147,7 @@ export function sceneRadius(extent) {
     return 2 * radius;
 }
 
-// ---- the pyramids (src/heightmap/MaxPyramid.cpp) ----
+// ---- the pyramids (src/core/heightmap/MaxPyramid.cpp) ----
 
 const floatBits = (() => {
     const f = new Float32Array(1), u = new Uint32Array(f.buffer);
@@ -201,7 +201,7 @@ export function initialScaleExponent(maxSample) {
 
 export const traversalBudget = (width, height) => kBudgetPerTexel * (width + height) + kBudgetBase;
 
-// ---- methods, views and shadows (src/render/Method.cpp) ----
+// ---- methods, views and shadows (src/core/scene/Method.cpp) ----
 
 export const kMethods = ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', 'maxmip'];
 export const kViews = ['shaded', 'iterations', 'level', 'normal', 'depth', 'position'];

@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "microrelief/core/DataPaths.h"
-#include "microrelief/render/OffscreenTarget.h"
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/Accuracy.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/Accuracy.h"
 
 namespace microrelief::bench {
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "microrelief/context/GlContext.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/ReliefRenderer.h"
+#include "microrelief/gl/GlContext.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief::bench {
 

@@ -10,8 +10,8 @@
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/gl/StateGuard.h"
-#include "microrelief/render/OffscreenTarget.h"
-#include "microrelief/render/ReliefRenderer.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief::bench {
 

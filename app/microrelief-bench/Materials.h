@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "microrelief/context/GlContext.h"
+#include "microrelief/gl/GlContext.h"
 
 namespace microrelief::bench {
 

@@ -7,9 +7,9 @@
 #include "Benchmark.h"
 #include "Report.h"
 #include "microrelief/core/DataPaths.h"
-#include "microrelief/render/HeightEditor.h"
-#include "microrelief/render/OffscreenTarget.h"
-#include "microrelief/render/ReliefRenderer.h"
+#include "microrelief/gl/HeightEditor.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief::bench {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "microrelief/context/GlContext.h"
+#include "microrelief/gl/GlContext.h"
 
 namespace microrelief::bench {
 

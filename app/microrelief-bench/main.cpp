@@ -14,11 +14,11 @@
 #include "Rebuild.h"
 #include "Report.h"
 #include "SceneOptions.h"
-#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
-#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/io/HeightMapFile.h"
 
 using namespace microrelief;
 using namespace microrelief::bench;

@@ -13,9 +13,9 @@
 
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/image/AlbedoFile.h"
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

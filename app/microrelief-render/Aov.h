@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/render/RenderedFrame.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/gl/RenderedFrame.h"
 
 namespace microrelief {
 

@@ -14,14 +14,14 @@
 #include "FramePattern.h"
 #include "Manifest.h"
 #include "Progress.h"
-#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
-#include "microrelief/heightmap/HeightMapFile.h"
-#include "microrelief/image/AlbedoFile.h"
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/render/FloatLimits.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/scene/FloatLimits.h"
 
 namespace microrelief {
 
@@ -158,7 +158,7 @@ bool complete(const std::filesystem::path& file, BatchProgress& progress) {
 
 // The map a frame draws, as the check before the first frame loads it and bounds its extent:
 // file, load options, whether its pyramid wraps in u, the surface it bounds and the tiles
-// (what scene/Scene.h's samePyramid compares, as a key that orders; the renderer itself
+// (what core/scene/Scene.h's samePyramid compares, as a key that orders; the renderer itself
 // asks needsHeights).
 using MapKey = std::tuple<std::filesystem::path, int, bool, bool, Interpolation, int, int>;
 
@@ -181,7 +181,7 @@ struct LoadedMap {
 
 // Every selected frame, checked before the first is drawn, its errors naming its row: the
 // maps it draws load (each once) and, with its camera, stay within what the shader's
-// float arithmetic holds (render/FloatLimits.h); its albedo loads. An animated frame's
+// float arithmetic holds (core/scene/FloatLimits.h); its albedo loads. An animated frame's
 // heights are known once evaluated: its limits are checked when it is drawn. Returns the
 // last map loaded.
 std::optional<LoadedMap> checkFrames(const CameraPath& path, const std::vector<int>& frames) {
@@ -276,7 +276,7 @@ int runBatch(const RenderOptions& o) {
                 renderer.emplace(*context, frame.scene.job.method);
             }
             // A map is loaded and its pyramid built only for a frame whose relief has
-            // another pyramid than the last (scene/Scene.h: samePyramid).
+            // another pyramid than the last (core/scene/Scene.h: samePyramid).
             if (renderer->needsHeights(frame.scene.job)) {
                 const MapKey key = mapKey(frame.scene);
                 HeightMap heights = checkedMap && checkedMap->key == key

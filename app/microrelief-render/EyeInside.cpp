@@ -1,6 +1,6 @@
 #include "EyeInside.h"
 
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 namespace microrelief {
 

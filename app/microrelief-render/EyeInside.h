@@ -4,8 +4,8 @@
 // it; camera paths sum up the frames it concerns once a run.
 #pragma once
 
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/HeadlessRender.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/gl/HeadlessRender.h"
 
 namespace microrelief {
 

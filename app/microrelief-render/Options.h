@@ -9,9 +9,9 @@
 #include "CommandLine.h"
 #include "FrameSelection.h"
 #include "SceneOptions.h"
-#include "microrelief/context/HeadlessContext.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/HeadlessRender.h"
+#include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/gl/HeadlessRender.h"
 
 namespace microrelief {
 

@@ -10,15 +10,15 @@
 #include "BatchRender.h"
 #include "EyeInside.h"
 #include "Options.h"
-#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
-#include "microrelief/heightmap/HeightMapFile.h"
-#include "microrelief/image/AlbedoFile.h"
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/trace/Accuracy.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/trace/Accuracy.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

@@ -1,6 +1,6 @@
 // The sculpting brush's footprint shown on the relief under the cursor: a ring of the
 // brush's radius round the map point it would paint, each point lifted onto the surface
-// the CPU mirror of the map holds (h there, over the base: base/BaseShape.h), placed by the
+// the CPU mirror of the map holds (h there, over the base: core/base/BaseShape.h), placed by the
 // model transform, and drawn as a line loop into the view's picture with the relief's
 // depth (shaders/viewer/footprint.*), so the relief in front of it hides it.
 #pragma once
@@ -10,10 +10,10 @@
 
 #include <glm/glm.hpp>
 
-#include "microrelief/base/BaseShape.h"
+#include "microrelief/core/base/BaseShape.h"
 #include "microrelief/gl/Objects.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/ModelTransform.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/scene/ModelTransform.h"
 
 namespace microrelief {
 

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "microrelief/render/Camera.h"
+#include "microrelief/core/scene/Camera.h"
 
 namespace microrelief {
 

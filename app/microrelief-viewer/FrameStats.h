@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "microrelief/gl/Objects.h"
-#include "microrelief/render/OffscreenTarget.h"
+#include "microrelief/gl/OffscreenTarget.h"
 
 namespace microrelief {
 

@@ -2,7 +2,7 @@
 // together (RAII), so the panel's GL objects die before the window's context.
 #pragma once
 
-#include "microrelief/context/GlfwContext.h"
+#include "microrelief/glfw/GlfwContext.h"
 
 namespace microrelief {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "microrelief/core/Error.h"
-#include "microrelief/image/ImageFile.h"
+#include "microrelief/io/ImageFile.h"
 
 namespace microrelief {
 

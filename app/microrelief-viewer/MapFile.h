@@ -1,12 +1,12 @@
 // Saving an edited map (the viewer's sculpting): a 16-bit PNG, as maps are usually stored
 // (heights 0 to 1 by 65535, rounded to the nearest level), or a float OpenEXR, the
-// samples exactly; written whole or not at all (image/ImageFile.h), so a save that fails
+// samples exactly; written whole or not at all (io/ImageFile.h), so a save that fails
 // leaves the file that was there untouched.
 #pragma once
 
 #include <filesystem>
 
-#include "microrelief/heightmap/HeightMap.h"
+#include "microrelief/core/heightmap/HeightMap.h"
 
 namespace microrelief {
 

@@ -3,7 +3,7 @@
 namespace microrelief {
 
 void ReliefPicker::apply(const ReliefDesc& relief, std::shared_ptr<const HeightMap> heights) {
-    // What the twin is built from (trace/MultilevelTracer.h); the model only moves rays.
+    // What the twin is built from (core/trace/MultilevelTracer.h); the model only moves rays.
     if (heights != map_ || relief.heightScale != relief_.heightScale || relief.base != relief_.base ||
         relief.interpolation != relief_.interpolation || relief.tiles != relief_.tiles)
         tracer_.reset();

@@ -1,5 +1,5 @@
 // Picking: what lies under the cursor, found by the library's CPU twin of the shader's
-// traversal (trace/MultilevelTracer.h) along the very ray the pixel's fragment traces
+// traversal (core/trace/MultilevelTracer.h) along the very ray the pixel's fragment traces
 // (CameraFrame::pixelRay), so the answer agrees with the picture.
 #pragma once
 
@@ -7,11 +7,11 @@
 #include <optional>
 #include <vector>
 
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/Camera.h"
-#include "microrelief/render/ModelTransform.h"
-#include "microrelief/scene/Scene.h"
-#include "microrelief/trace/MultilevelTracer.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/scene/ModelTransform.h"
+#include "microrelief/core/scene/Scene.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
 
 namespace microrelief {
 

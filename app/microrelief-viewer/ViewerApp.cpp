@@ -11,14 +11,14 @@
 #include <glm/gtc/constants.hpp>
 
 #include "MapFile.h"
-#include "microrelief/base/BaseSurface.h"
+#include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
 #include "microrelief/gl/StateGuard.h"
-#include "microrelief/heightmap/HeightMapFile.h"
-#include "microrelief/image/AlbedoFile.h"
-#include "microrelief/image/ImageFile.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/ImageFile.h"
 
 namespace microrelief {
 

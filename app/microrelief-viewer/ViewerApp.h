@@ -17,11 +17,11 @@
 #include "ShaderWatcher.h"
 #include "ViewerOptions.h"
 #include "ViewerPanel.h"
-#include "microrelief/context/GlfwContext.h"
-#include "microrelief/render/AnimatedHeights.h"
-#include "microrelief/render/HeightEditor.h"
-#include "microrelief/render/OffscreenTarget.h"
-#include "microrelief/render/ReliefRenderer.h"
+#include "microrelief/glfw/GlfwContext.h"
+#include "microrelief/gl/AnimatedHeights.h"
+#include "microrelief/gl/HeightEditor.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief {
 
@@ -98,7 +98,7 @@ private:
     // The relief of the scene (state_.scene.job) on the renderer and the picker, over
     // `heights` (the samples its map names, as the viewer holds them; `source` names them):
     // the pyramid built again only for other heights, addressing, last level or tiles
-    // (scene/Scene.h: samePyramid), else the base, height scale and model set on the one
+    // (core/scene/Scene.h: samePyramid), else the base, height scale and model set on the one
     // there is. Throws as the renderer does, having changed nothing. The one place the
     // viewer hands a relief over.
     void applyRelief(const std::shared_ptr<HeightMap>& heights, const std::string& source);

@@ -7,7 +7,7 @@
 #include "MapFile.h"
 #include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/image/ImageFile.h"
+#include "microrelief/io/ImageFile.h"
 
 namespace microrelief {
 

@@ -14,7 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "SceneOptions.h"
-#include "microrelief/render/HeightEditor.h"
+#include "microrelief/gl/HeightEditor.h"
 
 namespace microrelief {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "microrelief/render/ReliefRenderer.h"
+#include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief {
 

@@ -10,7 +10,7 @@
 #include "FrameStats.h"
 #include "ReliefPicker.h"
 #include "SceneOptions.h"
-#include "microrelief/render/HeightEditor.h"
+#include "microrelief/gl/HeightEditor.h"
 
 namespace microrelief {
 

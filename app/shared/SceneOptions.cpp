@@ -13,8 +13,8 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/render/FloatLimits.h"
-#include "microrelief/scene/Scene.h"
+#include "microrelief/core/scene/FloatLimits.h"
+#include "microrelief/core/scene/Scene.h"
 
 namespace microrelief {
 
@@ -95,7 +95,7 @@ std::vector<double> parseNumberList(const std::string& flag, const std::string& 
 glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
     const std::vector<double> values = parseNumberList(flag, text, 3, "three numbers x,y,z");
     // The shader gets these as floats; camera coordinates beyond the limit also make
-    // exact hits impossible (render/FloatLimits.h).
+    // exact hits impossible (core/scene/FloatLimits.h).
     for (double value : values) {
         if (std::abs(value) > kMaxWorldCoordinate) {
             throwBadInput(flag + " " + text + ": each component must lie within +-" +
@@ -364,7 +364,7 @@ void SceneFlags::apply() {
     job_.camera.eye = parseVectorFlag(flag("camera.eye"), eye_);
     job_.camera.target = parseVectorFlag(flag("camera.target"), target_);
     job_.camera.up = parseVectorFlag(flag("camera.up"), up_);
-    // The lights are checked in double, before they are stored in float (scene/Scene.h).
+    // The lights are checked in double, before they are stored in float (core/scene/Scene.h).
     if (!light_.empty()) {
         const glm::dvec3 light = parseVectorFlag(flag("shading.lightDirection"), light_);
         std::vector<FieldError> errors;

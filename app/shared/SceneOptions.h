@@ -1,5 +1,5 @@
 // The flags that describe a view of a height map (scene-and-cli.md): the programs' names
-// for the fields of the library's scene values (scene/Scene.h: ReliefDesc, ViewDesc).
+// for the fields of the library's scene values (core/scene/Scene.h: ReliefDesc, ViewDesc).
 // microrelief-render and microrelief-viewer register them through this one file, so the
 // viewer's "copy as command" writes exactly what the renderer parses; each flag's name is
 // written once, in the table of fields and flags (flagName), which also names the flag
@@ -13,8 +13,8 @@
 
 #include <glm/glm.hpp>
 
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/HeadlessRender.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/gl/HeadlessRender.h"
 
 namespace CLI {
 class App;
@@ -66,7 +66,7 @@ private:
 // saying it expects `what`.
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
                                     std::size_t count, const std::string& what);
-// --tile's "N,M": each a whole number from 1 to kMaxTiles (scene/Scene.h); throws
+// --tile's "N,M": each a whole number from 1 to kMaxTiles (core/scene/Scene.h); throws
 // Error(BadInput).
 glm::ivec2 parseTiles(const std::string& text);
 // "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.

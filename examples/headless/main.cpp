@@ -11,16 +11,16 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "microrelief/base/ReliefExtent.h"
-#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/core/base/ReliefExtent.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/gl/ShaderProgram.h"
 #include "microrelief/gl/StateGuard.h"
-#include "microrelief/heightmap/HeightMapFile.h"
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/render/Camera.h"
-#include "microrelief/render/OffscreenTarget.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/gl/OffscreenTarget.h"
 
 using namespace microrelief;
 

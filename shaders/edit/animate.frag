@@ -1,4 +1,4 @@
-// animate.frag: a height field that changes with time (render/AnimatedHeights.h), evaluated
+// animate.frag: a height field that changes with time (gl/AnimatedHeights.h), evaluated
 // at every sample of the map, into the samples texture; the pyramids are then built anew
 // from it. Heights stay in [0, 1] (flood: in the map's range), finite and >= 0.
 //

@@ -1,5 +1,5 @@
 // base_curved.glsl: what the cylinder and the ellipsoid share as base surfaces
-// (base_surface.glsl; the C++ copy is src/base/CurvedSurface.cpp): the canonical frame
+// (base_surface.glsl; the C++ copy is src/core/base/CurvedSurface.cpp): the canonical frame
 // q = world / frameScale, the angle about the y axis that sets u, where the line crosses a
 // half-plane of constant u, and the X part of a segment's footprint.
 //

@@ -1,5 +1,5 @@
 // base_cylinder.glsl: a cylinder as the base surface (base_surface.glsl; the C++ copy is
-// src/base/CylinderSurface.cpp). In the canonical frame q = (x / R, 2 y / L, z / R) the
+// src/core/base/CylinderSurface.cpp). In the canonical frame q = (x / R, 2 y / L, z / R) the
 // column has radius 1 about the y axis and flat caps at y = +-1; v = (1 - q.y) / 2 runs
 // down the axis; the height sets the distance from the axis, |q.xz| = 1 + s h.
 #ifndef MICRORELIEF_BASE_CYLINDER_GLSL

@@ -1,5 +1,5 @@
 // base_ellipsoid.glsl: an ellipsoid as the base surface (base_surface.glsl; the C++ copy
-// is src/base/EllipsoidSurface.cpp). In the canonical frame q = (x / A, y / B, z / C) it
+// is src/core/base/EllipsoidSurface.cpp). In the canonical frame q = (x / A, y / B, z / C) it
 // is the unit sphere; v = theta / pi is the polar angle from +y (v = 0 at the top pole);
 // the height sets the distance from the centre, |q| = 1 + s h: a star-shaped body.
 #ifndef MICRORELIEF_BASE_ELLIPSOID_GLSL

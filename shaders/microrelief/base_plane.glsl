@@ -1,6 +1,6 @@
 // base_plane.glsl: the plane y = 0 as the base surface (MICRORELIEF_BASE 0), one of the
 // files that define base_surface.glsl's set of mr_base* functions (the C++ twin is
-// src/base/PlaneSurface.cpp). Its frame is map space (map_space.glsl), where the ray is a
+// src/core/base/PlaneSurface.cpp). Its frame is map space (map_space.glsl), where the ray is a
 // straight line in (X, Y, h): a segment's footprint is the rectangle of its ends, its
 // lowest height the lower end, the bounding shell the box [0, W] x [0, H] x [0, maxHeight],
 // and a leaf's patches are met along a straight path (leaf_walk.glsl).

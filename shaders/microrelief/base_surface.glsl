@@ -3,7 +3,7 @@
 // ellipsoids, or cylinders"; scene-and-cli.md, "Base surfaces"). The host chooses the base
 // with MICRORELIEF_BASE (relief_map.glsl), and this file includes the one file that
 // defines it: 0 the plane (base_plane.glsl), 1 a cylinder (base_cylinder.glsl), 2 an
-// ellipsoid (base_ellipsoid.glsl). The C++ mirror is include/microrelief/base/BaseSurface.h,
+// ellipsoid (base_ellipsoid.glsl). The C++ mirror is include/microrelief/core/base/BaseSurface.h,
 // one class per base. A new base is a file of its own here that defines the set below, a
 // line in the choice, and its C++ twin.
 //

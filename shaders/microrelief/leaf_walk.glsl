@@ -1,7 +1,7 @@
 // leaf_walk.glsl: the exact first hit of a ray over a leaf of the traversal, a stretch of a
 // few texels: the patches (relief_patch.glsl) its path crosses, in order, each solved
 // exactly (mr_baseIntersectLeaf). The multilevel and maxmip traversals and the shadow
-// rays end here; the C++ twin is src/trace/LeafWalk.cpp.
+// rays end here; the C++ twin is src/core/trace/MultilevelTracer.cpp (walkLeafCells).
 //
 // Along a straight path (the plane: MICRORELIEF_BASE_STRAIGHT_PATH) the bilinear surface is
 // a quadratic in t on each cell, solved in closed form cell after cell (a 2D DDA,

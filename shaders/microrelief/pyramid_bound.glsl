@@ -1,5 +1,5 @@
 // pyramid_bound.glsl: the finest level of the max pyramid, texel by texel, as MaxPyramid
-// computes it (heightmap/MaxPyramid.h: texelSquareBound, roundUpMean), bit for bit.
+// computes it (core/heightmap/MaxPyramid.h: texelSquareBound, roundUpMean), bit for bit.
 //
 // Texel (i, j) covers texel square [i, i+1] x [j, j+1] of map space and holds a bound of
 // the surface over it: the largest of nine values made from the 3 x 3 samples around

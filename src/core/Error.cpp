@@ -1,6 +1,6 @@
 #include "microrelief/core/Error.h"
 
-#include "microrelief/scene/SceneFields.h"
+#include "microrelief/core/scene/SceneFields.h"
 
 #include <algorithm>
 #include <cctype>

@@ -23,9 +23,9 @@ void checkTextureSize(const GL& gl, const HeightMap& map, const std::string& sou
 }
 
 MaxPyramid buildPyramid(const HeightMap& map, const std::string& source,
-                        const MapAddressing& addressing, Interpolation interpolation) {
+                        const MapAddressing& addressing) {
     try {
-        return MaxPyramid(map, addressing, interpolation, BoundPrecision::Half);
+        return MaxPyramid(map, addressing, BoundPrecision::Half);
     } catch (const std::bad_alloc&) {
         throwRuntime(source + ": not enough memory for the max pyramid of its " +
                      std::to_string(map.width) + "x" + std::to_string(map.height) + " samples");
@@ -86,7 +86,7 @@ ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::st
     checkTextureSize(gl, map, source);
     shape_.tiles = tiles;
     // On the GPU from here on; only its shape is kept.
-    upload(gl, map, buildPyramid(map, source, {wrapU, tiles.x, tiles.y}, interpolation),
+    upload(gl, map, buildPyramid(map, source, {wrapU, tiles.x, tiles.y}),
            withMaxMip);
 }
 
@@ -157,8 +157,7 @@ void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid
 
 void ReliefTextures::rebuildFromSamples(const GL& gl) {
     const HeightMap map = readSamples(gl);
-    uploadPyramid(gl, buildPyramid(map, "the edited map",
-                                   {wrapU_, shape_.tiles.x, shape_.tiles.y}, interpolation_));
+    uploadPyramid(gl, buildPyramid(map, "the edited map", {wrapU_, shape_.tiles.x, shape_.tiles.y}));
 }
 
 void ReliefTextures::uploadPyramid(const GL& gl, const MaxPyramid& pyramid) {

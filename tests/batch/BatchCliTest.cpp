@@ -21,7 +21,7 @@
 
 #include "Manifest.h"
 #include "TestSupport.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 extern char** environ;
 

@@ -21,8 +21,8 @@
 #include "Progress.h"
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/scene/Scene.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/scene/Scene.h"
 
 using namespace microrelief;
 

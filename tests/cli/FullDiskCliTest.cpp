@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 
 #include "TestSupport.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

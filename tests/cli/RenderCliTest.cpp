@@ -13,8 +13,8 @@
 #include <limits>
 
 #include "TestSupport.h"
-#include "microrelief/context/HeadlessContext.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 
@@ -358,7 +358,7 @@ TEST_F(RenderCli, SigtermWhileWritingLeavesNoTemporaryAndNoNewFolder) {
     EXPECT_FALSE(std::filesystem::exists(folder)) << "the folders it made must go";
 }
 
-// Numbers beyond what the shader's float arithmetic holds (render/FloatLimits.h),
+// Numbers beyond what the shader's float arithmetic holds (core/scene/FloatLimits.h),
 // refused with the reason; numbers just inside them render exactly.
 TEST_F(RenderCli, NumbersTheShaderCannotHoldAreRefusedWithTheReason) {
     auto scaled = [&](const std::string& name, float factor) {
@@ -465,7 +465,7 @@ TEST_F(RenderCli, EachBackendOnRequest) {
 // ---- issue 25: inputs that drew wrong pictures without a word ----
 
 // Curved bases, models and fields of view beyond what the shader's float arithmetic holds
-// (render/FloatLimits.h), each refused with its reason; just inside, drawn exactly (the CPU
+// (core/scene/FloatLimits.h), each refused with its reason; just inside, drawn exactly (the CPU
 // reference: no pixel hit on one side and missed on the other, none off by half a texel,
 // where the picture is not a grazing silhouette).
 TEST_F(RenderCli, CurvedBasesModelsAndFieldsOfViewBeyondFloatAreRefusedOrDrawnExactly) {

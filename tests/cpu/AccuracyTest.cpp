@@ -1,4 +1,4 @@
-// The measuring stick itself (trace/Accuracy.h): what a comparison counts, in which unit,
+// The measuring stick itself (core/trace/Accuracy.h): what a comparison counts, in which unit,
 // over which pixels, checked with made-up tracers whose errors are known exactly.
 #include <gtest/gtest.h>
 
@@ -6,10 +6,10 @@
 
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/render/Camera.h"
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/Accuracy.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/Accuracy.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

@@ -1,4 +1,4 @@
-// The base-surface seam (base/BaseSurface.h) and the wrapped pyramid: the bounds the
+// The base-surface seam (core/base/BaseSurface.h) and the wrapped pyramid: the bounds the
 // traversal relies on, property-tested against the path of the ray densely sampled. A
 // bound that is ever on the wrong side of a sampled point fails here.
 #include <gtest/gtest.h>
@@ -7,9 +7,9 @@
 #include <numbers>
 #include <random>
 
-#include "microrelief/base/BaseSurface.h"
-#include "microrelief/heightmap/MaxPyramid.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/base/BaseSurface.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -1,4 +1,4 @@
-// The reference tracer on curved bases (trace/CurvedReference.cpp) against cases with a
+// The reference tracer on curved bases (core/trace/CurvedReference.cpp) against cases with a
 // known answer: a constant map is a column or an ellipsoid of known radius, one raised
 // sample peaks at a known point, a ray along the axis meets a cap or a pole, the seam joins
 // the map's last column to its first; and, on random maps, every hit lies on the solid's
@@ -10,8 +10,8 @@
 #include <random>
 #include <tuple>
 
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

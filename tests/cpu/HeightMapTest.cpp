@@ -8,8 +8,8 @@
 
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/io/HeightMapFile.h"
 
 using namespace microrelief;
 using microrelief::test::ScratchDir;
@@ -233,7 +233,7 @@ TEST(HeightMapLoad, SizesBeyondTheLimitAreRefusedFromTheHeader) {
 }
 
 // What libpng would call an error is refused first, so that libpng never prints its own
-// "libpng error:" line (heightmap/PngCheck.h); each with the reason.
+// "libpng error:" line (io/PngCheck.h); each with the reason.
 TEST(HeightMapLoad, DamagedPngsAreRefusedBeforeLibpngSeesThem) {
     ScratchDir dir;
     const std::pair<const char*, const char*> cases[] = {

@@ -16,7 +16,7 @@
 
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/image/ImageFile.h"
+#include "microrelief/io/ImageFile.h"
 #include "microrelief/io/AtomicFile.h"
 
 using namespace microrelief;

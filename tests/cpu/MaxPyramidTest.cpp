@@ -12,8 +12,8 @@
 #include <string>
 #include <utility>
 
-#include "microrelief/heightmap/MaxPyramid.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 
@@ -225,7 +225,7 @@ TEST(MaxPyramid, WindowLevelIsTheFinestWhoseWindowHoldsTheFootprint) {
 TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoBlocksWithoutPadding) {
     const HeightMap map = synth::whiteNoise(13, 6, 77);
     for (const BoundPrecision precision : {BoundPrecision::Float, BoundPrecision::Half}) {
-        const MaxPyramid p(map, false, Interpolation::Bilinear, precision);
+        const MaxPyramid p(map, false, precision);
         ASSERT_EQ(p.windowLevelCount(), 4);  // 13 x 6, 6 x 3, 3 x 1, 1 x 1
         EXPECT_EQ(p.windowLevelWidth(1), 6);
         EXPECT_EQ(p.windowLevelHeight(1), 3);
@@ -267,8 +267,8 @@ TEST(MaxPyramid, HalfPrecisionRoundsEveryBoundUpOntoTheHalfGrid) {
         for (float& h : map.samples) h *= scale;
         map.at(4, 4) = 0.0f;
         map.at(5, 4) = std::ldexp(scale, -60);  // far below the top: raised to the least bound
-        const MaxPyramid exact(map, false, Interpolation::Bilinear, BoundPrecision::Float);
-        const MaxPyramid half(map, false, Interpolation::Bilinear, BoundPrecision::Half);
+        const MaxPyramid exact(map, false, BoundPrecision::Float);
+        const MaxPyramid half(map, false, BoundPrecision::Half);
         const int s = half.scaleExponent();
         EXPECT_EQ(s, pyramidScaleExponent(half.maxHeight()));
         EXPECT_LT(std::ldexp(half.maxHeight(), -s), 32768.0f);
@@ -311,9 +311,9 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
                 const auto seed = static_cast<std::uint32_t>(w * 31 + h);
                 const HeightMap map =
                     spiky ? synth::spike(w, h, w / 2, h / 2) : synth::whiteNoise(w, h, seed);
-                const MaxPyramid p(map, wrapU, Interpolation::Biquadratic);
+                const MaxPyramid p(map, wrapU);
                 const auto surface = [&](double x, double y) {
-                    return map.surface(x, y, wrapU, Interpolation::Biquadratic);
+                    return map.surface(x, y, wrapU);
                 };
                 for (int j = 0; j < h; ++j) {
                     for (int i = 0; i < w; ++i) {
@@ -364,7 +364,7 @@ TEST(MaxPyramid, TiledBoundsCoverTheWholeSurface) {
                 const HeightMap map =
                     synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 7 + h));
                 const MapAddressing addressing{wrapU, tx, ty};
-                const MaxPyramid p(map, addressing, interpolation);
+                const MaxPyramid p(map, addressing);
                 const int W = w * tx, H = h * ty;
                 const auto surface = [&](double x, double y) {
                     return map.surface(x, y, addressing, interpolation);
@@ -488,16 +488,6 @@ TEST(MaxPyramid, BoundHoldsAcrossAnyRangeOfHeights) {
     EXPECT_EQ(p.texel(0, 1, 0), 1.0f);
 }
 
-// Both surfaces take the same nine values: the bilinear peaks are the biquadratic net.
-TEST(MaxPyramid, BothInterpolationsHaveTheSameFinestLevel) {
-    const HeightMap map = synth::whiteNoise(23, 17, 5);
-    for (const bool wrapU : {false, true}) {
-        const MaxPyramid a(map, wrapU, Interpolation::Bilinear);
-        const MaxPyramid b(map, wrapU, Interpolation::Biquadratic);
-        EXPECT_EQ(a.levelData(0), b.levelData(0));
-    }
-}
-
 // Edits in place: after random rectangles of samples change, update() leaves the pyramid
 // that a build from scratch of the new map makes, texel for texel, on every level of both
 // pyramids, on the plane and wrapped round the seam (rectangles at either edge included).
@@ -509,7 +499,7 @@ TEST(MaxPyramid, UpdateAfterAnEditEqualsABuildFromScratch) {
         for (const bool wrapU : {false, true}) {
             for (auto [w, h] : sizes) {
                 HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 7 + h));
-                MaxPyramid pyramid(map, wrapU, Interpolation::Bilinear, precision);
+                MaxPyramid pyramid(map, wrapU, precision);
                 std::uniform_real_distribution<float> value(0.0f, 1.0f);
                 for (int edit = 0; edit < 30; ++edit) {
                     std::uniform_int_distribution<int> x(0, w - 1), y(0, h - 1);
@@ -524,7 +514,7 @@ TEST(MaxPyramid, UpdateAfterAnEditEqualsABuildFromScratch) {
                         for (int i = rect.x0; i < rect.x1; ++i)
                             map.at(i, j) = edit % 3 == 0 ? 0.0f : scale * value(random);
                     pyramid.update(map, rect);
-                    const MaxPyramid rebuilt(map, wrapU, Interpolation::Bilinear, precision);
+                    const MaxPyramid rebuilt(map, wrapU, precision);
                     const std::string what = std::to_string(w) + "x" + std::to_string(h) +
                                              (wrapU ? " wrapped" : "") +
                                              (precision == BoundPrecision::Half ? ", half" : "") +
@@ -555,7 +545,7 @@ TEST(MaxPyramid, HalfPrecisionWindowsCoverTheSurfaceAlongAnySegment) {
     for (auto [w, h] : sizes) {
         const HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w * 3 + h));
         for (const bool wrapU : {false, true}) {
-            const MaxPyramid p(map, wrapU, Interpolation::Bilinear, BoundPrecision::Half);
+            const MaxPyramid p(map, wrapU, BoundPrecision::Half);
             std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0);
             for (int trial = 0; trial < 1500; ++trial) {
                 const glm::dvec2 lo(x(random), y(random));

@@ -1,11 +1,11 @@
-// The model transform (render/ModelTransform.h): --model's rows read back, what is refused,
+// The model transform (core/scene/ModelTransform.h): --model's rows read back, what is refused,
 // and that a ray taken into object space keeps its t.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "microrelief/core/Error.h"
-#include "microrelief/render/ModelTransform.h"
+#include "microrelief/core/scene/ModelTransform.h"
 
 using namespace microrelief;
 

@@ -4,10 +4,10 @@
 #include <random>
 
 #include "TestSupport.h"
-#include "microrelief/render/Camera.h"
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/MultilevelTracer.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

@@ -3,7 +3,7 @@
 // against the definition of a hit: on the ray, on the solid's boundary, and no earlier
 // point of the ray inside the solid. HeightMap::surface is the independent evaluation
 // of the spec's h(u, v) here; the tracer evaluates its own bilinear patches.
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 #include <gtest/gtest.h>
 

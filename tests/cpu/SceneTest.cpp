@@ -1,4 +1,4 @@
-// The scene as values (scene/Scene.h): validation reports every wrong value by its field,
+// The scene as values (core/scene/Scene.h): validation reports every wrong value by its field,
 // messages name fields for the printer to spell, and equality sees every member, since the
 // renderers and the viewer rebuild on a desc that differs.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "microrelief/core/Error.h"
-#include "microrelief/scene/Scene.h"
+#include "microrelief/core/scene/Scene.h"
 
 using namespace microrelief;
 

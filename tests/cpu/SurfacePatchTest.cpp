@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <random>
 
-#include "microrelief/heightmap/SurfacePatch.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/heightmap/SurfacePatch.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -4,7 +4,7 @@
 
 #include "SweepCases.h"
 #include "TestSupport.h"
-#include "microrelief/trace/MultilevelTracer.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
 
 using namespace microrelief;
 

@@ -8,7 +8,7 @@
 // promises: a map within the stated limits whose samples are finite and >= 0, or one
 // microrelief::Error whose message is a single line naming the file; and never a read
 // that failed inside libpng, whose default handler prints its own stderr line under
-// OpenImageIO 2.4 (src/heightmap/PngCheck.h). Anything else aborts, which libFuzzer
+// OpenImageIO 2.4 (src/io/PngCheck.h). Anything else aborts, which libFuzzer
 // records as a crash with the input that caused it.
 #include <cmath>
 #include <cstdint>
@@ -23,8 +23,8 @@
 #include <unistd.h>
 
 #include "microrelief/core/Error.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/heightmap/HeightMapFile.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/io/HeightMapFile.h"
 
 namespace {
 

@@ -9,8 +9,8 @@
 #include "SweepCases.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
-#include "microrelief/render/ReliefRenderer.h"
-#include "microrelief/trace/MultilevelTracer.h"
+#include "microrelief/gl/ReliefRenderer.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
 
 using namespace microrelief;
 

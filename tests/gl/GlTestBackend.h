@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/headless/HeadlessContext.h"
 
 namespace microrelief::test {
 

@@ -1,4 +1,4 @@
-// Sculpting on the GPU (render/HeightEditor.h): after a series of brush strokes the
+// Sculpting on the GPU (gl/HeightEditor.h): after a series of brush strokes the
 // render's hits match the exact reference for the edited map (read back from the GPU),
 // with the usual thresholds, on the plane and on a cylinder, both last levels; the
 // pyramids equal a CPU build of the edited map; undo returns the exact previous map,
@@ -16,12 +16,12 @@
 #include "SweepCases.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
-#include "microrelief/render/AnimatedHeights.h"
-#include "microrelief/render/HeightEditor.h"
-#include "microrelief/render/OffscreenTarget.h"
-#include "microrelief/render/ReliefRenderer.h"
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/gl/AnimatedHeights.h"
+#include "microrelief/gl/HeightEditor.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefRenderer.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 
@@ -38,8 +38,7 @@ protected:
     static void expectPyramidOf(const ReliefRenderer& renderer, const HeightMap& map,
                                 const std::string& what) {
         const ReliefTextures& textures = *renderer.textures();
-        const MaxPyramid cpu(map, textures.wrapsU(), textures.interpolation(),
-                             BoundPrecision::Half);
+        const MaxPyramid cpu(map, textures.wrapsU(), BoundPrecision::Half);
         for (int level = 0; level < cpu.windowLevelCount(); ++level) {
             ASSERT_EQ(textures.readWindowLevel(gl(), level), cpu.windowLevelData(level))
                 << what << ", window level " << level;
@@ -209,7 +208,7 @@ TEST_F(Sculpting, EachBrushDoesWhatItSays) {
     EXPECT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
-// An animated relief (render/AnimatedHeights.h): at each moment the pyramids, built anew on
+// An animated relief (gl/AnimatedHeights.h): at each moment the pyramids, built anew on
 // the GPU, equal a CPU build of the field read back, and the hits match that field's exact
 // reference; the moments differ; restore() gives the map back, bit for bit.
 TEST_F(Sculpting, AnimatedReliefIsRebuiltEveryFrameAndTracedExactly) {

@@ -8,9 +8,9 @@
 
 #include "GlTestBackend.h"
 #include "TestSupport.h"
-#include "microrelief/image/Albedo.h"
-#include "microrelief/render/HeadlessRender.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/image/Albedo.h"
+#include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -18,8 +18,8 @@
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/gl/PyramidBuilder.h"
 #include "microrelief/gl/ReliefTextures.h"
-#include "microrelief/heightmap/MaxPyramid.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 
@@ -68,9 +68,8 @@ protected:
         EXPECT_EQ(textures.shape().maxHeight, cpu.maxHeight()) << what;
     }
 
-    static MaxPyramid halfPyramid(const HeightMap& map, bool wrapU,
-                                  Interpolation interpolation = Interpolation::Bilinear) {
-        return MaxPyramid(map, wrapU, interpolation, BoundPrecision::Half);
+    static MaxPyramid halfPyramid(const HeightMap& map, bool wrapU) {
+        return MaxPyramid(map, wrapU, BoundPrecision::Half);
     }
 
     static PyramidBuilder& builder() {
@@ -121,7 +120,7 @@ TEST_F(GpuPyramid, EqualsTheCpuPyramidOnRandomMapsOfAnySize) {
                     // The aligned pyramid (maxmip's) on every other map.
                     const ReliefTextures textures(gl(), map, "test map", wrapU, interpolation,
                                                   builder(), (w + h) % 2 == 0);
-                    expectEqual(textures, halfPyramid(map, wrapU, interpolation),
+                    expectEqual(textures, halfPyramid(map, wrapU),
                                 std::to_string(w) + "x" + std::to_string(h) +
                                     (wrapU ? " wrapped" : "") + (wide ? ", wide range" : "") +
                                     ", " + interpolationName(interpolation));

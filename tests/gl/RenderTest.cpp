@@ -1,5 +1,5 @@
 // Rendering, checked by numbers: the world positions of the AOV against the exact CPU
-// reference (trace/ReferenceTracer), pixel by pixel. Runs on the backend named by
+// reference (core/trace/ReferenceTracer), pixel by pixel. Runs on the backend named by
 // --backend=egl|osmesa (one CTest entry each); an absent backend fails the run unless
 // MICRORELIEF_ALLOW_MISSING_GL names it, and then every test skips and says so.
 #include <gtest/gtest.h>
@@ -12,13 +12,13 @@
 #include "GlTestBackend.h"
 #include "SweepCases.h"
 #include "TestSupport.h"
-#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/render/HeadlessRender.h"
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/MultilevelTracer.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 
@@ -233,7 +233,7 @@ TEST_F(Render, PictureIsShadedNotFlat) {
     EXPECT_GT(hi, 150);
 }
 
-// The shader and its CPU twin (trace/MultilevelTracer) walk the same segments: per pixel
+// The shader and its CPU twin (core/trace/MultilevelTracer) walk the same segments: per pixel
 // the same number of segments and of texel fetches (the instrumented variant), on a
 // relief whose joints make rays skim the surface, from 45 degrees and from a grazing 10.
 // Float and double may round a comparison differently on a few grazing rays.

@@ -21,17 +21,17 @@
 
 #include "GlTestBackend.h"
 #include "TestSupport.h"
-#include "microrelief/context/HeadlessContext.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/gl/ShaderProgram.h"
 #include "microrelief/gl/StateGuard.h"
-#include "microrelief/render/HeadlessRender.h"
-#include "microrelief/render/OffscreenTarget.h"
-#include "microrelief/render/ReliefRenderer.h"
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefRenderer.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 
@@ -253,7 +253,7 @@ TEST_F(SceneObject, ModelTransformRendersTheReferenceHits) {
 }
 
 // One renderer across jobs builds only what a job changes: the pyramid for another map,
-// addressing, last level or tiles (scene/Scene.h: samePyramid), a program once for each
+// addressing, last level or tiles (core/scene/Scene.h: samePyramid), a program once for each
 // configuration; a camera, a height scale, a model, another size of the base or another
 // curved base are applied without building again. Each picture equals a fresh renderer's,
 // bit for bit: what is kept is what a new one would build.

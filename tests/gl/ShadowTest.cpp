@@ -10,10 +10,10 @@
 
 #include "GlTestBackend.h"
 #include "TestSupport.h"
-#include "microrelief/base/BaseSurface.h"
-#include "microrelief/render/HeadlessRender.h"
-#include "microrelief/synth/SyntheticMaps.h"
-#include "microrelief/trace/ReferenceTracer.h"
+#include "microrelief/core/base/BaseSurface.h"
+#include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 
 using namespace microrelief;
 

@@ -145,4 +145,51 @@ TEST_F(Package, CoreAloneThroughPkgConfig) {
                    test::runCommand("ldd " + quote(program), *scratch_ / ""));
 }
 
+// The library configured with its core alone (MICRORELIEF_LIBRARIES=core, no programs):
+// CMake is told that OpenImageIO, OpenGL, GLFW, zlib and CLI11 cannot be found, so any
+// lookup of them that is REQUIRED stops the configure; glad2 must not be looked up either.
+// It builds, installs only core's headers, and the core-only program builds against it.
+TEST_F(Package, CoreConfiguresAndBuildsAloneWithOnlyGlm) {
+    const std::filesystem::path build = *scratch_ / "core-alone";
+    const std::filesystem::path corePrefix = *scratch_ / "core-alone-prefix";
+    std::string disabled;
+    for (const char* package : {"OpenImageIO", "OpenGL", "glfw3", "ZLIB", "CLI11", "GTest"})
+        disabled += std::string(" -DCMAKE_DISABLE_FIND_PACKAGE_") + package + "=ON";
+    const test::RunResult configure = test::runCommand(
+        kCmake + " -S " + quote(kSource) + " -B " + quote(build) + " -G '" + kGenerator +
+            "' -DCMAKE_BUILD_TYPE=Release -DMICRORELIEF_LIBRARIES=core"
+            " -DMICRORELIEF_BUILD_APPS=OFF -DMICRORELIEF_BUILD_TESTS=OFF"
+            " -DMICRORELIEF_BUILD_THREE=OFF" +
+            disabled,
+        *scratch_ / "");
+    ASSERT_EQ(configure.status, 0) << configure.out << configure.err;
+    const std::string cache = test::readText(build / "CMakeCache.txt");
+    for (const char* entry : {"GLAD_EXECUTABLE", "OpenImageIO_DIR", "glfw3_DIR", "OPENGL_egl"})
+        EXPECT_EQ(cache.find(entry), std::string::npos) << entry << " looked up for core alone";
+    const test::RunResult compile =
+        test::runCommand(kCmake + " --build " + quote(build), *scratch_ / "");
+    ASSERT_EQ(compile.status, 0) << compile.out << compile.err;
+    const test::RunResult install = test::runCommand(
+        kCmake + " --install " + quote(build) + " --prefix " + quote(corePrefix), *scratch_ / "");
+    ASSERT_EQ(install.status, 0) << install.out << install.err;
+    for (const char* other : {"io", "gl", "headless", "glfw", "third_party"})
+        EXPECT_FALSE(std::filesystem::exists(corePrefix / "include" / "microrelief" / other))
+            << other << "'s headers installed with core alone";
+    EXPECT_TRUE(std::filesystem::exists(corePrefix / "include" / "microrelief" / "core" /
+                                        "GlslConstants.h"));
+
+    const std::filesystem::path program = *scratch_ / "core-alone-program";
+    const test::RunResult programConfigure = test::runCommand(
+        kCmake + " -S " + quote(kSource / "tests" / "package" / "core_only") + " -B " +
+            quote(program) + " -G '" + kGenerator +
+            "' -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" + quote(corePrefix),
+        *scratch_ / "");
+    ASSERT_EQ(programConfigure.status, 0) << programConfigure.out << programConfigure.err;
+    const test::RunResult programBuild =
+        test::runCommand(kCmake + " --build " + quote(program), *scratch_ / "");
+    ASSERT_EQ(programBuild.status, 0) << programBuild.out << programBuild.err;
+    expectCoreOnly(test::runCommand(quote(program / "core-only"), *scratch_ / ""),
+                   test::runCommand("ldd " + quote(program / "core-only"), *scratch_ / ""));
+}
+
 }  // namespace

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "TestSupport.h"
-#include "microrelief/heightmap/HeightMapFile.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 namespace microrelief::test {
 

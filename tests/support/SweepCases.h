@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/Camera.h"
-#include "microrelief/trace/Accuracy.h"
-#include "microrelief/trace/MultilevelTracer.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/trace/Accuracy.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
 
 namespace microrelief::test {
 

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "microrelief/context/HeadlessContext.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/render/Camera.h"
-#include "microrelief/render/OffscreenTarget.h"
-#include "microrelief/trace/Accuracy.h"
+#include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/core/trace/Accuracy.h"
 
 namespace microrelief::test {
 

@@ -17,8 +17,8 @@
 #include "TestSupport.h"
 #include "ViewerOptions.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/heightmap/HeightMapFile.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 

@@ -18,10 +18,10 @@
 #include "BrowserTest.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/heightmap/HeightMapFile.h"
-#include "microrelief/image/ImageFile.h"
-#include "microrelief/synth/SyntheticMaps.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 using browser::jsonString;

@@ -3,7 +3,7 @@
 // bad input, 1 for anything else). Programming errors are assertions, not Errors.
 //
 // The library knows no command line: a message about a value of a scene desc
-// (scene/Scene.h) names the field as {field}, the path of the member as the desc spells
+// (core/scene/Scene.h) names the field as {field}, the path of the member as the desc spells
 // it ("{camera.eye} and {camera.target} must differ"). what() writes each as the field's
 // path ("camera.eye and camera.target must differ"); a program writes its own name for
 // each, microrelief-render its flags (message(names): "--eye and --target must differ").
@@ -21,7 +21,7 @@ enum class ErrorKind {
 };
 
 // `message` with each {field} written as names(field); any other brace (a file name's) is
-// kept as it is: a field is one of the scene's (scene/Scene.h: isSceneField).
+// kept as it is: a field is one of the scene's (core/scene/Scene.h: isSceneField).
 std::string nameFields(const std::string& message,
                        const std::function<std::string(const std::string&)>& names);
 

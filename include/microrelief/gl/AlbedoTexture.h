@@ -1,4 +1,4 @@
-// An albedo on the GPU (image/Albedo.h): one 2D texture with its whole mip chain, 8-bit
+// An albedo on the GPU (core/image/Albedo.h): one 2D texture with its whole mip chain, 8-bit
 // images as SRGB8_ALPHA8 (the GL decodes them before it filters), others as RGBA16F,
 // filtered trilinearly; relief.frag spreads taps along each pixel's footprint for the
 // anisotropy. Repeating in both directions: the map's tiles and a curved base's seam
@@ -6,7 +6,7 @@
 #pragma once
 
 #include "microrelief/gl/Objects.h"
-#include "microrelief/image/Albedo.h"
+#include "microrelief/core/image/Albedo.h"
 
 namespace microrelief {
 

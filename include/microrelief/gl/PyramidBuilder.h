@@ -29,7 +29,7 @@
 
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/ReliefTextures.h"
-#include "microrelief/heightmap/MaxPyramid.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
 
 namespace microrelief {
 

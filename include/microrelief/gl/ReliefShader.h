@@ -13,11 +13,11 @@
 
 #include <glm/glm.hpp>
 
-#include "microrelief/base/BaseShape.h"
+#include "microrelief/core/base/BaseShape.h"
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/ReliefParameters.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/render/Method.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/scene/Method.h"
 
 namespace microrelief {
 

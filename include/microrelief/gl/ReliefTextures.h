@@ -1,7 +1,7 @@
 // The map's data on the GPU, as the relief shaders read it (docs/engine.md, "Textures"):
 // the samples, R32F with nearest filtering, clamped (repeating in s on a curved base, whose
 // u wraps, and in both directions tiled: relief_map.glsl's MICRORELIEF_TILING); the
-// overlapping windows the multilevel method reads (heightmap/MaxPyramid.h), an R16F mip
+// overlapping windows the multilevel method reads (core/heightmap/MaxPyramid.h), an R16F mip
 // chain of GL's own sizes of W x H down to 1 x 1, its bounds divided by 2^S; and, only
 // where the maxmip peer runs, the aligned levels of its quadtree, R16F as well, padded to
 // powers of two. Nearest-mipmap-nearest, clamped. With them, the numbers mr_ReliefMap
@@ -17,8 +17,8 @@
 #include <glm/glm.hpp>
 
 #include "microrelief/gl/Objects.h"
-#include "microrelief/heightmap/HeightMap.h"
-#include "microrelief/heightmap/MaxPyramid.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
 
 namespace microrelief {
 

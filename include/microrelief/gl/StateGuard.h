@@ -30,7 +30,7 @@ private:
 };
 
 // What an offscreen pass of the library's own (the GPU pyramid builder, the height
-// brush: gl/PyramidBuilder.h, render/HeightEditor.h) needs beyond StateGuard, saved and set for
+// brush: gl/PyramidBuilder.h, gl/HeightEditor.h) needs beyond StateGuard, saved and set for
 // a scope and restored after it: the draw and read framebuffers, blending, the scissor
 // test, the colour write mask, rasteriser discard and the pack alignment; culling and the
 // depth test off (StateGuard restores those). Its draws then write every texel they cover

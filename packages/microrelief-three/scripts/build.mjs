@@ -10,8 +10,8 @@
 //    finestAlbedo, filteredAlbedo, surfaceAlbedo), cut out of shaders/relief.frag by name;
 //    and the package's own glue (glsl/*), the files as they are;
 //  * generated/png.js: web/png.js, the page's PNG decoder (16-bit maps keep their low byte);
-//  * generated/pyramid_wasm.js: the C++ max pyramid (src/heightmap/MaxPyramid.cpp,
-//    HeightMap.cpp, and core/Error.cpp with scene/SceneFields.cpp, which its errors use)
+//  * generated/pyramid_wasm.js: the C++ max pyramid (src/core/heightmap/MaxPyramid.cpp,
+//    HeightMap.cpp, and core/Error.cpp with core/scene/SceneFields.cpp, which its errors use)
 //    compiled to WebAssembly by emscripten (em++ on PATH), one ES module with the wasm
 //    inside: the CPU path where WebGL 2 cannot render into R16F.
 //  * generated/manifest.json: every source file read and its SHA-256.
@@ -173,7 +173,7 @@ function buildWasm() {
     const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'microrelief-three-'));
     try {
         fs.symlinkSync(path.join(glm, 'glm'), path.join(scratch, 'glm'));
-        const sources = ['src/heightmap/MaxPyramid.cpp', 'src/heightmap/HeightMap.cpp', 'src/core/Error.cpp', 'src/scene/SceneFields.cpp'].map((f) => path.join(options.source, f));
+        const sources = ['src/core/heightmap/MaxPyramid.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/Error.cpp', 'src/core/scene/SceneFields.cpp'].map((f) => path.join(options.source, f));
         for (const f of sources) read(f);
         const glue = path.join(packageDir, 'wasm', 'pyramid_wasm.cpp');
         const shim = path.join(packageDir, 'wasm', 'bit_cast.h');

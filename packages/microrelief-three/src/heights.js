@@ -32,7 +32,7 @@ function checkSize(width, height, name) {
         throw new HeightMapError(`${name}: ${width} x ${height} is larger than the ${kMaxMapSide} x ${kMaxMapSide} a height map may have`);
 }
 
-// The checks of prepareHeights (src/heightmap/HeightMap.cpp), in its words.
+// The checks of prepareHeights (src/core/heightmap/HeightMap.cpp), in its words.
 function checkSamples(samples, width, name) {
     for (let k = 0; k < samples.length; ++k) {
         const h = samples[k];

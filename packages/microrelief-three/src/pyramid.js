@@ -11,7 +11,7 @@
 //    settleScale, web/relief_gl.js). Rendering into R16F needs EXT_color_buffer_float. Every
 //    draw goes through three (render targets, materials, renderer.render), and the
 //    renderer's render target is put back: three's state stays three's.
-//  * on the CPU: the C++ MaxPyramid itself (src/heightmap/MaxPyramid.cpp), compiled to
+//  * on the CPU: the C++ MaxPyramid itself (src/core/heightmap/MaxPyramid.cpp), compiled to
 //    WebAssembly (generated/pyramid_wasm.js), uploaded as halves.
 import * as THREE from 'three';
 

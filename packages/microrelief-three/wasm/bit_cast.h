@@ -1,7 +1,7 @@
 // bit_cast.h: std::bit_cast for emscripten 3.1.6 (Debian 12), whose libc++ predates it
 // (LLVM 14's libc++ has no <bit> bit_cast, clang 14 has the builtin behind it). Forced into
 // every translation unit of the WebAssembly build (scripts/build.mjs: -include), so that
-// src/heightmap/*.cpp compile unchanged; a newer libc++ defines __cpp_lib_bit_cast and
+// src/core/heightmap/*.cpp compile unchanged; a newer libc++ defines __cpp_lib_bit_cast and
 // this adds nothing.
 #pragma once
 #include <bit>

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "microrelief/heightmap/MaxPyramid.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
 
 using namespace microrelief;
 
@@ -46,8 +46,7 @@ int mr_build_windows(const float* samples, int width, int height, int wrapU) {
         const HeightMap map = heightMapFromSamples(samples, width, height,
                                                    static_cast<std::size_t>(width) * sizeof(float),
                                                    {}, "the height map");
-        pyramids.push_back(std::make_unique<MaxPyramid>(map, wrapU != 0, Interpolation::Bilinear,
-                                                        BoundPrecision::Half));
+        pyramids.push_back(std::make_unique<MaxPyramid>(map, wrapU != 0, BoundPrecision::Half));
         return static_cast<int>(pyramids.size());
     } catch (const std::exception& e) {
         lastError = e.what();

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "microrelief/Version.h"
-#include "microrelief/heightmap/MaxPyramid.h"
-#include "microrelief/trace/MultilevelTracer.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
 
 int main() {
     // A 5 x 3 map in rows of 8 samples (a padded image): a ramp, 65535 at its highest.

@@ -1,0 +1,92 @@
+// One picture, start to finish, in an offscreen framebuffer of the given context: the
+// path that microrelief-render and the GL tests share. HeadlessRenderer draws many
+// pictures in one context (microrelief-render's camera paths) along the same path.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "microrelief/gl/GlContext.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/gl/AnimatedHeights.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/scene/ModelTransform.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefRenderer.h"
+#include "microrelief/core/scene/Scene.h"
+
+namespace microrelief {
+
+// Pictures larger than kDefaultTileSide (or the GL's limits) are drawn in tiles of it.
+inline constexpr int kDefaultTileSide = 4096;
+
+// A picture to render: the relief (what it is and where it lies) and the view of it
+// (core/scene/Scene.h). The heights themselves are HeadlessRenderer's (setHeights), or
+// renderHeadless's argument.
+struct RenderJob : ReliefDesc, ViewDesc {};
+
+struct HeadlessResult {
+    RenderedFrame frame;
+    CameraFrame camera;  // the rays the picture was traced with
+    // With an animation, the heights it traced (read back from the GPU): the map to hold
+    // the picture to.
+    std::optional<HeightMap> animatedMap;
+};
+
+// Pictures of one map at a time, keeping what they share from one to the next: the
+// programs (each method compiled once), the map's textures and max pyramid (built
+// again only by setHeightMap) and the framebuffer (made again only for another size).
+// Its GL objects belong to `context`: it must not outlive it.
+class HeadlessRenderer {
+public:
+    // Compiles `method`'s program first. Throws Error.
+    explicit HeadlessRenderer(GlContext& context, const MethodSettings& method = {});
+
+    // Uploads the map and builds its pyramid for `base` (wrapped in u on a curved base), on
+    // the GPU (gl/PyramidBuilder.h; on the CPU where the GL cannot render into R16F, and
+    // for a map tiled `tiles` times, whose bounds the GPU builder does not make);
+    // `source` names it in error messages. A job may then take another size of that base,
+    // or another curved base; between the plane and a curved base, or for another
+    // interpolation, set the map again.
+    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
+                      Interpolation interpolation = Interpolation::Bilinear,
+                      glm::ivec2 tiles = {1, 1});
+    // The same, for the relief a desc describes: `map` holds the heights its map source
+    // names (loaded by the caller). Then needsHeights says whether another relief needs
+    // heights of its own: no map yet, or one set for another pyramid (core/scene/Scene.h:
+    // samePyramid; after setHeightMap, always). A caller loads maps only when it does.
+    void setHeights(const ReliefDesc& relief, const HeightMap& map, const std::string& source);
+    bool needsHeights(const ReliefDesc& relief) const;
+    // What has been built so far (gl/ReliefRenderer.h): render() of another job builds
+    // only what the job changed.
+    const RebuildCounts& rebuilds() const { return renderer_->rebuilds(); }
+    // The map's colours (core/image/Albedo.h), or none (the shading's one colour). Throws Error.
+    void setAlbedo(const AlbedoImage* albedo, const std::string& source);
+    // Renders `job` of the current map. Throws Error.
+    HeadlessResult render(const RenderJob& job);
+    // The largest tile a picture is drawn in, pixels a side (kDefaultTileSide; the GL's
+    // limits cap it): a smaller one holds less memory at once. Any side draws the same
+    // picture, bit for bit.
+    void setMaxTileSide(int side) { maxTileSide_ = side > 0 ? side : kDefaultTileSide; }
+
+private:
+    GlContext& context_;
+    std::optional<ReliefRenderer> renderer_;
+    std::optional<OffscreenTarget> target_;
+    std::string source_;
+    std::optional<ReliefDesc> heightsOf_;  // the relief setHeights built the pyramid for
+    int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
+    double maxHeight_ = 0.0;
+    std::optional<float> heightScale_;  // the scale the renderer has
+    std::unique_ptr<AnimatedHeights> animated_;
+    int maxTileSide_ = kDefaultTileSide;
+};
+// Throws Error(BadInput) for a picture size beyond the limits above.
+void checkPictureSize(int width, int height);
+
+// `source` names the map in error messages. Throws Error.
+HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
+                              const RenderJob& job, const AlbedoImage* albedo = nullptr);
+
+}  // namespace microrelief

@@ -1,0 +1,168 @@
+// Draws microrelief with the multilevel method: the base surface's bounding box is the
+// proxy geometry, and each of its fragments traces its own ray (shaders/relief.frag).
+// Owns the GL objects it needs; draws into whatever framebuffer is bound, which must
+// have the three colour outputs of relief.frag (see OffscreenTarget).
+#pragma once
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <glm/glm.hpp>
+
+#include "microrelief/core/base/BaseShape.h"
+#include "microrelief/core/base/ReliefExtent.h"
+#include "microrelief/gl/AlbedoTexture.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/gl/PyramidBuilder.h"
+#include "microrelief/gl/ReliefShader.h"
+#include "microrelief/gl/ReliefTextures.h"
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/scene/Method.h"
+#include "microrelief/core/scene/ModelTransform.h"
+
+namespace microrelief {
+
+// The part of the picture one draw covers, in GL window coordinates of the whole
+// picture (origin at the bottom left): the bound framebuffer holds width x height
+// pixels of it from (x, y). The default, width 0, is the whole picture.
+struct PictureTile {
+    int x = 0, y = 0;
+    int width = 0, height = 0;
+};
+
+// What a renderer has built so far, for tests and tools that hold it to rebuilding only what
+// changed: max pyramids built whole (setHeightMap, heightsReplaced), programs compiled,
+// albedo textures uploaded.
+struct RebuildCounts {
+    int pyramids = 0;
+    int programs = 0;
+    int albedos = 0;
+    bool operator==(const RebuildCounts&) const = default;
+};
+
+class ReliefRenderer {
+public:
+    // `shaderDir` holds relief_box.vert, relief.frag, relief_parameters.glsl and
+    // microrelief/; `method` is the program compiled first.
+    ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
+                   const MethodSettings& method = {});
+
+    // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base), of
+    // the surface `interpolation` makes of it, the map repeated `tiles` times across the
+    // base (--tile), and uploads it with the samples. Throws Error(BadInput) when the map
+    // exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that base or tiles;
+    // `source` names the map in that message.
+    // `build`: the pyramid made on the CPU and uploaded, or on the GPU from the samples
+    // (the same texels; see gl/PyramidBuilder.h). A tiled map's is made on the CPU.
+    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
+                      Interpolation interpolation = Interpolation::Bilinear,
+                      PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
+    glm::ivec2 tiles() const { return textures_ ? textures_->tiles() : glm::ivec2(1, 1); }
+
+    // A map that changes on the GPU (sculpting, animation). The map's textures, for a pass
+    // of the caller's that draws into the samples (null before setHeightMap).
+    ReliefTextures* textures() { return textures_ ? &*textures_ : nullptr; }
+    const ReliefTextures* textures() const { return textures_ ? &*textures_ : nullptr; }
+    // After the caller changed the samples inside `changed` (map texels): the pyramids
+    // brought up to date on the GPU over those texels only, and the box fitted to the
+    // map's new maximum. heightsReplaced: every sample changed, the pyramids built anew.
+    // A tiled map's pyramids are built again on the CPU from the samples read back (the
+    // GPU builder bounds one map, not tiles): fine for the small tiles tiling is for.
+    void heightsChanged(const std::vector<TexelRect>& changed);
+    void heightsReplaced();
+    // The surface's maximum, map units: the pyramid's top texel.
+    float maxHeight() const { return textures_ ? textures_->shape().maxHeight : 0.0f; }
+    // The GPU pyramid builder this renderer uses, made on first use.
+    PyramidBuilder& pyramidBuilder();
+    void setHeightScale(float scale);
+    // Another base of the same addressing as the map was uploaded with (the curved bases
+    // among themselves, a new size of the same one); a change between the plane and a
+    // curved base needs setHeightMap. Throws Error(BadInput) for a method that does not run
+    // on it, keeping the base it had.
+    void setBase(const BaseShape& base);
+    const BaseShape& base() const { return base_; }
+    Interpolation interpolation() const { return interpolation_; }
+
+    // The surface's colour from `albedo` over the map's (u, v) (core/image/Albedo.h), or, with
+    // nothing, the shading's one colour. Throws Error(BadInput) naming `source` for a
+    // texture larger than the GL takes, keeping the one it had.
+    void setAlbedo(const AlbedoImage* albedo, const std::string& source = "the albedo");
+    bool hasAlbedo() const { return albedo_.has_value(); }
+
+    // Where the relief sits in the world (the identity: where the spec puts it).
+    void setModel(const ModelTransform& model) { model_ = model; }
+    const ModelTransform& model() const { return model_; }
+    // The depth convention of the caller's projection and framebuffer (the default:
+    // OpenGL's [-1, 1] clip depth, a standard depth test).
+    void setDepthConvention(const DepthConvention& depth) { depth_ = depth; }
+    const DepthConvention& depthConvention() const { return depth_; }
+
+    // Recompiles the current program from the files; on failure throws and keeps the
+    // previous program. Other programs compiled before are dropped (they may be stale).
+    void reloadShaders();
+
+    // Chooses the tracing method; each configuration (ReliefShaderConfig) is compiled once
+    // and kept. Step counts and the pixel error are uniforms. `countFetches` selects the
+    // instrumented variant that writes texel reads to the statistics output. On a
+    // compile failure throws and keeps the method that works.
+    void setMethod(const MethodSettings& settings, bool countFetches = false);
+    const MethodSettings& method() const { return method_; }
+
+    // Draws the picture `camera` describes, or the tile of it given, into the bound
+    // framebuffer, which must have relief.frag's three colour outputs (OffscreenTarget);
+    // the colour is linear, for an sRGB target with GL_FRAMEBUFFER_SRGB on. The same rays
+    // whole or in tiles, so a picture drawn in tiles is the one drawn whole, pixel for
+    // pixel. GL state: the draw sets what it needs (program, vertex array, the uniform
+    // buffer at binding 0, textures on units 0 to 2, face culling and winding, the depth test
+    // and its function, depth clamping, the viewport) and restores each as it found it
+    // (gl/StateGuard.h). The depth mask stays the caller's: with it off nothing is written.
+    void draw(const CameraFrame& camera, const ShadingOptions& shading,
+              const PictureTile& tile = {});
+
+    int maxIterations() const { return maxIterations_; }
+    const RebuildCounts& rebuilds() const { return rebuilds_; }
+
+private:
+    ReliefShaderConfig configFor(const MethodSettings& settings, bool countFetches, BaseKind base,
+                                 Interpolation interpolation, bool frontFaces, ShadowMode shadows,
+                                 bool albedoMap, bool tiled) const;
+    bool tiled() const { return tiles() != glm::ivec2(1, 1); }
+    // The program for the configuration, compiled on first use; throws and changes
+    // nothing on failure.
+    ReliefShader& program(const ReliefShaderConfig& config);
+    // Whether the eye lies outside the proxy box (with a margin): then its front faces
+    // are drawn, else its back faces.
+    bool eyeOutsideBox(const glm::dvec3& eye) const;
+    ReliefParameters parameters(const CameraFrame& camera, const ShadingOptions& shading,
+                                const PictureTile& tile) const;
+    void uploadBox();
+
+    const GL& gl_;
+    std::filesystem::path shaderDir_;
+    std::map<ReliefShaderConfig, ReliefShader> programs_;
+    std::optional<ReliefTextures> textures_;  // the map's; none yet
+    std::optional<AlbedoTexture> albedo_;
+    std::optional<PyramidBuilder> builder_;   // made for the first GPU build
+    gl::Buffer parameterBuffer_;              // MicroreliefParameters
+    gl::VertexArray boxArray_;
+    gl::Buffer boxVertices_;
+    gl::Buffer boxIndices_;
+    glm::dvec3 boxMin_{0.0}, boxMax_{0.0};  // the proxy box drawn, object space
+    float heightScale_ = 0.1f;
+    int maxIterations_ = 0;
+    MethodSettings method_;
+    bool countFetches_ = false;
+    BaseShape base_;
+    Interpolation interpolation_ = Interpolation::Bilinear;  // the surface it bounds
+    ModelTransform model_;
+    DepthConvention depth_;
+    RebuildCounts rebuilds_;
+};
+
+}  // namespace microrelief

@@ -1,0 +1,240 @@
+#include "microrelief/core/scene/FloatLimits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "microrelief/core/Error.h"
+
+namespace microrelief {
+
+namespace {
+
+std::string number(double value) {
+    std::ostringstream text;
+    text.precision(3);
+    text << value;
+    return text.str();
+}
+
+std::string baseFlags(const BaseShape& base) {
+    switch (base.kind) {
+        case BaseKind::Cylinder:
+            return "{base} cylinder {base.radius} " + number(base.radius) + " {base.length} " +
+                   number(base.length);
+        case BaseKind::Ellipsoid:
+            return "{base} ellipsoid {base.radii} " + number(base.radii.x) + "," + number(base.radii.y) +
+                   "," + number(base.radii.z);
+        case BaseKind::Plane:
+            break;
+    }
+    return "{base} plane";
+}
+
+// Texels per unit of the base's frame, the most over its axes: on the plane the map's
+// longer side spans one unit; on a curved base, around the axis W texels span 2 pi at
+// radius 1, and along it H texels span the cylinder's 2 frame units or the ellipsoid's pi
+// radians of latitude.
+double texelsPerFrameUnit(const MapExtent& map, const BaseShape& base) {
+    const double around = map.width / (2.0 * std::numbers::pi);
+    switch (base.kind) {
+        case BaseKind::Cylinder:
+            return std::max(around, 0.5 * map.height);
+        case BaseKind::Ellipsoid:
+            return std::max(around, map.height / std::numbers::pi);
+        case BaseKind::Plane:
+            break;
+    }
+    return std::max(map.width, map.height);
+}
+
+// The least and the most length of the (not unit) object-space normals the shader
+// makes (mr_baseTopNormal, mr_baseFaceNormal, then the frame's inverse transpose).
+// G bounds the gradient in map units per texel: the samples lie in [0, max h], so a
+// bilinear cell's slope, and the quadratic B-spline's (a linear spline of the samples'
+// differences), is at most max h a texel.
+std::pair<double, double> objectNormalRange(const MapExtent& map, double s, const BaseShape& base) {
+    const double g = map.maxHeight;
+    if (base.kind == BaseKind::Plane) {
+        // Top (-gx T, 1 / s, -gy T); walls T and the bottom 1 / s along one axis
+        // (base_plane.glsl, mr_baseObjectNormal).
+        const double t = std::max(map.width, map.height);
+        return {std::min(t, 1.0 / s), std::max(std::sqrt(2.0) * g * t + 1.0 / s, t)};
+    }
+    // The frame normal r w - (s W / 2 pi) gx e_phi / sin - (s H / pi or H / 2) gy ...:
+    // at least r >= 1 (its radial part; the caps' normals are unit), at most its parts'
+    // sum, the ellipsoid's e_phi term divided by sin theta >= 1e-6 (base_ellipsoid.glsl).
+    const double r = 1.0 + s * map.maxHeight;
+    const double around = s * map.width / (2.0 * std::numbers::pi) * g;
+    const double along =
+        s * map.height / (base.kind == BaseKind::Cylinder ? 2.0 : std::numbers::pi) * g;
+    const double frameMax =
+        base.kind == BaseKind::Cylinder ? r * (1.0 + along) + around : r + along + around * 1e6;
+    const glm::dvec3 scale = base.frameScale();  // object = frame * scale
+    const double least = std::min({scale.x, scale.y, scale.z});
+    const double most = std::max({scale.x, scale.y, scale.z});
+    return {1.0 / most, frameMax / least};
+}
+
+}  // namespace
+
+void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape& base,
+                      const ModelTransform& model, const Camera& camera, const CameraFrame& frame,
+                      const std::string& source) {
+    const double maxHeight = map.maxHeight;  // map units, >= 0 (prepareHeights)
+    const double top = heightScale * maxHeight;
+    const bool plane = base.kind == BaseKind::Plane;
+    const double texelsPerUnit = texelsPerFrameUnit(map, base);
+
+    // 1. The relief's box in world units: corners, depth range and AOV are floats. On a
+    //    curved base s is a fraction of the radius; the same bound keeps the frame's
+    //    radial arithmetic finite.
+    if (!(top <= kMaxWorldCoordinate)) {
+        throwBadInput(source + ": the relief's top ({heightScale} " + number(heightScale) +
+                      " x the largest height " + number(maxHeight) + " = " + number(top) +
+                      (plane ? " world units" : " radii") + ") is beyond the " +
+                      number(kMaxWorldCoordinate) +
+                      " the renderer's float arithmetic holds; lower {heightScale}, or use "
+                      "{map.load.normalize} and a {heightScale} of the relief's height");
+    }
+    //    The box as placed, on any base and through the model: its farthest corner. A
+    //    cylinder of --length 1e8 loses 12 % of its hits to the proxy box's clipping in
+    //    float (every hit from 1e9), and is right up to 1e7 (measured): the bound is the
+    //    plane's, 1e6.
+    {
+        const glm::dvec3 lo = base.boxMin(map.width, map.height, top);
+        const glm::dvec3 hi = base.boxMax(map.width, map.height, top);
+        double farthest = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
+                               (corner & 4) ? hi.z : lo.z);
+            const glm::dvec3 world = model.pointToWorld(p);
+            farthest =
+                std::max({farthest, std::abs(world.x), std::abs(world.y), std::abs(world.z)});
+        }
+        if (!(farthest <= kMaxWorldCoordinate)) {
+            throwBadInput(source + ": the relief's box on " + baseFlags(base) +
+                          (model.isIdentity() ? "" : " placed by {model}") + " reaches " +
+                          number(farthest) + " world units from the origin, beyond the " +
+                          number(kMaxWorldCoordinate) +
+                          " the renderer's float arithmetic holds (box corners, depth range and "
+                          "AOV are floats); use a smaller base or model scale");
+        }
+    }
+
+    // The ray in object space: t is kept, the direction goes through the model's inverse,
+    // at most 1 / its smallest scale longer.
+    const double longestWorld =
+        std::sqrt(1.0 + glm::dot(frame.right, frame.right) + glm::dot(frame.up, frame.up));
+    const double longest = longestWorld / model.smallestScale();
+
+    // 2. The patch solve (the plane's; a curved base's leaf interpolates the gap between
+    // patch and ray from three values and multiplies no ray coefficients). The ray
+    // directions are forward + x right + y up over the picture, x, y in [-1, 1], the
+    // three orthogonal: the longest is at a corner. With |b|, |c| <= max h and
+    // |d| <= 2 max h (b, c, d: the patch's coefficients) and f in [0, 1]^2,
+    // |B| <= 6 max h Dxy + Dh and 4|A C| <= 16 max h^2 Dxy^2 (|C| <= 2 max h inside the
+    // box): with max h Dxy <= 2^58 and Dh <= 2^58, B^2 + 4|AC| < 2^126.
+    if (plane) {
+        const double dxy = longest * texelsPerUnit, dh = longest / heightScale;
+        const double solveLimit = std::ldexp(1.0, 58);
+        if (maxHeight * dxy > solveLimit || dh > solveLimit) {
+            throwBadInput(source + ": heights up to " + number(maxHeight) + " at {heightScale} " +
+                          number(heightScale) +
+                          " overflow the shader's float patch solve (largest height x " +
+                          number(dxy) + " texels per ray unit, and 1 / {heightScale} x " +
+                          number(longest) + ", must stay below 2^58); " +
+                          (model.isIdentity()
+                               ? "use {map.load.normalize} and a {heightScale} of the relief's height"
+                               : "{model} shrinks the relief by " + number(model.smallestScale()) +
+                                     ", which lengthens the rays in its object space as much"));
+        }
+    }
+
+    // 3. Normals. The shader takes a frame normal into the world through the inverse
+    //    transposes of the frame and the model, and normalises it: its squared length
+    //    must stay within float's normal range (2^-126 to 2^128), with a factor 4 to
+    //    spare for the sum of three squares and rounding, so its length within 2^+-62.
+    //    The model stretches it by 1 / its smallest scale at most and 1 / its largest at
+    //    least: a relief shrunk by 1e-20 overflows, one grown by 1e20 underflows (shaded
+    //    black or NaN), each without an error of its own.
+    {
+        const auto [least, most] = objectNormalRange(map, heightScale, base);
+        const double longestNormal = most / model.smallestScale();
+        const double shortestNormal = least / model.largestScale();
+        const double limit = std::ldexp(1.0, 62);
+        if (!(longestNormal <= limit && shortestNormal >= 1.0 / limit)) {
+            throwBadInput(std::string(model.isIdentity()
+                                          ? "{heightScale} " + number(heightScale)
+                                          : "{model} (scales " + number(model.smallestScale()) +
+                                                " to " + number(model.largestScale()) + ")") +
+                          ": the relief's normals on " + source + " reach lengths from " +
+                          number(shortestNormal) + " to " + number(longestNormal) +
+                          " before they are normalised, beyond the 2^+-62 float squares without "
+                          "overflow or underflow; scale the relief by less");
+        }
+    }
+
+    // 4. The entry point keeps about 2 ulps (2^-23 relative) of |origin| as its error, in
+    //    the base's frame (map space on the plane, the canonical frame on a curved base),
+    //    where the eye is the model's inverse of --eye.
+    //    Plane: in X, Y: (|eye.x or z| T + W or H / 2) 2^-23 <= 2^-5 texel. In h the
+    //    error is |eye.y| / s 2^-23 map units, and it moves the hit by that times
+    //    |dir.xy| / |dir.h| texels: |eye.y| T 2^-23 times the cotangent of the ray's slope
+    //    in world space, the same bound on |eye.y| T (whatever s is: a thin relief seen
+    //    from afar is as exact as a thick one, measured with s down to 1e-7).
+    //    Curved base: the frame point's error |q| 2^-23 frame units moves the hit by that
+    //    many frame units along the surface (radially, times the cotangent as on the
+    //    plane), which the texels per frame unit turn into texels: |q| T_frame <= 2^18.
+    //    Measured on a cylinder (256 map): p99 0.01 texels at 1.1e5 texels away, 0.088 at
+    //    1.1e6, 1.17 at 1.1e7 (the plane's figures below, slightly better).
+    const double entryLimit = std::ldexp(1.0, 18);
+    const double mapReach = plane ? 0.5 * std::max(map.width, map.height) : texelsPerUnit;
+    // The map alone at the limit leaves no eye anywhere: say so, not where the eye is.
+    if (mapReach >= entryLimit) {
+        throwBadInput(source + ": " + std::to_string(map.width) + " x " +
+                      std::to_string(map.height) + " texels (with {tiles}, the tiled whole) on " +
+                      baseFlags(base) + " is " + number(mapReach) +
+                      " texels across its frame, 2^18 = 262144 or more, beyond which float keeps "
+                      "no ray's entry into the relief's box to 1/32 texel; use fewer tiles or a "
+                      "smaller map");
+    }
+    const glm::dvec3 object = model.pointToObject(camera.eye);
+    const glm::dvec3 eye = plane ? object : object / base.frameScale();
+    const double eyeTexels =
+        plane ? std::max({std::abs(eye.x) * texelsPerUnit + 0.5 * map.width,
+                          std::abs(eye.z) * texelsPerUnit + 0.5 * map.height,
+                          std::abs(eye.y) * texelsPerUnit})
+              : std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}) * texelsPerUnit;
+    if (eyeTexels > entryLimit) {
+        throwBadInput("{camera.eye} " + number(camera.eye.x) + "," + number(camera.eye.y) + "," +
+                      number(camera.eye.z) + " is too far from " + source +
+                      (plane ? "" : " on " + baseFlags(base)) +
+                      (model.isIdentity() ? "" : " (placed by {model})") + " for exact hits: " +
+                      number(eyeTexels) + " texels away (" + number(texelsPerUnit) + " a " +
+                      (plane ? "world unit" : "unit of the base's frame") +
+                      "), more than the 2^18 = 262144 at which float keeps the ray's entry into "
+                      "the relief's box to 1/32 texel");
+    }
+
+    // 5. The pixels' rays. Each is forward + x right + y up in float, whose components
+    //    (at most 1 in size) carry about 3 ulps of 2^-24 from the rounding of the sum;
+    //    neighbouring pixels' rays differ by 2 tan(fovy / 2) / height. At 32 ulps (2^-19)
+    //    apart a ray strays 0.09 pixels (p99) from its pixel's centre; measured: p99
+    //    0.12 px at 23 ulps, 1.2 px at 2.3 ulps, rows of pixels lost at 0.23 ulps, and all
+    //    of them once tan(fovy / 2) underflows (--fovy 1e-37).
+    const double pixelStep = 2.0 * glm::length(frame.up) / frame.height;
+    const double stepLimit = std::ldexp(1.0, -19);
+    if (!(pixelStep >= stepLimit)) {
+        const double least =
+            2.0 * std::atan(stepLimit * frame.height / 2.0) * 180.0 / std::numbers::pi;
+        throwBadInput("{camera.fovyDegrees} " + number(camera.fovyDegrees) + " at a picture " +
+                      std::to_string(frame.height) +
+                      " pixels high: neighbouring pixels' rays differ by " + number(pixelStep) +
+                      ", less than the 2^-19 that float keeps apart; use {camera.fovyDegrees} " +
+                      number(least * 1.001) + " or more, or a smaller {size}");
+    }
+}
+
+}  // namespace microrelief

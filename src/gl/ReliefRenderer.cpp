@@ -1,0 +1,289 @@
+#include "microrelief/gl/ReliefRenderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "microrelief/core/Error.h"
+#include "microrelief/gl/StateGuard.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
+
+namespace microrelief {
+
+ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
+                               const MethodSettings& method)
+    : gl_(gl), shaderDir_(shaderDir), method_(method) {
+    reloadShaders();
+    parameterBuffer_ = gl::Buffer::create(gl_);
+    boxArray_ = gl::VertexArray::create(gl_);
+    boxVertices_ = gl::Buffer::create(gl_);
+    boxIndices_ = gl::Buffer::create(gl_);
+}
+
+ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
+                                             BaseKind base, Interpolation interpolation,
+                                             bool frontFaces, ShadowMode shadows, bool albedoMap,
+                                             bool tiled) const {
+    // A front face lies on the ray before its hit, a back face after it: the depth written
+    // is at least the face's (front) or at most (back) under a standard depth test, the
+    // other way round under reversed-Z.
+    const bool greater = frontFaces != depth_.reversed;
+    // Shadows are the exact methods' (a second trace through the multilevel tracer).
+    if (!methodTracesTheSolid(settings.method)) shadows = ShadowMode::Off;
+    return {settings.method,
+            base,
+            interpolation,
+            countFetches,
+            greater ? DepthLayout::Greater : DepthLayout::Less,
+            shadows,
+            albedoMap,
+            tiled};
+}
+
+void ReliefRenderer::reloadShaders() {
+    const ReliefShaderConfig config = configFor(method_, countFetches_, base_.kind, interpolation_,
+                                                true, ShadowMode::Off, false, tiled());
+    ReliefShader fresh(gl_, shaderDir_, config);  // throws before anything changes
+    ++rebuilds_.programs;
+    programs_.clear();
+    programs_.emplace(config, std::move(fresh));
+}
+
+ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
+    auto found = programs_.find(config);
+    if (found == programs_.end()) {
+        found = programs_.emplace(config, ReliefShader(gl_, shaderDir_, config)).first;
+        ++rebuilds_.programs;
+    }
+    return found->second;
+}
+
+void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
+    checkMethodSupportsBase(settings.method, base_);
+    checkMethodSupportsTiles(settings.method, tiles());
+    program(configFor(settings, countFetches, base_.kind, interpolation_, true, ShadowMode::Off,
+                      false, tiled()));  // may throw
+    // The aligned pyramid is made only for the peer that walks it.
+    if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
+        textures_->addMaxMipPyramid(gl_, pyramidBuilder());
+    method_ = settings;
+    countFetches_ = countFetches;
+}
+
+void ReliefRenderer::setBase(const BaseShape& base) {
+    validateBaseShape(base);
+    if (textures_ && base.wrapsU() != textures_->wrapsU()) {
+        throwRuntime(
+            "ReliefRenderer::setBase: between the plane and a curved base the map must "
+            "be uploaded again (setHeightMap)");
+    }
+    checkMethodSupportsBase(method_.method, base);
+    program(configFor(method_, countFetches_, base.kind, interpolation_, true, ShadowMode::Off,
+                      false,
+                      tiled()));  // may throw
+    base_ = base;
+    if (textures_) uploadBox();
+}
+
+void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
+                                  const BaseShape& base, Interpolation interpolation,
+                                  PyramidBuild build, glm::ivec2 tiles) {
+    validateBaseShape(base);
+    checkMethodSupportsBase(method_.method, base);
+    checkMethodSupportsTiles(method_.method, tiles);
+    if (tiles.x < 1 || tiles.y < 1) throwBadInput("{tiles}: counts must be at least 1");
+    // Both throw before anything changes: the program is compiled (or looked up) first,
+    // the textures are made before the old ones go.
+    program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
+                      false, tiles != glm::ivec2(1, 1)));
+    const bool maxMip = method_.method == Method::MaxMip;
+    // The GPU builder bounds texel squares within one map: a tiled one's is the CPU's.
+    if (build == PyramidBuild::Gpu && tiles == glm::ivec2(1, 1)) {
+        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation,
+                                         pyramidBuilder(), maxMip));
+    } else {
+        textures_.emplace(
+            ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, maxMip, tiles));
+    }
+    ++rebuilds_.pyramids;
+    base_ = base;
+    interpolation_ = interpolation;
+    maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
+    uploadBox();
+}
+
+void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {
+    if (!albedo) {
+        albedo_.reset();
+        return;
+    }
+    albedo_.emplace(AlbedoTexture(gl_, *albedo, source));  // made before the old one goes
+    ++rebuilds_.albedos;
+}
+
+PyramidBuilder& ReliefRenderer::pyramidBuilder() {
+    if (!builder_) builder_.emplace(gl_, shaderDir_);
+    return *builder_;
+}
+
+void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
+    if (!textures_) return;
+    if (tiled()) {
+        textures_->rebuildFromSamples(gl_);  // the GPU builder bounds one map, not tiles
+    } else {
+        pyramidBuilder().update(*textures_, changed);
+    }
+    uploadBox();
+}
+
+void ReliefRenderer::heightsReplaced() {
+    if (!textures_) return;
+    if (tiled()) {
+        textures_->rebuildFromSamples(gl_);
+    } else {
+        pyramidBuilder().build(*textures_);
+    }
+    ++rebuilds_.pyramids;
+    uploadBox();
+}
+
+void ReliefRenderer::setHeightScale(float scale) {
+    heightScale_ = scale;
+    if (textures_) uploadBox();
+}
+
+void ReliefRenderer::uploadBox() {
+    // A small margin keeps every pixel whose ray meets the exact box inside the
+    // rasterised proxy; the shader clips the ray to the exact shell itself.
+    const ReliefMapShape& shape = textures_->shape();
+    const ReliefExtent extent =
+        reliefExtent(shape.size.x, shape.size.y, shape.maxHeight, heightScale_, base_);
+    const glm::vec3 lo = glm::vec3(extent.min) - 1e-3f, hi = glm::vec3(extent.max) + 1e-3f;
+    boxMin_ = lo;
+    boxMax_ = hi;
+    const std::array<float, 24> corners = {lo.x, lo.y, lo.z, hi.x, lo.y, lo.z, hi.x, lo.y,
+                                           hi.z, lo.x, lo.y, hi.z, lo.x, hi.y, lo.z, hi.x,
+                                           hi.y, lo.z, hi.x, hi.y, hi.z, lo.x, hi.y, hi.z};
+    // Outward-facing counter-clockwise triangles, two per face.
+    const std::array<GLushort, 36> indices = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                                              1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0};
+    const gl::StateGuard saved(gl_);
+    gl_.BindVertexArray(boxArray_.id());
+    gl_.BindBuffer(GL_ARRAY_BUFFER, boxVertices_.id());
+    gl_.BufferData(GL_ARRAY_BUFFER, sizeof(corners), corners.data(), GL_STATIC_DRAW);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, boxIndices_.id());
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(indices), indices.data(), GL_STATIC_DRAW);
+    gl_.EnableVertexAttribArray(0);
+    gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+}
+
+bool ReliefRenderer::eyeOutsideBox(const glm::dvec3& eye) const {
+    // Outside the drawn box grown by a margin: an eye just outside it may see its front
+    // faces cut by the near plane (depth clamping keeps them), one inside must never get
+    // front faces (none would cover the pixels around it). The margin is relative, far
+    // above float rounding of the box and the model.
+    const glm::dvec3 p = model_.pointToObject(eye);
+    const glm::dvec3 margin = 1e-4 * (boxMax_ - boxMin_) + 1e-6;
+    return glm::any(glm::lessThan(p, boxMin_ - margin)) ||
+           glm::any(glm::greaterThan(p, boxMax_ + margin));
+}
+
+ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
+                                            const ShadingOptions& shading,
+                                            const PictureTile& t) const {
+    // A tile: the same clip space, scaled and shifted in x and y so that the tile fills
+    // the viewport (rows z and w are untouched, so the depth is the whole picture's to
+    // the bit); the shader adds the tile's origin to gl_FragCoord, so each pixel casts
+    // the ray it casts in the whole picture.
+    glm::dmat4 toTile(1.0);
+    toTile[0][0] = static_cast<double>(camera.width) / t.width;
+    toTile[1][1] = static_cast<double>(camera.height) / t.height;
+    toTile[3][0] = static_cast<double>(camera.width - 2 * t.x - t.width) / t.width;
+    toTile[3][1] = static_cast<double>(camera.height - 2 * t.y - t.height) / t.height;
+
+    ReliefParameters p;
+    p.viewProjection = glm::mat4(toTile * camera.viewProjection);
+    p.objectToWorld = glm::mat4(model_.objectToWorld());
+    p.worldToObject = glm::mat4(model_.worldToObject());
+    p.eye = glm::vec3(camera.eye);
+    p.cameraRight = glm::vec3(camera.right);
+    p.cameraUp = glm::vec3(camera.up);
+    p.cameraForward = glm::vec3(camera.forward);
+    p.pixelErrorTolerance = method_.pixelError;
+    p.tMin = 0.0f;  // the rays' range: a picture's, the whole ray (MR_T_INFINITY)
+    p.tMax = 3.4e38f;
+    // The multilevel method reads the windows, maxmip its aligned quadtree: each its own
+    // pyramid's size and levels.
+    const ReliefMapShape shape =
+        method_.method == Method::MaxMip ? textures_->maxMipShape() : textures_->shape();
+    p.heightScale = heightScale_;
+    p.reliefMaxHeight = shape.maxHeight;
+    p.frameScale = glm::vec3(base_.frameScale());
+    const ReliefExtent extent =
+        reliefExtent(shape.size.x, shape.size.y, shape.maxHeight, heightScale_, base_);
+    p.reliefBoxMin = glm::vec3(extent.min);
+    p.reliefBoxMax = glm::vec3(extent.max);
+    p.pyramidLevels = shape.levelCount;
+    p.maxIterations = maxIterations_;
+    p.lightDirection = glm::normalize(shading.lightDirection);
+    if (shading.lightPosition) p.lightPosition = glm::vec4(*shading.lightPosition, 1.0f);
+    p.albedoFinest = shading.albedoFinestLevel ? 1 : 0;
+    p.reliefTiles = shape.tiles;
+    p.lightTanRadius = static_cast<float>(
+        std::tan(0.5 * glm::radians(static_cast<double>(shading.lightSizeDegrees))));
+    p.debugView = static_cast<int>(shading.view);
+    p.albedo = shading.albedo;
+    p.methodSteps = method_.steps;
+    p.methodMinSteps = method_.minSteps;
+    p.methodRefineSteps = method_.refineSteps;
+    p.reliefSize = glm::vec2(shape.size);
+    p.pyramidSize = shape.pyramidSize;
+    p.viewportSize = glm::vec2(camera.width, camera.height);
+    p.tileOrigin = glm::vec2(t.x, t.y);
+    p.depthZeroToOne = depth_.zeroToOne ? 1 : 0;
+    return p;
+}
+
+void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading,
+                          const PictureTile& tile) {
+    if (!textures_) return;
+    const PictureTile whole{0, 0, camera.width, camera.height};
+    const PictureTile& t = tile.width > 0 ? tile : whole;
+    // Front faces from outside the box, back faces from inside it: exactly one fragment
+    // per pixel the box covers either way (it is convex), and the depth layout the
+    // program promises holds for the faces drawn.
+    const bool frontFaces = eyeOutsideBox(camera.eye);
+    ReliefShader& shader =
+        program(configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces,
+                          shading.shadows, albedo_.has_value(), tiled()));
+
+    const gl::StateGuard saved(gl_);
+    const ReliefParameters values = parameters(camera, shading, t);
+    gl_.BindBuffer(GL_UNIFORM_BUFFER, parameterBuffer_.id());
+    gl_.BufferData(GL_UNIFORM_BUFFER, sizeof values, &values, GL_STREAM_DRAW);
+    shader.use();
+    shader.bindParameters(parameterBuffer_.id())
+        .bindMaxPyramid(textures_->maxPyramid())
+        .bindHeights(textures_->samples())
+        .bindWindowPyramid(textures_->windowPyramid());
+    if (albedo_) shader.bindAlbedo(albedo_->id());
+
+    // Depth clamping keeps faces nearer than the near plane (an eye close to the box). A
+    // model that mirrors (a negative determinant) turns the box's winding round.
+    const bool mirrored = glm::determinant(glm::dmat3(model_.objectToWorld())) < 0.0;
+    gl_.Enable(GL_CULL_FACE);
+    gl_.FrontFace(GL_CCW);  // the box's outward faces wind counter-clockwise
+    gl_.CullFace(frontFaces != mirrored ? GL_BACK : GL_FRONT);
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(depth_.reversed ? GL_GREATER : GL_LESS);
+    gl_.Enable(GL_DEPTH_CLAMP);
+    gl_.Viewport(0, 0, t.width, t.height);
+    gl_.BindVertexArray(boxArray_.id());
+    gl_.DrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, nullptr);
+}
+
+}  // namespace microrelief

@@ -1,0 +1,48 @@
+#include "microrelief/io/HeightMapFile.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <memory>
+
+#include "io/CheckedImageInput.h"
+#include "microrelief/core/Error.h"
+
+namespace microrelief {
+
+HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+    const std::string name = file.string();
+    const std::unique_ptr<OIIO::ImageInput> input =
+        openCheckedImage(file, options.maxSide, "a height map");
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.depth > 1) throwBadInput(name + ": volume images are not height maps");
+    if (spec.nchannels > kMaxHeightMapChannels) {
+        throwBadInput(name + ": " + std::to_string(spec.nchannels) + " channels, more than the " +
+                      std::to_string(kMaxHeightMapChannels) + " a height map may have");
+    }
+    if (options.channel < 0 || options.channel >= spec.nchannels) {
+        throwBadInput(name + ": {map.load.channel} " + std::to_string(options.channel) +
+                      " is out of range; the image has " + std::to_string(spec.nchannels) +
+                      " channel(s)");
+    }
+
+    try {
+        HeightMap map(spec.width, spec.height);
+        // Reading as FLOAT makes OpenImageIO normalise integer formats by their type range
+        // (uint8 / 255, uint16 / 65535) and pass float formats through unchanged.
+        const bool ok = input->read_image(0, 0, options.channel, options.channel + 1,
+                                          OIIO::TypeDesc::FLOAT, map.samples.data());
+        if (!ok) {
+            const std::string reason = oneLine(input->geterror());
+            throwBadInput(name + ": cannot read the pixels (" +
+                          (reason.empty() ? "truncated or corrupt" : reason) + ")");
+        }
+        input->close();
+        prepareHeights(map, options, name);
+        return map;
+    } catch (const std::bad_alloc&) {
+        throwRuntime(name + ": not enough memory for its " + std::to_string(spec.width) + " x " +
+                     std::to_string(spec.height) + " samples");
+    }
+}
+
+}  // namespace microrelief

@@ -374,3 +374,157 @@ TEST_F(ThreePage, BadInputIsOneClearErrorAndTheSceneKeepsDrawing) {
 }
 
 }  // namespace
+
+// The package as a user gets it (CTest entry three.pack): `npm pack` of a copy of
+// packages/microrelief-three (its prepack builds generated/ from this repository), the
+// tarball and three installed into a scratch npm project (`npm install --prefer-offline`:
+// three from the npm cache that the package's `npm ci` filled, no network needed), and
+// examples/three's files served from that project. The tarball holds generated/ (the GLSL,
+// the PNG decoder, the WebAssembly pyramid, not the stub) and no node_modules or tests; the
+// installed example draws the three-lit scene the build tree's staged example draws (the
+// same code in the same browser: the same picture), and its shading=microrelief picture,
+// with the pyramid built by the tarball's WebAssembly, is microrelief-render's (kLimits).
+class ThreePackage : public ThreePage {
+protected:
+    // npm and em++ as the package's build needs them (node: ThreePage's staged example).
+    void SetUp() override {
+        ThreePage::SetUp();
+        if (HasFatalFailure() || IsSkipped()) return;
+        npm_ = findProgram(MICRORELIEF_NPM, "npm");
+        emxx_ = findProgram(MICRORELIEF_EMXX, "em++");
+        node_ = findProgram(MICRORELIEF_NODE_EXE, "node");
+        for (const auto& [program, package] : {std::pair{npm_, "npm"}, std::pair{emxx_, "emscripten"},
+                                               std::pair{node_, "nodejs"}}) {
+            if (!program.empty()) continue;
+            const std::string why = std::string("no ") + package + " (Debian package " + package +
+                                    "; bash scripts/setup.sh installs it): npm pack needs it";
+            const char* allow = std::getenv("MICRORELIEF_ALLOW_MISSING_BROWSER");
+            if (allow && std::string(allow) == "1") GTEST_SKIP() << why;
+            FAIL() << why << "; MICRORELIEF_ALLOW_MISSING_BROWSER=1 skips this test instead";
+        }
+    }
+
+    test::RunResult run(const std::string& command, const std::filesystem::path& in) {
+        return test::runCommand("cd " + browser::quote(in.string()) + " && " + command, dir.path());
+    }
+
+    std::string npm_, emxx_, node_;
+};
+
+TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
+    namespace fs = std::filesystem;
+    // A copy of the package as it is in git (its node_modules and generated/ left out).
+    const fs::path source = MICRORELIEF_PACKAGE_DIR, copy = dir / "microrelief-three";
+    fs::create_directories(copy);
+    for (const fs::directory_entry& entry : fs::directory_iterator(source)) {
+        const std::string name = entry.path().filename().string();
+        if (name == "node_modules" || name == "generated" || entry.path().extension() == ".tgz")
+            continue;
+        fs::copy(entry.path(), copy / name, fs::copy_options::recursive);
+    }
+    const std::string env = "MICRORELIEF_SOURCE_DIR=" + browser::quote(MICRORELIEF_SOURCE_DIR) +
+                            " PATH=" + browser::quote(fs::path(emxx_).parent_path().string() +
+                                                      ":" + fs::path(node_).parent_path().string()) +
+                            ":\"$PATH\" ";
+    const fs::path tarballs = dir / "tarballs";
+    fs::create_directories(tarballs);
+    const test::RunResult pack = run(
+        env + browser::quote(npm_) + " pack --pack-destination " + tarballs.string(), copy);
+    ASSERT_EQ(pack.status, 0) << pack.out << pack.err;
+    fs::path tarball;
+    for (const fs::directory_entry& entry : fs::directory_iterator(tarballs)) tarball = entry.path();
+    ASSERT_EQ(tarball.extension(), ".tgz") << pack.out;
+
+    // What the tarball holds.
+    const test::RunResult listing = run("tar tzf " + browser::quote(tarball.string()), dir.path());
+    ASSERT_EQ(listing.status, 0) << listing.err;
+    for (const char* expected :
+         {"package/package.json", "package/src/index.js", "package/generated/glsl.js",
+          "package/generated/png.js", "package/generated/pyramid_wasm.js",
+          "package/generated/manifest.json"})
+        EXPECT_NE(listing.out.find(std::string(expected) + "\n"), std::string::npos)
+            << expected << " is not in the tarball:\n" << listing.out;
+    for (const char* unwanted : {"node_modules/", "tests/", "test/", ".tgz"})
+        EXPECT_EQ(listing.out.find(unwanted), std::string::npos)
+            << unwanted << " is in the tarball:\n" << listing.out;
+
+    // A scratch project served as web/three/ (web/serve.py serves web/, shaders/ and assets/
+    // of a root): package.json, three and the tarball installed, the example's files.
+    const fs::path root = dir / "site", project = root / "web" / "three";
+    fs::create_directories(project);
+    fs::create_directories(root / "assets");
+    fs::copy_file(fs::path(MICRORELIEF_SOURCE_DIR) / "web" / "serve.py", root / "web" / "serve.py");
+    std::ofstream(root / "web" / "index.html") << "<a href=\"three/\">three/</a>\n";  // serve.py's root page
+    for (const char* asset : {"cobbles.png", "cobbles-albedo.png"})
+        fs::copy_file(fs::path(MICRORELIEF_SOURCE_DIR) / "assets" / asset, root / "assets" / asset);
+    for (const fs::directory_entry& entry :
+         fs::directory_iterator(fs::path(MICRORELIEF_SOURCE_DIR) / "examples" / "three"))
+        fs::copy_file(entry.path(), project / entry.path().filename());
+    std::ofstream(project / "package.json") << "{\"name\": \"scratch-three\", \"private\": true}\n";
+    // three at the version the package is tested with (its devDependencies).
+    const test::RunResult version =
+        run(browser::quote(node_) + " -p \"require('" + source.string() +
+                "/package.json').devDependencies.three\"",
+            dir.path());
+    ASSERT_EQ(version.status, 0) << version.err;
+    const std::string three = version.out.substr(0, version.out.find('\n'));
+    const test::RunResult install =
+        run(env + browser::quote(npm_) + " install --prefer-offline --no-audit --no-fund three@" +
+                three + " " + browser::quote(tarball.string()),
+            project);
+    ASSERT_EQ(install.status, 0) << install.out << install.err;
+    const fs::path installed = project / "node_modules" / "microrelief-three";
+    ASSERT_TRUE(fs::exists(installed / "generated" / "pyramid_wasm.js"));
+    const std::string wasm = test::readText(installed / "generated" / "pyramid_wasm.js");
+    EXPECT_EQ(wasm.find("no WebAssembly pyramid"), std::string::npos)
+        << "the tarball's pyramid_wasm.js is the --no-wasm stub";
+    EXPECT_TRUE(fs::exists(project / "node_modules" / "three" / "build" / "three.module.js"));
+
+    // The example, installed and staged: the three-lit scene in both, and the installed one's
+    // library shading with the CPU (WebAssembly) pyramid.
+    const View& v = viewNamed("oblique");
+    const auto cobbles = [&](const std::string& name) {
+        return open("", v.width, v.height, "three/") + ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+               jsonString((dir / name).string()) + "}";
+    };
+    const PageRun staged = runPage("[" + cobbles("staged-cobbles.png") + "]");
+    ASSERT_EQ(staged.at(1, "state"), "ready") << staged.at(1, "error");
+    const PageRun page = runPage(
+        "[" + cobbles("installed-cobbles.png") + ", " +
+            open("shading=microrelief&pyramid=cpu", v.width, v.height, "three/") +
+            ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+            jsonString((dir / "installed-compare.png").string()) + "}]",
+        root);
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    ASSERT_EQ(page.at(4, "state"), "ready") << page.at(4, "error");
+
+    // The three-lit scene is drawn: not the background alone (a third of the pixels or more
+    // differ from the top-left one, which is the black clear colour: seen 43.7 %, the floor,
+    // the sphere and the knot), and equal to the staged example's picture.
+    const test::Image installedCobbles = test::readImage(dir / "installed-cobbles.png"),
+                stagedCobbles = test::readImage(dir / "staged-cobbles.png");
+    ASSERT_EQ(installedCobbles.width, v.width);
+    ASSERT_EQ(stagedCobbles.width, v.width);
+    std::size_t notBackground = 0;
+    for (int row = 0; row < v.height; ++row)
+        for (int column = 0; column < v.width; ++column)
+            for (int c = 0; c < 3; ++c)
+                if (std::abs(installedCobbles.at(column, row, c) - installedCobbles.at(0, 0, c)) > 8) {
+                    ++notBackground;
+                    break;
+                }
+    std::printf("    installed example: %.1f %% of the pixels not the background\n",
+                100.0 * notBackground / (v.width * v.height));
+    EXPECT_GT(notBackground, v.width * v.height / 3) << "the installed example drew too little";
+    const browser::PictureDifference d = browser::compare(installedCobbles, stagedCobbles, 0);
+    std::printf("    installed against staged: %.4f %% of the pixels differ, max %d\n",
+                100.0 * d.differentPixels, d.max);
+    EXPECT_EQ(d.max, 0) << "the installed example's picture is not the staged one's; see "
+                        << test::keepForInspection(failures_, "installed-cobbles", installedCobbles,
+                                                   stagedCobbles);
+    const auto rendered = dir / "oblique-render.png";
+    render(v.flags + " --size " + size(v.width, v.height), rendered);
+    expectSamePicture("installed-compare", dir / "installed-compare.png", rendered,
+                      "microrelief-render --size " + size(v.width, v.height), kLimits);
+}

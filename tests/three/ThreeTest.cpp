@@ -473,8 +473,6 @@ TEST_F(ThreePage, BadInputIsOneClearErrorAndTheSceneKeepsDrawing) {
     EXPECT_EQ(before.pixels, after.pixels) << "the scene changed after the refusals";
 }
 
-}  // namespace
-
 // The package as a user gets it (CTest entry three.pack): `npm pack` of a copy of
 // packages/microrelief-three (its prepack builds generated/ from this repository), the
 // tarball and three installed into a scratch npm project (`npm install --prefer-offline`:
@@ -628,3 +626,5 @@ TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
     expectSamePicture("installed-compare", dir / "installed-compare.png", rendered,
                       "microrelief-render --size " + size(v.width, v.height), kLimits);
 }
+
+}  // namespace

@@ -45,6 +45,7 @@ layout(depth_less) out float gl_FragDepth;
 #ifndef MICRORELIEF_SHADOWS
 #define MICRORELIEF_SHADOWS 0
 #endif
+#include "microrelief/albedo.glsl"
 #include "microrelief/debug_views.glsl"
 #include "microrelief/shading.glsl"
 #include "microrelief/shadow.glsl"
@@ -62,82 +63,13 @@ uniform sampler2D albedoMap;  // unit 3: the surface's colour over (u, v), mipma
 #define MICRORELIEF_ALBEDO_MAP 0
 #endif
 
-// A world displacement `delta` at frame point q as a displacement of the map point (X, Y):
-// linear on the plane; on a curved base the difference of the two ends' map points (delta
-// is a pixel's footprint, small), X taken the short way round the seam.
-vec2 mapDelta(mr_Relief relief, vec3 q, vec3 delta) {
-    vec3 dq = mr_baseFrameVector(relief, delta);
-#if MICRORELIEF_BASE == 0
-    return dq.xy;
-#else
-    vec2 d = mr_baseMapPoint(relief, q + dq).xy - mr_baseMapPoint(relief, q).xy;
-    d.x -= relief.map.size.x * floor(d.x / relief.map.size.x + 0.5);
-    return d;
-#endif
-}
-
-// The albedo's finest level, interpolated bilinearly between texel centres and repeating:
-// what one ray sees with no filtering over a pixel (the supersampled pictures tests
-// compare with). By texelFetch, since an anisotropic sampler may not keep to an explicit
-// level (llvmpipe's does not).
-vec3 finestAlbedo(vec2 uv) {
-    ivec2 size = textureSize(albedoMap, 0);
-    vec2 p = uv * vec2(size) - 0.5;
-    ivec2 i0 = ivec2(floor(p));
-    vec2 f = p - vec2(i0);
-    ivec2 a = (i0 % size + size) % size, b = (a + 1) % size;
-    vec3 c00 = texelFetch(albedoMap, a, 0).rgb, c10 = texelFetch(albedoMap, ivec2(b.x, a.y), 0).rgb;
-    vec3 c01 = texelFetch(albedoMap, ivec2(a.x, b.y), 0).rgb, c11 = texelFetch(albedoMap, b, 0).rgb;
-    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
-}
-
-// The albedo averaged over a pixel's footprint with (u, v) derivatives gx, gy: anisotropic
-// filtering by hand, up to 16 trilinear taps spread along the footprint's longer axis,
-// each as wide as its shorter one (textureGrad with the tap's own derivatives). Done here,
-// not by the sampler's anisotropy: a sampler may not keep to explicit derivatives when it
-// filters anisotropically (llvmpipe's takes them from neighbouring fragments), and they
-// are the point: the ray's own footprint, right at silhouettes and steep relief where
-// neighbouring pixels see other surfaces.
-vec3 filteredAlbedo(vec2 uv, vec2 gx, vec2 gy) {
-    vec2 texels = vec2(textureSize(albedoMap, 0));
-    float lx = length(gx * texels), ly = length(gy * texels);
-    vec2 major = lx >= ly ? gx : gy, minor = lx >= ly ? gy : gx;
-    float ratio = max(lx, ly) / max(min(lx, ly), 1e-6);
-    int taps = int(clamp(ceil(ratio), 1.0, 16.0));
-    vec2 step = major / float(taps);
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < taps; ++i)
-        sum += textureGrad(albedoMap, uv + step * (float(i) + 0.5 - 0.5 * float(taps)), step, minor).rgb;
-    return sum / float(taps);
-}
-
-// The surface's colour at the hit: the albedo texture at the hit's (u, v), filtered over
-// the pixel's footprint there. The footprint comes from ray differentials (Igehy, "Tracing
-// Ray Differentials", SIGGRAPH 1999): one pixel's step of the ray direction, dD, moves the
-// hit on its tangent plane by t (dD - (n . dD) / (n . D) D); mapped to (u, v), the two
-// steps are the footprint's axes (filteredAlbedo).
+// The surface's colour at the hit (microrelief/albedo.glsl, filtered over the pixel's
+// footprint from ray differentials), or the uniform albedo without a texture.
 vec3 surfaceAlbedo(mr_Relief relief, mr_ReliefHit hit, vec3 dir, vec3 n) {
 #if MICRORELIEF_ALBEDO_MAP
-    // (u, v) of the tile the hit is in: the albedo repeats with the map's tiles.
-    vec3 m = mr_baseMapPoint(relief, hit.position);
-    vec2 tileSize = mr_tileSize(relief.map), tiles = relief.map.size / tileSize;
-    vec2 uv = m.xy / tileSize;
-    vec2 halfTexel = 0.5 / vec2(textureSize(albedoMap, 0));
-#if MICRORELIEF_BASE == 0
-    uv = clamp(uv, halfTexel, tiles - halfTexel);  // the map's edges clamp (the texture repeats)
-#else
-    uv.y = clamp(uv.y, halfTexel.y, tiles.y - halfTexel.y);  // u wraps round the base
-#endif
-    if (albedoFinest != 0) return finestAlbedo(uv);
     vec2 pixel = 2.0 / viewportSize;
-    vec3 dDx = cameraRight * pixel.x, dDy = cameraUp * pixel.y;
-    float nd = dot(n, dir);
-    nd = abs(nd) < 1e-8 ? (nd < 0.0 ? -1e-8 : 1e-8) : nd;
-    vec3 dPx = hit.t * (dDx - dot(n, dDx) / nd * dir);
-    vec3 dPy = hit.t * (dDy - dot(n, dDy) / nd * dir);
-    vec2 gx = mapDelta(relief, hit.position, dPx) / tileSize;
-    vec2 gy = mapDelta(relief, hit.position, dPy) / tileSize;
-    return filteredAlbedo(uv, gx, gy);
+    return mr_surfaceAlbedo(albedoMap, relief, hit, dir, n, cameraRight * pixel.x, cameraUp * pixel.y,
+                            albedoFinest != 0);
 #else
     return albedo;
 #endif

@@ -10,9 +10,11 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/gl/ShaderSource.h"
 #include "microrelief/io/AtomicFile.h"
 
@@ -22,9 +24,14 @@ int main(int argc, char** argv) {
         "comments; no #version, no #line): the microrelief GLSL library for engines without an "
         "include resolver."};
     std::filesystem::path input, root, output;
+    std::vector<std::filesystem::path> includeDirs;
     app.add_option("file", input, "The GLSL file to bundle")->required();
     app.add_option("--root", root,
                    "Name spliced files relative to this folder (default: the file's)");
+    app.add_option("-I,--include-dir", includeDirs,
+                   "A folder to search for #include \"name\" after the including file's own "
+                   "folder; repeatable, searched in the order given (e.g. -I share/microrelief/"
+                   "shaders for \"microrelief/shadow.glsl\")");
     app.add_option("--out", output, "Output file (default: standard output)");
     app.set_version_flag("--version",
                          std::string("microrelief-glsl-bundle ") + MICRORELIEF_VERSION_STRING);
@@ -33,11 +40,15 @@ int main(int argc, char** argv) {
         std::error_code ec;
         if (!std::filesystem::is_regular_file(input, ec))
             microrelief::throwBadInput(input.string() + ": not a regular file");
+        for (const std::filesystem::path& folder : includeDirs)
+            if (!std::filesystem::is_directory(folder, ec))
+                microrelief::throwBadInput("-I " + microrelief::printable(folder.string()) +
+                                           ": not a directory");
         const std::string header = "// " + input.filename().string() +
                                    " of the microrelief GLSL library, its includes spliced in by "
                                    "microrelief-glsl-bundle " MICRORELIEF_VERSION_STRING
                                    ". Prepend #version and any option #defines.\n";
-        const std::string text = header + microrelief::bundleShader(input, root);
+        const std::string text = header + microrelief::bundleShader(input, root, includeDirs);
         if (output.empty()) {
             // Checked as a file is: standard output may be one, on a full disk.
             if (!microrelief::writeAll(1, text.data(), text.size()))

@@ -1,5 +1,4 @@
-// The cobblestone floor of the bundled map under three's lights, a sphere sunk into it and a
-// knot casting its shadow onto it: the user's code, all of it (docs/three.md).
+// The bundled map as a cobblestone floor under three's lights, with a sphere and a knot (docs/three.md).
 import * as THREE from 'three';
 import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
 import {loadAlbedo, loadReliefMap, Relief, ReliefStandardMaterial} from 'microrelief-three';
@@ -15,8 +14,7 @@ export async function cobbles(canvas, {eye = [0.8, 0.5, 0.85], target = [0, -0.0
     sun.castShadow = true;
     Object.assign(sun.shadow.camera, {left: -0.8, right: 0.8, bottom: -0.8, top: 0.8});
     scene.add(sun, new THREE.HemisphereLight(0xbfd4ff, 0x3b3025, 0.8));
-    const map = await loadReliefMap(renderer, '../../assets/cobbles.png');
-    const albedoMap = await loadAlbedo('../../assets/cobbles-albedo.png');
+    const [map, albedoMap] = await Promise.all([loadReliefMap(renderer, '../../assets/cobbles.png'), loadAlbedo('../../assets/cobbles-albedo.png')]);
     const floor = new Relief(map, {material: new ReliefStandardMaterial({albedoMap, roughness: 0.85, selfShadow: true})});
     const ball = new THREE.Mesh(new THREE.SphereGeometry(0.1, 48, 24), new THREE.MeshStandardMaterial({color: 0xc8452b, roughness: 0.3}));
     const knot = new THREE.Mesh(new THREE.TorusKnotGeometry(0.06, 0.02, 128, 16), new THREE.MeshStandardMaterial({color: 0x3a7bd5, metalness: 0.5}));

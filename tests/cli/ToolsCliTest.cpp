@@ -188,3 +188,52 @@ TEST_F(ToolsCli, GlslBundleSplicesOnlyRegularFilesInsideTheRoot) {
         MICRORELIEF_GLSL_BUNDLE_EXE, (dir / "outside.glsl").string() + " --root " + root.string());
     test::expectOneLineFailure(elsewhere, "microrelief-glsl-bundle", 2, "not inside the root");
 }
+
+// microrelief-glsl-bundle -I DIR (repeatable): an include is looked for in the including
+// file's folder first, then in each -I folder in the order given; a spliced file's own
+// includes likewise. A -I that is not a folder (a file, a missing path) is one error line
+// and exit status 2, before anything is read.
+TEST_F(ToolsCli, GlslBundleSearchesIncludeFoldersAfterTheFilesOwn) {
+    const auto write = [](const std::filesystem::path& file, const std::string& text) {
+        std::filesystem::create_directories(file.parent_path());
+        std::ofstream(file, std::ios::binary) << text;
+    };
+    const std::filesystem::path project = dir / "project", first = dir / "first",
+                                second = dir / "second";
+    write(project / "main.glsl",
+          "#include \"local.glsl\"\n#include \"lib/only_in_second.glsl\"\n"
+          "#include \"both.glsl\"\nvoid main() {}\n");
+    write(project / "local.glsl", "float fromProject;\n");
+    write(first / "local.glsl", "float localFromFirst;\n");  // the file's own folder wins
+    write(first / "both.glsl", "float bothFromFirst;\n");
+    write(second / "both.glsl", "float bothFromSecond;\n");  // the first -I wins
+    write(second / "lib/only_in_second.glsl", "#include \"helper.glsl\"\nfloat fromSecond;\n");
+    write(second / "lib/helper.glsl", "float helperBesideIt;\n");  // its own folder first
+
+    const std::string file = (project / "main.glsl").string();
+    const test::RunResult good = run(MICRORELIEF_GLSL_BUNDLE_EXE,
+                                     file + " -I " + first.string() + " -I " + second.string());
+    ASSERT_EQ(good.status, 0) << good.err;
+    for (const char* expected :
+         {"float fromProject;", "float bothFromFirst;", "float fromSecond;", "float helperBesideIt;"})
+        EXPECT_NE(good.out.find(expected), std::string::npos) << expected << "\n" << good.out;
+    for (const char* unexpected : {"float localFromFirst;", "float bothFromSecond;"})
+        EXPECT_EQ(good.out.find(unexpected), std::string::npos) << unexpected << "\n" << good.out;
+    // The order of the -I folders decides.
+    const test::RunResult swapped = run(MICRORELIEF_GLSL_BUNDLE_EXE,
+                                        file + " -I " + second.string() + " -I " + first.string());
+    ASSERT_EQ(swapped.status, 0) << swapped.err;
+    EXPECT_NE(swapped.out.find("float bothFromSecond;"), std::string::npos) << swapped.out;
+    // Without -I the include is not found: one error naming it.
+    const test::RunResult without = run(MICRORELIEF_GLSL_BUNDLE_EXE, file);
+    test::expectOneLineFailure(without, "microrelief-glsl-bundle", 2, "not found");
+    // A -I that is not a folder.
+    for (const std::filesystem::path& bad : {project / "local.glsl", dir / "missing"}) {
+        SCOPED_TRACE(bad.string());
+        const test::RunResult r =
+            run(MICRORELIEF_GLSL_BUNDLE_EXE, file + " -I " + first.string() + " -I " + bad.string());
+        test::expectOneLineFailure(r, "microrelief-glsl-bundle", 2, "not a directory");
+        EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
+        EXPECT_EQ(r.out, "");
+    }
+}

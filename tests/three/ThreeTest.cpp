@@ -231,11 +231,19 @@ TEST_F(ThreePage, RaycasterHitsAreTheRenderersAovPositions) {
 
 // A plane crossing the relief, drawn by three (MeshBasicMaterial) in the same scene: at a
 // grid of pixels the depth three wrote is the nearer of the relief's exact hit (the AOV's
-// position projected by three's camera) and the plane's own depth.
+// position projected by three's camera) and the plane's own depth. Also with three's
+// logarithmic depth buffer (checks.js: depthLogarithmic, a renderer of its own), where both
+// depths are log2(1 + w) / log2(far + 1); its slope in w here is about 0.27 (w about 1.3,
+// far 4), so the hits' 1e-6 world units stay far inside the same tolerances.
 TEST_F(ThreePage, AMeshCrossingTheReliefCutsItAtTheHitDepth) {
-    for (const char* name : {"oblique", "model"}) {
-        const View& v = viewNamed(name);
-        SCOPED_TRACE(v.name);
+    struct Case {
+        const char* view;
+        bool logarithmic;
+    };
+    for (const Case& c : {Case{"oblique", false}, Case{"model", false}, Case{"oblique", true}}) {
+        const View& v = viewNamed(c.view);
+        const std::string name = v.name + (c.logarithmic ? "-logarithmic" : "");
+        SCOPED_TRACE(name);
         const auto aovFile = dir / (v.name + ".exr");
         renderWithAov(v, aovFile);
         const Aov aov = readAov(aovFile);
@@ -261,12 +269,15 @@ TEST_F(ThreePage, AMeshCrossingTheReliefCutsItAtTheHitDepth) {
         points += "]";
         // Just below the cobbles' tops, a little tilted: their tops stand above it, the rest under.
         const std::string call =
-            "threeChecks.depth(" + list + ", " + points +
-            ", [0, 0.065, 0], [0.04, 1, 0.02], 0.25, 4).map((d) => [d.read, d.plane ?? "
-            "NaN, d.relief ?? NaN, d.edge ? 1 : 0]).flat().join(' ')";
+            std::string(c.logarithmic ? "threeChecks.depthLogarithmic(" : "threeChecks.depth(") +
+            list + ", " + points +
+            ", [0, 0.065, 0], [0.04, 1, 0.02], 0.25, 4)" +
+            (c.logarithmic ? ".then((r) => r" : "") +
+            ".map((d) => [d.read, d.plane ?? NaN, d.relief ?? NaN, d.edge ? 1 : 0]).flat().join(' ')" +
+            (c.logarithmic ? ")" : "");
         const PageRun page = runPage(
             "[" + openCompare(v) + ", {\"eval\": " + jsonString(call) + "}, {\"screenshot\": " +
-            jsonString((dir / (v.name + "-crossing.png")).string()) + "}]");
+            jsonString((dir / (name + "-crossing.png")).string()) + "}]");
         ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
         for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
         const std::vector<double> depths = numbers(page.at(3, "value"));
@@ -291,30 +302,43 @@ TEST_F(ThreePage, AMeshCrossingTheReliefCutsItAtTheHitDepth) {
                 << ", plane " << plane;
         }
         std::printf(
-            "    %-10s %zu pixels, %d relief hits: relief in front at %d, the plane at %d; largest "
+            "    %-18s %zu pixels, %d relief hits: relief in front at %d, the plane at %d; largest "
             "depth difference %.3g (relief), %.3g (plane)\n",
-            v.name.c_str(), pixels.size(), aovHits, reliefInFront, planeInFront, largestRelief,
+            name.c_str(), pixels.size(), aovHits, reliefInFront, planeInFront, largestRelief,
             largestPlane);
         EXPECT_GT(reliefInFront, 20) << "the plane must leave cobbles standing above it";
         EXPECT_GT(planeInFront, 20) << "the plane must hide part of the relief";
     }
 }
 
-// three's shadow maps and the relief (checks.js: shadows): a sphere's shadow falls on the
-// relief's hit points whose ray towards the light meets the sphere, and the relief's shadow
-// on a ground square falls where the ray from the ground towards the light meets the relief
-// (traced from the shadow map's orthographic camera). Points within 0.01 world units of
-// the answer changing (13 shadow-map texels of 0.8 mm: three's PCF filter and its bias
-// blur about two) are left out; every other one must agree.
+// three's shadow maps and the relief (checks.js: shadows), for each kind of light that
+// casts them: a sphere's shadow falls on the relief's hit points whose ray towards the light
+// meets the sphere, and the relief's shadow on a ground square falls where the ray from the
+// ground towards the light meets the relief (traced from the light's shadow camera:
+// orthographic for the directional light, perspective for the spot light, the six faces of a
+// cube for the point light, whose distance material writes the hit's depth). Points within
+// `margin` world units of the answer changing are left out; every other one must agree.
+// The margins: 0.01 is 13 texels of the directional map (0.8 mm) and 6 of the spot light's
+// (about 1.6 mm at the relief); the point light's cube faces of 1024 texels over 90 degrees
+// have about 3 mm texels at the relief, so 0.015 (5 texels). three's PCF filter and its bias
+// blur about two texels.
 TEST_F(ThreePage, ShadowMapsFallWhereTheRaysTowardsTheLightAreBlocked) {
     const View& v = viewNamed("oblique");
     struct Case {
         const char* what;
-        const char* light;
+        const char* kind;
+        const char* light;  // a direction (directional) or a position
+        double margin;
         int step;
     };
-    const std::vector<Case> cases = {{"receive", "[-0.45, 0.8, -0.35]", 2},
-                                     {"cast", "[-0.8, 0.35, -0.5]", 3}};
+    const std::vector<Case> cases = {
+        {"receive", "directional", "[-0.45, 0.8, -0.35]", 0.01, 2},
+        {"cast", "directional", "[-0.8, 0.35, -0.5]", 0.01, 3},
+        {"receive", "spot", "[-0.6, 1.1, -0.45]", 0.01, 2},
+        {"cast", "spot", "[-1.0, 0.45, -0.6]", 0.01, 3},
+        {"receive", "point", "[-0.6, 1.1, -0.45]", 0.015, 2},
+        {"cast", "point", "[-1.0, 0.45, -0.6]", 0.015, 3},
+    };
     std::string steps = "[" + openCompare(v);
     for (const Case& c : cases) {
         std::string list = "[";
@@ -322,18 +346,19 @@ TEST_F(ThreePage, ShadowMapsFallWhereTheRaysTowardsTheLightAreBlocked) {
             for (int column = 1; column < v.width; column += c.step)
                 list += (list.size() > 1 ? ",[" : "[") + std::to_string(column) + "," +
                         std::to_string(row) + "]";
-        steps +=
-            ", {\"eval\": " +
-            jsonString(std::string("threeChecks.shadows('") + c.what + "', " + list + "], " +
-                       c.light + ", [0.02, 0.3, 0.05], 0.01).flat().join(' ')") +
-            "}, {\"screenshot\": " + jsonString((dir / (std::string(c.what) + ".png")).string()) +
-            "}";
+        const std::string name = std::string(c.what) + "-" + c.kind;
+        steps += ", {\"eval\": " +
+                 jsonString(std::string("threeChecks.shadows('") + c.what + "', " + list + "], " +
+                            c.light + ", [0.02, 0.3, 0.05], " + std::to_string(c.margin) + ", '" +
+                            c.kind + "').flat().join(' ')") +
+                 "}, {\"screenshot\": " + jsonString((dir / (name + ".png")).string()) + "}";
     }
     const PageRun page = runPage(steps + "]");
     ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
     for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
     for (std::size_t k = 0; k < cases.size(); ++k) {
-        SCOPED_TRACE(cases[k].what);
+        const std::string name = std::string(cases[k].what) + "-" + cases[k].kind;
+        SCOPED_TRACE(name);
         const std::vector<double> answers = numbers(page.at(3 + 2 * static_cast<int>(k), "value"));
         ASSERT_FALSE(answers.empty()) << page.at(3 + 2 * static_cast<int>(k), "value");
         int shadowed = 0, lit = 0, wrong = 0;
@@ -343,12 +368,87 @@ TEST_F(ThreePage, ShadowMapsFallWhereTheRaysTowardsTheLightAreBlocked) {
             wrong += answers[j] != answers[j + 1];
         }
         std::printf(
-            "    %-8s %d points shadowed, %d lit by the geometry; the picture disagrees at %d\n",
-            cases[k].what, shadowed, lit, wrong);
+            "    %-20s %d points shadowed, %d lit by the geometry; the picture disagrees at %d\n",
+            name.c_str(), shadowed, lit, wrong);
         EXPECT_EQ(wrong, 0);
         EXPECT_GT(shadowed, 50) << "too few shadowed points to say anything";
         EXPECT_GT(lit, 50) << "too few lit points to say anything";
     }
+}
+
+// ReliefStandardMaterial's selfShadow (checks.js: selfShadow) against microrelief-render's
+// --shadows hard for the same camera and light: a pixel is shadowed in the page where the
+// exact shadow takes more than half of what the directional light adds there (pixels where
+// it adds under 24 levels are left out), and for microrelief-render where its AOV's shadow
+// channel is 0 on a hit. Both run the library's mr_hardShadow from the same pixel's hit;
+// the hits of the two GPUs differ by about 1e-6 world units, and a shadow ray that grazes a
+// cobble's edge may flip with that: at most 0.5 % of the compared pixels may disagree
+// (seen: none of 5818; the light, 11 degrees up, shadows 260 of them).
+TEST_F(ThreePage, SelfShadowIsTheRenderersHardShadow) {
+    const View& v = viewNamed("oblique");
+    const std::string light = "-0.8,0.2,-0.5";  // low (11 degrees), for long shadows between the cobbles
+    const PageRun page =
+        runPage("[" + openCompare(v) + ", {\"eval\": " +
+                jsonString("threeChecks.selfShadow([" + light + "]).join(' ')") + "}]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    const std::vector<double> seen = numbers(page.at(3, "value"));
+    ASSERT_EQ(seen.size(), static_cast<std::size_t>(v.width * v.height)) << page.at(3, "value");
+    const auto aovFile = dir / "hard.exr";
+    render("--shadows hard --light=" + light + " --size " + size(v.width, v.height) + " --aov " +
+               aovFile.string(),
+           dir / "hard.png");
+    auto input = OIIO::ImageInput::open(aovFile.string());
+    ASSERT_TRUE(input) << aovFile;
+    ASSERT_EQ(input->spec().nchannels, 5) << "no shadow channel in the AOV";
+    ASSERT_EQ(input->spec().width, v.width);
+    std::vector<float> aov(static_cast<std::size_t>(v.width) * v.height * 5);
+    ASSERT_TRUE(input->read_image(0, 0, 0, 5, OIIO::TypeDesc::FLOAT, aov.data()));
+    int shadowed = 0, lit = 0, wrong = 0;
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+        const float* p = &aov[5 * k];
+        if (seen[k] < 0 || p[3] != 1.0f) continue;
+        const int expected = p[4] == 0.0f;
+        (expected ? shadowed : lit) += 1;
+        wrong += expected != seen[k];
+    }
+    std::printf("    %d pixels shadowed by microrelief-render, %d lit; selfShadow disagrees at %d\n",
+                shadowed, lit, wrong);
+    EXPECT_GT(shadowed, 100) << "too few shadowed pixels to say anything";
+    EXPECT_GT(lit, 1000) << "too few lit pixels to say anything";
+    EXPECT_LE(wrong, 0.005 * (shadowed + lit));
+}
+
+// The CPU pyramid path against the GPU's (checks.js: pyramids): the windows pyramid of the
+// bundled map and of an odd-sized map (37 x 23, so every level's halving rounds), with and
+// without wrapU, built by shaders/pyramid/'s passes into R16F render targets and by the
+// C++ MaxPyramid compiled to WebAssembly. Both compute the same maxima of the same float
+// samples, scaled by 2^-S and rounded up to a half by the same rule, so every texel of every
+// level must be equal to the bit, and S and the max height the same.
+TEST_F(ThreePage, TheWebAssemblyPyramidIsTheGpusToTheBit) {
+    const View& v = viewNamed("oblique");
+    const PageRun page =
+        runPage("[" + openCompare(v) + ", {\"eval\": \"threeChecks.pyramids()\"}]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    std::istringstream lines(page.at(3, "value"));
+    int cases = 0;
+    for (std::string line; std::getline(lines, line);) {
+        std::istringstream fields(line);
+        std::string name, gpu, cpu;
+        long levels = 0, texels = 0, differing = -1, sameScale = 0;
+        fields >> name >> levels >> texels >> differing >> sameScale >> gpu >> cpu;
+        SCOPED_TRACE(line);
+        std::printf("    %-14s %ld levels, %ld texels, %ld differ; built on %s and %s\n",
+                    name.c_str(), levels, texels, differing, gpu.c_str(), cpu.c_str());
+        ++cases;
+        EXPECT_EQ(gpu, "gpu");
+        EXPECT_EQ(cpu, "cpu");
+        EXPECT_GT(levels, 5) << "the level counts differ (-1) or too few";
+        EXPECT_EQ(differing, 0);
+        EXPECT_EQ(sameScale, 1) << "S or the max height differ";
+    }
+    EXPECT_EQ(cases, 4) << page.at(3, "value");
 }
 
 // Bad input (checks.js: refusals): a map larger than the GPU takes, a file that is no image,
@@ -371,6 +471,160 @@ TEST_F(ThreePage, BadInputIsOneClearErrorAndTheSceneKeepsDrawing) {
                       after = test::readImage(dir / "after.png");
     ASSERT_GT(before.width, 0);
     EXPECT_EQ(before.pixels, after.pixels) << "the scene changed after the refusals";
+}
+
+// The package as a user gets it (CTest entry three.pack): `npm pack` of a copy of
+// packages/microrelief-three (its prepack builds generated/ from this repository), the
+// tarball and three installed into a scratch npm project (`npm install --prefer-offline`:
+// three from the npm cache that the package's `npm ci` filled, no network needed), and
+// examples/three's files served from that project. The tarball holds generated/ (the GLSL,
+// the PNG decoder, the WebAssembly pyramid, not the stub) and no node_modules or tests; the
+// installed example draws the three-lit scene the build tree's staged example draws (the
+// same code in the same browser: the same picture), and its shading=microrelief picture,
+// with the pyramid built by the tarball's WebAssembly, is microrelief-render's (kLimits).
+class ThreePackage : public ThreePage {
+protected:
+    // npm and em++ as the package's build needs them (node: ThreePage's staged example).
+    void SetUp() override {
+        ThreePage::SetUp();
+        if (HasFatalFailure() || IsSkipped()) return;
+        npm_ = findProgram(MICRORELIEF_NPM, "npm");
+        emxx_ = findProgram(MICRORELIEF_EMXX, "em++");
+        node_ = findProgram(MICRORELIEF_NODE_EXE, "node");
+        for (const auto& [program, package] : {std::pair{npm_, "npm"}, std::pair{emxx_, "emscripten"},
+                                               std::pair{node_, "nodejs"}}) {
+            if (!program.empty()) continue;
+            const std::string why = std::string("no ") + package + " (Debian package " + package +
+                                    "; bash scripts/setup.sh installs it): npm pack needs it";
+            const char* allow = std::getenv("MICRORELIEF_ALLOW_MISSING_BROWSER");
+            if (allow && std::string(allow) == "1") GTEST_SKIP() << why;
+            FAIL() << why << "; MICRORELIEF_ALLOW_MISSING_BROWSER=1 skips this test instead";
+        }
+    }
+
+    test::RunResult run(const std::string& command, const std::filesystem::path& in) {
+        return test::runCommand("cd " + browser::quote(in.string()) + " && " + command, dir.path());
+    }
+
+    std::string npm_, emxx_, node_;
+};
+
+TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
+    namespace fs = std::filesystem;
+    // A copy of the package as it is in git (its node_modules and generated/ left out).
+    const fs::path source = MICRORELIEF_PACKAGE_DIR, copy = dir / "microrelief-three";
+    fs::create_directories(copy);
+    for (const fs::directory_entry& entry : fs::directory_iterator(source)) {
+        const std::string name = entry.path().filename().string();
+        if (name == "node_modules" || name == "generated" || entry.path().extension() == ".tgz")
+            continue;
+        fs::copy(entry.path(), copy / name, fs::copy_options::recursive);
+    }
+    const std::string env = "MICRORELIEF_SOURCE_DIR=" + browser::quote(MICRORELIEF_SOURCE_DIR) +
+                            " PATH=" + browser::quote(fs::path(emxx_).parent_path().string() +
+                                                      ":" + fs::path(node_).parent_path().string()) +
+                            ":\"$PATH\" ";
+    const fs::path tarballs = dir / "tarballs";
+    fs::create_directories(tarballs);
+    const test::RunResult pack = run(
+        env + browser::quote(npm_) + " pack --pack-destination " + tarballs.string(), copy);
+    ASSERT_EQ(pack.status, 0) << pack.out << pack.err;
+    fs::path tarball;
+    for (const fs::directory_entry& entry : fs::directory_iterator(tarballs)) tarball = entry.path();
+    ASSERT_EQ(tarball.extension(), ".tgz") << pack.out;
+
+    // What the tarball holds.
+    const test::RunResult listing = run("tar tzf " + browser::quote(tarball.string()), dir.path());
+    ASSERT_EQ(listing.status, 0) << listing.err;
+    for (const char* expected :
+         {"package/package.json", "package/src/index.js", "package/generated/glsl.js",
+          "package/generated/png.js", "package/generated/pyramid_wasm.js",
+          "package/generated/manifest.json"})
+        EXPECT_NE(listing.out.find(std::string(expected) + "\n"), std::string::npos)
+            << expected << " is not in the tarball:\n" << listing.out;
+    for (const char* unwanted : {"node_modules/", "tests/", "test/", ".tgz"})
+        EXPECT_EQ(listing.out.find(unwanted), std::string::npos)
+            << unwanted << " is in the tarball:\n" << listing.out;
+
+    // A scratch project served as web/three/ (web/serve.py serves web/, shaders/ and assets/
+    // of a root): package.json, three and the tarball installed, the example's files.
+    const fs::path root = dir / "site", project = root / "web" / "three";
+    fs::create_directories(project);
+    fs::create_directories(root / "assets");
+    fs::copy_file(fs::path(MICRORELIEF_SOURCE_DIR) / "web" / "serve.py", root / "web" / "serve.py");
+    std::ofstream(root / "web" / "index.html") << "<a href=\"three/\">three/</a>\n";  // serve.py's root page
+    for (const char* asset : {"cobbles.png", "cobbles-albedo.png"})
+        fs::copy_file(fs::path(MICRORELIEF_SOURCE_DIR) / "assets" / asset, root / "assets" / asset);
+    for (const fs::directory_entry& entry :
+         fs::directory_iterator(fs::path(MICRORELIEF_SOURCE_DIR) / "examples" / "three"))
+        fs::copy_file(entry.path(), project / entry.path().filename());
+    std::ofstream(project / "package.json") << "{\"name\": \"scratch-three\", \"private\": true}\n";
+    // three at the version the package is tested with (its devDependencies).
+    const test::RunResult version =
+        run(browser::quote(node_) + " -p \"require('" + source.string() +
+                "/package.json').devDependencies.three\"",
+            dir.path());
+    ASSERT_EQ(version.status, 0) << version.err;
+    const std::string three = version.out.substr(0, version.out.find('\n'));
+    const test::RunResult install =
+        run(env + browser::quote(npm_) + " install --prefer-offline --no-audit --no-fund three@" +
+                three + " " + browser::quote(tarball.string()),
+            project);
+    ASSERT_EQ(install.status, 0) << install.out << install.err;
+    const fs::path installed = project / "node_modules" / "microrelief-three";
+    ASSERT_TRUE(fs::exists(installed / "generated" / "pyramid_wasm.js"));
+    const std::string wasm = test::readText(installed / "generated" / "pyramid_wasm.js");
+    EXPECT_EQ(wasm.find("no WebAssembly pyramid"), std::string::npos)
+        << "the tarball's pyramid_wasm.js is the --no-wasm stub";
+    EXPECT_TRUE(fs::exists(project / "node_modules" / "three" / "build" / "three.module.js"));
+
+    // The example, installed and staged: the three-lit scene in both, and the installed one's
+    // library shading with the CPU (WebAssembly) pyramid.
+    const View& v = viewNamed("oblique");
+    const auto cobbles = [&](const std::string& name) {
+        return open("", v.width, v.height, "three/") + ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+               jsonString((dir / name).string()) + "}";
+    };
+    const PageRun staged = runPage("[" + cobbles("staged-cobbles.png") + "]");
+    ASSERT_EQ(staged.at(1, "state"), "ready") << staged.at(1, "error");
+    const PageRun page = runPage(
+        "[" + cobbles("installed-cobbles.png") + ", " +
+            open("shading=microrelief&pyramid=cpu", v.width, v.height, "three/") +
+            ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+            jsonString((dir / "installed-compare.png").string()) + "}]",
+        root);
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    ASSERT_EQ(page.at(4, "state"), "ready") << page.at(4, "error");
+
+    // The three-lit scene is drawn: not the background alone (a third of the pixels or more
+    // differ from the top-left one, which is the black clear colour: seen 43.7 %, the floor,
+    // the sphere and the knot), and equal to the staged example's picture.
+    const test::Image installedCobbles = test::readImage(dir / "installed-cobbles.png"),
+                stagedCobbles = test::readImage(dir / "staged-cobbles.png");
+    ASSERT_EQ(installedCobbles.width, v.width);
+    ASSERT_EQ(stagedCobbles.width, v.width);
+    std::size_t notBackground = 0;
+    for (int row = 0; row < v.height; ++row)
+        for (int column = 0; column < v.width; ++column)
+            for (int c = 0; c < 3; ++c)
+                if (std::abs(installedCobbles.at(column, row, c) - installedCobbles.at(0, 0, c)) > 8) {
+                    ++notBackground;
+                    break;
+                }
+    std::printf("    installed example: %.1f %% of the pixels not the background\n",
+                100.0 * notBackground / (v.width * v.height));
+    EXPECT_GT(notBackground, v.width * v.height / 3) << "the installed example drew too little";
+    const browser::PictureDifference d = browser::compare(installedCobbles, stagedCobbles, 0);
+    std::printf("    installed against staged: %.4f %% of the pixels differ, max %d\n",
+                100.0 * d.differentPixels, d.max);
+    EXPECT_EQ(d.max, 0) << "the installed example's picture is not the staged one's; see "
+                        << test::keepForInspection(failures_, "installed-cobbles", installedCobbles,
+                                                   stagedCobbles);
+    const auto rendered = dir / "oblique-render.png";
+    render(v.flags + " --size " + size(v.width, v.height), rendered);
+    expectSamePicture("installed-compare", dir / "installed-compare.png", rendered,
+                      "microrelief-render --size " + size(v.width, v.height), kLimits);
 }
 
 }  // namespace

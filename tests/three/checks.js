@@ -30,8 +30,44 @@ window.threeChecks = (() => {
     // projected by the camera, in double), and `reliefPoints[k]`'s (the relief's hit from
     // microrelief-render's AOV, or null) projected the same way; whether the pixel is within 0.01 of the square's edge. The camera's depth range
     // is set to [near, far] first (its rays stay the pixels' own; only their t range moves).
+    // measureDepth does it for a renderer, scene, camera and a world point's expected depth.
     function depth(pixels, reliefPoints, point, normal, near, far) {
-        const {THREE, renderer, scene, camera, microrelief} = app();
+        const {THREE, renderer, scene, camera} = app();
+        return measureDepth(renderer, scene, camera, pixels, reliefPoints, point, normal, near, far,
+                            (world) => 0.5 + 0.5 * world.clone().project(camera).z);
+    }
+
+    // The same with three's logarithmic depth buffer: a second renderer on a canvas of its own
+    // (logarithmicDepthBuffer is a renderer's constructor option), its own ReliefMap of the
+    // page's heights, the relief (ReliefShadingMaterial, the page's height scale and model)
+    // and a copy of the page's camera. The depth expected where a world point is seen is the
+    // one three's logdepthbuf chunks write: log2(1 + w) / log2(far + 1), w its view depth.
+    async function depthLogarithmic(pixels, reliefPoints, point, normal, near, far) {
+        const {THREE, renderer: pageRenderer, camera: pageCamera, relief: pageRelief, microrelief} = app();
+        const {width, height} = pageRenderer.domElement;
+        const canvas = document.createElement('canvas');
+        Object.assign(canvas, {width, height});
+        const renderer = new THREE.WebGLRenderer({canvas, antialias: false, logarithmicDepthBuffer: true});
+        try {
+            const map = await microrelief.createReliefMap(renderer, await microrelief.loadHeights('../../assets/cobbles.png'));
+            const relief = new microrelief.Relief(map, {material: new microrelief.ReliefShadingMaterial(), heightScale: pageRelief.heightScale});
+            relief.matrixAutoUpdate = false;
+            relief.matrix.copy(pageRelief.matrix);
+            const scene = new THREE.Scene();
+            scene.add(relief);
+            const camera = pageCamera.clone();
+            Object.assign(camera, {near, far});
+            camera.updateProjectionMatrix();
+            camera.updateMatrixWorld();
+            const logDepth = (world) => Math.log2(1 + -world.clone().applyMatrix4(camera.matrixWorldInverse).z) / Math.log2(far + 1);
+            return measureDepth(renderer, scene, camera, pixels, reliefPoints, point, normal, near, far, logDepth);
+        } finally {
+            renderer.dispose();
+        }
+    }
+
+    function measureDepth(renderer, scene, camera, pixels, reliefPoints, point, normal, near, far, windowDepth) {
+        const {THREE, microrelief} = app();
         const side = 2;
         Object.assign(camera, {near, far});
         camera.updateProjectionMatrix();
@@ -52,7 +88,6 @@ window.threeChecks = (() => {
         renderer.render(scene, camera);  // the canvas shows the crossing too, for a screenshot
         scene.remove(plane);
         target.dispose();
-        const windowDepth = (world) => 0.5 + 0.5 * world.clone().project(camera).z;
         const mathPlane = new THREE.Plane().setFromNormalAndCoplanarPoint(new THREE.Vector3(...normal).normalize(), new THREE.Vector3(...point));
         const raycaster = new THREE.Raycaster();
         return pixels.map(([column, row], k) => {
@@ -74,31 +109,50 @@ window.threeChecks = (() => {
     }
 
     // three's shadow maps and the relief, in a scene of its own drawn with the page's camera
-    // and map: a white ReliefStandardMaterial relief, an ambient light and a directional
-    // light towards `light` with a 2048-texel shadow map over [-0.8, 0.8]^2, and either
+    // and map: a white ReliefStandardMaterial relief, an ambient light and a `kind` light
+    // ('directional': towards `light`, a 2048-texel orthographic shadow map over
+    // [-0.8, 0.8]^2; 'spot': at `light`, aimed at the origin, a cone of 0.8 rad and a
+    // 2048-texel perspective shadow map; 'point': at `light`, a cube shadow map of 1024 texels
+    // a face; the last two without decay, so that they light as much everywhere), and either
     // (`what` 'receive') a sphere of radius 0.12 at `sphere`, casting but not drawn, onto the
     // relief, or ('cast') the relief casting onto a ground square at y = -0.0005. The scene is
     // drawn three times: the light off, the caster not casting, casting (what the canvas keeps). At each of
     // `pixels` the hit point (the relief's: Relief.traceRays; the ground's: its plane met
     // analytically where the relief is missed) and whether the drawing shows it shadowed
     // (darker with the caster casting by more than half of what the light adds), and what the
-    // geometry says: the ray from the point towards the light meets the sphere (analytically)
-    // or the relief (traceRays). `margin`: a point whose answer changes within that distance
-    // (the sphere's outline, or the same ray from points moved by margin along x and z) is
-    // left out, as is one the light barely reaches (it adds under 24 levels).
-    // Returns [expected, seen] per pixel: 1 shadowed, 0 lit, -1 left out.
-    function shadows(what, pixels, light, sphereCentre, margin) {
+    // geometry says: the ray from the point towards the light (up to it, for a spot or point
+    // light) meets the sphere (analytically) or the relief (traceRays). `margin`: a point whose
+    // answer changes within that distance (the sphere's outline, or the same ray from points
+    // moved by margin along x and z) is left out, as is one the light barely reaches (it adds
+    // under 24 levels). Returns [expected, seen] per pixel: 1 shadowed, 0 lit, -1 left out.
+    function shadows(what, pixels, light, sphereCentre, margin, kind = 'directional') {
         const {THREE, renderer, camera, map, microrelief} = app();
         const {width, height} = renderer.domElement;
-        const toLight = new THREE.Vector3(...light).normalize();
         const scene = new THREE.Scene();
         const relief = new microrelief.Relief(map, {material: new microrelief.ReliefStandardMaterial({color: 0xffffff, roughness: 1})});
-        const sun = new THREE.DirectionalLight(0xffffff, 2.5);
-        sun.position.copy(toLight).multiplyScalar(2);
+        let sun;
+        if (kind === 'directional') {
+            sun = new THREE.DirectionalLight(0xffffff, 2.5);
+            sun.position.set(...light).normalize().multiplyScalar(2);
+            sun.shadow.mapSize.set(2048, 2048);
+            Object.assign(sun.shadow.camera, {left: -0.8, right: 0.8, bottom: -0.8, top: 0.8, near: 0.5, far: 4});
+        } else if (kind === 'spot') {
+            sun = new THREE.SpotLight(0xffffff, 2.5, 0, 0.8, 0, 0);
+            sun.position.set(...light);
+            sun.shadow.mapSize.set(2048, 2048);
+            Object.assign(sun.shadow.camera, {near: 0.5, far: 4});
+        } else {
+            sun = new THREE.PointLight(0xffffff, 2.5, 0, 0);
+            sun.position.set(...light);
+            sun.shadow.mapSize.set(1024, 1024);
+            Object.assign(sun.shadow.camera, {near: 0.5, far: 4});
+        }
         sun.castShadow = true;
-        sun.shadow.mapSize.set(2048, 2048);
-        Object.assign(sun.shadow.camera, {left: -0.8, right: 0.8, bottom: -0.8, top: 0.8, near: 0.5, far: 4});
-        scene.add(sun, sun.target, new THREE.AmbientLight(0xffffff, 0.4), relief);
+        scene.add(sun, new THREE.AmbientLight(0xffffff, 0.4), relief);
+        if (sun.target) scene.add(sun.target);
+        // From a point towards the light: a direction, or the segment up to the light (t in [0, 1]).
+        const towardsLight = (p) => (kind === 'directional' ? new THREE.Vector3(...light).normalize() : new THREE.Vector3(...light).sub(p));
+        const tMax = kind === 'directional' ? 100 : 1;
         const radius = 0.12;
         const sphere = new THREE.Mesh(new THREE.SphereGeometry(radius, 96, 48), new THREE.MeshBasicMaterial({colorWrite: false, depthWrite: false}));
         sphere.position.set(...sphereCentre);
@@ -144,7 +198,11 @@ window.threeChecks = (() => {
         if (what === 'receive') {
             expected = points.map((p) => {
                 if (!p) return -1;
-                const d = new THREE.Ray(p, toLight).distanceToPoint(sphere.position);
+                const towards = towardsLight(p);
+                const segment = new THREE.Ray(p, towards.clone().normalize());
+                // The distance from the sphere's centre to the ray (or to the segment up to the light).
+                const along = segment.direction.dot(sphere.position.clone().sub(p));
+                const d = kind !== 'directional' && along > towards.length() ? sphere.position.distanceTo(sun.position) : segment.distanceToPoint(sphere.position);
                 return Math.abs(d - radius) < margin ? -1 : Number(d < radius);
             });
         } else {
@@ -152,10 +210,11 @@ window.threeChecks = (() => {
             const from = [], towards = [];
             for (const p of points)
                 for (const [dx, dz] of offsets) {
-                    from.push(...(p ? [p.x + dx, p.y + 0.0005, p.z + dz] : [0, -10, 0]));
-                    towards.push(...toLight.toArray());
+                    const q = p ? new THREE.Vector3(p.x + dx, p.y + 0.0005, p.z + dz) : new THREE.Vector3(0, -10, 0);
+                    from.push(...q.toArray());
+                    towards.push(...towardsLight(q).toArray());
                 }
-            const blocked = relief.traceRays(from, towards, [0, 100]).kind;
+            const blocked = relief.traceRays(from, towards, [0, tMax]).kind;
             expected = points.map((p, k) => {
                 if (!p) return -1;
                 const answers = offsets.map((o, j) => Number(blocked[5 * k + j] !== 0));
@@ -168,6 +227,74 @@ window.threeChecks = (() => {
             if (expected[k] === -1 || added < 24) return [-1, -1];
             return [expected[k], Number(lit[at] - shadowed[at] > added / 2)];
         });
+    }
+
+    // The library's exact self-shadow (ReliefStandardMaterial's selfShadow) in a scene of
+    // its own with the page's camera and map: a white relief, an ambient light and a
+    // directional light towards `light`, no shadow maps, drawn with the light off, lit
+    // without selfShadow and lit with it. Returns, for every pixel (row 0 the top, row by
+    // row), -1 where the light adds under 24 levels (or nothing is drawn), else 1 where
+    // selfShadow takes more than half of what the light adds, 0 where it does not.
+    function selfShadow(light) {
+        const {THREE, renderer, camera, map, microrelief} = app();
+        const {width, height} = renderer.domElement;
+        const scene = new THREE.Scene();
+        const material = new microrelief.ReliefStandardMaterial({color: 0xffffff, roughness: 1});
+        const relief = new microrelief.Relief(map, {material});
+        const sun = new THREE.DirectionalLight(0xffffff, 2.5);
+        sun.position.set(...light).normalize().multiplyScalar(2);
+        scene.add(sun, new THREE.AmbientLight(0xffffff, 0.4), relief);
+        const draw = (on, exact) => {
+            sun.intensity = on ? 2.5 : 0;
+            material.selfShadow = exact;
+            material.needsUpdate = true;
+            renderer.render(scene, camera);
+            const gl = renderer.getContext(), bytes = new Uint8Array(4 * width * height);
+            gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
+            return bytes;
+        };
+        const [dark, lit, shadowed] = [draw(false, false), draw(true, false), draw(true, true)];
+        const out = [];
+        for (let row = 0; row < height; ++row)
+            for (let column = 0; column < width; ++column) {
+                const at = 4 * ((height - 1 - row) * width + column);
+                const added = lit[at] - dark[at];
+                out.push(added < 24 ? -1 : Number(lit[at] - shadowed[at] > added / 2));
+            }
+        return out;
+    }
+
+    // The windows pyramid built on the GPU (shaders/pyramid/'s passes) and by the C++
+    // MaxPyramid in WebAssembly, for the bundled map and an odd-sized map of its own (37 x 23,
+    // heights over three octaves), each with and without wrapU: every level read back
+    // through its bits. Returns one line a case: "name levels texels differing sameScale",
+    // differing the texels whose 32 bits differ, sameScale 1 where the scale exponent S and
+    // the max height agree.
+    async function pyramids() {
+        const {renderer, microrelief} = app();
+        const cobbles = await microrelief.loadHeights('../../assets/cobbles.png');
+        const [w, h] = [37, 23], samples = new Float32Array(w * h);
+        for (let k = 0; k < samples.length; ++k) samples[k] = Math.fround(0.05 + 6.5 * (0.5 + 0.5 * Math.sin(0.7 * k)) * (1 + (k % 7)));
+        const odd = microrelief.heightsFromArray(samples, w, h, {name: 'odd'});
+        const lines = [];
+        for (const [name, heights, wrapU] of [['cobbles', cobbles, false], ['cobbles-wrapU', cobbles, true], ['odd', odd, false], ['odd-wrapU', odd, true]]) {
+            const gpu = await microrelief.createReliefMap(renderer, heights, {wrapU, pyramid: 'gpu'});
+            const cpu = await microrelief.createReliefMap(renderer, heights, {wrapU, pyramid: 'cpu'});
+            let texels = 0, differing = 0;
+            const levels = Math.min(gpu.levelSizes.length, cpu.levelSizes.length);
+            for (let level = 0; level < levels; ++level) {
+                const a = new Uint32Array(microrelief.readWindowLevel(gpu, level).buffer);
+                const b = new Uint32Array(microrelief.readWindowLevel(cpu, level).buffer);
+                texels += a.length;
+                for (let k = 0; k < a.length; ++k) differing += a[k] !== b[k];
+                differing += Math.abs(a.length - b.length);
+            }
+            const sameScale = gpu.scaleExponent === cpu.scaleExponent && gpu.maxHeight === cpu.maxHeight;
+            const sameLevels = gpu.levelSizes.length === cpu.levelSizes.length;
+            lines.push(`${name} ${sameLevels ? levels : -1} ${texels} ${differing} ${sameScale ? 1 : 0} ${gpu.builtOn} ${cpu.builtOn}`);
+            for (const map of [gpu, cpu]) if (map.dispose) map.dispose();
+        }
+        return lines.join('\n');
     }
 
     // Bad input, each refused with one error while the scene keeps drawing: a map wider than
@@ -200,6 +327,6 @@ window.threeChecks = (() => {
         return lines.join('\n');
     }
 
-    return {pick, depth, shadows, refusals};
+    return {pick, depth, depthLogarithmic, shadows, selfShadow, pyramids, refusals};
 })();
 'ready';

@@ -146,14 +146,16 @@ protected:
         return {};
     }
 
-    // Runs `steps` (a JSON array of drive_chromium.py's steps) in one browser.
-    PageRun runPage(const std::string& steps) {
+    // Runs `steps` (a JSON array of drive_chromium.py's steps) in one browser, the pages
+    // served from `root` (a folder holding web/, shaders/ and assets/ and web/serve.py).
+    PageRun runPage(const std::string& steps,
+                    const std::filesystem::path& root = MICRORELIEF_WEB_ROOT) {
         const auto stepsFile = dir / "steps.json", flat = dir / "result.txt",
                    json = dir / "result.json";
         std::ofstream(stepsFile) << steps;
         std::filesystem::remove(flat);
         const std::string command = python_ + " " + MICRORELIEF_DRIVER + " --chromium " +
-                                    chromium_ + " --root " + quote(MICRORELIEF_WEB_ROOT) +
+                                    chromium_ + " --root " + quote(root.string()) +
                                     " --steps " + stepsFile.string() + " --out " + json.string() +
                                     " --flat " + flat.string();
         const test::RunResult run = test::runCommand(command, dir.path());

@@ -1,21 +1,25 @@
 // microrelief_shading.frag: ReliefShadingMaterial's fragment shader, the picture
 // microrelief-render draws (relief.frag's shaded view: mr_shadeRelief of one directional
-// light, the map's albedo by surfaceAlbedo, the hard self-shadow as an option) for a relief
-// in a three.js scene, written through three's output conversion (colour space; no tone
-// mapping by default). Spliced after the library, relief.frag's albedo functions and
-// relief_three.glsl by src/materials.js.
+// light, the map's albedo by mr_surfaceAlbedo, the hard self-shadow as an option) for a
+// relief in a three.js scene, written through three's output conversion (colour space; no
+// tone mapping by default). Spliced after the library and relief_three.glsl by
+// src/materials.js.
 //
 // options: MICRORELIEF_ALBEDO_MAP (1: the albedo texture, else `albedo`), MICRORELIEF_SHADOWS
 //          (0 off, 1 hard).
 uniform vec3 mrLightDirection;  // towards the light, world, unit
 uniform vec3 albedo;            // linear, without an albedo texture
 uniform sampler2D albedoMap;    // the map's colours, row 0 at v = 0 (flipY false), sRGB, mipmapped
-const int albedoFinest = 0;     // filtered over the pixel's footprint
 
-vec3 cameraRight, cameraUp;
-vec2 viewportSize;
-
-// MR_ALBEDO_FUNCTIONS (src/materials.js: relief.frag's mapDelta, finestAlbedo, filteredAlbedo, surfaceAlbedo)
+// relief.frag's surfaceAlbedo: the texture filtered over the pixel's footprint, or `albedo`.
+vec3 surfaceAlbedo(mr_Relief relief, mrPixel p) {
+#if MICRORELIEF_ALBEDO_MAP
+    vec2 pixel = 2.0 / mrViewport.zw;
+    return mr_surfaceAlbedo(albedoMap, relief, p.hit, p.dir, p.normal, mrRayDirDx * pixel.x, mrRayDirDy * pixel.y, false);
+#else
+    return albedo;
+#endif
+}
 
 void main() {
     mrPixel p;
@@ -26,9 +30,6 @@ void main() {
         gl_FragDepth = gl_FragCoord.z;
         return;
     }
-    cameraRight = mrRayDirDx;
-    cameraUp = mrRayDirDy;
-    viewportSize = mrViewport.zw;
     mr_Relief relief = mrRelief();
     float visibility = 1.0;
 #if MICRORELIEF_SHADOWS == 1
@@ -41,7 +42,7 @@ void main() {
         return;
     }
 #endif
-    mr_ReliefMaterial material = mr_ReliefMaterial(surfaceAlbedo(relief, p.hit, p.dir, p.normal), 0.25, 48.0);
+    mr_ReliefMaterial material = mr_ReliefMaterial(surfaceAlbedo(relief, p), 0.25, 48.0);
     gl_FragColor = vec4(mr_shadeRelief(material, p.normal, normalize(mrLightDirection), normalize(-p.dir), vec3(visibility)), 1.0);
     vec4 clip;
     float depth = mrWindowDepth(p.world, clip);

@@ -13,7 +13,7 @@
 // options: MR_SHADOW_PASS (a depth or distance material: exhausted rays cast nothing);
 //          MR_SELF_SHADOW (the library's exact hard shadow, mr_hardShadow, for each of
 //          three's punctual lights, on top of three's shadow maps); MR_ALBEDO_MAP (the
-//          map's colours by relief.frag's surfaceAlbedo, filtered over the pixel's
+//          map's colours by mr_surfaceAlbedo (microrelief/albedo.glsl), filtered over the pixel's
 //          footprint from ray differentials, multiplying diffuseColor).
 #ifndef MICRORELIEF_THREE_MATERIAL_GLSL
 #define MICRORELIEF_THREE_MATERIAL_GLSL
@@ -21,15 +21,16 @@
 mrPixel mrHitPixel;
 bool mrExhausted = false;
 
-// What relief.frag's surfaceAlbedo reads besides its arguments, for this draw's camera.
-vec3 cameraRight, cameraUp;
-vec2 viewportSize;
 #ifdef MR_ALBEDO_MAP
-#define MICRORELIEF_ALBEDO_MAP 1
-#define albedoMap mrAlbedoMap
 uniform sampler2D mrAlbedoMap;  // the map's colours, row 0 at v = 0 (flipY false), sRGB, mipmapped
-const int albedoFinest = 0;     // filtered over the pixel's footprint
-// MR_ALBEDO_FUNCTIONS (src/materials.js: relief.frag's mapDelta, finestAlbedo, filteredAlbedo, surfaceAlbedo)
+
+// The map's colours at the hit, filtered over the pixel's footprint (microrelief/albedo.glsl,
+// as relief.frag draws them).
+vec3 mrSurfaceAlbedo() {
+    vec2 pixel = 2.0 / mrViewport.zw;
+    return mr_surfaceAlbedo(mrAlbedoMap, mrRelief(), mrHitPixel.hit, mrHitPixel.dir, mrHitPixel.normal,
+                            mrRayDirDx * pixel.x, mrRayDirDy * pixel.y, false);
+}
 #endif
 
 void mrBeginPixel() {
@@ -38,9 +39,6 @@ void mrBeginPixel() {
 #ifdef MR_SHADOW_PASS
     if (mrExhausted) discard;  // no shadow from a ray that did not finish
 #endif
-    cameraRight = mrRayDirDx;
-    cameraUp = mrRayDirDy;
-    viewportSize = mrViewport.zw;
     vec3 world = mrHitPixel.world, normal = mrHitPixel.normal;
     vec4 clip;
     float depth = mrExhausted ? gl_FragCoord.z : mrWindowDepth(world, clip);

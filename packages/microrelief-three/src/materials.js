@@ -11,7 +11,7 @@
 // ReliefShadingMaterial is the library's own shading (microrelief-render's picture).
 import * as THREE from 'three';
 
-import {albedo as albedoFunctions, glue, library} from '../generated/glsl.js';
+import {glue, library} from '../generated/glsl.js';
 
 const kBases = {plane: 0, cylinder: 1, ellipsoid: 2};
 const kInterpolations = {bilinear: 0, biquadratic: 1};
@@ -59,8 +59,7 @@ function varyingsToGlobals(source) {
 // The relief's GLSL for three's own fragment shaders: the library, then the glue.
 function reliefPrelude(uvAssignments) {
     return library + glue.reliefThree +
-        glue.threeMaterial.replace(/^[ \t]*\/\/ MR_ALBEDO_FUNCTIONS.*$/m, () => albedoFunctions)
-                          .replace(/^[ \t]*\/\/ MR_UV_ASSIGNMENTS.*$/m, () => uvAssignments.join('\n'));
+        glue.threeMaterial.replace(/^[ \t]*\/\/ MR_UV_ASSIGNMENTS.*$/m, () => uvAssignments.join('\n'));
 }
 
 function replaceOnce(source, pattern, replacement, what) {
@@ -85,7 +84,7 @@ export function patchFragment(fragmentShader) {
                             '$1\n\t\tdirectLight.color *= mrSelfShadowPoint( $3.position );');
     // The map's colours (MR_ALBEDO_MAP), as relief.frag filters them.
     source = source.replace(/(vec4\s+diffuseColor\s*=\s*vec4\(\s*diffuse\s*,\s*opacity\s*\)\s*;)/,
-                            '$1\n#ifdef MR_ALBEDO_MAP\n\tdiffuseColor.rgb *= surfaceAlbedo( mrRelief(), mrHitPixel.hit, mrHitPixel.dir, mrHitPixel.normal );\n#endif');
+                            '$1\n#ifdef MR_ALBEDO_MAP\n\tdiffuseColor.rgb *= mrSurfaceAlbedo();\n#endif');
     // Never silent: an exhausted traversal shows magenta, as in relief.frag.
     const end = source.lastIndexOf('}');
     source = source.slice(0, end) + '\tif ( mrExhausted ) gl_FragColor = vec4( 1.0, 0.0, 1.0, 1.0 );\n' + source.slice(end);
@@ -239,7 +238,6 @@ export class ReliefShadingMaterial extends THREE.ShaderMaterial {
             MICRORELIEF_SHADOWS: this.shadows === 'hard' ? '1' : '0',
         };
         Object.assign(this.uniforms, relief.uniforms);
-        this.fragmentShader = '#include <common>\n#include <logdepthbuf_pars_fragment>\n' + library + glue.reliefThree +
-            glue.microreliefShading.replace(/^[ \t]*\/\/ MR_ALBEDO_FUNCTIONS.*$/m, () => albedoFunctions);
+        this.fragmentShader = '#include <common>\n#include <logdepthbuf_pars_fragment>\n' + library + glue.reliefThree + glue.microreliefShading;
     }
 }

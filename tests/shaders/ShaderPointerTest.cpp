@@ -10,6 +10,9 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
+#include <vector>
+#include <algorithm>
 #include <sstream>
 
 namespace {
@@ -81,4 +84,69 @@ TEST(ShaderPointers, EveryPointerFromCppToGlslResolves) {
         }
     }
     EXPECT_GT(checked, 10);  // the pattern still finds the pointers
+}
+
+// The other direction, and every other pointer to a source file: a path to a .h, .cpp,
+// .glsl, .frag or .vert named in the shaders, the sources, the programs, the tests, the
+// examples, the scripts and the docs ("src/core/trace/MultilevelTracer.cpp",
+// "core/heightmap/MaxPyramid.h", "microrelief/gl/Gl.h", "shaders/relief.frag") must name a
+// file that exists: from the project's root, include/microrelief/, src/ or shaders/, or
+// beside the file that names it. Files moved between folders turn this red until every
+// comment and page follows them. Paths of other libraries' headers (glad/gl.h,
+// GLFW/glfw3.h, ...) start elsewhere and are not checked; the few files made at build
+// time are listed.
+TEST(ShaderPointers, EveryPathToASourceFileResolves) {
+    const std::regex path(
+        R"((?:^|[^A-Za-z0-9_./-])((?:src|include|microrelief|core|io|gl|headless|glfw|app|tests|examples|shaders|packages)/[A-Za-z0-9_./-]*[A-Za-z0-9_]\.(?:h|cpp|glsl|frag|vert))\b)");
+    const std::set<std::string> generated = {"microrelief/Version.h", "core/GlslConstants.h",
+                                             "microrelief/core/GlslConstants.h",
+                                             "gl/ReliefParameters.h",
+                                             "microrelief/gl/ReliefParameters.h",
+                                             "include/microrelief/core/GlslConstants.h",
+                                             "include/microrelief/gl/ReliefParameters.h"};
+    const std::set<std::string> textExtensions = {".cpp", ".h", ".glsl", ".frag", ".vert",
+                                                  ".md",  ".js", ".mjs", ".py", ".sh",
+                                                  ".txt", ".cmake", ".in"};
+    int checked = 0;
+    std::vector<std::filesystem::path> files;
+    for (const char* folder :
+         {"src", "include", "app", "tests", "examples", "shaders", "docs", "scripts", "cmake",
+          "web", "packages/microrelief-three/src", "packages/microrelief-three/scripts",
+          "packages/microrelief-three/glsl", "packages/microrelief-three/wasm"}) {
+        for (const auto& entry : std::filesystem::recursive_directory_iterator(kProject / folder))
+            if (entry.is_regular_file()) files.push_back(entry.path());
+    }
+    files.push_back(kProject / "README.md");
+    files.push_back(kProject / "CMakeLists.txt");
+    for (const auto& file : files) {
+        const std::string extension = file.extension().string();
+        if (!textExtensions.contains(extension) && file.filename() != "CMakeLists.txt") continue;
+        if (file.filename() == "ShaderPointerTest.cpp") continue;  // its examples
+        // A test's code names the scratch files it makes; its comments point at sources.
+        const bool commentsOnly =
+            std::filesystem::relative(file, kProject).begin()->string() == "tests";
+        std::istringstream lines(readText(file));
+        std::string line;
+        for (int number = 1; std::getline(lines, line); ++number) {
+            const std::size_t start = line.find_first_not_of(" \t");
+            if (commentsOnly && (start == std::string::npos ||
+                                 (line.compare(start, 2, "//") != 0 && line[start] != '#')))
+                continue;
+            for (std::sregex_iterator m(line.begin(), line.end(), path), end; m != end; ++m) {
+                const std::string named = (*m)[1];
+                if (generated.contains(named)) continue;
+                ++checked;
+                const bool found = std::ranges::any_of(
+                    std::initializer_list<std::filesystem::path>{
+                        kProject, kProject / "include" / "microrelief", kProject / "include",
+                        kProject / "src", kShaders, file.parent_path()},
+                    [&](const std::filesystem::path& root) {
+                        return std::filesystem::exists(root / named);
+                    });
+                EXPECT_TRUE(found) << std::filesystem::relative(file, kProject).string() << ":"
+                                   << number << ": " << named << ": no such file";
+            }
+        }
+    }
+    EXPECT_GT(checked, 100);  // the pattern still finds the paths
 }

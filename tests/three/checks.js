@@ -11,6 +11,13 @@ window.threeChecks = (() => {
         return new (app().THREE.Vector2)(((column + 0.5) / width) * 2 - 1, 1 - ((row + 0.5) / height) * 2);
     }
 
+    // The canvas's RGBA bytes as GL reads them (row 0 the bottom).
+    function readPixels(renderer, width, height) {
+        const gl = renderer.getContext(), bytes = new Uint8Array(4 * width * height);
+        gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
+        return bytes;
+    }
+
     // three's Raycaster through each pixel's centre against the relief: the first hit's world
     // point and uv, or null.
     function pick(pixels) {
@@ -172,9 +179,7 @@ window.threeChecks = (() => {
             caster.castShadow = casting;
             sun.intensity = intensity;
             renderer.render(scene, camera);
-            const gl = renderer.getContext(), bytes = new Uint8Array(4 * width * height);
-            gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
-            return bytes;
+            return readPixels(renderer, width, height);
         };
         const [dark, lit, shadowed] = [draw(false, 0), draw(false, 2.5), draw(true, 2.5)];  // the canvas keeps the last
         renderer.shadowMap.enabled = wasEnabled;
@@ -249,9 +254,7 @@ window.threeChecks = (() => {
             material.selfShadow = exact;
             material.needsUpdate = true;
             renderer.render(scene, camera);
-            const gl = renderer.getContext(), bytes = new Uint8Array(4 * width * height);
-            gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
-            return bytes;
+            return readPixels(renderer, width, height);
         };
         const [dark, lit, shadowed] = [draw(false, false), draw(true, false), draw(true, true)];
         const out = [];

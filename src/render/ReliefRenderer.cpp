@@ -24,6 +24,14 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
     boxIndices_ = gl::Buffer::create(gl_);
 }
 
+namespace {
+// The cone map a method reads (cone, rcsm), built where it is missing.
+void addConeMapFor(const GL& gl, ReliefTextures& textures, Method method) {
+    if (method == Method::Cone) textures.addConeMap(gl, ReliefTextures::ConeKind::Conservative);
+    if (method == Method::Rcsm) textures.addConeMap(gl, ReliefTextures::ConeKind::Relaxed);
+}
+}  // namespace
+
 ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
                                              BaseKind base, Interpolation interpolation,
                                              bool frontFaces, ShadowMode shadows, bool albedoMap,
@@ -70,6 +78,7 @@ void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches
     // The aligned pyramid is made only for the peer that walks it.
     if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
         textures_->addMaxMipPyramid(gl_, pyramidBuilder());
+    if (textures_) addConeMapFor(gl_, *textures_, settings.method);
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -110,6 +119,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
             ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, maxMip, tiles));
     }
     ++rebuilds_.pyramids;
+    addConeMapFor(gl_, *textures_, method_.method);
     base_ = base;
     interpolation_ = interpolation;
     maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
@@ -136,6 +146,10 @@ void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
         textures_->rebuildFromSamples(gl_);  // the GPU builder bounds one map, not tiles
     } else {
         pyramidBuilder().update(*textures_, changed);
+    }
+    if (textures_->hasConeMaps()) {  // built again whole, when next asked for
+        textures_->dropConeMaps();
+        addConeMapFor(gl_, *textures_, method_.method);
     }
     uploadBox();
 }
@@ -271,6 +285,11 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
         .bindHeights(textures_->samples())
         .bindWindowPyramid(textures_->windowPyramid());
     if (albedo_) shader.bindAlbedo(albedo_->id());
+    if (method_.method == Method::Cone || method_.method == Method::Rcsm) {
+        shader.bindConeMap(textures_->coneMap(method_.method == Method::Cone
+                                                  ? ReliefTextures::ConeKind::Conservative
+                                                  : ReliefTextures::ConeKind::Relaxed));
+    }
 
     // Depth clamping keeps faces nearer than the near plane (an eye close to the box). A
     // model that mirrors (a negative determinant) turns the box's winding round.

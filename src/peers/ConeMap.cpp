@@ -125,7 +125,8 @@ NodeExtent extentOf(const Node& n, int width, int height) {
 // The branch-and-bound walk shared by both maps: from the top of the aligned levels, each
 // node that `lowerBound(node, extent, bound)` says might narrow the cone below `r` is opened
 // (its children pushed nearest first, so that near nodes narrow it early), each finest
-// texel that might is handed to `leaf`. `lowerBound` returns a lower bound of every leaf
+// texel that might is handed to `leaf` with the cone so far (a leaf may stop early once it
+// knows it cannot go below it). `lowerBound` returns a lower bound of every leaf
 // ratio under the node; a node whose bound is at least r is skipped, which leaves the
 // result what visiting every leaf would give.
 template <class LowerBound, class Leaf>
@@ -143,7 +144,7 @@ double walkPyramid(const MaxPyramid& pyramid, double r, const LowerBound& lowerB
         if (!(bound < r)) continue;
         ++visited;
         if (n.level == 0) {
-            r = std::min(r, leaf(n.p, n.q));
+            r = std::min(r, leaf(n.p, n.q, r));
             continue;
         }
         int count = 0;
@@ -178,19 +179,26 @@ double plateauOf(const HeightMap& map, int i, int j) {
 // tool computes it (GPU Gems 3, ch. 18, listing 18-5) in heights rather than depths: the
 // ray from the box top above s through d's surface point, followed past d in `steps`
 // steps down to height 0 while it is under the surface; where it first comes out (or ends)
-// above s's height, the ratio that puts that point on the cone.
-double relaxedPairRatio(const HeightMap& map, double top, int si, int sj, int di, int dj, int steps) {
+// above s's height, the ratio that puts that point on the cone. Along the march the ratio
+// of the ray's point only grows (it moves away from s and down), so once it reaches
+// `below` (the cone so far) the pair cannot narrow the cone and the march stops (the
+// answer is then some value >= below, which the caller's min ignores).
+double relaxedPairRatio(const HeightMap& map, double top, int si, int sj, int di, int dj, int steps,
+                        double below) {
     const double sx = si + 0.5, sy = sj + 0.5, hs = map.at(si, sj);
     const double dx = di + 0.5, dy = dj + 0.5, hd = map.at(di, dj);
     if (!(hd > hs)) return kInfinity;  // the ray goes on down from below s: no exit above s
+    const double reach = std::hypot(dx - sx, dy - sy);
+    if (!(reach < below * (hd - hs))) return kInfinity;  // even d itself is no narrower
     const double vz = hd - top;
-    if (!(vz < 0.0)) return std::hypot(dx - sx, dy - sy) / (hd - hs);  // d on the top: itself
+    if (!(vz < 0.0)) return reach / (hd - hs);  // d on the top: itself
     const double scale = hd / -vz;  // to height 0 from d
     const double stepX = (dx - sx) * scale / steps, stepY = (dy - sy) * scale / steps,
                  stepZ = vz * scale / steps;
     double x = dx + stepX, y = dy + stepY, z = hd + stepZ;
     for (int k = 1; k < steps; ++k) {
         if (!(map.surface(x, y) >= z)) break;  // out of the solid
+        if (!(z > hs) || !(std::hypot(x - sx, y - sy) < below * (z - hs))) return kInfinity;
         x += stepX;
         y += stepY;
         z += stepZ;
@@ -242,10 +250,10 @@ std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce
         for (int i = 0; i < w; ++i) {
             const double plateau = plateauOf(map, i, j);
             double r = kConeRatioCap;
-            auto leaf = [&](int p, int q) { return squareRatio(grid, i, j, plateau, p, q); };
+            auto leaf = [&](int p, int q, double) { return squareRatio(grid, i, j, plateau, p, q); };
             if (bruteForce) {
                 for (int q = 0; q < h; ++q) {
-                    for (int p = 0; p < w; ++p) r = std::min(r, leaf(p, q));
+                    for (int p = 0; p < w; ++p) r = std::min(r, leaf(p, q, r));
                 }
                 visited += static_cast<std::uint64_t>(w) * h;
             } else {
@@ -305,14 +313,14 @@ std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, boo
     for (int j = 0; j < map.height; ++j) {
         for (int i = 0; i < map.width; ++i) {
             const double hs = map.at(i, j);
-            auto leaf = [&](int p, int q) {
+            auto leaf = [&](int p, int q, double below) {
                 if (p == i && q == j) return kInfinity;
-                return relaxedPairRatio(map, top, i, j, p, q, searchSteps);
+                return relaxedPairRatio(map, top, i, j, p, q, searchSteps, below);
             };
             double r = kConeRatioCap;
             if (bruteForce) {
                 for (int q = 0; q < map.height; ++q)
-                    for (int p = 0; p < map.width; ++p) r = std::min(r, leaf(p, q));
+                    for (int p = 0; p < map.width; ++p) r = std::min(r, leaf(p, q, kInfinity));
             } else {
                 // A destination sample d in a node is at most the node's bound M high and
                 // at least the distance g from s to the node's sample centres away; its exit

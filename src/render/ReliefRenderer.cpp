@@ -30,6 +30,14 @@ void addConeMapFor(const GL& gl, ReliefTextures& textures, Method method) {
     if (method == Method::Cone) textures.addConeMap(gl, ReliefTextures::ConeKind::Conservative);
     if (method == Method::Rcsm) textures.addConeMap(gl, ReliefTextures::ConeKind::Relaxed);
 }
+
+// After the samples changed: the cone maps made so far are stale, built again whole (the one
+// the method reads now, the other when next asked for).
+void refreshConeMaps(const GL& gl, ReliefTextures& textures, Method method) {
+    if (!textures.hasConeMaps()) return;
+    textures.dropConeMaps();
+    addConeMapFor(gl, textures, method);
+}
 }  // namespace
 
 ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
@@ -147,10 +155,7 @@ void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
     } else {
         pyramidBuilder().update(*textures_, changed);
     }
-    if (textures_->hasConeMaps()) {  // built again whole, when next asked for
-        textures_->dropConeMaps();
-        addConeMapFor(gl_, *textures_, method_.method);
-    }
+    refreshConeMaps(gl_, *textures_, method_.method);
     uploadBox();
 }
 
@@ -161,6 +166,7 @@ void ReliefRenderer::heightsReplaced() {
     } else {
         pyramidBuilder().build(*textures_);
     }
+    refreshConeMaps(gl_, *textures_, method_.method);
     ++rebuilds_.pyramids;
     uploadBox();
 }

@@ -77,6 +77,31 @@ TEST_F(ConePeers, ConeIsExact) {
     }
 }
 
+// The cone map follows the samples: after an animated field replaces them on the GPU
+// (render/AnimatedHeights.h), cone is exact against the field's heights, not the map's.
+TEST_F(ConePeers, ConeFollowsHeightsThatChange) {
+    const HeightMap map = synth::valueNoise(64, 64, 4.0, 2, 3);
+    HeadlessRenderer renderer(test::glContext());
+    renderer.setHeightMap(map, "noise 64");
+    for (const char* field : {"", "ripples"}) {
+        RenderJob job;
+        job.camera = test::orbitCamera(35.0, 40.0, 1.2, {0.0, 0.02, 0.0});
+        job.width = job.height = 96;
+        job.method.method = Method::Cone;
+        job.animation = field;
+        job.time = 0.7;
+        const HeadlessResult r = renderer.render(job);
+        const HeightMap& traced = r.animatedMap ? *r.animatedMap : map;
+        const test::Accuracy a = test::compareWithReference(
+            r.frame, r.camera, ReliefGeometry{&traced, job.heightScale, {}, Interpolation::Bilinear});
+        std::printf("    cone  noise 64 %-12s: %s\n", field, a.summary().c_str());
+        EXPECT_GT(a.referenceHits, 1000u) << field;
+        EXPECT_LE(a.coverageMismatchPercent(), 0.1) << field;
+        EXPECT_LE(a.offHalfTexelPercent(), 0.2) << field;
+        EXPECT_EQ(a.exhausted, 0u) << field;
+    }
+}
+
 // rcsm as published (15 relaxed cone steps, 8 binary steps) and with more steps: it runs,
 // hits the relief, and its error is in the log, not held to anything. On cobbles at 128 x
 // 128: the relaxed cone map of the bundled 256 x 256 takes some 40 s to build on one core

@@ -83,7 +83,8 @@ double pieceRatio(const HalfGrid& grid, int i, int j, double plateau, int a, int
     double r = kInfinity;
     if (levelInX || levelInY) {
         for (int c = 0; c < 4; ++c) {
-            if (h[c] > plateau) r = std::min(r, (gx[c] + gy[c]) / (h[c] - plateau));  // one gap is 0
+            if (h[c] > plateau)
+                r = std::min(r, (gx[c] + gy[c]) / (h[c] - plateau));  // one gap is 0
         }
         return r;
     }
@@ -102,7 +103,8 @@ double squareRatio(const HalfGrid& grid, int i, int j, double plateau, int p, in
     if (p == i && q == j) return kInfinity;  // h <= B on T itself
     double r = kInfinity;
     for (int b = 2 * q; b < 2 * q + 2; ++b) {
-        for (int a = 2 * p; a < 2 * p + 2; ++a) r = std::min(r, pieceRatio(grid, i, j, plateau, a, b));
+        for (int a = 2 * p; a < 2 * p + 2; ++a)
+            r = std::min(r, pieceRatio(grid, i, j, plateau, a, b));
     }
     return r;
 }
@@ -130,8 +132,8 @@ NodeExtent extentOf(const Node& n, int width, int height) {
 // ratio under the node; a node whose bound is at least r is skipped, which leaves the
 // result what visiting every leaf would give.
 template <class LowerBound, class Leaf>
-double walkPyramid(const MaxPyramid& pyramid, double r, const LowerBound& lowerBound, const Leaf& leaf,
-                   std::uint64_t& visited) {
+double walkPyramid(const MaxPyramid& pyramid, double r, const LowerBound& lowerBound,
+                   const Leaf& leaf, std::uint64_t& visited) {
     const int width = pyramid.mapWidth(), height = pyramid.mapHeight();
     std::vector<Node> stack{{pyramid.levelCount() - 1, 0, 0}};
     std::array<std::pair<double, Node>, 4> children;
@@ -192,7 +194,7 @@ double relaxedPairRatio(const HeightMap& map, double top, int si, int sj, int di
     if (!(reach < below * (hd - hs))) return kInfinity;  // even d itself is no narrower
     const double vz = hd - top;
     if (!(vz < 0.0)) return reach / (hd - hs);  // d on the top: itself
-    const double scale = hd / -vz;  // to height 0 from d
+    const double scale = hd / -vz;              // to height 0 from d
     const double stepX = (dx - sx) * scale / steps, stepY = (dy - sy) * scale / steps,
                  stepZ = vz * scale / steps;
     double x = dx + stepX, y = dy + stepY, z = hd + stepZ;
@@ -240,7 +242,8 @@ std::uint16_t halfBits(float v) {
     return static_cast<std::uint16_t>(((k + 15) << 10) | static_cast<int>(mantissa));
 }
 
-std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce, ConeMapStats* stats) {
+std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce,
+                                           ConeMapStats* stats) {
     const HalfGrid grid(map);
     const MaxPyramid pyramid(map);  // Float: the finest bounds as texelSquareBound gives them
     const int w = map.width, h = map.height;
@@ -250,7 +253,9 @@ std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce
         for (int i = 0; i < w; ++i) {
             const double plateau = plateauOf(map, i, j);
             double r = kConeRatioCap;
-            auto leaf = [&](int p, int q, double) { return squareRatio(grid, i, j, plateau, p, q); };
+            auto leaf = [&](int p, int q, double) {
+                return squareRatio(grid, i, j, plateau, p, q);
+            };
             if (bruteForce) {
                 for (int q = 0; q < h; ++q) {
                     for (int p = 0; p < w; ++p) r = std::min(r, leaf(p, q, r));
@@ -328,8 +333,10 @@ std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, boo
                 // g / (M - hs).
                 auto lowerBound = [&](const NodeExtent& e, float bound) {
                     if (!(bound > hs)) return kInfinity;
-                    const double gx = std::max({0.0, e.x0 + 0.5 - (i + 0.5), (i + 0.5) - (e.x1 - 0.5)});
-                    const double gy = std::max({0.0, e.y0 + 0.5 - (j + 0.5), (j + 0.5) - (e.y1 - 0.5)});
+                    const double gx =
+                        std::max({0.0, e.x0 + 0.5 - (i + 0.5), (i + 0.5) - (e.x1 - 0.5)});
+                    const double gy =
+                        std::max({0.0, e.y0 + 0.5 - (j + 0.5), (j + 0.5) - (e.y1 - 0.5)});
                     return std::hypot(gx, gy) / (bound - hs);
                 };
                 r = walkPyramid(pyramid, r, lowerBound, leaf, visited);

@@ -38,8 +38,9 @@ HeightMap periodic(int w, int h, double period, double amplitude) {
     HeightMap m(w, h);
     for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; ++i)
-            m.at(i, j) = static_cast<float>(amplitude * (1.5 + std::sin(2 * M_PI * i / period) *
-                                                                 std::cos(2 * M_PI * j / period)));
+            m.at(i, j) =
+                static_cast<float>(amplitude * (1.5 + std::sin(2 * M_PI * i / period) *
+                                                          std::cos(2 * M_PI * j / period)));
     return m;
 }
 
@@ -91,10 +92,13 @@ struct DenseSurface {
     int nx, ny;
     std::vector<double> h;
     explicit DenseSurface(const HeightMap& map)
-        : nx(map.width * kDense + 1), ny(map.height * kDense + 1), h(static_cast<std::size_t>(nx) * ny) {
+        : nx(map.width * kDense + 1),
+          ny(map.height * kDense + 1),
+          h(static_cast<std::size_t>(nx) * ny) {
         for (int b = 0; b < ny; ++b)
             for (int a = 0; a < nx; ++a)
-                h[static_cast<std::size_t>(b) * nx + a] = map.surface(double(a) / kDense, double(b) / kDense);
+                h[static_cast<std::size_t>(b) * nx + a] =
+                    map.surface(double(a) / kDense, double(b) / kDense);
     }
 };
 
@@ -106,7 +110,9 @@ double sampledRatio(const DenseSurface& s, int i, int j, double plateau) {
     for (int b = 0; b < s.ny; ++b) {
         for (int a = 0; a < s.nx; ++a) {
             const double h = s.h[static_cast<std::size_t>(b) * s.nx + a];
-            if (h > plateau) r = std::min(r, distanceToSquare(double(a) / kDense, double(b) / kDense, i, j) / (h - plateau));
+            if (h > plateau)
+                r = std::min(r, distanceToSquare(double(a) / kDense, double(b) / kDense, i, j) /
+                                    (h - plateau));
         }
     }
     return r;
@@ -115,7 +121,9 @@ double sampledRatio(const DenseSurface& s, int i, int j, double plateau) {
 class ConeMapCases : public ::testing::TestWithParam<ConeCase> {};
 
 // gtest prints a failing case's parameter: its name, not its bytes.
-void PrintTo(const ConeCase& c, std::ostream* out) { *out << c.name; }
+void PrintTo(const ConeCase& c, std::ostream* out) {
+    *out << c.name;
+}
 
 }  // namespace
 
@@ -145,9 +153,10 @@ TEST_P(ConeMapCases, ConservativeConesHoldNoSurface) {
                     const double allowed = d == 0.0 ? 0.0 : r > 0.0 ? d / r : HUGE_VAL;
                     if (h - plateau > allowed * (1.0 + 1e-9)) {
                         if (++violations <= 2)
-                            ADD_FAILURE() << "texel (" << i << ", " << j << ") plateau " << plateau << " ratio " << r
-                                          << " holds surface point (" << double(a) / kDense << ", "
-                                          << double(b) / kDense << ") h " << h << " at distance " << d;
+                            ADD_FAILURE() << "texel (" << i << ", " << j << ") plateau " << plateau
+                                          << " ratio " << r << " holds surface point ("
+                                          << double(a) / kDense << ", " << double(b) / kDense
+                                          << ") h " << h << " at distance " << d;
                     }
                 }
             }
@@ -160,8 +169,8 @@ TEST_P(ConeMapCases, ConservativeConesHoldNoSurface) {
         }
     }
     if (counted > 0)
-        std::cout << GetParam().name << ": stored ratio / dense reference's r* " << narrowing / counted
-                  << " on average over " << counted << " texels\n";
+        std::cout << GetParam().name << ": stored ratio / dense reference's r* "
+                  << narrowing / counted << " on average over " << counted << " texels\n";
 }
 
 // The pyramid walk gives the brute force's cones: never wider (the walk prunes only nodes
@@ -177,13 +186,15 @@ TEST_P(ConeMapCases, FastBuildIsNeverWiderThanBruteForce) {
     int narrower = 0;
     double ratioSum = 0.0;
     for (std::size_t k = 0; k < fast.size(); ++k) {
-        EXPECT_LE(fast[k], brute[k] * (1.0 + 1e-12)) << "texel " << k % map.width << ", " << k / map.width;
+        EXPECT_LE(fast[k], brute[k] * (1.0 + 1e-12))
+            << "texel " << k % map.width << ", " << k / map.width;
         if (fast[k] < brute[k] * (1.0 - 1e-12)) ++narrower;
         ratioSum += brute[k] > 0.0 ? fast[k] / brute[k] : 1.0;
     }
-    std::cout << GetParam().name << ": fast / brute force " << ratioSum / fast.size() << " on average, " << narrower
-              << " of " << fast.size() << " narrower; " << stats.nodesVisited << " nodes visited ("
-              << fast.size() * fast.size() << " squares by brute force)\n";
+    std::cout << GetParam().name << ": fast / brute force " << ratioSum / fast.size()
+              << " on average, " << narrower << " of " << fast.size() << " narrower; "
+              << stats.nodesVisited << " nodes visited (" << fast.size() * fast.size()
+              << " squares by brute force)\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(Maps, ConeMapCases, ::testing::ValuesIn(coneCases()),
@@ -200,13 +211,16 @@ TEST(ConeMap, RelaxedConesAreAtLeastTheSampleCones) {
         for (int j = 0; j < map.height; ++j) {
             for (int i = 0; i < map.width; ++i) {
                 const double hs = map.at(i, j);
-                EXPECT_LE(std::abs(cones.apexAt(i, j) - hs), std::abs(hs) * 0x1p-11 + 0x1p-25) << c.name;
+                EXPECT_LE(std::abs(cones.apexAt(i, j) - hs), std::abs(hs) * 0x1p-11 + 0x1p-25)
+                    << c.name;
                 double sampleCone = kConeRatioCap;
                 for (int q = 0; q < map.height; ++q)
                     for (int p = 0; p < map.width; ++p)
                         if (map.at(p, q) > hs)
-                            sampleCone = std::min(sampleCone, std::hypot(p - i, q - j) / (map.at(p, q) - hs));
-                EXPECT_GE(cones.ratioAt(i, j), halfRoundedDown(sampleCone)) << c.name << " texel " << i << ", " << j;
+                            sampleCone = std::min(sampleCone,
+                                                  std::hypot(p - i, q - j) / (map.at(p, q) - hs));
+                EXPECT_GE(cones.ratioAt(i, j), halfRoundedDown(sampleCone))
+                    << c.name << " texel " << i << ", " << j;
             }
         }
     }
@@ -244,7 +258,8 @@ TEST(ConeMap, HalfFloatRounding) {
             // On the grid: the bits give the value back (GL decodes them so).
             const std::uint16_t bits = halfBits(up);
             const int e = (bits >> 10) & 31, m = bits & 1023;
-            const double decoded = e == 0 ? std::ldexp(m, -24) : std::ldexp(1.0 + m / 1024.0, e - 15);
+            const double decoded =
+                e == 0 ? std::ldexp(m, -24) : std::ldexp(1.0 + m / 1024.0, e - 15);
             ASSERT_EQ(decoded, double(up)) << x;
         }
     }

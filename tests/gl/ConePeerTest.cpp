@@ -27,8 +27,9 @@ protected:
     }
 
     // `renderer` holds `map` (one cone map build per map and method).
-    test::Accuracy render(HeadlessRenderer& renderer, const HeightMap& map, const std::string& name, Method method,
-                          const Camera& camera, int steps = 15, AccuracyScope scope = AccuracyScope::AllPixels) {
+    test::Accuracy render(HeadlessRenderer& renderer, const HeightMap& map, const std::string& name,
+                          Method method, const Camera& camera, int steps = 15,
+                          AccuracyScope scope = AccuracyScope::AllPixels) {
         RenderJob job;
         job.camera = camera;
         job.width = job.height = 96;
@@ -37,7 +38,8 @@ protected:
         job.method.refineSteps = 8;
         const HeadlessResult r = renderer.render(job);
         const test::Accuracy a = test::compareWithReference(
-            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, {}, Interpolation::Bilinear}, scope);
+            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, {}, Interpolation::Bilinear},
+            scope);
         std::printf("    %-5s %-36s: %s\n", methodName(method), name.c_str(), a.summary().c_str());
         return a;
     }
@@ -93,7 +95,8 @@ TEST_F(ConePeers, ConeFollowsHeightsThatChange) {
         const HeadlessResult r = renderer.render(job);
         const HeightMap& traced = r.animatedMap ? *r.animatedMap : map;
         const test::Accuracy a = test::compareWithReference(
-            r.frame, r.camera, ReliefGeometry{&traced, job.heightScale, {}, Interpolation::Bilinear});
+            r.frame, r.camera,
+            ReliefGeometry{&traced, job.heightScale, {}, Interpolation::Bilinear});
         std::printf("    cone  noise 64 %-12s: %s\n", field, a.summary().c_str());
         EXPECT_GT(a.referenceHits, 1000u) << field;
         EXPECT_LE(a.coverageMismatchPercent(), 0.1) << field;
@@ -112,9 +115,10 @@ TEST_F(ConePeers, RcsmRunsAndReportsItsError) {
     renderer.setHeightMap(bundled, "cobbles 128");
     for (const ConeView& view : coneViews()) {
         for (int steps : {15, 60}) {
-            const std::string where = "cobbles 128, " + std::string(view.name) + ", " + std::to_string(steps) + " steps";
-            const test::Accuracy a =
-                render(renderer, bundled, where, Method::Rcsm, view.camera, steps, AccuracyScope::TopSurface);
+            const std::string where =
+                "cobbles 128, " + std::string(view.name) + ", " + std::to_string(steps) + " steps";
+            const test::Accuracy a = render(renderer, bundled, where, Method::Rcsm, view.camera,
+                                            steps, AccuracyScope::TopSurface);
             EXPECT_GT(a.referenceHits, 1000u) << where;
             EXPECT_EQ(a.exhausted, 0u) << where;
         }

@@ -112,8 +112,7 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
             settings.push_back({s, std::to_string(steps)});
         }
     } else {
-        settings.push_back(
-            {s, method == Method::MaxMip || method == Method::Cone ? "exact" : "-"});
+        settings.push_back({s, method == Method::MaxMip || method == Method::Cone ? "exact" : "-"});
     }
     return settings;
 }

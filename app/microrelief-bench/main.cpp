@@ -185,8 +185,9 @@ int main(int argc, char** argv) {
                                     text.find_first_not_of("0123456789") == std::string::npos;
                 const int value = digits ? std::stoi(text) : -1;
                 if (value < lo || value > hi)
-                    throwBadInput(std::string(flag) + ": '" + text + "' is not a whole number from " +
-                                  std::to_string(lo) + " to " + std::to_string(hi));
+                    throwBadInput(std::string(flag) + ": '" + text +
+                                  "' is not a whole number from " + std::to_string(lo) + " to " +
+                                  std::to_string(hi));
                 return value;
             };
         };
@@ -197,10 +198,12 @@ int main(int argc, char** argv) {
             });
         }
         if (app.count("--views"))
-            options.viewDegrees = parseList(viewList, "--views", "--views", wholeIn("--views", 0, 89));
+            options.viewDegrees =
+                parseList(viewList, "--views", "--views", wholeIn("--views", 0, 89));
         if (app.count("--map-sizes")) {
             options.mapSizes.clear();
-            for (int n : parseList(sizeList, "--map-sizes", "--map-sizes", wholeIn("--map-sizes", 0, 65536)))
+            for (int n : parseList(sizeList, "--map-sizes", "--map-sizes",
+                                   wholeIn("--map-sizes", 0, 65536)))
                 if (n > 0) options.mapSizes.push_back(n);
         }
         if (options.viewDegrees.empty()) throwBadInput("--views names no view");

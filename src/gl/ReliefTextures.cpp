@@ -211,8 +211,9 @@ std::size_t ReliefTextures::gpuBytes(const GL& gl) const {
             if (width == 0) break;
             gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
             gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
-            const std::size_t texelBytes =
-                format == GL_R16F ? 2 : format == GL_R32F || format == GL_RG16F ? 4 : 16;
+            const std::size_t texelBytes = format == GL_R16F                         ? 2
+                                           : format == GL_R32F || format == GL_RG16F ? 4
+                                                                                     : 16;
             bytes += static_cast<std::size_t>(width) * height * texelBytes;
         }
     }

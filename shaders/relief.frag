@@ -6,7 +6,7 @@
 // linear: an sRGB framebuffer encodes it (OffscreenTarget's is one).
 //
 // Host defines: MICRORELIEF_TILING (the map repeated: relief_map.glsl); MICRORELIEF_METHOD (0 multilevel, 1 normal, 2 offset, 3 steep, 4 pom,
-// 5 relief, 6 maxmip); MICRORELIEF_BASE (0 plane, 1 cylinder, 2 ellipsoid:
+// 5 relief, 6 maxmip, 7 cone, 8 rcsm); MICRORELIEF_BASE (0 plane, 1 cylinder, 2 ellipsoid:
 // base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
 // writes texel reads to the statistics and keeps misses (so they are counted too);
 // MICRORELIEF_SHADOWS (0 none, 1 hard, 2 soft: shadow.glsl; the exact methods only);
@@ -31,10 +31,12 @@ layout(depth_less) out float gl_FragDepth;
 #include "microrelief/map_space.glsl"
 #include "microrelief/multilevel_trace.glsl"
 
+#include "microrelief/cone_step.glsl"
 #include "microrelief/maxmip_trace.glsl"
 #include "microrelief/normal_mapping.glsl"
 #include "microrelief/parallax_occlusion.glsl"
 #include "microrelief/parallax_offset.glsl"
+#include "microrelief/relaxed_cone_step.glsl"
 #include "microrelief/relief_mapping.glsl"
 #include "microrelief/steep_parallax.glsl"
 // Every method is included (the host splices includes before the preprocessor runs);
@@ -58,6 +60,7 @@ uniform sampler2D maxPyramid;
 uniform sampler2D windowPyramid;
 uniform sampler2D heightSamples;
 uniform sampler2D albedoMap;  // unit 3: the surface's colour over (u, v), mipmapped
+uniform sampler2D coneMap;    // unit 4: cone and rcsm's cone map (peers/ConeMap.h), linear
 
 #ifndef MICRORELIEF_ALBEDO_MAP
 #define MICRORELIEF_ALBEDO_MAP 0
@@ -88,6 +91,10 @@ mr_ReliefHit traceInFrame(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3
     return mr_traceReliefMapping(relief, heightSamples, origin, dir, methodSteps, methodRefineSteps);
 #elif MICRORELIEF_METHOD == 6
     return mr_traceMaxMip(relief, query, maxPyramid, heightSamples, origin, dir);
+#elif MICRORELIEF_METHOD == 7
+    return mr_traceConeStep(relief, query, coneMap, heightSamples, origin, dir);
+#elif MICRORELIEF_METHOD == 8
+    return mr_traceRelaxedCones(relief, coneMap, heightSamples, origin, dir, methodSteps, methodRefineSteps);
 #else
     return mr_traceMultilevel(relief, query, windowPyramid, heightSamples, origin, dir);
 #endif
@@ -140,7 +147,7 @@ float windowDepth(vec3 p) {
 // by the multilevel method whichever exact method traced the picture. A shadow ray that
 // runs out of its budget marks the hit exhausted, as a primary ray would.
 float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bool pointLight) {
-#if MICRORELIEF_SHADOWS != 0 && (MICRORELIEF_METHOD == 0 || MICRORELIEF_METHOD == 6)
+#if MICRORELIEF_SHADOWS != 0 && (MICRORELIEF_METHOD == 0 || MICRORELIEF_METHOD == 6 || MICRORELIEF_METHOD == 7)
     // The shadow ray in the frame: to a point light's frame position (t = 1 there), or
     // along a direction for ever.
     vec3 frameToLight = pointLight ? mr_baseFramePoint(relief, lightPosition.xyz) - hit.position

@@ -83,6 +83,12 @@ Camera viewCamera(int degrees, const BaseShape& base, double top) {
     return camera;
 }
 
+bool measuredAtSize(Method method, int mapSize) {
+    if (method == Method::Cone) return mapSize <= 1024;
+    if (method == Method::Rcsm) return mapSize <= 512;
+    return true;
+}
+
 std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
     std::vector<Setting> settings;
     MethodSettings s;
@@ -93,13 +99,20 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
             settings.push_back(
                 {s, error == 0.0f ? "exact" : std::to_string(static_cast<int>(error)) + "px"});
         }
+    } else if (method == Method::Rcsm) {
+        // 15 relaxed cone steps and 8 binary steps as published, then more cone steps.
+        for (int steps = 15; steps <= std::min(2 * mapSize, maxSteps); steps *= 2) {
+            s.steps = steps;
+            s.refineSteps = 8;
+            settings.push_back({s, std::to_string(steps)});
+        }
     } else if (methodHasSteps(method)) {
         for (int steps = 8; steps <= std::min(2 * mapSize, maxSteps); steps *= 2) {
             s.setSteps(steps);
             settings.push_back({s, std::to_string(steps)});
         }
     } else {
-        settings.push_back({s, method == Method::MaxMip ? "exact" : "-"});
+        settings.push_back({s, method == Method::MaxMip || method == Method::Cone ? "exact" : "-"});
     }
     return settings;
 }
@@ -131,7 +144,8 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
             std::size_t referenceHits = 0;
             for (const auto& hit : reference.hits) referenceHits += hit.has_value();
             for (Method method : options.methods) {
-                if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation))
+                if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation) ||
+                    !measuredAtSize(method, mapSize))
                     continue;
                 for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps)) {
                     Measurement r;

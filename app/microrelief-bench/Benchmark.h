@@ -67,6 +67,12 @@ struct BenchOptions {
 // exact methods (multilevel, maxmip) on biquadratic, beside their bilinear rows.
 bool measuredOn(Method method, Interpolation interpolation);
 
+// Whether `method` is measured on a map of `mapSize` texels a side: the cone-stepping peers
+// only where their cone maps build in seconds to a minute on one core (peers/ConeMap.h,
+// measured on llvmpipe's machine: cone up to 1024, rcsm up to 512); every other method on
+// every map.
+bool measuredAtSize(Method method, int mapSize);
+
 // The knob settings measured for `method` on a map of `mapSize` texels: step budgets in
 // powers of two from 8 to min(2 mapSize, maxSteps); pixel errors 0, 1 and 4 for the
 // multilevel method; one setting for the others.

@@ -74,7 +74,9 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
     std::size_t n = 0;
     for (const BenchMap& m : maps) {
         for (Method method : options.methods) {
-            if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation)) continue;
+            if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation) ||
+                !measuredAtSize(method, std::max(m.map->width, m.map->height)))
+                continue;
             n +=
                 settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps).size();
         }
@@ -109,7 +111,7 @@ int main(int argc, char** argv) {
                  "microrelief-bench"};
     bool quick = false, materials = false;
     std::string size = "512x512", backend = "auto", outDir = "out/bench";
-    std::string methodList = "multilevel,maxmip,normal,offset,steep,pom,relief";
+    std::string methodList = "multilevel,maxmip,cone,rcsm,normal,offset,steep,pom,relief";
     std::string baseList = "plane,cylinder,sphere";
     std::string interpolationList = "bilinear,biquadratic";
     BenchOptions options;
@@ -140,6 +142,16 @@ int main(int argc, char** argv) {
                    "Comma-separated last levels, bilinear and biquadratic (biquadratic with the "
                    "exact methods, multilevel and maxmip)")
         ->capture_default_str();
+    std::string mapList, viewList, sizeList;
+    app.add_option("--maps", mapList,
+                   "Comma-separated height map files (any image the programs read; 'default' the "
+                   "bundled map), instead of the bundled one");
+    app.add_option("--views", viewList,
+                   "Comma-separated view angles in degrees from the surface normal, 0 to 89 "
+                   "(default 0,45,70,85; 45,80 with --quick)");
+    app.add_option("--map-sizes", sizeList,
+                   "Comma-separated sides of the procedural relief (default 64,256,1024,4096,8192; "
+                   "256,4096 with --quick; 0 for none)");
     app.add_option("--backend", backend, "auto, egl or osmesa")->capture_default_str();
     app.add_option("--out-dir", outDir, "Folder for bench.csv, bench.md and the plots")
         ->capture_default_str();
@@ -166,6 +178,35 @@ int main(int argc, char** argv) {
             options.assets = {"default"};
             options.viewDegrees = {0, 45, 70, 85};
         }
+        // A whole number within [lo, hi], or one clear error naming the flag.
+        const auto wholeIn = [](const char* flag, int lo, int hi) {
+            return [flag, lo, hi](const std::string& text) {
+                const bool digits = !text.empty() && text.size() <= 5 &&
+                                    text.find_first_not_of("0123456789") == std::string::npos;
+                const int value = digits ? std::stoi(text) : -1;
+                if (value < lo || value > hi)
+                    throwBadInput(std::string(flag) + ": '" + text +
+                                  "' is not a whole number from " + std::to_string(lo) + " to " +
+                                  std::to_string(hi));
+                return value;
+            };
+        };
+        if (app.count("--maps")) {
+            options.assets = parseList(mapList, "--maps", "--maps", [](const std::string& f) {
+                if (f.empty()) throwBadInput("--maps: an empty file name");
+                return f;
+            });
+        }
+        if (app.count("--views"))
+            options.viewDegrees =
+                parseList(viewList, "--views", "--views", wholeIn("--views", 0, 89));
+        if (app.count("--map-sizes")) {
+            options.mapSizes.clear();
+            for (int n : parseList(sizeList, "--map-sizes", "--map-sizes",
+                                   wholeIn("--map-sizes", 0, 65536)))
+                if (n > 0) options.mapSizes.push_back(n);
+        }
+        if (options.viewDegrees.empty()) throwBadInput("--views names no view");
         parseSizeFlag(size, options.width, options.height);
         options.methods = parseList(methodList, "--method", "--methods", parseMethod);
         options.bases = parseList(baseList, "--base", "--bases", [](const std::string& name) {

@@ -163,7 +163,9 @@ void methodControls(MethodSettings& method, PanelActions& actions) {
                            "steep parallax",
                            "parallax occlusion",
                            "relief mapping",
-                           "maximum mipmaps"};
+                           "maximum mipmaps",
+                           "cone step mapping (exact)",
+                           "relaxed cone stepping"};
     if (ImGui::Combo("Method", &index, names, IM_ARRAYSIZE(names))) {
         method.method = static_cast<Method>(index);
         actions.methodChanged = true;

@@ -259,7 +259,7 @@ void SceneFlags::addShading(CLI::App& app) {
                    "A point light at x,y,z (world) instead of the directional light");
     app.add_option(flag("shading.shadows"), shadows_,
                    "Self-shadows: off, hard (exact: a second trace towards the light) or soft (an "
-                   "estimate for a round light of --light-size); multilevel and maxmip")
+                   "estimate for a round light of --light-size); multilevel, maxmip and cone")
         ->capture_default_str();
     app.add_option(flag("shading.lightSizeDegrees"), job_.shading.lightSizeDegrees,
                    "Soft shadows: the light's angular diameter in degrees (the sun's is 0.53)")
@@ -267,11 +267,13 @@ void SceneFlags::addShading(CLI::App& app) {
     app.add_option(
            flag("method"), method_,
            "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
-           "normal, offset, steep, pom, relief, maxmip")
+           "normal, offset, steep, pom, relief, maxmip, cone (cone step mapping, exact), rcsm "
+           "(relaxed cone stepping; cone and rcsm on the plane)")
         ->capture_default_str();
     app.add_option(
            flag("method.steps"), job_.method.steps,
-           "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps")
+           "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps, "
+           "rcsm relaxed cone steps (15 as published)")
         ->capture_default_str();
     app.add_option(
            flag("method.pixelError"), job_.method.pixelError,

@@ -24,6 +24,22 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
     boxIndices_ = gl::Buffer::create(gl_);
 }
 
+namespace {
+// The cone map a method reads (cone, rcsm), built where it is missing.
+void addConeMapFor(const GL& gl, ReliefTextures& textures, Method method) {
+    if (method == Method::Cone) textures.addConeMap(gl, ReliefTextures::ConeKind::Conservative);
+    if (method == Method::Rcsm) textures.addConeMap(gl, ReliefTextures::ConeKind::Relaxed);
+}
+
+// After the samples changed: the cone maps made so far are stale, built again whole (the one
+// the method reads now, the other when next asked for).
+void refreshConeMaps(const GL& gl, ReliefTextures& textures, Method method) {
+    if (!textures.hasConeMaps()) return;
+    textures.dropConeMaps();
+    addConeMapFor(gl, textures, method);
+}
+}  // namespace
+
 ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
                                              BaseKind base, Interpolation interpolation,
                                              bool frontFaces, ShadowMode shadows, bool albedoMap,
@@ -70,6 +86,7 @@ void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches
     // The aligned pyramid is made only for the peer that walks it.
     if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
         textures_->addMaxMipPyramid(gl_, pyramidBuilder());
+    if (textures_) addConeMapFor(gl_, *textures_, settings.method);
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -110,6 +127,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
             ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, maxMip, tiles));
     }
     ++rebuilds_.pyramids;
+    addConeMapFor(gl_, *textures_, method_.method);
     base_ = base;
     interpolation_ = interpolation;
     maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
@@ -137,6 +155,7 @@ void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
     } else {
         pyramidBuilder().update(*textures_, changed);
     }
+    refreshConeMaps(gl_, *textures_, method_.method);
     uploadBox();
 }
 
@@ -147,6 +166,7 @@ void ReliefRenderer::heightsReplaced() {
     } else {
         pyramidBuilder().build(*textures_);
     }
+    refreshConeMaps(gl_, *textures_, method_.method);
     ++rebuilds_.pyramids;
     uploadBox();
 }
@@ -271,6 +291,11 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
         .bindHeights(textures_->samples())
         .bindWindowPyramid(textures_->windowPyramid());
     if (albedo_) shader.bindAlbedo(albedo_->id());
+    if (method_.method == Method::Cone || method_.method == Method::Rcsm) {
+        shader.bindConeMap(textures_->coneMap(method_.method == Method::Cone
+                                                  ? ReliefTextures::ConeKind::Conservative
+                                                  : ReliefTextures::ConeKind::Relaxed));
+    }
 
     // Depth clamping keeps faces nearer than the near plane (an eye close to the box). A
     // model that mirrors (a negative determinant) turns the box's winding round.

@@ -41,6 +41,7 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
     gl.Uniform1i(gl::uniform(gl, program_, "heightSamples"), kHeightsUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "windowPyramid"), kWindowPyramidUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "albedoMap"), kAlbedoUnit);
+    gl.Uniform1i(gl::uniform(gl, program_, "coneMap"), kConeMapUnit);
     gl.UseProgram(static_cast<GLuint>(previous));
     const GLuint block = gl.GetUniformBlockIndex(program_.id(), "MicroreliefParameters");
     if (block == GL_INVALID_INDEX)
@@ -68,6 +69,10 @@ ReliefShader& ReliefShader::bindWindowPyramid(GLuint texture) {
 
 ReliefShader& ReliefShader::bindAlbedo(GLuint texture) {
     return bindTexture(kAlbedoUnit, texture);
+}
+
+ReliefShader& ReliefShader::bindConeMap(GLuint texture) {
+    return bindTexture(kConeMapUnit, texture);
 }
 
 ReliefShader& ReliefShader::bindParameters(GLuint buffer) {

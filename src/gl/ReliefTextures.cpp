@@ -7,6 +7,7 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/gl/PyramidBuilder.h"
 #include "microrelief/gl/StateGuard.h"
+#include "microrelief/peers/ConeMap.h"
 
 namespace microrelief {
 
@@ -143,6 +144,24 @@ void ReliefTextures::addMaxMipPyramid(const GL& gl, PyramidBuilder& builder) {
     builder.buildAligned(*this);
 }
 
+void ReliefTextures::addConeMap(const GL& gl, ConeKind kind) {
+    if (cones_[static_cast<int>(kind)]) return;
+    const HeightMap map = readSamples(gl);
+    const ConeMap cones =
+        kind == ConeKind::Conservative ? buildConservativeConeMap(map) : buildRelaxedConeMap(map);
+    const std::vector<std::uint16_t> texels = coneMapHalfTexels(cones);
+    const gl::StateGuard saved(gl);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl::Texture texture = gl::Texture::create(gl);
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, map.width, map.height, 0, GL_RG, GL_HALF_FLOAT,
+                  texels.data());
+    setSamplerState(gl, GL_LINEAR, 0);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    cones_[static_cast<int>(kind)] = std::move(texture);
+}
+
 ReliefMapShape ReliefTextures::maxMipShape() const {
     const std::vector<glm::ivec2> sizes = pyramidLevelSizes(shape_.size.x, shape_.size.y);
     return {shape_.size, sizes.front(), static_cast<int>(sizes.size()), shape_.maxHeight};
@@ -182,7 +201,7 @@ std::size_t ReliefTextures::gpuBytes(const GL& gl) const {
     const gl::StateGuard saved(gl);
     gl.ActiveTexture(GL_TEXTURE0);
     std::size_t bytes = 0;
-    for (const gl::Texture* texture : {&samples_, &windows_, &aligned_}) {
+    for (const gl::Texture* texture : {&samples_, &windows_, &aligned_, &cones_[0], &cones_[1]}) {
         if (!*texture) continue;
         gl.BindTexture(GL_TEXTURE_2D, texture->id());
         for (int level = 0;; ++level) {
@@ -191,7 +210,9 @@ std::size_t ReliefTextures::gpuBytes(const GL& gl) const {
             if (width == 0) break;
             gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
             gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
-            const std::size_t texelBytes = format == GL_R16F ? 2 : format == GL_R32F ? 4 : 16;
+            const std::size_t texelBytes = format == GL_R16F                         ? 2
+                                           : format == GL_R32F || format == GL_RG16F ? 4
+                                                                                     : 16;
             bytes += static_cast<std::size_t>(width) * height * texelBytes;
         }
     }

@@ -67,6 +67,10 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--bases torus --out-dir " + (dir / "b").string(), "unknown --bases 'torus'");
     expectRefused("--interpolations bicubic --out-dir " + (dir / "b").string(),
                   "unknown --interpolations 'bicubic'");
+    // Views and the relief's sides: whole numbers in range, one clear line each.
+    expectRefused("--views 95 --out-dir " + (dir / "b").string(), "--views: '95' is not a whole number");
+    expectRefused("--views '' --out-dir " + (dir / "b").string(), "--views names no view");
+    expectRefused("--map-sizes abc --out-dir " + (dir / "b").string(), "--map-sizes: 'abc'");
     EXPECT_FALSE(std::filesystem::exists(dir / "b"));
 }
 

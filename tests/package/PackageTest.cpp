@@ -172,7 +172,7 @@ TEST_F(Package, CoreConfiguresAndBuildsAloneWithOnlyGlm) {
     const test::RunResult install = test::runCommand(
         kCmake + " --install " + quote(build) + " --prefix " + quote(corePrefix), *scratch_ / "");
     ASSERT_EQ(install.status, 0) << install.out << install.err;
-    for (const char* other : {"io", "gl", "headless", "glfw", "third_party"})
+    for (const char* other : {"peers", "io", "gl", "headless", "glfw", "third_party"})
         EXPECT_FALSE(std::filesystem::exists(corePrefix / "include" / "microrelief" / other))
             << other << "'s headers installed with core alone";
     EXPECT_TRUE(std::filesystem::exists(corePrefix / "include" / "microrelief" / "core" /

@@ -188,7 +188,7 @@ TEST(GlslLibrary, SingleFileTracersCompileWithoutAResolver) {
                 << readText(dir / "single.log");
         }
     }
-    EXPECT_EQ(count, 7);  // every tracer: multilevel, maxmip and the five peers
+    EXPECT_EQ(count, 9);  // every tracer: multilevel, maxmip and the seven peers (cone, rcsm)
 }
 
 // Names that cannot collide with an engine's own (glslify, LYGIA): every function the

@@ -69,6 +69,7 @@ public:
     static constexpr GLuint kHeightsUnit = 1;
     static constexpr GLuint kWindowPyramidUnit = 2;
     static constexpr GLuint kAlbedoUnit = 3;
+    static constexpr GLuint kConeMapUnit = 4;  // cone and rcsm's cone map (peers/ConeMap.h)
     static constexpr GLuint kParametersBinding = 0;
 
     // Compiles `config` of relief_box.vert and relief.frag from `shaderDir` (the folder
@@ -84,6 +85,7 @@ public:
     ReliefShader& bindHeights(GLuint texture);
     ReliefShader& bindWindowPyramid(GLuint texture);
     ReliefShader& bindAlbedo(GLuint texture);
+    ReliefShader& bindConeMap(GLuint texture);
     ReliefShader& bindParameters(GLuint buffer);
     void use() const;
 

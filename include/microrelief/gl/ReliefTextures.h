@@ -65,6 +65,21 @@ public:
     // The aligned pyramid for the maxmip peer, built on the GPU from the samples.
     void addMaxMipPyramid(const GL& gl, PyramidBuilder& builder);
 
+    // The cone maps of the cone-stepping peers (peers/ConeMap.h), RG16F, linear filtering
+    // (rcsm reads its map filtered, cone with texelFetch), clamped: the conservative map
+    // for cone, the relaxed one for rcsm, each built on the CPU from the samples the GPU
+    // holds (read back) when first asked for, and kept until the samples change
+    // (dropConeMaps). Only where one of these methods runs. The GL state it changes is
+    // restored.
+    enum class ConeKind { Conservative = 0, Relaxed = 1 };
+    void addConeMap(const GL& gl, ConeKind kind);
+    void dropConeMaps() {
+        for (gl::Texture& t : cones_) t.reset();
+    }
+    bool hasConeMaps() const { return cones_[0] || cones_[1]; }
+    // 0 where that map was not made.
+    GLuint coneMap(ConeKind kind) const { return cones_[static_cast<int>(kind)].id(); }
+
     // The multilevel method's mr_ReliefMap (the windows: pyramidSize W x H, their levels;
     // size the whole, N W x M H tiled N x M).
     ReliefMapShape shape() const {
@@ -115,6 +130,7 @@ private:
                                   const glm::ivec2& size) const;
 
     gl::Texture samples_, windows_, aligned_;
+    gl::Texture cones_[2];  // by ConeKind
     ReliefMapShape shape_;  // size: one tile's, W x H (shape() has the whole's)
     std::vector<glm::ivec2> levelSizes_;
     int scaleExponent_ = 0;

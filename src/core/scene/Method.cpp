@@ -8,8 +8,8 @@ namespace {
 constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level",
                                            "normal", "depth",      "position"};
 constexpr const char* kShadowModeNames[] = {"off", "hard", "soft"};
-constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep",
-                                        "pom",        "relief", "maxmip"};
+constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep", "pom",
+                                        "relief",     "maxmip", "cone",   "rcsm"};
 
 // The enum value whose name is `name`, by position in `names`; throws Error(BadInput)
 // naming the flag and the choices.
@@ -33,11 +33,12 @@ const char* methodName(Method method) {
 }
 
 bool methodHasSteps(Method method) {
-    return method == Method::Steep || method == Method::Pom || method == Method::Relief;
+    return method == Method::Steep || method == Method::Pom || method == Method::Relief ||
+           method == Method::Rcsm;
 }
 
 bool methodTracesTheSolid(Method method) {
-    return method == Method::Multilevel || method == Method::MaxMip;
+    return method == Method::Multilevel || method == Method::MaxMip || method == Method::Cone;
 }
 
 bool methodRunsOnBase(Method method, const BaseShape& base) {
@@ -60,10 +61,17 @@ const char* shadowModeName(ShadowMode mode) {
 }
 
 void checkMethodSupportsTiles(Method method, glm::ivec2 tiles) {
-    if (method != Method::MaxMip || tiles == glm::ivec2(1, 1)) return;
-    throwBadInput(
-        "{method} maxmip does not take {tiles} (its quadtree is the map's own; the "
-        "multilevel method and the step-based peers do)");
+    if (tiles == glm::ivec2(1, 1)) return;
+    if (method == Method::MaxMip) {
+        throwBadInput(
+            "{method} maxmip does not take {tiles} (its quadtree is the map's own; the "
+            "multilevel method and the step-based peers do)");
+    }
+    if (method == Method::Cone || method == Method::Rcsm) {
+        throwBadInput(std::string("{method} ") + methodName(method) +
+                      " does not take {tiles} (its cone map is the map's own; the multilevel "
+                      "method and the step-based peers do)");
+    }
 }
 
 DebugView parseDebugView(const std::string& name) {

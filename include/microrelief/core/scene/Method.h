@@ -15,31 +15,36 @@
 namespace microrelief {
 
 // How each pixel's ray is traced (relief.frag's MICRORELIEF_METHOD): the paper's
-// multilevel method, or one of the peers it is measured against.
-enum class Method { Multilevel = 0, Normal, Offset, Steep, Pom, Relief, MaxMip };
+// multilevel method, or one of the peers it is measured against (cone: cone step mapping
+// with conservative cones and an exact last texel; rcsm: relaxed cone stepping as
+// published; both over a cone map, peers/ConeMap.h).
+enum class Method { Multilevel = 0, Normal, Offset, Steep, Pom, Relief, MaxMip, Cone, Rcsm };
 
-// "multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip"; throws Error(BadInput).
+// "multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip", "cone", "rcsm";
+// throws Error(BadInput).
 Method parseMethod(const std::string& name);
 const char* methodName(Method method);
-// Whether a method's quality knob is a step count (steep, pom, relief).
+// Whether a method's quality knob is a step count (steep, pom, relief, rcsm).
 bool methodHasSteps(Method method);
 // Whether a method traces the whole solid, side walls and bottom face included
-// (multilevel, maxmip); the others know the top surface only.
+// (multilevel, maxmip, cone); the others know the top surface only.
 bool methodTracesTheSolid(Method method);
 // Whether a method runs on a base: every method on the plane; on a curved base the exact
 // ones (multilevel, maxmip) and the peers engines ship there, pom and relief stepping in
 // the base's tangent frame. Otherwise throws Error(BadInput) naming both flags.
 void checkMethodSupportsBase(Method method, const BaseShape& base);
 // Whether a method takes a tiled map (--tile): every method but maxmip, whose quadtree is
-// the map's own. Otherwise throws Error(BadInput) naming both flags.
+// the map's own, and cone and rcsm, whose cone maps are. Otherwise throws Error(BadInput)
+// naming both flags.
 void checkMethodSupportsTiles(Method method, glm::ivec2 tiles);
 bool methodRunsOnBase(Method method, const BaseShape& base);
 
 struct MethodSettings {
     Method method = Method::Multilevel;
-    int steps = 64;           // steep: layers; pom: samples at grazing angles; relief: linear steps
+    int steps = 64;           // steep: layers; pom: samples at grazing angles; relief: linear
+                              // steps; rcsm: relaxed cone steps (15 as published)
     int minSteps = 16;        // pom: samples looking straight down (setSteps: a quarter, >= 4)
-    int refineSteps = 8;      // relief: binary search steps
+    int refineSteps = 8;      // relief, rcsm: binary search steps
     float pixelError = 0.0f;  // multilevel: tolerated error in pixels; 0 is exact
 
     // The step budget and what follows from it, the one rule every program uses.

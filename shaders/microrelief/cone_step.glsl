@@ -1,0 +1,144 @@
+// cone_step.glsl: cone step mapping, the peer "cone" of issue 28 (J. Dummer, "Cone Step
+// Mapping: An Iterative Ray-Heightfield Intersection Algorithm", 2006), with cones that
+// are conservative for the bilinear surface and an exact end: stepping from cone to cone
+// until the ray gets down to a texel's plateau, then the exact first hit over that texel
+// square (mr_baseIntersectLeaf, the multilevel method's leaf), and on to the next texel
+// where there is none. The plane only (the host refuses the others).
+//
+// Inputs in map space (relief_map.glsl): X, Y in texels, h in map height units, the ray
+// origin + t dir (t as in world space); `cones` the W x H cone map, RG16F, (B_T, r_T) per
+// texel square T (peers/ConeMap.h: B_T bounds the surface over T, r_T in texels per map
+// height unit; the height scale is in dir.z, so it needs no term here), read with
+// texelFetch; `heights` the samples (bilinear_patch.glsl). Output, as mr_traceMultilevel's:
+// the exact first point t >= 0 of the ray in the solid (top surface, side wall, bottom
+// face) and statistics (iterations = texels stepped from; stopLevel 0).
+//
+// Why a step is safe (ConeMap.h): the surface lies on or under B_T + dist(x, T) / r_T
+// everywhere. A ray at a point of T at height z > B_T that moves on by dt covers
+// run = |dir.xy| dt horizontally, so it is at most run from T, and it drops by drop dt
+// (drop = -dir.z). It stays above the surface while z - drop dt > B_T + run dt / r_T, i.e.
+// for dt < (z - B_T) / (run / r_T + drop).
+#ifndef MICRORELIEF_CONE_STEP_GLSL
+#define MICRORELIEF_CONE_STEP_GLSL
+
+#include "fetch_count.glsl"
+#include "leaf_walk.glsl"
+#include "relief_hit.glsl"
+#include "relief_map.glsl"
+#include "relief_query.glsl"
+#include "texture_reads.glsl"
+
+// A cone map texel (B_T, r_T) at integer texel `texel`.
+#ifndef MICRORELIEF_READ_CONE
+#define MICRORELIEF_READ_CONE(cones, texel) texelFetch(cones, texel, 0).rg
+#endif
+
+// The texel square the ray is in at map point p: on a boundary, the one it moves into.
+ivec2 mr_coneTexelAt(mr_Relief relief, vec2 p, vec2 dir) {
+    vec2 f = floor(p);
+    ivec2 texel = ivec2(f);
+    if (p.x == f.x && dir.x < 0.0) texel.x -= 1;
+    if (p.y == f.y && dir.y < 0.0) texel.y -= 1;
+    return clamp(texel, ivec2(0), ivec2(relief.map.size) - 1);
+}
+
+// Where the ray leaves texel square `texel`, per axis (MR_NEVER along an axis it does not
+// move in).
+vec2 mr_coneTexelExits(ivec2 texel, vec3 origin, vec3 dir) {
+    vec2 exits = vec2(MR_NEVER);
+    for (int axis = 0; axis < 2; ++axis) {
+        if (dir[axis] == 0.0) continue;
+        float side = float(texel[axis]) + (dir[axis] > 0.0 ? 1.0 : 0.0);
+        exits[axis] = (side - origin[axis]) / dir[axis];
+    }
+    return exits;
+}
+
+// The walk over origin + t dir, t in [0, tFar], of a ray that leaves the box through its
+// floor when `floorExit`; fills `hit` with local t.
+void mr_walkCones(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones, MICRORELIEF_SAMPLER heights,
+                  vec3 origin, vec3 dir, float tFar, bool floorExit, inout mr_ReliefHit hit) {
+    float run = length(dir.xy), drop = -dir.z;
+    ivec2 stepDir = ivec2(sign(dir.xy));
+    float t = 0.0;
+    ivec2 texel = mr_coneTexelAt(relief, origin.xy, dir.xy);
+    bool finished = false, solved = false;
+    float tHit = -1.0;
+    mr_ReliefPatch corners;
+    ivec2 cell;
+    int iteration = 0;
+    hit.stopLevel = 0;
+    while (iteration < query.maxIterations) {
+        iteration += 1;
+        vec2 cone = MICRORELIEF_READ_CONE(cones, texel);
+        MICRORELIEF_FETCHED(1);
+        vec2 exits = mr_coneTexelExits(texel, origin, dir);
+        float tExit = min(max(min(exits.x, exits.y), t), tFar);
+        float z = origin.z + t * dir.z;
+        bool leaf = true;
+        if (z > cone.x) {
+            // Above the plateau: the cone's step (the header), infinite where the ray never
+            // comes down to the cone. A cone of ratio 0 is T's column: a ray moving across
+            // gets no step (run / 0 is +inf), a vertical one falls to the plateau.
+            float slope = (run > 0.0 ? run / cone.y : 0.0) + drop;
+            float tCone = slope > 0.0 ? t + (z - cone.x) / slope : MR_NEVER;
+            if (tCone >= tFar) {
+                finished = true;  // above the surface to the walk's end
+                break;
+            }
+            if (tCone > tExit) {
+                t = tCone;  // out of this texel, anywhere: the texel it lands in
+                texel = mr_coneTexelAt(relief, (origin + t * dir).xy, dir.xy);
+                continue;
+            }
+            // The cone ends inside this texel; above the plateau all through it, no leaf.
+            leaf = origin.z + tExit * dir.z <= cone.x;
+        }
+        if (leaf) {
+            // At or under the plateau in this texel: the exact first hit over the rest of it.
+            tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, corners, cell);
+            if (tHit >= 0.0) {
+                finished = solved = true;
+                break;
+            }
+        }
+        if (tExit >= tFar) {
+            finished = true;
+            break;
+        }
+        // Into the neighbour across the side(s) it leaves by (a 2D DDA step: rounding in
+        // the texel found from a point cannot hold the walk at a boundary).
+        texel += ivec2(exits.x <= tExit ? stepDir.x : 0, exits.y <= tExit ? stepDir.y : 0);
+        if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(relief.map.size)))) {
+            finished = true;  // off the map: nothing more to meet (rounding kept tFar ahead)
+            break;
+        }
+        t = tExit;
+    }
+    hit.iterations = iteration;
+    if (!finished) {
+        hit.exhausted = true;
+    } else if (solved && query.anyHit) {
+        mr_setAnyHit(hit, origin, dir, tHit);
+    } else if (solved) {
+        mr_setTopHit(hit, relief, origin, dir, tHit, corners, cell);
+    } else {
+        mr_setWalkEndHit(hit, relief, heights, origin, dir, tFar, floorExit);  // out of the box
+    }
+}
+
+// As mr_traceMultilevel, with the cone map for the pyramid.
+mr_ReliefHit mr_traceConeStep(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones,
+                              MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir) {
+    mr_ReliefHit hit = mr_reliefMissHit();
+    vec3 start;
+    float tStart, span;
+    bool floorExit;
+    if (mr_enterReliefShell(relief, query, heights, origin, dir, hit, start, tStart, span, floorExit)) {
+        mr_walkCones(relief, query, cones, heights, start, dir, span, floorExit, hit);
+        mr_measureFromEye(hit, tStart);
+    }
+    return hit;
+}
+
+#endif

@@ -1,0 +1,266 @@
+// The cone maps of the cone-stepping peers (peers/ConeMap.h). The property `cone` relies
+// on: no conservative cone holds a point of the bilinear surface, checked against an
+// independent reference (HeightMap::surface, the spec's bilinear surface, sampled densely:
+// every eighth of a texel, which takes in every texel corner, edge midpoint and sample,
+// where a bilinear patch's edges and peaks reach their maxima); and the fast build, the
+// pyramid walk, never gives a wider cone than the brute force over every texel square.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/peers/ConeMap.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+
+using namespace microrelief;
+
+namespace {
+
+struct ConeCase {
+    std::string name;
+    HeightMap map;
+};
+
+HeightMap ramp(int w, int h, double slopeX, double slopeY) {
+    HeightMap m(w, h);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) m.at(i, j) = static_cast<float>(slopeX * i + slopeY * j);
+    return m;
+}
+
+HeightMap periodic(int w, int h, double period, double amplitude) {
+    HeightMap m(w, h);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i)
+            m.at(i, j) =
+                static_cast<float>(amplitude * (1.5 + std::sin(2 * M_PI * i / period) *
+                                                          std::cos(2 * M_PI * j / period)));
+    return m;
+}
+
+HeightMap scaled(HeightMap m, float factor) {
+    for (float& s : m.samples) s *= factor;
+    return m;
+}
+
+// Random and adversarial small maps: spikes, one-texel walls, steps, ramps, periodic
+// relief, white noise (the roughest), a pit in a plateau, and scales from 1e-3 to 1e3
+// (ratios near the half floats' ends).
+std::vector<ConeCase> coneCases() {
+    std::vector<ConeCase> cases;
+    cases.push_back({"spike", synth::spike(13, 11, 6, 5)});
+    cases.push_back({"spikeAtEdge", synth::spike(12, 12, 0, 11)});
+    cases.push_back({"wall", synth::wallColumn(14, 9, 7)});
+    cases.push_back({"step", synth::step(12, 10, 5)});
+    cases.push_back({"ramp", ramp(11, 13, 0.07, 0.03)});
+    cases.push_back({"steepRamp", ramp(10, 10, 1.0, 0.0)});
+    cases.push_back({"periodic", periodic(16, 16, 5.0, 0.3)});
+    cases.push_back({"white", synth::whiteNoise(16, 16, 7)});
+    cases.push_back({"whiteTall", scaled(synth::whiteNoise(12, 14, 9), 1000.0f)});
+    cases.push_back({"whiteLow", scaled(synth::whiteNoise(13, 12, 11), 0.001f)});
+    cases.push_back({"noise", synth::valueNoise(16, 16, 4.0, 3, 5)});
+    HeightMap pit = synth::flat(12, 12, 1.0f);
+    pit.at(5, 6) = 0.0f;
+    pit.at(6, 6) = 0.2f;
+    cases.push_back({"pit", pit});
+    std::mt19937 random(28);
+    for (int k = 0; k < 4; ++k) {
+        std::uniform_int_distribution<int> side(2, 15);
+        HeightMap m(side(random), side(random));
+        std::uniform_real_distribution<float> value(0.0f, 1.0f);
+        std::bernoulli_distribution sparse(0.15);
+        for (float& s : m.samples) s = sparse(random) ? value(random) : 0.0f;
+        cases.push_back({"random" + std::to_string(k), m});
+    }
+    return cases;
+}
+
+double distanceToSquare(double x, double y, int i, int j) {
+    const double gx = std::max({0.0, i - x, x - (i + 1)}), gy = std::max({0.0, j - y, y - (j + 1)});
+    return std::hypot(gx, gy);
+}
+
+// The surface on the dense grid: every 1/kDense texel.
+constexpr int kDense = 8;
+struct DenseSurface {
+    int nx, ny;
+    std::vector<double> h;
+    explicit DenseSurface(const HeightMap& map)
+        : nx(map.width * kDense + 1),
+          ny(map.height * kDense + 1),
+          h(static_cast<std::size_t>(nx) * ny) {
+        for (int b = 0; b < ny; ++b)
+            for (int a = 0; a < nx; ++a)
+                h[static_cast<std::size_t>(b) * nx + a] =
+                    map.surface(double(a) / kDense, double(b) / kDense);
+    }
+};
+
+// The dense reference's r* of square (i, j) at plateau B: the smallest dist / (h - B) over
+// the grid's points above B (an upper estimate of the exact inf: the grid holds a subset of
+// the surface's points).
+double sampledRatio(const DenseSurface& s, int i, int j, double plateau) {
+    double r = kConeRatioCap;
+    for (int b = 0; b < s.ny; ++b) {
+        for (int a = 0; a < s.nx; ++a) {
+            const double h = s.h[static_cast<std::size_t>(b) * s.nx + a];
+            if (h > plateau)
+                r = std::min(r, distanceToSquare(double(a) / kDense, double(b) / kDense, i, j) /
+                                    (h - plateau));
+        }
+    }
+    return r;
+}
+
+class ConeMapCases : public ::testing::TestWithParam<ConeCase> {};
+
+// gtest prints a failing case's parameter: its name, not its bytes.
+void PrintTo(const ConeCase& c, std::ostream* out) {
+    *out << c.name;
+}
+
+}  // namespace
+
+// The stored cones (what the GPU reads) hold no point of the surface: for every texel T
+// and every reference point x, h(x) <= B_T + dist(x, T) / r_T (h <= B_T on T itself,
+// whatever r_T: a cone of ratio 0 is T's column above B_T). The slack, 1e-9 of the
+// distance, is for the doubles of this check; a cone that is wrong by its build is off by
+// far more (a skipped level or a plateau at the sample instead of the bound: texels).
+TEST_P(ConeMapCases, ConservativeConesHoldNoSurface) {
+    const HeightMap& map = GetParam().map;
+    const ConeMap cones = buildConservativeConeMap(map);
+    const DenseSurface dense(map);
+    double narrowing = 0.0;
+    int counted = 0;
+    for (int j = 0; j < map.height; ++j) {
+        for (int i = 0; i < map.width; ++i) {
+            const double plateau = cones.apexAt(i, j), r = cones.ratioAt(i, j);
+            EXPECT_GE(plateau, texelSquareBound(map, i, j, false)) << "texel " << i << ", " << j;
+            ASSERT_GE(r, 0.0);
+            int violations = 0;
+            for (int b = 0; b < dense.ny; ++b) {
+                for (int a = 0; a < dense.nx; ++a) {
+                    const double h = dense.h[static_cast<std::size_t>(b) * dense.nx + a];
+                    const double d = distanceToSquare(double(a) / kDense, double(b) / kDense, i, j);
+                    // How high the cone lets the surface rise here: not above B on T itself
+                    // (d = 0, whatever r), d / r elsewhere (no limit where r is 0: a column).
+                    const double allowed = d == 0.0 ? 0.0 : r > 0.0 ? d / r : HUGE_VAL;
+                    if (h - plateau > allowed * (1.0 + 1e-9)) {
+                        if (++violations <= 2)
+                            ADD_FAILURE() << "texel (" << i << ", " << j << ") plateau " << plateau
+                                          << " ratio " << r << " holds surface point ("
+                                          << double(a) / kDense << ", " << double(b) / kDense
+                                          << ") h " << h << " at distance " << d;
+                    }
+                }
+            }
+            ASSERT_EQ(violations, 0);
+            const double exact = sampledRatio(dense, i, j, plateau);
+            if (exact > 0.0 && exact < kConeRatioCap) {
+                narrowing += r / exact;
+                ++counted;
+            }
+        }
+    }
+    if (counted > 0)
+        std::cout << GetParam().name << ": stored ratio / dense reference's r* "
+                  << narrowing / counted << " on average over " << counted << " texels\n";
+}
+
+// The pyramid walk gives the brute force's cones: never wider (the walk prunes only nodes
+// whose bound cannot narrow the cone), and the same in practice (both take the same piece
+// bounds; 1e-12 relative for the doubles' rounding where a prune test and a piece bound
+// meet).
+TEST_P(ConeMapCases, FastBuildIsNeverWiderThanBruteForce) {
+    const HeightMap& map = GetParam().map;
+    ConeMapStats stats;
+    const std::vector<double> fast = conservativeConeRatios(map, false, &stats);
+    const std::vector<double> brute = conservativeConeRatios(map, true);
+    ASSERT_EQ(fast.size(), brute.size());
+    int narrower = 0;
+    double ratioSum = 0.0;
+    for (std::size_t k = 0; k < fast.size(); ++k) {
+        EXPECT_LE(fast[k], brute[k] * (1.0 + 1e-12))
+            << "texel " << k % map.width << ", " << k / map.width;
+        if (fast[k] < brute[k] * (1.0 - 1e-12)) ++narrower;
+        ratioSum += brute[k] > 0.0 ? fast[k] / brute[k] : 1.0;
+    }
+    std::cout << GetParam().name << ": fast / brute force " << ratioSum / fast.size()
+              << " on average, " << narrower << " of " << fast.size() << " narrower; "
+              << stats.nodesVisited << " nodes visited (" << fast.size() * fast.size()
+              << " squares by brute force)\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Maps, ConeMapCases, ::testing::ValuesIn(coneCases()),
+                         [](const auto& info) { return info.param.name; });
+
+// The relaxed cones as published: each a ratio >= 0 on the half grid, its apex the sample
+// to the nearest half; and a relaxed cone is never narrower than a cone whose apex sits at
+// the sample and that holds no sample higher than it (the relaxed exit point lies past the
+// sample that made it, no higher).
+TEST(ConeMap, RelaxedConesAreAtLeastTheSampleCones) {
+    for (const ConeCase& c : coneCases()) {
+        const HeightMap& map = c.map;
+        const ConeMap cones = buildRelaxedConeMap(map);
+        for (int j = 0; j < map.height; ++j) {
+            for (int i = 0; i < map.width; ++i) {
+                const double hs = map.at(i, j);
+                EXPECT_LE(std::abs(cones.apexAt(i, j) - hs), std::abs(hs) * 0x1p-11 + 0x1p-25)
+                    << c.name;
+                double sampleCone = kConeRatioCap;
+                for (int q = 0; q < map.height; ++q)
+                    for (int p = 0; p < map.width; ++p)
+                        if (map.at(p, q) > hs)
+                            sampleCone = std::min(sampleCone,
+                                                  std::hypot(p - i, q - j) / (map.at(p, q) - hs));
+                EXPECT_GE(cones.ratioAt(i, j), halfRoundedDown(sampleCone))
+                    << c.name << " texel " << i << ", " << j;
+            }
+        }
+    }
+}
+
+// The pyramid walk skips only pairs that cannot narrow a relaxed cone: the same ratios as
+// every pair by brute force (to the doubles' rounding where a prune test meets a pair).
+TEST(ConeMap, RelaxedWalkGivesTheBruteForceCones) {
+    for (const ConeCase& c : coneCases()) {
+        const std::vector<double> fast = relaxedConeRatios(c.map, 128, false),
+                                  brute = relaxedConeRatios(c.map, 128, true);
+        for (std::size_t k = 0; k < fast.size(); ++k)
+            EXPECT_NEAR(fast[k], brute[k], 1e-12 * brute[k]) << c.name << " texel " << k;
+    }
+}
+
+TEST(ConeMap, HalfFloatRounding) {
+    EXPECT_EQ(halfBits(1.0f), 0x3c00);
+    EXPECT_EQ(halfBits(65504.0f), 0x7bff);
+    EXPECT_EQ(halfBits(std::ldexp(1.0f, -24)), 0x0001);
+    EXPECT_EQ(halfBits(std::ldexp(1.0f, -14)), 0x0400);
+    EXPECT_EQ(halfBits(halfRoundedUp(1.0 + 1e-6)), 0x3c01);
+    EXPECT_EQ(halfRoundedDown(1.0 + 1e-6), 1.0f);
+    EXPECT_EQ(halfRoundedUp(1e6), std::numeric_limits<float>::infinity());
+    EXPECT_EQ(halfRoundedDown(1e6), 65504.0f);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> exponent(-26.0, 16.0);
+    for (int k = 0; k < 10000; ++k) {
+        const double x = std::exp2(exponent(random));
+        const float down = halfRoundedDown(x), up = halfRoundedUp(x);
+        ASSERT_LE(down, x);
+        ASSERT_GE(up, x);
+        if (up <= 65504.0f) {
+            ASSERT_LE(up - down, std::max(std::abs(x) * 0x1p-10, 0x1p-24)) << x;
+            // On the grid: the bits give the value back (GL decodes them so).
+            const std::uint16_t bits = halfBits(up);
+            const int e = (bits >> 10) & 31, m = bits & 1023;
+            const double decoded =
+                e == 0 ? std::ldexp(m, -24) : std::ldexp(1.0 + m / 1024.0, e - 15);
+            ASSERT_EQ(decoded, double(up)) << x;
+        }
+    }
+}

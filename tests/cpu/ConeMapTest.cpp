@@ -86,19 +86,20 @@ double distanceToSquare(double x, double y, int i, int j) {
     return std::hypot(gx, gy);
 }
 
-// The surface on the dense grid: every 1/kDense texel.
+// The surface (either last level) on the dense grid: every 1/kDense texel.
 constexpr int kDense = 8;
 struct DenseSurface {
     int nx, ny;
     std::vector<double> h;
-    explicit DenseSurface(const HeightMap& map)
+    explicit DenseSurface(const HeightMap& map,
+                          Interpolation interpolation = Interpolation::Bilinear)
         : nx(map.width * kDense + 1),
           ny(map.height * kDense + 1),
           h(static_cast<std::size_t>(nx) * ny) {
         for (int b = 0; b < ny; ++b)
             for (int a = 0; a < nx; ++a)
                 h[static_cast<std::size_t>(b) * nx + a] =
-                    map.surface(double(a) / kDense, double(b) / kDense);
+                    map.surface(double(a) / kDense, double(b) / kDense, false, interpolation);
     }
 };
 
@@ -177,6 +178,36 @@ TEST_P(ConeMapCases, ConservativeConesHoldNoSurface) {
 // whose bound cannot narrow the cone), and the same in practice (both take the same piece
 // bounds; 1e-12 relative for the doubles' rounding where a prune test and a piece bound
 // meet).
+// `cone` runs on the biquadratic last level too, with the same cones: do they hold none of
+// that surface? Each plateau is the pyramid's bound over the square's nine values, which
+// bounds the biquadratic piece over the square as well; away from the square nothing
+// argues it (the region under a cone is not convex, so the Bezier net's hull does not
+// settle it), so it is checked: the same dense check on the biquadratic surface.
+TEST_P(ConeMapCases, ConservativeConesHoldNoBiquadraticSurface) {
+    const HeightMap& map = GetParam().map;
+    const ConeMap cones = buildConservativeConeMap(map);
+    const DenseSurface dense(map, Interpolation::Biquadratic);
+    int violations = 0;
+    for (int j = 0; j < map.height; ++j) {
+        for (int i = 0; i < map.width; ++i) {
+            const double plateau = cones.apexAt(i, j), r = cones.ratioAt(i, j);
+            for (int b = 0; b < dense.ny; ++b) {
+                for (int a = 0; a < dense.nx; ++a) {
+                    const double h = dense.h[static_cast<std::size_t>(b) * dense.nx + a];
+                    const double d = distanceToSquare(double(a) / kDense, double(b) / kDense, i, j);
+                    const double allowed = d == 0.0 ? 0.0 : r > 0.0 ? d / r : HUGE_VAL;
+                    if (h - plateau > allowed * (1.0 + 1e-9) && ++violations <= 2)
+                        ADD_FAILURE() << "texel (" << i << ", " << j << ") plateau " << plateau
+                                      << " ratio " << r << " holds biquadratic point ("
+                                      << double(a) / kDense << ", " << double(b) / kDense
+                                      << ") h " << h << " at distance " << d;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(violations, 0);
+}
+
 TEST_P(ConeMapCases, FastBuildIsNeverWiderThanBruteForce) {
     const HeightMap& map = GetParam().map;
     ConeMapStats stats;

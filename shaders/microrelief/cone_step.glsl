@@ -1,4 +1,4 @@
-// cone_step.glsl: cone step mapping, the peer "cone" of issue 28 (J. Dummer, "Cone Step
+// cone_step.glsl: cone step mapping, the peer "cone" (J. Dummer, "Cone Step
 // Mapping: An Iterative Ray-Heightfield Intersection Algorithm", 2006), with cones that
 // are conservative for the bilinear surface and an exact end: stepping from cone to cone
 // until the ray gets down to a texel's plateau, then the exact first hit over that texel

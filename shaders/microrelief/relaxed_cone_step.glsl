@@ -1,4 +1,4 @@
-// relaxed_cone_step.glsl: relaxed cone stepping, the peer "rcsm" of issue 28 (F. Policarpo,
+// relaxed_cone_step.glsl: relaxed cone stepping, the peer "rcsm" (F. Policarpo,
 // M. M. Oliveira, "Relaxed Cone Stepping for Relief Mapping", GPU Gems 3, ch. 18, 2007,
 // listing 18-3): `coneSteps` relaxed cone steps from where the ray enters the relief box,
 // then `binarySteps` halvings of the last step, as published (15 and 8 there: 23 fetches

@@ -19,7 +19,7 @@ namespace {
 
 // OpenImageIO 2.4's PNG, BMP and TGA writers do not check what fwrite returns, and their
 // close() cannot tell: on a full disk they report success over a cut-off file; libjpeg's
-// error handler prints its own message and exits the process (issue 25). So no writer
+// error handler prints its own message and exits the process. So no writer
 // is given a file to open: each writes through this proxy into a StagedFile, which checks
 // every write and keeps the first failure, and StagedFile::finish reports it. The proxy
 // tells the writer every write succeeded, so that no writer takes an error path of its

@@ -1,4 +1,4 @@
-// Cone maps for the cone-stepping peers (issue 28): `cone`, cone step mapping with cones
+// Cone maps for the cone-stepping peers: `cone`, cone step mapping with cones
 // that are conservative for the bilinear surface (J. Dummer, "Cone Step Mapping", 2006;
 // robust cones as in "Robust Cone Step Mapping", EGSR 2024), built from the max pyramid
 // (the idea of quick cone maps, Eurographics 2022); and `rcsm`, relaxed cone stepping

@@ -14,10 +14,11 @@
 #include "Rebuild.h"
 #include "Report.h"
 #include "SceneOptions.h"
-#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
+#include "microrelief/core/base/BaseType.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/io/HeightMapFile.h"
 
 using namespace microrelief;
@@ -209,13 +210,8 @@ int main(int argc, char** argv) {
         if (options.viewDegrees.empty()) throwBadInput("--views names no view");
         parseSizeFlag(size, options.width, options.height);
         options.methods = parseList(methodList, "--method", "--methods", parseMethod);
-        options.bases = parseList(baseList, "--base", "--bases", [](const std::string& name) {
-            const BaseKind kind = parseBaseKind(name);
-            return kind == BaseKind::Cylinder ? BaseShape::cylinder()
-                   : kind == BaseKind::Ellipsoid
-                       ? name == "sphere" ? BaseShape::sphere() : BaseShape::ellipsoid()
-                       : BaseShape::plane();
-        });
+        options.bases = parseList(baseList, "--base", "--bases",
+                                  [](const std::string& name) { return baseType(name).defaults; });
         options.interpolations =
             parseList(interpolationList, "--interpolation", "--interpolations", parseInterpolation);
         if (options.bases.empty())

@@ -5,30 +5,11 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/gl/ShaderProgram.h"
 #include "microrelief/gl/StateGuard.h"
 
 namespace microrelief {
-
-glm::dvec3 surfacePoint(const BaseShape& base, int width, int height, double heightScale,
-                        const glm::dvec2& mapPoint, double h) {
-    const double u = mapPoint.x / width, v = mapPoint.y / height;
-    if (!base.curved()) {
-        const double side = std::max(width, height);
-        return {(u - 0.5) * width / side, heightScale * h, (v - 0.5) * height / side};
-    }
-    const double pi = 3.14159265358979323846;
-    const double phi = 2.0 * pi * (u - 0.5), radius = 1.0 + heightScale * h;
-    glm::dvec3 q;
-    if (base.kind == BaseKind::Cylinder) {
-        q = {radius * std::sin(phi), 1.0 - 2.0 * v, radius * std::cos(phi)};
-    } else {
-        const double theta = pi * v;
-        q = radius * glm::dvec3(std::sin(theta) * std::sin(phi), std::cos(theta),
-                                std::sin(theta) * std::cos(phi));
-    }
-    return q * base.frameScale();
-}
 
 std::vector<glm::vec3> footprintRing(const HeightMap& map, const BaseShape& base,
                                      Interpolation interpolation, double heightScale,
@@ -44,8 +25,8 @@ std::vector<glm::vec3> footprintRing(const HeightMap& map, const BaseShape& base
         p.x = base.wrapsU() ? p.x - map.width * std::floor(p.x / map.width)
                             : std::clamp(p.x, 0.0, static_cast<double>(map.width));
         const double h = map.surface(p.x, p.y, base.wrapsU(), interpolation);
-        ring.push_back(glm::vec3(
-            model.pointToWorld(surfacePoint(base, map.width, map.height, heightScale, p, h))));
+        ring.push_back(glm::vec3(model.pointToWorld(
+            baseType(base).objectPoint(base, map.width, map.height, heightScale, p, h))));
     }
     return ring;
 }

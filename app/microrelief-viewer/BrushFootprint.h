@@ -17,13 +17,6 @@
 
 namespace microrelief {
 
-// The object-space point of map point (X, Y) (texels) at height h (map units) over `base`
-// (scene-and-cli.md): on the plane ((X / W - 1/2) a, s h, (Y / H - 1/2) b); on a curved
-// base the canonical point at radius 1 + s h in the direction of (u, v), scaled by the
-// frame.
-glm::dvec3 surfacePoint(const BaseShape& base, int width, int height, double heightScale,
-                        const glm::dvec2& mapPoint, double h);
-
 // The ring's world points: `count` points on the circle of `radius` texels round `centre`
 // (map texels), on `map`'s surface.
 std::vector<glm::vec3> footprintRing(const HeightMap& map, const BaseShape& base,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief {
@@ -39,37 +40,37 @@ namespace {
 
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
 
-// The base surface the map is laid over, and its size. A new base starts at the sizes
-// microrelief-render gives it by default.
+// The base surface the map is laid over, and its sizes, as the table of bases lists them
+// (core/base/BaseType.h). A base picked from the list starts at its example sizes.
 void baseControls(BaseShape& base, PanelActions& actions) {
-    const char* names[] = {"plane", "cylinder", "ellipsoid", "sphere"};
-    const std::string name = baseName(base);
-    int index = static_cast<int>(std::find(names, names + 4, name) - names);
-    if (ImGui::Combo("Base surface", &index, names, IM_ARRAYSIZE(names))) {
-        base = index == 1   ? BaseShape::cylinder()
-               : index == 2 ? BaseShape::ellipsoid({0.5, 0.35, 0.4})
-               : index == 3 ? BaseShape::sphere()
-                            : BaseShape::plane();
+    const std::vector<BaseType>& types = baseTypes();
+    std::vector<const char*> names;
+    for (const BaseType& type : types) names.push_back(type.name);
+    const BaseType& current = baseType(base);
+    int index = static_cast<int>(&current - types.data());
+    if (ImGui::Combo("Base surface", &index, names.data(), static_cast<int>(names.size()))) {
+        base = types[static_cast<std::size_t>(index)].example;
         actions.baseKindChanged = actions.baseChanged = true;
+        return;
     }
-    const auto size = [&](const char* label, double& value) {
-        float v = static_cast<float>(value);
-        if (ImGui::SliderFloat(label, &v, 0.05f, 2.0f, "%.3f", ImGuiSliderFlags_Logarithmic)) {
-            value = std::max(v, 0.01f);
+    for (const BaseSize& size : current.sizes) {
+        double numbers[3];
+        size.read(base, numbers);
+        bool changed = false;
+        for (int i = 0; i < size.count; ++i) {
+            const std::string label =
+                size.label + std::string(size.count == 3 ? std::string(" ") + "xyz"[i] : "");
+            float v = static_cast<float>(numbers[i]);
+            if (ImGui::SliderFloat(label.c_str(), &v, 0.05f, 2.0f, "%.3f",
+                                   ImGuiSliderFlags_Logarithmic)) {
+                numbers[i] = std::max(v, 0.01f);
+                changed = true;
+            }
+        }
+        if (changed) {
+            size.write(base, numbers);
             actions.baseChanged = true;
         }
-    };
-    if (base.kind == BaseKind::Cylinder) {
-        size("Radius", base.radius);
-        size("Length", base.length);
-    } else if (name == "sphere") {
-        double radius = base.radii.x;
-        size("Radius", radius);
-        base.radii = glm::dvec3(radius);
-    } else if (base.kind == BaseKind::Ellipsoid) {
-        size("Radius x", base.radii.x);
-        size("Radius y", base.radii.y);
-        size("Radius z", base.radii.z);
     }
 }
 

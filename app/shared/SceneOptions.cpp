@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/core/scene/Scene.h"
 
@@ -33,9 +35,6 @@ constexpr FieldFlag kFieldFlags[] = {
     {"heightScale", "--height-scale"},
     {"interpolation", "--interpolation"},
     {"base", "--base"},
-    {"base.radius", "--radius"},
-    {"base.length", "--length"},
-    {"base.radii", "--radii"},
     {"tiles", "--tile"},
     {"animation", "--animate"},
     {"time", "--time"},
@@ -56,11 +55,30 @@ constexpr FieldFlag kFieldFlags[] = {
     {"background", "--background"},
 };
 
-// The flag of a field in the table (a programming error when there is none).
-const char* flag(const char* field) {
+// A base size's flag, from its field in the table of bases (core/base/BaseType.h):
+// "base.radius" is --radius, "base.minorRadius" would be --minor-radius. Empty for a field
+// that is not a base size.
+std::string baseSizeFlag(std::string_view field) {
+    const auto& sizes = baseSizeFields();
+    if (std::find(sizes.begin(), sizes.end(), field) == sizes.end()) return {};
+    std::string flag = "--";
+    for (char c : field.substr(field.find('.') + 1)) {
+        if (std::isupper(static_cast<unsigned char>(c))) {
+            flag += '-';
+            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        }
+        flag += c;
+    }
+    return flag;
+}
+
+// The flag of a field (a programming error when there is none).
+std::string flag(std::string_view field) {
     for (const FieldFlag& f : kFieldFlags)
-        if (std::string_view(f.field) == field) return f.flag;
-    std::abort();
+        if (f.field == field) return f.flag;
+    std::string size = baseSizeFlag(field);
+    if (size.empty()) std::abort();
+    return size;
 }
 
 }  // namespace
@@ -68,7 +86,8 @@ const char* flag(const char* field) {
 std::string flagName(const std::string& field) {
     for (const FieldFlag& f : kFieldFlags)
         if (field == f.field) return f.flag;
-    return field;
+    const std::string size = baseSizeFlag(field);
+    return size.empty() ? field : size;
 }
 
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
@@ -155,6 +174,15 @@ std::string exactVector(const glm::vec3& v) {
     return exactText(v.x) + ',' + exactText(v.y) + ',' + exactText(v.z);
 }
 
+// A base size's numbers as its flag takes them, exactly: "0.3", or "0.5,0.35,0.4".
+std::string sizeText(const BaseSize& size, const BaseShape& shape) {
+    double numbers[3];
+    size.read(shape, numbers);
+    std::string text;
+    for (int i = 0; i < size.count; ++i) text += (i ? "," : "") + exactText(numbers[i]);
+    return text;
+}
+
 }  // namespace
 
 std::string exactNumber(double value) {
@@ -183,14 +211,8 @@ SceneFlags::SceneFlags(RenderJob& job, bool withAlbedo)
     if (job.albedo.kind == AlbedoSource::Kind::File) albedo_ = job.albedo.file.string();
     if (job.albedo.kind == AlbedoSource::Kind::None) albedo_ = "none";
     base_ = baseName(job.base);
-    if (job.base.kind == BaseKind::Cylinder) {
-        radius_ = job.base.radius;
-        length_ = job.base.length;
-    } else if (base_ == "sphere") {
-        radius_ = job.base.radii.x;
-    } else if (job.base.kind == BaseKind::Ellipsoid) {
-        radii_ = exactVector(job.base.radii);
-    }
+    for (const BaseSize& size : baseType(job.base).sizes)
+        sizes_[size.field] = sizeText(size, job.base);
     interpolation_ = interpolationName(job.interpolation);
     if (job.tiles != glm::ivec2(1, 1))
         tile_ = std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y);
@@ -225,14 +247,28 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
                    "The last level: bilinear, or biquadratic (the quadratic B-spline of the "
                    "samples: smooth)")
         ->capture_default_str();
-    app.add_option(flag("base"), base_,
-                   "Base surface the map is laid over: plane, cylinder (axis y), ellipsoid or "
-                   "sphere (u wraps around the y axis)")
-        ->capture_default_str();
-    app.add_option(flag("base.radius"), radius_,
-                   "Cylinder radius (default 0.3) or sphere radius (default 0.5), world units");
-    app.add_option(flag("base.length"), length_, "Cylinder length along y (default 1), world units");
-    app.add_option(flag("base.radii"), radii_, "Ellipsoid radii A,B,C along x, y, z (default 0.5,0.5,0.5)");
+    std::string bases =
+        "Base surface the map is laid over (u wraps around a curved base's y axis):";
+    for (const BaseType& type : baseTypes())
+        bases += std::string(&type == &baseTypes().front() ? " " : ", ") + type.name + " (" +
+                 type.summary + ")";
+    app.add_option(flag("base"), base_, bases)->capture_default_str();
+    for (const std::string& field : baseSizeFields()) {
+        // "Radius of the cylinder (default 0.3) or the sphere (default 0.5), world units"
+        std::string help;
+        for (const BaseType& type : baseTypes()) {
+            for (const BaseSize& size : type.sizes) {
+                if (size.field != field) continue;
+                if (help.empty())
+                    help = std::string(size.label) + (size.count == 3 ? " x,y,z" : "") + " of the ";
+                else
+                    help += " or the ";
+                help += std::string(type.name) + " (default " + sizeText(size, type.defaults) + ")";
+            }
+        }
+        app.add_option(flag(field), sizes_[field], help + ", world units")
+            ->type_name(help.find("x,y,z") == std::string::npos ? "FLOAT" : "TEXT");
+    }
     app.add_option(
         flag("tiles"), tile_,
         "Repeat the map N,M times across the base (N around a curved base), as the N x M "
@@ -292,42 +328,27 @@ void SceneFlags::addShading(CLI::App& app) {
 
 namespace {
 
-// The --base flags into a shape: each size flag only where its base has that size, each
-// size positive and finite.
-BaseShape parseBase(const std::string& name, const std::optional<double>& radius,
-                    const std::optional<double>& length, const std::string& radii) {
-    const BaseKind kind = parseBaseKind(name);
-    const bool sphere = name == "sphere";
-    const auto refuse = [&](const char* flag) {
-        throwBadInput(std::string(flag) + " does not apply to --base " + name);
-    };
-    for (const auto& [flag, value] :
-         {std::pair{"--radius", radius}, std::pair{"--length", length}}) {
-        if (value && !(*value > 0.0 && std::isfinite(*value)))
-            throwBadInput(std::string(flag) + " must be a positive finite number");
-    }
-    BaseShape shape;
-    switch (kind) {
-        case BaseKind::Plane:
-            if (radius) refuse("--radius");
-            if (length) refuse("--length");
-            if (!radii.empty()) refuse("--radii");
-            return shape;
-        case BaseKind::Cylinder:
-            if (!radii.empty()) refuse("--radii");
-            shape = BaseShape::cylinder(radius.value_or(0.3), length.value_or(1.0));
-            break;
-        case BaseKind::Ellipsoid:
-            if (length) refuse("--length");
-            if (sphere) {
-                if (!radii.empty()) refuse("--radii");
-                shape = BaseShape::sphere(radius.value_or(0.5));
-            } else {
-                if (radius) refuse("--radius");
-                shape = BaseShape::ellipsoid(radii.empty() ? glm::dvec3(0.5)
-                                                           : parseVectorFlag("--radii", radii));
-            }
-            break;
+// The --base flags into a shape: the named base's defaults, each size flag given only where
+// that base has the size, each number positive and finite.
+BaseShape parseBase(const std::string& name, const std::map<std::string, std::string>& sizes) {
+    const BaseType& type = baseType(name);
+    BaseShape shape = type.defaults;
+    for (const auto& [field, text] : sizes) {
+        if (text.empty()) continue;
+        const std::string flagText = flag(field);
+        const auto size = std::find_if(type.sizes.begin(), type.sizes.end(),
+                                       [&](const BaseSize& s) { return s.field == field; });
+        if (size == type.sizes.end()) throwBadInput(flagText + " does not apply to --base " + name);
+        std::vector<double> numbers;
+        if (size->count == 3) {
+            const glm::dvec3 v = parseVectorFlag(flagText, text);
+            numbers = {v.x, v.y, v.z};
+        } else {
+            numbers = parseNumberList(flagText, text, 1, "a number");
+        }
+        for (double number : numbers)
+            if (!(number > 0.0)) throwBadInput(flagText + " must be a positive finite number");
+        size->write(shape, numbers.data());
     }
     validateBaseShape(shape);
     return shape;
@@ -355,7 +376,7 @@ void SceneFlags::apply() {
         job_.albedo = albedo_ == "none" ? AlbedoSource{AlbedoSource::Kind::None, {}}
                                         : AlbedoSource{AlbedoSource::Kind::File, albedo_};
     }
-    job_.base = parseBase(base_, radius_, length_, radii_);
+    job_.base = parseBase(base_, sizes_);
     job_.interpolation = parseInterpolation(interpolation_);
     if (!tile_.empty()) job_.tiles = parseTiles(tile_);
     if (!animate_.empty()) job_.animation = animate_;
@@ -450,17 +471,15 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
         add("interpolation", interpolationName(job.interpolation));
     if (job.tiles != glm::ivec2(1, 1))
         add("tiles", std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y));
-    const std::string base = baseName(job.base);
-    if (job.base.kind == BaseKind::Cylinder) {
-        add("base", base);
-        add("base.radius", exactText(job.base.radius));
-        add("base.length", exactText(job.base.length));
-    } else if (base == "sphere") {
-        add("base", base);
-        add("base.radius", exactText(job.base.radii.x));
-    } else if (job.base.kind == BaseKind::Ellipsoid) {
-        add("base", base);
-        assign("base.radii", exactVector(job.base.radii));
+    const BaseType& base = baseType(job.base);
+    if (&base != &baseTypes().front()) {  // the default base goes without saying
+        add("base", base.name);
+        for (const BaseSize& size : base.sizes) {
+            if (size.count == 1)
+                add(size.field, sizeText(size, job.base));
+            else
+                assign(size.field, sizeText(size, job.base));
+        }
     }
     if (!job.animation.empty()) {
         add("animation", job.animation);

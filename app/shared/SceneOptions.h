@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,8 +58,9 @@ private:
     bool withAlbedo_;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
     std::string lightPosition_, shadows_ = "off", albedo_;
-    std::string base_ = "plane", radii_, interpolation_ = "bilinear", model_, tile_;
-    std::optional<double> radius_, length_, time_;
+    std::string base_ = "plane", interpolation_ = "bilinear", model_, tile_;
+    std::map<std::string, std::string> sizes_;  // the base's size fields' text, by field
+    std::optional<double> time_;
     std::string animate_;
 };
 

@@ -4,8 +4,9 @@
 // with MICRORELIEF_BASE (relief_map.glsl), and this file includes the one file that
 // defines it: 0 the plane (base_plane.glsl), 1 a cylinder (base_cylinder.glsl), 2 an
 // ellipsoid (base_ellipsoid.glsl). The C++ mirror is include/microrelief/core/base/BaseSurface.h,
-// one class per base. A new base is a file of its own here that defines the set below, a
-// line in the choice, and its C++ twin.
+// one class per base, each with its row in the table of bases (core/base/BaseType.h). A new
+// base is a file of its own here that defines the set below, a line in the choice, and its
+// C++ file (docs/bases.md, "Adding a base").
 //
 // The tracers work in the base's frame, where the ray is a straight line o + t d with the
 // world's t (mr_baseFramePoint, mr_baseFrameVector). Every base file defines the same set:

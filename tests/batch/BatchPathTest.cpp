@@ -21,8 +21,9 @@
 #include "Progress.h"
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/io/ImageFile.h"
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/Scene.h"
+#include "microrelief/io/ImageFile.h"
 
 using namespace microrelief;
 
@@ -521,12 +522,17 @@ TEST(CameraFile, CameraFlagsAreExact) {
 // A message of the library names scene fields; microrelief-render prints each as its flag.
 // Every field has one but the samples in memory, which only a library user can give.
 TEST(SceneFlags, EveryFieldAMessageMayNameHasAFlag) {
-    for (const std::string& field : sceneFields()) {
+    std::vector<std::string> fields = sceneFields();
+    for (const std::string& size : baseSizeFields()) fields.push_back(size);
+    for (const std::string& field : fields) {
         if (field == "map.samples") continue;
         EXPECT_EQ(flagName(field).rfind("--", 0), 0u) << field << " has no flag";
     }
     EXPECT_EQ(Error(ErrorKind::BadInput, "{camera.eye} and {camera.target} must differ").message(flagName),
               "--eye and --target must differ");
+    // A base's sizes take their flags from their fields (the table of bases).
+    EXPECT_EQ(Error(ErrorKind::BadInput, "{base.radius} and {base.radii}").message(flagName),
+              "--radius and --radii");
 }
 
 // ---- CSV, manifest, progress ----

@@ -6,10 +6,13 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "TestSupport.h"
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/gl/ShaderSource.h"
 
 using namespace microrelief;
@@ -280,12 +283,40 @@ TEST(GlslLibrary, AppShadersCompileAsGlsl330And400AndEs300) {
     }
 }
 
-// Every base surface and last level the renderer builds (MICRORELIEF_BASE 0..2,
+// Each row of the table of bases (core/base/BaseType.h) names the file base_surface.glsl
+// chooses for its kind: `#if`/`#elif MICRORELIEF_BASE == kind` then its #include, or the
+// `#else` branch's for a kind the choice does not list.
+TEST(GlslLibrary, EveryBaseRowsFileIsTheChoiceForItsKind) {
+    const std::string text = readText(kShaders / "microrelief" / "base_surface.glsl");
+    const std::regex branch(
+        "#\\s*(?:el)?if\\s+MICRORELIEF_BASE\\s*==\\s*(\\d+)\\s*\\n\\s*#\\s*include\\s+\"([^\"]+)"
+        "\"");
+    const std::regex otherwise("#\\s*else\\s*\\n\\s*#\\s*include\\s+\"(base_[^\"]+)\"");
+    std::map<int, std::string> chosen;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), branch);
+         it != std::sregex_iterator(); ++it)
+        chosen[std::stoi((*it)[1])] = (*it)[2];
+    std::smatch fallback;
+    ASSERT_TRUE(std::regex_search(text, fallback, otherwise))
+        << "base_surface.glsl has no #else base";
+    for (const BaseType& type : baseTypes()) {
+        const int kind = static_cast<int>(type.kind);
+        const std::string file = chosen.count(kind) ? chosen[kind] : fallback[1].str();
+        EXPECT_EQ(file, type.shaderFile) << type.name << " (MICRORELIEF_BASE " << kind
+                                         << "): base_surface.glsl chooses " << file;
+        EXPECT_TRUE(std::filesystem::is_regular_file(kShaders / "microrelief" / type.shaderFile))
+            << type.shaderFile;
+    }
+}
+
+// Every base surface of the table and last level the renderer builds (MICRORELIEF_BASE,
 // MICRORELIEF_INTERPOLATION 0..1): the app's fragment shader as 3.30 and 4.00, and the
 // library's entry point as an engine or a browser would include it, as ES 3.00.
 TEST(GlslLibrary, EveryBaseAndInterpolationCompiles) {
     test::ScratchDir dir;
-    for (int base = 0; base <= 2; ++base) {
+    std::set<int> kinds;
+    for (const BaseType& type : baseTypes()) kinds.insert(static_cast<int>(type.kind));
+    for (int base : kinds) {
         for (int interpolation = 0; interpolation <= 1; ++interpolation) {
             const std::vector<ShaderDefine> defines = {
                 {"MICRORELIEF_BASE", std::to_string(base)},

@@ -10,23 +10,6 @@
 
 namespace microrelief {
 
-std::unique_ptr<BaseSurface> makePlaneSurface(const BaseShape&, int, int, double, double);
-std::unique_ptr<BaseSurface> makeCylinderSurface(const BaseShape&, int, int, double, double);
-std::unique_ptr<BaseSurface> makeEllipsoidSurface(const BaseShape&, int, int, double, double);
-
-std::unique_ptr<BaseSurface> BaseSurface::make(const BaseShape& shape, int mapWidth, int mapHeight,
-                                               double heightScale, double maxHeight) {
-    switch (shape.kind) {
-        case BaseKind::Cylinder:
-            return makeCylinderSurface(shape, mapWidth, mapHeight, heightScale, maxHeight);
-        case BaseKind::Ellipsoid:
-            return makeEllipsoidSurface(shape, mapWidth, mapHeight, heightScale, maxHeight);
-        case BaseKind::Plane:
-            break;
-    }
-    return makePlaneSurface(shape, mapWidth, mapHeight, heightScale, maxHeight);
-}
-
 FrameRay CurvedSurface::frameRay(const Ray& world) const {
     const glm::dvec3 scale = shape_.frameScale();
     return {world.origin / scale, world.direction / scale};

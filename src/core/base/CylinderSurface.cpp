@@ -5,6 +5,7 @@
 
 #include "core/base/CurvedCommon.h"
 #include "microrelief/core/base/BaseSurface.h"
+#include "microrelief/core/base/BaseType.h"
 
 namespace microrelief {
 
@@ -87,9 +88,59 @@ public:
 
 }  // namespace
 
-std::unique_ptr<BaseSurface> makeCylinderSurface(const BaseShape& shape, int w, int h, double s,
-                                                 double maxHeight) {
-    return std::make_unique<CylinderSurface>(shape, w, h, s, maxHeight);
+// The cylinder's row of the table of bases (core/base/BaseType.h): radius R and length L,
+// the frame (R, L/2, R).
+BaseType cylinderBaseType() {
+    return {
+        .name = "cylinder",
+        .kind = BaseKind::Cylinder,
+        .shaderFile = "base_cylinder.glsl",
+        .summary = "a column about the y axis with flat caps",
+        .sizes = {{"base.radius", "Radius", 1,
+                   [](const BaseShape& b, double* n) { n[0] = b.radius; },
+                   [](BaseShape& b, const double* n) { b.radius = n[0]; }},
+                  {"base.length", "Length", 1,
+                   [](const BaseShape& b, double* n) { n[0] = b.length; },
+                   [](BaseShape& b, const double* n) { b.length = n[0]; }}},
+        .defaults = BaseShape::cylinder(),
+        .example = BaseShape::cylinder(),
+        .names = nullptr,
+        .frameScale =
+            [](const BaseShape& b) { return glm::dvec3(b.radius, 0.5 * b.length, b.radius); },
+        // The column of the shell's radius 1 + top between the caps.
+        .boxMax =
+            [](const BaseShape& b, int, int, double top) {
+                return glm::dvec3(b.radius, 0.5 * b.length, b.radius) *
+                       glm::dvec3(1.0 + top, 1.0, 1.0 + top);
+            },
+        .boxIsSymmetric = true,
+        // The geometric mean of a texel's sides on the base: 2 pi R / W around, L / H along.
+        .texelSize = [](const BaseShape& b, int w,
+                        int h) { return std::sqrt(2.0 * kPi * b.radius / w * b.length / h); },
+        // Around the axis W texels span 2 pi at radius 1, along it H texels span 2 units.
+        .texelsPerFrameUnit = [](int w, int h) { return std::max(w / (2.0 * kPi), 0.5 * h); },
+        // The frame normal r w - (s W / 2 pi) gx e_phi - (s H / 2) gy e_y, at most
+        // r (1 + along) + around (base_cylinder.glsl, mr_baseTopNormal).
+        .objectNormalRange =
+            [](const BaseShape& b, int w, int h, double s, double maxHeight) {
+                const double g = maxHeight, r = 1.0 + s * maxHeight;
+                const double around = s * w / (2.0 * kPi) * g, along = s * h / 2.0 * g;
+                return curved::objectNormalRange(glm::dvec3(b.radius, 0.5 * b.length, b.radius),
+                                                 r * (1.0 + along) + around);
+            },
+        .objectPoint =
+            [](const BaseShape& b, int w, int h, double s, const glm::dvec2& mapPoint,
+               double height) {
+                const double phi = curved::angleOf(mapPoint.x, w), radius = 1.0 + s * height;
+                const glm::dvec3 q(radius * std::sin(phi), 1.0 - 2.0 * (mapPoint.y / h),
+                                   radius * std::cos(phi));
+                return q * glm::dvec3(b.radius, 0.5 * b.length, b.radius);
+            },
+        .makeSurface = [](const BaseShape& shape, int w, int h, double s,
+                          double maxHeight) -> std::unique_ptr<BaseSurface> {
+            return std::make_unique<CylinderSurface>(shape, w, h, s, maxHeight);
+        },
+    };
 }
 
 }  // namespace microrelief

@@ -5,6 +5,7 @@
 
 #include "core/base/CurvedCommon.h"
 #include "microrelief/core/base/BaseSurface.h"
+#include "microrelief/core/base/BaseType.h"
 
 namespace microrelief {
 
@@ -121,11 +122,80 @@ public:
     glm::dvec3 faceNormal(ShellFace, const FrameRay&) const override { return {0.0, 1.0, 0.0}; }
 };
 
+// The row of an ellipsoid of radii A, B, C (the frame's scale), named `name`, with `sizes`.
+BaseType ellipsoidRow(const char* name, const char* summary, std::vector<BaseSize> sizes,
+                      const BaseShape& defaults, const BaseShape& example) {
+    return {
+        .name = name,
+        .kind = BaseKind::Ellipsoid,
+        .shaderFile = "base_ellipsoid.glsl",
+        .summary = summary,
+        .sizes = std::move(sizes),
+        .defaults = defaults,
+        .example = example,
+        .names = nullptr,
+        .frameScale = [](const BaseShape& b) { return b.radii; },
+        // The ball of the shell's radius 1 + top.
+        .boxMax = [](const BaseShape& b, int, int, double top) { return b.radii * (1.0 + top); },
+        .boxIsSymmetric = true,
+        // The geometric mean of a texel's sides on the sphere of the mean radius r:
+        // 2 pi r / W around the equator, pi r / H along a meridian.
+        .texelSize =
+            [](const BaseShape& b, int w, int h) {
+                const double r = (b.radii.x + b.radii.y + b.radii.z) / 3.0;
+                return std::sqrt(2.0 * kPi * r / w * kPi * r / h);
+            },
+        // Around the axis W texels span 2 pi at radius 1, along it H texels pi radians.
+        .texelsPerFrameUnit = [](int w, int h) { return std::max(w / (2.0 * kPi), h / kPi); },
+        // The frame normal r w - (s H / pi) gy e_theta - (s W / 2 pi) gx e_phi / sin theta,
+        // at most its parts' sum with sin theta >= 1e-6 (base_ellipsoid.glsl).
+        .objectNormalRange =
+            [](const BaseShape& b, int w, int h, double s, double maxHeight) {
+                const double g = maxHeight, r = 1.0 + s * maxHeight;
+                const double around = s * w / (2.0 * kPi) * g, along = s * h / kPi * g;
+                return curved::objectNormalRange(b.radii, r + along + around * 1e6);
+            },
+        .objectPoint =
+            [](const BaseShape& b, int w, int h, double s, const glm::dvec2& mapPoint,
+               double height) {
+                const double phi = curved::angleOf(mapPoint.x, w), radius = 1.0 + s * height;
+                const double theta = kPi * (mapPoint.y / h);
+                const glm::dvec3 q =
+                    radius * glm::dvec3(std::sin(theta) * std::sin(phi), std::cos(theta),
+                                        std::sin(theta) * std::cos(phi));
+                return q * b.radii;
+            },
+        .makeSurface = [](const BaseShape& shape, int w, int h, double s,
+                          double maxHeight) -> std::unique_ptr<BaseSurface> {
+            return std::make_unique<EllipsoidSurface>(shape, w, h, s, maxHeight);
+        },
+    };
+}
+
 }  // namespace
 
-std::unique_ptr<BaseSurface> makeEllipsoidSurface(const BaseShape& shape, int w, int h, double s,
-                                                  double maxHeight) {
-    return std::make_unique<EllipsoidSurface>(shape, w, h, s, maxHeight);
+// The ellipsoid's row of the table of bases (core/base/BaseType.h): radii A, B, C.
+BaseType ellipsoidBaseType() {
+    return ellipsoidRow("ellipsoid", "the ellipsoid of radii A, B, C about the origin",
+                        {{"base.radii", "Radius", 3,
+                          [](const BaseShape& b, double* n) {
+                              for (int axis = 0; axis < 3; ++axis) n[axis] = b.radii[axis];
+                          },
+                          [](BaseShape& b, const double* n) {
+                              b.radii = {n[0], n[1], n[2]};
+                          }}},
+                        BaseShape::ellipsoid(), BaseShape::ellipsoid({0.5, 0.35, 0.4}));
+}
+
+// The sphere's: the ellipsoid with equal radii, sized by one radius.
+BaseType sphereBaseType() {
+    BaseType row = ellipsoidRow(
+        "sphere", "the ellipsoid with equal radii",
+        {{"base.radius", "Radius", 1, [](const BaseShape& b, double* n) { n[0] = b.radii.x; },
+          [](BaseShape& b, const double* n) { b.radii = glm::dvec3(n[0]); }}},
+        BaseShape::sphere(), BaseShape::sphere());
+    row.names = [](const BaseShape& b) { return b.radii.x == b.radii.y && b.radii.y == b.radii.z; };
+    return row;
 }
 
 }  // namespace microrelief

@@ -3,9 +3,11 @@
 // footprint is the rectangle of its ends and its lowest height the lower end.
 // shaders/microrelief/base_plane.glsl is the shader's copy.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "microrelief/core/base/BaseSurface.h"
+#include "microrelief/core/base/BaseType.h"
 
 namespace microrelief {
 
@@ -106,9 +108,48 @@ public:
 
 }  // namespace
 
-std::unique_ptr<BaseSurface> makePlaneSurface(const BaseShape& shape, int w, int h, double s,
-                                              double maxHeight) {
-    return std::make_unique<PlaneSurface>(shape, w, h, s, maxHeight);
+// The plane's row of the table of bases (core/base/BaseType.h). Its frame is the world's,
+// the map's longer side one unit: T = max(W, H) texels a unit.
+BaseType planeBaseType() {
+    return {
+        .name = "plane",
+        .kind = BaseKind::Plane,
+        .shaderFile = "base_plane.glsl",
+        .summary = "the plane y = 0, the map's longer side one unit",
+        .sizes = {},
+        .defaults = BaseShape::plane(),
+        .example = BaseShape::plane(),
+        .names = nullptr,
+        .frameScale = [](const BaseShape&) { return glm::dvec3(1.0); },
+        // From y = 0 (the base) to the top, over the map's rectangle.
+        .boxMax =
+            [](const BaseShape&, int w, int h, double top) {
+                const double longer = std::max(w, h);
+                return glm::dvec3(0.5 * w / longer, top, 0.5 * h / longer);
+            },
+        .boxIsSymmetric = false,
+        .texelSize = [](const BaseShape&, int w, int h) { return 1.0 / std::max(w, h); },
+        .texelsPerFrameUnit = [](int w, int h) { return double(std::max(w, h)); },
+        // Top (-gx T, 1 / s, -gy T) with |g| <= max h a texel along each axis; walls T and
+        // the bottom 1 / s along one axis (base_plane.glsl, mr_baseObjectNormal).
+        .objectNormalRange =
+            [](const BaseShape&, int w, int h, double s, double maxHeight) {
+                const double t = std::max(w, h);
+                return std::pair{std::min(t, 1.0 / s),
+                                 std::max(std::sqrt(2.0) * maxHeight * t + 1.0 / s, t)};
+            },
+        .objectPoint =
+            [](const BaseShape&, int w, int h, double s, const glm::dvec2& mapPoint,
+               double height) {
+                const double side = std::max(w, h);
+                return glm::dvec3((mapPoint.x / w - 0.5) * w / side, s * height,
+                                  (mapPoint.y / h - 0.5) * h / side);
+            },
+        .makeSurface = [](const BaseShape& shape, int w, int h, double s,
+                          double maxHeight) -> std::unique_ptr<BaseSurface> {
+            return std::make_unique<PlaneSurface>(shape, w, h, s, maxHeight);
+        },
+    };
 }
 
 }  // namespace microrelief

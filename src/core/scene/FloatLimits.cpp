@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/base/BaseType.h"
 
 namespace microrelief {
 
@@ -18,63 +19,17 @@ std::string number(double value) {
     return text.str();
 }
 
+// The base as the scene's fields give it: "{base} cylinder {base.radius} 0.3 {base.length} 1".
 std::string baseFlags(const BaseShape& base) {
-    switch (base.kind) {
-        case BaseKind::Cylinder:
-            return "{base} cylinder {base.radius} " + number(base.radius) + " {base.length} " +
-                   number(base.length);
-        case BaseKind::Ellipsoid:
-            return "{base} ellipsoid {base.radii} " + number(base.radii.x) + "," + number(base.radii.y) +
-                   "," + number(base.radii.z);
-        case BaseKind::Plane:
-            break;
+    const BaseType& type = baseType(base);
+    std::string text = std::string("{base} ") + type.name;
+    for (const BaseSize& size : type.sizes) {
+        double numbers[3];
+        size.read(base, numbers);
+        text += std::string(" {") + size.field + "} ";
+        for (int i = 0; i < size.count; ++i) text += (i ? "," : "") + number(numbers[i]);
     }
-    return "{base} plane";
-}
-
-// Texels per unit of the base's frame, the most over its axes: on the plane the map's
-// longer side spans one unit; on a curved base, around the axis W texels span 2 pi at
-// radius 1, and along it H texels span the cylinder's 2 frame units or the ellipsoid's pi
-// radians of latitude.
-double texelsPerFrameUnit(const MapExtent& map, const BaseShape& base) {
-    const double around = map.width / (2.0 * std::numbers::pi);
-    switch (base.kind) {
-        case BaseKind::Cylinder:
-            return std::max(around, 0.5 * map.height);
-        case BaseKind::Ellipsoid:
-            return std::max(around, map.height / std::numbers::pi);
-        case BaseKind::Plane:
-            break;
-    }
-    return std::max(map.width, map.height);
-}
-
-// The least and the most length of the (not unit) object-space normals the shader
-// makes (mr_baseTopNormal, mr_baseFaceNormal, then the frame's inverse transpose).
-// G bounds the gradient in map units per texel: the samples lie in [0, max h], so a
-// bilinear cell's slope, and the quadratic B-spline's (a linear spline of the samples'
-// differences), is at most max h a texel.
-std::pair<double, double> objectNormalRange(const MapExtent& map, double s, const BaseShape& base) {
-    const double g = map.maxHeight;
-    if (base.kind == BaseKind::Plane) {
-        // Top (-gx T, 1 / s, -gy T); walls T and the bottom 1 / s along one axis
-        // (base_plane.glsl, mr_baseObjectNormal).
-        const double t = std::max(map.width, map.height);
-        return {std::min(t, 1.0 / s), std::max(std::sqrt(2.0) * g * t + 1.0 / s, t)};
-    }
-    // The frame normal r w - (s W / 2 pi) gx e_phi / sin - (s H / pi or H / 2) gy ...:
-    // at least r >= 1 (its radial part; the caps' normals are unit), at most its parts'
-    // sum, the ellipsoid's e_phi term divided by sin theta >= 1e-6 (base_ellipsoid.glsl).
-    const double r = 1.0 + s * map.maxHeight;
-    const double around = s * map.width / (2.0 * std::numbers::pi) * g;
-    const double along =
-        s * map.height / (base.kind == BaseKind::Cylinder ? 2.0 : std::numbers::pi) * g;
-    const double frameMax =
-        base.kind == BaseKind::Cylinder ? r * (1.0 + along) + around : r + along + around * 1e6;
-    const glm::dvec3 scale = base.frameScale();  // object = frame * scale
-    const double least = std::min({scale.x, scale.y, scale.z});
-    const double most = std::max({scale.x, scale.y, scale.z});
-    return {1.0 / most, frameMax / least};
+    return text;
 }
 
 }  // namespace
@@ -84,8 +39,10 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
                       const std::string& source) {
     const double maxHeight = map.maxHeight;  // map units, >= 0 (prepareHeights)
     const double top = heightScale * maxHeight;
+    const BaseType& type = baseType(base);
     const bool plane = base.kind == BaseKind::Plane;
-    const double texelsPerUnit = texelsPerFrameUnit(map, base);
+    // Texels per unit of the base's frame, the most over its axes.
+    const double texelsPerUnit = type.texelsPerFrameUnit(map.width, map.height);
 
     // 1. The relief's box in world units: corners, depth range and AOV are floats. On a
     //    curved base s is a fraction of the radius; the same bound keeps the frame's
@@ -160,7 +117,8 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
     //    least: a relief shrunk by 1e-20 overflows, one grown by 1e20 underflows (shaded
     //    black or NaN), each without an error of its own.
     {
-        const auto [least, most] = objectNormalRange(map, heightScale, base);
+        const auto [least, most] =
+            type.objectNormalRange(base, map.width, map.height, heightScale, map.maxHeight);
         const double longestNormal = most / model.smallestScale();
         const double shortestNormal = least / model.largestScale();
         const double limit = std::ldexp(1.0, 62);

@@ -1,0 +1,91 @@
+// The table of base surfaces: one row a named base, holding what the library and the
+// programs know of it beyond its traversal: its name, its sizes (the scene's base.* fields),
+// its frame, box and texel size, the float limits' figures, and the factory of its
+// BaseSurface. BaseShape's member functions, the scene's fields, the programs' flags, the
+// viewer's list and sliders and the benchmark read the table; none of them names a base.
+//
+// Adding a base (docs/bases.md, "Adding a base"): its GLSL file defining the mr_base* set
+// (shaders/microrelief/base_surface.glsl) with its line in that file's choice, one C++ file
+// with its BaseSurface and its row (as core/base/CylinderSurface.cpp has), its enumerator
+// in BaseKind and the row's line in baseTypes() (core/base/BaseTable.cpp). The exact
+// references the tests hold the traversal to (core/trace/CurvedReference.cpp) are written
+// apart from the table on purpose: a check that read the row would repeat its mistakes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "microrelief/core/base/BaseShape.h"
+
+namespace microrelief {
+
+class BaseSurface;
+
+// One size of a base as the scene holds it: a field ("base.radius"; a program derives its
+// flag from it) of `count` numbers (1, or 3 for a vector), each a positive length in world
+// units, read from and written into the shape.
+struct BaseSize {
+    const char* field;  // the scene's field, "base.radius"
+    const char* label;  // what the viewer's slider says: "Radius"
+    int count;          // 1, or 3 (x, y, z)
+    void (*read)(const BaseShape& shape, double* numbers);
+    void (*write)(BaseShape& shape, const double* numbers);
+};
+
+// A row of the table. Every function takes a shape of the row's kind.
+struct BaseType {
+    const char* name;        // the scene's "base" (and --base): "plane", "sphere"
+    BaseKind kind;           // the shader's MICRORELIEF_BASE
+    const char* shaderFile;  // the GLSL file base_surface.glsl chooses for `kind`
+    const char* summary;     // one line for --help: what the base is
+    std::vector<BaseSize> sizes;
+    // The shape a scene gets when it names the base and none of its sizes.
+    BaseShape defaults;
+    // A shape the viewer offers when the base is picked from its list: the defaults, or
+    // sizes that show what the base is (an ellipsoid that is not a sphere).
+    BaseShape example;
+    // Whether a shape of `kind` goes by this row's name (a sphere is the ellipsoid with
+    // equal radii); null: every shape of `kind` does. baseName() asks the rows in order.
+    bool (*names)(const BaseShape& shape);
+
+    // World size of the canonical frame's unit along x, y, z (BaseShape::frameScale).
+    glm::dvec3 (*frameScale)(const BaseShape& shape);
+    // The largest corner of the relief's world-space box for a largest height `top`
+    // (s max h), and whether the box is symmetric about the origin (else it starts at
+    // y = 0, as the plane's does): BaseShape::boxMin / boxMax.
+    glm::dvec3 (*boxMax)(const BaseShape& shape, int mapWidth, int mapHeight, double top);
+    bool boxIsSymmetric;
+    // The world size of a texel, the unit positions are compared in (BaseShape::texelSize).
+    double (*texelSize)(const BaseShape& shape, int mapWidth, int mapHeight);
+    // Texels per unit of the base's frame, the most over its axes (core/scene/FloatLimits).
+    double (*texelsPerFrameUnit)(int mapWidth, int mapHeight);
+    // The least and the most length of the object-space normals the shader makes before
+    // it normalises them, for height scale s and heights up to `maxHeight` (core/scene/
+    // FloatLimits, check 3). The gradient is at most `maxHeight` map units a texel: the
+    // samples lie in [0, max h], so a bilinear cell's slope, and the quadratic B-spline's
+    // (a linear spline of the samples' differences), is at most max h a texel.
+    std::pair<double, double> (*objectNormalRange)(const BaseShape& shape, int mapWidth,
+                                                   int mapHeight, double s, double maxHeight);
+    // The object-space point over map point (X, Y) (texels) at height h (map units) for
+    // height scale s: the inverse of BaseSurface::mapPoint, in object space.
+    glm::dvec3 (*objectPoint)(const BaseShape& shape, int mapWidth, int mapHeight, double s,
+                              const glm::dvec2& mapPoint, double h);
+    // Its BaseSurface, the CPU twin of its GLSL file (core/base/BaseSurface.h).
+    std::unique_ptr<BaseSurface> (*makeSurface)(const BaseShape& shape, int mapWidth, int mapHeight,
+                                                double heightScale, double maxHeight);
+};
+
+// The table, in the order --help and the viewer list the bases; the plane first (a scene's
+// default base).
+const std::vector<BaseType>& baseTypes();
+// The row a shape goes by (its kind's rows, the first whose `names` takes it).
+const BaseType& baseType(const BaseShape& shape);
+// The row named `name`; throws Error(BadInput) for an unknown name, listing the names.
+const BaseType& baseType(std::string_view name);
+// The scene's base size fields of every row, each once, in the table's order.
+std::vector<std::string> baseSizeFields();
+
+}  // namespace microrelief

@@ -1,0 +1,60 @@
+// The table of base surfaces (core/base/BaseType.h). Each row is written in its base's own
+// file, beside the BaseSurface it makes; a new base is a line here.
+#include <algorithm>
+
+#include "microrelief/core/Error.h"
+#include "microrelief/core/base/BaseSurface.h"
+#include "microrelief/core/base/BaseType.h"
+
+namespace microrelief {
+
+BaseType planeBaseType();      // core/base/PlaneSurface.cpp
+BaseType cylinderBaseType();   // core/base/CylinderSurface.cpp
+BaseType ellipsoidBaseType();  // core/base/EllipsoidSurface.cpp
+BaseType sphereBaseType();     // core/base/EllipsoidSurface.cpp
+
+const std::vector<BaseType>& baseTypes() {
+    static const std::vector<BaseType> table = {planeBaseType(), cylinderBaseType(),
+                                                ellipsoidBaseType(), sphereBaseType()};
+    return table;
+}
+
+const BaseType& baseType(const BaseShape& shape) {
+    const BaseType* general = nullptr;
+    for (const BaseType& type : baseTypes()) {
+        if (type.kind != shape.kind) continue;
+        if (type.names == nullptr) {
+            if (general == nullptr) general = &type;
+        } else if (type.names(shape)) {
+            return type;  // a name for some shapes of the kind goes before the kind's own
+        }
+    }
+    if (general == nullptr) throwBadInput("a {base} of no kind the table of bases holds");
+    return *general;
+}
+
+const BaseType& baseType(std::string_view name) {
+    std::string names;
+    const auto& table = baseTypes();
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        if (table[i].name == name) return table[i];
+        names += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + std::string(table[i].name);
+    }
+    throwBadInput("unknown {base} '" + std::string(name) + "' (expected " + names + ")");
+}
+
+std::unique_ptr<BaseSurface> BaseSurface::make(const BaseShape& shape, int mapWidth, int mapHeight,
+                                               double heightScale, double maxHeight) {
+    return baseType(shape).makeSurface(shape, mapWidth, mapHeight, heightScale, maxHeight);
+}
+
+std::vector<std::string> baseSizeFields() {
+    std::vector<std::string> fields;
+    for (const BaseType& type : baseTypes())
+        for (const BaseSize& size : type.sizes)
+            if (std::find(fields.begin(), fields.end(), size.field) == fields.end())
+                fields.push_back(size.field);
+    return fields;
+}
+
+}  // namespace microrelief

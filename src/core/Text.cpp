@@ -1,6 +1,7 @@
 #include "microrelief/core/Text.h"
 
 #include <cstdint>
+#include <sstream>
 
 namespace microrelief {
 
@@ -58,6 +59,13 @@ std::string printable(std::string_view text) {
         }
     }
     return out;
+}
+
+std::string formatNumber(double value, int significant) {
+    std::ostringstream text;
+    text.precision(significant);
+    text << value;
+    return text.str();
 }
 
 }  // namespace microrelief

@@ -3,21 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/core/base/BaseType.h"
 
 namespace microrelief {
 
 namespace {
 
-std::string number(double value) {
-    std::ostringstream text;
-    text.precision(3);
-    text << value;
-    return text.str();
-}
+// A figure in a message (core/Text.h).
+std::string number(double value) { return formatNumber(value, 3); }
 
 // The base as the scene's fields give it: "{base} cylinder {base.radius} 0.3 {base.length} 1".
 std::string baseFlags(const BaseShape& base) {

@@ -2,21 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/core/scene/FloatLimits.h"
 
 namespace microrelief {
 
 namespace {
 
-std::string number(double value) {
-    std::ostringstream out;
-    out.precision(9);
-    out << value;
-    return out.str();
-}
+// A figure in a message (core/Text.h).
+std::string number(double value) { return formatNumber(value, 9); }
 
 std::string vectorText(const glm::dvec3& v) {
     return number(v.x) + "," + number(v.y) + "," + number(v.z);

@@ -4,7 +4,10 @@
 // "ready" (a picture of the current view is on the canvas) or "error" (none can be: the
 // reason in #error); data-map, the map's name; data-map-error, why the last map offered was
 // refused (the previous one stays); data-opened, how many files dropped or chosen were
-// dealt with (shown or refused); data-frames, how many pictures were drawn.
+// dealt with (shown or refused); data-frames, how many pictures were drawn; data-cone-maps,
+// the cone maps the current map has (cone's "conservative", rcsm's "relaxed"), each made
+// only when its method is chosen (cone_maps.js), the state "loading" meanwhile.
+import {ConeMapBuilder, ConeMapCancelled} from './cone_maps.js';
 import {decodePng, heightsFromPng, PngError} from './png.js';
 import {ReliefRenderer} from './relief_gl.js';
 import * as scene from './scene.js';
@@ -21,6 +24,9 @@ const app = {
     renderer: null,
     map: null,  // {name, bundled, width, height, samples}
     albedoImage: null,  // the bundled map's colours, RGBA
+    coneMaps: new ConeMapBuilder(),
+    coneBuilds: new Map(),  // kind -> {started}: cone maps under way for the current map
+    coneSeconds: {},  // kind -> seconds its build took, for the current map
     frames: 0,
     opened: 0,
     dirty: false,
@@ -80,9 +86,14 @@ async function albedoFromBytes(bytes) {
     return {width: png.width, height: png.height, rgba};
 }
 
-// Makes `map` the current one: its textures and pyramids first, then the switch.
+// Makes `map` the current one: its textures and pyramids first, then the switch (the
+// cone maps under way for the old one dropped; the new one's made when drawn).
 function useMap(map) {
     app.renderer.setMap(map.samples, map.width, map.height, scene.wrapsU(scene.viewBase(app.view)), app.view.method === 'maxmip');
+    app.coneMaps.cancel('a new map');
+    app.coneBuilds.clear();
+    app.coneSeconds = {};
+    showConeMaps();
     app.map = map;
     app.mapWrapsU = scene.wrapsU(scene.viewBase(app.view));
     root.dataset.map = map.name;
@@ -106,6 +117,54 @@ async function openFile(file) {
         // The previous map is still there, and so is its picture.
     }
     root.dataset.opened = String(++app.opened);
+}
+
+// ---- the cone maps of cone and rcsm ----
+
+const kConeMethod = {conservative: 'cone', relaxed: 'rcsm'};
+
+// The cone map `kind` of the current map, built in WebAssembly when missing (as
+// ReliefRenderer::addConeMapFor builds it when cone or rcsm is drawn); a redraw once it is
+// there. The panel counts the seconds meanwhile.
+function ensureConeMap(kind) {
+    const textures = app.renderer.textures;
+    if (!kind || textures.cones[kind] || app.coneBuilds.has(kind)) return;
+    const map = app.map, started = performance.now();
+    app.coneBuilds.set(kind, {started});
+    showConeMaps();
+    app.coneMaps.build(kind, map.samples, map.width, map.height).then((texels) => {
+        if (app.renderer.textures !== textures) return;  // another map since
+        app.coneBuilds.delete(kind);
+        textures.setConeMap(kind, texels);
+        app.coneSeconds[kind] = (performance.now() - started) / 1000;
+        showConeMaps();
+        requestRender();
+    }, (e) => {
+        if (e instanceof ConeMapCancelled) return;
+        app.coneBuilds.delete(kind);
+        fail(`${map.name}: ${kConeMethod[kind]}'s ${kind} cone map: ${e.message}`);
+    });
+}
+
+// The cone maps' line in the panel and data-cone-maps: those built (with their time) and
+// those under way (with the seconds so far, updated each second while any is).
+function showConeMaps() {
+    const textures = app.renderer?.textures;
+    const parts = [], built = [];
+    for (const kind of ['conservative', 'relaxed']) {
+        const build = app.coneBuilds.get(kind);
+        if (build) {
+            parts.push(`building ${kConeMethod[kind]}'s ${kind} cone map in WebAssembly: ${((performance.now() - build.started) / 1000).toFixed(0)} s\u2026`);
+        } else if (textures?.cones[kind]) {
+            built.push(kind);
+            parts.push(`${kConeMethod[kind]}'s ${kind} cone map built in ${app.coneSeconds[kind].toFixed(1)} s`);
+        }
+    }
+    root.dataset.coneMaps = built.join(' ');
+    $('cone-maps').textContent = parts.join('; ');
+    $('cone-maps').hidden = parts.length === 0;
+    clearTimeout(app.coneTimer);
+    if (app.coneBuilds.size) app.coneTimer = setTimeout(showConeMaps, 1000);
 }
 
 // ---- the view and the panel ----
@@ -355,6 +414,11 @@ function requestRender() {
 
 async function frame() {
     if (app.fatal || !app.map || !app.dirty || app.drawing) return;
+    const cones = scene.methodConeMap(app.view.method);
+    if (cones && !app.renderer.textures.cones[cones]) {
+        ensureConeMap(cones);  // draws when it is there; "loading" till then
+        return;
+    }
     app.drawing = true;
     app.dirty = false;
     const view = app.view;

@@ -1,8 +1,10 @@
 // relief_gl.js: the relief in WebGL 2, following the contract an engine follows
 // (docs/engine.md) the way src/ follows it for the C++ renderer:
 //  * ReliefTextures: the samples R32F (nearest, clamped; repeating in s on a curved base),
-//    the windows R16F at GL's mip sizes of W x H, and maxmip's aligned levels only where
-//    maxmip runs (src/gl/ReliefTextures.cpp);
+//    the windows R16F at GL's mip sizes of W x H, maxmip's aligned levels only where
+//    maxmip runs, and the cone map of cone or rcsm only where that method runs: RG16F,
+//    linear, clamped, its texels made by the C++ build in WebAssembly (cone_maps.js)
+//    (src/gl/ReliefTextures.cpp);
 //  * PyramidBuilder: both pyramids built on the GPU by the passes of shaders/pyramid/ as
 //    they stand (GLSL ES 3.00), texel for texel what the C++ builder makes
 //    (src/gl/PyramidBuilder.cpp): the finest windows in bands of 64 rows through a scratch
@@ -25,7 +27,7 @@ import {kParametersSize, writeParameters} from './relief_layout.js';
 import * as scene from './scene.js';
 
 const kBandRows = 64, kBandsFrom = 4 * kBandRows;
-const kUnits = {maxPyramid: 0, heightSamples: 1, windowPyramid: 2, albedoMap: 3};
+const kUnits = {maxPyramid: 0, heightSamples: 1, windowPyramid: 2, albedoMap: 3, coneMap: 4};
 const kParametersBinding = 0;
 
 export class GlError extends Error {}
@@ -82,6 +84,7 @@ export class ReliefTextures {
         gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32F, width, height, 0, gl.RED, gl.FLOAT, samples);
         ReliefTextures.samplerState(gl, gl.NEAREST, 0, wrapU);
         this.aligned = null;
+        this.cones = {conservative: null, relaxed: null};  // by scene.methodConeMap's kind
     }
 
     // An empty R16F pyramid of `sizes` (GL's mip chain of its first size).
@@ -112,8 +115,45 @@ export class ReliefTextures {
         return {size: this.size, pyramidSize: sizes[0], levelCount: sizes.length, maxHeight: this.maxHeight};
     }
 
+    // A cone map (ReliefTextures::addConeMap): `texels` the RG16F halves (apex, ratio) per
+    // texel, row 0 first, as coneMapHalfTexels lays them out.
+    setConeMap(kind, texels) {
+        const gl = this.gl, [width, height] = this.size;
+        if (texels.length !== 2 * width * height) throw new GlError(`the ${kind} cone map has ${texels.length / 2} texels, not ${width} x ${height}`);
+        if (this.cones[kind]) gl.deleteTexture(this.cones[kind]);
+        const texture = gl.createTexture();
+        gl.activeTexture(gl.TEXTURE0);
+        gl.bindTexture(gl.TEXTURE_2D, texture);
+        gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
+        gl.texImage2D(gl.TEXTURE_2D, 0, gl.RG16F, width, height, 0, gl.RG, gl.HALF_FLOAT, texels);
+        ReliefTextures.samplerState(gl, gl.LINEAR, 0, false);
+        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+        this.cones[kind] = texture;
+    }
+
+    // A cone map's texels as the GPU holds them, read back (RG16F renders with
+    // EXT_color_buffer_float): [apex, ratio] per texel as floats, row 0 first. For tests.
+    readConeMap(kind) {
+        const gl = this.gl, [width, height] = this.size;
+        if (!this.cones[kind]) return null;
+        const framebuffer = gl.createFramebuffer();
+        gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+        gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, this.cones[kind], 0);
+        const rgba = new Float32Array(4 * width * height);
+        gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, rgba);
+        gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+        gl.deleteFramebuffer(framebuffer);
+        const texels = new Float32Array(2 * width * height);
+        for (let k = 0; k < width * height; ++k) {
+            texels[2 * k] = rgba[4 * k];
+            texels[2 * k + 1] = rgba[4 * k + 1];
+        }
+        return texels;
+    }
+
     dispose() {
-        for (const t of [this.samples, this.windows, this.aligned]) if (t) this.gl.deleteTexture(t);
+        for (const t of [this.samples, this.windows, this.aligned, this.cones.conservative, this.cones.relaxed])
+            if (t) this.gl.deleteTexture(t);
     }
 }
 
@@ -521,6 +561,8 @@ export class ReliefRenderer {
         bind(kUnits.heightSamples, t.samples);
         bind(kUnits.windowPyramid, t.windows);
         bind(kUnits.albedoMap, this.albedo);
+        const cones = scene.methodConeMap(view.method);
+        bind(kUnits.coneMap, cones ? t.cones[cones] : null);
         gl.enable(gl.CULL_FACE);
         gl.frontFace(gl.CCW);
         gl.cullFace(outside ? gl.BACK : gl.FRONT);
@@ -539,7 +581,7 @@ export class ReliefRenderer {
         gl.bindVertexArray(this.emptyArray);
         gl.drawArrays(gl.TRIANGLES, 0, 3);
         gl.bindVertexArray(null);
-        for (let unit = 3; unit >= 0; --unit) bind(unit, null);
+        for (let unit = kUnits.coneMap; unit >= 0; --unit) bind(unit, null);
     }
 
     // MicroreliefParameters (ReliefRenderer::parameters), laid out by the module generated

@@ -203,12 +203,15 @@ export const traversalBudget = (width, height) => kBudgetPerTexel * (width + hei
 
 // ---- methods, views and shadows (src/core/scene/Method.cpp) ----
 
-export const kMethods = ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', 'maxmip'];
+export const kMethods = ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', 'maxmip', 'cone', 'rcsm'];
 export const kViews = ['shaded', 'iterations', 'level', 'normal', 'depth', 'position'];
 export const kShadows = ['off', 'hard', 'soft'];
 export const kInterpolations = ['bilinear', 'biquadratic'];
-export const methodHasSteps = (m) => m === 'steep' || m === 'pom' || m === 'relief';
-export const methodTracesTheSolid = (m) => m === 'multilevel' || m === 'maxmip';
+export const methodHasSteps = (m) => m === 'steep' || m === 'pom' || m === 'relief' || m === 'rcsm';
+export const methodTracesTheSolid = (m) => m === 'multilevel' || m === 'maxmip' || m === 'cone';
+// The cone map a method reads (peers/ConeMap.h), or null: cone's conservative map, rcsm's
+// relaxed one (src/gl/ReliefRenderer.cpp: addConeMapFor).
+export const methodConeMap = (m) => (m === 'cone' ? 'conservative' : m === 'rcsm' ? 'relaxed' : null);
 export const methodRunsOnBase = (m, base) =>
     base.kind === 'plane' || m === 'multilevel' || m === 'maxmip' || m === 'pom' || m === 'relief';
 
@@ -308,7 +311,7 @@ export function checkView(v) {
     if (!methodRunsOnBase(v.method, base))
         throw new Error(`method ${v.method} does not run on base ${v.base} (curved bases take multilevel, maxmip, pom and relief)`);
     if (v.shadows !== 'off' && !methodTracesTheSolid(v.method))
-        throw new Error(`shadows ${v.shadows} take the exact methods, multilevel and maxmip (not method ${v.method})`);
+        throw new Error(`shadows ${v.shadows} take the exact methods, multilevel, maxmip and cone (not method ${v.method})`);
 }
 
 export function viewBase(v) {

@@ -19,9 +19,10 @@
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/ImageFile.h"
-#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/peers/ConeMap.h"
 
 using namespace microrelief;
 using browser::jsonString;
@@ -100,16 +101,60 @@ std::vector<std::uint8_t> bigEndian16(std::initializer_list<unsigned> values) {
     return bytes;
 }
 
-class WebPage : public browser::BrowserTest {
-protected:
-    static constexpr browser::PictureThresholds kLimits = {kDifferentLevels, kMaxDifferentPixels,
-                                                           kMaxMeanDifference};
-};
-
 // A view as the page's URL and as microrelief-render's flags.
 struct View {
     std::string name, query, flags;
     int width, height;
+};
+
+class WebPage : public browser::BrowserTest {
+protected:
+    static constexpr browser::PictureThresholds kLimits = {kDifferentLevels, kMaxDifferentPixels,
+                                                           kMaxMeanDifference};
+
+    // One browser for all: each view opened, awaited, photographed, its command read; then
+    // `more` (steps whose outcomes are numbered from 4 * views.size() on). Each picture
+    // against microrelief-render's, and the page's "open in microrelief-render" line drawing
+    // the test's picture exactly.
+    PageRun expectViewsMatchTheRenderer(const std::vector<View>& views,
+                                        const std::string& more = "") {
+        std::string steps = "[";
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            const View& v = views[k];
+            steps += (k ? ", " : "") + open(v.query, v.width, v.height) +
+                     ", {\"wait\": \"ready\"}, {\"screenshot\": " +
+                     jsonString((dir / (v.name + "-page.png")).string()) +
+                     "}, {\"eval\": \"document.getElementById('command').textContent\"}";
+        }
+        const PageRun page = runPage(steps + more + "]");
+        for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            const View& v = views[k];
+            const int step = 4 * static_cast<int>(k);
+            SCOPED_TRACE(v.name);
+            EXPECT_EQ(page.at(step + 1, "state"), "ready") << page.at(step + 1, "error");
+            if (page.at(step + 1, "state") != "ready") continue;
+            EXPECT_EQ(page.at(step + 1, "map"), "cobbles.png");
+            const auto rendered = dir / (v.name + "-render.png");
+            const std::string flags = v.flags + " --size " + size(v.width, v.height);
+            render(flags, rendered);
+            expectSamePicture(v.name, dir / (v.name + "-page.png"), rendered,
+                              "microrelief-render " + flags, kLimits);
+
+            const std::string command = page.at(step + 3, "value");
+            const std::string program = "microrelief-render ";
+            EXPECT_EQ(command.rfind(program, 0), 0u) << command;
+            if (command.rfind(program, 0) != 0) continue;
+            const auto printed = dir / (v.name + "-printed.png");
+            render(command.substr(program.size()), printed);
+            const Image a = readImage(printed), b = readImage(rendered);
+            EXPECT_EQ(a.width, b.width) << command;
+            EXPECT_EQ(a.pixels, b.pixels)
+                << "the page's command draws another picture: " << command;
+        }
+        return page;
+    }
 };
 
 // Several cameras in the URL, each picture against microrelief-render's: the default view
@@ -139,42 +184,9 @@ TEST_F(WebPage, ViewsSetInTheUrlMatchTheRenderer) {
          "--height-scale 0.15",
          200, 150},
     };
-    // One browser for all: each view opened, awaited, photographed, its command read.
-    std::string steps = "[";
-    for (std::size_t k = 0; k < views.size(); ++k) {
-        const View& v = views[k];
-        steps += (k ? ", " : "") + open(v.query, v.width, v.height) +
-                 ", {\"wait\": \"ready\"}, {\"screenshot\": " +
-                 jsonString((dir / (v.name + "-page.png")).string()) +
-                 "}, {\"eval\": \"document.getElementById('command').textContent\"}";
-    }
     // And a URL with a bad value: an error on the page, nothing else.
-    steps += ", " + open("method=fastest", 64, 48) + ", {\"wait\": \"ready\"}]";
-    const PageRun page = runPage(steps);
-    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
-
-    for (std::size_t k = 0; k < views.size(); ++k) {
-        const View& v = views[k];
-        const int step = 4 * static_cast<int>(k);
-        SCOPED_TRACE(v.name);
-        ASSERT_EQ(page.at(step + 1, "state"), "ready") << page.at(step + 1, "error");
-        EXPECT_EQ(page.at(step + 1, "map"), "cobbles.png");
-        const auto rendered = dir / (v.name + "-render.png");
-        const std::string flags = v.flags + " --size " + size(v.width, v.height);
-        render(flags, rendered);
-        expectSamePicture(v.name, dir / (v.name + "-page.png"), rendered,
-                          "microrelief-render " + flags, kLimits);
-
-        // The page's "open in microrelief-render" line draws the test's picture exactly.
-        const std::string command = page.at(step + 3, "value");
-        const std::string program = "microrelief-render ";
-        ASSERT_EQ(command.rfind(program, 0), 0u) << command;
-        const auto printed = dir / (v.name + "-printed.png");
-        render(command.substr(program.size()), printed);
-        const Image a = readImage(printed), b = readImage(rendered);
-        ASSERT_EQ(a.width, b.width) << command;
-        EXPECT_EQ(a.pixels, b.pixels) << "the page's command draws another picture: " << command;
-    }
+    const PageRun page = expectViewsMatchTheRenderer(
+        views, ", " + open("method=fastest", 64, 48) + ", {\"wait\": \"ready\"}");
     const int bad = 4 * static_cast<int>(views.size()) + 1;
     EXPECT_EQ(page.at(bad, "state"), "error");
     EXPECT_NE(page.at(bad, "error").find("method=fastest"), std::string::npos)
@@ -380,20 +392,20 @@ TEST_F(WebPage, DroppedMapsAreTheLoadersSamplesAndRenderAlike) {
 }
 
 // Every variant of relief.frag the page offers (each method on each base it runs on, both
-// last levels, shadows, the albedo) compiles and links under the browser's WebGL 2 (ANGLE's
-// GLSL ES 3.00 front end, stricter than glslangValidator).
+// last levels, shadows where the method traces the solid, the albedo) compiles and links under the
+// browser's WebGL 2 (ANGLE's GLSL ES 3.00 front end, stricter than glslangValidator).
 TEST_F(WebPage, EveryVariantCompilesInTheBrowser) {
     const std::string loop =
         "(async () => { const failed = []; let count = 0;"
         " for (const base of ['plane', 'cylinder', 'ellipsoid'])"
         " for (const method of ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', "
-        "'maxmip'])"
+        "'maxmip', 'cone', 'rcsm'])"
         " for (const interpolation of ['bilinear', 'biquadratic'])"
         " for (const shadows of ['off', 'hard', 'soft'])"
         " for (const albedoMap of [false, true]) {"
         "  if (base !== 'plane' && !['multilevel', 'maxmip', 'pom', 'relief'].includes(method)) "
         "continue;"
-        "  if (shadows !== 'off' && !['multilevel', 'maxmip'].includes(method)) continue;"
+        "  if (shadows !== 'off' && !['multilevel', 'maxmip', 'cone'].includes(method)) continue;"
         "  ++count;"
         "  try { await microrelief.renderer.program({method, base, interpolation, shadows, "
         "albedoMap}); }"
@@ -402,8 +414,122 @@ TEST_F(WebPage, EveryVariantCompilesInTheBrowser) {
     const PageRun page = runPage("[" + open("", 32, 24) +
                                  ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(loop) + "}]");
     ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
-    // 7 methods x 2 levels x 2 albedos on the plane, 4 on each curved base, shadows for 2.
-    EXPECT_EQ(page.at(2, "value"), "108 ");
+    // 9 methods x 2 levels x 2 albedos on the plane with shadows off, 2 shadow modes for 3
+    // of them (multilevel, maxmip, cone); on each curved base 4 methods, shadows for 2.
+    EXPECT_EQ(page.at(2, "value"), "124 ");
+}
+
+// The peers cone and rcsm in the page, against microrelief-render: their cone maps made in the
+// page by the C++ build in WebAssembly, only once the method is chosen (the URL here), the
+// state "loading" until then. Cone is exact like the multilevel method and traces the solid
+// (shadows too); rcsm steps through its relaxed cones, reads them filtered, and ends in a
+// binary search, so a filtered read that one GPU rounds otherwise than the other can move
+// a hit: the same thresholds as the other views (kLimits) hold for both, as measured here
+// (the log prints the numbers).
+TEST_F(WebPage, ConeAndRcsmMatchTheRenderer) {
+    const std::vector<View> views = {
+        {"cone", "method=cone", "--method cone", 200, 150},
+        {"cone-grazing-shadows",
+         "method=cone&eye=0.75,0.1,0.55&target=-0.2,0.02,-0.1&fovy=50&shadows=hard&albedo=none",
+         "--method cone --eye=0.75,0.1,0.55 --target=-0.2,0.02,-0.1 --fovy 50 --shadows hard "
+         "--albedo none",
+         200, 150},
+        {"rcsm", "method=rcsm&albedo=none&eye=-0.7,0.45,0.6&light=0.3,0.5,0.8",
+         "--method rcsm --albedo none --eye=-0.7,0.45,0.6 --light=0.3,0.5,0.8", 200, 150},
+        {"rcsm-15-steps", "method=rcsm&steps=15&eye=0.5,0.7,-0.6",
+         "--method rcsm --steps 15 --eye=0.5,0.7,-0.6", 200, 150},
+    };
+    expectViewsMatchTheRenderer(views);
+}
+
+// A cone map as the page's GPU holds it (ReliefTextures.readConeMap: "apex ratio apex ratio
+// ..." per texel, row 0 first) against the C++ build's, value for value: both are halves,
+// so equal values are equal bits.
+void expectSameConeMap(const std::string& name, const std::string& pageTexels,
+                       const ConeMap& expected) {
+    std::istringstream values(pageTexels);
+    std::vector<float> texels;
+    for (double value; values >> value;) texels.push_back(static_cast<float>(value));
+    const std::size_t count = expected.apex.size();
+    ASSERT_EQ(texels.size(), 2 * count) << name << ": not the map's size";
+    std::size_t differ = 0, first = count;
+    for (std::size_t k = 0; k < count; ++k) {
+        if (texels[2 * k] == expected.apex[k] && texels[2 * k + 1] == expected.ratio[k]) continue;
+        ++differ;
+        first = std::min(first, k);
+    }
+    std::printf("    %-22s %zu texels, %zu differ\n", name.c_str(), count, differ);
+    EXPECT_EQ(differ, 0u) << name << ": first at texel " << first << ": page ("
+                          << (differ ? texels[2 * first] : 0.0f) << ", "
+                          << (differ ? texels[2 * first + 1] : 0.0f) << "), C++ ("
+                          << (differ ? expected.apex[first] : 0.0f) << ", "
+                          << (differ ? expected.ratio[first] : 0.0f) << ")";
+}
+
+// The page's cone maps are the C++ build's (peers/ConeMap.h, what microrelief-render
+// uploads) to the bit: cone's conservative map and rcsm's relaxed one, of the bundled map
+// and of a dropped 37 x 23 map (odd sizes: the pyramid walk's padding), read back from the
+// RG16F textures the page draws with. The page builds each only when its method is chosen:
+// none before, the one chosen after.
+TEST_F(WebPage, TheConeMapsAreTheCppOnesToTheBit) {
+    const auto noise = dir / "noise37.png";
+    test::writeMap(noise, synth::valueNoise(37, 23, 5.0, 3, 11), PixelType::UInt16);
+    // The method chosen in the panel, as a user chooses it (a change event).
+    const auto choose = [](const std::string& method) {
+        return "{\"eval\": \"(() => { const m = document.getElementById('method'); m.value = '" +
+               method + "'; m.dispatchEvent(new Event('change')); return m.value; })()\"}";
+    };
+    const auto readConeMap = [](const std::string& kind) {
+        return "{\"eval\": \"Array.from(microrelief.renderer.textures.readConeMap('" + kind +
+               "')).join(' ')\"}";
+    };
+    const std::string ready = "{\"wait\": \"ready\"}",
+                      coneMaps = "{\"eval\": \"document.documentElement.dataset.coneMaps\"}";
+    // Steps 0-2: no cone map yet; 3-6: cone's; 7-10: rcsm's; 11-15: a new map, rcsm's
+    // alone; 16-18: cone's of the new map.
+    const std::vector<std::string> steps = {open("", 64, 48),
+                                            ready,
+                                            coneMaps,
+                                            choose("cone"),
+                                            ready,
+                                            coneMaps,
+                                            readConeMap("conservative"),
+                                            choose("rcsm"),
+                                            ready,
+                                            coneMaps,
+                                            readConeMap("relaxed"),
+                                            "{\"drop\": " + jsonString(noise.string()) + "}",
+                                            "{\"wait\": \"opened\", \"above\": 0}",
+                                            ready,
+                                            readConeMap("relaxed"),
+                                            coneMaps,
+                                            choose("cone"),
+                                            ready,
+                                            readConeMap("conservative")};
+    std::string json = "[";
+    for (const std::string& step : steps) json += (json.size() > 1 ? ", " : "") + step;
+    const PageRun page = runPage(json + "]");
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    EXPECT_EQ(page.at(2, "value"), "") << "a cone map before cone or rcsm was chosen";
+    EXPECT_EQ(page.at(3, "value"), "cone");
+    ASSERT_EQ(page.at(4, "state"), "ready") << page.at(4, "error");
+    EXPECT_EQ(page.at(5, "value"), "conservative");
+    ASSERT_EQ(page.at(8, "state"), "ready") << page.at(8, "error");
+    EXPECT_EQ(page.at(9, "value"), "conservative relaxed");
+    ASSERT_EQ(page.at(13, "state"), "ready") << page.at(13, "error");
+    EXPECT_EQ(page.at(13, "map"), "noise37.png");
+    EXPECT_EQ(page.at(15, "value"), "relaxed") << "the new map's cone maps: rcsm's alone";
+    ASSERT_EQ(page.at(17, "state"), "ready") << page.at(17, "error");
+
+    const HeightMap bundled = loadHeightMap(defaultHeightMapPath());
+    const HeightMap dropped = loadHeightMap(noise);
+    expectSameConeMap("bundled conservative", page.at(6, "value"),
+                      buildConservativeConeMap(bundled));
+    expectSameConeMap("bundled relaxed", page.at(10, "value"), buildRelaxedConeMap(bundled));
+    expectSameConeMap("noise37 relaxed", page.at(14, "value"), buildRelaxedConeMap(dropped));
+    expectSameConeMap("noise37 conservative", page.at(18, "value"),
+                      buildConservativeConeMap(dropped));
 }
 
 }  // namespace

@@ -11,7 +11,9 @@ lists, every word a page offers for a key is one the program takes (a 1x1 render
 flag alone), and every flag the command line writes is the program's. Where a key or a word
 is a page's own (the page's resolution, a clean picture, three's shading), it is listed
 below with the reason, and a listed one that is no longer in the page fails, so the list
-cannot go stale.
+cannot go stale. The web page's lists whose positions it hands the shader as numbers
+(INDEXED) are the program's whole lists, in the program's order: the order in which it
+names the choices when it refuses an unknown word (its names tables, the enums' order).
 """
 import os
 import re
@@ -33,6 +35,10 @@ PAGE_KEYS = {
 }
 # albedo=map is the bundled map's colours, which microrelief-render draws without --albedo.
 PAGE_WORDS = {('albedo', 'map')}
+# web/scene.js's lists whose index is a #define of relief.frag or a uniform (relief_gl.js:
+# MICRORELIEF_METHOD, MICRORELIEF_SHADOWS, MICRORELIEF_INTERPOLATION, debugView), by key.
+INDEXED = {'method': 'kMethods', 'view': 'kViews', 'shadows': 'kShadows',
+           'interpolation': 'kInterpolations'}
 
 
 def fail(message):
@@ -92,6 +98,23 @@ def main():
                 problems.append(f'{page}: renderCommandLine writes {flag}, which microrelief-render does not take')
     with tempfile.TemporaryDirectory() as scratch:
         out = os.path.join(scratch, 'x.png')
+        scene = open(os.path.join(source, 'web/scene.js'), encoding='utf-8').read()
+        for key, constant in INDEXED.items():
+            found = re.search(r'const ' + constant + r" = \[([^\]]*)\]", scene)
+            page_list = re.findall(r"'([^']*)'", found.group(1)) if found else []
+            if not page_list:
+                problems.append(f'web/scene.js: no list {constant} the check can read')
+                continue
+            run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', '-no-such-word-',
+                                  '--out', out], capture_output=True, text=True)
+            named = re.search(r'\(expected (.*)\)', run.stderr)
+            if not named:
+                problems.append(f'--{key}: microrelief-render does not name its choices: {run.stderr.strip()}')
+                continue
+            program_list = re.split(r', | or ', named.group(1))
+            if page_list != program_list:
+                problems.append(f'web/scene.js: {constant} is {page_list}; microrelief-render\'s --{key} '
+                                f'takes {program_list}, in that order (the page hands the shader positions)')
         for key, word in sorted(words_to_try):
             run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', word, '--out', out],
                                  capture_output=True, text=True)

@@ -1,0 +1,45 @@
+// cone_maps.cpp: the cone maps of the peers cone and rcsm (microrelief::peers, ConeMap.h,
+// unchanged) behind a C interface for the web page, compiled to WebAssembly by the build
+// (web/CMakeLists.txt) into web/generated/cone_maps_wasm.js. The page builds them from
+// the samples it uploads, as ReliefTextures::addConeMap builds them from the samples the GPU
+// holds: the same functions on the same floats, so the same RG16F texels to the bit
+// (tests/web: TheConeMapsAreTheCppOnesToTheBit).
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "microrelief/peers/ConeMap.h"
+
+using namespace microrelief;
+
+namespace {
+std::string lastError;
+}  // namespace
+
+extern "C" {
+
+// The cone map of `samples` (width x height floats, row 0 first) into `texels` (2 width x
+// height halves: apex, ratio per texel, row 0 first): the conservative map for cone when
+// `relaxed` is 0, else the relaxed one for rcsm (128 search steps, as published and as
+// ReliefTextures builds it). 1 when done, 0 with mr_last_error() saying why.
+int mr_build_cone_map(const float* samples, int width, int height, int relaxed,
+                      std::uint16_t* texels) {
+    try {
+        HeightMap map(width, height);
+        std::memcpy(map.samples.data(), samples, map.samples.size() * sizeof(float));
+        const ConeMap cones = relaxed ? buildRelaxedConeMap(map) : buildConservativeConeMap(map);
+        const std::vector<std::uint16_t> halves = coneMapHalfTexels(cones);
+        std::memcpy(texels, halves.data(), halves.size() * sizeof(std::uint16_t));
+        return 1;
+    } catch (const std::exception& e) {
+        lastError = e.what();
+        return 0;
+    }
+}
+
+const char* mr_last_error() {
+    return lastError.c_str();
+}
+}

@@ -54,7 +54,7 @@ void baseControls(BaseShape& base, PanelActions& actions) {
         return;
     }
     for (const BaseSize& size : current.sizes) {
-        double numbers[3];
+        double numbers[3] = {};
         size.read(base, numbers);
         bool changed = false;
         for (int i = 0; i < size.count; ++i) {

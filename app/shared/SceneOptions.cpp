@@ -176,7 +176,7 @@ std::string exactVector(const glm::vec3& v) {
 
 // A base size's numbers as its flag takes them, exactly: "0.3", or "0.5,0.35,0.4".
 std::string sizeText(const BaseSize& size, const BaseShape& shape) {
-    double numbers[3];
+    double numbers[3] = {};
     size.read(shape, numbers);
     std::string text;
     for (int i = 0; i < size.count; ++i) text += (i ? "," : "") + exactText(numbers[i]);
@@ -256,9 +256,11 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
     for (const std::string& field : baseSizeFields()) {
         // "Radius of the cylinder (default 0.3) or the sphere (default 0.5), world units"
         std::string help;
+        int count = 1;
         for (const BaseType& type : baseTypes()) {
             for (const BaseSize& size : type.sizes) {
                 if (size.field != field) continue;
+                count = size.count;  // the same in every row (tests/batch: SceneFlags)
                 if (help.empty())
                     help = std::string(size.label) + (size.count == 3 ? " x,y,z" : "") + " of the ";
                 else
@@ -267,7 +269,7 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
             }
         }
         app.add_option(flag(field), sizes_[field], help + ", world units")
-            ->type_name(help.find("x,y,z") == std::string::npos ? "FLOAT" : "TEXT");
+            ->type_name(count == 1 ? "FLOAT" : "X,Y,Z");
     }
     app.add_option(
         flag("tiles"), tile_,
@@ -472,7 +474,7 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     if (job.tiles != glm::ivec2(1, 1))
         add("tiles", std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y));
     const BaseType& base = baseType(job.base);
-    if (&base != &baseTypes().front()) {  // the default base goes without saying
+    if (&base != &baseType(BaseShape{})) {  // the default base goes without saying
         add("base", base.name);
         for (const BaseSize& size : base.sizes) {
             if (size.count == 1)

@@ -530,9 +530,20 @@ TEST(SceneFlags, EveryFieldAMessageMayNameHasAFlag) {
     }
     EXPECT_EQ(Error(ErrorKind::BadInput, "{camera.eye} and {camera.target} must differ").message(flagName),
               "--eye and --target must differ");
-    // A base's sizes take their flags from their fields (the table of bases).
+    // A base's sizes take their flags from their fields (the table of bases), one flag a
+    // field: none of them is another field's flag, and a size shared by bases has one count.
     EXPECT_EQ(Error(ErrorKind::BadInput, "{base.radius} and {base.radii}").message(flagName),
               "--radius and --radii");
+    std::set<std::string> flags;
+    for (const std::string& field : fields) {
+        if (field == "map.samples") continue;
+        EXPECT_TRUE(flags.insert(flagName(field)).second) << flagName(field) << " twice";
+    }
+    std::map<std::string, int> counts;
+    for (const BaseType& type : baseTypes())
+        for (const BaseSize& size : type.sizes)
+            EXPECT_EQ(counts.try_emplace(size.field, size.count).first->second, size.count)
+                << size.field << " of " << type.name;
 }
 
 // ---- CSV, manifest, progress ----

@@ -22,7 +22,7 @@ namespace {
 BaseShape resized(const BaseType& type) {
     BaseShape shape = type.defaults;
     for (const BaseSize& size : type.sizes) {
-        double numbers[3];
+        double numbers[3] = {};
         size.read(shape, numbers);
         for (int i = 0; i < size.count; ++i) numbers[i] *= 1.3 + (type.names ? 0.0 : 0.1 * i);
         size.write(shape, numbers);
@@ -52,7 +52,7 @@ TEST(BaseTable, NamesAndSizesAgreeWithTheLookups) {
             EXPECT_TRUE(isSceneField(size.field)) << size.field;
             // A size whose first number is zero is refused, naming the field.
             BaseShape shape = resized(type);
-            double numbers[3];
+            double numbers[3] = {};
             size.read(shape, numbers);
             numbers[0] = 0.0;
             size.write(shape, numbers);

@@ -1,5 +1,6 @@
 #include "microrelief/core/base/BaseShape.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "microrelief/core/Error.h"
@@ -49,8 +50,14 @@ std::string baseName(const BaseShape& shape) {
 }
 
 void validateBaseShape(const BaseShape& shape) {
+    const auto& table = baseTypes();
+    if (std::none_of(table.begin(), table.end(),
+                     [&](const BaseType& type) { return type.kind == shape.kind; })) {
+        throwBadInput("{base} of kind " + std::to_string(static_cast<int>(shape.kind)) +
+                      " is none of the table of bases'");
+    }
     for (const BaseSize& size : baseType(shape).sizes) {
-        double numbers[3];
+        double numbers[3] = {};
         size.read(shape, numbers);
         for (int i = 0; i < size.count; ++i) {
             if (!(numbers[i] > 0.0) || !std::isfinite(numbers[i]))

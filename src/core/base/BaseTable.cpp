@@ -29,7 +29,10 @@ const BaseType& baseType(const BaseShape& shape) {
             return type;  // a name for some shapes of the kind goes before the kind's own
         }
     }
-    if (general == nullptr) throwBadInput("a {base} of no kind the table of bases holds");
+    // A kind no row has is a programming error (validateBaseShape refuses it as input).
+    if (general == nullptr)
+        throwRuntime("BaseShape of kind " + std::to_string(static_cast<int>(shape.kind)) +
+                     ", which the table of bases does not hold");
     return *general;
 }
 

@@ -11,12 +11,11 @@
 namespace microrelief {
 
 FrameRay CurvedSurface::frameRay(const Ray& world) const {
-    const glm::dvec3 scale = shape_.frameScale();
-    return {world.origin / scale, world.direction / scale};
+    return {world.origin / frameScale_, world.direction / frameScale_};
 }
 
 glm::dvec3 CurvedSurface::worldNormal(const glm::dvec3& n) const {
-    return glm::normalize(n / shape_.frameScale());  // the inverse transpose of diag(scale)
+    return glm::normalize(n / frameScale_);  // the inverse transpose of diag(scale)
 }
 
 double CurvedSurface::mapX(const glm::dvec3& q) const {

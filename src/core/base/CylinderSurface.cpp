@@ -88,8 +88,16 @@ public:
 
 }  // namespace
 
-// The cylinder's row of the table of bases (core/base/BaseType.h): radius R and length L,
-// the frame (R, L/2, R).
+namespace {
+
+// The frame's scale: radius R and half the length L / 2 (the frame's axis spans y = +-1).
+glm::dvec3 cylinderFrame(const BaseShape& b) {
+    return {b.radius, 0.5 * b.length, b.radius};
+}
+
+}  // namespace
+
+// The cylinder's row of the table of bases (core/base/BaseType.h): radius R and length L.
 BaseType cylinderBaseType() {
     return {
         .name = "cylinder",
@@ -105,13 +113,11 @@ BaseType cylinderBaseType() {
         .defaults = BaseShape::cylinder(),
         .example = BaseShape::cylinder(),
         .names = nullptr,
-        .frameScale =
-            [](const BaseShape& b) { return glm::dvec3(b.radius, 0.5 * b.length, b.radius); },
+        .frameScale = [](const BaseShape& b) { return cylinderFrame(b); },
         // The column of the shell's radius 1 + top between the caps.
         .boxMax =
             [](const BaseShape& b, int, int, double top) {
-                return glm::dvec3(b.radius, 0.5 * b.length, b.radius) *
-                       glm::dvec3(1.0 + top, 1.0, 1.0 + top);
+                return cylinderFrame(b) * glm::dvec3(1.0 + top, 1.0, 1.0 + top);
             },
         .boxIsSymmetric = true,
         // The geometric mean of a texel's sides on the base: 2 pi R / W around, L / H along.
@@ -125,8 +131,7 @@ BaseType cylinderBaseType() {
             [](const BaseShape& b, int w, int h, double s, double maxHeight) {
                 const double g = maxHeight, r = 1.0 + s * maxHeight;
                 const double around = s * w / (2.0 * kPi) * g, along = s * h / 2.0 * g;
-                return curved::objectNormalRange(glm::dvec3(b.radius, 0.5 * b.length, b.radius),
-                                                 r * (1.0 + along) + around);
+                return curved::objectNormalRange(cylinderFrame(b), r * (1.0 + along) + around);
             },
         .objectPoint =
             [](const BaseShape& b, int w, int h, double s, const glm::dvec2& mapPoint,
@@ -134,7 +139,7 @@ BaseType cylinderBaseType() {
                 const double phi = curved::angleOf(mapPoint.x, w), radius = 1.0 + s * height;
                 const glm::dvec3 q(radius * std::sin(phi), 1.0 - 2.0 * (mapPoint.y / h),
                                    radius * std::cos(phi));
-                return q * glm::dvec3(b.radius, 0.5 * b.length, b.radius);
+                return q * cylinderFrame(b);
             },
         .makeSurface = [](const BaseShape& shape, int w, int h, double s,
                           double maxHeight) -> std::unique_ptr<BaseSurface> {

@@ -20,7 +20,7 @@ std::string baseFlags(const BaseShape& base) {
     const BaseType& type = baseType(base);
     std::string text = std::string("{base} ") + type.name;
     for (const BaseSize& size : type.sizes) {
-        double numbers[3];
+        double numbers[3] = {};
         size.read(base, numbers);
         text += std::string(" {") + size.field + "} ";
         for (int i = 0; i < size.count; ++i) text += (i ? "," : "") + number(numbers[i]);

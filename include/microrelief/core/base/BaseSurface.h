@@ -136,7 +136,10 @@ protected:
 // v (along the axis or the latitude).
 class CurvedSurface : public BaseSurface {
 public:
-    using BaseSurface::BaseSurface;
+    CurvedSurface(const BaseShape& shape, int mapWidth, int mapHeight, double heightScale,
+                  double maxHeight)
+        : BaseSurface(shape, mapWidth, mapHeight, heightScale, maxHeight),
+          frameScale_(shape.frameScale()) {}
     FrameRay frameRay(const Ray& world) const override;
     glm::dvec3 worldNormal(const glm::dvec3& frameNormal) const override;
     Footprint footprint(const FrameRay& ray, double ta, double tb) const override;
@@ -164,6 +167,8 @@ public:
 protected:
     // The radial distance of the shell, 1 + s max h.
     double shellRadius() const { return 1.0 + heightScale_ * maxHeight_; }
+
+    glm::dvec3 frameScale_;  // the shape's (BaseShape::frameScale), looked up once
 };
 
 // Conservative margins of the footprint, in texels, and of the radial distance, in

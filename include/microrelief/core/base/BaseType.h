@@ -2,7 +2,8 @@
 // programs know of it beyond its traversal: its name, its sizes (the scene's base.* fields),
 // its frame, box and texel size, the float limits' figures, and the factory of its
 // BaseSurface. BaseShape's member functions, the scene's fields, the programs' flags, the
-// viewer's list and sliders and the benchmark read the table; none of them names a base.
+// viewer's list and sliders and the benchmark's --bases read the table instead of naming
+// the bases (the plane and the curved bases still differ where their traversals do).
 //
 // Adding a base (docs/bases.md, "Adding a base"): its GLSL file defining the mr_base* set
 // (shaders/microrelief/base_surface.glsl) with its line in that file's choice, one C++ file
@@ -48,7 +49,8 @@ struct BaseType {
     // sizes that show what the base is (an ellipsoid that is not a sphere).
     BaseShape example;
     // Whether a shape of `kind` goes by this row's name (a sphere is the ellipsoid with
-    // equal radii); null: every shape of `kind` does. baseName() asks the rows in order.
+    // equal radii); null: every shape of `kind` that no row with `names` takes (a row with
+    // `names` that takes it wins wherever it sits: baseType(shape)).
     bool (*names)(const BaseShape& shape);
 
     // World size of the canonical frame's unit along x, y, z (BaseShape::frameScale).

@@ -157,17 +157,15 @@ bool complete(const std::filesystem::path& file, BatchProgress& progress) {
 }
 
 // The map a frame draws, as the check before the first frame loads it and bounds its extent:
-// file, load options, whether its pyramid wraps in u, the surface it bounds and the tiles
-// (what core/scene/Scene.h's samePyramid compares, as a key that orders; the renderer itself
-// asks needsHeights).
-using MapKey = std::tuple<std::filesystem::path, int, bool, bool, Interpolation, int, int>;
+// file, load options, whether its pyramid wraps in u and the tiles (what core/scene/Scene.h's
+// samePyramid compares, as a key that orders; the renderer itself asks needsHeights).
+using MapKey = std::tuple<std::filesystem::path, int, bool, bool, int, int>;
 
 MapKey mapKey(const SceneOptions& scene) {
     return {scene.job.map.file ? *scene.job.map.file : defaultHeightMapPath(),
             scene.job.map.load.channel,
             scene.job.map.load.normalize,
             scene.job.base.wrapsU(),
-            scene.job.interpolation,
             scene.job.tiles.x,
             scene.job.tiles.y};
 }

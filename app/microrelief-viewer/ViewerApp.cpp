@@ -609,15 +609,9 @@ std::vector<std::uint8_t> ViewerApp::readWindow(int& width, int& height) const {
 
 void ViewerApp::applyRelief(const std::shared_ptr<HeightMap>& heights, const std::string& source) {
     const ReliefDesc& wanted = state_.scene.job;
-    if (!applied_ || heights != map_ || !samePyramid(*applied_, wanted)) {
-        renderer_->setHeightMap(*heights, source, wanted.base, wanted.interpolation,
-                                PyramidBuild::Gpu, wanted.tiles);
-    } else if (wanted.base != applied_->base) {
-        renderer_->setBase(wanted.base);
-    }
-    // Neither throws.
-    renderer_->setHeightScale(wanted.heightScale);
-    renderer_->setModel(wanted.model);
+    // Another map (one opened, or one read again) or another pyramid: built of its heights.
+    const bool newHeights = heights != map_ || renderer_->needsHeights(wanted);
+    renderer_->apply(wanted, newHeights ? heights.get() : nullptr, source, PyramidBuild::Gpu);
     picker_.apply(wanted, heights);
     applied_ = wanted;
     ++mapGeneration_;

@@ -97,10 +97,10 @@ private:
 
     // The relief of the scene (state_.scene.job) on the renderer and the picker, over
     // `heights` (the samples its map names, as the viewer holds them; `source` names them):
-    // the pyramid built again only for other heights, addressing, last level or tiles
-    // (core/scene/Scene.h: samePyramid), else the base, height scale and model set on the one
-    // there is. Throws as the renderer does, having changed nothing. The one place the
-    // viewer hands a relief over.
+    // the pyramid built again only for other heights, addressing or tiles (ReliefRenderer::
+    // apply, core/scene/Scene.h: samePyramid), else the base, last level, height scale and
+    // model set on the one there is. Throws as the renderer does, having changed nothing. The one
+    // place the viewer hands a relief over.
     void applyRelief(const std::shared_ptr<HeightMap>& heights, const std::string& source);
     // applyRelief over the viewer's map after the panel changed the relief (`what`: the base,
     // the last level, the tiles, the height scale); on an error the panel's relief goes back

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
@@ -41,29 +42,45 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
 void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                     const BaseShape& base, Interpolation interpolation,
                                     glm::ivec2 tiles) {
+    upload(map, source, tiles, [&](PyramidBuild build) {
+        renderer_->setHeightMap(map, source, base, interpolation, build, tiles);
+    });
+}
+
+void HeadlessRenderer::setHeights(const ReliefDesc& relief, const HeightMap& map,
+                                  const std::string& source) {
+    // The method the renderer holds is the last job's, which render() replaces with this
+    // relief's job's: one that does not run on this relief's base or tiles (a cone on the
+    // plane before a cylinder) gives way to multilevel, which runs on all, so that the last
+    // job's method does not refuse this job's relief.
+    const Method held = renderer_->method().method;
+    if (!methodRunsOnBase(held, relief.base) ||
+        (relief.tiles != glm::ivec2(1, 1) && !methodTakesTiles(held))) {
+        context_.makeCurrent();
+        renderer_->setMethod({});
+    }
+    upload(map, source, relief.tiles,
+           [&](PyramidBuild build) { renderer_->apply(relief, &map, source, build); });
+}
+
+void HeadlessRenderer::upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
+                              const std::function<void(PyramidBuild)>& build) {
     context_.makeCurrent();
     try {
-        renderer_->setHeightMap(map, source, base, interpolation, PyramidBuild::Gpu, tiles);
+        build(PyramidBuild::Gpu);
     } catch (const Error& e) {
         if (e.kind() == ErrorKind::BadInput) throw;  // the map's fault, not the GL's
-        renderer_->setHeightMap(map, source, base, interpolation, PyramidBuild::Cpu, tiles);
+        build(PyramidBuild::Cpu);
     }
     if (animated_) animated_->forgetMap();
-    heightsOf_.reset();
     source_ = source;
     mapWidth_ = map.width * tiles.x;  // the whole, tiles included
     mapHeight_ = map.height * tiles.y;
     maxHeight_ = map.maxValue();
 }
 
-void HeadlessRenderer::setHeights(const ReliefDesc& relief, const HeightMap& map,
-                                  const std::string& source) {
-    setHeightMap(map, source, relief.base, relief.interpolation, relief.tiles);
-    heightsOf_ = relief;
-}
-
 bool HeadlessRenderer::needsHeights(const ReliefDesc& relief) const {
-    return !heightsOf_ || !samePyramid(*heightsOf_, relief);
+    return renderer_->needsHeights(relief);
 }
 
 void HeadlessRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {
@@ -83,23 +100,15 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     }
     context_.makeCurrent();
     const GL& gl = context_.gl();
-    // Another size or curved base of the map's addressing; between the plane and a curved
-    // base the pyramid is built anew (setHeightMap).
-    if (job.interpolation != renderer_->interpolation())
-        throwRuntime("HeadlessRenderer::render: the map was set for another interpolation");
-    if (job.tiles != renderer_->tiles())
-        throwRuntime("HeadlessRenderer::render: the map was set for other tiles");
     if (!job.animation.empty() && job.tiles != glm::ivec2(1, 1)) {
         // The animated field is written on the GPU, whose pyramid builder bounds one map.
         throwBadInput("{animation} and {tiles}: an animated height field does not tile");
     }
-    if (job.base != renderer_->base()) renderer_->setBase(job.base);
+    // Another size or curved base of the map's addressing, another last level, scale or
+    // model, on the pyramid built; between the plane and a curved base, or for other
+    // tiles, the map is set again first (setHeights).
+    renderer_->apply(job);
     renderer_->setMethod(job.method);  // compiled once per method, then looked up
-    renderer_->setModel(job.model);
-    if (heightScale_ != job.heightScale) {
-        renderer_->setHeightScale(job.heightScale);
-        heightScale_ = job.heightScale;
-    }
     if (animated_ && animated_->evaluated() && animated_->name() != job.animation) {
         animated_->restore(*renderer_);  // another field, or the map's own heights again
         maxHeight_ = renderer_->maxHeight();

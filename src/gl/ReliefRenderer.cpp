@@ -106,6 +106,45 @@ void ReliefRenderer::setBase(const BaseShape& base) {
     if (textures_) uploadBox();
 }
 
+bool ReliefRenderer::needsHeights(const ReliefDesc& relief) const {
+    return !applied_ || !textures_ || !samePyramid(*applied_, relief);
+}
+
+void ReliefRenderer::apply(const ReliefDesc& relief, const HeightMap* heights,
+                           const std::string& source, PyramidBuild build) {
+    if (heights) {
+        setHeightMap(*heights, source, relief.base, relief.interpolation, build, relief.tiles);
+        applied_ = relief;
+    } else {
+        if (!textures_) throwRuntime("ReliefRenderer::apply: no heights yet");
+        if (relief.tiles != tiles())
+            throwRuntime("ReliefRenderer::apply: the map was set for other tiles");
+        if (relief.base.wrapsU() != textures_->wrapsU()) {
+            throwRuntime(
+                "ReliefRenderer::apply: between the plane and a curved base the map must be "
+                "uploaded again (apply with its heights)");
+        }
+        validateBaseShape(relief.base);
+        checkMethodSupportsBase(method_.method, relief.base);
+        // The program of the base and last level together, so that nothing has changed
+        // when it throws, and no program of one without the other is compiled.
+        program(configFor(method_, countFetches_, relief.base.kind, relief.interpolation, true,
+                          ShadowMode::Off, false, tiled()));
+        base_ = relief.base;
+        interpolation_ = relief.interpolation;
+        if (applied_ && samePyramid(*applied_, relief)) applied_ = relief;
+    }
+    setHeightScale(relief.heightScale);  // the box, fitted to the base and the scale
+    setModel(relief.model);
+}
+
+void ReliefRenderer::setInterpolation(Interpolation interpolation) {
+    if (interpolation == interpolation_) return;
+    program(configFor(method_, countFetches_, base_.kind, interpolation, true, ShadowMode::Off,
+                      false, tiled()));  // may throw
+    interpolation_ = interpolation;
+}
+
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                   const BaseShape& base, Interpolation interpolation,
                                   PyramidBuild build, glm::ivec2 tiles) {
@@ -120,13 +159,13 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     const bool maxMip = method_.method == Method::MaxMip;
     // The GPU builder bounds texel squares within one map: a tiled one's is the CPU's.
     if (build == PyramidBuild::Gpu && tiles == glm::ivec2(1, 1)) {
-        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), interpolation,
-                                         pyramidBuilder(), maxMip));
-    } else {
         textures_.emplace(
-            ReliefTextures(gl_, map, source, base.wrapsU(), interpolation, maxMip, tiles));
+            ReliefTextures(gl_, map, source, base.wrapsU(), pyramidBuilder(), maxMip));
+    } else {
+        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), maxMip, tiles));
     }
     ++rebuilds_.pyramids;
+    applied_.reset();  // of heights no relief named; apply() names them
     addConeMapFor(gl_, *textures_, method_.method);
     base_ = base;
     interpolation_ = interpolation;

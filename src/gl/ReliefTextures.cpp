@@ -81,9 +81,8 @@ void uploadHalves(const GL& gl, int level, const glm::ivec2& size, const std::ve
 }  // namespace
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
-                               bool wrapU, Interpolation interpolation, bool withMaxMip,
-                               glm::ivec2 tiles)
-    : wrapU_(wrapU), interpolation_(interpolation) {
+                               bool wrapU, bool withMaxMip, glm::ivec2 tiles)
+    : wrapU_(wrapU) {
     checkTextureSize(gl, map, source);
     shape_.tiles = tiles;
     // On the GPU from here on; only its shape is kept.
@@ -92,8 +91,8 @@ ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::st
 }
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
-                               Interpolation interpolation, bool withMaxMip)
-    : wrapU_(pyramid.wrapsU()), interpolation_(interpolation) {
+                               bool withMaxMip)
+    : wrapU_(pyramid.wrapsU()) {
     shape_.tiles = {pyramid.addressing().tilesX, pyramid.addressing().tilesY};
     checkTextureSize(gl, map, "the map");
     if (pyramid.precision() != BoundPrecision::Half)
@@ -102,9 +101,8 @@ ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyra
 }
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
-                               bool wrapU, Interpolation interpolation, PyramidBuilder& builder,
-                               bool withMaxMip)
-    : wrapU_(wrapU), interpolation_(interpolation) {
+                               bool wrapU, PyramidBuilder& builder, bool withMaxMip)
+    : wrapU_(wrapU) {
     checkTextureSize(gl, map, source);
     allocate(gl, map);
     if (withMaxMip) allocateAligned(gl);

@@ -462,6 +462,29 @@ TEST_F(BatchCli, RowsThatChangeTheMapReloadItOnlyThen) {
     EXPECT_NE(readPixels(out / "1.png").values, readPixels(out / "2.png").values);
 }
 
+// Rows that change the method and the base together: a plane-only peer (cone) before a
+// cylinder, a tiled map after it. The renderer's method is the last row's until the new
+// row's is set, which must not refuse the new row's relief; each frame is its row alone.
+TEST_F(BatchCli, RowsThatChangeMethodAndBaseTogetherRender) {
+    std::ofstream(dir / "cams.csv") << "eye_x,eye_y,eye_z,target_x,target_y,target_z,flags\n"
+                                       "0.9,0.6,0.5,0,0,0,--method cone\n"
+                                       "0.9,0.6,0.5,0,0,0,--base cylinder\n"
+                                       "0.9,0.6,0.5,0,0,0,--method rcsm\n"
+                                       "0.9,0.6,0.5,0,0,0,\"--tile 2,2\"\n";
+    const auto out = dir / "mixed";
+    const test::RunResult r = run(small + "--cameras " + (dir / "cams.csv").string() + " --out '" +
+                                  (out / "{frame}.png").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<ManifestRow> rows = readManifest(out / "manifest.csv");
+    ASSERT_EQ(rows.size(), 4u);
+    for (const int f : {1, 3}) {
+        const auto alone = dir / ("alone" + std::to_string(f) + ".png");
+        const test::RunResult single = run(size + rows[f].camera + " --out " + alone.string());
+        ASSERT_EQ(single.status, 0) << single.err;
+        expectSamePixels(alone, out / (std::to_string(f) + ".png"));
+    }
+}
+
 TEST_F(BatchCli, FramesAndSlurmShardsSelectFrames) {
     const auto out = dir / "sel";
     const std::string pattern = " --out '" + (out / "{frame:02d}.png").string() + "' ";

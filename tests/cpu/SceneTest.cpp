@@ -170,15 +170,18 @@ TEST(Scene, ErrorsNameTheirFieldsAsTheReaderSpellsThem) {
     EXPECT_EQ(Error(ErrorKind::Runtime, std::string("a\0b", 3)).message(flags), "a\\x00b");
 }
 
-// What a pyramid is built from: the heights, the addressing, the last level, the tiles;
-// nothing else of a relief.
-TEST(Scene, ReliefsShareAPyramidUnlessTheirHeightsAddressingLastLevelOrTilesDiffer) {
+// What a pyramid is built from: the heights, the addressing, the tiles; nothing else of a
+// relief (the one pyramid bounds either last level's surface).
+TEST(Scene, ReliefsShareAPyramidUnlessTheirHeightsAddressingOrTilesDiffer) {
     const ReliefDesc relief;
     const std::vector<std::function<void(ReliefDesc&)>> kept = {
         [](ReliefDesc& r) { r.heightScale = 0.3f; },
-        [](ReliefDesc& r) { r.model = ModelTransform::fromRows({2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}); },
+        [](ReliefDesc& r) {
+            r.model = ModelTransform::fromRows({2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+        },
         [](ReliefDesc& r) { r.albedo.kind = AlbedoSource::Kind::None; },
         [](ReliefDesc& r) { r.animation = "waves", r.time = 3.0; },
+        [](ReliefDesc& r) { r.interpolation = Interpolation::Biquadratic; },
     };
     for (std::size_t i = 0; i < kept.size(); ++i) {
         ReliefDesc changed = relief;
@@ -194,8 +197,9 @@ TEST(Scene, ReliefsShareAPyramidUnlessTheirHeightsAddressingLastLevelOrTilesDiff
         [](ReliefDesc& r) { r.map.file = "b.png"; },
         [](ReliefDesc& r) { r.map.load.channel = 2; },
         [](ReliefDesc& r) { r.map.load.normalize = true; },
-        [](ReliefDesc& r) { r.interpolation = Interpolation::Biquadratic; },
-        [](ReliefDesc& r) { r.tiles = {1, 3}; },
+        [](ReliefDesc& r) {
+            r.tiles = {1, 3};
+        },
     };
     for (std::size_t i = 0; i < rebuilt.size(); ++i) {
         ReliefDesc changed = relief;

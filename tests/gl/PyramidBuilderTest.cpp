@@ -110,22 +110,18 @@ TEST_F(GpuPyramid, EqualsTheCpuPyramidOnRandomMapsOfAnySize) {
                                                     {31, 33}, {100, 7}, {300, 77}, {129, 65},
                                                     {1, 9},   {64, 64}, {33, 257}, {300, 259}};
     for (const bool wrapU : {false, true}) {
-        for (const Interpolation interpolation :
-             {Interpolation::Bilinear, Interpolation::Biquadratic}) {
-            for (auto [w, h] : sizes) {
-                const std::uint32_t seed = static_cast<std::uint32_t>(w * 1009 + h);
-                for (const bool wide : {false, true}) {
-                    const HeightMap map =
-                        wide ? wideRangeNoise(w, h, seed) : synth::whiteNoise(w, h, seed);
-                    // The aligned pyramid (maxmip's) on every other map.
-                    const ReliefTextures textures(gl(), map, "test map", wrapU, interpolation,
-                                                  builder(), (w + h) % 2 == 0);
-                    expectEqual(textures, halfPyramid(map, wrapU),
-                                std::to_string(w) + "x" + std::to_string(h) +
-                                    (wrapU ? " wrapped" : "") + (wide ? ", wide range" : "") +
-                                    ", " + interpolationName(interpolation));
-                    if (HasFatalFailure()) return;
-                }
+        for (auto [w, h] : sizes) {
+            const std::uint32_t seed = static_cast<std::uint32_t>(w * 1009 + h);
+            for (const bool wide : {false, true}) {
+                const HeightMap map =
+                    wide ? wideRangeNoise(w, h, seed) : synth::whiteNoise(w, h, seed);
+                // The aligned pyramid (maxmip's) on every other map.
+                const ReliefTextures textures(gl(), map, "test map", wrapU, builder(),
+                                              (w + h) % 2 == 0);
+                expectEqual(textures, halfPyramid(map, wrapU),
+                            std::to_string(w) + "x" + std::to_string(h) +
+                                (wrapU ? " wrapped" : "") + (wide ? ", wide range" : ""));
+                if (HasFatalFailure()) return;
             }
         }
     }
@@ -134,8 +130,7 @@ TEST_F(GpuPyramid, EqualsTheCpuPyramidOnRandomMapsOfAnySize) {
 
 TEST_F(GpuPyramid, EqualsTheCpuPyramidAt4096) {
     const HeightMap map = wideRangeNoise(4096, 4096, 7);
-    const ReliefTextures textures(gl(), map, "4096 map", false, Interpolation::Bilinear, builder(),
-                                  true);
+    const ReliefTextures textures(gl(), map, "4096 map", false, builder(), true);
     expectEqual(textures, halfPyramid(map, false), "4096x4096");
 }
 
@@ -148,8 +143,7 @@ TEST_F(GpuPyramid, UpdateAfterRandomEditsEqualsACpuBuildOfTheEditedMap) {
     for (const bool wrapU : {false, true}) {
         for (auto [w, h] : sizes) {
             HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(w + 77 * h));
-            ReliefTextures textures(gl(), map, "test map", wrapU, Interpolation::Bilinear,
-                                    builder(), true);
+            ReliefTextures textures(gl(), map, "test map", wrapU, builder(), true);
             std::uniform_int_distribution<int> x(0, w - 1), y(0, h - 1), kind(0, 2);
             std::uniform_real_distribution<float> value(0.0f, 2.0f);
             for (int edit = 0; edit < 12; ++edit) {
@@ -191,7 +185,7 @@ TEST_F(GpuPyramid, MemoryIsAtMostEightBytesPerMapTexelAtAnySize) {
                                                     {257, 129}, {1025, 1}, {4097, 4097}};
     for (auto [w, h] : sizes) {
         const HeightMap map = synth::whiteNoise(w, h, 3);
-        const ReliefTextures textures(gl(), map, "map", false, Interpolation::Bilinear, builder());
+        const ReliefTextures textures(gl(), map, "map", false, builder());
         const double perTexel =
             static_cast<double>(textures.gpuBytes(gl())) / (static_cast<double>(w) * h);
         std::printf("    %d x %d: %.2f bytes a map texel\n", w, h, perTexel);

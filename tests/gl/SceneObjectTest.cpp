@@ -102,7 +102,7 @@ protected:
                             Interpolation interpolation, double distance) {
         const GL& g = gl();
         const float heightScale = 0.1f;
-        const ReliefTextures textures(g, map, "cobbles", base.wrapsU(), interpolation);
+        const ReliefTextures textures(g, map, "cobbles", base.wrapsU());
         const std::string macros = "#version 330 core\n#define MICRORELIEF_BASE " +
                                    std::to_string(static_cast<int>(base.kind)) +
                                    "\n#define MICRORELIEF_INTERPOLATION " +
@@ -253,10 +253,10 @@ TEST_F(SceneObject, ModelTransformRendersTheReferenceHits) {
 }
 
 // One renderer across jobs builds only what a job changes: the pyramid for another map,
-// addressing, last level or tiles (core/scene/Scene.h: samePyramid), a program once for each
-// configuration; a camera, a height scale, a model, another size of the base or another
-// curved base are applied without building again. Each picture equals a fresh renderer's,
-// bit for bit: what is kept is what a new one would build.
+// addressing or tiles (core/scene/Scene.h: samePyramid), a program once for each
+// configuration; a camera, a height scale, a model, another size of the base, another
+// curved base or another last level are applied without building the pyramid again. Each picture
+// equals a fresh renderer's, bit for bit: what is kept is what a new one would build.
 TEST_F(SceneObject, ARendererAcrossJobsRebuildsOnlyWhatEachChanges) {
     const HeightMap map = synth::cobbles(48, 40, 7);
     struct Step {
@@ -266,20 +266,36 @@ TEST_F(SceneObject, ARendererAcrossJobsRebuildsOnlyWhatEachChanges) {
         int programs;  // programs compiled
     };
     const std::vector<Step> steps = {
-        {"the camera", [](RenderJob& j) { j.camera = test::orbitCamera(35.0, 60.0, 1.6); }, false, 0},
+        {"the camera", [](RenderJob& j) { j.camera = test::orbitCamera(35.0, 60.0, 1.6); }, false,
+         0},
         {"the height scale", [](RenderJob& j) { j.heightScale = 0.2f; }, false, 0},
         {"the model", [](RenderJob& j) { j.model = skewModel(false); }, false, 0},
         {"a cylinder", [](RenderJob& j) { j.base = BaseShape::cylinder(0.3, 1.0); }, true, 1},
         {"its radius", [](RenderJob& j) { j.base = BaseShape::cylinder(0.4, 1.0); }, false, 0},
         {"a sphere", [](RenderJob& j) { j.base = BaseShape::sphere(0.45); }, false, 1},
-        {"the cylinder again", [](RenderJob& j) { j.base = BaseShape::cylinder(0.4, 1.0); }, false, 0},
-        {"biquadratic", [](RenderJob& j) { j.interpolation = Interpolation::Biquadratic; }, true, 1},
+        {"the cylinder again", [](RenderJob& j) { j.base = BaseShape::cylinder(0.4, 1.0); }, false,
+         0},
+        {"biquadratic", [](RenderJob& j) { j.interpolation = Interpolation::Biquadratic; }, false,
+         1},
+        // Both at once: the one program of the two (compiled for the sphere above), none between.
+        {"the sphere, bilinear",
+         [](RenderJob& j) {
+             j.base = BaseShape::sphere(0.45);
+             j.interpolation = Interpolation::Bilinear;
+         },
+         false, 0},
         {"maxmip", [](RenderJob& j) { j.method.method = Method::MaxMip; }, false, 1},
-        {"hard shadows", [](RenderJob& j) {
+        {"hard shadows",
+         [](RenderJob& j) {
              j.method.method = Method::Multilevel;
              j.shading.shadows = ShadowMode::Hard;
-         }, false, 1},
-        {"tiles", [](RenderJob& j) { j.tiles = {2, 1}, j.shading.shadows = ShadowMode::Off; }, true, 1},
+         },
+         false, 1},
+        {"tiles",
+         [](RenderJob& j) {
+             j.tiles = {2, 1}, j.shading.shadows = ShadowMode::Off;
+         },
+         true, 1},
     };
     RenderJob job;
     job.width = 40;

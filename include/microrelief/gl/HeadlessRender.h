@@ -3,6 +3,7 @@
 // pictures in one context (microrelief-render's camera paths) along the same path.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,8 +48,8 @@ public:
     // the GPU (gl/PyramidBuilder.h; on the CPU where the GL cannot render into R16F, and
     // for a map tiled `tiles` times, whose bounds the GPU builder does not make);
     // `source` names it in error messages. A job may then take another size of that base,
-    // or another curved base; between the plane and a curved base, or for another
-    // interpolation, set the map again.
+    // another curved base or last level; between the plane and a curved base, or for other
+    // tiles, set the map again.
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       glm::ivec2 tiles = {1, 1});
@@ -71,14 +72,17 @@ public:
     void setMaxTileSide(int side) { maxTileSide_ = side > 0 ? side : kDefaultTileSide; }
 
 private:
+    // The map uploaded by `build` (on the GPU, or on the CPU where the GPU's build fails for
+    // a reason other than the map), then what the renderer keeps of it.
+    void upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
+                const std::function<void(PyramidBuild)>& build);
+
     GlContext& context_;
     std::optional<ReliefRenderer> renderer_;
     std::optional<OffscreenTarget> target_;
     std::string source_;
-    std::optional<ReliefDesc> heightsOf_;  // the relief setHeights built the pyramid for
     int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
     double maxHeight_ = 0.0;
-    std::optional<float> heightScale_;  // the scale the renderer has
     std::unique_ptr<AnimatedHeights> animated_;
     int maxTileSide_ = kDefaultTileSide;
 };

@@ -15,16 +15,17 @@
 
 #include "microrelief/core/base/BaseShape.h"
 #include "microrelief/core/base/ReliefExtent.h"
-#include "microrelief/gl/AlbedoTexture.h"
-#include "microrelief/gl/Objects.h"
-#include "microrelief/gl/PyramidBuilder.h"
-#include "microrelief/gl/ReliefShader.h"
-#include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/scene/Camera.h"
 #include "microrelief/core/scene/Method.h"
 #include "microrelief/core/scene/ModelTransform.h"
+#include "microrelief/core/scene/Scene.h"
+#include "microrelief/gl/AlbedoTexture.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/gl/PyramidBuilder.h"
+#include "microrelief/gl/ReliefShader.h"
+#include "microrelief/gl/ReliefTextures.h"
 
 namespace microrelief {
 
@@ -53,9 +54,23 @@ public:
     ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
                    const MethodSettings& method = {});
 
-    // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base), of
-    // the surface `interpolation` makes of it, the map repeated `tiles` times across the
-    // base (--tile), and uploads it with the samples. Throws Error(BadInput) when the map
+    // A relief as a whole (core/scene/Scene.h). needsHeights: whether apply() needs the
+    // relief's heights, because no pyramid was built for a relief yet, or the one built is
+    // of other heights, addressing or tiles (samePyramid with the relief applied last).
+    bool needsHeights(const ReliefDesc& relief) const;
+    // Applies `relief`, rebuilding only what it changes (rebuilds() counts): with `heights`
+    // (its map, named `source` in messages) the pyramid is built of them (setHeightMap);
+    // without, the one built is kept, and must serve the relief's addressing and tiles
+    // (else Error(Runtime)). Then the base, the last level, the height scale and the model.
+    // The albedo and an animation are the caller's: they need files, a time. Throws as
+    // setHeightMap and setBase do, for a method that does not run on the relief's base.
+    void apply(const ReliefDesc& relief, const HeightMap* heights = nullptr,
+               const std::string& source = {}, PyramidBuild build = PyramidBuild::Cpu);
+
+    // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base),
+    // which bounds the surface either last level makes of it, the map repeated `tiles`
+    // times across the base (--tile), and uploads it with the samples; `interpolation` is
+    // the last level drawn. Throws Error(BadInput) when the map
     // exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that base or tiles;
     // `source` names the map in that message.
     // `build`: the pyramid made on the CPU and uploaded, or on the GPU from the samples
@@ -87,6 +102,9 @@ public:
     // on it, keeping the base it had.
     void setBase(const BaseShape& base);
     const BaseShape& base() const { return base_; }
+    // The last level drawn: another program, the same pyramid. Throws and keeps the one it
+    // had when the program does not compile.
+    void setInterpolation(Interpolation interpolation);
     Interpolation interpolation() const { return interpolation_; }
 
     // The surface's colour from `albedo` over the map's (u, v) (core/image/Albedo.h), or, with
@@ -163,6 +181,7 @@ private:
     ModelTransform model_;
     DepthConvention depth_;
     RebuildCounts rebuilds_;
+    std::optional<ReliefDesc> applied_;  // the relief whose heights the pyramid is of (apply)
 };
 
 }  // namespace microrelief

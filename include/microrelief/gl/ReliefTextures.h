@@ -39,23 +39,23 @@ enum class PyramidBuild { Cpu, Gpu };
 
 class ReliefTextures {
 public:
-    // Builds the max pyramid of `map` for the surface `interpolation` makes of it (wrapped
-    // in u when `wrapU`: a curved base) and uploads it with the samples; the aligned levels
+    // Builds the max pyramid of `map` (wrapped in u when `wrapU`: a curved base), which
+    // bounds the surface either last level makes of it (core/heightmap/MaxPyramid.h), and
+    // uploads it with the samples; the aligned levels
     // too when `withMaxMip`. Throws Error(BadInput) naming `source` when the map exceeds
     // GL_MAX_TEXTURE_SIZE, Error(Runtime) when memory runs out. The GL state it changes
     // (texture bindings, unpack alignment) is restored.
     ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
-                   Interpolation interpolation, bool withMaxMip = false,
-                   glm::ivec2 tiles = {1, 1});
+                   bool withMaxMip = false, glm::ivec2 tiles = {1, 1});
     // The same from a pyramid the caller built of `map` (BoundPrecision::Half, what the
     // textures hold; tiled as its addressing has it).
     ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
-                   Interpolation interpolation, bool withMaxMip = false);
+                   bool withMaxMip = false);
     // The same with the pyramids built on the GPU by `builder` (gl/PyramidBuilder.h): the
     // same texels, from the samples once they are on the GPU. Untiled: the builder's
     // passes bound each texel square within the one map.
     ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
-                   Interpolation interpolation, PyramidBuilder& builder, bool withMaxMip = false);
+                   PyramidBuilder& builder, bool withMaxMip = false);
 
     GLuint samples() const { return samples_.id(); }
     GLuint windowPyramid() const { return windows_.id(); }
@@ -91,7 +91,6 @@ public:
     ReliefMapShape maxMipShape() const;
     bool wrapsU() const { return wrapU_; }
     glm::ivec2 tiles() const { return shape_.tiles; }
-    Interpolation interpolation() const { return interpolation_; }
     // S: the pyramids hold bound / 2^S (MaxPyramid.h: pyramidScaleExponent of maxHeight;
     // the shaders derive it from mr_ReliefMap's maxHeight the same way).
     int scaleExponent() const { return scaleExponent_; }
@@ -135,7 +134,6 @@ private:
     std::vector<glm::ivec2> levelSizes_;
     int scaleExponent_ = 0;
     bool wrapU_ = false;
-    Interpolation interpolation_ = Interpolation::Bilinear;
 };
 
 // Level `level` (width x height) of a single-channel float texture (R32F, R16F), read back

@@ -60,8 +60,12 @@ const char* shadowModeName(ShadowMode mode) {
     return kShadowModeNames[static_cast<int>(mode)];
 }
 
+bool methodTakesTiles(Method method) {
+    return method != Method::MaxMip && method != Method::Cone && method != Method::Rcsm;
+}
+
 void checkMethodSupportsTiles(Method method, glm::ivec2 tiles) {
-    if (tiles == glm::ivec2(1, 1)) return;
+    if (tiles == glm::ivec2(1, 1) || methodTakesTiles(method)) return;
     if (method == Method::MaxMip) {
         throwBadInput(
             "{method} maxmip does not take {tiles} (its quadtree is the map's own; the "

@@ -158,8 +158,7 @@ std::vector<FieldError> ViewDesc::validate() const {
 }
 
 bool samePyramid(const ReliefDesc& a, const ReliefDesc& b) {
-    return a.map == b.map && a.base.wrapsU() == b.base.wrapsU() &&
-           a.interpolation == b.interpolation && a.tiles == b.tiles;
+    return a.map == b.map && a.base.wrapsU() == b.base.wrapsU() && a.tiles == b.tiles;
 }
 
 std::vector<FieldError> validateTogether(const ReliefDesc& relief, const ViewDesc& view) {

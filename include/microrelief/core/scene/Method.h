@@ -38,6 +38,7 @@ void checkMethodSupportsBase(Method method, const BaseShape& base);
 // naming both flags.
 void checkMethodSupportsTiles(Method method, glm::ivec2 tiles);
 bool methodRunsOnBase(Method method, const BaseShape& base);
+bool methodTakesTiles(Method method);
 
 struct MethodSettings {
     Method method = Method::Multilevel;

@@ -92,9 +92,10 @@ struct ViewDesc {
 std::vector<FieldError> validateTogether(const ReliefDesc& relief, const ViewDesc& view);
 // Whether two reliefs have one max pyramid: the same heights (the map source and how it is
 // loaded, the animation not counted: an animated field is written over the map's pyramid),
-// the same addressing (u wraps on every curved base, not on the plane), the same last level
-// and tiles. The rest of a relief (the base's kind among the curved ones and its sizes, the
-// height scale, the model, the albedo) a renderer applies without building the pyramid again.
+// the same addressing (u wraps on every curved base, not on the plane) and tiles. The rest
+// of a relief (the base's kind among the curved ones and its sizes, the last level, whose
+// surfaces the one pyramid bounds both, the height scale, the model, the albedo) a renderer
+// applies without building the pyramid again.
 bool samePyramid(const ReliefDesc& a, const ReliefDesc& b);
 
 // Both, then together.

@@ -211,10 +211,13 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
             if (!q || !l) continue;
             if (!any) {
                 md << "\nBiquadratic last level beside the bilinear one, the same map, base and "
-                      "view (targets: time <= 1.5x, fetches <= 1.2x):\n\n"
+                      "view (targets: time <= 1.5x, fetches <= 1.2x); traversal: of the "
+                      "fetches, the reads of the pyramid (the same for both levels), the rest "
+                      "the last level's:\n\n"
                       "| map | size | view | method | ms | bilinear ms | time | fetches | "
-                      "bilinear fetches | fetches ratio | mismatch % | off % |\n"
-                      "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+                      "bilinear fetches | fetches ratio | traversal | bilinear traversal | "
+                      "mismatch % | off % |\n"
+                      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
                 any = true;
             }
             md << "| " << name << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
@@ -223,6 +226,7 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
                << fixed(frameMs(*q, wall) / frameMs(*l, wall), 2) << "x | "
                << fixed(q->fetchesMean, 1) << " | " << fixed(l->fetchesMean, 1) << " | "
                << fixed(l->fetchesMean > 0.0 ? q->fetchesMean / l->fetchesMean : 0.0, 2) << "x | "
+               << fixed(q->boundFetchesMean, 1) << " | " << fixed(l->boundFetchesMean, 1) << " | "
                << fixed(q->coverageMismatchPct, 3) << " | " << fixed(q->offHalfTexelPct, 3)
                << " |\n";
         }
@@ -346,6 +350,14 @@ std::string costSection(const std::vector<Measurement>& rows) {
 std::string paretoScript(const std::filesystem::path& folder, const std::vector<Measurement>& rows,
                          bool wall, std::vector<std::string>& outputs) {
     constexpr double kZeroDrawnAt = 1e-3;
+    // A colour and a point type per method, the same in every panel and picture (gnuplot's
+    // own cycle repeats after eight).
+    const std::vector<std::string> all = methods(rows);
+    const auto methodIndex = [&](const std::string& method) {
+        return static_cast<std::size_t>(std::find(all.begin(), all.end(), method) - all.begin());
+    };
+    const std::vector<std::string> colours{"#9400d3", "#009e73", "#56b4e9", "#e69f00", "#f0e442",
+                                           "#0072b2", "#e51e10", "#000000", "#d55e00", "#808080"};
     std::vector<std::pair<std::string, int>> maps;
     for (const Measurement& r : rows) {
         if (r.interpolation != "bilinear") continue;
@@ -397,8 +409,10 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
             for (std::size_t k = 0; k < panels[v].size(); ++k) {
                 script << (k ? ", " : "") << "'" << (folder / (stem + ".txt")).string()
                        << "' index " << panels[v][k].first
-                       << " using 1:2 with linespoints pointsize 1.2 title '" << panels[v][k].second
-                       << "'";
+                       << " using 1:2 with linespoints pointsize 1.2 pointtype "
+                       << 1 + methodIndex(panels[v][k].second) << " lc rgb '"
+                       << colours[methodIndex(panels[v][k].second) % colours.size()] << "' title '"
+                       << panels[v][k].second << "'";
             }
             script << '\n';
         }

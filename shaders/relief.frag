@@ -171,7 +171,7 @@ float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bo
 
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outPosition;  // world hit position, 1
-layout(location = 2) out vec4 outStats;     // iterations, fetches, stop level, exhausted
+layout(location = 2) out vec4 outStats;     // iterations, fetches, stop level (bound fetches when counting), exhausted
 layout(location = 3) out vec4 outShadow;    // how much of the light reaches the hit (1 lit)
 
 void main() {
@@ -191,11 +191,13 @@ void main() {
 
     mr_ReliefHit hit = traceRay(relief, query, mr_baseFramePoint(relief, eye), mr_baseFrameVector(relief, dir));
 #ifdef MICRORELIEF_COUNT_FETCHES
-    float fetches = float(mr_fetchCount);
+    // The instrumented variant: the bounds' share of the reads where the stop level was
+    // (fetch_count.glsl).
+    outStats = vec4(float(hit.iterations), float(mr_fetchCount), float(mr_boundFetchCount),
+                    hit.exhausted ? 1.0 : 0.0);
 #else
-    float fetches = 0.0;  // the counting is dead code without the instrumented variant
+    outStats = vec4(float(hit.iterations), 0.0, float(hit.stopLevel), hit.exhausted ? 1.0 : 0.0);
 #endif
-    outStats = vec4(float(hit.iterations), fetches, float(hit.stopLevel), hit.exhausted ? 1.0 : 0.0);
     if (hit.exhausted) {
         // Never silent: a traversal cut short by the budget shows as magenta.
         outColor = vec4(1.0, 0.0, 1.0, 1.0);
@@ -232,7 +234,7 @@ void main() {
     float visibility = lightVisibility(relief, hit, toLight, pointLight);
     outShadow = vec4(visibility, 0.0, 0.0, 1.0);
 #ifdef MICRORELIEF_COUNT_FETCHES
-    outStats.y = float(mr_fetchCount);  // the shadow ray's reads too
+    outStats.yz = vec2(float(mr_fetchCount), float(mr_boundFetchCount));  // the shadow ray's reads too
 #endif
     if (hit.exhausted) {  // the shadow ray's budget ran out
         outStats.w = 1.0;

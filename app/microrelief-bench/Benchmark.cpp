@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "microrelief/core/DataPaths.h"
-#include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/Accuracy.h"
+#include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/PyramidBuilder.h"
+#include "microrelief/gl/ReliefTextures.h"
 
 namespace microrelief::bench {
 
@@ -42,6 +45,60 @@ std::vector<bool> pixelsInBox(const CameraFrame& camera, const ReliefExtent& ext
             inBox.push_back(rayMeetsBox(camera.pixelRay(column, row), lo, hi));
     }
     return inBox;
+}
+
+struct MethodCost {
+    double bytesPerTexel = 0.0, preprocessMs = 0.0;
+    std::string where = "-";
+};
+
+// What each method of `methods` that runs on this map needs before its first frame: its
+// bounds built (timed here, before the method is first set, which would build them
+// untimed) and the bytes of the textures it reads. The multilevel method's windows and
+// maxmip's quadtree: median of three GPU builds after a warm-up; a cone map: its one
+// CPU build (seconds), the samples read back and the map uploaded included.
+std::map<Method, MethodCost> measureCosts(const GL& gl, ReliefRenderer& renderer,
+                                          const std::vector<Method>& methods, const BenchMap& m,
+                                          int mapSize) {
+    ReliefTextures& textures = *renderer.textures();
+    PyramidBuilder& builder = renderer.pyramidBuilder();
+    const auto medianOfThree = [&](const std::function<void()>& build) {
+        build();  // warm-up
+        std::vector<double> ms;
+        for (int k = 0; k < 3; ++k) ms.push_back(wallMs(gl, build));
+        return median(ms);
+    };
+    std::map<Method, MethodCost> costs;
+    const double texels = static_cast<double>(m.map->width) * m.map->height;
+    const double samples = textureBytes(gl, textures.samples()) / texels;
+    for (Method method : methods) {
+        if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation) ||
+            !measuredAtSize(method, mapSize))
+            continue;
+        MethodCost cost;
+        cost.bytesPerTexel = samples;
+        if (method == Method::Multilevel) {
+            // Before maxmip's quadtree is made: build() makes both where both are there.
+            if (!textures.hasMaxMipPyramid())
+                cost.preprocessMs = medianOfThree([&] { builder.build(textures); });
+            cost.where = "gpu";
+            cost.bytesPerTexel += textureBytes(gl, textures.windowPyramid()) / texels;
+        } else if (method == Method::MaxMip) {
+            if (!textures.hasMaxMipPyramid()) textures.addMaxMipPyramid(gl, builder);
+            cost.preprocessMs = medianOfThree([&] { builder.buildAligned(textures); });
+            cost.where = "gpu";
+            cost.bytesPerTexel += textureBytes(gl, textures.maxPyramid()) / texels;
+        } else if (method == Method::Cone || method == Method::Rcsm) {
+            const auto kind = method == Method::Cone ? ReliefTextures::ConeKind::Conservative
+                                                     : ReliefTextures::ConeKind::Relaxed;
+            if (!textures.coneMap(kind))
+                cost.preprocessMs = wallMs(gl, [&] { textures.addConeMap(gl, kind); });
+            cost.where = "cpu";
+            cost.bytesPerTexel += textureBytes(gl, textures.coneMap(kind)) / texels;
+        }
+        costs[method] = cost;
+    }
+    return costs;
 }
 
 }  // namespace
@@ -133,6 +190,8 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
         renderer.setMethod(MethodSettings{});  // runs on every base
         renderer.setHeightMap(*m.map, m.name, m.base, m.interpolation);
         const int mapSize = std::max(m.map->width, m.map->height);
+        const std::map<Method, MethodCost> costs =
+            measureCosts(gl, renderer, options.methods, m, mapSize);
         const ReliefExtent extent = reliefExtent(*m.map, m.heightScale, m.base);
         for (int degrees : options.viewDegrees) {
             const CameraFrame camera =
@@ -155,6 +214,10 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     r.base = baseName(m.base);
                     r.interpolation = interpolationName(m.interpolation);
                     r.hitPct = 100.0 * referenceHits / reference.hits.size();
+                    const MethodCost& cost = costs.at(method);
+                    r.bytesPerTexel = cost.bytesPerTexel;
+                    r.preprocessMs = cost.preprocessMs;
+                    r.preprocessWhere = cost.where;
                     r.mapSize = mapSize;
                     r.viewDegrees = degrees;
                     r.width = options.width;
@@ -195,26 +258,30 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     r.offHalfTexelPct = accuracy.offHalfTexelPercent();
                     r.meanErrorPx = accuracy.meanErrorPixels;
                     r.p99ErrorPx = accuracy.p99ErrorPixels;
+                    r.p99ErrorTexels = accuracy.p99ErrorTexels;
                     r.exhausted = accuracy.exhausted;
                     const Accuracy top =
                         compareWithReference(frame, camera, reference, AccuracyScope::TopSurface);
                     r.topCoverageMismatchPct = top.coverageMismatchPercent();
                     r.topOffHalfTexelPct = top.offHalfTexelPercent();
+                    r.topP99ErrorTexels = top.p99ErrorTexels;
 
                     // Fetches: the instrumented variant, once.
                     renderer.setMethod(setting.method, true);
                     draw();
                     const RenderedFrame counted = target.read();
-                    double sum = 0.0;
+                    double sum = 0.0, boundSum = 0.0;
                     std::size_t covered = 0;
                     for (std::size_t k = 0; k < inBox.size(); ++k) {
                         if (!inBox[k]) continue;
                         const double fetches = counted.stats[k * 4 + 1];
                         sum += fetches;
+                        boundSum += counted.stats[k * 4 + 2];
                         ++covered;
                         r.fetchesMax = std::max(r.fetchesMax, fetches);
                     }
                     r.fetchesMean = covered ? sum / covered : 0.0;
+                    r.boundFetchesMean = covered ? boundSum / covered : 0.0;
                     report(r);
                 }
             }

@@ -38,6 +38,9 @@ struct Measurement {
     double msWallMedian = 0.0;  // draw + glFinish on the CPU clock
     double fetchesMean = 0.0;   // over pixels whose ray meets the relief's box
     double fetchesMax = 0.0;
+    // The traversal's share of fetchesMean: reads of its bounds (a max pyramid, a cone map);
+    // the rest read the samples (the last level, the surface).
+    double boundFetchesMean = 0.0;
     double coverageMismatchPct = 0.0;
     double offHalfTexelPct = 0.0;
     // The same two over the pixels whose rays come in through the top face: what the peers
@@ -46,8 +49,17 @@ struct Measurement {
     double topOffHalfTexelPct = 0.0;
     double meanErrorPx = 0.0;  // hits' distance from the exact ones, in pixels there
     double p99ErrorPx = 0.0;
+    double p99ErrorTexels = 0.0;  // the same distance in map texels
+    double topP99ErrorTexels = 0.0;
     std::size_t exhausted = 0;
     double hitPct = 0.0;  // pixels whose exact ray hits the relief: the covered area
+    // What the method costs on this map before its first frame: the GPU textures it reads
+    // (the samples and its bounds), bytes per map texel, and the time to build its bounds
+    // (the multilevel method's windows and maxmip's quadtree on the GPU, the cone maps on
+    // the CPU; none for the methods that read the samples alone), wall ms to glFinish.
+    double bytesPerTexel = 0.0;
+    double preprocessMs = 0.0;
+    std::string preprocessWhere = "-";  // "gpu", "cpu", or "-": nothing to build
 };
 
 struct BenchOptions {

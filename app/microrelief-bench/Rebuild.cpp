@@ -6,34 +6,13 @@
 
 #include "Benchmark.h"
 #include "Report.h"
+#include "Timing.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/gl/HeightEditor.h"
 #include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief::bench {
-
-namespace {
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-// Wall milliseconds of `work` to glFinish (on llvmpipe the timer query misses the
-// rasteriser's work; on a GPU the two agree for passes this long).
-template <typename Work>
-double wallMs(const GL& gl, Work&& work) {
-    gl.Finish();
-    const auto start = std::chrono::steady_clock::now();
-    work();
-    gl.Finish();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
-
-}  // namespace
 
 void runRebuild(GlContext& context, const RebuildOptions& options,
                 const std::function<void(const RebuildRow&)>& report) {

@@ -55,6 +55,10 @@ bool reaches(const Measurement& peer, const Measurement& multilevel) {
 
 using Key = std::tuple<std::string, int, int>;  // map, size, view
 
+Key keyOf(const Measurement& r) {
+    return {r.map, r.mapSize, r.viewDegrees};
+}
+
 // On a CPU rasteriser (llvmpipe, softpipe) the GL timer query does not cover the
 // deferred rasterisation, so the tables use the glFinish wall time there.
 bool softwareRenderer(const std::string& renderer) {
@@ -207,10 +211,13 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
             if (!q || !l) continue;
             if (!any) {
                 md << "\nBiquadratic last level beside the bilinear one, the same map, base and "
-                      "view (targets: time <= 1.5x, fetches <= 1.2x):\n\n"
+                      "view (targets: time <= 1.5x, fetches <= 1.2x); traversal: of the "
+                      "fetches, the reads of the pyramid (the same for both levels), the rest "
+                      "the last level's:\n\n"
                       "| map | size | view | method | ms | bilinear ms | time | fetches | "
-                      "bilinear fetches | fetches ratio | mismatch % | off % |\n"
-                      "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+                      "bilinear fetches | fetches ratio | traversal | bilinear traversal | "
+                      "mismatch % | off % |\n"
+                      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
                 any = true;
             }
             md << "| " << name << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
@@ -219,6 +226,7 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
                << fixed(frameMs(*q, wall) / frameMs(*l, wall), 2) << "x | "
                << fixed(q->fetchesMean, 1) << " | " << fixed(l->fetchesMean, 1) << " | "
                << fixed(l->fetchesMean > 0.0 ? q->fetchesMean / l->fetchesMean : 0.0, 2) << "x | "
+               << fixed(q->boundFetchesMean, 1) << " | " << fixed(l->boundFetchesMean, 1) << " | "
                << fixed(q->coverageMismatchPct, 3) << " | " << fixed(q->offHalfTexelPct, 3)
                << " |\n";
         }
@@ -226,7 +234,224 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
     return md.str();
 }
 
+// Equal-time accuracy: for each peer, its most accurate setting within the
+// multilevel method's exact time.
+std::string equalTimeSection(const std::vector<Measurement>& rows, bool wall,
+                             const std::vector<std::string>& peers) {
+    std::ostringstream md;
+    md << "\nEqual-time accuracy: for each peer, of its settings whose time is within the "
+          "multilevel method's, the most accurate (the fewest hit/miss disagreements plus hits "
+          "off by more than half a texel, then the smallest p99 error): its setting, hit/miss "
+          "%, off % and p99 error in texels (over the hits), and its time. *none*: every "
+          "setting takes longer (its cheapest in brackets). Peers marked *(top)* on the pixels "
+          "whose rays come in through the top face.\n\n";
+    md << "| map | size | view | multilevel ms | hit/miss % | off % | p99 texels |";
+    for (const std::string& p : peers)
+        md << ' ' << p << (tracesTheSolid(p) ? "" : " (top)") << " |";
+    md << "\n|---|---|---|---|---|---|---|";
+    for (std::size_t k = 0; k < peers.size(); ++k) md << "---|";
+    md << '\n';
+    for (const Key& key : keys(rows)) {
+        const Measurement* ml = find(rows, key, "multilevel", "exact");
+        if (!ml || ml->interpolation != "bilinear") continue;
+        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
+           << "° | " << fixed(frameMs(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
+           << " | " << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->p99ErrorTexels, 2)
+           << " |";
+        for (const std::string& p : peers) {
+            const bool top = !tracesTheSolid(p);
+            if (const Measurement* pick = equalTime(rows, p, *ml, wall)) {
+                const PeerAccuracy a = peerAccuracy(*pick, top);
+                md << ' ' << pick->param << ": " << fixed(a.mismatchPct, 3) << " / "
+                   << fixed(a.offPct, 3) << " / " << fixed(a.p99Texels, 2) << " ("
+                   << fixed(frameMs(*pick, wall), 2) << " ms) |";
+                continue;
+            }
+            const Measurement* cheapest = nullptr;
+            for (const Measurement& r : rows) {
+                if (keyOf(r) == key && r.method == p &&
+                    (!cheapest || frameMs(r, wall) < frameMs(*cheapest, wall)))
+                    cheapest = &r;
+            }
+            md << (cheapest ? " none (" + cheapest->param + ": " +
+                                  fixed(frameMs(*cheapest, wall), 2) + " ms) |"
+                            : std::string(" - |"));
+        }
+        md << '\n';
+    }
+    return md.str();
+}
+
+// Figures to hold against published ones: throughput and fetches beside each
+// time (every setting), the traversal's reads of its bounds beside the total.
+std::string throughputSection(const std::vector<Measurement>& rows, bool wall) {
+    std::ostringstream md;
+    md << "\nThroughput and fetches: each method's first (exact, or fewest steps) and the "
+          "equal-accuracy or largest setting; Mpix/s: the whole picture over the frame's time; "
+          "fetches: mean texture reads a pixel in the relief's box, of them the traversal's "
+          "reads of its bounds (max pyramid or cone map), the rest the samples' (the last "
+          "level, the surface).\n\n"
+          "| map | size | view | method | setting | ms | Mpix/s | fetches | bounds | samples |\n"
+          "|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const Key& key : keys(rows)) {
+        const Measurement* ml = find(rows, key, "multilevel", "exact");
+        for (const std::string& method : methods(rows)) {
+            const Measurement *first = nullptr, *last = nullptr;
+            for (const Measurement& r : rows) {
+                if (keyOf(r) != key || r.method != method) continue;
+                if (!first) first = &r;
+                last = &r;
+            }
+            if (!first) continue;
+            const Measurement* eq = ml ? equalAccuracy(rows, key, method, *ml) : nullptr;
+            const Measurement* second = method == "multilevel" ? first : eq ? eq : last;
+            for (const Measurement* r : {first, second}) {
+                md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | "
+                   << std::get<2>(key) << "° | " << method << " | " << r->param << " | "
+                   << fixed(frameMs(*r, wall), 2) << " | "
+                   << fixed(megapixelsPerSecond(*r, wall), 2) << " | " << fixed(r->fetchesMean, 1)
+                   << " | " << fixed(r->boundFetchesMean, 1) << " | "
+                   << fixed(r->fetchesMean - r->boundFetchesMean, 1) << " |\n";
+                if (second == first) break;
+            }
+        }
+    }
+    return md.str();
+}
+
+// Costs: GPU bytes a map texel and the build of each method's bounds, per map.
+std::string costSection(const std::vector<Measurement>& rows) {
+    std::ostringstream md;
+    md << "\nMemory and preprocessing: the GPU textures each method reads (the samples, R32F, "
+          "and its bounds: the multilevel method's overlapping windows and maxmip's quadtree, "
+          "R16F mip chains; cone's and rcsm's cone maps, RG16F), bytes a map texel; and the "
+          "time to build its bounds, wall ms to glFinish (gpu: median of three builds; cpu: "
+          "one build, read-back and upload included; -: nothing to build).\n\n"
+          "| map | size | method | bytes / texel | preprocessing ms |\n|---|---|---|---|---|\n";
+    std::vector<std::tuple<std::string, int, std::string>> seen;
+    for (const Measurement& r : rows) {
+        const auto id = std::make_tuple(r.map, r.mapSize, r.method);
+        if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
+        seen.push_back(id);
+        md << "| " << r.map << " | " << r.mapSize << " | " << r.method << " | "
+           << fixed(r.bytesPerTexel, 2) << " | "
+           << (r.preprocessWhere == "-" ? std::string("-")
+                                        : fixed(r.preprocessMs, 1) + " (" + r.preprocessWhere + ")")
+           << " |\n";
+    }
+    return md.str();
+}
+
+// The Pareto plots: for each map and size, a panel per view, every method's settings as
+// points of time against error, joined in the order of their settings. Error: % of the
+// pixels a method is measured on whose hit/miss disagrees with the exact reference plus %
+// of hits off by more than half a texel (PeerAccuracy::wrongPct), drawn at 0.001 where
+// it is 0 (a log axis). Adds the pictures' names to `outputs`; the data beside them.
+std::string paretoScript(const std::filesystem::path& folder, const std::vector<Measurement>& rows,
+                         bool wall, std::vector<std::string>& outputs) {
+    constexpr double kZeroDrawnAt = 1e-3;
+    // A colour and a point type per method, the same in every panel and picture (gnuplot's
+    // own cycle repeats after eight).
+    const std::vector<std::string> all = methods(rows);
+    const auto methodIndex = [&](const std::string& method) {
+        return static_cast<std::size_t>(std::find(all.begin(), all.end(), method) - all.begin());
+    };
+    const std::vector<std::string> colours{"#9400d3", "#009e73", "#56b4e9", "#e69f00", "#f0e442",
+                                           "#0072b2", "#e51e10", "#000000", "#d55e00", "#808080"};
+    std::vector<std::pair<std::string, int>> maps;
+    for (const Measurement& r : rows) {
+        if (r.interpolation != "bilinear") continue;
+        if (std::find(maps.begin(), maps.end(), std::make_pair(r.map, r.mapSize)) == maps.end())
+            maps.emplace_back(r.map, r.mapSize);
+    }
+    std::ostringstream script;
+    for (const auto& [map, size] : maps) {
+        std::vector<int> views;
+        for (const Measurement& r : rows) {
+            if (r.map == map && r.mapSize == size &&
+                std::find(views.begin(), views.end(), r.viewDegrees) == views.end())
+                views.push_back(r.viewDegrees);
+        }
+        const std::string stem = "pareto-" + map + "-" + std::to_string(size);
+        std::ostringstream data;
+        int block = 0;
+        std::vector<std::vector<std::pair<int, std::string>>> panels;  // (block, method)
+        for (int view : views) {
+            panels.emplace_back();
+            for (const std::string& method : methods(rows)) {
+                std::ostringstream points;
+                for (const Measurement& r : rows) {
+                    if (r.map != map || r.mapSize != size || r.viewDegrees != view ||
+                        r.method != method)
+                        continue;
+                    const PeerAccuracy a = peerAccuracy(r, !tracesTheSolid(method));
+                    points << frameMs(r, wall) << ' ' << std::max(a.wrongPct(), kZeroDrawnAt)
+                           << " \"" << r.param << "\"\n";
+                }
+                if (points.str().empty()) continue;
+                data << points.str() << "\n\n";
+                panels.back().emplace_back(block++, method);
+            }
+        }
+        writeTextAtomically(folder / (stem + ".txt"), data.str());
+        outputs.push_back(stem + ".png");
+        script << "set terminal pngcairo size " << 520 * views.size() << ",520 noenhanced\n"
+               << "set output '" << (folder / (stem + ".png.part")).string() << "'\n"
+               << "unset logscale\nset logscale xy\nset key inside top right font ',9'\n"
+               << "set grid\nset yrange [" << 0.5 * kZeroDrawnAt << ":200]\n"
+               << "set xlabel '" << (wall ? "frame time, wall clock (ms)" : "GPU time (ms)")
+               << "'\nset ylabel '% wrong: hit/miss + hits off > 1/2 texel (0 drawn at "
+               << kZeroDrawnAt << ")'\n"
+               << "set multiplot layout 1," << views.size() << " title '" << map << " " << size
+               << ": time against error, every setting (top-only peers on their pixels)'\n";
+        for (std::size_t v = 0; v < views.size(); ++v) {
+            script << "set title 'view " << views[v] << " deg'\nplot ";
+            for (std::size_t k = 0; k < panels[v].size(); ++k) {
+                script << (k ? ", " : "") << "'" << (folder / (stem + ".txt")).string()
+                       << "' index " << panels[v][k].first
+                       << " using 1:2 with linespoints pointsize 1.2 pointtype "
+                       << 1 + methodIndex(panels[v][k].second) << " lc rgb '"
+                       << colours[methodIndex(panels[v][k].second) % colours.size()] << "' title '"
+                       << panels[v][k].second << "'";
+            }
+            script << '\n';
+        }
+        script << "unset multiplot\nset autoscale y\n";
+    }
+    return script.str();
+}
+
 }  // namespace
+
+PeerAccuracy peerAccuracy(const Measurement& r, bool topOnly) {
+    if (topOnly) return {r.topCoverageMismatchPct, r.topOffHalfTexelPct, r.topP99ErrorTexels};
+    return {r.coverageMismatchPct, r.offHalfTexelPct, r.p99ErrorTexels};
+}
+
+const Measurement* equalTime(const std::vector<Measurement>& rows, const std::string& method,
+                             const Measurement& multilevel, bool wall) {
+    const bool top = !tracesTheSolid(method);
+    const Measurement* best = nullptr;
+    for (const Measurement& r : rows) {
+        if (keyOf(r) != keyOf(multilevel) || r.method != method ||
+            frameMs(r, wall) > frameMs(multilevel, wall))
+            continue;
+        if (!best) {
+            best = &r;
+            continue;
+        }
+        const PeerAccuracy a = peerAccuracy(r, top), b = peerAccuracy(*best, top);
+        if (std::make_tuple(a.wrongPct(), a.p99Texels, frameMs(r, wall)) <
+            std::make_tuple(b.wrongPct(), b.p99Texels, frameMs(*best, wall)))
+            best = &r;
+    }
+    return best;
+}
+
+double megapixelsPerSecond(const Measurement& r, bool wall) {
+    const double ms = frameMs(r, wall);
+    return ms > 0.0 ? static_cast<double>(r.width) * r.height / (ms * 1e3) : 0.0;
+}
 
 void writeCsv(const std::filesystem::path& file, const RunInfo& info,
               const std::vector<Measurement>& rows) {
@@ -236,7 +461,10 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
            "ms_median,ms_wall_median,fetches_mean,fetches_max,"
            "coverage_mismatch_pct,off_half_texel_pct,"
            "top_coverage_mismatch_pct,top_off_half_texel_pct,"
-           "mean_error_px,p99_error_px,exhausted_px,hit_pct,interpolation,renderer\n";
+           "mean_error_px,p99_error_px,exhausted_px,hit_pct,interpolation,renderer,"
+           "fetches_bounds_mean,p99_error_texels,top_p99_error_texels,mpix_per_s,"
+           "bytes_per_texel,preprocess_ms,preprocess_where\n";
+    const bool wall = softwareRenderer(info.renderer);
     for (const Measurement& r : rows) {
         out << r.method << ',' << r.param << ',' << r.map << ',' << r.base << ',' << r.mapSize
             << ',' << r.viewDegrees << ',' << r.width << ',' << r.height << ','
@@ -245,8 +473,11 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
             << fixed(r.coverageMismatchPct, 4) << ',' << fixed(r.offHalfTexelPct, 4) << ','
             << fixed(r.topCoverageMismatchPct, 4) << ',' << fixed(r.topOffHalfTexelPct, 4) << ','
             << fixed(r.meanErrorPx, 3) << ',' << fixed(r.p99ErrorPx, 3) << ',' << r.exhausted << ','
-            << fixed(r.hitPct, 2) << ',' << r.interpolation << ',' << csvQuote(info.renderer)
-            << '\n';
+            << fixed(r.hitPct, 2) << ',' << r.interpolation << ',' << csvQuote(info.renderer) << ','
+            << fixed(r.boundFetchesMean, 2) << ',' << fixed(r.p99ErrorTexels, 3) << ','
+            << fixed(r.topP99ErrorTexels, 3) << ',' << fixed(megapixelsPerSecond(r, wall), 3) << ','
+            << fixed(r.bytesPerTexel, 3) << ',' << fixed(r.preprocessMs, 2) << ','
+            << r.preprocessWhere << '\n';
     }
     writeTextAtomically(file, out.str());
 }
@@ -276,10 +507,10 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         all.erase(std::remove(all.begin(), all.end(), "multilevel"), all.end());
         return all;
     }();
-    md << "| map | size | view | multilevel ms | mismatch % | off % | fetches |";
+    md << "| map | size | view | multilevel ms | Mpix/s | mismatch % | off % | fetches |";
     for (const std::string& p : peers)
         md << ' ' << p << (tracesTheSolid(p) ? "" : " (top)") << " |";
-    md << "\n|---|---|---|---|---|---|---|";
+    md << "\n|---|---|---|---|---|---|---|---|";
     for (std::size_t k = 0; k < peers.size(); ++k) md << "---|";
     md << '\n';
     for (const Key& key : keys(rows)) {
@@ -287,7 +518,8 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         // The biquadratic rows, without peers, have a table of their own.
         if (!ml || ml->interpolation != "bilinear") continue;
         md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
-           << "° | " << fixed(frameMs(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
+           << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
+           << fixed(megapixelsPerSecond(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
            << " | " << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->fetchesMean, 1) << " |";
         for (const std::string& p : peers) {
             const Measurement* eq = equalAccuracy(rows, key, p, *ml);
@@ -295,11 +527,17 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
                 md << " never |";
             } else {
                 md << ' ' << eq->param << ": " << fixed(frameMs(*eq, wall), 2) << " ms ("
-                   << fixed(frameMs(*eq, wall) / frameMs(*ml, wall), 1) << "x) |";
+                   << fixed(frameMs(*eq, wall) / frameMs(*ml, wall), 1) << "x; "
+                   << fixed(megapixelsPerSecond(*eq, wall), 2) << " Mpix/s, "
+                   << fixed(eq->fetchesMean, 1) << " fetches) |";
             }
         }
         md << '\n';
     }
+
+    md << equalTimeSection(rows, wall, peers);
+    md << throughputSection(rows, wall);
+    md << costSection(rows);
 
     md << "\nAccuracy-controlled level of detail (multilevel, `--pixel-error`): time and "
           "accuracy (off %: hits off by more than half a texel; px: the mean and the 99th "
@@ -408,13 +646,17 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
     script << "set terminal pngcairo size 800,500 noenhanced\nset logscale x 2\nset logscale "
               "y\nset key outside right\n"
               "set grid\nset xlabel 'map size (texels per side)'\n";
+    std::vector<std::string> outputs;
+    // Against the map's size only where the procedural relief was measured.
     for (const auto& [output, column, label] :
          {std::tuple<std::string, int, std::string>{
               "time_vs_size.png", 2,
               wall ? "frame time, wall clock (ms)" : "GPU time per frame (ms)"},
           {"fetches_vs_size.png", 3, "texel fetches per pixel (mean)"}}) {
-        script << "set output '" << (folder / output).string() << "'\nset ylabel '" << label
-               << "'\nset title '"
+        if (names.empty()) break;
+        outputs.push_back(output);
+        script << "set output '" << (folder / (output + ".part")).string() << "'\nset ylabel '"
+               << label << "'\nset title '"
                << "view " << view
                << " deg: multilevel exact; peers at equal accuracy, else their largest budget'\n"
                << "plot ";
@@ -424,11 +666,21 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
         }
         script << '\n';
     }
+    script << paretoScript(folder, rows, wall, outputs);
     writeTextAtomically(folder / "plots.gnuplot", script.str());
     const std::string command = "gnuplot " + (folder / "plots.gnuplot").string() + " 2>&1";
     if (std::system(command.c_str()) != 0) {
         why = "gnuplot failed on " + (folder / "plots.gnuplot").string();
         return false;
+    }
+    // gnuplot drew each picture beside its name; renamed whole into place.
+    for (const std::string& output : outputs) {
+        std::error_code ec;
+        std::filesystem::rename(folder / (output + ".part"), folder / output, ec);
+        if (ec) {
+            why = "cannot rename " + (folder / (output + ".part")).string() + ": " + ec.message();
+            return false;
+        }
     }
     return true;
 }

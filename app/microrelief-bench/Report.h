@@ -22,6 +22,28 @@ void writeTextAtomically(const std::filesystem::path& file, const std::string& t
 std::string csvQuote(const std::string& text);
 std::string fixed(double value, int digits);
 
+// A peer's figures on the pixels it is measured on: every pixel for the methods that trace
+// the side walls and the bottom face, those whose rays come in through the top face for
+// the others (the multilevel method's on the same pixels to hold them against).
+struct PeerAccuracy {
+    double mismatchPct = 0.0, offPct = 0.0, p99Texels = 0.0;
+    // What the equal-time pick minimises: hit/miss disagreements (% of pixels) plus hits
+    // off by more than half a texel (% of hits).
+    double wrongPct() const { return mismatchPct + offPct; }
+};
+PeerAccuracy peerAccuracy(const Measurement& r, bool topOnly);
+
+// Equal-time accuracy: of `method`'s settings on `multilevel`'s map, size and view, those
+// whose time (`wall`: the glFinish wall time, else the timer query's) is within the
+// multilevel method's exact time, the most accurate: the fewest wrong (wrongPct), then the
+// smallest p99 error, then the faster. Null where every setting takes longer.
+const Measurement* equalTime(const std::vector<Measurement>& rows, const std::string& method,
+                             const Measurement& multilevel, bool wall);
+
+// Pixels a second: the whole picture over the frame's time (as frame rates at a
+// resolution are quoted), millions.
+double megapixelsPerSecond(const Measurement& r, bool wall);
+
 // Rewrites the whole CSV atomically (called after every measurement, so a long run
 // that is interrupted keeps what it measured).
 void writeCsv(const std::filesystem::path& file, const RunInfo& info,
@@ -31,8 +53,10 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
 std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info,
                           const std::vector<Measurement>& rows);
 
-// time_vs_size.png and fetches_vs_size.png in `folder`, if gnuplot is installed;
-// returns false (and says why) otherwise.
+// time_vs_size.png and fetches_vs_size.png in `folder`, and a Pareto plot of time against
+// error for each map and size, pareto-MAP-SIZE.png (every method's settings, a panel per
+// view), if gnuplot is installed; returns false (and says why) otherwise. Each picture is
+// written whole or not at all.
 bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
                 const std::vector<Measurement>& rows, std::string& why);
 

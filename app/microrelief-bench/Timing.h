@@ -19,6 +19,18 @@ inline double median(std::vector<double> values) {
     return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+// Wall milliseconds of `work` to glFinish (on llvmpipe the timer query misses the
+// rasteriser's work; on a GPU the two agree for passes this long).
+template <typename Work>
+double wallMs(const GL& gl, Work&& work) {
+    gl.Finish();
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    gl.Finish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
 class Timer {
 public:
     explicit Timer(const GL& gl) : gl_(gl), query_(gl::Query::create(gl)) {}

@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <iostream>
 
 #include "Benchmark.h"
@@ -33,8 +35,36 @@ std::string today() {
     return buffer;
 }
 
+// The real height maps scripts/bench-maps.sh fetched from Debian packages: the files that
+// FOLDER/maps.txt lists (one a line, relative to FOLDER), FOLDER being $MICRORELIEF_BENCH_MAPS
+// or out/bench-maps. None where there is no list, unless `required` (--maps fetched): then
+// one error line naming the list.
+std::vector<std::string> fetchedMaps(bool required) {
+    const char* env = std::getenv("MICRORELIEF_BENCH_MAPS");
+    const std::filesystem::path folder = env && *env ? env : "out/bench-maps";
+    const std::filesystem::path list = folder / "maps.txt";
+    std::ifstream in(list);
+    if (!in) {
+        if (required)
+            throwBadInput("--maps fetched: " + list.string() +
+                          ": no list of fetched maps (run scripts/bench-maps.sh)");
+        return {};
+    }
+    std::vector<std::string> files;
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty()) files.push_back((folder / line).string());
+    return files;
+}
+
 std::vector<BenchMap> loadMaps(const BenchOptions& options) {
     std::vector<BenchMap> maps;
+    // The files first: a bad one is refused before minutes of making reliefs.
+    std::vector<std::pair<std::filesystem::path, std::shared_ptr<const HeightMap>>> files;
+    for (const std::string& file : options.assets) {
+        const std::filesystem::path path =
+            file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);
+        files.emplace_back(path, std::make_shared<const HeightMap>(loadHeightMap(path)));
+    }
     // Each map on each base, the bases of one map together (a map is made once).
     for (int n : options.mapSizes) {
         std::cout << "microrelief-bench: making the " << n << "x" << n << " relief\n" << std::flush;
@@ -44,10 +74,7 @@ std::vector<BenchMap> loadMaps(const BenchOptions& options) {
                 maps.push_back({mapOnBase(kResampledRelief, base, interpolation), relief, 0.1, base,
                                 interpolation});
     }
-    for (const std::string& file : options.assets) {
-        const std::filesystem::path path =
-            file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);
-        const auto map = std::make_shared<const HeightMap>(loadHeightMap(path));
+    for (const auto& [path, map] : files) {
         for (const BaseShape& base : options.bases)
             for (Interpolation interpolation : options.interpolations)
                 maps.push_back({mapOnBase(path.stem().string(), base, interpolation), map, 0.1,
@@ -146,7 +173,9 @@ int main(int argc, char** argv) {
     std::string mapList, viewList, sizeList;
     app.add_option("--maps", mapList,
                    "Comma-separated height map files (any image the programs read; 'default' the "
-                   "bundled map), instead of the bundled one");
+                   "bundled map; 'fetched' the real maps scripts/bench-maps.sh fetched), instead "
+                   "of the default: the bundled map and the fetched ones where there are any "
+                   "(out/bench-maps/maps.txt, or $MICRORELIEF_BENCH_MAPS/maps.txt)");
     app.add_option("--views", viewList,
                    "Comma-separated view angles in degrees from the surface normal, 0 to 89 "
                    "(default 0,45,70,85; 45,80 with --quick)");
@@ -177,6 +206,7 @@ int main(int argc, char** argv) {
         } else {
             options.mapSizes = {64, 256, 1024, 4096, 8192};
             options.assets = {"default"};
+            for (const std::string& file : fetchedMaps(false)) options.assets.push_back(file);
             options.viewDegrees = {0, 45, 70, 85};
         }
         // A whole number within [lo, hi], or one clear error naming the flag.
@@ -193,10 +223,19 @@ int main(int argc, char** argv) {
             };
         };
         if (app.count("--maps")) {
-            options.assets = parseList(mapList, "--maps", "--maps", [](const std::string& f) {
-                if (f.empty()) throwBadInput("--maps: an empty file name");
-                return f;
-            });
+            options.assets.clear();
+            for (const std::string& file :
+                 parseList(mapList, "--maps", "--maps", [](const std::string& f) {
+                     if (f.empty()) throwBadInput("--maps: an empty file name");
+                     return f;
+                 })) {
+                if (file != "fetched") {
+                    options.assets.push_back(file);
+                    continue;
+                }
+                for (const std::string& fetched : fetchedMaps(true))
+                    options.assets.push_back(fetched);
+            }
         }
         if (app.count("--views"))
             options.viewDegrees =
@@ -296,10 +335,11 @@ int main(int argc, char** argv) {
         });
         std::cout << '\n' << writeMarkdown(folder / "bench.md", info, rows);
         std::string why;
-        if (!writePlots(folder, info, rows, why))
-            std::cerr << "microrelief-bench: warning: no plots: " << why << '\n';
+        const bool plots = writePlots(folder, info, rows, why);
+        if (!plots) std::cerr << "microrelief-bench: warning: no plots: " << why << '\n';
         std::cout << "microrelief-bench: wrote " << (folder / "bench.csv").string()
-                  << ", bench.md and plots in " << folder.string() << '\n';
+                  << (plots ? ", bench.md and plots in " : " and bench.md in ") << folder.string()
+                  << '\n';
         return 0;
     } catch (const Error& e) {
         std::cerr << "microrelief-bench: error: " << e.what() << '\n';

@@ -71,7 +71,7 @@ void mr_walkCones(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones
     while (iteration < query.maxIterations) {
         iteration += 1;
         vec2 cone = MICRORELIEF_READ_CONE(cones, texel);
-        MICRORELIEF_FETCHED(1);
+        MICRORELIEF_FETCHED_BOUNDS(1);
         vec2 exits = mr_coneTexelExits(texel, origin, dir);
         float tExit = min(max(min(exits.x, exits.y), t), tFar);
         float z = origin.z + t * dir.z;

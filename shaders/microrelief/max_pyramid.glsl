@@ -37,7 +37,7 @@ float mr_pyramidScale(mr_Relief relief) {
 
 // One pyramid texel: the bound it stands for, map units.
 float mr_pyramidTexel(mr_Relief relief, MICRORELIEF_SAMPLER pyramid, ivec2 texel, int level) {
-    MICRORELIEF_FETCHED(1);
+    MICRORELIEF_FETCHED_BOUNDS(1);
     vec2 levelSize = vec2(max(ivec2(1), relief.map.pyramidSize >> level));
     return MICRORELIEF_READ_PYRAMID(pyramid, texel, level, levelSize) * mr_pyramidScale(relief);
 }

@@ -52,7 +52,7 @@ mr_ReliefHit mr_traceRelaxedCones(mr_Relief relief, MICRORELIEF_SAMPLER cones, M
     for (int i = 0; i < steps; ++i) {
         vec3 p = origin + t * dir;
         vec2 cone = MICRORELIEF_READ_RELAXED_CONE(cones, p.xy, relief.map.size);
-        MICRORELIEF_FETCHED(1);
+        MICRORELIEF_FETCHED_BOUNDS(1);
         hit.iterations += 1;
         float above = max(p.z - cone.x, 0.0);
         float denominator = run + cone.y * drop;
@@ -70,7 +70,7 @@ mr_ReliefHit mr_traceRelaxedCones(mr_Relief relief, MICRORELIEF_SAMPLER cones, M
     for (int i = 0; i < halvings; ++i) {
         vec3 p = origin + tSearch * dir;
         vec2 cone = MICRORELIEF_READ_RELAXED_CONE(cones, p.xy, relief.map.size);
-        MICRORELIEF_FETCHED(1);
+        MICRORELIEF_FETCHED_BOUNDS(1);
         hit.iterations += 1;
         halfStep *= 0.5;
         tSearch += p.z > cone.x ? halfStep : -halfStep;  // above: forward; on or under: back

@@ -195,24 +195,28 @@ void ReliefTextures::uploadPyramid(const GL& gl, const MaxPyramid& pyramid) {
 }
 
 std::size_t ReliefTextures::gpuBytes(const GL& gl) const {
+    std::size_t bytes = 0;
+    for (const gl::Texture* texture : {&samples_, &windows_, &aligned_, &cones_[0], &cones_[1]})
+        if (*texture) bytes += textureBytes(gl, texture->id());
+    return bytes;
+}
+
+std::size_t textureBytes(const GL& gl, GLuint texture) {
     // Asked of the GL, level by level: what it allocated, not what we meant it to.
     const gl::StateGuard saved(gl);
     gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, texture);
     std::size_t bytes = 0;
-    for (const gl::Texture* texture : {&samples_, &windows_, &aligned_, &cones_[0], &cones_[1]}) {
-        if (!*texture) continue;
-        gl.BindTexture(GL_TEXTURE_2D, texture->id());
-        for (int level = 0;; ++level) {
-            GLint width = 0, height = 0, format = 0;
-            gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &width);
-            if (width == 0) break;
-            gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
-            gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
-            const std::size_t texelBytes = format == GL_R16F                         ? 2
-                                           : format == GL_R32F || format == GL_RG16F ? 4
-                                                                                     : 16;
-            bytes += static_cast<std::size_t>(width) * height * texelBytes;
-        }
+    for (int level = 0;; ++level) {
+        GLint width = 0, height = 0, format = 0;
+        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &width);
+        if (width == 0) break;
+        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &height);
+        gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+        const std::size_t texelBytes = format == GL_R16F                         ? 2
+                                       : format == GL_R32F || format == GL_RG16F ? 4
+                                                                                 : 16;
+        bytes += static_cast<std::size_t>(width) * height * texelBytes;
     }
     return bytes;
 }

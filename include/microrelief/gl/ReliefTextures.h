@@ -136,6 +136,11 @@ private:
     bool wrapU_ = false;
 };
 
+// What one 2D texture takes in GPU memory, bytes: every level, as the GL reports its size
+// and format (R16F 2 a texel, R32F and RG16F 4, others counted as 16). The GL state it
+// changes is restored.
+std::size_t textureBytes(const GL& gl, GLuint texture);
+
 // Level `level` (width x height) of a single-channel float texture (R32F, R16F), read back
 // through a framebuffer as floats, row 0 first. The GL state it changes is restored.
 std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int width, int height);

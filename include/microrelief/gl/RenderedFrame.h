@@ -13,7 +13,8 @@ struct RenderedFrame {
     int width = 0, height = 0;
     std::vector<std::uint8_t> color;  // RGBA8, row 0 at the top
     std::vector<float> position;      // RGBA32F: world x, y, z, hit (1) or miss (0)
-    std::vector<float> stats;         // RGBA32F: iterations, fetches, stop level, exhausted
+    std::vector<float> stats;         // RGBA32F: iterations, fetches, stop level (the instrumented
+                                      // variant: fetches of the bounds), exhausted
     std::vector<float> shadow;        // one float: how much of the light reaches the hit (1 lit)
 
     const float* positionAt(int column, int row) const {

@@ -74,7 +74,7 @@ int run(const Options& o) {
     const auto context = createHeadlessContext(Backend::Auto);
     const GL& gl = context->gl();
 
-    const ReliefTextures textures(gl, map, o.height, /*wrapU=*/false, Interpolation::Bilinear);
+    const ReliefTextures textures(gl, map, o.height, /*wrapU=*/false);
     const gl::Shader vertex =
         gl::compileShader(gl, GL_VERTEX_SHADER, {kFullScreenTriangle, {}, "330 core"});
     const gl::Shader fragment = gl::compileShader(

@@ -335,7 +335,9 @@ namespace {
 BaseShape parseBase(const std::string& name, const std::map<std::string, std::string>& sizes) {
     const BaseType& type = baseType(name);
     BaseShape shape = type.defaults;
-    for (const auto& [field, text] : sizes) {
+    for (const auto& entry : sizes) {
+        const std::string& field = entry.first;  // named, not bound: lambdas capture it
+        const std::string& text = entry.second;
         if (text.empty()) continue;
         const std::string flagText = flag(field);
         const auto size = std::find_if(type.sizes.begin(), type.sizes.end(),

@@ -43,6 +43,18 @@ bool tracesTheSolid(const std::string& method) {
     return methodTracesTheSolid(parseMethod(method));
 }
 
+// A markdown table's header: the leading columns, then a column a peer, marked "(top)"
+// where it is measured on the top surface only.
+void peerTableHeader(std::ostream& md, const std::vector<std::string>& leading,
+                     const std::vector<std::string>& peers) {
+    md << '|';
+    for (const std::string& column : leading) md << ' ' << column << " |";
+    for (const std::string& p : peers) md << ' ' << p << (tracesTheSolid(p) ? "" : " (top)") << " |";
+    md << "\n|";
+    for (std::size_t k = 0; k < leading.size() + peers.size(); ++k) md << "---|";
+    md << '\n';
+}
+
 bool reaches(const Measurement& peer, const Measurement& multilevel) {
     if (!tracesTheSolid(peer.method)) {
         return peer.topCoverageMismatchPct <=
@@ -245,12 +257,8 @@ std::string equalTimeSection(const std::vector<Measurement>& rows, bool wall,
           "%, off % and p99 error in texels (over the hits), and its time. *none*: every "
           "setting takes longer (its cheapest in brackets). Peers marked *(top)* on the pixels "
           "whose rays come in through the top face.\n\n";
-    md << "| map | size | view | multilevel ms | hit/miss % | off % | p99 texels |";
-    for (const std::string& p : peers)
-        md << ' ' << p << (tracesTheSolid(p) ? "" : " (top)") << " |";
-    md << "\n|---|---|---|---|---|---|---|";
-    for (std::size_t k = 0; k < peers.size(); ++k) md << "---|";
-    md << '\n';
+    peerTableHeader(md, {"map", "size", "view", "multilevel ms", "hit/miss %", "off %", "p99 texels"},
+                    peers);
     for (const Key& key : keys(rows)) {
         const Measurement* ml = find(rows, key, "multilevel", "exact");
         if (!ml || ml->interpolation != "bilinear") continue;
@@ -507,12 +515,8 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         all.erase(std::remove(all.begin(), all.end(), "multilevel"), all.end());
         return all;
     }();
-    md << "| map | size | view | multilevel ms | Mpix/s | mismatch % | off % | fetches |";
-    for (const std::string& p : peers)
-        md << ' ' << p << (tracesTheSolid(p) ? "" : " (top)") << " |";
-    md << "\n|---|---|---|---|---|---|---|---|";
-    for (std::size_t k = 0; k < peers.size(); ++k) md << "---|";
-    md << '\n';
+    peerTableHeader(md, {"map", "size", "view", "multilevel ms", "Mpix/s", "mismatch %", "off %", "fetches"},
+                    peers);
     for (const Key& key : keys(rows)) {
         const Measurement* ml = find(rows, key, "multilevel", "exact");
         // The biquadratic rows, without peers, have a table of their own.

@@ -7,6 +7,7 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/gl/ShaderProgram.h"
 #include "microrelief/gl/StateGuard.h"
+#include "microrelief/peers/MaxMipPyramid.h"
 
 namespace microrelief {
 
@@ -128,7 +129,7 @@ void PyramidBuilder::buildAligned(ReliefTextures& textures) {
     const gl::PassGuard saved(gl_);
     begin();
     drawAligned(textures,
-                wholeLevels(pyramidLevelSizes(textures.shape_.size.x, textures.shape_.size.y)));
+                wholeLevels(maxMipLevelSizes(textures.shape_.size.x, textures.shape_.size.y)));
 }
 
 void PyramidBuilder::update(ReliefTextures& textures, const TexelRect& changed) {
@@ -138,7 +139,7 @@ void PyramidBuilder::update(ReliefTextures& textures, const TexelRect& changed) 
 void PyramidBuilder::update(ReliefTextures& textures, const std::vector<TexelRect>& changed) {
     const glm::ivec2 map = textures.shape_.size;
     const std::vector<glm::ivec2>& windowSizes = textures.levelSizes();
-    const std::vector<glm::ivec2> alignedSizes = pyramidLevelSizes(map.x, map.y);
+    const std::vector<glm::ivec2> alignedSizes = maxMipLevelSizes(map.x, map.y);
     std::vector<PyramidRegions> blocks, aligned;
     for (const TexelRect& rect : changed) {
         blocks.push_back(pyramidUpdateRegions(windowSizes, map.x, map.y, textures.wrapsU(), rect));
@@ -167,7 +168,7 @@ void PyramidBuilder::drawAll(ReliefTextures& textures) {
     drawWindows(textures, wholeLevels(textures.levelSizes()).windows);
     if (textures.hasMaxMipPyramid()) {
         drawAligned(textures,
-                    wholeLevels(pyramidLevelSizes(textures.shape_.size.x, textures.shape_.size.y)));
+                    wholeLevels(maxMipLevelSizes(textures.shape_.size.x, textures.shape_.size.y)));
     }
 }
 

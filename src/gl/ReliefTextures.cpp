@@ -8,6 +8,7 @@
 #include "microrelief/gl/PyramidBuilder.h"
 #include "microrelief/gl/StateGuard.h"
 #include "microrelief/peers/ConeMap.h"
+#include "microrelief/peers/MaxMipPyramid.h"
 
 namespace microrelief {
 
@@ -133,7 +134,7 @@ void ReliefTextures::allocate(const GL& gl, const HeightMap& map) {
 void ReliefTextures::allocateAligned(const GL& gl) {
     const gl::StateGuard saved(gl);
     gl.ActiveTexture(GL_TEXTURE0);
-    aligned_ = allocatePyramid(gl, pyramidLevelSizes(shape_.size.x, shape_.size.y));
+    aligned_ = allocatePyramid(gl, maxMipLevelSizes(shape_.size.x, shape_.size.y));
 }
 
 void ReliefTextures::addMaxMipPyramid(const GL& gl, PyramidBuilder& builder) {
@@ -161,7 +162,7 @@ void ReliefTextures::addConeMap(const GL& gl, ConeKind kind) {
 }
 
 ReliefMapShape ReliefTextures::maxMipShape() const {
-    const std::vector<glm::ivec2> sizes = pyramidLevelSizes(shape_.size.x, shape_.size.y);
+    const std::vector<glm::ivec2> sizes = maxMipLevelSizes(shape_.size.x, shape_.size.y);
     return {shape_.size, sizes.front(), static_cast<int>(sizes.size()), shape_.maxHeight};
 }
 
@@ -187,10 +188,11 @@ void ReliefTextures::uploadPyramid(const GL& gl, const MaxPyramid& pyramid) {
     for (int level = 0; level < pyramid.windowLevelCount(); ++level)
         uploadHalves(gl, level, levelSizes_[level], pyramid.windowLevelData(level), scaleExponent_);
     if (!aligned_) return;
+    const MaxMipPyramid maxMip(pyramid);  // maxmip's quadtree, from the same finest bounds
     gl.BindTexture(GL_TEXTURE_2D, aligned_.id());
-    for (int level = 0; level < pyramid.levelCount(); ++level) {
-        uploadHalves(gl, level, {pyramid.levelWidth(level), pyramid.levelHeight(level)},
-                     pyramid.levelData(level), scaleExponent_);
+    for (int level = 0; level < maxMip.levelCount(); ++level) {
+        uploadHalves(gl, level, {maxMip.levelWidth(level), maxMip.levelHeight(level)},
+                     maxMip.levelData(level), scaleExponent_);
     }
 }
 
@@ -266,7 +268,7 @@ std::vector<float> ReliefTextures::readScaled(const GL& gl, GLuint texture, int 
 }
 
 std::vector<float> ReliefTextures::readAlignedLevel(const GL& gl, int level) const {
-    const std::vector<glm::ivec2> sizes = pyramidLevelSizes(shape_.size.x, shape_.size.y);
+    const std::vector<glm::ivec2> sizes = maxMipLevelSizes(shape_.size.x, shape_.size.y);
     return readScaled(gl, aligned_.id(), level, sizes[level]);
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/peers/MaxMipPyramid.h"
 
 namespace microrelief {
 
@@ -109,12 +110,12 @@ double squareRatio(const HalfGrid& grid, int i, int j, double plateau, int p, in
     return r;
 }
 
-// A pyramid node: aligned level, index.
+// A quadtree node (MaxMipPyramid.h): level, index.
 struct Node {
     int level, p, q;
 };
 
-// Finest texels [x0, x1) x [y0, y1) under an aligned node, clipped to the map.
+// Finest texels [x0, x1) x [y0, y1) under a node, clipped to the map.
 struct NodeExtent {
     int x0, y0, x1, y1;
 };
@@ -124,7 +125,7 @@ NodeExtent extentOf(const Node& n, int width, int height) {
             std::min((n.q + 1) << n.level, height)};
 }
 
-// The branch-and-bound walk shared by both maps: from the top of the aligned levels, each
+// The branch-and-bound walk shared by both maps: from the top of the quadtree, each
 // node that `lowerBound(node, extent, bound)` says might narrow the cone below `r` is opened
 // (its children pushed nearest first, so that near nodes narrow it early), each finest
 // texel that might is handed to `leaf` with the cone so far (a leaf may stop early once it
@@ -132,7 +133,7 @@ NodeExtent extentOf(const Node& n, int width, int height) {
 // ratio under the node; a node whose bound is at least r is skipped, which leaves the
 // result what visiting every leaf would give.
 template <class LowerBound, class Leaf>
-double walkPyramid(const MaxPyramid& pyramid, double r, const LowerBound& lowerBound,
+double walkPyramid(const MaxMipPyramid& pyramid, double r, const LowerBound& lowerBound,
                    const Leaf& leaf, std::uint64_t& visited) {
     const int width = pyramid.mapWidth(), height = pyramid.mapHeight();
     std::vector<Node> stack{{pyramid.levelCount() - 1, 0, 0}};
@@ -245,7 +246,8 @@ std::uint16_t halfBits(float v) {
 std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce,
                                            ConeMapStats* stats) {
     const HalfGrid grid(map);
-    const MaxPyramid pyramid(map);  // Float: the finest bounds as texelSquareBound gives them
+    // Float: the finest bounds as texelSquareBound gives them.
+    const MaxMipPyramid pyramid{MaxPyramid(map)};
     const int w = map.width, h = map.height;
     std::vector<double> ratios(static_cast<std::size_t>(w) * h);
     std::uint64_t visited = 0;
@@ -263,7 +265,7 @@ std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce
                 visited += static_cast<std::uint64_t>(w) * h;
             } else {
                 // A node's pieces lie at least its gap d from T and at most its bound M
-                // high (the aligned levels hold maxima of finest bounds, MaxPyramid.h), so
+                // high (the quadtree holds maxima of finest bounds, MaxMipPyramid.h), so
                 // none has a ratio below d / (M - B) (pieceRatio's rc).
                 auto lowerBound = [&](const NodeExtent& e, float bound) {
                     if (!(bound > plateau)) return kInfinity;
@@ -311,7 +313,7 @@ ConeMap buildConservativeConeMapBruteForce(const HeightMap& map) {
 
 std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, bool bruteForce,
                                       ConeMapStats* stats) {
-    const MaxPyramid pyramid(map);
+    const MaxMipPyramid pyramid{MaxPyramid(map)};
     const double top = map.maxValue();
     std::vector<double> ratios(map.samples.size());
     std::uint64_t visited = 0;

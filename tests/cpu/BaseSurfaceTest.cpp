@@ -276,6 +276,6 @@ TEST(MaxPyramidWrapped, BoundsTheSurfaceAcrossTheSeam) {
         }
         // The seam texel sees the other side: at X = 0 the surface is the average of
         // columns W - 1 (1) and 0 (0). Clamped, it would be column 0's 0 there.
-        for (int j = 0; j < h && w > 1; ++j) EXPECT_GE(p.texel(0, 0, j), 0.5f) << w << "x" << h;
+        for (int j = 0; j < h && w > 1; ++j) EXPECT_GE(p.block(0, 0, j), 0.5f) << w << "x" << h;
     }
 }

@@ -60,53 +60,25 @@ TEST(MaxPyramid, LevelSizesForOddNonSquareMaps) {
     EXPECT_EQ(p.windowLevelHeight(3), 9);
     EXPECT_EQ(p.windowLevelWidth(8), 1);
     EXPECT_EQ(p.windowLevelHeight(8), 1);
-    // The aligned levels (maxmip's):
-    // Padded to 512 x 128, then halved with GL's max(1, n >> k) down to 1 x 1.
-    ASSERT_EQ(p.levelCount(), 10);
-    EXPECT_EQ(p.levelWidth(0), 512);
-    EXPECT_EQ(p.levelHeight(0), 128);
-    EXPECT_EQ(p.levelWidth(7), 4);
-    EXPECT_EQ(p.levelHeight(7), 1);
-    EXPECT_EQ(p.levelWidth(9), 1);
-    EXPECT_EQ(p.levelHeight(9), 1);
 }
 
 TEST(MaxPyramid, OneByOneAndTwoByTwo) {
     HeightMap one(1, 1, 0.4f);
     const MaxPyramid p1(one);
-    ASSERT_EQ(p1.levelCount(), 1);
-    EXPECT_FLOAT_EQ(p1.texel(0, 0, 0), 0.4f);
+    ASSERT_EQ(p1.windowLevelCount(), 1);
+    EXPECT_FLOAT_EQ(p1.block(0, 0, 0), 0.4f);
+    EXPECT_FLOAT_EQ(p1.maxHeight(), 0.4f);
 
     HeightMap two(2, 2);
     two.samples = {0.0f, 1.0f, 0.25f, 0.5f};
     const MaxPyramid p2(two);
-    ASSERT_EQ(p2.levelCount(), 2);
+    ASSERT_EQ(p2.windowLevelCount(), 2);
     // Texel (0, 0) covers [0, 1]^2: the surface there peaks at its corner (1, 1), the
     // average of all four samples, or at the sample (0,0) itself, or an edge midpoint
     // (1, 0.5): the average of samples 0 and 1 = 0.5.
-    EXPECT_FLOAT_EQ(p2.texel(0, 0, 0), 0.5f);
-    EXPECT_FLOAT_EQ(p2.texel(0, 1, 0), 1.0f);
-    EXPECT_FLOAT_EQ(p2.texel(1, 0, 0), 1.0f);
-}
-
-TEST(MaxPyramid, EachLevelIsTheMaxOfTheLevelBelow) {
-    const HeightMap map = synth::whiteNoise(37, 23, 5);
-    const MaxPyramid p(map);
-    for (int k = 1; k < p.levelCount(); ++k) {
-        for (int q = 0; q < p.levelHeight(k); ++q) {
-            for (int s = 0; s < p.levelWidth(k); ++s) {
-                float expected = 0.0f;
-                for (int cq = 2 * q; cq <= std::min(2 * q + 1, p.levelHeight(k - 1) - 1); ++cq) {
-                    for (int cs = 2 * s; cs <= std::min(2 * s + 1, p.levelWidth(k - 1) - 1); ++cs) {
-                        expected = std::max(expected, p.texel(k - 1, cs, cq));
-                    }
-                }
-                ASSERT_EQ(p.texel(k, s, q), expected)
-                    << "level " << k << " texel " << s << "," << q;
-            }
-        }
-    }
-    EXPECT_FLOAT_EQ(p.texel(p.levelCount() - 1, 0, 0), map.maxValue());
+    EXPECT_FLOAT_EQ(p2.block(0, 0, 0), 0.5f);
+    EXPECT_FLOAT_EQ(p2.block(0, 1, 0), 1.0f);
+    EXPECT_FLOAT_EQ(p2.block(1, 0, 0), 1.0f);
 }
 
 TEST(MaxPyramid, FinestLevelIsTheExactSurfaceMaxOverEachTexel) {
@@ -117,8 +89,8 @@ TEST(MaxPyramid, FinestLevelIsTheExactSurfaceMaxOverEachTexel) {
             const double dense = sampledMax(map, i, j, i + 1, j + 1, 40);
             // Exact: as high as any sampled point, and attained (the dense grid hits the
             // nine candidate points, so the two agree to rounding).
-            EXPECT_GE(p.texel(0, i, j) + 1e-6, dense);
-            EXPECT_NEAR(p.texel(0, i, j), dense, 1e-6) << i << "," << j;
+            EXPECT_GE(p.block(0, i, j) + 1e-6, dense);
+            EXPECT_NEAR(p.block(0, i, j), dense, 1e-6) << i << "," << j;
         }
     }
 }
@@ -199,7 +171,7 @@ TEST(MaxPyramid, FinestLevelNeverRoundsBelowTheSurface) {
         for (int i = 0; i < 2; ++i) {
             for (int k = 0; k <= 100; ++k) {
                 for (int l = 0; l <= 100; ++l) {
-                    ASSERT_GE(static_cast<double>(p.texel(0, i, j)),
+                    ASSERT_GE(static_cast<double>(p.block(0, i, j)),
                               map.surface(i + k / 100.0, j + l / 100.0));
                 }
             }
@@ -242,7 +214,7 @@ TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoBlocksWithoutPadding) {
                     float block = 0.0f;
                     for (int j = q << level; j < y1; ++j)
                         for (int i = pp << level; i < x1; ++i)
-                            block = std::max(block, p.texel(0, i, j));
+                            block = std::max(block, p.block(0, i, j));
                     ASSERT_EQ(p.block(level, pp, q), block) << level << ": " << pp << "," << q;
                     float window = 0.0f;
                     for (int dq = 0; dq < 2; ++dq)
@@ -253,7 +225,10 @@ TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoBlocksWithoutPadding) {
                 }
             }
         }
-        EXPECT_EQ(p.window(p.windowLevelCount() - 1, 0, 0), p.texel(p.levelCount() - 1, 0, 0));
+        // The top: the largest finest bound.
+        const std::vector<float>& finest = p.blockLevelData(0);
+        EXPECT_EQ(p.window(p.windowLevelCount() - 1, 0, 0),
+                  *std::max_element(finest.begin(), finest.end()));
     }
 }
 
@@ -277,7 +252,7 @@ TEST(MaxPyramid, HalfPrecisionRoundsEveryBoundUpOntoTheHalfGrid) {
         }
         for (int j = 0; j < map.height; ++j) {
             for (int i = 0; i < map.width; ++i) {
-                const float a = exact.texel(0, i, j), b = half.texel(0, i, j);
+                const float a = exact.block(0, i, j), b = half.block(0, i, j);
                 ASSERT_GE(b, a) << scale << ": " << i << "," << j;
                 if (a == 0.0f) {
                     ASSERT_EQ(b, 0.0f);
@@ -322,7 +297,7 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
                             for (int a = -1; a <= 1; ++a)
                                 samples =
                                     std::max<double>(samples, map.sample(i + a, j + b, wrapU));
-                        const double texel = p.texel(0, i, j);
+                        const double texel = p.block(0, i, j);
                         ASSERT_GE(texel + 1e-12, denseMax(surface, i, j, i + 1, j + 1, 24))
                             << i << "," << j;
                         ASSERT_LE(texel, samples + 1e-6) << i << "," << j;
@@ -375,7 +350,7 @@ TEST(MaxPyramid, TiledBoundsCoverTheWholeSurface) {
                                          interpolationName(interpolation);
                 for (int j = 0; j < H; ++j) {
                     for (int i = 0; i < W; ++i) {
-                        ASSERT_GE(p.texel(0, i % w, j % h) + 1e-12,
+                        ASSERT_GE(p.block(0, i % w, j % h) + 1e-12,
                                   denseMax(surface, i, j, i + 1, j + 1, 16))
                             << name << ": texel square " << i << "," << j;
                     }
@@ -484,13 +459,13 @@ TEST(MaxPyramid, BoundHoldsAcrossAnyRangeOfHeights) {
     HeightMap map(2, 1);
     map.samples = {std::ldexp(1.0f, -60), 1.0f};
     const MaxPyramid p(map);
-    EXPECT_EQ(p.texel(0, 0, 0), std::nextafter(0.5f, 1.0f));
-    EXPECT_EQ(p.texel(0, 1, 0), 1.0f);
+    EXPECT_EQ(p.block(0, 0, 0), std::nextafter(0.5f, 1.0f));
+    EXPECT_EQ(p.block(0, 1, 0), 1.0f);
 }
 
 // Edits in place: after random rectangles of samples change, update() leaves the pyramid
-// that a build from scratch of the new map makes, texel for texel, on every level of both
-// pyramids, on the plane and wrapped round the seam (rectangles at either edge included).
+// that a build from scratch of the new map makes, texel for texel, on every level of the
+// blocks and the windows, on the plane and wrapped round the seam (rectangles at either edge included).
 TEST(MaxPyramid, UpdateAfterAnEditEqualsABuildFromScratch) {
     std::mt19937 random(4321);
     const std::vector<std::pair<int, int>> sizes = {{1, 1},   {2, 3},   {7, 5},
@@ -520,9 +495,6 @@ TEST(MaxPyramid, UpdateAfterAnEditEqualsABuildFromScratch) {
                                              (precision == BoundPrecision::Half ? ", half" : "") +
                                              ", edit " + std::to_string(edit);
                     ASSERT_EQ(pyramid.scaleExponent(), rebuilt.scaleExponent()) << what;
-                    for (int level = 0; level < rebuilt.levelCount(); ++level)
-                        ASSERT_EQ(pyramid.levelData(level), rebuilt.levelData(level))
-                            << what << ", level " << level;
                     for (int level = 0; level < rebuilt.windowLevelCount(); ++level) {
                         ASSERT_EQ(pyramid.blockLevelData(level), rebuilt.blockLevelData(level))
                             << what << ", block level " << level;
@@ -570,7 +542,7 @@ TEST(MaxPyramid, HalfPrecisionWindowsCoverTheSurfaceAlongAnySegment) {
 // The regions are what the GPU builder draws: two rectangles at most per level, the finest
 // one the samples' rectangle grown by one texel, wrapping round the seam.
 TEST(MaxPyramid, UpdateRegionsGrowByOneTexelAndWrap) {
-    const auto sizes = pyramidLevelSizes(16, 8);
+    const auto sizes = windowLevelSizes(16, 8);
     const auto planeRegions = pyramidUpdateRegions(sizes, 16, 8, false, {0, 3, 2, 4});
     ASSERT_EQ(planeRegions.aligned[0].size(), 1u);
     EXPECT_EQ(planeRegions.aligned[0][0], (TexelRect{0, 2, 3, 5}));

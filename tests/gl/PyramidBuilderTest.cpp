@@ -20,6 +20,7 @@
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/peers/MaxMipPyramid.h"
 
 using namespace microrelief;
 
@@ -43,8 +44,8 @@ protected:
         return "";
     }
 
-    // Every level of the windows, and of the aligned pyramid where the textures have one,
-    // the same bits (the GPU's halves times 2^S), the same S and the same top.
+    // Every level of the windows, and of maxmip's quadtree (peers/MaxMipPyramid.h, made of
+    // the CPU pyramid) where the textures have one, the same bits (the GPU's halves times 2^S), the same S and the same top.
     static void expectEqual(const ReliefTextures& textures, const MaxPyramid& cpu,
                             const std::string& what) {
         ASSERT_EQ(cpu.precision(), BoundPrecision::Half);
@@ -57,10 +58,11 @@ protected:
                 << what << ", window level " << level;
         }
         if (textures.hasMaxMipPyramid()) {
-            ASSERT_EQ(textures.maxMipShape().levelCount, cpu.levelCount()) << what;
-            for (int level = 0; level < cpu.levelCount(); ++level) {
+            const MaxMipPyramid maxMip(cpu);
+            ASSERT_EQ(textures.maxMipShape().levelCount, maxMip.levelCount()) << what;
+            for (int level = 0; level < maxMip.levelCount(); ++level) {
                 ASSERT_EQ(firstDifference(textures.readAlignedLevel(gl(), level),
-                                          cpu.levelData(level), cpu.levelWidth(level)),
+                                          maxMip.levelData(level), maxMip.levelWidth(level)),
                           "")
                     << what << ", aligned level " << level;
             }

@@ -12,9 +12,9 @@
 //    maps, edits) each window from the 4 x 4 samples round its 2 x 2 texels at once;
 //  * each coarser level of windows from the level below (windows 2p, 2p + 2 of it, and
 //    the odd last block's window where a level's last block absorbs it);
-//  * where maxmip runs, the aligned pyramid (padded to powers of two): its finest level
-//    from the 3 x 3 samples round each texel (0 in the padding), each coarser level the max
-//    of four children of the level below.
+//  * where maxmip runs, its quadtree (peers/MaxMipPyramid.h, padded to powers of two): its
+//    finest level from the 3 x 3 samples round each texel (0 in the padding), each coarser
+//    level the max of four children of the level below.
 // A level is drawn from the level below it of the same texture with the sampled range
 // ending at the level read, so no pass samples what it writes (no feedback loop), and the
 // only scratch memory is the band's. After a change inside a rectangle of the samples only

@@ -9,12 +9,6 @@ namespace microrelief {
 
 namespace {
 
-int ceilPowerOfTwo(int n) {
-    int p = 1;
-    while (p < n) p <<= 1;
-    return p;
-}
-
 // The bits of a float >= 0 with the sign cleared: -0 becomes 0, and for the rest an
 // unsigned comparison of the bits is a comparison of the values.
 std::uint32_t magnitudeBits(float value) {
@@ -113,15 +107,6 @@ float storedBound(float bound, BoundPrecision precision, int scaleExponent) {
     return std::bit_cast<float>(std::max(roundUpToHalfBits(bits), smallest));
 }
 
-std::vector<glm::ivec2> pyramidLevelSizes(int mapWidth, int mapHeight) {
-    std::vector<glm::ivec2> sizes;
-    for (glm::ivec2 size(ceilPowerOfTwo(mapWidth), ceilPowerOfTwo(mapHeight));;
-         size = glm::max(size >> 1, glm::ivec2(1))) {
-        sizes.push_back(size);
-        if (size == glm::ivec2(1)) return sizes;
-    }
-}
-
 std::vector<glm::ivec2> windowLevelSizes(int mapWidth, int mapHeight) {
     std::vector<glm::ivec2> sizes;
     for (glm::ivec2 size(mapWidth, mapHeight);; size = glm::max(size >> 1, glm::ivec2(1))) {
@@ -140,9 +125,7 @@ MaxPyramid::MaxPyramid(const HeightMap& map, const MapAddressing& addressing,
       wrapU_(addressing.wrapU),
       addressing_(addressing),
       precision_(precision) {
-    sizes_ = pyramidLevelSizes(map.width, map.height);
     windowSizes_ = windowLevelSizes(map.width, map.height);
-    for (const glm::ivec2 size : sizes_) levels_.emplace_back(std::size_t(size.x) * size.y, 0.0f);
     for (const glm::ivec2 size : windowSizes_) {
         blocks_.emplace_back(std::size_t(size.x) * size.y, 0.0f);
         windows_.emplace_back(std::size_t(size.x) * size.y, 0.0f);
@@ -162,8 +145,6 @@ void MaxPyramid::build(const HeightMap& map) {
         if (level > 0) reduceBlocks(level, {0, 0, windowSizes_[level].x, windowSizes_[level].y});
         computeWindows(level, {0, 0, windowSizes_[level].x, windowSizes_[level].y});
     }
-    for (int level = 1; level < levelCount(); ++level)
-        reduceAligned(level, {0, 0, sizes_[level].x, sizes_[level].y});
 }
 
 float MaxPyramid::finestBound(const HeightMap& map, int i, int j) const {
@@ -186,24 +167,8 @@ float MaxPyramid::finestBound(const HeightMap& map, int i, int j) const {
 void MaxPyramid::computeFinest(const HeightMap& map, const TexelRect& rect) {
     for (int j = rect.y0; j < rect.y1; ++j) {
         for (int i = rect.x0; i < rect.x1; ++i) {
-            const float bound = storedBound(finestBound(map, i, j), precision_, scaleExponent_);
-            blocks_[0][static_cast<std::size_t>(j) * mapWidth_ + i] = bound;
-            levels_[0][static_cast<std::size_t>(j) * sizes_[0].x + i] = bound;
-        }
-    }
-}
-
-void MaxPyramid::reduceAligned(int level, const TexelRect& rect) {
-    const glm::ivec2 c = sizes_[level - 1];
-    const std::vector<float>& child = levels_[level - 1];
-    for (int q = rect.y0; q < rect.y1; ++q) {
-        for (int p = rect.x0; p < rect.x1; ++p) {
-            float best = 0.0f;
-            for (int cq = 2 * q; cq <= std::min(2 * q + 1, c.y - 1); ++cq) {
-                for (int cp = 2 * p; cp <= std::min(2 * p + 1, c.x - 1); ++cp)
-                    best = std::max(best, child[static_cast<std::size_t>(cq) * c.x + cp]);
-            }
-            levels_[level][static_cast<std::size_t>(q) * sizes_[level].x + p] = best;
+            blocks_[0][static_cast<std::size_t>(j) * mapWidth_ + i] =
+                storedBound(finestBound(map, i, j), precision_, scaleExponent_);
         }
     }
 }
@@ -321,15 +286,8 @@ void MaxPyramid::update(const HeightMap& map, const TexelRect& changed) {
         for (const TexelRect& r : blocks.windows[level]) computeWindows(level, r);
     }
     // A top in another binade has another S, and with it another least bound: all again.
-    if (precision_ == BoundPrecision::Half && pyramidScaleExponent(maxHeight()) != scaleExponent_) {
+    if (precision_ == BoundPrecision::Half && pyramidScaleExponent(maxHeight()) != scaleExponent_)
         build(map);
-        return;
-    }
-    const PyramidRegions aligned =
-        pyramidUpdateRegions(sizes_, mapWidth_, mapHeight_, wrapU_, changed);
-    for (int level = 1; level < levelCount(); ++level) {
-        for (const TexelRect& r : aligned.aligned[level]) reduceAligned(level, r);
-    }
 }
 
 glm::ivec2 MaxPyramid::finestTexelAt(glm::dvec2 p) const {

@@ -58,7 +58,7 @@ MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const Base
       pyramid_(map_, addressing_, BoundPrecision::Half),
       heightScale_(heightScale),
       base_(BaseSurface::make(base, width_, height_, heightScale,
-                              pyramid_.texel(pyramid_.levelCount() - 1, 0, 0))),
+                              pyramid_.maxHeight())),
       maxIterations_(traversalBudget(width_, height_)) {}
 
 void MultilevelTracer::mapChanged(const HeightMap& map, const TexelRect& changed) {
@@ -67,7 +67,7 @@ void MultilevelTracer::mapChanged(const HeightMap& map, const TexelRect& changed
     for (int j = c.y0; j < c.y1; ++j)
         for (int i = c.x0; i < c.x1; ++i) map_.at(i, j) = map.at(i, j);
     pyramid_.update(map_, c);
-    const double top = pyramid_.texel(pyramid_.levelCount() - 1, 0, 0);
+    const double top = pyramid_.maxHeight();
     if (top != base_->maxHeight())
         base_ = BaseSurface::make(base_->shape(), width_, height_, heightScale_, top);
 }

@@ -20,8 +20,8 @@ int main() {
         image.data(), width, height, stride * sizeof(std::uint16_t));
     const microrelief::MaxPyramid pyramid(map);
     std::printf("microrelief %s: %d levels, finest %dx%d, top %.4f\n",
-                microrelief::libraryVersion(), pyramid.levelCount(), pyramid.levelWidth(0),
-                pyramid.levelHeight(0), pyramid.texel(pyramid.levelCount() - 1, 0, 0));
+                microrelief::libraryVersion(), pyramid.windowLevelCount(),
+                pyramid.windowLevelWidth(0), pyramid.windowLevelHeight(0), pyramid.maxHeight());
     // Down onto the middle of the map: the ramp's height there is 0.5, times the scale 0.1.
     const microrelief::MultilevelTracer twin(map, 0.1);
     const auto hit = twin.intersect({{0.0, 1.0, 0.0}, {0.0, -1.0, 0.0}});

@@ -26,10 +26,8 @@
 //    texels span at most one level-k boundary per axis lies inside the window at its
 //    lower corner: a segment's bound is always one texel, read at a level no coarser than
 //    its footprint (segmentBound).
-//  * The aligned levels, the quadtree the maxmip peer walks as it was published, keep the
-//    power-of-two layout: Pw = 2^ceil(log2 W) by Ph = 2^ceil(log2 H), padding texels 0
-//    (no surface there; heights are >= 0), level k max(1, Pw >> k) by max(1, Ph >> k)
-//    (pyramidLevelSizes). The GPU holds them only where maxmip runs.
+//  * The quadtree the maxmip peer walks as it was published, power-of-two levels, is not
+//    here: peers/MaxMipPyramid.h builds it from this pyramid's finest bounds.
 //
 // On a curved base u wraps (BaseShape.h): the finest level's texel squares at the seam
 // take their neighbours from the other side of the map (wrapU), and a footprint that
@@ -104,20 +102,16 @@ int pyramidScaleExponent(float top);
 // steps only raise it, so it stays a bound; divided by 2^S it is a normal half, exactly.
 float storedBound(float bound, BoundPrecision precision, int scaleExponent);
 
-// The aligned levels' sizes for a W x H map, finest first (the layout at the top of this
-// file): W and H rounded up to powers of two, then halved with GL's max(1, n >> 1) down
-// to 1 x 1.
-std::vector<glm::ivec2> pyramidLevelSizes(int mapWidth, int mapHeight);
 // The windows' (and blocks') sizes: GL's mip sizes of W x H, max(1, W >> k) by
 // max(1, H >> k), down to 1 x 1.
 std::vector<glm::ivec2> windowLevelSizes(int mapWidth, int mapHeight);
 
-// The texels to compute again, per level of a pyramid of `levelSizes` (pyramidLevelSizes or
-// windowLevelSizes), when the samples inside `changed` (map texels) change: the finest
-// texels whose 3 x 3 samples reach into it (across the seam when `wrapU`), then on each
+// The texels to compute again, per level of a pyramid of `levelSizes` (windowLevelSizes,
+// or peers/MaxMipPyramid.h's maxMipLevelSizes), when the samples inside `changed` (map
+// texels) change: the finest texels whose 3 x 3 samples reach into it (across the seam when `wrapU`), then on each
 // level the parents of the changed texels below (index >> 1, clamped to the level: the
 // last absorbs the remainder), and the windows that hold a changed texel. aligned[k] (the
-// aligned texels or the blocks) and windows[k] list at most two rectangles each (two
+// blocks, or maxmip's quadtree texels) and windows[k] list at most two rectangles each (two
 // where the region wraps round the seam), none where nothing changes. MaxPyramid::update
 // and the GPU builder (gl/PyramidBuilder.h) compute these.
 struct PyramidRegions {
@@ -154,17 +148,9 @@ public:
     // The top: the surface's max as kept (map units), the largest sample rounded up.
     float maxHeight() const { return windows_.back().front(); }
 
-    // The aligned levels (maxmip's quadtree), padded to powers of two.
-    int levelCount() const { return static_cast<int>(levels_.size()); }
-    int levelWidth(int level) const { return sizes_[level].x; }
-    int levelHeight(int level) const { return sizes_[level].y; }
-    const std::vector<float>& levelData(int level) const { return levels_[level]; }
-    float texel(int level, int p, int q) const {
-        return levels_[level][static_cast<std::size_t>(q) * sizes_[level].x + p];
-    }
-
     // The overlapping levels (the multilevel traversal's), GL's mip sizes of W x H, and the
-    // blocks they are made of, in the same layout.
+    // blocks they are made of, in the same layout; level 0's blocks are the finest bounds,
+    // block(0, i, j) the bound over texel square [i, i+1] x [j, j+1].
     int windowLevelCount() const { return static_cast<int>(windows_.size()); }
     int windowLevelWidth(int level) const { return windowSizes_[level].x; }
     int windowLevelHeight(int level) const { return windowSizes_[level].y; }
@@ -207,7 +193,6 @@ private:
     // the first and the last tile's), before storedBound.
     float finestBound(const HeightMap& map, int i, int j) const;
     void computeFinest(const HeightMap& map, const TexelRect& rect);
-    void reduceAligned(int level, const TexelRect& rect);
     void reduceBlocks(int level, const TexelRect& rect);
     void computeWindows(int level, const TexelRect& rect);
 
@@ -221,8 +206,7 @@ private:
     MapAddressing addressing_;
     BoundPrecision precision_ = BoundPrecision::Half;
     int scaleExponent_ = 0;
-    std::vector<glm::ivec2> sizes_, windowSizes_;
-    std::vector<std::vector<float>> levels_;   // aligned, padded
+    std::vector<glm::ivec2> windowSizes_;
     std::vector<std::vector<float>> blocks_;   // the windows' blocks; level 0 the finest
     std::vector<std::vector<float>> windows_;  // overlapping
 };

@@ -39,6 +39,10 @@ PAGE_WORDS = {('albedo', 'map')}
 # MICRORELIEF_METHOD, MICRORELIEF_SHADOWS, MICRORELIEF_INTERPOLATION, debugView), by key.
 INDEXED = {'method': 'kMethods', 'view': 'kViews', 'shadows': 'kShadows',
            'interpolation': 'kInterpolations'}
+# Keys whose words every page that offers the key offers all of, in any order: a base added
+# to the program's table of bases (docs/bases.md, "Adding a base") is named here with the
+# pages that must learn it.
+WHOLE = {'base'}
 
 
 def fail(message):
@@ -70,6 +74,7 @@ def main():
         fail(f'{render} --help lists no --eye: not the program expected')
     problems = []
     words_to_try = set()
+    offered_words = {}  # (page, key): the words the page offers for the key
     for page, own in PAGE_KEYS.items():
         text = open(os.path.join(source, page), encoding='utf-8').read()
         keys = set(re.findall(r"\bget\('([a-z][a-z-]*)'", text))
@@ -86,6 +91,7 @@ def main():
         for key, words in re.findall(r"choice\('([a-z][a-z-]*)', t, (\[[^\]]*\]|Object\.keys\(\w+\)|\w+)\)", text):
             for word in words_of(text, words.strip(), page, key, problems):
                 offered += 1
+                offered_words.setdefault((page, key), []).append(word)
                 if key not in own and (key, word) not in PAGE_WORDS:
                     words_to_try.add((key, word))
         if not offered:
@@ -115,6 +121,23 @@ def main():
             if page_list != program_list:
                 problems.append(f'web/scene.js: {constant} is {page_list}; microrelief-render\'s --{key} '
                                 f'takes {program_list}, in that order (the page hands the shader positions)')
+        for key in sorted(WHOLE):
+            pages = sorted(page for (page, k) in offered_words if k == key)
+            if not pages:
+                problems.append(f'no page offers key {key}: the check no longer reads the pages')
+                continue
+            run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', '-no-such-word-',
+                                  '--out', out], capture_output=True, text=True)
+            named = re.search(r'\(expected (.*)\)', run.stderr)
+            if not named:
+                problems.append(f'--{key}: microrelief-render does not name its choices: {run.stderr.strip()}')
+                continue
+            program_words = set(re.split(r', | or ', named.group(1)))
+            for page in pages:
+                missing = program_words - set(offered_words[(page, key)])
+                if missing:
+                    problems.append(f'{page}: key {key} does not offer {sorted(missing)}, which '
+                                    f'microrelief-render --{key} takes')
         for key, word in sorted(words_to_try):
             run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', word, '--out', out],
                                  capture_output=True, text=True)

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Real height maps for microrelief-bench, taken from Debian 12 packages at benchmark time
 # into a cache folder (nothing of them is committed): a rough stone wall with thin joints
-# and a terrain. Writes FOLDER/maps.txt, one map file a line, which the benchmark's default
-# map list reads (microrelief-bench --help, docs/performance.md). Idempotent: a second run
-# downloads nothing.
+# and a terrain. Writes FOLDER/maps.txt, one map a line, which the benchmark's default
+# map list reads (microrelief-bench --help, docs/performance.md): FILE[:CHANNEL][:normalize]
+# as --maps takes them, the file relative to FOLDER. Both maps here are one 8-bit channel
+# spanning nearly the whole range (the wall 0 to 255, the terrain 2 to 249), so their lines
+# carry no suffix. Idempotent: a second run downloads nothing.
 #
 #   bash scripts/bench-maps.sh [FOLDER]    # default: out/bench-maps, or $MICRORELIEF_BENCH_MAPS
 #

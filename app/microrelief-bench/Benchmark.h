@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "MapEntry.h"
 #include "microrelief/gl/GlContext.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/gl/ReliefRenderer.h"
@@ -15,7 +16,7 @@
 namespace microrelief::bench {
 
 struct BenchMap {
-    std::string name;  // kResampledRelief, or the asset's file stem; "-cylinder" etc. appended
+    std::string name;  // kResampledRelief, or the file's mapName; "-cylinder" etc. appended
     std::shared_ptr<const HeightMap> map;
     double heightScale = 0.1;
     BaseShape base = {};
@@ -64,7 +65,7 @@ struct Measurement {
 
 struct BenchOptions {
     std::vector<int> mapSizes;
-    std::vector<std::string> assets;  // extra maps (files)
+    std::vector<MapEntry> assets;  // extra maps (files)
     std::vector<int> viewDegrees;
     int width = 512, height = 512;
     int maxSteps = 4096;  // cap on the step budgets of steep, pom and relief

@@ -35,11 +35,12 @@ std::string today() {
     return buffer;
 }
 
-// The real height maps scripts/bench-maps.sh fetched from Debian packages: the files that
-// FOLDER/maps.txt lists (one a line, relative to FOLDER), FOLDER being $MICRORELIEF_BENCH_MAPS
-// or out/bench-maps. None where there is no list, unless `required` (--maps fetched): then
-// one error line naming the list.
-std::vector<std::string> fetchedMaps(bool required) {
+// The real height maps scripts/bench-maps.sh fetched from Debian packages: the maps that
+// FOLDER/maps.txt lists (one a line, FILE[:CHANNEL][:normalize] as --maps takes them, the
+// file relative to FOLDER), FOLDER being $MICRORELIEF_BENCH_MAPS or out/bench-maps. None
+// where there is no list, unless `required` (--maps fetched): then one error line naming
+// the list.
+std::vector<MapEntry> fetchedMaps(bool required) {
     const char* env = std::getenv("MICRORELIEF_BENCH_MAPS");
     const std::filesystem::path folder = env && *env ? env : "out/bench-maps";
     const std::filesystem::path list = folder / "maps.txt";
@@ -50,20 +51,63 @@ std::vector<std::string> fetchedMaps(bool required) {
                           ": no list of fetched maps (run scripts/bench-maps.sh)");
         return {};
     }
-    std::vector<std::string> files;
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty()) files.push_back((folder / line).string());
-    return files;
+    std::vector<MapEntry> maps;
+    int lineNumber = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNumber;
+        if (line.empty()) continue;
+        MapEntry entry{{},
+                       std::string(required ? "--maps fetched: " : "") + list.string() + ":" +
+                           std::to_string(lineNumber) + ": '" + line + "'"};
+        try {
+            entry.source = parseMapEntry(line);
+        } catch (const Error& e) {
+            throw e.after(entry.given + ": ");
+        }
+        entry.source.file = folder / *entry.source.file;
+        maps.push_back(entry);
+    }
+    return maps;
+}
+
+// A --maps entry (MapEntry.h); 'default' the bundled map. 'fetched', the list, is the
+// caller's: here it is refused with suffixes.
+MapEntry givenMap(const std::string& text) {
+    MapEntry entry{{}, "--maps '" + text + "'"};
+    try {
+        entry.source = parseMapEntry(text);
+    } catch (const Error& e) {
+        throw e.after(entry.given + ": ");
+    }
+    if (*entry.source.file == "fetched")
+        throwBadInput(entry.given +
+                      ": 'fetched' names a list of maps and takes no :CHANNEL or :normalize "
+                      "(the list's lines may carry them)");
+    if (*entry.source.file == "default") entry.source.file.reset();
+    return entry;
+}
+
+// The loader's messages name the scene's fields; a map entry's are its suffixes.
+std::string entryFieldName(const std::string& field) {
+    if (field == "map.load.channel") return "channel";
+    if (field == "map.load.normalize") return "':normalize'";
+    return flagName(field);
 }
 
 std::vector<BenchMap> loadMaps(const BenchOptions& options) {
     std::vector<BenchMap> maps;
     // The files first: a bad one is refused before minutes of making reliefs.
-    std::vector<std::pair<std::filesystem::path, std::shared_ptr<const HeightMap>>> files;
-    for (const std::string& file : options.assets) {
-        const std::filesystem::path path =
-            file == "default" ? defaultHeightMapPath() : std::filesystem::path(file);
-        files.emplace_back(path, std::make_shared<const HeightMap>(loadHeightMap(path)));
+    std::vector<std::pair<std::string, std::shared_ptr<const HeightMap>>> files;
+    for (const MapEntry& entry : options.assets) {
+        const MapSource& source = entry.source;
+        try {
+            files.emplace_back(
+                mapName(source),
+                std::make_shared<const HeightMap>(loadHeightMap(
+                    source.file ? *source.file : defaultHeightMapPath(), source.load)));
+        } catch (const Error& e) {
+            throw Error(e.kind(), entry.given + ": " + e.message(entryFieldName));
+        }
     }
     // Each map on each base, the bases of one map together (a map is made once).
     for (int n : options.mapSizes) {
@@ -74,11 +118,11 @@ std::vector<BenchMap> loadMaps(const BenchOptions& options) {
                 maps.push_back({mapOnBase(kResampledRelief, base, interpolation), relief, 0.1, base,
                                 interpolation});
     }
-    for (const auto& [path, map] : files) {
+    for (const auto& [name, map] : files) {
         for (const BaseShape& base : options.bases)
             for (Interpolation interpolation : options.interpolations)
-                maps.push_back({mapOnBase(path.stem().string(), base, interpolation), map, 0.1,
-                                base, interpolation});
+                maps.push_back(
+                    {mapOnBase(name, base, interpolation), map, 0.1, base, interpolation});
     }
     return maps;
 }
@@ -172,10 +216,17 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     std::string mapList, viewList, sizeList;
     app.add_option("--maps", mapList,
-                   "Comma-separated height map files (any image the programs read; 'default' the "
-                   "bundled map; 'fetched' the real maps scripts/bench-maps.sh fetched), instead "
-                   "of the default: the bundled map and the fetched ones where there are any "
-                   "(out/bench-maps/maps.txt, or $MICRORELIEF_BENCH_MAPS/maps.txt)");
+                   "Comma-separated height maps, FILE[:CHANNEL][:normalize] (any image the "
+                   "programs read; 'default' the bundled map; 'fetched' the real maps "
+                   "scripts/bench-maps.sh fetched), instead of the default: the bundled map and "
+                   "the fetched ones where there are any (out/bench-maps/maps.txt, or "
+                   "$MICRORELIEF_BENCH_MAPS/maps.txt, whose lines take the same suffixes). "
+                   ":CHANNEL picks the image channel (as microrelief-render's --channel, default "
+                   "0), :normalize maps [min, max] to [0, 1] (its --normalize). They are read "
+                   "from the right, ':normalize' last, and count only where they are exactly "
+                   "'normalize' and a whole number; the rest is the file name, colons and all "
+                   "('a:b.png' is a file; name a file 'x:1' as 'x:1:0'). The report calls a map "
+                   "by its file's stem and these suffixes (rock:1)");
     app.add_option("--views", viewList,
                    "Comma-separated view angles in degrees from the surface normal, 0 to 89 "
                    "(default 0,45,70,85; 45,80 with --quick)");
@@ -205,8 +256,13 @@ int main(int argc, char** argv) {
             if (!app.count("--size")) size = "256x256";
         } else {
             options.mapSizes = {64, 256, 1024, 4096, 8192};
-            options.assets = {"default"};
-            for (const std::string& file : fetchedMaps(false)) options.assets.push_back(file);
+            // The default map list, unless --maps replaces it (a bad line of the fetched
+            // maps' list is no matter then).
+            if (!app.count("--maps")) {
+                options.assets = {{MapSource(), "the bundled map"}};
+                for (const MapEntry& fetched : fetchedMaps(false))
+                    options.assets.push_back(fetched);
+            }
             options.viewDegrees = {0, 45, 70, 85};
         }
         // A whole number within [lo, hi], or one clear error naming the flag.
@@ -223,18 +279,13 @@ int main(int argc, char** argv) {
             };
         };
         if (app.count("--maps")) {
-            options.assets.clear();
-            for (const std::string& file :
-                 parseList(mapList, "--maps", "--maps", [](const std::string& f) {
-                     if (f.empty()) throwBadInput("--maps: an empty file name");
-                     return f;
-                 })) {
-                if (file != "fetched") {
-                    options.assets.push_back(file);
+            std::stringstream in(mapList);
+            for (std::string text; std::getline(in, text, ',');) {
+                if (text != "fetched") {
+                    options.assets.push_back(givenMap(text));
                     continue;
                 }
-                for (const std::string& fetched : fetchedMaps(true))
-                    options.assets.push_back(fetched);
+                for (const MapEntry& fetched : fetchedMaps(true)) options.assets.push_back(fetched);
             }
         }
         if (app.count("--views"))

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -24,6 +25,36 @@ protected:
     }
     test::ScratchDir dir;
 };
+
+// An 8-bit PNG of `channels` interleaved channels.
+void writePng(const std::filesystem::path& file, int width, int height, int channels,
+              const std::vector<std::uint8_t>& pixels) {
+    auto out = OIIO::ImageOutput::create("png");
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(
+        out->open(file.string(), OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+    out->close();
+}
+
+// bench.csv's rows, the header first, each split into its fields (the renderer's name is
+// the one quoted field, which may hold commas).
+std::vector<std::vector<std::string>> readBenchCsv(const std::filesystem::path& file) {
+    std::vector<std::vector<std::string>> rows;
+    std::istringstream csv(test::readText(file));
+    for (std::string line; std::getline(csv, line);) {
+        std::vector<std::string> f;
+        std::istringstream fields(line);
+        for (std::string v; std::getline(fields, v, ',');) {
+            if (!f.empty() && std::count(f.back().begin(), f.back().end(), '"') % 2 == 1)
+                f.back() += "," + v;
+            else
+                f.push_back(v);
+        }
+        rows.push_back(f);
+    }
+    return rows;
+}
 
 TEST_F(ToolsCli, MakeMapRefusesMalformedAndOversizedSizes) {
     const std::string out = " --out " + (dir / "m.png").string();
@@ -78,6 +109,27 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--maps nope.png --out-dir " + (dir / "b").string(), "nope.png: no such file");
     expectRefused("--maps fetched --out-dir " + (dir / "b").string(),
                   "out/bench-maps/maps.txt: no list of fetched maps");
+    // FILE[:CHANNEL][:normalize]: a channel the image lacks is the loader's refusal, named
+    // with the entry; a channel no map has, an empty file name and suffixes on the list of
+    // fetched maps are refused as they are read.
+    writePng(dir / "grey.png", 2, 2, 1, {0, 1, 2, 3});
+    const std::string grey = (dir / "grey.png").string();
+    expectRefused("--maps " + grey + ":2 --out-dir " + (dir / "b").string(),
+                  "--maps '" + grey + ":2': " + grey +
+                      ": channel 2 is out of range; the image has 1 channel(s)");
+    expectRefused("--maps " + grey + ":1:normalize --out-dir " + (dir / "b").string(),
+                  "channel 1 is out of range");
+    expectRefused("--maps " + grey + ":1024 --out-dir " + (dir / "b").string(),
+                  "--maps '" + grey + ":1024': channel 1024 is beyond the 1024 channels");
+    expectRefused("--maps " + grey + ",,default --out-dir " + (dir / "b").string(),
+                  "--maps '': an empty file name");
+    expectRefused("--maps :normalize --out-dir " + (dir / "b").string(),
+                  "--maps ':normalize': an empty file name");
+    expectRefused("--maps fetched:1 --out-dir " + (dir / "b").string(),
+                  "--maps 'fetched:1': 'fetched' names a list of maps");
+    // Not a suffix: the whole text is the file's name.
+    expectRefused("--maps " + grey + ":+1 --out-dir " + (dir / "b").string(),
+                  grey + ":+1: no such file");
     EXPECT_FALSE(std::filesystem::exists(dir / "b"));
 }
 
@@ -169,6 +221,102 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
                                 "| map | size | method | bytes / texel | preprocessing ms |",
                                 "| map | 16 | cone | 8.00 |"})
         EXPECT_NE(md.find(section), std::string::npos) << section;
+}
+
+// --maps FILE[:CHANNEL][:normalize] (issue 28), on the command line and on the lines of
+// a fetched-map list: the channel and the normalisation reach the map that is measured, and
+// the report keeps one file's entries apart. Each entry is held against a file holding
+// what it should load: two.png's channel 1 is one:ch1.png (a name with a colon, whole),
+// low.png's two levels normalised are full.png's 0 and 1. Times vary; the fetch counts and
+// the covered area do not, and differ between different maps.
+TEST_F(ToolsCli, BenchMapsTakeAChannelAndNormalisation) {
+    const int n = 16;
+    std::vector<std::uint8_t> two(n * n * 2), ch1(n * n), low(n * n), full(n * n);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const int i = y * n + x;
+            const bool up = (x / 4 + y / 4) % 2 == 1;  // 4 x 4 blocks, a checkerboard
+            two[2 * i] = x == 8 ? 255 : 10 * x;        // a ramp with a ridge
+            two[2 * i + 1] = ch1[i] = up ? 200 : 30;
+            low[i] = up ? 128 : 64;
+            full[i] = up ? 255 : 0;
+        }
+    const std::filesystem::path fetched = dir / "fetched";
+    std::filesystem::create_directories(fetched);
+    writePng(fetched / "two.png", n, n, 2, two);
+    writePng(dir / "one:ch1.png", n, n, 1, ch1);
+    writePng(dir / "low.png", n, n, 1, low);
+    writePng(dir / "full.png", n, n, 1, full);
+    std::ofstream(fetched / "maps.txt") << "two.png\ntwo.png:1\n";
+    const std::string maps = "fetched," + (dir / "one:ch1.png").string() + "," +
+                             (dir / "low.png").string() + "," + (dir / "low.png").string() +
+                             ":normalize," + (dir / "full.png").string();
+    const test::RunResult r = test::runCommand(
+        "MICRORELIEF_BENCH_MAPS=" + fetched.string() + " " MICRORELIEF_BENCH_EXE " --maps " + maps +
+            " --map-sizes 0 --views 45 --size 24x24 --bases plane --interpolations bilinear "
+            "--methods multilevel --out-dir " +
+            (dir / "b").string(),
+        dir.path());
+    ASSERT_EQ(r.status, 0) << r.err;
+
+    const std::vector<std::vector<std::string>> csv = readBenchCsv(dir / "b" / "bench.csv");
+    ASSERT_FALSE(csv.empty());
+    const std::vector<std::string>& header = csv.front();
+    const auto column = [&](const std::string& name) {
+        const auto at = std::find(header.begin(), header.end(), name);
+        EXPECT_NE(at, header.end()) << name;
+        return static_cast<std::size_t>(at - header.begin());
+    };
+    const std::size_t map = column("map"), param = column("param");
+    const std::vector<std::size_t> figures{column("fetches_mean"), column("fetches_max"),
+                                           column("fetches_bounds_mean"), column("hit_pct")};
+    // (map, setting) -> the figures that depend on the heights alone.
+    std::map<std::pair<std::string, std::string>, std::vector<std::string>> seen;
+    for (std::size_t k = 1; k < csv.size(); ++k) {
+        const std::vector<std::string>& f = csv[k];
+        ASSERT_EQ(f.size(), header.size());
+        std::vector<std::string> values;
+        for (std::size_t c : figures) values.push_back(f.at(c));
+        seen[{f[map], f[param]}] = values;
+    }
+    std::set<std::string> names;
+    for (const auto& [key, values] : seen) names.insert(key.first);
+    EXPECT_EQ(names,
+              (std::set<std::string>{"two", "two:1", "one:ch1", "low", "low:normalize", "full"}));
+    for (const char* setting : {"exact", "1px", "4px"}) {
+        SCOPED_TRACE(setting);
+        const auto at = [&](const char* name) { return seen[{name, setting}]; };
+        ASSERT_FALSE(at("two:1").empty());
+        EXPECT_EQ(at("two:1"), at("one:ch1"));
+        EXPECT_NE(at("two:1"), at("two"));
+        EXPECT_EQ(at("low:normalize"), at("full"));
+        EXPECT_NE(at("low:normalize"), at("low"));
+    }
+    const std::string md = test::readText(dir / "b" / "bench.md");
+    for (const char* name : {"| two:1 |", "| low:normalize |"})
+        EXPECT_NE(md.find(name), std::string::npos) << name;
+}
+
+// A fetched-map list's line is read as --maps reads an entry: a bad one is refused naming
+// the list, its line and the text.
+TEST_F(ToolsCli, BenchRefusesABadLineOfTheFetchedMapList) {
+    writePng(dir / "grey.png", 2, 2, 1, {0, 1, 2, 3});
+    for (const auto& [line, mentions] : std::vector<std::pair<std::string, std::string>>{
+             {"grey.png:3",
+              "2: 'grey.png:3': " + (dir / "grey.png").string() + ": channel 3 is out of range"},
+             {":normalize", "2: ':normalize': an empty file name"}}) {
+        SCOPED_TRACE(line);
+        std::ofstream(dir / "maps.txt") << "grey.png\n" << line << "\n";
+        const test::RunResult r =
+            test::runCommand("MICRORELIEF_BENCH_MAPS=" + dir.path().string() +
+                                 " " MICRORELIEF_BENCH_EXE " --quick --maps fetched --out-dir " +
+                                 (dir / "b").string(),
+                             dir.path());
+        test::expectOneLineFailure(
+            r, "microrelief-bench", 2,
+            "--maps fetched: " + (dir / "maps.txt").string() + ":" + mentions);
+        EXPECT_EQ(r.out, "");
+    }
 }
 
 // --rebuild (issue 16): rebuild.csv with a row per map size and the columns the issue

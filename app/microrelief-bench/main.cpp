@@ -10,6 +10,7 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <map>
 
 #include "Benchmark.h"
 #include "Materials.h"
@@ -94,7 +95,21 @@ std::string entryFieldName(const std::string& field) {
     return flagName(field);
 }
 
+// Two entries the report would name alike (a/rock.png and b/rock.png; a file relief.png and
+// the procedural relief) would have their rows merged: refused, naming both.
+void checkMapNamesDiffer(const std::vector<MapEntry>& entries) {
+    std::map<std::string, std::string> givenBy{{kResampledRelief, "the procedural relief"}};
+    for (const MapEntry& entry : entries) {
+        const std::string name = mapName(entry.source);
+        const auto [it, added] = givenBy.emplace(name, entry.given);
+        if (!added)
+            throwBadInput(entry.given + ": the report would name it '" + name + "', as it names " +
+                          it->second + " (copy or link one of the files under another name)");
+    }
+}
+
 std::vector<BenchMap> loadMaps(const BenchOptions& options) {
+    checkMapNamesDiffer(options.assets);
     std::vector<BenchMap> maps;
     // The files first: a bad one is refused before minutes of making reliefs.
     std::vector<std::pair<std::string, std::shared_ptr<const HeightMap>>> files;

@@ -130,6 +130,17 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     // Not a suffix: the whole text is the file's name.
     expectRefused("--maps " + grey + ":+1 --out-dir " + (dir / "b").string(),
                   grey + ":+1: no such file");
+    // Two entries the report would name alike, whose rows would merge: a file of another
+    // folder with the same stem, and a file named as the procedural relief.
+    std::filesystem::create_directory(dir / "other");
+    writePng(dir / "other" / "grey.png", 2, 2, 1, {0, 1, 2, 3});
+    writePng(dir / "relief.png", 2, 2, 1, {0, 1, 2, 3});
+    expectRefused("--maps " + grey + "," + (dir / "other" / "grey.png").string() + " --out-dir " +
+                      (dir / "b").string(),
+                  "--maps '" + (dir / "other" / "grey.png").string() +
+                      "': the report would name it 'grey', as it names --maps '" + grey + "'");
+    expectRefused("--maps " + (dir / "relief.png").string() + " --out-dir " + (dir / "b").string(),
+                  "the report would name it 'relief', as it names the procedural relief");
     EXPECT_FALSE(std::filesystem::exists(dir / "b"));
 }
 

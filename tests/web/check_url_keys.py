@@ -66,6 +66,18 @@ def words_of(text, expression, page, key, problems):
     return re.findall(r"'([^']*)'", body)
 
 
+def program_choices(render, key, out, problems):
+    """The words --key takes, in the order microrelief-render names them when it refuses an
+    unknown one; None (a problem noted) where it names none."""
+    run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', '-no-such-word-',
+                          '--out', out], capture_output=True, text=True)
+    named = re.search(r'\(expected (.*)\)', run.stderr)
+    if not named:
+        problems.append(f'--{key}: microrelief-render does not name its choices: {run.stderr.strip()}')
+        return None
+    return re.split(r', | or ', named.group(1))
+
+
 def main():
     render, source = sys.argv[1], sys.argv[2]
     help_text = subprocess.run([render, '--help'], capture_output=True, text=True, check=True).stdout
@@ -111,14 +123,8 @@ def main():
             if not page_list:
                 problems.append(f'web/scene.js: no list {constant} the check can read')
                 continue
-            run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', '-no-such-word-',
-                                  '--out', out], capture_output=True, text=True)
-            named = re.search(r'\(expected (.*)\)', run.stderr)
-            if not named:
-                problems.append(f'--{key}: microrelief-render does not name its choices: {run.stderr.strip()}')
-                continue
-            program_list = re.split(r', | or ', named.group(1))
-            if page_list != program_list:
+            program_list = program_choices(render, key, out, problems)
+            if program_list is not None and page_list != program_list:
                 problems.append(f'web/scene.js: {constant} is {page_list}; microrelief-render\'s --{key} '
                                 f'takes {program_list}, in that order (the page hands the shader positions)')
         for key in sorted(WHOLE):
@@ -126,14 +132,8 @@ def main():
             if not pages:
                 problems.append(f'no page offers key {key}: the check no longer reads the pages')
                 continue
-            run = subprocess.run([render, '-q', '--size', '1x1', f'--{key}', '-no-such-word-',
-                                  '--out', out], capture_output=True, text=True)
-            named = re.search(r'\(expected (.*)\)', run.stderr)
-            if not named:
-                problems.append(f'--{key}: microrelief-render does not name its choices: {run.stderr.strip()}')
-                continue
-            program_words = set(re.split(r', | or ', named.group(1)))
-            for page in pages:
+            program_words = set(program_choices(render, key, out, problems) or [])
+            for page in pages if program_words else []:
                 missing = program_words - set(offered_words[(page, key)])
                 if missing:
                     problems.append(f'{page}: key {key} does not offer {sorted(missing)}, which '

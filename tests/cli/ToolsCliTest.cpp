@@ -168,17 +168,12 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
                                        "multilevel,maxmip,cone,relief --out-dir " +
                                        (dir / "b").string());
     ASSERT_EQ(r.status, 0) << r.err;
-    std::istringstream csv(test::readText(dir / "b" / "bench.csv"));
-    std::string line;
-    std::getline(csv, line);
-    std::vector<std::string> header;
-    {
-        std::istringstream fields(line);
-        for (std::string f; std::getline(fields, f, ',');) header.push_back(f);
-    }
+    const std::vector<std::vector<std::string>> rows = readBenchCsv(dir / "b" / "bench.csv");
+    ASSERT_GE(rows.size(), 2u);
+    const std::vector<std::string>& header = rows.front();
     const auto column = [&](const std::string& name) {
         const auto at = std::find(header.begin(), header.end(), name);
-        EXPECT_NE(at, header.end()) << name << " not in " << line;
+        EXPECT_NE(at, header.end()) << name << " not in the header";
         return static_cast<std::size_t>(at - header.begin());
     };
     const std::size_t method = column("method"), fetches = column("fetches_mean"),
@@ -186,21 +181,12 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
                       where = column("preprocess_where"), mpix = column("mpix_per_s"),
                       p99 = column("p99_error_texels");
     std::set<std::string> seen;
-    while (std::getline(csv, line)) {
-        // The renderer's name is the one quoted field; none of these columns follow a comma
-        // inside it.
-        std::vector<std::string> f;
-        std::istringstream fields(line);
-        for (std::string v; std::getline(fields, v, ',');) {
-            if (!f.empty() && std::count(f.back().begin(), f.back().end(), '"') % 2 == 1)
-                f.back() += "," + v;
-            else
-                f.push_back(v);
-        }
-        ASSERT_EQ(f.size(), header.size()) << line;
+    for (std::size_t row = 1; row < rows.size(); ++row) {
+        const std::vector<std::string>& f = rows[row];
+        ASSERT_EQ(f.size(), header.size()) << "row " << row;
         const std::string m = f[method];
         seen.insert(m);
-        SCOPED_TRACE(line);
+        SCOPED_TRACE("row " + std::to_string(row) + ", " + m);
         EXPECT_GT(std::stod(f[mpix]), 0.0);
         EXPECT_GE(std::stod(f[p99]), 0.0);
         // Samples R32F, 4 bytes a texel; the windows and maxmip's quadtree R16F mip chains

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "SceneOptions.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/io/AtomicFile.h"
 
@@ -22,6 +23,16 @@ std::string csvQuote(const std::string& text) {
     std::string out = "\"";
     for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
     return out + "\"";
+}
+
+std::string csvField(const std::string& text) {
+    return text.find_first_of(",\"\r\n") == std::string::npos ? text : csvQuote(text);
+}
+
+std::string gnuplotString(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+    return out + "'";
 }
 
 std::string fixed(double value, int digits) {
@@ -404,19 +415,21 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
         writeTextAtomically(folder / (stem + ".txt"), data.str());
         outputs.push_back(stem + ".png");
         script << "set terminal pngcairo size " << 520 * views.size() << ",520 noenhanced\n"
-               << "set output '" << (folder / (stem + ".png.part")).string() << "'\n"
+               << "set output " << gnuplotString((folder / (stem + ".png.part")).string()) << "\n"
                << "unset logscale\nset logscale xy\nset key inside top right font ',9'\n"
                << "set grid\nset yrange [" << 0.5 * kZeroDrawnAt << ":200]\n"
                << "set xlabel '" << (wall ? "frame time, wall clock (ms)" : "GPU time (ms)")
                << "'\nset ylabel '% wrong: hit/miss + hits off > 1/2 texel (0 drawn at "
                << kZeroDrawnAt << ")'\n"
-               << "set multiplot layout 1," << views.size() << " title '" << map << " " << size
-               << ": time against error, every setting (top-only peers on their pixels)'\n";
+               << "set multiplot layout 1," << views.size() << " title "
+               << gnuplotString(map + " " + std::to_string(size) +
+                                ": time against error, every setting")
+               << "\n";
         for (std::size_t v = 0; v < views.size(); ++v) {
             script << "set title 'view " << views[v] << " deg'\nplot ";
             for (std::size_t k = 0; k < panels[v].size(); ++k) {
-                script << (k ? ", " : "") << "'" << (folder / (stem + ".txt")).string()
-                       << "' index " << panels[v][k].first
+                script << (k ? ", " : "") << gnuplotString((folder / (stem + ".txt")).string())
+                       << " index " << panels[v][k].first
                        << " using 1:2 with linespoints pointsize 1.2 pointtype "
                        << 1 + methodIndex(panels[v][k].second) << " lc rgb '"
                        << colours[methodIndex(panels[v][k].second) % colours.size()] << "' title '"
@@ -474,7 +487,7 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
            "bytes_per_texel,preprocess_ms,preprocess_where\n";
     const bool wall = softwareRenderer(info.renderer);
     for (const Measurement& r : rows) {
-        out << r.method << ',' << r.param << ',' << r.map << ',' << r.base << ',' << r.mapSize
+        out << r.method << ',' << r.param << ',' << csvField(r.map) << ',' << r.base << ',' << r.mapSize
             << ',' << r.viewDegrees << ',' << r.width << ',' << r.height << ','
             << fixed(r.msMedian, 4) << ',' << fixed(r.msWallMedian, 4) << ','
             << fixed(r.fetchesMean, 2) << ',' << fixed(r.fetchesMax, 0) << ','
@@ -659,20 +672,21 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
           {"fetches_vs_size.png", 3, "texel fetches per pixel (mean)"}}) {
         if (names.empty()) break;
         outputs.push_back(output);
-        script << "set output '" << (folder / (output + ".part")).string() << "'\nset ylabel '"
+        script << "set output " << gnuplotString((folder / (output + ".part")).string())
+               << "\nset ylabel '"
                << label << "'\nset title '"
                << "view " << view
                << " deg: multilevel exact; peers at equal accuracy, else their largest budget'\n"
                << "plot ";
         for (std::size_t k = 0; k < names.size(); ++k) {
-            script << (k ? ", " : "") << "'" << (folder / "plot_data.txt").string() << "' index "
+            script << (k ? ", " : "") << gnuplotString((folder / "plot_data.txt").string()) << " index "
                    << k << " using 1:" << column << " with linespoints title '" << names[k] << "'";
         }
         script << '\n';
     }
     script << paretoScript(folder, rows, wall, outputs);
     writeTextAtomically(folder / "plots.gnuplot", script.str());
-    const std::string command = "gnuplot " + (folder / "plots.gnuplot").string() + " 2>&1";
+    const std::string command = "gnuplot " + shellQuote((folder / "plots.gnuplot").string()) + " 2>&1";
     if (std::system(command.c_str()) != 0) {
         why = "gnuplot failed on " + (folder / "plots.gnuplot").string();
         return false;

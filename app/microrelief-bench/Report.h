@@ -18,8 +18,14 @@ struct RunInfo {
 
 // `text` into `file`, whole or not at all (a temporary beside it, renamed).
 void writeTextAtomically(const std::filesystem::path& file, const std::string& text);
-// A CSV field in quotes; a number with `digits` decimals.
+// A CSV field in quotes, a quote inside doubled.
 std::string csvQuote(const std::string& text);
+// A CSV field as it is where it holds no comma, quote or line break, else csvQuote'd (a map
+// named by its file may hold any of them).
+std::string csvField(const std::string& text);
+// A gnuplot string in single quotes, a quote inside doubled: a file or map name as written.
+std::string gnuplotString(const std::string& text);
+// A number with `digits` decimals.
 std::string fixed(double value, int digits);
 
 // A peer's figures on the pixels it is measured on: every pixel for the methods that trace

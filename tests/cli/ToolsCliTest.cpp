@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
@@ -218,6 +219,43 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
                                 "| map | size | method | bytes / texel | preprocessing ms |",
                                 "| map | 16 | cone | 8.00 |"})
         EXPECT_NE(md.find(section), std::string::npos) << section;
+}
+
+// Maps and folders named with what CSV, gnuplot and the shell take as syntax (a space, a
+// quote, a comma): bench.csv quotes the name that needs it, and the plots are drawn in such a
+// folder (or, where gnuplot is not installed, the warning says so and nothing else fails).
+TEST_F(ToolsCli, BenchWritesMapsAndFoldersNamedWithQuotesAndCommas) {
+    const std::filesystem::path folder = dir / "a b's";
+    std::filesystem::create_directory(folder);
+    std::vector<std::uint8_t> ramp(16 * 16);
+    for (int k = 0; k < 16 * 16; ++k) ramp[k] = static_cast<std::uint8_t>(12 * (k % 16));
+    writePng(folder / "it's.png", 16, 16, 1, ramp);
+    writePng(folder / "x,y.png", 16, 16, 1, ramp);
+    std::ofstream(folder / "maps.txt") << "it's.png\nx,y.png\n";
+    const test::RunResult r = test::runCommand(
+        "MICRORELIEF_BENCH_MAPS=\"" + folder.string() + "\" " MICRORELIEF_BENCH_EXE
+        " --maps fetched --map-sizes 0 --views 45 --size 16x16 --bases plane --interpolations "
+        "bilinear --methods multilevel,relief --frames 10 --out-dir \"" +
+            (folder / "out").string() + "\"",
+        dir.path());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<std::vector<std::string>> rows = readBenchCsv(folder / "out" / "bench.csv");
+    ASSERT_GE(rows.size(), 2u);
+    const std::size_t map = static_cast<std::size_t>(
+        std::find(rows[0].begin(), rows[0].end(), "map") - rows[0].begin());
+    std::set<std::string> maps;
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+        ASSERT_EQ(rows[k].size(), rows[0].size()) << "row " << k;
+        maps.insert(rows[k][map]);
+    }
+    EXPECT_EQ(maps, (std::set<std::string>{"it's", "\"x,y\""}));
+    if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+        EXPECT_TRUE(std::filesystem::exists(folder / "out" / "pareto-it's-16.png")) << r.err;
+        EXPECT_TRUE(std::filesystem::exists(folder / "out" / "pareto-x,y-16.png")) << r.err;
+        EXPECT_EQ(r.err.find("no plots"), std::string::npos) << r.err;
+    } else {
+        EXPECT_NE(r.err.find("no plots: gnuplot is not installed"), std::string::npos) << r.err;
+    }
 }
 
 // --maps FILE[:CHANNEL][:normalize] (issue 28), on the command line and on the lines of

@@ -92,3 +92,15 @@ TEST(BenchReport, ThroughputIsThePictureOverTheFramesTime) {
 }
 
 }  // namespace
+
+// A map is named by its file, which may hold what CSV and gnuplot take as syntax: a plain
+// name is written as it is, one with a comma, quote or line break quoted with the quote
+// doubled (RFC 4180); gnuplot's strings double a single quote.
+TEST(BenchReport, NamesAreQuotedWhereTheyHoldSyntax) {
+    EXPECT_EQ(csvField("rock:1"), "rock:1");
+    EXPECT_EQ(csvField("rock,wall"), "\"rock,wall\"");
+    EXPECT_EQ(csvField("say \"hi\""), "\"say \"\"hi\"\"\"");
+    EXPECT_EQ(csvField("two\nlines"), "\"two\nlines\"");
+    EXPECT_EQ(gnuplotString("rock:1 256"), "'rock:1 256'");
+    EXPECT_EQ(gnuplotString("it's"), "'it''s'");
+}

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "MapEntry.h"
-#include "microrelief/gl/GlContext.h"
 #include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/gl/GlContext.h"
 #include "microrelief/gl/ReliefRenderer.h"
 
 namespace microrelief::bench {

@@ -487,8 +487,8 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
            "bytes_per_texel,preprocess_ms,preprocess_where\n";
     const bool wall = softwareRenderer(info.renderer);
     for (const Measurement& r : rows) {
-        out << r.method << ',' << r.param << ',' << csvField(r.map) << ',' << r.base << ',' << r.mapSize
-            << ',' << r.viewDegrees << ',' << r.width << ',' << r.height << ','
+        out << r.method << ',' << r.param << ',' << csvField(r.map) << ',' << r.base << ','
+            << r.mapSize << ',' << r.viewDegrees << ',' << r.width << ',' << r.height << ','
             << fixed(r.msMedian, 4) << ',' << fixed(r.msWallMedian, 4) << ','
             << fixed(r.fetchesMean, 2) << ',' << fixed(r.fetchesMax, 0) << ','
             << fixed(r.coverageMismatchPct, 4) << ',' << fixed(r.offHalfTexelPct, 4) << ','
@@ -673,20 +673,21 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
         if (names.empty()) break;
         outputs.push_back(output);
         script << "set output " << gnuplotString((folder / (output + ".part")).string())
-               << "\nset ylabel '"
-               << label << "'\nset title '"
+               << "\nset ylabel '" << label << "'\nset title '"
                << "view " << view
                << " deg: multilevel exact; peers at equal accuracy, else their largest budget'\n"
                << "plot ";
         for (std::size_t k = 0; k < names.size(); ++k) {
-            script << (k ? ", " : "") << gnuplotString((folder / "plot_data.txt").string()) << " index "
-                   << k << " using 1:" << column << " with linespoints title '" << names[k] << "'";
+            script << (k ? ", " : "") << gnuplotString((folder / "plot_data.txt").string())
+                   << " index " << k << " using 1:" << column << " with linespoints title '"
+                   << names[k] << "'";
         }
         script << '\n';
     }
     script << paretoScript(folder, rows, wall, outputs);
     writeTextAtomically(folder / "plots.gnuplot", script.str());
-    const std::string command = "gnuplot " + shellQuote((folder / "plots.gnuplot").string()) + " 2>&1";
+    const std::string command =
+        "gnuplot " + shellQuote((folder / "plots.gnuplot").string()) + " 2>&1";
     if (std::system(command.c_str()) != 0) {
         why = "gnuplot failed on " + (folder / "plots.gnuplot").string();
         return false;

@@ -233,9 +233,10 @@ TEST_F(ToolsCli, BenchWritesMapsAndFoldersNamedWithQuotesAndCommas) {
     writePng(folder / "x,y.png", 16, 16, 1, ramp);
     std::ofstream(folder / "maps.txt") << "it's.png\nx,y.png\n";
     const test::RunResult r = test::runCommand(
-        "MICRORELIEF_BENCH_MAPS=\"" + folder.string() + "\" " MICRORELIEF_BENCH_EXE
-        " --maps fetched --map-sizes 0 --views 45 --size 16x16 --bases plane --interpolations "
-        "bilinear --methods multilevel,relief --frames 10 --out-dir \"" +
+        "MICRORELIEF_BENCH_MAPS=\"" + folder.string() +
+            "\" " MICRORELIEF_BENCH_EXE
+            " --maps fetched --map-sizes 0 --views 45 --size 16x16 --bases plane --interpolations "
+            "bilinear --methods multilevel,relief --frames 10 --out-dir \"" +
             (folder / "out").string() + "\"",
         dir.path());
     ASSERT_EQ(r.status, 0) << r.err;

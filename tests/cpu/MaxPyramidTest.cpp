@@ -465,7 +465,8 @@ TEST(MaxPyramid, BoundHoldsAcrossAnyRangeOfHeights) {
 
 // Edits in place: after random rectangles of samples change, update() leaves the pyramid
 // that a build from scratch of the new map makes, texel for texel, on every level of the
-// blocks and the windows, on the plane and wrapped round the seam (rectangles at either edge included).
+// blocks and the windows, on the plane and wrapped round the seam (rectangles at either edge
+// included).
 TEST(MaxPyramid, UpdateAfterAnEditEqualsABuildFromScratch) {
     std::mt19937 random(4321);
     const std::vector<std::pair<int, int>> sizes = {{1, 1},   {2, 3},   {7, 5},

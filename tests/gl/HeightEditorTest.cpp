@@ -16,12 +16,12 @@
 #include "SweepCases.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/core/trace/ReferenceTracer.h"
 #include "microrelief/gl/AnimatedHeights.h"
 #include "microrelief/gl/HeightEditor.h"
 #include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/gl/ReliefRenderer.h"
-#include "microrelief/core/synth/SyntheticMaps.h"
-#include "microrelief/core/trace/ReferenceTracer.h"
 #include "microrelief/peers/MaxMipPyramid.h"
 
 using namespace microrelief;

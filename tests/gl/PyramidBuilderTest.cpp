@@ -16,10 +16,10 @@
 #include "GlTestBackend.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
-#include "microrelief/gl/PyramidBuilder.h"
-#include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/gl/PyramidBuilder.h"
+#include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/peers/MaxMipPyramid.h"
 
 using namespace microrelief;
@@ -45,7 +45,8 @@ protected:
     }
 
     // Every level of the windows, and of maxmip's quadtree (peers/MaxMipPyramid.h, made of
-    // the CPU pyramid) where the textures have one, the same bits (the GPU's halves times 2^S), the same S and the same top.
+    // the CPU pyramid) where the textures have one, the same bits (the GPU's halves times 2^S), the
+    // same S and the same top.
     static void expectEqual(const ReliefTextures& textures, const MaxPyramid& cpu,
                             const std::string& what) {
         ASSERT_EQ(cpu.precision(), BoundPrecision::Half);

@@ -69,8 +69,8 @@ struct ConeMapStats {
 };
 
 // The conservative cone map from the max pyramid: a branch-and-bound walk of its quadtree
-// (MaxMipPyramid.h) per texel, nearest nodes first, pruning a node whose bound cannot narrow the cone
-// (O(N^2 log N) on maps whose cones are narrow). Gives the same cones as the brute force,
+// (MaxMipPyramid.h) per texel, nearest nodes first, pruning a node whose bound cannot narrow the
+// cone (O(N^2 log N) on maps whose cones are narrow). Gives the same cones as the brute force,
 // whose leaf computation it shares. Plane maps (clamped edges) only.
 ConeMap buildConservativeConeMap(const HeightMap& map, ConeMapStats* stats = nullptr);
 // The same cones by brute force, every texel square against every texel square: O(N^4),

@@ -57,8 +57,7 @@ MultilevelTracer::MultilevelTracer(HeightMap map, double heightScale, const Base
       // The bounds the shader reads: the GPU's half floats (MaxPyramid.h).
       pyramid_(map_, addressing_, BoundPrecision::Half),
       heightScale_(heightScale),
-      base_(BaseSurface::make(base, width_, height_, heightScale,
-                              pyramid_.maxHeight())),
+      base_(BaseSurface::make(base, width_, height_, heightScale, pyramid_.maxHeight())),
       maxIterations_(traversalBudget(width_, height_)) {}
 
 void MultilevelTracer::mapChanged(const HeightMap& map, const TexelRect& changed) {

@@ -106,14 +106,14 @@ float storedBound(float bound, BoundPrecision precision, int scaleExponent);
 // max(1, H >> k), down to 1 x 1.
 std::vector<glm::ivec2> windowLevelSizes(int mapWidth, int mapHeight);
 
-// The texels to compute again, per level of a pyramid of `levelSizes` (windowLevelSizes,
-// or peers/MaxMipPyramid.h's maxMipLevelSizes), when the samples inside `changed` (map
-// texels) change: the finest texels whose 3 x 3 samples reach into it (across the seam when `wrapU`), then on each
-// level the parents of the changed texels below (index >> 1, clamped to the level: the
-// last absorbs the remainder), and the windows that hold a changed texel. aligned[k] (the
-// blocks, or maxmip's quadtree texels) and windows[k] list at most two rectangles each (two
-// where the region wraps round the seam), none where nothing changes. MaxPyramid::update
-// and the GPU builder (gl/PyramidBuilder.h) compute these.
+// The texels to compute again, per level of a pyramid of `levelSizes` (windowLevelSizes, or
+// peers/MaxMipPyramid.h's maxMipLevelSizes), when the samples inside `changed` (map texels) change:
+// the finest texels whose 3 x 3 samples reach into it (across the seam when `wrapU`), then on each
+// level the parents of the changed texels below (index >> 1, clamped to the level: the last absorbs
+// the remainder), and the windows that hold a changed texel. aligned[k] (the blocks, or maxmip's
+// quadtree texels) and windows[k] list at most two rectangles each (two where the region wraps
+// round the seam), none where nothing changes. MaxPyramid::update and the GPU builder
+// (gl/PyramidBuilder.h) compute these.
 struct PyramidRegions {
     std::vector<std::vector<TexelRect>> aligned, windows;
 };

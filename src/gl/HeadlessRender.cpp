@@ -47,20 +47,11 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
     });
 }
 
-void HeadlessRenderer::setHeights(const ReliefDesc& relief, const HeightMap& map,
+void HeadlessRenderer::setHeights(const RenderJob& job, const HeightMap& map,
                                   const std::string& source) {
-    // The method the renderer holds is the last job's, which render() replaces with this
-    // relief's job's: one that does not run on this relief's base or tiles (a cone on the
-    // plane before a cylinder) gives way to multilevel, which runs on all, so that the last
-    // job's method does not refuse this job's relief.
-    const Method held = renderer_->method().method;
-    if (!methodRunsOnBase(held, relief.base) ||
-        (relief.tiles != glm::ivec2(1, 1) && !methodTakesTiles(held))) {
-        context_.makeCurrent();
-        renderer_->setMethod({});
-    }
-    upload(map, source, relief.tiles,
-           [&](PyramidBuild build) { renderer_->apply(relief, &map, source, build); });
+    // With the job's method: the last job's may not run on this relief's base or tiles.
+    upload(map, source, job.tiles,
+           [&](PyramidBuild build) { renderer_->apply(job, job.method, &map, source, build); });
 }
 
 void HeadlessRenderer::upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
@@ -107,8 +98,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     // Another size or curved base of the map's addressing, another last level, scale or
     // model, on the pyramid built; between the plane and a curved base, or for other
     // tiles, the map is set again first (setHeights).
-    renderer_->apply(job);
-    renderer_->setMethod(job.method);  // compiled once per method, then looked up
+    renderer_->apply(job, job.method);  // each program compiled once, then looked up
     if (animated_ && animated_->evaluated() && animated_->name() != job.animation) {
         animated_->restore(*renderer_);  // another field, or the map's own heights again
         maxHeight_ = renderer_->maxHeight();

@@ -138,6 +138,27 @@ void ReliefRenderer::apply(const ReliefDesc& relief, const HeightMap* heights,
     setModel(relief.model);
 }
 
+void ReliefRenderer::apply(const ReliefDesc& relief, const MethodSettings& method,
+                           const HeightMap* heights, const std::string& source,
+                           PyramidBuild build) {
+    checkMethodSupportsBase(method.method, relief.base);
+    checkMethodSupportsTiles(method.method, relief.tiles);
+    // The held method gives way to the new one where it cannot trace the relief: apply()
+    // then compiles the new pair's program and, with heights, builds what the new method
+    // reads; setMethod() adds what it reads to a pyramid kept.
+    const MethodSettings held = method_;
+    if (!methodRunsOnBase(held.method, relief.base) ||
+        (relief.tiles != glm::ivec2(1, 1) && !methodTakesTiles(held.method)))
+        method_ = method;
+    try {
+        apply(relief, heights, source, build);
+    } catch (...) {
+        method_ = held;
+        throw;
+    }
+    setMethod(method, countFetches_);
+}
+
 void ReliefRenderer::setInterpolation(Interpolation interpolation) {
     if (interpolation == interpolation_) return;
     program(configFor(method_, countFetches_, base_.kind, interpolation, true, ShadowMode::Off,

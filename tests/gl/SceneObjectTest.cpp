@@ -23,6 +23,8 @@
 #include "TestSupport.h"
 #include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/gl/ShaderProgram.h"
@@ -324,6 +326,45 @@ TEST_F(SceneObject, ARendererAcrossJobsRebuildsOnlyWhatEachChanges) {
         for (std::size_t i = 3; i < kept.frame.position.size(); i += 4) hits += kept.frame.position[i] > 0.5f;
         EXPECT_GT(hits, 100u) << step.name;
     }
+}
+
+// A relief and its method are applied together: a job that moves from a peer that runs on
+// the plane alone (cone) to a cylinder, or back, renders what a fresh renderer of that job
+// renders, whichever order the last job left; a pair that cannot run (cone on a cylinder)
+// is refused, and the renderer goes on drawing the last job as before.
+TEST_F(SceneObject, AReliefAndItsMethodApplyTogetherInEitherOrder) {
+    const HeightMap map = synth::cobbles(32, 32, 5);
+    RenderJob plane;
+    plane.width = 32;
+    plane.height = 24;
+    plane.camera = test::orbitCamera(40.0, 25.0, 1.7);
+    plane.method.method = Method::Cone;
+    RenderJob cylinder = plane;
+    cylinder.base = baseType("cylinder").defaults;
+    cylinder.method.method = Method::Multilevel;
+    HeadlessRenderer renderer(test::glContext(), plane.method);
+    for (const RenderJob* job : {&plane, &cylinder, &plane}) {
+        const std::string what = job == &plane ? "cone on the plane" : "multilevel on a cylinder";
+        ASSERT_TRUE(renderer.needsHeights(*job)) << what;
+        renderer.setHeights(*job, map, "cobbles");
+        const HeadlessResult kept = renderer.render(*job);
+        const HeadlessResult fresh = renderHeadless(test::glContext(), map, "cobbles", *job);
+        EXPECT_EQ(kept.frame.position, fresh.frame.position) << what;
+        std::size_t hits = 0;  // the relief is in the picture
+        for (std::size_t i = 3; i < kept.frame.position.size(); i += 4)
+            hits += kept.frame.position[i] > 0.5f;
+        EXPECT_GT(hits, 100u) << what;
+    }
+    RenderJob cone = cylinder;
+    cone.method.method = Method::Cone;
+    const HeadlessResult before = renderer.render(plane);
+    try {
+        renderer.setHeights(cone, map, "cobbles");
+        ADD_FAILURE() << "cone on a cylinder was not refused";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+    }
+    EXPECT_EQ(renderer.render(plane).frame.position, before.frame.position);
 }
 
 // The window depth written for each convention: OpenGL's [-1, 1] clip depth and

@@ -53,11 +53,12 @@ public:
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       glm::ivec2 tiles = {1, 1});
-    // The same, for the relief a desc describes: `map` holds the heights its map source
-    // names (loaded by the caller). Then needsHeights says whether another relief needs
-    // heights of its own: no map yet, or one set for another pyramid (core/scene/Scene.h:
-    // samePyramid; after setHeightMap, always). A caller loads maps only when it does.
-    void setHeights(const ReliefDesc& relief, const HeightMap& map, const std::string& source);
+    // The same, for the relief of `job` with its method (ReliefRenderer::apply): `map`
+    // holds the heights its map source names (loaded by the caller). Then needsHeights says
+    // whether another relief needs heights of its own: no map yet, or one set for another
+    // pyramid (core/scene/Scene.h: samePyramid; after setHeightMap, always). A caller loads
+    // maps only when it does.
+    void setHeights(const RenderJob& job, const HeightMap& map, const std::string& source);
     bool needsHeights(const ReliefDesc& relief) const;
     // What has been built so far (gl/ReliefRenderer.h): render() of another job builds
     // only what the job changed.

@@ -66,6 +66,15 @@ public:
     // setHeightMap and setBase do, for a method that does not run on the relief's base.
     void apply(const ReliefDesc& relief, const HeightMap* heights = nullptr,
                const std::string& source = {}, PyramidBuild build = PyramidBuild::Cpu);
+    // A relief and the method that is to trace it, together: the pair is checked first (the
+    // method runs on the relief's base and tiles, core/scene/Method.h), so that neither the
+    // method held for the last relief (a cone on the plane, before a cylinder) nor the
+    // relief held for the last method (a cylinder, before a cone on the plane) refuses the
+    // other. Then as apply() above and setMethod(); where either throws, the method held
+    // stays.
+    void apply(const ReliefDesc& relief, const MethodSettings& method,
+               const HeightMap* heights = nullptr, const std::string& source = {},
+               PyramidBuild build = PyramidBuild::Cpu);
 
     // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base),
     // which bounds the surface either last level makes of it, the map repeated `tiles`

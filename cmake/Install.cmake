@@ -56,6 +56,10 @@ install(FILES ${PROJECT_BINARY_DIR}/microreliefConfig.cmake
 # place (${pcfiledir}), so an install moved elsewhere still works.
 file(RELATIVE_PATH MICRORELIEF_PC_TO_PREFIX "/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/")
 string(REGEX REPLACE "/$" "" MICRORELIEF_PC_TO_PREFIX "${MICRORELIEF_PC_TO_PREFIX}")
+set(MICRORELIEF_IO_GDAL_PC "")
+if(MICRORELIEF_IO_GDAL)
+  set(MICRORELIEF_IO_GDAL_PC " gdal")
+endif()
 foreach(component IN LISTS MICRORELIEF_COMPONENTS)
   configure_file(${PROJECT_SOURCE_DIR}/cmake/pkgconfig/microrelief-${component}.pc.in
                  ${PROJECT_BINARY_DIR}/pkgconfig/microrelief-${component}.pc @ONLY)

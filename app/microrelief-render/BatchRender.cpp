@@ -177,44 +177,71 @@ struct LoadedMap {
     HeightMap map;
 };
 
+// What the frames need of each map they draw: its size and largest height (the float
+// limits), its georeference (a frame's scene over it: SceneOptions.h, sceneOverMap).
+struct MapFacts {
+    MapExtent extent;
+    std::optional<Georeference> georeference;
+};
+
+struct CheckedFrames {
+    std::map<MapKey, MapFacts> maps;
+    std::optional<LoadedMap> last;  // the last map loaded
+};
+
+// A frame's scene over its map: a georeferenced map's true proportions where the frame's
+// flags let.
+RenderJob frameJob(const PathFrame& frame, const MapFacts& facts) {
+    return sceneOverMap(frame.scene.job, frame.scene.georeference, facts.extent.width,
+                        facts.extent.height, facts.georeference);
+}
+
 // Every selected frame, checked before the first is drawn, its errors naming its row: the
 // maps it draws load (each once) and, with its camera, stay within what the shader's
 // float arithmetic holds (core/scene/FloatLimits.h); its albedo loads. An animated frame's
-// heights are known once evaluated: its limits are checked when it is drawn. Returns the
-// last map loaded.
-std::optional<LoadedMap> checkFrames(const CameraPath& path, const std::vector<int>& frames) {
-    std::map<MapKey, MapExtent> extents;
+// heights are known once evaluated: its limits are checked when it is drawn. Unless
+// `quiet`, a line says what each georeferenced map's grid gave.
+CheckedFrames checkFrames(const CameraPath& path, const std::vector<int>& frames, bool quiet) {
+    CheckedFrames checked;
     std::set<std::filesystem::path> albedos;
-    std::optional<LoadedMap> last;
     for (const int k : frames) {
         const PathFrame frame = path.frame(k);
-        const RenderJob& job = frame.scene.job;
         try {
             const MapKey key = mapKey(frame.scene);
-            auto extent = extents.find(key);
-            if (extent == extents.end()) {
-                last.reset();
-                last = LoadedMap{key, loadHeightMap(std::get<0>(key), frame.scene.job.map.load)};
-                extent = extents
-                             .emplace(key, MapExtent{last->map.width * job.tiles.x,
-                                                     last->map.height * job.tiles.y,
-                                                     last->map.maxValue()})
-                             .first;
+            auto facts = checked.maps.find(key);
+            if (facts == checked.maps.end()) {
+                checked.last.reset();
+                HeightMapFile loaded =
+                    loadHeightMapFile(std::get<0>(key), frame.scene.job.map.load);
+                const HeightMap& map = loaded.map;
+                facts = checked.maps
+                            .emplace(key, MapFacts{{map.width, map.height, map.maxValue()},
+                                                   loaded.georeference})
+                            .first;
+                checked.last = LoadedMap{key, std::move(loaded.map)};
+                if (facts->second.georeference && !quiet)
+                    std::printf("microrelief-render: %s\n",
+                                georeferenceSummary(
+                                    std::get<0>(key).string(), *facts->second.georeference,
+                                    frameJob(frame, facts->second), frame.scene.georeference)
+                                    .c_str());
             }
+            const RenderJob job = frameJob(frame, facts->second);
             checkPictureSize(job.width, job.height);
             if (job.animation.empty()) {
-                checkFloatLimits(extent->second, job.heightScale, job.base, job.model, job.camera,
+                const MapExtent& map = facts->second.extent;
+                checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxHeight},
+                                 job.heightScale, job.base, job.model, job.camera,
                                  resolveCamera(job.camera, job.width, job.height, 1.0),
                                  std::get<0>(key).string());
             }
-            if (const auto albedo = albedoPath(frame.scene.job);
-                albedo && albedos.insert(*albedo).second)
+            if (const auto albedo = albedoPath(job); albedo && albedos.insert(*albedo).second)
                 loadAlbedo(*albedo);  // what is in it: its pixels, finite
         } catch (const Error& e) {
             throw e.after(frame.origin + ": ");
         }
     }
-    return last;
+    return checked;
 }
 
 }  // namespace
@@ -229,7 +256,8 @@ int runBatch(const RenderOptions& o) {
     const std::vector<int> frames = selectFrames(path.size(), o.batch.frames, shard);
     const std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
     checkMapFiles(path, frames);
-    std::optional<LoadedMap> checkedMap = checkFrames(path, frames);
+    CheckedFrames checked = checkFrames(path, frames, o.quiet);
+    std::optional<LoadedMap>& checkedMap = checked.last;
     if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(kLightSizeUnused);
     const std::filesystem::path manifestPath = manifestFile(o);
     for (const FrameFiles& f : files) {
@@ -266,6 +294,8 @@ int runBatch(const RenderOptions& o) {
         }
         const auto frameStart = Clock::now();
         try {
+            const MapKey key = mapKey(frame.scene);
+            const RenderJob job = frameJob(frame, checked.maps.at(key));
             if (!context) {
                 context = createHeadlessContext(o.backend);
                 if (o.verbose)
@@ -275,17 +305,16 @@ int runBatch(const RenderOptions& o) {
             }
             // A map is loaded and its pyramid built only for a frame whose relief has
             // another pyramid than the last (core/scene/Scene.h: samePyramid).
-            if (renderer->needsHeights(frame.scene.job)) {
-                const MapKey key = mapKey(frame.scene);
+            if (renderer->needsHeights(job)) {
                 HeightMap heights = checkedMap && checkedMap->key == key
                                         ? std::move(checkedMap->map)
-                                        : loadHeightMap(std::get<0>(key), frame.scene.job.map.load);
+                                        : loadHeightMap(std::get<0>(key), job.map.load);
                 checkedMap.reset();
-                renderer->setHeights(frame.scene.job, heights, std::get<0>(key).string());
+                renderer->setHeights(job, heights, std::get<0>(key).string());
                 map = std::move(heights);
                 ++mapsLoaded;
             }
-            if (const std::optional<std::filesystem::path> albedo = albedoPath(frame.scene.job);
+            if (const std::optional<std::filesystem::path> albedo = albedoPath(job);
                 albedo != loadedAlbedo) {
                 loadedAlbedo.reset();
                 if (albedo) {
@@ -296,10 +325,9 @@ int runBatch(const RenderOptions& o) {
                 }
                 loadedAlbedo = albedo;
             }
-            const HeadlessResult result = renderer->render(frame.scene.job);
+            const HeadlessResult result = renderer->render(job);
             const RenderedFrame& pixels = result.frame;
-            if (eyeInsideTheSolid(result.animatedMap ? *result.animatedMap : *map,
-                                  frame.scene.job) &&
+            if (eyeInsideTheSolid(result.animatedMap ? *result.animatedMap : *map, job) &&
                 eyeInside++ == 0)
                 firstEyeInside = frame.origin;
 
@@ -315,8 +343,7 @@ int runBatch(const RenderOptions& o) {
             const std::vector<std::uint8_t> rgb =
                 rgbFromRgba(pixels.color, pixels.width, pixels.height);
             batch.write(f.out, {pixels.width, pixels.height, 3, PixelType::UInt8, rgb.data(), {}});
-            if (f.aov)
-                writeAov(batch, *f.aov, pixels, frame.scene.job.shading.shadows != ShadowMode::Off);
+            if (f.aov) writeAov(batch, *f.aov, pixels, job.shading.shadows != ShadowMode::Off);
             batch.commit();
         } catch (const Error& e) {
             progress.clear();

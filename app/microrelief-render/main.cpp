@@ -61,15 +61,24 @@ int run(const RenderOptions& o) {
         logWarning(kLightSizeUnused);
     const std::filesystem::path heightFile =
         o.scene.job.map.file ? *o.scene.job.map.file : defaultHeightMapPath();
-    const HeightMap map = loadHeightMap(heightFile, o.scene.job.map.load);
-    if (o.compareReference && o.scene.job.tiles != glm::ivec2(1, 1) &&
-        map.samples.size() * o.scene.job.tiles.x * o.scene.job.tiles.y > (std::size_t(1) << 26)) {
+    const HeightMapFile loaded = loadHeightMapFile(heightFile, o.scene.job.map.load);
+    const HeightMap& map = loaded.map;
+    // A georeferenced map's true proportions, where the flags leave them to it.
+    const RenderJob job =
+        sceneOverMap(o.scene.job, o.scene.georeference, map.width, map.height, loaded.georeference);
+    if (loaded.georeference && !o.quiet)
+        std::printf("%s: %s\n", kProgram,
+                    georeferenceSummary(heightFile.string(), *loaded.georeference, job,
+                                        o.scene.georeference)
+                        .c_str());
+    if (o.compareReference && job.tiles != glm::ivec2(1, 1) &&
+        map.samples.size() * job.tiles.x * job.tiles.y > (std::size_t(1) << 26)) {
         throwBadInput(
             "--compare-reference with --tile compares with the larger image the tiles "
             "make, at most 67108864 samples (this one would have " +
-            std::to_string(map.samples.size() * o.scene.job.tiles.x * o.scene.job.tiles.y) + ")");
+            std::to_string(map.samples.size() * job.tiles.x * job.tiles.y) + ")");
     }
-    const std::optional<std::filesystem::path> albedoFile = albedoPath(o.scene.job);
+    const std::optional<std::filesystem::path> albedoFile = albedoPath(job);
     const std::optional<AlbedoImage> albedo =
         albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
 
@@ -77,11 +86,11 @@ int run(const RenderOptions& o) {
     if (o.verbose)
         logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
                 context->description());
-    const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), o.scene.job,
-                                                 albedo ? &*albedo : nullptr);
+    const HeadlessResult result =
+        renderHeadless(*context, map, heightFile.string(), job, albedo ? &*albedo : nullptr);
     // An animated relief is held to the heights the GPU evaluated, read back.
     const HeightMap& traced = result.animatedMap ? *result.animatedMap : map;
-    if (eyeInsideTheSolid(traced, o.scene.job)) {  // the camera checked by now
+    if (eyeInsideTheSolid(traced, job)) {  // the camera checked by now
         logWarning("--eye lies inside the relief's solid (under the surface of " +
                    heightFile.filename().string() +
                    "): the picture is undefined there; move the eye above the surface");
@@ -94,10 +103,10 @@ int run(const RenderOptions& o) {
     ImageWriteBatch batch;
     const std::vector<std::uint8_t> rgb = rgbFromRgba(frame.color, frame.width, frame.height);
     batch.write(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
-    if (o.aov) writeAov(batch, *o.aov, frame, o.scene.job.shading.shadows != ShadowMode::Off);
+    if (o.aov) writeAov(batch, *o.aov, frame, job.shading.shadows != ShadowMode::Off);
     batch.commit();
 
-    if (o.compareReference) printAccuracy(frame, result.camera, traced, o.scene.job);
+    if (o.compareReference) printAccuracy(frame, result.camera, traced, job);
     if (exhausted > 0) {
         logWarning(std::to_string(exhausted) +
                    " pixel(s) ran out of the iteration budget (shown magenta)");

@@ -61,7 +61,10 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.vsync = options.vsync && options.frames == 0;
     state_.panelVisible = options.panel;
     const std::filesystem::path file = options.scene.job.map.file.value_or(defaultHeightMapPath());
-    map_ = std::make_shared<HeightMap>(loadHeightMap(file, options.scene.job.map.load));
+    HeightMapFile loaded = loadHeightMapFile(file, options.scene.job.map.load);
+    const std::string fitted = fitRelief(loaded, file.string());
+    const RenderJob& job = state_.scene.job;  // the command line's, over the map
+    map_ = std::make_shared<HeightMap>(std::move(loaded.map));
     mapMaxHeight_ = map_->maxValue();  // once per map, not per frame
     loadedWith_ = options.scene.job.map.load;
     // A bad albedo is a bad argument too: refused before any window opens.
@@ -69,11 +72,10 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     const std::optional<AlbedoImage> albedo =
         albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
     // A degenerate camera is a bad argument: refuse it before any window opens.
-    resolveCamera(controller_.camera(), options.scene.job.width, options.scene.job.height,
-                  sceneRadius(reliefExtent(map_->width * state_.scene.job.tiles.x,
-                                           map_->height * state_.scene.job.tiles.y, mapMaxHeight_,
-                                           options.scene.job.heightScale, options.scene.job.base),
-                              options.scene.job.model.objectToWorld()));
+    resolveCamera(controller_.camera(), job.width, job.height,
+                  sceneRadius(reliefExtent(map_->width * job.tiles.x, map_->height * job.tiles.y,
+                                           mapMaxHeight_, job.heightScale, job.base),
+                              job.model.objectToWorld()));
 
     state_.mapName = file.filename().string();
     setupWindow();
@@ -105,6 +107,21 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.shaderFolder = shaders.string();
     state_.glRenderer = window_->renderer() + ", " + window_->version();
     if (options.verbose) note("GL: " + state_.glRenderer);
+    if (!fitted.empty()) note(fitted);
+}
+
+std::string ViewerApp::fitRelief(const HeightMapFile& loaded, const std::string& source) {
+    RenderJob& job = state_.scene.job;
+    const GeoreferenceFit& fit = options_.scene.georeference;
+    if (georeferenced_) {
+        const RenderJob& given = options_.scene.job;
+        if (!fit.keepHeightScale) job.heightScale = given.heightScale;
+        if (!fit.keepModel) job.model = given.model;
+        if (!fit.keepBase) job.base = given.base;
+    }
+    job = sceneOverMap(job, fit, loaded.map.width, loaded.map.height, loaded.georeference);
+    georeferenced_ = loaded.georeference.has_value();
+    return loaded.georeference ? georeferenceSummary(source, *loaded.georeference, job, fit) : "";
 }
 
 ViewerApp::~ViewerApp() = default;
@@ -619,15 +636,23 @@ void ViewerApp::applyRelief(const std::shared_ptr<HeightMap>& heights, const std
 
 void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     const std::filesystem::path path = file.value_or(defaultHeightMapPath());
+    std::string fitted;
+    const RenderJob before = state_.scene.job;
+    const bool georeferencedBefore = georeferenced_;
     try {
-        auto map = std::make_shared<HeightMap>(loadHeightMap(path, state_.scene.job.map.load));
+        HeightMapFile loaded = loadHeightMapFile(path, state_.scene.job.map.load);
+        fitted = fitRelief(loaded, path.string());
+        auto map = std::make_shared<HeightMap>(std::move(loaded.map));
         state_.scene.job.map.file =
             file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
         applyRelief(map, path.string());
         map_ = std::move(map);
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
-        // The current map stays, and so do the file and options it was loaded with.
+        // The current map stays, and so do the file and options it was loaded with, and
+        // the proportions it set.
+        state_.scene.job = before;
+        georeferenced_ = georeferencedBefore;
         state_.scene.job.map = applied_->map;
         state_.scene.job.map.load = loadedWith_;
         state_.mapError = e.what();
@@ -654,6 +679,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     glfwSetWindowTitle(window_->window(), ("microrelief-viewer: " + state_.mapName).c_str());
     note("opened " + path.string() + " (" + std::to_string(map_->width) + "x" +
          std::to_string(map_->height) + ")");
+    if (!fitted.empty()) note(fitted);
 }
 
 void ViewerApp::applyAlbedo() {

@@ -17,11 +17,12 @@
 #include "ShaderWatcher.h"
 #include "ViewerOptions.h"
 #include "ViewerPanel.h"
-#include "microrelief/glfw/GlfwContext.h"
 #include "microrelief/gl/AnimatedHeights.h"
 #include "microrelief/gl/HeightEditor.h"
 #include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/gl/ReliefRenderer.h"
+#include "microrelief/glfw/GlfwContext.h"
+#include "microrelief/io/HeightMapFile.h"
 
 namespace microrelief {
 
@@ -119,6 +120,10 @@ private:
     void copyCommand();
     void setVsync(bool on);
     void note(const std::string& message);
+    // The relief over a map just loaded: a georeferenced map's true proportions where the
+    // command line lets (app/shared/SceneOptions.h, sceneOverMap); where the map before it
+    // set them, the command line's own values come back first. Returns the line to note.
+    std::string fitRelief(const HeightMapFile& loaded, const std::string& source);
 
     glm::ivec2 framebufferSize() const;
     glm::ivec2 viewSize() const;
@@ -130,6 +135,7 @@ private:
     ViewerOptions options_;
     ViewerState state_;
     HeightMapLoadOptions loadedWith_;  // the options the current map was loaded with
+    bool georeferenced_ = false;       // the current map set the relief's proportions
     std::optional<ReliefDesc> applied_;  // the relief the renderer and the picker hold
     std::shared_ptr<HeightMap> map_;   // the CPU mirror of the samples on the GPU (edited)
     float mapMaxHeight_ = 0.0f;        // the surface's top: map_'s largest sample

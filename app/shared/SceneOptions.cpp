@@ -240,9 +240,15 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
     app.add_option(flag("map.load.channel"), job_.map.load.channel, "Image channel holding the heights")
         ->capture_default_str();
     app.add_flag(flag("map.load.normalize"), job_.map.load.normalize, "Map the map's [min, max] to [0, 1]");
-    app.add_option(flag("heightScale"), job_.heightScale,
-                   "World height of map value 1 (the map spans 1 unit)")
-        ->capture_default_str();
+    heightScaleOption_ = app.add_option(flag("heightScale"), job_.heightScale,
+                                        "World height of map value 1 (the map spans 1 unit); "
+                                        "default for a georeferenced map: its true proportions")
+                             ->capture_default_str();
+    if (fit_) {
+        app.add_option("--exaggeration", exaggeration_,
+                       "A georeferenced map (GeoTIFF DEM, .hgt, .asc, .dem): its heights "
+                       "times this over their true proportions (default 1)");
+    }
     app.add_option(flag("interpolation"), interpolation_,
                    "The last level: bilinear, or biquadratic (the quadratic B-spline of the "
                    "samples: smooth)")
@@ -252,7 +258,7 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
     for (const BaseType& type : baseTypes())
         bases += std::string(&type == &baseTypes().front() ? " " : ", ") + type.name + " (" +
                  type.summary + ")";
-    app.add_option(flag("base"), base_, bases)->capture_default_str();
+    baseOption_ = app.add_option(flag("base"), base_, bases)->capture_default_str();
     for (const std::string& field : baseSizeFields()) {
         // "Radius of the cylinder (default 0.3) or the sphere (default 0.5), world units"
         std::string help;
@@ -285,9 +291,10 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
     app.add_option(flag("camera.fovyDegrees"), job_.camera.fovyDegrees, "Vertical field of view in degrees")
         ->capture_default_str();
     app.add_option(flag("size"), size_, "Picture size WIDTHxHEIGHT")->capture_default_str();
-    app.add_option(flag("model"), model_,
-                   "Where the relief sits in the world: a 3 x 4 affine matrix, 12 numbers in rows "
-                   "(m00,m01,m02,tx,m10,...,tz); default: the identity");
+    modelOption_ = app.add_option(
+        flag("model"), model_,
+        "Where the relief sits in the world: a 3 x 4 affine matrix, 12 numbers in rows "
+        "(m00,m01,m02,tx,m10,...,tz); default: the identity");
 }
 
 void SceneFlags::addShading(CLI::App& app) {
@@ -421,7 +428,57 @@ void SceneFlags::apply() {
         std::copy(rows.begin(), rows.end(), m.begin());
         job_.model = ModelTransform::fromRows(m);
     }
+    if (fit_) {
+        // Given here or by the scene this parse goes over (a camera file's row over the
+        // command line): kept over a georeferenced map's own.
+        fit_->keepHeightScale |= heightScaleOption_->count() > 0;
+        fit_->keepModel |= modelOption_->count() > 0;
+        fit_->keepBase |= baseOption_->count() > 0;
+        if (exaggeration_) {
+            if (!(*exaggeration_ > 0.0) || !std::isfinite(*exaggeration_))
+                throwBadInput("--exaggeration must be a positive finite number");
+            if (heightScaleOption_->count() > 0)
+                throwBadInput(
+                    "--exaggeration scales a georeferenced map's true heights and --height-scale "
+                    "sets the height scale outright: give one");
+            fit_->exaggeration = *exaggeration_;
+            fit_->keepHeightScale = false;
+        }
+    }
     throwIfInvalid(validateScene(job_, job_));
+}
+
+RenderJob sceneOverMap(const RenderJob& job, const GeoreferenceFit& fit, int width, int height,
+                       const std::optional<Georeference>& geo) {
+    if (!geo) return job;
+    RenderJob fitted = job;
+    fitToGeoreference(fitted, width, height, *geo, fit);
+    throwIfInvalid(validateScene(fitted, fitted));
+    return fitted;
+}
+
+std::string georeferenceSummary(const std::string& file, const Georeference& geo,
+                                const RenderJob& fitted, const GeoreferenceFit& fit) {
+    std::ostringstream line;
+    line.precision(4);
+    line << file << ": "
+         << (geo.crs.empty()        ? "no coordinate system (the grid taken as metres)"
+             : geo.crs == "unknown" ? "an unnamed coordinate system"
+                                    : geo.crs)
+         << ", samples " << geo.sampleWidthMetres << " x " << geo.sampleHeightMetres
+         << " m, heights " << geo.lowestMetres << " to " << geo.highestMetres << " m";
+    if (geo.nodataSamples > 0)
+        line << " (" << geo.nodataSamples << " nodata samples filled with " << geo.lowestMetres
+             << " m)";
+    if (fit.keepHeightScale) {
+        line << "; height scale " << fitted.heightScale << " as given";
+    } else {
+        line << "; drawn at its true proportions";
+        if (fit.exaggeration != 1.0) line << " exaggerated " << fit.exaggeration << " times";
+        line << " (height scale " << fitted.heightScale << ")";
+    }
+    if (geo.global && fitted.base.curved() && !fit.keepBase) line << " on the ellipsoid";
+    return line.str();
 }
 
 std::string shellQuote(const std::string& text) {
@@ -476,7 +533,9 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     if (job.tiles != glm::ivec2(1, 1))
         add("tiles", std::to_string(job.tiles.x) + "," + std::to_string(job.tiles.y));
     const BaseType& base = baseType(job.base);
-    if (&base != &baseType(BaseShape{})) {  // the default base goes without saying
+    // The default base goes without saying, but where it was chosen over a georeferenced
+    // map's own (a global grid's ellipsoid).
+    if (&base != &baseType(BaseShape{}) || o.georeference.keepBase) {
         add("base", base.name);
         for (const BaseSize& size : base.sizes) {
             if (size.count == 1)

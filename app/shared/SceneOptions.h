@@ -15,16 +15,21 @@
 #include <glm/glm.hpp>
 
 #include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/scene/Georeference.h"
 #include "microrelief/gl/HeadlessRender.h"
 
 namespace CLI {
 class App;
+class Option;
 }
 
 namespace microrelief {
 
 struct SceneOptions {
     RenderJob job;  // the relief (its map file, colours, base, ...) and the view of it
+    // What a georeferenced map may set in `job` (core/scene/Georeference.h): --exaggeration,
+    // and which of --height-scale, --model and --base were given (those are kept).
+    GeoreferenceFit georeference;
 };
 
 // The flag that sets a scene field ("camera.eye" -> "--eye"); a field no flag sets is
@@ -40,10 +45,13 @@ public:
     // must outlive the parse.
     // `withAlbedo`: register --albedo too (the programs that draw colours).
     explicit SceneFlags(RenderJob& job, bool withAlbedo = false);
-    explicit SceneFlags(SceneOptions& options) : SceneFlags(options.job, true) {}
+    explicit SceneFlags(SceneOptions& options) : SceneFlags(options.job, true) {
+        fit_ = &options.georeference;
+    }
 
-    // --height --channel --normalize --height-scale --interpolation --base --radius --length
-    // --radii --tile --animate --time --eye --target --up --fovy --size --model
+    // --height --channel --normalize --height-scale --exaggeration (with SceneOptions)
+    // --interpolation --base --radius --length --radii --tile --animate --time --eye
+    // --target --up --fovy --size --model
     void addMapAndCamera(CLI::App& app);
     // --light --light-position --shadows --light-size --method --steps --pixel-error --view
     // --background
@@ -56,6 +64,9 @@ public:
 private:
     RenderJob& job_;
     bool withAlbedo_;
+    GeoreferenceFit* fit_ = nullptr;  // SceneOptions': --exaggeration and the flags given
+    std::optional<double> exaggeration_;
+    CLI::Option *heightScaleOption_ = nullptr, *modelOption_ = nullptr, *baseOption_ = nullptr;
     std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
     std::string lightPosition_, shadows_ = "off", albedo_;
     std::string base_ = "plane", interpolation_ = "bilinear", model_, tile_;
@@ -89,6 +100,17 @@ std::filesystem::path heightMapPath(const ReliefDesc& relief);
 // (unless an animated field, waves or ripples, replaces its heights); none for
 // AlbedoSource::Kind::None or another map without one.
 std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief);
+
+// `job` over a W x H map read with the georeference `geo` (io/HeightMapFile.h:
+// loadHeightMapFile): the true proportions where `fit` lets (core/scene/Georeference.h),
+// checked again (validateScene); `job` as given for a map without one.
+RenderJob sceneOverMap(const RenderJob& job, const GeoreferenceFit& fit, int width, int height,
+                       const std::optional<Georeference>& geo);
+// One line for the programs' progress: what the georeference gave and how it is drawn.
+// "dem.tif: WGS 84 / UTM zone 33N, samples 30 x 30 m, heights 412 to 1830 m; drawn at its
+// true proportions (height scale 0.0183)".
+std::string georeferenceSummary(const std::string& file, const Georeference& geo,
+                                const RenderJob& fitted, const GeoreferenceFit& fit);
 
 // The microrelief-render command line (without --out) that renders `options` again, every
 // value written exactly: `program --height FILE --height-scale 0.1 --eye x,y,z ...`.

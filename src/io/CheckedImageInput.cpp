@@ -10,10 +10,6 @@
 
 namespace microrelief {
 
-namespace {
-
-// Before OpenImageIO sees the path: a device (/dev/zero), a FIFO or a socket never ends
-// or blocks, and OpenImageIO's format probes would read it forever.
 void checkRegularFile(const std::filesystem::path& file, const std::string& name) {
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(file, ec);
@@ -36,8 +32,6 @@ void checkSize(const std::string& name, long long width, long long height, int m
                       std::to_string(maxSide) + " " + what + " may have");
     }
 }
-
-}  // namespace
 
 std::string oneLine(std::string text) {
     std::replace(text.begin(), text.end(), '\n', ' ');

@@ -18,6 +18,14 @@ namespace microrelief {
 std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& file, int maxSide,
                                                    const std::string& what);
 
+// Before a reader sees the path: a device (/dev/zero), a FIFO or a socket never ends or
+// blocks, and format probes would read it forever. Throws Error(BadInput) naming `name`.
+void checkRegularFile(const std::filesystem::path& file, const std::string& name);
+// A size from a header, before anything is allocated: empty, or a side beyond `maxSide`,
+// is refused (Error(BadInput), `what` as above).
+void checkSize(const std::string& name, long long width, long long height, int maxSide,
+               const std::string& what);
+
 // OpenImageIO's messages on one line.
 std::string oneLine(std::string text);
 

@@ -2,14 +2,21 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cctype>
 #include <memory>
+#include <optional>
 
 #include "io/CheckedImageInput.h"
+#if MICRORELIEF_WITH_GDAL
+#include "io/DemFile.h"
+#endif
 #include "microrelief/core/Error.h"
 
 namespace microrelief {
 
-HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+namespace {
+
+HeightMap loadImage(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
     const std::string name = file.string();
     const std::unique_ptr<OIIO::ImageInput> input =
         openCheckedImage(file, options.maxSide, "a height map");
@@ -43,6 +50,40 @@ HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOp
         throwRuntime(name + ": not enough memory for its " + std::to_string(spec.width) + " x " +
                      std::to_string(spec.height) + " samples");
     }
+}
+
+}  // namespace
+
+bool readsGeoreferencedMaps() {
+    return MICRORELIEF_WITH_GDAL != 0;
+}
+
+HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
+                                const HeightMapLoadOptions& options) {
+    // The elevation formats by extension: a .tif or .tiff is a DEM where it has a grid on the
+    // ground, an .hgt, .asc or .dem file always.
+    std::string extension = file.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool demOnly = extension == ".hgt" || extension == ".asc" || extension == ".dem";
+#if MICRORELIEF_WITH_GDAL
+    if (demOnly || extension == ".tif" || extension == ".tiff") {
+        checkRegularFile(file, file.string());
+        if (std::optional<HeightMapFile> dem = loadDem(file, options, demOnly)) {
+            prepareHeights(dem->map, options, file.string());  // in [0, 1] already
+            return std::move(*dem);
+        }
+    }
+#else
+    if (demOnly)
+        throwBadInput(file.string() +
+                      ": an elevation model; this build of microrelief reads them only with "
+                      "GDAL (build with -DMICRORELIEF_WITH_GDAL=ON and libgdal-dev)");
+#endif
+    return {loadImage(file, options), std::nullopt};
+}
+
+HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+    return loadHeightMapFile(file, options).map;
 }
 
 }  // namespace microrelief

@@ -44,15 +44,17 @@ protected:
 
     static std::filesystem::path prefix() { return *scratch_ / "prefix"; }
 
-    // Configures and builds the CMake project in `source` against the install; its build
-    // folder.
+    // Configures and builds the CMake project in `source` against the install in
+    // `installed` (default: the whole package's); its build folder.
     static std::filesystem::path buildAgainstInstall(const std::filesystem::path& source,
-                                                     const std::string& name) {
+                                                     const std::string& name,
+                                                     const std::filesystem::path& installed = {}) {
         const std::filesystem::path build = *scratch_ / name;
-        const test::RunResult configure = test::runCommand(
-            kCmake + " -S " + quote(source) + " -B " + quote(build) + " -G '" + kGenerator +
-                "' -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" + quote(prefix()),
-            *scratch_ / "");
+        const test::RunResult configure =
+            test::runCommand(kCmake + " -S " + quote(source) + " -B " + quote(build) + " -G '" +
+                                 kGenerator + "' -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" +
+                                 quote(installed.empty() ? prefix() : installed),
+                             *scratch_ / "");
         EXPECT_EQ(configure.status, 0) << configure.out << configure.err;
         const test::RunResult compile =
             test::runCommand(kCmake + " --build " + quote(build), *scratch_ / "");
@@ -153,7 +155,7 @@ TEST_F(Package, CoreConfiguresAndBuildsAloneWithOnlyGlm) {
     const std::filesystem::path build = *scratch_ / "core-alone";
     const std::filesystem::path corePrefix = *scratch_ / "core-alone-prefix";
     std::string disabled;
-    for (const char* package : {"OpenImageIO", "OpenGL", "glfw3", "ZLIB", "CLI11", "GTest"})
+    for (const char* package : {"OpenImageIO", "OpenGL", "glfw3", "ZLIB", "CLI11", "GTest", "GDAL"})
         disabled += std::string(" -DCMAKE_DISABLE_FIND_PACKAGE_") + package + "=ON";
     const test::RunResult configure = test::runCommand(
         kCmake + " -S " + quote(kSource) + " -B " + quote(build) + " -G '" + kGenerator +
@@ -164,7 +166,8 @@ TEST_F(Package, CoreConfiguresAndBuildsAloneWithOnlyGlm) {
         *scratch_ / "");
     ASSERT_EQ(configure.status, 0) << configure.out << configure.err;
     const std::string cache = test::readText(build / "CMakeCache.txt");
-    for (const char* entry : {"GLAD_EXECUTABLE", "OpenImageIO_DIR", "glfw3_DIR", "OPENGL_egl"})
+    for (const char* entry :
+         {"GLAD_EXECUTABLE", "OpenImageIO_DIR", "glfw3_DIR", "OPENGL_egl", "GDAL_DIR"})
         EXPECT_EQ(cache.find(entry), std::string::npos) << entry << " looked up for core alone";
     const test::RunResult compile =
         test::runCommand(kCmake + " --build " + quote(build), *scratch_ / "");
@@ -178,16 +181,9 @@ TEST_F(Package, CoreConfiguresAndBuildsAloneWithOnlyGlm) {
     EXPECT_TRUE(std::filesystem::exists(corePrefix / "include" / "microrelief" / "core" /
                                         "GlslConstants.h"));
 
-    const std::filesystem::path program = *scratch_ / "core-alone-program";
-    const test::RunResult programConfigure = test::runCommand(
-        kCmake + " -S " + quote(kSource / "tests" / "package" / "core_only") + " -B " +
-            quote(program) + " -G '" + kGenerator +
-            "' -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" + quote(corePrefix),
-        *scratch_ / "");
-    ASSERT_EQ(programConfigure.status, 0) << programConfigure.out << programConfigure.err;
-    const test::RunResult programBuild =
-        test::runCommand(kCmake + " --build " + quote(program), *scratch_ / "");
-    ASSERT_EQ(programBuild.status, 0) << programBuild.out << programBuild.err;
+    const std::filesystem::path program = buildAgainstInstall(
+        kSource / "tests" / "package" / "core_only", "core-alone-program", corePrefix);
+    if (HasFailure()) return;
     expectCoreOnly(test::runCommand(quote(program / "core-only"), *scratch_ / ""),
                    test::runCommand("ldd " + quote(program / "core-only"), *scratch_ / ""));
 }

@@ -1,10 +1,14 @@
 // Height maps from image files, through OpenImageIO (the microrelief::io component):
-// the file's header checked before anything is allocated, the samples read as floats.
+// the file's header checked before anything is allocated, the samples read as floats;
+// and georeferenced elevation models (GeoTIFF, SRTM .hgt, ESRI ASCII grids, USGS DEM)
+// through GDAL where the component was built with it (docs/terrain.md).
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 #include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/scene/Georeference.h"
 
 namespace microrelief {
 
@@ -15,8 +19,28 @@ namespace microrelief {
 // kMaxHeightMapSide (from the header, before allocating), a PNG that libpng would
 // refuse (src/io/PngCheck.h), a missing channel, or values that are not finite and
 // >= 0 (suggesting --normalize where that would help); Error(Runtime) naming the file
-// when memory runs out.
+// when memory runs out. A georeferenced map comes back as loadHeightMapFile reads it,
+// without its georeference.
 HeightMap loadHeightMap(const std::filesystem::path& file,
                         const HeightMapLoadOptions& options = {});
+
+struct HeightMapFile {
+    HeightMap map;
+    std::optional<Georeference> georeference;  // where the file has one
+};
+
+// A georeferenced elevation model (a .tif, .tiff, .hgt, .asc or .dem file that GDAL reads
+// with a grid on the ground): the samples as metres (the band's scale, offset and unit
+// applied: metres, feet or US survey feet; a band without a unit is in metres), its nodata
+// samples filled with the lowest valid height, [lowest, highest] mapped to [0, 1]; the
+// georeference says what that was and how large a sample is (core/scene/Georeference.h).
+// Every other file (a TIFF without a grid too) as loadHeightMap reads it. Refuses, besides
+// what loadHeightMap refuses: a DEM with no valid sample, heights in another unit, a DEM
+// file where the io component was built without GDAL.
+HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
+                                const HeightMapLoadOptions& options = {});
+
+// Whether the io component reads georeferenced maps (it was built with GDAL).
+bool readsGeoreferencedMaps();
 
 }  // namespace microrelief

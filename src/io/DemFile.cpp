@@ -1,0 +1,203 @@
+#include "io/DemFile.h"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <vector>
+
+#include "io/CheckedImageInput.h"
+#include "microrelief/core/Error.h"
+
+namespace microrelief {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// GDAL's messages stay off stderr while it reads; the last one (this thread's) goes into
+// ours.
+class QuietGdal {
+public:
+    QuietGdal() {
+        static std::once_flag registered;
+        std::call_once(registered, [] { GDALAllRegister(); });
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        CPLErrorReset();
+    }
+    ~QuietGdal() { CPLPopErrorHandler(); }
+    QuietGdal(const QuietGdal&) = delete;
+    QuietGdal& operator=(const QuietGdal&) = delete;
+
+    static std::string lastError() {
+        const std::string message = oneLine(CPLGetLastErrorMsg());
+        return message.empty() ? "truncated or corrupt" : message;
+    }
+};
+
+struct DatasetCloser {
+    void operator()(GDALDataset* dataset) const { GDALClose(dataset); }
+};
+
+std::string lower(std::string text) {
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+}
+
+// Metres per unit of the band's heights; refuses a unit it does not know.
+double verticalUnit(const std::string& name, const std::string& unitText) {
+    const std::string unit = lower(unitText);
+    if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" ||
+        unit == "meters")
+        return 1.0;
+    if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot")
+        return 0.3048;
+    if (unit == "us survey foot" || unit == "ftus" || unit == "us-ft" || unit == "foot_us")
+        return 1200.0 / 3937.0;
+    throwBadInput(name + ": heights in '" + unitText +
+                  "', a unit microrelief does not know (metres, feet or US survey feet)");
+}
+
+// The ground size of a sample and what the grid is, from the geotransform and the
+// coordinate system. A rotated grid's sample sizes are the lengths of its two steps.
+Georeference groundOf(const std::string& name, const double gt[6], int width, int height,
+                      const OGRSpatialReference* srs) {
+    Georeference geo;
+    const double stepX = std::hypot(gt[1], gt[4]), stepY = std::hypot(gt[2], gt[5]);
+    if (!(stepX > 0.0) || !(stepY > 0.0) || !std::isfinite(stepX) || !std::isfinite(stepY))
+        throwBadInput(name + ": its grid's sample size is zero or not finite");
+    if (srs && srs->IsGeographic()) {
+        geo.geographic = true;
+        geo.semiMajorMetres = srs->GetSemiMajor();
+        geo.semiMinorMetres = srs->GetSemiMinor();
+        if (!(geo.semiMajorMetres > 0.0) || !(geo.semiMinorMetres > 0.0))
+            throwBadInput(name + ": its coordinate system's ellipsoid has no size");
+        const double degrees = srs->GetAngularUnits() * 180.0 / kPi;  // degrees per unit
+        const double dx = stepX * degrees, dy = stepY * degrees;
+        const double centreLatitude =
+            (gt[3] + gt[4] * width / 2.0 + gt[5] * height / 2.0) * degrees;
+        if (!(std::abs(centreLatitude) <= 90.0))
+            throwBadInput(name + ": its grid's centre lies beyond the poles");
+        geo.sampleWidthMetres =
+            dx * metresPerDegreeEast(geo.semiMajorMetres, geo.semiMinorMetres, centreLatitude);
+        geo.sampleHeightMetres =
+            dy * metresPerDegreeNorth(geo.semiMajorMetres, geo.semiMinorMetres, centreLatitude);
+        geo.global = width * dx >= 360.0 - dx / 2.0 && height * dy >= 180.0 - dy / 2.0;
+        // A grid at a pole has no width there; its samples' size is taken at the centre.
+        if (!(geo.sampleWidthMetres > 0.0)) geo.sampleWidthMetres = geo.sampleHeightMetres;
+    } else {
+        const double metres = srs ? srs->GetLinearUnits() : 1.0;  // per grid unit
+        geo.sampleWidthMetres = stepX * metres;
+        geo.sampleHeightMetres = stepY * metres;
+    }
+    if (srs && srs->GetName()) geo.crs = srs->GetName();
+    return geo;
+}
+
+}  // namespace
+
+std::optional<HeightMapFile> loadDem(const std::filesystem::path& file,
+                                     const HeightMapLoadOptions& options, bool demOnly) {
+    const std::string name = file.string();
+    const QuietGdal quiet;
+    // Only the elevation formats' drivers: nothing else GDAL reads is tried on the file.
+    const char* const drivers[] = {"GTiff", "SRTMHGT", "AAIGrid", "USGSDEM", nullptr};
+    const std::unique_ptr<GDALDataset, DatasetCloser> dataset(
+        GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers));
+    if (!dataset) {
+        if (!demOnly) return std::nullopt;  // OpenImageIO says what is wrong with the TIFF
+        throwBadInput(name + ": cannot read the elevation model (" + QuietGdal::lastError() + ")");
+    }
+    double gt[6];
+    if (dataset->GetGeoTransform(gt) != CE_None) {
+        if (!demOnly) return std::nullopt;  // a TIFF without a grid: an image
+        throwBadInput(name + ": the elevation model has no grid on the ground");
+    }
+
+    const int width = dataset->GetRasterXSize(), height = dataset->GetRasterYSize();
+    checkSize(name, width, height, options.maxSide, "a height map");
+    const int bands = dataset->GetRasterCount();
+    if (options.channel < 0 || options.channel >= bands) {
+        throwBadInput(name + ": {map.load.channel} " + std::to_string(options.channel) +
+                      " is out of range; the elevation model has " + std::to_string(bands) +
+                      " band(s)");
+    }
+    GDALRasterBand* band = dataset->GetRasterBand(options.channel + 1);
+    Georeference geo = groundOf(name, gt, width, height, dataset->GetSpatialRef());
+
+    int hasNodata = 0, hasScale = 0, hasOffset = 0;
+    const double nodata = band->GetNoDataValue(&hasNodata);
+    double scale = band->GetScale(&hasScale), offset = band->GetOffset(&hasOffset);
+    if (!hasScale) scale = 1.0;
+    if (!hasOffset) offset = 0.0;
+    const double unit = verticalUnit(name, band->GetUnitType());
+    const auto isNodata = [&](double raw) {
+        return hasNodata && (raw == nodata || (std::isnan(nodata) && std::isnan(raw)));
+    };
+
+    try {
+        HeightMapFile result;
+        result.map = HeightMap(width, height);
+        // Rows in blocks of about 4 M samples, read as double: the nodata test on the
+        // stored value, and integer heights up to 2^53 exact until they are metres.
+        const int rows = std::max(1, std::min(height, (1 << 22) / width));
+        std::vector<double> block(static_cast<std::size_t>(width) * rows);
+        double lowest = std::numeric_limits<double>::infinity();
+        double highest = -lowest;
+        for (int y = 0; y < height; y += rows) {
+            const int count = std::min(rows, height - y);
+            if (band->RasterIO(GF_Read, 0, y, width, count, block.data(), width, count, GDT_Float64,
+                               0, 0) != CE_None)
+                throwBadInput(name + ": cannot read the samples (" + QuietGdal::lastError() + ")");
+            for (int r = 0; r < count; ++r) {
+                for (int x = 0; x < width; ++x) {
+                    const double raw = block[static_cast<std::size_t>(r) * width + x];
+                    float& sample = result.map.at(x, y + r);
+                    if (isNodata(raw)) {
+                        sample = std::numeric_limits<float>::quiet_NaN();
+                        ++geo.nodataSamples;
+                        continue;
+                    }
+                    const double metres = (raw * scale + offset) * unit;
+                    if (!std::isfinite(metres)) {
+                        std::ostringstream message;
+                        message << name << ": sample (" << x << ", " << y + r << ") is " << raw
+                                << ", not a height (and not the file's nodata value)";
+                        throwBadInput(message.str());
+                    }
+                    lowest = std::min(lowest, metres);
+                    highest = std::max(highest, metres);
+                    sample = static_cast<float>(metres);
+                }
+            }
+        }
+        if (geo.nodataSamples == result.map.samples.size())
+            throwBadInput(name + ": every sample is nodata");
+        geo.lowestMetres = lowest;
+        geo.highestMetres = highest;
+        // [lowest, highest] -> [0, 1]; nodata -> 0, the lowest valid height.
+        const double range = highest - lowest;
+        for (float& sample : result.map.samples) {
+            // A stored float may round below the lowest or above the highest by half an
+            // ulp: clamped, so the map stays in [0, 1].
+            sample = std::isnan(sample) || range == 0.0
+                         ? 0.0f
+                         : static_cast<float>(std::clamp(
+                               (static_cast<double>(sample) - lowest) / range, 0.0, 1.0));
+        }
+        result.georeference = geo;
+        return result;
+    } catch (const std::bad_alloc&) {
+        throwRuntime(name + ": not enough memory for its " + std::to_string(width) + " x " +
+                     std::to_string(height) + " samples");
+    }
+}
+
+}  // namespace microrelief

@@ -1,0 +1,405 @@
+// Georeferenced elevation models (docs/terrain.md): read through GDAL as metres with their
+// grid (DemFile.*, label cpu), and drawn by microrelief-render at their true proportions
+// (DemRender.*, label cli: the AOV's world positions against the file's own metres).
+// The DEMs are written here with GDAL's own writer. Where the io component is built
+// without GDAL, only the fit and the refusal of a DEM file are built (CMake says so when it
+// configures: "no GDAL, elevation models are not read").
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#if MICRORELIEF_WITH_GDAL
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+#endif
+
+#include "TestSupport.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/scene/Georeference.h"
+#include "microrelief/io/HeightMapFile.h"
+
+using namespace microrelief;
+
+namespace {
+
+// What a test DEM holds: a W x H band of `type` over a grid `gt` in the system `crs`
+// (anything OGRSpatialReference::SetFromUserInput takes, "EPSG:32633"; empty: none).
+struct DemSpec {
+    int width = 40, height = 30;
+    std::string crs = "EPSG:32633";  // WGS 84 / UTM zone 33N
+    double gt[6] = {500000.0, 30.0, 0.0, 5000000.0, 0.0, -30.0};
+    std::optional<double> nodata;
+    std::string unit;
+    double scale = 1.0, offset = 0.0;
+    bool georeferenced = true;
+    std::function<double(int, int)> value = [](int i, int j) { return 100.0 + 3 * i + 7 * j; };
+};
+
+#if MICRORELIEF_WITH_GDAL
+void writeDem(const std::filesystem::path& file, const DemSpec& spec, GDALDataType type) {
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(driver, nullptr);
+    GDALDataset* dataset = driver->Create(file.c_str(), spec.width, spec.height, 1, type, nullptr);
+    ASSERT_NE(dataset, nullptr);
+    if (spec.georeferenced) {
+        double gt[6];
+        std::copy(spec.gt, spec.gt + 6, gt);
+        dataset->SetGeoTransform(gt);
+        if (!spec.crs.empty()) {
+            OGRSpatialReference srs;
+            ASSERT_EQ(srs.SetFromUserInput(spec.crs.c_str()), OGRERR_NONE);
+            dataset->SetSpatialRef(&srs);
+        }
+    }
+    GDALRasterBand* band = dataset->GetRasterBand(1);
+    if (spec.nodata) band->SetNoDataValue(*spec.nodata);
+    if (!spec.unit.empty()) band->SetUnitType(spec.unit.c_str());
+    if (spec.scale != 1.0) band->SetScale(spec.scale);
+    if (spec.offset != 0.0) band->SetOffset(spec.offset);
+    std::vector<double> samples(static_cast<std::size_t>(spec.width) * spec.height);
+    for (int j = 0; j < spec.height; ++j)
+        for (int i = 0; i < spec.width; ++i)
+            samples[static_cast<std::size_t>(j) * spec.width + i] = spec.value(i, j);
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, spec.width, spec.height, samples.data(), spec.width,
+                             spec.height, GDT_Float64, 0, 0),
+              CE_None);
+    GDALClose(dataset);
+}
+
+#endif  // MICRORELIEF_WITH_GDAL
+
+std::string refusal(const std::filesystem::path& file, const HeightMapLoadOptions& options = {}) {
+    try {
+        loadHeightMapFile(file, options);
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        return e.what();
+    }
+    ADD_FAILURE() << file << " was read";
+    return {};
+}
+
+#if MICRORELIEF_WITH_GDAL
+
+TEST(DemFile, AProjectedGeoTiffIsReadAsMetresOverItsGrid) {
+    test::ScratchDir dir;
+    DemSpec spec;
+    spec.nodata = -32768.0;
+    const auto value = spec.value;
+    spec.value = [&](int i, int j) {
+        return (j == 5 && (i == 5 || i == 6)) ? -32768.0 : value(i, j);
+    };
+    writeDem(dir / "utm.tif", spec, GDT_Int16);
+
+    const HeightMapFile dem = loadHeightMapFile(dir / "utm.tif");
+    ASSERT_TRUE(dem.georeference);
+    const Georeference& geo = *dem.georeference;
+    EXPECT_EQ(geo.sampleWidthMetres, 30.0);
+    EXPECT_EQ(geo.sampleHeightMetres, 30.0);
+    EXPECT_EQ(geo.lowestMetres, 100.0);
+    EXPECT_EQ(geo.highestMetres, 100.0 + 3 * 39 + 7 * 29);
+    EXPECT_EQ(geo.nodataSamples, 2u);
+    EXPECT_FALSE(geo.geographic);
+    EXPECT_NE(geo.crs.find("UTM zone 33N"), std::string::npos) << geo.crs;
+    ASSERT_EQ(dem.map.width, 40);
+    ASSERT_EQ(dem.map.height, 30);
+    const double range = geo.highestMetres - geo.lowestMetres;
+    for (int j = 0; j < 30; ++j)
+        for (int i = 0; i < 40; ++i) {
+            const bool hole = j == 5 && (i == 5 || i == 6);
+            EXPECT_FLOAT_EQ(dem.map.at(i, j), hole ? 0.0f : float((value(i, j) - 100.0) / range))
+                << i << ", " << j;
+        }
+    // loadHeightMap: the same samples, without the grid.
+    EXPECT_EQ(loadHeightMap(dir / "utm.tif").samples, dem.map.samples);
+}
+
+TEST(DemFile, HeightsInFeetWithAScaleAndOffsetBecomeMetres) {
+    test::ScratchDir dir;
+    DemSpec spec;
+    spec.unit = "ft";
+    spec.scale = 0.5;
+    spec.offset = 10.0;
+    spec.value = [](int i, int j) { return double(i + j); };  // raw 0 .. 68
+    writeDem(dir / "feet.tif", spec, GDT_Float32);
+    const HeightMapFile dem = loadHeightMapFile(dir / "feet.tif");
+    ASSERT_TRUE(dem.georeference);
+    EXPECT_DOUBLE_EQ(dem.georeference->lowestMetres, 10.0 * 0.3048);
+    EXPECT_DOUBLE_EQ(dem.georeference->highestMetres, (68 * 0.5 + 10.0) * 0.3048);
+
+    spec.unit = "furlong";
+    writeDem(dir / "furlong.tif", spec, GDT_Float32);
+    EXPECT_NE(refusal(dir / "furlong.tif").find("'furlong'"), std::string::npos);
+}
+
+// Metres per degree on WGS 84 at 45 degrees north, as published (for example in the
+// NGA's "Length of a degree" tables): 78 846.8 m east, 111 131.7 m north.
+TEST(DemFile, ALatitudeLongitudeGridMeasuresItsSamplesAtItsCentre) {
+    test::ScratchDir dir;
+    DemSpec spec;
+    spec.width = spec.height = 100;
+    spec.crs = "EPSG:4326";
+    const double gt[6] = {10.0, 0.001, 0.0, 45.05, 0.0, -0.001};  // centre at 45 N
+    std::copy(gt, gt + 6, spec.gt);
+    writeDem(dir / "geo.tif", spec, GDT_Int16);
+    const HeightMapFile dem = loadHeightMapFile(dir / "geo.tif");
+    ASSERT_TRUE(dem.georeference);
+    EXPECT_TRUE(dem.georeference->geographic);
+    EXPECT_FALSE(dem.georeference->global);
+    EXPECT_NEAR(dem.georeference->sampleWidthMetres, 78.8468, 0.001);
+    EXPECT_NEAR(dem.georeference->sampleHeightMetres, 111.1317, 0.001);
+    EXPECT_EQ(dem.georeference->semiMajorMetres, 6378137.0);
+}
+
+TEST(DemFile, AGlobalGridGoesOnTheEllipsoidOfItsAxes) {
+    test::ScratchDir dir;
+    DemSpec spec;
+    spec.width = 72;
+    spec.height = 36;
+    spec.crs = "EPSG:4326";
+    const double gt[6] = {-180.0, 5.0, 0.0, 90.0, 0.0, -5.0};
+    std::copy(gt, gt + 6, spec.gt);
+    spec.value = [](int i, int j) { return -4000.0 + 100.0 * ((i * 7 + j * 3) % 90); };
+    writeDem(dir / "globe.tif", spec, GDT_Int16);
+    const HeightMapFile dem = loadHeightMapFile(dir / "globe.tif");
+    ASSERT_TRUE(dem.georeference);
+    EXPECT_TRUE(dem.georeference->global);
+    EXPECT_NEAR(dem.georeference->semiMinorMetres, 6356752.314, 0.001);
+
+    ReliefDesc relief;
+    fitToGeoreference(relief, 72, 36, *dem.georeference, {});
+    ASSERT_EQ(relief.base.kind, BaseKind::Ellipsoid);
+    EXPECT_EQ(relief.base.radii, glm::dvec3(0.5, 0.5 * 6356752.314245179 / 6378137.0, 0.5));
+    EXPECT_FLOAT_EQ(relief.heightScale, float(8900.0 / 6378137.0));
+    // A base given is kept; the height scale then measures the map's width round it.
+    ReliefDesc plane;
+    fitToGeoreference(plane, 72, 36, *dem.georeference, {.exaggeration = 10, .keepBase = true});
+    EXPECT_EQ(plane.base.kind, BaseKind::Plane);
+}
+
+TEST(DemFile, WhatIsNotAnElevationModelIsRefusedOrReadAsAnImage) {
+    test::ScratchDir dir;
+    DemSpec spec;
+    spec.nodata = 7.0;
+    spec.value = [](int, int) { return 7.0; };
+    writeDem(dir / "holes.tif", spec, GDT_Int16);
+    EXPECT_NE(refusal(dir / "holes.tif").find("every sample is nodata"), std::string::npos);
+
+    spec = DemSpec{};
+    spec.width = 200;
+    writeDem(dir / "wide.tif", spec, GDT_Int16);
+    EXPECT_NE(refusal(dir / "wide.tif", {.maxSide = 100}).find("200 x 30 is larger than"),
+              std::string::npos);
+    EXPECT_NE(refusal(dir / "wide.tif", {.channel = 1}).find("1 band(s)"), std::string::npos);
+
+    test::writeBytes(dir / "N45E006.hgt", std::vector<std::uint8_t>(1000, 7));
+    EXPECT_NE(refusal(dir / "N45E006.hgt").find("N45E006.hgt: cannot read the elevation model"),
+              std::string::npos);
+    std::filesystem::create_directory(dir / "folder.tif");
+    EXPECT_NE(refusal(dir / "folder.tif").find("is a directory"), std::string::npos);
+
+    // A TIFF with no grid on the ground is an image, as before.
+    spec = DemSpec{};
+    spec.georeferenced = false;
+    spec.value = [](int i, int) { return 1000.0 * i; };
+    writeDem(dir / "image.tif", spec, GDT_UInt16);
+    const HeightMapFile image = loadHeightMapFile(dir / "image.tif");
+    EXPECT_FALSE(image.georeference);
+    EXPECT_FLOAT_EQ(image.map.at(39, 0), 39000.0f / 65535.0f);
+}
+
+#else
+
+TEST(DemFile, WithoutGdalAnElevationFormatIsRefusedSayingSo) {
+    EXPECT_FALSE(readsGeoreferencedMaps());
+    test::ScratchDir dir;
+    test::writeBytes(dir / "N45E006.hgt", std::vector<std::uint8_t>(1000, 7));
+    EXPECT_NE(refusal(dir / "N45E006.hgt").find("GDAL"), std::string::npos);
+}
+
+#endif  // MICRORELIEF_WITH_GDAL
+
+// The fit alone (core): the plane's height scale and its stretch for samples that are not
+// square on the ground.
+TEST(Georeference, ThePlaneTakesTheGroundsProportions) {
+    Georeference geo;
+    geo.sampleWidthMetres = 30.0;
+    geo.sampleHeightMetres = 60.0;
+    geo.lowestMetres = 100.0;
+    geo.highestMetres = 420.0;
+    ReliefDesc relief;
+    fitToGeoreference(relief, 64, 32, geo, {.exaggeration = 2.0});
+    // Ground 1920 x 1920 m: one world unit each way; 320 m is 1/6 of it, doubled.
+    EXPECT_FLOAT_EQ(relief.heightScale, float(2.0 * 320.0 / 1920.0));
+    const glm::dvec3 corner = relief.model.pointToWorld({0.5, 0.0, 0.25});  // the plane's corner
+    EXPECT_DOUBLE_EQ(corner.x, 0.5);
+    EXPECT_DOUBLE_EQ(corner.z, 0.5);
+    ReliefDesc kept;
+    kept.heightScale = 0.3f;
+    fitToGeoreference(kept, 64, 32, geo, {.keepHeightScale = true, .keepModel = true});
+    EXPECT_EQ(kept.heightScale, 0.3f);
+    EXPECT_TRUE(kept.model.isIdentity());
+}
+
+#if MICRORELIEF_WITH_GDAL
+
+// --- microrelief-render over a DEM, label cli ---
+
+struct Aov {
+    int width = 0, height = 0;
+    std::vector<float> rgba;
+    const float* at(int x, int y) const {
+        return &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
+    }
+};
+
+Aov readAov(const std::filesystem::path& file) {
+    Aov aov;
+    auto input = OIIO::ImageInput::open(file.string());
+    if (!input) return aov;
+    aov.width = input->spec().width;
+    aov.height = input->spec().height;
+    aov.rgba.resize(static_cast<std::size_t>(aov.width) * aov.height * 4);
+    input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, aov.rgba.data());
+    return aov;
+}
+
+class DemRender : public ::testing::Test {
+protected:
+    test::RunResult render(const std::string& args) {
+        return test::runCommand(std::string(MICRORELIEF_RENDER_EXE) +
+                                    " --backend auto --size 160x160 --eye 0,2.2,0.0001 "
+                                    "--target 0,0,0 --up 0,0,-1 --fovy 40 " +
+                                    args,
+                                dir.path());
+    }
+    test::ScratchDir dir;
+};
+
+// A 64 x 32 DEM of 30 m samples, heights 100 m to 420 m, seen from above: every hit on its
+// top lies where the file's own metres put it, one world unit being the 1920 m of its
+// longer side: y = (bilinear metres at (x, z) - 100) / 1920 (times the exaggeration).
+TEST_F(DemRender, ATerrainStandsAtItsTrueProportions) {
+    DemSpec spec;
+    spec.width = 64;
+    spec.height = 32;
+    spec.value = [](int i, int j) {
+        return 100.0 + 320.0 * (0.5 + 0.5 * std::sin(i * 0.3) * std::cos(j * 0.4));
+    };
+    writeDem(dir / "dem.tif", spec, GDT_Float32);
+    // The file's metres, bilinear between sample centres, clamped at the edges.
+    const auto metres = [&](double x, double z, double zHalf) {
+        const double u = (x + 0.5) * 64.0 - 0.5, v = (z + zHalf) / (2 * zHalf) * 32.0 - 0.5;
+        const auto sample = [&](int i, int j) {
+            return double(float(spec.value(std::clamp(i, 0, 63), std::clamp(j, 0, 31))));
+        };
+        const int i = int(std::floor(u)), j = int(std::floor(v));
+        const double fu = u - i, fv = v - j;
+        return (1 - fu) * (1 - fv) * sample(i, j) + fu * (1 - fv) * sample(i + 1, j) +
+               (1 - fu) * fv * sample(i, j + 1) + fu * fv * sample(i + 1, j + 1);
+    };
+    struct Case {
+        std::string flags;
+        double exaggeration, zHalf;
+        int sampleHeight;
+    };
+    for (const Case& c : {Case{"", 1.0, 0.25, 30}, Case{"--exaggeration 3", 3.0, 0.25, 30},
+                          Case{"", 1.0, 0.5, 60}}) {
+        SCOPED_TRACE(c.flags + " samples 30 x " + std::to_string(c.sampleHeight) + " m");
+        spec.gt[5] = -c.sampleHeight;
+        writeDem(dir / "dem.tif", spec, GDT_Float32);
+        const HeightMapFile dem = loadHeightMapFile(dir / "dem.tif");
+        ASSERT_TRUE(dem.georeference);
+        const test::RunResult r =
+            render("--height " + (dir / "dem.tif").string() + " " + c.flags + " --out " +
+                   (dir / "dem.png").string() + " --aov " + (dir / "dem.exr").string());
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_NE(r.out.find("true proportions"), std::string::npos) << r.out;
+        const Aov aov = readAov(dir / "dem.exr");
+        ASSERT_EQ(aov.width, 160);
+        int tops = 0;
+        double worst = 0.0, zMin = 1.0, zMax = -1.0;
+        for (int y = 0; y < aov.height; ++y)
+            for (int x = 0; x < aov.width; ++x) {
+                const float* p = aov.at(x, y);
+                if (p[3] == 0.0f) continue;
+                zMin = std::min(zMin, double(p[2]));
+                zMax = std::max(zMax, double(p[2]));
+                if (std::abs(p[0]) > 0.49 || std::abs(p[2]) > c.zHalf - 0.01) continue;  // walls
+                ++tops;
+                const double expected =
+                    (metres(p[0], p[2], c.zHalf) - dem.georeference->lowestMetres) / 1920.0 *
+                    c.exaggeration;
+                worst = std::max(worst, std::abs(p[1] - expected));
+            }
+        EXPECT_GT(tops, 160 * 160 / 8);
+        // The hit's height against the file's at the hit's own (x, z): float positions, and
+        // a slope of at most 320 m * 0.3 / 30 m per metre (times 3) between them: 1e-4.
+        EXPECT_LT(worst, 1e-4);
+        EXPECT_NEAR(zMin, -c.zHalf, 0.01);
+        EXPECT_NEAR(zMax, c.zHalf, 0.01);
+
+        // A camera path fits each frame's scene over the map the same way: a turntable's
+        // first frame is the single view, pixel for pixel (the files' headers hold the time).
+        const test::RunResult path = render(
+            "-q --turntable 2 --height " + (dir / "dem.tif").string() + " " + c.flags + " --out " +
+            (dir / "t{frame}.png").string() + " --aov " + (dir / "t{frame}.exr").string());
+        ASSERT_EQ(path.status, 0) << path.err;
+        EXPECT_EQ(readAov(dir / "t0.exr").rgba, aov.rgba);
+    }
+}
+
+TEST_F(DemRender, NodataSamplesLieAtTheLowestHeightAndFlagsAreChecked) {
+    DemSpec spec;
+    spec.width = spec.height = 32;
+    spec.nodata = -9999.0;
+    // A block of nodata in the middle of a 500 m plateau over a 200 m floor at the rim.
+    spec.value = [](int i, int j) {
+        if (i >= 12 && i < 20 && j >= 12 && j < 20) return -9999.0;
+        return (i < 2 || j < 2 || i > 29 || j > 29) ? 200.0 : 500.0;
+    };
+    writeDem(dir / "holes.tif", spec, GDT_Int16);
+    const test::RunResult r =
+        render("--height " + (dir / "holes.tif").string() + " --out " + (dir / "h.png").string() +
+               " --aov " + (dir / "h.exr").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("64 nodata samples filled with 200 m"), std::string::npos) << r.out;
+    const Aov aov = readAov(dir / "h.exr");
+    // The hole's middle (x, z within 2 samples of its centre) is at height 0, the plateau at
+    // (500 - 200) / 960.
+    int inHole = 0, onPlateau = 0;
+    for (int y = 0; y < aov.height; ++y)
+        for (int x = 0; x < aov.width; ++x) {
+            const float* p = aov.at(x, y);
+            if (p[3] == 0.0f) continue;
+            const double i = (p[0] + 0.5) * 32.0, j = (p[2] + 0.5) * 32.0;
+            if (std::abs(i - 16.0) < 2.0 && std::abs(j - 16.0) < 2.0) {
+                ++inHole;
+                EXPECT_NEAR(p[1], 0.0, 1e-6);
+            } else if (i > 5 && i < 9 && j > 5 && j < 9) {
+                ++onPlateau;
+                EXPECT_NEAR(p[1], 300.0 / 960.0, 1e-5);
+            }
+        }
+    EXPECT_GT(inHole, 20);
+    EXPECT_GT(onPlateau, 20);
+
+    const test::RunResult both =
+        render("--height " + (dir / "holes.tif").string() +
+               " --exaggeration 2 --height-scale 0.1 --out " + (dir / "x.png").string());
+    test::expectOneLineFailure(both, "microrelief-render", 2, "give one");
+    const test::RunResult zero = render("--height " + (dir / "holes.tif").string() +
+                                        " --exaggeration 0 --out " + (dir / "x.png").string());
+    test::expectOneLineFailure(zero, "microrelief-render", 2, "--exaggeration");
+}
+
+#endif  // MICRORELIEF_WITH_GDAL
+
+}  // namespace

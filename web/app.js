@@ -22,11 +22,12 @@ const app = {
     view: null,
     initialView: null,
     renderer: null,
-    map: null,  // {name, bundled, width, height, samples}
+    map: null,          // {name, bundled, width, height, samples}
     albedoImage: null,  // the bundled map's colours, RGBA
     coneMaps: new ConeMapBuilder(),
-    coneBuilds: new Map(),  // kind -> {started}: cone maps under way for the current map
-    coneSeconds: {},  // kind -> seconds its build took, for the current map
+    coneBuilds: new Map(),  // kind -> {started, done}: cone maps under way for the current map
+    coneSeconds: {},        // kind -> seconds its build took, for the current map
+    coneProgress: {},       // kind -> the fractions its build reported, for the current map
     frames: 0,
     opened: 0,
     dirty: false,
@@ -93,6 +94,7 @@ function useMap(map) {
     app.coneMaps.cancel('a new map');
     app.coneBuilds.clear();
     app.coneSeconds = {};
+    app.coneProgress = {};
     showConeMaps();
     app.map = map;
     app.mapWrapsU = scene.wrapsU(scene.viewBase(app.view));
@@ -125,25 +127,36 @@ const kConeMethod = {conservative: 'cone', relaxed: 'rcsm'};
 
 // The cone map `kind` of the current map, built in WebAssembly when missing (as
 // ReliefRenderer::addConeMapFor builds it when cone or rcsm is drawn); a redraw once it is
-// there. The panel counts the seconds meanwhile.
+// there. The panel shows how far it is (the worker's reports, each whole percent) and the
+// seconds so far meanwhile.
 function ensureConeMap(kind) {
     const textures = app.renderer.textures;
     if (!kind || textures.cones[kind] || app.coneBuilds.has(kind)) return;
-    const map = app.map, started = performance.now();
-    app.coneBuilds.set(kind, {started});
+    const map = app.map, started = performance.now(), build = {started, done: 0};
+    app.coneBuilds.set(kind, build);
+    app.coneProgress[kind] = [];
     showConeMaps();
-    app.coneMaps.build(kind, map.samples, map.width, map.height).then((texels) => {
-        if (app.renderer.textures !== textures) return;  // another map since
-        app.coneBuilds.delete(kind);
-        textures.setConeMap(kind, texels);
-        app.coneSeconds[kind] = (performance.now() - started) / 1000;
+    const onProgress = (done) => {
+        if (app.renderer.textures !== textures) return;
+        build.done = done;
+        app.coneProgress[kind].push(done);
         showConeMaps();
-        requestRender();
-    }, (e) => {
-        if (e instanceof ConeMapCancelled) return;
-        app.coneBuilds.delete(kind);
-        fail(`${map.name}: ${kConeMethod[kind]}'s ${kind} cone map: ${e.message}`);
-    });
+    };
+    app.coneMaps.build(kind, map.samples, map.width, map.height, onProgress)
+        .then(
+            (texels) => {
+                if (app.renderer.textures !== textures) return;  // another map since
+                app.coneBuilds.delete(kind);
+                textures.setConeMap(kind, texels);
+                app.coneSeconds[kind] = (performance.now() - started) / 1000;
+                showConeMaps();
+                requestRender();
+            },
+            (e) => {
+                if (e instanceof ConeMapCancelled) return;
+                app.coneBuilds.delete(kind);
+                fail(`${map.name}: ${kConeMethod[kind]}'s ${kind} cone map: ${e.message}`);
+            });
 }
 
 // The cone maps' line in the panel and data-cone-maps: those built (with their time) and
@@ -154,7 +167,9 @@ function showConeMaps() {
     for (const kind of ['conservative', 'relaxed']) {
         const build = app.coneBuilds.get(kind);
         if (build) {
-            parts.push(`building ${kConeMethod[kind]}'s ${kind} cone map in WebAssembly: ${((performance.now() - build.started) / 1000).toFixed(0)} s\u2026`);
+            parts.push(`building ${kConeMethod[kind]}'s ${kind} cone map in WebAssembly: ${
+                Math.floor(build.done * 100)} %, ${
+                ((performance.now() - build.started) / 1000).toFixed(0)} s\u2026`);
         } else if (textures?.cones[kind]) {
             built.push(kind);
             parts.push(`${kConeMethod[kind]}'s ${kind} cone map built in ${app.coneSeconds[kind].toFixed(1)} s`);

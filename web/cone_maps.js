@@ -15,11 +15,12 @@ export class ConeMapBuilder {
     // A promise of the texels of the `kind` ('conservative' or 'relaxed') cone map of
     // `samples` (W x H floats, row 0 first; copied). Rejects with Error saying why (no
     // WebAssembly cone maps in this build, a worker that cannot start, the C++'s message).
-    build(kind, samples, width, height) {
+    // `onProgress(done)`, where given, hears the fraction of the rows built as it grows.
+    build(kind, samples, width, height, onProgress = null) {
         const worker = this.start();
         const id = this.next++;
         return new Promise((resolve, reject) => {
-            this.pending.set(id, {resolve, reject});
+            this.pending.set(id, {resolve, reject, onProgress});
             const copy = Float32Array.from(samples);
             worker.postMessage({id, relaxed: kind === 'relaxed', samples: copy, width, height}, [copy.buffer]);
         });
@@ -39,6 +40,10 @@ export class ConeMapBuilder {
         worker.onmessage = ({data}) => {
             const job = this.pending.get(data.id);
             if (!job) return;
+            if ('progress' in data) {
+                job.onProgress?.(data.progress);
+                return;
+            }
             this.pending.delete(data.id);
             if (data.error) job.reject(new Error(data.error));
             else job.resolve(data.texels);

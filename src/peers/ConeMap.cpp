@@ -244,7 +244,7 @@ std::uint16_t halfBits(float v) {
 }
 
 std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce,
-                                           ConeMapStats* stats) {
+                                           ConeMapStats* stats, const ConeMapProgress& progress) {
     const HalfGrid grid(map);
     // Float: the finest bounds as texelSquareBound gives them.
     const MaxMipPyramid pyramid{MaxPyramid(map)};
@@ -277,6 +277,7 @@ std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce
             }
             ratios[static_cast<std::size_t>(j) * w + i] = r;
         }
+        if (progress) progress(double(j + 1) / h);
     }
     if (stats) stats->nodesVisited = visited;
     return ratios;
@@ -284,8 +285,9 @@ std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce
 
 namespace {
 
-ConeMap conservativeConeMap(const HeightMap& map, bool bruteForce, ConeMapStats* stats) {
-    const std::vector<double> ratios = conservativeConeRatios(map, bruteForce, stats);
+ConeMap conservativeConeMap(const HeightMap& map, bool bruteForce, ConeMapStats* stats,
+                            const ConeMapProgress& progress) {
+    const std::vector<double> ratios = conservativeConeRatios(map, bruteForce, stats, progress);
     ConeMap cones{map.width, map.height, {}, {}};
     cones.apex.resize(ratios.size());
     cones.ratio.resize(ratios.size());
@@ -303,16 +305,17 @@ ConeMap conservativeConeMap(const HeightMap& map, bool bruteForce, ConeMapStats*
 
 }  // namespace
 
-ConeMap buildConservativeConeMap(const HeightMap& map, ConeMapStats* stats) {
-    return conservativeConeMap(map, false, stats);
+ConeMap buildConservativeConeMap(const HeightMap& map, ConeMapStats* stats,
+                                 const ConeMapProgress& progress) {
+    return conservativeConeMap(map, false, stats, progress);
 }
 
 ConeMap buildConservativeConeMapBruteForce(const HeightMap& map) {
-    return conservativeConeMap(map, true, nullptr);
+    return conservativeConeMap(map, true, nullptr, {});
 }
 
 std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, bool bruteForce,
-                                      ConeMapStats* stats) {
+                                      ConeMapStats* stats, const ConeMapProgress& progress) {
     const MaxMipPyramid pyramid{MaxPyramid(map)};
     const double top = map.maxValue();
     std::vector<double> ratios(map.samples.size());
@@ -345,13 +348,15 @@ std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, boo
             }
             ratios[static_cast<std::size_t>(j) * map.width + i] = r;
         }
+        if (progress) progress(double(j + 1) / map.height);
     }
     if (stats) stats->nodesVisited = visited;
     return ratios;
 }
 
-ConeMap buildRelaxedConeMap(const HeightMap& map, int searchSteps, ConeMapStats* stats) {
-    const std::vector<double> ratios = relaxedConeRatios(map, searchSteps, false, stats);
+ConeMap buildRelaxedConeMap(const HeightMap& map, int searchSteps, ConeMapStats* stats,
+                            const ConeMapProgress& progress) {
+    const std::vector<double> ratios = relaxedConeRatios(map, searchSteps, false, stats, progress);
     ConeMap cones{map.width, map.height, {}, {}};
     cones.apex.resize(map.samples.size());
     cones.ratio.resize(map.samples.size());

@@ -268,6 +268,26 @@ TEST(ConeMap, RelaxedWalkGivesTheBruteForceCones) {
     }
 }
 
+// A build reports its rows as it goes: after each row, the fraction done, ending at 1; and
+// reporting changes no cone.
+TEST(ConeMap, BuildsReportTheirRowsAsTheyGo) {
+    const std::vector<ConeCase> cases = coneCases();
+    const ConeCase& c = cases.front();
+    for (const bool relaxed : {false, true}) {
+        std::vector<double> reported;
+        const ConeMapProgress progress = [&](double done) { reported.push_back(done); };
+        const ConeMap cones = relaxed ? buildRelaxedConeMap(c.map, 128, nullptr, progress)
+                                      : buildConservativeConeMap(c.map, nullptr, progress);
+        ASSERT_EQ(reported.size(), std::size_t(c.map.height)) << c.name;
+        for (std::size_t k = 0; k < reported.size(); ++k)
+            EXPECT_EQ(reported[k], double(k + 1) / c.map.height) << c.name << " row " << k;
+        const ConeMap quiet =
+            relaxed ? buildRelaxedConeMap(c.map) : buildConservativeConeMap(c.map);
+        EXPECT_EQ(cones.ratio, quiet.ratio);
+        EXPECT_EQ(cones.apex, quiet.apex);
+    }
+}
+
 TEST(ConeMap, HalfFloatRounding) {
     EXPECT_EQ(halfBits(1.0f), 0x3c00);
     EXPECT_EQ(halfBits(65504.0f), 0x7bff);

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -483,6 +484,10 @@ TEST_F(WebPage, TheConeMapsAreTheCppOnesToTheBit) {
         return "{\"eval\": \"Array.from(microrelief.renderer.textures.readConeMap('" + kind +
                "')).join(' ')\"}";
     };
+    // What a build reported as it went (the worker's messages, microrelief.coneProgress).
+    const auto progress = [](const std::string& kind) {
+        return "{\"eval\": \"microrelief.coneProgress." + kind + ".join(' ')\"}";
+    };
     const std::string ready = "{\"wait\": \"ready\"}",
                       coneMaps = "{\"eval\": \"document.documentElement.dataset.coneMaps\"}";
     // Steps 0-2: no cone map yet; 3-6: cone's; 7-10: rcsm's; 11-15: a new map, rcsm's
@@ -505,7 +510,9 @@ TEST_F(WebPage, TheConeMapsAreTheCppOnesToTheBit) {
                                             coneMaps,
                                             choose("cone"),
                                             ready,
-                                            readConeMap("conservative")};
+                                            readConeMap("conservative"),
+                                            progress("relaxed"),
+                                            progress("conservative")};
     std::string json = "[";
     for (const std::string& step : steps) json += (json.size() > 1 ? ", " : "") + step;
     const PageRun page = runPage(json + "]");
@@ -530,6 +537,17 @@ TEST_F(WebPage, TheConeMapsAreTheCppOnesToTheBit) {
     expectSameConeMap("noise37 relaxed", page.at(14, "value"), buildRelaxedConeMap(dropped));
     expectSameConeMap("noise37 conservative", page.at(18, "value"),
                       buildConservativeConeMap(dropped));
+
+    // The new map's builds went row by row: each of its 23 rows is more than a whole percent,
+    // so the worker posted every one, 1/23 to 1, and the panel heard them in order.
+    for (const int step : {19, 20}) {
+        std::istringstream reported(page.at(step, "value"));
+        std::vector<double> fractions{std::istream_iterator<double>(reported), {}};
+        ASSERT_EQ(fractions.size(), 23u) << page.at(step, "value");
+        for (std::size_t k = 0; k < fractions.size(); ++k)
+            EXPECT_DOUBLE_EQ(fractions[k], double(k + 1) / 23)
+                << "step " << step << " report " << k;
+    }
 }
 
 }  // namespace

@@ -4,6 +4,9 @@
 // the samples it uploads, as ReliefTextures::addConeMap builds them from the samples the GPU
 // holds: the same functions on the same floats, so the same RG16F texels to the bit
 // (tests/web: TheConeMapsAreTheCppOnesToTheBit).
+#include <emscripten.h>
+
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <exception>
@@ -18,18 +21,31 @@ namespace {
 std::string lastError;
 }  // namespace
 
+// The worker's message {id, progress} to the page: `done`, the fraction of the rows built.
+EM_JS(void, mr_post_progress, (int job, double done),
+      { postMessage({id : job, progress : done}); });
+
 extern "C" {
 
 // The cone map of `samples` (width x height floats, row 0 first) into `texels` (2 width x
 // height halves: apex, ratio per texel, row 0 first): the conservative map for cone when
 // `relaxed` is 0, else the relaxed one for rcsm (128 search steps, as published and as
-// ReliefTextures builds it). 1 when done, 0 with mr_last_error() saying why.
+// ReliefTextures builds it). As it goes, the worker posts {id: job, progress} with the
+// fraction of the rows done, at most once a whole percent. 1 when done, 0 with
+// mr_last_error() saying why.
 int mr_build_cone_map(const float* samples, int width, int height, int relaxed,
-                      std::uint16_t* texels) {
+                      std::uint16_t* texels, int job) {
     try {
         HeightMap map(width, height);
         std::memcpy(map.samples.data(), samples, map.samples.size() * sizeof(float));
-        const ConeMap cones = relaxed ? buildRelaxedConeMap(map) : buildConservativeConeMap(map);
+        int percent = 0;
+        const ConeMapProgress progress = [&](double done) {
+            if (std::floor(done * 100.0) <= percent) return;
+            percent = static_cast<int>(std::floor(done * 100.0));
+            mr_post_progress(job, done);
+        };
+        const ConeMap cones = relaxed ? buildRelaxedConeMap(map, 128, nullptr, progress)
+                                      : buildConservativeConeMap(map, nullptr, progress);
         const std::vector<std::uint16_t> halves = coneMapHalfTexels(cones);
         std::memcpy(texels, halves.data(), halves.size() * sizeof(std::uint16_t));
         return 1;

@@ -41,6 +41,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "microrelief/core/heightmap/HeightMap.h"
@@ -68,27 +69,35 @@ struct ConeMapStats {
     std::uint64_t nodesVisited = 0;
 };
 
+// Called as a build goes, with the fraction of the map's rows done (after each row: 1 / H,
+// 2 / H, ..., 1), on the building thread: for a progress display (the web page's worker
+// posts it to the page). Empty: nothing is called.
+using ConeMapProgress = std::function<void(double done)>;
+
 // The conservative cone map from the max pyramid: a branch-and-bound walk of its quadtree
 // (MaxMipPyramid.h) per texel, nearest nodes first, pruning a node whose bound cannot narrow the
 // cone (O(N^2 log N) on maps whose cones are narrow). Gives the same cones as the brute force,
 // whose leaf computation it shares. Plane maps (clamped edges) only.
-ConeMap buildConservativeConeMap(const HeightMap& map, ConeMapStats* stats = nullptr);
+ConeMap buildConservativeConeMap(const HeightMap& map, ConeMapStats* stats = nullptr,
+                                 const ConeMapProgress& progress = {});
 // The same cones by brute force, every texel square against every texel square: O(N^4),
 // the check of the fast build on small maps.
 ConeMap buildConservativeConeMapBruteForce(const HeightMap& map);
 // Before rounding to the half-float grid (doubles): the ratios both builds compute, for the
 // tests that compare them.
 std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce,
-                                           ConeMapStats* stats = nullptr);
+                                           ConeMapStats* stats = nullptr,
+                                           const ConeMapProgress& progress = {});
 
 // The relaxed cone map (rcsm), as published (see above); the sample pairs that cannot
 // narrow a cone are skipped by the same pyramid walk (a pair's ratio is at least the
 // distance between the samples over their height difference), which changes no cone.
 ConeMap buildRelaxedConeMap(const HeightMap& map, int searchSteps = 128,
-                            ConeMapStats* stats = nullptr);
+                            ConeMapStats* stats = nullptr, const ConeMapProgress& progress = {});
 // Its ratios before rounding, by the walk or by brute force (every pair), for the tests.
 std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, bool bruteForce,
-                                      ConeMapStats* stats = nullptr);
+                                      ConeMapStats* stats = nullptr,
+                                      const ConeMapProgress& progress = {});
 
 // Half floats: the largest at most x, the smallest at least x (x >= 0; past the largest
 // finite half, 65504 and infinity), and the bits of a value on the half grid.

@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
@@ -27,6 +28,16 @@ std::string csvQuote(const std::string& text) {
 
 std::string csvField(const std::string& text) {
     return text.find_first_of(",\"\r\n") == std::string::npos ? text : csvQuote(text);
+}
+
+std::string portableFileName(const std::string& name) {
+    std::string portable;
+    for (const char c : name) {
+        const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+        portable +=
+            control || std::string_view("<>:\"/\\|?*").find(c) != std::string_view::npos ? '-' : c;
+    }
+    return portable;
 }
 
 std::string gnuplotString(const std::string& text) {
@@ -384,6 +395,7 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
             maps.emplace_back(r.map, r.mapSize);
     }
     std::ostringstream script;
+    std::set<std::string> stems;  // each plot its own file, whatever the maps' names
     for (const auto& [map, size] : maps) {
         std::vector<int> views;
         for (const Measurement& r : rows) {
@@ -391,7 +403,10 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
                 std::find(views.begin(), views.end(), r.viewDegrees) == views.end())
                 views.push_back(r.viewDegrees);
         }
-        const std::string stem = "pareto-" + map + "-" + std::to_string(size);
+        std::string stem = "pareto-" + portableFileName(map) + "-" + std::to_string(size);
+        for (int k = 2; !stems.insert(stem).second; ++k)
+            stem = "pareto-" + portableFileName(map) + "-" + std::to_string(size) + "-" +
+                   std::to_string(k);
         std::ostringstream data;
         int block = 0;
         std::vector<std::vector<std::pair<int, std::string>>> panels;  // (block, method)

@@ -16,6 +16,10 @@ struct RunInfo {
     std::string command;   // how it was run
 };
 
+// `name` as a part of a file name any file system takes: each of < > : " / \ | ? * and
+// each control character as '-' ("rock:1" -> "rock-1"; the Pareto plots' names).
+std::string portableFileName(const std::string& name);
+
 // `text` into `file`, whole or not at all (a temporary beside it, renamed).
 void writeTextAtomically(const std::filesystem::path& file, const std::string& text);
 // A CSV field in quotes, a quote inside doubled.
@@ -61,7 +65,8 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
 
 // time_vs_size.png and fetches_vs_size.png in `folder`, and a Pareto plot of time against
 // error for each map and size, pareto-MAP-SIZE.png (every method's settings, a panel per
-// view), if gnuplot is installed; returns false (and says why) otherwise. Each picture is
+// view; MAP as portableFileName writes it, a second map written alike gets -2), if gnuplot
+// is installed; returns false (and says why) otherwise. Each picture is
 // written whole or not at all.
 bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
                 const std::vector<Measurement>& rows, std::string& why);

@@ -331,6 +331,19 @@ TEST_F(ToolsCli, BenchMapsTakeAChannelAndNormalisation) {
     const std::string md = test::readText(dir / "b" / "bench.md");
     for (const char* name : {"| two:1 |", "| low:normalize |"})
         EXPECT_NE(md.find(name), std::string::npos) << name;
+    // A Pareto plot for each of the six maps, named without the colons some file systems
+    // refuse ("two:1" as pareto-two-1-N.png).
+    if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+        std::set<std::string> plots;
+        for (const auto& entry : std::filesystem::directory_iterator(dir / "b")) {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind("pareto-", 0) == 0 && entry.path().extension() == ".png")
+                plots.insert(name);
+        }
+        EXPECT_EQ(plots.size(), 6u);
+        for (const std::string& plot : plots) EXPECT_EQ(plot.find(':'), std::string::npos) << plot;
+        EXPECT_EQ(plots.count("pareto-two-1-" + std::to_string(n) + ".png"), 1u);
+    }
 }
 
 // A fetched-map list's line is read as --maps reads an entry: a bad one is refused naming

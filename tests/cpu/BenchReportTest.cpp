@@ -103,4 +103,8 @@ TEST(BenchReport, NamesAreQuotedWhereTheyHoldSyntax) {
     EXPECT_EQ(csvField("two\nlines"), "\"two\nlines\"");
     EXPECT_EQ(gnuplotString("rock:1 256"), "'rock:1 256'");
     EXPECT_EQ(gnuplotString("it's"), "'it''s'");
+    // In a plot's file name: what Windows' file systems refuse, as '-'.
+    EXPECT_EQ(portableFileName("rock:1"), "rock-1");
+    EXPECT_EQ(portableFileName("a<b>c\"d/e\\f|g?h*i\tj"), "a-b-c-d-e-f-g-h-i-j");
+    EXPECT_EQ(portableFileName("it's x,y"), "it's x,y");
 }

@@ -109,43 +109,59 @@ float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_
     vec2 margin = mr_baseMapMargin(relief);
     float topMargin = MR_PATCH_TOP_MARGIN * relief.map.maxHeight;
     float finalLength = MR_FINAL_LENGTH / length(dir);
-    int depth = 0;
-    uint index = 0u;
-    float a = c0, b = c1;
+    // The whole stretch passed this test in the walk (mr_cellStretchMayHit, the same
+    // computation): it is descended into, or solved at once where it is final already.
     vec3 fa = mr_cellLocalPoint(relief, cell, startPoint), fb = mr_cellLocalPoint(relief, cell, endPoint);
-    // A walk of the binary tree of pieces visits each at most once.
-    for (int guard = 0; guard < (2 << MICRORELIEF_CELL_DEPTH); ++guard) {
-        vec2 lo = min(fa.xy, fb.xy), hi = max(fa.xy, fb.xy);
-        float top = mr_patchTop(cellPatch, lo - margin, hi + margin) + topMargin;
-        bool may = mr_baseLowest(relief, origin, dir, a, b) <= top;
-        bool last = depth == MICRORELIEF_CELL_DEPTH ||
-                    (b - a <= finalLength && max(hi.x - lo.x, hi.y - lo.y) <= MR_FINAL_FOOTPRINT);
-        if (may && !last) {
-            // Into the near half.
-            depth += 1;
-            index *= 2u;
-            b = 0.5 * (a + b);
-            fb = mr_cellLocalPoint(relief, cell, mr_baseMapPoint(relief, origin + b * dir));
-            continue;
-        }
-        if (may) {
-            float m = 0.5 * (a + b);
-            float ga = mr_cellGap(cellPatch, fa), gb = mr_cellGap(cellPatch, fb);
-            float gm = mr_cellGap(cellPatch, mr_cellLocalPoint(relief, cell, mr_baseMapPoint(relief, origin + m * dir)));
-            float s = mr_parabolaFirstRoot(ga, gm, gb);
+    bool finalPiece = MICRORELIEF_CELL_DEPTH == 0 ||
+                 (c1 - c0 <= finalLength && max(abs(fb.x - fa.x), abs(fb.y - fa.y)) <= MR_FINAL_FOOTPRINT);
+    int depth = finalPiece ? 0 : 1;
+    uint index = 0u;
+    float a = c0, b = finalPiece ? c1 : 0.5 * (c0 + c1);
+    // Each pass reads one map point, at tq: the end b of a piece not yet tested, or the
+    // middle of a final piece that may hold a hit (the three reads of a pass that tested,
+    // descended or solved and stepped on would all run on a SIMD machine that runs both
+    // sides of a branch). Where a piece is descended into, its near half's end is its
+    // middle, 0.5 (a + b), as a piece's own middle is: the same points, in the same order.
+    float tq = finalPiece ? 0.5 * (c0 + c1) : b;
+    // A walk of the binary tree of pieces visits each at most once, each final one twice.
+    for (int guard = 0; guard < (4 << MICRORELIEF_CELL_DEPTH); ++guard) {
+        vec3 fq = mr_cellLocalPoint(relief, cell, mr_baseMapPoint(relief, origin + tq * dir));
+        bool stepOn;
+        if (finalPiece) {
+            // The final piece's middle: a root of the parabola through its ends and middle.
+            float s = mr_parabolaFirstRoot(mr_cellGap(cellPatch, fa), mr_cellGap(cellPatch, fq), mr_cellGap(cellPatch, fb));
             if (s >= 0.0) return a + s * (b - a);
+            stepOn = true;
+            finalPiece = false;
+        } else {
+            fb = fq;
+            vec2 lo = min(fa.xy, fb.xy), hi = max(fa.xy, fb.xy);
+            float top = mr_patchTop(cellPatch, lo - margin, hi + margin) + topMargin;
+            bool may = mr_baseLowest(relief, origin, dir, a, b) <= top;
+            finalPiece = may && (depth == MICRORELIEF_CELL_DEPTH ||
+                            (b - a <= finalLength && max(hi.x - lo.x, hi.y - lo.y) <= MR_FINAL_FOOTPRINT));
+            stepOn = !may;
+            tq = 0.5 * (a + b);
+            if (may && !finalPiece) {
+                // Into the near half.
+                depth += 1;
+                index *= 2u;
+                b = tq;
+            }
         }
-        // Past this piece: on to its successor in order, as high up as it is unvisited.
-        index += 1u;
-        while (depth > 0 && (index & 1u) == 0u) {
-            index >>= 1;
-            depth -= 1;
+        if (stepOn) {
+            // Past this piece: on to its successor in order, as high up as it is unvisited.
+            index += 1u;
+            while (depth > 0 && (index & 1u) == 0u) {
+                index >>= 1;
+                depth -= 1;
+            }
+            if (depth == 0) return -1.0;
+            a = b;
+            fa = fb;
+            b = index + 1u == (1u << uint(depth)) ? c1 : c0 + float(index + 1u) * ((c1 - c0) * exp2(-float(depth)));
+            tq = b;
         }
-        if (depth == 0) return -1.0;
-        a = b;
-        fa = fb;
-        b = index + 1u == (1u << uint(depth)) ? c1 : c0 + float(index + 1u) * ((c1 - c0) * exp2(-float(depth)));
-        fb = mr_cellLocalPoint(relief, cell, mr_baseMapPoint(relief, origin + b * dir));
     }
     return -1.0;
 #endif

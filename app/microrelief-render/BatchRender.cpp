@@ -193,7 +193,8 @@ struct CheckedFrames {
 // flags let.
 RenderJob frameJob(const PathFrame& frame, const MapFacts& facts) {
     return sceneOverMap(frame.scene.job, frame.scene.georeference, facts.extent.width,
-                        facts.extent.height, facts.georeference);
+                        facts.extent.height, facts.georeference,
+                        heightMapPath(frame.scene.job).string());
 }
 
 // Every selected frame, checked before the first is drawn, its errors naming its row: the
@@ -219,6 +220,11 @@ CheckedFrames checkFrames(const CameraPath& path, const std::vector<int>& frames
                                                    loaded.georeference})
                             .first;
                 checked.last = LoadedMap{key, std::move(loaded.map)};
+                if (const std::string unused =
+                        exaggerationUnused(std::get<0>(key).string(), frame.scene.georeference,
+                                           facts->second.georeference);
+                    !unused.empty())
+                    logWarning(unused);
                 if (facts->second.georeference && !quiet)
                     std::printf("microrelief-render: %s\n",
                                 georeferenceSummary(

@@ -64,8 +64,12 @@ int run(const RenderOptions& o) {
     const HeightMapFile loaded = loadHeightMapFile(heightFile, o.scene.job.map.load);
     const HeightMap& map = loaded.map;
     // A georeferenced map's true proportions, where the flags leave them to it.
-    const RenderJob job =
-        sceneOverMap(o.scene.job, o.scene.georeference, map.width, map.height, loaded.georeference);
+    const RenderJob job = sceneOverMap(o.scene.job, o.scene.georeference, map.width, map.height,
+                                       loaded.georeference, heightFile.string());
+    if (const std::string unused =
+            exaggerationUnused(heightFile.string(), o.scene.georeference, loaded.georeference);
+        !unused.empty())
+        logWarning(unused);
     if (loaded.georeference && !o.quiet)
         std::printf("%s: %s\n", kProgram,
                     georeferenceSummary(heightFile.string(), *loaded.georeference, job,

@@ -119,9 +119,10 @@ std::string ViewerApp::fitRelief(const HeightMapFile& loaded, const std::string&
         if (!fit.keepModel) job.model = given.model;
         if (!fit.keepBase) job.base = given.base;
     }
-    job = sceneOverMap(job, fit, loaded.map.width, loaded.map.height, loaded.georeference);
+    job = sceneOverMap(job, fit, loaded.map.width, loaded.map.height, loaded.georeference, source);
     georeferenced_ = loaded.georeference.has_value();
-    return loaded.georeference ? georeferenceSummary(source, *loaded.georeference, job, fit) : "";
+    return loaded.georeference ? georeferenceSummary(source, *loaded.georeference, job, fit)
+                               : exaggerationUnused(source, fit, loaded.georeference);
 }
 
 ViewerApp::~ViewerApp() = default;

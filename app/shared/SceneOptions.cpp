@@ -14,6 +14,7 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/core/scene/Scene.h"
@@ -246,7 +247,7 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
                              ->capture_default_str();
     if (fit_) {
         app.add_option("--exaggeration", exaggeration_,
-                       "A georeferenced map (GeoTIFF DEM, .hgt, .asc, .dem): its heights "
+                       "A georeferenced map (GeoTIFF DEM, SRTM .hgt): its heights "
                        "times this over their true proportions (default 1)");
     }
     app.add_option(flag("interpolation"), interpolation_,
@@ -449,36 +450,62 @@ void SceneFlags::apply() {
 }
 
 RenderJob sceneOverMap(const RenderJob& job, const GeoreferenceFit& fit, int width, int height,
-                       const std::optional<Georeference>& geo) {
+                       const std::optional<Georeference>& geo, const std::string& source) {
     if (!geo) return job;
     RenderJob fitted = job;
     fitToGeoreference(fitted, width, height, *geo, fit);
+    // A height scale the fit made (no --height-scale given) is the file's and the
+    // exaggeration's to answer for, not a flag's.
+    if (!fit.keepHeightScale && !(fitted.heightScale > 0.0f && std::isfinite(fitted.heightScale)))
+        throwBadInput(source + ": its true proportions" +
+                      (fit.exaggeration != 1.0
+                           ? " at --exaggeration " + formatNumber(fit.exaggeration, 6)
+                           : std::string()) +
+                      " give a height scale of " + formatNumber(fitted.heightScale, 6) +
+                      ", which no relief can have (heights " + formatNumber(geo->lowestMetres, 9) +
+                      " to " + formatNumber(geo->highestMetres, 9) + " m over samples of " +
+                      formatNumber(geo->sampleWidthMetres, 6) + " x " +
+                      formatNumber(geo->sampleHeightMetres, 6) + " m)");
     throwIfInvalid(validateScene(fitted, fitted));
     return fitted;
 }
 
+std::string exaggerationUnused(const std::string& source, const GeoreferenceFit& fit,
+                               const std::optional<Georeference>& geo) {
+    if (geo || fit.exaggeration == 1.0) return {};
+    return "--exaggeration: " + source +
+           " has no georeference (a GeoTIFF grid, an .hgt tile); it is drawn at --height-scale";
+}
+
 std::string georeferenceSummary(const std::string& file, const Georeference& geo,
                                 const RenderJob& fitted, const GeoreferenceFit& fit) {
-    std::ostringstream line;
-    line.precision(4);
-    line << file << ": "
-         << (geo.crs.empty()        ? "no coordinate system (the grid taken as metres)"
-             : geo.crs == "unknown" ? "an unnamed coordinate system"
-                                    : geo.crs)
-         << ", samples " << geo.sampleWidthMetres << " x " << geo.sampleHeightMetres
-         << " m, heights " << geo.lowestMetres << " to " << geo.highestMetres << " m";
+    std::string line = file + ": " +
+                       (geo.crs.empty()        ? "no coordinate system (the grid taken as metres)"
+                        : geo.crs == "unknown" ? "an unnamed coordinate system"
+                                               : geo.crs) +
+                       ", samples " + formatNumber(geo.sampleWidthMetres, 4) + " x " +
+                       formatNumber(geo.sampleHeightMetres, 4) + " m, heights " +
+                       formatNumber(geo.lowestMetres, 9) + " to " +
+                       formatNumber(geo.highestMetres, 9) + " m";
     if (geo.nodataSamples > 0)
-        line << " (" << geo.nodataSamples << " nodata samples filled with " << geo.lowestMetres
-             << " m)";
-    if (fit.keepHeightScale) {
-        line << "; height scale " << fitted.heightScale << " as given";
-    } else {
-        line << "; drawn at its true proportions";
-        if (fit.exaggeration != 1.0) line << " exaggerated " << fit.exaggeration << " times";
-        line << " (height scale " << fitted.heightScale << ")";
-    }
-    if (geo.global && fitted.base.curved() && !fit.keepBase) line << " on the ellipsoid";
-    return line.str();
+        line += " (" + std::to_string(geo.nodataSamples) + " nodata samples filled with " +
+                formatNumber(geo.lowestMetres, 9) + " m)";
+    const std::string scale = formatNumber(fitted.heightScale, 4);
+    if (fit.keepHeightScale)
+        line += "; height scale " + scale + " as given";
+    else if (!(geo.highestMetres > geo.lowestMetres))
+        line += "; flat, height scale " + scale + " as it was";
+    else
+        line += std::string("; drawn at its true proportions") +
+                (fit.exaggeration != 1.0
+                     ? " exaggerated " + formatNumber(fit.exaggeration, 6) + " times"
+                     : "") +
+                " (height scale " + scale + ")";
+    if (geo.global && fitted.base.curved() && !fit.keepBase) line += " on the ellipsoid";
+    const double dx = geo.sampleWidthMetres, dy = geo.sampleHeightMetres;
+    if (fit.keepModel && !fitted.base.curved() && std::abs(dx - dy) > 1e-9 * std::max(dx, dy))
+        line += "; --model as given: its samples are not stretched to their ground ratio";
+    return line;
 }
 
 std::string shellQuote(const std::string& text) {

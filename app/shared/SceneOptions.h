@@ -103,9 +103,14 @@ std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief);
 
 // `job` over a W x H map read with the georeference `geo` (io/HeightMapFile.h:
 // loadHeightMapFile): the true proportions where `fit` lets (core/scene/Georeference.h),
-// checked again (validateScene); `job` as given for a map without one.
+// checked again (validateScene; a height scale the fit made that is not a positive finite
+// number is refused naming `source`, the map); `job` as given for a map without one.
 RenderJob sceneOverMap(const RenderJob& job, const GeoreferenceFit& fit, int width, int height,
-                       const std::optional<Georeference>& geo);
+                       const std::optional<Georeference>& geo, const std::string& source);
+// The warning for --exaggeration over a map with no georeference (it is drawn at
+// --height-scale); empty where there is nothing to say.
+std::string exaggerationUnused(const std::string& source, const GeoreferenceFit& fit,
+                               const std::optional<Georeference>& geo);
 // One line for the programs' progress: what the georeference gave and how it is drawn.
 // "dem.tif: WGS 84 / UTM zone 33N, samples 30 x 30 m, heights 412 to 1830 m; drawn at its
 // true proportions (height scale 0.0183)".

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -27,8 +29,14 @@ constexpr double kPi = 3.14159265358979323846;
 class QuietGdal {
 public:
     QuietGdal() {
+        // GDAL's default handler prints; once GDAL's TIFF driver is up it also hears libtiff's
+        // messages for every TIFF the process reads (OpenImageIO's too, one libtiff): none may
+        // reach stderr, where a program's error is its one line.
         static std::once_flag registered;
-        std::call_once(registered, [] { GDALAllRegister(); });
+        std::call_once(registered, [] {
+            CPLSetErrorHandler(CPLQuietErrorHandler);
+            GDALAllRegister();
+        });
         CPLPushErrorHandler(CPLQuietErrorHandler);
         CPLErrorReset();
     }
@@ -103,23 +111,59 @@ Georeference groundOf(const std::string& name, const double gt[6], int width, in
 
 }  // namespace
 
-std::optional<HeightMapFile> loadDem(const std::filesystem::path& file,
-                                     const HeightMapLoadOptions& options, bool demOnly) {
+bool hasGeoTiffGrid(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    unsigned char header[16] = {};
+    if (!in.read(reinterpret_cast<char*>(header), 8)) return false;
+    const bool little = header[0] == 'I' && header[1] == 'I';
+    if (!little && !(header[0] == 'M' && header[1] == 'M')) return false;
+    // The file's integers in its byte order.
+    const auto number = [&](const unsigned char* bytes, int size) {
+        std::uint64_t value = 0;
+        for (int k = 0; k < size; ++k)
+            value |= std::uint64_t(bytes[little ? k : size - 1 - k]) << (8 * k);
+        return value;
+    };
+    const std::uint64_t version = number(header + 2, 2);
+    if (version != 42 && version != 43) return false;
+    const bool big = version == 43;  // BigTIFF: 8-byte offsets and counts, 20-byte entries
+    if (big && !in.read(reinterpret_cast<char*>(header + 8), 8)) return false;
+    const std::uint64_t directory = big ? number(header + 8, 8) : number(header + 4, 4);
+    unsigned char count[8] = {};
+    if (!in.seekg(static_cast<std::streamoff>(directory)) ||
+        !in.read(reinterpret_cast<char*>(count), big ? 8 : 2))
+        return false;
+    const std::uint64_t entries = std::min<std::uint64_t>(number(count, big ? 8 : 2), 65535);
+    const int entrySize = big ? 20 : 12;
+    unsigned char entry[20];
+    for (std::uint64_t k = 0; k < entries; ++k) {
+        if (!in.read(reinterpret_cast<char*>(entry), entrySize)) return false;
+        const std::uint64_t tag = number(entry, 2);
+        // ModelPixelScale, ModelTiepoint, ModelTransformation (GeoTIFF 1.1, section 7).
+        if (tag == 33550 || tag == 33922 || tag == 34264) return true;
+    }
+    return false;
+}
+
+HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
     const std::string name = file.string();
     const QuietGdal quiet;
     // Only the elevation formats' drivers: nothing else GDAL reads is tried on the file.
-    const char* const drivers[] = {"GTiff", "SRTMHGT", "AAIGrid", "USGSDEM", nullptr};
+    const char* const drivers[] = {"GTiff", "SRTMHGT", nullptr};
     const std::unique_ptr<GDALDataset, DatasetCloser> dataset(
         GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers));
     if (!dataset) {
-        if (!demOnly) return std::nullopt;  // OpenImageIO says what is wrong with the TIFF
-        throwBadInput(name + ": cannot read the elevation model (" + QuietGdal::lastError() + ")");
+        std::string hint;
+        if (file.extension() == ".hgt" || file.extension() == ".HGT")
+            hint =
+                "; an SRTM tile is named for its corner, N45E006.hgt, and holds 1201 x 1201 "
+                "or 3601 x 3601 samples";
+        throwBadInput(name + ": cannot read the elevation model (" + QuietGdal::lastError() + ")" +
+                      hint);
     }
     double gt[6];
-    if (dataset->GetGeoTransform(gt) != CE_None) {
-        if (!demOnly) return std::nullopt;  // a TIFF without a grid: an image
+    if (dataset->GetGeoTransform(gt) != CE_None)
         throwBadInput(name + ": the elevation model has no grid on the ground");
-    }
 
     const int width = dataset->GetRasterXSize(), height = dataset->GetRasterYSize();
     checkSize(name, width, height, options.maxSide, "a height map");
@@ -142,9 +186,16 @@ std::optional<HeightMapFile> loadDem(const std::filesystem::path& file,
         return hasNodata && (raw == nodata || (std::isnan(nodata) && std::isnan(raw)));
     };
 
+    // North up, east to the right (scene-and-cli.md: image row 0 is the far edge, -z, at
+    // the top of a view from above): a grid whose rows run south to north (a positive row
+    // step) or whose columns run west to east in reverse is turned as it is read.
+    const bool flipRows = gt[5] > 0.0, flipColumns = gt[1] < 0.0;
     try {
         HeightMapFile result;
         result.map = HeightMap(width, height);
+        // Samples are kept as float metres from the first valid one (`origin`, in double) so
+        // that a large offset (heights above the ellipsoid's centre) costs no precision.
+        std::optional<double> origin;
         // Rows in blocks of about 4 M samples, read as double: the nodata test on the
         // stored value, and integer heights up to 2^53 exact until they are metres.
         const int rows = std::max(1, std::min(height, (1 << 22) / width));
@@ -159,7 +210,8 @@ std::optional<HeightMapFile> loadDem(const std::filesystem::path& file,
             for (int r = 0; r < count; ++r) {
                 for (int x = 0; x < width; ++x) {
                     const double raw = block[static_cast<std::size_t>(r) * width + x];
-                    float& sample = result.map.at(x, y + r);
+                    float& sample = result.map.at(flipColumns ? width - 1 - x : x,
+                                                  flipRows ? height - 1 - (y + r) : y + r);
                     if (isNodata(raw)) {
                         sample = std::numeric_limits<float>::quiet_NaN();
                         ++geo.nodataSamples;
@@ -174,7 +226,8 @@ std::optional<HeightMapFile> loadDem(const std::filesystem::path& file,
                     }
                     lowest = std::min(lowest, metres);
                     highest = std::max(highest, metres);
-                    sample = static_cast<float>(metres);
+                    if (!origin) origin = metres;
+                    sample = static_cast<float>(metres - *origin);
                 }
             }
         }
@@ -183,14 +236,14 @@ std::optional<HeightMapFile> loadDem(const std::filesystem::path& file,
         geo.lowestMetres = lowest;
         geo.highestMetres = highest;
         // [lowest, highest] -> [0, 1]; nodata -> 0, the lowest valid height.
-        const double range = highest - lowest;
+        const double range = highest - lowest, low = lowest - *origin;
         for (float& sample : result.map.samples) {
             // A stored float may round below the lowest or above the highest by half an
             // ulp: clamped, so the map stays in [0, 1].
             sample = std::isnan(sample) || range == 0.0
                          ? 0.0f
-                         : static_cast<float>(std::clamp(
-                               (static_cast<double>(sample) - lowest) / range, 0.0, 1.0));
+                         : static_cast<float>(
+                               std::clamp((static_cast<double>(sample) - low) / range, 0.0, 1.0));
         }
         result.georeference = geo;
         return result;

@@ -60,21 +60,22 @@ bool readsGeoreferencedMaps() {
 
 HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
                                 const HeightMapLoadOptions& options) {
-    // The elevation formats by extension: a .tif or .tiff is a DEM where it has a grid on the
-    // ground, an .hgt, .asc or .dem file always.
+    // The elevation formats by extension: a .tif or .tiff is a DEM where it holds a GeoTIFF
+    // grid, an .hgt file always.
     std::string extension = file.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const bool demOnly = extension == ".hgt" || extension == ".asc" || extension == ".dem";
+    const bool tiff = extension == ".tif" || extension == ".tiff";
 #if MICRORELIEF_WITH_GDAL
-    if (demOnly || extension == ".tif" || extension == ".tiff") {
+    if (extension == ".hgt" || tiff) {
         checkRegularFile(file, file.string());
-        if (std::optional<HeightMapFile> dem = loadDem(file, options, demOnly)) {
-            prepareHeights(dem->map, options, file.string());  // in [0, 1] already
-            return std::move(*dem);
+        if (!tiff || hasGeoTiffGrid(file)) {
+            HeightMapFile dem = loadDem(file, options);
+            prepareHeights(dem.map, options, file.string());  // in [0, 1] already
+            return dem;
         }
     }
 #else
-    if (demOnly)
+    if (extension == ".hgt")
         throwBadInput(file.string() +
                       ": an elevation model; this build of microrelief reads them only with "
                       "GDAL (build with -DMICRORELIEF_WITH_GDAL=ON and libgdal-dev)");

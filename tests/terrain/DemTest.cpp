@@ -121,6 +121,45 @@ TEST(DemFile, AProjectedGeoTiffIsReadAsMetresOverItsGrid) {
     EXPECT_EQ(loadHeightMap(dir / "utm.tif").samples, dem.map.samples);
 }
 
+// The map is north up and east to the right whatever order the file keeps its rows and
+// columns in: a south-up grid (rows running north, a positive row step) and an east-to-west
+// one of the same ground read as the same map.
+TEST(DemFile, AGridIsTurnedNorthUpAndEastRight) {
+    test::ScratchDir dir;
+    DemSpec spec;  // rows north to south from 5 000 000, columns west to east from 500 000
+    writeDem(dir / "north-up.tif", spec, GDT_Int16);
+    const auto value = spec.value;
+    DemSpec southUp = spec;
+    southUp.gt[3] = 5000000.0 - 30.0 * spec.height;
+    southUp.gt[5] = 30.0;
+    southUp.value = [&](int i, int j) { return value(i, spec.height - 1 - j); };
+    writeDem(dir / "south-up.tif", southUp, GDT_Int16);
+    DemSpec eastToWest = spec;
+    eastToWest.gt[0] = 500000.0 + 30.0 * spec.width;
+    eastToWest.gt[1] = -30.0;
+    eastToWest.value = [&](int i, int j) { return value(spec.width - 1 - i, j); };
+    writeDem(dir / "east-to-west.tif", eastToWest, GDT_Int16);
+    const HeightMap north = loadHeightMapFile(dir / "north-up.tif").map;
+    EXPECT_EQ(loadHeightMapFile(dir / "south-up.tif").map.samples, north.samples);
+    EXPECT_EQ(loadHeightMapFile(dir / "east-to-west.tif").map.samples, north.samples);
+}
+
+// Heights far from zero (metres from the Earth's centre) keep their detail: the map of
+// 6 371 000 m + h is the map of h.
+TEST(DemFile, ALargeOffsetCostsNoPrecision) {
+    test::ScratchDir dir;
+    DemSpec spec;
+    spec.value = [](int i, int j) { return 0.01 * ((i * 7 + j * 13) % 101); };
+    writeDem(dir / "low.tif", spec, GDT_Float64);
+    const auto value = spec.value;
+    spec.value = [&](int i, int j) { return 6371000.0 + value(i, j); };
+    writeDem(dir / "high.tif", spec, GDT_Float64);
+    const HeightMap low = loadHeightMapFile(dir / "low.tif").map;
+    const HeightMap high = loadHeightMapFile(dir / "high.tif").map;
+    for (std::size_t k = 0; k < low.samples.size(); ++k)
+        ASSERT_NEAR(high.samples[k], low.samples[k], 1e-6) << k;
+}
+
 TEST(DemFile, HeightsInFeetWithAScaleAndOffsetBecomeMetres) {
     test::ScratchDir dir;
     DemSpec spec;
@@ -241,6 +280,13 @@ TEST(Georeference, ThePlaneTakesTheGroundsProportions) {
     const glm::dvec3 corner = relief.model.pointToWorld({0.5, 0.0, 0.25});  // the plane's corner
     EXPECT_DOUBLE_EQ(corner.x, 0.5);
     EXPECT_DOUBLE_EQ(corner.z, 0.5);
+    // Tiled 2 x 1, the ground is 3840 x 1920 m: the longer side's unit is 3840 m, and the
+    // samples, 30 x 60 m, stand 2 : 1 as the tiled map's 128 x 32 would not.
+    ReliefDesc tiled;
+    tiled.tiles = {2, 1};
+    fitToGeoreference(tiled, 64, 32, geo, {});
+    EXPECT_FLOAT_EQ(tiled.heightScale, float(320.0 / 3840.0));
+    EXPECT_DOUBLE_EQ(tiled.model.pointToWorld({0.5, 0.0, 0.125}).z, 0.25);
     ReliefDesc kept;
     kept.heightScale = 0.3f;
     fitToGeoreference(kept, 64, 32, geo, {.keepHeightScale = true, .keepModel = true});
@@ -398,6 +444,37 @@ TEST_F(DemRender, NodataSamplesLieAtTheLowestHeightAndFlagsAreChecked) {
     const test::RunResult zero = render("--height " + (dir / "holes.tif").string() +
                                         " --exaggeration 0 --out " + (dir / "x.png").string());
     test::expectOneLineFailure(zero, "microrelief-render", 2, "--exaggeration");
+    // A height scale the fit makes unusable names the map and the exaggeration, not a flag
+    // that was not given.
+    const test::RunResult huge = render("--height " + (dir / "holes.tif").string() +
+                                        " --exaggeration 1e300 --out " + (dir / "x.png").string());
+    test::expectOneLineFailure(huge, "microrelief-render", 2,
+                               "holes.tif: its true proportions at --exaggeration 1e+300");
+    // --exaggeration over a plain image is said to do nothing.
+    test::writeMap(dir / "plain.png", HeightMap(8, 8, 0.5f), PixelType::UInt8);
+    const test::RunResult plain = render("--height " + (dir / "plain.png").string() +
+                                         " --exaggeration 2 --out " + (dir / "x.png").string());
+    EXPECT_EQ(plain.status, 0) << plain.err;
+    EXPECT_NE(
+        plain.err.find("--exaggeration: " + (dir / "plain.png").string() + " has no georeference"),
+        std::string::npos)
+        << plain.err;
+}
+
+// Once GDAL has read a DEM, a damaged TIFF read after it (an albedo, through OpenImageIO and
+// the same libtiff) still fails in one line: GDAL's handler prints nothing.
+TEST_F(DemRender, ADamagedTiffAfterADemFailsInOneLine) {
+    DemSpec spec;
+    writeDem(dir / "dem.tif", spec, GDT_Int16);
+    test::writeMap(dir / "albedo.tif", HeightMap(8, 8, 0.5f), PixelType::UInt8);
+    std::vector<std::uint8_t> bytes = test::readBytes(dir / "albedo.tif");
+    ASSERT_GT(bytes.size(), 8u);
+    for (int k = 4; k < 8; ++k) bytes[k] = 0xff;  // the first directory's offset, past the end
+    test::writeBytes(dir / "albedo.tif", bytes);
+    const test::RunResult r =
+        render("--height " + (dir / "dem.tif").string() + " --albedo " +
+               (dir / "albedo.tif").string() + " --out " + (dir / "x.png").string());
+    test::expectOneLineFailure(r, "microrelief-render", 2, "albedo.tif");
 }
 
 #endif  // MICRORELIEF_WITH_GDAL

@@ -1,7 +1,7 @@
 // Height maps from image files, through OpenImageIO (the microrelief::io component):
 // the file's header checked before anything is allocated, the samples read as floats;
-// and georeferenced elevation models (GeoTIFF, SRTM .hgt, ESRI ASCII grids, USGS DEM)
-// through GDAL where the component was built with it (docs/terrain.md).
+// and georeferenced elevation models (GeoTIFF, SRTM .hgt) through GDAL where the component
+// was built with it (docs/terrain.md).
 #pragma once
 
 #include <filesystem>
@@ -29,14 +29,16 @@ struct HeightMapFile {
     std::optional<Georeference> georeference;  // where the file has one
 };
 
-// A georeferenced elevation model (a .tif, .tiff, .hgt, .asc or .dem file that GDAL reads
-// with a grid on the ground): the samples as metres (the band's scale, offset and unit
-// applied: metres, feet or US survey feet; a band without a unit is in metres), its nodata
-// samples filled with the lowest valid height, [lowest, highest] mapped to [0, 1]; the
-// georeference says what that was and how large a sample is (core/scene/Georeference.h).
-// Every other file (a TIFF without a grid too) as loadHeightMap reads it. Refuses, besides
-// what loadHeightMap refuses: a DEM with no valid sample, heights in another unit, a DEM
-// file where the io component was built without GDAL.
+// A georeferenced elevation model (a .tif or .tiff whose first directory holds a GeoTIFF
+// grid, or an SRTM .hgt), read through GDAL: the samples as metres (the band's scale, offset
+// and unit applied: metres, feet or US survey feet; a band without a unit is in metres), north
+// up and east to the right (a south-up or east-to-west grid turned), its nodata samples filled
+// with the lowest valid height, [lowest, highest] mapped to [0, 1]; the georeference says
+// what that was and how large a sample is (core/scene/Georeference.h). Every other file (a
+// TIFF without a grid too, through OpenImageIO alone) as loadHeightMap reads it. Refuses,
+// besides what loadHeightMap refuses: a DEM GDAL cannot read, one with no valid sample or a
+// sample that is not a height, heights in another unit, an .hgt file where the io component
+// was built without GDAL.
 HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
                                 const HeightMapLoadOptions& options = {});
 

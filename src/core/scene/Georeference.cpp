@@ -37,6 +37,9 @@ void fitToGeoreference(ReliefDesc& relief, int width, int height, const Georefer
         relief.base = BaseShape::ellipsoid(
             glm::dvec3(0.5, 0.5 * geo.semiMinorMetres / geo.semiMajorMetres, 0.5));
 
+    // The whole the base carries: the map repeated tiles.x x tiles.y times (--tile).
+    width *= relief.tiles.x;
+    height *= relief.tiles.y;
     const double groundWidth = width * geo.sampleWidthMetres;
     const double groundHeight = height * geo.sampleHeightMetres;
     const double range = geo.highestMetres - geo.lowestMetres;

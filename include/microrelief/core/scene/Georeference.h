@@ -46,7 +46,8 @@ struct GeoreferenceFit {
     bool keepHeightScale = false, keepModel = false, keepBase = false;
 };
 
-// Sets the relief of a W x H georeferenced map to its true proportions, where `fit` lets:
+// Sets the relief of a W x H georeferenced map to its true proportions, where `fit` lets
+// (W and H: the map's own; the relief's tiles repeat it, and the ground with it):
 // - a global latitude/longitude grid goes on the ellipsoid of the grid's own axes, scaled
 //   to a semi-major radius of 0.5 (radii 0.5, 0.5 b / a, 0.5);
 // - the height scale makes the map's range (highest - lowest metres) stand at its size

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <optional>
 
+#include "io/CutOffCheck.h"
 #include "io/ExrCheck.h"
 #include "io/PngCheck.h"
 #include "microrelief/core/Error.h"
@@ -81,6 +82,10 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         throwBadInput(name + ": cannot read the image (" + reason + ")");
     }
     checkSize(name, input->spec().width, input->spec().height, maxSide, what);
+    // A file cut off where its decoder would not say so (a TIFF's strips past its end are
+    // read as they are, a JPEG's missing rows as grey): refused, not drawn.
+    if (const std::optional<std::string> defect = cutOffDefect(file, input->format_name()))
+        throwBadInput(name + ": cut off (" + *defect + ")");
     return input;
 }
 

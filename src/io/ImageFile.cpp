@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "io/CheckedImageInput.h"
-#include "io/CutOffCheck.h"
 #include "microrelief/core/Error.h"
 
 namespace microrelief {
@@ -169,7 +168,6 @@ std::optional<std::string> imageFileDefect(const std::filesystem::path& file) {
         // The checks every input gets (a regular file; a PNG's chunks, CRCs and inflated
         // data; an OpenEXR header within the file), then what a decoder misses.
         auto input = openCheckedImage(file, std::numeric_limits<int>::max(), "an image");
-        if (auto defect = cutOffDefect(file, input->format_name())) return defect;
         std::vector<std::byte> pixels(input->spec().image_bytes(true));
         if (!input->read_image(0, 0, 0, -1, OIIO::TypeUnknown, pixels.data())) {
             const std::string reason = oneLine(input->geterror());

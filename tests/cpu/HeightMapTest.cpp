@@ -157,6 +157,18 @@ TEST(HeightMapLoad, TruncatedAndGarbageFilesAreRefused) {
     test::writeBytes(dir / "empty.png", {});
     badInputMessage([&] { loadHeightMap(dir / "empty.png"); });
     badInputMessage([&] { loadHeightMap(dir.path()); });  // a folder
+    // A TIFF and a JPEG cut off in their pixels, which libtiff and libjpeg read without an
+    // error (the missing strips as they are, the missing rows as grey).
+    for (const char* name : {"whole.tif", "whole.jpg"}) {
+        test::writeMap(dir / name, ramp(64, 64), PixelType::UInt8);
+        std::vector<std::uint8_t> image = test::readBytes(dir / name);
+        image.resize(image.size() * 2 / 3);
+        const std::string cut = std::string("cut-") + name;
+        test::writeBytes(dir / cut, image);
+        EXPECT_NE(badInputMessage([&] { loadHeightMap(dir / cut); }).find(cut + ": cut off"),
+                  std::string::npos)
+            << name;
+    }
 }
 
 TEST(HeightMapLoad, ZeroSizedPngIsRefused) {

@@ -194,6 +194,17 @@ Image readImage(const std::filesystem::path& file) {
     return image;
 }
 
+Aov readAov(const std::filesystem::path& file) {
+    Aov aov;
+    auto input = OIIO::ImageInput::open(file.string());
+    if (!input) return aov;
+    aov.width = input->spec().width;
+    aov.height = input->spec().height;
+    aov.pixels.resize(static_cast<std::size_t>(aov.width) * aov.height * 4);
+    if (!input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, aov.pixels.data())) return {};
+    return aov;
+}
+
 Difference difference(const Image& a, const Image& b, int x0, int y0, int x1, int y1) {
     Difference d;
     double sum = 0.0;

@@ -70,6 +70,17 @@ struct Image {
 // Empty (width 0) when the file cannot be read.
 Image readImage(const std::filesystem::path& file);
 
+// microrelief-render's AOV (OpenEXR, float R, G, B, A): per pixel x, y, z and 1 for a hit,
+// 0 for a miss; row 0 the top. Empty (width 0) when the file cannot be read.
+struct Aov {
+    int width = 0, height = 0;
+    std::vector<float> pixels;
+    const float* at(int column, int row) const {
+        return &pixels[(static_cast<std::size_t>(row) * width + column) * 4];
+    }
+};
+Aov readAov(const std::filesystem::path& file);
+
 // Two pictures' RGB channels compared over the rectangle [x0, x1) x [y0, y1): the largest
 // difference, the mean, and how many channel values differ by more than one level.
 struct Difference {

@@ -298,24 +298,8 @@ TEST(Georeference, ThePlaneTakesTheGroundsProportions) {
 
 // --- microrelief-render over a DEM, label cli ---
 
-struct Aov {
-    int width = 0, height = 0;
-    std::vector<float> rgba;
-    const float* at(int x, int y) const {
-        return &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
-    }
-};
-
-Aov readAov(const std::filesystem::path& file) {
-    Aov aov;
-    auto input = OIIO::ImageInput::open(file.string());
-    if (!input) return aov;
-    aov.width = input->spec().width;
-    aov.height = input->spec().height;
-    aov.rgba.resize(static_cast<std::size_t>(aov.width) * aov.height * 4);
-    input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, aov.rgba.data());
-    return aov;
-}
+using test::Aov;
+using test::readAov;
 
 class DemRender : public ::testing::Test {
 protected:
@@ -398,7 +382,7 @@ TEST_F(DemRender, ATerrainStandsAtItsTrueProportions) {
             "-q --turntable 2 --height " + (dir / "dem.tif").string() + " " + c.flags + " --out " +
             (dir / "t{frame}.png").string() + " --aov " + (dir / "t{frame}.exr").string());
         ASSERT_EQ(path.status, 0) << path.err;
-        EXPECT_EQ(readAov(dir / "t0.exr").rgba, aov.rgba);
+        EXPECT_EQ(readAov(dir / "t0.exr").pixels, aov.pixels);
     }
 }
 

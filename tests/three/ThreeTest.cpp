@@ -88,25 +88,8 @@ const View& viewNamed(const std::string& name) {
     std::abort();
 }
 
-// microrelief-render's AOV: per pixel x, y, z and 1 for a hit, 0 for a miss; row 0 the top.
-struct Aov {
-    int width = 0, height = 0;
-    std::vector<float> pixels;
-    const float* at(int column, int row) const {
-        return &pixels[(static_cast<std::size_t>(row) * width + column) * 4];
-    }
-};
-
-Aov readAov(const std::filesystem::path& file) {
-    Aov aov;
-    auto input = OIIO::ImageInput::open(file.string());
-    if (!input) return aov;
-    aov.width = input->spec().width;
-    aov.height = input->spec().height;
-    aov.pixels.resize(static_cast<std::size_t>(aov.width) * aov.height * 4);
-    if (!input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, aov.pixels.data())) return {};
-    return aov;
-}
+using test::Aov;
+using test::readAov;
 
 // The numbers of a space-separated list (NaN spelt as JavaScript does).
 std::vector<double> numbers(const std::string& text) {

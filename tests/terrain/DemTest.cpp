@@ -6,8 +6,6 @@
 // configures: "no GDAL, elevation models are not read").
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 #include <functional>
 #include <optional>

@@ -56,6 +56,10 @@ constexpr FieldFlag kFieldFlags[] = {
     {"background", "--background"},
 };
 
+// The program's own flag over a georeferenced map's proportions (no scene field: the fit
+// writes the height scale, SceneOptions.h).
+constexpr const char* kExaggerationFlag = "--exaggeration";
+
 // A base size's flag, from its field in the table of bases (core/base/BaseType.h):
 // "base.radius" is --radius, "base.minorRadius" would be --minor-radius. Empty for a field
 // that is not a base size.
@@ -246,7 +250,7 @@ void SceneFlags::addMapAndCamera(CLI::App& app) {
                                         "default for a georeferenced map: its true proportions")
                              ->capture_default_str();
     if (fit_) {
-        app.add_option("--exaggeration", exaggeration_,
+        app.add_option(kExaggerationFlag, exaggeration_,
                        "A georeferenced map (GeoTIFF DEM, SRTM .hgt): its heights "
                        "times this over their true proportions (default 1)");
     }
@@ -437,11 +441,11 @@ void SceneFlags::apply() {
         fit_->keepBase |= baseOption_->count() > 0;
         if (exaggeration_) {
             if (!(*exaggeration_ > 0.0) || !std::isfinite(*exaggeration_))
-                throwBadInput("--exaggeration must be a positive finite number");
+                throwBadInput(std::string(kExaggerationFlag) + " must be a positive finite number");
             if (heightScaleOption_->count() > 0)
-                throwBadInput(
-                    "--exaggeration scales a georeferenced map's true heights and --height-scale "
-                    "sets the height scale outright: give one");
+                throwBadInput(std::string(kExaggerationFlag) +
+                              " scales a georeferenced map's true heights and " +
+                              flag("heightScale") + " sets the height scale outright: give one");
             fit_->exaggeration = *exaggeration_;
             fit_->keepHeightScale = false;
         }
@@ -458,9 +462,9 @@ RenderJob sceneOverMap(const RenderJob& job, const GeoreferenceFit& fit, int wid
     // exaggeration's to answer for, not a flag's.
     if (!fit.keepHeightScale && !(fitted.heightScale > 0.0f && std::isfinite(fitted.heightScale)))
         throwBadInput(source + ": its true proportions" +
-                      (fit.exaggeration != 1.0
-                           ? " at --exaggeration " + formatNumber(fit.exaggeration, 6)
-                           : std::string()) +
+                      (fit.exaggeration != 1.0 ? " at " + std::string(kExaggerationFlag) + " " +
+                                                     formatNumber(fit.exaggeration, 6)
+                                               : std::string()) +
                       " give a height scale of " + formatNumber(fitted.heightScale, 6) +
                       ", which no relief can have (heights " + formatNumber(geo->lowestMetres, 9) +
                       " to " + formatNumber(geo->highestMetres, 9) + " m over samples of " +
@@ -473,7 +477,7 @@ RenderJob sceneOverMap(const RenderJob& job, const GeoreferenceFit& fit, int wid
 std::string exaggerationUnused(const std::string& source, const GeoreferenceFit& fit,
                                const std::optional<Georeference>& geo) {
     if (geo || fit.exaggeration == 1.0) return {};
-    return "--exaggeration: " + source +
+    return std::string(kExaggerationFlag) + ": " + source +
            " has no georeference (a GeoTIFF grid, an .hgt tile); it is drawn at --height-scale";
 }
 
@@ -502,8 +506,7 @@ std::string georeferenceSummary(const std::string& file, const Georeference& geo
                      : "") +
                 " (height scale " + scale + ")";
     if (geo.global && fitted.base.curved() && !fit.keepBase) line += " on the ellipsoid";
-    const double dx = geo.sampleWidthMetres, dy = geo.sampleHeightMetres;
-    if (fit.keepModel && !fitted.base.curved() && std::abs(dx - dy) > 1e-9 * std::max(dx, dy))
+    if (fit.keepModel && !fitted.base.curved() && !squareSamples(geo))
         line += "; --model as given: its samples are not stretched to their ground ratio";
     return line;
 }

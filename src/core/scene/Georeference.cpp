@@ -20,6 +20,11 @@ double curvatureDenominator(double a, double b, double latitudeDegrees) {
 
 }  // namespace
 
+bool squareSamples(const Georeference& geo) {
+    const double dx = geo.sampleWidthMetres, dy = geo.sampleHeightMetres;
+    return std::abs(dx - dy) <= 1e-9 * std::max(dx, dy);
+}
+
 double metresPerDegreeEast(double a, double b, double latitudeDegrees) {
     const double n = a / std::sqrt(curvatureDenominator(a, b, latitudeDegrees));
     return n * std::cos(latitudeDegrees * kPi / 180.0) * kPi / 180.0;
@@ -52,9 +57,8 @@ void fitToGeoreference(ReliefDesc& relief, int width, int height, const Georefer
     }
 
     // The plane puts the map's sides in the ratio W : H (a = W / max(W, H)); the ground's is
-    // W dx : H dy. Square samples (equal to a part in 1e9) need no stretch.
-    const double dx = geo.sampleWidthMetres, dy = geo.sampleHeightMetres;
-    if (!fit.keepModel && !relief.base.curved() && std::abs(dx - dy) > 1e-9 * std::max(dx, dy)) {
+    // W dx : H dy. Square samples need no stretch.
+    if (!fit.keepModel && !relief.base.curved() && !squareSamples(geo)) {
         const double longest = std::max(groundWidth, groundHeight);
         const double side = std::max(width, height);
         glm::dmat4 stretch(1.0);

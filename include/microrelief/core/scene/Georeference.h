@@ -33,6 +33,10 @@ struct Georeference {
     bool operator==(const Georeference&) const = default;
 };
 
+// Whether a sample is square on the ground (its sides equal to a part in 1e9): then the
+// plane needs no stretch for it.
+bool squareSamples(const Georeference& geo);
+
 // The ground length of one degree along a parallel (east) and along a meridian (north), in
 // metres, at geodetic latitude `latitudeDegrees` on the ellipsoid of semi-axes a >= b:
 // N cos(phi) pi / 180 and M pi / 180, N and M the radii of curvature in the prime vertical

@@ -8,7 +8,7 @@ find_program(GLAD_EXECUTABLE glad REQUIRED
 
 set(GLAD_OUT ${PROJECT_BINARY_DIR}/glad)
 set(GLAD_API "gl:core=3.3")
-set(GLAD_EXTENSIONS "GL_KHR_debug,GL_ARB_clip_control")
+set(GLAD_EXTENSIONS "GL_KHR_debug,GL_ARB_clip_control,GL_ARB_shader_storage_buffer_object,GL_ARB_shader_image_load_store")
 
 add_custom_command(
   OUTPUT ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/include/glad/gl.h

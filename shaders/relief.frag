@@ -13,7 +13,9 @@
 // MICRORELIEF_ALBEDO_MAP (1: the surface's colour from the albedo texture);
 // MICRORELIEF_DEPTH_LAYOUT, what the depth written promises against the rasterised
 // proxy's (0 nothing, 1 greater or equal, 2 less or equal), which keeps early depth tests
-// where the GL has conservative depth (GL 4.2, ARB_conservative_depth).
+// where the GL has conservative depth (GL 4.2, ARB_conservative_depth);
+// MICRORELIEF_PAGED (1: a map larger than one texture, read through pages:
+// paged_map.glsl, GLSL 4.30; the multilevel method only).
 #ifndef MICRORELIEF_DEPTH_LAYOUT
 #define MICRORELIEF_DEPTH_LAYOUT 0
 #endif
@@ -28,6 +30,8 @@ layout(depth_less) out float gl_FragDepth;
 #endif
 #endif
 
+// First: a paged map sets the library's read hooks (texture_reads.glsl).
+#include "paged_map.glsl"
 #include "microrelief/map_space.glsl"
 #include "microrelief/multilevel_trace.glsl"
 

@@ -132,7 +132,8 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         target_.emplace(gl, targetWidth, targetHeight);
     }
 
-    HeadlessResult result{{}, camera, std::nullopt};
+    HeadlessResult result{{}, camera, std::nullopt, {}};
+    const std::size_t loadedBefore = renderer_->pager() ? renderer_->pager()->pagesLoaded() : 0;
     RenderedFrame& frame = result.frame;
     try {
         const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
@@ -151,20 +152,62 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
         for (int x = 0; x < job.width; x += tile) {
             const PictureTile part{x, y, std::min(tile, job.width - x),
                                    std::min(tile, job.height - y)};
-            target_->clear(job.background);
-            {
-                const gl::SrgbWrites srgb(gl);  // the relief's linear colour, encoded
-                renderer_->draw(camera, job.shading, part);
-            }
-            target_->readInto(frame, part.x, part.y, part.width, part.height);
+            drawTile(job, camera, part, result);
         }
     }
     if (!job.animation.empty()) result.animatedMap = renderer_->textures()->readSamples(gl);
+    if (const PagedPyramid* pager = renderer_->pager()) {
+        result.paging.pagesLoaded = pager->pagesLoaded() - loadedBefore;
+        result.paging.pagesResident = pager->residentCount();
+    }
     gl.Finish();
     const GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)
         throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + source_);
     return result;
+}
+
+void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
+                                const PictureTile& part, HeadlessResult& result) {
+    PagedPyramid* pager = renderer_->pager();
+    std::vector<int> kept;  // the pages this tile's draws have wanted: not evicted for it
+    for (;;) {
+        target_->clear(job.background);
+        {
+            const gl::SrgbWrites srgb(context_.gl());  // the relief's linear colour, encoded
+            renderer_->draw(camera, job.shading, part);
+        }
+        if (!pager) break;
+        // A paged map (gl/PagedPyramid.h): drawn again with what the draw wanted loaded,
+        // until a draw wants nothing, which read every texel from its page: the picture
+        // the whole map gives. Each draw either ends or loads a page it lacked, and keeps
+        // what it loaded, so it ends, when the pool holds what the tile needs at once;
+        // where it does not, the tile is drawn in quarters.
+        ++result.paging.draws;
+        const std::vector<int> wanted = pager->takeWanted();
+        if (wanted.empty()) break;
+        if (!pager->load(wanted, kept)) {
+            if (part.width == 1 && part.height == 1) {
+                throwBadInput(source_ +
+                              ": one pixel's ray needs more pages than the memory "
+                              "budget holds (" +
+                              std::to_string(pager->capacity()) + " pages of " +
+                              std::to_string(pager->pageSide()) + "^2 texels): raise {memory}");
+            }
+            ++result.paging.splits;
+            const int w0 = (part.width + 1) / 2, h0 = (part.height + 1) / 2;
+            for (const PictureTile& quarter :
+                 {PictureTile{part.x, part.y, w0, h0},
+                  PictureTile{part.x + w0, part.y, part.width - w0, h0},
+                  PictureTile{part.x, part.y + h0, w0, part.height - h0},
+                  PictureTile{part.x + w0, part.y + h0, part.width - w0, part.height - h0}}) {
+                if (quarter.width > 0 && quarter.height > 0) drawTile(job, camera, quarter, result);
+            }
+            return;
+        }
+        kept.insert(kept.end(), wanted.begin(), wanted.end());
+    }
+    target_->readInto(result.frame, part.x, part.y, part.width, part.height);
 }
 
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,

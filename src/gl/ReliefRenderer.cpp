@@ -38,12 +38,61 @@ void refreshConeMaps(const GL& gl, ReliefTextures& textures, Method method) {
     textures.dropConeMaps();
     addConeMapFor(gl, textures, method);
 }
+// What a paged map's draw binds beyond StateGuard's (gl/PagedPyramid.h): the pool on its
+// unit, the page table and the wants on their storage bindings; restored after.
+class PagedBindings {
+public:
+    PagedBindings(const GL& gl, const PagedPyramid& paged) : gl_(gl) {
+        gl.GetIntegerv(GL_ACTIVE_TEXTURE, &active_);
+        gl.ActiveTexture(GL_TEXTURE0 + ReliefShader::kPagePoolUnit);
+        gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &pool_);
+        gl.BindTexture(GL_TEXTURE_2D_ARRAY, paged.pool());
+        gl.ActiveTexture(static_cast<GLenum>(active_));
+        gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, ReliefShader::kPageTableBinding,
+                         &table_);
+        gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, ReliefShader::kPageWantsBinding,
+                         &wants_);
+        gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &generic_);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, ReliefShader::kPageTableBinding, paged.table());
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, ReliefShader::kPageWantsBinding, paged.wants());
+    }
+    ~PagedBindings() {
+        gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, ReliefShader::kPageTableBinding,
+                           static_cast<GLuint>(table_));
+        gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, ReliefShader::kPageWantsBinding,
+                           static_cast<GLuint>(wants_));
+        gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(generic_));
+        gl_.GetIntegerv(GL_ACTIVE_TEXTURE, &active_);
+        gl_.ActiveTexture(GL_TEXTURE0 + ReliefShader::kPagePoolUnit);
+        gl_.BindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(pool_));
+        gl_.ActiveTexture(static_cast<GLenum>(active_));
+    }
+    PagedBindings(const PagedBindings&) = delete;
+    PagedBindings& operator=(const PagedBindings&) = delete;
+
+private:
+    const GL& gl_;
+    GLint active_ = GL_TEXTURE0, pool_ = 0, table_ = 0, wants_ = 0, generic_ = 0;
+};
+
+// A map read through pages is the multilevel method's alone, and is not tiled.
+void checkPagedMap(Method method, glm::ivec2 tiles, const std::string& source) {
+    if (method != Method::Multilevel) {
+        throwBadInput(source +
+                      ": read through pages (larger than the GL's textures, or "
+                      "paging asked for), which only the multilevel method reads, not " +
+                      std::string(methodName(method)));
+    }
+    if (tiles != glm::ivec2(1, 1))
+        throwBadInput(source + ": a map read through pages is not tiled");
+}
+
 }  // namespace
 
 ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, bool countFetches,
                                              BaseKind base, Interpolation interpolation,
                                              bool frontFaces, ShadowMode shadows, bool albedoMap,
-                                             bool tiled) const {
+                                             bool tiled, bool paged) const {
     // A front face lies on the ray before its hit, a back face after it: the depth written
     // is at least the face's (front) or at most (back) under a standard depth test, the
     // other way round under reversed-Z.
@@ -57,12 +106,13 @@ ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, boo
             greater ? DepthLayout::Greater : DepthLayout::Less,
             shadows,
             albedoMap,
-            tiled};
+            tiled,
+            paged};
 }
 
 void ReliefRenderer::reloadShaders() {
     const ReliefShaderConfig config = configFor(method_, countFetches_, base_.kind, interpolation_,
-                                                true, ShadowMode::Off, false, tiled());
+                                                true, ShadowMode::Off, false, tiled(), paged());
     ReliefShader fresh(gl_, shaderDir_, config);  // throws before anything changes
     ++rebuilds_.programs;
     programs_.clear();
@@ -78,11 +128,19 @@ ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
     return found->second;
 }
 
+bool ReliefRenderer::pages(const HeightMap& map) const {
+    if (paging_.mode == PagingSettings::Mode::Always) return true;
+    GLint maxSize = 0;
+    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    return map.width > maxSize || map.height > maxSize;
+}
+
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {
+    if (paged()) checkPagedMap(settings.method, tiles(), "the map");
     checkMethodSupportsBase(settings.method, base_);
     checkMethodSupportsTiles(settings.method, tiles());
     program(configFor(settings, countFetches, base_.kind, interpolation_, true, ShadowMode::Off,
-                      false, tiled()));  // may throw
+                      false, tiled(), paged()));  // may throw
     // The aligned pyramid is made only for the peer that walks it.
     if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
         textures_->addMaxMipPyramid(gl_, pyramidBuilder());
@@ -100,8 +158,7 @@ void ReliefRenderer::setBase(const BaseShape& base) {
     }
     checkMethodSupportsBase(method_.method, base);
     program(configFor(method_, countFetches_, base.kind, interpolation_, true, ShadowMode::Off,
-                      false,
-                      tiled()));  // may throw
+                      false, tiled(), paged()));  // may throw
     base_ = base;
     if (textures_) uploadBox();
 }
@@ -129,7 +186,7 @@ void ReliefRenderer::apply(const ReliefDesc& relief, const HeightMap* heights,
         // The program of the base and last level together, so that nothing has changed
         // when it throws, and no program of one without the other is compiled.
         program(configFor(method_, countFetches_, relief.base.kind, relief.interpolation, true,
-                          ShadowMode::Off, false, tiled()));
+                          ShadowMode::Off, false, tiled(), paged()));
         base_ = relief.base;
         interpolation_ = relief.interpolation;
         if (applied_ && samePyramid(*applied_, relief)) applied_ = relief;
@@ -162,7 +219,7 @@ void ReliefRenderer::apply(const ReliefDesc& relief, const MethodSettings& metho
 void ReliefRenderer::setInterpolation(Interpolation interpolation) {
     if (interpolation == interpolation_) return;
     program(configFor(method_, countFetches_, base_.kind, interpolation, true, ShadowMode::Off,
-                      false, tiled()));  // may throw
+                      false, tiled(), paged()));  // may throw
     interpolation_ = interpolation;
 }
 
@@ -175,11 +232,15 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     if (tiles.x < 1 || tiles.y < 1) throwBadInput("{tiles}: counts must be at least 1");
     // Both throw before anything changes: the program is compiled (or looked up) first,
     // the textures are made before the old ones go.
+    const bool paging = pages(map);
+    if (paging) checkPagedMap(method_.method, tiles, source);
     program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
-                      false, tiles != glm::ivec2(1, 1)));
+                      false, tiles != glm::ivec2(1, 1), paging));
     const bool maxMip = method_.method == Method::MaxMip;
     // The GPU builder bounds texel squares within one map: a tiled one's is the CPU's.
-    if (build == PyramidBuild::Gpu && tiles == glm::ivec2(1, 1)) {
+    if (paging) {
+        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), paging_));
+    } else if (build == PyramidBuild::Gpu && tiles == glm::ivec2(1, 1)) {
         textures_.emplace(
             ReliefTextures(gl_, map, source, base.wrapsU(), pyramidBuilder(), maxMip));
     } else {
@@ -210,6 +271,7 @@ PyramidBuilder& ReliefRenderer::pyramidBuilder() {
 
 void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
     if (!textures_) return;
+    if (paged()) throwRuntime("a map read through pages is not edited on the GPU");
     if (tiled()) {
         textures_->rebuildFromSamples(gl_);  // the GPU builder bounds one map, not tiles
     } else {
@@ -221,6 +283,7 @@ void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
 
 void ReliefRenderer::heightsReplaced() {
     if (!textures_) return;
+    if (paged()) throwRuntime("a map read through pages is not edited on the GPU");
     if (tiled()) {
         textures_->rebuildFromSamples(gl_);
     } else {
@@ -339,7 +402,7 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     const bool frontFaces = eyeOutsideBox(camera.eye);
     ReliefShader& shader =
         program(configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces,
-                          shading.shadows, albedo_.has_value(), tiled()));
+                          shading.shadows, albedo_.has_value(), tiled(), paged()));
 
     const gl::StateGuard saved(gl_);
     const ReliefParameters values = parameters(camera, shading, t);
@@ -351,6 +414,8 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
         .bindHeights(textures_->samples())
         .bindWindowPyramid(textures_->windowPyramid());
     if (albedo_) shader.bindAlbedo(albedo_->id());
+    std::optional<PagedBindings> pagedBindings;
+    if (const PagedPyramid* paged = textures_->paged()) pagedBindings.emplace(gl_, *paged);
     if (method_.method == Method::Cone || method_.method == Method::Rcsm) {
         shader.bindConeMap(textures_->coneMap(method_.method == Method::Cone
                                                   ? ReliefTextures::ConeKind::Conservative

@@ -3,13 +3,15 @@
 #include <vector>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/gl/PagedPyramid.h"
 #include "microrelief/gl/ShaderProgram.h"
 
 namespace microrelief {
 
 std::string describe(const ReliefShaderConfig& config) {
     return std::string("relief (") + methodName(config.method) + ", " +
-           baseName(BaseShape{config.base}) + ", " + interpolationName(config.interpolation) + ")";
+           baseName(BaseShape{config.base}) + ", " + interpolationName(config.interpolation) +
+           (config.paged ? ", paged" : "") + ")";
 }
 
 ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
@@ -17,7 +19,7 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
     : gl_(&gl), config_(config) {
     GLint major = 0;
     gl.GetIntegerv(GL_MAJOR_VERSION, &major);
-    const std::string version = major >= 4 ? "400 core" : "330 core";
+    const std::string version = config.paged ? "430 core" : major >= 4 ? "400 core" : "330 core";
     std::vector<ShaderDefine> defines = {
         {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(config.method))},
         {"MICRORELIEF_BASE", std::to_string(static_cast<int>(config.base))},
@@ -27,6 +29,14 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
         {"MICRORELIEF_ALBEDO_MAP", config.albedoMap ? "1" : "0"},
         {"MICRORELIEF_TILING", config.tiled ? "1" : "0"}};
     if (config.countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
+    if (config.paged) {
+        defines.push_back({"MICRORELIEF_PAGED", "1"});
+        defines.push_back({"MICRORELIEF_PAGE_INFO_AT", std::to_string(PageTableLayout::kInfoAt)});
+        defines.push_back(
+            {"MICRORELIEF_PAGE_LEVELS_AT", std::to_string(PageTableLayout::kLevelsAt)});
+        defines.push_back(
+            {"MICRORELIEF_PAGE_ENTRIES_AT", std::to_string(PageTableLayout::kEntriesAt)});
+    }
     const gl::Shader vertex = gl::compileShader(
         gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "relief_box.vert", version));
     const gl::Shader fragment = gl::compileShader(
@@ -42,6 +52,10 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
     gl.Uniform1i(gl::uniform(gl, program_, "windowPyramid"), kWindowPyramidUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "albedoMap"), kAlbedoUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "coneMap"), kConeMapUnit);
+    if (config.paged) {
+        gl.Uniform1i(gl::uniform(gl, program_, "mr_pagePool"), kPagePoolUnit);
+        gl.Uniform1i(gl::uniform(gl, program_, "mr_pageCoarse"), kWindowPyramidUnit);
+    }
     gl.UseProgram(static_cast<GLuint>(previous));
     const GLuint block = gl.GetUniformBlockIndex(program_.id(), "MicroreliefParameters");
     if (block == GL_INVALID_INDEX)

@@ -34,16 +34,6 @@ MaxPyramid buildPyramid(const HeightMap& map, const std::string& source,
     }
 }
 
-// A float that is a half exactly (0, a normal half, +inf: what the pyramids hold divided
-// by 2^S) as the half's bits, for an upload that no driver's conversion can round.
-std::uint16_t halfBits(float value) {
-    const std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
-    if (bits == 0) return 0;
-    if (bits >= 0x7f800000u) return 0x7c00u;
-    const int exponent = static_cast<int>(bits >> 23) - 127 + 15;
-    return static_cast<std::uint16_t>((exponent << 10) | ((bits & 0x7fffffu) >> 13));
-}
-
 // The samples of a curved base repeat in S, so that a patch's textureGather at the seam
 // reads column W - 1 and column 0 (bilinear_patch.glsl); a tiled map's repeat in both, so
 // that a gather across a seam between tiles reads the next tile; everything else clamps.
@@ -72,14 +62,21 @@ gl::Texture allocatePyramid(const GL& gl, const std::vector<glm::ivec2>& sizes) 
 // A pyramid level (the bounds as MaxPyramid keeps them) into the bound texture, as halves.
 void uploadHalves(const GL& gl, int level, const glm::ivec2& size, const std::vector<float>& bounds,
                   int scaleExponent) {
-    std::vector<std::uint16_t> halves(bounds.size());
-    for (std::size_t k = 0; k < bounds.size(); ++k)
-        halves[k] = halfBits(std::ldexp(bounds[k], -scaleExponent));
+    const std::vector<std::uint16_t> halves = storedHalves(bounds, scaleExponent);
     gl.TexSubImage2D(GL_TEXTURE_2D, level, 0, 0, size.x, size.y, GL_RED, GL_HALF_FLOAT,
                      halves.data());
 }
 
 }  // namespace
+
+std::vector<std::uint16_t> storedHalves(const std::vector<float>& bounds, int scaleExponent) {
+    // Each bound / 2^S is on the half grid (MaxPyramid.h: storedBound): its bits exactly
+    // (peers/ConeMap.h's halfBits), which no driver's conversion can round.
+    std::vector<std::uint16_t> halves(bounds.size());
+    for (std::size_t k = 0; k < bounds.size(); ++k)
+        halves[k] = halfBits(std::ldexp(bounds[k], -scaleExponent));
+    return halves;
+}
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
                                bool wrapU, bool withMaxMip, glm::ivec2 tiles)
@@ -89,6 +86,35 @@ ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::st
     // On the GPU from here on; only its shape is kept.
     upload(gl, map, buildPyramid(map, source, {wrapU, tiles.x, tiles.y}),
            withMaxMip);
+}
+
+ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
+                               bool wrapU, const PagingSettings& paging)
+    : wrapU_(wrapU) {
+    MaxPyramid pyramid = buildPyramid(map, source, {wrapU, 1, 1});
+    shape_.size = {map.width, map.height};
+    levelSizes_ = windowLevelSizes(map.width, map.height);
+    shape_.pyramidSize = levelSizes_.front();
+    shape_.levelCount = static_cast<int>(levelSizes_.size());
+    shape_.maxHeight = pyramid.maxHeight();
+    scaleExponent_ = pyramid.scaleExponent();
+    try {
+        paged_ = std::make_unique<PagedPyramid>(gl, map, std::move(pyramid), paging, source);
+    } catch (const std::bad_alloc&) {
+        throwRuntime(source + ": not enough memory to keep its " + std::to_string(map.width) + "x" +
+                     std::to_string(map.height) + " samples and pyramid for paging");
+    }
+    const gl::StateGuard saved(gl);
+    gl.ActiveTexture(GL_TEXTURE0);
+    samples_ = gl::Texture::create(gl);
+    gl.BindTexture(GL_TEXTURE_2D, samples_.id());
+    const float zero = 0.0f;
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, 1, 1, 0, GL_RED, GL_FLOAT, &zero);
+    setSamplerState(gl, GL_NEAREST, 0);
+}
+
+void ReliefTextures::refuseIfPaged(const char* what) const {
+    if (paged_) throwRuntime(std::string(what) + " is not made for a map read through pages");
 }
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid,
@@ -139,12 +165,14 @@ void ReliefTextures::allocateAligned(const GL& gl) {
 
 void ReliefTextures::addMaxMipPyramid(const GL& gl, PyramidBuilder& builder) {
     if (aligned_) return;
+    refuseIfPaged("maxmip's aligned pyramid");
     allocateAligned(gl);
     builder.buildAligned(*this);
 }
 
 void ReliefTextures::addConeMap(const GL& gl, ConeKind kind) {
     if (cones_[static_cast<int>(kind)]) return;
+    refuseIfPaged("a cone map");
     const HeightMap map = readSamples(gl);
     const ConeMap cones =
         kind == ConeKind::Conservative ? buildConservativeConeMap(map) : buildRelaxedConeMap(map);
@@ -174,6 +202,7 @@ void ReliefTextures::upload(const GL& gl, const HeightMap& map, const MaxPyramid
 }
 
 void ReliefTextures::rebuildFromSamples(const GL& gl) {
+    refuseIfPaged("an edit");
     const HeightMap map = readSamples(gl);
     uploadPyramid(gl, buildPyramid(map, "the edited map", {wrapU_, shape_.tiles.x, shape_.tiles.y}));
 }
@@ -200,6 +229,7 @@ std::size_t ReliefTextures::gpuBytes(const GL& gl) const {
     std::size_t bytes = 0;
     for (const gl::Texture* texture : {&samples_, &windows_, &aligned_, &cones_[0], &cones_[1]})
         if (*texture) bytes += textureBytes(gl, texture->id());
+    if (paged_) bytes += paged_->gpuBytes();
     return bytes;
 }
 
@@ -224,6 +254,7 @@ std::size_t textureBytes(const GL& gl, GLuint texture) {
 }
 
 void ReliefTextures::writeSamples(const GL& gl, const TexelRect& rect, const float* values) {
+    refuseIfPaged("an edit");
     const gl::StateGuard saved(gl);  // unit 0's binding and the active unit among it
     gl.ActiveTexture(GL_TEXTURE0);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -251,12 +282,14 @@ std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, cons
 }
 
 HeightMap ReliefTextures::readSamples(const GL& gl) const {
+    if (paged_) return paged_->map();
     HeightMap map(shape_.size.x, shape_.size.y);
     map.samples = readTextureLevel(gl, samples_.id(), 0, map.width, map.height);
     return map;
 }
 
 std::vector<float> ReliefTextures::readSamples(const GL& gl, const TexelRect& rect) const {
+    refuseIfPaged("reading samples back");
     return readTextureRect(gl, samples_.id(), 0, rect);
 }
 
@@ -273,6 +306,7 @@ std::vector<float> ReliefTextures::readAlignedLevel(const GL& gl, int level) con
 }
 
 std::vector<float> ReliefTextures::readWindowLevel(const GL& gl, int level) const {
+    refuseIfPaged("reading windows back");
     return readScaled(gl, windows_.id(), level, levelSizes_[level]);
 }
 

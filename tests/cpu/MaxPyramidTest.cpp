@@ -558,3 +558,49 @@ TEST(MaxPyramid, UpdateRegionsGrowByOneTexelAndWrap) {
     EXPECT_EQ(top[0], (TexelRect{0, 0, 1, 1}));
     EXPECT_TRUE(pyramidUpdateRegions(sizes, 16, 8, false, {5, 5, 5, 9}).aligned[0].empty());
 }
+
+// A map read through pages (shaders/paged_map.glsl) stands in for a texel whose
+// page is absent with the window above it: window (k, t) must be at most window
+// (k + 1, min(t >> 1, last)), and sample p at most window (0, p), on the renderer's Half
+// pyramid, for odd sizes, the seam of a curved base, and the last window of a row (which
+// reaches to the map's edge). Checked against the samples themselves too: every window is
+// at least every sample it covers, [t 2^k, (t + 2) 2^k) per axis, to the edge for the last.
+TEST(MaxPyramid, EveryWindowLiesUnderTheWindowAboveItAndEverySampleUnderItsWindow) {
+    for (const bool wrapU : {false, true}) {
+        for (const glm::ivec2 size : {glm::ivec2(37, 23), glm::ivec2(64, 64), glm::ivec2(5, 130)}) {
+            for (const std::uint32_t seed : {1u, 2u}) {
+                const HeightMap map = seed == 1 ? synth::whiteNoise(size.x, size.y, 7)
+                                                : synth::cobbles(size.x, size.y, 9);
+                const MaxPyramid pyramid(map, wrapU, BoundPrecision::Half);
+                const std::string what = std::to_string(size.x) + "x" + std::to_string(size.y) +
+                                         (wrapU ? " wrapped" : "") + " map " + std::to_string(seed);
+                for (int j = 0; j < map.height; ++j)
+                    for (int i = 0; i < map.width; ++i)
+                        ASSERT_LE(map.at(i, j), pyramid.window(0, i, j))
+                            << what << " " << i << "," << j;
+                for (int k = 0; k < pyramid.windowLevelCount(); ++k) {
+                    const int w = pyramid.windowLevelWidth(k), h = pyramid.windowLevelHeight(k);
+                    for (int q = 0; q < h; ++q) {
+                        for (int p = 0; p < w; ++p) {
+                            const float window = pyramid.window(k, p, q);
+                            // The samples it covers (an independent check of what it holds).
+                            const int x0 = p << k, y0 = q << k;
+                            const int x1 =
+                                p + 1 >= w ? map.width : std::min(map.width, (p + 2) << k);
+                            const int y1 =
+                                q + 1 >= h ? map.height : std::min(map.height, (q + 2) << k);
+                            for (int y = y0; y < y1; ++y)
+                                for (int x = x0; x < x1; ++x)
+                                    ASSERT_LE(map.at(x, y), window) << what << " level " << k;
+                            if (k + 1 == pyramid.windowLevelCount()) continue;
+                            const int pa = std::min(p >> 1, pyramid.windowLevelWidth(k + 1) - 1);
+                            const int qa = std::min(q >> 1, pyramid.windowLevelHeight(k + 1) - 1);
+                            ASSERT_LE(window, pyramid.window(k + 1, pa, qa))
+                                << what << " level " << k << " window " << p << "," << q;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

@@ -13,6 +13,7 @@
 
 #include "TestSupport.h"
 #include "microrelief/core/base/BaseType.h"
+#include "microrelief/gl/PagedPyramid.h"
 #include "microrelief/gl/ShaderSource.h"
 
 using namespace microrelief;
@@ -279,6 +280,30 @@ TEST(GlslLibrary, AppShadersCompileAsGlsl330And400AndEs300) {
                     EXPECT_EQ(belowHighp(tree), "") << name << " (method " << method << ")";
                 }
             }
+        }
+    }
+}
+
+// The paged variant (shaders/paged_map.glsl, gl/PagedPyramid.h), GLSL 4.30 core: on
+// every base, with either last level and soft shadows, its layout given as the host gives it.
+TEST(GlslLibrary, PagedVariantCompilesAsGlsl430) {
+    test::ScratchDir dir;
+    for (int base = 0; base <= 2; ++base) {
+        for (int interpolation = 0; interpolation <= 1; ++interpolation) {
+            const std::vector<ShaderDefine> defines = {
+                {"MICRORELIEF_BASE", std::to_string(base)},
+                {"MICRORELIEF_INTERPOLATION", std::to_string(interpolation)},
+                {"MICRORELIEF_SHADOWS", "2"},
+                {"MICRORELIEF_PAGED", "1"},
+                {"MICRORELIEF_PAGE_INFO_AT", std::to_string(PageTableLayout::kInfoAt)},
+                {"MICRORELIEF_PAGE_LEVELS_AT", std::to_string(PageTableLayout::kLevelsAt)},
+                {"MICRORELIEF_PAGE_ENTRIES_AT", std::to_string(PageTableLayout::kEntriesAt)}};
+            const std::string errors =
+                validate(dir, assembleShader(kShaders / "relief.frag", "430 core", defines), "frag",
+                         "relief");
+            EXPECT_TRUE(errors.empty()) << "paged relief.frag, base " << base << ", interpolation "
+                                        << interpolation << ":\n"
+                                        << errors;
         }
     }
 }

@@ -27,12 +27,21 @@ inline constexpr int kDefaultTileSide = 4096;
 // renderHeadless's argument.
 struct RenderJob : ReliefDesc, ViewDesc {};
 
+// How a picture of a map read through pages (gl/PagedPyramid.h) was drawn.
+struct PagingReport {
+    int draws = 0;                // draws of tiles, each again until none wanted a page
+    int splits = 0;               // tiles drawn in quarters: the pool held too few pages
+    std::size_t pagesLoaded = 0;  // for this picture
+    int pagesResident = 0;        // after it
+};
+
 struct HeadlessResult {
     RenderedFrame frame;
     CameraFrame camera;  // the rays the picture was traced with
     // With an animation, the heights it traced (read back from the GPU): the map to hold
     // the picture to.
     std::optional<HeightMap> animatedMap;
+    PagingReport paging;  // all 0 for a map in whole textures
 };
 
 // Pictures of one map at a time, keeping what they share from one to the next: the
@@ -67,6 +76,8 @@ public:
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
     // Renders `job` of the current map. Throws Error.
     HeadlessResult render(const RenderJob& job);
+    // When setHeightMap / setHeights read a map through pages (ReliefRenderer::setPaging).
+    void setPaging(const PagingSettings& paging) { renderer_->setPaging(paging); }
     // The largest tile a picture is drawn in, pixels a side (kDefaultTileSide; the GL's
     // limits cap it): a smaller one holds less memory at once. Any side draws the same
     // picture, bit for bit.
@@ -77,6 +88,10 @@ private:
     // a reason other than the map), then what the renderer keeps of it.
     void upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
                 const std::function<void(PyramidBuild)>& build);
+
+    // One tile of the picture into `result`; a paged map's drawn until it is exact.
+    void drawTile(const RenderJob& job, const CameraFrame& camera, const PictureTile& part,
+                  HeadlessResult& result);
 
     GlContext& context_;
     std::optional<ReliefRenderer> renderer_;

@@ -88,6 +88,12 @@ public:
                       Interpolation interpolation = Interpolation::Bilinear,
                       PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
     glm::ivec2 tiles() const { return textures_ ? textures_->tiles() : glm::ivec2(1, 1); }
+    // When setHeightMap reads a map through pages (gl/PagedPyramid.h), and how: by default
+    // maps larger than GL_MAX_TEXTURE_SIZE. For the next setHeightMap.
+    void setPaging(const PagingSettings& paging) { paging_ = paging; }
+    const PagingSettings& paging() const { return paging_; }
+    // The pager of the map set, where it is paged; else null.
+    PagedPyramid* pager() { return textures_ ? textures_->paged() : nullptr; }
 
     // A map that changes on the GPU (sculpting, animation). The map's textures, for a pass
     // of the caller's that draws into the samples (null before setHeightMap).
@@ -158,8 +164,11 @@ public:
 private:
     ReliefShaderConfig configFor(const MethodSettings& settings, bool countFetches, BaseKind base,
                                  Interpolation interpolation, bool frontFaces, ShadowMode shadows,
-                                 bool albedoMap, bool tiled) const;
+                                 bool albedoMap, bool tiled, bool paged) const;
     bool tiled() const { return tiles() != glm::ivec2(1, 1); }
+    bool paged() const { return textures_ && textures_->paged(); }
+    // Whether setHeightMap pages `map` (paging_).
+    bool pages(const HeightMap& map) const;
     // The program for the configuration, compiled on first use; throws and changes
     // nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);
@@ -190,6 +199,7 @@ private:
     ModelTransform model_;
     DepthConvention depth_;
     RebuildCounts rebuilds_;
+    PagingSettings paging_;
     std::optional<ReliefDesc> applied_;  // the relief whose heights the pyramid is of (apply)
 };
 

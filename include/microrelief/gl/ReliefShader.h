@@ -51,6 +51,7 @@ struct ReliefShaderConfig {
     ShadowMode shadows = ShadowMode::Off;
     bool albedoMap = false;  // the surface's colour from an albedo texture (unit 3)
     bool tiled = false;      // the map repeated (MICRORELIEF_TILING)
+    bool paged = false;      // the map read through pages (MICRORELIEF_PAGED; GLSL 4.30)
 
     auto operator<=>(const ReliefShaderConfig&) const = default;
 };
@@ -70,12 +71,18 @@ public:
     static constexpr GLuint kWindowPyramidUnit = 2;
     static constexpr GLuint kAlbedoUnit = 3;
     static constexpr GLuint kConeMapUnit = 4;  // cone and rcsm's cone map (peers/ConeMap.h)
+    // A paged map's pool (a texture array, gl/PagedPyramid.h) and its page table and wants
+    // (shader storage bindings); its coarse windows are the window pyramid's unit.
+    static constexpr GLuint kPagePoolUnit = 5;
+    static constexpr GLuint kPageTableBinding = 1;
+    static constexpr GLuint kPageWantsBinding = 2;
     static constexpr GLuint kParametersBinding = 0;
 
     // Compiles `config` of relief_box.vert and relief.frag from `shaderDir` (the folder
     // holding them and microrelief/), as GLSL 4.00 core where the GL has it (a patch's
-    // samples in one textureGather), else 3.30 core. Throws Error(Runtime) with the
-    // compiler's log mapped to the files on failure. Leaves the current program as it was.
+    // samples in one textureGather), else 3.30 core; a paged one as GLSL 4.30. Throws
+    // Error(Runtime) with the compiler's log mapped to the files on failure. Leaves the current
+    // program as it was.
     ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
                  const ReliefShaderConfig& config);
 

@@ -11,14 +11,17 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "microrelief/gl/Objects.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/gl/Objects.h"
+#include "microrelief/gl/PagedPyramid.h"
 
 namespace microrelief {
 
@@ -57,8 +60,20 @@ public:
     ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
                    PyramidBuilder& builder, bool withMaxMip = false);
 
+    // A map read through pages (gl/PagedPyramid.h), any size the CPU holds: its pyramid
+    // built on the CPU, the samples and the fine windows paged in as draws want them, the
+    // coarse windows resident. Only the multilevel method reads it: no aligned pyramid,
+    // no cone maps, no edits (those throw Error(Runtime)).
+    ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
+                   const PagingSettings& paging);
+    // The pager of a paged map; null for one in whole textures.
+    PagedPyramid* paged() { return paged_.get(); }
+    const PagedPyramid* paged() const { return paged_.get(); }
+
+    // The samples (a paged map: a 1 x 1 texture the shader never reads) and the windows (a
+    // paged map: its coarse levels, the first of them its level 0).
     GLuint samples() const { return samples_.id(); }
-    GLuint windowPyramid() const { return windows_.id(); }
+    GLuint windowPyramid() const { return paged_ ? paged_->coarse() : windows_.id(); }
     // The aligned pyramid, or 0 where none was made (addMaxMipPyramid makes it).
     GLuint maxPyramid() const { return aligned_.id(); }
     bool hasMaxMipPyramid() const { return static_cast<bool>(aligned_); }
@@ -128,13 +143,21 @@ private:
     std::vector<float> readScaled(const GL& gl, GLuint texture, int level,
                                   const glm::ivec2& size) const;
 
+    // A paged map's only texture is its stand-in samples_; the pager holds the rest.
+    void refuseIfPaged(const char* what) const;
+
     gl::Texture samples_, windows_, aligned_;
+    std::unique_ptr<PagedPyramid> paged_;
     gl::Texture cones_[2];  // by ConeKind
     ReliefMapShape shape_;  // size: one tile's, W x H (shape() has the whole's)
     std::vector<glm::ivec2> levelSizes_;
     int scaleExponent_ = 0;
     bool wrapU_ = false;
 };
+
+// Pyramid bounds (as MaxPyramid keeps them, BoundPrecision::Half) as the GPU holds them:
+// bound / 2^S, the bits of a half, exactly (no driver's conversion rounds them).
+std::vector<std::uint16_t> storedHalves(const std::vector<float>& bounds, int scaleExponent);
 
 // What one 2D texture takes in GPU memory, bytes: every level, as the GL reports its size
 // and format (R16F 2 a texel, R32F and RG16F 4, others counted as 16). The GL state it

@@ -1,0 +1,112 @@
+// A map larger than one texture on the GPU (shaders/paged_map.glsl): its samples
+// and the fine levels of its windows (core/heightmap/MaxPyramid.h) cut into square pages, as
+// many resident as a memory budget holds, in one texture array (the pool); the coarse levels
+// whole in one R16F texture; a page table and a wants buffer in shader storage. A draw reads
+// a texel from its page where the page is resident and otherwise stands in for it with a
+// bound above it, and records the page as wanted (takeWanted); the host loads what was
+// wanted (load) and draws again, until a draw wants nothing: that picture is the one the
+// whole map gives, bit for bit (gl/HeadlessRender.h draws so). Pages are loaded from the
+// map and the pyramid kept on the CPU; the least recently wanted go first when the pool is
+// full.
+//
+// GL 4.3 (shader storage in the fragment shader); the multilevel method only.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/gl/Gl.h"
+#include "microrelief/gl/Objects.h"
+
+namespace microrelief {
+
+// When a map is paged, and how.
+struct PagingSettings {
+    // Auto: maps larger than GL_MAX_TEXTURE_SIZE only; Always: every map (the tests hold
+    // the two paths to the same pictures with it).
+    enum class Mode { Auto, Always };
+    Mode mode = Mode::Auto;
+    int pageSide = 256;  // texels a page side: a power of two, 16 to 4096
+    // The pool's budget, bytes (--memory): pages of pageSide^2 R32F texels, at least one.
+    std::size_t memoryBytes = std::size_t{512} << 20;
+    // Window levels whose sides are at most this stay whole in one texture.
+    int residentSide = 2048;
+};
+
+// Where the page table's parts lie, in 32-bit words (paged_map.glsl gets them as defines):
+// the info words (the paged window levels L, S, log2 of the page side), then four words a
+// page level (its first entry, width, height, a spare; level 0 the samples, 1 + k window
+// level k, up to 1 + L), then an entry a page.
+struct PageTableLayout {
+    static constexpr int kInfoAt = 0;
+    static constexpr int kMaxPageLevels = 34;  // the samples and 33 window levels at most
+    static constexpr int kLevelsAt = 4;
+    static constexpr int kEntriesAt = kLevelsAt + 4 * kMaxPageLevels;
+};
+
+class PagedPyramid {
+public:
+    // `pyramid` is `map`'s (BoundPrecision::Half, untiled); both are kept: pages are cut
+    // from them as they are wanted. Throws Error(BadInput) naming `source` for settings out
+    // of range, Error(Runtime) where the GL lacks what paging needs (GL 4.3).
+    PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid, const PagingSettings& settings,
+                 const std::string& source);
+
+    GLuint pool() const { return pool_.id(); }
+    GLuint coarse() const { return coarse_.id(); }
+    GLuint table() const { return table_.id(); }
+    GLuint wants() const { return wants_.id(); }
+
+    int pageSide() const { return 1 << shift_; }
+    int pagedLevels() const { return pagedLevels_; }  // L: window levels 0 .. L - 1 are paged
+    int pageCount() const { return static_cast<int>(pages_.size()); }
+    int capacity() const { return static_cast<int>(freeLayers_.size() + residentCount_); }
+    int residentCount() const { return residentCount_; }
+    std::size_t pagesLoaded() const { return pagesLoaded_; }
+    std::size_t pagesEvicted() const { return pagesEvicted_; }
+    const MaxPyramid& pyramid() const { return pyramid_; }
+    const HeightMap& map() const { return map_; }
+    // The pool, the coarse texture and the two buffers, bytes.
+    std::size_t gpuBytes() const;
+
+    // The pages the draws since the last call wanted and found absent, in the entries'
+    // order, and the wants cleared. Waits for the draws (a buffer read).
+    std::vector<int> takeWanted();
+    // Loads `pages` (ids from takeWanted) that are absent, each into a free layer or the
+    // layer of the least recently wanted resident page outside `keep` (which may hold any
+    // ids, `pages` among them). Returns false, loading nothing, when they do not all fit
+    // beside `keep`.
+    bool load(const std::vector<int>& pages, const std::vector<int>& keep);
+    bool resident(int page) const { return pages_[page].layer >= 0; }
+
+private:
+    struct Page {
+        int level = 0;             // page level: 0 the samples, 1 + k window level k
+        glm::ivec2 origin;         // its first texel
+        int layer = -1;            // the pool layer, -1 absent
+        std::uint64_t wanted = 0;  // when last wanted or loaded (the load counter)
+    };
+    std::vector<float> pageTexels(const Page& page) const;
+    void setEntry(int page, std::uint32_t entry);
+
+    const GL& gl_;
+    HeightMap map_;
+    MaxPyramid pyramid_;
+    int shift_ = 8;
+    int pagedLevels_ = 0;
+    std::vector<Page> pages_;
+    std::vector<int> freeLayers_;
+    int residentCount_ = 0;
+    std::uint64_t clock_ = 0;
+    std::size_t pagesLoaded_ = 0, pagesEvicted_ = 0;
+    gl::Texture pool_, coarse_;
+    gl::Buffer table_, wants_;
+};
+
+}  // namespace microrelief

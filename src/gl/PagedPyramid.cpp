@@ -1,0 +1,244 @@
+#include "microrelief/gl/PagedPyramid.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <utility>
+
+#include "microrelief/core/Error.h"
+#include "microrelief/gl/ReliefTextures.h"
+#include "microrelief/gl/StateGuard.h"
+
+namespace microrelief {
+
+namespace {
+
+// The bindings the pager's uploads change beyond StateGuard's: unit 0's texture array and
+// the copy-write buffer, restored after.
+class PagerBindings {
+public:
+    explicit PagerBindings(const GL& gl) : gl_(gl), state_(gl) {
+        gl.GetIntegerv(GL_COPY_WRITE_BUFFER, &copyWrite_);  // its binding (GL 3.1 names it so)
+        gl.ActiveTexture(GL_TEXTURE0);
+        gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &array_);
+    }
+    ~PagerBindings() {
+        gl_.ActiveTexture(GL_TEXTURE0);
+        gl_.BindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(array_));
+        gl_.BindBuffer(GL_COPY_WRITE_BUFFER, static_cast<GLuint>(copyWrite_));
+    }
+    PagerBindings(const PagerBindings&) = delete;
+    PagerBindings& operator=(const PagerBindings&) = delete;
+
+private:
+    const GL& gl_;
+    gl::StateGuard state_;
+    GLint array_ = 0, copyWrite_ = 0;
+};
+
+bool hasGl43(const GL& gl) {
+    GLint major = 0, minor = 0;
+    gl.GetIntegerv(GL_MAJOR_VERSION, &major);
+    gl.GetIntegerv(GL_MINOR_VERSION, &minor);
+    return major > 4 || (major == 4 && minor >= 3);
+}
+
+}  // namespace
+
+PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
+                           const PagingSettings& settings, const std::string& source)
+    : gl_(gl), map_(std::move(map)), pyramid_(std::move(pyramid)) {
+    if (!hasGl43(gl))
+        throwRuntime(source + ": a map read through pages needs OpenGL 4.3 (shader storage)");
+    if (pyramid_.precision() != BoundPrecision::Half || pyramid_.addressing().tilesX != 1 ||
+        pyramid_.addressing().tilesY != 1)
+        throwRuntime("PagedPyramid: the pyramid must be untiled, of BoundPrecision::Half");
+    const int side = settings.pageSide;
+    if (side < 16 || side > 4096 || !std::has_single_bit(static_cast<unsigned>(side)))
+        throwBadInput("{page side} " + std::to_string(side) +
+                      " is not a power of two from 16 to 4096");
+    shift_ = std::countr_zero(static_cast<unsigned>(side));
+    const std::size_t pageBytes = std::size_t{4} << (2 * shift_);
+    if (settings.memoryBytes < pageBytes) {
+        throwBadInput("{memory} " + std::to_string(settings.memoryBytes) +
+                      " bytes hold no page of " + std::to_string(side) + " x " +
+                      std::to_string(side) + " texels (" + std::to_string(pageBytes) + " bytes)");
+    }
+
+    // The page levels: the samples, then the windows down to the first whose sides are at
+    // most residentSide (L), which with the coarser ones lies whole in one texture.
+    const std::vector<glm::ivec2> sizes =
+        windowLevelSizes(pyramid_.mapWidth(), pyramid_.mapHeight());
+    pagedLevels_ = 0;
+    while (pagedLevels_ + 1 < static_cast<int>(sizes.size()) &&
+           glm::any(glm::greaterThan(sizes[pagedLevels_], glm::ivec2(settings.residentSide))))
+        ++pagedLevels_;
+    if (2 + pagedLevels_ > PageTableLayout::kMaxPageLevels)
+        throwBadInput(source + ": too many pyramid levels to page");
+    std::vector<std::uint32_t> words(PageTableLayout::kEntriesAt, 0u);
+    words[PageTableLayout::kInfoAt] = static_cast<std::uint32_t>(pagedLevels_);
+    words[PageTableLayout::kInfoAt + 1] = static_cast<std::uint32_t>(pyramid_.scaleExponent());
+    words[PageTableLayout::kInfoAt + 2] = static_cast<std::uint32_t>(shift_);
+    for (int level = 0; level <= pagedLevels_ + 1; ++level) {
+        // Level 0 (the samples) has window level 0's size, W x H.
+        const glm::ivec2 size = sizes[std::max(level - 1, 0)];
+        const int at = PageTableLayout::kLevelsAt + 4 * level;
+        words[at] = static_cast<std::uint32_t>(pages_.size());
+        words[at + 1] = static_cast<std::uint32_t>(size.x);
+        words[at + 2] = static_cast<std::uint32_t>(size.y);
+        if (level > pagedLevels_) continue;  // level L's size only: it is not paged
+        const glm::ivec2 across = (size + side - 1) >> shift_;
+        for (int y = 0; y < across.y; ++y)
+            for (int x = 0; x < across.x; ++x) pages_.push_back({level, glm::ivec2(x, y) * side});
+    }
+    words.resize(words.size() + pages_.size(), 0u);
+
+    GLint maxLayers = 0;
+    gl.GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    const std::size_t layers = std::min({settings.memoryBytes / pageBytes, pages_.size(),
+                                         static_cast<std::size_t>(std::max(maxLayers, 1))});
+    for (int layer = static_cast<int>(layers) - 1; layer >= 0; --layer)
+        freeLayers_.push_back(layer);
+
+    const PagerBindings saved(gl);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    pool_ = gl::Texture::create(gl);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, pool_.id());
+    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, side, side, static_cast<GLsizei>(layers), 0,
+                  GL_RED, GL_FLOAT, nullptr);
+    for (GLenum name : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+        gl.TexParameteri(GL_TEXTURE_2D_ARRAY, name, GL_NEAREST);
+    for (GLenum name : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
+        gl.TexParameteri(GL_TEXTURE_2D_ARRAY, name, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+
+    // The coarse levels L and on, as ReliefTextures holds the windows: halves of bound / 2^S.
+    coarse_ = gl::Texture::create(gl);
+    gl.BindTexture(GL_TEXTURE_2D, coarse_.id());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    const int coarseLevels = static_cast<int>(sizes.size()) - pagedLevels_;
+    for (int k = 0; k < coarseLevels; ++k) {
+        const glm::ivec2 size = sizes[pagedLevels_ + k];
+        const std::vector<std::uint16_t> halves =
+            storedHalves(pyramid_.windowLevelData(pagedLevels_ + k), pyramid_.scaleExponent());
+        gl.TexImage2D(GL_TEXTURE_2D, k, GL_R16F, size.x, size.y, 0, GL_RED, GL_HALF_FLOAT,
+                      halves.data());
+    }
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, coarseLevels - 1);
+
+    table_ = gl::Buffer::create(gl);
+    gl.BindBuffer(GL_COPY_WRITE_BUFFER, table_.id());
+    gl.BufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(words.size() * 4), words.data(),
+                  GL_DYNAMIC_DRAW);
+    wants_ = gl::Buffer::create(gl);
+    const std::vector<std::uint32_t> none(pages_.size(), 0u);
+    gl.BindBuffer(GL_COPY_WRITE_BUFFER, wants_.id());
+    gl.BufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(none.size() * 4), none.data(),
+                  GL_DYNAMIC_READ);
+}
+
+std::size_t PagedPyramid::gpuBytes() const {
+    return static_cast<std::size_t>(capacity()) * (std::size_t{4} << (2 * shift_)) +
+           textureBytes(gl_, coarse_.id()) + (PageTableLayout::kEntriesAt + 2 * pages_.size()) * 4;
+}
+
+std::vector<int> PagedPyramid::takeWanted() {
+    // The draws' writes to the wants reach the buffer read below only after a barrier.
+    gl_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::uint32_t> flags(pages_.size(), 0u);
+    const PagerBindings saved(gl_);
+    gl_.BindBuffer(GL_COPY_WRITE_BUFFER, wants_.id());
+    gl_.GetBufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(flags.size() * 4),
+                         flags.data());
+    std::vector<int> wanted;
+    for (std::size_t page = 0; page < flags.size(); ++page)
+        if (flags[page] != 0u) wanted.push_back(static_cast<int>(page));
+    if (!wanted.empty()) {
+        const std::vector<std::uint32_t> none(pages_.size(), 0u);
+        gl_.BufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(none.size() * 4),
+                          none.data());
+    }
+    ++clock_;
+    for (int page : wanted) pages_[page].wanted = clock_;
+    return wanted;
+}
+
+bool PagedPyramid::load(const std::vector<int>& pages, const std::vector<int>& keep) {
+    const PagerBindings saved(gl_);
+    std::vector<char> kept(pages_.size(), 0);
+    for (int page : keep) kept[page] = 1;
+    for (int page : pages) kept[page] = 1;
+    std::vector<int> absent;
+    for (int page : pages)
+        if (pages_[page].layer < 0) absent.push_back(page);
+    // Evictable: resident pages outside what is kept, least recently wanted first.
+    std::vector<int> evictable;
+    if (absent.size() > freeLayers_.size()) {
+        for (int page = 0; page < pageCount(); ++page)
+            if (pages_[page].layer >= 0 && !kept[page]) evictable.push_back(page);
+        if (absent.size() > freeLayers_.size() + evictable.size()) return false;
+        const std::size_t needed = absent.size() - freeLayers_.size();
+        std::partial_sort(evictable.begin(), evictable.begin() + static_cast<long>(needed),
+                          evictable.end(),
+                          [&](int a, int b) { return pages_[a].wanted < pages_[b].wanted; });
+        for (std::size_t k = 0; k < needed; ++k) {
+            Page& out = pages_[evictable[k]];
+            freeLayers_.push_back(out.layer);
+            out.layer = -1;
+            setEntry(evictable[k], 0u);
+            --residentCount_;
+            ++pagesEvicted_;
+        }
+    }
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl_.BindTexture(GL_TEXTURE_2D_ARRAY, pool_.id());
+    const int side = pageSide();
+    for (int id : absent) {
+        Page& page = pages_[id];
+        page.layer = freeLayers_.back();
+        freeLayers_.pop_back();
+        const std::vector<float> texels = pageTexels(page);
+        gl_.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, page.layer, side, side, 1, GL_RED, GL_FLOAT,
+                          texels.data());
+        setEntry(id, static_cast<std::uint32_t>(page.layer) + 1u);
+        page.wanted = clock_;
+        ++residentCount_;
+        ++pagesLoaded_;
+    }
+    return true;
+}
+
+std::vector<float> PagedPyramid::pageTexels(const Page& page) const {
+    // Texels past the level's edge are never read (reads are clamped to the level); 0.
+    const int side = pageSide();
+    std::vector<float> texels(static_cast<std::size_t>(side) * side, 0.0f);
+    const int k = page.level - 1;  // the window level, -1 for the samples
+    const int width = k < 0 ? map_.width : pyramid_.windowLevelWidth(k);
+    const int height = k < 0 ? map_.height : pyramid_.windowLevelHeight(k);
+    const std::vector<float>& data = k < 0 ? map_.samples : pyramid_.windowLevelData(k);
+    const int columns = std::min(side, width - page.origin.x);
+    const int rows = std::min(side, height - page.origin.y);
+    for (int y = 0; y < rows; ++y) {
+        const std::size_t from =
+            static_cast<std::size_t>(page.origin.y + y) * width + page.origin.x;
+        float* to = texels.data() + static_cast<std::size_t>(y) * side;
+        for (int x = 0; x < columns; ++x) {
+            // Windows as the coarse texture holds them (bound / 2^S, a half exactly).
+            to[x] = k < 0 ? data[from + x] : std::ldexp(data[from + x], -pyramid_.scaleExponent());
+        }
+    }
+    return texels;
+}
+
+void PagedPyramid::setEntry(int page, std::uint32_t entry) {
+    gl_.BindBuffer(GL_COPY_WRITE_BUFFER, table_.id());
+    gl_.BufferSubData(GL_COPY_WRITE_BUFFER,
+                      static_cast<GLintptr>((PageTableLayout::kEntriesAt + page) * 4), 4, &entry);
+}
+
+}  // namespace microrelief

@@ -1,0 +1,179 @@
+// Maps read through pages (gl/PagedPyramid.h, shaders/paged_map.glsl): the
+// picture of a paged map is the picture of the same map in whole textures, bit for bit,
+// whatever the page size, the levels paged and the memory budget (which only changes how
+// many draws it takes); a map past GL_MAX_TEXTURE_SIZE agrees with the exact CPU reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "GlTestBackend.h"
+#include "SweepCases.h"
+#include "TestSupport.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
+#include "microrelief/gl/HeadlessRender.h"
+
+using namespace microrelief;
+
+namespace {
+
+class PagedMap : public test::GlTest {
+protected:
+    // `job` of `map` in whole textures and through pages with `paging` (Mode::Always).
+    static HeadlessResult renderWhole(const HeightMap& map, const RenderJob& job) {
+        HeadlessRenderer renderer(test::glContext(), job.method);
+        renderer.setHeights(job, map, "whole");
+        return renderer.render(job);
+    }
+    static HeadlessResult renderPaged(const HeightMap& map, const RenderJob& job,
+                                      PagingSettings paging) {
+        paging.mode = PagingSettings::Mode::Always;
+        HeadlessRenderer renderer(test::glContext(), job.method);
+        renderer.setPaging(paging);
+        renderer.setHeights(job, map, "paged");
+        return renderer.render(job);
+    }
+    static void expectSamePicture(const HeadlessResult& paged, const HeadlessResult& whole,
+                                  const std::string& what) {
+        EXPECT_EQ(paged.frame.color, whole.frame.color) << what;
+        EXPECT_EQ(paged.frame.position, whole.frame.position) << what;
+        EXPECT_EQ(paged.frame.stats, whole.frame.stats) << what;
+        EXPECT_EQ(paged.frame.shadow, whole.frame.shadow) << what;
+    }
+    static std::size_t hits(const RenderedFrame& frame) {
+        std::size_t n = 0;
+        for (std::size_t p = 3; p < frame.position.size(); p += 4) n += frame.position[p] > 0.5f;
+        return n;
+    }
+};
+
+// Small pages and a small resident side, so that the samples and several window levels
+// are paged; a budget that holds every page.
+PagingSettings smallPages() {
+    PagingSettings paging;
+    paging.pageSide = 16;
+    paging.residentSide = 16;
+    return paging;
+}
+
+TEST_F(PagedMap, PagedPictureIsTheWholeTexturePictureBitForBit) {
+    const HeightMap map = synth::cobbles(150, 110, 3);
+    for (const Interpolation interpolation :
+         {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+        for (const BaseKind base : {BaseKind::Plane, BaseKind::Cylinder}) {
+            RenderJob job;
+            job.base.kind = base;
+            job.interpolation = interpolation;
+            job.camera = test::orbitCamera(30.0, 25.0, 1.5, {0.0, 0.02, 0.0});
+            job.width = 96;
+            job.height = 72;
+            job.shading.shadows = ShadowMode::Soft;
+            const std::string what =
+                std::string(baseName(job.base)) + ", " + interpolationName(interpolation);
+            const HeadlessResult whole = renderWhole(map, job);
+            const HeadlessResult paged = renderPaged(map, job, smallPages());
+            expectSamePicture(paged, whole, what);
+            EXPECT_GT(hits(whole.frame), 96u * 72 / 4) << what << ": the relief fills the picture";
+            EXPECT_GT(paged.paging.draws, 1) << what << ": the first draw found no page resident";
+            EXPECT_GT(paged.paging.pagesLoaded, 0u) << what;
+            EXPECT_EQ(paged.paging.splits, 0) << what << ": the budget holds every page";
+        }
+    }
+}
+
+TEST_F(PagedMap, TinyBudgetEvictsAndStillConvergesToTheSamePicture) {
+    const HeightMap map = synth::cobbles(150, 110, 4);
+    RenderJob job;
+    job.camera = test::orbitCamera(40.0, -30.0, 1.4, {0.0, 0.02, 0.0});
+    job.width = 80;
+    job.height = 60;
+    const HeadlessResult whole = renderWhole(map, job);
+    PagingSettings paging = smallPages();
+    paging.memoryBytes = 12 * 16 * 16 * 4;  // 12 pages of the map's 100 or so
+    const HeadlessResult paged = renderPaged(map, job, paging);
+    expectSamePicture(paged, whole, "12 pages");
+    EXPECT_GT(paged.paging.splits, 0) << "the picture's pages cannot all be resident at once";
+    EXPECT_LE(paged.paging.pagesResident, 12);
+    EXPECT_GT(paged.paging.pagesLoaded, 12u) << "pages were evicted and loaded again";
+}
+
+TEST_F(PagedMap, BudgetBelowWhatOneRayNeedsIsRefused) {
+    const HeightMap map = synth::cobbles(150, 110, 4);
+    RenderJob job;
+    job.camera = test::orbitCamera(40.0, -30.0, 1.4, {0.0, 0.02, 0.0});
+    job.width = 16;
+    job.height = 12;
+    PagingSettings paging = smallPages();
+    paging.memoryBytes = 16 * 16 * 4;  // one page
+    try {
+        (void)renderPaged(map, job, paging);
+        FAIL() << "a one-page budget drew a picture";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find("raise"), std::string::npos) << e.what();
+    }
+    paging.memoryBytes = 100;  // less than a page
+    EXPECT_THROW((void)renderPaged(map, job, paging), Error);
+}
+
+TEST_F(PagedMap, OnlyTheMultilevelMethodReadsPages) {
+    const HeightMap map = synth::cobbles(40, 30, 4);
+    RenderJob job;
+    job.width = job.height = 8;
+    job.method.method = Method::MaxMip;
+    PagingSettings paging = smallPages();
+    paging.mode = PagingSettings::Mode::Always;
+    HeadlessRenderer renderer(test::glContext(), job.method);
+    renderer.setPaging(paging);
+    try {
+        renderer.setHeights(job, map, "small.png");
+        FAIL() << "maxmip took a paged map";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("small.png"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("maxmip"), std::string::npos) << e.what();
+    }
+}
+
+// The map is wider than any texture the GL makes (llvmpipe's and most GPUs' limit is
+// 16384), and larger than the budget several times over: 20000 x 1500 samples, 120 MB of
+// floats, through 16 MiB of pages. Rough everywhere (a sum of sines with no period in the
+// map), seen along its length at a low angle, so that rays run far across it.
+TEST_F(PagedMap, MapPastTheTextureLimitMatchesTheReference) {
+    GLint maxSize = 0;
+    gl().GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    const int width = 20000, height = 1500;
+    if (width <= maxSize) GTEST_SKIP() << "GL_MAX_TEXTURE_SIZE " << maxSize << " holds the map";
+    HeightMap map(width, height);
+    for (int j = 0; j < height; ++j) {
+        for (int i = 0; i < width; ++i) {
+            const double x = i, y = j;
+            map.samples[static_cast<std::size_t>(j) * width + i] = static_cast<float>(
+                0.5 + 0.2 * std::sin(x * 0.0031 + 0.7 * std::sin(y * 0.0023)) +
+                0.15 * std::sin(y * 0.013 - x * 0.004) + 0.1 * std::sin((x + 2.3 * y) * 0.11) +
+                0.05 * std::sin(x * 0.9) * std::cos(y * 0.7));
+        }
+    }
+    RenderJob job;
+    job.camera = test::orbitCamera(14.0, 4.0, 0.12, {0.3, 0.0, 0.0});
+    job.width = 64;
+    job.height = 48;
+    job.heightScale = 0.02f;
+    PagingSettings paging;  // Auto: the size pages it
+    paging.memoryBytes = std::size_t{16} << 20;
+    HeadlessRenderer renderer(test::glContext(), job.method);
+    renderer.setPaging(paging);
+    renderer.setHeights(job, map, "20000x1500");
+    const HeadlessResult r = renderer.render(job);
+    const test::Accuracy a = test::compareWithReference(r.frame, r.camera, map, job.heightScale);
+    std::printf("    %s; %d draws, %zu pages loaded, %d resident, %d splits\n", a.summary().c_str(),
+                r.paging.draws, r.paging.pagesLoaded, r.paging.pagesResident, r.paging.splits);
+    EXPECT_GT(r.paging.pagesLoaded, 0u) << "the map was paged";
+    EXPECT_LE(static_cast<std::size_t>(r.paging.pagesResident) * 256 * 256 * 4, paging.memoryBytes);
+    EXPECT_GT(hits(r.frame), 64u * 48 / 2) << "the terrain fills the picture";
+    EXPECT_LE(a.coverageMismatchPercent(), test::kMaxCoverageMismatchPercent) << a.summary();
+    EXPECT_LE(a.offHalfTexelPercent(), test::kMaxOffHalfTexelPercent) << a.summary();
+    EXPECT_EQ(a.exhausted, 0u) << a.summary();
+}
+
+}  // namespace

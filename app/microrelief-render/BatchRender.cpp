@@ -308,6 +308,7 @@ int runBatch(const RenderOptions& o) {
                     logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
                             context->description());
                 renderer.emplace(*context, frame.scene.job.method);
+                renderer->setPaging(o.paging);
             }
             // A map is loaded and its pyramid built only for a frame whose relief has
             // another pyramid than the last (core/scene/Scene.h: samePyramid).

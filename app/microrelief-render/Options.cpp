@@ -1,5 +1,7 @@
 #include "Options.h"
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 
 #include "SceneOptions.h"
@@ -9,6 +11,12 @@
 namespace microrelief {
 
 namespace {
+
+// The machine's memory, bytes (0 where the system does not say: no bound then).
+std::size_t physicalMemoryBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    return pages > 0 && pageSize > 0 ? static_cast<std::size_t>(pages) * pageSize : 0;
+}
 
 // The camera path flags: what they need of each other. Throws Error(BadInput).
 void applyBatchFlags(const CLI::App& app, RenderOptions& o, const std::string& cameras,
@@ -62,6 +70,12 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     app.add_flag(
         "--compare-reference", o.compareReference,
         "Also trace every pixel with the exact CPU reference and print how the picture differs");
+    std::size_t memoryMib = o.paging.memoryBytes >> 20;
+    app.add_option("--memory", memoryMib,
+                   "GPU memory for the pages of a map larger than the GL's textures, MiB "
+                   "(such a map is read through pages, drawn again until exact)")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
     app.add_flag("-v,--verbose", o.verbose, "Print the GL renderer and shader logs");
     std::string cameras, frames, shard, manifest;
@@ -100,6 +114,10 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         if (!aov.empty()) o.aov = aov;
         applyBatchFlags(app, o, cameras, frames, shard, manifest);
         o.lightSizeGiven = app.count("--light-size") > 0;
+        o.paging.memoryBytes = memoryMib << 20;
+        // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
+        o.scene.job.map.load.maxSide = kMaxPagedHeightMapSide;
+        o.scene.job.map.load.maxSamples = physicalMemoryBytes() / kPagedBytesPerSample;
         return o;
     });
 }

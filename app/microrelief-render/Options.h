@@ -38,6 +38,8 @@ struct RenderOptions {
     bool quiet = false;
     bool verbose = false;
     bool lightSizeGiven = false;  // --light-size on the command line
+    // Maps past the GL's texture size: read through pages, within --memory (MiB).
+    PagingSettings paging;
 };
 
 // The warning for a --light-size that no frame uses (soft shadows are off).

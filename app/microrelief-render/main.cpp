@@ -49,6 +49,13 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
     std::printf("  out of the iteration budget  %8zu px\n", a.exhausted);
 }
 
+// ", paged: 12 draws, 340 pages loaded" for a map read through pages; "" otherwise.
+std::string pagingSummary(const PagingReport& paging) {
+    if (paging.draws == 0) return "";
+    return ", paged: " + std::to_string(paging.draws) + " draws, " +
+           std::to_string(paging.pagesLoaded) + " pages loaded";
+}
+
 int run(const RenderOptions& o) {
     if (o.batch.active()) return runBatch(o);  // a camera path: many frames
     const auto start = std::chrono::steady_clock::now();
@@ -90,8 +97,8 @@ int run(const RenderOptions& o) {
     if (o.verbose)
         logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
                 context->description());
-    const HeadlessResult result =
-        renderHeadless(*context, map, heightFile.string(), job, albedo ? &*albedo : nullptr);
+    const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), job,
+                                                 albedo ? &*albedo : nullptr, o.paging);
     // An animated relief is held to the heights the GPU evaluated, read back.
     const HeightMap& traced = result.animatedMap ? *result.animatedMap : map;
     if (eyeInsideTheSolid(traced, job)) {  // the camera checked by now
@@ -118,9 +125,10 @@ int run(const RenderOptions& o) {
     if (!o.quiet) {
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::printf("%s: wrote %s%s%s (%dx%d, map %dx%d, %.2f s, %s)\n", kProgram, o.out.c_str(),
+        std::printf("%s: wrote %s%s%s (%dx%d, map %dx%d%s, %.2f s, %s)\n", kProgram, o.out.c_str(),
                     o.aov ? " and " : "", o.aov ? o.aov->c_str() : "", frame.width, frame.height,
-                    map.width, map.height, seconds, context->description().c_str());
+                    map.width, map.height, pagingSummary(result.paging).c_str(), seconds,
+                    context->description().c_str());
     }
     return 0;
 }

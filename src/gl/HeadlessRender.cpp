@@ -211,7 +211,8 @@ void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
 }
 
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
-                              const RenderJob& job, const AlbedoImage* albedo) {
+                              const RenderJob& job, const AlbedoImage* albedo,
+                              const PagingSettings& paging) {
     // Refused before the pyramid is built; render checks them again.
     checkHeightScale(job.heightScale);
     checkPictureSize(job.width, job.height);
@@ -220,6 +221,7 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
                      resolveCamera(job.camera, job.width, job.height, 1.0), source);
     // GL objects live in this scope and die before the context does.
     HeadlessRenderer renderer(context, job.method);
+    renderer.setPaging(paging);
     renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
     if (albedo) renderer.setAlbedo(albedo, source + " (albedo)");
     return renderer.render(job);

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <optional>
 
 #include "io/CutOffCheck.h"
 #include "io/ExrCheck.h"
 #include "io/PngCheck.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/heightmap/HeightMap.h"
 
 namespace microrelief {
 
@@ -25,12 +27,22 @@ void checkRegularFile(const std::filesystem::path& file, const std::string& name
 }
 
 void checkSize(const std::string& name, long long width, long long height, int maxSide,
-               const std::string& what) {
+               const std::string& what, std::size_t maxSamples) {
     if (width <= 0 || height <= 0) throwBadInput(name + ": the image is empty (0 pixels)");
     if (width > maxSide || height > maxSide) {
         throwBadInput(name + ": " + std::to_string(width) + " x " + std::to_string(height) +
                       " is larger than the " + std::to_string(maxSide) + " x " +
                       std::to_string(maxSide) + " " + what + " may have");
+    }
+    const double samples = static_cast<double>(width) * static_cast<double>(height);
+    if (maxSamples > 0 && samples > static_cast<double>(maxSamples)) {
+        const auto gib = [](double count) {
+            const double bytes = count * static_cast<double>(kPagedBytesPerSample);
+            return std::to_string(static_cast<long long>(std::ceil(bytes / (1 << 30))));
+        };
+        throwBadInput(name + ": " + std::to_string(width) + " x " + std::to_string(height) +
+                      " samples need about " + gib(samples) + " GiB of memory to draw, more than " +
+                      "this machine's " + gib(static_cast<double>(maxSamples)) + " GiB");
     }
 }
 
@@ -41,7 +53,8 @@ std::string oneLine(std::string text) {
 }
 
 std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& file, int maxSide,
-                                                   const std::string& what) {
+                                                   const std::string& what,
+                                                   std::size_t maxSamples) {
     const std::string name = file.string();
     checkRegularFile(file, name);
     if (hasPngSignature(file)) {
@@ -49,7 +62,7 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         std::string defect;
         const std::optional<PngHeader> header = readPngHeader(file, defect);
         if (!header) throwBadInput(name + ": not a valid PNG (" + defect + ")");
-        checkSize(name, header->width, header->height, maxSide, what);
+        checkSize(name, header->width, header->height, maxSide, what, maxSamples);
         if (const auto bad = pngStructureDefect(file))
             throwBadInput(name + ": not a valid PNG (" + *bad + ")");
     } else if (hasExrMagic(file)) {
@@ -57,7 +70,7 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         const auto parts = readExrHeader(file, defect);
         if (!parts) throwBadInput(name + ": not a valid OpenEXR file (" + defect + ")");
         for (const ExrPartSize& part : *parts)
-            checkSize(name, part.width, part.height, maxSide, what);
+            checkSize(name, part.width, part.height, maxSide, what, maxSamples);
     }
 
     // The reader the extension names, and only that one: OpenImageIO's ImageInput::open
@@ -81,7 +94,7 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         if (reason.empty()) reason = "not a " + std::string(input->format_name()) + " file";
         throwBadInput(name + ": cannot read the image (" + reason + ")");
     }
-    checkSize(name, input->spec().width, input->spec().height, maxSide, what);
+    checkSize(name, input->spec().width, input->spec().height, maxSide, what, maxSamples);
     // A file cut off where its decoder would not say so (a TIFF's strips past its end are
     // read as they are, a JPEG's missing rows as grey): refused, not drawn.
     if (const std::optional<std::string> defect = cutOffDefect(file, input->format_name()))

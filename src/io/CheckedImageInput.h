@@ -7,6 +7,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -15,17 +16,20 @@ namespace microrelief {
 
 // Throws Error(BadInput) naming the file and the reason; `what` ("a height map", "an
 // albedo") in the size message.
+// `maxSamples` (0: none) bounds width x height from the header too (checkSize).
 std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& file, int maxSide,
-                                                   const std::string& what);
+                                                   const std::string& what,
+                                                   std::size_t maxSamples = 0);
 
 // Before a reader sees the path: a device (/dev/zero), a FIFO or a socket never ends or
 // blocks, and format probes would read it forever. Throws Error(BadInput) naming `name`.
 void checkRegularFile(const std::filesystem::path& file, const std::string& name);
-// A size from a header, before anything is allocated: empty, or a side beyond `maxSide`,
-// is refused (Error(BadInput), `what` as above).
+// A size from a header, before anything is allocated: empty, a side beyond `maxSide`, or
+// more samples than `maxSamples` (0: no bound; the message says what drawing them would
+// take in memory, kPagedBytesPerSample a sample) is refused (Error(BadInput), `what` as
+// above).
 void checkSize(const std::string& name, long long width, long long height, int maxSide,
-               const std::string& what);
-
+               const std::string& what, std::size_t maxSamples = 0);
 // OpenImageIO's messages on one line.
 std::string oneLine(std::string text);
 

@@ -166,7 +166,7 @@ HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOpti
         throwBadInput(name + ": the elevation model has no grid on the ground");
 
     const int width = dataset->GetRasterXSize(), height = dataset->GetRasterYSize();
-    checkSize(name, width, height, options.maxSide, "a height map");
+    checkSize(name, width, height, options.maxSide, "a height map", options.maxSamples);
     const int bands = dataset->GetRasterCount();
     if (options.channel < 0 || options.channel >= bands) {
         throwBadInput(name + ": {map.load.channel} " + std::to_string(options.channel) +

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -288,10 +289,10 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     test::writeMap(dir / "negative.exr", negative, PixelType::Float);
     expectRefused(dir / "negative.exr", "--normalize");
 
-    // Wider than the loader's limit (kMaxHeightMapSide), yet a small file: one row of
-    // 40000 zeros.
-    test::writeMap(dir / "huge.png", HeightMap(40000, 1), PixelType::UInt8);
-    expectRefused(dir / "huge.png", "40000 x 1 is larger than the 16384 x 16384");
+    // Wider than the loader's limit (kMaxPagedHeightMapSide), yet a small file: one row of
+    // 70000 zeros.
+    test::writeMap(dir / "huge.png", HeightMap(70000, 1), PixelType::UInt8);
+    expectRefused(dir / "huge.png", "70000 x 1 is larger than the 65536 x 65536");
 
     EXPECT_EQ(filesIn(dir.path()).size(), 8u) << "no temporary file may remain";
 }
@@ -311,13 +312,19 @@ TEST_F(RenderCli, DevicesFifosAndLyingHeadersAreRefusedAtOnce) {
     const auto fifo = dir / "map.png";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     expectRefused(fifo.string(), "not a regular file");
-    // A 69-byte PNG whose header claims 65535 x 40000 (10 GB of floats) and one that
-    // claims 100000 x 100000 (which used to end in std::bad_alloc): refused from the header.
+    // A 69-byte PNG whose header claims 65535 x 40000 (10 GB of floats, about 49 GiB to draw
+    // through pages) and one that claims 100000 x 100000 (which used to end in
+    // std::bad_alloc): refused from the header, the first for this machine's memory where
+    // it has less than that (else for its broken data).
     const auto corpus = std::filesystem::path(MICRORELIEF_FUZZ_CORPUS_DIR);
+    const double memory =
+        static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
     expectRefused((corpus / "claims_65535x40000.png").string(),
-                  "65535 x 40000 is larger than the 16384 x 16384");
+                  memory < 65535.0 * 40000 * kPagedBytesPerSample
+                      ? "65535 x 40000 samples need about 49 GiB of memory to draw"
+                      : "not a valid PNG");
     expectRefused((corpus / "claims_100000x100000.png").string(),
-                  "100000 x 100000 is larger than the 16384 x 16384");
+                  "100000 x 100000 is larger than the 65536 x 65536");
 }
 
 TEST_F(RenderCli, OutputsThatCannotAllBeWrittenAreRefusedBeforeAnyIsTouched) {
@@ -577,3 +584,36 @@ TEST_F(RenderCli, ALightSizeWithoutSoftShadowsIsWarnedOf) {
     ASSERT_EQ(soft.status, 0) << soft.err;
     EXPECT_EQ(soft.err, "");
 }
+
+namespace {
+
+// A map wider than the GL's textures (16384 on llvmpipe): read through pages within
+// --memory, drawn until exact (--compare-reference: no pixel off), the paging said; a
+// --memory out of range refused in one line; the map refused from its header where its
+// samples would not fit the machine's memory.
+class RenderCliPaged : public RenderCli {};
+
+TEST_F(RenderCliPaged, AMapWiderThanTheGlsTexturesIsReadThroughPages) {
+    HeightMap map(17000, 40);
+    for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i)
+            map.at(i, j) = 0.5f + 0.4f * std::sin(i * 0.05f) * std::cos(j * 0.3f);
+    const auto file = dir / "wide.png";
+    test::writeMap(file, map, PixelType::UInt16);
+    const auto out = dir / "paged.png";
+    const test::RunResult r = run(small + "--height " + file.string() +
+                                  " --eye 0.02,0.004,0.01 --target 0,0,0 --height-scale 0.002 "
+                                  "--memory 4 --compare-reference --out " +
+                                  out.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("map 17000x40, paged: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("hit/miss disagreement               0 px"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("off by more than half a texel       0 px"), std::string::npos) << r.out;
+    EXPECT_TRUE(std::filesystem::exists(out));
+    expectFailure(
+        run(small + "--height " + file.string() + " --memory 0 --out " + (dir / "x.png").string()),
+        2, "--memory");
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+}  // namespace

@@ -105,8 +105,10 @@ private:
 // Throws Error(BadInput) for a picture size beyond the limits above.
 void checkPictureSize(int width, int height);
 
-// `source` names the map in error messages. Throws Error.
+// `source` names the map in error messages; `paging`: when and how the map is read through
+// pages (by default, past GL_MAX_TEXTURE_SIZE). Throws Error.
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
-                              const RenderJob& job, const AlbedoImage* albedo = nullptr);
+                              const RenderJob& job, const AlbedoImage* albedo = nullptr,
+                              const PagingSettings& paging = {});
 
 }  // namespace microrelief

@@ -85,6 +85,12 @@ struct HeightMap {
 // take at most 1 GiB (its pyramid 0.67 GiB more on the GPU) before a GL context exists. The
 // renderer checks the GPU's own, possibly lower, limit when it uploads.
 inline constexpr int kMaxHeightMapSide = 16384;
+// The largest side microrelief-render loads: maps past the GL's texture size are read through
+// pages (gl/PagedPyramid.h), their samples and pyramid held in memory (about
+// kPagedBytesPerSample a sample), so the sample count is bounded by the machine's memory too
+// (HeightMapLoadOptions::maxSamples).
+inline constexpr int kMaxPagedHeightMapSide = 65536;
+inline constexpr std::size_t kPagedBytesPerSample = 20;
 // More channels than any height map needs; OpenImageIO reads whole pixels, so this
 // bounds what it holds per scanline.
 inline constexpr int kMaxHeightMapChannels = 1024;
@@ -93,6 +99,8 @@ struct HeightMapLoadOptions {
     int channel = 0;                  // --channel: which image channel holds the heights
     bool normalize = false;           // --normalize: map [min, max] to [0, 1]
     int maxSide = kMaxHeightMapSide;  // larger maps are refused from the header
+    // More samples than this are refused from the header too; 0: no bound beyond maxSide.
+    std::size_t maxSamples = 0;
 };
 
 // The larger image made by repeating `tile` tilesX x tilesY times: what a tiled map is

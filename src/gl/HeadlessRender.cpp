@@ -192,7 +192,8 @@ void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
                               ": one pixel's ray needs more pages than the memory "
                               "budget holds (" +
                               std::to_string(pager->capacity()) + " pages of " +
-                              std::to_string(pager->pageSide()) + "^2 texels): raise {memory}");
+                              std::to_string(pager->pageSide()) +
+                              "^2 texels): raise the memory budget (--memory)");
             }
             ++result.paging.splits;
             const int w0 = (part.width + 1) / 2, h0 = (part.height + 1) / 2;

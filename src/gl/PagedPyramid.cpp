@@ -55,12 +55,12 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
         throwRuntime("PagedPyramid: the pyramid must be untiled, of BoundPrecision::Half");
     const int side = settings.pageSide;
     if (side < 16 || side > 4096 || !std::has_single_bit(static_cast<unsigned>(side)))
-        throwBadInput("{page side} " + std::to_string(side) +
+        throwBadInput("the page side " + std::to_string(side) +
                       " is not a power of two from 16 to 4096");
     shift_ = std::countr_zero(static_cast<unsigned>(side));
     const std::size_t pageBytes = std::size_t{4} << (2 * shift_);
     if (settings.memoryBytes < pageBytes) {
-        throwBadInput("{memory} " + std::to_string(settings.memoryBytes) +
+        throwBadInput("a memory budget of " + std::to_string(settings.memoryBytes) +
                       " bytes hold no page of " + std::to_string(side) + " x " +
                       std::to_string(side) + " texels (" + std::to_string(pageBytes) + " bytes)");
     }

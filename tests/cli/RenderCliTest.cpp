@@ -613,6 +613,12 @@ TEST_F(RenderCliPaged, AMapWiderThanTheGlsTexturesIsReadThroughPages) {
     expectFailure(
         run(small + "--height " + file.string() + " --memory 0 --out " + (dir / "x.png").string()),
         2, "--memory");
+    // 1 MiB: 4 pages, fewer than one ray here reads (a sample page and 4 window levels').
+    expectFailure(run(small + "--height " + file.string() +
+                      " --eye 0.02,0.004,0.01 --target 0,0,0 --height-scale 0.002 --memory 1 "
+                      "--out " +
+                      (dir / "x.png").string()),
+                  2, "raise the memory budget (--memory)");
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 

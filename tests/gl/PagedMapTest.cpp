@@ -82,12 +82,18 @@ TEST_F(PagedMap, PagedPictureIsTheWholeTexturePictureBitForBit) {
     }
 }
 
-TEST_F(PagedMap, TinyBudgetEvictsAndStillConvergesToTheSamePicture) {
-    const HeightMap map = synth::cobbles(150, 110, 4);
+// A view from above at an angle, `width` x `height` pixels.
+RenderJob obliqueView(int width, int height) {
     RenderJob job;
     job.camera = test::orbitCamera(40.0, -30.0, 1.4, {0.0, 0.02, 0.0});
-    job.width = 80;
-    job.height = 60;
+    job.width = width;
+    job.height = height;
+    return job;
+}
+
+TEST_F(PagedMap, TinyBudgetEvictsAndStillConvergesToTheSamePicture) {
+    const HeightMap map = synth::cobbles(150, 110, 4);
+    const RenderJob job = obliqueView(80, 60);
     const HeadlessResult whole = renderWhole(map, job);
     PagingSettings paging = smallPages();
     paging.memoryBytes = 12 * 16 * 16 * 4;  // 12 pages of the map's 100 or so
@@ -100,10 +106,7 @@ TEST_F(PagedMap, TinyBudgetEvictsAndStillConvergesToTheSamePicture) {
 
 TEST_F(PagedMap, BudgetBelowWhatOneRayNeedsIsRefused) {
     const HeightMap map = synth::cobbles(150, 110, 4);
-    RenderJob job;
-    job.camera = test::orbitCamera(40.0, -30.0, 1.4, {0.0, 0.02, 0.0});
-    job.width = 16;
-    job.height = 12;
+    const RenderJob job = obliqueView(16, 12);
     PagingSettings paging = smallPages();
     paging.memoryBytes = 16 * 16 * 4;  // one page
     try {

@@ -37,6 +37,7 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
     : context_(context) {
     context_.makeCurrent();
     renderer_.emplace(context_.gl(), shaderDirectory(), method);
+    renderer_->setPaging(PagingSettings{});  // Auto: it draws a paged map until it is exact
 }
 
 void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,

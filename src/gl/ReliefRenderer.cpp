@@ -129,7 +129,8 @@ ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
 }
 
 bool ReliefRenderer::pages(const HeightMap& map) const {
-    if (paging_.mode == PagingSettings::Mode::Always) return true;
+    if (paging_.mode != PagingSettings::Mode::Auto)
+        return paging_.mode == PagingSettings::Mode::Always;
     GLint maxSize = 0;
     gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     return map.width > maxSize || map.height > maxSize;

@@ -10,6 +10,7 @@
 #include "GlTestBackend.h"
 #include "SweepCases.h"
 #include "TestSupport.h"
+#include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/HeadlessRender.h"
@@ -136,6 +137,26 @@ TEST_F(PagedMap, OnlyTheMultilevelMethodReadsPages) {
         EXPECT_NE(std::string(e.what()).find("small.png"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("maxmip"), std::string::npos) << e.what();
     }
+}
+
+// ReliefRenderer alone draws once: a map past the texture limit is refused there, as
+// before paging, and paged only where asked for (HeadlessRenderer draws until exact).
+TEST_F(PagedMap, ASingleDrawRendererRefusesAMapPastTheTextureLimit) {
+    GLint maxSize = 0;
+    gl().GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    const HeightMap wide(maxSize + 1, 2, 0.5f);
+    ReliefRenderer renderer(gl(), shaderDirectory());
+    try {
+        renderer.setHeightMap(wide, "wide.png");
+        FAIL() << "a single-draw renderer paged the map";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find("GL_MAX_TEXTURE_SIZE"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(renderer.pager(), nullptr);
+    renderer.setPaging(PagingSettings{});  // Auto
+    renderer.setHeightMap(wide, "wide.png");
+    EXPECT_NE(renderer.pager(), nullptr);
 }
 
 // The map is wider than any texture the GL makes (llvmpipe's and most GPUs' limit is

@@ -76,7 +76,8 @@ public:
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
     // Renders `job` of the current map. Throws Error.
     HeadlessResult render(const RenderJob& job);
-    // When setHeightMap / setHeights read a map through pages (ReliefRenderer::setPaging).
+    // When setHeightMap / setHeights read a map through pages (ReliefRenderer::setPaging;
+    // by default Auto: maps larger than GL_MAX_TEXTURE_SIZE).
     void setPaging(const PagingSettings& paging) { renderer_->setPaging(paging); }
     // The largest tile a picture is drawn in, pixels a side (kDefaultTileSide; the GL's
     // limits cap it): a smaller one holds less memory at once. Any side draws the same

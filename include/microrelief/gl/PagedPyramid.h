@@ -28,9 +28,12 @@ namespace microrelief {
 
 // When a map is paged, and how.
 struct PagingSettings {
-    // Auto: maps larger than GL_MAX_TEXTURE_SIZE only; Always: every map (the tests hold
+    // Never: a map larger than GL_MAX_TEXTURE_SIZE is refused (ReliefRenderer's default: a
+    // paged map's picture is exact only when drawn until no page is wanted, which
+    // HeadlessRenderer does and a single draw does not); Auto: such maps are paged (the
+    // default of HeadlessRenderer and microrelief-render); Always: every map (the tests hold
     // the two paths to the same pictures with it).
-    enum class Mode { Auto, Always };
+    enum class Mode { Never, Auto, Always };
     Mode mode = Mode::Auto;
     int pageSide = 256;  // texels a page side: a power of two, 16 to 4096
     // The pool's budget, bytes (--memory): pages of pageSide^2 R32F texels, at least one.

@@ -89,7 +89,10 @@ public:
                       PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
     glm::ivec2 tiles() const { return textures_ ? textures_->tiles() : glm::ivec2(1, 1); }
     // When setHeightMap reads a map through pages (gl/PagedPyramid.h), and how: by default
-    // maps larger than GL_MAX_TEXTURE_SIZE. For the next setHeightMap.
+    // never (Mode::Never: a map larger than GL_MAX_TEXTURE_SIZE is refused), since a paged
+    // map's draw is exact only when repeated until its pager wants nothing
+    // (PagedPyramid::takeWanted, load), as HeadlessRenderer repeats it. For the next
+    // setHeightMap.
     void setPaging(const PagingSettings& paging) { paging_ = paging; }
     const PagingSettings& paging() const { return paging_; }
     // The pager of the map set, where it is paged; else null.
@@ -199,7 +202,7 @@ private:
     ModelTransform model_;
     DepthConvention depth_;
     RebuildCounts rebuilds_;
-    PagingSettings paging_;
+    PagingSettings paging_{PagingSettings::Mode::Never};
     std::optional<ReliefDesc> applied_;  // the relief whose heights the pyramid is of (apply)
 };
 

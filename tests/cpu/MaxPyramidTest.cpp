@@ -48,6 +48,33 @@ std::pair<glm::dvec2, glm::dvec2> randomFootprint(std::mt19937& random, int w, i
     return {lo, hi};
 }
 
+// Every block the max of the finest texels it covers (to the map's edge for the last of a
+// row or column), every window the max of the 2 x 2 blocks from it on: by brute force.
+void expectBlocksAndWindowsFromTheFinest(const MaxPyramid& p, const HeightMap& map) {
+    for (int level = 0; level < p.windowLevelCount(); ++level) {
+        const int w = p.windowLevelWidth(level), h = p.windowLevelHeight(level);
+        for (int q = 0; q < h; ++q) {
+            for (int pp = 0; pp < w; ++pp) {
+                // The block: finest texels from (pp, q) << level, to the map's edge for
+                // the last of a row or column.
+                const int x1 = pp == w - 1 ? map.width : (pp + 1) << level;
+                const int y1 = q == h - 1 ? map.height : (q + 1) << level;
+                float block = 0.0f;
+                for (int j = q << level; j < y1; ++j)
+                    for (int i = pp << level; i < x1; ++i)
+                        block = std::max(block, p.block(0, i, j));
+                ASSERT_EQ(p.block(level, pp, q), block) << level << ": " << pp << "," << q;
+                float window = 0.0f;
+                for (int dq = 0; dq < 2; ++dq)
+                    for (int dp = 0; dp < 2; ++dp)
+                        if (pp + dp < w && q + dq < h)
+                            window = std::max(window, p.block(level, pp + dp, q + dq));
+                ASSERT_EQ(p.window(level, pp, q), window) << level << ": " << pp << "," << q;
+            }
+        }
+    }
+}
+
 }  // namespace
 
 TEST(MaxPyramid, LevelSizesForOddNonSquareMaps) {
@@ -203,33 +230,28 @@ TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoBlocksWithoutPadding) {
         EXPECT_EQ(p.windowLevelHeight(1), 3);
         EXPECT_EQ(p.windowLevelWidth(2), 3);
         EXPECT_EQ(p.windowLevelHeight(2), 1);
-        for (int level = 0; level < p.windowLevelCount(); ++level) {
-            const int w = p.windowLevelWidth(level), h = p.windowLevelHeight(level);
-            for (int q = 0; q < h; ++q) {
-                for (int pp = 0; pp < w; ++pp) {
-                    // The block: finest texels from (pp, q) << level, to the map's edge for
-                    // the last of a row or column.
-                    const int x1 = pp == w - 1 ? map.width : (pp + 1) << level;
-                    const int y1 = q == h - 1 ? map.height : (q + 1) << level;
-                    float block = 0.0f;
-                    for (int j = q << level; j < y1; ++j)
-                        for (int i = pp << level; i < x1; ++i)
-                            block = std::max(block, p.block(0, i, j));
-                    ASSERT_EQ(p.block(level, pp, q), block) << level << ": " << pp << "," << q;
-                    float window = 0.0f;
-                    for (int dq = 0; dq < 2; ++dq)
-                        for (int dp = 0; dp < 2; ++dp)
-                            if (pp + dp < w && q + dq < h)
-                                window = std::max(window, p.block(level, pp + dp, q + dq));
-                    ASSERT_EQ(p.window(level, pp, q), window) << level << ": " << pp << "," << q;
-                }
-            }
-        }
+        expectBlocksAndWindowsFromTheFinest(p, map);
         // The top: the largest finest bound.
         const std::vector<float>& finest = p.blockLevelData(0);
         EXPECT_EQ(p.window(p.windowLevelCount() - 1, 0, 0),
                   *std::max_element(finest.begin(), finest.end()));
     }
+}
+
+// A map large enough to be built in bands on every core (ParallelRows.h) is built as one
+// loop would build it: each finest texel is texelSquareBound of its samples, stored, and
+// the levels above by brute force from them.
+TEST(MaxPyramid, ABuildInBandsEqualsTheTexelByTexelDefinition) {
+    const HeightMap map = synth::whiteNoise(523, 301, 5);  // 157k texels: over 65536, in bands
+    const MaxPyramid p(map, true, BoundPrecision::Half);
+    for (int j = 0; j < map.height; ++j) {
+        for (int i = 0; i < map.width; ++i) {
+            ASSERT_EQ(p.block(0, i, j), storedBound(texelSquareBound(map, i, j, true),
+                                                    BoundPrecision::Half, p.scaleExponent()))
+                << i << "," << j;
+        }
+    }
+    expectBlocksAndWindowsFromTheFinest(p, map);
 }
 
 // Half precision (what the GPU holds): each finest bound rounded up to 11 significant bits

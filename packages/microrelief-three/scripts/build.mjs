@@ -145,7 +145,7 @@ function buildWasm() {
     const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'microrelief-three-'));
     try {
         fs.symlinkSync(path.join(glm, 'glm'), path.join(scratch, 'glm'));
-        const sources = ['src/core/heightmap/MaxPyramid.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/Error.cpp', 'src/core/scene/SceneFields.cpp'].map((f) => path.join(options.source, f));
+        const sources = ['src/core/heightmap/MaxPyramid.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/ParallelRows.cpp', 'src/core/Error.cpp', 'src/core/scene/SceneFields.cpp'].map((f) => path.join(options.source, f));
         for (const f of sources) read(f);
         const glue = path.join(packageDir, 'wasm', 'pyramid_wasm.cpp');
         const shim = path.join(packageDir, 'wasm', 'bit_cast.h');

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "microrelief/core/ParallelRows.h"
+
 namespace microrelief {
 
 namespace {
@@ -165,12 +167,16 @@ float MaxPyramid::finestBound(const HeightMap& map, int i, int j) const {
 }
 
 void MaxPyramid::computeFinest(const HeightMap& map, const TexelRect& rect) {
-    for (int j = rect.y0; j < rect.y1; ++j) {
-        for (int i = rect.x0; i < rect.x1; ++i) {
-            blocks_[0][static_cast<std::size_t>(j) * mapWidth_ + i] =
-                storedBound(finestBound(map, i, j), precision_, scaleExponent_);
+    // Each texel from its samples alone: bands of rows at once (the build's bulk, about
+    // half a microsecond a texel on one core).
+    parallelRows(rect.y0, rect.y1, rect.width(), [&](int y0, int y1) {
+        for (int j = y0; j < y1; ++j) {
+            for (int i = rect.x0; i < rect.x1; ++i) {
+                blocks_[0][static_cast<std::size_t>(j) * mapWidth_ + i] =
+                    storedBound(finestBound(map, i, j), precision_, scaleExponent_);
+            }
         }
-    }
+    });
 }
 
 void MaxPyramid::reduceBlocks(int level, const TexelRect& rect) {
@@ -178,18 +184,20 @@ void MaxPyramid::reduceBlocks(int level, const TexelRect& rect) {
     // every child from 2p on: an odd count's last child too.
     const glm::ivec2 c = windowSizes_[level - 1], size = windowSizes_[level];
     const std::vector<float>& child = blocks_[level - 1];
-    for (int q = rect.y0; q < rect.y1; ++q) {
-        const int qEnd = q == size.y - 1 ? c.y - 1 : std::min(2 * q + 1, c.y - 1);
-        for (int p = rect.x0; p < rect.x1; ++p) {
-            const int pEnd = p == size.x - 1 ? c.x - 1 : std::min(2 * p + 1, c.x - 1);
-            float best = 0.0f;
-            for (int cq = 2 * q; cq <= qEnd; ++cq) {
-                for (int cp = 2 * p; cp <= pEnd; ++cp)
-                    best = std::max(best, child[static_cast<std::size_t>(cq) * c.x + cp]);
+    parallelRows(rect.y0, rect.y1, rect.width(), [&](int y0, int y1) {
+        for (int q = y0; q < y1; ++q) {
+            const int qEnd = q == size.y - 1 ? c.y - 1 : std::min(2 * q + 1, c.y - 1);
+            for (int p = rect.x0; p < rect.x1; ++p) {
+                const int pEnd = p == size.x - 1 ? c.x - 1 : std::min(2 * p + 1, c.x - 1);
+                float best = 0.0f;
+                for (int cq = 2 * q; cq <= qEnd; ++cq) {
+                    for (int cp = 2 * p; cp <= pEnd; ++cp)
+                        best = std::max(best, child[static_cast<std::size_t>(cq) * c.x + cp]);
+                }
+                blocks_[level][static_cast<std::size_t>(q) * size.x + p] = best;
             }
-            blocks_[level][static_cast<std::size_t>(q) * size.x + p] = best;
         }
-    }
+    });
 }
 
 void MaxPyramid::computeWindows(int level, const TexelRect& rect) {
@@ -199,12 +207,14 @@ void MaxPyramid::computeWindows(int level, const TexelRect& rect) {
     auto at = [&](int p, int q) {
         return p < size.x && q < size.y ? blocks[static_cast<std::size_t>(q) * size.x + p] : 0.0f;
     };
-    for (int q = rect.y0; q < rect.y1; ++q) {
-        for (int p = rect.x0; p < rect.x1; ++p) {
-            windows_[level][static_cast<std::size_t>(q) * size.x + p] =
-                std::max({at(p, q), at(p + 1, q), at(p, q + 1), at(p + 1, q + 1)});
+    parallelRows(rect.y0, rect.y1, rect.width(), [&](int y0, int y1) {
+        for (int q = y0; q < y1; ++q) {
+            for (int p = rect.x0; p < rect.x1; ++p) {
+                windows_[level][static_cast<std::size_t>(q) * size.x + p] =
+                    std::max({at(p, q), at(p + 1, q), at(p, q + 1), at(p + 1, q + 1)});
+            }
         }
-    }
+    });
 }
 
 namespace {

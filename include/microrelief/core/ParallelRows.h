@@ -1,0 +1,18 @@
+// Work split by rows over the machine's cores: the CPU builds of the max pyramid (and its
+// paged twin) compute each texel from its inputs alone, so bands of rows can be computed
+// at once and the result is the same, texel for texel, however many threads ran.
+#pragma once
+
+#include <functional>
+
+namespace microrelief {
+
+// Calls band(y0, y1) on disjoint bands of rows [y0, y1) covering [rowBegin, rowEnd), on up
+// to std::thread::hardware_concurrency() threads (the caller's among them), and returns
+// when all are done. Work of fewer than `minCells` cells (rows x rowCells) runs on the
+// caller's thread alone, where starting threads would cost more than it saves. `band`
+// must not throw (a throw ends the program, as it would from any thread).
+void parallelRows(int rowBegin, int rowEnd, long long rowCells,
+                  const std::function<void(int y0, int y1)>& band, long long minCells = 1 << 16);
+
+}  // namespace microrelief

@@ -17,6 +17,7 @@
 #include "Rebuild.h"
 #include "Report.h"
 #include "SceneOptions.h"
+#include "Terrain.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
@@ -191,6 +192,53 @@ auto parseList(const std::string& list, const std::string& single, const std::st
     return items;
 }
 
+// --terrain: its own defaults where the flags were not given, then the run and its files.
+int runTerrain(const CLI::App& app, const BenchOptions& options, std::size_t memoryMib,
+               const std::string& backend, const std::string& outDir) {
+    TerrainOptions terrain;
+    if (app.count("--map-sizes")) terrain.mapSizes = options.mapSizes;
+    if (app.count("--views")) terrain.viewDegrees = options.viewDegrees;
+    if (app.count("--size")) {
+        terrain.width = options.width;
+        terrain.height = options.height;
+    }
+    terrain.frames = options.frames;
+    terrain.memoryBytes = memoryMib << 20;
+    if (terrain.mapSizes.empty()) throwBadInput("--map-sizes names no size");
+    const auto context = createHeadlessContext(parseBackend(backend));
+    const std::filesystem::path folder = outDir;
+    std::vector<TerrainRow> rows;
+    const auto start = std::chrono::steady_clock::now();
+    std::printf(
+        "microrelief-bench --terrain: %zu map sizes; a paged map's pyramid is built on the "
+        "CPU (about 0.2 us a texel on two cores: minutes for the largest)\n",
+        terrain.mapSizes.size());
+    std::fflush(stdout);
+    runTerrainBenchmark(*context, terrain, [&](const TerrainRow& r) {
+        rows.push_back(r);
+        writeTerrainCsv(folder / "terrain.csv", context->renderer(), rows);
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::printf(
+            "[%6.0f s] %5d %-5s %2d deg: prepare %8.1f ms, first %8.1f ms (%d draws, %zu "
+            "pages), frame %7.2f ms, 1 px %7.2f ms, %5.1f fetches, GL %6.0f MiB, process "
+            "%6.0f MiB, %.3f %% / %.3f %% off\n",
+            elapsed, r.mapSize, r.paged ? "paged" : "whole", r.viewDegrees, r.prepareMs, r.firstMs,
+            r.draws, r.pagesLoaded, r.frameMs, r.frameOnePixelMs, r.fetchesMean, r.gpuMiB,
+            r.processMiB, r.coverageMismatchPct, r.offHalfTexelPct);
+        std::fflush(stdout);
+    });
+    const std::string table = terrainTable(context->renderer(), today(), rows);
+    writeTextAtomically(folder / "terrain.md", table);
+    std::string why;
+    const bool plot = writeTerrainPlot(folder, rows, why);
+    if (!plot) std::cerr << "microrelief-bench: warning: no plot: " << why << '\n';
+    std::cout << '\n'
+              << table << "microrelief-bench: wrote " << (folder / "terrain.csv").string()
+              << (plot ? ", terrain.md and terrain.png\n" : " and terrain.md\n");
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -209,6 +257,17 @@ int main(int argc, char** argv) {
                  "after a 64x64 brush dab, beside a frame's trace of the same map (rebuild.csv)");
     app.add_option("--rebuild-sizes", rebuildSizes, "Map sizes for --rebuild, comma-separated")
         ->capture_default_str();
+    bool terrain = false;
+    std::size_t memoryMib = 512;
+    app.add_flag("--terrain", terrain,
+                 "Instead: the multilevel method against map size to terrain scale, in whole "
+                 "textures and through pages (past the GL's texture limit too): preparation, "
+                 "first picture, frame, fetches, memory, accuracy (terrain.csv, terrain.md, "
+                 "terrain.png). Its defaults: --map-sizes 1024,4096,16384,24576, --views 45,80, "
+                 "--size 256x256");
+    app.add_option("--memory", memoryMib, "The page pool's budget for --terrain, MiB")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
     app.add_flag("--quick", quick,
                  "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
                  "(minutes on a CPU)");
@@ -327,7 +386,9 @@ int main(int argc, char** argv) {
             throwBadInput(
                 "--methods names no method (a comma-separated list: multilevel,maxmip,...)");
         checkOutputFolder(outDir);
-        if (rebuild && materials) throwBadInput("--rebuild and --materials: one at a time");
+        if (int(rebuild) + int(materials) + int(terrain) > 1)
+            throwBadInput("--rebuild, --materials and --terrain: one at a time");
+        if (terrain) return runTerrain(app, options, memoryMib, backend, outDir);
         if (rebuild) {
             RebuildOptions rebuildOptions;
             rebuildOptions.width = options.width;

@@ -71,6 +71,10 @@ void HeadlessRenderer::upload(const HeightMap& map, const std::string& source, g
     maxHeight_ = map.maxValue();
 }
 
+std::size_t HeadlessRenderer::gpuBytes() const {
+    return renderer_->textures() ? renderer_->textures()->gpuBytes(context_.gl()) : 0;
+}
+
 bool HeadlessRenderer::needsHeights(const ReliefDesc& relief) const {
     return renderer_->needsHeights(relief);
 }

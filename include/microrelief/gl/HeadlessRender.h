@@ -83,6 +83,11 @@ public:
     // limits cap it): a smaller one holds less memory at once. Any side draws the same
     // picture, bit for bit.
     void setMaxTileSide(int side) { maxTileSide_ = side > 0 ? side : kDefaultTileSide; }
+    // Pictures from the instrumented variant (ReliefRenderer::setMethod's countFetches):
+    // each pixel's texel reads in its statistics output. For measurement only.
+    void setCountFetches(bool count) { renderer_->setMethod(renderer_->method(), count); }
+    // The GL memory the map's textures (and pages, pool and tables) take, bytes.
+    std::size_t gpuBytes() const;
 
 private:
     // The map uploaded by `build` (on the GPU, or on the CPU where the GPU's build fails for

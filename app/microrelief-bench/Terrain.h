@@ -1,0 +1,60 @@
+// microrelief-bench --terrain: the paper's claim at terrain scale (issue 29). For each map
+// size, the benchmark's relief (one continuous relief at every resolution) drawn by the
+// multilevel method through HeadlessRenderer, the way microrelief-render draws it: in
+// whole textures where the GL holds the map, and through pages (gl/PagedPyramid.h) at
+// every size, past the texture limit too. Per size and view: the map's preparation (the
+// pyramid built and uploaded), the first picture (drawn again until no page is wanted:
+// exact), the frame once its pages are resident, exact and at one pixel of error, the
+// fetches per pixel, the GL and process memory, and the picture against the exact CPU
+// reference.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "microrelief/gl/GlContext.h"
+
+namespace microrelief::bench {
+
+struct TerrainOptions {
+    std::vector<int> mapSizes{1024, 4096, 16384, 24576};
+    std::vector<int> viewDegrees{45, 80};
+    int width = 256, height = 256;
+    int frames = 10;                                   // timed frames after the first picture
+    std::size_t memoryBytes = std::size_t{512} << 20;  // the page pool's budget
+};
+
+struct TerrainRow {
+    int mapSize = 0;
+    bool paged = false;  // through pages; else whole textures
+    int viewDegrees = 0;
+    double prepareMs = 0.0;  // setHeightMap: the pyramid built (GPU whole, CPU paged), uploaded
+    double firstMs = 0.0;    // the first picture of this view, until exact, wall
+    int draws = 0;           // its draws (paged: until none wanted a page)
+    std::size_t pagesLoaded = 0;
+    double frameMs = 0.0;          // median picture with its pages resident, exact
+    double frameOnePixelMs = 0.0;  // the same at --pixel-error 1
+    double fetchesMean = 0.0;      // texel reads per pixel whose ray met the relief
+    double gpuMiB = 0.0;           // the map's textures, or pool, coarse texture and tables
+    double processMiB = 0.0;       // the process's resident memory after the row
+    double coverageMismatchPct = 0.0, offHalfTexelPct = 0.0;  // against the CPU reference
+    int width = 0, height = 0;
+};
+
+void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
+                         const std::function<void(const TerrainRow&)>& report);
+
+// terrain.csv (written whole or not at all), and the same as a Markdown table, returned.
+void writeTerrainCsv(const std::filesystem::path& file, const std::string& renderer,
+                     const std::vector<TerrainRow>& rows);
+std::string terrainTable(const std::string& renderer, const std::string& date,
+                         const std::vector<TerrainRow>& rows);
+// terrain.png: frame time and fetches against map size, whole and paged, per view
+// (gnuplot). False with `why` where it cannot.
+bool writeTerrainPlot(const std::filesystem::path& folder, const std::vector<TerrainRow>& rows,
+                      std::string& why);
+
+}  // namespace microrelief::bench

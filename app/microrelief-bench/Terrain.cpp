@@ -1,6 +1,7 @@
 #include "Terrain.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -48,7 +49,7 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
     GLint maxTexture = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
     // A renderer a path for the whole run, so that its programs are compiled once, before
-    // any timing (a picture of a small map at every view), not in a first picture's time.
+    // any timing (pictures of a small map at every view), not in a first picture's time.
     // Between sizes each holds a 2 x 2 map: the large one's textures, pages and CPU
     // pyramid are freed before the next is made.
     const HeightMap small = benchRelief(64), tiny(2, 2);
@@ -66,7 +67,13 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
             job.height = options.height;
             job.camera =
                 viewCamera(degrees, {}, reliefExtent(small, job.heightScale, {}).topHeight);
-            renderer.render(job);
+            // llvmpipe's first frames after start-up ran up to 1.7x slow (Benchmark.cpp):
+            // half a second of pictures first.
+            const auto warmUntil =
+                std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+            do {
+                renderer.render(job);
+            } while (std::chrono::steady_clock::now() < warmUntil);
             renderer.setCountFetches(true);
             renderer.render(job);
             renderer.setCountFetches(false);

@@ -1,5 +1,6 @@
 #include "microrelief/gl/ReliefTextures.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -238,8 +239,13 @@ std::size_t textureBytes(const GL& gl, GLuint texture) {
     const gl::StateGuard saved(gl);
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, texture);
+    // Levels up to log2(GL_MAX_TEXTURE_SIZE) only: past it the query is GL_INVALID_VALUE
+    // (a full chain of a map that wide ends there, and no level follows to answer 0).
+    GLint maxTexture = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    const int lastLevel = std::bit_width(static_cast<unsigned>(std::max(maxTexture, 1))) - 1;
     std::size_t bytes = 0;
-    for (int level = 0;; ++level) {
+    for (int level = 0; level <= lastLevel; ++level) {
         GLint width = 0, height = 0, format = 0;
         gl.GetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &width);
         if (width == 0) break;

@@ -179,6 +179,22 @@ TEST_F(GpuPyramid, UpdateAfterRandomEditsEqualsACpuBuildOfTheEditedMap) {
     EXPECT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// A map as wide as the GL's textures go has a mip chain to level log2(GL_MAX_TEXTURE_SIZE):
+// counting its levels asks no level past that (the GL answers GL_INVALID_VALUE there,
+// which a render later reported as its own error).
+TEST_F(GpuPyramid, MemoryOfAMapAsWideAsTheTextureLimitLeavesNoGlError) {
+    GLint maxTexture = 0;
+    gl().GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    const HeightMap map = synth::whiteNoise(maxTexture, 1, 3);
+    const ReliefTextures textures(gl(), map, "map", false, builder());
+    ASSERT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
+    // The R32F samples (one level) and the R16F windows, maxTexture >> k by 1 per level.
+    std::size_t windows = 0;
+    for (int side = maxTexture; side >= 1; side >>= 1) windows += 2 * side;
+    EXPECT_EQ(textures.gpuBytes(gl()), 4 * static_cast<std::size_t>(maxTexture) + windows);
+    EXPECT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // The memory target (issue 16): at most 8 bytes of GPU memory per map texel for any size,
 // as the GL reports its textures' levels and formats: the R32F samples and the R16F
 // windows, no padding (a size just above a power of two used to cost four times as much);

@@ -35,7 +35,10 @@ struct TerrainRow {
     double firstMs = 0.0;    // the first picture of this view, until exact, wall
     int draws = 0;           // its draws (paged: until none wanted a page)
     std::size_t pagesLoaded = 0;
-    double frameMs = 0.0;          // median picture with its pages resident, exact
+    double frameMs = 0.0;  // median picture after the first, exact
+    // Pages loaded a frame: 0 where the view's pages fit the budget (the frames draw once);
+    // more where they do not, and every frame loads pages again.
+    double pagesPerFrame = 0.0;
     double frameOnePixelMs = 0.0;  // the same at --pixel-error 1
     double fetchesMean = 0.0;      // texel reads per pixel whose ray met the relief
     double gpuMiB = 0.0;           // the map's textures, or pool, coarse texture and tables

@@ -53,11 +53,22 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
     if (pyramid_.precision() != BoundPrecision::Half || pyramid_.addressing().tilesX != 1 ||
         pyramid_.addressing().tilesY != 1)
         throwRuntime("PagedPyramid: the pyramid must be untiled, of BoundPrecision::Half");
-    const int side = settings.pageSide;
-    if (side < 16 || side > 4096 || !std::has_single_bit(static_cast<unsigned>(side)))
-        throwBadInput("the page side " + std::to_string(side) +
+    const int requested = settings.pageSide;
+    if (requested < 16 || requested > 4096 ||
+        !std::has_single_bit(static_cast<unsigned>(requested)))
+        throwBadInput("the page side " + std::to_string(requested) +
                       " is not a power of two from 16 to 4096");
-    shift_ = std::countr_zero(static_cast<unsigned>(side));
+    shift_ = std::countr_zero(static_cast<unsigned>(requested));
+    // The pool is one texture array, a page a layer: where the budget holds more pages than
+    // the GL has layers (GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe and current NVIDIA
+    // drivers: 512 MiB of 256^2 pages), the pages grow, so that the budget is used.
+    GLint maxLayers = 0;
+    gl.GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    maxLayers = std::max(maxLayers, 1);
+    while (shift_ < 12 && settings.memoryBytes / (std::size_t{4} << (2 * shift_)) >
+                              static_cast<std::size_t>(maxLayers))
+        ++shift_;
+    const int side = 1 << shift_;
     const std::size_t pageBytes = std::size_t{4} << (2 * shift_);
     if (settings.memoryBytes < pageBytes) {
         throwBadInput("a memory budget of " + std::to_string(settings.memoryBytes) +
@@ -93,10 +104,8 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
     }
     words.resize(words.size() + pages_.size(), 0u);
 
-    GLint maxLayers = 0;
-    gl.GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    const std::size_t layers = std::min({settings.memoryBytes / pageBytes, pages_.size(),
-                                         static_cast<std::size_t>(std::max(maxLayers, 1))});
+    const std::size_t layers = std::min(
+        {settings.memoryBytes / pageBytes, pages_.size(), static_cast<std::size_t>(maxLayers)});
     for (int layer = static_cast<int>(layers) - 1; layer >= 0; --layer)
         freeLayers_.push_back(layer);
 

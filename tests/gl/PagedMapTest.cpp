@@ -12,8 +12,10 @@
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/gl/PagedPyramid.h"
 
 using namespace microrelief;
 
@@ -119,6 +121,28 @@ TEST_F(PagedMap, BudgetBelowWhatOneRayNeedsIsRefused) {
     }
     paging.memoryBytes = 100;  // less than a page
     EXPECT_THROW((void)renderPaged(map, job, paging), Error);
+}
+
+// The pool is one texture array: a budget of more pages than the GL has layers grows the
+// pages (here 16^2 to 32^2) rather than leaving the budget unused (it was capped at 2048
+// layers: 512 MiB of 256^2 pages, whatever --memory said), and the picture is the same.
+TEST_F(PagedMap, ABudgetPastTheGlsLayersGrowsThePages) {
+    GLint maxLayers = 0;
+    gl().GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    ASSERT_GE(maxLayers, 256);  // GL 4.3's minimum is 2048
+    // At 32^2 more pages than layers: the samples alone have (W / 32) x (H / 32).
+    const int side = 32 * static_cast<int>(std::ceil(std::sqrt(maxLayers + 64.0)));
+    const HeightMap map = synth::cobbles(side, side, 5);
+    PagingSettings settings = smallPages();
+    settings.memoryBytes = std::size_t{4} * maxLayers * (16 * 16 * 4);  // 4 x the layers at 16^2
+    const PagedPyramid pager(gl(), map, MaxPyramid(map, false, BoundPrecision::Half), settings,
+                             "map");
+    EXPECT_EQ(pager.pageSide(), 32);
+    EXPECT_EQ(pager.capacity(), maxLayers) << "the whole budget: maxLayers pages of 32^2";
+    EXPECT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
+
+    const RenderJob job = obliqueView(48, 36);
+    expectSamePicture(renderPaged(map, job, settings), renderWhole(map, job), "pages grown");
 }
 
 TEST_F(PagedMap, OnlyTheMultilevelMethodReadsPages) {

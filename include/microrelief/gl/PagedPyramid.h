@@ -35,7 +35,11 @@ struct PagingSettings {
     // the two paths to the same pictures with it).
     enum class Mode { Never, Auto, Always };
     Mode mode = Mode::Auto;
-    int pageSide = 256;  // texels a page side: a power of two, 16 to 4096
+    // Texels a page side: a power of two, 16 to 4096. The pool is one texture array, a page
+    // a layer: where the budget holds more pages than the GL has layers
+    // (GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe and NVIDIA: 512 MiB of 256^2 pages), the
+    // side doubles until it does not (pageSide() says what was used).
+    int pageSide = 256;
     // The pool's budget, bytes (--memory): pages of pageSide^2 R32F texels, at least one.
     std::size_t memoryBytes = std::size_t{512} << 20;
     // Window levels whose sides are at most this stay whole in one texture.

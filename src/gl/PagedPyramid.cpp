@@ -115,6 +115,16 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, pool_.id());
     gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, side, side, static_cast<GLsizei>(layers), 0,
                   GL_RED, GL_FLOAT, nullptr);
+    // A GL may refuse one texture this large (llvmpipe's limit is 1 GiB a texture): said
+    // here, where the budget can be named, not as a later draw's GL error.
+    if (const GLenum error = gl.GetError(); error == GL_OUT_OF_MEMORY) {
+        throwBadInput(source + ": the GL cannot allocate a page pool of " +
+                      std::to_string((layers * pageBytes) >> 20) + " MiB (" +
+                      std::to_string(layers) + " pages of " + std::to_string(side) + " x " +
+                      std::to_string(side) + " texels): lower the memory budget (--memory)");
+    } else if (error != GL_NO_ERROR) {
+        throwRuntime("GL error " + gl::enumHex(error) + " allocating the page pool for " + source);
+    }
     for (GLenum name : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
         gl.TexParameteri(GL_TEXTURE_2D_ARRAY, name, GL_NEAREST);
     for (GLenum name : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})

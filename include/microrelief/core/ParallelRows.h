@@ -1,6 +1,7 @@
-// Work split by rows over the machine's cores: the CPU builds of the max pyramid (and its
-// paged twin) compute each texel from its inputs alone, so bands of rows can be computed
-// at once and the result is the same, texel for texel, however many threads ran.
+// Work split by rows over the machine's cores: the max pyramid's CPU build
+// (core/heightmap/MaxPyramid.h) computes each texel from its inputs alone, so bands of rows
+// can be computed at once and the result is the same, texel for texel, however many
+// threads ran.
 #pragma once
 
 #include <functional>

@@ -167,8 +167,8 @@ float MaxPyramid::finestBound(const HeightMap& map, int i, int j) const {
 }
 
 void MaxPyramid::computeFinest(const HeightMap& map, const TexelRect& rect) {
-    // Each texel from its samples alone: bands of rows at once (the build's bulk, about
-    // half a microsecond a texel on one core).
+    // Each texel from its samples alone: bands of rows at once (the build's bulk, 0.3 to
+    // 0.5 us a texel on one core here).
     parallelRows(rect.y0, rect.y1, rect.width(), [&](int y0, int y1) {
         for (int j = y0; j < y1; ++j) {
             for (int i = rect.x0; i < rect.x1; ++i) {

@@ -1,7 +1,6 @@
 #include "microrelief/core/ParallelRows.h"
 
 #include <algorithm>
-#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -34,7 +33,7 @@ void parallelRows(int rowBegin, int rowEnd, long long rowCells,
             workers.emplace_back(
                 [&band, y0 = bandStart(started), y1 = bandStart(started + 1)] { band(y0, y1); });
         }
-    } catch (const std::system_error&) {
+    } catch (...) {  // std::system_error (no thread to be had), std::bad_alloc
     }
     for (int k = started; k < threads; ++k) band(bandStart(k), bandStart(k + 1));
     for (std::thread& worker : workers) worker.join();

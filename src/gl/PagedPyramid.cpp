@@ -58,24 +58,6 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
         !std::has_single_bit(static_cast<unsigned>(requested)))
         throwBadInput("the page side " + std::to_string(requested) +
                       " is not a power of two from 16 to 4096");
-    shift_ = std::countr_zero(static_cast<unsigned>(requested));
-    // The pool is one texture array, a page a layer: where the budget holds more pages than
-    // the GL has layers (GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe and current NVIDIA
-    // drivers: 512 MiB of 256^2 pages), the pages grow, so that the budget is used.
-    GLint maxLayers = 0;
-    gl.GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    maxLayers = std::max(maxLayers, 1);
-    while (shift_ < 12 && settings.memoryBytes / (std::size_t{4} << (2 * shift_)) >
-                              static_cast<std::size_t>(maxLayers))
-        ++shift_;
-    const int side = 1 << shift_;
-    const std::size_t pageBytes = std::size_t{4} << (2 * shift_);
-    if (settings.memoryBytes < pageBytes) {
-        throwBadInput("a memory budget of " + std::to_string(settings.memoryBytes) +
-                      " bytes hold no page of " + std::to_string(side) + " x " +
-                      std::to_string(side) + " texels (" + std::to_string(pageBytes) + " bytes)");
-    }
-
     // The page levels: the samples, then the windows down to the first whose sides are at
     // most residentSide (L), which with the coarser ones lies whole in one texture.
     const std::vector<glm::ivec2> sizes =
@@ -86,6 +68,36 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
         ++pagedLevels_;
     if (2 + pagedLevels_ > PageTableLayout::kMaxPageLevels)
         throwBadInput(source + ": too many pyramid levels to page");
+    // Pages of 2^shift a side the map has: level 0 (the samples) and window levels
+    // 0 .. L - 1 have W x H, then the windows' sizes.
+    const auto pageCount = [&](int shift) {
+        std::size_t count = 0;
+        for (int level = 0; level <= pagedLevels_; ++level) {
+            const glm::ivec2 across = (sizes[std::max(level - 1, 0)] + (1 << shift) - 1) >> shift;
+            count += static_cast<std::size_t>(across.x) * across.y;
+        }
+        return count;
+    };
+
+    // The pool is one texture array, a page a layer: where the budget would hold more of
+    // the map's pages than the GL has layers (GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe
+    // and current NVIDIA drivers: 512 MiB of 256^2 pages), the pages grow, so that the
+    // budget is used; where all the map's pages fit the layers, they keep the side asked.
+    shift_ = std::countr_zero(static_cast<unsigned>(requested));
+    GLint maxLayers = 0;
+    gl.GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    maxLayers = std::max(maxLayers, 1);
+    while (shift_ < 12 && std::min(settings.memoryBytes / (std::size_t{4} << (2 * shift_)),
+                                   pageCount(shift_)) > static_cast<std::size_t>(maxLayers))
+        ++shift_;
+    const int side = 1 << shift_;
+    const std::size_t pageBytes = std::size_t{4} << (2 * shift_);
+    if (settings.memoryBytes < pageBytes) {
+        throwBadInput("a memory budget of " + std::to_string(settings.memoryBytes) +
+                      " bytes hold no page of " + std::to_string(side) + " x " +
+                      std::to_string(side) + " texels (" + std::to_string(pageBytes) + " bytes)");
+    }
+
     std::vector<std::uint32_t> words(PageTableLayout::kEntriesAt, 0u);
     words[PageTableLayout::kInfoAt] = static_cast<std::uint32_t>(pagedLevels_);
     words[PageTableLayout::kInfoAt + 1] = static_cast<std::uint32_t>(pyramid_.scaleExponent());

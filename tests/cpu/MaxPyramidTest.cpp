@@ -238,11 +238,12 @@ TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoBlocksWithoutPadding) {
     }
 }
 
-// A map large enough to be built in bands on every core (ParallelRows.h) is built as one
-// loop would build it: each finest texel is texelSquareBound of its samples, stored, and
-// the levels above by brute force from them.
+// A map large enough to be built in bands (ParallelRows.h: work over 65536 cells is split,
+// on a machine of more than one core) is built as one loop would build it: each finest
+// texel is texelSquareBound of its samples, stored, and the levels above by brute force
+// from them. Level 1 too is split (192k blocks).
 TEST(MaxPyramid, ABuildInBandsEqualsTheTexelByTexelDefinition) {
-    const HeightMap map = synth::whiteNoise(523, 301, 5);  // 157k texels: over 65536, in bands
+    const HeightMap map = synth::whiteNoise(1101, 701, 5);
     const MaxPyramid p(map, true, BoundPrecision::Half);
     for (int j = 0; j < map.height; ++j) {
         for (int i = 0; i < map.width; ++i) {

@@ -3,6 +3,7 @@
 // texel for texel, as one loop).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <mutex>
 #include <thread>

@@ -143,6 +143,13 @@ TEST_F(PagedMap, ABudgetPastTheGlsLayersGrowsThePages) {
 
     const RenderJob job = obliqueView(48, 36);
     expectSamePicture(renderPaged(map, job, settings), renderWhole(map, job), "pages grown");
+
+    // A map whose pages all fit the layers keeps the side asked, whatever the budget: the
+    // other tests' 16^2 pages under the default 512 MiB.
+    const HeightMap small = synth::cobbles(150, 110, 5);
+    const PagedPyramid kept(gl(), small, MaxPyramid(small, false, BoundPrecision::Half),
+                            smallPages(), "small");
+    EXPECT_EQ(kept.pageSide(), 16);
 }
 
 TEST_F(PagedMap, OnlyTheMultilevelMethodReadsPages) {

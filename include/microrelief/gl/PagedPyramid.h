@@ -36,7 +36,7 @@ struct PagingSettings {
     enum class Mode { Never, Auto, Always };
     Mode mode = Mode::Auto;
     // Texels a page side: a power of two, 16 to 4096. The pool is one texture array, a page
-    // a layer: where the budget holds more pages than the GL has layers
+    // a layer: where the budget would hold more of the map's pages than the GL has layers
     // (GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe and NVIDIA: 512 MiB of 256^2 pages), the
     // side doubles until it does not (pageSide() says what was used).
     int pageSide = 256;

@@ -48,6 +48,20 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
     });
 }
 
+void HeadlessRenderer::setPyramidPages(std::shared_ptr<const PyramidPages> pages,
+                                       const std::string& source, const BaseShape& base,
+                                       Interpolation interpolation) {
+    context_.makeCurrent();
+    const glm::ivec2 size(pages->mapWidth(), pages->mapHeight());
+    const float largest = pages->largestSample();
+    renderer_->setPyramidPages(std::move(pages), source, base, interpolation);
+    if (animated_) animated_->forgetMap();
+    source_ = source;
+    mapWidth_ = size.x;
+    mapHeight_ = size.y;
+    maxHeight_ = largest;
+}
+
 void HeadlessRenderer::setHeights(const RenderJob& job, const HeightMap& map,
                                   const std::string& source) {
     // With the job's method: the last job's may not run on this relief's base or tiles.

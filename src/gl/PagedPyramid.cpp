@@ -45,14 +45,11 @@ bool hasGl43(const GL& gl) {
 
 }  // namespace
 
-PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
+PagedPyramid::PagedPyramid(const GL& gl, std::shared_ptr<const PyramidPages> pages,
                            const PagingSettings& settings, const std::string& source)
-    : gl_(gl), map_(std::move(map)), pyramid_(std::move(pyramid)) {
+    : gl_(gl), source_(std::move(pages)) {
     if (!hasGl43(gl))
         throwRuntime(source + ": a map read through pages needs OpenGL 4.3 (shader storage)");
-    if (pyramid_.precision() != BoundPrecision::Half || pyramid_.addressing().tilesX != 1 ||
-        pyramid_.addressing().tilesY != 1)
-        throwRuntime("PagedPyramid: the pyramid must be untiled, of BoundPrecision::Half");
     const int requested = settings.pageSide;
     if (requested < 16 || requested > 4096 ||
         !std::has_single_bit(static_cast<unsigned>(requested)))
@@ -61,7 +58,7 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
     // The page levels: the samples, then the windows down to the first whose sides are at
     // most residentSide (L), which with the coarser ones lies whole in one texture.
     const std::vector<glm::ivec2> sizes =
-        windowLevelSizes(pyramid_.mapWidth(), pyramid_.mapHeight());
+        windowLevelSizes(source_->mapWidth(), source_->mapHeight());
     pagedLevels_ = 0;
     while (pagedLevels_ + 1 < static_cast<int>(sizes.size()) &&
            glm::any(glm::greaterThan(sizes[pagedLevels_], glm::ivec2(settings.residentSide))))
@@ -100,7 +97,7 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
 
     std::vector<std::uint32_t> words(PageTableLayout::kEntriesAt, 0u);
     words[PageTableLayout::kInfoAt] = static_cast<std::uint32_t>(pagedLevels_);
-    words[PageTableLayout::kInfoAt + 1] = static_cast<std::uint32_t>(pyramid_.scaleExponent());
+    words[PageTableLayout::kInfoAt + 1] = static_cast<std::uint32_t>(source_->scaleExponent());
     words[PageTableLayout::kInfoAt + 2] = static_cast<std::uint32_t>(shift_);
     for (int level = 0; level <= pagedLevels_ + 1; ++level) {
         // Level 0 (the samples) has window level 0's size, W x H.
@@ -151,7 +148,7 @@ PagedPyramid::PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid,
     for (int k = 0; k < coarseLevels; ++k) {
         const glm::ivec2 size = sizes[pagedLevels_ + k];
         const std::vector<std::uint16_t> halves =
-            storedHalves(pyramid_.windowLevelData(pagedLevels_ + k), pyramid_.scaleExponent());
+            storedHalves(source_->readLevel(1 + pagedLevels_ + k), source_->scaleExponent());
         gl.TexImage2D(GL_TEXTURE_2D, k, GL_R16F, size.x, size.y, 0, GL_RED, GL_HALF_FLOAT,
                       halves.data());
     }
@@ -247,23 +244,22 @@ bool PagedPyramid::load(const std::vector<int>& pages, const std::vector<int>& k
 std::vector<float> PagedPyramid::pageTexels(const Page& page) const {
     // Texels past the level's edge are never read (reads are clamped to the level); 0.
     const int side = pageSide();
-    std::vector<float> texels(static_cast<std::size_t>(side) * side, 0.0f);
-    const int k = page.level - 1;  // the window level, -1 for the samples
-    const int width = k < 0 ? map_.width : pyramid_.windowLevelWidth(k);
-    const int height = k < 0 ? map_.height : pyramid_.windowLevelHeight(k);
-    const std::vector<float>& data = k < 0 ? map_.samples : pyramid_.windowLevelData(k);
-    const int columns = std::min(side, width - page.origin.x);
-    const int rows = std::min(side, height - page.origin.y);
-    for (int y = 0; y < rows; ++y) {
-        const std::size_t from =
-            static_cast<std::size_t>(page.origin.y + y) * width + page.origin.x;
-        float* to = texels.data() + static_cast<std::size_t>(y) * side;
-        for (int x = 0; x < columns; ++x) {
-            // Windows as the coarse texture holds them (bound / 2^S, a half exactly).
-            to[x] = k < 0 ? data[from + x] : std::ldexp(data[from + x], -pyramid_.scaleExponent());
-        }
+    const glm::ivec2 size = source_->levelSize(page.level);
+    const TexelRect rect{page.origin.x, page.origin.y, std::min(size.x, page.origin.x + side),
+                         std::min(size.y, page.origin.y + side)};
+    std::vector<float> texels(static_cast<std::size_t>(rect.width()) * rect.height());
+    source_->read(page.level, rect, texels.data());
+    // Windows as the coarse texture holds them (bound / 2^S, a half exactly).
+    if (page.level > 0) {
+        for (float& texel : texels) texel = std::ldexp(texel, -source_->scaleExponent());
     }
-    return texels;
+    if (rect.width() == side && rect.height() == side) return texels;
+    std::vector<float> padded(static_cast<std::size_t>(side) * side, 0.0f);
+    for (int y = 0; y < rect.height(); ++y) {
+        std::copy_n(texels.begin() + static_cast<std::ptrdiff_t>(y) * rect.width(), rect.width(),
+                    padded.begin() + static_cast<std::ptrdiff_t>(y) * side);
+    }
+    return padded;
 }
 
 void PagedPyramid::setEntry(int page, std::uint32_t entry) {

@@ -256,6 +256,28 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     uploadBox();
 }
 
+void ReliefRenderer::setPyramidPages(std::shared_ptr<const PyramidPages> pages,
+                                     const std::string& source, const BaseShape& base,
+                                     Interpolation interpolation) {
+    validateBaseShape(base);
+    if (base.wrapsU() != pages->wrapsU()) {
+        throwBadInput(source + ": its pyramid was built for " +
+                      (pages->wrapsU() ? "a curved base" : "the plane") + ", not this base");
+    }
+    checkMethodSupportsBase(method_.method, base);
+    checkPagedMap(method_.method, {1, 1}, source);
+    program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
+                      false, false, true));
+    const int width = pages->mapWidth(), height = pages->mapHeight();
+    textures_.emplace(ReliefTextures(gl_, std::move(pages), source, paging_));
+    ++rebuilds_.pyramids;
+    applied_.reset();
+    base_ = base;
+    interpolation_ = interpolation;
+    maxIterations_ = traversalBudget(width, height);
+    uploadBox();
+}
+
 void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {
     if (!albedo) {
         albedo_.reset();

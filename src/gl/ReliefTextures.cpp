@@ -91,20 +91,30 @@ ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::st
 
 ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
                                bool wrapU, const PagingSettings& paging)
-    : wrapU_(wrapU) {
+    : ReliefTextures(gl, keptInMemory(map, source, wrapU), source, paging) {}
+
+std::shared_ptr<const PyramidPages> ReliefTextures::keptInMemory(const HeightMap& map,
+                                                                 const std::string& source,
+                                                                 bool wrapU) {
     MaxPyramid pyramid = buildPyramid(map, source, {wrapU, 1, 1});
-    shape_.size = {map.width, map.height};
-    levelSizes_ = windowLevelSizes(map.width, map.height);
-    shape_.pyramidSize = levelSizes_.front();
-    shape_.levelCount = static_cast<int>(levelSizes_.size());
-    shape_.maxHeight = pyramid.maxHeight();
-    scaleExponent_ = pyramid.scaleExponent();
     try {
-        paged_ = std::make_unique<PagedPyramid>(gl, map, std::move(pyramid), paging, source);
+        return std::make_shared<PyramidInMemory>(map, std::move(pyramid));
     } catch (const std::bad_alloc&) {
         throwRuntime(source + ": not enough memory to keep its " + std::to_string(map.width) + "x" +
                      std::to_string(map.height) + " samples and pyramid for paging");
     }
+}
+
+ReliefTextures::ReliefTextures(const GL& gl, std::shared_ptr<const PyramidPages> pages,
+                               const std::string& source, const PagingSettings& paging)
+    : wrapU_(pages->wrapsU()) {
+    shape_.size = {pages->mapWidth(), pages->mapHeight()};
+    levelSizes_ = windowLevelSizes(pages->mapWidth(), pages->mapHeight());
+    shape_.pyramidSize = levelSizes_.front();
+    shape_.levelCount = static_cast<int>(levelSizes_.size());
+    shape_.maxHeight = pages->maxHeight();
+    scaleExponent_ = pages->scaleExponent();
+    paged_ = std::make_unique<PagedPyramid>(gl, std::move(pages), paging, source);
     const gl::StateGuard saved(gl);
     gl.ActiveTexture(GL_TEXTURE0);
     samples_ = gl::Texture::create(gl);
@@ -288,8 +298,11 @@ std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, cons
 }
 
 HeightMap ReliefTextures::readSamples(const GL& gl) const {
-    if (paged_) return paged_->map();
     HeightMap map(shape_.size.x, shape_.size.y);
+    if (paged_) {
+        map.samples = paged_->pages().readLevel(0);
+        return map;
+    }
     map.samples = readTextureLevel(gl, samples_.id(), 0, map.width, map.height);
     return map;
 }

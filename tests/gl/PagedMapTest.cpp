@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "GlTestBackend.h"
@@ -13,6 +14,7 @@
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/heightmap/PyramidPages.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/gl/PagedPyramid.h"
@@ -50,6 +52,10 @@ protected:
         return n;
     }
 };
+
+std::shared_ptr<const PyramidPages> inMemory(const HeightMap& map) {
+    return std::make_shared<PyramidInMemory>(map, MaxPyramid(map, false, BoundPrecision::Half));
+}
 
 // Small pages and a small resident side, so that the samples and several window levels
 // are paged; a budget that holds every page.
@@ -135,8 +141,7 @@ TEST_F(PagedMap, ABudgetPastTheGlsLayersGrowsThePages) {
     const HeightMap map = synth::cobbles(side, side, 5);
     PagingSettings settings = smallPages();
     settings.memoryBytes = std::size_t{4} * maxLayers * (16 * 16 * 4);  // 4 x the layers at 16^2
-    const PagedPyramid pager(gl(), map, MaxPyramid(map, false, BoundPrecision::Half), settings,
-                             "map");
+    const PagedPyramid pager(gl(), inMemory(map), settings, "map");
     EXPECT_EQ(pager.pageSide(), 32);
     EXPECT_EQ(pager.capacity(), maxLayers) << "the whole budget: maxLayers pages of 32^2";
     EXPECT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
@@ -147,8 +152,7 @@ TEST_F(PagedMap, ABudgetPastTheGlsLayersGrowsThePages) {
     // A map whose pages all fit the layers keeps the side asked, whatever the budget: the
     // other tests' 16^2 pages under the default 512 MiB.
     const HeightMap small = synth::cobbles(150, 110, 5);
-    const PagedPyramid kept(gl(), small, MaxPyramid(small, false, BoundPrecision::Half),
-                            smallPages(), "small");
+    const PagedPyramid kept(gl(), inMemory(small), smallPages(), "small");
     EXPECT_EQ(kept.pageSide(), 16);
 }
 

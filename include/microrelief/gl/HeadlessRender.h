@@ -62,6 +62,11 @@ public:
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       glm::ivec2 tiles = {1, 1});
+    // The same for a map whose samples and pyramid `pages` keeps (ReliefRenderer::
+    // setPyramidPages): read through pages.
+    void setPyramidPages(std::shared_ptr<const PyramidPages> pages, const std::string& source,
+                         const BaseShape& base = {},
+                         Interpolation interpolation = Interpolation::Bilinear);
     // The same, for the relief of `job` with its method (ReliefRenderer::apply): `map`
     // holds the heights its map source names (loaded by the caller). Then needsHeights says
     // whether another relief needs heights of its own: no map yet, or one set for another

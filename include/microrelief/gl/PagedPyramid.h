@@ -5,9 +5,10 @@
 // a texel from its page where the page is resident and otherwise stands in for it with a
 // bound above it, and records the page as wanted (takeWanted); the host loads what was
 // wanted (load) and draws again, until a draw wants nothing: that picture is the one the
-// whole map gives, bit for bit (gl/HeadlessRender.h draws so). Pages are loaded from the
-// map and the pyramid kept on the CPU; the least recently wanted go first when the pool is
-// full.
+// whole map gives, bit for bit (gl/HeadlessRender.h draws so). Pages are cut from the
+// samples and windows as PyramidPages keeps them (core/heightmap/PyramidPages.h: in memory,
+// or in a pyramid file on disk, io/PyramidFile.h); the least recently wanted go first when
+// the pool is full.
 //
 // GL 4.3 (shader storage in the fragment shader); the multilevel method only.
 #pragma once
@@ -19,8 +20,9 @@
 
 #include <glm/glm.hpp>
 
-#include "microrelief/core/heightmap/HeightMap.h"
-#include "microrelief/core/heightmap/MaxPyramid.h"
+#include <memory>
+
+#include "microrelief/core/heightmap/PyramidPages.h"
 #include "microrelief/gl/Gl.h"
 #include "microrelief/gl/Objects.h"
 
@@ -59,11 +61,11 @@ struct PageTableLayout {
 
 class PagedPyramid {
 public:
-    // `pyramid` is `map`'s (BoundPrecision::Half, untiled); both are kept: pages are cut
-    // from them as they are wanted. Throws Error(BadInput) naming `source` for settings out
-    // of range, Error(Runtime) where the GL lacks what paging needs (GL 4.3).
-    PagedPyramid(const GL& gl, HeightMap map, MaxPyramid pyramid, const PagingSettings& settings,
-                 const std::string& source);
+    // Pages are cut from `pages` as they are wanted (a file's reader may throw then, for a
+    // corrupt page). Throws Error(BadInput) naming `source` for settings out of range,
+    // Error(Runtime) where the GL lacks what paging needs (GL 4.3).
+    PagedPyramid(const GL& gl, std::shared_ptr<const PyramidPages> pages,
+                 const PagingSettings& settings, const std::string& source);
 
     GLuint pool() const { return pool_.id(); }
     GLuint coarse() const { return coarse_.id(); }
@@ -77,8 +79,7 @@ public:
     int residentCount() const { return residentCount_; }
     std::size_t pagesLoaded() const { return pagesLoaded_; }
     std::size_t pagesEvicted() const { return pagesEvicted_; }
-    const MaxPyramid& pyramid() const { return pyramid_; }
-    const HeightMap& map() const { return map_; }
+    const PyramidPages& pages() const { return *source_; }
     // The pool, the coarse texture and the two buffers, bytes.
     std::size_t gpuBytes() const;
 
@@ -103,8 +104,7 @@ private:
     void setEntry(int page, std::uint32_t entry);
 
     const GL& gl_;
-    HeightMap map_;
-    MaxPyramid pyramid_;
+    std::shared_ptr<const PyramidPages> source_;
     int shift_ = 8;
     int pagedLevels_ = 0;
     std::vector<Page> pages_;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -87,6 +88,12 @@ public:
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
+    // The same for a map whose samples and pyramid `pages` keeps (a pyramid file,
+    // io/PyramidFile.h): always read through pages, whatever setPaging says but its budget
+    // and page side; untiled.
+    void setPyramidPages(std::shared_ptr<const PyramidPages> pages, const std::string& source,
+                         const BaseShape& base = {},
+                         Interpolation interpolation = Interpolation::Bilinear);
     glm::ivec2 tiles() const { return textures_ ? textures_->tiles() : glm::ivec2(1, 1); }
     // When setHeightMap reads a map through pages (gl/PagedPyramid.h), and how: by default
     // never (Mode::Never: a map larger than GL_MAX_TEXTURE_SIZE is refused), since a paged

@@ -66,6 +66,10 @@ public:
     // no cone maps, no edits (those throw Error(Runtime)).
     ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
                    const PagingSettings& paging);
+    // The same from a pyramid kept elsewhere (a pyramid file: io/PyramidFile.h), which may be
+    // larger than memory: nothing of it is read until a draw wants it but the coarse levels.
+    ReliefTextures(const GL& gl, std::shared_ptr<const PyramidPages> pages,
+                   const std::string& source, const PagingSettings& paging);
     // The pager of a paged map; null for one in whole textures.
     PagedPyramid* paged() { return paged_.get(); }
     const PagedPyramid* paged() const { return paged_.get(); }
@@ -134,6 +138,10 @@ public:
 
 private:
     friend class PyramidBuilder;  // writes S and maxHeight after a build or an update
+
+    // `map` and its pyramid (built on the CPU), kept for paging.
+    static std::shared_ptr<const PyramidPages> keptInMemory(const HeightMap& map,
+                                                            const std::string& source, bool wrapU);
 
     void allocate(const GL& gl, const HeightMap& map);
     void allocateAligned(const GL& gl);

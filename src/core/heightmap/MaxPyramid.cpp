@@ -109,6 +109,10 @@ float storedBound(float bound, BoundPrecision precision, int scaleExponent) {
     return std::bit_cast<float>(std::max(roundUpToHalfBits(bits), smallest));
 }
 
+float pyramidTop(float largestSample) {
+    return std::bit_cast<float>(roundUpToHalfBits(magnitudeBits(largestSample)));
+}
+
 std::vector<glm::ivec2> windowLevelSizes(int mapWidth, int mapHeight) {
     std::vector<glm::ivec2> sizes;
     for (glm::ivec2 size(mapWidth, mapHeight);; size = glm::max(size >> 1, glm::ivec2(1))) {
@@ -136,12 +140,8 @@ MaxPyramid::MaxPyramid(const HeightMap& map, const MapAddressing& addressing,
 }
 
 void MaxPyramid::build(const HeightMap& map) {
-    // S comes from the top, which is the largest sample (no bound exceeds its nine samples,
-    // and the square of the largest sample has it among them) rounded up.
-    scaleExponent_ = precision_ == BoundPrecision::Half
-                         ? pyramidScaleExponent(std::bit_cast<float>(
-                               roundUpToHalfBits(magnitudeBits(map.maxValue()))))
-                         : 0;
+    scaleExponent_ =
+        precision_ == BoundPrecision::Half ? pyramidScaleExponent(pyramidTop(map.maxValue())) : 0;
     computeFinest(map, {0, 0, mapWidth_, mapHeight_});
     for (int level = 0; level < windowLevelCount(); ++level) {
         if (level > 0) reduceBlocks(level, {0, 0, windowSizes_[level].x, windowSizes_[level].y});

@@ -96,6 +96,10 @@ enum class BoundPrecision { Float, Half };
 // [-112, 113] so that 2^S and 2^(S - 14) are normal floats. Then the top, below 2^(e+1),
 // is held below 2^15, within a half's range (65504).
 int pyramidScaleExponent(float top);
+// The top of a Half pyramid whose largest sample is `largestSample` (>= 0): that sample
+// rounded up to 11 significant bits (no bound exceeds its nine samples, and the largest
+// sample's own texel square has it among them). Its pyramidScaleExponent is the pyramid's S.
+float pyramidTop(float largestSample);
 // The finest bound `bound` (>= 0) as kept: Float, itself; Half, rounded up to 11 significant
 // bits (the bits plus 2^13 - 1, the low 13 cleared: a carry moves into the exponent) and
 // raised to at least 2^(S - 14), the smallest normal half times 2^S, when it is not 0. Both

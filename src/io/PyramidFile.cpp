@@ -1,0 +1,423 @@
+#include "microrelief/io/PyramidFile.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <utility>
+
+#include "io/CheckedImageInput.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/io/AtomicFile.h"
+
+namespace microrelief {
+
+namespace {
+
+constexpr char kMagic[8] = {'M', 'R', 'P', 'Y', 'R', 'A', 'M', 'D'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::size_t kFixedBytes = 48;  // magic to the pages' offset
+constexpr std::uint64_t kAlign = 4096;
+// The largest side a pyramid file may claim: 2^20 (four times the 65536 the programs make);
+// with it every count and offset below fits 64 bits.
+constexpr std::uint32_t kMaxSide = 1u << 20;
+constexpr std::uint32_t kMaxKeyBytes = 1u << 16;
+
+std::uint32_t crcOf(const void* data, std::size_t size) {
+    return static_cast<std::uint32_t>(
+        crc32_z(crc32_z(0L, Z_NULL, 0), static_cast<const Bytef*>(data), size));
+}
+
+void put32(std::vector<unsigned char>& bytes, std::size_t at, std::uint32_t value) {
+    for (int k = 0; k < 4; ++k) bytes[at + k] = static_cast<unsigned char>(value >> (8 * k));
+}
+void put64(std::vector<unsigned char>& bytes, std::size_t at, std::uint64_t value) {
+    for (int k = 0; k < 8; ++k) bytes[at + k] = static_cast<unsigned char>(value >> (8 * k));
+}
+std::uint32_t get32(const unsigned char* bytes) {
+    std::uint32_t value = 0;
+    for (int k = 0; k < 4; ++k) value |= static_cast<std::uint32_t>(bytes[k]) << (8 * k);
+    return value;
+}
+std::uint64_t get64(const unsigned char* bytes) {
+    std::uint64_t value = 0;
+    for (int k = 0; k < 8; ++k) value |= static_cast<std::uint64_t>(bytes[k]) << (8 * k);
+    return value;
+}
+
+// Pages a side each page level has, and where each level's first page is.
+struct PageGrid {
+    std::vector<glm::ivec2> across;  // per page level
+    std::vector<int> first;
+    std::uint64_t count = 0;
+};
+PageGrid pageGrid(int width, int height, int shift) {
+    const std::vector<glm::ivec2> windows = windowLevelSizes(width, height);
+    PageGrid grid;
+    for (std::size_t level = 0; level <= windows.size(); ++level) {
+        const glm::ivec2 size = windows[level > 0 ? level - 1 : 0];
+        const glm::ivec2 across = (size + (1 << shift) - 1) >> shift;
+        grid.across.push_back(across);
+        grid.first.push_back(static_cast<int>(grid.count));
+        grid.count += static_cast<std::uint64_t>(across.x) * across.y;
+    }
+    return grid;
+}
+
+std::uint64_t dataOffsetFor(std::size_t keyBytes, std::uint64_t pages) {
+    const std::uint64_t header = kFixedBytes + keyBytes + 4 * pages + 4;
+    return (header + kAlign - 1) / kAlign * kAlign;
+}
+
+std::string errnoText() {
+    return std::strerror(errno);
+}
+
+}  // namespace
+
+void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bool wrapU,
+                      const std::string& sourceKey, const std::string& source, int pageSide,
+                      const BuildProgress& progress) {
+    if (pageSide < 16 || pageSide > 4096 || (pageSide & (pageSide - 1)) != 0)
+        throwRuntime("writePyramidFile: the page side must be a power of two from 16 to 4096");
+    if (sourceKey.size() > kMaxKeyBytes) throwRuntime("writePyramidFile: a source key too long");
+    const int shift = std::countr_zero(static_cast<unsigned>(pageSide));
+    const PageGrid grid = pageGrid(rows.width, rows.height, shift);
+    if (grid.count > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
+        throwBadInput(source + ": too many pages for a pyramid file");
+    const std::uint64_t pageBytes = std::uint64_t{4} << (2 * shift);
+    const std::uint64_t dataOffset = dataOffsetFor(sourceKey.size(), grid.count);
+    std::vector<std::uint32_t> crcs(grid.count, 0u);
+
+    FileWriteBatch batch;
+    StagedFile& out = batch.stage(file);
+    // Each page level's band of rows, cut into pages when full or at the level's last row.
+    const std::vector<glm::ivec2> windows = windowLevelSizes(rows.width, rows.height);
+    std::vector<std::vector<float>> bands(grid.across.size());
+    std::vector<float> page(static_cast<std::size_t>(pageSide) * pageSide);
+    const PyramidRowSink sink = [&](int level, int row, const float* texels) {
+        const glm::ivec2 size = windows[level > 0 ? level - 1 : 0];
+        std::vector<float>& band = bands[level];
+        band.resize(static_cast<std::size_t>(size.x) * pageSide);
+        const int inBand = row & (pageSide - 1);
+        std::copy_n(texels, size.x, band.begin() + static_cast<std::ptrdiff_t>(inBand) * size.x);
+        if (inBand != pageSide - 1 && row != size.y - 1) return;
+        const int rowsHere = inBand + 1;
+        const int pageRow = row >> shift;
+        for (int px = 0; px < grid.across[level].x; ++px) {
+            std::fill(page.begin(), page.end(), 0.0f);
+            const int x0 = px << shift, columns = std::min(pageSide, size.x - x0);
+            for (int y = 0; y < rowsHere; ++y) {
+                std::copy_n(band.begin() + static_cast<std::ptrdiff_t>(y) * size.x + x0, columns,
+                            page.begin() + static_cast<std::ptrdiff_t>(y) * pageSide);
+            }
+            const std::uint64_t id =
+                grid.first[level] + static_cast<std::uint64_t>(pageRow) * grid.across[level].x + px;
+            crcs[id] = crcOf(page.data(), pageBytes);
+            out.writeAt(page.data(), pageBytes, dataOffset + id * pageBytes);
+        }
+        if (row == size.y - 1) std::vector<float>().swap(band);  // the level is done
+    };
+    const StreamedPyramid streamed = streamPyramid(rows, wrapU, pageSide, sink, source, progress);
+
+    std::vector<unsigned char> header(kFixedBytes + sourceKey.size() + 4 * grid.count + 4, 0);
+    std::memcpy(header.data(), kMagic, sizeof kMagic);
+    put32(header, 8, kVersion);
+    put32(header, 12, static_cast<std::uint32_t>(rows.width));
+    put32(header, 16, static_cast<std::uint32_t>(rows.height));
+    put32(header, 20, wrapU ? 1u : 0u);
+    put32(header, 24, static_cast<std::uint32_t>(shift));
+    put32(header, 28, std::bit_cast<std::uint32_t>(streamed.largestSample));
+    put32(header, 32, static_cast<std::uint32_t>(sourceKey.size()));
+    put32(header, 36, static_cast<std::uint32_t>(grid.count));
+    put64(header, 40, dataOffset);
+    std::memcpy(header.data() + kFixedBytes, sourceKey.data(), sourceKey.size());
+    for (std::uint64_t k = 0; k < grid.count; ++k)
+        put32(header, kFixedBytes + sourceKey.size() + 4 * k, crcs[k]);
+    const std::size_t crcAt = header.size() - 4;
+    put32(header, crcAt, crcOf(header.data(), crcAt));
+    out.writeAt(header.data(), header.size(), 0);
+    out.finish();
+    batch.commit();
+}
+
+std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    checkRegularFile(file, name);
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throwBadInput(name + ": cannot open (" + errnoText() + ")");
+    struct Closer {
+        int fd;
+        bool keep = false;
+        ~Closer() {
+            if (!keep) ::close(fd);
+        }
+    } closer{fd};
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throwBadInput(name + ": cannot stat (" + errnoText() + ")");
+    const auto fileBytes = static_cast<std::uint64_t>(st.st_size);
+    const auto readExactly = [&](void* to, std::size_t size, std::uint64_t at) {
+        auto* bytes = static_cast<unsigned char*>(to);
+        for (std::size_t done = 0; done < size;) {
+            const ssize_t got =
+                ::pread(fd, bytes + done, size - done, static_cast<off_t>(at + done));
+            if (got < 0 && errno == EINTR) continue;
+            if (got <= 0) throwBadInput(name + ": cannot read its header (truncated)");
+            done += static_cast<std::size_t>(got);
+        }
+    };
+    const std::string notOurs = name + ": not a microrelief pyramid file";
+    if (fileBytes < kFixedBytes)
+        throwBadInput(notOurs + " (" + std::to_string(fileBytes) + " bytes)");
+    std::vector<unsigned char> header(kFixedBytes);
+    readExactly(header.data(), kFixedBytes, 0);
+    if (std::memcmp(header.data(), kMagic, sizeof kMagic) != 0) throwBadInput(notOurs);
+    if (const std::uint32_t version = get32(&header[8]); version != kVersion) {
+        throwBadInput(name + ": a pyramid file of version " + std::to_string(version) +
+                      "; this build reads version " + std::to_string(kVersion) +
+                      " (delete it to build it again)");
+    }
+    const std::uint32_t width = get32(&header[12]), height = get32(&header[16]),
+                        wrap = get32(&header[20]), shift = get32(&header[24]),
+                        keyBytes = get32(&header[32]), pages = get32(&header[36]);
+    const float largest = std::bit_cast<float>(get32(&header[28]));
+    const std::uint64_t dataOffset = get64(&header[40]);
+    const std::string corrupt = name + ": the pyramid file's header is corrupt";
+    if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide || wrap > 1 || shift < 4 ||
+        shift > 12 || keyBytes > kMaxKeyBytes || !(std::isfinite(largest) && largest >= 0.0f))
+        throwBadInput(corrupt);
+    const PageGrid grid =
+        pageGrid(static_cast<int>(width), static_cast<int>(height), static_cast<int>(shift));
+    if (grid.count != pages || dataOffset != dataOffsetFor(keyBytes, pages)) throwBadInput(corrupt);
+    const std::uint64_t pageBytes = std::uint64_t{4} << (2 * shift);
+    const std::uint64_t expected = dataOffset + pages * pageBytes;
+    if (fileBytes != expected) {
+        throwBadInput(name + ": " + std::to_string(fileBytes) + " bytes where its header says " +
+                      std::to_string(expected) + (fileBytes < expected ? " (truncated)" : "") +
+                      "; delete it to build it again");
+    }
+    header.resize(kFixedBytes + keyBytes + 4 * std::size_t{pages} + 4);
+    readExactly(header.data() + kFixedBytes, header.size() - kFixedBytes, kFixedBytes);
+    const std::size_t crcAt = header.size() - 4;
+    if (get32(&header[crcAt]) != crcOf(header.data(), crcAt))
+        throwBadInput(corrupt + " (its CRC-32 differs); delete it to build it again");
+    std::string key(reinterpret_cast<const char*>(header.data()) + kFixedBytes, keyBytes);
+    std::vector<std::uint32_t> crcs(pages);
+    for (std::uint32_t k = 0; k < pages; ++k)
+        crcs[k] = get32(&header[kFixedBytes + keyBytes + 4 * k]);
+    closer.keep = true;
+    return std::shared_ptr<const PyramidFile>(new PyramidFile(
+        file, fd, static_cast<int>(width), static_cast<int>(height), wrap == 1, largest,
+        static_cast<int>(shift), std::move(key), std::move(crcs), dataOffset));
+}
+
+PyramidFile::PyramidFile(const std::filesystem::path& path, int fd, int width, int height,
+                         bool wrapU, float largestSample, int shift, std::string sourceKey,
+                         std::vector<std::uint32_t> crcs, std::uint64_t dataOffset)
+    : PyramidPages(width, height, wrapU, largestSample),
+      path_(path),
+      fd_(fd),
+      shift_(shift),
+      sourceKey_(std::move(sourceKey)),
+      crcs_(std::move(crcs)),
+      firstPage_(pageGrid(width, height, shift).first),
+      dataOffset_(dataOffset) {}
+
+PyramidFile::~PyramidFile() {
+    ::close(fd_);
+}
+
+void PyramidFile::readPage(int page, std::vector<float>& texels) const {
+    const std::size_t bytes = std::size_t{4} << (2 * shift_);
+    texels.resize(bytes / 4);
+    auto* to = reinterpret_cast<unsigned char*>(texels.data());
+    const std::uint64_t at = dataOffset_ + static_cast<std::uint64_t>(page) * bytes;
+    for (std::size_t done = 0; done < bytes;) {
+        const ssize_t got = ::pread(fd_, to + done, bytes - done, static_cast<off_t>(at + done));
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0)
+            throwRuntime(path_.string() + ": cannot read page " + std::to_string(page) + " (" +
+                         errnoText() + ")");
+        if (got == 0)
+            throwBadInput(path_.string() + ": page " + std::to_string(page) +
+                          " lies past the file's end (truncated since it was opened)");
+        done += static_cast<std::size_t>(got);
+    }
+    if (crcOf(texels.data(), bytes) != crcs_[page]) {
+        int level = static_cast<int>(firstPage_.size()) - 1;
+        while (level > 0 && firstPage_[level] > page) --level;
+        throwBadInput(path_.string() + ": page " + std::to_string(page) + " (page level " +
+                      std::to_string(level) +
+                      ") is corrupt: its CRC-32 differs from the "
+                      "header's; delete the file to build it again");
+    }
+}
+
+void PyramidFile::read(int level, const TexelRect& rect, float* out) const {
+    const int side = pageSide();
+    const glm::ivec2 size = levelSize(level);
+    const int across = (size.x + side - 1) >> shift_;
+    std::vector<float> texels;
+    for (int py = rect.y0 >> shift_; py <= (rect.y1 - 1) >> shift_; ++py) {
+        for (int px = rect.x0 >> shift_; px <= (rect.x1 - 1) >> shift_; ++px) {
+            readPage(firstPage_[level] + py * across + px, texels);
+            const TexelRect part{std::max(rect.x0, px << shift_), std::max(rect.y0, py << shift_),
+                                 std::min(rect.x1, (px + 1) << shift_),
+                                 std::min(rect.y1, (py + 1) << shift_)};
+            for (int y = part.y0; y < part.y1; ++y) {
+                std::copy_n(texels.begin() +
+                                static_cast<std::ptrdiff_t>(y - (py << shift_)) * side +
+                                (part.x0 - (px << shift_)),
+                            part.width(),
+                            out + static_cast<std::ptrdiff_t>(y - rect.y0) * rect.width() +
+                                (part.x0 - rect.x0));
+            }
+        }
+    }
+}
+
+std::string pyramidSourceKey(const std::filesystem::path& mapFile,
+                             const HeightMapLoadOptions& options, bool wrapU) {
+    std::error_code error;
+    const std::filesystem::path path = std::filesystem::weakly_canonical(mapFile, error);
+    struct stat st {};
+    if (::stat(mapFile.c_str(), &st) != 0)
+        throwBadInput(mapFile.string() + ": cannot read (" + errnoText() + ")");
+    const long long mtimeNs =
+        static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
+    return "map=" + (error ? mapFile.string() : path.string()) +
+           "\nbytes=" + std::to_string(st.st_size) + "\nmtime_ns=" + std::to_string(mtimeNs) +
+           "\nchannel=" + std::to_string(options.channel) +
+           "\nnormalize=" + (options.normalize ? "1" : "0") + "\nwrap_u=" + (wrapU ? "1" : "0");
+}
+
+MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+    const std::string name = file.string();
+    struct State {
+        std::filesystem::path file;
+        HeightMapLoadOptions options;
+        std::unique_ptr<OIIO::ImageInput> input;
+        int next = 0;  // the next row the open input gives
+        float lo = 0.0f, scale = 1.0f;
+        bool normalize = false;
+    };
+    auto state = std::make_shared<State>();
+    state->file = file;
+    state->options = options;
+    const auto open = [state, name] {
+        state->input = openCheckedImage(state->file, state->options.maxSide, "a height map",
+                                        state->options.maxSamples);
+        const OIIO::ImageSpec& spec = state->input->spec();
+        if (spec.depth > 1) throwBadInput(name + ": volume images are not height maps");
+        if (state->options.channel < 0 || state->options.channel >= spec.nchannels) {
+            throwBadInput(name + ": {map.load.channel} " + std::to_string(state->options.channel) +
+                          " is out of range; the image has " + std::to_string(spec.nchannels) +
+                          " channel(s)");
+        }
+        state->next = 0;
+    };
+    // Rows y0 .. y1 - 1 as stored (reading as FLOAT makes OpenImageIO normalise integer
+    // formats by their type range and pass floats through), from the top again when asked
+    // for row 0 or for a row the input has passed.
+    const auto readStored = [state, name, open](int y0, int y1, float* out) {
+        if (!state->input || y0 < state->next) open();
+        const int width = state->input->spec().width;
+        std::vector<float> skip;
+        while (state->next < y0) {  // rows not asked for (never, as streamPyramid reads)
+            skip.resize(static_cast<std::size_t>(width));
+            if (!state->input->read_scanline(state->next, 0, OIIO::TypeDesc::FLOAT, skip.data()))
+                break;
+            ++state->next;
+        }
+        const int channel = state->options.channel;
+        if (!state->input->read_scanlines(0, 0, y0, y1, 0, channel, channel + 1,
+                                          OIIO::TypeDesc::FLOAT, out)) {
+            const std::string reason = oneLine(state->input->geterror());
+            throwBadInput(name + ": cannot read rows " + std::to_string(y0) + " to " +
+                          std::to_string(y1 - 1) + " (" +
+                          (reason.empty() ? "truncated or corrupt" : reason) + ")");
+        }
+        state->next = y1;
+    };
+    open();
+    MapRows rows;
+    rows.width = state->input->spec().width;
+    rows.height = state->input->spec().height;
+    if (options.normalize) {
+        // A pass of its own for [min, max], as prepareHeights maps them.
+        float lo = INFINITY, hi = -INFINITY;
+        std::vector<float> band(static_cast<std::size_t>(rows.width) * 256);
+        for (int y0 = 0; y0 < rows.height; y0 += 256) {
+            const int y1 = std::min(rows.height, y0 + 256);
+            readStored(y0, y1, band.data());
+            for (std::size_t k = 0; k < static_cast<std::size_t>(y1 - y0) * rows.width; ++k) {
+                if (!std::isfinite(band[k])) {
+                    throwBadInput(name +
+                                  ": the height map holds a non-finite value (NaN or Inf); "
+                                  "{map.load.normalize} cannot map it");
+                }
+                lo = std::min(lo, band[k]);
+                hi = std::max(hi, band[k]);
+            }
+        }
+        state->normalize = true;
+        state->lo = lo;
+        state->scale = hi - lo;
+    }
+    rows.read = [state, readStored, width = rows.width](int y0, int y1, float* out) {
+        readStored(y0, y1, out);
+        if (!state->normalize) return;
+        const std::size_t count = static_cast<std::size_t>(y1 - y0) * width;
+        for (std::size_t k = 0; k < count; ++k)
+            out[k] = state->scale > 0.0f ? (out[k] - state->lo) / state->scale : 0.0f;
+    };
+    return rows;
+}
+
+std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem::path& mapFile,
+                                                          const std::filesystem::path& cacheFolder,
+                                                          const HeightMapLoadOptions& options,
+                                                          bool wrapU, const BuildProgress& progress,
+                                                          bool* built) {
+    checkRegularFile(mapFile, mapFile.string());
+    const std::string key = pyramidSourceKey(mapFile, options, wrapU);
+    // One file per map and load options: the map's name and a hash of its key but for the
+    // size and time (so that a changed map replaces its stale pyramid).
+    const std::string identity =
+        key.substr(0, key.find("\nbytes=")) + key.substr(key.find("\nchannel="));
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx",
+                  static_cast<unsigned long long>(std::hash<std::string>{}(identity)));
+    const std::filesystem::path file =
+        cacheFolder / (mapFile.stem().string() + "-" + hash + ".mrpyr");
+    if (built) *built = false;
+    std::error_code error;
+    // A build killed before its rename (SIGKILL, a power cut) left its temporary: gone, and
+    // the build starts again.
+    for (const auto& entry : std::filesystem::directory_iterator(cacheFolder, error)) {
+        if (abandonedTemporaryTarget(entry.path()) == file)
+            std::filesystem::remove(entry.path(), error);
+    }
+    if (std::filesystem::exists(file)) {
+        std::shared_ptr<const PyramidFile> found = PyramidFile::open(file);
+        if (found->sourceKey() == key) return found;
+    }
+    writePyramidFile(file, heightMapFileRows(mapFile, options), wrapU, key, mapFile.string(),
+                     kPyramidFilePageSide, progress);
+    if (built) *built = true;
+    return PyramidFile::open(file);
+}
+
+}  // namespace microrelief

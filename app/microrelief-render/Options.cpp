@@ -76,6 +76,11 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
                    "(such a map is read through pages, drawn again until exact)")
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
+    std::string pyramidCache;
+    app.add_option("--pyramid-cache", pyramidCache,
+                   "Draw the map through pages from its pyramid file in this folder, built "
+                   "there once from the map's rows in bounded memory and reused while the map "
+                   "is unchanged: for maps larger than memory (plain images, one picture)");
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
     app.add_flag("-v,--verbose", o.verbose, "Print the GL renderer and shader logs");
     std::string cameras, frames, shard, manifest;
@@ -118,6 +123,12 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
         o.scene.job.map.load.maxSide = kMaxPagedHeightMapSide;
         o.scene.job.map.load.maxSamples = physicalMemoryBytes() / kPagedBytesPerSample;
+        if (!pyramidCache.empty()) {
+            if (o.batch.active())
+                throwBadInput("--pyramid-cache draws one picture; not with a camera path yet");
+            o.pyramidCache = pyramidCache;
+            o.scene.job.map.load.maxSamples = 0;  // never held whole: the side bounds it
+        }
         return o;
     });
 }

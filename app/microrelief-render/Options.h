@@ -40,6 +40,9 @@ struct RenderOptions {
     bool lightSizeGiven = false;  // --light-size on the command line
     // Maps past the GL's texture size: read through pages, within --memory (MiB).
     PagingSettings paging;
+    // --pyramid-cache: the map drawn from its pyramid file kept there (io/PyramidFile.h),
+    // never read whole.
+    std::optional<std::filesystem::path> pyramidCache;
 };
 
 // The warning for a --light-size that no frame uses (soft shadows are off).

@@ -5,20 +5,23 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
 #include "Aov.h"
 #include "BatchRender.h"
 #include "EyeInside.h"
 #include "Options.h"
-#include "microrelief/headless/HeadlessContext.h"
+#include "Progress.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
-#include "microrelief/io/HeightMapFile.h"
-#include "microrelief/io/AlbedoFile.h"
-#include "microrelief/io/ImageFile.h"
 #include "microrelief/core/trace/Accuracy.h"
 #include "microrelief/core/trace/ReferenceTracer.h"
+#include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ImageFile.h"
+#include "microrelief/io/PyramidFile.h"
 
 using namespace microrelief;
 
@@ -56,18 +59,77 @@ std::string pagingSummary(const PagingReport& paging) {
            std::to_string(paging.pagesLoaded) + " pages loaded";
 }
 
-int run(const RenderOptions& o) {
-    if (o.batch.active()) return runBatch(o);  // a camera path: many frames
-    const auto start = std::chrono::steady_clock::now();
-    if (o.aov && o.aov->extension() != ".exr") {
-        throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
+// Where the progress of a pyramid file's build goes: "building the pyramid file of X"
+// once, then on a terminal the percentage rewritten in place.
+BuildProgress buildProgress(const std::string& map, bool quiet) {
+    if (quiet) return {};
+    auto shown = std::make_shared<int>(-1);
+    const bool terminal = BatchProgress::stderrIsTerminal();
+    return [map, shown, terminal](long long done, long long total) {
+        const int percent = static_cast<int>(100 * done / std::max(total, 1LL));
+        if (*shown < 0) {
+            std::fprintf(stderr,
+                         "%s: building the pyramid file of %s (once; reused while the "
+                         "map is unchanged)\n",
+                         kProgram, map.c_str());
+        }
+        if (terminal && percent != *shown) {
+            std::fprintf(stderr, "\r%s: pyramid %3d %%%s", kProgram, percent,
+                         done == total ? "\n" : "");
+            std::fflush(stderr);
+        }
+        *shown = percent;
+    };
+}
+
+// What run() drew, and of what map.
+struct Drawn {
+    HeadlessResult result;
+    std::string context;  // the GL's description
+    glm::ivec2 mapSize{0};
+};
+
+// --pyramid-cache: the map's pyramid file, built where missing or stale, drawn through pages;
+// the map itself is never read whole (no --compare-reference, no check of the eye).
+Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& heightFile) {
+    const RenderJob& asked = o.scene.job;
+    if (asked.tiles != glm::ivec2(1, 1))
+        throwBadInput("--pyramid-cache draws one map: not with --tile");
+    if (!asked.animation.empty())
+        throwBadInput("--pyramid-cache draws a map's own heights: not with --animation");
+    if (o.compareReference)
+        throwBadInput(
+            "--compare-reference traces the whole map in memory: not with "
+            "--pyramid-cache");
+    std::filesystem::create_directories(*o.pyramidCache);
+    const std::string name = heightFile.string();
+    const std::shared_ptr<const PyramidFile> pages =
+        openOrBuildPyramidFile(heightFile, *o.pyramidCache, asked.map.load, asked.base.wrapsU(),
+                               buildProgress(name, o.quiet));
+    const RenderJob job = sceneOverMap(asked, o.scene.georeference, pages->mapWidth(),
+                                       pages->mapHeight(), std::nullopt, name);
+    const std::optional<std::filesystem::path> albedoFile = albedoPath(job);
+    const std::optional<AlbedoImage> albedo =
+        albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
+    const auto context = createHeadlessContext(o.backend);
+    if (o.verbose)
+        logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
+                context->description());
+    Drawn drawn;
+    {
+        HeadlessRenderer renderer(*context, job.method);  // its GL objects die before the context
+        renderer.setPaging(o.paging);
+        renderer.setPyramidPages(pages, name, job.base, job.interpolation);
+        if (albedo) renderer.setAlbedo(&*albedo, albedoFile->string());
+        drawn.result = renderer.render(job);
     }
-    checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov}
-                             : std::vector{o.out});
-    if (o.lightSizeGiven && o.scene.job.shading.shadows != ShadowMode::Soft)
-        logWarning(kLightSizeUnused);
-    const std::filesystem::path heightFile =
-        o.scene.job.map.file ? *o.scene.job.map.file : defaultHeightMapPath();
+    drawn.context = context->description();
+    drawn.mapSize = {pages->mapWidth(), pages->mapHeight()};
+    return drawn;
+}
+
+// The map loaded whole and drawn (through pages where it is larger than the GL's textures).
+Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightFile) {
     const HeightMapFile loaded = loadHeightMapFile(heightFile, o.scene.job.map.load);
     const HeightMap& map = loaded.map;
     // A georeferenced map's true proportions, where the flags leave them to it.
@@ -97,16 +159,37 @@ int run(const RenderOptions& o) {
     if (o.verbose)
         logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
                 context->description());
-    const HeadlessResult result = renderHeadless(*context, map, heightFile.string(), job,
-                                                 albedo ? &*albedo : nullptr, o.paging);
+    Drawn drawn;
+    drawn.result = renderHeadless(*context, map, heightFile.string(), job,
+                                  albedo ? &*albedo : nullptr, o.paging);
+    drawn.context = context->description();
+    drawn.mapSize = {map.width, map.height};
     // An animated relief is held to the heights the GPU evaluated, read back.
-    const HeightMap& traced = result.animatedMap ? *result.animatedMap : map;
+    const HeightMap& traced = drawn.result.animatedMap ? *drawn.result.animatedMap : map;
     if (eyeInsideTheSolid(traced, job)) {  // the camera checked by now
         logWarning("--eye lies inside the relief's solid (under the surface of " +
                    heightFile.filename().string() +
                    "): the picture is undefined there; move the eye above the surface");
     }
-    const RenderedFrame& frame = result.frame;
+    if (o.compareReference) printAccuracy(drawn.result.frame, drawn.result.camera, traced, job);
+    return drawn;
+}
+
+int run(const RenderOptions& o) {
+    if (o.batch.active()) return runBatch(o);  // a camera path: many frames
+    const auto start = std::chrono::steady_clock::now();
+    if (o.aov && o.aov->extension() != ".exr") {
+        throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
+    }
+    checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov}
+                             : std::vector{o.out});
+    if (o.lightSizeGiven && o.scene.job.shading.shadows != ShadowMode::Soft)
+        logWarning(kLightSizeUnused);
+    const std::filesystem::path heightFile =
+        o.scene.job.map.file ? *o.scene.job.map.file : defaultHeightMapPath();
+    const Drawn drawn =
+        o.pyramidCache ? drawFromPyramidFile(o, heightFile) : drawLoadedMap(o, heightFile);
+    const RenderedFrame& frame = drawn.result.frame;
 
     std::size_t exhausted = 0;
     for (std::size_t p = 3; p < frame.stats.size(); p += 4) exhausted += frame.stats[p] > 0.0f;
@@ -114,10 +197,9 @@ int run(const RenderOptions& o) {
     ImageWriteBatch batch;
     const std::vector<std::uint8_t> rgb = rgbFromRgba(frame.color, frame.width, frame.height);
     batch.write(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
-    if (o.aov) writeAov(batch, *o.aov, frame, job.shading.shadows != ShadowMode::Off);
+    if (o.aov) writeAov(batch, *o.aov, frame, o.scene.job.shading.shadows != ShadowMode::Off);
     batch.commit();
 
-    if (o.compareReference) printAccuracy(frame, result.camera, traced, job);
     if (exhausted > 0) {
         logWarning(std::to_string(exhausted) +
                    " pixel(s) ran out of the iteration budget (shown magenta)");
@@ -127,8 +209,8 @@ int run(const RenderOptions& o) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf("%s: wrote %s%s%s (%dx%d, map %dx%d%s, %.2f s, %s)\n", kProgram, o.out.c_str(),
                     o.aov ? " and " : "", o.aov ? o.aov->c_str() : "", frame.width, frame.height,
-                    map.width, map.height, pagingSummary(result.paging).c_str(), seconds,
-                    context->description().c_str());
+                    drawn.mapSize.x, drawn.mapSize.y, pagingSummary(drawn.result.paging).c_str(),
+                    seconds, drawn.context.c_str());
     }
     return 0;
 }

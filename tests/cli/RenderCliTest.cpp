@@ -622,4 +622,50 @@ TEST_F(RenderCliPaged, AMapWiderThanTheGlsTexturesIsReadThroughPages) {
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+// --pyramid-cache: the map drawn from its pyramid file (io/PyramidFile.h), built once with
+// its progress said, reused after; the picture is the one the map loaded whole gives; a
+// corrupt file refused in one line, no picture written; what needs the whole map refused.
+TEST_F(RenderCliPaged, AMapIsDrawnFromItsPyramidFileBuiltOnce) {
+    HeightMap map(600, 300);
+    for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i)
+            map.at(i, j) = 0.5f + 0.4f * std::sin(i * 0.05f) * std::cos(j * 0.07f);
+    const auto file = dir / "waves.png", cache = dir / "pyramids";
+    test::writeMap(file, map, PixelType::UInt16);
+    const std::string view = small + "--height " + file.string() +
+                             " --eye 0.5,0.35,0.6 --target 0,0,0 --height-scale 0.05 ";
+    const test::RunResult whole = run(view + "--out " + (dir / "whole.png").string());
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    const std::string cached = view + "--memory 1 --pyramid-cache " + cache.string() + " --out ";
+    const test::RunResult first = run(cached + (dir / "first.png").string());
+    ASSERT_EQ(first.status, 0) << first.err;
+    EXPECT_NE(first.err.find("building the pyramid file of " + file.string()), std::string::npos)
+        << first.err;
+    EXPECT_NE(first.out.find("map 600x300, paged: "), std::string::npos) << first.out;
+    const test::RunResult again = run(cached + (dir / "again.png").string());
+    ASSERT_EQ(again.status, 0) << again.err;
+    EXPECT_EQ(again.err, "") << "the file is reused";
+    const test::Image a = test::readImage(dir / "whole.png");
+    EXPECT_EQ(test::readImage(dir / "first.png").pixels, a.pixels);
+    EXPECT_EQ(test::readImage(dir / "again.png").pixels, a.pixels);
+
+    // The last page (the pyramid's 1 x 1 top, read before any draw) changed on disk.
+    const std::vector<std::string> files = filesIn(cache);
+    ASSERT_EQ(files.size(), 1u);
+    const auto pyramid = cache / files[0];
+    std::vector<std::uint8_t> bytes = test::readBytes(pyramid);
+    bytes[bytes.size() - 1] ^= 0x20;
+    test::writeBytes(pyramid, bytes);
+    expectFailure(run(cached + (dir / "corrupt.png").string()), 2, pyramid.string() + ": page ");
+    EXPECT_FALSE(std::filesystem::exists(dir / "corrupt.png"));
+    bytes.resize(bytes.size() - 1000);
+    test::writeBytes(pyramid, bytes);
+    expectFailure(run(cached + (dir / "cut.png").string()), 2, "(truncated)");
+
+    expectFailure(run(cached + (dir / "x.png").string() + " --compare-reference"), 2,
+                  "not with --pyramid-cache");
+    expectFailure(run(cached + (dir / "x{frame}.png").string() + " --turntable 2"), 2,
+                  "--pyramid-cache draws one picture");
+}
+
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -18,6 +19,7 @@
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/gl/PagedPyramid.h"
+#include "microrelief/io/PyramidFile.h"
 
 using namespace microrelief;
 
@@ -111,6 +113,53 @@ TEST_F(PagedMap, TinyBudgetEvictsAndStillConvergesToTheSamePicture) {
     EXPECT_GT(paged.paging.splits, 0) << "the picture's pages cannot all be resident at once";
     EXPECT_LE(paged.paging.pagesResident, 12);
     EXPECT_GT(paged.paging.pagesLoaded, 12u) << "pages were evicted and loaded again";
+}
+
+// A pyramid file (io/PyramidFile.h), built a band of rows at a time, draws the picture of
+// the map in memory, bit for bit, under a budget of a few pages; a page corrupted on disk
+// is refused when a draw wants it, naming the file, never drawn.
+TEST_F(PagedMap, APyramidFileDrawsTheMapsPictureAndRefusesACorruptPage) {
+    const HeightMap map = synth::cobbles(150, 110, 6);
+    test::ScratchDir scratch;
+    const std::filesystem::path file = scratch / "cobbles.mrpyr";
+    MapRows rows;
+    rows.width = map.width;
+    rows.height = map.height;
+    rows.read = [&](int y0, int y1, float* out) {
+        std::copy(map.samples.begin() + static_cast<std::ptrdiff_t>(y0) * map.width,
+                  map.samples.begin() + static_cast<std::ptrdiff_t>(y1) * map.width, out);
+    };
+    writePyramidFile(file, rows, false, "cobbles", "cobbles", 16);
+    const RenderJob job = obliqueView(80, 60);
+    PagingSettings paging = smallPages();
+    paging.memoryBytes = 12 * 16 * 16 * 4;
+    const auto drawFile = [&] {
+        HeadlessRenderer renderer(test::glContext(), job.method);
+        renderer.setPaging(paging);
+        renderer.setPyramidPages(PyramidFile::open(file), file.string());
+        return renderer.render(job);
+    };
+    const HeadlessResult fromFile = drawFile();
+    expectSamePicture(fromFile, renderWhole(map, job), "from the file");
+    EXPECT_GT(fromFile.paging.splits, 0) << "12 pages cannot hold the picture's at once";
+    EXPECT_GT(hits(fromFile.frame), 80u * 60 / 4);
+
+    // Every page of the samples corrupted: the first draw wants one.
+    std::vector<std::uint8_t> bytes = test::readBytes(file);
+    const auto pages = PyramidFile::open(file)->pageCount();
+    const std::size_t pageBytes = 16 * 16 * 4, dataOffset = bytes.size() - pages * pageBytes;
+    for (std::size_t page = 0; page < 10 * 7; ++page)
+        bytes[dataOffset + page * pageBytes + 7] ^= 0x10;
+    test::writeBytes(file, bytes);
+    try {
+        (void)drawFile();
+        FAIL() << "a corrupt page was drawn";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find(file.string() + ": page "), std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("is corrupt"), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(PagedMap, BudgetBelowWhatOneRayNeedsIsRefused) {

@@ -104,7 +104,7 @@ std::map<Method, MethodCost> measureCosts(const GL& gl, ReliefRenderer& renderer
 }  // namespace
 
 HeightMap benchRelief(int n) {
-    return synth::cobbles(n, n, 7);
+    return synth::cobbles(n, n, kBenchReliefSeed);
 }
 
 std::string mapOnBase(const std::string& name, const BaseShape& base, Interpolation interpolation) {

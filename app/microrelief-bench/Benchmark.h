@@ -99,6 +99,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
 // The benchmark's relief at n x n: procedural cobblestones (synth::cobbles, another seed
 // than the bundled map), the same continuous relief at every size, with steep joints
 // that step-based methods must not step over.
+inline constexpr std::uint32_t kBenchReliefSeed = 7;
 HeightMap benchRelief(int n);
 inline const std::string kResampledRelief = "relief";
 

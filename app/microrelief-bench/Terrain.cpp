@@ -12,8 +12,11 @@
 #include "Report.h"
 #include "SceneOptions.h"
 #include "Timing.h"
+#include "microrelief/core/ParallelRows.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/Accuracy.h"
 #include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/io/PyramidFile.h"
 
 namespace microrelief::bench {
 
@@ -40,7 +43,34 @@ double fetchesOverHits(const RenderedFrame& counted, const ReferencePicture& ref
     return hits ? sum / hits : 0.0;
 }
 
+// The same over the pixels the picture itself hits, where no reference was traced.
+double fetchesOverPictureHits(const RenderedFrame& counted, const RenderedFrame& picture) {
+    double sum = 0.0;
+    std::size_t hits = 0;
+    for (std::size_t k = 3; k < picture.position.size(); k += 4) {
+        if (picture.position[k] < 0.5f) continue;
+        sum += counted.stats[k - 3 + 1];
+        ++hits;
+    }
+    return hits ? sum / hits : 0.0;
+}
+
 }  // namespace
+
+// A picture slower than this is timed once after the first, not options.frames times.
+constexpr double kSlowFrameMs = 10000.0;
+
+const char* terrainPathName(TerrainPath path) {
+    switch (path) {
+        case TerrainPath::Whole:
+            return "whole";
+        case TerrainPath::Paged:
+            return "paged";
+        case TerrainPath::File:
+            return "file";
+    }
+    return "?";
+}
 
 void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
                          const std::function<void(const TerrainRow&)>& report) {
@@ -54,11 +84,12 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
     // pyramid are freed before the next is made. The warm-up map is as large as the first
     // rows' (warmed on a 64 x 64 map, the first row, at 1024, still ran 2.5x slow here).
     const HeightMap small = benchRelief(1024), tiny(2, 2);
-    std::map<bool, HeadlessRenderer> renderers;
-    for (const bool paged : {false, true}) {
-        HeadlessRenderer& renderer = renderers.try_emplace(paged, context).first->second;
+    std::map<TerrainPath, HeadlessRenderer> renderers;
+    for (const TerrainPath path : {TerrainPath::Whole, TerrainPath::Paged, TerrainPath::File}) {
+        HeadlessRenderer& renderer = renderers.try_emplace(path, context).first->second;
         PagingSettings paging;
-        paging.mode = paged ? PagingSettings::Mode::Always : PagingSettings::Mode::Never;
+        paging.mode =
+            path == TerrainPath::Whole ? PagingSettings::Mode::Never : PagingSettings::Mode::Always;
         paging.memoryBytes = options.memoryBytes;
         renderer.setPaging(paging);
         renderer.setHeightMap(small, "relief");
@@ -82,84 +113,153 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
         renderer.setHeightMap(tiny, "relief");
     }
 
-    for (int n : options.mapSizes) {
-        const HeightMap map = benchRelief(n);
-        std::map<int, ReferencePicture> references;  // per view, traced once for both paths
-        for (const bool paged : {false, true}) {
-            if (!paged && n > maxTexture) continue;  // past one texture: pages only
-            HeadlessRenderer& renderer = renderers.at(paged);
-            const double prepareMs = wallMs(gl, [&] { renderer.setHeightMap(map, "relief"); });
-            for (int degrees : options.viewDegrees) {
-                TerrainRow row;
-                row.mapSize = n;
-                row.paged = paged;
-                row.viewDegrees = degrees;
-                row.width = options.width;
-                row.height = options.height;
-                row.prepareMs = prepareMs;
-                RenderJob job;
-                job.width = options.width;
-                job.height = options.height;
-                job.camera =
-                    viewCamera(degrees, {}, reliefExtent(map, job.heightScale, {}).topHeight);
+    // One size's rows of one path, its map prepared; `map` where it is held in memory.
+    const auto measure = [&](HeadlessRenderer& renderer, TerrainPath path, int n, double prepareMs,
+                             double fileMiB, float top, const HeightMap* map,
+                             std::map<int, ReferencePicture>& references) {
+        for (int degrees : options.viewDegrees) {
+            TerrainRow row;
+            row.mapSize = n;
+            row.path = path;
+            row.viewDegrees = degrees;
+            row.width = options.width;
+            row.height = options.height;
+            row.prepareMs = prepareMs;
+            row.fileMiB = fileMiB;
+            RenderJob job;
+            job.width = options.width;
+            job.height = options.height;
+            job.camera =
+                viewCamera(degrees, {}, reliefExtent(n, n, top, job.heightScale, {}).topHeight);
 
-                HeadlessResult first;
-                row.firstMs = wallMs(gl, [&] { first = renderer.render(job); });
-                row.draws = first.paging.draws;
-                row.pagesLoaded = first.paging.pagesLoaded;
-                std::vector<double> exact, onePixel;
-                std::size_t framePages = 0;
-                for (int f = 0; f < options.frames; ++f) {
-                    exact.push_back(
-                        wallMs(gl, [&] { framePages += renderer.render(job).paging.pagesLoaded; }));
-                }
-                row.pagesPerFrame = static_cast<double>(framePages) / options.frames;
-                job.method.pixelError = 1.0f;
-                renderer.render(job);  // what the coarser reads want, loaded
-                for (int f = 0; f < options.frames; ++f)
-                    onePixel.push_back(wallMs(gl, [&] { renderer.render(job); }));
-                job.method.pixelError = 0.0f;
-                row.frameMs = median(exact);
-                row.frameOnePixelMs = median(onePixel);
+            HeadlessResult first;
+            row.firstMs = wallMs(gl, [&] { first = renderer.render(job); });
+            row.draws = first.paging.draws;
+            row.pagesLoaded = first.paging.pagesLoaded;
+            // Frames slower than kSlowFrameMs (a map far past the budget, its pages read
+            // from disk for every picture) are timed once: the median of one.
+            const auto framesAfter = [&](double firstMs) {
+                return firstMs > kSlowFrameMs ? 1 : options.frames;
+            };
+            std::vector<double> exact, onePixel;
+            std::size_t framePages = 0;
+            const int exactFrames = framesAfter(row.firstMs);
+            for (int f = 0; f < exactFrames; ++f) {
+                exact.push_back(
+                    wallMs(gl, [&] { framePages += renderer.render(job).paging.pagesLoaded; }));
+            }
+            row.pagesPerFrame = static_cast<double>(framePages) / exactFrames;
+            job.method.pixelError = 1.0f;
+            // What the coarser reads want, loaded (timed: it says how many frames to time).
+            const double firstOnePixelMs = wallMs(gl, [&] { renderer.render(job); });
+            for (int f = 0; f < framesAfter(firstOnePixelMs); ++f)
+                onePixel.push_back(wallMs(gl, [&] { renderer.render(job); }));
+            job.method.pixelError = 0.0f;
+            row.frameMs = median(exact);
+            row.frameOnePixelMs = median(onePixel);
 
+            renderer.setCountFetches(true);
+            const RenderedFrame counted = renderer.render(job).frame;
+            renderer.setCountFetches(false);
+            if (map) {
                 auto reference = references.find(degrees);
                 if (reference == references.end()) {
                     reference = references
-                                    .emplace(degrees, traceReferencePicture(first.camera, map,
+                                    .emplace(degrees, traceReferencePicture(first.camera, *map,
                                                                             job.heightScale))
                                     .first;
                 }
                 const Accuracy accuracy =
                     compareWithReference(first.frame, first.camera, reference->second);
+                row.checked = true;
                 row.coverageMismatchPct = accuracy.coverageMismatchPercent();
                 row.offHalfTexelPct = accuracy.offHalfTexelPercent();
-                renderer.setCountFetches(true);
-                row.fetchesMean = fetchesOverHits(renderer.render(job).frame, reference->second);
-                renderer.setCountFetches(false);
-                row.gpuMiB = renderer.gpuBytes() / double(1 << 20);
-                row.processMiB = residentMiB();
-                report(row);
+                row.fetchesMean = fetchesOverHits(counted, reference->second);
+            } else {
+                row.fetchesMean = fetchesOverPictureHits(counted, first.frame);
             }
-            renderer.setHeightMap(tiny, "relief");
+            row.gpuMiB = renderer.gpuBytes() / double(1 << 20);
+            row.processMiB = residentMiB();
+            report(row);
         }
+        renderer.setHeightMap(tiny, "relief");
+    };
+
+    for (int n : options.mapSizes) {
+        const bool inMemory =
+            options.inMemorySamples == 0 ||
+            static_cast<std::size_t>(n) * static_cast<std::size_t>(n) <= options.inMemorySamples;
+        std::optional<HeightMap> map;
+        if (inMemory) map = benchRelief(n);
+        std::map<int, ReferencePicture> references;  // per view, traced once for every path
+        for (const TerrainPath path : {TerrainPath::Whole, TerrainPath::Paged}) {
+            if (!map || (path == TerrainPath::Whole && n > maxTexture)) continue;
+            HeadlessRenderer& renderer = renderers.at(path);
+            const double prepareMs = wallMs(gl, [&] { renderer.setHeightMap(*map, "relief"); });
+            measure(renderer, path, n, prepareMs, 0.0, map->maxValue(), &*map, references);
+        }
+
+        // The pyramid file, from the map's rows: copied where it is in memory, else made a
+        // band at a time on every core (cobblesRows: the same samples).
+        std::filesystem::create_directories(options.pyramidFolder);
+        const std::filesystem::path file =
+            options.pyramidFolder / ("relief-" + std::to_string(n) + ".mrpyr");
+        MapRows rows;
+        rows.width = rows.height = n;
+        rows.read = [&](int y0, int y1, float* out) {
+            if (map) {
+                std::copy(map->samples.begin() + static_cast<std::ptrdiff_t>(y0) * n,
+                          map->samples.begin() + static_cast<std::ptrdiff_t>(y1) * n, out);
+                return;
+            }
+            parallelRows(y0, y1, n, [&](int a, int b) {
+                synth::cobblesRows(n, n, kBenchReliefSeed, a, b,
+                                   out + static_cast<std::ptrdiff_t>(a - y0) * n);
+            });
+        };
+        HeadlessRenderer& renderer = renderers.at(TerrainPath::File);
+        int shown = -1;
+        const auto progress = [&](long long done, long long total) {
+            const int percent = static_cast<int>(100 * done / total);
+            if (n >= 16384 && percent / 10 != shown / 10) {
+                std::fprintf(stderr, "microrelief-bench: pyramid file of %d^2: %d %%\n", n,
+                             percent);
+                shown = percent;
+            }
+        };
+        float top = 0.0f;
+        const double prepareMs = wallMs(gl, [&] {
+            writePyramidFile(file, rows, false, "bench relief " + std::to_string(n), file.string(),
+                             kPyramidFilePageSide, progress);
+            const std::shared_ptr<const PyramidFile> pages = PyramidFile::open(file);
+            top = pages->largestSample();
+            renderer.setPyramidPages(pages, file.string());
+        });
+        const double fileMiB = std::filesystem::file_size(file) / double(1 << 20);
+        measure(renderer, TerrainPath::File, n, prepareMs, fileMiB, top, map ? &*map : nullptr,
+                references);
+        std::filesystem::remove(file);
     }
+    std::error_code ignored;
+    std::filesystem::remove(options.pyramidFolder, ignored);  // where empty
 }
 
 void writeTerrainCsv(const std::filesystem::path& file, const std::string& renderer,
                      const std::vector<TerrainRow>& rows) {
     std::ostringstream out;
-    out << "map_size,path,view_degrees,prepare_ms,first_picture_ms,draws,pages_loaded,frame_ms,"
-           "pages_per_frame,frame_1px_ms,fetches_per_hit_pixel,gpu_mib,process_mib,coverage_"
-           "mismatch_pct,"
-           "off_half_texel_pct,width,height,renderer\n";
+    out << "map_size,path,view_degrees,prepare_ms,file_mib,first_picture_ms,draws,pages_loaded,"
+           "frame_ms,pages_per_frame,frame_1px_ms,fetches_per_hit_pixel,gpu_mib,process_mib,"
+           "coverage_mismatch_pct,off_half_texel_pct,width,height,renderer\n";
     for (const TerrainRow& r : rows) {
-        out << r.mapSize << ',' << (r.paged ? "paged" : "whole") << ',' << r.viewDegrees << ','
-            << fixed(r.prepareMs, 1) << ',' << fixed(r.firstMs, 2) << ',' << r.draws << ','
-            << r.pagesLoaded << ',' << fixed(r.frameMs, 3) << ',' << fixed(r.pagesPerFrame, 1)
-            << ',' << fixed(r.frameOnePixelMs, 3) << ',' << fixed(r.fetchesMean, 2) << ','
-            << fixed(r.gpuMiB, 1) << ',' << fixed(r.processMiB, 0) << ','
-            << fixed(r.coverageMismatchPct, 3) << ',' << fixed(r.offHalfTexelPct, 3) << ','
-            << r.width << ',' << r.height << ',' << csvQuote(renderer) << '\n';
+        // Unchecked rows (no reference: the map not in memory) leave the accuracy empty.
+        out << r.mapSize << ',' << terrainPathName(r.path) << ',' << r.viewDegrees << ','
+            << fixed(r.prepareMs, 1) << ',' << fixed(r.fileMiB, 1) << ',' << fixed(r.firstMs, 2)
+            << ',' << r.draws << ',' << r.pagesLoaded << ',' << fixed(r.frameMs, 3) << ','
+            << fixed(r.pagesPerFrame, 1) << ',' << fixed(r.frameOnePixelMs, 3) << ','
+            << fixed(r.fetchesMean, 2) << ',' << fixed(r.gpuMiB, 1) << ',' << fixed(r.processMiB, 0)
+            << ',' << (r.checked ? fixed(r.coverageMismatchPct, 3) : std::string()) << ','
+            << (r.checked ? fixed(r.offHalfTexelPct, 3) : std::string()) << ',' << r.width << ','
+            << r.height << ',' << csvQuote(renderer) << '\n';
     }
     writeTextAtomically(file, out.str());
 }
@@ -171,21 +271,27 @@ std::string terrainTable(const std::string& renderer, const std::string& date,
        << ": the multilevel method, wall time to glFinish (each picture read back), "
        << (rows.empty() ? 0 : rows[0].width) << " x " << (rows.empty() ? 0 : rows[0].height)
        << " pixels; frames are medians of the pictures after the first (a paged map's pages "
-          "resident where the budget holds them).\n\n"
+          "resident where the budget holds them). Paths: whole textures, pages from the map "
+          "in memory, pages from a pyramid file (prepare: the file built, opened, uploaded; "
+          "n/a: the map is not held in memory, so no reference).\n\n"
        << "| map | path | view | prepare s | first picture ms (paged: draws, pages) | frame ms "
           "(paged: pages a frame) | "
-          "1 px frame ms | fetches / hit pixel | GL MiB | process MiB | mismatch % | off % |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "1 px frame ms | fetches / hit pixel | GL MiB | process MiB | file MiB | mismatch % | "
+          "off % |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const TerrainRow& r : rows) {
-        md << "| " << r.mapSize << " | " << (r.paged ? "paged" : "whole") << " | " << r.viewDegrees
+        md << "| " << r.mapSize << " | " << terrainPathName(r.path) << " | " << r.viewDegrees
            << "° | " << fixed(r.prepareMs / 1000.0, 1) << " | " << fixed(r.firstMs, 1)
-           << (r.paged ? " (" + std::to_string(r.draws) + ", " + std::to_string(r.pagesLoaded) + ")"
-                       : std::string())
+           << (r.paged()
+                   ? " (" + std::to_string(r.draws) + ", " + std::to_string(r.pagesLoaded) + ")"
+                   : std::string())
            << " | " << fixed(r.frameMs, 1)
-           << (r.paged ? " (" + fixed(r.pagesPerFrame, 0) + ")" : std::string()) << " | "
+           << (r.paged() ? " (" + fixed(r.pagesPerFrame, 0) + ")" : std::string()) << " | "
            << fixed(r.frameOnePixelMs, 1) << " | " << fixed(r.fetchesMean, 1) << " | "
            << fixed(r.gpuMiB, 0) << " | " << fixed(r.processMiB, 0) << " | "
-           << fixed(r.coverageMismatchPct, 3) << " | " << fixed(r.offHalfTexelPct, 3) << " |\n";
+           << (r.path == TerrainPath::File ? fixed(r.fileMiB, 0) : std::string("-")) << " | "
+           << (r.checked ? fixed(r.coverageMismatchPct, 3) : std::string("n/a")) << " | "
+           << (r.checked ? fixed(r.offHalfTexelPct, 3) : std::string("n/a")) << " |\n";
     }
     return md.str();
 }
@@ -199,20 +305,20 @@ bool writeTerrainPlot(const std::filesystem::path& folder, const std::vector<Ter
     // A block per path and view: map size, frame ms, fetches.
     std::ostringstream data;
     std::vector<std::string> titles;
-    for (const bool paged : {false, true}) {
+    for (const TerrainPath path : {TerrainPath::Whole, TerrainPath::Paged, TerrainPath::File}) {
         std::vector<int> views;
         for (const TerrainRow& r : rows) {
-            if (r.paged == paged &&
+            if (r.path == path &&
                 std::find(views.begin(), views.end(), r.viewDegrees) == views.end())
                 views.push_back(r.viewDegrees);
         }
         for (int view : views) {
             for (const TerrainRow& r : rows) {
-                if (r.paged == paged && r.viewDegrees == view)
+                if (r.path == path && r.viewDegrees == view)
                     data << r.mapSize << ' ' << r.frameMs << ' ' << r.fetchesMean << '\n';
             }
             data << "\n\n";
-            titles.push_back(std::string(paged ? "paged" : "whole") + ", " + std::to_string(view) +
+            titles.push_back(std::string(terrainPathName(path)) + ", " + std::to_string(view) +
                              " deg");
         }
     }

@@ -1,12 +1,14 @@
 // microrelief-bench --terrain: the paper's claim at terrain scale (issue 29). For each map
 // size, the benchmark's relief (one continuous relief at every resolution) drawn by the
 // multilevel method through HeadlessRenderer, the way microrelief-render draws it: in
-// whole textures where the GL holds the map, and through pages (gl/PagedPyramid.h) at
-// every size, past the texture limit too. Per size and view: the map's preparation (the
-// pyramid built and uploaded), the first picture (drawn again until no page is wanted:
-// exact), the frame once its pages are resident, exact and at one pixel of error, the
-// fetches per pixel, the GL and process memory, and the picture against the exact CPU
-// reference.
+// whole textures where the GL holds the map, through pages (gl/PagedPyramid.h) from the map
+// and its pyramid in memory where the machine's memory holds them, and through pages from
+// a pyramid file (io/PyramidFile.h) at every size, made a band of rows at a time: past
+// memory too. Per size and view: the map's preparation (the pyramid built and uploaded; a
+// file built and opened), the first picture (drawn again until no page is wanted: exact),
+// the frame once its pages are resident, exact and at one pixel of error, the fetches per
+// pixel, the GL and process memory, and the picture against the exact CPU reference where
+// the map is held in memory.
 #pragma once
 
 #include <cstddef>
@@ -19,19 +21,32 @@
 
 namespace microrelief::bench {
 
+// How a row's map was drawn.
+enum class TerrainPath { Whole, Paged, File };
+const char* terrainPathName(TerrainPath path);
+
 struct TerrainOptions {
-    std::vector<int> mapSizes{1024, 4096, 16384, 24576};
+    std::vector<int> mapSizes{1024, 4096, 16384, 24576, 65536};
     std::vector<int> viewDegrees{45, 80};
     int width = 256, height = 256;
     int frames = 10;                                   // timed frames after the first picture
     std::size_t memoryBytes = std::size_t{512} << 20;  // the page pool's budget
+    // Maps of more samples than this are not made in memory: drawn from pyramid files
+    // alone, unchecked against the reference (0: every map in memory).
+    std::size_t inMemorySamples = 0;
+    // Where the pyramid files are built, each removed after its size's rows.
+    std::filesystem::path pyramidFolder = "terrain-pyramids";
 };
 
 struct TerrainRow {
     int mapSize = 0;
-    bool paged = false;  // through pages; else whole textures
+    TerrainPath path = TerrainPath::Whole;
+    bool paged() const { return path != TerrainPath::Whole; }
     int viewDegrees = 0;
-    double prepareMs = 0.0;  // setHeightMap: the pyramid built (GPU whole, CPU paged), uploaded
+    // setHeightMap: the pyramid built (GPU whole, CPU paged), uploaded; a file: built (the
+    // map's rows made too), opened and the coarse levels uploaded.
+    double prepareMs = 0.0;
+    double fileMiB = 0.0;    // the pyramid file's size
     double firstMs = 0.0;    // the first picture of this view, until exact, wall
     int draws = 0;           // its draws (paged: until none wanted a page)
     std::size_t pagesLoaded = 0;
@@ -43,7 +58,8 @@ struct TerrainRow {
     double fetchesMean = 0.0;      // texel reads per pixel whose ray met the relief
     double gpuMiB = 0.0;           // the map's textures, or pool, coarse texture and tables
     double processMiB = 0.0;       // the process's resident memory after the row
-    double coverageMismatchPct = 0.0, offHalfTexelPct = 0.0;  // against the CPU reference
+    bool checked = false;          // against the CPU reference (the map in memory): then
+    double coverageMismatchPct = 0.0, offHalfTexelPct = 0.0;
     int width = 0, height = 0;
 };
 

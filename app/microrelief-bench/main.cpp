@@ -13,6 +13,7 @@
 #include <map>
 
 #include "Benchmark.h"
+#include "CommandLine.h"
 #include "Materials.h"
 #include "Rebuild.h"
 #include "Report.h"
@@ -204,6 +205,11 @@ int runTerrain(const CLI::App& app, const BenchOptions& options, std::size_t mem
     }
     terrain.frames = options.frames;
     terrain.memoryBytes = memoryMib << 20;
+    // Maps made in memory (whole and paged paths, the reference) while their samples,
+    // pyramid and reference take at most 60 % of the machine's memory (about
+    // kPagedBytesPerSample a sample); larger ones from pyramid files alone.
+    terrain.inMemorySamples = physicalMemoryBytes() * 6 / 10 / kPagedBytesPerSample;
+    terrain.pyramidFolder = std::filesystem::path(outDir) / "terrain-pyramids";
     if (terrain.mapSizes.empty()) throwBadInput("--map-sizes names no size");
     const auto context = createHeadlessContext(parseBackend(backend));
     const std::filesystem::path folder = outDir;
@@ -222,10 +228,14 @@ int runTerrain(const CLI::App& app, const BenchOptions& options, std::size_t mem
         std::printf(
             "[%6.0f s] %5d %-5s %2d deg: prepare %8.1f ms, first %8.1f ms (%d draws, %zu "
             "pages), frame %7.2f ms, 1 px %7.2f ms, %5.1f fetches, GL %6.0f MiB, process "
-            "%6.0f MiB, %.3f %% / %.3f %% off\n",
-            elapsed, r.mapSize, r.paged ? "paged" : "whole", r.viewDegrees, r.prepareMs, r.firstMs,
+            "%6.0f MiB, %s\n",
+            elapsed, r.mapSize, terrainPathName(r.path), r.viewDegrees, r.prepareMs, r.firstMs,
             r.draws, r.pagesLoaded, r.frameMs, r.frameOnePixelMs, r.fetchesMean, r.gpuMiB,
-            r.processMiB, r.coverageMismatchPct, r.offHalfTexelPct);
+            r.processMiB,
+            r.checked ? (fixed(r.coverageMismatchPct, 3) + " % / " + fixed(r.offHalfTexelPct, 3) +
+                         " % off")
+                            .c_str()
+                      : "not checked (the map is not held in memory)");
         std::fflush(stdout);
     });
     const std::string table = terrainTable(context->renderer(), today(), rows);

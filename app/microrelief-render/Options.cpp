@@ -12,12 +12,6 @@ namespace microrelief {
 
 namespace {
 
-// The machine's memory, bytes (0 where the system does not say: no bound then).
-std::size_t physicalMemoryBytes() {
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
-    return pages > 0 && pageSize > 0 ? static_cast<std::size_t>(pages) * pageSize : 0;
-}
-
 // The camera path flags: what they need of each other. Throws Error(BadInput).
 void applyBatchFlags(const CLI::App& app, RenderOptions& o, const std::string& cameras,
                      const std::string& frames, const std::string& shard,

@@ -4,6 +4,7 @@
 // status 2 for bad arguments or input and 1 for anything else.
 #pragma once
 
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -19,6 +20,12 @@
 #include "SceneOptions.h"
 
 namespace microrelief {
+
+// The machine's memory, bytes (0 where the system does not say: no bound then).
+inline std::size_t physicalMemoryBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    return pages > 0 && pageSize > 0 ? static_cast<std::size_t>(pages) * pageSize : 0;
+}
 
 // An option given an empty value (--cameras '', --height "") means nothing a program can
 // do, and taking it as absent (the default map, no camera path) does something the user

@@ -408,8 +408,9 @@ TEST_F(ToolsCli, BenchRebuildWritesItsCsv) {
 }
 
 // --terrain (issue 29): a row per map size, path and view in terrain.csv, each size in
-// whole textures and through pages; the paged rows drew until exact, and both paths agree
-// with the CPU reference on every pixel. Conflicting modes and empty lists refused first.
+// whole textures, through pages from memory and from a pyramid file (removed after); the
+// paged rows drew until exact, and every path agrees with the CPU reference on every
+// pixel. Conflicting modes and empty lists refused first.
 TEST_F(ToolsCli, BenchTerrainDrawsEachSizeWholeAndThroughPagesExactly) {
     const auto out = " --out-dir " + (dir / "t").string();
     for (const auto& [args, mentions] : std::vector<std::pair<std::string, std::string>>{
@@ -424,7 +425,7 @@ TEST_F(ToolsCli, BenchTerrainDrawsEachSizeWholeAndThroughPagesExactly) {
         run(MICRORELIEF_BENCH_EXE, "--terrain --map-sizes 64,33 --views 45 --size 48x40" + out);
     ASSERT_EQ(r.status, 0) << r.err;
     const std::vector<std::vector<std::string>> csv = readBenchCsv(dir / "t" / "terrain.csv");
-    ASSERT_EQ(csv.size(), 5u);  // the header, 64 whole and paged, 33 whole and paged
+    ASSERT_EQ(csv.size(), 7u);  // the header, then 64 and 33: whole, paged, file
     const std::vector<std::string>& header = csv[0];
     const auto column = [&](const std::string& name) {
         const auto at = std::find(header.begin(), header.end(), name);
@@ -432,13 +433,14 @@ TEST_F(ToolsCli, BenchTerrainDrawsEachSizeWholeAndThroughPagesExactly) {
         return static_cast<std::size_t>(at - header.begin());
     };
     const std::vector<std::pair<std::string, std::string>> expected = {
-        {"64", "whole"}, {"64", "paged"}, {"33", "whole"}, {"33", "paged"}};
+        {"64", "whole"}, {"64", "paged"}, {"64", "file"},
+        {"33", "whole"}, {"33", "paged"}, {"33", "file"}};
     for (std::size_t k = 0; k < expected.size(); ++k) {
         const std::vector<std::string>& row = csv[k + 1];
         ASSERT_EQ(row.size(), header.size());
         EXPECT_EQ(row[column("map_size")], expected[k].first);
         EXPECT_EQ(row[column("path")], expected[k].second);
-        const bool paged = expected[k].second == "paged";
+        const bool paged = expected[k].second != "whole";
         // A paged picture takes a draw to find its pages and one that wants none.
         EXPECT_EQ(std::stoi(row[column("draws")]) >= 2, paged) << k;
         EXPECT_EQ(std::stod(row[column("pages_per_frame")]), 0.0) << k;  // all fit
@@ -446,8 +448,10 @@ TEST_F(ToolsCli, BenchTerrainDrawsEachSizeWholeAndThroughPagesExactly) {
         EXPECT_GT(std::stod(row[column("fetches_per_hit_pixel")]), 1.0) << k;
         EXPECT_EQ(std::stod(row[column("coverage_mismatch_pct")]), 0.0) << k;
         EXPECT_EQ(std::stod(row[column("off_half_texel_pct")]), 0.0) << k;
+        EXPECT_EQ(std::stod(row[column("file_mib")]) > 0.0, expected[k].second == "file") << k;
     }
     EXPECT_TRUE(std::filesystem::exists(dir / "t" / "terrain.md"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "t" / "terrain-pyramids")) << "files removed";
 }
 
 }  // namespace

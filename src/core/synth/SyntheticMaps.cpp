@@ -159,8 +159,13 @@ constexpr double kCobbleCells = 6.0;
 
 HeightMap cobbles(int width, int height, std::uint32_t seed) {
     HeightMap map(width, height);
+    cobblesRows(width, height, seed, 0, height, map.samples.data());
+    return map;
+}
+
+void cobblesRows(int width, int height, std::uint32_t seed, int y0, int y1, float* out) {
     const double longer = std::max(width, height);
-    for (int j = 0; j < height; ++j) {
+    for (int j = y0; j < y1; ++j) {
         for (int i = 0; i < width; ++i) {
             const double x = (i + 0.5) / longer * kCobbleCells,
                          y = (j + 0.5) / longer * kCobbleCells;
@@ -168,10 +173,10 @@ HeightMap cobbles(int width, int height, std::uint32_t seed) {
             const double dome =
                 std::sqrt(1.0 - (1.0 - c.edge) * (1.0 - c.edge));  // rounded shoulders
             const double h = dome * (0.72 + 0.2 * c.stone) + 0.08 * c.grain * dome + 0.03 * c.grain;
-            map.at(i, j) = static_cast<float>(std::clamp(h, 0.0, 1.0));
+            out[static_cast<std::size_t>(j - y0) * width + i] =
+                static_cast<float>(std::clamp(h, 0.0, 1.0));
         }
     }
-    return map;
 }
 
 namespace {

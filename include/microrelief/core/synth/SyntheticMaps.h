@@ -26,6 +26,9 @@ HeightMap whiteNoise(int width, int height, std::uint32_t seed);
 // Rounded cobblestones with mortar joints and fine grain: the bundled default map.
 // Sizes are relative, so the same relief comes out at any resolution.
 HeightMap cobbles(int width, int height, std::uint32_t seed);
+// Rows y0 .. y1 - 1 of cobbles(width, height, seed) into `out` (width a row), the same
+// samples: a map of any size made a band at a time (microrelief-bench --terrain).
+void cobblesRows(int width, int height, std::uint32_t seed, int y0, int y1, float* out);
 
 // Continents and ridged mountains over a flat sea, an equirectangular map for a globe
 // (--base sphere): seamless in u, smooth at the poles.

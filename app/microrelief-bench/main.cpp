@@ -399,6 +399,8 @@ int main(int argc, char** argv) {
         if (int(rebuild) + int(materials) + int(terrain) > 1)
             throwBadInput("--rebuild, --materials and --terrain: one at a time");
         if (terrain) return runTerrain(app, options, memoryMib, backend, outDir);
+        if (app.count("--memory"))
+            throwBadInput("--memory is the page budget of --terrain; the other runs page nothing");
         if (rebuild) {
             RebuildOptions rebuildOptions;
             rebuildOptions.width = options.width;

@@ -416,7 +416,8 @@ TEST_F(ToolsCli, BenchTerrainDrawsEachSizeWholeAndThroughPagesExactly) {
     for (const auto& [args, mentions] : std::vector<std::pair<std::string, std::string>>{
              {"--terrain --rebuild", "one at a time"},
              {"--terrain --map-sizes 0", "--map-sizes names no size"},
-             {"--terrain --memory 0", "--memory"}}) {
+             {"--terrain --memory 0", "--memory"},
+             {"--memory 64", "--memory is the page budget of --terrain"}}) {
         const test::RunResult r = run(MICRORELIEF_BENCH_EXE, args + out);
         test::expectOneLineFailure(r, "microrelief-bench", 2, mentions);
     }

@@ -82,6 +82,20 @@ BuildProgress buildProgress(const std::string& map, bool quiet) {
     };
 }
 
+// The job's albedo, where it has one.
+std::optional<AlbedoImage> loadAlbedoOf(const std::optional<std::filesystem::path>& file) {
+    return file ? std::optional<AlbedoImage>(loadAlbedo(*file)) : std::nullopt;
+}
+
+// The GL context of --backend, named with -v.
+std::unique_ptr<GlContext> openContext(const RenderOptions& o) {
+    auto context = createHeadlessContext(o.backend);
+    if (o.verbose)
+        logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
+                context->description());
+    return context;
+}
+
 // What run() drew, and of what map.
 struct Drawn {
     HeadlessResult result;
@@ -109,12 +123,8 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
     const RenderJob job = sceneOverMap(asked, o.scene.georeference, pages->mapWidth(),
                                        pages->mapHeight(), std::nullopt, name);
     const std::optional<std::filesystem::path> albedoFile = albedoPath(job);
-    const std::optional<AlbedoImage> albedo =
-        albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
-    const auto context = createHeadlessContext(o.backend);
-    if (o.verbose)
-        logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
-                context->description());
+    const std::optional<AlbedoImage> albedo = loadAlbedoOf(albedoFile);
+    const auto context = openContext(o);
     Drawn drawn;
     {
         HeadlessRenderer renderer(*context, job.method);  // its GL objects die before the context
@@ -151,14 +161,8 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
             "make, at most 67108864 samples (this one would have " +
             std::to_string(map.samples.size() * job.tiles.x * job.tiles.y) + ")");
     }
-    const std::optional<std::filesystem::path> albedoFile = albedoPath(job);
-    const std::optional<AlbedoImage> albedo =
-        albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
-
-    const auto context = createHeadlessContext(o.backend);
-    if (o.verbose)
-        logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
-                context->description());
+    const std::optional<AlbedoImage> albedo = loadAlbedoOf(albedoPath(job));
+    const auto context = openContext(o);
     Drawn drawn;
     drawn.result = renderHeadless(*context, map, heightFile.string(), job,
                                   albedo ? &*albedo : nullptr, o.paging);

@@ -115,7 +115,6 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
         throwBadInput(
             "--compare-reference traces the whole map in memory: not with "
             "--pyramid-cache");
-    std::filesystem::create_directories(*o.pyramidCache);
     const std::string name = heightFile.string();
     const std::shared_ptr<const PyramidFile> pages =
         openOrBuildPyramidFile(heightFile, *o.pyramidCache, asked.map.load, asked.base.wrapsU(),

@@ -9,16 +9,21 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
 #include <utility>
 
 #include "io/CheckedImageInput.h"
+#if MICRORELIEF_WITH_GDAL
+#include "io/DemFile.h"
+#endif
 #include "microrelief/core/Error.h"
 #include "microrelief/io/AtomicFile.h"
 
@@ -30,9 +35,11 @@ constexpr char kMagic[8] = {'M', 'R', 'P', 'Y', 'R', 'A', 'M', 'D'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kFixedBytes = 48;  // magic to the pages' offset
 constexpr std::uint64_t kAlign = 4096;
-// The largest side a pyramid file may claim: 2^20 (four times the 65536 the programs make);
-// with it every count and offset below fits 64 bits.
-constexpr std::uint32_t kMaxSide = 1u << 20;
+// The largest side a pyramid file may have: the programs' (65536). With pages of at least
+// 16^2 that is at most 22.4 million pages, a page table of 90 MB: the most a crafted
+// header can make the reader allocate before its CRC is checked. Every count and offset
+// below fits 64 bits.
+constexpr std::uint32_t kMaxSide = kMaxPagedHeightMapSide;
 constexpr std::uint32_t kMaxKeyBytes = 1u << 16;
 
 std::uint32_t crcOf(const void* data, std::size_t size) {
@@ -93,6 +100,12 @@ void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bo
     if (pageSide < 16 || pageSide > 4096 || (pageSide & (pageSide - 1)) != 0)
         throwRuntime("writePyramidFile: the page side must be a power of two from 16 to 4096");
     if (sourceKey.size() > kMaxKeyBytes) throwRuntime("writePyramidFile: a source key too long");
+    if (rows.width < 1 || rows.height < 1 || static_cast<std::uint32_t>(rows.width) > kMaxSide ||
+        static_cast<std::uint32_t>(rows.height) > kMaxSide) {
+        throwBadInput(source + ": " + std::to_string(rows.width) + " x " +
+                      std::to_string(rows.height) + " samples; a pyramid file holds 1 to " +
+                      std::to_string(kMaxSide) + " a side");
+    }
     const int shift = std::countr_zero(static_cast<unsigned>(pageSide));
     const PageGrid grid = pageGrid(rows.width, rows.height, shift);
     if (grid.count > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
@@ -217,10 +230,11 @@ std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path
     std::vector<std::uint32_t> crcs(pages);
     for (std::uint32_t k = 0; k < pages; ++k)
         crcs[k] = get32(&header[kFixedBytes + keyBytes + 4 * k]);
-    closer.keep = true;
-    return std::shared_ptr<const PyramidFile>(new PyramidFile(
+    std::shared_ptr<const PyramidFile> opened(new PyramidFile(
         file, fd, static_cast<int>(width), static_cast<int>(height), wrap == 1, largest,
         static_cast<int>(shift), std::move(key), std::move(crcs), dataOffset));
+    closer.keep = true;  // the file's now: closed with it
+    return opened;
 }
 
 PyramidFile::PyramidFile(const std::filesystem::path& path, int fd, int width, int height,
@@ -295,16 +309,34 @@ std::string pyramidSourceKey(const std::filesystem::path& mapFile,
     struct stat st {};
     if (::stat(mapFile.c_str(), &st) != 0)
         throwBadInput(mapFile.string() + ": cannot read (" + errnoText() + ")");
-    const long long mtimeNs =
-        static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
+    const auto ns = [](const timespec& t) {
+        return std::to_string(static_cast<long long>(t.tv_sec) * 1000000000LL + t.tv_nsec);
+    };
+    // The change time too: a copy that keeps the time (cp -p, rsync -t) or `touch -r` sets
+    // the modification time back, never the change time.
     return "map=" + (error ? mapFile.string() : path.string()) +
-           "\nbytes=" + std::to_string(st.st_size) + "\nmtime_ns=" + std::to_string(mtimeNs) +
+           "\nbytes=" + std::to_string(st.st_size) + "\nmtime_ns=" + ns(st.st_mtim) +
+           "\nctime_ns=" + ns(st.st_ctim) + "\ninode=" + std::to_string(st.st_ino) +
            "\nchannel=" + std::to_string(options.channel) +
            "\nnormalize=" + (options.normalize ? "1" : "0") + "\nwrap_u=" + (wrapU ? "1" : "0");
 }
 
 MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
     const std::string name = file.string();
+    checkRegularFile(file, name);
+#if MICRORELIEF_WITH_GDAL
+    // An elevation model is read whole through GDAL, with its georeference (HeightMapFile.h);
+    // its rows are not read here.
+    std::string extension = file.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".hgt" ||
+        ((extension == ".tif" || extension == ".tiff") && hasGeoTiffGrid(file))) {
+        throwBadInput(name +
+                      ": an elevation model (read through GDAL with its georeference); "
+                      "pyramid files are made of plain images only: draw it without "
+                      "--pyramid-cache");
+    }
+#endif
     struct State {
         std::filesystem::path file;
         HeightMapLoadOptions options;
@@ -329,21 +361,32 @@ MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoad
         state->next = 0;
     };
     // Rows y0 .. y1 - 1 as stored (reading as FLOAT makes OpenImageIO normalise integer
-    // formats by their type range and pass floats through), from the top again when asked
-    // for row 0 or for a row the input has passed.
+    // formats by their type range and pass floats through), rows of the data window from
+    // its first. A tiled image (TIFF, OpenEXR) by the rows of tiles that cover them
+    // (OpenImageIO 2.4 divides by zero reading scanlines of one); a scanline image in order,
+    // from the top again (opened anew) for a row the input has passed.
     const auto readStored = [state, name, open](int y0, int y1, float* out) {
         if (!state->input || y0 < state->next) open();
-        const int width = state->input->spec().width;
-        std::vector<float> skip;
-        while (state->next < y0) {  // rows not asked for (never, as streamPyramid reads)
-            skip.resize(static_cast<std::size_t>(width));
-            if (!state->input->read_scanline(state->next, 0, OIIO::TypeDesc::FLOAT, skip.data()))
-                break;
-            ++state->next;
+        const OIIO::ImageSpec& spec = state->input->spec();
+        const int width = spec.width, channel = state->options.channel;
+        bool ok = false;
+        if (spec.tile_width > 0) {
+            const int tile = std::max(spec.tile_height, 1);
+            const int t0 = y0 / tile * tile,
+                      t1 = std::min(spec.height, (y1 + tile - 1) / tile * tile);
+            std::vector<float> tiles(static_cast<std::size_t>(width) * (t1 - t0));
+            ok = state->input->read_tiles(0, 0, spec.x, spec.x + width, spec.y + t0, spec.y + t1,
+                                          spec.z, spec.z + std::max(spec.depth, 1), channel,
+                                          channel + 1, OIIO::TypeDesc::FLOAT, tiles.data());
+            if (ok) {
+                std::copy(tiles.begin() + static_cast<std::ptrdiff_t>(y0 - t0) * width,
+                          tiles.begin() + static_cast<std::ptrdiff_t>(y1 - t0) * width, out);
+            }
+        } else {
+            ok = state->input->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, channel,
+                                              channel + 1, OIIO::TypeDesc::FLOAT, out);
         }
-        const int channel = state->options.channel;
-        if (!state->input->read_scanlines(0, 0, y0, y1, 0, channel, channel + 1,
-                                          OIIO::TypeDesc::FLOAT, out)) {
+        if (!ok) {
             const std::string reason = oneLine(state->input->geterror());
             throwBadInput(name + ": cannot read rows " + std::to_string(y0) + " to " +
                           std::to_string(y1 - 1) + " (" +
@@ -386,6 +429,19 @@ MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoad
     return rows;
 }
 
+namespace {
+
+// Whether `file` is a pyramid file of another version than this build's (a cache rebuilds
+// it; PyramidFile::open refuses it).
+bool otherVersion(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    unsigned char head[12] = {};
+    return in.read(reinterpret_cast<char*>(head), sizeof head) &&
+           std::memcmp(head, kMagic, sizeof kMagic) == 0 && get32(head + 8) != kVersion;
+}
+
+}  // namespace
+
 std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem::path& mapFile,
                                                           const std::filesystem::path& cacheFolder,
                                                           const HeightMapLoadOptions& options,
@@ -397,20 +453,27 @@ std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem:
     // size and time (so that a changed map replaces its stale pyramid).
     const std::string identity =
         key.substr(0, key.find("\nbytes=")) + key.substr(key.find("\nchannel="));
+    std::uint64_t fnv = 14695981039346656037ull;  // FNV-1a: the same name on every build
+    for (const unsigned char c : identity) fnv = (fnv ^ c) * 1099511628211ull;
     char hash[17];
-    std::snprintf(hash, sizeof hash, "%016llx",
-                  static_cast<unsigned long long>(std::hash<std::string>{}(identity)));
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv));
     const std::filesystem::path file =
         cacheFolder / (mapFile.stem().string() + "-" + hash + ".mrpyr");
     if (built) *built = false;
     std::error_code error;
+    if (std::filesystem::exists(cacheFolder) && !std::filesystem::is_directory(cacheFolder))
+        throwBadInput(cacheFolder.string() + ": is not a folder (the pyramid files' cache)");
+    if (!std::filesystem::create_directories(cacheFolder, error) && error) {
+        throwRuntime(cacheFolder.string() + ": cannot make the pyramid files' folder (" +
+                     error.message() + ")");
+    }
     // A build killed before its rename (SIGKILL, a power cut) left its temporary: gone, and
     // the build starts again.
     for (const auto& entry : std::filesystem::directory_iterator(cacheFolder, error)) {
         if (abandonedTemporaryTarget(entry.path()) == file)
             std::filesystem::remove(entry.path(), error);
     }
-    if (std::filesystem::exists(file)) {
+    if (std::filesystem::exists(file) && !otherVersion(file)) {
         std::shared_ptr<const PyramidFile> found = PyramidFile::open(file);
         if (found->sourceKey() == key) return found;
     }

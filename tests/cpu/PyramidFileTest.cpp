@@ -2,6 +2,7 @@
 // pyramid file (io/PyramidFile.h): the texels MaxPyramid makes in memory, bit for bit, read
 // in order once a pass; a file that is truncated, corrupt or not one is refused, with the
 // file named; a map's file reused while the map is unchanged.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -302,6 +303,78 @@ TEST_F(PyramidFileTest, AMapFilesRowsAreWhatLoadHeightMapReads) {
         }
     }
     expectRefused([&] { heightMapFileRows(scratch_ / "missing.png", {}); }, "missing.png");
+}
+
+// A tiled TIFF or OpenEXR (large terrain files usually are) is read by rows of tiles, the
+// last tile row and column partial: what loadHeightMap reads (OpenImageIO 2.4 divided by
+// zero reading scanlines of one: the program died of SIGFPE).
+TEST_F(PyramidFileTest, ATiledMapsRowsAreWhatLoadHeightMapReads) {
+    const HeightMap map = testMap(150, 97, 4);
+    for (const std::string name : {"tiled.tif", "tiled.exr"}) {
+        const std::filesystem::path file = scratch_ / name;
+        const bool exr = name.ends_with(".exr");
+        OIIO::ImageSpec spec(map.width, map.height, 1,
+                             exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT16);
+        spec.tile_width = spec.tile_height = 32;
+        const std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(file.string());
+        ASSERT_TRUE(out && out->open(file.string(), spec)) << OIIO::geterror();
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, map.samples.data())) << out->geterror();
+        out->close();
+        const MapRows rows = heightMapFileRows(file, {});
+        std::vector<float> all(static_cast<std::size_t>(map.width) * map.height);
+        for (int y0 = 0; y0 < map.height; y0 += 40) {
+            const int y1 = std::min(map.height, y0 + 40);  // bands across tile rows
+            rows.read(y0, y1, all.data() + static_cast<std::ptrdiff_t>(y0) * map.width);
+        }
+        EXPECT_EQ(bitsOf(all), bitsOf(loadHeightMap(file).samples)) << name;
+        const std::filesystem::path cache = scratch_ / ("cache-" + name);
+        const auto built = openOrBuildPyramidFile(file, cache, {}, false);
+        EXPECT_EQ(bitsOf(built->readLevel(0)), bitsOf(all)) << name;
+    }
+}
+
+// The cache: a file where its folder should be refused; a pyramid file of another version
+// built again, not refused; a map copied over with its time kept is another map.
+TEST_F(PyramidFileTest, TheCacheRebuildsAnotherVersionAndRefusesAFileForAFolder) {
+    const HeightMap map = testMap(40, 30, 1);
+    const std::filesystem::path png = scratch_ / "m.png", cache = scratch_ / "cache";
+    test::writeMap(png, map, PixelType::UInt16);
+    test::writeBytes(scratch_ / "plain", {1});
+    expectRefused([&] { openOrBuildPyramidFile(png, scratch_ / "plain", {}, false); },
+                  (scratch_ / "plain").string() + ": is not a folder");
+
+    bool built = false;
+    const std::filesystem::path file = openOrBuildPyramidFile(png, cache, {}, false)->path();
+    std::vector<std::uint8_t> bytes = test::readBytes(file);
+    bytes[8] = 99;  // the version
+    test::writeBytes(file, bytes);
+    expectRefused([&] { PyramidFile::open(file); }, "a pyramid file of version 99");
+    openOrBuildPyramidFile(png, cache, {}, false, {}, &built);
+    EXPECT_TRUE(built) << "another version is built again";
+
+    // The same size and modification time, other samples (an uncompressed TIFF written
+    // over, its time set back): the change time tells.
+    const std::filesystem::path tif = scratch_ / "m.tif";
+    const auto writeRaw = [&](const HeightMap& heights) {
+        OIIO::ImageSpec spec(heights.width, heights.height, 1, OIIO::TypeDesc::FLOAT);
+        spec.attribute("compression", "none");
+        const std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tif.string());
+        ASSERT_TRUE(out && out->open(tif.string(), spec));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, heights.samples.data()));
+        out->close();
+    };
+    writeRaw(map);
+    openOrBuildPyramidFile(tif, cache, {}, false);
+    const auto time = std::filesystem::last_write_time(tif);
+    const auto size = std::filesystem::file_size(tif);
+    HeightMap other = map;
+    other.at(3, 4) = 0.0f;
+    writeRaw(other);
+    std::filesystem::last_write_time(tif, time);
+    ASSERT_EQ(std::filesystem::file_size(tif), size);
+    const auto again = openOrBuildPyramidFile(tif, cache, {}, false, {}, &built);
+    EXPECT_TRUE(built) << "a map written over with its old size and time";
+    EXPECT_EQ(again->readLevel(0)[4 * 40 + 3], 0.0f);
 }
 
 }  // namespace

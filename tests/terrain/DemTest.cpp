@@ -21,6 +21,7 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/core/scene/Georeference.h"
 #include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/PyramidFile.h"
 
 using namespace microrelief;
 
@@ -250,6 +251,18 @@ TEST(DemFile, WhatIsNotAnElevationModelIsRefusedOrReadAsAnImage) {
     const HeightMapFile image = loadHeightMapFile(dir / "image.tif");
     EXPECT_FALSE(image.georeference);
     EXPECT_FLOAT_EQ(image.map.at(39, 0), 39000.0f / 65535.0f);
+
+    // Pyramid files are made of plain images' rows: a DEM is refused there, not read as an
+    // image (its metres as pixel values, its georeference lost); the TIFF with no grid is read.
+    writeDem(dir / "dem.tif", DemSpec{}, GDT_Int16);
+    try {
+        heightMapFileRows(dir / "dem.tif", {});
+        FAIL() << "a DEM's rows were read as an image's";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("dem.tif: an elevation model"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(heightMapFileRows(dir / "image.tif", {}).width, 40);
 }
 
 #else

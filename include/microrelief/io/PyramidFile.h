@@ -78,21 +78,25 @@ private:
     std::uint64_t dataOffset_;
 };
 
-// The key of a map file as it is now: its path, size and modification time, the load
-// options and the base's wrap. A pyramid file built with another key is stale.
+// The key of a map file as it is now: its path, size, modification and change times and
+// inode, the load options and the base's wrap. A pyramid file built with another key is
+// stale.
 std::string pyramidSourceKey(const std::filesystem::path& mapFile,
                              const HeightMapLoadOptions& options, bool wrapU);
 
 // The rows of a height map file as loadHeightMap reads it (integers to [0, 1], floats as
 // stored, options.channel; options.normalize maps [min, max] to [0, 1] from a first pass
-// of its own), read a band of scanlines at a time through OpenImageIO and never held whole.
+// of its own), read a band of scanlines (or of tiles) at a time through OpenImageIO and
+// never held whole, but where OpenImageIO holds it (an interlaced PNG). An elevation model
+// (a GeoTIFF grid, an .hgt file: HeightMapFile.h) is refused where GDAL reads it.
 // The header is checked at once (options.maxSide, maxSamples; a file that is not regular
 // refused); the reads throw Error(BadInput) naming the file.
 MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoadOptions& options);
 
-// The pyramid file of `mapFile` in `cacheFolder` (made where missing): opened where one
-// built from the map as it is now (pyramidSourceKey) is there, else built from its rows
-// (heightMapFileRows) and opened. `built` (may be null) says which.
+// The pyramid file of `mapFile` in `cacheFolder` (made where missing; Error(BadInput) where
+// it is a file): opened where one built from the map as it is now (pyramidSourceKey) is
+// there, else built from its rows (heightMapFileRows) and opened; a file of another version
+// is built again, one that is corrupt refused. `built` (may be null) says which.
 std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem::path& mapFile,
                                                           const std::filesystem::path& cacheFolder,
                                                           const HeightMapLoadOptions& options,

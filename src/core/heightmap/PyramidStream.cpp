@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -117,14 +118,20 @@ StreamedPyramid streamPyramid(const MapRows& rows, bool wrapU, int band, const P
         for (std::size_t k = 0; k < samples.size(); ++k) {
             const float h = samples[k];
             if (!(std::isfinite(h) && h >= 0.0f)) {
-                throwBadInput(source + ": sample (" + std::to_string(k % width) + ", " +
-                              std::to_string(y0 + static_cast<int>(k / width)) +
-                              ") is not a finite height >= 0");
+                std::ostringstream message;
+                message << source << ": sample (" << k % width << ", "
+                        << y0 + static_cast<int>(k / width) << ") is " << h
+                        << "; heights must be finite and >= 0"
+                        << (std::isfinite(h) ? " (try {map.load.normalize} to map [min, max] "
+                                               "to [0, 1])"
+                                             : "");
+                throwBadInput(message.str());
             }
             largest = std::max(largest, h);
         }
         report(y1 - y0);
     }
+    std::vector<float>().swap(samples);
     StreamedPyramid result;
     result.largestSample = largest;
     result.maxHeight = pyramidTop(largest);
@@ -139,11 +146,13 @@ StreamedPyramid streamPyramid(const MapRows& rows, bool wrapU, int band, const P
         return map.samples.data() + static_cast<std::size_t>(r) * width;
     };
     HeightMap window(width, 1);
+    window.samples.reserve(static_cast<std::size_t>(width) * (std::min(band, height) + 2));
     std::vector<float> above(static_cast<std::size_t>(width)), below;
     std::vector<float> finest;
     for (int y0 = 0; y0 < height; y0 += band) {
         const int y1 = std::min(height, y0 + band), count = y1 - y0;
-        window = HeightMap(width, count + 2);  // rows y0 - 1 .. y1: the band's at 1 .. count
+        window.height = count + 2;  // rows y0 - 1 .. y1: the band's at 1 .. count
+        window.samples.resize(static_cast<std::size_t>(width) * (count + 2));
         int readFrom = y0;
         if (!below.empty()) {
             std::copy(below.begin(), below.end(), rowOf(window, 1));
@@ -161,6 +170,20 @@ StreamedPyramid streamPyramid(const MapRows& rows, bool wrapU, int band, const P
         else
             std::copy(above.begin(), above.end(), rowOf(window, 0));
         above.assign(rowOf(window, count), rowOf(window, count) + width);
+        // The second pass reads the rows again: a map that changed in between (a sample not a
+        // height, or above the largest, which set S) would make bounds below its surface.
+        for (int r = 1; r <= count; ++r) {
+            const float* row = rowOf(window, r);
+            for (int i = 0; i < width; ++i) {
+                if (!(row[i] >= 0.0f && row[i] <= largest)) {
+                    throwBadInput(source +
+                                  ": the map changed while its pyramid was built "
+                                  "(sample (" +
+                                  std::to_string(i) + ", " + std::to_string(y0 + r - 1) +
+                                  ") differs from the first pass)");
+                }
+            }
+        }
 
         finest.assign(static_cast<std::size_t>(count) * width, 0.0f);
         parallelRows(0, count, width, [&](int r0, int r1) {

@@ -11,4 +11,23 @@ MICRORELIEF_EXTRA_PACKAGES="clang libclang-rt-14-dev" MICRORELIEF_SETUP_NO_BUILD
 cd "$root"
 [ -f build-sanitize/build.ninja ] || cmake --preset sanitize >/dev/null
 cmake --build --preset sanitize
-ctest --preset sanitize --timeout 1800 "$@"
+
+# LeakSanitizer checks for leaks at every process's exit by stopping all its threads from a
+# tracer; that tracer itself now and then dies of SIGSEGV ("Tracer caught signal 11 ...
+# LeakSanitizer has encountered a fatal error"), a known fault of the runtime, not a leak
+# (google/sanitizers#1353; seen once in seven CI runs here, 2026-12-04, in a child process of
+# batch.cli). Only then the failed tests run once more; a leak report, an ASan or UBSan
+# report, or any other failure fails the run as before.
+log="$(mktemp)"
+trap 'rm -f "$log"' EXIT
+if ctest --preset sanitize --timeout 1800 "$@" 2>&1 | tee "$log"; then
+  exit 0
+fi
+tracer='LeakSanitizer has encountered a fatal error'
+if grep -q "$tracer" "$log" && ! grep -qE 'ERROR: (AddressSanitizer|LeakSanitizer): |runtime error: ' "$log"; then
+  echo "sanitize.sh: LeakSanitizer's own tracer crashed ('$tracer'), not a leak;" \
+    "the failed tests run once more" >&2
+  ctest --preset sanitize --timeout 1800 --rerun-failed --output-on-failure
+else
+  exit 1
+fi

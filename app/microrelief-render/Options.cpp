@@ -71,10 +71,11 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
     std::string pyramidCache;
-    app.add_option("--pyramid-cache", pyramidCache,
-                   "Draw the map through pages from its pyramid file in this folder, built "
-                   "there once from the map's rows in bounded memory and reused while the map "
-                   "is unchanged: for maps larger than memory (plain images, one picture)");
+    app.add_option(
+        "--pyramid-cache", pyramidCache,
+        "Draw the map through pages from its pyramid file in this folder, built "
+        "there once from the map's rows in bounded memory and reused while the map "
+        "is unchanged: for maps larger than memory (images and elevation models, one picture)");
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
     app.add_flag("-v,--verbose", o.verbose, "Print the GL renderer and shader logs");
     std::string cameras, frames, shard, manifest;

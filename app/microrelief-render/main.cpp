@@ -103,6 +103,23 @@ struct Drawn {
     glm::ivec2 mapSize{0};
 };
 
+// The job over a W x H map: a georeferenced map's true proportions where the flags leave
+// them to it, and a line saying what its grid gave (or that --exaggeration has nothing to
+// scale).
+RenderJob jobOverMap(const RenderOptions& o, const std::filesystem::path& heightFile, int width,
+                     int height, const std::optional<Georeference>& georeference) {
+    const std::string name = heightFile.string();
+    const RenderJob job =
+        sceneOverMap(o.scene.job, o.scene.georeference, width, height, georeference, name);
+    if (const std::string unused = exaggerationUnused(name, o.scene.georeference, georeference);
+        !unused.empty())
+        logWarning(unused);
+    if (georeference && !o.quiet)
+        std::printf("%s: %s\n", kProgram,
+                    georeferenceSummary(name, *georeference, job, o.scene.georeference).c_str());
+    return job;
+}
+
 // --pyramid-cache: the map's pyramid file, built where missing or stale, drawn through pages;
 // the map itself is never read whole (no --compare-reference, no check of the eye).
 Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& heightFile) {
@@ -119,8 +136,8 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
     const std::shared_ptr<const PyramidFile> pages =
         openOrBuildPyramidFile(heightFile, *o.pyramidCache, asked.map.load, asked.base.wrapsU(),
                                buildProgress(name, o.quiet));
-    const RenderJob job = sceneOverMap(asked, o.scene.georeference, pages->mapWidth(),
-                                       pages->mapHeight(), std::nullopt, name);
+    const RenderJob job =
+        jobOverMap(o, heightFile, pages->mapWidth(), pages->mapHeight(), pages->georeference());
     const std::optional<std::filesystem::path> albedoFile = albedoPath(job);
     const std::optional<AlbedoImage> albedo = loadAlbedoOf(albedoFile);
     const auto context = openContext(o);
@@ -141,18 +158,7 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
 Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightFile) {
     const HeightMapFile loaded = loadHeightMapFile(heightFile, o.scene.job.map.load);
     const HeightMap& map = loaded.map;
-    // A georeferenced map's true proportions, where the flags leave them to it.
-    const RenderJob job = sceneOverMap(o.scene.job, o.scene.georeference, map.width, map.height,
-                                       loaded.georeference, heightFile.string());
-    if (const std::string unused =
-            exaggerationUnused(heightFile.string(), o.scene.georeference, loaded.georeference);
-        !unused.empty())
-        logWarning(unused);
-    if (loaded.georeference && !o.quiet)
-        std::printf("%s: %s\n", kProgram,
-                    georeferenceSummary(heightFile.string(), *loaded.georeference, job,
-                                        o.scene.georeference)
-                        .c_str());
+    const RenderJob job = jobOverMap(o, heightFile, map.width, map.height, loaded.georeference);
     if (o.compareReference && job.tiles != glm::ivec2(1, 1) &&
         map.samples.size() * job.tiles.x * job.tiles.y > (std::size_t(1) << 26)) {
         throwBadInput(

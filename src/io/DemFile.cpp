@@ -145,16 +145,23 @@ bool hasGeoTiffGrid(const std::filesystem::path& file) {
     return false;
 }
 
-HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+bool isElevationModelFile(const std::filesystem::path& file) {
+    std::string extension = lower(file.extension().string());
+    return extension == ".hgt" ||
+           ((extension == ".tif" || extension == ".tiff") && hasGeoTiffGrid(file));
+}
+
+DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
     const std::string name = file.string();
     const QuietGdal quiet;
     // Only the elevation formats' drivers: nothing else GDAL reads is tried on the file.
     const char* const drivers[] = {"GTiff", "SRTMHGT", nullptr};
-    const std::unique_ptr<GDALDataset, DatasetCloser> dataset(
-        GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers));
+    const std::shared_ptr<GDALDataset> dataset(
+        GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers),
+        DatasetCloser{});
     if (!dataset) {
         std::string hint;
-        if (file.extension() == ".hgt" || file.extension() == ".HGT")
+        if (lower(file.extension().string()) == ".hgt")
             hint =
                 "; an SRTM tile is named for its corner, N45E006.hgt, and holds 1201 x 1201 "
                 "or 3601 x 3601 samples";
@@ -176,80 +183,119 @@ HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOpti
     GDALRasterBand* band = dataset->GetRasterBand(options.channel + 1);
     Georeference geo = groundOf(name, gt, width, height, dataset->GetSpatialRef());
 
+    // How a stored value becomes metres, or nodata.
+    struct Heights {
+        bool hasNodata = false;
+        double nodata = 0.0, scale = 1.0, offset = 0.0, unit = 1.0;
+        bool isNodata(double raw) const {
+            return hasNodata && (raw == nodata || (std::isnan(nodata) && std::isnan(raw)));
+        }
+        double metres(double raw) const { return (raw * scale + offset) * unit; }
+    } heights;
     int hasNodata = 0, hasScale = 0, hasOffset = 0;
-    const double nodata = band->GetNoDataValue(&hasNodata);
-    double scale = band->GetScale(&hasScale), offset = band->GetOffset(&hasOffset);
-    if (!hasScale) scale = 1.0;
-    if (!hasOffset) offset = 0.0;
-    const double unit = verticalUnit(name, band->GetUnitType());
-    const auto isNodata = [&](double raw) {
-        return hasNodata && (raw == nodata || (std::isnan(nodata) && std::isnan(raw)));
+    heights.nodata = band->GetNoDataValue(&hasNodata);
+    heights.hasNodata = hasNodata != 0;
+    heights.scale = band->GetScale(&hasScale);
+    heights.offset = band->GetOffset(&hasOffset);
+    if (!hasScale) heights.scale = 1.0;
+    if (!hasOffset) heights.offset = 0.0;
+    heights.unit = verticalUnit(name, band->GetUnitType());
+
+    // Rows of the file y0 .. y1 - 1 as stored, read as double (the nodata test on the stored
+    // value; integer heights up to 2^53 exact until they are metres), in blocks of about
+    // 4 M samples handed to `use(firstRow, rowCount, samples)`.
+    const int blockRows = std::max(1, std::min(height, (1 << 22) / width));
+    const auto readBlocks = [dataset, band, name, width, blockRows](int y0, int y1,
+                                                                    const auto& use) {
+        const QuietGdal quietHere;
+        std::vector<double> block(static_cast<std::size_t>(width) * std::min(blockRows, y1 - y0));
+        for (int y = y0; y < y1; y += blockRows) {
+            const int count = std::min(blockRows, y1 - y);
+            if (band->RasterIO(GF_Read, 0, y, width, count, block.data(), width, count, GDT_Float64,
+                               0, 0) != CE_None)
+                throwBadInput(name + ": cannot read the samples (" + QuietGdal::lastError() + ")");
+            use(y, count, block.data());
+        }
     };
+
+    // The first pass: the valid heights' range and the nodata samples.
+    double lowest = std::numeric_limits<double>::infinity();
+    double highest = -lowest;
+    readBlocks(0, height, [&](int y, int count, const double* block) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(count) * width; ++k) {
+            const double raw = block[k];
+            if (heights.isNodata(raw)) {
+                ++geo.nodataSamples;
+                continue;
+            }
+            const double metres = heights.metres(raw);
+            if (!std::isfinite(metres)) {
+                std::ostringstream message;
+                message << name << ": sample (" << k % width << ", " << y + k / width << ") is "
+                        << raw << ", not a height (and not the file's nodata value)";
+                throwBadInput(message.str());
+            }
+            lowest = std::min(lowest, metres);
+            highest = std::max(highest, metres);
+        }
+    });
+    if (geo.nodataSamples == static_cast<std::size_t>(width) * height)
+        throwBadInput(name + ": every sample is nodata");
+    geo.lowestMetres = lowest;
+    geo.highestMetres = highest;
 
     // North up, east to the right (scene-and-cli.md: image row 0 is the far edge, -z, at
     // the top of a view from above): a grid whose rows run south to north (a positive row
     // step) or whose columns run west to east in reverse is turned as it is read.
     const bool flipRows = gt[5] > 0.0, flipColumns = gt[1] < 0.0;
-    try {
-        HeightMapFile result;
-        result.map = HeightMap(width, height);
-        // Samples are kept as float metres from the first valid one (`origin`, in double) so
-        // that a large offset (heights above the ellipsoid's centre) costs no precision.
-        std::optional<double> origin;
-        // Rows in blocks of about 4 M samples, read as double: the nodata test on the
-        // stored value, and integer heights up to 2^53 exact until they are metres.
-        const int rows = std::max(1, std::min(height, (1 << 22) / width));
-        std::vector<double> block(static_cast<std::size_t>(width) * rows);
-        double lowest = std::numeric_limits<double>::infinity();
-        double highest = -lowest;
-        for (int y = 0; y < height; y += rows) {
-            const int count = std::min(rows, height - y);
-            if (band->RasterIO(GF_Read, 0, y, width, count, block.data(), width, count, GDT_Float64,
-                               0, 0) != CE_None)
-                throwBadInput(name + ": cannot read the samples (" + QuietGdal::lastError() + ")");
+    DemRows result;
+    result.georeference = geo;
+    result.rows.width = width;
+    result.rows.height = height;
+    // Map rows y0 .. y1 - 1: [lowest, highest] metres -> [0, 1], worked in double and rounded
+    // once to float; nodata -> 0, the lowest valid height. The result needs no clamp: for
+    // lowest <= m <= highest, rounded subtraction and division are monotonic, so
+    // 0 = fl(0 / range) <= fl(fl(m - lowest) / range) <= fl(range / range) = 1. A height
+    // outside the first pass's range means the file changed since: refused, as a map that
+    // changed under a build is.
+    result.rows.read = [readBlocks, heights, name, width, height, flipRows, flipColumns, lowest,
+                        highest](int y0, int y1, float* out) {
+        const int f0 = flipRows ? height - y1 : y0, f1 = flipRows ? height - y0 : y1;
+        const double range = highest - lowest;
+        readBlocks(f0, f1, [&](int y, int count, const double* block) {
             for (int r = 0; r < count; ++r) {
+                const int row = flipRows ? height - 1 - (y + r) : y + r;
+                float* to = out + static_cast<std::ptrdiff_t>(row - y0) * width;
                 for (int x = 0; x < width; ++x) {
                     const double raw = block[static_cast<std::size_t>(r) * width + x];
-                    float& sample = result.map.at(flipColumns ? width - 1 - x : x,
-                                                  flipRows ? height - 1 - (y + r) : y + r);
-                    if (isNodata(raw)) {
-                        sample = std::numeric_limits<float>::quiet_NaN();
-                        ++geo.nodataSamples;
+                    float& sample = to[flipColumns ? width - 1 - x : x];
+                    if (heights.isNodata(raw)) {
+                        sample = 0.0f;
                         continue;
                     }
-                    const double metres = (raw * scale + offset) * unit;
-                    if (!std::isfinite(metres)) {
-                        std::ostringstream message;
-                        message << name << ": sample (" << x << ", " << y + r << ") is " << raw
-                                << ", not a height (and not the file's nodata value)";
-                        throwBadInput(message.str());
-                    }
-                    lowest = std::min(lowest, metres);
-                    highest = std::max(highest, metres);
-                    if (!origin) origin = metres;
-                    sample = static_cast<float>(metres - *origin);
+                    const double metres = heights.metres(raw);
+                    if (!(metres >= lowest && metres <= highest))
+                        throwBadInput(name + ": the elevation model changed while it was read");
+                    sample = range == 0.0 ? 0.0f : static_cast<float>((metres - lowest) / range);
                 }
             }
-        }
-        if (geo.nodataSamples == result.map.samples.size())
-            throwBadInput(name + ": every sample is nodata");
-        geo.lowestMetres = lowest;
-        geo.highestMetres = highest;
-        // [lowest, highest] -> [0, 1]; nodata -> 0, the lowest valid height.
-        const double range = highest - lowest, low = lowest - *origin;
-        for (float& sample : result.map.samples) {
-            // A stored float may round below the lowest or above the highest by half an
-            // ulp: clamped, so the map stays in [0, 1].
-            sample = std::isnan(sample) || range == 0.0
-                         ? 0.0f
-                         : static_cast<float>(
-                               std::clamp((static_cast<double>(sample) - low) / range, 0.0, 1.0));
-        }
-        result.georeference = geo;
+        });
+    };
+    return result;
+}
+
+HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+    DemRows dem = demRows(file, options);
+    try {
+        HeightMapFile result;
+        result.map = HeightMap(dem.rows.width, dem.rows.height);
+        dem.rows.read(0, dem.rows.height, result.map.samples.data());
+        result.georeference = dem.georeference;
         return result;
     } catch (const std::bad_alloc&) {
-        throwRuntime(name + ": not enough memory for its " + std::to_string(width) + " x " +
-                     std::to_string(height) + " samples");
+        throwRuntime(file.string() + ": not enough memory for its " +
+                     std::to_string(dem.rows.width) + " x " + std::to_string(dem.rows.height) +
+                     " samples");
     }
 }
 

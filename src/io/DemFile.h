@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "microrelief/core/heightmap/PyramidStream.h"
 #include "microrelief/io/HeightMapFile.h"
 
 namespace microrelief {
@@ -14,9 +15,22 @@ namespace microrelief {
 // reads it as an image and says what is wrong).
 bool hasGeoTiffGrid(const std::filesystem::path& file);
 
-// The file (a GeoTIFF, an SRTM .hgt) as loadHeightMapFile reads a DEM; refuses one GDAL
-// cannot read or that has no grid on the ground. The file is a regular one (checked by the
-// caller).
+// Whether `file` is read as an elevation model (the caller has checked it is a regular
+// file): an .hgt file always, a .tif or .tiff where its first directory holds a GeoTIFF grid.
+bool isElevationModelFile(const std::filesystem::path& file);
+
+// An elevation model's rows as loadHeightMapFile reads its samples (metres, north up, nodata
+// filled with the lowest valid height, [lowest, highest] to [0, 1]) and its georeference.
+// Reads the whole file once at once (the heights' range and the nodata count, a block of
+// rows at a time) and keeps it open for the rows, read a block at a time again: never held
+// whole. Refuses (Error(BadInput) naming the file) what loadHeightMapFile refuses of a DEM.
+struct DemRows {
+    MapRows rows;
+    Georeference georeference;
+};
+DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options);
+
+// The file (a GeoTIFF, an SRTM .hgt) as loadHeightMapFile reads a DEM: demRows, read whole.
 HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOptions& options);
 
 }  // namespace microrelief

@@ -11,6 +11,7 @@
 #include <bit>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -32,8 +33,9 @@ namespace microrelief {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'R', 'P', 'Y', 'R', 'A', 'M', 'D'};
-constexpr std::uint32_t kVersion = 1;
-constexpr std::size_t kFixedBytes = 48;  // magic to the pages' offset
+// Version 2 (2026-12-04) added the georeference; a cache builds a file of version 1 again.
+constexpr std::uint32_t kVersion = 2;
+constexpr std::size_t kFixedBytes = 52;  // magic to the georeference's length
 constexpr std::uint64_t kAlign = 4096;
 // The largest side a pyramid file may have: the programs' (65536). With pages of at least
 // 16^2 that is at most 22.4 million pages, a page table of 90 MB: the most a crafted
@@ -41,6 +43,7 @@ constexpr std::uint64_t kAlign = 4096;
 // below fits 64 bits.
 constexpr std::uint32_t kMaxSide = kMaxPagedHeightMapSide;
 constexpr std::uint32_t kMaxKeyBytes = 1u << 16;
+constexpr std::uint32_t kMaxGeoreferenceBytes = 1u << 16;
 
 std::uint32_t crcOf(const void* data, std::size_t size) {
     return static_cast<std::uint32_t>(
@@ -83,8 +86,9 @@ PageGrid pageGrid(int width, int height, int shift) {
     return grid;
 }
 
-std::uint64_t dataOffsetFor(std::size_t keyBytes, std::uint64_t pages) {
-    const std::uint64_t header = kFixedBytes + keyBytes + 4 * pages + 4;
+// Where the pages start after a header whose key and georeference take `textBytes`.
+std::uint64_t dataOffsetFor(std::size_t textBytes, std::uint64_t pages) {
+    const std::uint64_t header = kFixedBytes + textBytes + 4 * pages + 4;
     return (header + kAlign - 1) / kAlign * kAlign;
 }
 
@@ -92,14 +96,80 @@ std::string errnoText() {
     return std::strerror(errno);
 }
 
+// A georeference as the header keeps it: `name=value` lines, the numbers in the shortest
+// form that reads back to the same double; empty for none.
+std::string georeferenceText(const std::optional<Georeference>& geo) {
+    if (!geo) return {};
+    std::string text;
+    const auto number = [&](const char* name, double value) {
+        char digits[32];
+        const auto end = std::to_chars(digits, digits + sizeof digits, value).ptr;
+        text += std::string(name) + "=" + std::string(digits, end) + "\n";
+    };
+    number("sample_width_m", geo->sampleWidthMetres);
+    number("sample_height_m", geo->sampleHeightMetres);
+    number("lowest_m", geo->lowestMetres);
+    number("highest_m", geo->highestMetres);
+    number("semi_major_m", geo->semiMajorMetres);
+    number("semi_minor_m", geo->semiMinorMetres);
+    text += "geographic=" + std::to_string(geo->geographic ? 1 : 0) + "\n";
+    text += "global=" + std::to_string(geo->global ? 1 : 0) + "\n";
+    text += "nodata_samples=" + std::to_string(geo->nodataSamples) + "\n";
+    std::string crs = geo->crs;
+    std::replace(crs.begin(), crs.end(), '\n', ' ');
+    return text + "crs=" + crs + "\n";
+}
+
+// georeferenceText read back; nullopt where `text` is not one (the header's CRC-32 has
+// passed, so only a writer's mistake gets there).
+std::optional<Georeference> parseGeoreference(const std::string& text) {
+    Georeference geo;
+    std::size_t at = 0;
+    const auto field = [&](const char* name) -> std::optional<std::string> {
+        const std::string prefix = std::string(name) + "=";
+        const std::size_t end = text.find('\n', at);
+        if (end == std::string::npos || text.compare(at, prefix.size(), prefix) != 0)
+            return std::nullopt;
+        std::string value = text.substr(at + prefix.size(), end - at - prefix.size());
+        at = end + 1;
+        return value;
+    };
+    const auto number = [&](const char* name, auto& value) {
+        const std::optional<std::string> digits = field(name);
+        if (!digits) return false;
+        const auto [end, error] =
+            std::from_chars(digits->data(), digits->data() + digits->size(), value);
+        return error == std::errc() && end == digits->data() + digits->size();
+    };
+    int geographic = 0, global = 0;
+    if (!number("sample_width_m", geo.sampleWidthMetres) ||
+        !number("sample_height_m", geo.sampleHeightMetres) ||
+        !number("lowest_m", geo.lowestMetres) || !number("highest_m", geo.highestMetres) ||
+        !number("semi_major_m", geo.semiMajorMetres) ||
+        !number("semi_minor_m", geo.semiMinorMetres) || !number("geographic", geographic) ||
+        !number("global", global) || !number("nodata_samples", geo.nodataSamples))
+        return std::nullopt;
+    const std::optional<std::string> crs = field("crs");
+    if (!crs || at != text.size()) return std::nullopt;
+    geo.geographic = geographic == 1;
+    geo.global = global == 1;
+    geo.crs = *crs;
+    return geo;
+}
+
 }  // namespace
 
 void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bool wrapU,
                       const std::string& sourceKey, const std::string& source, int pageSide,
-                      const BuildProgress& progress) {
+                      const BuildProgress& progress,
+                      const std::optional<Georeference>& georeference) {
     if (pageSide < 16 || pageSide > 4096 || (pageSide & (pageSide - 1)) != 0)
         throwRuntime("writePyramidFile: the page side must be a power of two from 16 to 4096");
     if (sourceKey.size() > kMaxKeyBytes) throwRuntime("writePyramidFile: a source key too long");
+    const std::string geoText = georeferenceText(georeference);
+    if (geoText.size() > kMaxGeoreferenceBytes)
+        throwRuntime("writePyramidFile: a georeference too long");
+    const std::string text = sourceKey + geoText;  // as the header holds them
     if (rows.width < 1 || rows.height < 1 || static_cast<std::uint32_t>(rows.width) > kMaxSide ||
         static_cast<std::uint32_t>(rows.height) > kMaxSide) {
         throwBadInput(source + ": " + std::to_string(rows.width) + " x " +
@@ -111,7 +181,7 @@ void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bo
     if (grid.count > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
         throwBadInput(source + ": too many pages for a pyramid file");
     const std::uint64_t pageBytes = std::uint64_t{4} << (2 * shift);
-    const std::uint64_t dataOffset = dataOffsetFor(sourceKey.size(), grid.count);
+    const std::uint64_t dataOffset = dataOffsetFor(text.size(), grid.count);
     std::vector<std::uint32_t> crcs(grid.count, 0u);
 
     FileWriteBatch batch;
@@ -145,7 +215,7 @@ void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bo
     };
     const StreamedPyramid streamed = streamPyramid(rows, wrapU, pageSide, sink, source, progress);
 
-    std::vector<unsigned char> header(kFixedBytes + sourceKey.size() + 4 * grid.count + 4, 0);
+    std::vector<unsigned char> header(kFixedBytes + text.size() + 4 * grid.count + 4, 0);
     std::memcpy(header.data(), kMagic, sizeof kMagic);
     put32(header, 8, kVersion);
     put32(header, 12, static_cast<std::uint32_t>(rows.width));
@@ -156,9 +226,10 @@ void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bo
     put32(header, 32, static_cast<std::uint32_t>(sourceKey.size()));
     put32(header, 36, static_cast<std::uint32_t>(grid.count));
     put64(header, 40, dataOffset);
-    std::memcpy(header.data() + kFixedBytes, sourceKey.data(), sourceKey.size());
+    put32(header, 48, static_cast<std::uint32_t>(geoText.size()));
+    std::memcpy(header.data() + kFixedBytes, text.data(), text.size());
     for (std::uint64_t k = 0; k < grid.count; ++k)
-        put32(header, kFixedBytes + sourceKey.size() + 4 * k, crcs[k]);
+        put32(header, kFixedBytes + text.size() + 4 * k, crcs[k]);
     const std::size_t crcAt = header.size() - 4;
     put32(header, crcAt, crcOf(header.data(), crcAt));
     out.writeAt(header.data(), header.size(), 0);
@@ -204,16 +275,20 @@ std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path
     }
     const std::uint32_t width = get32(&header[12]), height = get32(&header[16]),
                         wrap = get32(&header[20]), shift = get32(&header[24]),
-                        keyBytes = get32(&header[32]), pages = get32(&header[36]);
+                        keyBytes = get32(&header[32]), pages = get32(&header[36]),
+                        geoBytes = get32(&header[48]);
     const float largest = std::bit_cast<float>(get32(&header[28]));
     const std::uint64_t dataOffset = get64(&header[40]);
     const std::string corrupt = name + ": the pyramid file's header is corrupt";
     if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide || wrap > 1 || shift < 4 ||
-        shift > 12 || keyBytes > kMaxKeyBytes || !(std::isfinite(largest) && largest >= 0.0f))
+        shift > 12 || keyBytes > kMaxKeyBytes || geoBytes > kMaxGeoreferenceBytes ||
+        !(std::isfinite(largest) && largest >= 0.0f))
         throwBadInput(corrupt);
     const PageGrid grid =
         pageGrid(static_cast<int>(width), static_cast<int>(height), static_cast<int>(shift));
-    if (grid.count != pages || dataOffset != dataOffsetFor(keyBytes, pages)) throwBadInput(corrupt);
+    const std::size_t textBytes = std::size_t{keyBytes} + geoBytes;
+    if (grid.count != pages || dataOffset != dataOffsetFor(textBytes, pages))
+        throwBadInput(corrupt);
     const std::uint64_t pageBytes = std::uint64_t{4} << (2 * shift);
     const std::uint64_t expected = dataOffset + pages * pageBytes;
     if (fileBytes != expected) {
@@ -221,30 +296,39 @@ std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path
                       std::to_string(expected) + (fileBytes < expected ? " (truncated)" : "") +
                       "; delete it to build it again");
     }
-    header.resize(kFixedBytes + keyBytes + 4 * std::size_t{pages} + 4);
+    header.resize(kFixedBytes + textBytes + 4 * std::size_t{pages} + 4);
     readExactly(header.data() + kFixedBytes, header.size() - kFixedBytes, kFixedBytes);
     const std::size_t crcAt = header.size() - 4;
     if (get32(&header[crcAt]) != crcOf(header.data(), crcAt))
         throwBadInput(corrupt + " (its CRC-32 differs); delete it to build it again");
-    std::string key(reinterpret_cast<const char*>(header.data()) + kFixedBytes, keyBytes);
+    const char* const text = reinterpret_cast<const char*>(header.data()) + kFixedBytes;
+    std::string key(text, keyBytes);
+    std::optional<Georeference> georeference;
+    if (geoBytes > 0) {
+        georeference = parseGeoreference(std::string(text + keyBytes, geoBytes));
+        if (!georeference) throwBadInput(corrupt + " (its georeference)");
+    }
     std::vector<std::uint32_t> crcs(pages);
     for (std::uint32_t k = 0; k < pages; ++k)
-        crcs[k] = get32(&header[kFixedBytes + keyBytes + 4 * k]);
-    std::shared_ptr<const PyramidFile> opened(new PyramidFile(
-        file, fd, static_cast<int>(width), static_cast<int>(height), wrap == 1, largest,
-        static_cast<int>(shift), std::move(key), std::move(crcs), dataOffset));
+        crcs[k] = get32(&header[kFixedBytes + textBytes + 4 * k]);
+    std::shared_ptr<const PyramidFile> opened(
+        new PyramidFile(file, fd, static_cast<int>(width), static_cast<int>(height), wrap == 1,
+                        largest, static_cast<int>(shift), std::move(key), std::move(georeference),
+                        std::move(crcs), dataOffset));
     closer.keep = true;  // the file's now: closed with it
     return opened;
 }
 
 PyramidFile::PyramidFile(const std::filesystem::path& path, int fd, int width, int height,
                          bool wrapU, float largestSample, int shift, std::string sourceKey,
-                         std::vector<std::uint32_t> crcs, std::uint64_t dataOffset)
+                         std::optional<Georeference> georeference, std::vector<std::uint32_t> crcs,
+                         std::uint64_t dataOffset)
     : PyramidPages(width, height, wrapU, largestSample),
       path_(path),
       fd_(fd),
       shift_(shift),
       sourceKey_(std::move(sourceKey)),
+      georeference_(std::move(georeference)),
       crcs_(std::move(crcs)),
       firstPage_(pageGrid(width, height, shift).first),
       dataOffset_(dataOffset) {}
@@ -321,20 +405,14 @@ std::string pyramidSourceKey(const std::filesystem::path& mapFile,
            "\nnormalize=" + (options.normalize ? "1" : "0") + "\nwrap_u=" + (wrapU ? "1" : "0");
 }
 
-MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+MapFileRows heightMapFileRows(const std::filesystem::path& file,
+                              const HeightMapLoadOptions& options) {
     const std::string name = file.string();
     checkRegularFile(file, name);
 #if MICRORELIEF_WITH_GDAL
-    // An elevation model is read whole through GDAL, with its georeference (HeightMapFile.h);
-    // its rows are not read here.
-    std::string extension = file.extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".hgt" ||
-        ((extension == ".tif" || extension == ".tiff") && hasGeoTiffGrid(file))) {
-        throwBadInput(name +
-                      ": an elevation model (read through GDAL with its georeference); "
-                      "pyramid files are made of plain images only: draw it without "
-                      "--pyramid-cache");
+    if (isElevationModelFile(file)) {
+        DemRows dem = demRows(file, options);
+        return {std::move(dem.rows), dem.georeference};
     }
 #endif
     struct State {
@@ -426,7 +504,7 @@ MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoad
         for (std::size_t k = 0; k < count; ++k)
             out[k] = state->scale > 0.0f ? (out[k] - state->lo) / state->scale : 0.0f;
     };
-    return rows;
+    return {rows, std::nullopt};
 }
 
 namespace {
@@ -477,8 +555,9 @@ std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem:
         std::shared_ptr<const PyramidFile> found = PyramidFile::open(file);
         if (found->sourceKey() == key) return found;
     }
-    writePyramidFile(file, heightMapFileRows(mapFile, options), wrapU, key, mapFile.string(),
-                     kPyramidFilePageSide, progress);
+    const MapFileRows source = heightMapFileRows(mapFile, options);
+    writePyramidFile(file, source.rows, wrapU, key, mapFile.string(), kPyramidFilePageSide,
+                     progress, source.georeference);
     if (built) *built = true;
     return PyramidFile::open(file);
 }

@@ -291,7 +291,7 @@ TEST_F(PyramidFileTest, AMapFilesRowsAreWhatLoadHeightMapReads) {
     for (const bool normalize : {false, true}) {
         HeightMapLoadOptions options;
         options.normalize = normalize;
-        const MapRows rows = heightMapFileRows(exr, options);
+        const MapRows rows = heightMapFileRows(exr, options).rows;
         ASSERT_EQ(rows.width, 70);
         ASSERT_EQ(rows.height, 40);
         std::vector<float> all(70 * 40);
@@ -320,7 +320,7 @@ TEST_F(PyramidFileTest, ATiledMapsRowsAreWhatLoadHeightMapReads) {
         ASSERT_TRUE(out && out->open(file.string(), spec)) << OIIO::geterror();
         ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, map.samples.data())) << out->geterror();
         out->close();
-        const MapRows rows = heightMapFileRows(file, {});
+        const MapRows rows = heightMapFileRows(file, {}).rows;
         std::vector<float> all(static_cast<std::size_t>(map.width) * map.height);
         for (int y0 = 0; y0 < map.height; y0 += 40) {
             const int y1 = std::min(map.height, y0 + 40);  // bands across tile rows

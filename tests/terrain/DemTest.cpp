@@ -252,17 +252,64 @@ TEST(DemFile, WhatIsNotAnElevationModelIsRefusedOrReadAsAnImage) {
     EXPECT_FALSE(image.georeference);
     EXPECT_FLOAT_EQ(image.map.at(39, 0), 39000.0f / 65535.0f);
 
-    // Pyramid files are made of plain images' rows: a DEM is refused there, not read as an
-    // image (its metres as pixel values, its georeference lost); the TIFF with no grid is read.
-    writeDem(dir / "dem.tif", DemSpec{}, GDT_Int16);
-    try {
-        heightMapFileRows(dir / "dem.tif", {});
-        FAIL() << "a DEM's rows were read as an image's";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("dem.tif: an elevation model"), std::string::npos)
-            << e.what();
+    // The rows of a TIFF with no grid are an image's, with no georeference.
+    const MapFileRows imageRows = heightMapFileRows(dir / "image.tif", {});
+    EXPECT_EQ(imageRows.rows.width, 40);
+    EXPECT_FALSE(imageRows.georeference);
+}
+
+// A DEM larger than memory is drawn from its pyramid file (docs/terrain.md): its rows, read
+// a block at a time, are the samples loadHeightMapFile reads, bit for bit, whatever bands
+// they are read in (a south-up grid in feet with holes, a latitude/longitude one), and its
+// pyramid file keeps the georeference the proportions come from.
+TEST(DemFile, ItsRowsAndPyramidFileAreWhatLoadingItWholeGives) {
+    test::ScratchDir dir;
+    DemSpec southUp;
+    southUp.width = 300;  // pages of 256: two across
+    southUp.height = 70;
+    southUp.gt[3] = 5000000.0 - 30.0 * southUp.height;
+    southUp.gt[5] = 30.0;
+    southUp.nodata = -9999.0;
+    southUp.unit = "ft";
+    southUp.value = [](int i, int j) {
+        return (i + j) % 37 == 0 ? -9999.0 : 1200.5 + 0.25 * ((i * 13 + j * 29) % 211);
+    };
+    writeDem(dir / "south-up.tif", southUp, GDT_Float32);
+    DemSpec geographic;
+    geographic.width = geographic.height = 100;
+    geographic.crs = "EPSG:4326";
+    const double gt[6] = {10.0, 0.001, 0.0, 45.05, 0.0, -0.001};
+    std::copy(gt, gt + 6, geographic.gt);
+    writeDem(dir / "geo.tif", geographic, GDT_Int16);
+
+    for (const char* name : {"south-up.tif", "geo.tif"}) {
+        SCOPED_TRACE(name);
+        const std::filesystem::path file = dir / name;
+        const HeightMapFile whole = loadHeightMapFile(file);
+        ASSERT_TRUE(whole.georeference);
+        const MapFileRows rows = heightMapFileRows(file, {});
+        EXPECT_EQ(rows.georeference, whole.georeference);
+        ASSERT_EQ(rows.rows.width, whole.map.width);
+        ASSERT_EQ(rows.rows.height, whole.map.height);
+        std::vector<float> read(whole.map.samples.size(), -1.0f);
+        for (int y0 = 0; y0 < rows.rows.height; y0 += 23) {
+            const int y1 = std::min(rows.rows.height, y0 + 23);
+            rows.rows.read(y0, y1, read.data() + static_cast<std::ptrdiff_t>(y0) * rows.rows.width);
+        }
+        EXPECT_EQ(read, whole.map.samples);
+
+        bool built = false;
+        const auto pages = openOrBuildPyramidFile(file, dir / "cache", {}, false, {}, &built);
+        EXPECT_TRUE(built);
+        EXPECT_EQ(pages->georeference(), whole.georeference);
+        std::vector<float> level0(whole.map.samples.size());
+        pages->read(0, {0, 0, whole.map.width, whole.map.height}, level0.data());
+        EXPECT_EQ(level0, whole.map.samples);
+        // Opened again from the cache: the georeference read back from its header.
+        const auto again = openOrBuildPyramidFile(file, dir / "cache", {}, false, {}, &built);
+        EXPECT_FALSE(built);
+        EXPECT_EQ(again->georeference(), whole.georeference);
     }
-    EXPECT_EQ(heightMapFileRows(dir / "image.tif", {}).width, 40);
 }
 
 #else
@@ -394,6 +441,17 @@ TEST_F(DemRender, ATerrainStandsAtItsTrueProportions) {
             (dir / "t{frame}.png").string() + " --aov " + (dir / "t{frame}.exr").string());
         ASSERT_EQ(path.status, 0) << path.err;
         EXPECT_EQ(readAov(dir / "t0.exr").pixels, aov.pixels);
+
+        // Drawn from its pyramid file (a DEM larger than memory), through pages: the file
+        // keeps the georeference, so the proportions and every hit are the same.
+        const test::RunResult paged =
+            render("--height " + (dir / "dem.tif").string() + " " + c.flags + " --pyramid-cache " +
+                   (dir / "cache").string() + " --out " + (dir / "paged.png").string() + " --aov " +
+                   (dir / "paged.exr").string());
+        ASSERT_EQ(paged.status, 0) << paged.err;
+        EXPECT_NE(paged.out.find("true proportions"), std::string::npos) << paged.out;
+        EXPECT_NE(paged.out.find(", paged: "), std::string::npos) << paged.out;
+        EXPECT_EQ(readAov(dir / "paged.exr").pixels, aov.pixels);
     }
 }
 

@@ -6,9 +6,11 @@
 //
 // The file (docs/terrain.md, "Pyramid files"), little-endian:
 //   header   "MRPYRAMD", version, W, H, wrapU, log2 page side, the largest sample, the
-//            source key's length, the page count, the pages' offset (u64), the source key
-//            (what the file was built from: path, size, time and load options), a CRC-32
-//            of each page, and a CRC-32 of all that;
+//            source key's length, the page count, the pages' offset (u64), the
+//            georeference's length, the source key (what the file was built from: path,
+//            size, time and load options), the georeference of an elevation model (text,
+//            `name=value` lines; empty for an image), a CRC-32 of each page, and a CRC-32
+//            of all that;
 //   pages    fixed-size side x side floats from the offset on (4 KiB aligned): level 0
 //            (the samples), then window levels 0, 1, ... down to 1 x 1, each row-major
 //            in pages, texels past a level's edge 0.
@@ -23,12 +25,14 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/heightmap/PyramidPages.h"
 #include "microrelief/core/heightmap/PyramidStream.h"
+#include "microrelief/core/scene/Georeference.h"
 
 namespace microrelief {
 
@@ -40,11 +44,13 @@ using BuildProgress = std::function<void(long long done, long long total)>;
 
 // Builds the pyramid file of `rows` (named `source` in messages) at `file`, whole or not at
 // all (io/AtomicFile.h: a temporary renamed into place, removed on errors and signals).
-// `sourceKey` is kept in it (PyramidFile::sourceKey). Throws Error(BadInput) for a bad
-// sample, Error(Runtime) when the file cannot be written.
+// `sourceKey` and the map's `georeference` (an elevation model's) are kept in it
+// (PyramidFile::sourceKey, georeference). Throws Error(BadInput) for a bad sample,
+// Error(Runtime) when the file cannot be written.
 void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bool wrapU,
                       const std::string& sourceKey, const std::string& source,
-                      int pageSide = kPyramidFilePageSide, const BuildProgress& progress = {});
+                      int pageSide = kPyramidFilePageSide, const BuildProgress& progress = {},
+                      const std::optional<Georeference>& georeference = std::nullopt);
 
 class PyramidFile final : public PyramidPages {
 public:
@@ -59,6 +65,8 @@ public:
     void read(int level, const TexelRect& rect, float* out) const override;
 
     const std::string& sourceKey() const { return sourceKey_; }
+    // The map's georeference where it is an elevation model (io/HeightMapFile.h).
+    const std::optional<Georeference>& georeference() const { return georeference_; }
     int pageSide() const { return 1 << shift_; }
     int pageCount() const { return static_cast<int>(crcs_.size()); }
     const std::filesystem::path& path() const { return path_; }
@@ -66,13 +74,15 @@ public:
 private:
     PyramidFile(const std::filesystem::path& path, int fd, int width, int height, bool wrapU,
                 float largestSample, int shift, std::string sourceKey,
-                std::vector<std::uint32_t> crcs, std::uint64_t dataOffset);
+                std::optional<Georeference> georeference, std::vector<std::uint32_t> crcs,
+                std::uint64_t dataOffset);
     void readPage(int page, std::vector<float>& texels) const;
 
     std::filesystem::path path_;
     int fd_;
     int shift_;
     std::string sourceKey_;
+    std::optional<Georeference> georeference_;
     std::vector<std::uint32_t> crcs_;
     std::vector<int> firstPage_;  // per page level
     std::uint64_t dataOffset_;
@@ -84,14 +94,21 @@ private:
 std::string pyramidSourceKey(const std::filesystem::path& mapFile,
                              const HeightMapLoadOptions& options, bool wrapU);
 
-// The rows of a height map file as loadHeightMap reads it (integers to [0, 1], floats as
-// stored, options.channel; options.normalize maps [min, max] to [0, 1] from a first pass
-// of its own), read a band of scanlines (or of tiles) at a time through OpenImageIO and
-// never held whole, but where OpenImageIO holds it (an interlaced PNG). An elevation model
-// (a GeoTIFF grid, an .hgt file: HeightMapFile.h) is refused where GDAL reads it.
-// The header is checked at once (options.maxSide, maxSamples; a file that is not regular
-// refused); the reads throw Error(BadInput) naming the file.
-MapRows heightMapFileRows(const std::filesystem::path& file, const HeightMapLoadOptions& options);
+// The rows of a height map file as loadHeightMapFile reads it, and its georeference where
+// it has one. An image's (integers to [0, 1], floats as stored, options.channel;
+// options.normalize maps [min, max] to [0, 1] from a first pass of its own) are read a band
+// of scanlines (or of tiles) at a time through OpenImageIO and never held whole, but where
+// OpenImageIO holds it (an interlaced PNG). An elevation model's (a GeoTIFF grid, an .hgt
+// file, where the io component reads them through GDAL) a block of rows at a time, after a
+// first pass for its heights' range. The header is checked at once (options.maxSide,
+// maxSamples; a file that is not regular refused); the reads throw Error(BadInput) naming
+// the file.
+struct MapFileRows {
+    MapRows rows;
+    std::optional<Georeference> georeference;
+};
+MapFileRows heightMapFileRows(const std::filesystem::path& file,
+                              const HeightMapLoadOptions& options);
 
 // The pyramid file of `mapFile` in `cacheFolder` (made where missing; Error(BadInput) where
 // it is a file): opened where one built from the map as it is now (pyramidSourceKey) is

@@ -4,7 +4,6 @@
 // status 2 for bad arguments or input and 1 for anything else.
 #pragma once
 
-#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -14,18 +13,13 @@
 #include <optional>
 #include <string>
 
+#include "SceneOptions.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
+#include "microrelief/core/Machine.h"  // physicalMemoryBytes, which the programs' limits use
 #include "microrelief/core/Text.h"
-#include "SceneOptions.h"
 
 namespace microrelief {
-
-// The machine's memory, bytes (0 where the system does not say: no bound then).
-inline std::size_t physicalMemoryBytes() {
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
-    return pages > 0 && pageSize > 0 ? static_cast<std::size_t>(pages) * pageSize : 0;
-}
 
 // An option given an empty value (--cameras '', --height "") means nothing a program can
 // do, and taking it as absent (the default map, no camera path) does something the user

@@ -22,10 +22,12 @@
 #include <utility>
 
 #include "io/CheckedImageInput.h"
+#include "io/PngCheck.h"
 #if MICRORELIEF_WITH_GDAL
 #include "io/DemFile.h"
 #endif
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Machine.h"
 #include "microrelief/io/AtomicFile.h"
 
 namespace microrelief {
@@ -415,6 +417,29 @@ MapFileRows heightMapFileRows(const std::filesystem::path& file,
         return {std::move(dem.rows), dem.georeference};
     }
 #endif
+    // An interlaced PNG cannot be read by rows: OpenImageIO decodes it whole at its first
+    // row (8 or 16 bits a channel, a palette as RGBA at most). Refused where that is more
+    // than half the machine's memory, which is what the rows are for.
+    std::string pngDefect;
+    if (const std::optional<PngHeader> png =
+            hasPngSignature(file) ? readPngHeader(file, pngDefect) : std::nullopt;
+        png && png->interlaced) {
+        const std::uint64_t channels = png->colorType == 0   ? 1
+                                       : png->colorType == 4 ? 2
+                                       : png->colorType == 2 ? 3
+                                                             : 4;
+        const std::uint64_t bytes =
+            std::uint64_t{png->width} * png->height * channels * (png->bitDepth == 16 ? 2 : 1);
+        const std::uint64_t memory = physicalMemoryBytes();
+        if (memory > 0 && bytes > memory / 2) {
+            throwBadInput(name + ": an interlaced PNG, which is decoded whole (" +
+                          std::to_string(bytes >> 20) + " MiB, more than half of this machine's " +
+                          std::to_string(memory >> 20) +
+                          " MiB) where its rows are needed; save it without interlacing "
+                          "(for example as a tiled TIFF: oiiotool in.png --tile 256 256 -o "
+                          "out.tif)");
+        }
+    }
     struct State {
         std::filesystem::path file;
         HeightMapLoadOptions options;

@@ -18,6 +18,7 @@
 
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Machine.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/heightmap/PyramidPages.h"
 #include "microrelief/core/heightmap/PyramidStream.h"
@@ -375,6 +376,32 @@ TEST_F(PyramidFileTest, TheCacheRebuildsAnotherVersionAndRefusesAFileForAFolder)
     const auto again = openOrBuildPyramidFile(tif, cache, {}, false, {}, &built);
     EXPECT_TRUE(built) << "a map written over with its old size and time";
     EXPECT_EQ(again->readLevel(0)[4 * 40 + 3], 0.0f);
+}
+
+// An interlaced PNG is decoded whole by OpenImageIO at its first row: refused for its rows
+// where that is more than half the machine's memory, from its header alone (a 65536^2 RGBA
+// 16-bit one: 32 GiB; here the file is no more than its IHDR).
+TEST_F(PyramidFileTest, AnInterlacedPngTooLargeToDecodeWholeIsRefusedFromItsHeader) {
+    if (physicalMemoryBytes() == 0 || physicalMemoryBytes() / 2 >= (std::uint64_t{32} << 30))
+        GTEST_SKIP() << "this machine's memory holds half of the 32 GiB the test's PNG decodes to";
+    const auto crc32 = [](const std::vector<std::uint8_t>& bytes, std::size_t from) {
+        std::uint32_t crc = 0xFFFFFFFFu;
+        for (std::size_t k = from; k < bytes.size(); ++k) {
+            crc ^= bytes[k];
+            for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+        }
+        return ~crc;
+    };
+    std::vector<std::uint8_t> png = {
+        0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13,
+        'I',  'H', 'D', 'R', 0,    1,    0,    0,    0, 1, 0, 0,  // 65536 x 65536
+        16,   6,   0,   0,   1};                                  // 16-bit RGBA, interlaced
+    const std::uint32_t crc = crc32(png, 12);
+    for (int k = 3; k >= 0; --k) png.push_back(static_cast<std::uint8_t>(crc >> (8 * k)));
+    const std::filesystem::path file = scratch_ / "interlaced.png";
+    test::writeBytes(file, png);
+    expectRefused([&] { heightMapFileRows(file, {}); },
+                  file.string() + ": an interlaced PNG, which is decoded whole (32768 MiB");
 }
 
 }  // namespace

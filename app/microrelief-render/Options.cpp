@@ -65,11 +65,7 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         "--compare-reference", o.compareReference,
         "Also trace every pixel with the exact CPU reference and print how the picture differs");
     std::size_t memoryMib = o.paging.memoryBytes >> 20;
-    app.add_option("--memory", memoryMib,
-                   "GPU memory for the pages of a map larger than the GL's textures, MiB "
-                   "(such a map is read through pages, drawn again until exact)")
-        ->capture_default_str()
-        ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
+    addMemoryFlag(app, memoryMib, "drawn again until exact");
     std::string pyramidCache;
     app.add_option(
         "--pyramid-cache", pyramidCache,
@@ -116,8 +112,7 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         o.lightSizeGiven = app.count("--light-size") > 0;
         o.paging.memoryBytes = memoryMib << 20;
         // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
-        o.scene.job.map.load.maxSide = kMaxPagedHeightMapSide;
-        o.scene.job.map.load.maxSamples = physicalMemoryBytes() / kPagedBytesPerSample;
+        allowPagedMaps(o.scene.job.map.load);
         if (!pyramidCache.empty()) {
             if (o.batch.active())
                 throwBadInput("--pyramid-cache draws one picture; not with a camera path yet");

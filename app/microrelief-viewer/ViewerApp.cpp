@@ -30,6 +30,10 @@ constexpr int kLogLines = 8;
 constexpr double kStatisticsInterval = 0.25;
 // Fly speed, world units a second (the map spans 1); Shift and Ctrl scale it.
 constexpr double kFlySpeed = 0.25;
+// Pages a frame loads at most for a paged map's view (gl/PagedPyramid.h): 64 MiB of
+// 256^2 float pages, so that a view that wants thousands refines over frames, each
+// answering the mouse, instead of stalling.
+constexpr std::size_t kPagesPerFrame = 256;
 
 double now() {
     return glfwGetTime();
@@ -83,7 +87,14 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     const std::filesystem::path shaders = viewerShaderDirectory(options);
     renderer_ = std::make_unique<ReliefRenderer>(gl, shaders);
     renderer_->setMethod(options.scene.job.method);
+    renderer_->setPaging(options.paging);
     applyRelief(map_, file.string());
+    if (renderer_->paged() && (options.sculpt || !options.strokes.empty() || options.undo > 0 ||
+                               options.saveMap || !options.scene.job.animation.empty())) {
+        throwBadInput(file.string() +
+                      ": read through pages (larger than the GL's textures), which is neither "
+                      "sculpted nor animated");
+    }
     timer_ = std::make_unique<GpuTimer>(gl);
     watcher_ = std::make_unique<ShaderWatcher>(shaders);
     editor_ = std::make_unique<HeightEditor>(gl, shaders);
@@ -171,15 +182,16 @@ int ViewerApp::run() {
     runScript();
     lastFrameTime_ = now();
     while (!glfwWindowShouldClose(window_->window()) &&
-           (options_.frames == 0 || drawn < options_.frames)) {
+           (options_.frames == 0 || drawn < options_.frames || refiningPages())) {
         waitForEvents();
         if (framebufferSize().x == 0 || framebufferSize().y == 0) {
             glfwWaitEvents();  // minimised: nothing to draw until it comes back
             continue;
         }
-        const bool last = drawn + 1 == options_.frames;
         const double start = now();
         frame();
+        // A paged map's view draws on past --frames until it is exact.
+        const bool last = drawn + 1 >= options_.frames && !refiningPages();
         present(last && options_.windowScreenshot.has_value());
         state_.frameMilliseconds = (now() - start) * 1e3;
         ++drawn;
@@ -198,6 +210,11 @@ void ViewerApp::writeAutomationOutputs() {
     if (options_.saveMap) saveMap(*options_.saveMap);  // throws: a failed save fails the run
     ImageWriteBatch batch;                             // both files or neither
     std::vector<std::uint8_t> view;
+    if (options_.screenshot && pagesWanted_) {
+        logWarning(options_.screenshot->string() +
+                   ": not the exact picture: its view reads more pages at once than --memory "
+                   "holds (drawn from coarser bounds in parts)");
+    }
     if (options_.screenshot) {
         const RenderedFrame picture = target_->read();
         view = rgbFromRgba(picture.color, picture.width, picture.height, false);
@@ -394,8 +411,10 @@ void ViewerApp::updatePick() {
     const ViewRect rect = viewRect();
     const int column = static_cast<int>(std::floor((x - rect.x) / rect.scale));
     const int row = static_cast<int>(std::floor((y - rect.y) / rect.scale));
-    state_.pick =
-        animated_ ? pickFromPicture(column, row) : picker_.pick(cameraFrame(), column, row);
+    // An animated relief's heights are the field's, a paged map's pyramid is not on the CPU:
+    // both are picked from the picture's positions.
+    state_.pick = animated_ || renderer_->paged() ? pickFromPicture(column, row)
+                                                  : picker_.pick(cameraFrame(), column, row);
 }
 
 std::optional<PickResult> ViewerApp::pickFromPicture(int column, int row) const {
@@ -572,6 +591,49 @@ void ViewerApp::renderView() {
     rendered_ = key;
     statisticsStale_ = true;
     framesToDraw_ = std::max(framesToDraw_, 2);  // the timer's result comes a frame or two later
+    loadWantedPages();
+}
+
+void ViewerApp::loadWantedPages() {
+    PagedPyramid* pager = renderer_->pager();
+    if (!pager) {
+        pagesWanted_ = poolTooSmall_ = false;
+        state_.paging.clear();
+        return;
+    }
+    RenderKey view = renderKey();
+    view.pageGeneration = 0;
+    if (refinedView_ != view) {  // another view: what the last one kept may go
+        refinedView_ = view;
+        pagesKept_.clear();
+        poolTooSmall_ = false;
+    }
+    const std::vector<int> wanted = pager->takeWanted();
+    pagesWanted_ = !wanted.empty();
+    if (pagesWanted_ && !poolTooSmall_) {
+        // Each load keeps what the view's draws loaded before, so the view either ends
+        // wanting nothing or runs out of pool: it never loads the same page twice.
+        const std::vector<int> some(
+            wanted.begin(),
+            wanted.begin() + static_cast<std::ptrdiff_t>(std::min(wanted.size(), kPagesPerFrame)));
+        if (pager->load(some, pagesKept_)) {
+            pagesKept_.insert(pagesKept_.end(), some.begin(), some.end());
+            ++pageGeneration_;  // the view is drawn again with them
+        } else {
+            poolTooSmall_ = true;
+            note("this view reads more pages at once than --memory holds (" +
+                 std::to_string(pager->capacity()) + " pages of " +
+                 std::to_string(pager->pageSide()) +
+                 "^2 texels): parts of it stay drawn from coarser bounds; raise --memory");
+        }
+    }
+    const std::string resident = "pages " + std::to_string(pager->residentCount()) + " of " +
+                                 std::to_string(pager->capacity()) + " resident, " +
+                                 std::to_string(pager->pagesLoaded()) + " loaded: ";
+    state_.paging =
+        resident + (!pagesWanted_   ? "exact"
+                    : poolTooSmall_ ? "coarse in parts, raise --memory"
+                                    : "refining, " + std::to_string(wanted.size()) + " wanted");
 }
 
 void ViewerApp::sampleStatistics() {
@@ -845,7 +907,8 @@ CameraFrame ViewerApp::cameraFrame() const {
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {
-    RenderKey key{state_.scene.job, state_.scene.job, mapGeneration_, shaderGeneration_};
+    RenderKey key{state_.scene.job, state_.scene.job, mapGeneration_, shaderGeneration_,
+                  pageGeneration_};
     key.view.camera = controller_.camera();
     const glm::ivec2 size = viewSize();
     key.view.width = size.x;

@@ -50,6 +50,7 @@ private:
         ReliefDesc relief;
         ViewDesc view;
         int mapGeneration, shaderGeneration;
+        int pageGeneration;  // pages loaded for a map read through pages
         bool operator==(const RenderKey&) const = default;
     };
     // Where the view's picture lies in the window's framebuffer (pixels, top-left origin).
@@ -67,6 +68,15 @@ private:
     void applyPanel(const PanelActions& actions);
     void updatePick();
     void renderView();
+    // A map read through pages (gl/PagedPyramid.h), after each draw: the pages the draw
+    // wanted loaded (at most kPagesPerFrame a frame) and the view drawn again, until a draw
+    // wants none (the exact picture, as microrelief-render draws it) or the view needs more
+    // pages at once than the pool holds (then it stays drawn partly from coarser windows,
+    // which lie above the surface: coarse, never a hole; a note says to raise --memory).
+    // Pages loaded for the view being refined are kept for it; another view starts afresh.
+    void loadWantedPages();
+    // Whether a paged view is still being refined: --frames draws on until it is not.
+    bool refiningPages() const { return pagesWanted_ && !poolTooSmall_; }
     void sampleStatistics();
     void present(bool captureWindow);
     // --screenshot and --window-screenshot, after the last frame.
@@ -77,8 +87,11 @@ private:
     // (map_), which the picker and the footprint use and "Save map" writes.
     void sculpt();
     // The brush paints an untiled map that is not animated (a tiled map's picks land on
-    // the whole, the brush on one tile; an animated one's heights are the field's).
-    bool sculptable() const { return microrelief::sculptable(state_.scene.job); }
+    // the whole, the brush on one tile; an animated one's heights are the field's) nor read
+    // through pages (its samples are not on the GPU whole).
+    bool sculptable() const {
+        return microrelief::sculptable(state_.scene.job) && !(renderer_ && renderer_->paged());
+    }
     void dabAt(const glm::dvec2& mapPoint, bool invert);
     void endStroke();
     void mapEdited(const std::vector<TexelRect>& changed);
@@ -144,6 +157,12 @@ private:
     float uiScale_ = 1.0f;
     int mapGeneration_ = 0, shaderGeneration_ = 0;
     std::optional<RenderKey> rendered_;  // what the target holds
+    // Paging (loadWantedPages): the view whose pages are kept (its key at page generation
+    // 0), those pages, whether the last draw wanted any, whether the pool fell short.
+    int pageGeneration_ = 0;
+    std::optional<RenderKey> refinedView_;
+    std::vector<int> pagesKept_;
+    bool pagesWanted_ = false, poolTooSmall_ = false;
     bool statisticsStale_ = true;
     double lastStatisticsTime_ = -1.0, lastFrameTime_ = 0.0;
     int framesToDraw_ = 0;  // frames to draw before waiting for events again

@@ -86,9 +86,11 @@ void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
 
 void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
                     std::string& windowScreenshot, std::string& shaderDir, bool& noVsync,
-                    bool& noPanel) {
+                    bool& noPanel, std::size_t& memoryMib) {
     app.add_option("--frames", o.frames,
-                   "Render this many frames, write the screenshots asked for, and exit");
+                   "Render this many frames (more while a paged map loads its view's pages), "
+                   "write the screenshots asked for, and exit");
+    addMemoryFlag(app, memoryMib, "refined over frames until exact");
     app.add_option("--screenshot", screenshot,
                    "After the last frame, write the 3D view (no panel) at exactly --size (implies "
                    "--frames 1)");
@@ -109,8 +111,11 @@ void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
 // Checks and fills what CLI11 parsed; throws Error(BadInput).
 void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
             const std::string& windowScreenshot, const std::string& shaderDir, bool noVsync,
-            bool noPanel) {
+            bool noPanel, std::size_t memoryMib) {
     scene.apply();
+    // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
+    o.paging.memoryBytes = memoryMib << 20;
+    allowPagedMaps(o.scene.job.map.load);
     // Checked here, not by CLI::NonNegativeNumber, whose message prints the range up to
     // the largest double in 309 digits.
     if (o.frames < 0)
@@ -144,17 +149,18 @@ ParseResult<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     SceneFlags scene(o.scene);
     std::string screenshot, windowScreenshot, shaderDir;
     bool noVsync = false, noPanel = false;
+    std::size_t memoryMib = o.paging.memoryBytes >> 20;
     SculptFlags sculpt;
     scene.addMapAndCamera(app);
     scene.addShading(app);
-    addViewerFlags(app, o, screenshot, windowScreenshot, shaderDir, noVsync, noPanel);
+    addViewerFlags(app, o, screenshot, windowScreenshot, shaderDir, noVsync, noPanel, memoryMib);
     addSculptFlags(app, o, sculpt);
     app.set_version_flag("--version",
                          std::string("microrelief-viewer ") + MICRORELIEF_VERSION_STRING);
     app.allow_windows_style_options(false);
 
     return parseCommandLine<ViewerOptions>(app, argc, argv, [&] {
-        finish(o, scene, screenshot, windowScreenshot, shaderDir, noVsync, noPanel);
+        finish(o, scene, screenshot, windowScreenshot, shaderDir, noVsync, noPanel, memoryMib);
         finishSculpt(o, sculpt);
         if ((!o.strokes.empty() || o.undo > 0 || o.saveMap) && o.frames == 0) o.frames = 1;
         // Before the window opens, as microrelief-render does: no folder or device where a

@@ -15,6 +15,7 @@
 
 #include "SceneOptions.h"
 #include "microrelief/gl/HeightEditor.h"
+#include "microrelief/gl/PagedPyramid.h"
 
 namespace microrelief {
 
@@ -43,8 +44,13 @@ struct ViewerOptions {
     std::vector<ScriptedStroke> strokes;
     int undo = 0;
     std::optional<std::filesystem::path> saveMap;
-    // --frames N: render N frames, then write the screenshots asked for and exit 0.
+    // --frames N: render N frames, then write the screenshots asked for and exit 0; more
+    // while a map read through pages still loads the pages its view wants, so that the
+    // screenshot is the exact picture.
     int frames = 0;  // 0: run until the window closes
+    // A map larger than the GL's textures is read through pages within --memory
+    // (gl/PagedPyramid.h), refined over frames until exact.
+    PagingSettings paging;
     // --screenshot FILE: the 3D view (no panel) after the last frame, rendered at
     // exactly --size whatever the window's size, for a pixel-by-pixel comparison with
     // microrelief-render --size.

@@ -78,6 +78,7 @@ void mapSection(ViewerState& s, PanelActions& actions) {
     if (!ImGui::CollapsingHeader("Height map", ImGuiTreeNodeFlags_DefaultOpen)) return;
     ImGui::TextWrapped("%s", s.mapName.c_str());
     ImGui::Text("%d x %d samples", s.mapWidth, s.mapHeight);
+    if (!s.paging.empty()) ImGui::TextWrapped("read through pages: %s", s.paging.c_str());
     const ImGuiStyle& style = ImGui::GetStyle();
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("Open").x -
                             2.0f * style.FramePadding.x - style.ItemSpacing.x);

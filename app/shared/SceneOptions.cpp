@@ -14,6 +14,7 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Machine.h"
 #include "microrelief/core/Text.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/FloatLimits.h"
@@ -611,6 +612,21 @@ std::string renderCommandLine(const SceneOptions& o, const std::string& program)
     // Only when changed: the command stays short, and runs on renderers without the flag.
     if (job.background != RenderJob{}.background) add("background", exactVector(job.background));
     return line;
+}
+
+CLI::Option* addMemoryFlag(CLI::App& app, std::size_t& mib, const std::string& drawn) {
+    return app
+        .add_option("--memory", mib,
+                    "GPU memory for the pages of a map larger than the GL's textures, MiB "
+                    "(such a map is read through pages, " +
+                        drawn + ")")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
+}
+
+void allowPagedMaps(HeightMapLoadOptions& load) {
+    load.maxSide = kMaxPagedHeightMapSide;
+    load.maxSamples = physicalMemoryBytes() / kPagedBytesPerSample;
 }
 
 }  // namespace microrelief

@@ -75,6 +75,15 @@ private:
     std::string animate_;
 };
 
+// --memory MiB, both programs' (its default `mib` as given): the GPU memory for the pages of
+// a map larger than the GL's textures (gl/PagedPyramid.h), which `drawn` says how such a
+// map is drawn in that program ("drawn again until exact").
+CLI::Option* addMemoryFlag(CLI::App& app, std::size_t& mib, const std::string& drawn);
+// The load limits of a program that reads maps past the GL's textures through pages: sides
+// to kMaxPagedHeightMapSide, samples as many as the machine's memory holds with their
+// pyramid (kPagedBytesPerSample a sample).
+void allowPagedMaps(HeightMapLoadOptions& load);
+
 // "a,b,c,..." -> exactly `count` finite numbers; throws Error(BadInput) naming `flag` and
 // saying it expects `what`.
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,

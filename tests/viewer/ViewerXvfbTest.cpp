@@ -73,16 +73,17 @@ protected:
     // Renders `flags` in the viewer, then the command line it prints with
     // microrelief-render, and compares the two pictures. Returns the viewer's picture.
     // `renderExtra` goes to microrelief-render after the printed command (a map saved by
-    // the viewer in place of the one it opened).
+    // the viewer in place of the one it opened). The viewer draws `frames` frames.
     Image compareWithRender(const std::string& name, const std::string& flags,
-                            const std::string& extra = "", const std::string& renderExtra = "") {
+                            const std::string& extra = "", const std::string& renderExtra = "",
+                            int frames = 3) {
         const auto viewerPicture = dir / (name + "-viewer.png"),
                    renderPicture = dir / (name + "-render.png");
         // The renderer's shaders: the build tree's copy, which microrelief-render reads too.
         const RunResult viewer =
             run(std::string(MICRORELIEF_VIEWER_EXE) + " --shader-dir " + MICRORELIEF_SHADERS +
-                " --frames 3 --print-command --screenshot " + viewerPicture.string() + " " + flags +
-                " " + extra);
+                " --frames " + std::to_string(frames) + " --print-command --screenshot " +
+                viewerPicture.string() + " " + flags + " " + extra);
         EXPECT_EQ(viewer.status, 0) << viewer.err;
         const std::string printed = lastLine(viewer.out);
         EXPECT_EQ(printed.rfind("microrelief-render ", 0), 0u) << viewer.out;
@@ -134,6 +135,35 @@ TEST_F(ViewerUnderX, DefaultViewMatchesTheRenderer) {
     const Image picture = compareWithRender("default", "--size 200x150");
     EXPECT_EQ(picture.width, 200);
     EXPECT_EQ(picture.height, 150);
+}
+
+// A map wider than the GL's textures (16384 on llvmpipe) is read through pages within
+// --memory and refined over frames: --frames 3 draws on until the view wants no page, and
+// the screenshot is microrelief-render's exact picture. With a pool smaller than the view
+// reads at once the view stays coarse in parts, and the viewer says so. (--frames 1: the
+// first frame alone draws the coarse bounds; the viewer draws on.)
+TEST_F(ViewerUnderX, AMapWiderThanTheGlsTexturesRefinesToTheExactPicture) {
+    HeightMap map(17000, 40);
+    for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i)
+            map.at(i, j) = 0.5f + 0.4f * std::sin(i * 0.05f) * std::cos(j * 0.3f);
+    const auto file = dir / "wide.png";
+    test::writeMap(file, map, PixelType::UInt16);
+    const std::string view = "--size 160x120 --height " + file.string() +
+                             " --eye 0.02,0.004,0.01 --target 0,0,0 --height-scale 0.002 ";
+    const Image picture = compareWithRender("paged", view + "--memory 64", "", "", 1);
+    EXPECT_EQ(picture.width, 160);
+
+    const RunResult small = run(std::string(MICRORELIEF_VIEWER_EXE) + " --shader-dir " +
+                                MICRORELIEF_SHADERS + " --frames 3 --screenshot " +
+                                (dir / "coarse.png").string() + " " + view + "--memory 1");
+    EXPECT_EQ(small.status, 0) << small.err;
+    EXPECT_NE(small.out.find("raise --memory"), std::string::npos) << small.out;
+    EXPECT_NE(small.err.find("coarse.png: not the exact picture"), std::string::npos) << small.err;
+    const RunResult sculpt =
+        run(std::string(MICRORELIEF_VIEWER_EXE) + " --frames 1 --sculpt " + view + "--memory 4");
+    EXPECT_EQ(sculpt.status, 2);
+    EXPECT_NE(sculpt.err.find("read through pages"), std::string::npos) << sculpt.err;
 }
 
 TEST_F(ViewerUnderX, ScreenshotIsAtSizeWhateverTheWindow) {

@@ -104,6 +104,7 @@ public:
     const PagingSettings& paging() const { return paging_; }
     // The pager of the map set, where it is paged; else null.
     PagedPyramid* pager() { return textures_ ? textures_->paged() : nullptr; }
+    bool paged() const { return textures_ && textures_->paged(); }
 
     // A map that changes on the GPU (sculpting, animation). The map's textures, for a pass
     // of the caller's that draws into the samples (null before setHeightMap).
@@ -176,7 +177,6 @@ private:
                                  Interpolation interpolation, bool frontFaces, ShadowMode shadows,
                                  bool albedoMap, bool tiled, bool paged) const;
     bool tiled() const { return tiles() != glm::ivec2(1, 1); }
-    bool paged() const { return textures_ && textures_->paged(); }
     // Whether setHeightMap pages `map` (paging_).
     bool pages(const HeightMap& map) const;
     // The program for the configuration, compiled on first use; throws and changes

@@ -706,6 +706,15 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         HeightMapFile loaded = loadHeightMapFile(path, state_.scene.job.map.load);
         fitted = fitRelief(loaded, path.string());
         auto map = std::make_shared<HeightMap>(std::move(loaded.map));
+        // An animated field replaces the samples on the GPU, which a paged map does not
+        // hold whole (as at start: refused).
+        GLint maxTexture = 0;
+        window_->gl().GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+        if (animated_ && (map->width > maxTexture || map->height > maxTexture)) {
+            throwBadInput(path.string() + ": larger than the GL's textures (" +
+                          std::to_string(maxTexture) +
+                          "), so read through pages, which an animated relief is not");
+        }
         state_.scene.job.map.file =
             file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
         applyRelief(map, path.string());

@@ -14,14 +14,15 @@
 #include "FramePattern.h"
 #include "Manifest.h"
 #include "Progress.h"
-#include "microrelief/headless/HeadlessContext.h"
+#include "PyramidCache.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
-#include "microrelief/io/HeightMapFile.h"
-#include "microrelief/io/AlbedoFile.h"
-#include "microrelief/io/ImageFile.h"
 #include "microrelief/core/scene/FloatLimits.h"
+#include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ImageFile.h"
 
 namespace microrelief {
 
@@ -178,10 +179,12 @@ struct LoadedMap {
 };
 
 // What the frames need of each map they draw: its size and largest height (the float
-// limits), its georeference (a frame's scene over it: SceneOptions.h, sceneOverMap).
+// limits), its georeference (a frame's scene over it: SceneOptions.h, sceneOverMap); with
+// --pyramid-cache, its pyramid file, which the frames draw from.
 struct MapFacts {
     MapExtent extent;
     std::optional<Georeference> georeference;
+    std::shared_ptr<const PyramidFile> pages;
 };
 
 struct CheckedFrames {
@@ -201,8 +204,11 @@ RenderJob frameJob(const PathFrame& frame, const MapFacts& facts) {
 // maps it draws load (each once) and, with its camera, stay within what the shader's
 // float arithmetic holds (core/scene/FloatLimits.h); its albedo loads. An animated frame's
 // heights are known once evaluated: its limits are checked when it is drawn. Unless
-// `quiet`, a line says what each georeferenced map's grid gave.
-CheckedFrames checkFrames(const CameraPath& path, const std::vector<int>& frames, bool quiet) {
+// `quiet`, a line says what each georeferenced map's grid gave. With --pyramid-cache each
+// map's pyramid file is opened (built where missing) in place of the map: never read whole.
+CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
+                          const std::vector<int>& frames) {
+    const bool quiet = o.quiet;
     CheckedFrames checked;
     std::set<std::filesystem::path> albedos;
     for (const int k : frames) {
@@ -212,14 +218,25 @@ CheckedFrames checkFrames(const CameraPath& path, const std::vector<int>& frames
             auto facts = checked.maps.find(key);
             if (facts == checked.maps.end()) {
                 checked.last.reset();
-                HeightMapFile loaded =
-                    loadHeightMapFile(std::get<0>(key), frame.scene.job.map.load);
-                const HeightMap& map = loaded.map;
-                facts = checked.maps
-                            .emplace(key, MapFacts{{map.width, map.height, map.maxValue()},
-                                                   loaded.georeference})
+                if (o.pyramidCache) {
+                    std::shared_ptr<const PyramidFile> pages = openPyramidCache(
+                        o, std::get<0>(key), frame.scene.job.map.load, std::get<3>(key));
+                    const MapExtent extent{pages->mapWidth(), pages->mapHeight(),
+                                           pages->largestSample()};
+                    facts =
+                        checked.maps.emplace(key, MapFacts{extent, pages->georeference(), pages})
                             .first;
-                checked.last = LoadedMap{key, std::move(loaded.map)};
+                } else {
+                    HeightMapFile loaded =
+                        loadHeightMapFile(std::get<0>(key), frame.scene.job.map.load);
+                    const HeightMap& map = loaded.map;
+                    facts = checked.maps
+                                .emplace(key, MapFacts{{map.width, map.height, map.maxValue()},
+                                                       loaded.georeference,
+                                                       nullptr})
+                                .first;
+                    checked.last = LoadedMap{key, std::move(loaded.map)};
+                }
                 if (const std::string unused =
                         exaggerationUnused(std::get<0>(key).string(), frame.scene.georeference,
                                            facts->second.georeference);
@@ -234,6 +251,7 @@ CheckedFrames checkFrames(const CameraPath& path, const std::vector<int>& frames
             }
             const RenderJob job = frameJob(frame, facts->second);
             checkPictureSize(job.width, job.height);
+            if (o.pyramidCache) checkDrawnFromPyramidFile(job);
             if (job.animation.empty()) {
                 const MapExtent& map = facts->second.extent;
                 checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxHeight},
@@ -262,7 +280,7 @@ int runBatch(const RenderOptions& o) {
     const std::vector<int> frames = selectFrames(path.size(), o.batch.frames, shard);
     const std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
     checkMapFiles(path, frames);
-    CheckedFrames checked = checkFrames(path, frames, o.quiet);
+    CheckedFrames checked = checkFrames(o, path, frames);
     std::optional<LoadedMap>& checkedMap = checked.last;
     if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(kLightSizeUnused);
     const std::filesystem::path manifestPath = manifestFile(o);
@@ -280,7 +298,8 @@ int runBatch(const RenderOptions& o) {
                            !o.quiet && BatchProgress::stderrIsTerminal());
     std::unique_ptr<GlContext> context;
     std::optional<HeadlessRenderer> renderer;
-    std::optional<HeightMap> map;  // the map drawn, for the eye's check
+    std::optional<HeightMap> map;    // the map drawn, for the eye's check (none from a file)
+    std::optional<MapKey> pagesSet;  // the map whose pyramid file the renderer reads
     int eyeInside = 0;             // frames whose eye lies inside the solid
     std::string firstEyeInside;
     // The albedo file set on the renderer (itself optional: none); unset before the first.
@@ -301,7 +320,8 @@ int runBatch(const RenderOptions& o) {
         const auto frameStart = Clock::now();
         try {
             const MapKey key = mapKey(frame.scene);
-            const RenderJob job = frameJob(frame, checked.maps.at(key));
+            const MapFacts& facts = checked.maps.at(key);
+            const RenderJob job = frameJob(frame, facts);
             if (!context) {
                 context = createHeadlessContext(o.backend);
                 if (o.verbose)
@@ -312,7 +332,17 @@ int runBatch(const RenderOptions& o) {
             }
             // A map is loaded and its pyramid built only for a frame whose relief has
             // another pyramid than the last (core/scene/Scene.h: samePyramid).
-            if (renderer->needsHeights(job)) {
+            if (facts.pages) {
+                // Pages stay resident from frame to frame while the map is the same (another
+                // size of its base, last level or view is the job's own: render applies it).
+                if (pagesSet != key) {
+                    renderer->setPyramidPages(facts.pages, std::get<0>(key).string(), job.base,
+                                              job.interpolation);
+                    pagesSet = key;
+                    map.reset();
+                    ++mapsLoaded;
+                }
+            } else if (renderer->needsHeights(job)) {
                 HeightMap heights = checkedMap && checkedMap->key == key
                                         ? std::move(checkedMap->map)
                                         : loadHeightMap(std::get<0>(key), job.map.load);
@@ -334,8 +364,11 @@ int runBatch(const RenderOptions& o) {
             }
             const HeadlessResult result = renderer->render(job);
             const RenderedFrame& pixels = result.frame;
-            if (eyeInsideTheSolid(result.animatedMap ? *result.animatedMap : *map, job) &&
-                eyeInside++ == 0)
+            // A map drawn from its pyramid file is not in memory to hold the eye to.
+            const HeightMap* traced = result.animatedMap ? &*result.animatedMap
+                                      : map              ? &*map
+                                                         : nullptr;
+            if (traced && eyeInsideTheSolid(*traced, job) && eyeInside++ == 0)
                 firstEyeInside = frame.origin;
 
             std::size_t exhausted = 0;

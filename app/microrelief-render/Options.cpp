@@ -67,11 +67,10 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     std::size_t memoryMib = o.paging.memoryBytes >> 20;
     addMemoryFlag(app, memoryMib, "drawn again until exact");
     std::string pyramidCache;
-    app.add_option(
-        "--pyramid-cache", pyramidCache,
-        "Draw the map through pages from its pyramid file in this folder, built "
-        "there once from the map's rows in bounded memory and reused while the map "
-        "is unchanged: for maps larger than memory (images and elevation models, one picture)");
+    app.add_option("--pyramid-cache", pyramidCache,
+                   "Draw the map through pages from its pyramid file in this folder, built "
+                   "there once from the map's rows in bounded memory and reused while the map "
+                   "is unchanged: for maps larger than memory (images and elevation models)");
     app.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
     app.add_flag("-v,--verbose", o.verbose, "Print the GL renderer and shader logs");
     std::string cameras, frames, shard, manifest;
@@ -114,8 +113,6 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
         allowPagedMaps(o.scene.job.map.load);
         if (!pyramidCache.empty()) {
-            if (o.batch.active())
-                throwBadInput("--pyramid-cache draws one picture; not with a camera path yet");
             o.pyramidCache = pyramidCache;
             o.scene.job.map.load.maxSamples = 0;  // never held whole: the side bounds it
         }

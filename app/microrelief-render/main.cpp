@@ -12,6 +12,7 @@
 #include "EyeInside.h"
 #include "Options.h"
 #include "Progress.h"
+#include "PyramidCache.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
@@ -59,29 +60,6 @@ std::string pagingSummary(const PagingReport& paging) {
            std::to_string(paging.pagesLoaded) + " pages loaded";
 }
 
-// Where the progress of a pyramid file's build goes: "building the pyramid file of X"
-// once, then on a terminal the percentage rewritten in place.
-BuildProgress buildProgress(const std::string& map, bool quiet) {
-    if (quiet) return {};
-    auto shown = std::make_shared<int>(-1);
-    const bool terminal = BatchProgress::stderrIsTerminal();
-    return [map, shown, terminal](long long done, long long total) {
-        const int percent = static_cast<int>(100 * done / std::max(total, 1LL));
-        if (*shown < 0) {
-            std::fprintf(stderr,
-                         "%s: building the pyramid file of %s (once; reused while the "
-                         "map is unchanged)\n",
-                         kProgram, map.c_str());
-        }
-        if (terminal && percent != *shown) {
-            std::fprintf(stderr, "\r%s: pyramid %3d %%%s", kProgram, percent,
-                         done == total ? "\n" : "");
-            std::fflush(stderr);
-        }
-        *shown = percent;
-    };
-}
-
 // The job's albedo, where it has one.
 std::optional<AlbedoImage> loadAlbedoOf(const std::optional<std::filesystem::path>& file) {
     return file ? std::optional<AlbedoImage>(loadAlbedo(*file)) : std::nullopt;
@@ -124,18 +102,14 @@ RenderJob jobOverMap(const RenderOptions& o, const std::filesystem::path& height
 // the map itself is never read whole (no --compare-reference, no check of the eye).
 Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& heightFile) {
     const RenderJob& asked = o.scene.job;
-    if (asked.tiles != glm::ivec2(1, 1))
-        throwBadInput("--pyramid-cache draws one map: not with --tile");
-    if (!asked.animation.empty())
-        throwBadInput("--pyramid-cache draws a map's own heights: not with --animation");
+    checkDrawnFromPyramidFile(asked);
     if (o.compareReference)
         throwBadInput(
             "--compare-reference traces the whole map in memory: not with "
             "--pyramid-cache");
     const std::string name = heightFile.string();
     const std::shared_ptr<const PyramidFile> pages =
-        openOrBuildPyramidFile(heightFile, *o.pyramidCache, asked.map.load, asked.base.wrapsU(),
-                               buildProgress(name, o.quiet));
+        openPyramidCache(o, heightFile, asked.map.load, asked.base.wrapsU());
     const RenderJob job =
         jobOverMap(o, heightFile, pages->mapWidth(), pages->mapHeight(), pages->georeference());
     const std::optional<std::filesystem::path> albedoFile = albedoPath(job);

@@ -452,6 +452,13 @@ TEST_F(DemRender, ATerrainStandsAtItsTrueProportions) {
         EXPECT_NE(paged.out.find("true proportions"), std::string::npos) << paged.out;
         EXPECT_NE(paged.out.find(", paged: "), std::string::npos) << paged.out;
         EXPECT_EQ(readAov(dir / "paged.exr").pixels, aov.pixels);
+        // And a camera path from it: the georeference comes with the file there too.
+        const test::RunResult pagedPath =
+            render("-q --turntable 2 --height " + (dir / "dem.tif").string() + " " + c.flags +
+                   " --pyramid-cache " + (dir / "cache").string() + " --out " +
+                   (dir / "p{frame}.png").string() + " --aov " + (dir / "p{frame}.exr").string());
+        ASSERT_EQ(pagedPath.status, 0) << pagedPath.err;
+        EXPECT_EQ(readAov(dir / "p0.exr").pixels, aov.pixels);
     }
 }
 

@@ -16,8 +16,9 @@ cmake --build --preset sanitize
 # tracer; that tracer itself now and then dies of SIGSEGV ("Tracer caught signal 11 ...
 # LeakSanitizer has encountered a fatal error"), a known fault of the runtime, not a leak
 # (google/sanitizers#1353; seen once in seven CI runs here, 2026-12-04, in a child process of
-# batch.cli). Only then the failed tests run once more; a leak report, an ASan or UBSan
-# report, or any other failure fails the run as before.
+# batch.cli). Only then do the failed tests run once more (all of them: a test that failed
+# beside it for another reason gets its second run too, and fails the run if it fails
+# again); a leak report, an ASan or UBSan report fails the run at once.
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
 if ctest --preset sanitize --timeout 1800 "$@" 2>&1 | tee "$log"; then

@@ -180,11 +180,12 @@ struct LoadedMap {
 
 // What the frames need of each map they draw: its size and largest height (the float
 // limits), its georeference (a frame's scene over it: SceneOptions.h, sceneOverMap); with
-// --pyramid-cache, its pyramid file, which the frames draw from.
+// --pyramid-cache, that the frames draw it from its pyramid file (opened again when a frame
+// needs it: a path of a thousand maps holds one open at a time).
 struct MapFacts {
     MapExtent extent;
     std::optional<Georeference> georeference;
-    std::shared_ptr<const PyramidFile> pages;
+    bool fromPyramidFile = false;
 };
 
 struct CheckedFrames {
@@ -219,13 +220,12 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
             if (facts == checked.maps.end()) {
                 checked.last.reset();
                 if (o.pyramidCache) {
-                    std::shared_ptr<const PyramidFile> pages = openPyramidCache(
+                    const std::shared_ptr<const PyramidFile> pages = openPyramidCache(
                         o, std::get<0>(key), frame.scene.job.map.load, std::get<3>(key));
                     const MapExtent extent{pages->mapWidth(), pages->mapHeight(),
                                            pages->largestSample()};
-                    facts =
-                        checked.maps.emplace(key, MapFacts{extent, pages->georeference(), pages})
-                            .first;
+                    facts = checked.maps.emplace(key, MapFacts{extent, pages->georeference(), true})
+                                .first;
                 } else {
                     HeightMapFile loaded =
                         loadHeightMapFile(std::get<0>(key), frame.scene.job.map.load);
@@ -233,7 +233,7 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                     facts = checked.maps
                                 .emplace(key, MapFacts{{map.width, map.height, map.maxValue()},
                                                        loaded.georeference,
-                                                       nullptr})
+                                                       false})
                                 .first;
                     checked.last = LoadedMap{key, std::move(loaded.map)};
                 }
@@ -332,12 +332,13 @@ int runBatch(const RenderOptions& o) {
             }
             // A map is loaded and its pyramid built only for a frame whose relief has
             // another pyramid than the last (core/scene/Scene.h: samePyramid).
-            if (facts.pages) {
+            if (facts.fromPyramidFile) {
                 // Pages stay resident from frame to frame while the map is the same (another
                 // size of its base, last level or view is the job's own: render applies it).
                 if (pagesSet != key) {
-                    renderer->setPyramidPages(facts.pages, std::get<0>(key).string(), job.base,
-                                              job.interpolation);
+                    renderer->setPyramidPages(
+                        openPyramidCache(o, std::get<0>(key), job.map.load, std::get<3>(key)),
+                        std::get<0>(key).string(), job.base, job.interpolation);
                     pagesSet = key;
                     map.reset();
                     ++mapsLoaded;

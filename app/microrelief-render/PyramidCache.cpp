@@ -43,6 +43,12 @@ std::shared_ptr<const PyramidFile> openPyramidCache(const RenderOptions& options
 }
 
 void checkDrawnFromPyramidFile(const RenderJob& job) {
+    if (job.method.method != Method::Multilevel) {
+        throwBadInput(
+            "--pyramid-cache reads the map through pages, which only the multilevel method "
+            "reads: not --method " +
+            std::string(methodName(job.method.method)));
+    }
     if (job.tiles != glm::ivec2(1, 1))
         throwBadInput("--pyramid-cache draws one map: not with --tile");
     if (!job.animation.empty())

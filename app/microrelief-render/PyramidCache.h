@@ -17,7 +17,8 @@ std::shared_ptr<const PyramidFile> openPyramidCache(const RenderOptions& options
                                                     const std::filesystem::path& map,
                                                     const HeightMapLoadOptions& load, bool wrapU);
 
-// What a map drawn from its pyramid file is not: repeated (--tile) or replaced by an
+// What a map drawn from its pyramid file is not: drawn by another method than the
+// multilevel one (the only one that reads pages), repeated (--tile) or replaced by an
 // animated field (--animate). Throws Error(BadInput) naming the flag.
 void checkDrawnFromPyramidFile(const RenderJob& job);
 

@@ -312,7 +312,9 @@ void ViewerApp::handleKey(int key) {
             state_.sculpt = !state_.sculpt && sculptable();
             if (!sculptable())
                 note(animated_ ? "sculpting: not while the relief is animated (--animate)"
-                               : "sculpting: an untiled map only (Tiles 1, 1)");
+                     : renderer_->paged() ? "sculpting: not a map read through pages (larger "
+                                            "than the GL's textures)"
+                                          : "sculpting: an untiled map only (Tiles 1, 1)");
             break;
         case GLFW_KEY_Z:
             if (ImGui::GetIO().KeyCtrl) undo();
@@ -695,6 +697,8 @@ void ViewerApp::applyRelief(const std::shared_ptr<HeightMap>& heights, const std
     picker_.apply(wanted, heights);
     applied_ = wanted;
     ++mapGeneration_;
+    state_.pagedMap = renderer_->paged();
+    if (state_.pagedMap) state_.sculpt = false;
 }
 
 void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {

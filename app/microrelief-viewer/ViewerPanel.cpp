@@ -250,15 +250,17 @@ void statsSection(ViewerState& s) {
 void sculptSection(ViewerState& s, PanelActions& actions) {
     if (!s.scene.job.animation.empty()) return;  // the field overwrites the samples
     if (!ImGui::CollapsingHeader("Sculpt", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    // The brush paints one map; a tiled map's pyramid is rebuilt whole after each edit.
+    // The brush paints one map; a tiled map's pyramid is rebuilt whole after each edit; a
+    // paged map's samples are not on the GPU whole.
     const bool tiled = s.scene.job.tiles != glm::ivec2(1, 1);
-    if (tiled) s.sculpt = false;
-    ImGui::BeginDisabled(tiled);
+    if (tiled || s.pagedMap) s.sculpt = false;
+    ImGui::BeginDisabled(tiled || s.pagedMap);
     ImGui::Checkbox("Sculpt with the left button (B)", &s.sculpt);
     ImGui::EndDisabled();
-    if (tiled) {
+    if (tiled || s.pagedMap) {
         ImGui::SameLine();
-        ImGui::TextDisabled("(an untiled map only: Tiles 1, 1)");
+        ImGui::TextDisabled(s.pagedMap ? "(not a map read through pages)"
+                                       : "(an untiled map only: Tiles 1, 1)");
     }
     int mode = static_cast<int>(s.brush.mode);
     for (int m = 0; m < 4; ++m) {

@@ -45,7 +45,8 @@ struct ViewerState {
     double frameMilliseconds = 0.0;         // the last frame's work, CPU side, swap included
     IterationStats iterations;
     int iterationBudget = 0;
-    std::string paging;  // a map read through pages: its pool and whether the view is exact
+    bool pagedMap = false;  // the map is read through pages (larger than the GL's textures)
+    std::string paging;     // then its pool and whether the view is exact
     std::optional<PickResult> pick;
     int undoSteps = 0;
     bool mapEdited = false;  // sculpted since it was opened or saved

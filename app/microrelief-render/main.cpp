@@ -32,16 +32,11 @@ constexpr const char* kProgram = "microrelief-render";
 
 // --compare-reference: the accuracy sweep's figures for this one view.
 // A tiled map is compared with its larger image, made by repeating it.
-void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
-                   const RenderJob& job) {
-    const bool tiled = job.tiles != glm::ivec2(1, 1);
-    const HeightMap whole = tiled ? repeatMap(map, job.tiles.x, job.tiles.y) : HeightMap();
-    const Accuracy a = compareWithReference(frame, camera,
-                                            ReliefGeometry{tiled ? &whole : &map, job.heightScale,
-                                                           job.base, job.interpolation, job.model});
+// The lines of --compare-reference; `sampled`: the reference traced some pixels only.
+void printAccuracy(const Accuracy& a, bool sampled) {
     std::printf(
-        "accuracy against the exact CPU reference (%zu pixels, %zu hit in the reference):\n",
-        a.pixels, a.referenceHits);
+        "accuracy against the exact CPU reference (%zu %spixels, %zu hit in the reference):\n",
+        a.pixels, sampled ? "sampled " : "", a.referenceHits);
     std::printf("  hit/miss disagreement        %8zu px  %8.4f %% of pixels\n",
                 a.coverageMismatches, a.coverageMismatchPercent());
     std::printf("  off by more than half a texel %7zu px  %8.4f %% of hit pixels\n", a.offHalfTexel,
@@ -51,6 +46,25 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
     std::printf("                               mean %.3g px, p99 %.3g px (pixels at the hit)\n",
                 a.meanErrorPixels, a.p99ErrorPixels);
     std::printf("  out of the iteration budget  %8zu px\n", a.exhausted);
+}
+
+// --compare-reference over a map in memory: every pixel.
+void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const HeightMap& map,
+                   const RenderJob& job) {
+    const bool tiled = job.tiles != glm::ivec2(1, 1);
+    const HeightMap whole = tiled ? repeatMap(map, job.tiles.x, job.tiles.y) : HeightMap();
+    printAccuracy(compareWithReference(frame, camera,
+                                       ReliefGeometry{tiled ? &whole : &map, job.heightScale,
+                                                      job.base, job.interpolation, job.model}),
+                  false);
+}
+
+// Pixels a side between those --compare-reference traces over a pyramid file: about
+// kSampledPixels of the picture, spread evenly (each ray reads its cells' blocks from disk).
+constexpr int kSampledPixels = 4096;
+int sampleStep(int width, int height) {
+    const double step = std::sqrt(static_cast<double>(width) * height / kSampledPixels);
+    return std::max(1, static_cast<int>(std::ceil(step)));
 }
 
 // ", paged: 12 draws, 340 pages loaded" for a map read through pages; "" otherwise.
@@ -103,10 +117,12 @@ RenderJob jobOverMap(const RenderOptions& o, const std::filesystem::path& height
 Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& heightFile) {
     const RenderJob& asked = o.scene.job;
     checkDrawnFromPyramidFile(asked);
-    if (o.compareReference)
+    if (o.compareReference && asked.base.kind != BaseKind::Plane) {
         throwBadInput(
-            "--compare-reference traces the whole map in memory: not with "
-            "--pyramid-cache");
+            "--compare-reference over a pyramid file traces the plane's reference: not with "
+            "--base " +
+            baseName(asked.base));
+    }
     const std::string name = heightFile.string();
     const std::shared_ptr<const PyramidFile> pages =
         openPyramidCache(o, heightFile, asked.map.load, asked.base.wrapsU());
@@ -125,6 +141,17 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
     }
     drawn.context = context->description();
     drawn.mapSize = {pages->mapWidth(), pages->mapHeight()};
+    if (o.compareReference) {
+        // The map is not in memory: the reference reads its samples from the file, on
+        // sampled pixels.
+        const PagedReferenceTracer reference(pages, job.heightScale, job.interpolation, job.model);
+        const CameraFrame& camera = drawn.result.camera;
+        const ReferencePicture exact = traceSampledReferencePicture(
+            camera, [&](const Ray& ray) { return reference.trace(ray); },
+            1.0 / job.base.texelSize(pages->mapWidth(), pages->mapHeight()),
+            glm::dmat3(job.model.worldToObject()), sampleStep(camera.width, camera.height));
+        printAccuracy(compareWithReference(drawn.result.frame, camera, exact), true);
+    }
     return drawn;
 }
 

@@ -665,7 +665,21 @@ TEST_F(RenderCliPaged, AMapIsDrawnFromItsPyramidFileBuiltOnce) {
     }
     expectFailure(run(cached + (dir / "t{frame}.png").string() + " --turntable 2 --tile 2,1"), 2,
                   "not with --tile");
+    expectFailure(run(cached + (dir / "t{frame}.png").string() + " --turntable 2 --method cone"), 2,
+                  "only the multilevel method reads: not --method cone");
     EXPECT_FALSE(std::filesystem::exists(dir / "t0.png"));
+
+    // Checked against the reference on sampled pixels, read from the file.
+    const test::RunResult checkedRun =
+        run(cached + (dir / "checked.png").string() + " --compare-reference");
+    ASSERT_EQ(checkedRun.status, 0) << checkedRun.err;
+    EXPECT_NE(checkedRun.out.find("sampled pixels"), std::string::npos) << checkedRun.out;
+    EXPECT_NE(checkedRun.out.find("hit/miss disagreement               0 px"), std::string::npos)
+        << checkedRun.out;
+    EXPECT_NE(checkedRun.out.find("off by more than half a texel       0 px"), std::string::npos)
+        << checkedRun.out;
+    expectFailure(run(cached + (dir / "x.png").string() + " --compare-reference --base cylinder"),
+                  2, "traces the plane's reference");
 
     // The last page (the pyramid's 1 x 1 top, read before any draw) changed on disk.
     const std::vector<std::string> files = filesIn(cache);
@@ -679,9 +693,6 @@ TEST_F(RenderCliPaged, AMapIsDrawnFromItsPyramidFileBuiltOnce) {
     bytes.resize(bytes.size() - 1000);
     test::writeBytes(pyramid, bytes);
     expectFailure(run(cached + (dir / "cut.png").string()), 2, "(truncated)");
-
-    expectFailure(run(cached + (dir / "x.png").string() + " --compare-reference"), 2,
-                  "not with --pyramid-cache");
 }
 
 }  // namespace

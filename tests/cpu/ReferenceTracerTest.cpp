@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/heightmap/PyramidPages.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -790,6 +793,49 @@ TEST(ReferenceTracerProperty, RandomRaysHitTheSolidFirstWhereTheyEnterIt) {
     EXPECT_GT(faces[static_cast<int>(HitFace::Bottom)], 50);
     std::printf("%d hits (top %d, wall x %d, wall z %d, bottom %d), %d misses\n", hits, faces[1],
                 faces[2], faces[3], faces[4], misses);
+}
+
+// The reference over a map that is not in memory whole (samples read from pages a block at
+// a time, the last 32 kept) is the reference: the same hits, bit for bit, from random eyes
+// above, beside and below a map whose sides are not multiples of the blocks, both last
+// levels, through a model transform; a small block cache read over and over on a map of
+// 48 blocks.
+TEST(PagedReferenceTracer, GivesTheReferencesHitsOverTheSameSamples) {
+    HeightMap map(1300, 1500);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> jitter(0.0f, 0.2f);
+    for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i)
+            map.at(i, j) =
+                0.5f + 0.3f * std::sin(i * 0.021f) * std::cos(j * 0.017f) + jitter(random);
+    const auto pages =
+        std::make_shared<PyramidInMemory>(map, MaxPyramid(map, false, BoundPrecision::Half));
+    // Turned 30 degrees about y, moved by (0.1, 0, -0.2).
+    const ModelTransform turned =
+        ModelTransform::fromRows({0.8660254037844387, 0.0, 0.5, 0.1, 0.0, 1.0, 0.0, 0.0, -0.5, 0.0,
+                                  0.8660254037844387, -0.2});
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (const Interpolation interpolation :
+         {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+        for (const ModelTransform& model : {ModelTransform{}, turned}) {
+            const ReferenceTracer whole(ReliefGeometry{&map, 0.05, {}, interpolation, model});
+            const PagedReferenceTracer paged(pages, 0.05, interpolation, model);
+            int hits = 0;
+            for (int k = 0; k < 400; ++k) {
+                const glm::dvec3 eye(unit(random), 0.02 + 0.3 * (unit(random) + 1.0), unit(random));
+                const glm::dvec3 target(0.45 * unit(random), 0.0, 0.45 * unit(random));
+                const Ray ray{eye, target - eye};
+                const ReferenceHit expected = whole.trace(ray), got = paged.trace(ray);
+                ASSERT_EQ(got.face, expected.face) << k;
+                EXPECT_EQ(got.t, expected.t) << k;
+                EXPECT_EQ(got.position, expected.position) << k;
+                EXPECT_EQ(got.normal, expected.normal) << k;
+                hits += expected.face == HitFace::Top;
+            }
+            EXPECT_GT(hits, 250);
+            EXPECT_GT(paged.blocksRead(), 32u) << "the cache was cycled";
+        }
+    }
 }
 
 }  // namespace

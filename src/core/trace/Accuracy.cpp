@@ -43,6 +43,31 @@ ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGe
     return picture;
 }
 
+ReferencePicture traceSampledReferencePicture(const CameraFrame& camera,
+                                              const std::function<ReferenceHit(const Ray&)>& trace,
+                                              double texelsPerUnit, const glm::dmat3& worldToObject,
+                                              int step) {
+    if (step < 1) throwRuntime("traceSampledReferencePicture: a step of at least 1");
+    ReferencePicture picture;
+    picture.width = camera.width;
+    picture.texelsPerUnit = texelsPerUnit;
+    picture.worldToObject = worldToObject;
+    const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
+    picture.hits.assign(count, std::nullopt);
+    picture.viaTop.assign(count, true);
+    picture.traced.assign(count, false);
+    for (int row = step / 2; row < camera.height; row += step) {
+        for (int column = step / 2; column < camera.width; column += step) {
+            const std::size_t pixel = static_cast<std::size_t>(row) * camera.width + column;
+            const ReferenceHit exact = trace(camera.pixelRay(column, row));
+            if (exact) picture.hits[pixel] = exact.position;
+            picture.viaTop[pixel] = exact.entryFace == HitFace::None;
+            picture.traced[pixel] = true;
+        }
+    }
+    return picture;
+}
+
 namespace {
 
 // The 99th percentile of `values` (reordered), 0 for none.
@@ -61,7 +86,8 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
                          AccuracyScope scope) {
     const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
     if (reference.width != camera.width || reference.hits.size() != count ||
-        reference.viaTop.size() != count)
+        reference.viaTop.size() != count ||
+        (!reference.traced.empty() && reference.traced.size() != count))
         throwRuntime("measureAccuracy: the reference picture is not of this camera's size");
     Accuracy result;
     std::vector<double> errors, pixelErrors;
@@ -69,6 +95,7 @@ Accuracy measureAccuracy(const CameraFrame& camera, const ReferencePicture& refe
     for (int row = 0; row < camera.height; ++row) {
         for (int column = 0; column < camera.width; ++column) {
             const std::size_t pixel = static_cast<std::size_t>(row) * reference.width + column;
+            if (!reference.traced.empty() && !reference.traced[pixel]) continue;
             if (scope == AccuracyScope::TopSurface && !reference.viaTop[pixel]) continue;
             ++result.pixels;
             const PixelHit tested = trace(column, row, camera.pixelRay(column, row));

@@ -4,6 +4,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -45,7 +46,11 @@ struct BilinearPatch {
     glm::dvec2 gradient(double fx, double fz) const { return {e + k * fz, g + k * fx}; }
 };
 
-BilinearPatch cellPatch(const HeightMap& map, double heightScale, int ci, int cj) {
+// `Samples` (here and below): what the walks read of a map, its `width`, `height` and
+// `at(i, j)` and `clamped(i, j)` samples as HeightMap has them: a HeightMap, or the samples
+// of pages read as the walk needs them (PagedSamples).
+template <class Samples>
+BilinearPatch cellPatch(const Samples& map, double heightScale, int ci, int cj) {
     const auto sample = [&](int i, int j) {
         return heightScale * static_cast<double>(map.at(std::clamp(i, 0, map.width - 1),
                                                         std::clamp(j, 0, map.height - 1)));
@@ -155,7 +160,8 @@ struct CellContact {
 
 // The 2D DDA (Amanatides and Woo) over the bilinear cells the ray crosses between
 // tStart and span.tExit, in order, solving each cell's patch exactly: the first contact.
-std::optional<CellContact> walkCells(const HeightMap& map, double heightScale, const glm::dvec3& o,
+template <class Samples>
+std::optional<CellContact> walkCells(const Samples& map, double heightScale, const glm::dvec3& o,
                                      const glm::dvec3& d, double tStart, const BoxSpan& span) {
     const double tExit = span.tExit;
     const glm::dvec3 start = o + tStart * d;
@@ -274,7 +280,8 @@ struct QuadraticSquare {
     double maxSample;
 };
 
-QuadraticSquare squareAt(const HeightMap& map, double heightScale, int i, int j) {
+template <class Samples>
+QuadraticSquare squareAt(const Samples& map, double heightScale, int i, int j) {
     QuadraticSquare q{};
     q.maxSample = 0.0;
     for (int b = 0; b < 3; ++b) {
@@ -329,9 +336,9 @@ glm::dvec2 gradientAt(const QuadraticSquare& q, double fx, double fz) {
 // The DDA over the texel squares the ray crosses (sample space: square i holds
 // x in [i - 1/2, i + 1/2], i in [0, W - 1]), solving each square's quartic: the first
 // contact. As walkCells, for the biquadratic surface.
-std::optional<CellContact> walkSquares(const HeightMap& map, double heightScale,
-                                       const glm::dvec3& o, const glm::dvec3& d, double tStart,
-                                       const BoxSpan& span) {
+template <class Samples>
+std::optional<CellContact> walkSquares(const Samples& map, double heightScale, const glm::dvec3& o,
+                                       const glm::dvec3& d, double tStart, const BoxSpan& span) {
     // In square space (sample space + 1/2) the squares are unit cells 0..W-1 x 0..H-1.
     const glm::dvec3 os = o + glm::dvec3(0.5, 0.0, 0.5);
     const glm::dvec3 start = os + tStart * d;
@@ -416,12 +423,13 @@ ReferenceHit topHit(const CellContact& contact, const Ray& ray, const SampleSpac
 }
 
 // `top` bounds the solid from above: s times the largest sample, or infinity where
-// finding that would cost more than the walk.
-ReferenceHit traceBelow(const ReliefGeometry& relief, const Ray& ray, double top) {
-    assert(relief.map != nullptr && !relief.map->empty());
-    assert(relief.heightScale >= 0.0 && std::isfinite(relief.heightScale));
+// finding that would cost more than the walk. The plane's solid over `map`'s samples.
+template <class Samples>
+ReferenceHit traceBelow(const Samples& map, double heightScale, Interpolation interpolation,
+                        const Ray& ray, double top) {
+    assert(map.width > 0 && map.height > 0);
+    assert(heightScale >= 0.0 && std::isfinite(heightScale));
     assert(ray.direction != glm::dvec3(0.0));
-    const HeightMap& map = *relief.map;
     const SampleSpace space{map.width, map.height,
                             static_cast<double>(std::max(map.width, map.height))};
     const glm::dvec3 o = space.point(ray.origin), d = space.vector(ray.direction);
@@ -437,9 +445,9 @@ ReferenceHit traceBelow(const ReliefGeometry& relief, const Ray& ray, double top
         return entered(faceHit(HitFace::Bottom, span->tEnter, ray, space));
 
     const double tStart = std::max(span->tEnter, 0.0);
-    const auto contact = relief.interpolation == Interpolation::Biquadratic
-                             ? walkSquares(map, relief.heightScale, o, d, tStart, *span)
-                             : walkCells(map, relief.heightScale, o, d, tStart, *span);
+    const auto contact = interpolation == Interpolation::Biquadratic
+                             ? walkSquares(map, heightScale, o, d, tStart, *span)
+                             : walkCells(map, heightScale, o, d, tStart, *span);
     if (!contact) return entered({});
     // Touching the solid right where the ray enters through a wall: a wall hit.
     if (span->entryFace != HitFace::None && contact->t == tStart) {
@@ -476,7 +484,9 @@ ReferenceHit traceReference(const ReliefGeometry& relief, const Ray& ray) {
         }
         // Without a known top the walk covers every cell under the ray's path over the
         // footprint; the exact per-cell cull keeps the cells above the relief cheap.
-        return traceBelow(relief, objectRay, kInfinity);
+        assert(relief.map != nullptr && !relief.map->empty());
+        return traceBelow(*relief.map, relief.heightScale, relief.interpolation, objectRay,
+                          kInfinity);
     });
 }
 
@@ -489,8 +499,92 @@ ReferenceHit ReferenceTracer::trace(const Ray& ray) const {
     return throughModel(relief_.model, ray, [&](const Ray& objectRay) {
         if (relief_.base.curved())
             return detail::traceCurvedReference(relief_, boundaries_, objectRay, top_);
-        return traceBelow(relief_, objectRay, top_);
+        return traceBelow(*relief_.map, relief_.heightScale, relief_.interpolation, objectRay,
+                          top_);
     });
+}
+
+// The samples of page level 0 as the walks read them (the Samples of cellPatch): a block of
+// kSide^2 at a time, the least recently used of kBlocks replaced.
+class PagedReferenceTracer::Samples {
+public:
+    explicit Samples(std::shared_ptr<const PyramidPages> pages)
+        : width(pages->mapWidth()), height(pages->mapHeight()), pages_(std::move(pages)) {
+        blocks_.reserve(kBlocks);  // never reallocated: last_ points into it
+    }
+
+    const int width, height;
+
+    float at(int i, int j) const {
+        const Block& b = block(i >> kShift, j >> kShift);
+        return b.texels[static_cast<std::size_t>(j - b.y0) * b.stride + (i - b.x0)];
+    }
+    float clamped(int i, int j) const {
+        return at(std::clamp(i, 0, width - 1), std::clamp(j, 0, height - 1));
+    }
+    std::size_t blocksRead() const { return blocksRead_; }
+
+private:
+    static constexpr int kShift = 8, kBlocks = 32;
+    struct Block {
+        int bx = -1, by = -1, x0 = 0, y0 = 0, stride = 0;
+        std::uint64_t used = 0;
+        std::vector<float> texels;
+    };
+
+    const Block& block(int bx, int by) const {
+        if (last_ && last_->bx == bx && last_->by == by) return *last_;
+        Block* found = nullptr;
+        Block* oldest = nullptr;
+        for (Block& b : blocks_) {
+            if (b.bx == bx && b.by == by) {
+                found = &b;
+                break;
+            }
+            if (!oldest || b.used < oldest->used) oldest = &b;
+        }
+        if (!found) {
+            found = blocks_.size() < kBlocks ? &blocks_.emplace_back() : oldest;
+            const TexelRect rect{bx << kShift, by << kShift, std::min(width, (bx + 1) << kShift),
+                                 std::min(height, (by + 1) << kShift)};
+            found->texels.resize(static_cast<std::size_t>(rect.width()) * rect.height());
+            found->bx = -1;  // unusable until read
+            pages_->read(0, rect, found->texels.data());
+            *found = Block{bx, by, rect.x0, rect.y0, rect.width(), 0, std::move(found->texels)};
+            ++blocksRead_;
+        }
+        found->used = ++clock_;
+        last_ = found;
+        return *found;
+    }
+
+    std::shared_ptr<const PyramidPages> pages_;
+    mutable std::vector<Block> blocks_;
+    mutable Block* last_ = nullptr;
+    mutable std::uint64_t clock_ = 0;
+    mutable std::size_t blocksRead_ = 0;
+};
+
+PagedReferenceTracer::PagedReferenceTracer(std::shared_ptr<const PyramidPages> pages,
+                                           double heightScale, Interpolation interpolation,
+                                           const ModelTransform& model)
+    : heightScale_(heightScale),
+      interpolation_(interpolation),
+      model_(model),
+      top_(heightScale * static_cast<double>(pages->largestSample())) {
+    samples_ = std::make_unique<Samples>(std::move(pages));
+}
+
+PagedReferenceTracer::~PagedReferenceTracer() = default;
+
+ReferenceHit PagedReferenceTracer::trace(const Ray& ray) const {
+    return throughModel(model_, ray, [&](const Ray& objectRay) {
+        return traceBelow(*samples_, heightScale_, interpolation_, objectRay, top_);
+    });
+}
+
+std::size_t PagedReferenceTracer::blocksRead() const {
+    return samples_->blocksRead();
 }
 
 }  // namespace microrelief

@@ -63,6 +63,9 @@ struct ReferencePicture {
     // Row-major: the pixel's ray does not come into the relief's box through a side wall
     // or the bottom face (it comes through the top face, starts inside, or misses the box).
     std::vector<bool> viaTop;
+    // Row-major: the pixels traced; empty where every one was (traceSampledReferencePicture
+    // traces some). A comparison takes in the traced pixels alone.
+    std::vector<bool> traced;
 };
 
 // Which pixels a comparison takes in: all of them, or those whose rays do not come in
@@ -71,6 +74,14 @@ struct ReferencePicture {
 // the ray can meet, false hits included (what can be asked of them).
 enum class AccuracyScope { AllPixels, TopSurface };
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGeometry& relief);
+// The reference on every `step`-th pixel of every `step`-th row of the camera's picture,
+// from (step / 2, step / 2), traced by `trace` (a PagedReferenceTracer's, for a map not in
+// memory whole), errors in texels at `texelsPerUnit` of the relief's object space
+// (1 / BaseShape::texelSize) after `worldToObject` (the model's inverse).
+ReferencePicture traceSampledReferencePicture(const CameraFrame& camera,
+                                              const std::function<ReferenceHit(const Ray&)>& trace,
+                                              double texelsPerUnit, const glm::dmat3& worldToObject,
+                                              int step);
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
                                        double heightScale, const BaseShape& base = {},
                                        Interpolation interpolation = Interpolation::Bilinear);

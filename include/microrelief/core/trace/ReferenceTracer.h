@@ -10,12 +10,14 @@
 // O(cells crossed) per ray.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "microrelief/core/base/BaseShape.h"
 #include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/heightmap/PyramidPages.h"
 #include "microrelief/core/scene/Camera.h"
 #include "microrelief/core/scene/ModelTransform.h"
 
@@ -85,6 +87,35 @@ private:
     ReliefGeometry relief_;
     double top_;                           // s times the largest sample
     detail::CurvedBoundaries boundaries_;  // curved bases only
+};
+
+// The plane's reference over a map that is not in memory whole: its samples read from
+// `pages` (core/heightmap/PyramidPages.h, page level 0: a pyramid file's) a block of
+// 256 x 256 at a time as the walk reaches them, the last 32 blocks kept. The same walk as
+// ReferenceTracer's on the plane, so the same hits over the same samples, bit for bit; a
+// ray costs its cells and the blocks they lie in. For pictures of such maps checked on
+// sampled pixels (microrelief-render --pyramid-cache --compare-reference). Not for two
+// threads at once.
+class PagedReferenceTracer {
+public:
+    PagedReferenceTracer(std::shared_ptr<const PyramidPages> pages, double heightScale,
+                         Interpolation interpolation = Interpolation::Bilinear,
+                         const ModelTransform& model = {});
+    ~PagedReferenceTracer();
+    PagedReferenceTracer(const PagedReferenceTracer&) = delete;
+    PagedReferenceTracer& operator=(const PagedReferenceTracer&) = delete;
+
+    ReferenceHit trace(const Ray& ray) const;
+    // Blocks of samples read so far (each of up to 256^2 samples).
+    std::size_t blocksRead() const;
+
+private:
+    class Samples;
+    std::unique_ptr<Samples> samples_;
+    double heightScale_;
+    Interpolation interpolation_;
+    ModelTransform model_;
+    double top_;  // s times the largest sample
 };
 
 }  // namespace microrelief

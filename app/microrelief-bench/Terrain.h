@@ -32,7 +32,8 @@ struct TerrainOptions {
     int frames = 10;                                   // timed frames after the first picture
     std::size_t memoryBytes = std::size_t{512} << 20;  // the page pool's budget
     // Maps of more samples than this are not made in memory: drawn from pyramid files
-    // alone, unchecked against the reference (0: every map in memory).
+    // alone, checked against the reference on sampled pixels read from the file
+    // (PagedReferenceTracer; 0: every map in memory).
     std::size_t inMemorySamples = 0;
     // Where the pyramid files are built, each removed after its size's rows.
     std::filesystem::path pyramidFolder = "terrain-pyramids";
@@ -58,7 +59,9 @@ struct TerrainRow {
     double fetchesMean = 0.0;      // texel reads per pixel whose ray met the relief
     double gpuMiB = 0.0;           // the map's textures, or pool, coarse texture and tables
     double processMiB = 0.0;       // the process's resident memory after the row
-    bool checked = false;          // against the CPU reference (the map in memory): then
+    // Against the CPU reference: every pixel (the map in memory), or about 4096 pixels
+    // spread over the picture (`sampled`: the map read from its pyramid file); then
+    bool checked = false, sampled = false;
     double coverageMismatchPct = 0.0, offHalfTexelPct = 0.0;
     int width = 0, height = 0;
 };

@@ -233,9 +233,9 @@ int runTerrain(const CLI::App& app, const BenchOptions& options, std::size_t mem
             r.draws, r.pagesLoaded, r.frameMs, r.frameOnePixelMs, r.fetchesMean, r.gpuMiB,
             r.processMiB,
             r.checked ? (fixed(r.coverageMismatchPct, 3) + " % / " + fixed(r.offHalfTexelPct, 3) +
-                         " % off")
+                         " % off" + (r.sampled ? " (sampled pixels)" : ""))
                             .c_str()
-                      : "not checked (the map is not held in memory)");
+                      : "not checked");
         std::fflush(stdout);
     });
     const std::string table = terrainTable(context->renderer(), today(), rows);
@@ -269,12 +269,22 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     bool terrain = false;
     std::size_t memoryMib = 512;
+    // The help's defaults are TerrainOptions' own.
+    const TerrainOptions terrainDefaults;
+    const auto commas = [](const std::vector<int>& values) {
+        std::string text;
+        for (const int v : values) text += (text.empty() ? "" : ",") + std::to_string(v);
+        return text;
+    };
     app.add_flag("--terrain", terrain,
                  "Instead: the multilevel method against map size to terrain scale, in whole "
-                 "textures and through pages (past the GL's texture limit too): preparation, "
-                 "first picture, frame, fetches, memory, accuracy (terrain.csv, terrain.md, "
-                 "terrain.png). Its defaults: --map-sizes 1024,4096,16384,24576, --views 45,80, "
-                 "--size 256x256");
+                 "textures, through pages and from pyramid files (past the GL's texture limit "
+                 "and past memory too): preparation, first picture, frame, fetches, memory, "
+                 "accuracy (terrain.csv, terrain.md, terrain.png). Its defaults: --map-sizes " +
+                     commas(terrainDefaults.mapSizes) + ", --views " +
+                     commas(terrainDefaults.viewDegrees) + ", --size " +
+                     std::to_string(terrainDefaults.width) + "x" +
+                     std::to_string(terrainDefaults.height));
     app.add_option("--memory", memoryMib, "The page pool's budget for --terrain, MiB")
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));

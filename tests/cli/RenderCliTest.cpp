@@ -594,12 +594,8 @@ namespace {
 class RenderCliPaged : public RenderCli {};
 
 TEST_F(RenderCliPaged, AMapWiderThanTheGlsTexturesIsReadThroughPages) {
-    HeightMap map(17000, 40);
-    for (int j = 0; j < map.height; ++j)
-        for (int i = 0; i < map.width; ++i)
-            map.at(i, j) = 0.5f + 0.4f * std::sin(i * 0.05f) * std::cos(j * 0.3f);
     const auto file = dir / "wide.png";
-    test::writeMap(file, map, PixelType::UInt16);
+    test::writeWideWavesMap(file);
     const auto out = dir / "paged.png";
     const test::RunResult r = run(small + "--height " + file.string() +
                                   " --eye 0.02,0.004,0.01 --target 0,0,0 --height-scale 0.002 "

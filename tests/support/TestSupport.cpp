@@ -53,6 +53,14 @@ void writeMap(const std::filesystem::path& file, const HeightMap& map, PixelType
     writeImageAtomically(file, {map.width, map.height, 1, type, pixels, {"Y"}});
 }
 
+void writeWideWavesMap(const std::filesystem::path& file) {
+    HeightMap map(17000, 40);
+    for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i)
+            map.at(i, j) = 0.5f + 0.4f * std::sin(i * 0.05f) * std::cos(j * 0.3f);
+    writeMap(file, map, PixelType::UInt16);
+}
+
 void writeBytes(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes) {
     std::ofstream out(file, std::ios::binary);
     out.write(reinterpret_cast<const char*>(bytes.data()),

@@ -33,6 +33,9 @@ private:
 
 // Writes `map` (values in [0, 1] for integer types) as one channel of the given type.
 void writeMap(const std::filesystem::path& file, const HeightMap& map, PixelType type);
+// A 16-bit PNG of 17000 x 40 waves (0.5 + 0.4 sin(0.05 i) cos(0.3 j)): wider than the GL's
+// textures (16384 on llvmpipe), so read through pages; for the programs' paging tests.
+void writeWideWavesMap(const std::filesystem::path& file);
 void writeBytes(const std::filesystem::path& file, const std::vector<std::uint8_t>& bytes);
 std::vector<std::uint8_t> readBytes(const std::filesystem::path& file);
 std::string readText(const std::filesystem::path& file);

@@ -143,12 +143,8 @@ TEST_F(ViewerUnderX, DefaultViewMatchesTheRenderer) {
 // reads at once the view stays coarse in parts, and the viewer says so. (--frames 1: the
 // first frame alone draws the coarse bounds; the viewer draws on.)
 TEST_F(ViewerUnderX, AMapWiderThanTheGlsTexturesRefinesToTheExactPicture) {
-    HeightMap map(17000, 40);
-    for (int j = 0; j < map.height; ++j)
-        for (int i = 0; i < map.width; ++i)
-            map.at(i, j) = 0.5f + 0.4f * std::sin(i * 0.05f) * std::cos(j * 0.3f);
     const auto file = dir / "wide.png";
-    test::writeMap(file, map, PixelType::UInt16);
+    test::writeWideWavesMap(file);
     const std::string view = "--size 160x120 --height " + file.string() +
                              " --eye 0.02,0.004,0.01 --target 0,0,0 --height-scale 0.002 ";
     const Image picture = compareWithRender("paged", view + "--memory 64", "", "", 1);

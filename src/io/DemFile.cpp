@@ -151,7 +151,8 @@ bool isElevationModelFile(const std::filesystem::path& file) {
            ((extension == ".tif" || extension == ".tiff") && hasGeoTiffGrid(file));
 }
 
-DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
+DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options,
+                const std::function<void(long long done, long long total)>& firstPass) {
     const std::string name = file.string();
     const QuietGdal quiet;
     // Only the elevation formats' drivers: nothing else GDAL reads is tried on the file.
@@ -238,6 +239,7 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
             lowest = std::min(lowest, metres);
             highest = std::max(highest, metres);
         }
+        if (firstPass) firstPass(y + count, height);
     });
     if (geo.nodataSamples == static_cast<std::size_t>(width) * height)
         throwBadInput(name + ": every sample is nodata");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 
 #include "microrelief/core/heightmap/PyramidStream.h"
 #include "microrelief/io/HeightMapFile.h"
@@ -28,7 +29,10 @@ struct DemRows {
     MapRows rows;
     Georeference georeference;
 };
-DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options);
+// `firstPass` (may be empty) is told the rows of that first pass read so far, out of the
+// map's height.
+DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options,
+                const std::function<void(long long done, long long total)>& firstPass = {});
 
 // The file (a GeoTIFF, an SRTM .hgt) as loadHeightMapFile reads a DEM: demRows, read whole.
 HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOptions& options);

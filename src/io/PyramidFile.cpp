@@ -408,12 +408,12 @@ std::string pyramidSourceKey(const std::filesystem::path& mapFile,
 }
 
 MapFileRows heightMapFileRows(const std::filesystem::path& file,
-                              const HeightMapLoadOptions& options) {
+                              const HeightMapLoadOptions& options, const BuildProgress& firstPass) {
     const std::string name = file.string();
     checkRegularFile(file, name);
 #if MICRORELIEF_WITH_GDAL
     if (isElevationModelFile(file)) {
-        DemRows dem = demRows(file, options);
+        DemRows dem = demRows(file, options, firstPass);
         return {std::move(dem.rows), dem.georeference};
     }
 #endif
@@ -517,6 +517,7 @@ MapFileRows heightMapFileRows(const std::filesystem::path& file,
                 lo = std::min(lo, band[k]);
                 hi = std::max(hi, band[k]);
             }
+            if (firstPass) firstPass(y1, rows.height);
         }
         state->normalize = true;
         state->lo = lo;
@@ -580,9 +581,22 @@ std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem:
         std::shared_ptr<const PyramidFile> found = PyramidFile::open(file);
         if (found->sourceKey() == key) return found;
     }
-    const MapFileRows source = heightMapFileRows(mapFile, options);
+    // One count for the user: a first pass of the map's (a DEM's range, --normalize's) where
+    // it makes one, then the two of the stream.
+    long long firstRows = 0;
+    BuildProgress firstPass, streamed;
+    if (progress) {
+        firstPass = [&](long long done, long long total) {
+            firstRows = total;
+            progress(done, 3 * total);
+        };
+        streamed = [&](long long done, long long total) {
+            progress(firstRows + done, firstRows + total);
+        };
+    }
+    const MapFileRows source = heightMapFileRows(mapFile, options, firstPass);
     writePyramidFile(file, source.rows, wrapU, key, mapFile.string(), kPyramidFilePageSide,
-                     progress, source.georeference);
+                     streamed, source.georeference);
     if (built) *built = true;
     return PyramidFile::open(file);
 }

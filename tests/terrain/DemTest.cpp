@@ -298,9 +298,23 @@ TEST(DemFile, ItsRowsAndPyramidFileAreWhatLoadingItWholeGives) {
         }
         EXPECT_EQ(read, whole.map.samples);
 
+        // The build's progress counts the DEM's first pass (its range) and the stream's two
+        // as one: from the start, in order, to the end.
+        std::vector<std::pair<long long, long long>> heard;
+        const auto progress = [&](long long done, long long total) {
+            heard.emplace_back(done, total);
+        };
         bool built = false;
-        const auto pages = openOrBuildPyramidFile(file, dir / "cache", {}, false, {}, &built);
+        const auto pages = openOrBuildPyramidFile(file, dir / "cache", {}, false, progress, &built);
         EXPECT_TRUE(built);
+        ASSERT_FALSE(heard.empty());
+        EXPECT_EQ(heard.front().second, 3LL * whole.map.height);
+        EXPECT_LE(heard.front().first, whole.map.height);
+        EXPECT_EQ(heard.back().first, heard.back().second);
+        for (std::size_t k = 1; k < heard.size(); ++k) {
+            EXPECT_GE(heard[k].first, heard[k - 1].first) << k;
+            EXPECT_EQ(heard[k].second, heard[0].second) << k;
+        }
         EXPECT_EQ(pages->georeference(), whole.georeference);
         std::vector<float> level0(whole.map.samples.size());
         pages->read(0, {0, 0, whole.map.width, whole.map.height}, level0.data());

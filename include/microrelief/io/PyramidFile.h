@@ -102,18 +102,22 @@ std::string pyramidSourceKey(const std::filesystem::path& mapFile,
 // file, where the io component reads them through GDAL) a block of rows at a time, after a
 // first pass for its heights' range. The header is checked at once (options.maxSide,
 // maxSamples; a file that is not regular refused); the reads throw Error(BadInput) naming
-// the file.
+// the file. `firstPass` (may be empty) is told the rows read so far, out of the height, by
+// a first pass (a DEM's range, --normalize's); none is made for an image as stored.
 struct MapFileRows {
     MapRows rows;
     std::optional<Georeference> georeference;
 };
 MapFileRows heightMapFileRows(const std::filesystem::path& file,
-                              const HeightMapLoadOptions& options);
+                              const HeightMapLoadOptions& options,
+                              const BuildProgress& firstPass = {});
 
 // The pyramid file of `mapFile` in `cacheFolder` (made where missing; Error(BadInput) where
 // it is a file): opened where one built from the map as it is now (pyramidSourceKey) is
 // there, else built from its rows (heightMapFileRows) and opened; a file of another version
-// is built again, one that is corrupt refused. `built` (may be null) says which.
+// is built again, one that is corrupt refused. `built` (may be null) says which. `progress`
+// hears the build's rows: a first pass of the map's where it makes one, then
+// streamPyramid's two, as one count.
 std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem::path& mapFile,
                                                           const std::filesystem::path& cacheFolder,
                                                           const HeightMapLoadOptions& options,

@@ -1,6 +1,7 @@
 #include "microrelief/core/ParallelRows.h"
 
 #include <algorithm>
+#include <atomic>
 #include <thread>
 #include <vector>
 
@@ -37,6 +38,18 @@ void parallelRows(int rowBegin, int rowEnd, long long rowCells,
     }
     for (int k = started; k < threads; ++k) band(bandStart(k), bandStart(k + 1));
     for (std::thread& worker : workers) worker.join();
+}
+
+void parallelEachRow(int rowBegin, int rowEnd, long long rowCells,
+                     const std::function<void(int y)>& row, long long minCells) {
+    // parallelRows' bands are the threads here: each takes the next row not yet taken.
+    std::atomic<int> next{rowBegin};
+    parallelRows(
+        rowBegin, rowEnd, rowCells,
+        [&](int, int) {
+            for (int y = next++; y < rowEnd; y = next++) row(y);
+        },
+        minCells);
 }
 
 }  // namespace microrelief

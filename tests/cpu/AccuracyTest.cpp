@@ -27,6 +27,30 @@ struct Scene {
     std::size_t at(int column, int row) const { return std::size_t(row) * camera.width + column; }
 };
 
+// The picture is traced on several threads, rows handed out as they free up: it must be
+// the tracer's own answer for every pixel, in its place.
+TEST(Accuracy, TheReferencePictureIsEachPixelsTraceInPlace) {
+    const Scene s;
+    const ReferenceTracer tracer(ReliefGeometry{&s.map, s.heightScale});
+    ASSERT_EQ(s.reference.hits.size(), std::size_t(s.camera.width) * s.camera.height);
+    ASSERT_EQ(s.reference.viaTop.size(), s.reference.hits.size());
+    std::size_t hits = 0;
+    for (int row = 0; row < s.camera.height; ++row) {
+        for (int column = 0; column < s.camera.width; ++column) {
+            const ReferenceHit exact = tracer.trace(s.camera.pixelRay(column, row));
+            const std::optional<glm::dvec3>& got = s.reference.hits[s.at(column, row)];
+            ASSERT_EQ(bool(exact), got.has_value()) << column << ", " << row;
+            if (exact) {
+                ++hits;
+                ASSERT_EQ(exact.position, *got) << column << ", " << row;
+            }
+            ASSERT_EQ(exact.entryFace == HitFace::None, bool(s.reference.viaTop[s.at(column, row)]))
+                << column << ", " << row;
+        }
+    }
+    EXPECT_GT(hits, s.reference.hits.size() / 8);  // a picture with the relief in it
+}
+
 TEST(Accuracy, TopSurfaceScopeLeavesOutRaysThroughTheWallsAndTheBottom) {
     const Scene s;
     const ReferenceTracer tracer(ReliefGeometry{&s.map, s.heightScale});

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <thread>
 #include <utility>
@@ -55,4 +56,33 @@ TEST(ParallelRows, SmallWorkStaysOnTheCallersThread) {
     EXPECT_EQ(where, std::this_thread::get_id());
     parallelRows(4, 4, 1000, [&](int, int) { ++calls; });  // no rows: no call
     EXPECT_EQ(calls, 1);
+}
+
+TEST(ParallelRows, EachRowOnceWhenRowsAreHandedOut) {
+    for (const auto& [begin, end] :
+         std::vector<std::pair<int, int>>{{0, 1}, {3, 4}, {0, 7}, {5, 1000}, {0, 4097}}) {
+        std::vector<std::atomic<int>> seen(end);
+        std::mutex m;
+        std::vector<std::thread::id> threads;
+        parallelEachRow(
+            begin, end, 1,
+            [&](int y) {
+                // Uneven work: a slow row must not hold the rows after it back.
+                if (y % 97 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+                ++seen[y];
+                const std::lock_guard lock(m);
+                threads.push_back(std::this_thread::get_id());
+            },
+            1);
+        for (int y = 0; y < end; ++y)
+            ASSERT_EQ(seen[y].load(), y >= begin ? 1 : 0)
+                << "row " << y << " of " << begin << ".." << end;
+        std::sort(threads.begin(), threads.end());
+        const int cores = std::max(1u, std::thread::hardware_concurrency());
+        EXPECT_LE(std::unique(threads.begin(), threads.end()) - threads.begin(),
+                  std::min(cores, end - begin));
+    }
+    int calls = 0;
+    parallelEachRow(4, 4, 1000, [&](int) { ++calls; });  // no rows: no call
+    EXPECT_EQ(calls, 0);
 }

@@ -16,4 +16,11 @@ namespace microrelief {
 void parallelRows(int rowBegin, int rowEnd, long long rowCells,
                   const std::function<void(int y0, int y1)>& band, long long minCells = 1 << 16);
 
+// The same for work whose cost varies from row to row (rays that miss beside rays that walk
+// the relief, cones over flat and rough parts of a map): the rows are handed out one at a
+// time, each to the next thread free, and row(y) is called once for each y in
+// [rowBegin, rowEnd). `row` must not throw.
+void parallelEachRow(int rowBegin, int rowEnd, long long rowCells,
+                     const std::function<void(int y)>& row, long long minCells = 1 << 16);
+
 }  // namespace microrelief

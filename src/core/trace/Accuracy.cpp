@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/ParallelRows.h"
 #include "microrelief/core/trace/ReferenceTracer.h"
 
 namespace microrelief {
@@ -31,15 +32,24 @@ ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGe
     picture.width = camera.width;
     picture.texelsPerUnit = 1.0 / relief.base.texelSize(relief.map->width, relief.map->height);
     picture.worldToObject = glm::dmat3(relief.model.worldToObject());
-    picture.hits.reserve(static_cast<std::size_t>(camera.width) * camera.height);
-    for (int row = 0; row < camera.height; ++row) {
-        for (int column = 0; column < camera.width; ++column) {
-            const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
-            picture.hits.push_back(exact ? std::optional<glm::dvec3>(exact.position)
-                                         : std::nullopt);
-            picture.viaTop.push_back(exact.entryFace == HitFace::None);
-        }
-    }
+    const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
+    picture.hits.assign(count, std::nullopt);
+    // The pixels are independent and the tracer keeps no state between rays, so bands of
+    // rows are traced at once; the picture is the same however many threads ran. (viaTop
+    // is a vector<bool>, whose neighbouring bits share a word: written after the bands.)
+    std::vector<unsigned char> viaTop(count, 0);
+    parallelEachRow(
+        0, camera.height, camera.width,
+        [&](int row) {
+            for (int column = 0; column < camera.width; ++column) {
+                const std::size_t pixel = static_cast<std::size_t>(row) * camera.width + column;
+                const ReferenceHit exact = reference.trace(camera.pixelRay(column, row));
+                if (exact) picture.hits[pixel] = exact.position;
+                viaTop[pixel] = exact.entryFace == HitFace::None;
+            }
+        },
+        1024);
+    picture.viaTop.assign(viaTop.begin(), viaTop.end());
     return picture;
 }
 

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The GL tests and the benchmark on a machine with a GPU but without Debian 12's packages
+# (a borrowed one), run from a bundle that scripts/gpu-bundle.py made here:
+#
+#   python3 scripts/gpu-bundle.py BUNDLE build/bin/microrelief-bench build/bin/microrelief-gl-tests
+#   bash scripts/gpu-bench.sh BUNDLE OUT            # there
+#
+# Writes OUT/env.txt (the GPU, the libraries resolved), OUT/gl-tests.log and .xml (the GL
+# tests through EGL), and for each benchmark run OUT/bench-NAME.log and bench-NAME.tar
+# (bench.csv, bench.md, the gnuplot script and its data: the machine may have no gnuplot).
+# The runs: `plane`, every method on the plane over the quick run's relief sizes and views,
+# the bundled map and the fetched ones (BUNDLE/maps), at 1024 x 1024; `curved`, multilevel and maxmip on the three
+# bases and both last levels. MICRORELIEF_GPU_TEST_SECONDS and MICRORELIEF_GPU_BENCH_SECONDS
+# bound each step (150 and 300); MICRORELIEF_GPU_TEST_FILTER picks tests (gtest's filter),
+# MICRORELIEF_GPU_BENCH_SIZE the pictures' size; further arguments go to both runs.
+# The GL tests' data are found where the build was: link the checkout to it first.
+set -uo pipefail
+bundle="$(cd "$1" && pwd)"
+out="$2"
+shift 2
+mkdir -p "$out"
+export LD_LIBRARY_PATH="$bundle/lib"
+export MICRORELIEF_BENCH_MAPS="$bundle/maps"
+# glvnd's libEGL (in the bundle) finds the driver through its vendor file; the driver's
+# libraries may live outside the loader's search path.
+for dir in /usr/local/nvidia/lib64 /usr/local/nvidia/lib /usr/lib/x86_64-linux-gnu; do
+  if [ -e "$dir/libEGL_nvidia.so.0" ]; then LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$dir"; break; fi
+done
+for vendor in /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json \
+              /usr/share/glvnd/egl_vendor.d/10_nvidia.json; do
+  if [ -e "$vendor" ]; then export __EGL_VENDOR_LIBRARY_FILENAMES="$vendor"; break; fi
+done
+# The bundle's C++ runtime only where the machine's own is older than the build's.
+if ldd "$bundle/bin/microrelief-bench" | grep -q "not found"; then
+  LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$bundle/lib/fallback"
+fi
+{
+  date -u
+  nvidia-smi -L 2>&1 || echo "no nvidia-smi"
+  echo "LD_LIBRARY_PATH=$LD_LIBRARY_PATH"
+  echo "__EGL_VENDOR_LIBRARY_FILENAMES=${__EGL_VENDOR_LIBRARY_FILENAMES:-}"
+  nproc
+  ldd "$bundle/bin/microrelief-bench"
+} > "$out/env.txt" 2>&1
+echo "gpu-bench: $(head -2 "$out/env.txt" | tail -1)"
+
+step() {  # step SECONDS NAME COMMAND...: runs it bounded, says how it ended
+  local seconds=$1 name=$2 start=$SECONDS
+  shift 2
+  timeout "$seconds" "$@"
+  local status=$?
+  echo "gpu-bench: $name: exit status $status after $((SECONDS - start)) s"
+}
+
+step "${MICRORELIEF_GPU_TEST_SECONDS:-150}" "gl tests" \
+  "$bundle/bin/microrelief-gl-tests" --backend=egl --gtest_output="xml:$out/gl-tests.xml" \
+  --gtest_filter="${MICRORELIEF_GPU_TEST_FILTER:-*}" > "$out/gl-tests.log" 2>&1
+tail -3 "$out/gl-tests.log"
+
+bench() {  # bench NAME ARGS...
+  local name=$1
+  shift
+  step "${MICRORELIEF_GPU_BENCH_SECONDS:-300}" "bench $name" \
+    "$bundle/bin/microrelief-bench" --backend egl --out-dir "$out/bench-$name" "$@" \
+    > "$out/bench-$name.log" 2>&1
+  tail -2 "$out/bench-$name.log"
+  [ -d "$out/bench-$name" ] && tar -C "$out" -cf "$out/bench-$name.tar" "bench-$name" &&
+    rm -rf "$out/bench-${name:?}"
+}
+size="${MICRORELIEF_GPU_BENCH_SIZE:-1024x1024}"
+bench plane --quick --size "$size" --bases plane --interpolations bilinear \
+  --maps default,fetched "${@}"
+bench curved --quick --size "$size" --methods multilevel,maxmip --bases plane,cylinder,sphere \
+  --interpolations bilinear,biquadratic --maps default "${@}"

@@ -126,7 +126,7 @@ private:
     std::string name_;
 };
 
-// Creates a 3.3 core context on `display`, or says why not.
+// Creates a core context of 3.3 or newer on `display`, or says why not.
 EGLContext createContextOn(EGLDisplay display, std::string& why) {
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display, &major, &minor)) {
@@ -149,17 +149,23 @@ EGLContext createContextOn(EGLDisplay display, std::string& why) {
         why = "no OpenGL config";
         return EGL_NO_CONTEXT;
     }
-    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                        3,
-                                        EGL_CONTEXT_MINOR_VERSION,
-                                        3,
-                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                        EGL_NONE};
-    EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
-    if (context == EGL_NO_CONTEXT)
-        why = "eglCreateContext (3.3 core): " + eglErrorName(eglGetError());
-    return context;
+    // The newest core version the driver gives, down to 3.3: Mesa answers a request for
+    // 3.3 with its newest (4.5 on llvmpipe), but NVIDIA's EGL gives exactly what is asked,
+    // and pages (shader storage) need 4.3, textureGather 4.0.
+    constexpr int kVersions[][2] = {{4, 6}, {4, 5}, {4, 4}, {4, 3}, {4, 2}, {4, 1}, {4, 0}, {3, 3}};
+    for (const auto& [wantMajor, wantMinor] : kVersions) {
+        const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                            wantMajor,
+                                            EGL_CONTEXT_MINOR_VERSION,
+                                            wantMinor,
+                                            EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                            EGL_NONE};
+        EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
+        if (context != EGL_NO_CONTEXT) return context;
+    }
+    why = "eglCreateContext (3.3 core): " + eglErrorName(eglGetError());
+    return EGL_NO_CONTEXT;
 }
 
 }  // namespace

@@ -5,11 +5,12 @@
 #   python3 scripts/gpu-bundle.py BUNDLE build/bin/microrelief-bench build/bin/microrelief-gl-tests
 #   bash scripts/gpu-bench.sh BUNDLE OUT            # there
 #
-# Writes OUT/env.txt (the GPU, the libraries resolved), OUT/gl-tests.log and .xml (the GL
-# tests through EGL), and for each benchmark run OUT/bench-NAME.log and bench-NAME.tar
-# (bench.csv, bench.md, the gnuplot script and its data: the machine may have no gnuplot).
-# The runs: `plane`, every method on the plane over the quick run's relief sizes and views,
-# the bundled map and the fetched ones (BUNDLE/maps), at 1024 x 1024; `curved`, multilevel and maxmip on the three
+# Writes OUT/env.txt (the GPU, the libraries resolved), OUT/gl-tests.log (the GL tests
+# through EGL), and for each benchmark run OUT/bench-NAME.tar (its log, bench.csv, bench.md,
+# the gnuplot script and its data: the machine may have no gnuplot): six files, within what
+# a borrowed machine sends back. The runs: `plane`, every method on the plane over the
+# quick run's relief sizes and views, the bundled map and the fetched ones (BUNDLE/maps),
+# at 1024 x 1024; `glsl330`, the exact methods there with --glsl330 (the GL 3.3 path); `curved`, multilevel and maxmip on the three
 # bases and both last levels. MICRORELIEF_GPU_TEST_SECONDS and MICRORELIEF_GPU_BENCH_SECONDS
 # bound each step (150 and 300); MICRORELIEF_GPU_TEST_FILTER picks tests (gtest's filter),
 # MICRORELIEF_GPU_BENCH_SIZE the pictures' size; further arguments go to both runs.
@@ -53,8 +54,7 @@ step() {  # step SECONDS NAME COMMAND...: runs it bounded, says how it ended
 }
 
 step "${MICRORELIEF_GPU_TEST_SECONDS:-150}" "gl tests" \
-  "$bundle/bin/microrelief-gl-tests" --backend=egl --gtest_output="xml:$out/gl-tests.xml" \
-  --gtest_filter="${MICRORELIEF_GPU_TEST_FILTER:-*}" > "$out/gl-tests.log" 2>&1
+  "$bundle/bin/microrelief-gl-tests" --backend=egl --gtest_filter="${MICRORELIEF_GPU_TEST_FILTER:-*}" > "$out/gl-tests.log" 2>&1
 tail -3 "$out/gl-tests.log"
 
 bench() {  # bench NAME ARGS...
@@ -64,11 +64,13 @@ bench() {  # bench NAME ARGS...
     "$bundle/bin/microrelief-bench" --backend egl --out-dir "$out/bench-$name" "$@" \
     > "$out/bench-$name.log" 2>&1
   tail -2 "$out/bench-$name.log"
-  [ -d "$out/bench-$name" ] && tar -C "$out" -cf "$out/bench-$name.tar" "bench-$name" &&
-    rm -rf "$out/bench-${name:?}"
+  mkdir -p "$out/bench-$name" && mv "$out/bench-$name.log" "$out/bench-$name/" &&
+    tar -C "$out" -cf "$out/bench-$name.tar" "bench-$name" && rm -rf "$out/bench-${name:?}"
 }
 size="${MICRORELIEF_GPU_BENCH_SIZE:-1024x1024}"
 bench plane --quick --size "$size" --bases plane --interpolations bilinear \
   --maps default,fetched "${@}"
+bench glsl330 --quick --size "$size" --methods multilevel,maxmip,cone --bases plane \
+  --interpolations bilinear,biquadratic --maps default,fetched --glsl330 "${@}"
 bench curved --quick --size "$size" --methods multilevel,maxmip --bases plane,cylinder,sphere \
   --interpolations bilinear,biquadratic --maps default "${@}"

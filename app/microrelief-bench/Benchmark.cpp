@@ -180,6 +180,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
     context.makeCurrent();
     const GL& gl = context.gl();
     ReliefRenderer renderer(gl, shaderDirectory());
+    renderer.setGlsl330(options.glsl330);
     OffscreenTarget target(gl, options.width, options.height);
     Timer timer(gl);
     const ShadingOptions shading;

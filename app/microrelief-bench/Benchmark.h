@@ -74,6 +74,9 @@ struct BenchOptions {
     std::vector<BaseShape> bases{BaseShape::plane()};  // each map on each base
     // Each map and base on each; the biquadratic surface with the exact methods only.
     std::vector<Interpolation> interpolations{Interpolation::Bilinear};
+    // The shaders as GLSL 3.30 in a newer context (ReliefRenderer::setGlsl330): the path of
+    // a GL 3.3 engine, against 4.00's gathers in another run on the same machine.
+    bool glsl330 = false;
 };
 
 // Whether `method` is measured on the `interpolation` surface: everything on bilinear, the

@@ -304,6 +304,10 @@ int main(int argc, char** argv) {
                    "Comma-separated base surfaces, each at microrelief-render's default size "
                    "(curved bases take multilevel, maxmip, pom and relief)")
         ->capture_default_str();
+    app.add_flag("--glsl330", options.glsl330,
+                 "The shaders as GLSL 3.30, whatever the context gives (four texel reads a "
+                 "bilinear cell where 4.00 gathers them): the path of an engine in a GL 3.3 "
+                 "context, to set beside a run without it");
     app.add_option("--interpolations", interpolationList,
                    "Comma-separated last levels, bilinear and biquadratic (biquadratic with the "
                    "exact methods, multilevel and maxmip)")
@@ -463,7 +467,8 @@ int main(int argc, char** argv) {
             return 0;
         }
         RunInfo info{context->renderer(), today(),
-                     "microrelief-bench" + std::string(quick ? " --quick" : "")};
+                     "microrelief-bench" + std::string(quick ? " --quick" : "") +
+                         (options.glsl330 ? " --glsl330" : "")};
         const std::vector<BenchMap> maps = loadMaps(options);
         const std::size_t total = countMeasurements(options, maps);
         const std::filesystem::path folder = outDir;

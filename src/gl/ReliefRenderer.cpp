@@ -107,7 +107,8 @@ ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, boo
             shadows,
             albedoMap,
             tiled,
-            paged};
+            paged,
+            glsl330_ && !paged};
 }
 
 void ReliefRenderer::reloadShaders() {
@@ -134,6 +135,17 @@ bool ReliefRenderer::pages(const HeightMap& map) const {
     GLint maxSize = 0;
     gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     return map.width > maxSize || map.height > maxSize;
+}
+
+void ReliefRenderer::setGlsl330(bool on) {
+    const bool before = glsl330_;
+    glsl330_ = on;
+    try {
+        setMethod(method_, countFetches_);  // compiles it now: a failure throws here
+    } catch (...) {
+        glsl330_ = before;
+        throw;
+    }
 }
 
 void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches) {

@@ -11,7 +11,7 @@ namespace microrelief {
 std::string describe(const ReliefShaderConfig& config) {
     return std::string("relief (") + methodName(config.method) + ", " +
            baseName(BaseShape{config.base}) + ", " + interpolationName(config.interpolation) +
-           (config.paged ? ", paged" : "") + ")";
+           (config.paged ? ", paged" : "") + (config.glsl330 ? ", GLSL 3.30" : "") + ")";
 }
 
 ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
@@ -19,7 +19,9 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
     : gl_(&gl), config_(config) {
     GLint major = 0;
     gl.GetIntegerv(GL_MAJOR_VERSION, &major);
-    const std::string version = config.paged ? "430 core" : major >= 4 ? "400 core" : "330 core";
+    const std::string version = config.paged                    ? "430 core"
+                                : major >= 4 && !config.glsl330 ? "400 core"
+                                                                : "330 core";
     std::vector<ShaderDefine> defines = {
         {"MICRORELIEF_METHOD", std::to_string(static_cast<int>(config.method))},
         {"MICRORELIEF_BASE", std::to_string(static_cast<int>(config.base))},

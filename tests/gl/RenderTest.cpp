@@ -320,6 +320,51 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
     }
 }
 
+// setGlsl330 compiles the 3.30 path in a newer context: the same walk (segments, hits) with
+// a cell's samples read one by one, so more fetches than the 4.00 path's gathers.
+TEST_F(Render, Glsl330ReadsEachSampleAloneAndWalksTheSameSegments) {
+    GlContext& context = test::glContext();
+    context.makeCurrent();
+    GLint major = 0;
+    context.gl().GetIntegerv(GL_MAJOR_VERSION, &major);
+    if (major < 4) GTEST_SKIP() << "a GL " << major << " context runs GLSL 3.30 anyway";
+    const HeightMap map = synth::cobbles(128, 128, 3);
+    const int size = 64;
+    OffscreenTarget target(context.gl(), size, size);
+    const CameraFrame camera =
+        resolveCamera(test::orbitCamera(45.0, 40.0, 1.3, {0.0, 0.04, 0.0}), size, size, 2.0);
+    for (Interpolation interpolation : {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+        ReliefRenderer renderer(context.gl(), shaderDirectory());
+        renderer.setHeightScale(0.1f);
+        renderer.setHeightMap(map, "cobbles", BaseShape::plane(), interpolation);
+        renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
+        RenderedFrame frames[2];
+        for (bool glsl330 : {false, true}) {
+            renderer.setGlsl330(glsl330);
+            EXPECT_EQ(renderer.glsl330(), glsl330);
+            target.clear(glm::vec3(0.0f));
+            renderer.draw(camera, ShadingOptions{});
+            frames[glsl330] = target.read();
+        }
+        long fetches[2] = {0, 0};
+        std::size_t hits = 0;
+        for (std::size_t pixel = 0; pixel < std::size_t(size) * size; ++pixel) {
+            const float* gather = &frames[0].stats[4 * pixel];
+            const float* single = &frames[1].stats[4 * pixel];
+            ASSERT_EQ(gather[0], single[0]) << "segments, pixel " << pixel;
+            fetches[0] += static_cast<long>(gather[1]);
+            fetches[1] += static_cast<long>(single[1]);
+            hits += frames[0].position[4 * pixel + 3] > 0.5f;
+            ASSERT_EQ(frames[0].position[4 * pixel + 3], frames[1].position[4 * pixel + 3])
+                << "hit or miss, pixel " << pixel;
+        }
+        EXPECT_GT(hits, std::size_t(size * size / 8));
+        // A bilinear cell: one gather against four reads; a biquadratic square: four
+        // against nine. The traversal's pyramid reads are the same in both.
+        EXPECT_GT(fetches[1], fetches[0] + long(hits)) << interpolationName(interpolation);
+    }
+}
+
 // The same on the curved bases: the twin's seam (base/) and the shader's (base_surface.glsl)
 // make the same footprints up to their margins (the shader's float ones are wider: a
 // footprint near a texel boundary may reach over it in one and not the other).

@@ -158,6 +158,13 @@ public:
     void setMethod(const MethodSettings& settings, bool countFetches = false);
     const MethodSettings& method() const { return method_; }
 
+    // Compiles the shaders as GLSL 3.30 even where the context is newer (4.00 otherwise:
+    // one textureGather a bilinear cell where 3.30 reads its four samples one by one), the
+    // path an engine in a GL 3.3 context takes; for tests and the benchmark's A/B. Paged
+    // maps stay on 4.30. On a compile failure throws and keeps the dialect that works.
+    void setGlsl330(bool on);
+    bool glsl330() const { return glsl330_; }
+
     // Draws the picture `camera` describes, or the tile of it given, into the bound
     // framebuffer, which must have relief.frag's three colour outputs (OffscreenTarget);
     // the colour is linear, for an sRGB target with GL_FRAMEBUFFER_SRGB on. The same rays
@@ -204,6 +211,7 @@ private:
     int maxIterations_ = 0;
     MethodSettings method_;
     bool countFetches_ = false;
+    bool glsl330_ = false;
     BaseShape base_;
     Interpolation interpolation_ = Interpolation::Bilinear;  // the surface it bounds
     ModelTransform model_;

@@ -52,6 +52,10 @@ struct ReliefShaderConfig {
     bool albedoMap = false;  // the surface's colour from an albedo texture (unit 3)
     bool tiled = false;      // the map repeated (MICRORELIEF_TILING)
     bool paged = false;      // the map read through pages (MICRORELIEF_PAGED; GLSL 4.30)
+    // GLSL 3.30 in a newer context too: the path of an engine in a GL 3.3 context (four
+    // texel reads a bilinear cell where 4.00 gathers them; ES 3.00 reads so too). Not for
+    // paged maps, which need 4.30.
+    bool glsl330 = false;
 
     auto operator<=>(const ReliefShaderConfig&) const = default;
 };

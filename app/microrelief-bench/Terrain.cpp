@@ -60,8 +60,6 @@ double fetchesOverPictureHits(const RenderedFrame& counted, const RenderedFrame&
 
 // A picture slower than this is timed once after the first, not options.frames times.
 constexpr double kSlowFrameMs = 10000.0;
-// Pixels a picture of a map past memory is checked on (spread evenly).
-constexpr int kSampledPixels = 4096;
 
 const char* terrainPathName(TerrainPath path) {
     switch (path) {
@@ -183,16 +181,13 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
             } else {
                 row.fetchesMean = fetchesOverPictureHits(counted, first.frame);
                 if (pages) {
-                    // About kSampledPixels pixels, every step-th of every step-th row.
+                    // About 4096 pixels spread evenly (traceSampledReferencePicture).
                     const PagedReferenceTracer reference(pages, job.heightScale);
-                    const int step =
-                        std::max(1, static_cast<int>(std::ceil(std::sqrt(
-                                        double(options.width) * options.height / kSampledPixels))));
                     const Accuracy accuracy = compareWithReference(
                         first.frame, first.camera,
                         traceSampledReferencePicture(
                             first.camera, [&](const Ray& ray) { return reference.trace(ray); }, n,
-                            glm::dmat3(1.0), step));
+                            glm::dmat3(1.0)));
                     row.checked = row.sampled = true;
                     row.coverageMismatchPct = accuracy.coverageMismatchPercent();
                     row.offHalfTexelPct = accuracy.offHalfTexelPercent();

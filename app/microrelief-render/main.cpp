@@ -59,14 +59,6 @@ void printAccuracy(const RenderedFrame& frame, const CameraFrame& camera, const 
                   false);
 }
 
-// Pixels a side between those --compare-reference traces over a pyramid file: about
-// kSampledPixels of the picture, spread evenly (each ray reads its cells' blocks from disk).
-constexpr int kSampledPixels = 4096;
-int sampleStep(int width, int height) {
-    const double step = std::sqrt(static_cast<double>(width) * height / kSampledPixels);
-    return std::max(1, static_cast<int>(std::ceil(step)));
-}
-
 // ", paged: 12 draws, 340 pages loaded" for a map read through pages; "" otherwise.
 std::string pagingSummary(const PagingReport& paging) {
     if (paging.draws == 0) return "";
@@ -149,7 +141,7 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
         const ReferencePicture exact = traceSampledReferencePicture(
             camera, [&](const Ray& ray) { return reference.trace(ray); },
             1.0 / job.base.texelSize(pages->mapWidth(), pages->mapHeight()),
-            glm::dmat3(job.model.worldToObject()), sampleStep(camera.width, camera.height));
+            glm::dmat3(job.model.worldToObject()));
         printAccuracy(compareWithReference(drawn.result.frame, camera, exact), true);
     }
     return drawn;

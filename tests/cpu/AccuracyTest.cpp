@@ -51,6 +51,30 @@ TEST(Accuracy, TheReferencePictureIsEachPixelsTraceInPlace) {
     EXPECT_GT(hits, s.reference.hits.size() / 8);  // a picture with the relief in it
 }
 
+// The sampled reference (maps read from pyramid files) traces about the pixels asked for,
+// spread evenly, each the full reference's answer; every pixel where they are all asked.
+TEST(Accuracy, TheSampledReferenceTracesAboutThePixelsAskedForEvenly) {
+    const Scene s;
+    const ReferenceTracer tracer(ReliefGeometry{&s.map, s.heightScale});
+    const auto trace = [&](const Ray& ray) { return tracer.trace(ray); };
+    const std::size_t all = std::size_t(s.camera.width) * s.camera.height;  // 64 x 40
+    for (const auto& [asked, expected] :
+         std::vector<std::pair<int, std::size_t>>{{int(all), all}, {40, 40}, {1, 1}}) {
+        const ReferencePicture sampled = traceSampledReferencePicture(
+            s.camera, trace, s.reference.texelsPerUnit, s.reference.worldToObject, asked);
+        ASSERT_EQ(sampled.traced.size(), all);
+        std::size_t traced = 0;
+        for (std::size_t pixel = 0; pixel < all; ++pixel) {
+            if (!sampled.traced[pixel]) continue;
+            ++traced;
+            EXPECT_EQ(sampled.hits[pixel], s.reference.hits[pixel]) << pixel;
+        }
+        // 40 of 2560: every 8th pixel of every 8th row (5 x 8); 1: a step of 51, so the
+        // pixel (25, 25) alone.
+        EXPECT_EQ(traced, expected) << asked << " asked";
+    }
+}
+
 TEST(Accuracy, TopSurfaceScopeLeavesOutRaysThroughTheWallsAndTheBottom) {
     const Scene s;
     const ReferenceTracer tracer(ReliefGeometry{&s.map, s.heightScale});

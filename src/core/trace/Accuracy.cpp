@@ -1,6 +1,7 @@
 #include "microrelief/core/trace/Accuracy.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <vector>
 
@@ -56,8 +57,10 @@ ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGe
 ReferencePicture traceSampledReferencePicture(const CameraFrame& camera,
                                               const std::function<ReferenceHit(const Ray&)>& trace,
                                               double texelsPerUnit, const glm::dmat3& worldToObject,
-                                              int step) {
-    if (step < 1) throwRuntime("traceSampledReferencePicture: a step of at least 1");
+                                              int pixels) {
+    if (pixels < 1) throwRuntime("traceSampledReferencePicture: at least one pixel");
+    const int step = std::max(1, static_cast<int>(std::ceil(std::sqrt(
+                                     static_cast<double>(camera.width) * camera.height / pixels))));
     ReferencePicture picture;
     picture.width = camera.width;
     picture.texelsPerUnit = texelsPerUnit;

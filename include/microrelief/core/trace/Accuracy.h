@@ -74,14 +74,16 @@ struct ReferencePicture {
 // the ray can meet, false hits included (what can be asked of them).
 enum class AccuracyScope { AllPixels, TopSurface };
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGeometry& relief);
-// The reference on every `step`-th pixel of every `step`-th row of the camera's picture,
-// from (step / 2, step / 2), traced by `trace` (a PagedReferenceTracer's, for a map not in
-// memory whole), errors in texels at `texelsPerUnit` of the relief's object space
-// (1 / BaseShape::texelSize) after `worldToObject` (the model's inverse).
+// The reference on about `pixels` pixels of the camera's picture, spread evenly: every
+// step-th pixel of every step-th row from (step / 2, step / 2), step = ceil(sqrt(W H /
+// pixels)) (every pixel where that is 1), traced by `trace` (a PagedReferenceTracer's, for
+// a map not in memory whole, whose reads from disk are what costs), errors in texels at
+// `texelsPerUnit` of the relief's object space (1 / BaseShape::texelSize) after
+// `worldToObject` (the model's inverse).
 ReferencePicture traceSampledReferencePicture(const CameraFrame& camera,
                                               const std::function<ReferenceHit(const Ray&)>& trace,
                                               double texelsPerUnit, const glm::dmat3& worldToObject,
-                                              int step);
+                                              int pixels = 4096);
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const HeightMap& map,
                                        double heightScale, const BaseShape& base = {},
                                        Interpolation interpolation = Interpolation::Bilinear);

@@ -36,14 +36,23 @@ GlfwContext::GlfwContext(const GlfwWindowOptions& options) {
     initGlfw();
     glfwDefaultWindowHints();
     glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_API);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
-    window_ =
-        glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    // The newest core version the driver gives, down to 3.3, as the headless contexts ask
+    // (EglContext.cpp): a driver may give exactly the version asked for, and pages need 4.3.
+    constexpr int kVersions[][2] = {{4, 6}, {4, 5}, {4, 4}, {4, 3}, {4, 2}, {4, 1}, {4, 0}, {3, 3}};
+    for (const auto& [major, minor] : kVersions) {
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, major);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, minor);
+        window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr,
+                                   nullptr);
+        if (window_) {
+            glfwGetError(nullptr);  // the refusals of newer versions are not this window's
+            break;
+        }
+    }
     if (!window_) {
         const char* description = nullptr;
         glfwGetError(&description);

@@ -7,34 +7,42 @@
 #
 # Writes OUT/env.txt (the GPU, the libraries resolved), OUT/gl-tests.log (the GL tests
 # through EGL), and for each benchmark run OUT/bench-NAME.tar (its log, bench.csv, bench.md,
-# the gnuplot script and its data: the machine may have no gnuplot): six files, within what
+# the gnuplot script and its data: the machine may have no gnuplot): five files, within what
 # a borrowed machine sends back. The runs: `plane`, every method on the plane over the
 # quick run's relief sizes and views, the bundled map and the fetched ones (BUNDLE/maps),
-# at 1024 x 1024; `glsl330`, the exact methods there with --glsl330 (the GL 3.3 path); `curved`, multilevel and maxmip on the three
-# bases and both last levels. MICRORELIEF_GPU_TEST_SECONDS and MICRORELIEF_GPU_BENCH_SECONDS
-# bound each step (150 and 300); MICRORELIEF_GPU_TEST_FILTER picks tests (gtest's filter),
-# MICRORELIEF_GPU_BENCH_SIZE the pictures' size; further arguments go to both runs.
-# The GL tests' data are found where the build was: link the checkout to it first.
+# at 1024 x 1024; `glsl330`, the exact methods there with --glsl330 (the GL 3.3 path);
+# `curved`, multilevel and maxmip on the three bases and both last levels.
+# MICRORELIEF_GPU_TEST_SECONDS and MICRORELIEF_GPU_BENCH_SECONDS bound each step (150 and
+# 300); MICRORELIEF_GPU_TEST_FILTER picks tests (gtest's filter), MICRORELIEF_GPU_BENCH_SIZE
+# the pictures' size; further arguments go to every benchmark run. The GL tests' data are
+# found where the build was: link the checkout to it first. On NVIDIA the GLSL 3.30 sweep
+# case Glsl330/...sphere_oblong75x33_biquadratic is expected to fail until the inaccuracy
+# seen on an H200 is found (docs/perf/2026-12-04-gpu-h200.md).
 set -uo pipefail
 bundle="$(cd "$1" && pwd)"
 out="$2"
 shift 2
 mkdir -p "$out"
-export LD_LIBRARY_PATH="$bundle/lib"
-export MICRORELIEF_BENCH_MAPS="$bundle/maps"
+# The bundle's C++ runtime only where the machine's own is older than the build's, and then
+# before any system folder.
+LD_LIBRARY_PATH="$bundle/lib"
+if LD_LIBRARY_PATH="$LD_LIBRARY_PATH" ldd "$bundle/bin/microrelief-bench" | grep -q "not found"; then
+  LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$bundle/lib/fallback"
+fi
 # glvnd's libEGL (in the bundle) finds the driver through its vendor file; the driver's
 # libraries may live outside the loader's search path.
 for dir in /usr/local/nvidia/lib64 /usr/local/nvidia/lib /usr/lib/x86_64-linux-gnu; do
   if [ -e "$dir/libEGL_nvidia.so.0" ]; then LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$dir"; break; fi
 done
+export LD_LIBRARY_PATH
+export MICRORELIEF_BENCH_MAPS="$bundle/maps"
 for vendor in /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json \
               /usr/share/glvnd/egl_vendor.d/10_nvidia.json; do
   if [ -e "$vendor" ]; then export __EGL_VENDOR_LIBRARY_FILENAMES="$vendor"; break; fi
 done
-# The bundle's C++ runtime only where the machine's own is older than the build's.
-if ldd "$bundle/bin/microrelief-bench" | grep -q "not found"; then
-  LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$bundle/lib/fallback"
-fi
+maps=default
+if [ -f "$bundle/maps/maps.txt" ]; then maps=default,fetched; else
+  echo "gpu-bench: no fetched maps in $bundle/maps: the bundled map alone"; fi
 {
   date -u
   nvidia-smi -L 2>&1 || echo "no nvidia-smi"
@@ -69,8 +77,8 @@ bench() {  # bench NAME ARGS...
 }
 size="${MICRORELIEF_GPU_BENCH_SIZE:-1024x1024}"
 bench plane --quick --size "$size" --bases plane --interpolations bilinear \
-  --maps default,fetched "${@}"
+  --maps "$maps" "${@}"
 bench glsl330 --quick --size "$size" --methods multilevel,maxmip,cone --bases plane \
-  --interpolations bilinear,biquadratic --maps default,fetched --glsl330 "${@}"
+  --interpolations bilinear,biquadratic --maps "$maps" --glsl330 "${@}"
 bench curved --quick --size "$size" --methods multilevel,maxmip --bases plane,cylinder,sphere \
   --interpolations bilinear,biquadratic --maps default "${@}"

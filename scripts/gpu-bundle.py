@@ -4,8 +4,9 @@
     python3 scripts/gpu-bundle.py OUT PROGRAM...
 
 OUT gets bin/ (the programs), share/microrelief (their shaders and assets, as the build
-lays them out), lib/ (the shared libraries they load) and lib/fallback/ (the C++ runtime,
-for a machine whose own is older). Run a program as
+lays them out), lib/ (the shared libraries they load), lib/fallback/ (the C++ runtime,
+for a machine whose own is older) and maps/ (the real maps scripts/bench-maps.sh fetched,
+from $MICRORELIEF_BENCH_MAPS or out/bench-maps, where there are any). Run a program as
 
     LD_LIBRARY_PATH=OUT/lib OUT/bin/PROGRAM
 
@@ -130,7 +131,7 @@ def make_stub(soname, real, wanted, out_dir, work):
         names.add(name)
         label = '"%s"' % name
         if kind in ("FUNC", "IFUNC", "NOTYPE"):
-            asm += [".globl %s" % label, ".type %s, @function" % label, "%s:" % label,
+            asm += [".text", ".globl %s" % label, ".type %s, @function" % label, "%s:" % label,
                     "  lea __zeros(%rip), %rax", "  ret"]
         elif kind == "TLS":
             asm += [".section .tbss,\"awT\",@nobits", ".globl %s" % label,
@@ -177,6 +178,14 @@ def main():
     share = os.path.join(out, "share", "microrelief")
     shutil.rmtree(share, ignore_errors=True)
     shutil.copytree(os.path.join(root, "share", "microrelief"), share, symlinks=False)
+    maps = os.environ.get("MICRORELIEF_BENCH_MAPS") or os.path.join("out", "bench-maps")
+    if os.path.isfile(os.path.join(maps, "maps.txt")):
+        shutil.rmtree(os.path.join(out, "maps"), ignore_errors=True)
+        shutil.copytree(maps, os.path.join(out, "maps"),
+                        ignore=shutil.ignore_patterns(".fetch.*"))
+    else:
+        print("gpu-bundle: no fetched maps in %s (scripts/bench-maps.sh fetches them): the "
+              "benchmark there runs without them" % maps)
     stubbed, kept = [], []
     libraries = closure(programs)
     wanted = set()

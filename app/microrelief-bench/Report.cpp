@@ -1,5 +1,7 @@
 #include "Report.h"
 
+#include "Timing.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -91,14 +93,6 @@ using Key = std::tuple<std::string, int, int>;  // map, size, view
 
 Key keyOf(const Measurement& r) {
     return {r.map, r.mapSize, r.viewDegrees};
-}
-
-// On a CPU rasteriser (llvmpipe, softpipe) the GL timer query does not cover the
-// deferred rasterisation, so the tables use the glFinish wall time there.
-bool softwareRenderer(const std::string& renderer) {
-    return renderer.find("llvmpipe") != std::string::npos ||
-           renderer.find("softpipe") != std::string::npos ||
-           renderer.find("swrast") != std::string::npos;
 }
 
 double frameMs(const Measurement& r, bool wall) {

@@ -6,12 +6,21 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "microrelief/gl/Objects.h"
 
 namespace microrelief::bench {
+
+// A CPU rasteriser (llvmpipe, softpipe): its GL timer query does not cover the deferred
+// rasterisation, so the tables use the glFinish wall time there; on anything else, a GPU.
+inline bool softwareRenderer(const std::string& renderer) {
+    return renderer.find("llvmpipe") != std::string::npos ||
+           renderer.find("softpipe") != std::string::npos ||
+           renderer.find("swrast") != std::string::npos;
+}
 
 inline double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());

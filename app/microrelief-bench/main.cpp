@@ -412,6 +412,10 @@ int main(int argc, char** argv) {
         checkOutputFolder(outDir);
         if (int(rebuild) + int(materials) + int(terrain) > 1)
             throwBadInput("--rebuild, --materials and --terrain: one at a time");
+        if (options.glsl330 && (rebuild || materials || terrain))
+            throwBadInput(
+                "--glsl330 is for the methods' comparison, not --rebuild, --materials "
+                "or --terrain");
         if (terrain) return runTerrain(app, options, memoryMib, backend, outDir);
         if (app.count("--memory"))
             throwBadInput("--memory is the page budget of --terrain; the other runs page nothing");

@@ -71,7 +71,8 @@ struct ConeMapStats {
 
 // Called as a build goes, with the fraction of the map's rows done (after each row: 1 / H,
 // 2 / H, ..., 1), on one of the building threads, one call at a time (the rows are built
-// on the machine's cores; WebAssembly without threads builds on its one): for a progress display
+// on the machine's cores; WebAssembly without threads builds on its one); it must not throw
+// (a throw on a building thread ends the program): for a progress display
 // (the web page's worker posts it to the page). Empty: nothing is called.
 using ConeMapProgress = std::function<void(double done)>;
 

@@ -232,11 +232,11 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     // Timing: the plain variant, two warm-up frames, then the median. The
                     // first measurement of a run warms up for half a second: the frames
                     // right after start-up ran up to 1.7x slow on llvmpipe, enough to move
-                    // the median of ten. On a GPU every measurement warms up for 300 ms: its
-                    // clocks fall while the CPU traces the reference and checks the last
-                    // picture, and on an H200 the frames after such a pause ran up to 5.4x
-                    // slow (the same walk timed at 12.97 and 2.42 ms a second apart:
-                    // docs/perf/2026-12-04-gpu-h200.md).
+                    // the median of ten. On a GPU every measurement warms up for 300 ms: it idles
+                    // while the CPU builds cone maps, traces the reference and checks the
+                    // last picture, and on an H200 the frames after such a pause ran up to
+                    // 5.4x slow, probably at lowered clocks (the same walk timed at 12.97 and
+                    // 2.42 ms a second apart: docs/perf/2026-12-04-gpu-h200.md).
                     renderer.setMethod(setting.method, false);
                     const int warmMs = firstMeasurement ? 500 : gpu ? 300 : 0;
                     const auto warmUntil =

@@ -96,8 +96,7 @@ vec4 mr_neighbourCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, inout iv
 // A cell index in 0..W - 1 on a curved base (u wraps); unchanged on the plane.
 ivec2 mr_wrapCell(mr_Relief relief, ivec2 cell) {
 #if MICRORELIEF_BASE != 0
-    int width = int(relief.map.size.x);
-    cell.x -= width * int(floor(float(cell.x) / float(width)));
+    cell.x = mr_wrapIndex(cell.x, int(relief.map.size.x));
 #endif
     return cell;
 }

@@ -569,3 +569,58 @@ TEST_F(SceneObject, RangeQueriesFromAnEnginesOwnShader) {
 }
 
 }  // namespace
+
+// mr_wrapIndex, the curved bases' wrap of a sample or cell column round the seam, is i mod
+// n in 0..n - 1 for every i and n a shader meets (i from -2n to 2n, n from 1 to 200, the
+// odd sizes with it), in integers alone. Its float predecessor, floor(float(i) /
+// float(n)), was exact under llvmpipe's division and one off at multiples of n under
+// NVIDIA's (docs/perf/2026-12-04-gpu-h200.md), which no test here could show.
+TEST_F(SceneObject, WrapIndexIsTheExactModuloForEveryColumnAShaderMeets) {
+    const GL& g = gl();
+    const std::string single =
+        readFile(dataDirectory() / "shaders" / "single" / "multilevel_trace.glsl");
+    ASSERT_FALSE(single.empty());
+    const char* const main = R"(
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out vec4 outWrapped;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    int n = p.y + 1, i = p.x - 2 * n;
+    outColor = vec4(0.0);
+    outWrapped = vec4(float(mr_wrapIndex(i, n)), float(i), float(n), 1.0);
+}
+)";
+    const std::string macros = "#version 330 core\n#define MICRORELIEF_BASE 1\n";
+    const gl::Shader vertex =
+        gl::compileShader(g, GL_VERTEX_SHADER, {kFullScreenTriangle, {}, "330 core"});
+    const gl::Shader fragment =
+        gl::compileShader(g, GL_FRAGMENT_SHADER, {macros + single + main, {}, "330 core"});
+    const gl::Program program = gl::linkProgram(g, vertex, fragment, "mr_wrapIndex");
+    const gl::VertexArray empty = gl::VertexArray::create(g);
+    const int width = 801, height = 200;  // i up to 4n + 1 - 2n for n = 200
+    OffscreenTarget target(g, width, height);
+    target.clear(glm::vec3(0.0f));
+    {
+        const gl::StateGuard saved(g);
+        g.UseProgram(program.id());
+        g.Disable(GL_DEPTH_TEST);
+        g.BindVertexArray(empty.id());
+        g.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    const RenderedFrame frame = target.read();
+    // Each pixel says which i and n it wrapped (the frame's rows may run either way up).
+    long checked = 0, wrong = 0;
+    for (int row = 0; row < height; ++row) {
+        for (int column = 0; column < width; ++column) {
+            const float* got = frame.positionAt(column, row);
+            const int i = int(got[1]), n = int(got[2]);
+            ASSERT_GE(n, 1);
+            if (i > 2 * n) continue;
+            const int expected = ((i % n) + n) % n;
+            wrong += int(got[0]) != expected;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(wrong, 0) << "of " << checked;
+    EXPECT_EQ(checked, 200L * 201 * 2 + 200);  // the sum of 4n + 1 for n = 1..200
+}

@@ -15,9 +15,10 @@
 # MICRORELIEF_GPU_TEST_SECONDS and MICRORELIEF_GPU_BENCH_SECONDS bound each step (150 and
 # 300); MICRORELIEF_GPU_TEST_FILTER picks tests (gtest's filter), MICRORELIEF_GPU_BENCH_SIZE
 # the pictures' size; further arguments go to every benchmark run. The GL tests' data are
-# found where the build was: link the checkout to it first. On NVIDIA the GLSL 3.30 sweep
-# case Glsl330/...sphere_oblong75x33_biquadratic is expected to fail until the inaccuracy
-# seen on an H200 is found (docs/perf/2026-12-04-gpu-h200.md).
+# found where the build was: link the checkout to it first. The GLSL 3.30 sweep case
+# Glsl330/...sphere_oblong75x33_biquadratic failed on an H200 before the seam's wrap became
+# integer arithmetic (docs/perf/2026-12-04-gpu-h200.md): whether that mended it is for the
+# next run to say.
 set -uo pipefail
 bundle="$(cd "$1" && pwd)"
 out="$2"

@@ -40,10 +40,8 @@ GlfwContext::GlfwContext(const GlfwWindowOptions& options) {
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
-    // The newest core version the driver gives, down to 3.3, as the headless contexts ask
-    // (EglContext.cpp): a driver may give exactly the version asked for, and pages need 4.3.
-    constexpr int kVersions[][2] = {{4, 6}, {4, 5}, {4, 4}, {4, 3}, {4, 2}, {4, 1}, {4, 0}, {3, 3}};
-    for (const auto& [major, minor] : kVersions) {
+    // The newest core version the driver gives, down to 3.3 (GlContext.h).
+    for (const auto& [major, minor] : kCoreContextVersions) {
         glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, major);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, minor);
         window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr,

@@ -149,11 +149,8 @@ EGLContext createContextOn(EGLDisplay display, std::string& why) {
         why = "no OpenGL config";
         return EGL_NO_CONTEXT;
     }
-    // The newest core version the driver gives, down to 3.3: Mesa answers a request for
-    // 3.3 with its newest (4.5 on llvmpipe), but NVIDIA's EGL gives exactly what is asked,
-    // and pages (shader storage) need 4.3, textureGather 4.0.
-    constexpr int kVersions[][2] = {{4, 6}, {4, 5}, {4, 4}, {4, 3}, {4, 2}, {4, 1}, {4, 0}, {3, 3}};
-    for (const auto& [wantMajor, wantMinor] : kVersions) {
+    // The newest core version the driver gives, down to 3.3 (GlContext.h).
+    for (const auto& [wantMajor, wantMinor] : kCoreContextVersions) {
         const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
                                             wantMajor,
                                             EGL_CONTEXT_MINOR_VERSION,

@@ -12,6 +12,12 @@
 
 namespace microrelief {
 
+// The core versions a context is asked for, newest first, until the driver gives one:
+// Mesa answers a request for 3.3 with its newest (4.5 on llvmpipe), but NVIDIA's EGL gives
+// exactly what is asked, and pages (shader storage) need 4.3, textureGather 4.0.
+inline constexpr int kCoreContextVersions[][2] = {{4, 6}, {4, 5}, {4, 4}, {4, 3},
+                                                  {4, 2}, {4, 1}, {4, 0}, {3, 3}};
+
 class GlContext {
 public:
     virtual ~GlContext() = default;

@@ -64,14 +64,21 @@ def matches(patterns, name):
     return any(re.search(p, name) for p in patterns)
 
 
-def exported_symbols(path):
-    """(name, version or None, kind, size) for each symbol the library defines."""
+def dynamic_symbols(path):
+    """readelf's fields for each entry of the library's dynamic symbol table."""
     out = subprocess.run(["readelf", "-W", "--dyn-syms", path], check=True,
                          capture_output=True, text=True).stdout
-    symbols = []
     for line in out.splitlines():
         fields = line.split()
-        if len(fields) < 8 or not fields[0].endswith(":") or fields[6] in ("UND", "ABS"):
+        if len(fields) >= 8 and fields[0].endswith(":"):
+            yield fields
+
+
+def exported_symbols(path):
+    """(name, version or None, kind, size) for each symbol the library defines."""
+    symbols = []
+    for fields in dynamic_symbols(path):
+        if fields[6] in ("UND", "ABS"):
             continue
         kind, bind, name = fields[3], fields[4], fields[7]
         if bind not in ("GLOBAL", "WEAK", "UNIQUE") or kind not in ("FUNC", "OBJECT", "TLS",
@@ -106,14 +113,7 @@ def version_nodes(path):
 
 def undefined_symbols(path):
     """The names of the symbols a program or library takes from others."""
-    out = subprocess.run(["readelf", "-W", "--dyn-syms", path], check=True,
-                         capture_output=True, text=True).stdout
-    names = set()
-    for line in out.splitlines():
-        fields = line.split()
-        if len(fields) >= 8 and fields[0].endswith(":") and fields[6] == "UND":
-            names.add(fields[7].split("@")[0])
-    return names
+    return {fields[7].split("@")[0] for fields in dynamic_symbols(path) if fields[6] == "UND"}
 
 
 def make_stub(soname, real, wanted, out_dir, work):
@@ -125,7 +125,7 @@ def make_stub(soname, real, wanted, out_dir, work):
     # library for its version string; nothing on the programs' paths calls one otherwise.
     asm = [".bss", ".balign 64", "__zeros: .zero 4096", ".text"]
     names = set()
-    for i, (name, version, kind, size) in enumerate(symbols):
+    for name, version, kind, size in symbols:
         if name in names:
             continue
         names.add(name)

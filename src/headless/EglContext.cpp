@@ -161,7 +161,7 @@ EGLContext createContextOn(EGLDisplay display, std::string& why) {
         EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
         if (context != EGL_NO_CONTEXT) return context;
     }
-    why = "eglCreateContext (3.3 core): " + eglErrorName(eglGetError());
+    why = "eglCreateContext (core 4.6 down to 3.3, the last: " + eglErrorName(eglGetError()) + ")";
     return EGL_NO_CONTEXT;
 }
 

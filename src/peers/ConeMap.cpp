@@ -20,27 +20,33 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // A cone's walk costs thousands of operations: a few rows of them are worth a thread.
 constexpr long long kConeRowCells = 256;
 
-// The rows of a cone map are built on several threads (each texel's cone from the map
-// alone, so the map is the same however many ran); this counts their nodes and rows, and
-// reports the fraction done one call at a time, in order.
-class RowTally {
-public:
-    RowTally(int rows, const ConeMapProgress& progress) : rows_(rows), progress_(progress) {}
-    void rowDone(std::uint64_t visited) {
-        visited_ += visited;
-        if (!progress_) return;
-        const std::lock_guard<std::mutex> lock(mutex_);
-        progress_(double(++done_) / rows_);
-    }
-    std::uint64_t visited() const { return visited_; }
-
-private:
-    int rows_;
-    const ConeMapProgress& progress_;
-    std::atomic<std::uint64_t> visited_{0};
-    std::mutex mutex_;
-    int done_ = 0;
-};
+// Every texel's cone ratio, ratioAt(i, j, visited) (visited: the nodes its walk read, added
+// to), the rows built on the machine's cores. Each texel's cone is from the map alone, so
+// the ratios are the same however many threads ran; the progress is reported one call at a
+// time, in order (ConeMapProgress).
+template <typename RatioAt>
+std::vector<double> ratiosByRow(const HeightMap& map, RatioAt ratioAt, ConeMapStats* stats,
+                                const ConeMapProgress& progress) {
+    const int w = map.width, h = map.height;
+    std::vector<double> ratios(static_cast<std::size_t>(w) * h);
+    std::atomic<std::uint64_t> visited{0};
+    std::mutex progressMutex;
+    int rowsDone = 0;
+    parallelEachRow(
+        0, h, w,
+        [&](int j) {
+            std::uint64_t rowVisited = 0;
+            for (int i = 0; i < w; ++i)
+                ratios[static_cast<std::size_t>(j) * w + i] = ratioAt(i, j, rowVisited);
+            visited += rowVisited;
+            if (!progress) return;
+            const std::lock_guard<std::mutex> lock(progressMutex);
+            progress(double(++rowsDone) / h);
+        },
+        kConeRowCells);
+    if (stats) stats->nodesVisited = visited;
+    return ratios;
+}
 
 // The bilinear surface on the half-texel grid: point (a / 2, b / 2), a in [0, 2W], b in
 // [0, 2H]. Odd a is a sample column's centre, even a a texel edge halfway between two
@@ -277,42 +283,29 @@ std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce
     // Float: the finest bounds as texelSquareBound gives them.
     const MaxMipPyramid pyramid{MaxPyramid(map)};
     const int w = map.width, h = map.height;
-    std::vector<double> ratios(static_cast<std::size_t>(w) * h);
-    RowTally tally(h, progress);
-    parallelEachRow(
-        0, h, w,
-        [&](int j) {
-            std::uint64_t visited = 0;
-            for (int i = 0; i < w; ++i) {
-                const double plateau = plateauOf(map, i, j);
-                double r = kConeRatioCap;
-                auto leaf = [&](int p, int q, double) {
-                    return squareRatio(grid, i, j, plateau, p, q);
-                };
-                if (bruteForce) {
-                    for (int q = 0; q < h; ++q) {
-                        for (int p = 0; p < w; ++p) r = std::min(r, leaf(p, q, r));
-                    }
-                    visited += static_cast<std::uint64_t>(w) * h;
-                } else {
-                    // A node's pieces lie at least its gap d from T and at most its bound M
-                    // high (the quadtree holds maxima of finest bounds, MaxMipPyramid.h), so
-                    // none has a ratio below d / (M - B) (pieceRatio's rc).
-                    auto lowerBound = [&](const NodeExtent& e, float bound) {
-                        if (!(bound > plateau)) return kInfinity;
-                        const double gx = std::max({0, e.x0 - (i + 1), i - e.x1});
-                        const double gy = std::max({0, e.y0 - (j + 1), j - e.y1});
-                        return std::hypot(gx, gy) / (bound - plateau);
-                    };
-                    r = walkPyramid(pyramid, r, lowerBound, leaf, visited);
-                }
-                ratios[static_cast<std::size_t>(j) * w + i] = r;
+    auto ratioAt = [&](int i, int j, std::uint64_t& visited) {
+        const double plateau = plateauOf(map, i, j);
+        double r = kConeRatioCap;
+        auto leaf = [&](int p, int q, double) { return squareRatio(grid, i, j, plateau, p, q); };
+        if (bruteForce) {
+            for (int q = 0; q < h; ++q) {
+                for (int p = 0; p < w; ++p) r = std::min(r, leaf(p, q, r));
             }
-            tally.rowDone(visited);
-        },
-        kConeRowCells);
-    if (stats) stats->nodesVisited = tally.visited();
-    return ratios;
+            visited += static_cast<std::uint64_t>(w) * h;
+            return r;
+        }
+        // A node's pieces lie at least its gap d from T and at most its bound M high (the
+        // quadtree holds maxima of finest bounds, MaxMipPyramid.h), so none has a ratio
+        // below d / (M - B) (pieceRatio's rc).
+        auto lowerBound = [&](const NodeExtent& e, float bound) {
+            if (!(bound > plateau)) return kInfinity;
+            const double gx = std::max({0, e.x0 - (i + 1), i - e.x1});
+            const double gy = std::max({0, e.y0 - (j + 1), j - e.y1});
+            return std::hypot(gx, gy) / (bound - plateau);
+        };
+        return walkPyramid(pyramid, r, lowerBound, leaf, visited);
+    };
+    return ratiosByRow(map, ratioAt, stats, progress);
 }
 
 namespace {
@@ -350,44 +343,30 @@ std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, boo
                                       ConeMapStats* stats, const ConeMapProgress& progress) {
     const MaxMipPyramid pyramid{MaxPyramid(map)};
     const double top = map.maxValue();
-    std::vector<double> ratios(map.samples.size());
-    RowTally tally(map.height, progress);
-    parallelEachRow(
-        0, map.height, map.width,
-        [&](int j) {
-            std::uint64_t visited = 0;
-            for (int i = 0; i < map.width; ++i) {
-                const double hs = map.at(i, j);
-                auto leaf = [&](int p, int q, double below) {
-                    if (p == i && q == j) return kInfinity;
-                    return relaxedPairRatio(map, top, i, j, p, q, searchSteps, below);
-                };
-                double r = kConeRatioCap;
-                if (bruteForce) {
-                    for (int q = 0; q < map.height; ++q)
-                        for (int p = 0; p < map.width; ++p) r = std::min(r, leaf(p, q, kInfinity));
-                } else {
-                    // A destination sample d in a node is at most the node's bound M high and
-                    // at least the distance g from s to the node's sample centres away; its exit
-                    // point lies farther from s and no higher than d, so its ratio is at least
-                    // g / (M - hs).
-                    auto lowerBound = [&](const NodeExtent& e, float bound) {
-                        if (!(bound > hs)) return kInfinity;
-                        const double gx =
-                            std::max({0.0, e.x0 + 0.5 - (i + 0.5), (i + 0.5) - (e.x1 - 0.5)});
-                        const double gy =
-                            std::max({0.0, e.y0 + 0.5 - (j + 0.5), (j + 0.5) - (e.y1 - 0.5)});
-                        return std::hypot(gx, gy) / (bound - hs);
-                    };
-                    r = walkPyramid(pyramid, r, lowerBound, leaf, visited);
-                }
-                ratios[static_cast<std::size_t>(j) * map.width + i] = r;
-            }
-            tally.rowDone(visited);
-        },
-        kConeRowCells);
-    if (stats) stats->nodesVisited = tally.visited();
-    return ratios;
+    auto ratioAt = [&](int i, int j, std::uint64_t& visited) {
+        const double hs = map.at(i, j);
+        auto leaf = [&](int p, int q, double below) {
+            if (p == i && q == j) return kInfinity;
+            return relaxedPairRatio(map, top, i, j, p, q, searchSteps, below);
+        };
+        double r = kConeRatioCap;
+        if (bruteForce) {
+            for (int q = 0; q < map.height; ++q)
+                for (int p = 0; p < map.width; ++p) r = std::min(r, leaf(p, q, kInfinity));
+            return r;
+        }
+        // A destination sample d in a node is at most the node's bound M high and at least
+        // the distance g from s to the node's sample centres away; its exit point lies
+        // farther from s and no higher than d, so its ratio is at least g / (M - hs).
+        auto lowerBound = [&](const NodeExtent& e, float bound) {
+            if (!(bound > hs)) return kInfinity;
+            const double gx = std::max({0.0, e.x0 + 0.5 - (i + 0.5), (i + 0.5) - (e.x1 - 0.5)});
+            const double gy = std::max({0.0, e.y0 + 0.5 - (j + 0.5), (j + 0.5) - (e.y1 - 0.5)});
+            return std::hypot(gx, gy) / (bound - hs);
+        };
+        return walkPyramid(pyramid, r, lowerBound, leaf, visited);
+    };
+    return ratiosByRow(map, ratioAt, stats, progress);
 }
 
 ConeMap buildRelaxedConeMap(const HeightMap& map, int searchSteps, ConeMapStats* stats,

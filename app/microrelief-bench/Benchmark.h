@@ -56,11 +56,14 @@ struct Measurement {
     double hitPct = 0.0;  // pixels whose exact ray hits the relief: the covered area
     // What the method costs on this map before its first frame: the GPU textures it reads
     // (the samples and its bounds), bytes per map texel, and the time to build its bounds
-    // (the multilevel method's windows and maxmip's quadtree on the GPU, the cone maps on
-    // the CPU; none for the methods that read the samples alone), wall ms to glFinish.
+    // (the multilevel method's windows, maxmip's quadtree and cone's cone map on the GPU,
+    // rcsm's on the CPU; none for the methods that read the samples alone), wall ms to
+    // glFinish; and where a method's bounds are built on the CPU too (cone, rcsm), that
+    // build's time (else negative: none).
     double bytesPerTexel = 0.0;
     double preprocessMs = 0.0;
     std::string preprocessWhere = "-";  // "gpu", "cpu", or "-": nothing to build
+    double cpuPreprocessMs = -1.0;
 };
 
 struct BenchOptions {

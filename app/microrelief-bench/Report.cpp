@@ -349,8 +349,10 @@ std::string costSection(const std::vector<Measurement>& rows) {
     md << "\nMemory and preprocessing: the GPU textures each method reads (the samples, R32F, "
           "and its bounds: the multilevel method's overlapping windows and maxmip's quadtree, "
           "R16F mip chains; cone's and rcsm's cone maps, RG16F), bytes a map texel; and the "
-          "time to build its bounds, wall ms to glFinish (gpu: median of three builds; cpu: "
-          "one build, read-back and upload included; -: nothing to build).\n\n"
+          "time to build its bounds, wall ms to glFinish (gpu: median of three builds, or the "
+          "first where it took a second or more; cpu: "
+          "one build, read-back and upload included; -: nothing to build), cone's map on the "
+          "GPU and on the CPU.\n\n"
           "| map | size | method | bytes / texel | preprocessing ms |\n|---|---|---|---|---|\n";
     std::vector<std::tuple<std::string, int, std::string>> seen;
     for (const Measurement& r : rows) {
@@ -361,6 +363,9 @@ std::string costSection(const std::vector<Measurement>& rows) {
            << fixed(r.bytesPerTexel, 2) << " | "
            << (r.preprocessWhere == "-" ? std::string("-")
                                         : fixed(r.preprocessMs, 1) + " (" + r.preprocessWhere + ")")
+           << (r.preprocessWhere == "gpu" && r.cpuPreprocessMs >= 0.0
+                   ? ", " + fixed(r.cpuPreprocessMs, 1) + " (cpu)"
+                   : std::string())
            << " |\n";
     }
     return md.str();
@@ -493,7 +498,7 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
            "top_coverage_mismatch_pct,top_off_half_texel_pct,"
            "mean_error_px,p99_error_px,exhausted_px,hit_pct,interpolation,renderer,"
            "fetches_bounds_mean,p99_error_texels,top_p99_error_texels,mpix_per_s,"
-           "bytes_per_texel,preprocess_ms,preprocess_where\n";
+           "bytes_per_texel,preprocess_ms,preprocess_where,preprocess_cpu_ms\n";
     const bool wall = softwareRenderer(info.renderer);
     for (const Measurement& r : rows) {
         out << r.method << ',' << r.param << ',' << csvField(r.map) << ',' << r.base << ','
@@ -507,7 +512,8 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
             << fixed(r.boundFetchesMean, 2) << ',' << fixed(r.p99ErrorTexels, 3) << ','
             << fixed(r.topP99ErrorTexels, 3) << ',' << fixed(megapixelsPerSecond(r, wall), 3) << ','
             << fixed(r.bytesPerTexel, 3) << ',' << fixed(r.preprocessMs, 2) << ','
-            << r.preprocessWhere << '\n';
+            << r.preprocessWhere << ','
+            << (r.cpuPreprocessMs >= 0.0 ? fixed(r.cpuPreprocessMs, 2) : std::string()) << '\n';
     }
     writeTextAtomically(file, out.str());
 }

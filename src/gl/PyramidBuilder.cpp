@@ -89,7 +89,8 @@ PyramidRegions wholeLevels(const std::vector<glm::ivec2>& sizes) {
 
 }  // namespace
 
-PyramidBuilder::PyramidBuilder(const GL& gl, const std::filesystem::path& shaderDir) : gl_(gl) {
+PyramidBuilder::PyramidBuilder(const GL& gl, const std::filesystem::path& shaderDir)
+    : gl_(gl), shaderDir_(shaderDir) {
     const gl::Shader vertex = gl::compileShader(
         gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "pyramid" / "pass.vert", kVersion));
     windowFinest_ =
@@ -273,6 +274,52 @@ void PyramidBuilder::drawAligned(ReliefTextures& textures, const PyramidRegions&
     gl_.BindTexture(GL_TEXTURE_2D, texture);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
+}
+
+void PyramidBuilder::buildConeMap(ReliefTextures& textures) {
+    // Rows a draw: a draw is one texel's walk per pixel, thousands of reads where the map is
+    // rough, and a long draw can trip a desktop driver's watchdog.
+    constexpr int kConeBandRows = 32;
+    const glm::ivec2 map = textures.shape_.size;
+    if (textures.shape_.tiles != glm::ivec2(1))
+        throwRuntime("a cone map is built for an untiled map only");
+    if (std::max(map.x, map.y) > 16384)
+        throwRuntime("a cone map is built on the GPU for maps of at most 16384 a side");
+    if (!coneMap_) {
+        const gl::Shader vertex = gl::compileShader(
+            gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "pyramid" / "pass.vert", kVersion));
+        coneMap_ = passProgram(gl_, shaderDir_, vertex, "cone_map.frag", "cone map");
+        const gl::StateGuard saved(gl_);
+        gl_.UseProgram(coneMap_.id());
+        gl_.Uniform1i(gl::uniform(gl_, coneMap_, "heights"), 0);
+        gl_.Uniform1i(gl::uniform(gl_, coneMap_, "aligned"), 1);
+    }
+    const bool hadQuadtree = textures.hasMaxMipPyramid();
+    if (!hadQuadtree) {
+        textures.allocateAligned(gl_);
+        buildAligned(textures);
+    }
+    const GLuint cones = textures.allocateConeMap(gl_, ReliefTextures::ConeKind::Conservative).id();
+    {
+        const gl::PassGuard saved(gl_);
+        begin();
+        attach(cones, 0);
+        if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throwRuntime("this GL cannot render into the RG16F cone map (incomplete framebuffer)");
+        gl_.UseProgram(coneMap_.id());
+        gl_.Uniform2i(gl::uniform(gl_, coneMap_, "mapSize"), map.x, map.y);
+        gl_.Uniform1i(gl::uniform(gl_, coneMap_, "levelCount"),
+                      static_cast<int>(maxMipLevelSizes(map.x, map.y).size()));
+        gl_.Uniform1i(gl::uniform(gl_, coneMap_, "scaleExponent"), textures.scaleExponent_);
+        gl_.ActiveTexture(GL_TEXTURE1);
+        gl_.BindTexture(GL_TEXTURE_2D, textures.maxPyramid());
+        gl_.ActiveTexture(GL_TEXTURE0);
+        gl_.BindTexture(GL_TEXTURE_2D, textures.samples());
+        for (int row = 0; row < map.y; row += kConeBandRows)
+            draw({0, row, map.x, std::min(row + kConeBandRows, map.y)});
+        attach(0, 0);
+    }
+    if (!hadQuadtree) textures.aligned_.reset();
 }
 
 float PyramidBuilder::readTop(const ReliefTextures& textures) {

@@ -25,18 +25,21 @@ ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shader
 }
 
 namespace {
-// The cone map a method reads (cone, rcsm), built where it is missing.
-void addConeMapFor(const GL& gl, ReliefTextures& textures, Method method) {
-    if (method == Method::Cone) textures.addConeMap(gl, ReliefTextures::ConeKind::Conservative);
+// The cone map a method reads (cone, rcsm), built where it is missing: cone's on the GPU
+// by `builder`, rcsm's on the CPU.
+void addConeMapFor(const GL& gl, ReliefTextures& textures, Method method, PyramidBuilder& builder) {
+    if (method == Method::Cone)
+        textures.addConeMap(gl, ReliefTextures::ConeKind::Conservative, &builder);
     if (method == Method::Rcsm) textures.addConeMap(gl, ReliefTextures::ConeKind::Relaxed);
 }
 
 // After the samples changed: the cone maps made so far are stale, built again whole (the one
 // the method reads now, the other when next asked for).
-void refreshConeMaps(const GL& gl, ReliefTextures& textures, Method method) {
+void refreshConeMaps(const GL& gl, ReliefTextures& textures, Method method,
+                     PyramidBuilder& builder) {
     if (!textures.hasConeMaps()) return;
     textures.dropConeMaps();
-    addConeMapFor(gl, textures, method);
+    addConeMapFor(gl, textures, method, builder);
 }
 // What a paged map's draw binds beyond StateGuard's (gl/PagedPyramid.h): the pool on its
 // unit, the page table and the wants on their storage bindings; restored after.
@@ -157,7 +160,7 @@ void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches
     // The aligned pyramid is made only for the peer that walks it.
     if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
         textures_->addMaxMipPyramid(gl_, pyramidBuilder());
-    if (textures_) addConeMapFor(gl_, *textures_, settings.method);
+    if (textures_) addConeMapFor(gl_, *textures_, settings.method, pyramidBuilder());
     method_ = settings;
     countFetches_ = countFetches;
 }
@@ -261,7 +264,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     }
     ++rebuilds_.pyramids;
     applied_.reset();  // of heights no relief named; apply() names them
-    addConeMapFor(gl_, *textures_, method_.method);
+    addConeMapFor(gl_, *textures_, method_.method, pyramidBuilder());
     base_ = base;
     interpolation_ = interpolation;
     maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
@@ -312,7 +315,7 @@ void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
     } else {
         pyramidBuilder().update(*textures_, changed);
     }
-    refreshConeMaps(gl_, *textures_, method_.method);
+    refreshConeMaps(gl_, *textures_, method_.method, pyramidBuilder());
     uploadBox();
 }
 
@@ -324,7 +327,7 @@ void ReliefRenderer::heightsReplaced() {
     } else {
         pyramidBuilder().build(*textures_);
     }
-    refreshConeMaps(gl_, *textures_, method_.method);
+    refreshConeMaps(gl_, *textures_, method_.method, pyramidBuilder());
     ++rebuilds_.pyramids;
     uploadBox();
 }

@@ -181,23 +181,59 @@ void ReliefTextures::addMaxMipPyramid(const GL& gl, PyramidBuilder& builder) {
     builder.buildAligned(*this);
 }
 
-void ReliefTextures::addConeMap(const GL& gl, ConeKind kind) {
+gl::Texture& ReliefTextures::allocateConeMap(const GL& gl, ConeKind kind) {
+    gl::Texture& texture = cones_[static_cast<int>(kind)];
+    if (texture) return texture;
+    const gl::StateGuard saved(gl);
+    gl.ActiveTexture(GL_TEXTURE0);
+    texture = gl::Texture::create(gl);
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, shape_.size.x, shape_.size.y, 0, GL_RG, GL_HALF_FLOAT,
+                  nullptr);
+    setSamplerState(gl, GL_LINEAR, 0);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    return texture;
+}
+
+void ReliefTextures::addConeMap(const GL& gl, ConeKind kind, PyramidBuilder* builder) {
     if (cones_[static_cast<int>(kind)]) return;
     refuseIfPaged("a cone map");
+    if (builder && kind == ConeKind::Conservative) {
+        builder->buildConeMap(*this);
+        return;
+    }
     const HeightMap map = readSamples(gl);
     const ConeMap cones =
         kind == ConeKind::Conservative ? buildConservativeConeMap(map) : buildRelaxedConeMap(map);
     const std::vector<std::uint16_t> texels = coneMapHalfTexels(cones);
+    const GLuint texture = allocateConeMap(gl, kind).id();
     const gl::StateGuard saved(gl);
     gl.ActiveTexture(GL_TEXTURE0);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl::Texture texture = gl::Texture::create(gl);
-    gl.BindTexture(GL_TEXTURE_2D, texture.id());
-    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, map.width, map.height, 0, GL_RG, GL_HALF_FLOAT,
-                  texels.data());
-    setSamplerState(gl, GL_LINEAR, 0);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    cones_[static_cast<int>(kind)] = std::move(texture);
+    gl.BindTexture(GL_TEXTURE_2D, texture);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, map.width, map.height, GL_RG, GL_HALF_FLOAT,
+                     texels.data());
+}
+
+ConeMap ReliefTextures::readConeMap(const GL& gl, ConeKind kind) const {
+    const int w = shape_.size.x, h = shape_.size.y;
+    std::vector<float> texels(2 * static_cast<std::size_t>(w) * h);
+    {
+        const gl::PassGuard saved(gl);
+        const gl::Framebuffer framebuffer = gl::Framebuffer::create(gl);
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
+        gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                                coneMap(kind), 0);
+        gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        gl.ReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, texels.data());
+    }
+    ConeMap cones{w, h, {}, {}};
+    for (std::size_t k = 0; k < texels.size(); k += 2) {
+        cones.apex.push_back(texels[k]);
+        cones.ratio.push_back(texels[k + 1]);
+    }
+    return cones;
 }
 
 ReliefMapShape ReliefTextures::maxMipShape() const {

@@ -14,72 +14,15 @@
 #include <string>
 #include <vector>
 
+#include "ConeCases.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/peers/ConeMap.h"
-#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
+using microrelief::test::ConeCase;
+using microrelief::test::coneCases;
 
 namespace {
-
-struct ConeCase {
-    std::string name;
-    HeightMap map;
-};
-
-HeightMap ramp(int w, int h, double slopeX, double slopeY) {
-    HeightMap m(w, h);
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) m.at(i, j) = static_cast<float>(slopeX * i + slopeY * j);
-    return m;
-}
-
-HeightMap periodic(int w, int h, double period, double amplitude) {
-    HeightMap m(w, h);
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i)
-            m.at(i, j) =
-                static_cast<float>(amplitude * (1.5 + std::sin(2 * M_PI * i / period) *
-                                                          std::cos(2 * M_PI * j / period)));
-    return m;
-}
-
-HeightMap scaled(HeightMap m, float factor) {
-    for (float& s : m.samples) s *= factor;
-    return m;
-}
-
-// Random and adversarial small maps: spikes, one-texel walls, steps, ramps, periodic
-// relief, white noise (the roughest), a pit in a plateau, and scales from 1e-3 to 1e3
-// (ratios near the half floats' ends).
-std::vector<ConeCase> coneCases() {
-    std::vector<ConeCase> cases;
-    cases.push_back({"spike", synth::spike(13, 11, 6, 5)});
-    cases.push_back({"spikeAtEdge", synth::spike(12, 12, 0, 11)});
-    cases.push_back({"wall", synth::wallColumn(14, 9, 7)});
-    cases.push_back({"step", synth::step(12, 10, 5)});
-    cases.push_back({"ramp", ramp(11, 13, 0.07, 0.03)});
-    cases.push_back({"steepRamp", ramp(10, 10, 1.0, 0.0)});
-    cases.push_back({"periodic", periodic(16, 16, 5.0, 0.3)});
-    cases.push_back({"white", synth::whiteNoise(16, 16, 7)});
-    cases.push_back({"whiteTall", scaled(synth::whiteNoise(12, 14, 9), 1000.0f)});
-    cases.push_back({"whiteLow", scaled(synth::whiteNoise(13, 12, 11), 0.001f)});
-    cases.push_back({"noise", synth::valueNoise(16, 16, 4.0, 3, 5)});
-    HeightMap pit = synth::flat(12, 12, 1.0f);
-    pit.at(5, 6) = 0.0f;
-    pit.at(6, 6) = 0.2f;
-    cases.push_back({"pit", pit});
-    std::mt19937 random(28);
-    for (int k = 0; k < 4; ++k) {
-        std::uniform_int_distribution<int> side(2, 15);
-        HeightMap m(side(random), side(random));
-        std::uniform_real_distribution<float> value(0.0f, 1.0f);
-        std::bernoulli_distribution sparse(0.15);
-        for (float& s : m.samples) s = sparse(random) ? value(random) : 0.0f;
-        cases.push_back({"random" + std::to_string(k), m});
-    }
-    return cases;
-}
 
 double distanceToSquare(double x, double y, int i, int j) {
     const double gx = std::max({0.0, i - x, x - (i + 1)}), gy = std::max({0.0, j - y, y - (j + 1)});
@@ -120,11 +63,6 @@ double sampledRatio(const DenseSurface& s, int i, int j, double plateau) {
 }
 
 class ConeMapCases : public ::testing::TestWithParam<ConeCase> {};
-
-// gtest prints a failing case's parameter: its name, not its bytes.
-void PrintTo(const ConeCase& c, std::ostream* out) {
-    *out << c.name;
-}
 
 }  // namespace
 

@@ -399,7 +399,7 @@ TEST(GlslLibrary, PyramidAndEditPassesCompileAsGlsl330AndEs300) {
         }
     }
     // The triangle, the finest windows (at once, and from a band's bounds), the finest
-    // bounds, the coarser windows and aligned levels; the brush, the fields; the page's
-    // presentation.
-    EXPECT_EQ(count, 9);
+    // bounds, the coarser windows and aligned levels, cone's cone map; the brush, the
+    // fields; the page's presentation.
+    EXPECT_EQ(count, 10);
 }

@@ -22,6 +22,10 @@
 // Then the top texel is read back: the map's new maximum, which the box and the tracer
 // need, and the check that S still fits it (when the top moved to another binade, every
 // texel is drawn again with the new S).
+//
+// And the `cone` peer's conservative cone map (peers/ConeMap.h), from the samples and the
+// quadtree: shaders/pyramid/cone_map.frag, the CPU build's walk per texel in float
+// arithmetic, each rounding towards narrower cones, in bands of rows.
 #pragma once
 
 #include <filesystem>
@@ -51,6 +55,13 @@ public:
     void update(ReliefTextures& textures, const TexelRect& changed);
     // The same after changes inside several rectangles (a dab over a curved base's seam).
     void update(ReliefTextures& textures, const std::vector<TexelRect>& changed);
+    // The conservative cone map of `textures` (ConeKind::Conservative), made or made again
+    // from its samples: the apexes bit for bit the CPU build's, each ratio at most the
+    // CPU's (the same or one half below; the CPU build is the GL tests' reference). Reads
+    // maxmip's quadtree, made for the pass and dropped after where the textures had none.
+    // An untiled map of at most 16384 a side (the walk's stack). The GL state it changes is
+    // restored.
+    void buildConeMap(ReliefTextures& textures);
 
 private:
     void begin();
@@ -66,6 +77,8 @@ private:
 
     const GL& gl_;
     gl::Program windowFinest_, windowBlocks_, windows_, alignedFinest_, aligned_;
+    gl::Program coneMap_;  // compiled on the first cone map
+    std::filesystem::path shaderDir_;
     GLint finestMapSize_[2] = {-1, -1}, finestWrapU_[2] = {-1, -1}, finestScale_[2] = {-1, -1};
     GLint windowsLevel_ = -1, alignedOrigin_ = -1, blocksMapSize_ = -1, blocksFirstRow_ = -1;
     gl::Texture scratch_;  // a band's finest bounds (drawWindowBands)

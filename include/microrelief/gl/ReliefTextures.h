@@ -22,6 +22,7 @@
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/PagedPyramid.h"
+#include "microrelief/peers/ConeMap.h"
 
 namespace microrelief {
 
@@ -86,18 +87,22 @@ public:
 
     // The cone maps of the cone-stepping peers (peers/ConeMap.h), RG16F, linear filtering
     // (rcsm reads its map filtered, cone with texelFetch), clamped: the conservative map
-    // for cone, the relaxed one for rcsm, each built on the CPU from the samples the GPU
-    // holds (read back) when first asked for, and kept until the samples change
-    // (dropConeMaps). Only where one of these methods runs. The GL state it changes is
-    // restored.
+    // for cone, the relaxed one for rcsm, each built when first asked for and kept until
+    // the samples change (dropConeMaps). Only where one of these methods runs. With
+    // `builder` the conservative map is built on the GPU (PyramidBuilder::buildConeMap);
+    // without, and the relaxed map always, on the CPU from the samples the GPU holds (read
+    // back). The GL state it changes is restored.
     enum class ConeKind { Conservative = 0, Relaxed = 1 };
-    void addConeMap(const GL& gl, ConeKind kind);
+    void addConeMap(const GL& gl, ConeKind kind, PyramidBuilder* builder = nullptr);
     void dropConeMaps() {
         for (gl::Texture& t : cones_) t.reset();
     }
+    void dropConeMap(ConeKind kind) { cones_[static_cast<int>(kind)].reset(); }
     bool hasConeMaps() const { return cones_[0] || cones_[1]; }
     // 0 where that map was not made.
     GLuint coneMap(ConeKind kind) const { return cones_[static_cast<int>(kind)].id(); }
+    // A cone map as the GPU holds it, read back (the halves as floats).
+    ConeMap readConeMap(const GL& gl, ConeKind kind) const;
 
     // The multilevel method's mr_ReliefMap (the windows: pyramidSize W x H, their levels;
     // size the whole, N W x M H tiled N x M).
@@ -145,6 +150,9 @@ private:
 
     void allocate(const GL& gl, const HeightMap& map);
     void allocateAligned(const GL& gl);
+    // The cone map of `kind`, its RG16F level allocated and its sampling set where it was
+    // not made yet.
+    gl::Texture& allocateConeMap(const GL& gl, ConeKind kind);
     void upload(const GL& gl, const HeightMap& map, const MaxPyramid& pyramid, bool withMaxMip);
     // The pyramid's levels into the allocated textures, its top and S into the shape.
     void uploadPyramid(const GL& gl, const MaxPyramid& pyramid);

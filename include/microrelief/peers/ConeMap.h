@@ -26,6 +26,10 @@
 // .cpp: exact on the pieces level with T in a row or column, a tangent lower bound of the
 // distance on the diagonal ones), then rounded down to a half float.
 //
+// The renderer builds this map on the GPU (gl/PyramidBuilder.h: buildConeMap), the same
+// walk in floats with every rounding towards narrower cones: the same apexes, each ratio
+// this build's or the half below it; this build is its reference in the tests.
+//
 // The relaxed cone of sample (i, j) (buildRelaxedConeMap), stored as (h(i, j), r): the
 // published construction, a ray from the top of the relief box above the sample through
 // every other sample's surface point, followed on under the surface (`searchSteps` steps

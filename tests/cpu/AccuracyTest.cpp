@@ -58,8 +58,8 @@ TEST(Accuracy, TheSampledReferenceTracesAboutThePixelsAskedForEvenly) {
     const ReferenceTracer tracer(ReliefGeometry{&s.map, s.heightScale});
     const auto trace = [&](const Ray& ray) { return tracer.trace(ray); };
     const std::size_t all = std::size_t(s.camera.width) * s.camera.height;  // 64 x 40
-    for (const auto& [asked, expected] :
-         std::vector<std::pair<int, std::size_t>>{{int(all), all}, {40, 40}, {1, 1}}) {
+    for (const auto& [asked, expected] : std::vector<std::pair<int, std::size_t>>{
+             {int(all), all}, {40, 40}, {1, 1}, {2000, 1995}}) {
         const ReferencePicture sampled = traceSampledReferencePicture(
             s.camera, trace, s.reference.texelsPerUnit, s.reference.worldToObject, asked);
         ASSERT_EQ(sampled.traced.size(), all);
@@ -69,8 +69,9 @@ TEST(Accuracy, TheSampledReferenceTracesAboutThePixelsAskedForEvenly) {
             ++traced;
             EXPECT_EQ(sampled.hits[pixel], s.reference.hits[pixel]) << pixel;
         }
-        // 40 of 2560: every 8th pixel of every 8th row (5 x 8); 1: a step of 51, so the
-        // pixel (25, 25) alone.
+        // 40 of 2560: cells of 8 x 8, every 8th pixel of every 8th row (5 x 8); 1: one
+        // cell, the pixel (32, 20) alone; 2000: cells of 1.13, 57 x 35 (a whole step of 2
+        // gave 640, a third: seen before the cells were fractional).
         EXPECT_EQ(traced, expected) << asked << " asked";
     }
 }

@@ -59,8 +59,14 @@ ReferencePicture traceSampledReferencePicture(const CameraFrame& camera,
                                               double texelsPerUnit, const glm::dmat3& worldToObject,
                                               int pixels) {
     if (pixels < 1) throwRuntime("traceSampledReferencePicture: at least one pixel");
-    const int step = std::max(1, static_cast<int>(std::ceil(std::sqrt(
-                                     static_cast<double>(camera.width) * camera.height / pixels))));
+    // The lattice's cell side s in pixels, and how many cells fit each way: about W H / s^2
+    // = `pixels` in all, where a whole step (ceil(s)) could give a quarter of that.
+    const double side =
+        std::max(1.0, std::sqrt(static_cast<double>(camera.width) * camera.height / pixels));
+    const auto cells = [&](int extent) {
+        return std::clamp(static_cast<int>(std::lround(extent / side)), 1, extent);
+    };
+    const int columns = cells(camera.width), rows = cells(camera.height);
     ReferencePicture picture;
     picture.width = camera.width;
     picture.texelsPerUnit = texelsPerUnit;
@@ -69,8 +75,10 @@ ReferencePicture traceSampledReferencePicture(const CameraFrame& camera,
     picture.hits.assign(count, std::nullopt);
     picture.viaTop.assign(count, true);
     picture.traced.assign(count, false);
-    for (int row = step / 2; row < camera.height; row += step) {
-        for (int column = step / 2; column < camera.width; column += step) {
+    for (int b = 0; b < rows; ++b) {
+        const int row = static_cast<int>((2LL * b + 1) * camera.height / (2LL * rows));
+        for (int a = 0; a < columns; ++a) {
+            const int column = static_cast<int>((2LL * a + 1) * camera.width / (2LL * columns));
             const std::size_t pixel = static_cast<std::size_t>(row) * camera.width + column;
             const ReferenceHit exact = trace(camera.pixelRay(column, row));
             if (exact) picture.hits[pixel] = exact.position;

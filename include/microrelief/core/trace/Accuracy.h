@@ -74,9 +74,10 @@ struct ReferencePicture {
 // the ray can meet, false hits included (what can be asked of them).
 enum class AccuracyScope { AllPixels, TopSurface };
 ReferencePicture traceReferencePicture(const CameraFrame& camera, const ReliefGeometry& relief);
-// The reference on about `pixels` pixels of the camera's picture, spread evenly: every
-// step-th pixel of every step-th row from (step / 2, step / 2), step = ceil(sqrt(W H /
-// pixels)) (every pixel where that is 1), traced by `trace` (a PagedReferenceTracer's, for
+// The reference on about `pixels` pixels of the camera's picture, spread evenly: a
+// lattice of round(W / s) columns by round(H / s) rows (at least one each), s = sqrt(W H /
+// pixels), each pixel at the middle of its cell (every pixel where s <= 1), traced by
+// `trace` (a PagedReferenceTracer's, for
 // a map not in memory whole, whose reads from disk are what costs), errors in texels at
 // `texelsPerUnit` of the relief's object space (1 / BaseShape::texelSize) after
 // `worldToObject` (the model's inverse).

@@ -103,9 +103,10 @@ std::map<Method, MethodCost> measureCosts(const GL& gl, ReliefRenderer& renderer
             cost.bytesPerTexel += textureBytes(gl, textures.coneMap(kind)) / texels;
         } else if (method == Method::Rcsm) {
             const auto kind = ReliefTextures::ConeKind::Relaxed;
-            if (!textures.coneMap(kind))
+            if (!textures.coneMap(kind)) {
                 cost.preprocessMs = wallMs(gl, [&] { textures.addConeMap(gl, kind); });
-            cost.cpuPreprocessMs = cost.preprocessMs;
+                cost.cpuPreprocessMs = cost.preprocessMs;
+            }
             cost.where = "cpu";
             cost.bytesPerTexel += textureBytes(gl, textures.coneMap(kind)) / texels;
         }

@@ -65,10 +65,11 @@ uint mr_sampleBits(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 p, bool wrapU)
     return floatBitsToUint(MICRORELIEF_READ_SAMPLE(heights, p)) & 0x7fffffffu;
 }
 
-// The finest level's texel (i, j) of a W x H map: see the top of this file. The largest
-// of the nine is taken on the bits, which order as the values do. Not rounded for
-// storage (mr_storedHalf).
-float mr_texelSquareBound(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 texel, bool wrapU) {
+// The nine values of texel (i, j) of a W x H map (see the top of this file) as bits: index
+// 3 d + c for the point (i + c / 2, j + d / 2) of map space, c, d in 0..2 (so the bilinear
+// surface's values at the texel square's corners, edge midpoints and sample; rounded up).
+void mr_texelNineBits(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 texel, bool wrapU,
+                      out uint nine[9]) {
     uint rows[9];
     for (int b = 0; b < 3; ++b) {
         uint c0 = mr_sampleBits(heights, size, texel + ivec2(-1, b - 1), wrapU);
@@ -78,11 +79,20 @@ float mr_texelSquareBound(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 texel, 
         rows[3 * b + 1] = c1;
         rows[3 * b + 2] = mr_roundUpMeanBits(c1, c2);
     }
-    uint best = 0u;
-    for (int a = 0; a < 3; ++a) {
-        best = max(best, max(rows[3 + a], max(mr_roundUpMeanBits(rows[a], rows[3 + a]),
-                                              mr_roundUpMeanBits(rows[3 + a], rows[6 + a]))));
+    for (int c = 0; c < 3; ++c) {
+        nine[c] = mr_roundUpMeanBits(rows[c], rows[3 + c]);
+        nine[3 + c] = rows[3 + c];
+        nine[6 + c] = mr_roundUpMeanBits(rows[3 + c], rows[6 + c]);
     }
+}
+
+// The finest level's texel (i, j) of a W x H map: the largest of its nine values, taken on
+// the bits, which order as the values do. Not rounded for storage (mr_storedHalf).
+float mr_texelSquareBound(MICRORELIEF_SAMPLER heights, ivec2 size, ivec2 texel, bool wrapU) {
+    uint nine[9];
+    mr_texelNineBits(heights, size, texel, wrapU, nine);
+    uint best = 0u;
+    for (int k = 0; k < 9; ++k) best = max(best, nine[k]);
     return uintBitsToFloat(best);
 }
 
@@ -132,6 +142,34 @@ float mr_storedHalf(uint boundBits, int scaleExponent) {
     int exponent = int(bits >> 23u) - scaleExponent;  // biased, after the division
     if (exponent > 127 + 15) return uintBitsToFloat(0x7f800000u);  // 65536 or more
     return uintBitsToFloat((uint(exponent) << 23u) | (bits & 0x7fffffu));
+}
+
+// Half floats on a float's bits, as peers/ConeMap.h's halfRoundedUp and halfRoundedDown give
+// them (the cone map's values, gl/PyramidBuilder.h): the smallest half not below x (x >= 0,
+// finite; +inf past 65504), and the largest not above it (65504 past it). A half's normal
+// range keeps 10 of the float's 23 mantissa bits; below 2^-14 halves are multiples of
+// 2^-24, x / 2^-24 = m / 2^(126 - e) for x = m 2^(e - 150), a shift of 13 to 23 where x is at
+// least 2^-24 (e >= 103); below that the answer is the least half or 0 (no shift of 32 or
+// more, which GLSL leaves undefined).
+float mr_halfRoundedUp(float x) {
+    uint bits = floatBitsToUint(x), e = bits >> 23u;
+    if (bits == 0u) return 0.0;
+    if (x > 65504.0) return uintBitsToFloat(0x7f800000u);
+    if (e >= 113u) return uintBitsToFloat((bits + 0x1fffu) & ~0x1fffu);
+    if (e <= 102u) return 5.96046448e-8;  // below 2^-24: the least half
+    uint m = (bits & 0x7fffffu) | 0x800000u, shift = 126u - e;
+    uint units = (m >> shift) + ((m & ((1u << shift) - 1u)) != 0u ? 1u : 0u);
+    return float(units) * 5.96046448e-8;
+}
+
+float mr_halfRoundedDown(float x) {
+    if (!(x > 0.0)) return 0.0;
+    if (x >= 65504.0) return 65504.0;
+    uint bits = floatBitsToUint(x), e = bits >> 23u;
+    if (e >= 113u) return uintBitsToFloat(bits & ~0x1fffu);
+    if (e <= 102u) return 0.0;
+    uint m = (bits & 0x7fffffu) | 0x800000u;
+    return float(m >> (126u - e)) * 5.96046448e-8;
 }
 
 #endif

@@ -5,16 +5,25 @@
 // narrow the cone bounded piece by piece on the half-texel grid, in float arithmetic where
 // the CPU works in doubles. So that float rounding can only narrow a cone:
 //  * the surface's values on the half-texel grid are upper bounds (means rounded up on the
-//    floats' bits, pyramid_bound.glsl), which only lowers each ratio;
+//    floats' bits, pyramid_bound.glsl: mr_texelNineBits), which only lowers each ratio;
+//    by up to a few float ulps of h, which can be many halves of the ratio where h - B is
+//    small beside h (a terrain 3000 high with relief 3 high): narrower, never wider;
 //  * h - B is at least 2^-126 where h > B (a difference flushed to 0 would make a ratio
 //    infinite);
-//  * each ratio is a quotient of a distance (a few float operations, each within 3 ulp by
-//    GLSL 4's precision table, division 2.5 ulp) by h - B (one subtraction, correctly
-//    rounded): within 2^-20 relative of the same formula in exact arithmetic, and so is a
-//    prune test; the walk's result is multiplied by 1 - 2^-16 before it is rounded down to
-//    a half, far more than those errors take, far less than a half's step (2^-11).
+//  * a prune test (nodeBound) never exceeds the ratios under its node, by construction: a
+//    node's bound is the largest of the nine values of its texels (the quadtree's finest
+//    level is mr_texelSquareBound of the same nine), stored rounded up, and the pieces'
+//    corners are those nine values;
+//  * each ratio is a quotient of a distance (exact sums of half texels, or a few products,
+//    a sum and a square root) by h - B (one subtraction): float errors of some 13 ulp in
+//    all by GLSL 4's precision table (sqrt inherited from inversesqrt, about 4.5 ulp;
+//    division 2.5 ulp; GLSL 3.30 states none, and GPUs keep to 4's), about 2^-20 relative,
+//    in the prune tests as in the pieces; the walk's result is multiplied by 1 - 2^-16
+//    before it is rounded down to a half, far more than those errors take, far less than a
+//    half's step (2^-11).
 // The apex is the CPU's bit for bit: the pyramid's finest bound (mr_texelSquareBound, the
-// same bits as MaxPyramid) rounded up to a half on its bits.
+// same bits as MaxPyramid) rounded up to a half on its bits, and at least 2^-14 where not
+// 0 (a half denormal could be flushed to 0 where the output is converted to RG16F).
 #include "microrelief/pyramid_bound.glsl"
 
 uniform sampler2D heights;  // the W x H samples, R32F
@@ -27,60 +36,13 @@ layout(location = 0) out vec4 cone;
 
 const float kConeRatioCap = 65504.0;  // peers/ConeMap.h
 const float kLeastDifference = 1.17549435e-38;  // 2^-126
+const float kLeastNormalHalf = 6.10351562e-5;   // 2^-14
 // "No bound": above every ratio kept (an infinity, without dividing by a constant 0).
 const float kFar = 3.0e38;
-
-// The smallest half not below x (x >= 0, finite), as a float; +inf past 65504.
-float halfRoundedUp(float x) {
-    uint bits = floatBitsToUint(x);
-    if (bits == 0u) return 0.0;
-    if (x > 65504.0) return uintBitsToFloat(0x7f800000u);
-    uint e = bits >> 23u;
-    if (e >= 113u) {  // at least 2^-14: a normal half keeps 10 of the 23 mantissa bits
-        uint kept = bits & ~0x1fffu;
-        return uintBitsToFloat((bits & 0x1fffu) != 0u ? kept + 0x2000u : kept);
-    }
-    if (e == 0u) return 5.96046448e-8;  // a float denormal: below the least half, 2^-24
-    // Below 2^-14: multiples of 2^-24. x = m 2^(e - 150), so x / 2^-24 = m / 2^(126 - e).
-    uint m = (bits & 0x7fffffu) | 0x800000u, shift = 126u - e;
-    uint units = (m >> shift) + ((m & ((1u << shift) - 1u)) != 0u ? 1u : 0u);
-    return float(units) * 5.96046448e-8;
-}
-
-// The largest half not above x (x >= 0), as a float; 65504 past it.
-float halfRoundedDown(float x) {
-    if (!(x > 0.0)) return 0.0;
-    if (x >= 65504.0) return 65504.0;
-    uint bits = floatBitsToUint(x), e = bits >> 23u;
-    if (e >= 113u) return uintBitsToFloat(bits & ~0x1fffu);
-    if (e == 0u) return 0.0;
-    uint m = (bits & 0x7fffffu) | 0x800000u;
-    return float(m >> (126u - e)) * 5.96046448e-8;
-}
 
 // The gap in texels from coordinate x to the interval [i, i + 1].
 float gapTo(float x, int i) {
     return max(0.0, max(float(i) - x, x - float(i + 1)));
-}
-
-// Texel square (p, q)'s nine values on the half-texel grid, corners (2p + c, 2q + d) for
-// c, d in 0..2, index 3 d + c: each the mean of the up to four samples round it, rounded
-// up (the CPU's HalfGrid holds them exactly; these are never below).
-void halfGridCorners(ivec2 square, out float corner[9]) {
-    uint rows[9];
-    for (int b = 0; b < 3; ++b) {
-        uint c0 = mr_sampleBits(heights, mapSize, square + ivec2(-1, b - 1), false);
-        uint c1 = mr_sampleBits(heights, mapSize, square + ivec2(0, b - 1), false);
-        uint c2 = mr_sampleBits(heights, mapSize, square + ivec2(1, b - 1), false);
-        rows[3 * b] = mr_roundUpMeanBits(c0, c1);
-        rows[3 * b + 1] = c1;
-        rows[3 * b + 2] = mr_roundUpMeanBits(c1, c2);
-    }
-    for (int c = 0; c < 3; ++c) {
-        corner[c] = uintBitsToFloat(mr_roundUpMeanBits(rows[c], rows[3 + c]));
-        corner[3 + c] = uintBitsToFloat(rows[3 + c]);
-        corner[6 + c] = uintBitsToFloat(mr_roundUpMeanBits(rows[3 + c], rows[6 + c]));
-    }
 }
 
 // pieceRatio of ConeMap.cpp: a lower bound of r*_T over piece (a, b) of the half-texel
@@ -116,8 +78,10 @@ float pieceRatio(ivec2 texel, float plateau, int a, int b, vec4 h) {
 // squareRatio of ConeMap.cpp: the bound over texel square `square`, its four pieces.
 float squareRatio(ivec2 texel, float plateau, ivec2 square) {
     if (square == texel) return kFar;  // h <= B on T itself
+    uint nine[9];  // the square's values on the half-texel grid, index 3 d + c
+    mr_texelNineBits(heights, mapSize, square, false, nine);
     float corner[9];
-    halfGridCorners(square, corner);
+    for (int k = 0; k < 9; ++k) corner[k] = uintBitsToFloat(nine[k]);
     float r = kFar;
     for (int d = 0; d < 2; ++d) {
         for (int c = 0; c < 2; ++c) {
@@ -144,10 +108,11 @@ float nodeBound(ivec2 texel, float plateau, ivec3 node) {
 
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);  // the viewport is a band of the map's rows
-    float plateau = halfRoundedUp(mr_texelSquareBound(heights, mapSize, texel, false));
+    float plateau = mr_halfRoundedUp(mr_texelSquareBound(heights, mapSize, texel, false));
+    if (plateau > 0.0) plateau = max(plateau, kLeastNormalHalf);
     float r = kConeRatioCap;
-    // Depth-first, each node's children pushed farthest first: at most 3 more entries a
-    // level, 46 for the 15 levels of a 16384 map (the host refuses more).
+    // Depth-first, each node's children pushed farthest first: at most 3 L - 2 entries for
+    // L levels, 64 for 22 (a map of 2^21 a side; the host refuses more).
     ivec3 stack[64];
     stack[0] = ivec3(levelCount - 1, 0, 0);
     int top = 1;
@@ -178,5 +143,5 @@ void main() {
         for (int k = 0; k < 4; ++k)
             if (bounds[k] < r) stack[top++] = children[k];
     }
-    cone = vec4(plateau, halfRoundedDown(r * (1.0 - 1.0 / 65536.0)), 0.0, 0.0);
+    cone = vec4(plateau, mr_halfRoundedDown(r * (1.0 - 1.0 / 65536.0)), 0.0, 0.0);
 }

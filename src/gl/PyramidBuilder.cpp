@@ -283,8 +283,10 @@ void PyramidBuilder::buildConeMap(ReliefTextures& textures) {
     const glm::ivec2 map = textures.shape_.size;
     if (textures.shape_.tiles != glm::ivec2(1))
         throwRuntime("a cone map is built for an untiled map only");
-    if (std::max(map.x, map.y) > 16384)
-        throwRuntime("a cone map is built on the GPU for maps of at most 16384 a side");
+    // The walk's stack holds 22 levels (cone_map.frag), a map of 2^21 a side: past any
+    // GL's textures.
+    if (std::max(map.x, map.y) > (1 << 21))
+        throwRuntime("a cone map is built on the GPU for maps of at most 2^21 a side");
     if (!coneMap_) {
         const gl::Shader vertex = gl::compileShader(
             gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "pyramid" / "pass.vert", kVersion));

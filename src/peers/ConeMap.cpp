@@ -207,9 +207,12 @@ double walkPyramid(const MaxMipPyramid& pyramid, double r, const LowerBound& low
 }
 
 // Texel (i, j)'s plateau: the pyramid's finest bound (>= the bilinear surface over the
-// square, MaxPyramid.h: texelSquareBound) rounded up to the half grid the GPU holds.
+// square, MaxPyramid.h: texelSquareBound) rounded up to the half grid the GPU holds, and at
+// least 2^-14 where not 0: no half denormal, which the GPU build's conversion to RG16F
+// might flush to 0 (shaders/pyramid/cone_map.frag does the same).
 double plateauOf(const HeightMap& map, int i, int j) {
-    return halfRoundedUp(texelSquareBound(map, i, j, false));
+    const double plateau = halfRoundedUp(texelSquareBound(map, i, j, false));
+    return plateau > 0.0 ? std::max(plateau, 0x1p-14) : 0.0;
 }
 
 // The relaxed ratio of source sample s against destination sample d, as the published

@@ -46,6 +46,20 @@ std::vector<ConeCase> coneCases() {
     cases.push_back({"whiteTall", scaled(synth::whiteNoise(12, 14, 9), 1000.0f)});
     cases.push_back({"whiteLow", scaled(synth::whiteNoise(13, 12, 11), 0.001f)});
     cases.push_back({"noise", synth::valueNoise(16, 16, 4.0, 3, 5)});
+    // Heights down to 1e-22 (a shift past a word in the half rounding, undefined in GLSL,
+    // gave the GPU build apexes far above the surface there and wider cones) and 1e-9.
+    HeightMap bump(20, 20);
+    for (int j = 0; j < 20; ++j)
+        for (int i = 0; i < 20; ++i)
+            bump.at(i, j) = static_cast<float>(
+                std::exp(-((i - 9.5) * (i - 9.5) + (j - 9.5) * (j - 9.5)) / 4.0));
+    cases.push_back({"gaussianTiny", bump});
+    cases.push_back({"noiseTiny", scaled(synth::valueNoise(12, 12, 3.0, 3, 13), 1e-9f)});
+    // A terrain: relief 3 high on a base 3000 high, where a float's rounding of h is large
+    // beside h - B.
+    HeightMap terrain = scaled(synth::valueNoise(16, 16, 4.0, 3, 17), 3.0f);
+    for (float& sample : terrain.samples) sample += 3000.0f;
+    cases.push_back({"terrainOffset", terrain});
     HeightMap pit = synth::flat(12, 12, 1.0f);
     pit.at(5, 6) = 0.0f;
     pit.at(6, 6) = 0.2f;

@@ -1,9 +1,10 @@
 // cone_maps.cpp: the cone maps of the peers cone and rcsm (microrelief::peers, ConeMap.h,
 // unchanged) behind a C interface for the web page, compiled to WebAssembly by the build
 // (web/CMakeLists.txt) into web/generated/cone_maps_wasm.js. The page builds them from
-// the samples it uploads, as ReliefTextures::addConeMap builds them from the samples the GPU
-// holds: the same functions on the same floats, so the same RG16F texels to the bit
-// (tests/web: TheConeMapsAreTheCppOnesToTheBit).
+// the samples it uploads, as ReliefTextures::addConeMap builds them on the CPU from the
+// samples the GPU holds: the same functions on the same floats, so the same RG16F texels to
+// the bit (tests/web: TheConeMapsAreTheCppOnesToTheBit). (The programs build cone's map on
+// the GPU instead, gl/PyramidBuilder.h: no ratio above these, most the same.)
 #include <emscripten.h>
 
 #include <cmath>

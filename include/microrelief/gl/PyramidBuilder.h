@@ -57,9 +57,9 @@ public:
     void update(ReliefTextures& textures, const std::vector<TexelRect>& changed);
     // The conservative cone map of `textures` (ConeKind::Conservative), made or made again
     // from its samples: the apexes bit for bit the CPU build's, each ratio at most the
-    // CPU's (the same or one half below; the CPU build is the GL tests' reference). Reads
-    // maxmip's quadtree, made for the pass and dropped after where the textures had none.
-    // An untiled map of at most 16384 a side (the walk's stack). The GL state it changes is
+    // CPU's (mostly the same; the CPU build is the GL tests' reference). Reads maxmip's
+    // quadtree, made for the pass and dropped after where the textures had none. An
+    // untiled map (throws Error(Runtime) for a tiled one). The GL state it changes is
     // restored.
     void buildConeMap(ReliefTextures& textures);
 

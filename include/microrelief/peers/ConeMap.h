@@ -15,10 +15,10 @@
 //     K_T = { (x, z) : z >= B_T + dist(x, T) / r_T },
 // dist the Euclidean distance in texels from the map point x to the square T (0 on T).
 // B_T >= the bilinear surface's max over T (the pyramid's finest bound, MaxPyramid.h, then
-// rounded up to a half float), and r_T is such that no point of the surface lies inside
-// K_T's interior: for every map point x, h(x) <= B_T + dist(x, T) / r_T. (Cones of this
-// shape, with the apex widened to the whole square at its bound, are what make stepping
-// exact with nearest reads: a ray at any point of T at or above B_T that travels a
+// rounded up to a half float, at least 2^-14 where not 0: a normal half), and r_T is such that no
+// point of the surface lies inside K_T's interior: for every map point x, h(x) <= B_T + dist(x, T)
+// / r_T. (Cones of this shape, with the apex widened to the whole square at its bound, are what
+// make stepping exact with nearest reads: a ray at any point of T at or above B_T that travels a
 // horizontal distance s is at most s from T, so it stays above the surface while
 // z > B_T + s / r_T; shaders/microrelief/cone_step.glsl.) The exact r_T is
 //     r*_T = inf { dist(x, T) / (h(x) - B_T) : h(x) > B_T },
@@ -27,8 +27,9 @@
 // distance on the diagonal ones), then rounded down to a half float.
 //
 // The renderer builds this map on the GPU (gl/PyramidBuilder.h: buildConeMap), the same
-// walk in floats with every rounding towards narrower cones: the same apexes, each ratio
-// this build's or the half below it; this build is its reference in the tests.
+// walk in floats with every rounding towards narrower cones: the same apexes, each ratio at
+// most this build's (mostly the same; a few halves below where h - B is small beside h);
+// this build is its reference in the tests.
 //
 // The relaxed cone of sample (i, j) (buildRelaxedConeMap), stored as (h(i, j), r): the
 // published construction, a ray from the top of the relief box above the sample through
@@ -52,8 +53,9 @@
 
 namespace microrelief {
 
-// The widest cone kept: the largest finite half float (texels per map height unit). A
-// texel with no higher surface anywhere gets it.
+// The widest cone a build starts from: the largest finite half float (texels per map
+// height unit). A texel with no higher surface anywhere keeps it, stored as 65472 (the
+// half below, after the builds' margins).
 inline constexpr float kConeRatioCap = 65504.0f;
 // RG16F: plateau (or height) and ratio.
 inline constexpr int kConeMapBytesPerTexel = 4;

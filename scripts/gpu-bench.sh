@@ -13,8 +13,13 @@
 # at 1024 x 1024; `glsl330`, the exact methods there with --glsl330 (the GL 3.3 path);
 # `curved`, multilevel and maxmip on the three bases and both last levels.
 # MICRORELIEF_GPU_TEST_SECONDS and MICRORELIEF_GPU_BENCH_SECONDS bound each step (150 and
-# 300); MICRORELIEF_GPU_TEST_FILTER picks tests (gtest's filter), MICRORELIEF_GPU_BENCH_SIZE
-# the pictures' size; further arguments go to every benchmark run. The GL tests' data are
+# 300); MICRORELIEF_GPU_STEPS picks the steps (default "tests plane glsl330 curved"; on the
+# H200 the tests took 118 s, and the tests with the plane and curved runs five minutes
+# before every measurement warmed up for 0.3 s: 332 and 144 measurements; split the steps
+# over two calls of a machine that runs a command 10 minutes at most); MICRORELIEF_GPU_TEST_FILTER
+# picks tests (gtest's filter), MICRORELIEF_GPU_BENCH_SIZE the pictures' size; further
+# arguments go to every benchmark run. A step cut short keeps what it wrote (bench.csv is
+# written row by row). The GL tests' data are
 # found where the build was: link the checkout to it first. The GLSL 3.30 sweep case
 # Glsl330/...sphere_oblong75x33_biquadratic failed on an H200 before the seam's wrap became
 # integer arithmetic (docs/perf/2026-12-04-gpu-h200.md): whether that mended it is for the
@@ -23,6 +28,13 @@ set -uo pipefail
 bundle="$(cd "$1" && pwd)"
 out="$2"
 shift 2
+steps=" ${MICRORELIEF_GPU_STEPS:-tests plane glsl330 curved} "
+for name in $steps; do
+  case "$name" in tests|plane|glsl330|curved) ;;
+    *) echo "gpu-bench: MICRORELIEF_GPU_STEPS: no step '$name' (tests, plane, glsl330, curved)"; exit 2 ;;
+  esac
+done
+wanted() { [[ "$steps" == *" $1 "* ]]; }
 mkdir -p "$out"
 # The bundle's C++ runtime only where the machine's own is older than the build's, and then
 # before any system folder.
@@ -62,9 +74,12 @@ step() {  # step SECONDS NAME COMMAND...: runs it bounded, says how it ended
   echo "gpu-bench: $name: exit status $status after $((SECONDS - start)) s"
 }
 
-step "${MICRORELIEF_GPU_TEST_SECONDS:-150}" "gl tests" \
-  "$bundle/bin/microrelief-gl-tests" --backend=egl --gtest_filter="${MICRORELIEF_GPU_TEST_FILTER:-*}" > "$out/gl-tests.log" 2>&1
-tail -3 "$out/gl-tests.log"
+
+if wanted tests; then
+  step "${MICRORELIEF_GPU_TEST_SECONDS:-150}" "gl tests" \
+    "$bundle/bin/microrelief-gl-tests" --backend=egl --gtest_filter="${MICRORELIEF_GPU_TEST_FILTER:-*}" > "$out/gl-tests.log" 2>&1
+  tail -3 "$out/gl-tests.log"
+fi
 
 bench() {  # bench NAME ARGS...
   local name=$1
@@ -77,9 +92,15 @@ bench() {  # bench NAME ARGS...
     tar -C "$out" -cf "$out/bench-$name.tar" "bench-$name" && rm -rf "$out/bench-${name:?}"
 }
 size="${MICRORELIEF_GPU_BENCH_SIZE:-1024x1024}"
-bench plane --quick --size "$size" --bases plane --interpolations bilinear \
-  --maps "$maps" "${@}"
-bench glsl330 --quick --size "$size" --methods multilevel,maxmip,cone --bases plane \
-  --interpolations bilinear,biquadratic --maps "$maps" --glsl330 "${@}"
-bench curved --quick --size "$size" --methods multilevel,maxmip --bases plane,cylinder,sphere \
-  --interpolations bilinear,biquadratic --maps default "${@}"
+if wanted plane; then
+  bench plane --quick --size "$size" --bases plane --interpolations bilinear \
+    --maps "$maps" "${@}"
+fi
+if wanted glsl330; then
+  bench glsl330 --quick --size "$size" --methods multilevel,maxmip,cone --bases plane \
+    --interpolations bilinear,biquadratic --maps "$maps" --glsl330 "${@}"
+fi
+if wanted curved; then
+  bench curved --quick --size "$size" --methods multilevel,maxmip --bases plane,cylinder,sphere \
+    --interpolations bilinear,biquadratic --maps default "${@}"
+fi

@@ -56,9 +56,9 @@ struct MethodCost {
 // bounds built (timed here, before the method is first set, which would build them
 // untimed) and the bytes of the textures it reads. The multilevel method's windows,
 // maxmip's quadtree and cone's cone map: median of three GPU builds after a warm-up (a
-// build of a second or more: that one); a
-// cone map on the CPU (cone's beside its GPU build, rcsm's the only one): one build
-// (seconds), the samples read back and the map uploaded included.
+// build of a second or more: that one); a cone map on the CPU (cone's beside its GPU
+// build, rcsm's the only one): one build (seconds), the samples read back and the map
+// uploaded included.
 std::map<Method, MethodCost> measureCosts(const GL& gl, ReliefRenderer& renderer,
                                           const std::vector<Method>& methods, const BenchMap& m,
                                           int mapSize) {

@@ -91,8 +91,9 @@ PyramidRegions wholeLevels(const std::vector<glm::ivec2>& sizes) {
 
 PyramidBuilder::PyramidBuilder(const GL& gl, const std::filesystem::path& shaderDir)
     : gl_(gl), shaderDir_(shaderDir) {
-    const gl::Shader vertex = gl::compileShader(
-        gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "pyramid" / "pass.vert", kVersion));
+    passVertex_ = gl::compileShader(gl, GL_VERTEX_SHADER,
+                                    assembleShader(shaderDir / "pyramid" / "pass.vert", kVersion));
+    const gl::Shader& vertex = passVertex_;
     windowFinest_ =
         passProgram(gl, shaderDir, vertex, "window_finest.frag", "pyramid (finest windows)");
     windowBlocks_ =
@@ -288,9 +289,7 @@ void PyramidBuilder::buildConeMap(ReliefTextures& textures) {
     if (std::max(map.x, map.y) > (1 << 21))
         throwRuntime("a cone map is built on the GPU for maps of at most 2^21 a side");
     if (!coneMap_) {
-        const gl::Shader vertex = gl::compileShader(
-            gl_, GL_VERTEX_SHADER, assembleShader(shaderDir_ / "pyramid" / "pass.vert", kVersion));
-        coneMap_ = passProgram(gl_, shaderDir_, vertex, "cone_map.frag", "cone map");
+        coneMap_ = passProgram(gl_, shaderDir_, passVertex_, "cone_map.frag", "cone map");
         const gl::StateGuard saved(gl_);
         gl_.UseProgram(coneMap_.id());
         gl_.Uniform1i(gl::uniform(gl_, coneMap_, "heights"), 0);

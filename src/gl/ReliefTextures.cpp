@@ -215,27 +215,6 @@ void ReliefTextures::addConeMap(const GL& gl, ConeKind kind, PyramidBuilder* bui
                      texels.data());
 }
 
-ConeMap ReliefTextures::readConeMap(const GL& gl, ConeKind kind) const {
-    const int w = shape_.size.x, h = shape_.size.y;
-    std::vector<float> texels(2 * static_cast<std::size_t>(w) * h);
-    {
-        const gl::PassGuard saved(gl);
-        const gl::Framebuffer framebuffer = gl::Framebuffer::create(gl);
-        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
-        gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                                coneMap(kind), 0);
-        gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-        gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-        gl.ReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, texels.data());
-    }
-    ConeMap cones{w, h, {}, {}};
-    for (std::size_t k = 0; k < texels.size(); k += 2) {
-        cones.apex.push_back(texels[k]);
-        cones.ratio.push_back(texels[k + 1]);
-    }
-    return cones;
-}
-
 ReliefMapShape ReliefTextures::maxMipShape() const {
     const std::vector<glm::ivec2> sizes = maxMipLevelSizes(shape_.size.x, shape_.size.y);
     return {shape_.size, sizes.front(), static_cast<int>(sizes.size()), shape_.maxHeight};
@@ -320,8 +299,13 @@ std::vector<float> readTextureLevel(const GL& gl, GLuint texture, int level, int
     return readTextureRect(gl, texture, level, {0, 0, width, height});
 }
 
-std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, const TexelRect& rect) {
-    std::vector<float> values(static_cast<std::size_t>(rect.width()) * rect.height());
+namespace {
+
+// The texels inside `rect` of a float texture's level, `format` (GL_RED, GL_RG) read as
+// floats through a framebuffer, row 0 first. The GL state it changes is restored.
+std::vector<float> readFloats(const GL& gl, GLuint texture, int level, const TexelRect& rect,
+                              GLenum format, int channels) {
+    std::vector<float> values(static_cast<std::size_t>(rect.width()) * rect.height() * channels);
     const gl::PassGuard saved(gl);
     const gl::Framebuffer framebuffer = gl::Framebuffer::create(gl);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
@@ -329,8 +313,14 @@ std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, cons
                             level);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadPixels(rect.x0, rect.y0, rect.width(), rect.height(), GL_RED, GL_FLOAT, values.data());
+    gl.ReadPixels(rect.x0, rect.y0, rect.width(), rect.height(), format, GL_FLOAT, values.data());
     return values;
+}
+
+}  // namespace
+
+std::vector<float> readTextureRect(const GL& gl, GLuint texture, int level, const TexelRect& rect) {
+    return readFloats(gl, texture, level, rect, GL_RED, 1);
 }
 
 HeightMap ReliefTextures::readSamples(const GL& gl) const {
@@ -363,6 +353,17 @@ std::vector<float> ReliefTextures::readAlignedLevel(const GL& gl, int level) con
 std::vector<float> ReliefTextures::readWindowLevel(const GL& gl, int level) const {
     refuseIfPaged("reading windows back");
     return readScaled(gl, windows_.id(), level, levelSizes_[level]);
+}
+
+ConeMap ReliefTextures::readConeMap(const GL& gl, ConeKind kind) const {
+    const int w = shape_.size.x, h = shape_.size.y;
+    const std::vector<float> texels = readFloats(gl, coneMap(kind), 0, {0, 0, w, h}, GL_RG, 2);
+    ConeMap cones{w, h, {}, {}};
+    for (std::size_t k = 0; k < texels.size(); k += 2) {
+        cones.apex.push_back(texels[k]);
+        cones.ratio.push_back(texels[k + 1]);
+    }
+    return cones;
 }
 
 }  // namespace microrelief

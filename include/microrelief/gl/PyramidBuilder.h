@@ -77,7 +77,8 @@ private:
 
     const GL& gl_;
     gl::Program windowFinest_, windowBlocks_, windows_, alignedFinest_, aligned_;
-    gl::Program coneMap_;  // compiled on the first cone map
+    gl::Shader passVertex_;  // pass.vert, which every pass links
+    gl::Program coneMap_;    // linked on the first cone map
     std::filesystem::path shaderDir_;
     GLint finestMapSize_[2] = {-1, -1}, finestWrapU_[2] = {-1, -1}, finestScale_[2] = {-1, -1};
     GLint windowsLevel_ = -1, alignedOrigin_ = -1, blocksMapSize_ = -1, blocksFirstRow_ = -1;

@@ -6,7 +6,8 @@
 // refused (the previous one stays); data-opened, how many files dropped or chosen were
 // dealt with (shown or refused); data-frames, how many pictures were drawn; data-cone-maps,
 // the cone maps the current map has (cone's "conservative", rcsm's "relaxed"), each made
-// only when its method is chosen (cone_maps.js), the state "loading" meanwhile.
+// only when its method is chosen (cone's on the GPU, rcsm's in WebAssembly: cone_maps.js),
+// the state "loading" meanwhile.
 import {ConeMapBuilder, ConeMapCancelled} from './cone_maps.js';
 import {decodePng, heightsFromPng, PngError} from './png.js';
 import {ReliefRenderer} from './relief_gl.js';
@@ -22,12 +23,13 @@ const app = {
     view: null,
     initialView: null,
     renderer: null,
-    map: null,          // {name, bundled, width, height, samples}
-    albedoImage: null,  // the bundled map's colours, RGBA
-    coneMaps: new ConeMapBuilder(),
+    map: null,                       // {name, bundled, width, height, samples}
+    albedoImage: null,               // the bundled map's colours, RGBA
+    coneMaps: new ConeMapBuilder(),  // rcsm's relaxed cone maps, in WebAssembly
     coneBuilds: new Map(),  // kind -> {started, done}: cone maps under way for the current map
     coneSeconds: {},        // kind -> seconds its build took, for the current map
-    coneProgress: {},       // kind -> the fractions its build reported, for the current map
+    coneProgress:
+        {},  // kind -> the fractions its build reported (WebAssembly), for the current map
     frames: 0,
     opened: 0,
     dirty: false,
@@ -124,39 +126,56 @@ async function openFile(file) {
 // ---- the cone maps of cone and rcsm ----
 
 const kConeMethod = {conservative: 'cone', relaxed: 'rcsm'};
+const kConeBuiltWhere = {
+    conservative: 'on the GPU',
+    relaxed: 'in WebAssembly'
+};
 
-// The cone map `kind` of the current map, built in WebAssembly when missing (as
-// ReliefRenderer::addConeMapFor builds it when cone or rcsm is drawn); a redraw once it is
-// there. The panel shows how far it is (the worker's reports, each whole percent) and the
-// seconds so far meanwhile.
+// The cone map `kind` of the current map, made when missing (as ReliefRenderer::addConeMapFor
+// makes it when cone or rcsm is drawn): cone's conservative one drawn on the GPU
+// (PyramidBuilder.buildConeMap), rcsm's relaxed one by the C++ build in WebAssembly in a
+// worker; a redraw once it is there. The panel shows the seconds so far meanwhile, and for
+// the WebAssembly build how far it is (the worker's reports, each whole percent).
 function ensureConeMap(kind) {
     const textures = app.renderer.textures;
     if (!kind || textures.cones[kind] || app.coneBuilds.has(kind)) return;
-    const map = app.map, started = performance.now(), build = {started, done: 0};
+    const map = app.map, started = performance.now();
+    const build = {started, done: 0};
     app.coneBuilds.set(kind, build);
     app.coneProgress[kind] = [];
     showConeMaps();
-    const onProgress = (done) => {
-        if (app.renderer.textures !== textures) return;
-        build.done = done;
-        app.coneProgress[kind].push(done);
+    const current = () => app.renderer.textures === textures;  // no other map since
+    const done = () => {
+        app.coneBuilds.delete(kind);
+        app.coneSeconds[kind] = (performance.now() - started) / 1000;
+        showConeMaps();
+        requestRender();
+    };
+    const failed = (e) => {
+        if (e instanceof ConeMapCancelled || !current()) return;
+        app.coneBuilds.delete(kind);
+        fail(`${map.name}: ${kConeMethod[kind]}'s ${kind} cone map: ${e.message}`);
+    };
+    if (kind === 'conservative') {
+        app.renderer.addConservativeConeMap().then((added) => added && done(), failed);
+        return;
+    }
+    const onProgress = (fraction) => {
+        if (!current()) return;
+        build.done = fraction;
+        app.coneProgress[kind].push(fraction);
         showConeMaps();
     };
-    app.coneMaps.build(kind, map.samples, map.width, map.height, onProgress)
-        .then(
-            (texels) => {
-                if (app.renderer.textures !== textures) return;  // another map since
-                app.coneBuilds.delete(kind);
-                textures.setConeMap(kind, texels);
-                app.coneSeconds[kind] = (performance.now() - started) / 1000;
-                showConeMaps();
-                requestRender();
-            },
-            (e) => {
-                if (e instanceof ConeMapCancelled) return;
-                app.coneBuilds.delete(kind);
-                fail(`${map.name}: ${kConeMethod[kind]}'s ${kind} cone map: ${e.message}`);
-            });
+    app.coneMaps.build(map.samples, map.width, map.height, onProgress).then((texels) => {
+        if (!current()) return;
+        try {
+            textures.uploadConeMap(kind, texels);
+        } catch (e) {
+            failed(e);
+            return;
+        }
+        done();
+    }, failed);
 }
 
 // The cone maps' line in the panel and data-cone-maps: those built (with their time) and
@@ -167,12 +186,14 @@ function showConeMaps() {
     for (const kind of ['conservative', 'relaxed']) {
         const build = app.coneBuilds.get(kind);
         if (build) {
-            parts.push(`building ${kConeMethod[kind]}'s ${kind} cone map in WebAssembly: ${
-                Math.floor(build.done * 100)} %, ${
-                ((performance.now() - build.started) / 1000).toFixed(0)} s\u2026`);
+            const percent = kind === 'relaxed' ? `${Math.floor(build.done * 100)} %, ` : '';
+            parts.push(
+                `building ${kConeMethod[kind]}'s ${kind} cone map ${kConeBuiltWhere[kind]}: ${
+                    percent}${((performance.now() - build.started) / 1000).toFixed(0)} s\u2026`);
         } else if (textures?.cones[kind]) {
             built.push(kind);
-            parts.push(`${kConeMethod[kind]}'s ${kind} cone map built in ${app.coneSeconds[kind].toFixed(1)} s`);
+            parts.push(`${kConeMethod[kind]}'s ${kind} cone map built ${kConeBuiltWhere[kind]} in ${
+                app.coneSeconds[kind].toFixed(1)} s`);
         }
     }
     root.dataset.coneMaps = built.join(' ');

@@ -1,9 +1,10 @@
-// cone_maps.js: the cone maps of the peers cone and rcsm (peers/ConeMap.h) for the page,
-// made by the C++ build itself compiled to WebAssembly (web/wasm/cone_maps.cpp, built into
+// cone_maps.js: the relaxed cone maps of the peer rcsm (peers/ConeMap.h) for the page, made
+// by the C++ build itself compiled to WebAssembly (web/wasm/cone_maps.cpp, built into
 // generated/cone_maps_wasm.js beside this file) in a worker (cone_map_worker.js): the
 // relaxed map of a 256 x 256 map takes seconds (5.8 s natively for the bundled one), and the
 // page keeps answering meanwhile. Texels as coneMapHalfTexels lays them out: RG16F halves,
-// (apex, ratio) per texel, row 0 first, for ReliefTextures.setConeMap.
+// (apex, ratio) per texel, row 0 first, for ReliefTextures.uploadConeMap. (Cone's
+// conservative map is drawn on the GPU: relief_gl.js, PyramidBuilder.buildConeMap.)
 
 export class ConeMapBuilder {
     constructor() {
@@ -12,17 +13,17 @@ export class ConeMapBuilder {
         this.next = 1;
     }
 
-    // A promise of the texels of the `kind` ('conservative' or 'relaxed') cone map of
-    // `samples` (W x H floats, row 0 first; copied). Rejects with Error saying why (no
-    // WebAssembly cone maps in this build, a worker that cannot start, the C++'s message).
-    // `onProgress(done)`, where given, hears the fraction of the rows built as it grows.
-    build(kind, samples, width, height, onProgress = null) {
+    // A promise of the texels of the relaxed cone map of `samples` (W x H floats, row 0
+    // first; copied). Rejects with Error saying why (no WebAssembly cone maps in this build,
+    // a worker that cannot start, the C++'s message). `onProgress(done)`, where given, hears
+    // the fraction of the rows built as it grows.
+    build(samples, width, height, onProgress = null) {
         const worker = this.start();
         const id = this.next++;
         return new Promise((resolve, reject) => {
             this.pending.set(id, {resolve, reject, onProgress});
             const copy = Float32Array.from(samples);
-            worker.postMessage({id, relaxed: kind === 'relaxed', samples: copy, width, height}, [copy.buffer]);
+            worker.postMessage({id, samples: copy, width, height}, [copy.buffer]);
         });
     }
 

@@ -3,14 +3,15 @@
 //  * ReliefTextures: the samples R32F (nearest, clamped; repeating in s on a curved base),
 //    the windows R16F at GL's mip sizes of W x H, maxmip's aligned levels only where
 //    maxmip runs, and the cone map of cone or rcsm only where that method runs: RG16F,
-//    linear, clamped, its texels made by the C++ build in WebAssembly (cone_maps.js)
-//    (src/gl/ReliefTextures.cpp);
+//    linear, clamped: cone's drawn on the GPU (PyramidBuilder.buildConeMap), rcsm's made
+//    by the C++ build in WebAssembly (cone_maps.js) (src/gl/ReliefTextures.cpp);
 //  * PyramidBuilder: both pyramids built on the GPU by the passes of shaders/pyramid/ as
 //    they stand (GLSL ES 3.00), texel for texel what the C++ builder makes
 //    (src/gl/PyramidBuilder.cpp): the finest windows in bands of 64 rows through a scratch
 //    texture on maps of 256 rows or more, else from the 4 x 4 samples at once; coarser
 //    levels from the level below with the sampled range ending there; the top read back
-//    and S settled;
+//    and S settled; and cone's conservative cone map from maxmip's quadtree, in bands of
+//    32 rows (shaders/pyramid/cone_map.frag);
 //  * ReliefRenderer: relief_box.vert and relief.frag (the method, base, interpolation,
 //    shadows and albedo as the C++ renderer's #defines), the uniform block
 //    MicroreliefParameters filled through relief_layout.js (generated at build time from
@@ -27,6 +28,10 @@ import {kParametersSize, writeParameters} from './relief_layout.js';
 import * as scene from './scene.js';
 
 const kBandRows = 64, kBandsFrom = 4 * kBandRows;
+// Rows a draw of the cone map (PyramidBuilder::buildConeMap's kConeBandRows): each fragment
+// walks a quadtree, thousands of reads where the map is rough, and a long draw can lose
+// the context to the browser's GPU watchdog.
+const kConeBandRows = 32;
 const kUnits = {maxPyramid: 0, heightSamples: 1, windowPyramid: 2, albedoMap: 3, coneMap: 4};
 const kParametersBinding = 0;
 
@@ -115,12 +120,10 @@ export class ReliefTextures {
         return {size: this.size, pyramidSize: sizes[0], levelCount: sizes.length, maxHeight: this.maxHeight};
     }
 
-    // A cone map (ReliefTextures::addConeMap): `texels` the RG16F halves (apex, ratio) per
-    // texel, row 0 first, as coneMapHalfTexels lays them out.
-    setConeMap(kind, texels) {
-        const gl = this.gl, [width, height] = this.size;
-        if (texels.length !== 2 * width * height) throw new GlError(`the ${kind} cone map has ${texels.length / 2} texels, not ${width} x ${height}`);
-        if (this.cones[kind]) gl.deleteTexture(this.cones[kind]);
+    // An RG16F cone map texture of the map's size (ReliefTextures::allocateConeMap):
+    // linear, clamped; `texels` its halves (apex, ratio) per texel, row 0 first, as
+    // coneMapHalfTexels lays them out, or null to leave it for the GPU to draw.
+    static coneMap(gl, width, height, texels) {
         const texture = gl.createTexture();
         gl.activeTexture(gl.TEXTURE0);
         gl.bindTexture(gl.TEXTURE_2D, texture);
@@ -128,7 +131,22 @@ export class ReliefTextures {
         gl.texImage2D(gl.TEXTURE_2D, 0, gl.RG16F, width, height, 0, gl.RG, gl.HALF_FLOAT, texels);
         ReliefTextures.samplerState(gl, gl.LINEAR, 0, false);
         gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+        return texture;
+    }
+
+    // A cone map (ReliefTextures::addConeMap) drawn with: `texture` one of coneMap's.
+    setConeMap(kind, texture) {
+        if (this.cones[kind]) this.gl.deleteTexture(this.cones[kind]);
         this.cones[kind] = texture;
+    }
+
+    // A cone map made on the CPU: `texels` as coneMap takes them.
+    uploadConeMap(kind, texels) {
+        const [width, height] = this.size;
+        if (texels.length !== 2 * width * height)
+            throw new GlError(
+                `the ${kind} cone map has ${texels.length / 2} texels, not ${width} x ${height}`);
+        this.setConeMap(kind, ReliefTextures.coneMap(this.gl, width, height, texels));
     }
 
     // A cone map's texels as the GPU holds them, read back (RG16F renders with
@@ -187,6 +205,22 @@ export class PyramidBuilder {
             gl.useProgram(p);
             gl.uniform1i(u(p, name), 0);
         }
+        // Cone's map pass, linked when first drawn (most pages never draw cone).
+        builder.coneProgram = async () => {
+            if (!builder.cone) {
+                const program = await pass('cone_map.frag', 'cone map');
+                gl.useProgram(program);
+                gl.uniform1i(u(program, 'heights'), 0);
+                gl.uniform1i(u(program, 'aligned'), 1);
+                builder.cone = {
+                    program,
+                    mapSize: u(program, 'mapSize'),
+                    levelCount: u(program, 'levelCount'),
+                    scaleExponent: u(program, 'scaleExponent')
+                };
+            }
+            return builder.cone;
+        };
         builder.vertexArray = gl.createVertexArray();
         builder.framebuffer = gl.createFramebuffer();
         return builder;
@@ -196,6 +230,7 @@ export class PyramidBuilder {
         this.gl = gl;
         this.scratch = null;
         this.scratchWidth = 0;
+        this.cone = null;  // cone's map pass, once coneProgram has linked it
     }
 
     // Every texel of the pyramids of `textures`, then its top and S.
@@ -213,6 +248,71 @@ export class PyramidBuilder {
         this.begin();
         this.drawAligned(textures);
         this.end();
+    }
+
+    // Cone's conservative cone map of `textures` (PyramidBuilder::buildConeMap), drawn from
+    // maxmip's quadtree (made for it and dropped after where the page had none): the CPU
+    // build's walk per texel, every rounding towards narrower cones (cone_map.frag), so no
+    // ratio above the C++ build's. A promise of the RG16F texture, its draws queued, not
+    // done (`finished` says when).
+    async buildConeMap(textures) {
+        const gl = this.gl, [width, height] = textures.size;
+        // The walk's stack holds 22 levels: past any browser's textures, but said.
+        if (Math.max(width, height) > 2 ** 21)
+            throw new GlError('a cone map is built on the GPU for maps of at most 2^21 a side');
+        const cone = await this.coneProgram();
+        const hadQuadtree = Boolean(textures.aligned);
+        this.addAligned(textures);
+        const cones = ReliefTextures.coneMap(gl, width, height, null);
+        this.begin();
+        this.attach(cones, 0);
+        if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) {
+            this.end();
+            gl.deleteTexture(cones);
+            throw new GlError(
+                'this WebGL cannot render into the RG16F cone map (incomplete framebuffer)');
+        }
+        gl.useProgram(cone.program);
+        gl.uniform2i(cone.mapSize, width, height);
+        gl.uniform1i(cone.levelCount, textures.alignedSizes().length);
+        gl.uniform1i(cone.scaleExponent, textures.scaleExponent);
+        gl.activeTexture(gl.TEXTURE1);
+        gl.bindTexture(gl.TEXTURE_2D, textures.aligned);
+        gl.activeTexture(gl.TEXTURE0);
+        gl.bindTexture(gl.TEXTURE_2D, textures.samples);
+        for (let row = 0; row < height; row += kConeBandRows)
+            this.draw(0, row, width, Math.min(row + kConeBandRows, height));
+        this.attach(null, 0);
+        gl.activeTexture(gl.TEXTURE1);
+        gl.bindTexture(gl.TEXTURE_2D, null);
+        gl.activeTexture(gl.TEXTURE0);
+        this.end();
+        if (!hadQuadtree) {
+            gl.deleteTexture(textures.aligned);  // the GL keeps it till the draws are done
+            textures.aligned = null;
+        }
+        return cones;
+    }
+
+    // A promise that resolves once the GL has done what was queued so far (a fence, polled
+    // between tasks, so the page keeps answering while the GPU works); rejects with GlError
+    // if the context is lost meanwhile.
+    finished() {
+        const gl = this.gl, fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+        gl.flush();
+        return new Promise((resolve, reject) => {
+            const poll = () => {
+                if (gl.isContextLost()) {
+                    reject(new GlError('the WebGL context was lost'));
+                } else if (gl.getSyncParameter(fence, gl.SYNC_STATUS) === gl.SIGNALED) {
+                    gl.deleteSync(fence);
+                    resolve();
+                } else {
+                    setTimeout(poll, 5);
+                }
+            };
+            poll();
+        });
     }
 
     begin() {
@@ -467,6 +567,27 @@ export class ReliefRenderer {
         }
         if (this.textures) this.textures.dispose();
         this.textures = textures;
+    }
+
+    // Cone's conservative cone map of the current map, drawn on the GPU: a promise of true
+    // once it is done and in the map's textures, of false where another map came meanwhile.
+    async addConservativeConeMap() {
+        const textures = this.textures;
+        await this.builder.coneProgram();  // its sources fetched: another map may come meanwhile
+        if (this.textures !== textures) return false;
+        const texture = await this.builder.buildConeMap(textures);
+        try {
+            await this.builder.finished();
+        } catch (e) {
+            this.gl.deleteTexture(texture);
+            throw e;
+        }
+        if (this.textures !== textures) {
+            this.gl.deleteTexture(texture);
+            return false;
+        }
+        textures.setConeMap('conservative', texture);
+        return true;
     }
 
     ensureMaxMip() {

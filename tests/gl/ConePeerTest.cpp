@@ -146,34 +146,18 @@ TEST_F(ConePeers, GpuConeMapIsTheCpuMapOrNarrower) {
     const GL& gl = test::glContext().gl();
     test::glContext().makeCurrent();
     PyramidBuilder builder(gl, shaderDirectory());
-    std::size_t texels = 0, same = 0;
-    int mostHalvesBelow = 0;
+    test::GpuConeMapCheck check;
     for (const test::ConeCase& c : cases) {
         ReliefTextures textures(gl, c.map, c.name, false, builder);
         textures.addConeMap(gl, ReliefTextures::ConeKind::Conservative, &builder);
         EXPECT_FALSE(textures.hasMaxMipPyramid()) << c.name << ": the quadtree is not kept";
-        const ConeMap gpu = textures.readConeMap(gl, ReliefTextures::ConeKind::Conservative);
-        const ConeMap cpu = buildConservativeConeMap(c.map);
-        ASSERT_EQ(gpu.ratio.size(), cpu.ratio.size()) << c.name;
-        int wrong = 0;
-        for (std::size_t k = 0; k < cpu.ratio.size(); ++k) {
-            const bool apexSame = halfBits(gpu.apex[k]) == halfBits(cpu.apex[k]);
-            if ((!apexSame || !(gpu.ratio[k] <= cpu.ratio[k])) && ++wrong <= 3)
-                ADD_FAILURE() << c.name << ", texel " << k % c.map.width << ", " << k / c.map.width
-                              << ": GPU (" << gpu.apex[k] << ", " << gpu.ratio[k] << "), CPU ("
-                              << cpu.apex[k] << ", " << cpu.ratio[k] << ")";
-            same += gpu.ratio[k] == cpu.ratio[k];
-            // Halves order as their bits do.
-            mostHalvesBelow = std::max(mostHalvesBelow,
-                                       int(halfBits(cpu.ratio[k])) - int(halfBits(gpu.ratio[k])));
-        }
-        texels += cpu.ratio.size();
+        check.add(c.name, c.map.width,
+                  textures.readConeMap(gl, ReliefTextures::ConeKind::Conservative),
+                  buildConservativeConeMap(c.map));
     }
-    std::printf(
-        "    GPU cone map: %zu of %zu ratios the CPU's, none wider, at most %d halves "
-        "narrower\n",
-        same, texels, mostHalvesBelow);
-    EXPECT_GE(double(same), 0.9 * double(texels));
+    std::printf("    GPU cone map: %s\n", check.summary().c_str());
+    EXPECT_EQ(check.wrong, 0u) << testing::PrintToString(check.firstWrong);
+    EXPECT_GE(double(check.same), 0.9 * double(check.texels));
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "ConeCases.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <sstream>
 
 #include "microrelief/core/synth/SyntheticMaps.h"
 
@@ -74,6 +76,39 @@ std::vector<ConeCase> coneCases() {
         cases.push_back({"random" + std::to_string(k), m});
     }
     return cases;
+}
+
+void GpuConeMapCheck::add(const std::string& name, int width, const ConeMap& gpu,
+                          const ConeMap& cpu) {
+    if (gpu.ratio.size() != cpu.ratio.size() || gpu.apex.size() != cpu.apex.size()) {
+        ++wrong;
+        firstWrong.push_back(name + ": " + std::to_string(gpu.ratio.size()) + " texels, not " +
+                             std::to_string(cpu.ratio.size()));
+        return;
+    }
+    for (std::size_t k = 0; k < cpu.ratio.size(); ++k) {
+        const bool apexSame = halfBits(gpu.apex[k]) == halfBits(cpu.apex[k]);
+        if (!apexSame || !(gpu.ratio[k] <= cpu.ratio[k])) {
+            if (++wrong <= 3) {
+                std::ostringstream line;
+                line << name << ", texel " << k % width << ", " << k / width << ": GPU ("
+                     << gpu.apex[k] << ", " << gpu.ratio[k] << "), CPU (" << cpu.apex[k] << ", "
+                     << cpu.ratio[k] << ")";
+                firstWrong.push_back(line.str());
+            }
+        }
+        same += gpu.ratio[k] == cpu.ratio[k];
+        // Non-negative halves order as their bits do.
+        mostHalvesBelow =
+            std::max(mostHalvesBelow, int(halfBits(cpu.ratio[k])) - int(halfBits(gpu.ratio[k])));
+    }
+    texels += cpu.ratio.size();
+}
+
+std::string GpuConeMapCheck::summary() const {
+    return std::to_string(same) + " of " + std::to_string(texels) + " ratios the CPU's, " +
+           std::to_string(wrong) + " wider or off in the apex, at most " +
+           std::to_string(mostHalvesBelow) + " halves narrower";
 }
 
 }  // namespace microrelief::test

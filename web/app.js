@@ -23,13 +23,12 @@ const app = {
     view: null,
     initialView: null,
     renderer: null,
-    map: null,                       // {name, bundled, width, height, samples}
-    albedoImage: null,               // the bundled map's colours, RGBA
-    coneMaps: new ConeMapBuilder(),  // rcsm's relaxed cone maps, in WebAssembly
+    map: null,          // {name, bundled, width, height, samples}
+    albedoImage: null,  // the bundled map's colours, RGBA
+    coneMaps: new ConeMapBuilder(),  // rcsm's relaxed maps, in WebAssembly
     coneBuilds: new Map(),  // kind -> {started, done}: cone maps under way for the current map
     coneSeconds: {},        // kind -> seconds its build took, for the current map
-    coneProgress:
-        {},  // kind -> the fractions its build reported (WebAssembly), for the current map
+    coneProgress: {},       // kind -> the fractions its build reported (WebAssembly's), for the current map
     frames: 0,
     opened: 0,
     dirty: false,
@@ -126,10 +125,7 @@ async function openFile(file) {
 // ---- the cone maps of cone and rcsm ----
 
 const kConeMethod = {conservative: 'cone', relaxed: 'rcsm'};
-const kConeBuiltWhere = {
-    conservative: 'on the GPU',
-    relaxed: 'in WebAssembly'
-};
+const kConeBuiltWhere = {conservative: 'on the GPU', relaxed: 'in WebAssembly'};
 
 // The cone map `kind` of the current map, made when missing (as ReliefRenderer::addConeMapFor
 // makes it when cone or rcsm is drawn): cone's conservative one drawn on the GPU
@@ -152,7 +148,8 @@ function ensureConeMap(kind) {
         requestRender();
     };
     const failed = (e) => {
-        if (e instanceof ConeMapCancelled || !current()) return;
+        // A lost context has said so already (and how to go on).
+        if (e instanceof ConeMapCancelled || !current() || app.fatal || app.renderer.gl.isContextLost()) return;
         app.coneBuilds.delete(kind);
         fail(`${map.name}: ${kConeMethod[kind]}'s ${kind} cone map: ${e.message}`);
     };
@@ -455,6 +452,9 @@ async function frame() {
         ensureConeMap(cones);  // draws when it is there; "loading" till then
         return;
     }
+    // While the GPU draws cone's map, a picture would wait behind it, and the page with it
+    // (the read-back below): it is drawn once the map is done (ensureConeMap).
+    if (app.coneBuilds.has('conservative')) return;
     app.drawing = true;
     app.dirty = false;
     const view = app.view;

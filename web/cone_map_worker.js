@@ -15,8 +15,7 @@ self.onmessage = async ({data}) => {
         const m = module, count = width * height;
         input = m._malloc(4 * count);
         output = m._malloc(4 * count);
-        if (!input || !output)
-            throw new Error(`no memory for a ${width} x ${height} cone map in WebAssembly`);
+        if (!input || !output) throw new Error(`no memory for a ${width} x ${height} cone map in WebAssembly`);
         new Float32Array(m.HEAPF32.buffer, input, count).set(samples);
         if (!m._mr_build_relaxed_cone_map(input, width, height, output, id))
             throw new Error(m.UTF8ToString(m._mr_last_error()));

@@ -134,7 +134,8 @@ export class ReliefTextures {
         return texture;
     }
 
-    // A cone map (ReliefTextures::addConeMap) drawn with: `texture` one of coneMap's.
+    // The cone map of `kind` the relief draws with (ReliefTextures::addConeMap): `texture`,
+    // one of coneMap's; the one before is deleted.
     setConeMap(kind, texture) {
         if (this.cones[kind]) this.gl.deleteTexture(this.cones[kind]);
         this.cones[kind] = texture;
@@ -143,9 +144,7 @@ export class ReliefTextures {
     // A cone map made on the CPU: `texels` as coneMap takes them.
     uploadConeMap(kind, texels) {
         const [width, height] = this.size;
-        if (texels.length !== 2 * width * height)
-            throw new GlError(
-                `the ${kind} cone map has ${texels.length / 2} texels, not ${width} x ${height}`);
+        if (texels.length !== 2 * width * height) throw new GlError(`the ${kind} cone map has ${texels.length / 2} texels, not ${width} x ${height}`);
         this.setConeMap(kind, ReliefTextures.coneMap(this.gl, width, height, texels));
     }
 
@@ -169,9 +168,12 @@ export class ReliefTextures {
         return texels;
     }
 
+    // Deletes the textures; the object holds none after.
     dispose() {
         for (const t of [this.samples, this.windows, this.aligned, this.cones.conservative, this.cones.relaxed])
             if (t) this.gl.deleteTexture(t);
+        this.samples = this.windows = this.aligned = null;
+        this.cones = {conservative: null, relaxed: null};
     }
 }
 
@@ -205,21 +207,20 @@ export class PyramidBuilder {
             gl.useProgram(p);
             gl.uniform1i(u(p, name), 0);
         }
-        // Cone's map pass, linked when first drawn (most pages never draw cone).
-        builder.coneProgram = async () => {
-            if (!builder.cone) {
-                const program = await pass('cone_map.frag', 'cone map');
+        // Cone's map pass, linked when first asked for (most pages never draw cone): one
+        // promise, however many ask while its source is fetched; asked again after a failure.
+        builder.coneProgram = () => {
+            builder.conePass ??= pass('cone_map.frag', 'cone map').then((program) => {
                 gl.useProgram(program);
                 gl.uniform1i(u(program, 'heights'), 0);
                 gl.uniform1i(u(program, 'aligned'), 1);
-                builder.cone = {
-                    program,
-                    mapSize: u(program, 'mapSize'),
-                    levelCount: u(program, 'levelCount'),
-                    scaleExponent: u(program, 'scaleExponent')
-                };
-            }
-            return builder.cone;
+                return {program, mapSize: u(program, 'mapSize'), levelCount: u(program, 'levelCount'),
+                        scaleExponent: u(program, 'scaleExponent')};
+            }, (e) => {
+                builder.conePass = null;
+                throw e;
+            });
+            return builder.conePass;
         };
         builder.vertexArray = gl.createVertexArray();
         builder.framebuffer = gl.createFramebuffer();
@@ -230,7 +231,7 @@ export class PyramidBuilder {
         this.gl = gl;
         this.scratch = null;
         this.scratchWidth = 0;
-        this.cone = null;  // cone's map pass, once coneProgram has linked it
+        this.conePass = null;  // a promise of cone's map pass (coneProgram)
     }
 
     // Every texel of the pyramids of `textures`, then its top and S.
@@ -253,14 +254,12 @@ export class PyramidBuilder {
     // Cone's conservative cone map of `textures` (PyramidBuilder::buildConeMap), drawn from
     // maxmip's quadtree (made for it and dropped after where the page had none): the CPU
     // build's walk per texel, every rounding towards narrower cones (cone_map.frag), so no
-    // ratio above the C++ build's. A promise of the RG16F texture, its draws queued, not
-    // done (`finished` says when).
-    async buildConeMap(textures) {
+    // ratio above the C++ build's. `cone`: the pass, as coneProgram gives it. Returns the
+    // RG16F texture, its draws queued, not done (`finished` says when).
+    buildConeMap(textures, cone) {
         const gl = this.gl, [width, height] = textures.size;
         // The walk's stack holds 22 levels: past any browser's textures, but said.
-        if (Math.max(width, height) > 2 ** 21)
-            throw new GlError('a cone map is built on the GPU for maps of at most 2^21 a side');
-        const cone = await this.coneProgram();
+        if (Math.max(width, height) > 2 ** 21) throw new GlError('a cone map is built on the GPU for maps of at most 2^21 a side');
         const hadQuadtree = Boolean(textures.aligned);
         this.addAligned(textures);
         const cones = ReliefTextures.coneMap(gl, width, height, null);
@@ -269,8 +268,7 @@ export class PyramidBuilder {
         if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) {
             this.end();
             gl.deleteTexture(cones);
-            throw new GlError(
-                'this WebGL cannot render into the RG16F cone map (incomplete framebuffer)');
+            throw new GlError('this WebGL cannot render into the RG16F cone map (incomplete framebuffer)');
         }
         gl.useProgram(cone.program);
         gl.uniform2i(cone.mapSize, width, height);
@@ -280,8 +278,7 @@ export class PyramidBuilder {
         gl.bindTexture(gl.TEXTURE_2D, textures.aligned);
         gl.activeTexture(gl.TEXTURE0);
         gl.bindTexture(gl.TEXTURE_2D, textures.samples);
-        for (let row = 0; row < height; row += kConeBandRows)
-            this.draw(0, row, width, Math.min(row + kConeBandRows, height));
+        for (let row = 0; row < height; row += kConeBandRows) this.draw(0, row, width, Math.min(row + kConeBandRows, height));
         this.attach(null, 0);
         gl.activeTexture(gl.TEXTURE1);
         gl.bindTexture(gl.TEXTURE_2D, null);
@@ -296,15 +293,17 @@ export class PyramidBuilder {
 
     // A promise that resolves once the GL has done what was queued so far (a fence, polled
     // between tasks, so the page keeps answering while the GPU works); rejects with GlError
-    // if the context is lost meanwhile.
+    // where the context was lost meanwhile (the fence's status is then null, also after
+    // the context is restored).
     finished() {
         const gl = this.gl, fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
         gl.flush();
         return new Promise((resolve, reject) => {
             const poll = () => {
-                if (gl.isContextLost()) {
+                const status = gl.isContextLost() ? null : gl.getSyncParameter(fence, gl.SYNC_STATUS);
+                if (status === null) {
                     reject(new GlError('the WebGL context was lost'));
-                } else if (gl.getSyncParameter(fence, gl.SYNC_STATUS) === gl.SIGNALED) {
+                } else if (status === gl.SIGNALED) {
                     gl.deleteSync(fence);
                     resolve();
                 } else {
@@ -570,12 +569,14 @@ export class ReliefRenderer {
     }
 
     // Cone's conservative cone map of the current map, drawn on the GPU: a promise of true
-    // once it is done and in the map's textures, of false where another map came meanwhile.
+    // once it is done and in the map's textures (at once where it is there), of false where
+    // another map came meanwhile. One build at a time for a map: the caller's to keep.
     async addConservativeConeMap() {
         const textures = this.textures;
-        await this.builder.coneProgram();  // its sources fetched: another map may come meanwhile
+        if (textures.cones.conservative) return true;
+        const cone = await this.builder.coneProgram();  // fetched first: another map may come meanwhile
         if (this.textures !== textures) return false;
-        const texture = await this.builder.buildConeMap(textures);
+        const texture = this.builder.buildConeMap(textures, cone);
         try {
             await this.builder.finished();
         } catch (e) {

@@ -572,9 +572,11 @@ TEST_F(WebPage, ThePageConeMapsAreTheCppOnes) {
 
 // The page's GPU build of cone's map on the adversarial maps the programs' GPU build is
 // held to (test::coneCases: spikes, walls, heights from 1e-22 to 1e3, a base 3000 high)
-// and a rough 96 x 80 noise, given to the page's own ReliefTextures and PyramidBuilder as
-// floats (a PNG would quantise them): SwiftShader's float arithmetic, not Mesa's, under
-// the same promise (test::GpuConeMapCheck).
+// and a rough 96 x 80 noise, given to the page's renderer as floats (a PNG would quantise
+// them; ReliefRenderer.setMap, then addConservativeConeMap as the page calls it):
+// SwiftShader's float arithmetic, not Mesa's, under the same promise
+// (test::GpuConeMapCheck). Every other map with maxmip's quadtree made beforehand: the
+// build keeps a quadtree the map had and drops one it made.
 TEST_F(WebPage, GpuConeMapIsTheCppMapOrNarrowerInTheBrowser) {
     std::vector<test::ConeCase> cases = test::coneCases();
     cases.push_back({"noise 96x80", synth::valueNoise(96, 80, 3.0, 3, 28)});
@@ -590,29 +592,33 @@ TEST_F(WebPage, GpuConeMapIsTheCppMapOrNarrowerInTheBrowser) {
         maps += "]]";
     }
     maps += "]";
-    // Each map's textures made, pyramids and cone map drawn, read back and dropped.
+    // Each map made the renderer's, its cone map drawn and read back, with whether the
+    // quadtree is there after: "kept" or "dropped", a colon, the texels.
     const std::string build =
-        "(async () => { const r = microrelief.renderer, Textures = r.textures.constructor;"
-        " const out = [];"
+        "(async () => { const r = microrelief.renderer, out = []; let k = 0;"
         " for (const [width, height, samples] of " +
         maps +
         ") {"
-        "  const t = new Textures(r.gl, new Float32Array(samples), width, height, false);"
-        "  r.builder.build(t);"
-        "  t.setConeMap('conservative', await r.builder.buildConeMap(t));"
-        "  await r.builder.finished();"
-        "  out.push(Array.from(t.readConeMap('conservative')).join(' '));"
-        "  t.dispose(); }"
+        "  r.setMap(new Float32Array(samples), width, height, false, k++ % 2 === 1);"
+        "  if (!await r.addConservativeConeMap()) throw new Error('no cone map');"
+        "  out.push((r.textures.aligned ? 'kept:' : 'dropped:') +"
+        "   Array.from(r.textures.readConeMap('conservative')).join(' ')); }"
         " return out.join(';'); })()";
     const PageRun page = runPage("[" + open("", 32, 24) +
                                  ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(build) + "}]");
     ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
     std::istringstream results(page.at(2, "value"));
     test::GpuConeMapCheck check;
-    std::string texels;
-    for (const test::ConeCase& c : cases) {
-        ASSERT_TRUE(std::getline(results, texels, ';')) << c.name << ": no result" << page.err;
-        check.add(c.name, c.map.width, pageConeMap(texels), buildConservativeConeMap(c.map));
+    std::string result;
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        const test::ConeCase& c = cases[k];
+        ASSERT_TRUE(std::getline(results, result, ';')) << c.name << ": no result" << page.err;
+        const std::size_t colon = result.find(':');
+        ASSERT_NE(colon, std::string::npos) << c.name << ": " << result.substr(0, 80);
+        EXPECT_EQ(result.substr(0, colon), k % 2 == 1 ? "kept" : "dropped")
+            << c.name << ": maxmip's quadtree after the build";
+        check.add(c.name, c.map.width, pageConeMap(result.substr(colon + 1)),
+                  buildConservativeConeMap(c.map));
     }
     std::printf("    the page's GPU cone maps: %s\n", check.summary().c_str());
     EXPECT_EQ(check.wrong, 0u) << testing::PrintToString(check.firstWrong);

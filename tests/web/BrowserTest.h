@@ -146,6 +146,13 @@ protected:
         return {};
     }
 
+    // The page (web/, a 32 x 24 canvas) opened and, once ready (step 1's state), the value
+    // of `script` (step 2's): for tests that reach into the page's objects.
+    PageRun evalOnReadyPage(const std::string& script) {
+        return runPage("[" + open("", 32, 24) +
+                       ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(script) + "}]");
+    }
+
     // Runs `steps` (a JSON array of drive_chromium.py's steps) in one browser, the pages
     // served from `root` (a folder holding web/, shaders/ and assets/ and web/serve.py).
     PageRun runPage(const std::string& steps,

@@ -416,8 +416,7 @@ TEST_F(WebPage, EveryVariantCompilesInTheBrowser) {
         "albedoMap}); }"
         "  catch (e) { failed.push(e.message); } }"
         " return count + ' ' + failed.join(' // '); })()";
-    const PageRun page = runPage("[" + open("", 32, 24) +
-                                 ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(loop) + "}]");
+    const PageRun page = evalOnReadyPage(loop);
     ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
     // 9 methods x 2 levels x 2 albedos on the plane with shadows off, 2 shadow modes for 3
     // of them (multilevel, maxmip, cone); on each curved base 4 methods, shadows for 2.
@@ -604,8 +603,7 @@ TEST_F(WebPage, GpuConeMapIsTheCppMapOrNarrowerInTheBrowser) {
         "  out.push((r.textures.aligned ? 'kept:' : 'dropped:') +"
         "   Array.from(r.textures.readConeMap('conservative')).join(' ')); }"
         " return out.join(';'); })()";
-    const PageRun page = runPage("[" + open("", 32, 24) +
-                                 ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(build) + "}]");
+    const PageRun page = evalOnReadyPage(build);
     ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
     std::istringstream results(page.at(2, "value"));
     test::GpuConeMapCheck check;

@@ -16,19 +16,26 @@ cmake --build --preset sanitize
 # tracer; that tracer itself now and then dies of SIGSEGV ("Tracer caught signal 11 ...
 # LeakSanitizer has encountered a fatal error"), a known fault of the runtime, not a leak
 # (google/sanitizers#1353; seen once in seven CI runs here, 2026-12-04, in a child process of
-# batch.cli). Only then do the failed tests run once more (all of them: a test that failed
-# beside it for another reason gets its second run too, and fails the run if it fails
-# again); a leak report, an ASan or UBSan report fails the run at once.
+# batch.cli; twice in a row in batch.recipes, a turntable's child, in a bare Debian 12 root
+# the same day, the first run and its rerun). Only then do the failed tests run again, up
+# to three times while that is what fails them (all of them: a test that failed beside it
+# for another reason gets its reruns too, and fails the run if it keeps failing); a leak
+# report, an ASan or UBSan report fails the run at once.
+tracer='LeakSanitizer has encountered a fatal error'
+reported='ERROR: (AddressSanitizer|LeakSanitizer): |runtime error: '
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
-if ctest --preset sanitize --timeout 1800 "$@" 2>&1 | tee "$log"; then
-  exit 0
-fi
-tracer='LeakSanitizer has encountered a fatal error'
-if grep -q "$tracer" "$log" && ! grep -qE 'ERROR: (AddressSanitizer|LeakSanitizer): |runtime error: ' "$log"; then
+status=0
+ctest --preset sanitize --timeout 1800 "$@" 2>&1 | tee "$log" || status=$?
+for rerun in 1 2 3; do
+  [ "$status" -eq 0 ] && exit 0
+  if ! grep -q "$tracer" "$log" || grep -qE "$reported" "$log"; then
+    exit 1
+  fi
   echo "sanitize.sh: LeakSanitizer's own tracer crashed ('$tracer'), not a leak;" \
-    "the failed tests run once more" >&2
-  ctest --preset sanitize --timeout 1800 --rerun-failed --output-on-failure
-else
-  exit 1
-fi
+    "the failed tests run again ($rerun of 3)" >&2
+  status=0
+  ctest --preset sanitize --timeout 1800 --rerun-failed --output-on-failure 2>&1 | tee "$log" ||
+    status=$?
+done
+exit "$status"

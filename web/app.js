@@ -138,7 +138,6 @@ function ensureConeMap(kind) {
     const map = app.map, started = performance.now();
     const build = {started, done: 0};
     app.coneBuilds.set(kind, build);
-    app.coneProgress[kind] = [];
     showConeMaps();
     const current = () => app.renderer.textures === textures;  // no other map since
     const done = () => {
@@ -157,6 +156,7 @@ function ensureConeMap(kind) {
         app.renderer.addConservativeConeMap().then((added) => added && done(), failed);
         return;
     }
+    app.coneProgress[kind] = [];
     const onProgress = (fraction) => {
         if (!current()) return;
         build.done = fraction;

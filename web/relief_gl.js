@@ -180,19 +180,14 @@ export class ReliefTextures {
 // The pyramids built on the GPU (src/gl/PyramidBuilder.cpp), from shaders/pyramid/.
 export class PyramidBuilder {
     static async create(gl, files, shaderRoot) {
-        const builder = new PyramidBuilder(gl);
-        const version = '300 es';
-        const vertexSource = await files.assemble(shaderRoot + 'pyramid/pass.vert', version);
-        const vertex = compile(gl, gl.VERTEX_SHADER, vertexSource, 'pyramid (pass)');
-        const pass = async (file, what) => {
-            const source = await files.assemble(shaderRoot + 'pyramid/' + file, version, [], [shaderRoot]);
-            return link(gl, vertex, compile(gl, gl.FRAGMENT_SHADER, source, what), what);
-        };
-        builder.windowFinest = await pass('window_finest.frag', 'pyramid (finest windows)');
-        builder.windowBlocks = await pass('window_blocks.frag', 'pyramid (windows of bounds)');
-        builder.windowLevel = await pass('window_level.frag', 'pyramid (windows)');
-        builder.alignedFinest = await pass('finest_level.frag', 'pyramid (finest aligned)');
-        builder.alignedLevel = await pass('aligned_level.frag', 'pyramid (aligned)');
+        const builder = new PyramidBuilder(gl, files, shaderRoot);
+        builder.vertex = compile(gl, gl.VERTEX_SHADER, await files.assemble(shaderRoot + 'pyramid/pass.vert', '300 es'),
+                                 'pyramid (pass)');
+        builder.windowFinest = await builder.pass('window_finest.frag', 'pyramid (finest windows)');
+        builder.windowBlocks = await builder.pass('window_blocks.frag', 'pyramid (windows of bounds)');
+        builder.windowLevel = await builder.pass('window_level.frag', 'pyramid (windows)');
+        builder.alignedFinest = await builder.pass('finest_level.frag', 'pyramid (finest aligned)');
+        builder.alignedLevel = await builder.pass('aligned_level.frag', 'pyramid (aligned)');
         const u = (program, name) => gl.getUniformLocation(program, name);
         builder.finest = [builder.windowFinest, builder.alignedFinest].map((p) => ({
             program: p, mapSize: u(p, 'mapSize'), wrapU: u(p, 'wrapU'), scaleExponent: u(p, 'scaleExponent'),
@@ -207,31 +202,45 @@ export class PyramidBuilder {
             gl.useProgram(p);
             gl.uniform1i(u(p, name), 0);
         }
-        // Cone's map pass, linked when first asked for (most pages never draw cone): one
-        // promise, however many ask while its source is fetched; asked again after a failure.
-        builder.coneProgram = () => {
-            builder.conePass ??= pass('cone_map.frag', 'cone map').then((program) => {
-                gl.useProgram(program);
-                gl.uniform1i(u(program, 'heights'), 0);
-                gl.uniform1i(u(program, 'aligned'), 1);
-                return {program, mapSize: u(program, 'mapSize'), levelCount: u(program, 'levelCount'),
-                        scaleExponent: u(program, 'scaleExponent')};
-            }, (e) => {
-                builder.conePass = null;
-                throw e;
-            });
-            return builder.conePass;
-        };
         builder.vertexArray = gl.createVertexArray();
         builder.framebuffer = gl.createFramebuffer();
         return builder;
     }
 
-    constructor(gl) {
+    constructor(gl, files, shaderRoot) {
         this.gl = gl;
+        this.files = files;
+        this.shaderRoot = shaderRoot;
+        this.vertex = null;  // the passes' vertex shader, compiled once
         this.scratch = null;
         this.scratchWidth = 0;
         this.conePass = null;  // a promise of cone's map pass (coneProgram)
+    }
+
+    // The pass shaders/pyramid/`file` linked with the shared vertex shader (`what` names it
+    // in errors).
+    async pass(file, what) {
+        const root = this.shaderRoot;
+        const source = await this.files.assemble(root + 'pyramid/' + file, '300 es', [], [root]);
+        return link(this.gl, this.vertex, compile(this.gl, this.gl.FRAGMENT_SHADER, source, what), what);
+    }
+
+    // Cone's map pass, linked when first asked for (most pages never draw cone): one
+    // promise, however many ask while its source is fetched; asked again after a failure.
+    coneProgram() {
+        const gl = this.gl;
+        const u = (program, name) => gl.getUniformLocation(program, name);
+        this.conePass ??= this.pass('cone_map.frag', 'cone map').then((program) => {
+            gl.useProgram(program);
+            gl.uniform1i(u(program, 'heights'), 0);
+            gl.uniform1i(u(program, 'aligned'), 1);
+            return {program, mapSize: u(program, 'mapSize'), levelCount: u(program, 'levelCount'),
+                    scaleExponent: u(program, 'scaleExponent')};
+        }, (e) => {
+            this.conePass = null;
+            throw e;
+        });
+        return this.conePass;
     }
 
     // Every texel of the pyramids of `textures`, then its top and S.

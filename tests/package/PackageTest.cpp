@@ -147,6 +147,32 @@ TEST_F(Package, CoreAloneThroughPkgConfig) {
                    test::runCommand("ldd " + quote(program), *scratch_ / ""));
 }
 
+// Every component's pkg-config file names the installed data and shader folders (datadir,
+// shaderdir: the CMake package's microrelief_DATA_DIR and microrelief_SHADER_DIR), through
+// its relocatable prefix.
+TEST_F(Package, PkgConfigNamesTheDataAndShaderFolders) {
+    for (const char* component : {"microrelief-core", "microrelief-peers", "microrelief-io",
+                                  "microrelief-gl", "microrelief-headless", "microrelief-glfw"}) {
+        auto variable = [&](const char* name) {
+            const test::RunResult run = test::runCommand(
+                "PKG_CONFIG_PATH=" + quote(prefix() / "lib" / "pkgconfig") + " " +
+                    MICRORELIEF_PKG_CONFIG + " --variable=" + name + " " + component,
+                *scratch_ / "");
+            EXPECT_EQ(run.status, 0) << component << ": " << run.err;
+            std::string value = run.out;
+            while (!value.empty() && (value.back() == '\n' || value.back() == ' '))
+                value.pop_back();
+            return std::filesystem::path(value);
+        };
+        const std::filesystem::path data = variable("datadir"), shaders = variable("shaderdir");
+        EXPECT_TRUE(std::filesystem::is_regular_file(data / "assets" / "cobbles.png"))
+            << component << ": datadir " << data;
+        EXPECT_TRUE(
+            std::filesystem::is_regular_file(shaders / "microrelief" / "multilevel_trace.glsl"))
+            << component << ": shaderdir " << shaders;
+    }
+}
+
 // The library configured with its core alone (MICRORELIEF_LIBRARIES=core, no programs):
 // CMake is told that OpenImageIO, OpenGL, GLFW, zlib and CLI11 cannot be found, so any
 // lookup of them that is REQUIRED stops the configure; glad2 must not be looked up either.

@@ -1,7 +1,6 @@
 // Draws microrelief with the multilevel method: the base surface's bounding box is the
 // proxy geometry, and each of its fragments traces its own ray (shaders/relief.frag).
-// Owns the GL objects it needs; draws into whatever framebuffer is bound, which must
-// have the three colour outputs of relief.frag (see OffscreenTarget).
+// Owns the GL objects it needs; draws into whatever framebuffer is bound (see draw).
 #pragma once
 
 #include <algorithm>
@@ -166,8 +165,12 @@ public:
     bool glsl330() const { return glsl330_; }
 
     // Draws the picture `camera` describes, or the tile of it given, into the bound
-    // framebuffer, which must have relief.frag's three colour outputs (OffscreenTarget);
-    // the colour is linear, for an sRGB target with GL_FRAMEBUFFER_SRGB on. The same rays
+    // framebuffer: relief.frag's colour to draw buffer 0 and, where the framebuffer's
+    // draw buffers take them, the hit position, statistics and shadow to 1 to 3
+    // (OffscreenTarget has all four; a framebuffer with the colour alone drops the rest).
+    // The colour is linear, for an sRGB target with GL_FRAMEBUFFER_SRGB on (gl::SrgbWrites,
+    // gl/StateGuard.h): with it off the linear values are stored as they are and the
+    // picture comes out dark. The same rays
     // whole or in tiles, so a picture drawn in tiles is the one drawn whole, pixel for
     // pixel. GL state: the draw sets what it needs (program, vertex array, the uniform
     // buffer at binding 0, textures on units 0 to 2, face culling and winding, the depth test

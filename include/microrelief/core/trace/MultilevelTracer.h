@@ -32,8 +32,8 @@ struct TraversalStats {
 struct ReliefHit {
     HitFace face = HitFace::Top;
     double t = 0.0;       // ray parameter
-    glm::dvec3 position;  // world
-    glm::dvec3 normal;    // world, unit, outward
+    glm::dvec3 position;  // object space (ModelTransform::pointToWorld for the world's)
+    glm::dvec3 normal;    // object space, unit, outward (ModelTransform::normalToWorld)
     glm::dvec2 uv;        // map uv
     double height = 0.0;  // h of the hit's map point (the map's value there, on the surface)
 };
@@ -57,7 +57,10 @@ public:
                      Interpolation interpolation = Interpolation::Bilinear,
                      glm::ivec2 tiles = {1, 1});
 
-    // The first hit of `ray` (world space) with the relief solid, or nothing.
+    // The first hit of `ray` with the relief solid, or nothing. The ray is in the relief's
+    // object space, where the base shape lies, before any model transform
+    // (ModelTransform::toObject of a world ray; t is kept, so the world hit is the world
+    // ray at the same t).
     std::optional<ReliefHit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const {
         return intersect(ray, RayQuery{}, stats);
     }

@@ -19,6 +19,7 @@
 #include "Report.h"
 #include "SceneOptions.h"
 #include "Terrain.h"
+#include "microrelief/Version.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
@@ -332,13 +333,15 @@ int main(int argc, char** argv) {
                    "Comma-separated sides of the procedural relief (default 64,256,1024,4096,8192; "
                    "256,4096 with --quick; 0 for none)");
     app.add_option("--backend", backend, "auto, egl or osmesa")->capture_default_str();
+    app.set_version_flag("--version",
+                         std::string("microrelief-bench ") + MICRORELIEF_VERSION_STRING);
     app.add_option("--out-dir", outDir, "Folder for bench.csv, bench.md and the plots")
         ->capture_default_str();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);
-        std::cerr << "microrelief-bench: error: " << e.what() << '\n';
+        std::cerr << "microrelief-bench: error: " << parseErrorMessage(e) << '\n';
         return 2;
     }
     setLogSink([](LogLevel level, const std::string& message) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "CommandLine.h"
 #include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Text.h"
@@ -35,9 +36,18 @@ int main(int argc, char** argv) {
     app.add_option("--out", output, "Output file (default: standard output)");
     app.set_version_flag("--version",
                          std::string("microrelief-glsl-bundle ") + MICRORELIEF_VERSION_STRING);
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::cerr << "microrelief-glsl-bundle: error: " << microrelief::parseErrorMessage(e)
+                  << '\n';
+        return 2;
+    }
     try {
         std::error_code ec;
+        if (!std::filesystem::exists(input, ec))
+            microrelief::throwBadInput(input.string() + ": no such file");
         if (!std::filesystem::is_regular_file(input, ec))
             microrelief::throwBadInput(input.string() + ": not a regular file");
         for (const std::filesystem::path& folder : includeDirs)

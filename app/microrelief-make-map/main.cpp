@@ -11,11 +11,13 @@
 #include <iostream>
 #include <vector>
 
+#include "CommandLine.h"
 #include "SceneOptions.h"
+#include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/io/AlbedoFile.h"
 #include "microrelief/io/ImageFile.h"
-#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 
@@ -59,20 +61,25 @@ int main(int argc, char** argv) {
     app.add_option("--albedo", albedoOut,
                    "Also write the map's colour texture here (cobbles and planet; 8-bit sRGB for "
                    "PNG, linear float for EXR)");
-    app.add_option("--albedo-size", albedoSize, "The albedo's WIDTHxHEIGHT (default: twice the map's)");
+    app.add_option("--albedo-size", albedoSize,
+                   "The albedo's WIDTHxHEIGHT (default: twice the map's; with --albedo)");
+    app.set_version_flag("--version",
+                         std::string("microrelief-make-map ") + MICRORELIEF_VERSION_STRING);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);
-        std::cerr << "microrelief-make-map: error: " << e.what() << '\n';
+        std::cerr << "microrelief-make-map: error: " << parseErrorMessage(e) << '\n';
         return 2;
     }
     try {
         int width = 0, height = 0;
-        // No larger than a map the other programs load (kMaxHeightMapSide): at the
-        // limit, 1 GiB of samples and 512 MiB of 16-bit words.
+        // No larger than a map the programs draw as one texture (kMaxHeightMapSide): at
+        // the limit, 1 GiB of samples and 512 MiB of 16-bit words, made in memory.
         parseSizeFlag(size, width, height, kMaxHeightMapSide,
-                      "the largest height map microrelief loads");
+                      "the largest map this program makes (in memory, whole)");
+        if (!albedoSize.empty() && albedoOut.empty())
+            throwBadInput("--albedo-size needs --albedo FILE (the albedo to write)");
         // Before any work: formats, folders in the way, one file given twice.
         checkOutputTargets(albedoOut.empty() ? std::vector<std::filesystem::path>{out}
                                              : std::vector<std::filesystem::path>{out, albedoOut});
@@ -81,7 +88,8 @@ int main(int argc, char** argv) {
         if (!albedoOut.empty()) {
             int aw = 2 * width, ah = 2 * height;
             if (!albedoSize.empty())
-                parseSizeFlag(albedoSize, aw, ah, kMaxAlbedoSide, "the largest albedo microrelief loads");
+                parseSizeFlag(albedoSize, aw, ah, kMaxAlbedoSide,
+                              "the largest albedo microrelief loads", "--albedo-size");
             aw = std::min(aw, kMaxAlbedoSide);
             ah = std::min(ah, kMaxAlbedoSide);
             writeAlbedo(batch, albedoOut, synth::albedo(name, aw, ah, width, height, seed));

@@ -81,7 +81,7 @@ SceneOptions applyRowFlags(const SceneOptions& base, const std::string& flags,
                       "flags: --help is not a row flag (a row's flags are map and "
                       "shading flags, such as --height or --light)");
     } catch (const CLI::ParseError& e) {
-        throwBadInput(where + "flags: " + e.what());
+        throwBadInput(where + "flags: " + parseErrorText(e));
     }
     refuseEmptyValues(app, where + "flags: ");
     for (const char* field : {"camera.eye", "camera.target", "camera.up", "camera.fovyDegrees"}) {

@@ -81,7 +81,7 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         ->group(paths);
     app.add_option("--cameras", cameras,
                    "Render the cameras of a file: CSV or JSON lines with eye, target, up, fovy "
-                   "and per-row flags (README)")
+                   "and per-row flags (docs/batch.md)")
         ->group(paths);
     app.add_option("--frames", frames,
                    "Only frames A-B of the path (numbered from 0, both included; A- to the end)")

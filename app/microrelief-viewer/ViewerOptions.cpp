@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "MapFile.h"
@@ -58,9 +59,16 @@ void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
         const auto comma = text.find(',');
         ScriptedStroke stroke;
         stroke.mode = parseBrushMode(text.substr(0, comma));
-        const std::vector<double> uv =
-            parseNumberList("--stroke", comma == std::string::npos ? "" : text.substr(comma + 1), 4,
-                            "MODE,U0,V0,U1,V1 (map uv, 0 to 1)");
+        if (comma == std::string::npos)
+            throwBadInput("--stroke expects MODE,U0,V0,U1,V1 (map uv, 0 to 1), got '" + text + "'");
+        std::vector<double> uv;
+        try {
+            uv = parseNumberList("--stroke", text.substr(comma + 1), 4,
+                                 "MODE,U0,V0,U1,V1 (map uv, 0 to 1)");
+        } catch (const Error&) {
+            // The list's own message quotes the numbers only: the whole value, as given.
+            throwBadInput("--stroke expects MODE,U0,V0,U1,V1 (map uv, 0 to 1), got '" + text + "'");
+        }
         for (double value : uv) {
             if (value < 0.0 || value > 1.0)
                 throwBadInput("--stroke " + text + ": map uv must lie in 0 to 1");
@@ -96,7 +104,8 @@ void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
                    "--frames 1)");
     app.add_option(
         "--window-screenshot", windowScreenshot,
-        "After the last frame, write the whole window, panel included (implies --frames 1)");
+        "After the last frame, write the whole window, panel included (implies --frames 2 at "
+        "least: the panel is laid out in the first frame and drawn from the second)");
     app.add_flag("--print-command", o.printCommand,
                  "On exit, print the microrelief-render command line that renders the last view");
     app.add_option("--shader-dir", shaderDir,
@@ -130,6 +139,9 @@ void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
         checkImageExtension(*o.windowScreenshot);
     }
     if ((o.screenshot || o.windowScreenshot) && o.frames == 0) o.frames = 1;
+    // ImGui lays a new window out in its first frame and draws it from the second: a
+    // picture of the window after one frame would have no panel.
+    if (o.windowScreenshot) o.frames = std::max(o.frames, 2);
     if (!shaderDir.empty()) o.shaderDir = shaderDir;
     o.vsync = !noVsync;
     o.panel = !noPanel;

@@ -34,6 +34,30 @@ inline void refuseEmptyValues(const CLI::App& app, const std::string& where = ""
     }
 }
 
+// CLI11's parse error in the programs' words: an option given twice and a value that is
+// not of the option's type said plainly (CLI11 says "--size: At Most 1 required but
+// received 2" and "Could not convert: --channel = 1.5"); the others as CLI11 puts them.
+inline std::string parseErrorText(const CLI::ParseError& e) {
+    std::string message = e.what();
+    const std::string atMost = ": At Most 1 required but received ";
+    const std::string convert = "Could not convert: ";
+    if (const std::size_t at = message.find(atMost); at != std::string::npos) {
+        message = message.substr(0, at) + " is given more than once";
+    } else if (message.rfind(convert, 0) == 0) {
+        const std::size_t equals = message.find(" = ", convert.size());
+        if (equals != std::string::npos) {
+            message = message.substr(convert.size(), equals - convert.size()) + ": '" +
+                      message.substr(equals + 3) + "' is not a value it takes";
+        }
+    }
+    return message;
+}
+
+// A program's one line for a parse error: parseErrorText and where to look.
+inline std::string parseErrorMessage(const CLI::ParseError& e) {
+    return parseErrorText(e) + " (see --help)";
+}
+
 template <class Options>
 struct ParseResult {
     std::optional<Options> options;  // empty: nothing to run
@@ -57,7 +81,7 @@ ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv,
         return result;
     } catch (const CLI::ParseError& e) {
         result.exitStatus = 2;
-        result.message = std::string(e.what()) + " (see --help)";
+        result.message = parseErrorMessage(e);
         return result;
     }
     try {

@@ -133,7 +133,7 @@ glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
 }
 
 void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide,
-                   const std::string& limitReason) {
+                   const std::string& limitReason, const std::string& flag) {
     std::istringstream in(text);
     char x = 0;
     long long w = 0, h = 0;
@@ -143,10 +143,10 @@ void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide
         !text.empty() && text.find_first_not_of("0123456789xX") == std::string::npos;
     if (!digits || !(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 ||
         h <= 0) {
-        throwBadInput("--size expects WIDTHxHEIGHT with positive integers, got '" + text + "'");
+        throwBadInput(flag + " expects WIDTHxHEIGHT with positive integers, got '" + text + "'");
     }
     if (w > maxSide || h > maxSide) {
-        throwBadInput("--size " + text + " is larger than " + std::to_string(maxSide) + " x " +
+        throwBadInput(flag + " " + text + " is larger than " + std::to_string(maxSide) + " x " +
                       std::to_string(maxSide) + (limitReason.empty() ? "" : ", " + limitReason));
     }
     width = static_cast<int>(w);
@@ -324,7 +324,8 @@ void SceneFlags::addShading(CLI::App& app) {
     app.add_option(
            flag("method.steps"), job_.method.steps,
            "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps, "
-           "rcsm relaxed cone steps (15 as published)")
+           "rcsm relaxed cone steps (the same default; --steps 15 is the published setting), "
+           "each then 8 binary steps for relief and rcsm")
         ->capture_default_str();
     app.add_option(
            flag("method.pixelError"), job_.method.pixelError,
@@ -337,7 +338,9 @@ void SceneFlags::addShading(CLI::App& app) {
            "visited, heat map), level (pyramid level where the ray stopped), normal, depth, "
            "position")
         ->capture_default_str();
-    app.add_option(flag("background"), background_, "Background colour r,g,b (linear, 0 to 1)")
+    app.add_option(flag("background"), background_,
+                   "Background colour r,g,b (linear, each >= 0; 1 is full, above it saturates "
+                   "an 8-bit picture)")
         ->capture_default_str();
 }
 

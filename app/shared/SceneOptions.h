@@ -93,10 +93,10 @@ std::vector<double> parseNumberList(const std::string& flag, const std::string& 
 glm::ivec2 parseTiles(const std::string& text);
 // "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.
 glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text);
-// "WxH" -> width, height, each side from 1 to `maxSide`; throws Error(BadInput), for a
-// side beyond `maxSide` with `limitReason` ("the most ...") in the message.
+// "WxH" -> width, height, each side from 1 to `maxSide`; throws Error(BadInput) naming
+// `flag`, for a side beyond `maxSide` with `limitReason` ("the most ...") in the message.
 void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide = 65536,
-                   const std::string& limitReason = "");
+                   const std::string& limitReason = "", const std::string& flag = "--size");
 
 // The shortest decimal text that reads back as exactly `value` ("0.1", "-2.5e-07").
 std::string exactNumber(double value);

@@ -57,6 +57,9 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
                                                    std::size_t maxSamples) {
     const std::string name = file.string();
     checkRegularFile(file, name);
+    std::error_code error;
+    if (std::filesystem::file_size(file, error) == 0 && !error)
+        throwBadInput(name + ": the file is empty (0 bytes)");
     if (hasPngSignature(file)) {
         // The size first, from IHDR alone, then the structure (which inflates the data).
         std::string defect;

@@ -126,15 +126,13 @@ std::optional<std::string> cutOffDefect(const std::filesystem::path& file,
                                         const std::string& format) {
     std::ifstream in(file, std::ios::binary);
     if (!in) return "cannot be read";
-    if (format == "jpeg" && !endsWith(in, {0xff, 0xd9}))
-        return "no JPEG end-of-image marker: the file is cut off";
+    if (format == "jpeg" && !endsWith(in, {0xff, 0xd9})) return "no JPEG end-of-image marker";
     // The TGA 2.0 footer: "TRUEVISION-XFILE." and a null, after two offsets.
     if (format == "targa" && !endsWith(in, {'T', 'R', 'U', 'E', 'V', 'I', 'S', 'I', 'O', 'N', '-',
                                             'X', 'F', 'I', 'L', 'E', '.', 0}))
-        return "no TGA footer: the file is cut off";
-    if (format == "gif" && !endsWith(in, {0x3b})) return "no GIF trailer: the file is cut off";
-    if (format == "iff" && !iffLengthFits(in))
-        return "shorter than its FORM chunk says: the file is cut off";
+        return "no TGA footer";
+    if (format == "gif" && !endsWith(in, {0x3b})) return "no GIF trailer";
+    if (format == "iff" && !iffLengthFits(in)) return "shorter than its FORM chunk says";
     if (format == "tiff") return TiffWalk(in).defect();
     return std::nullopt;
 }

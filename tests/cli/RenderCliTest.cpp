@@ -135,6 +135,9 @@ TEST_F(RenderCli, BadArgumentsExitTwo) {
     expectFailure(run(small + "--no-such-flag"), 2, "--no-such-flag");
     expectFailure(run(small + "--out " + (dir / "x.unknownext").string()), 2, "x.unknownext");
     expectFailure(run(small + "--aov " + (dir / "x.png").string()), 2, "x.png");
+    // CLI11's own wording replaced by the programs' (parseErrorText).
+    expectFailure(run(small + "--size 32x32"), 2, "--size is given more than once (see --help)");
+    expectFailure(run(small + "--channel 1.5"), 2, "--channel: '1.5' is not a value it takes");
 }
 
 // The material, tiling, model and light flags (issues 13, 14): each bad value refused with one line
@@ -272,6 +275,8 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
         EXPECT_EQ(test::readBytes(out), (std::vector<std::uint8_t>{'o', 'l', 'd'}));
     };
     expectRefused(dir / "missing.png", "no such file");
+    test::writeBytes(dir / "empty.png", {});
+    expectRefused(dir / "empty.png", "the file is empty (0 bytes)");
 
     test::writeMap(dir / "whole.png", synth::valueNoise(64, 64, 8, 2, 1), PixelType::UInt16);
     std::vector<std::uint8_t> bytes = test::readBytes(dir / "whole.png");
@@ -294,7 +299,14 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     test::writeMap(dir / "huge.png", HeightMap(70000, 1), PixelType::UInt8);
     expectRefused(dir / "huge.png", "70000 x 1 is larger than the 65536 x 65536");
 
-    EXPECT_EQ(filesIn(dir.path()).size(), 8u) << "no temporary file may remain";
+    EXPECT_EQ(filesIn(dir.path()).size(), 9u) << "no temporary file may remain";
+
+    // Refused while its pyramid file is built: the cache folders the run made are gone.
+    const test::RunResult r =
+        run(small + "--height " + (dir / "truncated.png").string() + " --pyramid-cache " +
+            (dir / "new" / "cache").string() + " --out " + out.string());
+    expectFailure(r, 2, "truncated.png");
+    EXPECT_FALSE(std::filesystem::exists(dir / "new")) << "a failed run left the folder it made";
 }
 
 // Inputs that used to hang or exhaust memory (issue 15), refused before OpenImageIO

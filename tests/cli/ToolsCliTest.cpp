@@ -73,6 +73,26 @@ TEST_F(ToolsCli, MakeMapRefusesMalformedAndOversizedSizes) {
     }
     EXPECT_FALSE(std::filesystem::exists(dir / "m.png"));
 
+    // The albedo's size under its own flag, and never without the albedo it sizes.
+    test::expectOneLineFailure(
+        run(MICRORELIEF_MAKE_MAP_EXE, "cobbles --albedo a.png --albedo-size 0x0" + out),
+        "microrelief-make-map", 2, "--albedo-size expects WIDTHxHEIGHT");
+    test::expectOneLineFailure(
+        run(MICRORELIEF_MAKE_MAP_EXE, "cobbles --albedo a.png --albedo-size 99999x10" + out),
+        "microrelief-make-map", 2, "--albedo-size 99999x10 is larger than 16384");
+    test::expectOneLineFailure(run(MICRORELIEF_MAKE_MAP_EXE, "noise --albedo-size 8x8" + out),
+                               "microrelief-make-map", 2, "--albedo-size needs --albedo");
+    test::expectOneLineFailure(run(MICRORELIEF_MAKE_MAP_EXE, "noise --seed -1" + out),
+                               "microrelief-make-map", 2, "--seed: '-1' is not a value it takes");
+    EXPECT_FALSE(std::filesystem::exists(dir / "m.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    for (const char* program : {MICRORELIEF_MAKE_MAP_EXE, MICRORELIEF_BENCH_EXE}) {
+        const test::RunResult version = run(program, "--version");
+        EXPECT_EQ(version.status, 0) << program << ": " << version.err;
+        const std::string name = std::filesystem::path(program).filename().string();
+        EXPECT_EQ(version.out.rfind(name + " ", 0), 0u) << version.out;
+    }
+
     const test::RunResult ok = run(MICRORELIEF_MAKE_MAP_EXE, "noise --size 5x3" + out);
     ASSERT_EQ(ok.status, 0) << ok.err;
     auto image = OIIO::ImageInput::open((dir / "m.png").string());
@@ -534,6 +554,11 @@ TEST_F(ToolsCli, GlslBundleSplicesOnlyRegularFilesInsideTheRoot) {
                                       (root / file).string() + " --root " + root.string());
         test::expectOneLineFailure(r, "microrelief-glsl-bundle", 2, "not a regular file");
     }
+    test::expectOneLineFailure(run(MICRORELIEF_GLSL_BUNDLE_EXE, (root / "nowhere.glsl").string()),
+                               "microrelief-glsl-bundle", 2, "nowhere.glsl: no such file");
+    // A bad command line: one line and status 2, as for the other programs.
+    test::expectOneLineFailure(run(MICRORELIEF_GLSL_BUNDLE_EXE, ""), "microrelief-glsl-bundle", 2,
+                               "is required (see --help)");
     const test::RunResult elsewhere = run(
         MICRORELIEF_GLSL_BUNDLE_EXE, (dir / "outside.glsl").string() + " --root " + root.string());
     test::expectOneLineFailure(elsewhere, "microrelief-glsl-bundle", 2, "not inside the root");

@@ -59,7 +59,8 @@ TEST_F(ViewerCli, BadArgumentsExitTwo) {
 // argument, refused before any window opens.
 TEST_F(ViewerCli, BadSculptingFlagsExitTwo) {
     expectFailure(run("--stroke dig,0,0,1,1"), 2, "unknown brush 'dig'");
-    expectFailure(run("--stroke raise,0,0,1"), 2, "--stroke");
+    expectFailure(run("--stroke raise,0,0,1"), 2, "got 'raise,0,0,1'");  // the whole value
+    expectFailure(run("--stroke raise"), 2, "got 'raise'");
     expectFailure(run("--stroke raise,0,0,1,1.5"), 2, "0 to 1");
     expectFailure(run("--stroke raise,0,0,1,nan"), 2, "--stroke");
     expectFailure(run("--brush-radius 0"), 2, "--brush-radius");

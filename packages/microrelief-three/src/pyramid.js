@@ -320,12 +320,12 @@ async function buildOnCpu(map, wrapU) {
 export async function createReliefMap(renderer, map, {wrapU = false, pyramid = 'auto'} = {}) {
     if (!renderer || !renderer.isWebGLRenderer) throw new TypeError('createReliefMap: the first argument must be a THREE.WebGLRenderer');
     if (!['auto', 'gpu', 'cpu'].includes(pyramid)) throw new TypeError(`createReliefMap: pyramid '${pyramid}' (expected auto, gpu or cpu)`);
+    if (!map || !(map.samples instanceof Float32Array) || map.samples.length !== map.width * map.height)
+        throw new TypeError('createReliefMap: the map must be {width, height, samples: Float32Array} (heights.js: loadHeights, heightsFromArray, ...)');
     const name = map.name || 'height map';
     const maxSize = renderer.capabilities.maxTextureSize;
     if (map.width > maxSize || map.height > maxSize)
         throw new ReliefGpuError(`${name}: ${map.width} x ${map.height} is larger than this GPU's MAX_TEXTURE_SIZE (${maxSize})`);
-    if (!map || !(map.samples instanceof Float32Array) || map.samples.length !== map.width * map.height)
-        throw new TypeError('createReliefMap: the map must be {width, height, samples: Float32Array} (heights.js: loadHeights, heightsFromArray, ...)');
     let maxSample = 0;
     for (let k = 0; k < map.samples.length; ++k) {
         const h = map.samples[k];

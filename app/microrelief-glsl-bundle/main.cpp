@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     }
     try {
         std::error_code ec;
-        if (!std::filesystem::exists(input, ec))
+        if (!std::filesystem::exists(input, ec) && !ec)
             microrelief::throwBadInput(input.string() + ": no such file");
         if (!std::filesystem::is_regular_file(input, ec))
             microrelief::throwBadInput(input.string() + ": not a regular file");

@@ -80,16 +80,17 @@ int main(int argc, char** argv) {
                       "the largest map this program makes (in memory, whole)");
         if (!albedoSize.empty() && albedoOut.empty())
             throwBadInput("--albedo-size needs --albedo FILE (the albedo to write)");
+        int aw = 2 * width, ah = 2 * height;
+        if (!albedoSize.empty()) {
+            parseSizeFlag(albedoSize, aw, ah, kMaxAlbedoSide,
+                          "the largest albedo microrelief loads", "--albedo-size");
+        }
         // Before any work: formats, folders in the way, one file given twice.
         checkOutputTargets(albedoOut.empty() ? std::vector<std::filesystem::path>{out}
                                              : std::vector<std::filesystem::path>{out, albedoOut});
         const HeightMap map = synth::byName(name, width, height, seed);
         ImageWriteBatch batch;  // the map and its albedo: both or neither
         if (!albedoOut.empty()) {
-            int aw = 2 * width, ah = 2 * height;
-            if (!albedoSize.empty())
-                parseSizeFlag(albedoSize, aw, ah, kMaxAlbedoSide,
-                              "the largest albedo microrelief loads", "--albedo-size");
             aw = std::min(aw, kMaxAlbedoSide);
             ah = std::min(ah, kMaxAlbedoSide);
             writeAlbedo(batch, albedoOut, synth::albedo(name, aw, ah, width, height, seed));

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <functional>
 #include <iostream>
 #include <new>
@@ -39,9 +40,13 @@ inline void refuseEmptyValues(const CLI::App& app, const std::string& where = ""
 // received 2" and "Could not convert: --channel = 1.5"); the others as CLI11 puts them.
 inline std::string parseErrorText(const CLI::ParseError& e) {
     std::string message = e.what();
-    const std::string atMost = ": At Most 1 required but received ";
+    // CLI11 2.1 to 2.4 write "At Most", later ones "At most": compared in lower case.
+    std::string lower = message;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string atMost = ": at most 1 required but received ";
     const std::string convert = "Could not convert: ";
-    if (const std::size_t at = message.find(atMost); at != std::string::npos) {
+    if (const std::size_t at = lower.find(atMost); at != std::string::npos) {
         message = message.substr(0, at) + " is given more than once";
     } else if (message.rfind(convert, 0) == 0) {
         const std::size_t equals = message.find(" = ", convert.size());

@@ -567,22 +567,9 @@ std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem:
     std::error_code error;
     if (std::filesystem::exists(cacheFolder) && !std::filesystem::is_directory(cacheFolder))
         throwBadInput(cacheFolder.string() + ": is not a folder (the pyramid files' cache)");
-    // The folders this call makes, deepest first: removed again, while empty, when the
-    // build fails (a failed run leaves no folder it made, docs/cli.md).
-    std::vector<std::filesystem::path> made;
-    for (std::filesystem::path p = cacheFolder; !p.empty() && !std::filesystem::exists(p, error);
-         p = p.parent_path()) {
-        made.push_back(p);
-        if (p == p.parent_path()) break;
-    }
-    if (!std::filesystem::create_directories(cacheFolder, error) && error) {
-        throwRuntime(cacheFolder.string() + ": cannot make the pyramid files' folder (" +
-                     error.message() + ")");
-    }
-    const auto removeMade = [&made] {
-        std::error_code ignored;
-        for (const std::filesystem::path& p : made) std::filesystem::remove(p, ignored);
-    };
+    // The folder is made, if missing, by the build's own staging (writePyramidFile's
+    // FileWriteBatch), which takes it away again when the build fails or is interrupted:
+    // a failed run leaves no folder it made (docs/cli.md).
     // A build killed before its rename (SIGKILL, a power cut) left its temporary: gone, and
     // the build starts again.
     for (const auto& entry : std::filesystem::directory_iterator(cacheFolder, error)) {
@@ -606,14 +593,9 @@ std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem:
             progress(firstRows + done, firstRows + total);
         };
     }
-    try {
-        const MapFileRows source = heightMapFileRows(mapFile, options, firstPass);
-        writePyramidFile(file, source.rows, wrapU, key, mapFile.string(), kPyramidFilePageSide,
-                         streamed, source.georeference);
-    } catch (...) {
-        removeMade();
-        throw;
-    }
+    const MapFileRows source = heightMapFileRows(mapFile, options, firstPass);
+    writePyramidFile(file, source.rows, wrapU, key, mapFile.string(), kPyramidFilePageSide,
+                     streamed, source.georeference);
     if (built) *built = true;
     return PyramidFile::open(file);
 }

@@ -147,7 +147,7 @@ TEST_F(Package, CoreAloneThroughPkgConfig) {
                    test::runCommand("ldd " + quote(program), *scratch_ / ""));
 }
 
-// Every component's pkg-config file names the installed data and shader folders (datadir,
+// Every component's pkg-config file names the installed data and shader folders (pkgdatadir,
 // shaderdir: the CMake package's microrelief_DATA_DIR and microrelief_SHADER_DIR), through
 // its relocatable prefix.
 TEST_F(Package, PkgConfigNamesTheDataAndShaderFolders) {
@@ -164,9 +164,9 @@ TEST_F(Package, PkgConfigNamesTheDataAndShaderFolders) {
                 value.pop_back();
             return std::filesystem::path(value);
         };
-        const std::filesystem::path data = variable("datadir"), shaders = variable("shaderdir");
+        const std::filesystem::path data = variable("pkgdatadir"), shaders = variable("shaderdir");
         EXPECT_TRUE(std::filesystem::is_regular_file(data / "assets" / "cobbles.png"))
-            << component << ": datadir " << data;
+            << component << ": pkgdatadir " << data;
         EXPECT_TRUE(
             std::filesystem::is_regular_file(shaders / "microrelief" / "multilevel_trace.glsl"))
             << component << ": shaderdir " << shaders;

@@ -287,10 +287,10 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
     }
 }
 
-std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, const RayQuery& query,
+std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& objectRay, const RayQuery& query,
                                                      TraversalStats* statsOut) const {
     TraversalStats stats;
-    const FrameRay ray = base_->frameRay(worldRay);
+    const FrameRay ray = base_->frameRay(objectRay);
     auto finish = [&](std::optional<ReliefHit> hit) {
         if (statsOut) *statsOut = stats;
         return hit;
@@ -299,7 +299,7 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& worldRay, const 
         ReliefHit hit;
         hit.face = face;
         hit.t = t;
-        hit.position = worldRay.origin + t * worldRay.direction;
+        hit.position = objectRay.origin + t * objectRay.direction;
         hit.normal = base_->worldNormal(frameNormal);
         const glm::dvec3 m = base_->mapPoint(ray.at(t));
         hit.uv = {m.x / width_, m.y / height_};

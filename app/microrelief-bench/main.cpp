@@ -337,13 +337,8 @@ int main(int argc, char** argv) {
                          std::string("microrelief-bench ") + MICRORELIEF_VERSION_STRING);
     app.add_option("--out-dir", outDir, "Folder for bench.csv, bench.md and the plots")
         ->capture_default_str();
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);
-        std::cerr << "microrelief-bench: error: " << parseErrorMessage(e) << '\n';
-        return 2;
-    }
+    if (const auto status = parseArgumentsOrExit(app, argc, argv, "microrelief-bench"))
+        return *status;
     setLogSink([](LogLevel level, const std::string& message) {
         if (level == LogLevel::Warning)
             std::cerr << "microrelief-bench: warning: " << message << '\n';

@@ -36,14 +36,9 @@ int main(int argc, char** argv) {
     app.add_option("--out", output, "Output file (default: standard output)");
     app.set_version_flag("--version",
                          std::string("microrelief-glsl-bundle ") + MICRORELIEF_VERSION_STRING);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-        std::cerr << "microrelief-glsl-bundle: error: " << microrelief::parseErrorMessage(e)
-                  << '\n';
-        return 2;
-    }
+    if (const auto status =
+            microrelief::parseArgumentsOrExit(app, argc, argv, "microrelief-glsl-bundle"))
+        return *status;
     try {
         std::error_code ec;
         if (!std::filesystem::exists(input, ec) && !ec)

@@ -65,13 +65,8 @@ int main(int argc, char** argv) {
                    "The albedo's WIDTHxHEIGHT (default: twice the map's; with --albedo)");
     app.set_version_flag("--version",
                          std::string("microrelief-make-map ") + MICRORELIEF_VERSION_STRING);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);
-        std::cerr << "microrelief-make-map: error: " << parseErrorMessage(e) << '\n';
-        return 2;
-    }
+    if (const auto status = parseArgumentsOrExit(app, argc, argv, "microrelief-make-map"))
+        return *status;
     try {
         int width = 0, height = 0;
         // No larger than a map the programs draw as one texture (kMaxHeightMapSide): at

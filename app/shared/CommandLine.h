@@ -63,6 +63,21 @@ inline std::string parseErrorMessage(const CLI::ParseError& e) {
     return parseErrorText(e) + " (see --help)";
 }
 
+// Parses argv for a program that keeps its options in its own variables (make-map, bench,
+// glsl-bundle): after --help or --version, or on a parse error (one line, escaped like
+// runProgram's), returns the status main() should exit with; empty when the program runs.
+inline std::optional<int> parseArgumentsOrExit(CLI::App& app, int argc, char** argv,
+                                               const char* program) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::cerr << program << ": error: " << printable(parseErrorMessage(e)) << '\n';
+        return 2;
+    }
+    return std::nullopt;
+}
+
 template <class Options>
 struct ParseResult {
     std::optional<Options> options;  // empty: nothing to run

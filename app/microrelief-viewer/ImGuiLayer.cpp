@@ -42,6 +42,10 @@ void ImGuiLayer::render() {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
+void ImGuiLayer::endFrameUndrawn() {
+    ImGui::EndFrame();
+}
+
 bool ImGuiLayer::wantsMouse() const {
     return ImGui::GetIO().WantCaptureMouse;
 }

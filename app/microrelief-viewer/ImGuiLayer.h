@@ -18,6 +18,10 @@ public:
     void beginFrame();
     // Draws the frame's widgets into the bound framebuffer.
     void render();
+    // Ends a frame without drawing it. ImGui sizes a new auto-fitting window in the first
+    // frame that names it and hides it there: a frame of widgets ended here before the
+    // first drawn frame makes that one show them.
+    void endFrameUndrawn();
 
     // Whether ImGui uses the mouse or keyboard now (a widget is hovered, dragged, typed in).
     bool wantsMouse() const;

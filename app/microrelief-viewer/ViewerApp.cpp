@@ -180,6 +180,11 @@ void ViewerApp::setupWindow() {
 int ViewerApp::run() {
     int drawn = 0;
     runScript();
+    // The panel laid out once, unseen, so that the first frame drawn (a one-frame
+    // --window-screenshot's) shows it; no input is read, so the panel asks for nothing.
+    imgui_->beginFrame();
+    drawPanel(state_, uiScale_);
+    imgui_->endFrameUndrawn();
     lastFrameTime_ = now();
     while (!glfwWindowShouldClose(window_->window()) &&
            (options_.frames == 0 || drawn < options_.frames || refiningPages())) {

@@ -104,8 +104,7 @@ void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
                    "--frames 1)");
     app.add_option(
         "--window-screenshot", windowScreenshot,
-        "After the last frame, write the whole window, panel included (implies --frames 2 at "
-        "least: the panel is laid out in the first frame and drawn from the second)");
+        "After the last frame, write the whole window, panel included (implies --frames 1)");
     app.add_flag("--print-command", o.printCommand,
                  "On exit, print the microrelief-render command line that renders the last view");
     app.add_option("--shader-dir", shaderDir,
@@ -139,9 +138,6 @@ void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
         checkImageExtension(*o.windowScreenshot);
     }
     if ((o.screenshot || o.windowScreenshot) && o.frames == 0) o.frames = 1;
-    // ImGui lays a new window out in its first frame and draws it from the second: a
-    // picture of the window after one frame would have no panel.
-    if (o.windowScreenshot) o.frames = std::max(o.frames, 2);
     if (!shaderDir.empty()) o.shaderDir = shaderDir;
     o.vsync = !noVsync;
     o.panel = !noPanel;

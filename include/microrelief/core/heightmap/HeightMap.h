@@ -101,6 +101,9 @@ struct HeightMapLoadOptions {
     int maxSide = kMaxHeightMapSide;  // larger maps are refused from the header
     // More samples than this are refused from the header too; 0: no bound beyond maxSide.
     std::size_t maxSamples = 0;
+    // What a program offers for a map over maxSamples, added to that refusal (render:
+    // "; --pyramid-cache FOLDER draws it from disk"); empty: nothing.
+    std::string overMemory = {};
 };
 
 // The larger image made by repeating `tile` tilesX x tilesY times: what a tiled map is

@@ -377,6 +377,10 @@ PanelActions drawPanel(ViewerState& state, float uiScale) {
     // Fixed width, as tall as its content up to the window's height (then it scrolls).
     const float margin = 8.0f * uiScale, width = 380.0f * uiScale;
     ImGui::SetNextWindowPos(ImVec2(margin, margin), ImGuiCond_FirstUseEver);
+    // In a window not half as wide again as the panel, the panel would hide most of the
+    // view: it starts folded to its title bar there (a click on the bar opens it).
+    ImGui::SetNextWindowCollapsed(ImGui::GetIO().DisplaySize.x < 1.5f * width,
+                                  ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSizeConstraints(
         ImVec2(width, 0.0f),
         ImVec2(width, std::max(ImGui::GetIO().DisplaySize.y - 2.0f * margin, 50.0f)));

@@ -238,6 +238,20 @@ TEST_F(ViewerUnderX, WindowScreenshotShowsThePanelOverTheView) {
     EXPECT_LE(right.max, 0) << "the view around the panel must be the 3D view as rendered";
 }
 
+// A window too narrow for the panel beside the view starts with the panel folded to its
+// title bar: below the bar the window is the 3D view as rendered.
+TEST_F(ViewerUnderX, ANarrowWindowStartsWithThePanelFolded) {
+    const auto window = dir / "narrow.png";
+    const Image view = compareWithRender("narrow", "--size 320x240",
+                                         "--window-screenshot " + window.string(), "", 1);
+    const Image shot = readImage(window);
+    ASSERT_EQ(shot.width, 320);
+    ASSERT_EQ(view.width, 320);
+    // The bar: the panel's margin (8) and one line of title (about 19 pixels at scale 1).
+    EXPECT_GT(difference(shot, view, 8, 8, 200, 26).mean, 10.0) << "no title bar";
+    EXPECT_LE(difference(shot, view, 0, 40, 320, 240).max, 0) << "the panel hides the view";
+}
+
 // Sculpting (issue 16): strokes of every brush, drawn by a script before the first frame,
 // then the map saved; microrelief-render given the saved map and the printed view draws
 // the viewer's picture, so what the viewer traces after the edits is the edited map,

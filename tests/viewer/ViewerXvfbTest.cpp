@@ -70,6 +70,27 @@ protected:
         return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, o.str(), e.str()};
     }
 
+    // One frame's --window-screenshot of a width x height window and --screenshot of its 3D
+    // view (which compareWithRender holds to microrelief-render's picture); empty images
+    // where either is missing or of another size.
+    struct WindowPictures {
+        Image window, view;
+    };
+    WindowPictures windowScreenshot(const std::string& name, int width, int height) {
+        const auto file = dir / (name + "-window.png");
+        const std::string size = std::to_string(width) + "x" + std::to_string(height);
+        WindowPictures pictures{{},
+                                compareWithRender(name, "--size " + size,
+                                                  "--window-screenshot " + file.string(), "", 1)};
+        pictures.window = readImage(file);
+        for (const Image* image : {&pictures.window, &pictures.view}) {
+            EXPECT_EQ(image->width, width) << name;
+            EXPECT_EQ(image->height, height) << name;
+            if (image->width != width || image->height != height) return {};
+        }
+        return pictures;
+    }
+
     // Renders `flags` in the viewer, then the command line it prints with
     // microrelief-render, and compares the two pictures. Returns the viewer's picture.
     // `renderExtra` goes to microrelief-render after the printed command (a map saved by
@@ -222,16 +243,11 @@ TEST_F(ViewerUnderX, StraightDownWithTheSpecsOrientation) {
     compareWithRender("topdown", "--eye 0,1.6,0 --target 0,0,0 --up 0,0,-1 --size 96x96");
 }
 
-// Asked for one frame: the window's picture is still taken after the second, the first
-// with the panel drawn (ImGui lays it out in the first).
+// Asked for one frame, the window's picture shows the panel: it was laid out in a frame
+// before the first drawn one (ImGui hides a new window in the frame that sizes it).
 TEST_F(ViewerUnderX, WindowScreenshotShowsThePanelOverTheView) {
-    const auto window = dir / "window.png";
-    const Image view = compareWithRender("window", "--size 640x400",
-                                         "--window-screenshot " + window.string(), "", 1);
-    const Image shot = readImage(window);
+    const auto [shot, view] = windowScreenshot("window", 640, 400);
     ASSERT_EQ(shot.width, 640);
-    ASSERT_EQ(shot.height, 400);
-    ASSERT_EQ(view.width, 640);
     // The panel sits at the top left; the right of the window is the 3D view, untouched.
     EXPECT_GT(difference(shot, view, 20, 20, 300, 200).mean, 10.0) << "no panel at the top left";
     const Difference right = difference(shot, view, 560, 0, 640, 400);
@@ -241,12 +257,8 @@ TEST_F(ViewerUnderX, WindowScreenshotShowsThePanelOverTheView) {
 // A window too narrow for the panel beside the view starts with the panel folded to its
 // title bar: below the bar the window is the 3D view as rendered.
 TEST_F(ViewerUnderX, ANarrowWindowStartsWithThePanelFolded) {
-    const auto window = dir / "narrow.png";
-    const Image view = compareWithRender("narrow", "--size 320x240",
-                                         "--window-screenshot " + window.string(), "", 1);
-    const Image shot = readImage(window);
+    const auto [shot, view] = windowScreenshot("narrow", 320, 240);
     ASSERT_EQ(shot.width, 320);
-    ASSERT_EQ(view.width, 320);
     // The bar: the panel's margin (8) and one line of title (about 19 pixels at scale 1).
     EXPECT_GT(difference(shot, view, 8, 8, 200, 26).mean, 10.0) << "no title bar";
     EXPECT_LE(difference(shot, view, 0, 40, 320, 240).max, 0) << "the panel hides the view";

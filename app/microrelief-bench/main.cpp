@@ -194,11 +194,15 @@ auto parseList(const std::string& list, const std::string& single, const std::st
     return items;
 }
 
-// --terrain: its own defaults where the flags were not given, then the run and its files.
-int runTerrain(const CLI::App& app, const BenchOptions& options, std::size_t memoryMib,
+// --terrain: its own defaults where the flags were not given (with --quick, maps 1024 and
+// 4096: every path in seconds), then the run and its files.
+int runTerrain(const CLI::App& app, const BenchOptions& options, bool quick, std::size_t memoryMib,
                const std::string& backend, const std::string& outDir) {
     TerrainOptions terrain;
-    if (app.count("--map-sizes")) terrain.mapSizes = options.mapSizes;
+    if (app.count("--map-sizes"))
+        terrain.mapSizes = options.mapSizes;
+    else if (quick)
+        terrain.mapSizes = {1024, 4096};
     if (app.count("--views")) terrain.viewDegrees = options.viewDegrees;
     if (app.count("--size")) {
         terrain.width = options.width;
@@ -291,7 +295,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
     app.add_flag("--quick", quick,
                  "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
-                 "(minutes on a CPU)");
+                 "(minutes on a CPU); with --terrain, maps 1024 and 4096");
     app.add_flag("--materials", materials,
                  "Only what materials cost: shadows (hard, soft) against none, and the map tiled "
                  "1x1, 2x2, 16x16 and 256x256 (materials.csv, materials.md)");
@@ -414,7 +418,7 @@ int main(int argc, char** argv) {
             throwBadInput(
                 "--glsl330 is for the methods' comparison, not --rebuild, --materials "
                 "or --terrain");
-        if (terrain) return runTerrain(app, options, memoryMib, backend, outDir);
+        if (terrain) return runTerrain(app, options, quick, memoryMib, backend, outDir);
         if (app.count("--memory"))
             throwBadInput("--memory is the page budget of --terrain; the other runs page nothing");
         if (rebuild) {

@@ -402,6 +402,73 @@ TEST_F(ThreePage, SelfShadowIsTheRenderersHardShadow) {
     EXPECT_LE(wrong, 0.005 * (shadowed + lit));
 }
 
+// Shadow acne on the three-lit example's floor (examples/three/cobbles.js; checks.js:
+// shadowAcne): the example's scene drawn as it is (A) and with the floor out of three's
+// shadow map (B), the only difference the floor meeting its own depth there; of the lit
+// floor pixels, those that A darkens by more than a quarter of what the sun adds. First with
+// the example's own sun.shadow.normalBias, then with none, which must show the acne: the
+// measure can fail, in the same run. Seen (240 x 180, about 9560 lit floor pixels of 17675):
+// normalBias 0: 87 % darker; 0.001: 22 %; 0.002: 0.4 %; the example's 0.01: 0.23 % (22
+// pixels, not acne: thin slivers of lit stone where the box's side walls cut the cobbles,
+// narrower than a shadow texel of 3 mm, and one at the foot of a gap); 0.04: 1.9 % (the
+// larger offset carries lookups into shadow on lit flanks beside the gaps).
+TEST_F(ThreePage, TheExamplesFloorHasNoShadowAcne) {
+    // 1 %: four times what the example's bias leaves, a twentieth of what a third of a
+    // shadow texel of bias (0.001) leaves and an eightieth of the acne without any.
+    constexpr double kMaxDarkerFraction = 0.01;
+    // The control without bias must be well over the limit, not just over it: ten times.
+    constexpr double kMinAcneFraction = 10 * kMaxDarkerFraction;
+    struct Case {
+        const char* name;
+        const char* normalBias;  // JavaScript: null is the example's own
+        bool acne;
+    };
+    const std::vector<Case> cases = {{"example", "null", false}, {"no-bias", "0", true}};
+    const View& v = viewNamed("oblique");
+    std::string steps =
+        "[" + open("", v.width, v.height, "three/") +
+        ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(test::readText(MICRORELIEF_CHECKS_JS)) +
+        "}";
+    for (const Case& c : cases) {
+        const std::string name = std::string("acne-") + c.name;
+        steps +=
+            ", {\"eval\": " +
+            jsonString(std::string("threeChecks.withoutFloorInShadowMap(") + c.normalBias + ")") +
+            "}, {\"screenshot\": " + jsonString((dir / (name + "-without.png")).string()) +
+            "}, {\"eval\": " +
+            jsonString(std::string("threeChecks.shadowAcne(") + c.normalBias + ").join(' ')") +
+            "}, {\"screenshot\": " + jsonString((dir / (name + "-with.png")).string()) + "}";
+    }
+    const PageRun page = runPage(steps + "]");
+    ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
+    for (const std::string& line : page.log) std::printf("    page: %s\n", line.c_str());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        const Case& c = cases[k];
+        const std::string name = std::string("acne-") + c.name;
+        SCOPED_TRACE(name);
+        const std::string value = page.at(5 + 4 * static_cast<int>(k), "value");
+        const std::vector<double> seen = numbers(value);
+        ASSERT_EQ(seen.size(), 4u) << value;
+        const double bias = seen[0], floorPixels = seen[1], lit = seen[2], darker = seen[3];
+        const double fraction = lit > 0 ? darker / lit : 0.0;
+        std::printf(
+            "    %-14s normalBias %g: %.0f floor pixels, %.0f lit, %.0f (%.2f %%) darker with the "
+            "floor in the shadow map\n",
+            name.c_str(), bias, floorPixels, lit, darker, 100.0 * fraction);
+        EXPECT_GT(lit, 4000) << "too few lit floor pixels to say anything";
+        const bool wrong = c.acne ? fraction < kMinAcneFraction : fraction > kMaxDarkerFraction;
+        if (!wrong) continue;
+        const test::Image with = test::readImage(dir / (name + "-with.png")),
+                          without = test::readImage(dir / (name + "-without.png"));
+        ADD_FAILURE() << (c.acne ? "no acne seen without a bias: the measure cannot fail"
+                                 : "shadow acne: the floor's lit stones darken in its own shadow")
+                      << " (" << 100.0 * fraction << " % of the lit floor pixels, limit "
+                      << 100.0 * (c.acne ? kMinAcneFraction : kMaxDarkerFraction)
+                      << " %); with (actual) and without the floor in the map (expected): "
+                      << test::keepForInspection(failures_, name, with, without);
+    }
+}
+
 // The CPU pyramid path against the GPU's (checks.js: pyramids): the windows pyramid of the
 // bundled map and of an odd-sized map (37 x 23, so every level's halving rounds), with and
 // without wrapU, built by shaders/pyramid/'s passes into R16F render targets and by the

@@ -1,9 +1,12 @@
 // checks.js: the measurements tests/three makes inside examples/three's page, evaluated there
 // once the page is ready (ThreeTest.cpp sends this text as a script). It uses only what the
 // page exposes in window.microreliefThree: three, microrelief-three, its renderer, scene,
-// camera and relief. Pixels are (column, row), row 0 the top, as in microrelief-render's AOV.
+// camera and relief (in the three-lit example: its floor, ball and knot). Pixels are
+// (column, row), row 0 the top, as in microrelief-render's AOV.
 window.threeChecks = (() => {
     const app = () => window.microreliefThree;
+    // The three-lit example's sun: its one directional light.
+    const exampleSun = () => app().scene.children.find((object) => object.isDirectionalLight);
 
     // The NDC of pixel (column, row)'s centre.
     function pixelNdc(column, row) {
@@ -267,6 +270,63 @@ window.threeChecks = (() => {
         return out;
     }
 
+    // The three-lit example's scene (examples/three/cobbles.js, the page opened without
+    // shading=microrelief) drawn with its sun's shadow.normalBias set to `normalBias` (null:
+    // the example's own), the floor in three's shadow map or not, shown or hidden, the sun on
+    // or off; its pixels read back, and every setting put back as the example made it.
+    function drawExample({normalBias = null, floorInShadowMap = true, floorShown = true, sunOn = true}) {
+        const {renderer, scene, camera, floor} = app();
+        const {width, height} = renderer.domElement;
+        const sun = exampleSun();
+        const made = {normalBias: sun.shadow.normalBias, intensity: sun.intensity, castShadow: floor.castShadow, visible: floor.visible};
+        sun.shadow.normalBias = normalBias ?? made.normalBias;
+        sun.intensity = sunOn ? made.intensity : 0;
+        floor.castShadow = floorInShadowMap;
+        floor.visible = floorShown;
+        try {
+            renderer.render(scene, camera);
+            return readPixels(renderer, width, height);
+        } finally {
+            sun.shadow.normalBias = made.normalBias;
+            sun.intensity = made.intensity;
+            Object.assign(floor, {castShadow: made.castShadow, visible: made.visible});
+        }
+    }
+
+    // Shadow acne on the example's floor: it is in three's shadow map and receives from it,
+    // so where it meets its own depth there its lit stones darken in stripes. The scene is
+    // drawn (drawExample, with `normalBias`) as it is (A) and with the floor left out of the
+    // shadow map (B: the ball and the knot still cast, the relief's self-shadow is still
+    // traced by its material), so that the floor's own depth in the map is the one
+    // difference; also with the floor hidden and with the sun off. The floor's pixels are
+    // those that change when it is hidden; the lit ones, those where the sun adds at least 24
+    // levels a channel in B (as the checks above); a lit one is darker in A where A loses more
+    // than a quarter of what the sun adds (three's PCF filter averages acne's stripes over
+    // its taps: they take a part of the light, not all of it). Returns [the normalBias drawn,
+    // floor pixels, lit, darker in A]; the canvas keeps A.
+    function shadowAcne(normalBias) {
+        const hidden = drawExample({normalBias, floorInShadowMap: false, floorShown: false});
+        const dark = drawExample({normalBias, floorInShadowMap: false, sunOn: false});
+        const b = drawExample({normalBias, floorInShadowMap: false}), a = drawExample({normalBias});
+        const sum = (p, at) => p[at] + p[at + 1] + p[at + 2];
+        let floorPixels = 0, lit = 0, darker = 0;
+        for (let at = 0; at < a.length; at += 4) {
+            if ([0, 1, 2].every((c) => hidden[at + c] === b[at + c])) continue;
+            ++floorPixels;
+            const added = sum(b, at) - sum(dark, at);
+            if (added < 3 * 24) continue;
+            ++lit;
+            darker += sum(b, at) - sum(a, at) > added / 4;
+        }
+        return [normalBias ?? exampleSun().shadow.normalBias, floorPixels, lit, darker];
+    }
+
+    // shadowAcne's B alone, for a picture of it: the canvas keeps it.
+    function withoutFloorInShadowMap(normalBias) {
+        drawExample({normalBias, floorInShadowMap: false});
+        return 'drawn';
+    }
+
     // The windows pyramid built on the GPU (shaders/pyramid/'s passes) and by the C++
     // MaxPyramid in WebAssembly, for the bundled map and an odd-sized map of its own (37 x 23,
     // heights over three octaves), each with and without wrapU: every level read back
@@ -330,6 +390,6 @@ window.threeChecks = (() => {
         return lines.join('\n');
     }
 
-    return {pick, depth, depthLogarithmic, shadows, selfShadow, pyramids, refusals};
+    return {pick, depth, depthLogarithmic, shadows, selfShadow, shadowAcne, withoutFloorInShadowMap, pyramids, refusals};
 })();
 'ready';

@@ -227,8 +227,8 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                     facts = checked.maps.emplace(key, MapFacts{extent, pages->georeference(), true})
                                 .first;
                 } else {
-                    HeightMapFile loaded =
-                        loadHeightMapFile(std::get<0>(key), frame.scene.job.map.load);
+                    HeightMapFile loaded = loadMapOrPointToCache(std::get<0>(key), frame.scene.job,
+                                                                 o.compareReference);
                     const HeightMap& map = loaded.map;
                     facts = checked.maps
                                 .emplace(key, MapFacts{{map.width, map.height, map.maxValue()},
@@ -251,7 +251,7 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
             }
             const RenderJob job = frameJob(frame, facts->second);
             checkPictureSize(job.width, job.height);
-            if (o.pyramidCache) checkDrawnFromPyramidFile(job);
+            if (o.pyramidCache) checkDrawnFromPyramidFile(job, o.compareReference);
             if (job.animation.empty()) {
                 const MapExtent& map = facts->second.extent;
                 checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxHeight},

@@ -112,7 +112,6 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         o.paging.memoryBytes = memoryMib << 20;
         // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
         allowPagedMaps(o.scene.job.map.load);
-        o.scene.job.map.load.overMemory = "; --pyramid-cache FOLDER draws it from disk";
         if (!pyramidCache.empty()) {
             o.pyramidCache = pyramidCache;
             o.scene.job.map.load.maxSamples = 0;  // never held whole: the side bounds it

@@ -42,17 +42,36 @@ std::shared_ptr<const PyramidFile> openPyramidCache(const RenderOptions& options
                                   buildProgress(map.string(), options.quiet));
 }
 
-void checkDrawnFromPyramidFile(const RenderJob& job) {
+std::string pyramidFileRefusal(const RenderJob& job, bool compareReference) {
     if (job.method.method != Method::Multilevel) {
-        throwBadInput(
-            "--pyramid-cache reads the map through pages, which only the multilevel method "
-            "reads: not --method " +
-            std::string(methodName(job.method.method)));
+        return "--pyramid-cache reads the map through pages, which only the multilevel method "
+               "reads: not --method " +
+               std::string(methodName(job.method.method));
     }
-    if (job.tiles != glm::ivec2(1, 1))
-        throwBadInput("--pyramid-cache draws one map: not with --tile");
+    if (job.tiles != glm::ivec2(1, 1)) return "--pyramid-cache draws one map: not with --tile";
     if (!job.animation.empty())
-        throwBadInput("--pyramid-cache draws a map's own heights: not with --animate");
+        return "--pyramid-cache draws a map's own heights: not with --animate";
+    if (compareReference && job.base.kind != BaseKind::Plane) {
+        return "--compare-reference over a pyramid file traces the plane's reference: not "
+               "with --base " +
+               baseName(job.base);
+    }
+    return {};
+}
+
+void checkDrawnFromPyramidFile(const RenderJob& job, bool compareReference) {
+    if (const std::string refusal = pyramidFileRefusal(job, compareReference); !refusal.empty())
+        throwBadInput(refusal);
+}
+
+HeightMapFile loadMapOrPointToCache(const std::filesystem::path& file, const RenderJob& job,
+                                    bool compareReference) {
+    try {
+        return loadHeightMapFile(file, job.map.load);
+    } catch (const MapOverMemory& e) {
+        if (!pyramidFileRefusal(job, compareReference).empty()) throw;
+        throw e.followedBy("; --pyramid-cache FOLDER draws it from disk");
+    }
 }
 
 }  // namespace microrelief

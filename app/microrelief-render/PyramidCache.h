@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "Options.h"
+#include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/PyramidFile.h"
 
 namespace microrelief {
@@ -17,9 +18,18 @@ std::shared_ptr<const PyramidFile> openPyramidCache(const RenderOptions& options
                                                     const std::filesystem::path& map,
                                                     const HeightMapLoadOptions& load, bool wrapU);
 
-// What a map drawn from its pyramid file is not: drawn by another method than the
-// multilevel one (the only one that reads pages), repeated (--tile) or replaced by an
-// animated field (--animate). Throws Error(BadInput) naming the flag.
-void checkDrawnFromPyramidFile(const RenderJob& job);
+// Why `job` cannot be drawn from its map's pyramid file, naming the flag, or empty where it
+// can: a map drawn so is not drawn by another method than the multilevel one (the only one
+// that reads pages), repeated (--tile) or replaced by an animated field (--animate); with
+// `compareReference`, its base is the plane (the reference over a pyramid file is the
+// plane's).
+std::string pyramidFileRefusal(const RenderJob& job, bool compareReference);
+// Throws Error(BadInput) with pyramidFileRefusal's reason, if any.
+void checkDrawnFromPyramidFile(const RenderJob& job, bool compareReference);
+
+// loadHeightMapFile, except that a map refused for this machine's memory (MapOverMemory)
+// that --pyramid-cache would draw for `job` says so.
+HeightMapFile loadMapOrPointToCache(const std::filesystem::path& file, const RenderJob& job,
+                                    bool compareReference);
 
 }  // namespace microrelief

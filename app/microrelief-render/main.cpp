@@ -108,13 +108,7 @@ RenderJob jobOverMap(const RenderOptions& o, const std::filesystem::path& height
 // the map itself is never read whole (no --compare-reference, no check of the eye).
 Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& heightFile) {
     const RenderJob& asked = o.scene.job;
-    checkDrawnFromPyramidFile(asked);
-    if (o.compareReference && asked.base.kind != BaseKind::Plane) {
-        throwBadInput(
-            "--compare-reference over a pyramid file traces the plane's reference: not with "
-            "--base " +
-            baseName(asked.base));
-    }
+    checkDrawnFromPyramidFile(asked, o.compareReference);
     const std::string name = heightFile.string();
     const std::shared_ptr<const PyramidFile> pages =
         openPyramidCache(o, heightFile, asked.map.load, asked.base.wrapsU());
@@ -149,7 +143,7 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
 
 // The map loaded whole and drawn (through pages where it is larger than the GL's textures).
 Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightFile) {
-    const HeightMapFile loaded = loadHeightMapFile(heightFile, o.scene.job.map.load);
+    const HeightMapFile loaded = loadMapOrPointToCache(heightFile, o.scene.job, o.compareReference);
     const HeightMap& map = loaded.map;
     const RenderJob job = jobOverMap(o, heightFile, map.width, map.height, loaded.georeference);
     if (o.compareReference && job.tiles != glm::ivec2(1, 1) &&

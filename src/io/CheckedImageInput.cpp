@@ -27,7 +27,7 @@ void checkRegularFile(const std::filesystem::path& file, const std::string& name
 }
 
 void checkSize(const std::string& name, long long width, long long height, int maxSide,
-               const std::string& what, std::size_t maxSamples, const std::string& overMemory) {
+               const std::string& what, std::size_t maxSamples) {
     if (width <= 0 || height <= 0) throwBadInput(name + ": the image is empty (0 pixels)");
     if (width > maxSide || height > maxSide) {
         throwBadInput(name + ": " + std::to_string(width) + " x " + std::to_string(height) +
@@ -40,10 +40,10 @@ void checkSize(const std::string& name, long long width, long long height, int m
             const double bytes = count * static_cast<double>(kPagedBytesPerSample);
             return std::to_string(static_cast<long long>(std::ceil(bytes / (1 << 30))));
         };
-        throwBadInput(name + ": " + std::to_string(width) + " x " + std::to_string(height) +
-                      " samples need about " + gib(samples) + " GiB of memory to draw, more than " +
-                      "this machine's " + gib(static_cast<double>(maxSamples)) + " GiB" +
-                      overMemory);
+        throw MapOverMemory(name + ": " + std::to_string(width) + " x " + std::to_string(height) +
+                            " samples need about " + gib(samples) +
+                            " GiB of memory to draw, more than this machine's " +
+                            gib(static_cast<double>(maxSamples)) + " GiB");
     }
 }
 
@@ -54,8 +54,8 @@ std::string oneLine(std::string text) {
 }
 
 std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& file, int maxSide,
-                                                   const std::string& what, std::size_t maxSamples,
-                                                   const std::string& overMemory) {
+                                                   const std::string& what,
+                                                   std::size_t maxSamples) {
     const std::string name = file.string();
     checkRegularFile(file, name);
     std::error_code error;
@@ -66,7 +66,7 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         std::string defect;
         const std::optional<PngHeader> header = readPngHeader(file, defect);
         if (!header) throwBadInput(name + ": not a valid PNG (" + defect + ")");
-        checkSize(name, header->width, header->height, maxSide, what, maxSamples, overMemory);
+        checkSize(name, header->width, header->height, maxSide, what, maxSamples);
         if (const auto bad = pngStructureDefect(file))
             throwBadInput(name + ": not a valid PNG (" + *bad + ")");
     } else if (hasExrMagic(file)) {
@@ -74,7 +74,7 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         const auto parts = readExrHeader(file, defect);
         if (!parts) throwBadInput(name + ": not a valid OpenEXR file (" + defect + ")");
         for (const ExrPartSize& part : *parts)
-            checkSize(name, part.width, part.height, maxSide, what, maxSamples, overMemory);
+            checkSize(name, part.width, part.height, maxSide, what, maxSamples);
     }
 
     // The reader the extension names, and only that one: OpenImageIO's ImageInput::open
@@ -98,8 +98,7 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         if (reason.empty()) reason = "not a " + std::string(input->format_name()) + " file";
         throwBadInput(name + ": cannot read the image (" + reason + ")");
     }
-    checkSize(name, input->spec().width, input->spec().height, maxSide, what, maxSamples,
-              overMemory);
+    checkSize(name, input->spec().width, input->spec().height, maxSide, what, maxSamples);
     // A file cut off where its decoder would not say so (a TIFF's strips past its end are
     // read as they are, a JPEG's missing rows as grey): refused, not drawn.
     if (const std::optional<std::string> defect = cutOffDefect(file, input->format_name()))

@@ -174,8 +174,7 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
         throwBadInput(name + ": the elevation model has no grid on the ground");
 
     const int width = dataset->GetRasterXSize(), height = dataset->GetRasterYSize();
-    checkSize(name, width, height, options.maxSide, "a height map", options.maxSamples,
-              options.overMemory);
+    checkSize(name, width, height, options.maxSide, "a height map", options.maxSamples);
     const int bands = dataset->GetRasterCount();
     if (options.channel < 0 || options.channel >= bands) {
         throwBadInput(name + ": {map.load.channel} " + std::to_string(options.channel) +

@@ -18,8 +18,8 @@ namespace {
 
 HeightMap loadImage(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
     const std::string name = file.string();
-    const std::unique_ptr<OIIO::ImageInput> input = openCheckedImage(
-        file, options.maxSide, "a height map", options.maxSamples, options.overMemory);
+    const std::unique_ptr<OIIO::ImageInput> input =
+        openCheckedImage(file, options.maxSide, "a height map", options.maxSamples);
     const OIIO::ImageSpec& spec = input->spec();
     if (spec.depth > 1) throwBadInput(name + ": volume images are not height maps");
     if (spec.nchannels > kMaxHeightMapChannels) {

@@ -453,7 +453,7 @@ MapFileRows heightMapFileRows(const std::filesystem::path& file,
     state->options = options;
     const auto open = [state, name] {
         state->input = openCheckedImage(state->file, state->options.maxSide, "a height map",
-                                        state->options.maxSamples, state->options.overMemory);
+                                        state->options.maxSamples);
         const OIIO::ImageSpec& spec = state->input->spec();
         if (spec.depth > 1) throwBadInput(name + ": volume images are not height maps");
         if (state->options.channel < 0 || state->options.channel >= spec.nchannels) {

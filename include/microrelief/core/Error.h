@@ -38,6 +38,8 @@ public:
     // The same error, its message after `prefix` (a file and line, a frame), its fields
     // still for the printer to name.
     Error after(const std::string& prefix) const { return Error(kind_, prefix + message_); }
+    // The same error, `suffix` after its message (what a program offers instead).
+    Error followedBy(const std::string& suffix) const { return Error(kind_, message_ + suffix); }
     // The message with the fields it names written as `names` has them.
     std::string message(const std::function<std::string(const std::string&)>& names) const {
         return nameFields(message_, names);

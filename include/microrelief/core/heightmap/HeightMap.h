@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "microrelief/core/Error.h"
+
 namespace microrelief {
 
 // The last level of detail (paper, section II: "bi-linear or bi-quadratic interpolation
@@ -99,11 +101,17 @@ struct HeightMapLoadOptions {
     int channel = 0;                  // --channel: which image channel holds the heights
     bool normalize = false;           // --normalize: map [min, max] to [0, 1]
     int maxSide = kMaxHeightMapSide;  // larger maps are refused from the header
-    // More samples than this are refused from the header too; 0: no bound beyond maxSide.
+    // More samples than this are refused from the header too (MapOverMemory); 0: no
+    // bound beyond maxSide.
     std::size_t maxSamples = 0;
-    // What a program offers for a map over maxSamples, added to that refusal (render:
-    // "; --pyramid-cache FOLDER draws it from disk"); empty: nothing.
-    std::string overMemory = {};
+};
+
+// The refusal of a map over HeightMapLoadOptions::maxSamples, an Error(BadInput) of its
+// own type, so that a program that can draw such a map another way says so
+// (microrelief-render: --pyramid-cache, which never holds the map whole).
+class MapOverMemory : public Error {
+public:
+    explicit MapOverMemory(const std::string& message) : Error(ErrorKind::BadInput, message) {}
 };
 
 // The larger image made by repeating `tile` tilesX x tilesY times: what a tiled map is

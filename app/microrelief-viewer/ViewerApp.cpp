@@ -180,11 +180,7 @@ void ViewerApp::setupWindow() {
 int ViewerApp::run() {
     int drawn = 0;
     runScript();
-    // The panel laid out once, unseen, so that the first frame drawn (a one-frame
-    // --window-screenshot's) shows it; no input is read, so the panel asks for nothing.
-    imgui_->beginFrame();
-    drawPanel(state_, uiScale_);
-    imgui_->endFrameUndrawn();
+    bool laidOut = false;
     lastFrameTime_ = now();
     while (!glfwWindowShouldClose(window_->window()) &&
            (options_.frames == 0 || drawn < options_.frames || refiningPages())) {
@@ -192,6 +188,16 @@ int ViewerApp::run() {
         if (framebufferSize().x == 0 || framebufferSize().y == 0) {
             glfwWaitEvents();  // minimised: nothing to draw until it comes back
             continue;
+        }
+        if (!laidOut) {
+            // The panel laid out once, unseen, at the window's size, so that the first
+            // frame drawn (a one-frame --window-screenshot's) shows it. ImGui hides a new
+            // window in the frame that sizes it, where nothing in it can be hovered or
+            // clicked: the panel asks for nothing there.
+            imgui_->beginFrame();
+            drawPanel(state_, uiScale_);
+            imgui_->endFrameUndrawn();
+            laidOut = true;
         }
         const double start = now();
         frame();

@@ -378,7 +378,8 @@ PanelActions drawPanel(ViewerState& state, float uiScale) {
     const float margin = 8.0f * uiScale, width = 380.0f * uiScale;
     ImGui::SetNextWindowPos(ImVec2(margin, margin), ImGuiCond_FirstUseEver);
     // In a window not half as wide again as the panel, the panel would hide most of the
-    // view: it starts folded to its title bar there (a click on the bar opens it).
+    // view: it starts folded to its title bar there (a double-click on the bar or a click
+    // on its arrow opens it).
     ImGui::SetNextWindowCollapsed(ImGui::GetIO().DisplaySize.x < 1.5f * width,
                                   ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSizeConstraints(

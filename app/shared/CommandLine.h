@@ -1,7 +1,8 @@
-// What every program's command line and main() share (microrelief-render,
-// microrelief-viewer): parsing with CLI11 into an options struct, --help and --version,
-// and the spec's failure shape: exactly one line "<program>: error: ..." on stderr, exit
-// status 2 for bad arguments or input and 1 for anything else.
+// What every program's command line and main() share: parsing with CLI11 into an options
+// struct (microrelief-render, microrelief-viewer: parseCommandLine, runProgram) or into a
+// program's own variables (make-map, bench, glsl-bundle: parseArgumentsOrExit), --help and
+// --version, and the spec's failure shape: exactly one line "<program>: error: ..." on
+// stderr, exit status 2 for bad arguments or input and 1 for anything else.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -220,8 +220,9 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
             if (facts == checked.maps.end()) {
                 checked.last.reset();
                 if (o.pyramidCache) {
-                    const std::shared_ptr<const PyramidFile> pages = openPyramidCache(
-                        o, std::get<0>(key), frame.scene.job.map.load, std::get<3>(key));
+                    const std::shared_ptr<const PyramidFile> pages =
+                        openPyramidCache(o, std::get<0>(key), frame.scene.job.map.load,
+                                         drawnBaseWrapsU(frame.scene, std::get<0>(key)));
                     const MapExtent extent{pages->mapWidth(), pages->mapHeight(),
                                            pages->largestSample()};
                     facts = checked.maps.emplace(key, MapFacts{extent, pages->georeference(), true})
@@ -337,7 +338,7 @@ int runBatch(const RenderOptions& o) {
                 // size of its base, last level or view is the job's own: render applies it).
                 if (pagesSet != key) {
                     renderer->setPyramidPages(
-                        openPyramidCache(o, std::get<0>(key), job.map.load, std::get<3>(key)),
+                        openPyramidCache(o, std::get<0>(key), job.map.load, job.base.wrapsU()),
                         std::get<0>(key).string(), job.base, job.interpolation);
                     pagesSet = key;
                     map.reset();

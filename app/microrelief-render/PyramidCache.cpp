@@ -42,6 +42,11 @@ std::shared_ptr<const PyramidFile> openPyramidCache(const RenderOptions& options
                                   buildProgress(map.string(), options.quiet));
 }
 
+bool drawnBaseWrapsU(const SceneOptions& scene, const std::filesystem::path& map) {
+    const std::optional<Georeference> grid = readMapGrid(map);
+    return (grid ? fittedBase(scene.job.base, *grid, scene.georeference) : scene.job.base).wrapsU();
+}
+
 std::string pyramidFileRefusal(const RenderJob& job, bool compareReference) {
     if (job.method.method != Method::Multilevel) {
         return "--pyramid-cache reads the map through pages, which only the multilevel method "

@@ -111,7 +111,7 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
     checkDrawnFromPyramidFile(asked, o.compareReference);
     const std::string name = heightFile.string();
     const std::shared_ptr<const PyramidFile> pages =
-        openPyramidCache(o, heightFile, asked.map.load, asked.base.wrapsU());
+        openPyramidCache(o, heightFile, asked.map.load, drawnBaseWrapsU(o.scene, heightFile));
     const RenderJob job =
         jobOverMap(o, heightFile, pages->mapWidth(), pages->mapHeight(), pages->georeference());
     const std::optional<std::filesystem::path> albedoFile = albedoPath(job);

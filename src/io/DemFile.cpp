@@ -151,10 +151,12 @@ bool isElevationModelFile(const std::filesystem::path& file) {
            ((extension == ".tif" || extension == ".tiff") && hasGeoTiffGrid(file));
 }
 
-DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options,
-                const std::function<void(long long done, long long total)>& firstPass) {
+namespace {
+
+// The elevation model opened through GDAL (the caller's QuietGdal catching its messages),
+// refused where it cannot be read; its geotransform in `gt`.
+std::shared_ptr<GDALDataset> openDem(const std::filesystem::path& file, double gt[6]) {
     const std::string name = file.string();
-    const QuietGdal quiet;
     // Only the elevation formats' drivers: nothing else GDAL reads is tried on the file.
     const char* const drivers[] = {"GTiff", "SRTMHGT", nullptr};
     const std::shared_ptr<GDALDataset> dataset(
@@ -169,9 +171,27 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
         throwBadInput(name + ": cannot read the elevation model (" + QuietGdal::lastError() + ")" +
                       hint);
     }
-    double gt[6];
     if (dataset->GetGeoTransform(gt) != CE_None)
         throwBadInput(name + ": the elevation model has no grid on the ground");
+    return dataset;
+}
+
+}  // namespace
+
+Georeference demGrid(const std::filesystem::path& file) {
+    const QuietGdal quiet;
+    double gt[6];
+    const std::shared_ptr<GDALDataset> dataset = openDem(file, gt);
+    return groundOf(file.string(), gt, dataset->GetRasterXSize(), dataset->GetRasterYSize(),
+                    dataset->GetSpatialRef());
+}
+
+DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options,
+                const std::function<void(long long done, long long total)>& firstPass) {
+    const std::string name = file.string();
+    const QuietGdal quiet;
+    double gt[6];
+    const std::shared_ptr<GDALDataset> dataset = openDem(file, gt);
 
     const int width = dataset->GetRasterXSize(), height = dataset->GetRasterYSize();
     checkSize(name, width, height, options.maxSide, "a height map", options.maxSamples);

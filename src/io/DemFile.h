@@ -34,6 +34,12 @@ struct DemRows {
 DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& options,
                 const std::function<void(long long done, long long total)>& firstPass = {});
 
+// An elevation model's grid from its header alone (no sample read): the georeference's
+// grid fields (geographic, global, the ellipsoid's axes, the samples' ground size, the
+// coordinate system), its heights' range not known. Refuses what demRows refuses of the
+// header.
+Georeference demGrid(const std::filesystem::path& file);
+
 // The file (a GeoTIFF, an SRTM .hgt) as loadHeightMapFile reads a DEM: demRows, read whole.
 HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOptions& options);
 

@@ -58,6 +58,16 @@ bool readsGeoreferencedMaps() {
     return MICRORELIEF_WITH_GDAL != 0;
 }
 
+std::optional<Georeference> readMapGrid(const std::filesystem::path& file) {
+#if MICRORELIEF_WITH_GDAL
+    checkRegularFile(file, file.string());
+    if (isElevationModelFile(file)) return demGrid(file);
+#else
+    (void)file;
+#endif
+    return std::nullopt;
+}
+
 HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
                                 const HeightMapLoadOptions& options) {
     // The elevation formats by extension: a .tif or .tiff is a DEM where it holds a GeoTIFF

@@ -6,6 +6,7 @@
 // configures: "no GDAL, elevation models are not read").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -220,6 +221,16 @@ TEST(DemFile, AGlobalGridGoesOnTheEllipsoidOfItsAxes) {
     ReliefDesc plane;
     fitToGeoreference(plane, 72, 36, *dem.georeference, {.exaggeration = 10, .keepBase = true});
     EXPECT_EQ(plane.base.kind, BaseKind::Plane);
+
+    // The header alone says as much of the base (what a pyramid file is built for before
+    // the map is read); an image has no grid.
+    const std::optional<Georeference> grid = readMapGrid(dir / "globe.tif");
+    ASSERT_TRUE(grid);
+    EXPECT_TRUE(grid->global);
+    EXPECT_EQ(fittedBase(BaseShape{}, *grid, {}), relief.base);
+    EXPECT_EQ(fittedBase(BaseShape{}, *grid, {.keepBase = true}).kind, BaseKind::Plane);
+    test::writeMap(dir / "image.png", HeightMap(4, 4, 0.5f), PixelType::UInt16);
+    EXPECT_FALSE(readMapGrid(dir / "image.png"));
 }
 
 TEST(DemFile, WhatIsNotAnElevationModelIsRefusedOrReadAsAnImage) {
@@ -474,6 +485,45 @@ TEST_F(DemRender, ATerrainStandsAtItsTrueProportions) {
         ASSERT_EQ(pagedPath.status, 0) << pagedPath.err;
         EXPECT_EQ(readAov(dir / "p0.exr").pixels, aov.pixels);
     }
+}
+
+// A global latitude/longitude grid goes on the ellipsoid without --base; drawn from its
+// pyramid file, which must be built for that base (it wraps round in u), it is the loaded
+// map's picture, hit for hit, alone and along a camera path. Seen red: the file built for
+// the plane the command line names ("its pyramid was built for the plane").
+TEST_F(DemRender, AGlobalGridIsDrawnOnItsEllipsoidFromItsPyramidFile) {
+    DemSpec spec;
+    spec.width = 72;
+    spec.height = 36;
+    spec.crs = "EPSG:4326";
+    const double gt[6] = {-180.0, 5.0, 0.0, 90.0, 0.0, -5.0};
+    std::copy(gt, gt + 6, spec.gt);
+    spec.value = [](int i, int j) { return 100.0 * ((i * 7 + j * 3) % 90); };
+    writeDem(dir / "globe.tif", spec, GDT_Int16);
+    const std::string view = "--height " + (dir / "globe.tif").string() + " --exaggeration 40 ";
+    const std::string cache = " --pyramid-cache " + (dir / "cache").string();
+    const test::RunResult loaded =
+        render(view + "--out " + (dir / "a.png").string() + " --aov " + (dir / "a.exr").string());
+    ASSERT_EQ(loaded.status, 0) << loaded.err;
+    EXPECT_NE(loaded.out.find("on the ellipsoid"), std::string::npos) << loaded.out;
+    const test::RunResult paged = render(view + cache + " --out " + (dir / "b.png").string() +
+                                         " --aov " + (dir / "b.exr").string());
+    ASSERT_EQ(paged.status, 0) << paged.err;
+    EXPECT_NE(paged.out.find(", paged: "), std::string::npos) << paged.out;
+    const Aov a = readAov(dir / "a.exr");
+    EXPECT_GT(std::count_if(a.pixels.begin(), a.pixels.end(), [](float v) { return v != 0.0f; }),
+              1000);
+    EXPECT_EQ(readAov(dir / "b.exr").pixels, a.pixels);
+    const std::string turntable =
+        "-q --turntable 2 --height " + (dir / "globe.tif").string() + " --exaggeration 40 --out ";
+    ASSERT_EQ(render(turntable + (dir / "t{frame}.png").string() + " --aov " +
+                     (dir / "t{frame}.exr").string())
+                  .status,
+              0);
+    const test::RunResult path = render(turntable + (dir / "p{frame}.png").string() + " --aov " +
+                                        (dir / "p{frame}.exr").string() + cache);
+    ASSERT_EQ(path.status, 0) << path.err;
+    EXPECT_EQ(readAov(dir / "p1.exr").pixels, readAov(dir / "t1.exr").pixels);
 }
 
 TEST_F(DemRender, NodataSamplesLieAtTheLowestHeightAndFlagsAreChecked) {

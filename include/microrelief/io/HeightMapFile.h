@@ -42,6 +42,13 @@ struct HeightMapFile {
 HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
                                 const HeightMapLoadOptions& options = {});
 
+// A map file's grid on the ground from its header alone, where it is an elevation model
+// the io component reads (no sample read: the heights' range not known); empty for any
+// other file. For what the grid decides before the map is read: the base a global grid
+// goes on (core/scene/Georeference.h: fittedBase). Throws Error(BadInput) as
+// loadHeightMapFile does for a DEM it cannot read.
+std::optional<Georeference> readMapGrid(const std::filesystem::path& file);
+
 // Whether the io component reads georeferenced maps (it was built with GDAL).
 bool readsGeoreferencedMaps();
 

@@ -36,11 +36,16 @@ double metresPerDegreeNorth(double a, double b, double latitudeDegrees) {
     return m * kPi / 180.0;
 }
 
+BaseShape fittedBase(const BaseShape& base, const Georeference& geo, const GeoreferenceFit& fit) {
+    if (!fit.keepBase && geo.geographic && geo.global)
+        return BaseShape::ellipsoid(
+            glm::dvec3(0.5, 0.5 * geo.semiMinorMetres / geo.semiMajorMetres, 0.5));
+    return base;
+}
+
 void fitToGeoreference(ReliefDesc& relief, int width, int height, const Georeference& geo,
                        const GeoreferenceFit& fit) {
-    if (!fit.keepBase && geo.geographic && geo.global)
-        relief.base = BaseShape::ellipsoid(
-            glm::dvec3(0.5, 0.5 * geo.semiMinorMetres / geo.semiMajorMetres, 0.5));
+    relief.base = fittedBase(relief.base, geo, fit);
 
     // The whole the base carries: the map repeated tiles.x x tiles.y times (--tile).
     width *= relief.tiles.x;

@@ -63,6 +63,10 @@ struct GeoreferenceFit {
 // - on the plane, samples that are not square on the ground (dx != dy) stretch the model
 //   along x and z so that the map's sides stand in their ground ratio (the plane itself
 //   gives them the ratio of W to H).
+// The base fitToGeoreference gives a relief on `base` over a map with `geo`: the ellipsoid
+// for a global latitude/longitude grid where `fit` lets, else `base`. Reads only the grid's
+// fields (geographic, global, the axes), which a header holds (io: readMapGrid).
+BaseShape fittedBase(const BaseShape& base, const Georeference& geo, const GeoreferenceFit& fit);
 void fitToGeoreference(ReliefDesc& relief, int width, int height, const Georeference& geo,
                        const GeoreferenceFit& fit);
 

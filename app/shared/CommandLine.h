@@ -13,7 +13,9 @@
 #include <iostream>
 #include <new>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
@@ -36,11 +38,40 @@ inline void refuseEmptyValues(const CLI::App& app, const std::string& where = ""
     }
 }
 
-// CLI11's parse error in the programs' words: an option given twice and a value that is
-// not of the option's type said plainly (CLI11 says "--size: At Most 1 required but
-// received 2" and "Could not convert: --channel = 1.5"); the others as CLI11 puts them.
+// CLI11's "The following arguments were not expected: maps/b.png --heigth" (the words
+// given, in reverse) in the programs' words: the options not known, in the order given
+// ("--heigth is not an option"; the words after them are likely their values), or else the
+// words.
+inline std::string unexpectedArgumentsText(const std::string& list) {
+    std::vector<std::string> words, options;
+    std::istringstream in(list);
+    for (std::string word; in >> word;) words.insert(words.begin(), word);
+    for (const std::string& word : words)
+        if (word.size() > 1 && word[0] == '-') options.push_back(word);
+    const auto join = [](const std::vector<std::string>& parts) {
+        std::string text;
+        for (std::size_t k = 0; k < parts.size(); ++k)
+            text += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
+        return text;
+    };
+    if (options.empty()) {
+        for (std::string& word : words) word = "'" + word + "'";
+        return join(words) + (words.size() > 1 ? " were" : " was") +
+               " not expected (options are given as --name VALUE)";
+    }
+    return join(options) + (options.size() > 1 ? " are not options" : " is not an option");
+}
+
+// CLI11's parse error in the programs' words: an option given twice, a value that is not
+// of the option's type and arguments not expected said plainly (CLI11 says "--size: At
+// Most 1 required but received 2", "Could not convert: --channel = 1.5" and "The following
+// argument was not expected: --heigth"); the others as CLI11 puts them.
 inline std::string parseErrorText(const CLI::ParseError& e) {
     std::string message = e.what();
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+        const std::size_t colon = message.find(": ");
+        if (colon != std::string::npos) return unexpectedArgumentsText(message.substr(colon + 2));
+    }
     // CLI11 2.1 to 2.4 write "At Most", later ones "At most": compared in lower case.
     std::string lower = message;
     std::transform(lower.begin(), lower.end(), lower.begin(),

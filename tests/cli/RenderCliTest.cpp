@@ -138,6 +138,12 @@ TEST_F(RenderCli, BadArgumentsExitTwo) {
     // CLI11's own wording replaced by the programs' (parseErrorText).
     expectFailure(run(small + "--size 32x32"), 2, "--size is given more than once (see --help)");
     expectFailure(run(small + "--channel 1.5"), 2, "--channel: '1.5' is not a value it takes");
+    // CLI11 names the words it did not expect last first ("maps/b.png --heigth").
+    expectFailure(run(small + "--heigth maps/b.png"), 2, "error: --heigth is not an option (see");
+    expectFailure(run(small + "--heigth a.png --colour"), 2,
+                  "--heigth and --colour are not options");
+    expectFailure(run(small + "a.png b.png"), 2,
+                  "'a.png' and 'b.png' were not expected (options are given as --name VALUE)");
 }
 
 // The material, tiling, model and light flags (issues 13, 14): each bad value refused with one line

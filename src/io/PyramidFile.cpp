@@ -282,33 +282,34 @@ std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path
     const float largest = std::bit_cast<float>(get32(&header[28]));
     const std::uint64_t dataOffset = get64(&header[40]);
     const std::string corrupt = name + ": the pyramid file's header is corrupt";
+    const std::string rebuild = "; delete it to build it again";
     if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide || wrap > 1 || shift < 4 ||
         shift > 12 || keyBytes > kMaxKeyBytes || geoBytes > kMaxGeoreferenceBytes ||
         !(std::isfinite(largest) && largest >= 0.0f))
-        throwBadInput(corrupt);
+        throwBadInput(corrupt + rebuild);
     const PageGrid grid =
         pageGrid(static_cast<int>(width), static_cast<int>(height), static_cast<int>(shift));
     const std::size_t textBytes = std::size_t{keyBytes} + geoBytes;
     if (grid.count != pages || dataOffset != dataOffsetFor(textBytes, pages))
-        throwBadInput(corrupt);
+        throwBadInput(corrupt + rebuild);
     const std::uint64_t pageBytes = std::uint64_t{4} << (2 * shift);
     const std::uint64_t expected = dataOffset + pages * pageBytes;
     if (fileBytes != expected) {
         throwBadInput(name + ": " + std::to_string(fileBytes) + " bytes where its header says " +
                       std::to_string(expected) + (fileBytes < expected ? " (truncated)" : "") +
-                      "; delete it to build it again");
+                      rebuild);
     }
     header.resize(kFixedBytes + textBytes + 4 * std::size_t{pages} + 4);
     readExactly(header.data() + kFixedBytes, header.size() - kFixedBytes, kFixedBytes);
     const std::size_t crcAt = header.size() - 4;
     if (get32(&header[crcAt]) != crcOf(header.data(), crcAt))
-        throwBadInput(corrupt + " (its CRC-32 differs); delete it to build it again");
+        throwBadInput(corrupt + " (its CRC-32 differs)" + rebuild);
     const char* const text = reinterpret_cast<const char*>(header.data()) + kFixedBytes;
     std::string key(text, keyBytes);
     std::optional<Georeference> georeference;
     if (geoBytes > 0) {
         georeference = parseGeoreference(std::string(text + keyBytes, geoBytes));
-        if (!georeference) throwBadInput(corrupt + " (its georeference)");
+        if (!georeference) throwBadInput(corrupt + " (its georeference)" + rebuild);
     }
     std::vector<std::uint32_t> crcs(pages);
     for (std::uint32_t k = 0; k < pages; ++k)

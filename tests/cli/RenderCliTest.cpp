@@ -283,6 +283,11 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     expectRefused(dir / "missing.png", "no such file");
     test::writeBytes(dir / "empty.png", {});
     expectRefused(dir / "empty.png", "the file is empty (0 bytes)");
+    // An elevation model in another of GDAL's formats: how to get one the programs read.
+    test::writeBytes(dir / "dem.asc", {'n', 'c', 'o', 'l', 's'});
+    expectRefused(dir / "dem.asc",
+                  "'.asc'; elevation models are read as GeoTIFF (.tif) or SRTM "
+                  ".hgt: gdal_translate -of GTiff converts this one");
 
     test::writeMap(dir / "whole.png", synth::valueNoise(64, 64, 8, 2, 1), PixelType::UInt16);
     std::vector<std::uint8_t> bytes = test::readBytes(dir / "whole.png");

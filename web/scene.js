@@ -260,12 +260,21 @@ function choice(name, text, choices) {
     return text;
 }
 
+// A key the page does not know (a typo: pixelerror for pixel-error) is an error naming it,
+// as microrelief-render refuses a flag it does not know; `known` the keys it read.
+export function refuseUnknownKeys(q, known) {
+    for (const key of q.keys())
+        if (!known.has(key)) throw new Error(`${key}: not a key this page knows (${[...known].join(', ')})`);
+}
+
 // The view from a URL query (location.search): every key the page knows, each checked;
-// throws Error naming the key for a bad value. Unknown keys are ignored.
+// throws Error naming the key for a bad value or a key it does not know.
 export function viewFromQuery(search) {
     const q = new URLSearchParams(search);
     const v = defaultView();
+    const known = new Set();
     const get = (key, parse) => {
+        known.add(key);
         if (q.has(key)) parse(q.get(key));
     };
     get('eye', (t) => (v.eye = numbers('eye', t, 3)));
@@ -294,6 +303,7 @@ export function viewFromQuery(search) {
     get('albedo', (t) => (v.albedo = choice('albedo', t, ['none', 'map']) === 'map'));
     get('resolution', (t) => (v.resolution = Number(choice('resolution', t, ['1', '2', '4']))));
     get('clean', (t) => (v.clean = t === '1'));
+    refuseUnknownKeys(q, known);
     checkView(v);
     return v;
 }

@@ -35,7 +35,9 @@ export function viewFromUrl(search) {
         interpolation: 'bilinear', heightScale: f32(0.1), light: [-0.45, 0.8, -0.35], shadows: 'off',
         albedo: true, pixelError: 0, pyramid: 'auto', model: null,
     };
+    const known = new Set();  // a key not among them is refused, as on the web page
     const get = (key, parse) => {
+        known.add(key);
         if (q.has(key)) parse(q.get(key));
     };
     get('eye', (t) => (v.eye = numbers('eye', t, 3)));
@@ -64,6 +66,8 @@ export function viewFromUrl(search) {
     get('pixel-error', (t) => (v.pixelError = f32(numbers('pixel-error', t, 1)[0])));
     get('pyramid', (t) => (v.pyramid = choice('pyramid', t, ['auto', 'gpu', 'cpu'])));
     get('model', (t) => (v.model = numbers('model', t, 12)));
+    for (const key of q.keys())
+        if (!known.has(key)) throw new Error(`${key}: not a key this page knows (${[...known].join(', ')})`);
     if (v.light.every((c) => c === 0)) throw new Error('light must not be zero');
     v.light = normalizeFloat(v.light);
     return v;

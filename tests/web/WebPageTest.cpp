@@ -198,6 +198,15 @@ TEST_F(WebPage, ViewsSetInTheUrlMatchTheRenderer) {
         << page.at(bad, "error");
 }
 
+// A key the page does not know (a typo) is an error naming it, not a view drawn without it.
+TEST_F(WebPage, AnUnknownUrlKeyIsAnErrorNamingIt) {
+    const PageRun page = runPage("[" + open("pixelerror=2", 64, 48) + ", {\"wait\": \"ready\"}]");
+    EXPECT_EQ(page.at(1, "state"), "error");
+    EXPECT_NE(page.at(1, "error").find("the URL: pixelerror: not a key this page knows ("),
+              std::string::npos)
+        << page.at(1, "error");
+}
+
 // The orbit camera: a drag turns the view, the wheel zooms, a Shift drag pans (the browser's
 // own mouse events). The view lands in the URL and in the command line: the URL opened
 // again shows the same picture to the bit, and the command draws it as the thresholds

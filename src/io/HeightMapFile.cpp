@@ -74,7 +74,7 @@ HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
     // grid, an .hgt file always.
     std::string extension = file.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const bool tiff = extension == ".tif" || extension == ".tiff";
+    [[maybe_unused]] const bool tiff = extension == ".tif" || extension == ".tiff";  // GDAL only
 #if MICRORELIEF_WITH_GDAL
     if (extension == ".hgt" || tiff) {
         checkRegularFile(file, file.string());

@@ -159,8 +159,10 @@ bool complete(const std::filesystem::path& file, BatchProgress& progress) {
 
 // The map a frame draws, as the check before the first frame loads it and bounds its extent:
 // file, load options, whether its pyramid wraps in u and the tiles (what core/scene/Scene.h's
-// samePyramid compares, as a key that orders; the renderer itself asks needsHeights).
-using MapKey = std::tuple<std::filesystem::path, int, bool, bool, int, int>;
+// samePyramid compares, as a key that orders; the renderer itself asks needsHeights), and
+// whether the base given is kept over a georeferenced map's (a global grid goes on the
+// ellipsoid unless a --base is given: fittedBase), so that one key is one drawn base.
+using MapKey = std::tuple<std::filesystem::path, int, bool, bool, int, int, bool>;
 
 MapKey mapKey(const SceneOptions& scene) {
     return {scene.job.map.file ? *scene.job.map.file : defaultHeightMapPath(),
@@ -168,7 +170,8 @@ MapKey mapKey(const SceneOptions& scene) {
             scene.job.map.load.normalize,
             scene.job.base.wrapsU(),
             scene.job.tiles.x,
-            scene.job.tiles.y};
+            scene.job.tiles.y,
+            scene.georeference.keepBase};
 }
 
 // A map as loaded for a frame, kept from the check before the first frame to the first
@@ -222,7 +225,7 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                 if (o.pyramidCache) {
                     const std::shared_ptr<const PyramidFile> pages =
                         openPyramidCache(o, std::get<0>(key), frame.scene.job.map.load,
-                                         drawnBaseWrapsU(frame.scene, std::get<0>(key)));
+                                         drawnBase(frame.scene, std::get<0>(key)).wrapsU());
                     const MapExtent extent{pages->mapWidth(), pages->mapHeight(),
                                            pages->largestSample()};
                     facts = checked.maps.emplace(key, MapFacts{extent, pages->georeference(), true})

@@ -82,8 +82,8 @@ SceneOptions applyRowFlags(const SceneOptions& base, const std::string& flags,
                       "shading flags, such as --height or --light)");
     } catch (const CLI::ExtrasError& e) {
         throwBadInput(where + "flags: " + parseErrorText(e) +
-                      " of a row (a row's flags are map and shading flags, such as --height or "
-                      "--light; --out, --memory and the like are the command line's)");
+                      "; a row's flags are map and shading flags, such as --height or --light "
+                      "(--out, --memory and the like are the command line's)");
     } catch (const CLI::ParseError& e) {
         throwBadInput(where + "flags: " + parseErrorText(e));
     }

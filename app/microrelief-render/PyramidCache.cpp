@@ -42,9 +42,9 @@ std::shared_ptr<const PyramidFile> openPyramidCache(const RenderOptions& options
                                   buildProgress(map.string(), options.quiet));
 }
 
-bool drawnBaseWrapsU(const SceneOptions& scene, const std::filesystem::path& map) {
+BaseShape drawnBase(const SceneOptions& scene, const std::filesystem::path& map) {
     const std::optional<Georeference> grid = readMapGrid(map);
-    return (grid ? fittedBase(scene.job.base, *grid, scene.georeference) : scene.job.base).wrapsU();
+    return grid ? fittedBase(scene.job.base, *grid, scene.georeference) : scene.job.base;
 }
 
 std::string pyramidFileRefusal(const RenderJob& job, bool compareReference) {

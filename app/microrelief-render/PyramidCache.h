@@ -18,10 +18,10 @@ std::shared_ptr<const PyramidFile> openPyramidCache(const RenderOptions& options
                                                     const std::filesystem::path& map,
                                                     const HeightMapLoadOptions& load, bool wrapU);
 
-// Whether the base `map` is drawn on wraps in u, known before the map is read: the scene's,
-// or the ellipsoid a global latitude/longitude grid goes on (its header read: readMapGrid,
-// fittedBase). The pyramid file is built for it.
-bool drawnBaseWrapsU(const SceneOptions& scene, const std::filesystem::path& map);
+// The base `map` is drawn on, known before the map is read: the scene's, or the ellipsoid a
+// global latitude/longitude grid goes on (its header read: readMapGrid, fittedBase). The
+// pyramid file is built for it and checked against it (checkDrawnFromPyramidFile).
+BaseShape drawnBase(const SceneOptions& scene, const std::filesystem::path& map);
 
 // Why `job` cannot be drawn from its map's pyramid file, naming the flag, or empty where it
 // can: a map drawn so is not drawn by another method than the multilevel one (the only one

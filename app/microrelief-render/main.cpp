@@ -107,11 +107,13 @@ RenderJob jobOverMap(const RenderOptions& o, const std::filesystem::path& height
 // --pyramid-cache: the map's pyramid file, built where missing or stale, drawn through pages;
 // the map itself is never read whole (no --compare-reference, no check of the eye).
 Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& heightFile) {
-    const RenderJob& asked = o.scene.job;
+    // The job on the base it is drawn on (a global grid's ellipsoid), checked before a build.
+    RenderJob asked = o.scene.job;
+    asked.base = drawnBase(o.scene, heightFile);
     checkDrawnFromPyramidFile(asked, o.compareReference);
     const std::string name = heightFile.string();
     const std::shared_ptr<const PyramidFile> pages =
-        openPyramidCache(o, heightFile, asked.map.load, drawnBaseWrapsU(o.scene, heightFile));
+        openPyramidCache(o, heightFile, asked.map.load, asked.base.wrapsU());
     const RenderJob job =
         jobOverMap(o, heightFile, pages->mapWidth(), pages->mapHeight(), pages->georeference());
     const std::optional<std::filesystem::path> albedoFile = albedoPath(job);

@@ -41,13 +41,20 @@ inline void refuseEmptyValues(const CLI::App& app, const std::string& where = ""
 // CLI11's "The following arguments were not expected: maps/b.png --heigth" (the words
 // given, in reverse) in the programs' words: the options not known, in the order given
 // ("--heigth is not an option"; the words after them are likely their values), or else the
-// words.
+// words. (CLI11's message joins the words with spaces: a word with a space in it reads as
+// two.)
 inline std::string unexpectedArgumentsText(const std::string& list) {
     std::vector<std::string> words, options;
     std::istringstream in(list);
     for (std::string word; in >> word;) words.insert(words.begin(), word);
-    for (const std::string& word : words)
-        if (word.size() > 1 && word[0] == '-') options.push_back(word);
+    // An option is "-x" or "--x..." with x a letter ("-1" is a stray number), named up to
+    // any '=' ("--heigth=a.png").
+    for (const std::string& word : words) {
+        const std::size_t letter = word.rfind("--", 0) == 0 ? 2 : 1;
+        if (word.size() > letter && word[0] == '-' &&
+            std::isalpha(static_cast<unsigned char>(word[letter])))
+            options.push_back(word.substr(0, word.find('=')));
+    }
     const auto join = [](const std::vector<std::string>& parts) {
         std::string text;
         for (std::size_t k = 0; k < parts.size(); ++k)

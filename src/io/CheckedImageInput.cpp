@@ -89,10 +89,12 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
     auto input = OIIO::ImageInput::create(extension.substr(1), /*do_open=*/false);
     if (!input) {
         OIIO::geterror();  // clear the pending message
-        // Elevation models in GDAL's other formats: what is read instead, and how to get it.
-        const bool elevation = extension == ".asc" || extension == ".img" || extension == ".nc" ||
-                               extension == ".dem" || extension == ".bil" || extension == ".vrt" ||
-                               extension == ".grd" || extension == ".adf" || extension == ".xyz";
+        // Elevation models in GDAL's other formats: what is read instead, and how to get it
+        // (a build without GDAL reads none).
+        const bool elevation = MICRORELIEF_WITH_GDAL && extension == ".asc" ||
+                               extension == ".img" || extension == ".nc" || extension == ".dem" ||
+                               extension == ".bil" || extension == ".vrt" || extension == ".grd" ||
+                               extension == ".adf" || extension == ".xyz";
         throwBadInput(name + ": no image format OpenImageIO reads for the extension '" +
                       file.extension().string() + "'" +
                       (elevation ? "; elevation models are read as GeoTIFF (.tif) or SRTM .hgt: "

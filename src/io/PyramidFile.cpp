@@ -260,16 +260,20 @@ std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path
             const ssize_t got =
                 ::pread(fd, bytes + done, size - done, static_cast<off_t>(at + done));
             if (got < 0 && errno == EINTR) continue;
-            if (got <= 0) throwBadInput(name + ": cannot read its header (truncated)");
+            if (got <= 0)
+                throwBadInput(name +
+                              ": cannot read its header (truncated); delete it to build "
+                              "it again");
             done += static_cast<std::size_t>(got);
         }
     };
     const std::string notOurs = name + ": not a microrelief pyramid file";
+    const std::string rebuild = "; delete it to build it again";
     if (fileBytes < kFixedBytes)
-        throwBadInput(notOurs + " (" + std::to_string(fileBytes) + " bytes)");
+        throwBadInput(notOurs + " (" + std::to_string(fileBytes) + " bytes)" + rebuild);
     std::vector<unsigned char> header(kFixedBytes);
     readExactly(header.data(), kFixedBytes, 0);
-    if (std::memcmp(header.data(), kMagic, sizeof kMagic) != 0) throwBadInput(notOurs);
+    if (std::memcmp(header.data(), kMagic, sizeof kMagic) != 0) throwBadInput(notOurs + rebuild);
     if (const std::uint32_t version = get32(&header[8]); version != kVersion) {
         throwBadInput(name + ": a pyramid file of version " + std::to_string(version) +
                       "; this build reads version " + std::to_string(kVersion) +
@@ -282,7 +286,6 @@ std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path
     const float largest = std::bit_cast<float>(get32(&header[28]));
     const std::uint64_t dataOffset = get64(&header[40]);
     const std::string corrupt = name + ": the pyramid file's header is corrupt";
-    const std::string rebuild = "; delete it to build it again";
     if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide || wrap > 1 || shift < 4 ||
         shift > 12 || keyBytes > kMaxKeyBytes || geoBytes > kMaxGeoreferenceBytes ||
         !(std::isfinite(largest) && largest >= 0.0f))

@@ -421,9 +421,9 @@ TEST(CameraFile, BadFilesNameTheFileTheLineAndTheReason) {
     EXPECT_BAD_INPUT(parse(kColumns + ",flags\n1,1,1,0,0,0,--fovy 30\n"),
                      "--fovy is not a row flag");
     EXPECT_BAD_INPUT(parse(kColumns + ",flags\n1,1,1,0,0,0,--no-such-flag\n"), "line 2 (frame 0)",
-                     "flags: --no-such-flag is not an option of a row");
+                     "flags: --no-such-flag is not an option; a row's flags are");
     EXPECT_BAD_INPUT(parse(kColumns + ",flags\n1,1,1,0,0,0,--out x.png\n"),
-                     "flags: --out is not an option of a row", "are the command line's");
+                     "flags: --out is not an option; a row's flags are", "are the command line's");
     EXPECT_BAD_INPUT(parse(kColumns + ",flags\n1,1,1,0,0,0,--steps 0\n"), "line 2 (frame 0)",
                      "--steps must lie in 1..65536");
     EXPECT_BAD_INPUT(parse(kColumns + ",flags\n1,1,1,0,0,0,--method fast\n"), "unknown --method");

@@ -142,6 +142,7 @@ TEST_F(RenderCli, BadArgumentsExitTwo) {
     expectFailure(run(small + "--heigth maps/b.png"), 2, "error: --heigth is not an option (see");
     expectFailure(run(small + "--heigth a.png --colour"), 2,
                   "--heigth and --colour are not options");
+    expectFailure(run(small + "--heigth=a.png -1"), 2, "error: --heigth is not an option (see");
     expectFailure(run(small + "a.png b.png"), 2,
                   "'a.png' and 'b.png' were not expected (options are given as --name VALUE)");
 }

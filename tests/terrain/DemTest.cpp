@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <optional>
 #include <string>
@@ -524,6 +525,34 @@ TEST_F(DemRender, AGlobalGridIsDrawnOnItsEllipsoidFromItsPyramidFile) {
                                         (dir / "p{frame}.exr").string() + cache);
     ASSERT_EQ(path.status, 0) << path.err;
     EXPECT_EQ(readAov(dir / "p1.exr").pixels, readAov(dir / "t1.exr").pixels);
+
+    // Rows of one camera file on both bases (a row's --base keeps its plane): each drawn
+    // from the file built for its own base. Seen red: the renderer's "between the plane
+    // and a curved base" when both rows shared the first's file.
+    std::ofstream(dir / "cams.csv") << "eye_x,eye_y,eye_z,target_x,target_y,target_z,fovy,flags\n"
+                                    << "0,2.2,0.0001,0,0,0,,\n"
+                                    << "0,2.2,0.0001,0,0,0,,--base plane\n";
+    const std::string rows = "-q --height " + (dir / "globe.tif").string() +
+                             " --exaggeration 40 --cameras " + (dir / "cams.csv").string() +
+                             " --out ";
+    ASSERT_EQ(
+        render(rows + (dir / "r{frame}.png").string() + " --aov " + (dir / "r{frame}.exr").string())
+            .status,
+        0);
+    const test::RunResult both = render(rows + (dir / "c{frame}.png").string() + " --aov " +
+                                        (dir / "c{frame}.exr").string() + cache);
+    ASSERT_EQ(both.status, 0) << both.err;
+    EXPECT_EQ(readAov(dir / "c0.exr").pixels, readAov(dir / "r0.exr").pixels);
+    EXPECT_EQ(readAov(dir / "c1.exr").pixels, readAov(dir / "r1.exr").pixels);
+    EXPECT_NE(readAov(dir / "c0.exr").pixels, readAov(dir / "c1.exr").pixels);
+
+    // --compare-reference from a pyramid file traces the plane's reference: refused on the
+    // ellipsoid the grid goes on, before anything is built (it compared the ellipsoid's
+    // picture with the plane's reference: 97 % of the hits off).
+    const test::RunResult compared =
+        render(view + cache + " --compare-reference --out " + (dir / "x.png").string());
+    EXPECT_EQ(compared.status, 2) << compared.out;
+    EXPECT_NE(compared.err.find("not with --base ellipsoid"), std::string::npos) << compared.err;
 }
 
 TEST_F(DemRender, NodataSamplesLieAtTheLowestHeightAndFlagsAreChecked) {

@@ -198,8 +198,9 @@ TEST(DemFile, ALatitudeLongitudeGridMeasuresItsSamplesAtItsCentre) {
     EXPECT_EQ(dem.georeference->semiMajorMetres, 6378137.0);
 }
 
-TEST(DemFile, AGlobalGridGoesOnTheEllipsoidOfItsAxes) {
-    test::ScratchDir dir;
+// A global latitude/longitude grid of 5-degree samples, 72 x 36, in metres from -4000 to
+// 4900 (Int16).
+DemSpec globeSpec() {
     DemSpec spec;
     spec.width = 72;
     spec.height = 36;
@@ -207,7 +208,12 @@ TEST(DemFile, AGlobalGridGoesOnTheEllipsoidOfItsAxes) {
     const double gt[6] = {-180.0, 5.0, 0.0, 90.0, 0.0, -5.0};
     std::copy(gt, gt + 6, spec.gt);
     spec.value = [](int i, int j) { return -4000.0 + 100.0 * ((i * 7 + j * 3) % 90); };
-    writeDem(dir / "globe.tif", spec, GDT_Int16);
+    return spec;
+}
+
+TEST(DemFile, AGlobalGridGoesOnTheEllipsoidOfItsAxes) {
+    test::ScratchDir dir;
+    writeDem(dir / "globe.tif", globeSpec(), GDT_Int16);
     const HeightMapFile dem = loadHeightMapFile(dir / "globe.tif");
     ASSERT_TRUE(dem.georeference);
     EXPECT_TRUE(dem.georeference->global);
@@ -493,14 +499,7 @@ TEST_F(DemRender, ATerrainStandsAtItsTrueProportions) {
 // map's picture, hit for hit, alone and along a camera path. Seen red: the file built for
 // the plane the command line names ("its pyramid was built for the plane").
 TEST_F(DemRender, AGlobalGridIsDrawnOnItsEllipsoidFromItsPyramidFile) {
-    DemSpec spec;
-    spec.width = 72;
-    spec.height = 36;
-    spec.crs = "EPSG:4326";
-    const double gt[6] = {-180.0, 5.0, 0.0, 90.0, 0.0, -5.0};
-    std::copy(gt, gt + 6, spec.gt);
-    spec.value = [](int i, int j) { return 100.0 * ((i * 7 + j * 3) % 90); };
-    writeDem(dir / "globe.tif", spec, GDT_Int16);
+    writeDem(dir / "globe.tif", globeSpec(), GDT_Int16);
     const std::string view = "--height " + (dir / "globe.tif").string() + " --exaggeration 40 ";
     const std::string cache = " --pyramid-cache " + (dir / "cache").string();
     const test::RunResult loaded =

@@ -1,9 +1,11 @@
 #include "io/CheckedImageInput.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <optional>
+#include <string_view>
 
 #include "io/CutOffCheck.h"
 #include "io/ExrCheck.h"
@@ -91,10 +93,11 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
         OIIO::geterror();  // clear the pending message
         // Elevation models in GDAL's other formats: what is read instead, and how to get it
         // (a build without GDAL reads none).
-        const bool elevation = MICRORELIEF_WITH_GDAL && extension == ".asc" ||
-                               extension == ".img" || extension == ".nc" || extension == ".dem" ||
-                               extension == ".bil" || extension == ".vrt" || extension == ".grd" ||
-                               extension == ".adf" || extension == ".xyz";
+        constexpr std::array<std::string_view, 9> kElevationExtensions = {
+            ".asc", ".img", ".nc", ".dem", ".bil", ".vrt", ".grd", ".adf", ".xyz"};
+        const bool elevation = MICRORELIEF_WITH_GDAL &&
+                               std::find(kElevationExtensions.begin(), kElevationExtensions.end(),
+                                         extension) != kElevationExtensions.end();
         throwBadInput(name + ": no image format OpenImageIO reads for the extension '" +
                       file.extension().string() + "'" +
                       (elevation ? "; elevation models are read as GeoTIFF (.tif) or SRTM .hgt: "

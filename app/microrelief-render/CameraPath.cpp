@@ -81,11 +81,11 @@ SceneOptions applyRowFlags(const SceneOptions& base, const std::string& flags,
                       "flags: --help is not a row flag (a row's flags are map and "
                       "shading flags, such as --height or --light)");
     } catch (const CLI::ExtrasError& e) {
-        throwBadInput(where + "flags: " + parseErrorText(e) +
+        throwBadInput(where + "flags: " + parseErrorText(e, app) +
                       "; a row's flags are map and shading flags, such as --height or --light "
                       "(--out, --memory and the like are the command line's)");
     } catch (const CLI::ParseError& e) {
-        throwBadInput(where + "flags: " + parseErrorText(e));
+        throwBadInput(where + "flags: " + parseErrorText(e, app));
     }
     refuseEmptyValues(app, where + "flags: ");
     for (const char* field : {"camera.eye", "camera.target", "camera.up", "camera.fovyDegrees"}) {

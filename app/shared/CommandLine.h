@@ -13,7 +13,6 @@
 #include <iostream>
 #include <new>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,15 +37,12 @@ inline void refuseEmptyValues(const CLI::App& app, const std::string& where = ""
     }
 }
 
-// CLI11's "The following arguments were not expected: maps/b.png --heigth" (the words
-// given, in reverse) in the programs' words: the options not known, in the order given
-// ("--heigth is not an option"; the words after them are likely their values), or else the
-// words. (CLI11's message joins the words with spaces: a word with a space in it reads as
-// two.)
-inline std::string unexpectedArgumentsText(const std::string& list) {
-    std::vector<std::string> words, options;
-    std::istringstream in(list);
-    for (std::string word; in >> word;) words.insert(words.begin(), word);
+// The words CLI11 did not expect (`app.remaining()`, in the order given), in the programs'
+// words: the options not known ("--heigth is not an option"; the words after them are
+// likely their values), or else the words. (CLI11's own message, "The following arguments
+// were not expected: maps/b.png --heigth", lists them last first, joined with spaces.)
+inline std::string unexpectedArgumentsText(const std::vector<std::string>& words) {
+    std::vector<std::string> options;
     // An option is "-x" or "--x..." with x a letter ("-1" is a stray number), named up to
     // any '=' ("--heigth=a.png").
     for (const std::string& word : words) {
@@ -62,8 +58,9 @@ inline std::string unexpectedArgumentsText(const std::string& list) {
         return text;
     };
     if (options.empty()) {
-        for (std::string& word : words) word = "'" + word + "'";
-        return join(words) + (words.size() > 1 ? " were" : " was") +
+        std::vector<std::string> quoted;
+        for (const std::string& word : words) quoted.push_back("'" + word + "'");
+        return join(quoted) + (words.size() > 1 ? " were" : " was") +
                " not expected (options are given as --name VALUE)";
     }
     return join(options) + (options.size() > 1 ? " are not options" : " is not an option");
@@ -72,13 +69,12 @@ inline std::string unexpectedArgumentsText(const std::string& list) {
 // CLI11's parse error in the programs' words: an option given twice, a value that is not
 // of the option's type and arguments not expected said plainly (CLI11 says "--size: At
 // Most 1 required but received 2", "Could not convert: --channel = 1.5" and "The following
-// argument was not expected: --heigth"); the others as CLI11 puts them.
-inline std::string parseErrorText(const CLI::ParseError& e) {
+// argument was not expected: --heigth"); the others as CLI11 puts them. `app` is the one
+// that threw, which holds the words it did not expect.
+inline std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app) {
     std::string message = e.what();
-    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
-        const std::size_t colon = message.find(": ");
-        if (colon != std::string::npos) return unexpectedArgumentsText(message.substr(colon + 2));
-    }
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !app.remaining().empty())
+        return unexpectedArgumentsText(app.remaining());
     // CLI11 2.1 to 2.4 write "At Most", later ones "At most": compared in lower case.
     std::string lower = message;
     std::transform(lower.begin(), lower.end(), lower.begin(),
@@ -98,8 +94,8 @@ inline std::string parseErrorText(const CLI::ParseError& e) {
 }
 
 // A program's one line for a parse error: parseErrorText and where to look.
-inline std::string parseErrorMessage(const CLI::ParseError& e) {
-    return parseErrorText(e) + " (see --help)";
+inline std::string parseErrorMessage(const CLI::ParseError& e, const CLI::App& app) {
+    return parseErrorText(e, app) + " (see --help)";
 }
 
 // Parses argv for a program that keeps its options in its own variables (make-map, bench,
@@ -111,7 +107,7 @@ inline std::optional<int> parseArgumentsOrExit(CLI::App& app, int argc, char** a
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-        std::cerr << program << ": error: " << printable(parseErrorMessage(e)) << '\n';
+        std::cerr << program << ": error: " << printable(parseErrorMessage(e, app)) << '\n';
         return 2;
     }
     return std::nullopt;
@@ -140,7 +136,7 @@ ParseResult<Options> parseCommandLine(CLI::App& app, int argc, char** argv,
         return result;
     } catch (const CLI::ParseError& e) {
         result.exitStatus = 2;
-        result.message = parseErrorMessage(e);
+        result.message = parseErrorMessage(e, app);
         return result;
     }
     try {

@@ -24,7 +24,6 @@ namespace {
 class RenderCli : public ::testing::Test {
 protected:
     // Runs microrelief-render with `args` (already shell-quoted where needed).
-    // Runs microrelief-render with `args` (already shell-quoted where needed).
     test::RunResult run(const std::string& args, const std::string& environment = "") {
         return test::runCommand(environment + " " + MICRORELIEF_RENDER_EXE + " " + args,
                                 dir.path());
@@ -145,6 +144,9 @@ TEST_F(RenderCli, BadArgumentsExitTwo) {
     expectFailure(run(small + "--heigth=a.png -1"), 2, "error: --heigth is not an option (see");
     expectFailure(run(small + "a.png b.png"), 2,
                   "'a.png' and 'b.png' were not expected (options are given as --name VALUE)");
+    // A word with a space in it stays one word (CLI11's message joins them with spaces).
+    expectFailure(run(small + "'my map.png'"), 2,
+                  "'my map.png' was not expected (options are given as --name VALUE)");
 }
 
 // The material, tiling, model and light flags (issues 13, 14): each bad value refused with one line

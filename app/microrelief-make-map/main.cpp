@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Writes a procedural height map.", "microrelief-make-map"};
     std::string name = "cobbles", size = "256x256", out, albedoOut, albedoSize;
     std::uint32_t seed = 1;
+    bool quiet = false;
     std::string known;
     for (const std::string& n : synth::names()) known += (known.empty() ? "" : ", ") + n;
     app.add_option("map", name, "Which map: " + known)->capture_default_str();
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
                    "PNG, linear float for EXR)");
     app.add_option("--albedo-size", albedoSize,
                    "The albedo's WIDTHxHEIGHT (default: twice the map's; with --albedo)");
+    app.add_flag("-q,--quiet", quiet, "Print nothing on success");
     app.set_version_flag("--version",
                          std::string("microrelief-make-map ") + MICRORELIEF_VERSION_STRING);
     if (const auto status = parseArgumentsOrExit(app, argc, argv, "microrelief-make-map"))
@@ -102,7 +104,8 @@ int main(int argc, char** argv) {
             batch.write(out, {width, height, 1, PixelType::UInt16, words.data(), {"Y"}});
         }
         batch.commit();
-        std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width << "x"
+        if (!quiet)
+            std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width << "x"
                   << height << ")" << (albedoOut.empty() ? "" : " and " + albedoOut) << "\n";
         return 0;
     } catch (const Error& e) {

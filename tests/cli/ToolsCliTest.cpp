@@ -95,6 +95,11 @@ TEST_F(ToolsCli, MakeMapRefusesMalformedAndOversizedSizes) {
 
     const test::RunResult ok = run(MICRORELIEF_MAKE_MAP_EXE, "noise --size 5x3" + out);
     ASSERT_EQ(ok.status, 0) << ok.err;
+    EXPECT_NE(ok.out.find("wrote"), std::string::npos) << ok.out;
+    // -q as render takes it: nothing printed on success.
+    const test::RunResult quiet = run(MICRORELIEF_MAKE_MAP_EXE, "noise -q --size 5x3" + out);
+    ASSERT_EQ(quiet.status, 0) << quiet.err;
+    EXPECT_EQ(quiet.out + quiet.err, "");
     auto image = OIIO::ImageInput::open((dir / "m.png").string());
     ASSERT_TRUE(image);
     EXPECT_EQ(image->spec().width, 5);

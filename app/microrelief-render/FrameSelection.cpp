@@ -74,10 +74,18 @@ Shard parseShard(const std::string& text, const EnvironmentLookup& environment) 
     const long long min = variable("SLURM_ARRAY_TASK_MIN", 0, 0);
     const long long step = variable("SLURM_ARRAY_TASK_STEP", 1, 1);
     const long long max = variable("SLURM_ARRAY_TASK_MAX", min + (count - 1) * step, 0);
-    const std::string array = "SLURM_ARRAY_TASK_MIN=" + std::to_string(min) +
-                              " SLURM_ARRAY_TASK_MAX=" + std::to_string(max) +
-                              " SLURM_ARRAY_TASK_STEP=" + std::to_string(step) +
-                              " SLURM_ARRAY_TASK_COUNT=" + std::to_string(count);
+    // The array as the environment gives it: a value this function filled in is said to
+    // be one, not shown as if Slurm had set it.
+    std::string array;
+    for (const auto& [name, value] : {std::pair{"SLURM_ARRAY_TASK_MIN", min},
+                                      std::pair{"SLURM_ARRAY_TASK_MAX", max},
+                                      std::pair{"SLURM_ARRAY_TASK_STEP", step},
+                                      std::pair{"SLURM_ARRAY_TASK_COUNT", count}}) {
+        const char* given = environment(name);
+        array += (array.empty() ? "" : " ") + std::string(name) +
+                 (given && *given ? "=" + std::to_string(value)
+                                  : " unset, taken as " + std::to_string(value));
+    }
     if (max < min || (max - min) % step != 0 || (max - min) / step + 1 != count) {
         throwBadInput("--shard slurm: the array is not one range A-B or A-B:S (" + array +
                       "); give --shard I/N yourself");

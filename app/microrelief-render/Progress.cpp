@@ -64,11 +64,12 @@ void BatchProgress::draw() {
                  progressLine(done_, total_, rendered_, renderSeconds_).c_str());
     std::fflush(out_);
     shown_ = true;
+    drawnDone_ = done_;
 }
 
 void BatchProgress::finish() {
     if (!enabled_ || !shown_) return;
-    draw();
+    if (drawnDone_ != done_) draw();  // the last frame's figures, unless already on the line
     std::fputs("\n", out_);
     std::fflush(out_);
     shown_ = false;

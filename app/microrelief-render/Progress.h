@@ -37,6 +37,7 @@ private:
     bool enabled_;
     std::FILE* out_;
     int done_ = 0, rendered_ = 0;
+    int drawnDone_ = -1;  // done_ when the line was last drawn
     double renderSeconds_ = 0.0;
     bool shown_ = false;
     std::chrono::steady_clock::time_point lastDraw_{};

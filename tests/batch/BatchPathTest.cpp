@@ -176,7 +176,9 @@ TEST(FrameSelection, SlurmRefusesWhatIsNoArrayTaskOrNoRange) {
     // gives task 4 of 4, one past the end.
     EXPECT_BAD_INPUT(parseShard("slurm", environment({{"SLURM_ARRAY_TASK_ID", "4"},
                                                       {"SLURM_ARRAY_TASK_COUNT", "4"}})),
-                     "SLURM_ARRAY_TASK_ID=4", "not a task of the array");
+                     "SLURM_ARRAY_TASK_ID=4", "not a task of the array",
+                     "SLURM_ARRAY_TASK_MIN unset, taken as 0", "SLURM_ARRAY_TASK_MAX unset, taken as 3",
+                     "SLURM_ARRAY_TASK_COUNT=4");
 }
 
 TEST(FrameSelection, ShardsInterleaveAndPartitionTheRange) {
@@ -633,6 +635,8 @@ TEST(Progress, DrawsOnlyWhenEnabled) {
     const std::string text = test::readText(file);
     EXPECT_NE(text.find("frame 1 of 2"), std::string::npos) << text;
     EXPECT_NE(text.find("frame 2 of 2, 2 fps, 0:00 left\n"), std::string::npos) << text;
+    // The last frame's line once: finish() ends the line frameDone drew.
+    EXPECT_EQ(text.find("frame 2 of 2"), text.rfind("frame 2 of 2")) << text;
 }
 
 // ---- temporaries a killed writer leaves ----

@@ -232,8 +232,11 @@ function syncPanel() {
     $('radii').value = base.kind === 'ellipsoid' ? base.radii.join(',') : '';
     for (const label of document.querySelectorAll('[data-base]'))
         label.hidden = !label.dataset.base.split(' ').includes(v.base);
-    $('albedo').checked = v.albedo;
-    $('albedo').disabled = !(app.map && app.map.bundled);
+    // Ticked only where the colours are drawn: with a map of the user's the box is off and
+    // greyed, and the choice comes back with the bundled map.
+    const bundled = !!(app.map && app.map.bundled);
+    $('albedo').checked = v.albedo && bundled;
+    $('albedo').disabled = !bundled;
     const method = $('method');
     for (const option of method.options) option.disabled = !scene.methodRunsOnBase(option.value, base);
     method.value = v.method;

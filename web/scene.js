@@ -311,6 +311,12 @@ export function viewFromQuery(search) {
 // The checks microrelief-render makes of the same flags.
 export function checkView(v) {
     if (!(v.fovy > 0 && v.fovy < 180)) throw new Error('fovy must lie strictly between 0 and 180 degrees');
+    // resolveCamera's checks, here in the keys' words, before anything is drawn.
+    const view = sub(v.target, v.eye), distance = length(view);
+    if (!(distance > 0) || !Number.isFinite(distance))
+        throw new Error(`eye=${vectorText(v.eye)} and target=${vectorText(v.target)} must differ`);
+    if (!(length(cross(scale(view, 1 / distance), v.up)) > 1e-9 * length(v.up)))
+        throw new Error(`up=${vectorText(v.up)} must not be parallel to the view direction (target - eye)`);
     if (!(v.heightScale > 0) || !Number.isFinite(v.heightScale)) throw new Error('height-scale must be a positive number');
     if (!Number.isInteger(v.steps) || v.steps < 1 || v.steps > 65536) throw new Error('steps must be a whole number in 1..65536');
     if (!(v.pixelError >= 0)) throw new Error('pixel-error must be a number >= 0');

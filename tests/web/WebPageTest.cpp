@@ -200,11 +200,21 @@ TEST_F(WebPage, ViewsSetInTheUrlMatchTheRenderer) {
 
 // A key the page does not know (a typo) is an error naming it, not a view drawn without it.
 TEST_F(WebPage, AnUnknownUrlKeyIsAnErrorNamingIt) {
-    const PageRun page = runPage("[" + open("pixelerror=2", 64, 48) + ", {\"wait\": \"ready\"}]");
+    const PageRun page = runPage("[" + open("pixelerror=2", 64, 48) + ", {\"wait\": \"ready\"}, " +
+                                 open("eye=0,1,0&target=0,1,0", 64, 48) +
+                                 ", {\"wait\": \"ready\"}, " + open("up=1,1,1&eye=2,2,2&target=0,0,0", 64, 48) +
+                                 ", {\"wait\": \"ready\"}]");
     EXPECT_EQ(page.at(1, "state"), "error");
     EXPECT_NE(page.at(1, "error").find("the URL: pixelerror: not a key this page knows ("),
               std::string::npos)
         << page.at(1, "error");
+    // A camera that cannot be drawn, in the keys' words (not "drawing failed").
+    EXPECT_EQ(page.at(3, "state"), "error");
+    EXPECT_NE(page.at(3, "error").find("the URL: eye=0,1,0 and target=0,1,0 must differ"),
+              std::string::npos)
+        << page.at(3, "error");
+    EXPECT_NE(page.at(5, "error").find("the URL: up=1,1,1 must not be parallel"), std::string::npos)
+        << page.at(5, "error");
 }
 
 // The orbit camera: a drag turns the view, the wheel zooms, a Shift drag pans (the browser's
@@ -368,7 +378,9 @@ TEST_F(WebPage, DroppedMapsAreTheLoadersSamplesAndRenderAlike) {
                  "}, {\"eval\": \"Array.from(microrelief.map.samples).join(' ')\"}";
     }
     steps += ", {\"screenshot\": " + jsonString((dir / "noise16-page.png").string()) +
-             "}, {\"eval\": \"document.getElementById('command').textContent\"}]";
+             "}, {\"eval\": \"document.getElementById('command').textContent\"}"
+             ", {\"eval\": \"['checked', 'disabled'].map((k) => "
+             "document.getElementById('albedo')[k]).join(' ')\"}]";
     const PageRun page = runPage(steps);
     ASSERT_EQ(page.at(1, "state"), "ready") << page.at(1, "error");
 
@@ -397,6 +409,8 @@ TEST_F(WebPage, DroppedMapsAreTheLoadersSamplesAndRenderAlike) {
     // The last map's picture: the page's command names the file as dropped.
     const std::string command = page.at(3 + 3 * static_cast<int>(maps.size()), "value");
     EXPECT_NE(command.find("--height noise16.png "), std::string::npos) << command;
+    // The bundled map's colours are not drawn on a map of the user's: their box not ticked.
+    EXPECT_EQ(page.at(4 + 3 * static_cast<int>(maps.size()), "value"), "false true");
     const auto rendered = dir / "noise16-render.png";
     const std::string flags =
         "--height " + (dir / "noise16.png").string() + " --size " + size(width, height);

@@ -12,6 +12,8 @@
 #include <charconv>
 #include <csignal>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <set>
 #include <string>
@@ -387,6 +389,20 @@ void writeFileAtomically(const std::filesystem::path& file, std::string_view byt
     batch.commit();
 }
 
+namespace {
+
+// Whether process `pid` has exited and waits to be reaped: state 'Z' in /proc/PID/stat,
+// the field after the command's closing parenthesis (the command may hold one itself).
+// False where /proc cannot say (not Linux, or the process is gone).
+bool isZombie(long pid) {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    const std::string line((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+    const std::size_t close = line.rfind(')');
+    return close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'Z';
+}
+
+}  // namespace
+
 std::optional<std::filesystem::path> abandonedTemporaryTarget(const std::filesystem::path& file) {
     // The name temporaryBeside gives: ".<stem>.tmp-<pid>-<n><extension>".
     const std::string name = file.filename().string();
@@ -404,8 +420,10 @@ std::optional<std::filesystem::path> abandonedTemporaryTarget(const std::filesys
     const std::string extension(read.ptr, end);
     if (!extension.empty() && (extension[0] != '.' || extension.find('.', 1) != std::string::npos))
         return std::nullopt;
-    // A process that still runs may yet rename it (kill with signal 0 only asks).
-    if (pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+    // A process that still runs may yet rename it (kill with signal 0 only asks; a zombie,
+    // dead and not yet reaped by its parent, answers too but renames nothing).
+    if (pid == ::getpid() ||
+        ((::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) && !isZombie(pid)))
         return std::nullopt;
     return file.parent_path() / (name.substr(1, tag - 1) + extension);
 }

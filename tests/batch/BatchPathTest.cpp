@@ -654,14 +654,19 @@ TEST(AbandonedTemporaries, AreTheTemporariesOfWritersThatAreGone) {
         batch.write(target, {4, 4, 3, PixelType::UInt8, pixels.data(), {}});
         ::raise(SIGKILL);
     }
-    int status = 0;
-    ASSERT_EQ(::waitpid(child, &status, 0), child);
-    ASSERT_TRUE(WIFSIGNALED(status));
+    // Dead but not yet reaped (a zombie: as a child killed under a parent that has not
+    // waited, such as `timeout -s KILL`'s, which signal 0 still finds): already gone.
+    siginfo_t info{};
+    ASSERT_EQ(::waitid(P_PID, static_cast<id_t>(child), &info, WEXITED | WNOWAIT), 0);
     std::vector<std::filesystem::path> left;
     for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
         left.push_back(entry.path());
     ASSERT_EQ(left.size(), 1u) << "the killed writer's temporary";
     EXPECT_FALSE(std::filesystem::exists(target));
+    EXPECT_EQ(abandonedTemporaryTarget(left[0]), std::optional{target}) << "its writer a zombie";
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status));
     const auto found = abandonedTemporaryTarget(left[0]);
     ASSERT_TRUE(found) << left[0];
     EXPECT_EQ(*found, target);

@@ -98,14 +98,24 @@ void mapSection(ViewerState& s, PanelActions& actions) {
         actions.heightScaleChanged = true;
     }
     AlbedoSource& albedo = s.scene.job.albedo;
-    bool colours = albedo.kind != AlbedoSource::Kind::None;
+    const AlbedoSource::Kind on =
+        albedo.file.empty() ? AlbedoSource::Kind::Default : AlbedoSource::Kind::File;
+    // Whether there are colours to turn on: a file, or the bundled map's with the bundled
+    // map. Where there are none the box is off and greyed (the choice stays, and comes
+    // back with the bundled map).
+    RenderJob probe = s.scene.job;
+    probe.albedo.kind = on;
+    const bool offered = albedoPath(probe).has_value();
+    bool colours = offered && albedo.kind != AlbedoSource::Kind::None;
+    ImGui::BeginDisabled(!offered);
     if (ImGui::Checkbox("Colours (albedo)", &colours)) {
         // Off keeps the file, so that on brings it back.
-        albedo.kind = !colours              ? AlbedoSource::Kind::None
-                      : albedo.file.empty() ? AlbedoSource::Kind::Default
-                                            : AlbedoSource::Kind::File;
+        albedo.kind = colours ? on : AlbedoSource::Kind::None;
         actions.albedoChanged = true;
     }
+    ImGui::EndDisabled();
+    if (!offered && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("The bundled map's colours go with the bundled map; --albedo FILE gives a map its own");
     if (!s.albedoName.empty()) {
         ImGui::SameLine();
         ImGui::TextDisabled("%s", s.albedoName.c_str());

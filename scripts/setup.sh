@@ -14,7 +14,7 @@ packages=(
   libglfw3-dev libglm-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
   libopenimageio-dev openimageio-tools zlib1g-dev libgdal-dev
   libgtest-dev libcli11-dev python3-glad glslang-tools
-  libimgui-dev xvfb xauth
+  libimgui-dev xvfb xauth xdotool
   chromium python3 emscripten
 )
 read -r -a extra <<< "${MICRORELIEF_EXTRA_PACKAGES:-}"

@@ -11,6 +11,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "MapFile.h"
+#include "SceneOptions.h"
 #include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
@@ -23,6 +24,12 @@
 namespace microrelief {
 
 namespace {
+
+// An error as the viewer shows it: the fields it names as the flags the viewer takes
+// (--normalize, not map.load.normalize), as its command line's refusals say them.
+std::string shown(const Error& e) {
+    return e.message(flagName);
+}
 
 constexpr int kLogLines = 8;
 // How often the panel's iteration figure is read back: a few times a second is live
@@ -169,9 +176,13 @@ void ViewerApp::setupWindow() {
     });
     // Key presses are queued, not polled: a tap shorter than a slow frame (a software
     // rasteriser's) would fall between two polls of ImGui's key state.
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
         if (action == GLFW_PRESS)
-            static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))->pressedKeys_.push_back(key);
+            static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))->pressedKeys_.push_back({key, mods});
+    });
+    glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
+        glfwSetWindowShouldClose(w, GLFW_FALSE);
+        static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))->askToQuit();
     });
     imgui_ = std::make_unique<ImGuiLayer>(*window_, uiScale_);
     setVsync(state_.vsync);
@@ -288,17 +299,29 @@ void ViewerApp::frame() {
 
 void ViewerApp::handleInput(double seconds) {
     if (!imgui_->wantsKeyboard()) {
-        for (int key : pressedKeys_) handleKey(key);
+        for (const KeyPress& press : pressedKeys_) handleKey(press.key, press.mods);
         if (state_.flyMode) flyKeys(seconds);
     }
     pressedKeys_.clear();
     if (!imgui_->wantsMouse()) handleMouse();
 }
 
-void ViewerApp::handleKey(int key) {
+void ViewerApp::askToQuit() {
+    if (state_.mapEdited && !quitWarned_) {
+        quitWarned_ = true;
+        state_.panelVisible = true;
+        note("the map has edits not saved: Ctrl+S saves them to " + state_.savePath +
+             "; Esc (or closing the window) again quits without them");
+        return;
+    }
+    glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
+}
+
+void ViewerApp::handleKey(int key, int mods) {
+    const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
     switch (key) {
         case GLFW_KEY_ESCAPE:
-            glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
+            askToQuit();
             break;
         case GLFW_KEY_F:
             state_.flyMode = !state_.flyMode;
@@ -321,17 +344,20 @@ void ViewerApp::handleKey(int key) {
             break;
         case GLFW_KEY_B:
             state_.sculpt = !state_.sculpt && sculptable();
-            if (!sculptable())
+            if (sculptable())
+                note(state_.sculpt ? "sculpting: on (the left button paints, Alt+drag turns the view, B ends)"
+                                   : "sculpting: off");
+            else
                 note(animated_ ? "sculpting: not while the relief is animated (--animate)"
                      : renderer_->paged() ? "sculpting: not a map read through pages (larger "
                                             "than the GL's textures)"
                                           : "sculpting: an untiled map only (Tiles 1, 1)");
             break;
         case GLFW_KEY_Z:
-            if (ImGui::GetIO().KeyCtrl) undo();
+            if (ctrl) undo();
             break;
         case GLFW_KEY_S:
-            if (ImGui::GetIO().KeyCtrl && !state_.flyMode) saveMap(state_.savePath);
+            if (ctrl && !state_.flyMode) saveMap(state_.savePath);
             break;
         case GLFW_KEY_LEFT_BRACKET:
             state_.brush.radius = std::max(state_.brush.radius * 0.8, 0.5);
@@ -364,10 +390,14 @@ void ViewerApp::flyKeys(double seconds) {
 void ViewerApp::handleMouse() {
     const ImGuiIO& io = ImGui::GetIO();
     const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
-    const bool panning = ImGui::IsMouseDown(ImGuiMouseButton_Right) ||
-                         ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
-                         (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift);
-    const bool movingLight = ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
+    // A drag is a button held since an earlier frame: a move and a press within one frame
+    // (a slow one) moved the pointer before the button went down, and turns nothing.
+    const auto dragging = [](ImGuiMouseButton button) {
+        return ImGui::IsMouseDown(button) && !ImGui::IsMouseClicked(button);
+    };
+    const bool panning = dragging(ImGuiMouseButton_Right) || dragging(ImGuiMouseButton_Middle) ||
+                         (dragging(ImGuiMouseButton_Left) && io.KeyShift);
+    const bool movingLight = dragging(ImGuiMouseButton_Left) &&
                              glfwGetKey(window_->window(), GLFW_KEY_L) == GLFW_PRESS;
     if (movingLight && (dx != 0.0 || dy != 0.0)) {
         // L held: the drag turns the light about the vertical (across) and raises or
@@ -386,7 +416,7 @@ void ViewerApp::handleMouse() {
         // The picture's height in window units, which is what the mouse moves in.
         controller_.pan(dx, dy,
                         viewSize().y * viewRect().scale * io.DisplaySize.y / framebufferSize().y);
-    } else if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && (dx != 0.0 || dy != 0.0) &&
+    } else if (dragging(ImGuiMouseButton_Left) && (dx != 0.0 || dy != 0.0) &&
                (!state_.sculpt || io.KeyAlt)) {  // in sculpt mode the left button paints
         state_.flyMode ? controller_.look(dx, dy) : controller_.orbit(dx, dy);
     }
@@ -475,7 +505,7 @@ void ViewerApp::dabAt(const glm::dvec2& mapPoint, bool invert) {
     try {
         mapEdited(editor_->dab(*renderer_, mapPoint, brush));
     } catch (const Error& e) {
-        note(std::string("brush: ") + e.what());
+        note(std::string("brush: ") + shown(e));
     }
 }
 
@@ -498,6 +528,7 @@ void ViewerApp::mapEdited(const std::vector<TexelRect>& changed) {
     mapMaxHeight_ = renderer_->maxHeight();
     state_.undoSteps = editor_->undoSteps();
     state_.mapEdited = true;
+    quitWarned_ = false;
     ++mapGeneration_;
 }
 
@@ -518,7 +549,7 @@ void ViewerApp::saveMap(const std::filesystem::path& file) {
         saveHeightMap(map, file);
     } catch (const Error& e) {
         if (automated) throw;
-        note(std::string("map not saved: ") + e.what());
+        note(std::string("map not saved: ") + shown(e));
         return;
     }
     state_.mapEdited = false;
@@ -742,8 +773,8 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         georeferenced_ = georeferencedBefore;
         state_.scene.job.map = applied_->map;
         state_.scene.job.map.load = loadedWith_;
-        state_.mapError = e.what();
-        note(std::string("cannot open: ") + e.what());
+        state_.mapError = shown(e);
+        note(std::string("cannot open: ") + shown(e));
         return;
     }
     editor_->clear();
@@ -783,7 +814,7 @@ void ViewerApp::applyAlbedo() {
         // The colours go; the relief stays.
         renderer_->setAlbedo(nullptr);
         state_.albedoName.clear();
-        note(std::string("cannot open the albedo: ") + e.what());
+        note(std::string("cannot open the albedo: ") + shown(e));
     }
     ++mapGeneration_;
 }
@@ -793,8 +824,8 @@ void ViewerApp::reloadShaders() {
         renderer_->reloadShaders();
     } catch (const Error& e) {
         // ReliefRenderer keeps the previous program running; the message names file:line.
-        state_.shaderError = e.what();
-        note(std::string("shader error, previous program kept: ") + e.what());
+        state_.shaderError = shown(e);
+        note(std::string("shader error, previous program kept: ") + shown(e));
         return;
     }
     state_.shaderError.clear();
@@ -810,8 +841,8 @@ void ViewerApp::setMethod() {
         renderer_->setMethod(method);
     } catch (const Error& e) {
         method = renderer_->method();  // the renderer keeps the method that compiles
-        state_.shaderError = e.what();
-        note(std::string("shader error, previous method kept: ") + e.what());
+        state_.shaderError = shown(e);
+        note(std::string("shader error, previous method kept: ") + shown(e));
     }
 }
 
@@ -826,7 +857,7 @@ bool ViewerApp::changeRelief(const std::string& what) {
         relief.interpolation = applied_->interpolation;
         relief.tiles = applied_->tiles;
         relief.heightScale = applied_->heightScale;
-        note(what + " not changed: " + e.what());
+        note(what + " not changed: " + shown(e));
         return false;
     }
 }
@@ -865,7 +896,7 @@ void ViewerApp::takeScreenshot() {
                              {picture.width, picture.height, 3, PixelType::UInt8, rgb.data(), {}});
         note("wrote " + file.string());
     } catch (const Error& e) {
-        note(std::string("screenshot failed: ") + e.what());
+        note(std::string("screenshot failed: ") + shown(e));
     }
 }
 

@@ -62,7 +62,11 @@ private:
     void frame();
     void waitForEvents();
     void handleInput(double seconds);
-    void handleKey(int key);
+    // `mods`: the GLFW modifier bits held when the key went down.
+    void handleKey(int key, int mods);
+    // Esc or the window's close button: quits, unless the map has edits not saved and this
+    // is the first ask since them (then it says so, and a second ask quits).
+    void askToQuit();
     void flyKeys(double seconds);
     void handleMouse();
     void applyPanel(const PanelActions& actions);
@@ -170,7 +174,13 @@ private:
     bool strokeActive_ = false;
     float flattenLevel_ = 0.0f;     // the height under a stroke's first dab
     int animatedFrames_ = 0;        // frames since the animation started (scripts: 1/30 s each)
-    std::vector<int> pressedKeys_;  // GLFW key codes pressed since the last frame
+    // Keys pressed since the last frame, with the modifiers held as each went down (read at
+    // the frame, Ctrl may be up again: a quick Ctrl+Z within one slow frame).
+    struct KeyPress {
+        int key, mods;
+    };
+    std::vector<KeyPress> pressedKeys_;
+    bool quitWarned_ = false;  // asked to quit with unsaved edits, told so
     std::vector<std::uint8_t> windowPixels_;  // --window-screenshot, RGB
     int windowPixelsWidth_ = 0, windowPixelsHeight_ = 0;
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/io/AtomicFile.h"
 #include "microrelief/io/ImageFile.h"
 
 namespace microrelief {
@@ -22,6 +23,7 @@ std::string lowerExtension(const std::filesystem::path& file) {
 }  // namespace
 
 void checkMapExtension(const std::filesystem::path& file) {
+    checkReplaceable(file);  // a folder is named as one, not as a name without an extension
     const std::string extension = lowerExtension(file);
     if (extension != ".png" && extension != ".exr")
         throwBadInput(file.string() +

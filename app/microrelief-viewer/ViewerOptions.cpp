@@ -138,7 +138,18 @@ void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
         checkImageExtension(*o.windowScreenshot);
     }
     if ((o.screenshot || o.windowScreenshot) && o.frames == 0) o.frames = 1;
-    if (!shaderDir.empty()) o.shaderDir = shaderDir;
+    if (!shaderDir.empty()) {
+        // The files the renderer reads from it, there before a window opens.
+        std::error_code ec;
+        if (!std::filesystem::is_directory(shaderDir, ec))
+            throwBadInput("--shader-dir " + shaderDir + ": not a folder");
+        for (const char* file : {"relief.frag", "relief_box.vert"}) {
+            if (!std::filesystem::is_regular_file(std::filesystem::path(shaderDir) / file, ec))
+                throwBadInput("--shader-dir " + shaderDir + ": no " + file +
+                              " there (the folder of the project's shaders/)");
+        }
+        o.shaderDir = shaderDir;
+    }
     o.vsync = !noVsync;
     o.panel = !noPanel;
 }

@@ -117,8 +117,8 @@ std::vector<double> parseNumberList(const std::string& flag, const std::string& 
     return values;
 }
 
-glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text) {
-    const std::vector<double> values = parseNumberList(flag, text, 3, "three numbers x,y,z");
+glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text, const char* expected) {
+    const std::vector<double> values = parseNumberList(flag, text, 3, expected);
     // The shader gets these as floats; camera coordinates beyond the limit also make
     // exact hits impossible (core/scene/FloatLimits.h).
     for (double value : values) {
@@ -429,7 +429,7 @@ void SceneFlags::apply() {
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
     if (job_.method.steps >= 1 && job_.method.steps <= 65536) job_.method.setSteps(job_.method.steps);
-    job_.background = glm::vec3(parseVectorFlag(flag("background"), background_));
+    job_.background = glm::vec3(parseVectorFlag(flag("background"), background_, "three numbers r,g,b"));
     if (!model_.empty()) {
         const std::vector<double> rows = parseNumberList(
             flag("model"), model_, 12, "12 numbers: a 3 x 4 matrix in rows, comma-separated");

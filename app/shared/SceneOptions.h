@@ -92,7 +92,8 @@ std::vector<double> parseNumberList(const std::string& flag, const std::string& 
 // Error(BadInput).
 glm::ivec2 parseTiles(const std::string& text);
 // "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.
-glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text);
+glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text,
+                           const char* expected = "three numbers x,y,z");
 // "WxH" -> width, height, each side from 1 to `maxSide`; throws Error(BadInput) naming
 // `flag`, for a side beyond `maxSide` with `limitReason` ("the most ...") in the message.
 void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide = 65536,

@@ -53,6 +53,10 @@ TEST_F(ViewerCli, BadArgumentsExitTwo) {
     EXPECT_LT(frames.err.size(), 120u) << frames.err;
     expectFailure(run("--no-such-flag"), 2, "--no-such-flag");
     expectFailure(run("--screenshot " + (dir / "x.unknownext").string()), 2, "x.unknownext");
+    expectFailure(run("--background 1,1"), 2, "three numbers r,g,b");
+    // The shader folder checked before any window: named as the flag, with what it lacks.
+    expectFailure(run("--shader-dir " + (dir / "none").string()), 2, "--shader-dir");
+    expectFailure(run("--shader-dir " + dir.path().string()), 2, "no relief.frag");
 }
 
 // The sculpting flags (issue 16): a bad brush, stroke, undo count or map file is a bad
@@ -83,8 +87,11 @@ TEST_F(ViewerCli, BadSculptingFlagsExitTwo) {
 TEST_F(ViewerCli, OutputsThatCannotBeWrittenExitTwoBeforeAnyWindow) {
     const std::string folder = (dir / "d.png").string(), same = (dir / "same.png").string();
     std::filesystem::create_directory(folder);
-    for (const char* flag : {"--save-map ", "--screenshot ", "--window-screenshot "})
+    for (const char* flag : {"--save-map ", "--screenshot ", "--window-screenshot "}) {
         expectFailure(run(flag + folder), 2, folder + ": is a directory");
+        // A folder without an extension is named as a folder too, not as a name without one.
+        expectFailure(run(flag + dir.path().string()), 2, dir.path().string() + ": is a directory");
+    }
     expectFailure(run("--save-map " + same + " --screenshot " + same), 2, "given for two outputs");
     expectFailure(run("--screenshot " + same + " --window-screenshot " + same), 2,
                   "given for two outputs");

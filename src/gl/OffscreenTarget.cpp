@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "microrelief/core/Error.h"
@@ -57,8 +58,17 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
     const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        throwRuntime("the offscreen framebuffer is incomplete (status " + gl::enumHex(status) +
-                     ")");
+        // Within the GL's limits (checked above) a target this large is refused for its
+        // memory: the attachments take 44 bytes a pixel (sRGB colour 4, position 16,
+        // statistics 16, shadow 4, depth 4), 11.8 GB at 16384 x 16384.
+        const GLenum error = gl_.GetError();
+        char gigabytes[32];
+        std::snprintf(gigabytes, sizeof gigabytes, "%.2g GB",
+                      44.0 * static_cast<double>(width) * height / 1e9);
+        throwRuntime("the offscreen framebuffer of " + std::to_string(width) + "x" +
+                     std::to_string(height) + " could not be made (status " + gl::enumHex(status) +
+                     (error == GL_OUT_OF_MEMORY ? ", out of memory" : "") + "; its attachments take " +
+                     gigabytes + "): a smaller {size}");
     }
 }
 

@@ -86,6 +86,11 @@ void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
                           : "--sculpt, --stroke and --undo: an animated relief cannot be sculpted "
                             "(--animate)");
     }
+    // Undone are the strokes the script draws (a map opened is not sculpted yet).
+    if (o.undo > static_cast<int>(o.strokes.size())) {
+        throwBadInput("--undo " + std::to_string(o.undo) + ": more than the " +
+                      std::to_string(o.strokes.size()) + " --stroke given");
+    }
     if (!f.saveMap.empty()) {
         o.saveMap = f.saveMap;
         checkMapExtension(*o.saveMap);

@@ -78,6 +78,8 @@ TEST_F(ViewerCli, BadSculptingFlagsExitTwo) {
     expectFailure(run("--tile 2,1 --sculpt"), 2, "untiled map only");
     expectFailure(run("--animate waves --stroke raise,0.2,0.5,0.8,0.5"), 2, "animated relief");
     expectFailure(run("--animate flood --undo 1"), 2, "animated relief");
+    expectFailure(run("--undo 3"), 2, "--undo 3: more than the 0 --stroke given");
+    expectFailure(run("--stroke raise,0,0,1,1 --undo 2"), 2, "more than the 1 --stroke");
 }
 
 // Outputs that cannot be written as asked (issue 25), refused as microrelief-render refuses

@@ -34,15 +34,17 @@ const kRadiansPerDegree = 0.01745329251994329576923690768489;  // glm::radians
 // ---- the camera (src/core/scene/Camera.cpp: resolveCamera) ----
 
 // {eye, forward, right, up, viewProjection (16 doubles, column-major), width, height}.
-// Throws Error for a degenerate camera, with the CLI's words.
+// Throws Error for a degenerate camera, naming the view's keys and values.
 export function resolveCamera(camera, width, height, sceneRadius) {
     if (!(camera.fovy > 0 && camera.fovy < 180)) throw new Error('fovy must lie strictly between 0 and 180 degrees');
     const view = sub(camera.target, camera.eye);
     const distance = length(view);
-    if (!(distance > 0) || !Number.isFinite(distance)) throw new Error('eye and target must differ');
+    if (!(distance > 0) || !Number.isFinite(distance))
+        throw new Error(`eye=${vectorText(camera.eye)} and target=${vectorText(camera.target)} must differ`);
     const forward = scale(view, 1 / distance);
     const side = cross(forward, camera.up);
-    if (!(length(side) > 1e-9 * length(camera.up))) throw new Error('up must not be parallel to the view direction');
+    if (!(length(side) > 1e-9 * length(camera.up)))
+        throw new Error(`up=${vectorText(camera.up)} must not be parallel to the view direction (target - eye)`);
     const right = normalize(side);
     const up = cross(right, forward);
     const tanY = Math.tan(camera.fovy * kRadiansPerDegree * 0.5);
@@ -311,12 +313,7 @@ export function viewFromQuery(search) {
 // The checks microrelief-render makes of the same flags.
 export function checkView(v) {
     if (!(v.fovy > 0 && v.fovy < 180)) throw new Error('fovy must lie strictly between 0 and 180 degrees');
-    // resolveCamera's checks, here in the keys' words, before anything is drawn.
-    const view = sub(v.target, v.eye), distance = length(view);
-    if (!(distance > 0) || !Number.isFinite(distance))
-        throw new Error(`eye=${vectorText(v.eye)} and target=${vectorText(v.target)} must differ`);
-    if (!(length(cross(scale(view, 1 / distance), v.up)) > 1e-9 * length(v.up)))
-        throw new Error(`up=${vectorText(v.up)} must not be parallel to the view direction (target - eye)`);
+    resolveCamera(v, 1, 1, 1);  // its checks of eye, target and up, before anything is drawn
     if (!(v.heightScale > 0) || !Number.isFinite(v.heightScale)) throw new Error('height-scale must be a positive number');
     if (!Number.isInteger(v.steps) || v.steps < 1 || v.steps > 65536) throw new Error('steps must be a whole number in 1..65536');
     if (!(v.pixelError >= 0)) throw new Error('pixel-error must be a number >= 0');

@@ -104,9 +104,11 @@ int main(int argc, char** argv) {
             batch.write(out, {width, height, 1, PixelType::UInt16, words.data(), {"Y"}});
         }
         batch.commit();
-        if (!quiet)
-            std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width << "x"
-                  << height << ")" << (albedoOut.empty() ? "" : " and " + albedoOut) << "\n";
+        if (!quiet) {
+            std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width
+                      << "x" << height << ")" << (albedoOut.empty() ? "" : " and " + albedoOut)
+                      << "\n";
+        }
         return 0;
     } catch (const Error& e) {
         std::cerr << "microrelief-make-map: error: " << e.what() << '\n';

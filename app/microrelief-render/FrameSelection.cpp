@@ -77,12 +77,11 @@ Shard parseShard(const std::string& text, const EnvironmentLookup& environment) 
     // The array as the environment gives it: a value this function filled in is said to
     // be one, not shown as if Slurm had set it.
     std::string array;
-    for (const auto& [name, value] : {std::pair{"SLURM_ARRAY_TASK_MIN", min},
-                                      std::pair{"SLURM_ARRAY_TASK_MAX", max},
-                                      std::pair{"SLURM_ARRAY_TASK_STEP", step},
-                                      std::pair{"SLURM_ARRAY_TASK_COUNT", count}}) {
+    for (const auto& [name, value] :
+         {std::pair{"SLURM_ARRAY_TASK_MIN", min}, std::pair{"SLURM_ARRAY_TASK_MAX", max},
+          std::pair{"SLURM_ARRAY_TASK_STEP", step}, std::pair{"SLURM_ARRAY_TASK_COUNT", count}}) {
         const char* given = environment(name);
-        array += (array.empty() ? "" : " ") + std::string(name) +
+        array += (array.empty() ? "" : "; ") + std::string(name) +
                  (given && *given ? "=" + std::to_string(value)
                                   : " unset, taken as " + std::to_string(value));
     }

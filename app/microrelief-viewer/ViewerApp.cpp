@@ -12,13 +12,13 @@
 
 #include "MapFile.h"
 #include "SceneOptions.h"
-#include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
+#include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/gl/StateGuard.h"
-#include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/ImageFile.h"
 
 namespace microrelief {
@@ -178,7 +178,8 @@ void ViewerApp::setupWindow() {
     // rasteriser's) would fall between two polls of ImGui's key state.
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
         if (action == GLFW_PRESS)
-            static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))->pressedKeys_.push_back({key, mods});
+            static_cast<ViewerApp*>(glfwGetWindowUserPointer(w))
+                ->pressedKeys_.push_back({key, mods});
     });
     glfwSetWindowCloseCallback(window, [](GLFWwindow* w) {
         glfwSetWindowShouldClose(w, GLFW_FALSE);
@@ -307,11 +308,14 @@ void ViewerApp::handleInput(double seconds) {
 }
 
 void ViewerApp::askToQuit() {
-    if (state_.mapEdited && !quitWarned_) {
+    // A script's edits are --save-map's to keep (and its window closed early fails the run).
+    if (state_.mapEdited && !quitWarned_ && options_.frames == 0) {
         quitWarned_ = true;
         state_.panelVisible = true;
-        note("the map has edits not saved: Ctrl+S saves them to " + state_.savePath +
-             "; Esc (or closing the window) again quits without them");
+        note(
+            "the map has edits not saved: Ctrl+S (out of fly mode) or the panel's Save map writes "
+            "them to " +
+            state_.savePath + "; Esc or closing the window again quits without them");
         return;
     }
     glfwSetWindowShouldClose(window_->window(), GLFW_TRUE);
@@ -345,8 +349,9 @@ void ViewerApp::handleKey(int key, int mods) {
         case GLFW_KEY_B:
             state_.sculpt = !state_.sculpt && sculptable();
             if (sculptable())
-                note(state_.sculpt ? "sculpting: on (the left button paints, Alt+drag turns the view, B ends)"
-                                   : "sculpting: off");
+                note(state_.sculpt
+                         ? "sculpting: on (the left button paints, Alt+drag turns the view, B ends)"
+                         : "sculpting: off");
             else
                 note(animated_ ? "sculpting: not while the relief is animated (--animate)"
                      : renderer_->paged() ? "sculpting: not a map read through pages (larger "
@@ -397,8 +402,8 @@ void ViewerApp::handleMouse() {
     };
     const bool panning = dragging(ImGuiMouseButton_Right) || dragging(ImGuiMouseButton_Middle) ||
                          (dragging(ImGuiMouseButton_Left) && io.KeyShift);
-    const bool movingLight = dragging(ImGuiMouseButton_Left) &&
-                             glfwGetKey(window_->window(), GLFW_KEY_L) == GLFW_PRESS;
+    const bool movingLight =
+        dragging(ImGuiMouseButton_Left) && glfwGetKey(window_->window(), GLFW_KEY_L) == GLFW_PRESS;
     if (movingLight && (dx != 0.0 || dy != 0.0)) {
         // L held: the drag turns the light about the vertical (across) and raises or
         // lowers it (up and down), a quarter turn per 400 window units.
@@ -493,6 +498,7 @@ void ViewerApp::dabAt(const glm::dvec2& mapPoint, bool invert) {
     Brush brush = state_.brush;
     if (!strokeActive_) {
         strokeActive_ = true;
+        strokeCounted_ = false;
         flattenLevel_ =
             static_cast<float>(map_->surface(mapPoint.x, mapPoint.y, state_.scene.job.base.wrapsU(),
                                              state_.scene.job.interpolation));
@@ -503,7 +509,14 @@ void ViewerApp::dabAt(const glm::dvec2& mapPoint, bool invert) {
     else if (invert && brush.mode == BrushMode::Lower)
         brush.mode = BrushMode::Raise;
     try {
-        mapEdited(editor_->dab(*renderer_, mapPoint, brush));
+        const std::vector<TexelRect> changed = editor_->dab(*renderer_, mapPoint, brush);
+        // A stroke is one of the map's states once it changes a sample (the editor drops
+        // one that changes none).
+        if (!changed.empty() && !strokeCounted_) {
+            strokeIds_.push_back(nextStrokeId_++);
+            strokeCounted_ = true;
+        }
+        mapEdited(changed);
     } catch (const Error& e) {
         note(std::string("brush: ") + shown(e));
     }
@@ -513,6 +526,9 @@ void ViewerApp::endStroke() {
     editor_->endStroke();
     strokeActive_ = false;
     state_.undoSteps = editor_->undoSteps();
+    if (options_.verbose && strokeCounted_)
+        note("stroke drawn: " + std::to_string(state_.undoSteps) + " to undo");
+    strokeCounted_ = false;
 }
 
 void ViewerApp::mapEdited(const std::vector<TexelRect>& changed) {
@@ -527,7 +543,9 @@ void ViewerApp::mapEdited(const std::vector<TexelRect>& changed) {
     picker_.mapChanged(map_, changed);
     mapMaxHeight_ = renderer_->maxHeight();
     state_.undoSteps = editor_->undoSteps();
-    state_.mapEdited = true;
+    discardAsked_ = false;
+    // Edited: not the state last saved or opened (undone back to it, it is that state).
+    state_.mapEdited = (strokeIds_.empty() ? 0 : strokeIds_.back()) != savedStrokeId_;
     quitWarned_ = false;
     ++mapGeneration_;
 }
@@ -536,6 +554,7 @@ void ViewerApp::undo() {
     if (strokeActive_) endStroke();
     const std::vector<TexelRect> changed = editor_->undo(*renderer_);
     if (changed.empty()) return;
+    if (!strokeIds_.empty()) strokeIds_.pop_back();
     mapEdited(changed);
     note("undone: " + std::to_string(state_.undoSteps) + " stroke(s) left to undo");
 }
@@ -553,6 +572,7 @@ void ViewerApp::saveMap(const std::filesystem::path& file) {
         return;
     }
     state_.mapEdited = false;
+    savedStrokeId_ = strokeIds_.empty() ? 0 : strokeIds_.back();
     note("saved the map to " + file.string());
 }
 
@@ -749,6 +769,14 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     const RenderJob before = state_.scene.job;
     const bool georeferencedBefore = georeferenced_;
     try {
+        // Opening another map (or this one with other options) drops the edits: asked
+        // twice, as quitting is.
+        if (state_.mapEdited && options_.frames == 0 && !discardAsked_) {
+            discardAsked_ = true;
+            throwBadInput(
+                "the map has edits not saved (Ctrl+S or Save map writes them); open "
+                "again to drop them");
+        }
         HeightMapFile loaded = loadHeightMapFile(path, state_.scene.job.map.load);
         fitted = fitRelief(loaded, path.string());
         auto map = std::make_shared<HeightMap>(std::move(loaded.map));
@@ -780,6 +808,8 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     editor_->clear();
     state_.undoSteps = 0;
     state_.mapEdited = false;
+    strokeIds_.clear();
+    savedStrokeId_ = 0;
     state_.savePath =
         (std::filesystem::path("out") / (path.stem().string() + "-edited.exr")).string();
     if (animated_) {

@@ -180,7 +180,13 @@ private:
         int key, mods;
     };
     std::vector<KeyPress> pressedKeys_;
-    bool quitWarned_ = false;  // asked to quit with unsaved edits, told so
+    bool quitWarned_ = false;    // asked to quit with unsaved edits, told so
+    bool discardAsked_ = false;  // asked to open a map over unsaved edits, told so
+    // The map's states: an id a stroke that changed it, the undoable ones in order; the
+    // state saved or opened (0: no stroke), which undoing back to is not an edit.
+    std::vector<int> strokeIds_;
+    int nextStrokeId_ = 1, savedStrokeId_ = 0;
+    bool strokeCounted_ = false;              // the stroke being drawn has its id
     std::vector<std::uint8_t> windowPixels_;  // --window-screenshot, RGB
     int windowPixelsWidth_ = 0, windowPixelsHeight_ = 0;
 

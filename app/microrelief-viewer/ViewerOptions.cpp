@@ -8,6 +8,7 @@
 #include "MapFile.h"
 #include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/io/AtomicFile.h"
 #include "microrelief/io/ImageFile.h"
 
 namespace microrelief {
@@ -102,7 +103,8 @@ void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
                     bool& noPanel, std::size_t& memoryMib) {
     app.add_option("--frames", o.frames,
                    "Render this many frames (more while a paged map loads its view's pages), "
-                   "write the screenshots asked for, and exit");
+                   "write the screenshots asked for, and exit; 0 (the default): run until the "
+                   "window closes");
     addMemoryFlag(app, memoryMib, "refined over frames until exact");
     app.add_option("--screenshot", screenshot,
                    "After the last frame, write the 3D view (no panel) at exactly --size (implies "
@@ -136,16 +138,20 @@ void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
                       std::to_string(o.frames));
     if (!screenshot.empty()) {
         o.screenshot = screenshot;
+        checkReplaceable(*o.screenshot);  // a folder named as one, whatever its extension
         checkImageExtension(*o.screenshot);
     }
     if (!windowScreenshot.empty()) {
         o.windowScreenshot = windowScreenshot;
+        checkReplaceable(*o.windowScreenshot);
         checkImageExtension(*o.windowScreenshot);
     }
     if ((o.screenshot || o.windowScreenshot) && o.frames == 0) o.frames = 1;
     if (!shaderDir.empty()) {
         // The files the renderer reads from it, there before a window opens.
         std::error_code ec;
+        if (!std::filesystem::exists(shaderDir, ec))
+            throwBadInput("--shader-dir " + shaderDir + ": no such folder");
         if (!std::filesystem::is_directory(shaderDir, ec))
             throwBadInput("--shader-dir " + shaderDir + ": not a folder");
         for (const char* file : {"relief.frag", "relief_box.vert"}) {

@@ -115,7 +115,10 @@ void mapSection(ViewerState& s, PanelActions& actions) {
     }
     ImGui::EndDisabled();
     if (!offered && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-        ImGui::SetTooltip("The bundled map's colours go with the bundled map; --albedo FILE gives a map its own");
+        ImGui::SetTooltip(
+            "No colours to show: the bundled map's go with its stones (not with "
+            "another map, nor a field that replaces them); --albedo FILE gives a "
+            "map its own");
     if (!s.albedoName.empty()) {
         ImGui::SameLine();
         ImGui::TextDisabled("%s", s.albedoName.c_str());

@@ -429,7 +429,8 @@ void SceneFlags::apply() {
     job_.shading.view = parseDebugView(view_);
     job_.method.method = parseMethod(method_);
     if (job_.method.steps >= 1 && job_.method.steps <= 65536) job_.method.setSteps(job_.method.steps);
-    job_.background = glm::vec3(parseVectorFlag(flag("background"), background_, "three numbers r,g,b"));
+    job_.background =
+        glm::vec3(parseVectorFlag(flag("background"), background_, "three numbers r,g,b"));
     if (!model_.empty()) {
         const std::vector<double> rows = parseNumberList(
             flag("model"), model_, 12, "12 numbers: a 3 x 4 matrix in rows, comma-separated");

@@ -67,8 +67,8 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
                       44.0 * static_cast<double>(width) * height / 1e9);
         throwRuntime("the offscreen framebuffer of " + std::to_string(width) + "x" +
                      std::to_string(height) + " could not be made (status " + gl::enumHex(status) +
-                     (error == GL_OUT_OF_MEMORY ? ", out of memory" : "") + "; its attachments take " +
-                     gigabytes + "): a smaller {size}");
+                     (error == GL_OUT_OF_MEMORY ? ", out of memory" : "") +
+                     "; its attachments take " + gigabytes + "): a smaller {size}");
     }
 }
 

@@ -11,7 +11,6 @@
 
 #include "io/CheckedImageInput.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/io/AtomicFile.h"
 
 namespace microrelief {
 
@@ -77,7 +76,6 @@ struct FileIdentity {
 }  // namespace
 
 void checkImageExtension(const std::filesystem::path& file) {
-    checkReplaceable(file);  // a folder is named as one, not as a name without an extension
     const std::string extension = file.extension().string();
     if (extension.empty())
         throwBadInput(file.string() + ": no extension to choose an image format by");

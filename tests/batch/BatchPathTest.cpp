@@ -174,11 +174,12 @@ TEST(FrameSelection, SlurmRefusesWhatIsNoArrayTaskOrNoRange) {
                      "not one range");
     // An id the array does not have: an array from 1 whose MIN was forgotten by hand
     // gives task 4 of 4, one past the end.
-    EXPECT_BAD_INPUT(parseShard("slurm", environment({{"SLURM_ARRAY_TASK_ID", "4"},
-                                                      {"SLURM_ARRAY_TASK_COUNT", "4"}})),
-                     "SLURM_ARRAY_TASK_ID=4", "not a task of the array",
-                     "SLURM_ARRAY_TASK_MIN unset, taken as 0", "SLURM_ARRAY_TASK_MAX unset, taken as 3",
-                     "SLURM_ARRAY_TASK_COUNT=4");
+    EXPECT_BAD_INPUT(
+        parseShard("slurm",
+                   environment({{"SLURM_ARRAY_TASK_ID", "4"}, {"SLURM_ARRAY_TASK_COUNT", "4"}})),
+        "SLURM_ARRAY_TASK_ID=4", "not a task of the array",
+        "SLURM_ARRAY_TASK_MIN unset, taken as 0; SLURM_ARRAY_TASK_MAX unset, taken as 3",
+        "SLURM_ARRAY_TASK_COUNT=4");
 }
 
 TEST(FrameSelection, ShardsInterleaveAndPartitionTheRange) {

@@ -55,7 +55,7 @@ TEST_F(ViewerCli, BadArgumentsExitTwo) {
     expectFailure(run("--screenshot " + (dir / "x.unknownext").string()), 2, "x.unknownext");
     expectFailure(run("--background 1,1"), 2, "three numbers r,g,b");
     // The shader folder checked before any window: named as the flag, with what it lacks.
-    expectFailure(run("--shader-dir " + (dir / "none").string()), 2, "--shader-dir");
+    expectFailure(run("--shader-dir " + (dir / "none").string()), 2, "none: no such folder");
     expectFailure(run("--shader-dir " + dir.path().string()), 2, "no relief.frag");
 }
 

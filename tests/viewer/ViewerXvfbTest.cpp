@@ -378,37 +378,49 @@ TEST_F(ViewerUnderX, AnimatedReliefCarriesOverAtItsTime) {
 
 // Input a person gives faster than a slow frame (llvmpipe: about 200 ms while sculpting),
 // through the X server (xdotool, XTEST): a quick Ctrl+Z (Ctrl up again before the frame
-// reads it) undoes; Esc with edits not saved warns and keeps the window, a second Esc
-// quits. Each step waits for the viewer's line, up to 60 s.
+// reads it) undoes; Esc with edits not saved warns and keeps the window; undone back to
+// the map opened, the map is not edited and Esc quits. Each step waits for the viewer's
+// line (-v prints one as a stroke ends), up to 60 s; the whole script is killed at 180 s.
 TEST_F(ViewerUnderX, QuickKeysTakeEffectAndEscWarnsOfUnsavedEdits) {
     if (std::system("command -v xdotool > /dev/null 2>&1") != 0)
         GTEST_SKIP() << "xdotool is not installed (scripts/setup.sh installs it)";
     const auto log = dir / "viewer.log";
-    const std::string script = "log='" + log.string() + "'\nviewer_exe='" + MICRORELIEF_VIEWER_EXE +
-                               "'\n" + R"sh(
+    const std::string script =
+        "log='" + log.string() + "'\nviewer_exe='" + MICRORELIEF_VIEWER_EXE + "'\n" + R"sh(
 set -u
-"$viewer_exe" --size 800x600 --no-panel > "$log" 2>&1 &
+"$viewer_exe" -v --size 800x600 --no-panel > "$log" 2>&1 &
 viewer=$!
+trap 'kill $viewer 2> /dev/null' EXIT
 # Waits until the log holds $2 lines with $1 (or 60 s).
-waitfor() { for i in $(seq 300); do [ "$(grep -c -- "$1" "$log")" -ge "${2:-1}" ] && return 0; sleep 0.2; done; echo "timed out waiting for '$1'"; kill $viewer; exit 1; }
-xdotool search --sync --name microrelief-viewer > /dev/null
-sleep 1
+waitfor() {
+    for i in $(seq 300); do
+        [ "$(grep -c -- "$1" "$log")" -ge "${2:-1}" ] && return 0
+        sleep 0.2
+    done
+    echo "timed out waiting for '$1'"
+    exit 1
+}
+timeout 60 xdotool search --sync --onlyvisible --name microrelief-viewer > /dev/null || { echo "no window"; exit 1; }
+waitfor 'GL: '
+sleep 1  # the first frames drawn
 xdotool mousemove 400 300 key b
 waitfor 'sculpting: on'
-stroke() { xdotool mousemove 370 300 mousedown 1; sleep 0.5; xdotool mousemove 400 310; sleep 0.5; xdotool mousemove 430 320; sleep 0.5; xdotool mouseup 1; sleep 0.5; }
-stroke
-xdotool key ctrl+z
-waitfor 'undone: 0 stroke'
-stroke
+xdotool mousemove 370 300 mousedown 1; sleep 0.5; xdotool mousemove 400 310; sleep 0.5
+xdotool mousemove 430 320; sleep 0.5; xdotool mouseup 1
+waitfor 'stroke drawn: 1 to undo'
 xdotool key Escape
 waitfor 'edits not saved'
+xdotool key --delay 0 ctrl+z
+waitfor 'undone: 0 stroke'
 xdotool key Escape
+for i in $(seq 150); do kill -0 $viewer 2> /dev/null || break; sleep 0.2; done
+kill -0 $viewer 2> /dev/null && { echo "still running after the last Esc"; exit 1; }
 wait $viewer
 echo "exit $?"
 )sh";
     const auto file = dir / "drive.sh";
     std::ofstream(file) << script;
-    const RunResult r = run("bash " + file.string());
+    const RunResult r = run("timeout 180 bash " + file.string());
     const std::string text = test::readText(log);
     EXPECT_EQ(r.status, 0) << r.out << r.err << "\n" << text;
     EXPECT_NE(r.out.find("exit 0"), std::string::npos) << r.out << "\n" << text;

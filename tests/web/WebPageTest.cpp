@@ -200,10 +200,10 @@ TEST_F(WebPage, ViewsSetInTheUrlMatchTheRenderer) {
 
 // A key the page does not know (a typo) is an error naming it, not a view drawn without it.
 TEST_F(WebPage, AnUnknownUrlKeyIsAnErrorNamingIt) {
-    const PageRun page = runPage("[" + open("pixelerror=2", 64, 48) + ", {\"wait\": \"ready\"}, " +
-                                 open("eye=0,1,0&target=0,1,0", 64, 48) +
-                                 ", {\"wait\": \"ready\"}, " + open("up=1,1,1&eye=2,2,2&target=0,0,0", 64, 48) +
-                                 ", {\"wait\": \"ready\"}]");
+    const PageRun page =
+        runPage("[" + open("pixelerror=2", 64, 48) + ", {\"wait\": \"ready\"}, " +
+                open("eye=0,1,0&target=0,1,0", 64, 48) + ", {\"wait\": \"ready\"}, " +
+                open("up=1,1,1&eye=2,2,2&target=0,0,0", 64, 48) + ", {\"wait\": \"ready\"}]");
     EXPECT_EQ(page.at(1, "state"), "error");
     EXPECT_NE(page.at(1, "error").find("the URL: pixelerror: not a key this page knows ("),
               std::string::npos)

@@ -399,7 +399,14 @@ PanelActions drawPanel(ViewerState& state, float uiScale) {
         ImVec2(width, 0.0f),
         ImVec2(width, std::max(ImGui::GetIO().DisplaySize.y - 2.0f * margin, 50.0f)));
     ImGui::SetNextWindowBgAlpha(0.85f);
-    if (ImGui::Begin("microrelief", &state.panelVisible, ImGuiWindowFlags_AlwaysAutoResize)) {
+    const bool open =
+        ImGui::Begin("microrelief", &state.panelVisible, ImGuiWindowFlags_AlwaysAutoResize);
+    // A window shrunk to almost nothing (a near-minimise) pushes the panel up and left past
+    // its corner, and ImGui leaves it there when the window grows back, its title bar, fold
+    // arrow and close box cut off: it is kept at or below and right of the corner.
+    const ImVec2 at = ImGui::GetWindowPos();
+    if (at.x < 0.0f || at.y < 0.0f) ImGui::SetWindowPos(ImVec2(std::max(at.x, 0.0f), std::max(at.y, 0.0f)));
+    if (open) {
         errorBanner(state);
         mapSection(state, actions);
         viewSection(state, actions);

@@ -87,6 +87,13 @@ void mapSection(ViewerState& s, PanelActions& actions) {
                                  ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SameLine();
     if ((ImGui::Button("Open") || entered) && !s.typedPath.empty()) actions.openMap = s.typedPath;
+    // Under the field it is about, not over the panel: the field stays where it was clicked.
+    if (!s.mapError.empty()) {
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextColored(kErrorColor, "Cannot open the map (the current one stays): %s",
+                           s.mapError.c_str());
+        ImGui::PopTextWrapPos();
+    }
     if (ImGui::InputInt("Channel", &s.scene.job.map.load.channel)) {
         s.scene.job.map.load.channel = std::max(s.scene.job.map.load.channel, 0);
         actions.reloadMap = true;
@@ -347,10 +354,6 @@ void errorBanner(const ViewerState& s) {
     if (!s.shaderError.empty()) {
         ImGui::TextColored(kErrorColor, "Shader error (the previous program keeps running):");
         ImGui::TextColored(kErrorColor, "%s", s.shaderError.c_str());
-    }
-    if (!s.mapError.empty()) {
-        ImGui::TextColored(kErrorColor, "Cannot open the map (the current one stays):");
-        ImGui::TextColored(kErrorColor, "%s", s.mapError.c_str());
     }
     ImGui::PopTextWrapPos();
 }

@@ -4,6 +4,7 @@
 //   microrelief-make-map cobbles --size 256x256 --out assets/cobbles.png
 //       --albedo assets/cobbles-albedo.png (one command)
 #include <CLI/CLI.hpp>
+#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +45,22 @@ void writeAlbedo(ImageWriteBatch& batch, const std::filesystem::path& file,
         }
     }
     batch.write(file, {albedo.width, albedo.height, 3, PixelType::UInt8, rgb.data(), {}});
+}
+
+// ", heights in 8 bits ..." where the format wrote the map's 16 bits as 8 (as the file's
+// header says: BMP, JPEG, ...), else nothing: 256 levels make terraces a tracer shows.
+std::string storedDepthNote(const std::string& file) {
+    auto in = OIIO::ImageInput::open(file);
+    if (!in) {
+        OIIO::geterror();
+        return "";
+    }
+    const bool shallow = in->spec().format.size() == 1;
+    const bool lossy = std::string(in->format_name()) == "jpeg";
+    in->close();
+    return shallow ? std::string(", heights in 8 bits") + (lossy ? ", lossy" : "") +
+                         ": .png or .tif keep 16, .exr float"
+                   : "";
 }
 
 }  // namespace
@@ -106,8 +123,8 @@ int main(int argc, char** argv) {
         batch.commit();
         if (!quiet) {
             std::cout << "microrelief-make-map: wrote " << out << " (" << name << ", " << width
-                      << "x" << height << ")" << (albedoOut.empty() ? "" : " and " + albedoOut)
-                      << "\n";
+                      << "x" << height << storedDepthNote(out) << ")"
+                      << (albedoOut.empty() ? "" : " and " + albedoOut) << "\n";
         }
         return 0;
     } catch (const Error& e) {

@@ -100,6 +100,14 @@ TEST_F(ToolsCli, MakeMapRefusesMalformedAndOversizedSizes) {
     const test::RunResult quiet = run(MICRORELIEF_MAKE_MAP_EXE, "noise -q --size 5x3" + out);
     ASSERT_EQ(quiet.status, 0) << quiet.err;
     EXPECT_EQ(quiet.out + quiet.err, "");
+    EXPECT_EQ(ok.out.find("8 bits"), std::string::npos) << ok.out;
+    // A format that keeps 8 bits a sample (as its header says) is written, and said.
+    const test::RunResult jpeg =
+        run(MICRORELIEF_MAKE_MAP_EXE, "noise --size 5x3 --out " + (dir / "m.jpg").string());
+    ASSERT_EQ(jpeg.status, 0) << jpeg.err;
+    EXPECT_NE(jpeg.out.find("(noise, 5x3, heights in 8 bits, lossy: .png or .tif keep 16"),
+              std::string::npos)
+        << jpeg.out;
     auto image = OIIO::ImageInput::open((dir / "m.png").string());
     ASSERT_TRUE(image);
     EXPECT_EQ(image->spec().width, 5);

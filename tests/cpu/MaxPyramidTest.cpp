@@ -242,6 +242,40 @@ TEST(MaxPyramid, WindowsAreTheMaxOfTwoByTwoBlocksWithoutPadding) {
 // on a machine of more than one core) is built as one loop would build it: each finest
 // texel is texelSquareBound of its samples, stored, and the levels above by brute force
 // from them. Level 1 too is split (192k blocks).
+// texelSquareBound reads the samples inside the map directly, and through sample()'s
+// clamping or wrapping at its edges: the same bits as the Bezier net's max taken here on
+// sample() everywhere, on every texel of an odd map, clamped and wrapped, and across
+// tiles.
+TEST(MaxPyramid, TexelSquareBoundIsTheNetOfTheSamplesSampleGives) {
+    const HeightMap map = synth::whiteNoise(13, 7, 3);
+    for (const MapAddressing addressing :
+         {MapAddressing{false}, MapAddressing{true}, MapAddressing{true, 2, 3}}) {
+        const int w = map.width * addressing.tilesX, h = map.height * addressing.tilesY;
+        for (int j = -1; j <= h; ++j) {
+            for (int i = -1; i <= w; ++i) {
+                float rows[3][3];
+                for (int b = 0; b < 3; ++b) {
+                    const float c0 = map.sample(i - 1, j - 1 + b, addressing),
+                                c1 = map.sample(i, j - 1 + b, addressing),
+                                c2 = map.sample(i + 1, j - 1 + b, addressing);
+                    rows[b][0] = roundUpMean(c0, c1);
+                    rows[b][1] = c1;
+                    rows[b][2] = roundUpMean(c1, c2);
+                }
+                float best = 0.0f;
+                for (int a = 0; a < 3; ++a) {
+                    best = std::max({best, roundUpMean(rows[0][a], rows[1][a]), rows[1][a],
+                                     roundUpMean(rows[1][a], rows[2][a])});
+                }
+                ASSERT_EQ(std::bit_cast<std::uint32_t>(texelSquareBound(map, i, j, addressing)),
+                          std::bit_cast<std::uint32_t>(best))
+                    << i << "," << j << " wrap " << addressing.wrapU << " tiles "
+                    << addressing.tilesX;
+            }
+        }
+    }
+}
+
 TEST(MaxPyramid, ABuildInBandsEqualsTheTexelByTexelDefinition) {
     const HeightMap map = synth::whiteNoise(1101, 701, 5);
     const MaxPyramid p(map, true, BoundPrecision::Half);

@@ -3,8 +3,8 @@
 // bundled assets/cobbles.png and assets/cobbles-albedo.png are
 //   microrelief-make-map cobbles --size 256x256 --out assets/cobbles.png
 //       --albedo assets/cobbles-albedo.png (one command)
-#include <CLI/CLI.hpp>
 #include <OpenImageIO/imageio.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -408,7 +408,8 @@ PanelActions drawPanel(ViewerState& state, float uiScale) {
     // its corner, and ImGui leaves it there when the window grows back, its title bar, fold
     // arrow and close box cut off: it is kept at or below and right of the corner.
     const ImVec2 at = ImGui::GetWindowPos();
-    if (at.x < 0.0f || at.y < 0.0f) ImGui::SetWindowPos(ImVec2(std::max(at.x, 0.0f), std::max(at.y, 0.0f)));
+    if (at.x < 0.0f || at.y < 0.0f)
+        ImGui::SetWindowPos(ImVec2(std::max(at.x, 0.0f), std::max(at.y, 0.0f)));
     if (open) {
         errorBanner(state);
         mapSection(state, actions);

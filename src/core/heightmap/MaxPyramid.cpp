@@ -69,11 +69,16 @@ float texelSquareBound(const HeightMap& map, int i, int j, bool wrapU) {
 float texelSquareBound(const HeightMap& map, int i, int j, const MapAddressing& addressing) {
     // The Bezier net along rows first, then along its columns (see MaxPyramid.h); the max
     // taken on the bits (all >= 0), so it is the same on every machine.
+    // Inside the map (its first tile) the 3 x 3 samples need no clamping or wrapping:
+    // sample() would return these same samples (its index arithmetic, divisions for the
+    // tiles, was 28 % of a 20000 x 20000 map's paged render in a profile).
+    const bool inside = i >= 1 && j >= 1 && i + 1 < map.width && j + 1 < map.height;
     std::uint32_t rows[3][3];
     for (int b = 0; b < 3; ++b) {
         std::uint32_t c[3];
         for (int a = 0; a < 3; ++a)
-            c[a] = magnitudeBits(map.sample(i - 1 + a, j - 1 + b, addressing));
+            c[a] = magnitudeBits(inside ? map.at(i - 1 + a, j - 1 + b)
+                                        : map.sample(i - 1 + a, j - 1 + b, addressing));
         rows[b][0] = roundUpMeanBits(c[0], c[1]);
         rows[b][1] = c[1];
         rows[b][2] = roundUpMeanBits(c[1], c[2]);
@@ -158,10 +163,14 @@ float MaxPyramid::finestBound(const HeightMap& map, int i, int j) const {
     // occurrence of the texel square. Untiled, that is the one occurrence.
     const int lastTileX = (addressing_.tilesX - 1) * map.width,
               lastTileY = (addressing_.tilesY - 1) * map.height;
+    // An untiled map's "two" occurrences are one, taken once (it was taken four times).
+    // With the direct reads in texelSquareBound: a 20000 x 4000 map's paged render of an
+    // 8 x 6 picture took 11 to 12 s of CPU time, 35 to 43 before (llvmpipe, 2 cores).
     float best = 0.0f;
-    for (const int oy : {0, lastTileY}) {
-        for (const int ox : {0, lastTileX})
-            best = std::max(best, texelSquareBound(map, i + ox, j + oy, addressing_));
+    for (int y = 0; y <= (lastTileY > 0 ? 1 : 0); ++y) {
+        for (int x = 0; x <= (lastTileX > 0 ? 1 : 0); ++x)
+            best = std::max(
+                best, texelSquareBound(map, i + x * lastTileX, j + y * lastTileY, addressing_));
     }
     return best;
 }

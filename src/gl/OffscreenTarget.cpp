@@ -58,9 +58,9 @@ OffscreenTarget::OffscreenTarget(const GL& gl, int width, int height)
     const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        // Within the GL's limits (checked above) a target this large is refused for its
-        // memory: the attachments take 44 bytes a pixel (sRGB colour 4, position 16,
-        // statistics 16, shadow 4, depth 4), 11.8 GB at 16384 x 16384.
+        // Within the GL's limits (checked above), what refuses a large target is most
+        // likely its memory (llvmpipe: GL_OUT_OF_MEMORY): the attachments take 44 bytes a pixel
+        // (sRGB colour 4, position 16, statistics 16, shadow 4, depth 4), 11.8 GB at 16384 x 16384.
         const GLenum error = gl_.GetError();
         char gigabytes[32];
         std::snprintf(gigabytes, sizeof gigabytes, "%.2g GB",

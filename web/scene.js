@@ -312,8 +312,7 @@ export function viewFromQuery(search) {
 
 // The checks microrelief-render makes of the same flags.
 export function checkView(v) {
-    if (!(v.fovy > 0 && v.fovy < 180)) throw new Error('fovy must lie strictly between 0 and 180 degrees');
-    resolveCamera(v, 1, 1, 1);  // its checks of eye, target and up, before anything is drawn
+    resolveCamera(v, 1, 1, 1);  // its checks of fovy, eye, target and up, before anything is drawn
     if (!(v.heightScale > 0) || !Number.isFinite(v.heightScale)) throw new Error('height-scale must be a positive number');
     if (!Number.isInteger(v.steps) || v.steps < 1 || v.steps > 65536) throw new Error('steps must be a whole number in 1..65536');
     if (!(v.pixelError >= 0)) throw new Error('pixel-error must be a number >= 0');

@@ -110,9 +110,7 @@ void mapSection(ViewerState& s, PanelActions& actions) {
     // Whether there are colours to turn on: a file, or the bundled map's with the bundled
     // map. Where there are none the box is off and greyed (the choice stays, and comes
     // back with the bundled map).
-    RenderJob probe = s.scene.job;
-    probe.albedo.kind = on;
-    const bool offered = albedoPath(probe).has_value();
+    const bool offered = albedoOffered(s.scene.job);
     bool colours = offered && albedo.kind != AlbedoSource::Kind::None;
     ImGui::BeginDisabled(!offered);
     if (ImGui::Checkbox("Colours (albedo)", &colours)) {

@@ -539,11 +539,18 @@ std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief) {
         case AlbedoSource::Kind::Default:
             break;
     }
-    // The bundled map's colours go with its stones: not with a field that replaces them.
-    if (relief.map.bundled() &&
-        (relief.animation.empty() || animatedFieldShowsTheMap(relief.animation)))
-        return defaultAlbedoPath();
+    if (bundledColoursFit(relief)) return defaultAlbedoPath();
     return std::nullopt;
+}
+
+bool bundledColoursFit(const ReliefDesc& relief) {
+    // The bundled map's colours go with its stones: not with a field that replaces them.
+    return relief.map.bundled() &&
+           (relief.animation.empty() || animatedFieldShowsTheMap(relief.animation));
+}
+
+bool albedoOffered(const ReliefDesc& relief) {
+    return !relief.albedo.file.empty() || bundledColoursFit(relief);
 }
 
 std::string renderCommandLine(const SceneOptions& o, const std::string& program) {

@@ -110,6 +110,12 @@ std::filesystem::path heightMapPath(const ReliefDesc& relief);
 // (unless an animated field, waves or ripples, replaces its heights); none for
 // AlbedoSource::Kind::None or another map without one.
 std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief);
+// Whether the bundled map's colours go with `relief`'s heights: the bundled map, unless an
+// animated field replaces them (albedoPath's rule for AlbedoSource::Kind::Default).
+bool bundledColoursFit(const ReliefDesc& relief);
+// Whether `relief` has colours to turn on, whatever albedo.kind says now: a file of its
+// own (kept while turned off), or the bundled map's (bundledColoursFit).
+bool albedoOffered(const ReliefDesc& relief);
 
 // `job` over a W x H map read with the georeference `geo` (io/HeightMapFile.h:
 // loadHeightMapFile): the true proportions where `fit` lets (core/scene/Georeference.h),

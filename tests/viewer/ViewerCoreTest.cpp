@@ -212,6 +212,33 @@ TEST(ViewerOptions, ScreenshotImpliesOneFrame) {
     EXPECT_EQ(o.screenshot->string(), "a.png");
 }
 
+// The panel's colours box: offered where turning it on draws colours (albedoPath with the
+// box on), whatever it says now.
+TEST(ViewerOptions, ColoursAreOfferedWhereTurningThemOnDrawsSome) {
+    const auto offeredAndDrawn = [](ReliefDesc relief) {
+        const bool offered = albedoOffered(relief);
+        relief.albedo.kind =
+            relief.albedo.file.empty() ? AlbedoSource::Kind::Default : AlbedoSource::Kind::File;
+        EXPECT_EQ(offered, albedoPath(relief).has_value());
+        return offered;
+    };
+    ReliefDesc bundled;  // the bundled map, its own colours
+    EXPECT_TRUE(offeredAndDrawn(bundled));
+    bundled.albedo.kind = AlbedoSource::Kind::None;  // turned off: still offered
+    EXPECT_TRUE(offeredAndDrawn(bundled));
+    bundled.animation = "waves";  // a field that replaces the stones
+    EXPECT_FALSE(offeredAndDrawn(bundled));
+    bundled.animation = "flood";  // the stones under water
+    EXPECT_TRUE(offeredAndDrawn(bundled));
+
+    ReliefDesc other;
+    other.map.file = "my.png";
+    EXPECT_FALSE(offeredAndDrawn(other));
+    other.albedo.file = "my-colours.png";  // its own, turned off
+    other.albedo.kind = AlbedoSource::Kind::None;
+    EXPECT_TRUE(offeredAndDrawn(other));
+}
+
 // --- picking
 
 TEST(ReliefPicker, PicksTheMapUnderThePixel) {

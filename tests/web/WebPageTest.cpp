@@ -203,7 +203,8 @@ TEST_F(WebPage, AnUnknownUrlKeyIsAnErrorNamingIt) {
     const PageRun page =
         runPage("[" + open("pixelerror=2", 64, 48) + ", {\"wait\": \"ready\"}, " +
                 open("eye=0,1,0&target=0,1,0", 64, 48) + ", {\"wait\": \"ready\"}, " +
-                open("up=1,1,1&eye=2,2,2&target=0,0,0", 64, 48) + ", {\"wait\": \"ready\"}]");
+                open("up=1,1,1&eye=2,2,2&target=0,0,0", 64, 48) + ", {\"wait\": \"ready\"}, " +
+                open("fovy=180", 64, 48) + ", {\"wait\": \"ready\"}]");
     EXPECT_EQ(page.at(1, "state"), "error");
     EXPECT_NE(page.at(1, "error").find("the URL: pixelerror: not a key this page knows ("),
               std::string::npos)
@@ -215,6 +216,9 @@ TEST_F(WebPage, AnUnknownUrlKeyIsAnErrorNamingIt) {
         << page.at(3, "error");
     EXPECT_NE(page.at(5, "error").find("the URL: up=1,1,1 must not be parallel"), std::string::npos)
         << page.at(5, "error");
+    EXPECT_NE(page.at(7, "error").find("the URL: fovy must lie strictly between 0 and 180"),
+              std::string::npos)
+        << page.at(7, "error");
 }
 
 // The orbit camera: a drag turns the view, the wheel zooms, a Shift drag pans (the browser's

@@ -211,9 +211,10 @@ int runTerrain(const CLI::App& app, const BenchOptions& options, bool quick, std
     terrain.frames = options.frames;
     terrain.memoryBytes = memoryMib << 20;
     // Maps made in memory (whole and paged paths, the reference) while their samples,
-    // pyramid and reference take at most 60 % of the machine's memory (about
-    // kPagedBytesPerSample a sample); larger ones from pyramid files alone.
-    terrain.inMemorySamples = physicalMemoryBytes() * 6 / 10 / kPagedBytesPerSample;
+    // pyramid and reference take at most 60 % of the machine's memory (about 20 bytes a
+    // sample: the paged path's 16, kPagedBytesPerSample, and the reference's own pyramid);
+    // larger ones from pyramid files alone.
+    terrain.inMemorySamples = physicalMemoryBytes() * 6 / 10 / 20;
     terrain.pyramidFolder = std::filesystem::path(outDir) / "terrain-pyramids";
     if (terrain.mapSizes.empty()) throwBadInput("--map-sizes names no size");
     const auto context = createHeadlessContext(parseBackend(backend));

@@ -145,8 +145,10 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
 
 // The map loaded whole and drawn (through pages where it is larger than the GL's textures).
 Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightFile) {
-    const HeightMapFile loaded = loadMapOrPointToCache(heightFile, o.scene.job, o.compareReference);
-    const HeightMap& map = loaded.map;
+    HeightMapFile loaded = loadMapOrPointToCache(heightFile, o.scene.job, o.compareReference);
+    // Shared with the renderer: a map read through pages is kept by its pages, not copied.
+    const auto shared = std::make_shared<const HeightMap>(std::move(loaded.map));
+    const HeightMap& map = *shared;
     const RenderJob job = jobOverMap(o, heightFile, map.width, map.height, loaded.georeference);
     if (o.compareReference && job.tiles != glm::ivec2(1, 1) &&
         map.samples.size() * job.tiles.x * job.tiles.y > (std::size_t(1) << 26)) {
@@ -158,7 +160,7 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
     const std::optional<AlbedoImage> albedo = loadAlbedoOf(albedoPath(job));
     const auto context = openContext(o);
     Drawn drawn;
-    drawn.result = renderHeadless(*context, map, heightFile.string(), job,
+    drawn.result = renderHeadless(*context, shared, heightFile.string(), job,
                                   albedo ? &*albedo : nullptr, o.paging);
     drawn.context = context->description();
     drawn.mapSize = {map.width, map.height};

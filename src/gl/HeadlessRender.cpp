@@ -48,6 +48,14 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
     });
 }
 
+void HeadlessRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
+                                    const BaseShape& base, Interpolation interpolation,
+                                    glm::ivec2 tiles) {
+    upload(*map, source, tiles, [&](PyramidBuild build) {
+        renderer_->setHeightMap(map, source, base, interpolation, build, tiles);
+    });
+}
+
 void HeadlessRenderer::setPyramidPages(std::shared_ptr<const PyramidPages> pages,
                                        const std::string& source, const BaseShape& base,
                                        Interpolation interpolation) {
@@ -230,9 +238,13 @@ void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
     target_->readInto(result.frame, part.x, part.y, part.width, part.height);
 }
 
-HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
-                              const RenderJob& job, const AlbedoImage* albedo,
-                              const PagingSettings& paging) {
+namespace {
+
+// renderHeadless's work, `set` giving the renderer the map.
+HeadlessResult renderMap(GlContext& context, const HeightMap& map, const std::string& source,
+                         const RenderJob& job, const AlbedoImage* albedo,
+                         const PagingSettings& paging,
+                         const std::function<void(HeadlessRenderer&)>& set) {
     // Refused before the pyramid is built; render checks them again.
     checkHeightScale(job.heightScale);
     checkPictureSize(job.width, job.height);
@@ -242,9 +254,27 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
     // GL objects live in this scope and die before the context does.
     HeadlessRenderer renderer(context, job.method);
     renderer.setPaging(paging);
-    renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
+    set(renderer);
     if (albedo) renderer.setAlbedo(albedo, source + " (albedo)");
     return renderer.render(job);
+}
+
+}  // namespace
+
+HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
+                              const RenderJob& job, const AlbedoImage* albedo,
+                              const PagingSettings& paging) {
+    return renderMap(context, map, source, job, albedo, paging, [&](HeadlessRenderer& renderer) {
+        renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
+    });
+}
+
+HeadlessResult renderHeadless(GlContext& context, std::shared_ptr<const HeightMap> map,
+                              const std::string& source, const RenderJob& job,
+                              const AlbedoImage* albedo, const PagingSettings& paging) {
+    return renderMap(context, *map, source, job, albedo, paging, [&](HeadlessRenderer& renderer) {
+        renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
+    });
 }
 
 }  // namespace microrelief

@@ -242,6 +242,19 @@ void ReliefRenderer::setInterpolation(Interpolation interpolation) {
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                   const BaseShape& base, Interpolation interpolation,
                                   PyramidBuild build, glm::ivec2 tiles) {
+    setHeightMapOf(map, nullptr, source, base, interpolation, build, tiles);
+}
+
+void ReliefRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
+                                  const BaseShape& base, Interpolation interpolation,
+                                  PyramidBuild build, glm::ivec2 tiles) {
+    setHeightMapOf(*map, map, source, base, interpolation, build, tiles);
+}
+
+void ReliefRenderer::setHeightMapOf(const HeightMap& map, std::shared_ptr<const HeightMap> shared,
+                                    const std::string& source, const BaseShape& base,
+                                    Interpolation interpolation, PyramidBuild build,
+                                    glm::ivec2 tiles) {
     validateBaseShape(base);
     checkMethodSupportsBase(method_.method, base);
     checkMethodSupportsTiles(method_.method, tiles);
@@ -255,7 +268,9 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
     const bool maxMip = method_.method == Method::MaxMip;
     // The GPU builder bounds texel squares within one map: a tiled one's is the CPU's.
     if (paging) {
-        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), paging_));
+        // The pages keep the map: the caller's where it shares it, else a copy.
+        if (!shared) shared = std::make_shared<const HeightMap>(map);
+        textures_.emplace(ReliefTextures(gl_, std::move(shared), source, base.wrapsU(), paging_));
     } else if (build == PyramidBuild::Gpu && tiles == glm::ivec2(1, 1)) {
         textures_.emplace(
             ReliefTextures(gl_, map, source, base.wrapsU(), pyramidBuilder(), maxMip));

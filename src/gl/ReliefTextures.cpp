@@ -89,19 +89,18 @@ ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::st
            withMaxMip);
 }
 
-ReliefTextures::ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source,
-                               bool wrapU, const PagingSettings& paging)
-    : ReliefTextures(gl, keptInMemory(map, source, wrapU), source, paging) {}
+ReliefTextures::ReliefTextures(const GL& gl, std::shared_ptr<const HeightMap> map,
+                               const std::string& source, bool wrapU, const PagingSettings& paging)
+    : ReliefTextures(gl, keptInMemory(std::move(map), source, wrapU), source, paging) {}
 
-std::shared_ptr<const PyramidPages> ReliefTextures::keptInMemory(const HeightMap& map,
-                                                                 const std::string& source,
-                                                                 bool wrapU) {
-    MaxPyramid pyramid = buildPyramid(map, source, {wrapU, 1, 1});
+std::shared_ptr<const PyramidPages> ReliefTextures::keptInMemory(
+    std::shared_ptr<const HeightMap> map, const std::string& source, bool wrapU) {
+    const int width = map->width, height = map->height;
     try {
-        return std::make_shared<PyramidInMemory>(map, std::move(pyramid));
+        return std::make_shared<PyramidInMemory>(std::move(map), wrapU, source);
     } catch (const std::bad_alloc&) {
-        throwRuntime(source + ": not enough memory to keep its " + std::to_string(map.width) + "x" +
-                     std::to_string(map.height) + " samples and pyramid for paging");
+        throwRuntime(source + ": not enough memory to keep its " + std::to_string(width) + "x" +
+                     std::to_string(height) + " pyramid for paging");
     }
 }
 

@@ -340,7 +340,7 @@ TEST_F(RenderCli, DevicesFifosAndLyingHeadersAreRefusedAtOnce) {
     const auto fifo = dir / "map.png";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     expectRefused(fifo.string(), "not a regular file");
-    // A 69-byte PNG whose header claims 65535 x 40000 (10 GB of floats, about 49 GiB to draw
+    // A 69-byte PNG whose header claims 65535 x 40000 (10 GB of floats, about 40 GiB to draw
     // through pages) and one that claims 100000 x 100000 (which used to end in
     // std::bad_alloc): refused from the header, the first for this machine's memory where
     // it has less than that (else for its broken data). Refused for memory, the message
@@ -352,7 +352,7 @@ TEST_F(RenderCli, DevicesFifosAndLyingHeadersAreRefusedAtOnce) {
         static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
     if (memory < 65535.0 * 40000 * kPagedBytesPerSample) {
         const std::string hint = " GiB; --pyramid-cache FOLDER draws it from disk";
-        EXPECT_NE(expectRefused(lying, "65535 x 40000 samples need about 49 GiB of memory to draw")
+        EXPECT_NE(expectRefused(lying, "65535 x 40000 samples need about 40 GiB of memory to draw")
                       .find(hint),
                   std::string::npos);
         EXPECT_EQ(expectRefused(lying, "of memory to draw", "--method maxmip ").find(hint),

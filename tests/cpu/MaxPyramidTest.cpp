@@ -276,17 +276,28 @@ TEST(MaxPyramid, TexelSquareBoundIsTheNetOfTheSamplesSampleGives) {
     }
 }
 
+// The build carries the net's rows down each band (MaxPyramid::computeFinest): on maps one
+// sample wide or tall too, where the clamped and wrapped edges meet, and at either precision.
 TEST(MaxPyramid, ABuildInBandsEqualsTheTexelByTexelDefinition) {
-    const HeightMap map = synth::whiteNoise(1101, 701, 5);
-    const MaxPyramid p(map, true, BoundPrecision::Half);
-    for (int j = 0; j < map.height; ++j) {
-        for (int i = 0; i < map.width; ++i) {
-            ASSERT_EQ(p.block(0, i, j), storedBound(texelSquareBound(map, i, j, true),
-                                                    BoundPrecision::Half, p.scaleExponent()))
-                << i << "," << j;
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{
+             {1101, 701}, {1, 1}, {1, 6}, {6, 1}, {2, 2}, {3, 7}, {300, 257}}) {
+        const HeightMap map = synth::whiteNoise(w, h, static_cast<std::uint32_t>(5 + w + h));
+        for (const bool wrapU : {true, false}) {
+            for (const BoundPrecision precision : {BoundPrecision::Half, BoundPrecision::Float}) {
+                const MaxPyramid p(map, wrapU, precision);
+                for (int j = 0; j < map.height; ++j) {
+                    for (int i = 0; i < map.width; ++i) {
+                        ASSERT_EQ(
+                            std::bit_cast<std::uint32_t>(p.block(0, i, j)),
+                            std::bit_cast<std::uint32_t>(storedBound(
+                                texelSquareBound(map, i, j, wrapU), precision, p.scaleExponent())))
+                            << w << "x" << h << (wrapU ? " wrapped" : "") << ": " << i << "," << j;
+                    }
+                }
+                expectBlocksAndWindowsFromTheFinest(p, map);
+            }
         }
     }
-    expectBlocksAndWindowsFromTheFinest(p, map);
 }
 
 // Half precision (what the GPU holds): each finest bound rounded up to 11 significant bits

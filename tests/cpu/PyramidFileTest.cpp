@@ -166,6 +166,31 @@ TEST_F(PyramidFileTest, HoldsTheTexelsOfThePyramidInMemory) {
     }
 }
 
+// The pages of a map in memory built from its rows (the windows alone, the map shared: what
+// a map past the GL's textures is drawn from) are MaxPyramid's, bit for bit, on maps one
+// sample wide or tall, odd ones and ones over more than one band (256 rows).
+TEST_F(PyramidFileTest, TheStreamedPagesInMemoryAreTheMaxPyramids) {
+    for (const auto& [w, h] :
+         std::vector<std::pair<int, int>>{{1, 1}, {1, 9}, {9, 1}, {2, 2}, {301, 77}, {67, 600}}) {
+        for (const bool wrapU : {false, true}) {
+            const HeightMap map = testMap(w, h, static_cast<std::uint32_t>(w + 3 * h));
+            const auto shared = std::make_shared<const HeightMap>(map);
+            const PyramidInMemory streamed(shared, wrapU, "test");
+            const PyramidInMemory built(map, MaxPyramid(map, wrapU, BoundPrecision::Half));
+            const std::string what =
+                std::to_string(w) + "x" + std::to_string(h) + (wrapU ? " wrapped" : "");
+            EXPECT_EQ(&streamed.map(), shared.get()) << what << ": the map copied";
+            EXPECT_EQ(streamed.scaleExponent(), built.scaleExponent()) << what;
+            EXPECT_EQ(streamed.largestSample(), built.largestSample()) << what;
+            ASSERT_EQ(streamed.levelCount(), built.levelCount()) << what;
+            for (int level = 0; level < built.levelCount(); ++level) {
+                ASSERT_EQ(bitsOf(streamed.readLevel(level)), bitsOf(built.readLevel(level)))
+                    << what << ", level " << level;
+            }
+        }
+    }
+}
+
 void expectRefused(const std::function<void()>& act, const std::string& expected) {
     try {
         act();

@@ -62,6 +62,12 @@ public:
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       glm::ivec2 tiles = {1, 1});
+    // The same for a map the caller shares: read through pages, the pages keep it rather
+    // than a copy (ReliefRenderer::setHeightMap).
+    void setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
+                      const BaseShape& base = {},
+                      Interpolation interpolation = Interpolation::Bilinear,
+                      glm::ivec2 tiles = {1, 1});
     // The same for a map whose samples and pyramid `pages` keeps (ReliefRenderer::
     // setPyramidPages): read through pages.
     void setPyramidPages(std::shared_ptr<const PyramidPages> pages, const std::string& source,
@@ -120,6 +126,12 @@ void checkPictureSize(int width, int height);
 // pages (by default, past GL_MAX_TEXTURE_SIZE). Throws Error.
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
                               const RenderJob& job, const AlbedoImage* albedo = nullptr,
+                              const PagingSettings& paging = {});
+// The same for a map the caller shares, which a map read through pages keeps rather than a
+// copy of it (microrelief-render's, which it holds the picture to afterwards).
+HeadlessResult renderHeadless(GlContext& context, std::shared_ptr<const HeightMap> map,
+                              const std::string& source, const RenderJob& job,
+                              const AlbedoImage* albedo = nullptr,
                               const PagingSettings& paging = {});
 
 }  // namespace microrelief

@@ -87,6 +87,12 @@ public:
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
+    // The same for a map the caller shares: read through pages, the pages keep this map
+    // rather than a copy of it (a map past GL_MAX_TEXTURE_SIZE: 1.6 GB at 20000 x 20000).
+    void setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
+                      const BaseShape& base = {},
+                      Interpolation interpolation = Interpolation::Bilinear,
+                      PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
     // The same for a map whose samples and pyramid `pages` keeps (a pyramid file,
     // io/PyramidFile.h): always read through pages, whatever setPaging says but its budget
     // and page side; untiled.
@@ -189,6 +195,10 @@ private:
     bool tiled() const { return tiles() != glm::ivec2(1, 1); }
     // Whether setHeightMap pages `map` (paging_).
     bool pages(const HeightMap& map) const;
+    // setHeightMap's work; `shared`, where not null, is `map`, shared by the caller.
+    void setHeightMapOf(const HeightMap& map, std::shared_ptr<const HeightMap> shared,
+                        const std::string& source, const BaseShape& base,
+                        Interpolation interpolation, PyramidBuild build, glm::ivec2 tiles);
     // The program for the configuration, compiled on first use; throws and changes
     // nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);

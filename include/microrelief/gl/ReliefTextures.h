@@ -65,8 +65,9 @@ public:
     // built on the CPU, the samples and the fine windows paged in as draws want them, the
     // coarse windows resident. Only the multilevel method reads it: no aligned pyramid,
     // no cone maps, no edits (those throw Error(Runtime)).
-    ReliefTextures(const GL& gl, const HeightMap& map, const std::string& source, bool wrapU,
-                   const PagingSettings& paging);
+    // `map` is shared with the pages (not copied: such a map is large).
+    ReliefTextures(const GL& gl, std::shared_ptr<const HeightMap> map, const std::string& source,
+                   bool wrapU, const PagingSettings& paging);
     // The same from a pyramid kept elsewhere (a pyramid file: io/PyramidFile.h), which may be
     // larger than memory: nothing of it is read until a draw wants it but the coarse levels.
     ReliefTextures(const GL& gl, std::shared_ptr<const PyramidPages> pages,
@@ -144,8 +145,8 @@ public:
 private:
     friend class PyramidBuilder;  // writes S and maxHeight after a build or an update
 
-    // `map` and its pyramid (built on the CPU), kept for paging.
-    static std::shared_ptr<const PyramidPages> keptInMemory(const HeightMap& map,
+    // `map` and its pyramid's windows (built on the CPU), kept for paging.
+    static std::shared_ptr<const PyramidPages> keptInMemory(std::shared_ptr<const HeightMap> map,
                                                             const std::string& source, bool wrapU);
 
     void allocate(const GL& gl, const HeightMap& map);

@@ -185,16 +185,11 @@ StreamedPyramid streamPyramid(const MapRows& rows, bool wrapU, int band, const P
             }
         }
 
-        finest.assign(static_cast<std::size_t>(count) * width, 0.0f);
-        parallelRows(0, count, width, [&](int r0, int r1) {
-            for (int r = r0; r < r1; ++r) {
-                for (int i = 0; i < width; ++i) {
-                    finest[static_cast<std::size_t>(r) * width + i] =
-                        storedBound(texelSquareBound(window, i, r + 1, wrapU), BoundPrecision::Half,
-                                    result.scaleExponent);
-                }
-            }
-        });
+        // The band's texels at rows 1 .. count of the window, whose rows either side are
+        // there: texelSquareBound(window, i, r + 1, wrapU) of each.
+        finest.resize(static_cast<std::size_t>(count) * width);
+        finestBounds(window, MapAddressing{wrapU}, {0, 1, width, count + 1}, BoundPrecision::Half,
+                     result.scaleExponent, finest.data(), static_cast<std::size_t>(width));
         for (int r = 0; r < count; ++r) {
             sink(0, y0 + r, rowOf(window, r + 1));
             const auto from = finest.begin() + static_cast<std::ptrdiff_t>(r) * width;

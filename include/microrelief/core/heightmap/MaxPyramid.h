@@ -106,6 +106,14 @@ float pyramidTop(float largestSample);
 // steps only raise it, so it stays a bound; divided by 2^S it is a normal half, exactly.
 float storedBound(float bound, BoundPrecision precision, int scaleExponent);
 
+// The stored finest bounds (storedBound of texelSquareBound, bit for bit) of the texels in
+// `rect` of `map` as `addressing` has it, untiled, into `out` from texel (rect.x0, rect.y0)
+// on, `stride` floats a row: in bands of rows on the machine's cores, each mean of the
+// texels' nets taken once (neighbouring texels share them). What MaxPyramid's build and
+// PyramidStream.h's compute.
+void finestBounds(const HeightMap& map, const MapAddressing& addressing, const TexelRect& rect,
+                  BoundPrecision precision, int scaleExponent, float* out, std::size_t stride);
+
 // The windows' (and blocks') sizes: GL's mip sizes of W x H, max(1, W >> k) by
 // max(1, H >> k), down to 1 x 1.
 std::vector<glm::ivec2> windowLevelSizes(int mapWidth, int mapHeight);

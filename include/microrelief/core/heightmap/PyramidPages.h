@@ -8,6 +8,8 @@
 // them (bounds in map units on the half grid times 2^S, S = scaleExponent()).
 #pragma once
 
+#include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -51,19 +53,31 @@ private:
     std::vector<glm::ivec2> windowSizes_;
 };
 
-// A map and its pyramid in memory.
+// A map and its pyramid's windows in memory (what paging reads; not the blocks a MaxPyramid
+// keeps for its updates, as many bytes again).
 class PyramidInMemory final : public PyramidPages {
 public:
-    // `pyramid` is `map`'s, BoundPrecision::Half and untiled (Error(Runtime) otherwise).
-    PyramidInMemory(HeightMap map, MaxPyramid pyramid);
+    // The windows of `map`'s pyramid (u wrapped when `wrapU`), built from its rows as a
+    // pyramid file's are (PyramidStream.h: the same texels as MaxPyramid's, BoundPrecision::
+    // Half, untiled), without the blocks whole; the map is shared, not copied. `source`
+    // names the map in errors. Throws Error.
+    PyramidInMemory(std::shared_ptr<const HeightMap> map, bool wrapU, const std::string& source);
+    // From `pyramid`, `map`'s, BoundPrecision::Half and untiled (Error(Runtime) otherwise).
+    PyramidInMemory(HeightMap map, const MaxPyramid& pyramid);
 
     void read(int level, const TexelRect& rect, float* out) const override;
-    const HeightMap& map() const { return map_; }
-    const MaxPyramid& pyramid() const { return pyramid_; }
+    const HeightMap& map() const { return *map_; }
 
 private:
-    HeightMap map_;
-    MaxPyramid pyramid_;
+    struct Windows {
+        std::vector<std::unique_ptr<float[]>> levels;  // window level k: its sizes' texels
+        float largestSample = 0.0f;
+    };
+    static Windows streamWindows(const HeightMap& map, bool wrapU, const std::string& source);
+    PyramidInMemory(std::shared_ptr<const HeightMap> map, bool wrapU, Windows windows);
+
+    std::shared_ptr<const HeightMap> map_;
+    std::vector<std::unique_ptr<float[]>> windows_;
 };
 
 }  // namespace microrelief

@@ -51,16 +51,30 @@ bool mr_curvedXIncreases(vec3 origin, vec3 dir) { return origin.z * dir.x - orig
 
 // The t at which the line crosses the half-plane of constant X = boundary through the
 // axis (points lambda (sin phi, y, cos phi), lambda >= 0), MR_NEVER where it does not.
-// The line meets the half-plane's plane once at most, so any t is that crossing: a walk
-// that finds it behind its start has rounded past it already.
-float mr_curvedCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary) {
+// The line meets the half-plane's plane once at most, so any t is that crossing: a walk at
+// t = `after` (its X monotone, its cell the one that holds it) that finds the boundary
+// ahead of it behind `after` has rounded past it already, and steps on. But a line through
+// the axis (an eye on it: every ray from it) meets every half-plane's plane there, and
+// rounding both picks the side X moves to (mr_curvedXIncreases' sign of 0) and puts that
+// meeting on either side: such a crossing, far behind on the axis, is no crossing; X is
+// constant along the line past it. A crossing behind `after` is taken for the rounding of
+// one at `after` only where it lies as far from the axis as the path at `after` does,
+// within a factor 2 (the rounding of t moves the point by a few ulp, far less); one nearer
+// the axis is that meeting (a line that misses the axis by more than rounding never
+// crosses the boundary ahead behind `after`).
+float mr_curvedCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float after) {
     float phi = 2.0 * MR_CURVED_PI * (boundary / relief.map.size.x - 0.5);
     float s = sin(phi), c = cos(phi);
     float rate = s * dir.z - c * dir.x;
     if (rate == 0.0) return MR_NEVER;
     float t = (c * origin.x - s * origin.z) / rate;
     vec3 p = origin + t * dir;
-    return s * p.x + c * p.z > 0.0 ? t : MR_NEVER;
+    if (!(s * p.x + c * p.z > 0.0)) return MR_NEVER;
+    if (t < after) {
+        vec3 q = origin + after * dir;
+        if (dot(p.xz, p.xz) < 0.25 * dot(q.xz, q.xz)) return MR_NEVER;
+    }
+    return t;
 }
 
 // The X range of the path between frame points of X = xa and xb. The angle about the axis is

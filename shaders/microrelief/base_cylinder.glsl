@@ -135,7 +135,9 @@ void mr_baseTangentFrame(mr_Relief relief, vec3 m, out vec3 alongX, out vec3 alo
 }
 
 bool mr_baseXIncreases(vec3 origin, vec3 dir) { return mr_curvedXIncreases(origin, dir); }
-float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary) { return mr_curvedCrossX(relief, origin, dir, boundary); }
+float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float after) {
+    return mr_curvedCrossX(relief, origin, dir, boundary, after);
+}
 // Each plane of constant Y is crossed once along a line (any t).
 float mr_baseCrossY(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float from, float to) {
     return mr_cylinderCrossY(relief, origin, dir, boundary);

@@ -184,7 +184,9 @@ void mr_baseTangentFrame(mr_Relief relief, vec3 m, out vec3 alongX, out vec3 alo
 }
 
 bool mr_baseXIncreases(vec3 origin, vec3 dir) { return mr_curvedXIncreases(origin, dir); }
-float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary) { return mr_curvedCrossX(relief, origin, dir, boundary); }
+float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float after) {
+    return mr_curvedCrossX(relief, origin, dir, boundary, after);
+}
 // A cone of constant Y may be crossed twice along a line: the crossing on the branch
 // [from, to] where Y is monotone.
 float mr_baseCrossY(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float from, float to) {

@@ -85,10 +85,10 @@ void mr_baseTangentFrame(mr_Relief relief, vec3 m, out vec3 alongX, out vec3 alo
 }
 
 // Where the straight path crosses the cell boundary X = boundary (Y = boundary), any t;
-// 1e30 where it runs parallel to it.
+// 1e30 where it runs parallel to it. (`after`: the walk's t, which a curved base's needs.)
 bool mr_baseXIncreases(vec3 origin, vec3 dir) { return dir.x > 0.0; }
 
-float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary) {
+float mr_baseCrossX(mr_Relief relief, vec3 origin, vec3 dir, float boundary, float after) {
     return dir.x == 0.0 ? 1e30 : (boundary - origin.x) / dir.x;
 }
 

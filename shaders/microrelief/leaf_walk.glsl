@@ -242,7 +242,7 @@ float mr_walkLeafCells(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origi
             // A curved map one sample wide has no boundary in X: its one cell goes all the way
             // round.
             float tx = MICRORELIEF_BASE == 0 || width > 1
-                           ? mr_baseCrossX(relief, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0))
+                           ? mr_baseCrossX(relief, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0), t0)
                            : MR_NEVER;
             if (tx <= t1) {
                 t1 = max(tx, t0);

@@ -73,7 +73,7 @@ void mr_maxMipTurn(inout mr_MaxMipCourse course) {
 // per axis (MR_NEVER along an axis it does not leave by). On a curved base the sides
 // are a half-plane of constant X through the axis (the map's seam, X = W, past its last
 // column) and a plane or cone of constant Y, met in closed form (base_surface.glsl).
-vec2 mr_maxMipNodeExits(mr_Relief relief, ivec2 node, int level, vec3 origin, vec3 dir, mr_MaxMipCourse course) {
+vec2 mr_maxMipNodeExits(mr_Relief relief, ivec2 node, int level, vec3 origin, vec3 dir, float t, mr_MaxMipCourse course) {
     float size = exp2(float(level));
     vec2 exits = vec2(MR_NEVER);
 #if MICRORELIEF_BASE == 0
@@ -90,7 +90,7 @@ vec2 mr_maxMipNodeExits(mr_Relief relief, ivec2 node, int level, vec3 origin, ve
     // would be its exit again and again.)
     if (((int(relief.map.size.x) - 1) >> level) > 0) {
         float side = course.step.x > 0 ? min(float(node.x + 1) * size, relief.map.size.x) : float(node.x) * size;
-        exits.x = mr_baseCrossX(relief, origin, dir, side);
+        exits.x = mr_baseCrossX(relief, origin, dir, side, t);
     }
     float side = (float(node.y) + (course.step.y > 0 ? 1.0 : 0.0)) * size;
     if (course.step.y != 0 && side > 0.0 && side < relief.map.size.y)
@@ -161,7 +161,7 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyra
         while (iteration < query.maxIterations) {
             iteration += 1;
             hit.stopLevel = level;
-            exits = mr_maxMipNodeExits(relief, node, level, origin, dir, course);
+            exits = mr_maxMipNodeExits(relief, node, level, origin, dir, t, course);
             // Where Y turns the node's side ahead in Y changes: a stop of its own.
             float tStop = min(min(exits.x, exits.y), course.turn);
             tExit = min(max(tStop, t), tFar);

@@ -122,7 +122,7 @@ TEST(BaseSurface, CrossingsLieOnTheirBoundaries) {
         for (int trial = 0; trial < 2000; ++trial) {
             const FrameRay ray = randomLine(random, 0);
             const double x = std::floor(zeroOne(random) * c.width) + 0.5;
-            if (const auto t = surface.crossX(ray, x)) {
+            if (const auto t = surface.crossX(ray, x, -1e300)) {
                 ++crossedX;
                 const double at = surface.mapX(ray.at(*t));
                 EXPECT_NEAR(std::remainder(at - x, c.width), 0.0, 1e-9) << c.name;

@@ -108,6 +108,9 @@ void addCurvedRecipes(std::vector<SweepMapRecipe>& recipes) {
           0.06}},
         // Narrower than tall: levels with one column of pyramid nodes round the axis.
         {"tall33x75", {[] { return share(synth::valueNoise(33, 75, 6.0, 3, 13)); }, 0.15}},
+        // Two samples round: the seam cell's far edge is half a turn from its near one
+        // (relief_patch.glsl: mr_patchLocal took it for the other corner).
+        {"two2x24", {[] { return share(synth::whiteNoise(2, 24, 5)); }, 0.3}},
     };
     for (std::size_t k = 0; k < relief.size(); ++k) {
         const auto& [name, data] = relief[k];
@@ -229,6 +232,14 @@ std::vector<SweepView> curvedViews(const SweepMap& m) {
     // to columns W - 2, W - 1: a pyramid that bounded the seam texels with clamped
     // neighbours would miss that slope here.
     add("top", orbitCamera(89.0, 30.0, 2.8 * size, {0.0, 0.0, 0.0}, 40.0));
+    // The eye exactly on the axis: every ray's line meets the axis there, where every
+    // half-plane of constant X meets it (base_curved.glsl: mr_curvedCrossX).
+    Camera axis;
+    axis.eye = {0.0, 2.8 * size, 0.0};
+    axis.target = {0.0, 0.0, 0.0};
+    axis.up = {0.0, 0.0, -1.0};
+    axis.fovyDegrees = 40.0;
+    add("axis", axis);
     add("bottom", orbitCamera(-89.0, 200.0, 2.8 * size, {0.0, 0.0, 0.0}, 40.0));
     const glm::dvec3 scale = base.frameScale();
     // A frame point at polar angle theta from +y and longitude phi, at radius r (for the

@@ -32,7 +32,8 @@ bool CurvedSurface::xIncreases(const FrameRay& ray) const {
     return ray.origin.z * ray.dir.x - ray.origin.x * ray.dir.z > 0.0;
 }
 
-std::optional<double> CurvedSurface::crossX(const FrameRay& ray, double boundary) const {
+std::optional<double> CurvedSurface::crossX(const FrameRay& ray, double boundary,
+                                            double after) const {
     // The half-plane through the axis at angle phi: points lambda (sin phi, y, cos phi),
     // lambda >= 0. The line meets its plane where sin(phi) z - cos(phi) x = 0.
     const double phi = 2.0 * std::numbers::pi * (boundary / width_ - 0.5);
@@ -42,6 +43,12 @@ std::optional<double> CurvedSurface::crossX(const FrameRay& ray, double boundary
     const double t = (c * ray.origin.x - s * ray.origin.z) / denominator;
     const glm::dvec3 p = ray.at(t);
     if (s * p.x + c * p.z <= 0.0) return std::nullopt;  // the opposite half-plane
+    // Behind `after` and nearer the axis than the path there: a line through the axis meets
+    // the plane on it, no crossing (base_curved.glsl: mr_curvedCrossX).
+    if (t < after) {
+        const glm::dvec3 q = ray.at(after);
+        if (p.x * p.x + p.z * p.z < 0.25 * (q.x * q.x + q.z * q.z)) return std::nullopt;
+    }
     return t;
 }
 

@@ -85,7 +85,7 @@ public:
         return n;
     }
 
-    std::optional<double> crossX(const FrameRay& ray, double boundary) const override {
+    std::optional<double> crossX(const FrameRay& ray, double boundary, double) const override {
         if (ray.dir.x == 0.0) return std::nullopt;
         return (boundary - ray.origin.x) / ray.dir.x;
     }

@@ -183,7 +183,7 @@ auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to
         bool stepX = false, stepY = false;
         // A curved map one sample wide has no boundary in X: its one cell goes all the way round.
         const std::optional<double> tx = !base.wrapsU() || w > 1
-                                             ? base.crossX(ray, i + offset + (xUp ? 1.0 : 0.0))
+                                             ? base.crossX(ray, i + offset + (xUp ? 1.0 : 0.0), t0)
                                              : std::nullopt;
         if (tx && *tx <= t1) {
             t1 = std::max(*tx, t0);
@@ -235,7 +235,9 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
     const auto local = [&](double t) {
         const glm::dvec3 m = base.mapPoint(ray.at(t));
         double fx = m.x - (patch.i + offset);
-        if (base.wrapsU()) fx -= w * std::round(fx / w);
+        // Round the base into the turn centred on the cell (relief_patch.glsl:
+        // mr_patchLocal), which holds the whole cell for every w >= 2.
+        if (base.wrapsU()) fx -= w * std::floor((fx - 0.5) / w + 0.5);
         return glm::dvec3(fx, m.y - (patch.j + offset), m.z);
     };
     const auto gap = [&](double t) {

@@ -97,8 +97,11 @@ public:
 
     // The leaf's walk over cells (leaf_walk.glsl, mr_walkLeafCells). The t at which the path
     // crosses the cell boundary X = boundary, any t (each is crossed once along a line: a
-    // walk that finds it behind its start has rounded past it), or nullopt.
-    virtual std::optional<double> crossX(const FrameRay& ray, double boundary) const = 0;
+    // walk at t = `after` that finds it behind that has rounded past it; a curved base's
+    // line through its axis meets every boundary there, no crossing: base_curved.glsl,
+    // mr_curvedCrossX), or nullopt.
+    virtual std::optional<double> crossX(const FrameRay& ray, double boundary,
+                                         double after) const = 0;
     // Whether X grows along the ray (monotone along a line on every base).
     virtual bool xIncreases(const FrameRay& ray) const = 0;
     // Y of a frame point.
@@ -151,7 +154,7 @@ public:
 
     // X of frame point q, in [0, W).
     double mapX(const glm::dvec3& q) const;
-    std::optional<double> crossX(const FrameRay& ray, double boundary) const override;
+    std::optional<double> crossX(const FrameRay& ray, double boundary, double after) const override;
     bool xIncreases(const FrameRay& ray) const override;
     double finalLength() const override;
 

@@ -154,9 +154,12 @@ void lightControls(ShadingOptions& shading) {
     const glm::vec3 l = glm::normalize(shading.lightDirection);
     float azimuth = glm::degrees(std::atan2(l.z, l.x));
     float elevation = glm::degrees(std::asin(std::clamp(l.y, -1.0f, 1.0f)));
-    const bool moved = ImGui::SliderFloat("Light azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg") |
-                       ImGui::SliderFloat("Light elevation", &elevation, -90.0f, 90.0f, "%.0f deg");
-    if (moved) {
+    // Both sliders drawn every frame, whichever moved.
+    const bool azimuthMoved =
+        ImGui::SliderFloat("Light azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg");
+    const bool elevationMoved =
+        ImGui::SliderFloat("Light elevation", &elevation, -90.0f, 90.0f, "%.0f deg");
+    if (azimuthMoved || elevationMoved) {
         const float a = glm::radians(azimuth), e = glm::radians(elevation);
         shading.lightDirection = {std::cos(e) * std::cos(a), std::sin(e),
                                   std::cos(e) * std::sin(a)};

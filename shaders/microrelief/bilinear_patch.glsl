@@ -105,12 +105,12 @@ ivec2 mr_wrapCell(mr_Relief relief, ivec2 cell) {
 ivec2 mr_cellAt(vec2 xy) { return ivec2(floor(xy - 0.5)); }
 
 // Map point `xy` in the local coordinates of `cell`, whose sample h00 is at the origin; on
-// a curved base the seam cell W - 1 holds the points just past X = 0 too (the turn centred
-// on the cell, as relief_patch.glsl's mr_patchLocal takes it).
+// a curved base the seam cell W - 1 holds the points just past X = 0 too
+// (map_addressing.glsl: mr_wrapLocalX).
 vec2 mr_cellLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
     vec2 f = xy - (vec2(cell) + 0.5);
 #if MICRORELIEF_BASE != 0
-    f.x -= relief.map.size.x * floor((f.x - 0.5) / relief.map.size.x + 0.5);
+    f.x = mr_wrapLocalX(relief, f.x);
 #endif
     return f;
 }

@@ -17,6 +17,15 @@ int mr_wrapIndex(int i, int n) {
     return i >= 0 ? i % n : n - 1 - (n - 1 - i) % n;
 }
 
+// A map point's X less a cell's origin on a curved base (its local coordinate f.x), taken
+// round the base into the turn centred on the cell, [0.5 - W / 2, 0.5 + W / 2): the whole
+// cell, [0, 1], for every W >= 2, with no turn taken there (a turn centred on its near edge,
+// [-W / 2, W / 2), took a two-sample map's far edge, f.x = 1, to -1: the other corner). The
+// quotient stays 1 / 4 or more from an integer there, whatever the division's rounding.
+float mr_wrapLocalX(mr_Relief relief, float fx) {
+    return fx - relief.map.size.x * floor((fx - 0.5) / relief.map.size.x + 0.5);
+}
+
 // The texel holding sample p (integer sample coordinates of the whole map).
 ivec2 mr_sampleTexel(mr_Relief relief, ivec2 p) {
     ivec2 count = ivec2(relief.map.size);

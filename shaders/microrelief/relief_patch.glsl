@@ -34,14 +34,11 @@ const float MR_PATCH_TOP_MARGIN = 1.0 / 1048576.0;
 ivec2 mr_patchCellAt(mr_Relief relief, vec2 xy) { return mr_wrapCell(relief, ivec2(floor(xy - MR_PATCH_OFFSET))); }
 
 // Map point xy in the local coordinates of `cell`; on a curved base the seam cell holds
-// the points just past X = 0 too: f.x is taken round the base into the turn centred on the
-// cell, [0.5 - W / 2, 0.5 + W / 2), which holds the whole cell, [0, 1], for every W >= 2
-// (a turn centred on its near edge, [-W / 2, W / 2), took a two-sample map's far edge,
-// f.x = 1, to -1: the other corner).
+// the points just past X = 0 too (map_addressing.glsl: mr_wrapLocalX).
 vec2 mr_patchLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
     vec2 f = xy - (vec2(cell) + MR_PATCH_OFFSET);
 #if MICRORELIEF_BASE != 0
-    f.x -= relief.map.size.x * floor((f.x - 0.5) / relief.map.size.x + 0.5);
+    f.x = mr_wrapLocalX(relief, f.x);
 #endif
     return f;
 }

@@ -164,9 +164,7 @@ float MaxPyramid::finestBound(const HeightMap& map, int i, int j) const {
     // occurrence of the texel square. Untiled, that is the one occurrence.
     const int lastTileX = (addressing_.tilesX - 1) * map.width,
               lastTileY = (addressing_.tilesY - 1) * map.height;
-    // An untiled map's "two" occurrences are one, taken once (it was taken four times).
-    // With the direct reads in texelSquareBound: a 20000 x 4000 map's paged render of an
-    // 8 x 6 picture took 11 to 12 s of CPU time, 35 to 43 before (llvmpipe, 2 cores).
+    // Along an untiled axis the "two" occurrences are one, taken once.
     float best = 0.0f;
     for (int y = 0; y <= (lastTileY > 0 ? 1 : 0); ++y) {
         for (int x = 0; x <= (lastTileX > 0 ? 1 : 0); ++x)

@@ -235,8 +235,8 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
     const auto local = [&](double t) {
         const glm::dvec3 m = base.mapPoint(ray.at(t));
         double fx = m.x - (patch.i + offset);
-        // Round the base into the turn centred on the cell (relief_patch.glsl:
-        // mr_patchLocal), which holds the whole cell for every w >= 2.
+        // Round the base into the turn centred on the cell (map_addressing.glsl:
+        // mr_wrapLocalX), which holds the whole cell for every w >= 2.
         if (base.wrapsU()) fx -= w * std::floor((fx - 0.5) / w + 0.5);
         return glm::dvec3(fx, m.y - (patch.j + offset), m.z);
     };

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <filesystem>
@@ -61,6 +62,30 @@ std::vector<std::uint32_t> bitsOf(const std::vector<float>& values) {
 
 // A map with its largest sample in a corner and flat runs, so that edges, the clamp and the
 // top all matter.
+// The pages of a map as MaxPyramid builds its pyramid (BoundPrecision::Half, untiled), texel
+// by texel: the reference the streamed builds (pyramid files, PyramidInMemory) are held to.
+class MaxPyramidPages final : public PyramidPages {
+public:
+    MaxPyramidPages(const HeightMap& map, bool wrapU)
+        : PyramidPages(map.width, map.height, wrapU, map.maxValue()),
+          map_(map),
+          pyramid_(map, wrapU, BoundPrecision::Half) {}
+
+    void read(int level, const TexelRect& rect, float* out) const override {
+        const int width = levelSize(level).x;
+        const std::vector<float>& data =
+            level == 0 ? map_.samples : pyramid_.windowLevelData(level - 1);
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            const auto from = data.begin() + static_cast<std::ptrdiff_t>(y) * width + rect.x0;
+            out = std::copy(from, from + rect.width(), out);
+        }
+    }
+
+private:
+    HeightMap map_;
+    MaxPyramid pyramid_;
+};
+
 HeightMap testMap(int width, int height, std::uint32_t seed) {
     HeightMap map = synth::valueNoise(width, height, 7.0, 3, seed);
     map.at(width - 1, height - 1) = 1.5f;
@@ -131,15 +156,15 @@ protected:
     test::ScratchDir scratch_;
 };
 
-// Every texel of every level, read back in rectangles that cross pages, is the in-memory
-// pyramid's.
+// Every texel of every level, read back in rectangles that cross pages, is MaxPyramid's
+// (texel by texel).
 TEST_F(PyramidFileTest, HoldsTheTexelsOfThePyramidInMemory) {
     for (const bool wrapU : {false, true}) {
         const HeightMap map = testMap(301, 77, 5);
         const std::filesystem::path file = scratch_ / (wrapU ? "w.mrpyr" : "p.mrpyr");
         writePyramidFile(file, rowsOf(map), wrapU, "key", "test", 16);
         const auto read = PyramidFile::open(file);
-        const PyramidInMemory memory(map, MaxPyramid(map, wrapU, BoundPrecision::Half));
+        const MaxPyramidPages memory(map, wrapU);
         EXPECT_EQ(read->sourceKey(), "key");
         EXPECT_EQ(read->pageSide(), 16);
         EXPECT_EQ(read->wrapsU(), wrapU);
@@ -176,7 +201,7 @@ TEST_F(PyramidFileTest, TheStreamedPagesInMemoryAreTheMaxPyramids) {
             const HeightMap map = testMap(w, h, static_cast<std::uint32_t>(w + 3 * h));
             const auto shared = std::make_shared<const HeightMap>(map);
             const PyramidInMemory streamed(shared, wrapU, "test");
-            const PyramidInMemory built(map, MaxPyramid(map, wrapU, BoundPrecision::Half));
+            const MaxPyramidPages built(map, wrapU);
             const std::string what =
                 std::to_string(w) + "x" + std::to_string(h) + (wrapU ? " wrapped" : "");
             EXPECT_EQ(&streamed.map(), shared.get()) << what << ": the map copied";
@@ -263,7 +288,7 @@ TEST_F(PyramidFileTest, AMapsFileIsBuiltOnceAndAgainWhenTheMapChanges) {
     EXPECT_TRUE(built);
     const HeightMap loaded = loadHeightMap(png);
     EXPECT_EQ(bitsOf(first->readLevel(0)), bitsOf(loaded.samples)) << "rows as loadHeightMap reads";
-    const PyramidInMemory memory(loaded, MaxPyramid(loaded, false, BoundPrecision::Half));
+    const MaxPyramidPages memory(loaded, false);
     EXPECT_EQ(bitsOf(first->readLevel(1)), bitsOf(memory.readLevel(1)));
 
     long long reported = 0, total = 0;

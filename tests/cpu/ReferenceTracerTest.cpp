@@ -809,7 +809,7 @@ TEST(PagedReferenceTracer, GivesTheReferencesHitsOverTheSameSamples) {
             map.at(i, j) =
                 0.5f + 0.3f * std::sin(i * 0.021f) * std::cos(j * 0.017f) + jitter(random);
     const auto pages =
-        std::make_shared<PyramidInMemory>(map, MaxPyramid(map, false, BoundPrecision::Half));
+        std::make_shared<PyramidInMemory>(std::make_shared<const HeightMap>(map), false, "test");
     // Turned 30 degrees about y, moved by (0.1, 0, -0.2).
     const ModelTransform turned =
         ModelTransform::fromRows({0.8660254037844387, 0.0, 0.5, 0.1, 0.0, 1.0, 0.0, 0.0, -0.5, 0.0,

@@ -56,7 +56,7 @@ protected:
 };
 
 std::shared_ptr<const PyramidPages> inMemory(const HeightMap& map) {
-    return std::make_shared<PyramidInMemory>(map, MaxPyramid(map, false, BoundPrecision::Half));
+    return std::make_shared<PyramidInMemory>(std::make_shared<const HeightMap>(map), false, "test");
 }
 
 // Small pages and a small resident side, so that the samples and several window levels

@@ -67,20 +67,6 @@ PyramidInMemory::Windows PyramidInMemory::streamWindows(const HeightMap& map, bo
     return windows;
 }
 
-PyramidInMemory::PyramidInMemory(HeightMap map, const MaxPyramid& pyramid)
-    : PyramidPages(map.width, map.height, pyramid.wrapsU(), map.maxValue()),
-      map_(std::make_shared<const HeightMap>(std::move(map))) {
-    if (pyramid.precision() != BoundPrecision::Half || pyramid.addressing().tilesX != 1 ||
-        pyramid.addressing().tilesY != 1 || pyramid.mapWidth() != map_->width ||
-        pyramid.mapHeight() != map_->height)
-        throwRuntime("PyramidInMemory: the map's own pyramid, untiled, of BoundPrecision::Half");
-    for (int level = 0; level < pyramid.windowLevelCount(); ++level) {
-        const std::vector<float>& texels = pyramid.windowLevelData(level);
-        windows_.push_back(std::make_unique_for_overwrite<float[]>(texels.size()));
-        std::copy(texels.begin(), texels.end(), windows_.back().get());
-    }
-}
-
 void PyramidInMemory::read(int level, const TexelRect& rect, float* out) const {
     const int width = levelSize(level).x;
     const float* data = level == 0 ? map_->samples.data() : windows_[level - 1].get();

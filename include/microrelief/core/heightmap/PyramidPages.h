@@ -62,8 +62,6 @@ public:
     // Half, untiled), without the blocks whole; the map is shared, not copied. `source`
     // names the map in errors. Throws Error.
     PyramidInMemory(std::shared_ptr<const HeightMap> map, bool wrapU, const std::string& source);
-    // From `pyramid`, `map`'s, BoundPrecision::Half and untiled (Error(Runtime) otherwise).
-    PyramidInMemory(HeightMap map, const MaxPyramid& pyramid);
 
     void read(int level, const TexelRect& rect, float* out) const override;
     const HeightMap& map() const { return *map_; }

@@ -302,7 +302,9 @@ int runBatch(const RenderOptions& o) {
                            !o.quiet && BatchProgress::stderrIsTerminal());
     std::unique_ptr<GlContext> context;
     std::optional<HeadlessRenderer> renderer;
-    std::optional<HeightMap> map;    // the map drawn, for the eye's check (none from a file)
+    // The map drawn, for the eye's check (none from a file); shared with the renderer, whose
+    // pages keep it rather than a copy where it reads it through pages.
+    std::shared_ptr<const HeightMap> map;
     std::optional<MapKey> pagesSet;  // the map whose pyramid file the renderer reads
     int eyeInside = 0;             // frames whose eye lies inside the solid
     std::string firstEyeInside;
@@ -348,10 +350,12 @@ int runBatch(const RenderOptions& o) {
                     ++mapsLoaded;
                 }
             } else if (renderer->needsHeights(job)) {
-                HeightMap heights = checkedMap && checkedMap->key == key
-                                        ? std::move(checkedMap->map)
-                                        : loadHeightMap(std::get<0>(key), job.map.load);
+                auto heights = std::make_shared<const HeightMap>(
+                    checkedMap && checkedMap->key == key
+                        ? std::move(checkedMap->map)
+                        : loadHeightMap(std::get<0>(key), job.map.load));
                 checkedMap.reset();
+                map.reset();  // the last map, kept now only by pages that setHeights lets go
                 renderer->setHeights(job, heights, std::get<0>(key).string());
                 map = std::move(heights);
                 ++mapsLoaded;
@@ -371,7 +375,7 @@ int runBatch(const RenderOptions& o) {
             const RenderedFrame& pixels = result.frame;
             // A map drawn from its pyramid file is not in memory to hold the eye to.
             const HeightMap* traced = result.animatedMap ? &*result.animatedMap
-                                      : map              ? &*map
+                                      : map              ? map.get()
                                                          : nullptr;
             if (traced && eyeInsideTheSolid(*traced, job) && eyeInside++ == 0)
                 firstEyeInside = frame.origin;

@@ -755,7 +755,13 @@ void ViewerApp::applyRelief(const std::shared_ptr<HeightMap>& heights, const std
     const ReliefDesc& wanted = state_.scene.job;
     // Another map (one opened, or one read again) or another pyramid: built of its heights.
     const bool newHeights = heights != map_ || renderer_->needsHeights(wanted);
-    renderer_->apply(wanted, newHeights ? heights.get() : nullptr, source, PyramidBuild::Gpu);
+    // Shared, not copied, where the renderer reads the map through pages: a paged map is
+    // neither sculpted nor animated (refused), so nothing writes to it while they read it.
+    if (newHeights)
+        renderer_->apply(wanted, std::shared_ptr<const HeightMap>(heights), source,
+                         PyramidBuild::Gpu);
+    else
+        renderer_->apply(wanted);  // the pyramid kept
     picker_.apply(wanted, heights);
     applied_ = wanted;
     ++mapGeneration_;

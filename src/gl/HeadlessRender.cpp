@@ -77,6 +77,13 @@ void HeadlessRenderer::setHeights(const RenderJob& job, const HeightMap& map,
            [&](PyramidBuild build) { renderer_->apply(job, job.method, &map, source, build); });
 }
 
+void HeadlessRenderer::setHeights(const RenderJob& job, std::shared_ptr<const HeightMap> map,
+                                  const std::string& source) {
+    // The pointer copied into each try: the CPU build after a failed GPU one shares it too.
+    upload(*map, source, job.tiles,
+           [&](PyramidBuild build) { renderer_->apply(job, job.method, map, source, build); });
+}
+
 void HeadlessRenderer::upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
                               const std::function<void(PyramidBuild)>& build) {
     context_.makeCurrent();

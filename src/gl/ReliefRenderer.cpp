@@ -185,8 +185,21 @@ bool ReliefRenderer::needsHeights(const ReliefDesc& relief) const {
 
 void ReliefRenderer::apply(const ReliefDesc& relief, const HeightMap* heights,
                            const std::string& source, PyramidBuild build) {
+    applyOf(relief, heights, nullptr, source, build);
+}
+
+void ReliefRenderer::apply(const ReliefDesc& relief, std::shared_ptr<const HeightMap> heights,
+                           const std::string& source, PyramidBuild build) {
+    const HeightMap* map = heights.get();
+    applyOf(relief, map, std::move(heights), source, build);
+}
+
+void ReliefRenderer::applyOf(const ReliefDesc& relief, const HeightMap* heights,
+                             std::shared_ptr<const HeightMap> shared, const std::string& source,
+                             PyramidBuild build) {
     if (heights) {
-        setHeightMap(*heights, source, relief.base, relief.interpolation, build, relief.tiles);
+        setHeightMapOf(*heights, std::move(shared), source, relief.base, relief.interpolation,
+                       build, relief.tiles);
         applied_ = relief;
     } else {
         if (!textures_) throwRuntime("ReliefRenderer::apply: no heights yet");
@@ -214,6 +227,19 @@ void ReliefRenderer::apply(const ReliefDesc& relief, const HeightMap* heights,
 void ReliefRenderer::apply(const ReliefDesc& relief, const MethodSettings& method,
                            const HeightMap* heights, const std::string& source,
                            PyramidBuild build) {
+    applyOf(relief, method, heights, nullptr, source, build);
+}
+
+void ReliefRenderer::apply(const ReliefDesc& relief, const MethodSettings& method,
+                           std::shared_ptr<const HeightMap> heights, const std::string& source,
+                           PyramidBuild build) {
+    const HeightMap* map = heights.get();
+    applyOf(relief, method, map, std::move(heights), source, build);
+}
+
+void ReliefRenderer::applyOf(const ReliefDesc& relief, const MethodSettings& method,
+                             const HeightMap* heights, std::shared_ptr<const HeightMap> shared,
+                             const std::string& source, PyramidBuild build) {
     checkMethodSupportsBase(method.method, relief.base);
     checkMethodSupportsTiles(method.method, relief.tiles);
     // The held method gives way to the new one where it cannot trace the relief: apply()
@@ -224,7 +250,7 @@ void ReliefRenderer::apply(const ReliefDesc& relief, const MethodSettings& metho
         (relief.tiles != glm::ivec2(1, 1) && !methodTakesTiles(held.method)))
         method_ = method;
     try {
-        apply(relief, heights, source, build);
+        applyOf(relief, heights, std::move(shared), source, build);
     } catch (...) {
         method_ = held;
         throw;

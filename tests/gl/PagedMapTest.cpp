@@ -19,6 +19,7 @@
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/gl/PagedPyramid.h"
+#include "microrelief/gl/ReliefRenderer.h"
 #include "microrelief/io/PyramidFile.h"
 
 using namespace microrelief;
@@ -90,6 +91,39 @@ TEST_F(PagedMap, PagedPictureIsTheWholeTexturePictureBitForBit) {
             EXPECT_GT(paged.paging.pagesLoaded, 0u) << what;
             EXPECT_EQ(paged.paging.splits, 0) << what << ": the budget holds every page";
         }
+    }
+}
+
+// A map the caller shares (a camera path's, the viewer's) is kept by the pages, not copied,
+// through each way a program sets one; the picture is the same as from the map copied.
+TEST_F(PagedMap, PagesKeepASharedMapRatherThanACopy) {
+    const auto map = std::make_shared<const HeightMap>(synth::cobbles(150, 110, 3));
+    RenderJob job;
+    job.camera = test::orbitCamera(30.0, 25.0, 1.5, {0.0, 0.02, 0.0});
+    job.width = 64;
+    job.height = 48;
+    PagingSettings paging = smallPages();
+    paging.mode = PagingSettings::Mode::Always;
+    const HeadlessResult copied = renderPaged(*map, job, smallPages());
+    {
+        HeadlessRenderer renderer(test::glContext(), job.method);
+        renderer.setPaging(paging);
+        renderer.setHeights(job, map, "shared");
+        EXPECT_EQ(map.use_count(), 2) << "setHeights: the pages hold the caller's map";
+        expectSamePicture(renderer.render(job), copied, "setHeights");
+        renderer.setHeightMap(map, "shared");
+        EXPECT_EQ(map.use_count(), 2) << "setHeightMap: the pages hold the caller's map";
+    }
+    EXPECT_EQ(map.use_count(), 1) << "the renderer let it go";
+    {
+        ReliefRenderer renderer(gl(), shaderDirectory());
+        renderer.setPaging(paging);
+        renderer.apply(job, map, "shared");
+        EXPECT_EQ(map.use_count(), 2) << "ReliefRenderer::apply";
+        renderer.apply(job, job.method, map, "shared");
+        EXPECT_EQ(map.use_count(), 2) << "ReliefRenderer::apply with a method";
+        renderer.apply(job, map.get(), "copied");
+        EXPECT_EQ(map.use_count(), 1) << "a map not shared is copied";
     }
 }
 

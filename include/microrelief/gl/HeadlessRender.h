@@ -79,6 +79,10 @@ public:
     // pyramid (core/scene/Scene.h: samePyramid; after setHeightMap, always). A caller loads
     // maps only when it does.
     void setHeights(const RenderJob& job, const HeightMap& map, const std::string& source);
+    // The same for a map the caller shares: read through pages, the pages keep it rather
+    // than a copy (a camera path over a map past GL_MAX_TEXTURE_SIZE).
+    void setHeights(const RenderJob& job, std::shared_ptr<const HeightMap> map,
+                    const std::string& source);
     bool needsHeights(const ReliefDesc& relief) const;
     // What has been built so far (gl/ReliefRenderer.h): render() of another job builds
     // only what the job changed.

@@ -75,6 +75,13 @@ public:
     void apply(const ReliefDesc& relief, const MethodSettings& method,
                const HeightMap* heights = nullptr, const std::string& source = {},
                PyramidBuild build = PyramidBuild::Cpu);
+    // Both for heights the caller shares: read through pages, the pages keep them rather
+    // than a copy (as setHeightMap's shared overload).
+    void apply(const ReliefDesc& relief, std::shared_ptr<const HeightMap> heights,
+               const std::string& source = {}, PyramidBuild build = PyramidBuild::Cpu);
+    void apply(const ReliefDesc& relief, const MethodSettings& method,
+               std::shared_ptr<const HeightMap> heights, const std::string& source = {},
+               PyramidBuild build = PyramidBuild::Cpu);
 
     // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base),
     // which bounds the surface either last level makes of it, the map repeated `tiles`
@@ -199,6 +206,13 @@ private:
     void setHeightMapOf(const HeightMap& map, std::shared_ptr<const HeightMap> shared,
                         const std::string& source, const BaseShape& base,
                         Interpolation interpolation, PyramidBuild build, glm::ivec2 tiles);
+    // apply's work, as setHeightMapOf's: `shared`, where not null, is `heights`.
+    void applyOf(const ReliefDesc& relief, const HeightMap* heights,
+                 std::shared_ptr<const HeightMap> shared, const std::string& source,
+                 PyramidBuild build);
+    void applyOf(const ReliefDesc& relief, const MethodSettings& method, const HeightMap* heights,
+                 std::shared_ptr<const HeightMap> shared, const std::string& source,
+                 PyramidBuild build);
     // The program for the configuration, compiled on first use; throws and changes
     // nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);

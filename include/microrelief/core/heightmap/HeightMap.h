@@ -90,10 +90,10 @@ inline constexpr int kMaxHeightMapSide = 16384;
 // The largest side microrelief-render loads: maps past the GL's texture size are read through
 // pages (gl/PagedPyramid.h), their samples and pyramid held in memory (about
 // kPagedBytesPerSample a sample), so the sample count is bounded by the machine's memory too
-// (HeightMapLoadOptions::maxSamples). 16: the samples (4 bytes), the pyramid's windows that
-// pages read (5.3; PyramidInMemory), and a copy of the samples where the caller keeps its
-// own (a camera path, the viewer; 4); microrelief-render's single picture peaked at 11 bytes
-// a sample on a 20000 x 20000 map (4.4 GB, 2026-12-05).
+// (HeightMapLoadOptions::maxSamples). 16: the samples (4 bytes, shared by the program and
+// its pages), the pyramid's windows that pages read (5.3; PyramidInMemory), and room for
+// what a program holds beside them: microrelief-render's single picture, a turntable and the
+// viewer each peaked at 11 bytes a sample on a 20000 x 20000 map (4.4 GB, 2026-12-05).
 inline constexpr int kMaxPagedHeightMapSide = 65536;
 inline constexpr std::size_t kPagedBytesPerSample = 16;
 // More channels than any height map needs; OpenImageIO reads whole pixels, so this

@@ -204,13 +204,15 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
         const bool inMemory =
             options.inMemorySamples == 0 ||
             static_cast<std::size_t>(n) * static_cast<std::size_t>(n) <= options.inMemorySamples;
-        std::optional<HeightMap> map;
-        if (inMemory) map = benchRelief(n);
+        // Shared with the pages, as the programs share theirs (no copy in the paged path's
+        // preparation).
+        std::shared_ptr<const HeightMap> map;
+        if (inMemory) map = std::make_shared<const HeightMap>(benchRelief(n));
         std::map<int, ReferencePicture> references;  // per view, traced once for every path
         for (const TerrainPath path : {TerrainPath::Whole, TerrainPath::Paged}) {
             if (!map || (path == TerrainPath::Whole && n > maxTexture)) continue;
             HeadlessRenderer& renderer = renderers.at(path);
-            const double prepareMs = wallMs(gl, [&] { renderer.setHeightMap(*map, "relief"); });
+            const double prepareMs = wallMs(gl, [&] { renderer.setHeightMap(map, "relief"); });
             measure(renderer, path, n, prepareMs, 0.0, map->maxValue(), &*map, nullptr, references);
         }
 

@@ -164,6 +164,12 @@ bool complete(const std::filesystem::path& file, BatchProgress& progress) {
 // ellipsoid unless a --base is given: fittedBase), so that one key is one drawn base.
 using MapKey = std::tuple<std::filesystem::path, int, bool, bool, int, int, bool>;
 
+// Whether two keys name the same samples (file and load options), whatever they are drawn on.
+bool sameSamples(const MapKey& a, const MapKey& b) {
+    return std::get<0>(a) == std::get<0>(b) && std::get<1>(a) == std::get<1>(b) &&
+           std::get<2>(a) == std::get<2>(b);
+}
+
 MapKey mapKey(const SceneOptions& scene) {
     return {scene.job.map.file ? *scene.job.map.file : defaultHeightMapPath(),
             scene.job.map.load.channel,
@@ -305,6 +311,7 @@ int runBatch(const RenderOptions& o) {
     // The map drawn, for the eye's check (none from a file); shared with the renderer, whose
     // pages keep it rather than a copy where it reads it through pages.
     std::shared_ptr<const HeightMap> map;
+    std::optional<MapKey> mapHeld;   // the key of the frame `map` was loaded or set for
     std::optional<MapKey> pagesSet;  // the map whose pyramid file the renderer reads
     int eyeInside = 0;             // frames whose eye lies inside the solid
     std::string firstEyeInside;
@@ -347,18 +354,28 @@ int runBatch(const RenderOptions& o) {
                         std::get<0>(key).string(), job.base, job.interpolation);
                     pagesSet = key;
                     map.reset();
+                    mapHeld.reset();
                     ++mapsLoaded;
                 }
             } else if (renderer->needsHeights(job)) {
-                auto heights = std::make_shared<const HeightMap>(
-                    checkedMap && checkedMap->key == key
-                        ? std::move(checkedMap->map)
-                        : loadHeightMap(std::get<0>(key), job.map.load));
-                checkedMap.reset();
-                map.reset();  // the last map, kept now only by pages that setHeights lets go
+                // The same samples for another pyramid (another base or tiles): the map held.
+                // The check's map, where it has the same samples, is not read again either.
+                const bool held = map && mapHeld && sameSamples(*mapHeld, key);
+                const bool checkedHere = checkedMap && sameSamples(checkedMap->key, key);
+                auto heights =
+                    held ? map
+                         : std::make_shared<const HeightMap>(
+                               checkedHere ? std::move(checkedMap->map)
+                                           : loadHeightMap(std::get<0>(key), job.map.load));
+                checkedMap.reset();  // taken, or held already, or of another map: not kept
+                if (!held) {
+                    map.reset();  // the last map, kept now only by pages that setHeights lets go
+                    mapHeld.reset();
+                    ++mapsLoaded;
+                }
                 renderer->setHeights(job, heights, std::get<0>(key).string());
                 map = std::move(heights);
-                ++mapsLoaded;
+                mapHeld = key;
             }
             if (const std::optional<std::filesystem::path> albedo = albedoPath(job);
                 albedo != loadedAlbedo) {

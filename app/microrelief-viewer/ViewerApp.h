@@ -154,7 +154,9 @@ private:
     HeightMapLoadOptions loadedWith_;  // the options the current map was loaded with
     bool georeferenced_ = false;       // the current map set the relief's proportions
     std::optional<ReliefDesc> applied_;  // the relief the renderer and the picker hold
-    std::shared_ptr<HeightMap> map_;   // the CPU mirror of the samples on the GPU (edited)
+    // The CPU mirror of the samples on the GPU (edited); a map read through pages is read
+    // from this very object by the pages, and so never written (sculptable(), refusals).
+    std::shared_ptr<HeightMap> map_;
     float mapMaxHeight_ = 0.0f;        // the surface's top: map_'s largest sample
     CameraController controller_;
     ReliefPicker picker_;

@@ -465,6 +465,7 @@ TEST_F(BatchCli, RowsThatChangeTheMapReloadItOnlyThen) {
 // Rows that change the method and the base together: a plane-only peer (cone) before a
 // cylinder, a tiled map after it. The renderer's method is the last row's until the new
 // row's is set, which must not refuse the new row's relief; each frame is its row alone.
+// One map: each new pyramid is built from the samples held, not from the file read again.
 TEST_F(BatchCli, RowsThatChangeMethodAndBaseTogetherRender) {
     std::ofstream(dir / "cams.csv") << "eye_x,eye_y,eye_z,target_x,target_y,target_z,flags\n"
                                        "0.9,0.6,0.5,0,0,0,--method cone\n"
@@ -475,6 +476,7 @@ TEST_F(BatchCli, RowsThatChangeMethodAndBaseTogetherRender) {
     const test::RunResult r = run(small + "--cameras " + (dir / "cams.csv").string() + " --out '" +
                                   (out / "{frame}.png").string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("1 map loaded"), std::string::npos) << r.out;
     const std::vector<ManifestRow> rows = readManifest(out / "manifest.csv");
     ASSERT_EQ(rows.size(), 4u);
     for (const int f : {1, 3}) {

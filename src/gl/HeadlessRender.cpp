@@ -51,6 +51,7 @@ void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& sou
 void HeadlessRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
                                     const BaseShape& base, Interpolation interpolation,
                                     glm::ivec2 tiles) {
+    if (!map) throwRuntime("HeadlessRenderer::setHeightMap: no map");
     upload(*map, source, tiles, [&](PyramidBuild build) {
         renderer_->setHeightMap(map, source, base, interpolation, build, tiles);
     });
@@ -79,6 +80,7 @@ void HeadlessRenderer::setHeights(const RenderJob& job, const HeightMap& map,
 
 void HeadlessRenderer::setHeights(const RenderJob& job, std::shared_ptr<const HeightMap> map,
                                   const std::string& source) {
+    if (!map) throwRuntime("HeadlessRenderer::setHeights: no map");
     // The pointer copied into each try: the CPU build after a failed GPU one shares it too.
     upload(*map, source, job.tiles,
            [&](PyramidBuild build) { renderer_->apply(job, job.method, map, source, build); });

@@ -274,6 +274,7 @@ void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& sourc
 void ReliefRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
                                   const BaseShape& base, Interpolation interpolation,
                                   PyramidBuild build, glm::ivec2 tiles) {
+    if (!map) throwRuntime("ReliefRenderer::setHeightMap: no map");
     setHeightMapOf(*map, map, source, base, interpolation, build, tiles);
 }
 

@@ -76,7 +76,7 @@ public:
                const HeightMap* heights = nullptr, const std::string& source = {},
                PyramidBuild build = PyramidBuild::Cpu);
     // Both for heights the caller shares: read through pages, the pages keep them rather
-    // than a copy (as setHeightMap's shared overload).
+    // than a copy (as setHeightMap's shared overload); null heights keep the pyramid built.
     void apply(const ReliefDesc& relief, std::shared_ptr<const HeightMap> heights,
                const std::string& source = {}, PyramidBuild build = PyramidBuild::Cpu);
     void apply(const ReliefDesc& relief, const MethodSettings& method,

@@ -281,6 +281,7 @@ HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const st
 HeadlessResult renderHeadless(GlContext& context, std::shared_ptr<const HeightMap> map,
                               const std::string& source, const RenderJob& job,
                               const AlbedoImage* albedo, const PagingSettings& paging) {
+    if (!map) throwRuntime("renderHeadless: no map");
     return renderMap(context, *map, source, job, albedo, paging, [&](HeadlessRenderer& renderer) {
         renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
     });

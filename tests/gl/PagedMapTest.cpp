@@ -115,6 +115,9 @@ TEST_F(PagedMap, PagesKeepASharedMapRatherThanACopy) {
         EXPECT_EQ(map.use_count(), 2) << "setHeightMap: the pages hold the caller's map";
         EXPECT_THROW(renderer.setHeights(job, std::shared_ptr<const HeightMap>(), "none"), Error);
         EXPECT_THROW(renderer.setHeightMap(std::shared_ptr<const HeightMap>(), "none"), Error);
+        EXPECT_THROW(
+            renderHeadless(test::glContext(), std::shared_ptr<const HeightMap>(), "none", job),
+            Error);
     }
     EXPECT_EQ(map.use_count(), 1) << "the renderer let it go";
     {

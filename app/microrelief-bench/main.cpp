@@ -295,8 +295,9 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
     app.add_flag("--quick", quick,
-                 "Maps 256 and 4096, views 45 and 80 degrees, 256x256, step budgets up to 1024 "
-                 "(minutes on a CPU); with --terrain, maps 1024 and 4096");
+                 "The procedural relief at 256 and 4096 (other maps only where --maps names "
+                 "them), views 45 and 80 degrees, 256x256, step budgets up to 1024 (minutes on a "
+                 "CPU); with --terrain, maps 1024 and 4096");
     app.add_flag("--materials", materials,
                  "Only what materials cost: shadows (hard, soft) against none, and the map tiled "
                  "1x1, 2x2, 16x16 and 256x256 (materials.csv, materials.md)");

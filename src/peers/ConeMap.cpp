@@ -342,17 +342,21 @@ ConeMap buildConservativeConeMapBruteForce(const HeightMap& map) {
     return conservativeConeMap(map, true, nullptr, {});
 }
 
+double relaxedRatioCap(const HeightMap& map) {
+    return std::min({double(map.width), double(map.height), double(kConeRatioCap)});
+}
+
 std::vector<double> relaxedConeRatios(const HeightMap& map, int searchSteps, bool bruteForce,
                                       ConeMapStats* stats, const ConeMapProgress& progress) {
     const MaxMipPyramid pyramid{MaxPyramid(map)};
-    const double top = map.maxValue();
+    const double top = map.maxValue(), cap = relaxedRatioCap(map);
     auto ratioAt = [&](int i, int j, std::uint64_t& visited) {
         const double hs = map.at(i, j);
         auto leaf = [&](int p, int q, double below) {
             if (p == i && q == j) return kInfinity;
             return relaxedPairRatio(map, top, i, j, p, q, searchSteps, below);
         };
-        double r = kConeRatioCap;
+        double r = cap;
         if (bruteForce) {
             for (int q = 0; q < map.height; ++q)
                 for (int p = 0; p < map.width; ++p) r = std::min(r, leaf(p, q, kInfinity));

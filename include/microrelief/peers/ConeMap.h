@@ -37,7 +37,10 @@
 // down to height 0) to where it first comes out; the cone (apex at the sample, ratio r)
 // must not hold that exit point. A ray entering the cone may then cross the surface once
 // inside it, and a binary search finds the crossing. Samples read as the published tool
-// reads them (bilinearly, between texel centres, clamped at the edges).
+// reads them (bilinearly, between texel centres, clamped at the edges). Each ratio is at
+// most relaxedRatioCap: the published build starts every cone at ratio 1 and keeps the
+// smaller (its RGBA8 channel holds [0, 1]), a ratio in texture coordinates per unit of
+// depth, one map width per map height unit.
 //
 // Both are kept as RG16F texels (4 bytes a texel), not the published RGBA8: 11 significant
 // bits where 8-bit channels hold 256 levels of the height range, so a plateau rounded up
@@ -96,6 +99,11 @@ ConeMap buildConservativeConeMapBruteForce(const HeightMap& map);
 std::vector<double> conservativeConeRatios(const HeightMap& map, bool bruteForce,
                                            ConeMapStats* stats = nullptr,
                                            const ConeMapProgress& progress = {});
+
+// The published widest relaxed cone, ratio 1 in texture coordinates per unit depth, in
+// texels per map height unit: the map's width (for a map that is not square, the smaller
+// side: a cone here is round in texels, the published one round in texture coordinates).
+double relaxedRatioCap(const HeightMap& map);
 
 // The relaxed cone map (rcsm), as published (see above); the sample pairs that cannot
 // narrow a cone are skipped by the same pyramid walk (a pair's ratio is at least the

@@ -216,6 +216,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
             const ReferencePicture reference = traceReferencePicture(
                 camera, ReliefGeometry{m.map.get(), m.heightScale, m.base, m.interpolation});
             const std::vector<bool> inBox = pixelsInBox(camera, extent);
+            bool afterPause = true;  // the CPU has just traced the reference
             std::size_t referenceHits = 0;
             for (const auto& hit : reference.hits) referenceHits += hit.has_value();
             for (Method method : options.methods) {
@@ -247,16 +248,20 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     // Timing: the plain variant, two warm-up frames, then the median. The
                     // first measurement of a run warms up for half a second: the frames
                     // right after start-up ran up to 1.7x slow on llvmpipe, enough to move
-                    // the median of ten. On a GPU every measurement warms up for 300 ms: it idles
+                    // the median of ten. On llvmpipe the first measurement of each view
+                    // warms up for 300 ms too: it follows the reference's trace on every
+                    // core, and ran up to 10 % slow there (the multilevel method, always
+                    // first: the rock wall at 80 degrees 4.5 to 4.7 ms first against 4.2 to
+                    // 4.4 ms second, 2026-12-05). On a GPU every measurement warms up for 300 ms: it idles
                     // while the CPU builds cone maps, traces the reference and checks the
                     // last picture, and on an H200 the frames after such a pause ran up to
                     // 5.4x slow, probably at lowered clocks (the same walk timed at 12.97 and
                     // 2.42 ms a second apart: docs/perf/2026-12-04-gpu-h200.md).
                     renderer.setMethod(setting.method, false);
-                    const int warmMs = firstMeasurement ? 500 : gpu ? 300 : 0;
+                    const int warmMs = firstMeasurement ? 500 : gpu || afterPause ? 300 : 0;
                     const auto warmUntil =
                         std::chrono::steady_clock::now() + std::chrono::milliseconds(warmMs);
-                    firstMeasurement = false;
+                    firstMeasurement = afterPause = false;
                     draw();
                     draw();
                     while (std::chrono::steady_clock::now() < warmUntil) {

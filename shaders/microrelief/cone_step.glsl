@@ -8,7 +8,8 @@
 // Inputs in map space (relief_map.glsl): X, Y in texels, h in map height units, the ray
 // origin + t dir (t as in world space); `cones` the W x H cone map, RG16F, (B_T, r_T) per
 // texel square T (peers/ConeMap.h: B_T bounds the surface over T, r_T in texels per map
-// height unit; the height scale is in dir.z, so it needs no term here), read with
+// height unit; the height scale is in dir.z, so it needs no term here; on the biquadratic
+// level the apex raised, mr_coneOfLastLevel), read with
 // texelFetch; `heights` the samples (bilinear_patch.glsl). Output, as mr_traceMultilevel's:
 // the exact first point t >= 0 of the ray in the solid (top surface, side wall, bottom
 // face) and statistics (iterations = texels stepped from; stopLevel 0).
@@ -32,6 +33,26 @@
 #ifndef MICRORELIEF_READ_CONE
 #define MICRORELIEF_READ_CONE(cones, texel) texelFetch(cones, texel, 0).rg
 #endif
+
+// The cone of a texel on the biquadratic last level: the bilinear surface's cone (B_T, r_T)
+// with its apex raised by 1/2 texel over r_T. Why that holds: the uniform quadratic
+// B-spline of the samples is their bilinear interpolant averaged over the unit square
+// centred at the point (per axis, the quadratic B-spline is the hat convolved with the
+// unit box; the repeated edge samples are the bilinear surface's clamped edges, and a
+// point past the map's edge is no nearer T than its clamp into the map). So with
+// h(y) <= B_T + dist(y, T) / r_T for the bilinear h (ConeMap.h), and dist 1-Lipschitz,
+//     h_q(x) = mean over u in [-1/2, 1/2]^2 of h(x + u) <= B_T + (dist(x, T) + E|u|) / r_T,
+// E|u| = 0.3826 texels: the same cone with the apex 0.3826 / r_T higher. 1/2 here, the rest
+// slack for the division (2.5 ulp at most) and the sum, rounded up by 2^-20 relative on
+// top (B_T >= 0). Over T itself the piece lies under its Bezier net, whose nine values are
+// the bilinear surface's at T's corners, edge midpoints and centre: under B_T already.
+// A ratio of 0 (T's column) leaves no cone: every texel is then a leaf.
+vec2 mr_coneOfLastLevel(vec2 cone) {
+#if MICRORELIEF_INTERPOLATION == 1
+    cone.x = cone.y > 0.0 ? (cone.x + 0.5 / cone.y) * (1.0 + exp2(-20.0)) : MR_NEVER;
+#endif
+    return cone;
+}
 
 // The texel square the ray is in at map point p: on a boundary, the one it moves into.
 ivec2 mr_coneTexelAt(mr_Relief relief, vec2 p, vec2 dir) {
@@ -70,7 +91,7 @@ void mr_walkCones(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones
     hit.stopLevel = 0;
     while (iteration < query.maxIterations) {
         iteration += 1;
-        vec2 cone = MICRORELIEF_READ_CONE(cones, texel);
+        vec2 cone = mr_coneOfLastLevel(MICRORELIEF_READ_CONE(cones, texel));
         MICRORELIEF_FETCHED_BOUNDS(1);
         vec2 exits = mr_coneTexelExits(texel, origin, dir);
         float tExit = min(max(min(exits.x, exits.y), t), tFar);

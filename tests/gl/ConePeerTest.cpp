@@ -34,17 +34,18 @@ protected:
     // `renderer` holds `map` (one cone map build per map and method).
     test::Accuracy render(HeadlessRenderer& renderer, const HeightMap& map, const std::string& name,
                           Method method, const Camera& camera, int steps = 15,
-                          AccuracyScope scope = AccuracyScope::AllPixels) {
+                          AccuracyScope scope = AccuracyScope::AllPixels,
+                          Interpolation interpolation = Interpolation::Bilinear) {
         RenderJob job;
         job.camera = camera;
         job.width = job.height = 96;
         job.method.method = method;
         job.method.steps = steps;
         job.method.refineSteps = 8;
+        job.interpolation = interpolation;
         const HeadlessResult r = renderer.render(job);
         const test::Accuracy a = test::compareWithReference(
-            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, {}, Interpolation::Bilinear},
-            scope);
+            r.frame, r.camera, ReliefGeometry{&map, job.heightScale, {}, interpolation}, scope);
         std::printf("    %-5s %-36s: %s\n", methodName(method), name.c_str(), a.summary().c_str());
         return a;
     }
@@ -77,6 +78,29 @@ TEST_F(ConePeers, ConeIsExact) {
             const std::string where = name + ", " + view.name;
             const test::Accuracy a = render(renderer, *map, where, Method::Cone, view.camera);
             EXPECT_GT(a.referenceHits, 1000u) << where;
+            EXPECT_LE(a.coverageMismatchPercent(), 0.1) << where;
+            EXPECT_LE(a.offHalfTexelPercent(), 0.2) << where;
+            EXPECT_EQ(a.exhausted, 0u) << where;
+        }
+    }
+}
+
+// On the biquadratic last level cone steps over the same cone map with each apex raised
+// (cone_step.glsl: mr_coneOfLastLevel) and solves the last texel on the B-spline: held to
+// the same thresholds against the reference of that surface, on rough noise and on the
+// CPU tests' adversarial maps (spikes, walls, steps, white noise, heights from 1e-9 to 1e3).
+TEST_F(ConePeers, ConeIsExactOnTheBiquadraticLevel) {
+    std::vector<std::pair<HeightMap, std::string>> maps{
+        {synth::valueNoise(128, 128, 3.0, 3, 28), "noise 128"}};
+    for (const test::ConeCase& c : test::coneCases()) maps.emplace_back(c.map, c.name);
+    for (const auto& [map, name] : maps) {
+        HeadlessRenderer renderer(test::glContext());
+        renderer.setHeightMap(map, name, BaseShape::plane(), Interpolation::Biquadratic);
+        for (const ConeView& view : coneViews()) {
+            const std::string where = name + ", biquadratic, " + view.name;
+            const test::Accuracy a = render(renderer, map, where, Method::Cone, view.camera, 15,
+                                            AccuracyScope::AllPixels, Interpolation::Biquadratic);
+            EXPECT_GT(a.referenceHits, 100u) << where;
             EXPECT_LE(a.coverageMismatchPercent(), 0.1) << where;
             EXPECT_LE(a.offHalfTexelPercent(), 0.2) << where;
             EXPECT_EQ(a.exhausted, 0u) << where;

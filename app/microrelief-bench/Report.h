@@ -14,6 +14,7 @@ struct RunInfo {
     std::string renderer;  // GL_RENDERER
     std::string date;      // ISO date of the run
     std::string command;   // how it was run
+    std::vector<std::string> notes;  // what was asked for and not measured, a line each
 };
 
 // `name` as a part of a file name any file system takes: each of < > : " / \ | ? * and

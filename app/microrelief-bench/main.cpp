@@ -99,9 +99,11 @@ std::string entryFieldName(const std::string& field) {
 }
 
 // Two entries the report would name alike (a/rock.png and b/rock.png; a file relief.png and
-// the procedural relief) would have their rows merged: refused, naming both.
-void checkMapNamesDiffer(const std::vector<MapEntry>& entries) {
-    std::map<std::string, std::string> givenBy{{kResampledRelief, "the procedural relief"}};
+// the procedural relief, where that is measured) would have their rows merged: refused,
+// naming both.
+void checkMapNamesDiffer(const std::vector<MapEntry>& entries, bool reliefMeasured) {
+    std::map<std::string, std::string> givenBy;
+    if (reliefMeasured) givenBy.emplace(kResampledRelief, "the procedural relief");
     for (const MapEntry& entry : entries) {
         const std::string name = mapName(entry.source);
         const auto [it, added] = givenBy.emplace(name, entry.given);
@@ -112,7 +114,7 @@ void checkMapNamesDiffer(const std::vector<MapEntry>& entries) {
 }
 
 std::vector<BenchMap> loadMaps(const BenchOptions& options) {
-    checkMapNamesDiffer(options.assets);
+    checkMapNamesDiffer(options.assets, !options.mapSizes.empty());
     std::vector<BenchMap> maps;
     // The files first: a bad one is refused before minutes of making reliefs.
     std::vector<std::pair<std::string, std::shared_ptr<const HeightMap>>> files;
@@ -160,6 +162,37 @@ void checkOutputFolder(const std::filesystem::path& folder) {
         throwBadInput("--out-dir " + folder.string() + where + ": cannot write there");
 }
 
+// What was asked for and is not measured, a line each: a method on a base, a last level or
+// a map size it is not measured on (bench.md and the console say so, rather than leave
+// its rows out unremarked).
+std::vector<std::string> unmeasuredNotes(const BenchOptions& options,
+                                         const std::vector<BenchMap>& maps) {
+    std::vector<std::string> notes;
+    auto note = [&](const std::string& line) {
+        if (std::find(notes.begin(), notes.end(), line) == notes.end()) notes.push_back(line);
+    };
+    for (const BenchMap& m : maps) {
+        const int side = std::max(m.map->width, m.map->height);
+        for (Method method : options.methods) {
+            const std::string name = methodName(method);
+            if (!methodRunsOnBase(method, m.base))
+                note(name + ": not on curved bases (they take multilevel, maxmip, pom and relief)");
+            else if (!measuredOn(method, m.interpolation))
+                note(name +
+                     ": not on the biquadratic level (measured there: multilevel and maxmip)");
+            else if (!measuredAtSize(method, side))
+                note(name + ": not on " + m.name + " (" + std::to_string(side) +
+                     " texels a side; " +
+                     (method == Method::Rcsm
+                          ? "rcsm up to 512: its relaxed cone map is built on the CPU, as "
+                            "published, and takes minutes past that)"
+                          : "cone up to 1024: its cone map takes tens of seconds past that "
+                            "on llvmpipe)"));
+        }
+    }
+    return notes;
+}
+
 std::size_t countMeasurements(const BenchOptions& options, const std::vector<BenchMap>& maps) {
     std::size_t n = 0;
     for (const BenchMap& m : maps) {
@@ -172,6 +205,15 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
         }
     }
     return n * options.viewDegrees.size();
+}
+
+// A list that names an item twice would measure it twice and merge the rows: refused.
+template <typename T, typename Name>
+void refuseRepeats(const std::vector<T>& items, const std::string& flag, Name name) {
+    for (std::size_t k = 0; k < items.size(); ++k)
+        for (std::size_t l = 0; l < k; ++l)
+            if (name(items[l]) == name(items[k]))
+                throwBadInput(flag + " names " + name(items[k]) + " twice");
 }
 
 // A comma-separated list flag, each item read by the parser of the single flag; its
@@ -400,6 +442,9 @@ int main(int argc, char** argv) {
                 if (n > 0) options.mapSizes.push_back(n);
         }
         if (options.viewDegrees.empty()) throwBadInput("--views names no view");
+        const auto number = [](int n) { return std::to_string(n); };
+        refuseRepeats(options.viewDegrees, "--views", number);
+        refuseRepeats(options.mapSizes, "--map-sizes", number);
         parseSizeFlag(size, options.width, options.height);
         options.methods = parseList(methodList, "--method", "--methods", parseMethod);
         options.bases = parseList(baseList, "--base", "--bases",
@@ -413,6 +458,12 @@ int main(int argc, char** argv) {
         if (options.methods.empty())
             throwBadInput(
                 "--methods names no method (a comma-separated list: multilevel,maxmip,...)");
+        refuseRepeats(options.methods, "--methods",
+                      [](Method m) { return std::string(methodName(m)); });
+        refuseRepeats(options.bases, "--bases",
+                      [](const BaseShape& b) { return std::string(baseName(b)); });
+        refuseRepeats(options.interpolations, "--interpolations",
+                      [](Interpolation i) { return std::string(interpolationName(i)); });
         checkOutputFolder(outDir);
         if (int(rebuild) + int(materials) + int(terrain) > 1)
             throwBadInput("--rebuild, --materials and --terrain: one at a time");
@@ -474,11 +525,24 @@ int main(int argc, char** argv) {
                       << " and materials.md\n";
             return 0;
         }
-        RunInfo info{context->renderer(), today(),
+        RunInfo info{context->renderer(),
+                     today(),
                      "microrelief-bench" + std::string(quick ? " --quick" : "") +
-                         (options.glsl330 ? " --glsl330" : "")};
+                         (options.glsl330 ? " --glsl330" : ""),
+                     {}};
+        if (options.assets.empty() && options.mapSizes.empty())
+            throwBadInput(
+                "nothing to measure: no map (--maps names none, and --map-sizes 0 "
+                "leaves out the procedural relief)");
         const std::vector<BenchMap> maps = loadMaps(options);
         const std::size_t total = countMeasurements(options, maps);
+        if (total == 0)
+            throwBadInput(
+                "nothing to measure: none of --methods runs on the maps, bases and "
+                "last levels asked for");
+        info.notes = unmeasuredNotes(options, maps);
+        for (const std::string& line : info.notes)
+            std::cerr << "microrelief-bench: not measured: " << line << '\n';
         const std::filesystem::path folder = outDir;
         std::vector<Measurement> rows;
         const auto start = std::chrono::steady_clock::now();

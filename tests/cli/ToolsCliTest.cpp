@@ -139,6 +139,16 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--views 95 --out-dir " + (dir / "b").string(), "--views: '95' is not a whole number");
     expectRefused("--views '' --out-dir " + (dir / "b").string(), "--views names no view");
     expectRefused("--map-sizes abc --out-dir " + (dir / "b").string(), "--map-sizes: 'abc'");
+    // A list that names an item twice (its rows would merge), and nothing to measure at all.
+    expectRefused("--views 30,60,30 --out-dir " + (dir / "b").string(), "--views names 30 twice");
+    expectRefused("--map-sizes 64,64 --out-dir " + (dir / "b").string(),
+                  "--map-sizes names 64 twice");
+    expectRefused("--methods cone,maxmip,cone --out-dir " + (dir / "b").string(),
+                  "--methods names cone twice");
+    expectRefused("--interpolations bilinear,bilinear --out-dir " + (dir / "b").string(),
+                  "--interpolations names bilinear twice");
+    expectRefused("--maps '' --map-sizes 0 --out-dir " + (dir / "b").string(),
+                  "nothing to measure: no map");
     // Maps: a missing file named, before any relief is made; 'fetched' with no list of
     // fetched maps (none under this scratch folder) names the list it looked for.
     expectRefused("--maps nope.png --out-dir " + (dir / "b").string(), "nope.png: no such file");
@@ -199,10 +209,17 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
     const test::RunResult r =
         run(MICRORELIEF_BENCH_EXE, "--maps " + (dir / "map.png").string() +
                                        " --map-sizes 0 --views 45 --size 24x24 --bases plane "
-                                       "--interpolations bilinear --methods "
+                                       "--interpolations bilinear,biquadratic --methods "
                                        "multilevel,maxmip,cone,relief --out-dir " +
                                        (dir / "b").string());
     ASSERT_EQ(r.status, 0) << r.err;
+    // What was asked for and not measured is said, on the console and in bench.md: the
+    // biquadratic level's rows are multilevel's and maxmip's only.
+    for (const char* method : {"cone", "relief"})
+        EXPECT_NE(r.err.find("microrelief-bench: not measured: " + std::string(method) +
+                             ": not on the biquadratic level"),
+                  std::string::npos)
+            << r.err;
     const std::vector<std::vector<std::string>> rows = readBenchCsv(dir / "b" / "bench.csv");
     ASSERT_GE(rows.size(), 2u);
     const std::vector<std::string>& header = rows.front();
@@ -254,8 +271,11 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
                                 "| map | size | view | method | setting | ms | Mpix/s | fetches | "
                                 "bounds | samples |",
                                 "| map | size | method | bytes / texel | preprocessing ms |",
-                                "| map | 16 | cone | 8.00 |", " (gpu), "})
+                                "| map | 16 | cone | 8.00 |", " (gpu), ",
+                                "Not measured:\n\n- cone: not on the biquadratic level"})
         EXPECT_NE(md.find(section), std::string::npos) << section;
+    // Without the procedural relief there are no size targets, and no empty heading.
+    EXPECT_EQ(md.find("Targets:"), std::string::npos);
 }
 
 // Maps and folders named with what CSV, gnuplot and the shell take as syntax (a space, a

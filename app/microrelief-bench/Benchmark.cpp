@@ -252,11 +252,12 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     // warms up for 300 ms too: it follows the reference's trace on every
                     // core, and ran up to 10 % slow there (the multilevel method, always
                     // first: the rock wall at 80 degrees 4.5 to 4.7 ms first against 4.2 to
-                    // 4.4 ms second, 2026-12-05). On a GPU every measurement warms up for 300 ms: it idles
-                    // while the CPU builds cone maps, traces the reference and checks the
-                    // last picture, and on an H200 the frames after such a pause ran up to
-                    // 5.4x slow, probably at lowered clocks (the same walk timed at 12.97 and
-                    // 2.42 ms a second apart: docs/perf/2026-12-04-gpu-h200.md).
+                    // 4.4 ms second, 2026-12-05). On a GPU every measurement warms up for
+                    // 300 ms: it idles while the CPU builds cone maps, traces the reference
+                    // and checks the last picture, and on an H200 the frames after such a
+                    // pause ran up to 5.4x slow, probably at lowered clocks (the same walk
+                    // timed at 12.97 and 2.42 ms a second apart:
+                    // docs/perf/2026-12-04-gpu-h200.md).
                     renderer.setMethod(setting.method, false);
                     const int warmMs = firstMeasurement ? 500 : gpu || afterPause ? 300 : 0;
                     const auto warmUntil =

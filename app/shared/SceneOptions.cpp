@@ -319,7 +319,7 @@ void SceneFlags::addShading(CLI::App& app) {
            flag("method"), method_,
            "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
            "normal, offset, steep, pom, relief, maxmip, cone (cone step mapping, exact), rcsm "
-           "(relaxed cone stepping; cone and rcsm on the plane)")
+           "(relaxed cone stepping; cone and rcsm on an untiled plane)")
         ->capture_default_str();
     app.add_option(
            flag("method.steps"), job_.method.steps,

@@ -128,7 +128,7 @@ std::string mapOnBase(const std::string& name, const BaseShape& base, Interpolat
 
 bool measuredOn(Method method, Interpolation interpolation) {
     return interpolation == Interpolation::Bilinear || method == Method::Multilevel ||
-           method == Method::MaxMip;
+           method == Method::MaxMip || method == Method::Cone;
 }
 
 Camera viewCamera(int degrees, const BaseShape& base, double top) {

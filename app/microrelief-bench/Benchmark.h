@@ -83,7 +83,7 @@ struct BenchOptions {
 };
 
 // Whether `method` is measured on the `interpolation` surface: everything on bilinear, the
-// exact methods (multilevel, maxmip) on biquadratic, beside their bilinear rows.
+// exact methods (multilevel, maxmip, cone) on biquadratic, beside their bilinear rows.
 bool measuredOn(Method method, Interpolation interpolation);
 
 // Whether `method` is measured on a map of `mapSize` texels a side: the cone-stepping peers

@@ -233,15 +233,18 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
         const Key bilinear{name.substr(0, name.size() - suffix.size()), std::get<1>(key),
                            std::get<2>(key)};
         for (const auto& [method, param] :
-             {std::pair<std::string, std::string>{"multilevel", "exact"}, {"maxmip", "exact"}}) {
+             {std::pair<std::string, std::string>{"multilevel", "exact"},
+              {"maxmip", "exact"},
+              {"cone", "exact"}}) {
             const Measurement* q = find(rows, key, method, param);
             const Measurement* l = find(rows, bilinear, method, param);
             if (!q || !l) continue;
             if (!any) {
                 md << "\nBiquadratic last level beside the bilinear one, the same map, base and "
                       "view (targets: time <= 1.5x, fetches <= 1.2x); traversal: of the "
-                      "fetches, the reads of the pyramid (the same for both levels), the rest "
-                      "the last level's:\n\n"
+                      "fetches, the reads of the bounds (the pyramid, the same for both "
+                      "levels; cone's map, whose apexes the biquadratic level raises), the "
+                      "rest the last level's:\n\n"
                       "| map | size | view | method | ms | bilinear ms | time | fetches | "
                       "bilinear fetches | fetches ratio | traversal | bilinear traversal | "
                       "mismatch % | off % |\n"

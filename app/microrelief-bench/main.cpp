@@ -178,8 +178,8 @@ std::vector<std::string> unmeasuredNotes(const BenchOptions& options,
             if (!methodRunsOnBase(method, m.base))
                 note(name + ": not on curved bases (they take multilevel, maxmip, pom and relief)");
             else if (!measuredOn(method, m.interpolation))
-                note(name +
-                     ": not on the biquadratic level (measured there: multilevel and maxmip)");
+                note(name + ": not on the biquadratic level (measured there: the exact methods, "
+                            "multilevel, maxmip and cone)");
             else if (!measuredAtSize(method, side))
                 note(name + ": not on " + m.name + " (" + std::to_string(side) +
                      " texels a side; " +
@@ -359,7 +359,7 @@ int main(int argc, char** argv) {
                  "context, to set beside a run without it");
     app.add_option("--interpolations", interpolationList,
                    "Comma-separated last levels, bilinear and biquadratic (biquadratic with the "
-                   "exact methods, multilevel and maxmip)")
+                   "exact methods, multilevel, maxmip and cone)")
         ->capture_default_str();
     std::string mapList, viewList, sizeList;
     app.add_option("--maps", mapList,

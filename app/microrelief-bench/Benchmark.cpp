@@ -60,8 +60,7 @@ struct MethodCost {
 // build, rcsm's the only one): one build (seconds), the samples read back and the map
 // uploaded included.
 std::map<Method, MethodCost> measureCosts(const GL& gl, ReliefRenderer& renderer,
-                                          const std::vector<Method>& methods, const BenchMap& m,
-                                          int mapSize) {
+                                          const std::vector<Method>& methods, const BenchMap& m) {
     ReliefTextures& textures = *renderer.textures();
     PyramidBuilder& builder = renderer.pyramidBuilder();
     const auto medianOfThree = [&](const std::function<void()>& build) {
@@ -77,9 +76,7 @@ std::map<Method, MethodCost> measureCosts(const GL& gl, ReliefRenderer& renderer
     const double texels = static_cast<double>(m.map->width) * m.map->height;
     const double samples = textureBytes(gl, textures.samples()) / texels;
     for (Method method : methods) {
-        if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation) ||
-            !measuredAtSize(method, mapSize))
-            continue;
+        if (!whyNotMeasured(method, m).empty()) continue;
         MethodCost cost;
         cost.bytesPerTexel = samples;
         if (method == Method::Multilevel) {
@@ -126,9 +123,23 @@ std::string mapOnBase(const std::string& name, const BaseShape& base, Interpolat
            (interpolation == Interpolation::Biquadratic ? "-biquadratic" : "");
 }
 
-bool measuredOn(Method method, Interpolation interpolation) {
-    return interpolation == Interpolation::Bilinear || method == Method::Multilevel ||
-           method == Method::MaxMip || method == Method::Cone;
+std::string whyNotMeasured(Method method, const BenchMap& m) {
+    if (!methodRunsOnBase(method, m.base))
+        return "not on curved bases (they take multilevel, maxmip, pom and relief)";
+    if (m.interpolation == Interpolation::Biquadratic && method != Method::Multilevel &&
+        method != Method::MaxMip && method != Method::Cone)
+        return "not on the biquadratic level (measured there: the exact methods, multilevel, "
+               "maxmip and cone)";
+    const int side = std::max(m.map->width, m.map->height);
+    const int largest = method == Method::Cone ? 1024 : method == Method::Rcsm ? 512 : side;
+    if (side > largest)
+        return "not on " + m.name + " (" + std::to_string(side) + " texels a side; " +
+               (method == Method::Rcsm
+                    ? "rcsm up to 512: its relaxed cone map is built on the CPU, as "
+                      "published, and takes minutes past that)"
+                    : "cone up to 1024: its cone map takes tens of seconds past that on "
+                      "llvmpipe)");
+    return {};
 }
 
 Camera viewCamera(int degrees, const BaseShape& base, double top) {
@@ -152,12 +163,6 @@ Camera viewCamera(int degrees, const BaseShape& base, double top) {
     camera.eye = camera.target + 1.35 * (std::cos(tilt) * normal + std::sin(tilt) * up);
     camera.up = -std::sin(tilt) * normal + std::cos(tilt) * up;  // square to the view
     return camera;
-}
-
-bool measuredAtSize(Method method, int mapSize) {
-    if (method == Method::Cone) return mapSize <= 1024;
-    if (method == Method::Rcsm) return mapSize <= 512;
-    return true;
 }
 
 std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
@@ -207,7 +212,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
         renderer.setHeightMap(*m.map, m.name, m.base, m.interpolation);
         const int mapSize = std::max(m.map->width, m.map->height);
         const std::map<Method, MethodCost> costs =
-            measureCosts(gl, renderer, options.methods, m, mapSize);
+            measureCosts(gl, renderer, options.methods, m);
         const ReliefExtent extent = reliefExtent(*m.map, m.heightScale, m.base);
         for (int degrees : options.viewDegrees) {
             const CameraFrame camera =
@@ -220,9 +225,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
             std::size_t referenceHits = 0;
             for (const auto& hit : reference.hits) referenceHits += hit.has_value();
             for (Method method : options.methods) {
-                if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation) ||
-                    !measuredAtSize(method, mapSize))
-                    continue;
+                if (!whyNotMeasured(method, m).empty()) continue;
                 for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps)) {
                     Measurement r;
                     r.method = methodName(method);

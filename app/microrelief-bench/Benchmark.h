@@ -82,15 +82,13 @@ struct BenchOptions {
     bool glsl330 = false;
 };
 
-// Whether `method` is measured on the `interpolation` surface: everything on bilinear, the
-// exact methods (multilevel, maxmip, cone) on biquadratic, beside their bilinear rows.
-bool measuredOn(Method method, Interpolation interpolation);
-
-// Whether `method` is measured on a map of `mapSize` texels a side: the cone-stepping peers
-// only where their cone maps build in seconds to a minute on one core (peers/ConeMap.h,
-// measured on llvmpipe's machine: cone up to 1024, rcsm up to 512); every other method on
-// every map.
-bool measuredAtSize(Method method, int mapSize);
+// Why `method` is not measured on `m`, or "" where it is: on a curved base only the methods
+// that run there; on the biquadratic surface the exact methods (multilevel, maxmip, cone),
+// beside their bilinear rows; the cone-stepping peers only where their cone maps build in
+// seconds to a minute on one core (peers/ConeMap.h, measured on llvmpipe's machine: cone up
+// to 1024 texels a side, rcsm up to 512). The one test of what is measured: the run, its
+// count and the report's "Not measured" lines all ask it.
+std::string whyNotMeasured(Method method, const BenchMap& m);
 
 // The knob settings measured for `method` on a map of `mapSize` texels: step budgets in
 // powers of two from 8 to min(2 mapSize, maxSteps); pixel errors 0, 1 and 4 for the

@@ -162,32 +162,17 @@ void checkOutputFolder(const std::filesystem::path& folder) {
         throwBadInput("--out-dir " + folder.string() + where + ": cannot write there");
 }
 
-// What was asked for and is not measured, a line each: a method on a base, a last level or
-// a map size it is not measured on (bench.md and the console say so, rather than leave
-// its rows out unremarked).
+// What was asked for and is not measured, a line each (bench.md and the console say so,
+// rather than leave its rows out unremarked).
 std::vector<std::string> unmeasuredNotes(const BenchOptions& options,
                                          const std::vector<BenchMap>& maps) {
     std::vector<std::string> notes;
-    auto note = [&](const std::string& line) {
-        if (std::find(notes.begin(), notes.end(), line) == notes.end()) notes.push_back(line);
-    };
     for (const BenchMap& m : maps) {
-        const int side = std::max(m.map->width, m.map->height);
         for (Method method : options.methods) {
-            const std::string name = methodName(method);
-            if (!methodRunsOnBase(method, m.base))
-                note(name + ": not on curved bases (they take multilevel, maxmip, pom and relief)");
-            else if (!measuredOn(method, m.interpolation))
-                note(name + ": not on the biquadratic level (measured there: the exact methods, "
-                            "multilevel, maxmip and cone)");
-            else if (!measuredAtSize(method, side))
-                note(name + ": not on " + m.name + " (" + std::to_string(side) +
-                     " texels a side; " +
-                     (method == Method::Rcsm
-                          ? "rcsm up to 512: its relaxed cone map is built on the CPU, as "
-                            "published, and takes minutes past that)"
-                          : "cone up to 1024: its cone map takes tens of seconds past that "
-                            "on llvmpipe)"));
+            const std::string why = whyNotMeasured(method, m);
+            if (why.empty()) continue;
+            const std::string line = std::string(methodName(method)) + ": " + why;
+            if (std::find(notes.begin(), notes.end(), line) == notes.end()) notes.push_back(line);
         }
     }
     return notes;
@@ -197,9 +182,7 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
     std::size_t n = 0;
     for (const BenchMap& m : maps) {
         for (Method method : options.methods) {
-            if (!methodRunsOnBase(method, m.base) || !measuredOn(method, m.interpolation) ||
-                !measuredAtSize(method, std::max(m.map->width, m.map->height)))
-                continue;
+            if (!whyNotMeasured(method, m).empty()) continue;
             n +=
                 settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps).size();
         }

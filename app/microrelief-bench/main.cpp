@@ -39,14 +39,18 @@ std::string today() {
     return buffer;
 }
 
-// The real height maps scripts/bench-maps.sh fetched from Debian packages: the maps that
-// FOLDER/maps.txt lists (one a line, FILE[:CHANNEL][:normalize] as --maps takes them, the
-// file relative to FOLDER), FOLDER being $MICRORELIEF_BENCH_MAPS or out/bench-maps. None
-// where there is no list, unless `required` (--maps fetched): then one error line naming
-// the list.
-std::vector<MapEntry> fetchedMaps(bool required) {
+// Where scripts/bench-maps.sh leaves the real maps it fetched: $MICRORELIEF_BENCH_MAPS, or
+// out/bench-maps in the working folder (the script's default when run from the checkout).
+std::filesystem::path fetchedMapsFolder() {
     const char* env = std::getenv("MICRORELIEF_BENCH_MAPS");
-    const std::filesystem::path folder = env && *env ? env : "out/bench-maps";
+    return env && *env ? env : "out/bench-maps";
+}
+
+// The maps that FOLDER/maps.txt lists (one a line, FILE[:CHANNEL][:normalize] as --maps
+// takes them, the file relative to FOLDER). None where there is no list, unless `required`
+// (--maps fetched): then one error line naming the list.
+std::vector<MapEntry> fetchedMaps(bool required) {
+    const std::filesystem::path folder = fetchedMapsFolder();
     const std::filesystem::path list = folder / "maps.txt";
     std::ifstream in(list);
     if (!in) {
@@ -199,14 +203,27 @@ void refuseRepeats(const std::vector<T>& items, const std::string& flag, Name na
                 throwBadInput(flag + " names " + name(items[k]) + " twice");
 }
 
+// The items of a comma-separated list, empty ones kept: "30,", ",30" and "30,,45" each name
+// an empty item, which the item's parser refuses (std::getline would drop a trailing one).
+// An empty list has no items.
+std::vector<std::string> splitCommas(const std::string& list) {
+    std::vector<std::string> items;
+    if (list.empty()) return items;
+    for (std::size_t start = 0;;) {
+        const std::size_t comma = list.find(',', start);
+        items.push_back(list.substr(start, comma - start));
+        if (comma == std::string::npos) return items;
+        start = comma + 1;
+    }
+}
+
 // A comma-separated list flag, each item read by the parser of the single flag; its
 // errors name the list flag the user gave (the parsers name the single one).
 template <typename Parse>
 auto parseList(const std::string& list, const std::string& single, const std::string& flag,
                Parse parse) {
     std::vector<decltype(parse(std::string()))> items;
-    std::stringstream in(list);
-    for (std::string name; std::getline(in, name, ',');) {
+    for (const std::string& name : splitCommas(list)) {
         try {
             items.push_back(parse(name));
         } catch (const Error& e) {
@@ -374,6 +391,7 @@ int main(int argc, char** argv) {
         if (level == LogLevel::Warning)
             std::cerr << "microrelief-bench: warning: " << message << '\n';
     });
+    std::string noFetchedMaps;  // a "Not measured" line where the default finds no list
     try {
         if (options.frames < 10) throwBadInput("--frames must be at least 10");
         if (quick) {
@@ -387,8 +405,17 @@ int main(int argc, char** argv) {
             // maps' list is no matter then).
             if (!app.count("--maps")) {
                 options.assets = {{MapSource(), "the bundled map"}};
-                for (const MapEntry& fetched : fetchedMaps(false))
-                    options.assets.push_back(fetched);
+                const std::vector<MapEntry> fetched = fetchedMaps(false);
+                options.assets.insert(options.assets.end(), fetched.begin(), fetched.end());
+                // Said, not left out unremarked: the list's folder is relative to where the
+                // benchmark runs.
+                const std::filesystem::path folder = fetchedMapsFolder();
+                if (fetched.empty())
+                    noFetchedMaps = "the real maps scripts/bench-maps.sh fetches: no list at " +
+                                    (folder / "maps.txt").string() +
+                                    (folder.is_relative() ? " (relative to the working folder; "
+                                                            "MICRORELIEF_BENCH_MAPS names another)"
+                                                          : "");
             }
             options.viewDegrees = {0, 45, 70, 85};
         }
@@ -406,8 +433,7 @@ int main(int argc, char** argv) {
             };
         };
         if (app.count("--maps")) {
-            std::stringstream in(mapList);
-            for (std::string text; std::getline(in, text, ',');) {
+            for (const std::string& text : splitCommas(mapList)) {
                 if (text != "fetched") {
                     options.assets.push_back(givenMap(text));
                     continue;
@@ -524,6 +550,7 @@ int main(int argc, char** argv) {
                 "nothing to measure: none of --methods runs on the maps, bases and "
                 "last levels asked for");
         info.notes = unmeasuredNotes(options, maps);
+        if (!noFetchedMaps.empty()) info.notes.insert(info.notes.begin(), noFetchedMaps);
         for (const std::string& line : info.notes)
             std::cerr << "microrelief-bench: not measured: " << line << '\n';
         const std::filesystem::path folder = outDir;

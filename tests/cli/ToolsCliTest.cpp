@@ -141,6 +141,10 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--map-sizes abc --out-dir " + (dir / "b").string(), "--map-sizes: 'abc'");
     // A list that names an item twice (its rows would merge), and nothing to measure at all.
     expectRefused("--views 30,60,30 --out-dir " + (dir / "b").string(), "--views names 30 twice");
+    // An empty item, trailing too (it was read as '--views 30'), is refused as itself.
+    expectRefused("--views 30, --out-dir " + (dir / "b").string(),
+                  "--views: '' is not a whole number from 0 to 89");
+    expectRefused("--methods cone, --out-dir " + (dir / "b").string(), "--methods");
     expectRefused("--map-sizes 64,64 --out-dir " + (dir / "b").string(),
                   "--map-sizes names 64 twice");
     expectRefused("--methods cone,maxmip,cone --out-dir " + (dir / "b").string(),
@@ -150,10 +154,15 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--maps '' --map-sizes 0 --out-dir " + (dir / "b").string(),
                   "nothing to measure: no map");
     // Maps: a missing file named, before any relief is made; 'fetched' with no list of
-    // fetched maps (none under this scratch folder) names the list it looked for.
+    // fetched maps (none under this scratch folder, the working folder here, whatever the
+    // environment says) names the list it looked for.
     expectRefused("--maps nope.png --out-dir " + (dir / "b").string(), "nope.png: no such file");
-    expectRefused("--maps fetched --out-dir " + (dir / "b").string(),
-                  "out/bench-maps/maps.txt: no list of fetched maps");
+    const test::RunResult noList = test::runCommand(
+        "cd " + dir.path().string() +
+            " && env -u MICRORELIEF_BENCH_MAPS " MICRORELIEF_BENCH_EXE " --quick --maps fetched",
+        dir.path());
+    test::expectOneLineFailure(noList, "microrelief-bench", 2,
+                               "out/bench-maps/maps.txt: no list of fetched maps");
     // FILE[:CHANNEL][:normalize]: a channel the image lacks is the loader's refusal, named
     // with the entry; a channel no map has, an empty file name and suffixes on the list of
     // fetched maps are refused as they are read.
@@ -401,6 +410,35 @@ TEST_F(ToolsCli, BenchMapsTakeAChannelAndNormalisation) {
         for (const std::string& plot : plots) EXPECT_EQ(plot.find(':'), std::string::npos) << plot;
         EXPECT_EQ(plots.count("pareto-two-1-" + std::to_string(n) + ".png"), 1u);
     }
+}
+
+// The default run measures the fetched maps beside the bundled one where there is a list of
+// them; where there is none (the list's folder is relative to the working folder), that is
+// said on the console and in bench.md, not left out unremarked. Seen red: nothing said.
+TEST_F(ToolsCli, BenchSaysWhenTheDefaultRunFindsNoFetchedMaps) {
+    const std::string measureLittle =
+        " --map-sizes 0 --views 45 --size 16x16 --bases plane --interpolations bilinear "
+        "--methods multilevel --frames 10 --out-dir b";
+    const test::RunResult r = test::runCommand(
+        "cd " + dir.path().string() + " && env -u MICRORELIEF_BENCH_MAPS " MICRORELIEF_BENCH_EXE +
+            measureLittle,
+        dir.path());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string note =
+        "the real maps scripts/bench-maps.sh fetches: no list at out/bench-maps/maps.txt "
+        "(relative to the working folder; MICRORELIEF_BENCH_MAPS names another)";
+    EXPECT_NE(r.err.find("microrelief-bench: not measured: " + note), std::string::npos) << r.err;
+    EXPECT_NE(test::readText(dir / "b" / "bench.md").find("- " + note), std::string::npos);
+    // With a list, its maps are measured and nothing is said of it.
+    writePng(dir / "grey.png", 4, 4, 1, std::vector<std::uint8_t>(16, 100));
+    std::ofstream(dir / "maps.txt") << "grey.png\n";
+    const test::RunResult listed = test::runCommand(
+        "cd " + dir.path().string() + " && MICRORELIEF_BENCH_MAPS=" + dir.path().string() +
+            " " MICRORELIEF_BENCH_EXE + measureLittle,
+        dir.path());
+    ASSERT_EQ(listed.status, 0) << listed.err;
+    EXPECT_EQ(listed.err.find("bench-maps.sh fetches"), std::string::npos) << listed.err;
+    EXPECT_NE(test::readText(dir / "b" / "bench.csv").find("grey"), std::string::npos);
 }
 
 // A fetched-map list's line is read as --maps reads an entry: a bad one is refused naming

@@ -23,12 +23,13 @@ cmake --build --preset sanitize
 # 2026-12-04 in batch.cli and batch.recipes; 2026-12-05 in terrain.cli's global-grid test in
 # four runs of CI in a row, and here with verbosity=2 saying "glibc >=2.19 suspected;
 # tls={0x3f46 ...}" right before the crash. CMakePresets.json's sanitize test preset
-# therefore sets ASAN_OPTIONS=intercept_tls_get_addr=0: LSan no longer scans dynamic TLS
-# (blocks of dlopen'd libraries' thread_local variables), which could only add leak reports,
-# never hide one. Should the tracer still crash (no report of any kind in the log), the
-# failed tests run again, up to three times while that is what fails them (all of them: a
-# test that failed beside it for another reason gets its reruns too, and fails the run if it
-# keeps failing); a leak report, an ASan or UBSan report fails the run at once.
+# therefore sets ASAN_OPTIONS=intercept_tls_get_addr=0: LSan no longer takes the blocks of
+# dynamic TLS (dlopen'd libraries' thread_local variables) as roots of their own, which
+# could only add leak reports, never hide one. Should the tracer still crash (no report of
+# any kind in the log), the failed tests run again, up to three times while that is what
+# fails them (all of them: a test that failed beside it for another reason gets its reruns
+# too, and fails the run if it keeps failing); a leak report, an ASan or UBSan report fails
+# the run at once.
 tracer='LeakSanitizer has encountered a fatal error'
 reported='ERROR: (AddressSanitizer|LeakSanitizer): |runtime error: '
 log="$(mktemp)"

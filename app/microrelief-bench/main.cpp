@@ -39,8 +39,9 @@ std::string today() {
     return buffer;
 }
 
-// Where scripts/bench-maps.sh leaves the real maps it fetched: $MICRORELIEF_BENCH_MAPS, or
-// out/bench-maps in the working folder (the script's default when run from the checkout).
+// Where the benchmark looks for the real maps scripts/bench-maps.sh fetched:
+// $MICRORELIEF_BENCH_MAPS, or out/bench-maps in the working folder (the script writes to the
+// checkout's out/bench-maps, so a run from elsewhere names the folder with the variable).
 std::filesystem::path fetchedMapsFolder() {
     const char* env = std::getenv("MICRORELIEF_BENCH_MAPS");
     return env && *env ? env : "out/bench-maps";
@@ -76,6 +77,20 @@ std::vector<MapEntry> fetchedMaps(bool required) {
         maps.push_back(entry);
     }
     return maps;
+}
+
+// The "not measured" line of a default run that found no fetched map to measure: the list
+// is missing (its folder relative to where the benchmark runs, unless the variable names
+// it) or lists none.
+std::string noFetchedMapsNote() {
+    const std::filesystem::path list = fetchedMapsFolder() / "maps.txt";
+    const std::string what = "the real maps scripts/bench-maps.sh fetches: ";
+    if (std::ifstream(list)) return what + list.string() + " lists none";
+    const char* env = std::getenv("MICRORELIEF_BENCH_MAPS");
+    return what + "no list at " + list.string() +
+           (env && *env ? ""
+                        : " (relative to the working folder; MICRORELIEF_BENCH_MAPS names "
+                          "another)");
 }
 
 // A --maps entry (MapEntry.h); 'default' the bundled map. 'fetched', the list, is the
@@ -391,7 +406,7 @@ int main(int argc, char** argv) {
         if (level == LogLevel::Warning)
             std::cerr << "microrelief-bench: warning: " << message << '\n';
     });
-    std::string noFetchedMaps;  // a "Not measured" line where the default finds no list
+    std::string noFetchedMaps;  // a "Not measured" line where the default measures none
     try {
         if (options.frames < 10) throwBadInput("--frames must be at least 10");
         if (quick) {
@@ -407,15 +422,7 @@ int main(int argc, char** argv) {
                 options.assets = {{MapSource(), "the bundled map"}};
                 const std::vector<MapEntry> fetched = fetchedMaps(false);
                 options.assets.insert(options.assets.end(), fetched.begin(), fetched.end());
-                // Said, not left out unremarked: the list's folder is relative to where the
-                // benchmark runs.
-                const std::filesystem::path folder = fetchedMapsFolder();
-                if (fetched.empty())
-                    noFetchedMaps = "the real maps scripts/bench-maps.sh fetches: no list at " +
-                                    (folder / "maps.txt").string() +
-                                    (folder.is_relative() ? " (relative to the working folder; "
-                                                            "MICRORELIEF_BENCH_MAPS names another)"
-                                                          : "");
+                if (fetched.empty()) noFetchedMaps = noFetchedMapsNote();
             }
             options.viewDegrees = {0, 45, 70, 85};
         }

@@ -144,7 +144,9 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     // An empty item, trailing too (it was read as '--views 30'), is refused as itself.
     expectRefused("--views 30, --out-dir " + (dir / "b").string(),
                   "--views: '' is not a whole number from 0 to 89");
-    expectRefused("--methods cone, --out-dir " + (dir / "b").string(), "--methods");
+    expectRefused("--methods cone, --out-dir " + (dir / "b").string(), "unknown --methods ''");
+    expectRefused("--maps nope.png, --out-dir " + (dir / "b").string(),
+                  "--maps '': an empty file name");
     expectRefused("--map-sizes 64,64 --out-dir " + (dir / "b").string(),
                   "--map-sizes names 64 twice");
     expectRefused("--methods cone,maxmip,cone --out-dir " + (dir / "b").string(),
@@ -429,15 +431,25 @@ TEST_F(ToolsCli, BenchSaysWhenTheDefaultRunFindsNoFetchedMaps) {
         "(relative to the working folder; MICRORELIEF_BENCH_MAPS names another)";
     EXPECT_NE(r.err.find("microrelief-bench: not measured: " + note), std::string::npos) << r.err;
     EXPECT_NE(test::readText(dir / "b" / "bench.md").find("- " + note), std::string::npos);
+    // A list the variable names that lists nothing: said so, not "no list".
+    const std::string named = "cd " + dir.path().string() +
+                              " && MICRORELIEF_BENCH_MAPS=" + dir.path().string() +
+                              " " MICRORELIEF_BENCH_EXE + measureLittle;
+    std::ofstream(dir / "maps.txt") << "\n";
+    const test::RunResult empty = test::runCommand(named, dir.path());
+    ASSERT_EQ(empty.status, 0) << empty.err;
+    EXPECT_NE(empty.err.find("not measured: the real maps scripts/bench-maps.sh fetches: " +
+                             (dir / "maps.txt").string() + " lists none\n"),
+              std::string::npos)
+        << empty.err;
     // With a list, its maps are measured and nothing is said of it.
     writePng(dir / "grey.png", 4, 4, 1, std::vector<std::uint8_t>(16, 100));
     std::ofstream(dir / "maps.txt") << "grey.png\n";
-    const test::RunResult listed = test::runCommand(
-        "cd " + dir.path().string() + " && MICRORELIEF_BENCH_MAPS=" + dir.path().string() +
-            " " MICRORELIEF_BENCH_EXE + measureLittle,
-        dir.path());
+    const test::RunResult listed = test::runCommand(named, dir.path());
     ASSERT_EQ(listed.status, 0) << listed.err;
     EXPECT_EQ(listed.err.find("bench-maps.sh fetches"), std::string::npos) << listed.err;
+    EXPECT_EQ(test::readText(dir / "b" / "bench.md").find("bench-maps.sh fetches"),
+              std::string::npos);
     EXPECT_NE(test::readText(dir / "b" / "bench.csv").find("grey"), std::string::npos);
 }
 

@@ -416,9 +416,10 @@ int main(int argc, char** argv) {
             if (!app.count("--size")) size = "256x256";
         } else {
             options.mapSizes = {64, 256, 1024, 4096, 8192};
-            // The default map list, unless --maps replaces it (a bad line of the fetched
-            // maps' list is no matter then).
-            if (!app.count("--maps")) {
+            // The default map list, unless --maps replaces it or the run measures no map
+            // file (--rebuild, --materials, --terrain): a bad line of the fetched maps' list
+            // is no matter then.
+            if (!app.count("--maps") && !rebuild && !materials && !terrain) {
                 options.assets = {{MapSource(), "the bundled map"}};
                 const std::vector<MapEntry> fetched = fetchedMaps(false);
                 options.assets.insert(options.assets.end(), fetched.begin(), fetched.end());

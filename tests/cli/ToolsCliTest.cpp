@@ -473,6 +473,15 @@ TEST_F(ToolsCli, BenchRefusesABadLineOfTheFetchedMapList) {
             "--maps fetched: " + (dir / "maps.txt").string() + ":" + mentions);
         EXPECT_EQ(r.out, "");
     }
+    // A run that measures no map file does not read the list. Seen red: --rebuild refused
+    // with the list's bad line.
+    const test::RunResult rebuild =
+        test::runCommand("MICRORELIEF_BENCH_MAPS=" + dir.path().string() +
+                             " " MICRORELIEF_BENCH_EXE
+                             " --rebuild --rebuild-sizes 16 --size 16x16 --frames 10 --out-dir " +
+                             (dir / "r").string(),
+                         dir.path());
+    EXPECT_EQ(rebuild.status, 0) << rebuild.err;
 }
 
 // --rebuild (issue 16): rebuild.csv with a row per map size and the columns the issue

@@ -5,6 +5,7 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -73,12 +74,90 @@ double verticalUnit(const std::string& name, const std::string& unitText) {
                   "', a unit microrelief does not know (metres, feet or US survey feet)");
 }
 
-// The ground size of a sample and what the grid is, from the geotransform and the
-// coordinate system. A rotated grid's sample sizes are the lengths of its two steps.
-Georeference groundOf(const std::string& name, const double gt[6], int width, int height,
+// How a file's grid lies on the ground, and the map north up and east to the right
+// (scene-and-cli.md: image row 0 is the far edge, -z, at the top of a view from above) that
+// it is read as, sample for sample. GDAL's geotransform puts the corner of the file's
+// sample (c, r) at x = gt[0] + c gt[1] + r gt[2], y = gt[3] + c gt[4] + r gt[5]: a grid
+// whose rows and columns run along x and y, in either order and either direction (the
+// eight turns and mirrors of a square), is read as it lies, its samples permuted; any
+// other is refused.
+struct NorthUpGrid {
+    int width = 0, height = 0;  // the map's, north up
+    // The file's columns are the map's rows (and its rows the map's columns): the grid is
+    // transposed, or turned 90 or 270 degrees.
+    bool transposed = false;
+    // Then the map's columns run west where the file's run (before the flip) and its rows
+    // north: each read in reverse.
+    bool flipColumns = false, flipRows = false;
+    // The map's own geotransform, north up: {x0, dx, 0, y0, 0, -dy}, dx and dy > 0.
+    std::array<double, 6> geotransform{};
+};
+
+NorthUpGrid northUpGrid(const std::string& name, const double gt[6], int fileWidth,
+                        int fileHeight) {
+    for (int k = 0; k < 6; ++k)
+        if (!std::isfinite(gt[k])) throwBadInput(name + ": its grid's geotransform is not finite");
+    // A term counts as zero where it moves the samples by less than a millionth of one over
+    // the whole map: rounding in a file's writer, not a turn.
+    constexpr double kAxisTolerance = 1e-6;
+    const auto along = [&](double main, double cross, int count) {
+        return std::abs(cross) * count <= kAxisTolerance * std::abs(main);
+    };
+    NorthUpGrid grid;
+    double columnStep = 0.0, rowStep = 0.0;  // x per map column, y per map row, before flips
+    if (along(gt[1], gt[4], fileWidth) && along(gt[5], gt[2], fileHeight)) {
+        columnStep = gt[1];
+        rowStep = gt[5];
+        grid.width = fileWidth;
+        grid.height = fileHeight;
+    } else if (along(gt[2], gt[5], fileHeight) && along(gt[4], gt[1], fileWidth)) {
+        grid.transposed = true;
+        columnStep = gt[2];  // the file's rows run along x
+        rowStep = gt[4];     // and its columns along y
+        grid.width = fileHeight;
+        grid.height = fileWidth;
+    } else {
+        // The angles of the file's two steps from east; at right angles, a turn.
+        const double degrees = 180.0 / kPi;
+        const double column = std::atan2(gt[4], gt[1]) * degrees;
+        const double row = std::atan2(gt[5], gt[2]) * degrees;
+        const double between = std::remainder(row - column, 360.0);
+        std::ostringstream message;
+        message << name << ": its grid is ";
+        if (std::abs(std::abs(between) - 90.0) > 1e-6) {
+            message << "sheared (its rows and columns meet at " << std::abs(between)
+                    << " degrees, not at right angles)";
+        } else {
+            // The turn that brings the column step east, to the nearest of its quarter turns.
+            const double turn = std::remainder(column, 90.0);
+            message << "turned " << std::abs(turn) << " degrees from north up";
+        }
+        throwBadInput(message.str() +
+                      "; only a grid whose rows and columns run east-west and north-south "
+                      "is read (turn it north up first: gdalwarp -r bilinear in.tif out.tif)");
+    }
+    if (!(columnStep != 0.0) || !(rowStep != 0.0))
+        throwBadInput(name + ": its grid's sample size is zero");
+    grid.flipColumns = columnStep < 0.0;
+    grid.flipRows = rowStep > 0.0;
+    // The north-west corner: where the file's corner is, moved across the map where it is
+    // read in reverse.
+    const double x0 = gt[0] + (grid.flipColumns ? columnStep * grid.width : 0.0);
+    const double y0 = gt[3] + (grid.flipRows ? rowStep * grid.height : 0.0);
+    grid.geotransform = {x0, std::abs(columnStep), 0.0, y0, 0.0, -std::abs(rowStep)};
+    return grid;
+}
+
+// The ground size of a sample and what the grid is, from the map's north-up grid and the
+// coordinate system. Refuses a latitude/longitude grid that is not on the Earth: one
+// reaching past a pole, or spanning more than the 360 degrees of longitude, by more than
+// half a sample (a grid of samples centred on the poles and the date line has its edges
+// half a sample beyond them).
+Georeference groundOf(const std::string& name, const NorthUpGrid& grid,
                       const OGRSpatialReference* srs) {
     Georeference geo;
-    const double stepX = std::hypot(gt[1], gt[4]), stepY = std::hypot(gt[2], gt[5]);
+    const std::array<double, 6>& gt = grid.geotransform;
+    const double stepX = gt[1], stepY = -gt[5];
     if (!(stepX > 0.0) || !(stepY > 0.0) || !std::isfinite(stepX) || !std::isfinite(stepY))
         throwBadInput(name + ": its grid's sample size is zero or not finite");
     if (srs && srs->IsGeographic()) {
@@ -89,15 +168,29 @@ Georeference groundOf(const std::string& name, const double gt[6], int width, in
             throwBadInput(name + ": its coordinate system's ellipsoid has no size");
         const double degrees = srs->GetAngularUnits() * 180.0 / kPi;  // degrees per unit
         const double dx = stepX * degrees, dy = stepY * degrees;
-        const double centreLatitude =
-            (gt[3] + gt[4] * width / 2.0 + gt[5] * height / 2.0) * degrees;
-        if (!(std::abs(centreLatitude) <= 90.0))
-            throwBadInput(name + ": its grid's centre lies beyond the poles");
+        const double north = gt[3] * degrees, south = north - grid.height * dy;
+        // A part in 1e9 of a degree for the rounding of the file's numbers.
+        const double pastPole = 90.0 + dy / 2.0 + 1e-9;
+        if (!(north <= pastPole) || !(south >= -pastPole)) {
+            const double beyond = north > pastPole ? north : south;
+            std::ostringstream message;
+            message << name << ": its grid reaches " << std::abs(beyond) << " degrees "
+                    << (north > pastPole ? "north" : "south")
+                    << ", past the pole (a latitude/longitude grid lies from 90 S to 90 N)";
+            throwBadInput(message.str());
+        }
+        if (!(grid.width * dx <= 360.0 + dx + 1e-9)) {
+            std::ostringstream message;
+            message << name << ": its grid spans " << grid.width * dx
+                    << " degrees of longitude, more than the 360 round the Earth";
+            throwBadInput(message.str());
+        }
+        const double centreLatitude = std::clamp((north + south) / 2.0, -90.0, 90.0);
         geo.sampleWidthMetres =
             dx * metresPerDegreeEast(geo.semiMajorMetres, geo.semiMinorMetres, centreLatitude);
         geo.sampleHeightMetres =
             dy * metresPerDegreeNorth(geo.semiMajorMetres, geo.semiMinorMetres, centreLatitude);
-        geo.global = width * dx >= 360.0 - dx / 2.0 && height * dy >= 180.0 - dy / 2.0;
+        geo.global = grid.width * dx >= 360.0 - dx / 2.0 && grid.height * dy >= 180.0 - dy / 2.0;
         // A grid at a pole has no width there; its samples' size is taken at the centre.
         if (!(geo.sampleWidthMetres > 0.0)) geo.sampleWidthMetres = geo.sampleHeightMetres;
     } else {
@@ -182,7 +275,9 @@ Georeference demGrid(const std::filesystem::path& file) {
     const QuietGdal quiet;
     double gt[6];
     const std::shared_ptr<GDALDataset> dataset = openDem(file, gt);
-    return groundOf(file.string(), gt, dataset->GetRasterXSize(), dataset->GetRasterYSize(),
+    const std::string name = file.string();
+    return groundOf(name,
+                    northUpGrid(name, gt, dataset->GetRasterXSize(), dataset->GetRasterYSize()),
                     dataset->GetSpatialRef());
 }
 
@@ -195,6 +290,7 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
 
     const int width = dataset->GetRasterXSize(), height = dataset->GetRasterYSize();
     checkSize(name, width, height, options.maxSide, "a height map", options.maxSamples);
+    const NorthUpGrid grid = northUpGrid(name, gt, width, height);
     const int bands = dataset->GetRasterCount();
     if (options.channel < 0 || options.channel >= bands) {
         throwBadInput(name + ": {map.load.channel} " + std::to_string(options.channel) +
@@ -202,7 +298,7 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
                       " band(s)");
     }
     GDALRasterBand* band = dataset->GetRasterBand(options.channel + 1);
-    Georeference geo = groundOf(name, gt, width, height, dataset->GetSpatialRef());
+    Georeference geo = groundOf(name, grid, dataset->GetSpatialRef());
 
     // How a stored value becomes metres, or nodata.
     struct Heights {
@@ -222,18 +318,25 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
     if (!hasOffset) heights.offset = 0.0;
     heights.unit = verticalUnit(name, band->GetUnitType());
 
-    // Rows of the file y0 .. y1 - 1 as stored, read as double (the nodata test on the stored
-    // value; integer heights up to 2^53 exact until they are metres), in blocks of about
-    // 4 M samples handed to `use(firstRow, rowCount, samples)`.
-    const int blockRows = std::max(1, std::min(height, (1 << 22) / width));
-    const auto readBlocks = [dataset, band, name, width, blockRows](int y0, int y1,
-                                                                    const auto& use) {
+    // Lines y0 .. y1 - 1 of the file, read as double (the nodata test on the stored value;
+    // integer heights up to 2^53 exact until they are metres), in blocks of about 4 M
+    // samples handed to `use(firstLine, lineCount, samples)`: its rows as stored, or, where
+    // `columns`, its columns y0 .. y1 - 1, each laid out as a row (GDAL's buffer spacing
+    // transposes them as they are read).
+    const auto readBlocks = [dataset, band, name, width, height](bool columns, int y0, int y1,
+                                                                 const auto& use) {
         const QuietGdal quietHere;
-        std::vector<double> block(static_cast<std::size_t>(width) * std::min(blockRows, y1 - y0));
-        for (int y = y0; y < y1; y += blockRows) {
-            const int count = std::min(blockRows, y1 - y);
-            if (band->RasterIO(GF_Read, 0, y, width, count, block.data(), width, count, GDT_Float64,
-                               0, 0) != CE_None)
+        const int length = columns ? height : width;
+        const int blockLines = std::max(1, (1 << 22) / length);
+        std::vector<double> block(static_cast<std::size_t>(length) * std::min(blockLines, y1 - y0));
+        for (int y = y0; y < y1; y += blockLines) {
+            const int count = std::min(blockLines, y1 - y);
+            const CPLErr read =
+                columns ? band->RasterIO(GF_Read, y, 0, count, height, block.data(), count, height,
+                                         GDT_Float64, sizeof(double) * height, sizeof(double))
+                        : band->RasterIO(GF_Read, 0, y, width, count, block.data(), width, count,
+                                         GDT_Float64, 0, 0);
+            if (read != CE_None)
                 throwBadInput(name + ": cannot read the samples (" + QuietGdal::lastError() + ")");
             use(y, count, block.data());
         }
@@ -242,7 +345,7 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
     // The first pass: the valid heights' range and the nodata samples.
     double lowest = std::numeric_limits<double>::infinity();
     double highest = -lowest;
-    readBlocks(0, height, [&](int y, int count, const double* block) {
+    readBlocks(false, 0, height, [&](int y, int count, const double* block) {
         for (std::size_t k = 0; k < static_cast<std::size_t>(count) * width; ++k) {
             const double raw = block[k];
             if (heights.isNodata(raw)) {
@@ -259,32 +362,34 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
             lowest = std::min(lowest, metres);
             highest = std::max(highest, metres);
         }
-        if (firstPass) firstPass(y + count, height);
+        // Counted in the map's rows, which the rows' reads count too.
+        if (firstPass)
+            firstPass(static_cast<long long>(y + count) * grid.height / height, grid.height);
     });
     if (geo.nodataSamples == static_cast<std::size_t>(width) * height)
         throwBadInput(name + ": every sample is nodata");
     geo.lowestMetres = lowest;
     geo.highestMetres = highest;
 
-    // North up, east to the right (scene-and-cli.md: image row 0 is the far edge, -z, at
-    // the top of a view from above): a grid whose rows run south to north (a positive row
-    // step) or whose columns run west to east in reverse is turned as it is read.
-    const bool flipRows = gt[5] > 0.0, flipColumns = gt[1] < 0.0;
+    // North up, east to the right (NorthUpGrid): the map's rows are the file's rows or
+    // columns, each line and the lines' order read in reverse where they run the other way.
     DemRows result;
     result.georeference = geo;
-    result.rows.width = width;
-    result.rows.height = height;
+    result.rows.width = grid.width;
+    result.rows.height = grid.height;
     // Map rows y0 .. y1 - 1: [lowest, highest] metres -> [0, 1], worked in double and rounded
     // once to float; nodata -> 0, the lowest valid height. The result needs no clamp: for
     // lowest <= m <= highest, rounded subtraction and division are monotonic, so
     // 0 = fl(0 / range) <= fl(fl(m - lowest) / range) <= fl(range / range) = 1. A height
     // outside the first pass's range means the file changed since: refused, as a map that
     // changed under a build is.
-    result.rows.read = [readBlocks, heights, name, width, height, flipRows, flipColumns, lowest,
-                        highest](int y0, int y1, float* out) {
+    result.rows.read = [readBlocks, heights, name, grid, lowest, highest](int y0, int y1,
+                                                                          float* out) {
+        const int width = grid.width, height = grid.height;
+        const bool flipRows = grid.flipRows, flipColumns = grid.flipColumns;
         const int f0 = flipRows ? height - y1 : y0, f1 = flipRows ? height - y0 : y1;
         const double range = highest - lowest;
-        readBlocks(f0, f1, [&](int y, int count, const double* block) {
+        readBlocks(grid.transposed, f0, f1, [&](int y, int count, const double* block) {
             for (int r = 0; r < count; ++r) {
                 const int row = flipRows ? height - 1 - (y + r) : y + r;
                 float* to = out + static_cast<std::ptrdiff_t>(row - y0) * width;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -122,27 +123,184 @@ TEST(DemFile, AProjectedGeoTiffIsReadAsMetresOverItsGrid) {
     EXPECT_EQ(loadHeightMap(dir / "utm.tif").samples, dem.map.samples);
 }
 
-// The map is north up and east to the right whatever order the file keeps its rows and
-// columns in: a south-up grid (rows running north, a positive row step) and an east-to-west
-// one of the same ground read as the same map.
-TEST(DemFile, AGridIsTurnedNorthUpAndEastRight) {
+// The map is north up and east to the right whatever way the file lays its grid on the
+// ground, where its rows and columns run east-west and north-south: each of the eight (the
+// turns by 0, 90, 180 and 270 degrees, each also mirrored; a transposed grid is a turned one
+// mirrored) holds the same ground as the north-up twin and reads as the same map, sample for
+// sample, with the same georeference, whole and by rows. Samples of 30 x 20 m on a 40 x 30
+// grid: a turn that swapped the sides or the sample sizes is seen.
+namespace {
+
+struct GridLayout {
+    const char* name;
+    int columnEast, columnNorth;  // the file's column step: one sample east, west, north or south
+    int rowEast, rowNorth;        // and its row step
+};
+const GridLayout kGridLayouts[] = {
+    {"north up", 1, 0, 0, -1},
+    {"south up (rows running north)", 1, 0, 0, 1},
+    {"east to west", -1, 0, 0, -1},
+    {"turned 180 degrees", -1, 0, 0, 1},
+    {"transposed (columns running south, rows east)", 0, -1, 1, 0},
+    {"turned 90 degrees clockwise (columns running south, rows west)", 0, -1, -1, 0},
+    {"turned 90 degrees anticlockwise (columns running north, rows east)", 0, 1, 1, 0},
+    {"transposed the other way (columns running north, rows west)", 0, 1, -1, 0},
+};
+
+// The north-up twin's ground: W x H samples of dx x dy metres from (x0, y0), the north-west
+// corner; and the file of `layout` that holds it.
+struct TwinGround {
+    int width = 40, height = 30;
+    double x0 = 500000.0, y0 = 5000000.0, dx = 30.0, dy = 20.0;
+    double value(int i, int j) const { return 100.0 + i + 41.0 * j; }  // each sample its own
+};
+DemSpec laidOut(const TwinGround& ground, const GridLayout& layout) {
+    DemSpec spec;
+    const bool columnsEast = layout.columnEast != 0;
+    spec.width = columnsEast ? ground.width : ground.height;
+    spec.height = columnsEast ? ground.height : ground.width;
+    const double gt[6] = {
+        layout.columnEast < 0 || layout.rowEast < 0 ? ground.x0 + ground.width * ground.dx
+                                                    : ground.x0,
+        layout.columnEast * ground.dx,
+        layout.rowEast * ground.dx,
+        layout.columnNorth > 0 || layout.rowNorth > 0 ? ground.y0 - ground.height * ground.dy
+                                                      : ground.y0,
+        layout.columnNorth * ground.dy,
+        layout.rowNorth * ground.dy};
+    std::copy(gt, gt + 6, spec.gt);
+    spec.value = [ground, gt](int c, int r) {
+        // The sample's centre on the ground, and the twin's sample there.
+        const double x = gt[0] + (c + 0.5) * gt[1] + (r + 0.5) * gt[2];
+        const double y = gt[3] + (c + 0.5) * gt[4] + (r + 0.5) * gt[5];
+        return ground.value(static_cast<int>(std::floor((x - ground.x0) / ground.dx)),
+                            static_cast<int>(std::floor((ground.y0 - y) / ground.dy)));
+    };
+    return spec;
+}
+
+}  // namespace
+
+TEST(DemFile, EveryGridAlongTheAxesIsTurnedNorthUpExactly) {
     test::ScratchDir dir;
-    DemSpec spec;  // rows north to south from 5 000 000, columns west to east from 500 000
-    writeDem(dir / "north-up.tif", spec, GDT_Int16);
-    const auto value = spec.value;
-    DemSpec southUp = spec;
-    southUp.gt[3] = 5000000.0 - 30.0 * spec.height;
-    southUp.gt[5] = 30.0;
-    southUp.value = [&](int i, int j) { return value(i, spec.height - 1 - j); };
-    writeDem(dir / "south-up.tif", southUp, GDT_Int16);
-    DemSpec eastToWest = spec;
-    eastToWest.gt[0] = 500000.0 + 30.0 * spec.width;
-    eastToWest.gt[1] = -30.0;
-    eastToWest.value = [&](int i, int j) { return value(spec.width - 1 - i, j); };
-    writeDem(dir / "east-to-west.tif", eastToWest, GDT_Int16);
-    const HeightMap north = loadHeightMapFile(dir / "north-up.tif").map;
-    EXPECT_EQ(loadHeightMapFile(dir / "south-up.tif").map.samples, north.samples);
-    EXPECT_EQ(loadHeightMapFile(dir / "east-to-west.tif").map.samples, north.samples);
+    const TwinGround ground;
+    DemSpec twin;
+    twin.width = ground.width;
+    twin.height = ground.height;
+    const double gt[6] = {ground.x0, ground.dx, 0.0, ground.y0, 0.0, -ground.dy};
+    std::copy(gt, gt + 6, twin.gt);
+    twin.value = [ground](int i, int j) { return ground.value(i, j); };
+    writeDem(dir / "twin.tif", twin, GDT_Float32);
+    const HeightMapFile north = loadHeightMapFile(dir / "twin.tif");
+    ASSERT_TRUE(north.georeference);
+    ASSERT_EQ(north.georeference->sampleWidthMetres, 30.0);
+    ASSERT_EQ(north.georeference->sampleHeightMetres, 20.0);
+    ASSERT_FLOAT_EQ(north.map.at(1, 0), 1.0f / (39 + 41 * 29));  // east of the corner
+
+    for (const GridLayout& layout : kGridLayouts) {
+        SCOPED_TRACE(layout.name);
+        const std::filesystem::path file = dir / (std::string(layout.name) + ".tif");
+        writeDem(file, laidOut(ground, layout), GDT_Float32);
+        const HeightMapFile dem = loadHeightMapFile(file);
+        EXPECT_EQ(dem.map.width, north.map.width);
+        EXPECT_EQ(dem.map.height, north.map.height);
+        EXPECT_EQ(dem.map.samples, north.map.samples);
+        EXPECT_EQ(dem.georeference, north.georeference);
+        // By rows, in bands of 7 (a pyramid file's build reads them so), and from the header.
+        const MapFileRows rows = heightMapFileRows(file, {});
+        ASSERT_EQ(rows.rows.width, north.map.width);
+        ASSERT_EQ(rows.rows.height, north.map.height);
+        std::vector<float> read(north.map.samples.size(), -1.0f);
+        for (int y0 = 0; y0 < rows.rows.height; y0 += 7)
+            rows.rows.read(y0, std::min(rows.rows.height, y0 + 7),
+                           read.data() + static_cast<std::ptrdiff_t>(y0) * rows.rows.width);
+        EXPECT_EQ(read, north.map.samples);
+        const std::optional<Georeference> grid = readMapGrid(file);
+        ASSERT_TRUE(grid);
+        EXPECT_EQ(grid->sampleWidthMetres, 30.0);
+        EXPECT_EQ(grid->sampleHeightMetres, 20.0);
+    }
+}
+
+// A grid turned by another angle, or sheared, cannot be turned north up sample for sample:
+// refused in one line that says how it lies (rather than drawn in its own orientation).
+// Terms of a part in a million of a sample over the whole map are a grid along the axes.
+TEST(DemFile, AGridTurnedByAnotherAngleOrShearedIsRefused) {
+    test::ScratchDir dir;
+    const double eighth = std::atan(1.0);  // of a turn: 45 degrees
+    const double c = 30.0 * std::cos(eighth), s = 30.0 * std::sin(eighth);
+    DemSpec turned;
+    const double gt45[6] = {500000.0, c, s, 5000000.0, s, -c};  // turned 45 degrees
+    std::copy(gt45, gt45 + 6, turned.gt);
+    writeDem(dir / "turned.tif", turned, GDT_Int16);
+    std::string message = refusal(dir / "turned.tif");
+    EXPECT_NE(message.find("turned.tif: its grid is turned 45 degrees"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("gdalwarp"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+
+    DemSpec sheared;
+    const double gtShear[6] = {500000.0, 30.0, 10.0, 5000000.0, 0.0, -30.0};
+    std::copy(gtShear, gtShear + 6, sheared.gt);
+    writeDem(dir / "sheared.tif", sheared, GDT_Int16);
+    message = refusal(dir / "sheared.tif");
+    EXPECT_NE(message.find("sheared.tif: its grid is sheared"), std::string::npos) << message;
+    // The header alone refuses it too (a pyramid file's build asks it first).
+    try {
+        readMapGrid(dir / "sheared.tif");
+        ADD_FAILURE() << "a sheared grid's header was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("sheared"), std::string::npos) << e.what();
+    }
+
+    DemSpec nearly;  // 1e-9 of a sample over the map: along the axes
+    nearly.gt[2] = 30.0 * 1e-9 / nearly.height;
+    writeDem(dir / "nearly.tif", nearly, GDT_Int16);
+    writeDem(dir / "straight.tif", DemSpec{}, GDT_Int16);
+    EXPECT_EQ(loadHeightMapFile(dir / "nearly.tif").map.samples,
+              loadHeightMapFile(dir / "straight.tif").map.samples);
+}
+
+// A latitude/longitude grid lies between the poles and spans no more than the globe: one
+// that reaches past a pole, or wraps round more than 360 degrees, is no grid on the Earth.
+// A grid whose edges lie half a sample past the poles and the date line (samples centred on
+// them, as ETOPO's "grid-registered" grids are) is one, and covers the globe.
+TEST(DemFile, ALatitudeLongitudeGridPastThePolesIsRefused) {
+    test::ScratchDir dir;
+    const auto geographic = [](int width, int height, std::initializer_list<double> gt) {
+        DemSpec spec;
+        spec.width = width;
+        spec.height = height;
+        spec.crs = "EPSG:4326";
+        std::copy(gt.begin(), gt.end(), spec.gt);
+        return spec;
+    };
+    writeDem(dir / "north.tif", geographic(10, 10, {10.0, 1.0, 0.0, 95.0, 0.0, -1.0}),
+             GDT_Int16);  // 95 N to 85 N: its centre is on the Earth, its top is not
+    std::string message = refusal(dir / "north.tif");
+    EXPECT_NE(message.find("north.tif: its grid reaches 95 degrees north, past the pole"),
+              std::string::npos)
+        << message;
+    writeDem(dir / "south.tif", geographic(10, 20, {10.0, 1.0, 0.0, -75.0, 0.0, -1.0}),
+             GDT_Int16);  // 75 S to 95 S
+    message = refusal(dir / "south.tif");
+    EXPECT_NE(message.find("south.tif: its grid reaches 95 degrees south, past the pole"),
+              std::string::npos)
+        << message;
+    writeDem(dir / "south-up.tif", geographic(10, 20, {10.0, 1.0, 0.0, -95.0, 0.0, 1.0}),
+             GDT_Int16);  // rows running north from 95 S
+    EXPECT_NE(refusal(dir / "south-up.tif").find("95 degrees south"), std::string::npos);
+    writeDem(dir / "wraps.tif", geographic(400, 10, {-180.0, 1.0, 0.0, 10.0, 0.0, -1.0}),
+             GDT_Int16);
+    message = refusal(dir / "wraps.tif");
+    EXPECT_NE(message.find("wraps.tif: its grid spans 400 degrees of longitude"), std::string::npos)
+        << message;
+
+    writeDem(dir / "registered.tif", geographic(361, 181, {-180.5, 1.0, 0.0, 90.5, 0.0, -1.0}),
+             GDT_Int16);
+    const HeightMapFile globe = loadHeightMapFile(dir / "registered.tif");
+    ASSERT_TRUE(globe.georeference);
+    EXPECT_TRUE(globe.georeference->global);
 }
 
 // Heights far from zero (metres from the Earth's centre) keep their detail: the map of
@@ -491,6 +649,31 @@ TEST_F(DemRender, ATerrainStandsAtItsTrueProportions) {
                    (dir / "p{frame}.png").string() + " --aov " + (dir / "p{frame}.exr").string());
         ASSERT_EQ(pagedPath.status, 0) << pagedPath.err;
         EXPECT_EQ(readAov(dir / "p0.exr").pixels, aov.pixels);
+    }
+}
+
+// A grid turned 90 degrees, or transposed, is drawn as its north-up twin: every hit where
+// the twin's is (the AOV's world positions, float for float), whole and from its pyramid
+// file. Seen red drawn turned and mirrored, at another size.
+TEST_F(DemRender, AGridTurnedOrTransposedIsDrawnAsItsNorthUpTwin) {
+    const TwinGround ground;
+    writeDem(dir / "twin.tif", laidOut(ground, kGridLayouts[0]), GDT_Float32);
+    const std::string view = " --out " + (dir / "x.png").string() + " --aov ";
+    const test::RunResult twin =
+        render("-q --height " + (dir / "twin.tif").string() + view + (dir / "twin.exr").string());
+    ASSERT_EQ(twin.status, 0) << twin.err;
+    const Aov expected = readAov(dir / "twin.exr");
+    // Turned 90 degrees, whole and from its pyramid file; transposed, whole.
+    const std::string pyramid = " --pyramid-cache " + (dir / "cache").string();
+    for (const auto& [layout, cache] :
+         {std::pair{kGridLayouts[5], std::string()}, std::pair{kGridLayouts[5], pyramid},
+          std::pair{kGridLayouts[4], std::string()}}) {
+        SCOPED_TRACE(std::string(layout.name) + cache);
+        writeDem(dir / "turned.tif", laidOut(ground, layout), GDT_Float32);
+        const test::RunResult r = render("-q --height " + (dir / "turned.tif").string() + cache +
+                                         view + (dir / "turned.exr").string());
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(readAov(dir / "turned.exr").pixels, expected.pixels);
     }
 }
 

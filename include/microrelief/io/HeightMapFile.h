@@ -32,13 +32,15 @@ struct HeightMapFile {
 // A georeferenced elevation model (a .tif or .tiff whose first directory holds a GeoTIFF
 // grid, or an SRTM .hgt), read through GDAL: the samples as metres (the band's scale, offset
 // and unit applied: metres, feet or US survey feet; a band without a unit is in metres), north
-// up and east to the right (a south-up or east-to-west grid turned), its nodata samples filled
+// up and east to the right (a grid whose rows and columns run along the axes, in any order
+// and direction, permuted sample for sample as it is read), its nodata samples filled
 // with the lowest valid height, [lowest, highest] mapped to [0, 1]; the georeference says
 // what that was and how large a sample is (core/scene/Georeference.h). Every other file (a
 // TIFF without a grid too, through OpenImageIO alone) as loadHeightMap reads it. Refuses,
 // besides what loadHeightMap refuses: a DEM GDAL cannot read, one with no valid sample or a
-// sample that is not a height, heights in another unit, an .hgt file where the io component
-// was built without GDAL.
+// sample that is not a height, heights in another unit, a grid turned by another angle or
+// sheared, a latitude/longitude grid reaching past a pole or round more than the globe, an
+// .hgt file where the io component was built without GDAL.
 HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
                                 const HeightMapLoadOptions& options = {});
 

@@ -19,7 +19,7 @@
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
-#include "microrelief/core/Machine.h"  // physicalMemoryBytes, which the programs' limits use
+#include "microrelief/core/Machine.h"  // availableMemoryBytes, which the programs' limits use
 #include "microrelief/core/Text.h"
 
 namespace microrelief {

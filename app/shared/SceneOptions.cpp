@@ -637,7 +637,7 @@ CLI::Option* addMemoryFlag(CLI::App& app, std::size_t& mib, const std::string& d
 
 void allowPagedMaps(HeightMapLoadOptions& load) {
     load.maxSide = kMaxPagedHeightMapSide;
-    load.maxSamples = physicalMemoryBytes() / kPagedBytesPerSample;
+    load.maxSamples = availableMemoryBytes() / kPagedBytesPerSample;
 }
 
 }  // namespace microrelief

@@ -80,8 +80,8 @@ private:
 // map is drawn in that program ("drawn again until exact").
 CLI::Option* addMemoryFlag(CLI::App& app, std::size_t& mib, const std::string& drawn);
 // The load limits of a program that reads maps past the GL's textures through pages: sides
-// to kMaxPagedHeightMapSide, samples as many as the machine's memory holds with their
-// pyramid (kPagedBytesPerSample a sample).
+// to kMaxPagedHeightMapSide, samples as many as the memory available now holds with their
+// pyramid (kPagedBytesPerSample a sample; core/Machine.h: availableMemoryBytes).
 void allowPagedMaps(HeightMapLoadOptions& load);
 
 // "a,b,c,..." -> exactly `count` finite numbers; throws Error(BadInput) naming `flag` and

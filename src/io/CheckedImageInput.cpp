@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string_view>
 
@@ -38,14 +39,19 @@ void checkSize(const std::string& name, long long width, long long height, int m
     }
     const double samples = static_cast<double>(width) * static_cast<double>(height);
     if (maxSamples > 0 && samples > static_cast<double>(maxSamples)) {
+        // What drawing them needs, rounded up to a GiB, and the memory available (the
+        // bound's samples, kPagedBytesPerSample each), rounded down to a tenth of one.
         const auto gib = [](double count) {
-            const double bytes = count * static_cast<double>(kPagedBytesPerSample);
-            return std::to_string(static_cast<long long>(std::ceil(bytes / (1 << 30))));
+            return count * static_cast<double>(kPagedBytesPerSample) / (1 << 30);
         };
+        char available[32];
+        std::snprintf(available, sizeof available, "%.1f",
+                      std::floor(gib(static_cast<double>(maxSamples)) * 10.0) / 10.0);
         throw MapOverMemory(name + ": " + std::to_string(width) + " x " + std::to_string(height) +
-                            " samples need about " + gib(samples) +
-                            " GiB of memory to draw, more than this machine's " +
-                            gib(static_cast<double>(maxSamples)) + " GiB");
+                            " samples need about " +
+                            std::to_string(static_cast<long long>(std::ceil(gib(samples)))) +
+                            " GiB of memory to draw, more than the " + available +
+                            " GiB available now");
     }
 }
 

@@ -423,7 +423,7 @@ MapFileRows heightMapFileRows(const std::filesystem::path& file,
 #endif
     // An interlaced PNG cannot be read by rows: OpenImageIO decodes it whole at its first
     // row (8 or 16 bits a channel, a palette as RGBA at most). Refused where that is more
-    // than half the machine's memory, which is what the rows are for.
+    // than half the memory available, which is what the rows are for.
     std::string pngDefect;
     if (const std::optional<PngHeader> png =
             hasPngSignature(file) ? readPngHeader(file, pngDefect) : std::nullopt;
@@ -434,14 +434,14 @@ MapFileRows heightMapFileRows(const std::filesystem::path& file,
                                                              : 4;
         const std::uint64_t bytes =
             std::uint64_t{png->width} * png->height * channels * (png->bitDepth == 16 ? 2 : 1);
-        const std::uint64_t memory = physicalMemoryBytes();
+        const std::uint64_t memory = availableMemoryBytes();
         if (memory > 0 && bytes > memory / 2) {
             throwBadInput(name + ": an interlaced PNG, which is decoded whole (" +
-                          std::to_string(bytes >> 20) + " MiB, more than half of this machine's " +
+                          std::to_string(bytes >> 20) + " MiB, more than half of the " +
                           std::to_string(memory >> 20) +
-                          " MiB) where its rows are needed; save it without interlacing "
-                          "(for example as a tiled TIFF: oiiotool in.png --tile 256 256 -o "
-                          "out.tif)");
+                          " MiB available now) where its rows are needed; save it without "
+                          "interlacing (for example as a tiled TIFF: oiiotool in.png --tile 256 "
+                          "256 -o out.tif)");
         }
     }
     struct State {

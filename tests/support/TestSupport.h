@@ -3,8 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,28 @@ public:
 
 private:
     std::filesystem::path path_;
+};
+
+// An environment variable set for a scope and put back as it was after (in this process,
+// and the programs a test runs from it).
+class ScopedEnvironment {
+public:
+    ScopedEnvironment(const char* name, const char* value) : name_(name) {
+        if (const char* before = std::getenv(name)) before_ = before;
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnvironment() {
+        if (before_)
+            ::setenv(name_.c_str(), before_->c_str(), 1);
+        else
+            ::unsetenv(name_.c_str());
+    }
+    ScopedEnvironment(const ScopedEnvironment&) = delete;
+    ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+private:
+    std::string name_;
+    std::optional<std::string> before_;
 };
 
 // Writes `map` (values in [0, 1] for integer types) as one channel of the given type.
@@ -111,6 +135,11 @@ std::string missingBackendMessage(Backend backend);
 // `azimuthDeg` around y from +x towards +z, looking at `target`.
 Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance,
                    glm::dvec3 target = {0, 0, 0}, double fovyDeg = 40.0);
+
+// `frame` with its hit positions in world coordinates (positionOrigin added, in float;
+// positionOrigin then 0): for tests that read them as world positions near the origin. The
+// renderer writes them about the eye (RenderedFrame::positionOrigin).
+RenderedFrame withWorldPositions(RenderedFrame frame);
 
 using microrelief::Accuracy;
 using microrelief::compareWithReference;

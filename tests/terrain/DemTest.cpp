@@ -22,6 +22,7 @@
 
 #include "TestSupport.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Machine.h"
 #include "microrelief/core/scene/Georeference.h"
 #include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/PyramidFile.h"
@@ -675,6 +676,38 @@ TEST_F(DemRender, AGridTurnedOrTransposedIsDrawnAsItsNorthUpTwin) {
         ASSERT_EQ(r.status, 0) << r.err;
         EXPECT_EQ(readAov(dir / "turned.exr").pixels, expected.pixels);
     }
+}
+
+// A map is admitted against the memory available now, not the machine's total (core/
+// Machine.h; the variable stands for a machine with 512 MiB available): an 8000 x 8000 DEM,
+// about 1 GiB to draw, is refused from its header in one line that says what was
+// available. (The file is sparse: a few KiB on disk. Seen red: drawn, exit 0, as a 38000 x
+// 38000 one was with 20 GiB available of this machine's 23.5, in two minutes.)
+TEST_F(DemRender, AMapIsAdmittedAgainstTheMemoryAvailable) {
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(driver, nullptr);
+    const char* const options[] = {"TILED=YES", "SPARSE_OK=TRUE", nullptr};
+    const std::filesystem::path file = dir / "large.tif";
+    GDALDataset* dataset =
+        driver->Create(file.c_str(), 8000, 8000, 1, GDT_Int16, const_cast<char**>(options));
+    ASSERT_NE(dataset, nullptr);
+    double gt[6] = {500000.0, 30.0, 0.0, 5000000.0, 0.0, -30.0};
+    dataset->SetGeoTransform(gt);
+    GDALClose(dataset);
+    ASSERT_LT(std::filesystem::file_size(file), 1u << 20);
+
+    const test::RunResult r = test::runCommand(
+        std::string(kAvailableMemoryVariable) + "=512 " + MICRORELIEF_RENDER_EXE +
+            " --size 32x32 --height " + file.string() + " --out " + (dir / "x.png").string(),
+        dir.path());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.errLines(), 1) << r.err;
+    EXPECT_NE(r.err.find("large.tif: 8000 x 8000 samples need about 1 GiB of memory to draw, "
+                         "more than the 0.5 GiB available now"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
 // A global latitude/longitude grid goes on the ellipsoid without --base; drawn from its

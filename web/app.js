@@ -7,11 +7,15 @@
 // dealt with (shown or refused); data-frames, how many pictures were drawn; data-cone-maps,
 // the cone maps the current map has (cone's "conservative", rcsm's "relaxed"), each made
 // only when its method is chosen (cone's on the GPU, rcsm's in WebAssembly: cone_maps.js),
-// the state "loading" meanwhile.
+// the state "loading" meanwhile. Every view is held to the programs' own checks before it is
+// drawn (scene_checks.js: the C++ in WebAssembly): one the programs refuse is an error in
+// their words, the state "error", never a blank canvas called "ready".
+import createSceneChecksModule from './generated/scene_checks_wasm.js';
 import {ConeMapBuilder, ConeMapCancelled} from './cone_maps.js';
 import {decodePng, heightsFromPng, PngError} from './png.js';
 import {ReliefRenderer} from './relief_gl.js';
 import * as scene from './scene.js';
+import {largestSample, SceneChecks} from './scene_checks.js';
 
 const root = document.documentElement;
 const $ = (id) => document.getElementById(id);
@@ -23,7 +27,8 @@ const app = {
     view: null,
     initialView: null,
     renderer: null,
-    map: null,          // {name, bundled, width, height, samples}
+    checks: null,       // the programs' checks of a view (SceneChecks)
+    map: null,          // {name, bundled, width, height, samples, maxHeight}
     albedoImage: null,  // the bundled map's colours, RGBA
     coneMaps: new ConeMapBuilder(),  // rcsm's relaxed maps, in WebAssembly
     coneBuilds: new Map(),  // kind -> {started, done}: cone maps under way for the current map
@@ -34,6 +39,7 @@ const app = {
     dirty: false,
     drawing: false,
     fatal: false,
+    refused: false,  // the current view is one the programs refuse at this picture's size
 };
 window.microrelief = app;  // for the console and tests
 
@@ -48,6 +54,20 @@ function fail(message) {
     $('error').hidden = false;
     setState('error');
     console.error(message);
+}
+
+// The view, drawn at `pixels` over `map`, refused by the programs' checks: why, or ''.
+function refusal(view, map = app.map, size = pixels()) {
+    return app.checks.refusal(view, map && {width: map.width, height: map.height, maxHeight: map.maxHeight, name: map.name}, size);
+}
+
+// A view the checks refuse where it is to be drawn (a canvas resized to a height its field
+// of view cannot fill): the reason in #error and the state "error" until a view is drawn.
+function refuse(message) {
+    app.refused = true;
+    $('error').textContent = message;
+    $('error').hidden = false;
+    setState('error');
 }
 
 function mapError(message) {
@@ -73,7 +93,8 @@ async function fetchBytes(url) {
 // A map from a PNG file's bytes: {width, height, samples}. Throws PngError.
 async function mapFromBytes(bytes) {
     const png = await decodePng(bytes);
-    return {width: png.width, height: png.height, samples: heightsFromPng(png, 0)};
+    const samples = heightsFromPng(png, 0);
+    return {width: png.width, height: png.height, samples, maxHeight: largestSample(samples)};
 }
 
 // An albedo's RGBA bytes (AlbedoFile.cpp: grey spread to RGB, alpha 255), 8-bit only.
@@ -111,7 +132,11 @@ async function openFile(file) {
     try {
         const bytes = new Uint8Array(await file.arrayBuffer());
         const decoded = await mapFromBytes(bytes);
-        useMap({...decoded, name: file.name, bundled: false});
+        const map = {...decoded, name: file.name, bundled: false};
+        // A map the current view cannot be drawn over, as the programs check it: refused.
+        const why = refusal(app.view, map);
+        if (why) throw new PngError(why.startsWith(`${file.name}: `) ? why.slice(file.name.length + 2) : why);
+        useMap(map);
         syncPanel();
         requestRender();
     } catch (e) {
@@ -278,13 +303,14 @@ function sizeCanvas() {
     }
 }
 
-// A change from the panel: `change` edits a copy of the view; the copy is checked as the
-// CLI checks its flags, and kept only when it passes (else the panel shows why).
+// A change from the panel: `change` edits a copy of the view; the copy is checked by the
+// programs' checks, and kept only when it passes (else the panel shows why).
 function edit(change) {
     const next = structuredClone(app.view);
     try {
         change(next);
-        scene.checkView(next);
+        const why = refusal(next);
+        if (why) throw new Error(why);
     } catch (e) {
         inputError(e.message);
         syncPanel();
@@ -485,6 +511,18 @@ async function frame() {
     }
     const gl = app.renderer.gl;
     const size = pixels();
+    // Checked where it is drawn: the canvas may have changed size since the view was.
+    const why = refusal(view, app.map, size);
+    if (why) {
+        app.drawing = false;
+        refuse(why);
+        return;
+    }
+    if (app.refused) {
+        app.refused = false;
+        $('error').hidden = true;
+        $('error').textContent = '';
+    }
     const start = performance.now();
     try {
         app.renderer.draw(program, view, size);
@@ -519,7 +557,15 @@ async function frame() {
 
 async function start() {
     try {
+        app.checks = await SceneChecks.load(createSceneChecksModule);
+    } catch (e) {
+        fail(`the scene checks: ${e.message}`);
+        return;
+    }
+    try {
         app.view = scene.viewFromQuery(location.search);
+        const why = refusal(app.view, null, [1, 1]);
+        if (why) throw new Error(why);
     } catch (e) {
         fail(`the URL: ${e.message}`);
         return;
@@ -553,6 +599,13 @@ async function start() {
         if (app.view.method === 'maxmip') app.renderer.ensureMaxMip();
     } catch (e) {
         fail(`${kDefaultMap}: ${e.message}`);
+        return;
+    }
+    // The URL's view over the map, at the canvas's size: what the programs check before
+    // they draw (the float limits need both).
+    const why = refusal(app.view);
+    if (why) {
+        fail(`the URL: ${why}`);
         return;
     }
     syncPanel();

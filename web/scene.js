@@ -269,8 +269,10 @@ export function refuseUnknownKeys(q, known) {
         if (!known.has(key)) throw new Error(`${key}: not a key this page knows (${[...known].join(', ')})`);
 }
 
-// The view from a URL query (location.search): every key the page knows, each checked;
-// throws Error naming the key for a bad value or a key it does not know.
+// The view from a URL query (location.search): every key the page knows, each parsed as
+// microrelief-render parses its flag; throws Error naming the key for a value that is not
+// one (not a number, not one of the words) or a key it does not know. Whether the view is
+// one the programs draw is the programs' own checks' to say (scene_checks.js).
 export function viewFromQuery(search) {
     const q = new URLSearchParams(search);
     const v = defaultView();
@@ -295,7 +297,11 @@ export function viewFromQuery(search) {
     get('radii', (t) => (v.radii = numbers('radii', t, 3)));
     get('interpolation', (t) => (v.interpolation = choice('interpolation', t, kInterpolations)));
     get('method', (t) => (v.method = choice('method', t, kMethods)));
-    get('steps', (t) => (v.steps = numbers('steps', t, 1)[0]));
+    get('steps', (t) => {
+        v.steps = numbers('steps', t, 1)[0];
+        // A whole number, as --steps parses one; its range is the checks'.
+        if (!Number.isInteger(v.steps) || Math.abs(v.steps) > 2 ** 31 - 1) throw new Error(`steps=${t}: expected a whole number`);
+    });
     get('pixel-error', (t) => (v.pixelError = f32(numbers('pixel-error', t, 1)[0])));
     get('view', (t) => (v.view = choice('view', t, kViews)));
     get('light', (t) => (v.light = toFloat(numbers('light', t, 3))));
@@ -306,24 +312,7 @@ export function viewFromQuery(search) {
     get('resolution', (t) => (v.resolution = Number(choice('resolution', t, ['1', '2', '4']))));
     get('clean', (t) => (v.clean = t === '1'));
     refuseUnknownKeys(q, known);
-    checkView(v);
     return v;
-}
-
-// The checks microrelief-render makes of the same flags.
-export function checkView(v) {
-    resolveCamera(v, 1, 1, 1);  // its checks of fovy, eye, target and up, before anything is drawn
-    if (!(v.heightScale > 0) || !Number.isFinite(v.heightScale)) throw new Error('height-scale must be a positive number');
-    if (!Number.isInteger(v.steps) || v.steps < 1 || v.steps > 65536) throw new Error('steps must be a whole number in 1..65536');
-    if (!(v.pixelError >= 0)) throw new Error('pixel-error must be a number >= 0');
-    if (!(v.lightSize > 0 && v.lightSize < 90)) throw new Error('light-size must lie strictly between 0 and 90 degrees');
-    if (v.light.every((c) => c === 0)) throw new Error('light must not be zero');
-    if (v.background.some((c) => c < 0)) throw new Error('background must be >= 0');
-    const base = viewBase(v);
-    if (!methodRunsOnBase(v.method, base))
-        throw new Error(`method ${v.method} does not run on base ${v.base} (curved bases take multilevel, maxmip, pom and relief)`);
-    if (v.shadows !== 'off' && !methodTracesTheSolid(v.method))
-        throw new Error(`shadows ${v.shadows} take the exact methods, multilevel, maxmip and cone (not method ${v.method})`);
 }
 
 export function viewBase(v) {

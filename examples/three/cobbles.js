@@ -27,5 +27,5 @@ export async function cobbles(canvas, {eye = [0.8, 0.5, 0.85], target = [0, -0.0
     controls.target.set(...target);
     controls.addEventListener('change', () => renderer.render(scene, camera));
     controls.update();
-    return {renderer, scene, camera, floor, ball, knot, controls};
+    return {renderer, scene, camera, floor, ball, knot, controls, map};
 }

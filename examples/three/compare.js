@@ -5,7 +5,7 @@
 import * as THREE from 'three';
 import {createReliefMap, loadAlbedo, loadHeights, Relief, reliefExtent, ReliefShadingMaterial} from 'microrelief-three';
 
-import {viewBase} from './view.js';
+import {normalizeFloat, viewBase} from './view.js';
 
 export async function compare(canvas, view) {
     const renderer = new THREE.WebGLRenderer({canvas, antialias: false, preserveDrawingBuffer: true});
@@ -13,7 +13,7 @@ export async function compare(canvas, view) {
     const heights = await loadHeights('../../assets/cobbles.png');
     const map = await createReliefMap(renderer, heights, {wrapU: base !== 'plane', pyramid: view.pyramid});
     const albedoMap = view.albedo ? await loadAlbedo('../../assets/cobbles-albedo.png') : null;
-    const material = new ReliefShadingMaterial({lightDirection: new THREE.Vector3(...view.light), albedoMap, shadows: view.shadows});
+    const material = new ReliefShadingMaterial({lightDirection: new THREE.Vector3(...normalizeFloat(view.light)), albedoMap, shadows: view.shadows});
     const relief = new Relief(map, {material, heightScale: view.heightScale, base, interpolation: view.interpolation, pixelError: view.pixelError});
     const scene = new THREE.Scene();
     scene.background = new THREE.Color().setRGB(0.11, 0.12, 0.14, THREE.LinearSRGBColorSpace);

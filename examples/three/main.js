@@ -2,7 +2,10 @@
 // cobbles.js (the three-lit scene) or, with shading=microrelief, compare.js (the
 // library's own shading, to hold against microrelief-render), and reports its state as the
 // web page does (<html data-state="loading|ready|error">, #error) for the tests, which
-// find the scene's objects in window.microreliefThree.
+// find the scene's objects in window.microreliefThree. The URL's view is held to the
+// programs' own checks first (microrelief-three's loadSceneChecks: the C++ in WebAssembly),
+// and over the map at the canvas's size before it is drawn: one they refuse is an error in
+// their words, with this page's keys for their flags.
 import * as THREE from 'three';
 import * as microrelief from 'microrelief-three';
 
@@ -16,9 +19,17 @@ function fail(message) {
 }
 
 async function start() {
-    let view;
+    let view, checks;
+    try {
+        checks = await microrelief.loadSceneChecks();
+    } catch (e) {
+        fail(`the scene checks: ${e.message}`);
+        return;
+    }
     try {
         view = viewFromUrl(location.search);
+        const why = checks.refusal(view);
+        if (why) throw new Error(why);
     } catch (e) {
         fail(`the URL: ${e.message}`);
         return;
@@ -36,6 +47,12 @@ async function start() {
     } catch (e) {
         console.error(e);
         fail(e.message);
+        return;
+    }
+    // The float limits need the map and the picture: checked before the first draw.
+    const why = checks.refusal(view, {width: app.map.width, height: app.map.height, maxHeight: app.map.maxSample, name: 'cobbles.png'}, [width, height]);
+    if (why) {
+        fail(`the URL: ${why}`);
         return;
     }
     const render = () => {

@@ -4,7 +4,8 @@
 // radius=, length=, radii=, interpolation=, height-scale=, light=x,y,z, shadows=off|hard,
 // albedo=none, pixel-error=, model= (microrelief-render's --model: 12 numbers, a 3 x 4 affine
 // matrix in rows) and pyramid=auto|gpu|cpu (how the max pyramid is built).
-// A bad value is an error naming the key.
+// A value that does not parse is an error naming the key; whether the view is one the
+// programs draw is their own checks' to say (microrelief-three's loadSceneChecks: main.js).
 const f32 = Math.fround;
 
 function numbers(key, text, count) {
@@ -19,7 +20,8 @@ function choice(key, text, choices) {
     return text;
 }
 
-// A float vector normalised in float arithmetic, as microrelief-render normalises --light.
+// A float vector normalised in float arithmetic, as microrelief-render normalises --light
+// (view.light is the URL's, checked as given).
 export function normalizeFloat(v) {
     const a = v.map(f32);
     const d = f32(f32(f32(a[0] * a[0]) + f32(a[1] * a[1])) + f32(a[2] * a[2]));
@@ -43,10 +45,7 @@ export function viewFromUrl(search) {
     get('eye', (t) => (v.eye = numbers('eye', t, 3)));
     get('target', (t) => (v.target = numbers('target', t, 3)));
     get('up', (t) => (v.up = numbers('up', t, 3)));
-    get('fovy', (t) => {
-        v.fovy = numbers('fovy', t, 1)[0];
-        if (!(v.fovy > 0 && v.fovy < 180)) throw new Error(`fovy=${t}: must lie strictly between 0 and 180 degrees`);
-    });
+    get('fovy', (t) => (v.fovy = numbers('fovy', t, 1)[0]));
     get('size', (t) => {
         const m = /^(\d+)x(\d+)$/.exec(t);
         if (!m || +m[1] < 1 || +m[2] < 1 || +m[1] > 8192 || +m[2] > 8192) throw new Error(`size=${t}: expected WxH, each from 1 to 8192`);
@@ -68,8 +67,6 @@ export function viewFromUrl(search) {
     get('model', (t) => (v.model = numbers('model', t, 12)));
     for (const key of q.keys())
         if (!known.has(key)) throw new Error(`${key}: not a key this page knows (${[...known].join(', ')})`);
-    if (v.light.every((c) => c === 0)) throw new Error('light must not be zero');
-    v.light = normalizeFloat(v.light);
     return v;
 }
 

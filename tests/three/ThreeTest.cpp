@@ -523,6 +523,36 @@ TEST_F(ThreePage, BadInputIsOneClearErrorAndTheSceneKeepsDrawing) {
     EXPECT_EQ(before.pixels, after.pixels) << "the scene changed after the refusals";
 }
 
+// Views the programs refuse (issue 47) are refused by the example too, with the programs'
+// checks (microrelief-three's loadSceneChecks) and their messages, the example's keys for
+// their flags (every case's message against microrelief-render's: tests/web/
+// scene_checks_test.mjs): a singular model, a field of view whose pixels' rays float cannot
+// tell apart, the eye at the target. Each is one line and the state says so.
+TEST_F(ThreePage, ViewsTheProgramsRefuseAreRefusedWithTheirMessages) {
+    const struct {
+        std::string query, expected;
+    } cases[] = {
+        {"shading=microrelief&model=1,0,0,0,0,1,0,0,0,0,0,0",
+         "the URL: model: the matrix is singular"},
+        {"fovy=1e-37",
+         "the URL: fovy 1e-37 at a picture 48 pixels high: neighbouring pixels' rays"},
+        {"eye=0.5,0.5,0.5&target=0.5,0.5,0.5", "the URL: eye and target must differ"},
+    };
+    std::string steps;
+    for (const auto& c : cases)
+        steps += (steps.empty() ? "" : ", ") + open(c.query, 64, 48, "three/") +
+                 ", {\"wait\": \"ready\"}";
+    const PageRun page = runPage("[" + steps + "]");
+    for (std::size_t k = 0; k < std::size(cases); ++k) {
+        SCOPED_TRACE(cases[k].query);
+        const int step = 2 * static_cast<int>(k) + 1;
+        EXPECT_EQ(page.at(step, "state"), "error");
+        EXPECT_NE(page.at(step, "error").find(cases[k].expected), std::string::npos)
+            << page.at(step, "error");
+        EXPECT_EQ(page.at(step, "error").find('\n'), std::string::npos) << "one line";
+    }
+}
+
 // The package as a user gets it (CTest entry three.pack): `npm pack` of a copy of
 // packages/microrelief-three (its prepack builds generated/ from this repository), the
 // tarball and three installed into a scratch npm project (`npm install --prefer-offline`:
@@ -589,6 +619,7 @@ TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
     for (const char* expected :
          {"package/package.json", "package/src/index.js", "package/generated/glsl.js",
           "package/generated/png.js", "package/generated/pyramid_wasm.js",
+          "package/generated/scene_checks.js", "package/generated/scene_checks_wasm.js",
           "package/generated/manifest.json"})
         EXPECT_NE(listing.out.find(std::string(expected) + "\n"), std::string::npos)
             << expected << " is not in the tarball:\n" << listing.out;
@@ -626,6 +657,10 @@ TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
     const std::string wasm = test::readText(installed / "generated" / "pyramid_wasm.js");
     EXPECT_EQ(wasm.find("no WebAssembly pyramid"), std::string::npos)
         << "the tarball's pyramid_wasm.js is the --no-wasm stub";
+    EXPECT_EQ(test::readText(installed / "generated" / "scene_checks_wasm.js")
+                  .find("no WebAssembly scene checks"),
+              std::string::npos)
+        << "the tarball's scene_checks_wasm.js is the --no-wasm stub";
     EXPECT_TRUE(fs::exists(project / "node_modules" / "three" / "build" / "three.module.js"));
 
     // The example, installed and staged: the three-lit scene in both, and the installed one's

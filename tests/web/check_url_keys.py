@@ -8,7 +8,9 @@ choice('key', t, [...]); the web page also writes the command line that draws it
 (renderCommandLine: flag('--key', ...) and `--key=`). This check holds each against
 microrelief-render itself: every key that is not one of a page's own is a flag its --help
 lists, every word a page offers for a key is one the program takes (a 1x1 render with that
-flag alone), and every flag the command line writes is the program's. Where a key or a word
+flag alone), every flag the command line writes is the program's, and every name the pages'
+checks give a scene's field in a message (web/scene_checks.js: kFieldNames) is a key a page
+reads, or, dashes and all, a flag of the program's. Where a key or a word
 is a page's own (the page's resolution, a clean picture, three's shading), it is listed
 below with the reason, and a listed one that is no longer in the page fails, so the list
 cannot go stale. The web page's lists whose positions it hands the shader as numbers
@@ -114,6 +116,20 @@ def main():
                 problems.append(f'{page}: renderCommandLine writes no flag the check can find')
             for flag in sorted(written - flags):
                 problems.append(f'{page}: renderCommandLine writes {flag}, which microrelief-render does not take')
+    # The names the checks' messages give the fields: a page's key, or the program's flag.
+    read_keys = set()
+    for page in PAGE_KEYS:
+        read_keys |= set(re.findall(r"\bget\('([a-z][a-z-]*)'", open(os.path.join(source, page), encoding='utf-8').read()))
+    checks = open(os.path.join(source, 'web/scene_checks.js'), encoding='utf-8').read()
+    table = re.search(r'export const kFieldNames = \{([^}]*)\}', checks)
+    names = re.findall(r":\s*'([^']*)'", table.group(1)) if table else []
+    if not names:
+        problems.append('web/scene_checks.js: no kFieldNames the check can read')
+    for name in names:
+        if name.startswith('--') and name not in flags:
+            problems.append(f'web/scene_checks.js: kFieldNames names a field {name}, which microrelief-render does not take')
+        elif not name.startswith('--') and name not in read_keys:
+            problems.append(f'web/scene_checks.js: kFieldNames names a field {name}, a key no page reads')
     with tempfile.TemporaryDirectory() as scratch:
         out = os.path.join(scratch, 'x.png')
         scene = open(os.path.join(source, 'web/scene.js'), encoding='utf-8').read()

@@ -4,21 +4,36 @@
 // CMake runs it into the build tree for the example and the tests):
 //  * generated/glsl.js: the GLSL library (shaders/microrelief/) spliced into one string for
 //    the tracer, the shading, the shadow ray and the albedo, each #include "..." resolved
-//    against the including file's folder and then shaders/ and spliced once, as the
-//    library's own resolver and microrelief-glsl-bundle do; the pyramid builder's passes
-//    (shaders/pyramid/) the same way; and the package's own glue (glsl/*), the files as
-//    they are;
+//    against the including file's folder and then shaders/ and spliced once, by the rules
+//    of the library's own resolver and microrelief-glsl-bundle (src/gl/ShaderSource.cpp):
+//    the same include forms, regular files only (a FIFO, a device or a folder is refused
+//    before it is read, never waited on), of at most kMaxShaderFileBytes, whose real paths
+//    (links followed) lie inside shaders/; the same messages, "file:line: #include ...:
+//    reason" (tests/bundler holds both tools to one table of cases); the pyramid builder's
+//    passes (shaders/pyramid/) the same way; and the package's own glue (glsl/*), the files
+//    as they are;
 //  * generated/png.js: web/png.js, the page's PNG decoder (16-bit maps keep their low byte);
+//  * generated/scene_checks.js: web/scene_checks.js, the programs' checks of a scene in the
+//    pages' words, and generated/scene_checks_wasm.js: the C++ checks it drives (the files
+//    web/wasm/scene_checks_sources.txt lists) compiled to WebAssembly (src/checks.js);
 //  * generated/pyramid_wasm.js: the C++ max pyramid (src/core/heightmap/MaxPyramid.cpp,
 //    HeightMap.cpp, and core/Error.cpp with core/scene/SceneFields.cpp, which its errors use)
 //    compiled to WebAssembly by emscripten (em++ on PATH), one ES module with the wasm
 //    inside: the CPU path where WebGL 2 cannot render into R16F.
 //  * generated/manifest.json: every source file read and its SHA-256.
 //
+// generated/ is made whole in a temporary folder beside it and then put in its place: a run
+// that fails leaves the last one as it was, and a file the last run made and this one does
+// not is gone. --out must be such a folder, an empty one or a new one (never one of the
+// sources' folders: its files would be replaced). An error is one line on stderr and exit
+// status 2 for bad input (an include, an argument), 1 for the environment (a full disk,
+// em++).
+//
 // Usage: node scripts/build.mjs [--out DIR] [--source DIR] [--no-wasm]
 //   --out DIR     where to write (default: generated/ beside this folder)
 //   --source DIR  the repository (default: MICRORELIEF_SOURCE_DIR, else ../.. of the package)
-//   --no-wasm     no emscripten: the CPU pyramid path then refuses with a clear message
+//   --no-wasm     no emscripten: the CPU pyramid path and the scene checks then refuse with
+//                 a clear message
 import {execFileSync} from 'node:child_process';
 import {createHash} from 'node:crypto';
 import * as fs from 'node:fs';
@@ -27,10 +42,31 @@ import * as path from 'node:path';
 import {fileURLToPath} from 'node:url';
 
 const packageDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const kProgram = 'microrelief-three build';
+// The most bytes a shader source may have (include/microrelief/gl/ShaderSource.h).
+const kMaxShaderFileBytes = 4 * 1024 * 1024;
+const kMaxIncludeDepth = 32;
+const kBadInput = 2, kRuntime = 1;  // exit statuses, as the programs' (core/Error.h)
+const kOutputs = ['glsl.js', 'png.js', 'scene_checks.js', 'scene_checks_wasm.js', 'pyramid_wasm.js', 'manifest.json'];
 
-function fail(message) {
-    console.error(`microrelief-three build: error: ${message}`);
-    process.exit(1);
+class BuildError extends Error {
+    constructor(status, message) {
+        super(message);
+        this.status = status;
+    }
+}
+const badInput = (message) => new BuildError(kBadInput, message);
+
+// Control characters written as escapes (core/Text.h: printable): a message stays one line.
+function printable(text) {
+    return String(text).replace(/[\x00-\x1f\x7f]/g, (c) =>
+        c === '\r' ? '\\r' : c === '\n' ? '\\n' : c === '\t' ? '\\t' : `\\x${c.charCodeAt(0).toString(16).toUpperCase().padStart(2, '0')}`);
+}
+
+// An errno's text as strerror has it (libuv's, its first letter capitalised): "File too large".
+function reason(e) {
+    const text = (e && e.message ? e.message : String(e)).replace(/^[A-Z0-9_]+: /, '').replace(/, \w+( '.*')?$/, '');
+    return text.charAt(0).toUpperCase() + text.slice(1);
 }
 
 function parseArguments(argv) {
@@ -40,91 +76,176 @@ function parseArguments(argv) {
         if (a === '--out' && k + 1 < argv.length) options.out = path.resolve(argv[++k]);
         else if (a === '--source' && k + 1 < argv.length) options.source = path.resolve(argv[++k]);
         else if (a === '--no-wasm') options.wasm = false;
-        else fail(`unknown argument '${a}' (see the header of scripts/build.mjs)`);
+        else throw badInput(`unknown argument '${printable(a)}' (see the header of scripts/build.mjs)`);
     }
     return options;
 }
 
-const options = parseArguments(process.argv.slice(2));
-const shaderRoot = path.join(options.source, 'shaders');
-if (!fs.existsSync(path.join(shaderRoot, 'microrelief', 'multilevel_trace.glsl')))
-    fail(`${options.source}: not the microrelief repository (no shaders/microrelief/multilevel_trace.glsl); set MICRORELIEF_SOURCE_DIR or --source`);
+// ---- reading: regular files only, never waited on ----
 
-const manifest = {};
-function read(file) {
-    const text = fs.readFileSync(file, 'utf8');
-    manifest[path.relative(options.source, file)] = createHash('sha256').update(text).digest('hex');
-    return text;
-}
-
-// ---- GLSL: #include "..." spliced once each (src/gl/ShaderSource.cpp's rule) ----
-
-const kInclude = /^\s*#\s*include\s+"([^"]+)"\s*$/;
-
-function resolveInclude(from, name) {
-    for (const base of [path.dirname(from), shaderRoot]) {
-        const candidate = path.resolve(base, name);
-        if (fs.existsSync(candidate)) return candidate;
+// The whole text of a regular file of at most kMaxShaderFileBytes (ShaderSource.cpp:
+// readShaderFile): its type checked before it is opened, and again on the descriptor (opened
+// without blocking), so a FIFO or a device is refused, never read or waited on. Throws
+// BuildError with the reason alone; the caller names the file.
+function readRegularFile(file) {
+    let info;
+    try {
+        info = fs.statSync(file);
+    } catch (e) {
+        throw badInput(`cannot open (${reason(e)})`);
     }
-    return null;
+    const refuseType = (stat) => {
+        if (stat.isDirectory()) throw badInput('a folder, not a file');
+        if (!stat.isFile()) throw badInput('not a regular file (a FIFO, socket or device)');
+        if (stat.size > kMaxShaderFileBytes)
+            throw badInput(`${stat.size} bytes, more than the ${kMaxShaderFileBytes} bytes a shader source may have (ShaderSource.h)`);
+    };
+    refuseType(info);
+    let fd;
+    try {
+        fd = fs.openSync(file, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
+    } catch (e) {
+        throw badInput(`cannot open (${reason(e)})`);
+    }
+    try {
+        refuseType(fs.fstatSync(fd));  // the file opened is the one checked
+        const buffer = Buffer.alloc(Math.min(fs.fstatSync(fd).size, kMaxShaderFileBytes) + 1);
+        let used = 0;
+        for (;;) {
+            const got = fs.readSync(fd, buffer, used, buffer.length - used, null);
+            if (got === 0) break;
+            used += got;
+            if (used === buffer.length) break;
+        }
+        if (used > kMaxShaderFileBytes) throw badInput(`grew past the ${kMaxShaderFileBytes} bytes a shader source may have while read`);
+        return buffer.subarray(0, used).toString('utf8');
+    } catch (e) {
+        if (e instanceof BuildError) throw e;
+        throw badInput(`cannot read (${reason(e)})`);
+    } finally {
+        fs.closeSync(fd);
+    }
 }
 
-// The files of `entries` (paths under shaders/) with their includes spliced where each is
-// first included, every file once; each marked by a comment naming it.
-function bundle(entries) {
-    const seen = new Set();
-    let text = '';
-    const splice = (file, depth) => {
-        if (depth > 32) fail(`${file}: #include nested too deeply (a cycle?)`);
-        seen.add(file);
-        text += `// ---- microrelief: ${path.relative(options.source, file)} ----\n`;
-        const lines = read(file).split('\n');
+// ---- GLSL: #include "..." spliced once each (src/gl/ShaderSource.cpp's rules) ----
+
+// An #include line's file name, or why the line is no include the resolver takes.
+function parseInclude(line) {
+    const directive = /^\s*#\s*include\b([\s\S]*)$/.exec(line);
+    if (!directive) return null;
+    const rest = directive[1];
+    const quoted = /^\s*"([^"]*)"\s*$/.exec(rest);
+    const first = rest.search(/[^ \t]/);
+    if (quoted) return quoted[1] === '' ? {problem: 'an empty file name'} : {name: quoted[1]};
+    if (first >= 0 && rest[first] === '<') return {problem: '#include <...> is not resolved here; write #include "..."'};
+    if (first >= 0 && rest[first] === '"' && rest.indexOf('"', first + 1) < 0) return {problem: "the file name's quote is not closed"};
+    if (first >= 0 && rest[first] === '"') return {problem: 'text after the file name (#include "file" stands alone on its line)'};
+    return {problem: 'expected #include "file"'};
+}
+
+// `file` with its links and ".." resolved as far as it exists (std::filesystem::weakly_canonical).
+function realPath(file) {
+    let head = path.resolve(file);
+    const tail = [];
+    for (;;) {
+        try {
+            return path.join(fs.realpathSync(head), ...tail);
+        } catch {
+            const parent = path.dirname(head);
+            if (parent === head) return path.resolve(file);
+            tail.unshift(path.basename(head));
+            head = parent;
+        }
+    }
+}
+
+// `file` is `root` or lies inside it, both real paths (ShaderSource.cpp: isWithin).
+const isWithin = (file, root) => {
+    const relative = path.relative(root, file);
+    return relative !== '..' && !relative.startsWith(`..${path.sep}`) && !path.isAbsolute(relative);
+};
+
+// The GLSL of `entries` (paths under the shader root) spliced as one text, each file once,
+// where it is first included, marked by a comment naming it.
+class Bundler {
+    constructor(shaderRoot, source, read) {
+        this.shaderRoot = shaderRoot;
+        this.root = realPath(shaderRoot);
+        this.source = source;
+        this.read = read;  // reads a file (recording it), or throws BuildError
+    }
+
+    name(file) {
+        return printable(path.relative(this.source, file));
+    }
+
+    bundle(entries) {
+        this.seen = new Set();
+        this.text = '';
+        for (const entry of entries) {
+            const file = path.join(this.shaderRoot, entry);
+            if (this.seen.has(file)) continue;
+            let text;
+            try {
+                text = this.read(file);
+            } catch (e) {
+                throw new BuildError(e.status ?? kBadInput, `${this.name(file)}: ${e.message}`);
+            }
+            this.splice(file, text, 0);
+        }
+        return this.text;
+    }
+
+    splice(file, text, depth) {
+        if (depth > kMaxIncludeDepth) throw badInput(`${this.name(file)}: #include nested too deeply (a cycle?)`);
+        this.seen.add(file);
+        this.text += `// ---- microrelief: ${path.relative(this.source, file)} ----\n`;
+        const lines = text.split('\n');
         if (lines.length && lines[lines.length - 1] === '') lines.pop();
-        lines.forEach((line, index) => {
-            const match = kInclude.exec(line.replace(/\r$/, ''));
-            if (!match) {
-                text += line.replace(/\r$/, '') + '\n';
+        lines.forEach((raw, index) => {
+            const line = raw.replace(/\r$/, '');
+            const include = parseInclude(line);
+            if (!include) {
+                this.text += line + '\n';
                 return;
             }
-            const target = resolveInclude(file, match[1]);
-            if (!target) fail(`${path.relative(options.source, file)}:${index + 1}: #include "${match[1]}" not found`);
-            if (!seen.has(target)) splice(target, depth + 1);
+            // "file:line: #include "name": reason", one line whatever the file holds.
+            const refuse = (why, status = kBadInput) => {
+                throw new BuildError(status, `${this.name(file)}:${index + 1}: ${printable(line.slice(line.indexOf('#')))}: ${why}`);
+            };
+            if (include.problem) refuse(include.problem);
+            const target = this.resolve(file, include.name, refuse);
+            if (this.seen.has(target)) return;
+            let included;
+            try {
+                included = this.read(target);
+            } catch (e) {
+                refuse(e.message, e.status);
+            }
+            this.splice(target, included, depth + 1);
         });
-    };
-    for (const entry of entries) {
-        const file = path.join(shaderRoot, entry);
-        if (!seen.has(file)) splice(file, 0);
     }
-    return text;
+
+    // The including file's folder first, then the shader root: the first that holds
+    // `name`. A name that is absolute, or that leads out of the root (through ".." or a
+    // link), is refused, not looked up further.
+    resolve(from, name, refuse) {
+        if (/[\x00-\x1f\x7f\\]/.test(name)) refuse('control characters or a backslash in the file name');
+        if (path.isAbsolute(name)) refuse('an absolute path (a name is relative to the including file\'s folder or a search folder)');
+        const folders = [path.dirname(from), this.shaderRoot];
+        for (const folder of folders) {
+            const candidate = path.normalize(path.join(folder, name));
+            if (!fs.existsSync(candidate)) continue;
+            const real = realPath(candidate);
+            if (!isWithin(real, this.root)) refuse(`${printable(real)} is outside the shader folders (${printable(this.root)})`);
+            return candidate;
+        }
+        refuse(`not found (looked in ${folders.map(printable).join(', ')})`);
+    }
 }
 
-const library = bundle(['microrelief/multilevel_trace.glsl', 'microrelief/map_space.glsl',
-                        'microrelief/shading.glsl', 'microrelief/shadow.glsl', 'microrelief/albedo.glsl']);
-const pyramid = {
-    pass: bundle(['pyramid/pass.vert']),
-    windowFinest: bundle(['pyramid/window_finest.frag']),
-    windowLevel: bundle(['pyramid/window_level.frag']),
-};
-// The package's own GLSL (glsl/): the glue between three.js and the library.
-const glueDir = path.join(packageDir, 'glsl');
-const glue = {};
-for (const file of fs.readdirSync(glueDir).sort()) {
-    const key = file.replace(/\.\w+$/, '').replace(/_(\w)/g, (_, c) => c.toUpperCase());
-    glue[key] = `// ---- microrelief-three: glsl/${file} ----\n` + fs.readFileSync(path.join(glueDir, file), 'utf8');
-}
+// ---- the C++ in WebAssembly ----
 
-fs.mkdirSync(options.out, {recursive: true});
-const header = '// Generated by microrelief-three scripts/build.mjs from the microrelief repository; do not edit.\n';
-fs.writeFileSync(path.join(options.out, 'glsl.js'), header +
-    `export const library = ${JSON.stringify(library)};\n` +
-    `export const pyramid = ${JSON.stringify(pyramid, null, 1)};\n` +
-    `export const glue = ${JSON.stringify(glue, null, 1)};\n`);
-
-// ---- the page's PNG decoder ----
-const png = read(path.join(options.source, 'web', 'png.js'));
-fs.writeFileSync(path.join(options.out, 'png.js'), header.replace('; do not edit', ' (web/png.js); do not edit') + png);
-
-// ---- the C++ pyramid as WebAssembly ----
 function findProgram(name) {
     for (const dir of (process.env.PATH || '').split(path.delimiter)) {
         const candidate = path.join(dir, name);
@@ -136,43 +257,224 @@ function findProgram(name) {
     return null;
 }
 
-function buildWasm() {
+// The em++ runs' shared part: GLM alone on the include path (the system's own C headers
+// must not shadow emscripten's), Debian's node modules for its JavaScript tools.
+function emscripten(scratch) {
     const emxx = findProgram('em++');
-    if (!emxx) fail('no em++ on PATH (Debian package emscripten; bash scripts/setup.sh installs it), or --no-wasm for a package without the CPU pyramid path');
+    if (!emxx) throw new BuildError(kRuntime, 'no em++ on PATH (Debian package emscripten; bash scripts/setup.sh installs it), or --no-wasm for a package without the CPU pyramid path and the scene checks');
     const glm = process.env.MICRORELIEF_GLM_INCLUDE || '/usr/include';
-    if (!fs.existsSync(path.join(glm, 'glm', 'glm.hpp'))) fail(`${glm}/glm/glm.hpp: no GLM (Debian package libglm-dev), or set MICRORELIEF_GLM_INCLUDE`);
-    // GLM alone on the include path: the system's own C headers must not shadow emscripten's.
+    if (!fs.existsSync(path.join(glm, 'glm', 'glm.hpp'))) throw new BuildError(kRuntime, `${glm}/glm/glm.hpp: no GLM (Debian package libglm-dev), or set MICRORELIEF_GLM_INCLUDE`);
+    fs.symlinkSync(path.join(glm, 'glm'), path.join(scratch, 'glm'));
+    // Debian's emscripten runs its JavaScript tools with the system's node; Debian keeps
+    // their modules (acorn) in /usr/share/nodejs, which a node from elsewhere does not search.
+    const env = {...process.env, NODE_PATH: [process.env.NODE_PATH, '/usr/share/nodejs'].filter(Boolean).join(path.delimiter)};
+    return (args) => {
+        try {
+            execFileSync(emxx, ['-std=c++20', '-O2', '-fexceptions', '-include', path.join(packageDir, 'wasm', 'bit_cast.h'), '-isystem', scratch, ...args,
+                                '-sMODULARIZE', '-sEXPORT_ES6', '-sSINGLE_FILE', '-sENVIRONMENT=web,worker'],
+                         {stdio: ['ignore', 'inherit', 'inherit'], env});
+        } catch (e) {
+            throw new BuildError(kRuntime, `em++ failed (${printable(e.message.split('\n')[0])})`);
+        }
+    };
+}
+
+// The shared constants the base surfaces include (include/microrelief/core/GlslConstants.h),
+// made as the CMake build makes them: cmake/generate_contracts.py with the list
+// cmake/Contracts.cmake gives (python3, which emscripten itself runs on).
+function generateConstants(source, scratch, read) {
+    const contracts = read(path.join(source, 'cmake', 'Contracts.cmake'));
+    const list = /set\(MICRORELIEF_SHARED_CONSTANTS\s+([^)]*)\)/.exec(contracts);
+    if (!list) throw new BuildError(kRuntime, 'cmake/Contracts.cmake: no MICRORELIEF_SHARED_CONSTANTS list to generate GlslConstants.h from');
+    const include = path.join(scratch, 'include');
+    const script = path.join(source, 'cmake', 'generate_contracts.py');
+    read(script);
+    try {
+        execFileSync('python3', [script, '--block', path.join(source, 'shaders', 'relief_parameters.glsl'),
+                                 '--shaders', path.join(source, 'shaders', 'microrelief'), '--constants', ...list[1].trim().split(/\s+/),
+                                 '--struct', path.join(include, 'microrelief', 'gl', 'ReliefParameters.h'),
+                                 '--constants-header', path.join(include, 'microrelief', 'core', 'GlslConstants.h'),
+                                 '--js', path.join(scratch, 'relief_layout.js')],
+                     {stdio: ['ignore', 'inherit', 'inherit']});
+    } catch (e) {
+        throw new BuildError(kRuntime, `cmake/generate_contracts.py failed (${printable(e.message.split('\n')[0])})`);
+    }
+    return include;
+}
+
+function buildWasm(options, into, read) {
     const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'microrelief-three-'));
     try {
-        fs.symlinkSync(path.join(glm, 'glm'), path.join(scratch, 'glm'));
-        const sources = ['src/core/heightmap/MaxPyramid.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/ParallelRows.cpp', 'src/core/Error.cpp', 'src/core/scene/SceneFields.cpp'].map((f) => path.join(options.source, f));
-        for (const f of sources) read(f);
-        const glue = path.join(packageDir, 'wasm', 'pyramid_wasm.cpp');
-        const shim = path.join(packageDir, 'wasm', 'bit_cast.h');
-        // Debian's emscripten runs its JavaScript tools with the system's node; Debian keeps
-        // their modules (acorn) in /usr/share/nodejs, which a node from elsewhere does not search.
-        const env = {...process.env, NODE_PATH: [process.env.NODE_PATH, '/usr/share/nodejs'].filter(Boolean).join(path.delimiter)};
-        execFileSync(emxx, ['-std=c++20', '-O2', '-fexceptions', '-include', shim,
-                            '-I', path.join(options.source, 'include'), '-isystem', scratch,
-                            ...sources, glue, '-o', path.join(options.out, 'pyramid_wasm.js'),
-                            '-sMODULARIZE', '-sEXPORT_ES6', '-sSINGLE_FILE', '-sENVIRONMENT=web,worker',
-                            '-sALLOW_MEMORY_GROWTH', '-sMAXIMUM_MEMORY=4GB', '-sEXPORT_NAME=createPyramidModule',
-                            '-sEXPORTED_FUNCTIONS=_mr_build_windows,_mr_level_count,_mr_level_size,_mr_copy_level,_mr_max_height,_mr_scale_exponent,_mr_release,_mr_last_error,_malloc,_free',
-                            '-sEXPORTED_RUNTIME_METHODS=UTF8ToString'],
-                     {stdio: ['ignore', 'inherit', 'inherit'], env});
-    } catch (e) {
-        fail(`em++ failed (${e.message.split('\n')[0]})`);
+        const emxx = emscripten(scratch);
+        const from = (files) => files.map((f) => path.join(options.source, f));
+        const pyramid = from(['src/core/heightmap/MaxPyramid.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/ParallelRows.cpp', 'src/core/Error.cpp', 'src/core/scene/SceneFields.cpp']);
+        for (const f of pyramid) read(f);
+        emxx(['-I', path.join(options.source, 'include'), ...pyramid, path.join(packageDir, 'wasm', 'pyramid_wasm.cpp'), '-o', path.join(into, 'pyramid_wasm.js'),
+              '-sALLOW_MEMORY_GROWTH', '-sMAXIMUM_MEMORY=4GB', '-sEXPORT_NAME=createPyramidModule',
+              '-sEXPORTED_FUNCTIONS=_mr_build_windows,_mr_level_count,_mr_level_size,_mr_copy_level,_mr_max_height,_mr_scale_exponent,_mr_release,_mr_last_error,_malloc,_free',
+              '-sEXPORTED_RUNTIME_METHODS=UTF8ToString']);
+        // The scene checks: the page's build of them (web/wasm/CMakeLists.txt), from the same list.
+        const list = read(path.join(options.source, 'web', 'wasm', 'scene_checks_sources.txt'));
+        const checks = from(list.split('\n').map((l) => l.trim()).filter((l) => l && !l.startsWith('#')));
+        for (const f of checks) read(f);
+        const cmake = read(path.join(options.source, 'web', 'wasm', 'CMakeLists.txt'));
+        const exports = /set\(MICRORELIEF_SCENE_CHECKS_EXPORTS "([^"]*)"\)/.exec(cmake);
+        if (!exports) throw new BuildError(kRuntime, 'web/wasm/CMakeLists.txt: no MICRORELIEF_SCENE_CHECKS_EXPORTS to export');
+        emxx(['-I', path.join(options.source, 'include'), '-I', path.join(options.source, 'src'), '-I', generateConstants(options.source, scratch, read),
+              ...checks, '-o', path.join(into, 'scene_checks_wasm.js'), '-sEXPORT_NAME=createSceneChecksModule',
+              `-sEXPORTED_FUNCTIONS=${exports[1].replace(/\\\s*/g, '')}`, '-sEXPORTED_RUNTIME_METHODS=cwrap,UTF8ToString']);
     } finally {
         fs.rmSync(scratch, {recursive: true, force: true});
     }
 }
 
-if (options.wasm) {
-    buildWasm();
-} else {
-    fs.writeFileSync(path.join(options.out, 'pyramid_wasm.js'), header +
-        'export default async function createPyramidModule() {\n' +
-        '    throw new Error(\'this build of microrelief-three has no WebAssembly pyramid (built with --no-wasm): the CPU path is unavailable\');\n}\n');
+// ---- writing: a whole folder, or none ----
+
+// Refuses an --out that is not a folder this script may replace: a file, one of the
+// sources' folders (or above one), or a folder of other files.
+function checkOut(out, inputs) {
+    const real = realPath(out);
+    for (const input of inputs) {
+        const file = realPath(input);
+        if (isWithin(file, real))
+            throw badInput(`--out ${printable(out)}: holds ${printable(input)}, which this run reads; writing there would replace it (name another folder)`);
+    }
+    let info;
+    try {
+        info = fs.statSync(out);
+    } catch {
+        return;  // a new folder
+    }
+    if (!info.isDirectory()) throw badInput(`--out ${printable(out)}: not a folder`);
+    const entries = fs.readdirSync(out);
+    if (entries.length === 0) return;
+    let manifest = null;
+    try {
+        manifest = JSON.parse(fs.readFileSync(path.join(out, 'manifest.json'), 'utf8'));
+    } catch {}
+    if (!manifest || manifest.source !== 'microrelief')
+        throw badInput(`--out ${printable(out)}: holds files this script did not make (no manifest.json of its own): name an empty folder, a new one, or one it made`);
 }
-fs.writeFileSync(path.join(options.out, 'manifest.json'), JSON.stringify({source: 'microrelief', files: manifest}, null, 1) + '\n');
-console.log(`microrelief-three build: ${path.relative(process.cwd(), options.out) || '.'}: glsl.js, png.js, pyramid_wasm.js${options.wasm ? '' : ' (stub)'}, manifest.json`);
+
+// `write(folder)` fills a new folder beside `out`, which then replaces `out` whole.
+function replaceFolder(out, write) {
+    const parent = path.dirname(out), base = path.basename(out);
+    try {
+        fs.mkdirSync(parent, {recursive: true});
+    } catch (e) {
+        throw new BuildError(kRuntime, `${printable(parent)}: cannot make the folder (${reason(e)})`);
+    }
+    let staged;
+    try {
+        staged = fs.mkdtempSync(path.join(parent, `.${base}.new-`));
+        fs.chmodSync(staged, 0o755);  // a folder to publish, not mkdtemp's private one
+    } catch (e) {
+        throw new BuildError(kRuntime, `${printable(parent)}: cannot write (${reason(e)})`);
+    }
+    let old = null;
+    try {
+        write(staged);
+        if (fs.existsSync(out)) {
+            old = `${staged.replace(/\.new-(\w+)$/, '.old-$1')}`;
+            fs.renameSync(out, old);
+        }
+        try {
+            fs.renameSync(staged, out);
+        } catch (e) {
+            if (old) fs.renameSync(old, out);
+            old = null;
+            throw new BuildError(kRuntime, `${printable(out)}: cannot replace the folder (${reason(e)})`);
+        }
+    } finally {
+        fs.rmSync(staged, {recursive: true, force: true});
+        if (old) fs.rmSync(old, {recursive: true, force: true});
+    }
+}
+
+// `text` as `name` in `folder`; a failed write (a full disk) names the file as it will be
+// in --out.
+function writeText(folder, out, name, text) {
+    try {
+        fs.writeFileSync(path.join(folder, name), text);
+    } catch (e) {
+        throw new BuildError(kRuntime, `${printable(path.join(out, name))}: cannot write (${reason(e)})`);
+    }
+}
+
+// ---- the build ----
+
+function build(options) {
+    const shaderRoot = path.join(options.source, 'shaders');
+    if (!fs.existsSync(path.join(shaderRoot, 'microrelief', 'multilevel_trace.glsl')))
+        throw badInput(`${printable(options.source)}: not the microrelief repository (no shaders/microrelief/multilevel_trace.glsl); set MICRORELIEF_SOURCE_DIR or --source`);
+
+    const manifest = {};
+    const inputs = [];
+    const read = (file) => {
+        const text = readRegularFile(file);
+        inputs.push(file);
+        manifest[path.relative(options.source, file)] = createHash('sha256').update(text).digest('hex');
+        return text;
+    };
+    // A file of the repository or the package, named in its error.
+    const readNamed = (file) => {
+        try {
+            return read(file);
+        } catch (e) {
+            throw new BuildError(e.status ?? kBadInput, `${printable(file)}: ${e.message}`);
+        }
+    };
+
+    const bundler = new Bundler(shaderRoot, options.source, read);
+    const library = bundler.bundle(['microrelief/multilevel_trace.glsl', 'microrelief/map_space.glsl',
+                                    'microrelief/shading.glsl', 'microrelief/shadow.glsl', 'microrelief/albedo.glsl']);
+    const pyramid = {
+        pass: bundler.bundle(['pyramid/pass.vert']),
+        windowFinest: bundler.bundle(['pyramid/window_finest.frag']),
+        windowLevel: bundler.bundle(['pyramid/window_level.frag']),
+    };
+    // The package's own GLSL (glsl/): the glue between three.js and the library.
+    const glueDir = path.join(packageDir, 'glsl');
+    const glue = {};
+    for (const file of fs.readdirSync(glueDir).sort()) {
+        const key = file.replace(/\.\w+$/, '').replace(/_(\w)/g, (_, c) => c.toUpperCase());
+        glue[key] = `// ---- microrelief-three: glsl/${file} ----\n` + readNamed(path.join(glueDir, file));
+    }
+    const png = readNamed(path.join(options.source, 'web', 'png.js'));
+    const checks = readNamed(path.join(options.source, 'web', 'scene_checks.js'));
+    checkOut(options.out, inputs);
+
+    const header = '// Generated by microrelief-three scripts/build.mjs from the microrelief repository; do not edit.\n';
+    const from = (file) => header.replace('; do not edit', ` (${file}); do not edit`);
+    replaceFolder(options.out, (folder) => {
+        writeText(folder, options.out, 'glsl.js', header +
+            `export const library = ${JSON.stringify(library)};\n` +
+            `export const pyramid = ${JSON.stringify(pyramid, null, 1)};\n` +
+            `export const glue = ${JSON.stringify(glue, null, 1)};\n`);
+        writeText(folder, options.out, 'png.js', from('web/png.js') + png);
+        writeText(folder, options.out, 'scene_checks.js', from('web/scene_checks.js') + checks);
+        if (options.wasm) {
+            buildWasm(options, folder, readNamed);
+        } else {
+            writeText(folder, options.out, 'pyramid_wasm.js', header +
+                'export default async function createPyramidModule() {\n' +
+                '    throw new Error(\'this build of microrelief-three has no WebAssembly pyramid (built with --no-wasm): the CPU path is unavailable\');\n}\n');
+            writeText(folder, options.out, 'scene_checks_wasm.js', header +
+                'export default async function createSceneChecksModule() {\n' +
+                '    throw new Error(\'this build of microrelief-three has no WebAssembly scene checks (built with --no-wasm)\');\n}\n');
+        }
+        writeText(folder, options.out, 'manifest.json', JSON.stringify({source: 'microrelief', files: manifest}, null, 1) + '\n');
+        const made = fs.readdirSync(folder).sort().join(', ');
+        if (made !== [...kOutputs].sort().join(', ')) throw new BuildError(kRuntime, `${printable(options.out)}: made ${made}, not the ${kOutputs.length} files expected`);
+    });
+    console.log(`${kProgram}: ${path.relative(process.cwd(), options.out) || '.'}: ${kOutputs.join(', ')}${options.wasm ? '' : ' (the WebAssembly ones stubs)'}`);
+}
+
+try {
+    build(parseArguments(process.argv.slice(2)));
+} catch (e) {
+    // One line, never a stack trace: the cause of anything unforeseen, as the environment's.
+    const status = e instanceof BuildError ? e.status : kRuntime;
+    console.error(`${kProgram}: error: ${printable(e instanceof BuildError ? e.message : reason(e))}`);
+    process.exit(status);
+}

@@ -8,6 +8,7 @@ export {createReliefMap, ReliefGpuError, ReliefMap, readTextureFloats, readWindo
 export {albedoFromBytes, loadAlbedo} from './albedo.js';
 export {patchFragment, patchVertex, ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 export {baseShape, cameraRays, Relief, reliefExtent} from './relief.js';
+export {kFieldNames, loadSceneChecks, SceneChecks} from './checks.js';
 
 import {loadHeights} from './heights.js';
 import {createReliefMap} from './pyramid.js';

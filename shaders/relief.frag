@@ -174,7 +174,7 @@ float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bo
 }
 
 layout(location = 0) out vec4 outColor;
-layout(location = 1) out vec4 outPosition;  // world hit position, 1
+layout(location = 1) out vec4 outPosition;  // hit position in the shader's world (eye-relative), 1
 layout(location = 2) out vec4 outStats;     // iterations, fetches, stop level (bound fetches when counting), exhausted
 layout(location = 3) out vec4 outShadow;    // how much of the light reaches the hit (1 lit)
 
@@ -256,7 +256,9 @@ void main() {
     } else if (debugView == MR_DEBUG_VIEW_NORMAL) {
         color = mr_debugNormal(n);
     } else if (debugView == MR_DEBUG_VIEW_DEPTH) {
-        float distance = length(world - eye), far = length(eye) + 1.5;
+        // Scaled to the eye's distance from the relief's origin (from the world's origin
+        // when the model is the identity), plus the relief's size.
+        float distance = length(world - eye), far = length(objectToWorld[3].xyz - eye) + 1.5;
         color = vec3(1.0 - clamp(distance / far, 0.0, 1.0));
     } else {
         color = mr_debugPosition(mr_baseObjectPoint(relief, world), reliefBoxMin, reliefBoxMax);

@@ -5,10 +5,13 @@
 // the two to the same offsets. Members are ordered so that a vec3 is followed by the
 // scalar that fills its 16-byte slot, and pairs of vec2 share one.
 layout(std140) uniform MicroreliefParameters {
+    // "World" here is the shader's world: the renderer's world moved by -eye (it traces
+    // relative to the eye, ReliefRenderer::parameters), so eye is 0 and a relief far
+    // from the world's origin keeps its precision.
     mat4 viewProjection;  // world -> the caller's clip space (a tile's, for tiled pictures)
-    mat4 objectToWorld;   // the model transform (mr_ReliefPlacement)
+    mat4 objectToWorld;   // the model transform (mr_ReliefPlacement), then -eye
     mat4 worldToObject;   // its inverse
-    vec3 eye;             // the camera, world space
+    vec3 eye;             // the camera in that world: 0 from the renderer
     float pixelErrorTolerance;  // multilevel: stop at windows narrower than this many pixels
     vec3 cameraRight;     // scaled by tan(fovx / 2)
     float heightScale;    // s: object height of map height 1 (plane); radius fraction (curved)

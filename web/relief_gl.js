@@ -718,13 +718,18 @@ export class ReliefRenderer {
     // MicroreliefParameters (ReliefRenderer::parameters), laid out by the module generated
     // from shaders/relief_parameters.glsl.
     parameters(view, camera, shape, base, pixels) {
-        const identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
         const extent = scene.reliefExtent(shape.size[0], shape.size[1], shape.maxHeight, view.heightScale, base);
+        // Traced relative to the eye, as ReliefRenderer::parameters does: the page places
+        // the relief at the origin, so the model is the move by minus the eye, its inverse
+        // the move back, and the clip transform takes the eye-relative world (its last
+        // column VP (eye, 1), in double).
+        const [x, y, z] = camera.eye, vp = camera.viewProjection;
+        const viewProjection = vp.slice(0, 12).concat([0, 1, 2, 3].map((r) => vp[r] * x + vp[4 + r] * y + vp[8 + r] * z + vp[12 + r]));
         return writeParameters({
-            viewProjection: camera.viewProjection,
-            objectToWorld: identity,  // the page places the relief at the origin
-            worldToObject: identity,
-            eye: camera.eye,
+            viewProjection,
+            objectToWorld: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -x, -y, -z, 1],
+            worldToObject: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x, y, z, 1],
+            eye: [0, 0, 0],
             pixelErrorTolerance: view.pixelError,
             cameraRight: camera.right,
             heightScale: view.heightScale,

@@ -283,7 +283,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
 
                     // Accuracy from the plain variant's AOV: over every pixel, and over
                     // those whose rays come in through the top face.
-                    const RenderedFrame frame = target.read();
+                    const RenderedFrame frame = target.read(camera.eye);
                     const Accuracy accuracy = compareWithReference(frame, camera, reference);
                     r.coverageMismatchPct = accuracy.coverageMismatchPercent();
                     r.offHalfTexelPct = accuracy.offHalfTexelPercent();
@@ -300,7 +300,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     // Fetches: the instrumented variant, once.
                     renderer.setMethod(setting.method, true);
                     draw();
-                    const RenderedFrame counted = target.read();
+                    const RenderedFrame counted = target.read(camera.eye);
                     double sum = 0.0, boundSum = 0.0;
                     std::size_t covered = 0;
                     for (std::size_t k = 0; k < inBox.size(); ++k) {

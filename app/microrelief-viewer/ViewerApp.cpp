@@ -239,7 +239,7 @@ void ViewerApp::writeAutomationOutputs() {
                    "holds (drawn from coarser bounds in parts)");
     }
     if (options_.screenshot) {
-        const RenderedFrame picture = target_->read();
+        const RenderedFrame picture = target_->read(drawnEye_);
         view = rgbFromRgba(picture.color, picture.width, picture.height, false);
         const ImageData image{picture.width, picture.height, 3, PixelType::UInt8, view.data(), {}};
         batch.write(*options_.screenshot, image);
@@ -473,12 +473,14 @@ std::optional<PickResult> ViewerApp::pickFromPicture(int column, int row) const 
     const RenderJob& job = state_.scene.job;
     const auto surface = BaseSurface::make(job.base, map_->width, map_->height, job.heightScale,
                                            renderer_->maxHeight());
-    const glm::dvec3 object = job.model.pointToObject(glm::dvec3(hit));
+    // The picture's positions are relative to the eye it was drawn from (ReliefRenderer::draw).
+    const glm::dvec3 world = drawnEye_ + glm::dvec3(hit);
+    const glm::dvec3 object = job.model.pointToObject(world);
     const glm::dvec3 p = surface->mapPoint(object / job.base.frameScale());
     PickResult pick;
     pick.uv = glm::dvec2(p.x / map_->width, p.y / map_->height);
     pick.height = p.z;
-    pick.position = glm::dvec3(hit);
+    pick.position = world;
     return pick;
 }
 
@@ -644,7 +646,9 @@ void ViewerApp::renderView() {
     timer_->begin();
     {
         const gl::SrgbWrites srgb(window_->gl());  // the relief's linear colour, encoded
-        renderer_->draw(cameraFrame(), state_.scene.job.shading);
+        const CameraFrame frame = cameraFrame();
+        renderer_->draw(frame, state_.scene.job.shading);
+        drawnEye_ = frame.eye;  // the picture's positions are relative to it
     }
     timer_->end();
     drawFootprint();
@@ -925,7 +929,7 @@ void ViewerApp::takeScreenshot() {
                ("viewer-" + timestamp() + "-" + std::to_string(n) + ".png");
     }
     try {
-        const RenderedFrame picture = target_->read();
+        const RenderedFrame picture = target_->read(drawnEye_);
         const std::vector<std::uint8_t> rgb =
             rgbFromRgba(picture.color, picture.width, picture.height, false);
         writeImageAtomically(file,
@@ -994,7 +998,8 @@ CameraFrame ViewerApp::cameraFrame() const {
         sceneRadius(reliefExtent(map_->width * state_.scene.job.tiles.x,
                                  map_->height * state_.scene.job.tiles.y, mapMaxHeight_,
                                  state_.scene.job.heightScale, state_.scene.job.base),
-                    state_.scene.job.model.objectToWorld()));
+                    state_.scene.job.model.objectToWorld()),
+        sceneCentre(state_.scene.job.model.objectToWorld()));
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {

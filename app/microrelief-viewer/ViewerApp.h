@@ -163,6 +163,7 @@ private:
     float uiScale_ = 1.0f;
     int mapGeneration_ = 0, shaderGeneration_ = 0;
     std::optional<RenderKey> rendered_;  // what the target holds
+    glm::dvec3 drawnEye_{0.0};           // the eye the target was drawn from: its positions' origin
     // Paging (loadWantedPages): the view whose pages are kept (its key at page generation
     // 0), those pages, whether the last draw wanted any, whether the pool fell short.
     int pageGeneration_ = 0;

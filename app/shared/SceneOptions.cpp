@@ -117,16 +117,19 @@ std::vector<double> parseNumberList(const std::string& flag, const std::string& 
     return values;
 }
 
-glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text, const char* expected) {
+glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text, const char* expected,
+                           double limit) {
     const std::vector<double> values = parseNumberList(flag, text, 3, expected);
-    // The shader gets these as floats; camera coordinates beyond the limit also make
-    // exact hits impossible (core/scene/FloatLimits.h).
+    // Coordinates beyond the limit make exact hits impossible (core/scene/FloatLimits.h).
     for (double value : values) {
-        if (std::abs(value) > kMaxWorldCoordinate) {
+        if (std::abs(value) > limit) {
             throwBadInput(flag + " " + text + ": each component must lie within +-" +
-                          exactNumber(kMaxWorldCoordinate) +
-                          " (world units, the relief spans 1; the shader's float "
-                          "arithmetic holds no more)");
+                          exactNumber(limit) +
+                          (limit == kMaxWorldPosition
+                               ? " (world units; the renderer subtracts positions in double, "
+                                 "which holds no more)"
+                               : " (world units, the relief spans 1; the shader's float "
+                                 "arithmetic holds no more)"));
         }
     }
     return {values[0], values[1], values[2]};
@@ -404,8 +407,9 @@ void SceneFlags::apply() {
         if (animate_.empty()) throwBadInput("--time needs --animate NAME");
         job_.time = *time_;
     }
-    job_.camera.eye = parseVectorFlag(flag("camera.eye"), eye_);
-    job_.camera.target = parseVectorFlag(flag("camera.target"), target_);
+    const char* const xyz = "three numbers x,y,z";
+    job_.camera.eye = parseVectorFlag(flag("camera.eye"), eye_, xyz, kMaxWorldPosition);
+    job_.camera.target = parseVectorFlag(flag("camera.target"), target_, xyz, kMaxWorldPosition);
     job_.camera.up = parseVectorFlag(flag("camera.up"), up_);
     // The lights are checked in double, before they are stored in float (core/scene/Scene.h).
     if (!light_.empty()) {
@@ -417,11 +421,12 @@ void SceneFlags::apply() {
     }
     if (!lightPosition_.empty()) {
         if (!light_.empty()) throwBadInput("--light and --light-position are two lights: give one");
-        const glm::dvec3 position = parseVectorFlag(flag("shading.lightPosition"), lightPosition_);
+        const glm::dvec3 position =
+            parseVectorFlag(flag("shading.lightPosition"), lightPosition_, xyz, kMaxWorldPosition);
         std::vector<FieldError> errors;
         checkPoint(errors, "shading.lightPosition", position);
         throwIfInvalid(errors);
-        job_.shading.lightPosition = glm::vec3(position);
+        job_.shading.lightPosition = position;
     }
     job_.shading.shadows = parseShadowMode(shadows_);
     // Any side here; the scene states the limits, sides and pixels, in one message.

@@ -91,9 +91,11 @@ std::vector<double> parseNumberList(const std::string& flag, const std::string& 
 // --tile's "N,M": each a whole number from 1 to kMaxTiles (core/scene/Scene.h); throws
 // Error(BadInput).
 glm::ivec2 parseTiles(const std::string& text);
-// "x,y,z" -> vector, for --eye and its kind; throws Error(BadInput) naming `flag`.
+// "x,y,z" -> vector, for --eye and its kind, each component within `limit`
+// (kMaxWorldPosition for a position); throws Error(BadInput) naming `flag`.
 glm::dvec3 parseVectorFlag(const std::string& flag, const std::string& text,
-                           const char* expected = "three numbers x,y,z");
+                           const char* expected = "three numbers x,y,z",
+                           double limit = kMaxWorldCoordinate);
 // "WxH" -> width, height, each side from 1 to `maxSide`; throws Error(BadInput) naming
 // `flag`, for a side beyond `maxSide` with `limitReason` ("the most ...") in the message.
 void parseSizeFlag(const std::string& text, int& width, int& height, int maxSide = 65536,

@@ -24,15 +24,17 @@ export async function compare(canvas, view) {
     scene.add(relief);
     scene.updateMatrixWorld();
     // microrelief-render's depth range (Camera.cpp: resolveCamera), from the box's corners
-    // placed by the model (ReliefExtent.cpp: sceneRadius).
+    // placed by the model, about the model's translation (ReliefExtent.cpp: sceneRadius,
+    // sceneCentre).
     const extent = reliefExtent(map.width, map.height, map.maxHeight, relief.heightScale, relief.base);
+    const origin = new THREE.Vector3().setFromMatrixPosition(relief.matrixWorld);
     let radius = 0;
     for (let k = 0; k < 8; ++k) {
-        const corner = new THREE.Vector3(...[0, 1, 2].map((a) => ((k >> a) & 1 ? extent.max[a] : extent.min[a]))).applyMatrix4(relief.matrixWorld);
+        const corner = new THREE.Vector3(...[0, 1, 2].map((a) => ((k >> a) & 1 ? extent.max[a] : extent.min[a]))).applyMatrix4(relief.matrixWorld).sub(origin);
         radius = Math.max(radius, Math.abs(corner.x), Math.abs(corner.y), Math.abs(corner.z));
     }
     radius *= 2;
-    const centre = Math.hypot(...view.eye);
+    const centre = Math.hypot(view.eye[0] - origin.x, view.eye[1] - origin.y, view.eye[2] - origin.z);
     const far = centre + 2 * radius, near = Math.max(1e-4 * far, centre - 2 * radius);
     const camera = new THREE.PerspectiveCamera(view.fovy, canvas.width / canvas.height, near, far);
     camera.position.set(...view.eye);

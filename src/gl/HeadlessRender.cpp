@@ -148,7 +148,8 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     const CameraFrame camera = resolveCamera(
         job.camera, job.width, job.height,
         sceneRadius(reliefExtent(mapWidth_, mapHeight_, maxHeight_, job.heightScale, job.base),
-                    job.model.objectToWorld()));
+                    job.model.objectToWorld()),
+        sceneCentre(job.model.objectToWorld()));
 
     // Tiles no larger than the GL's viewport and renderbuffer limits, and kDefaultTileSide
     // (a 4096 x 4096 target holds 640 MB of attachments; llvmpipe fails to complete one of
@@ -174,6 +175,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     try {
         const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
         frame.width = job.width;
+        frame.positionOrigin = camera.eye;  // ReliefRenderer::draw traces relative to it
         frame.height = job.height;
         frame.color.resize(count);
         frame.position.resize(count);

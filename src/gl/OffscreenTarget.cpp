@@ -90,8 +90,9 @@ void OffscreenTarget::clear(const glm::vec3& background, float depth) const {
     gl_.ClearBufferfv(GL_DEPTH, 0, &depth);
 }
 
-RenderedFrame OffscreenTarget::read() const {
+RenderedFrame OffscreenTarget::read(const glm::dvec3& positionOrigin) const {
     RenderedFrame frame;
+    frame.positionOrigin = positionOrigin;
     frame.width = width_;
     frame.height = height_;
     const std::size_t count = static_cast<std::size_t>(width_) * height_ * 4;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "microrelief/core/Error.h"
@@ -428,11 +429,21 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     toTile[3][0] = static_cast<double>(camera.width - 2 * t.x - t.width) / t.width;
     toTile[3][1] = static_cast<double>(camera.height - 2 * t.y - t.height) / t.height;
 
+    // Traced relative to the eye, as renderers of planets do: the shader's "world" is the
+    // world moved by -eye, each transform that meets a world position composed with that
+    // move here in double (the model's translation becomes the relief's offset from the
+    // eye, the clip transform's the eye's own), so no float ever holds a coordinate of
+    // the world's origin. The eye's point in the relief's frame is then the model's inverse
+    // of the eye, rounded once (FloatLimits check 4 bounds it), however far from the
+    // origin the two are: a relief at 9e5 is traced as one at 0. Hits come out relative
+    // too (RenderedFrame::positionOrigin).
+    const glm::dmat4 fromEye = glm::translate(glm::dmat4(1.0), camera.eye);
+    const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -camera.eye);
     ReliefParameters p;
-    p.viewProjection = glm::mat4(toTile * camera.viewProjection);
-    p.objectToWorld = glm::mat4(model_.objectToWorld());
-    p.worldToObject = glm::mat4(model_.worldToObject());
-    p.eye = glm::vec3(camera.eye);
+    p.viewProjection = glm::mat4(toTile * camera.viewProjection * fromEye);
+    p.objectToWorld = glm::mat4(toEye * model_.objectToWorld());
+    p.worldToObject = glm::mat4(model_.worldToObject() * fromEye);
+    p.eye = glm::vec3(0.0f);
     p.cameraRight = glm::vec3(camera.right);
     p.cameraUp = glm::vec3(camera.up);
     p.cameraForward = glm::vec3(camera.forward);
@@ -453,7 +464,8 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.pyramidLevels = shape.levelCount;
     p.maxIterations = maxIterations_;
     p.lightDirection = glm::normalize(shading.lightDirection);
-    if (shading.lightPosition) p.lightPosition = glm::vec4(*shading.lightPosition, 1.0f);
+    if (shading.lightPosition)
+        p.lightPosition = glm::vec4(glm::vec3(*shading.lightPosition - camera.eye), 1.0f);
     p.albedoFinest = shading.albedoFinestLevel ? 1 : 0;
     p.reliefTiles = shape.tiles;
     p.lightTanRadius = static_cast<float>(

@@ -16,6 +16,7 @@
 #include "TestSupport.h"
 #include "microrelief/core/Machine.h"
 #include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
@@ -429,7 +430,7 @@ TEST_F(RenderCli, NumbersTheShaderCannotHoldAreRefusedWithTheReason) {
         << inside.out;
     // Camera and light vectors that float cannot carry, each with its own reason.
     expectFailure(run(small + "--eye 1e300,1,1" + out), 2, "--eye 1e300,1,1: each component");
-    expectFailure(run(small + "--target 1,1e7,1" + out), 2, "--target 1,1e7,1: each component");
+    expectFailure(run(small + "--target 1,1e13,1" + out), 2, "--target 1,1e13,1: each component");
     expectFailure(run(small + "--light 1e300,0,0" + out), 2, "--light 1e300,0,0: each component");
     expectFailure(run(small + "--light 1e-300,0,0" + out), 2, "--light 1e-300,0,0: its largest");
     // An eye too far away for exact hits in float: 5000 units from a 256-texel map.
@@ -528,7 +529,7 @@ TEST_F(RenderCli, CurvedBasesModelsAndFieldsOfViewBeyondFloatAreRefusedOrDrawnEx
     };
     // A cylinder 1e8 long: 12 % of pixels wrong before (every hit lost from 1e9).
     expectFailure(run(small + "--base cylinder --length 1e8" + out), 2,
-                  "reaches 5e+07 world units from the origin");
+                  "reaches 5e+07 world units from --eye");
     exact("--base cylinder --length 1e6");
     // A cylinder 1e-5 thick seen from 1e5 radii: 27 % of hits off by half a texel before.
     expectFailure(run(small +
@@ -560,6 +561,68 @@ TEST_F(RenderCli, CurvedBasesModelsAndFieldsOfViewBeyondFloatAreRefusedOrDrawnEx
     expectFailure(run(small + "--fovy 1e-37" + out), 2, "--fovy 1e-37 at a picture 32 pixels high");
     expectFailure(run(small + "--fovy 0.003" + out), 2, "use --fovy 0.0035 or more");
     exact("--fovy 0.01");
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+// ---- issue 47: far from the world's origin ----
+
+// A relief placed far from the world's origin and seen from close by is traced relative to
+// the eye (the eye subtracted in double before anything becomes a float), so it is as exact
+// as at the origin: before, at 9e5, 94.7 % of hits were more than half a texel off (p99 22
+// texels), at 1e5 74 %, at 1e4 p99 0.23 texel. The AOV file still holds world positions.
+// Curved bases far along their own length, seen from close by: the cylinder exact (a
+// cylinder 2e6 long seen near y = 9e5 was 1.5 px off; it now meets the box's reach from the
+// eye, so one 1e6 long at 4.5e5), the ellipsoid whose frame's unit is far longer than its
+// texels near a tip refused with the bound in texels (radii 4e5, 0.5, 0.5: 8 silhouette
+// pixels wrong of 1536 without the check, 0.5 %; 8e5 was 2.85 px off).
+TEST_F(RenderCli, ReliefsFarFromTheOriginAreExactOrRefusedWithTheBound) {
+    const auto exact = [&](const std::string& args, const std::string& aov = {}) {
+        SCOPED_TRACE(args);
+        const test::RunResult r =
+            run(small + args + " --compare-reference -q --out " + (dir / "far.png").string() +
+                (aov.empty() ? "" : " --aov " + aov));
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_NE(r.out.find("hit/miss disagreement               0 px"), std::string::npos)
+            << r.out;
+        EXPECT_NE(r.out.find("off by more than half a texel       0 px"), std::string::npos)
+            << r.out;
+    };
+    const auto at = [](double x, double y, double z, const std::string& base = {}) {
+        const auto n = [](double v) { return formatNumber(v, 10); };
+        return base + " --model 1,0,0," + n(x) + ",0,1,0," + n(y) + ",0,0,1," + n(z) + " --eye " +
+               n(x + 0.8) + "," + n(y + 0.5) + "," + n(z + 0.85) + " --target " + n(x) + "," +
+               n(y - 0.03) + "," + n(z);
+    };
+    for (const double far : {1e4, 1e5, 9e5}) exact(at(far, 0, 0));
+    const auto aov = dir / "far.exr";
+    exact(at(9e5, -4e5, 7e5), aov.string());
+    exact(at(9e5, 0, 0, "--base cylinder"));
+    exact(at(0, 9e5, 0, "--base sphere"));
+    // The AOV holds world positions: x near 9e5, rounded to float once.
+    auto positions = OIIO::ImageInput::open(aov.string());
+    ASSERT_TRUE(positions);
+    std::vector<float> pixels(48 * 32 * 4);
+    ASSERT_TRUE(positions->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data()));
+    int hits = 0;
+    for (std::size_t p = 0; p < pixels.size(); p += 4) {
+        if (pixels[p + 3] == 0.0f) continue;
+        ++hits;
+        EXPECT_NEAR(pixels[p], 9e5, 0.6);
+        EXPECT_NEAR(pixels[p + 1], -4e5, 0.2);
+        EXPECT_NEAR(pixels[p + 2], 7e5, 0.6);
+    }
+    EXPECT_GT(hits, 48 * 32 / 4);
+
+    const std::string out = " --out " + (dir / "x.png").string();
+    exact("--base cylinder --length 1e6 --eye 0.37,450000.77,0.33 --target 0.1,450000.1,0");
+    expectFailure(run(small +
+                      "--base ellipsoid --radii 4e5,0.5,0.5 --eye 400000.3,0.77,0.3 "
+                      "--target 399999.9,0,0" +
+                      out),
+                  2, "of the base's shortest texel side");
+    // Positions beyond double's reach for the relief's texels, and beyond 1e12 at all.
+    expectFailure(run(small + at(1e11, 0, 0) + out), 2, "where double keeps positions to");
+    expectFailure(run(small + "--eye 2e12,1,1" + out), 2, "--eye 2e12,1,1: each component");
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 

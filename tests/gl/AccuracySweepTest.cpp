@@ -45,7 +45,7 @@ void checkSweepCase(const test::SweepMap& m, bool glsl330) {
             resolveCamera(view.camera, test::kSweepSize, test::kSweepSize, 2.0);
         target.clear(glm::vec3(0.0f));
         renderer.draw(camera, ShadingOptions{});
-        const RenderedFrame frame = target.read();
+        const RenderedFrame frame = target.read(camera.eye);
         const test::Accuracy gpu = test::compareWithReference(frame, camera, m.geometry());
         // The CPU twin on the same rays (tests/cpu holds it to the reference): where it
         // and the GPU disagree on hit/miss.

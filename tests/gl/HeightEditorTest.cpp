@@ -117,7 +117,7 @@ TEST_F(Sculpting, HitsAfterStrokesMatchTheReferenceOfTheEditedMap) {
         const CameraFrame camera = resolveCamera(c.camera, 96, 96, 2.0);
         target.clear(glm::vec3(0.0f));
         renderer.draw(camera, ShadingOptions{});
-        const RenderedFrame frame = target.read();
+        const RenderedFrame frame = target.read(camera.eye);
         const Accuracy accuracy = compareWithReference(
             frame, camera, ReliefGeometry{&edited, heightScale, c.base, c.interpolation});
         std::printf("    %s: %s\n", what.c_str(), accuracy.summary().c_str());
@@ -234,7 +234,7 @@ TEST_F(Sculpting, AnimatedReliefIsRebuiltEveryFrameAndTracedExactly) {
                 target.clear(glm::vec3(0.0f));
                 renderer.draw(camera, ShadingOptions{});
                 const Accuracy accuracy = compareWithReference(
-                    target.read(), camera, ReliefGeometry{&moments.back(), 0.1, base});
+                    target.read(camera.eye), camera, ReliefGeometry{&moments.back(), 0.1, base});
                 EXPECT_LE(accuracy.coverageMismatchPercent(), kMaxCoverageMismatchPercent)
                     << what << ": " << accuracy.summary();
                 EXPECT_LE(accuracy.offHalfTexelPercent(), kMaxOffHalfTexelPercent)

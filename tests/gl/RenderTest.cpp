@@ -59,6 +59,7 @@ protected:
         r.frame = std::move(rendered.frame);
         r.camera = rendered.camera;
         r.accuracy = test::compareWithReference(r.frame, r.camera, map, heightScale);
+        r.frame = test::withWorldPositions(std::move(r.frame));  // read below as world positions
         std::printf("    %s\n", r.accuracy.summary().c_str());
         EXPECT_LE(r.accuracy.coverageMismatchPercent(), kMaxCoverageMismatchPercent)
             << r.accuracy.summary();
@@ -285,7 +286,7 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
             test::orbitCamera(elevation, 40.0, 1.3, {0.0, 0.04, 0.0}), size, size, 2.0);
         target.clear(glm::vec3(0.0f));
         renderer.draw(camera, ShadingOptions{});
-        const RenderedFrame frame = target.read();
+        const RenderedFrame frame = target.read(camera.eye);
         std::size_t traced = 0, sameIterations = 0, sameFetches = 0;
         long gpuIterations = 0, gpuFetches = 0, cpuFetches = 0;
         for (int row = 0; row < size; ++row) {
@@ -344,7 +345,7 @@ TEST_F(Render, Glsl330ReadsEachSampleAloneAndWalksTheSameSegments) {
             EXPECT_EQ(renderer.glsl330(), glsl330);
             target.clear(glm::vec3(0.0f));
             renderer.draw(camera, ShadingOptions{});
-            frames[glsl330] = target.read();
+            frames[glsl330] = target.read(camera.eye);
         }
         long fetches[2] = {0, 0};
         std::size_t hits = 0;
@@ -393,7 +394,7 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwinOnCurvedBases) {
                 resolveCamera(test::orbitCamera(elevation, -70.0, 1.4), size, size, 2.0);
             target.clear(glm::vec3(0.0f));
             renderer.draw(camera, ShadingOptions{});
-            const RenderedFrame frame = target.read();
+            const RenderedFrame frame = target.read(camera.eye);
             std::size_t traced = 0, sameIterations = 0, sameFetches = 0;
             for (int row = 0; row < size; ++row) {
                 for (int column = 0; column < size; ++column) {
@@ -510,7 +511,7 @@ TEST_F(Render, PixelErrorBoundsHowFarAHitStrays) {
                         continue;
                     }
                     ++hits;
-                    const glm::dvec3 hit(p[0], p[1], p[2]);
+                    const glm::dvec3 hit = r.frame.worldPositionAt(column, row);
                     const double distance = glm::length(hit - r.camera.eye);
                     if (exact) {
                         const double exactDistance = glm::length(*exact - r.camera.eye);
@@ -747,9 +748,10 @@ TEST_F(Peers, ParallaxOffsetShiftsByTheDepthAlongTheView) {
     int checked = 0;
     for (int row = 0; row < r.camera.height; ++row) {
         for (int column = 0; column < r.camera.width; ++column) {
-            const float* p = r.frame.positionAt(column, row);
+            const float* aov = r.frame.positionAt(column, row);
+            const glm::dvec3 p = r.frame.worldPositionAt(column, row);
             const Ray ray = r.camera.pixelRay(column, row);
-            if (p[3] < 0.5f || !(ray.direction.y < 0.0)) continue;
+            if (aov[3] < 0.5f || !(ray.direction.y < 0.0)) continue;
             const glm::dvec3 entry =
                 ray.origin + (top - ray.origin.y) / ray.direction.y * ray.direction;
             if (std::abs(entry.x) > 0.5 || std::abs(entry.z) > 0.5) continue;  // via a wall

@@ -170,7 +170,7 @@ protected:
                 g.BindVertexArray(empty.id());
                 g.DrawArrays(GL_TRIANGLES, 0, 3);
             }
-            const RenderedFrame frame = target.read();
+            const RenderedFrame frame = target.read(glm::dvec3(0.0));  // this shader writes world positions
             int flips = 0, far = 0, hits = 0, startsInside = 0, exhausted = 0;
             for (int row = 0; row < size; ++row) {
                 for (int column = 0; column < size; ++column) {
@@ -405,7 +405,7 @@ TEST_F(SceneObject, DepthRoundTripsUnderEveryConvention) {
                 const gl::SrgbWrites srgb(gl());
                 renderer.draw(camera, ShadingOptions{});
             }
-            const RenderedFrame frame = target.read();
+            const RenderedFrame frame = target.read(camera.eye);
             const std::vector<float> depths = target.readDepth();
             if (zeroToOne) gl().ClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
             ++conventions;
@@ -423,7 +423,7 @@ TEST_F(SceneObject, DepthRoundTripsUnderEveryConvention) {
                                          zeroToOne ? d : 2.0 * d - 1.0, 1.0);
                     const glm::dvec4 h = inverse * ndc;
                     const glm::dvec3 world = glm::dvec3(h) / h.w;
-                    worst = std::max(worst, glm::length(world - glm::dvec3(p[0], p[1], p[2])));
+                    worst = std::max(worst, glm::length(world - frame.worldPositionAt(column, row)));
                 }
             }
             std::printf("    clip depth %s, %s: %d hits, worst round trip %.2g\n",
@@ -520,7 +520,7 @@ TEST_F(SceneObject, DrawLeavesTheGlStateAsItFoundIt) {
 
     EXPECT_EQ(snapshot(), before);
     // And it drew: the relief covers part of the picture.
-    const RenderedFrame frame = target.read();
+    const RenderedFrame frame = target.read(glm::dvec3(0.0));  // hits counted only
     int hits = 0;
     for (std::size_t k = 3; k < frame.position.size(); k += 4) hits += frame.position[k] > 0.5f;
     EXPECT_GT(hits, 100);
@@ -607,7 +607,7 @@ void main() {
         g.BindVertexArray(empty.id());
         g.DrawArrays(GL_TRIANGLES, 0, 3);
     }
-    const RenderedFrame frame = target.read();
+    const RenderedFrame frame = target.read(glm::dvec3(0.0));
     // Each pixel says which i and n it wrapped (the frame's rows may run either way up).
     long checked = 0, wrong = 0;
     for (int row = 0; row < height; ++row) {

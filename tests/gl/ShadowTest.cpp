@@ -144,7 +144,7 @@ ShadowCount expectShadowsFromTheRenderersHits(const ShadowCase& c) {
             const float* p = r.frame.positionAt(column, row);
             exhausted += r.frame.statsAt(column, row)[3] > 0.5f;
             if (p[3] < 0.5f) continue;
-            const glm::dvec3 hit(p[0], p[1], p[2]);
+            const glm::dvec3 hit = r.frame.worldPositionAt(column, row);
             // The top surface's hits only: a side wall, the bottom or a cap lies below it
             // (and faces out of a convex shell: lit wherever it faces the light).
             const double gap = reference.gap(hit);

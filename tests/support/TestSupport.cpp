@@ -251,4 +251,14 @@ std::string keepForInspection(const std::string& folderName, const std::string& 
     return (folder / (name + "-{actual,expected,diff}.png")).string();
 }
 
+RenderedFrame withWorldPositions(RenderedFrame frame) {
+    for (std::size_t p = 0; p + 3 < frame.position.size(); p += 4) {
+        if (frame.position[p + 3] < 0.5f) continue;
+        for (int c = 0; c < 3; ++c)
+            frame.position[p + c] = static_cast<float>(frame.positionOrigin[c] + frame.position[p + c]);
+    }
+    frame.positionOrigin = glm::dvec3(0.0);
+    return frame;
+}
+
 }  // namespace microrelief::test

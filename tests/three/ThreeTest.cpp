@@ -80,6 +80,15 @@ const std::vector<View> kViews = {
      200, 150},
     {"sphere", "base=sphere&albedo=none&target=0,0,0&height-scale=0.15&eye=0.9,0.5,0.9",
      "--base sphere --albedo none --target=0,0,0 --height-scale 0.15 --eye=0.9,0.5,0.9", 200, 150},
+    // Far from three's origin (issue 47): traced relative to the camera, the eye and the
+    // model's translation subtracted in double (src/relief.js, prepareDraw); before, the
+    // world positions' float step there (0.06) was 15 texels of the bundled map.
+    {"far-from-the-origin",
+     "model=1,0,0,900000,0,1,0,-400000,0,0,1,700000&eye=900000.8,-399999.5,700000.85&"
+     "target=900000,-400000.03,700000",
+     "--model=1,0,0,900000,0,1,0,-400000,0,0,1,700000 --eye=900000.8,-399999.5,700000.85 "
+     "--target=900000,-400000.03,700000",
+     160, 120},
 };
 
 const View& viewNamed(const std::string& name) {

@@ -25,7 +25,9 @@ public:
     // Clears the picture to `background` (linear RGB, encoded to sRGB by the GL), the AOV
     // and statistics to 0 and depth to `depth` (1, the far end; 0 under reversed-Z).
     void clear(const glm::vec3& background, float depth = 1.0f) const;
-    RenderedFrame read() const;
+    // The picture; `positionOrigin` is the eye it was drawn from (ReliefRenderer::draw
+    // writes hit positions relative to it: RenderedFrame::positionOrigin).
+    RenderedFrame read(const glm::dvec3& positionOrigin) const;
     // The depth buffer (32-bit float), window depths, top row first.
     std::vector<float> readDepth() const;
     // The lower-left width x height pixels of this target into `frame` (a picture of its
@@ -33,8 +35,9 @@ public:
     // window position (x, y) of that picture.
     void readInto(RenderedFrame& frame, int x, int y, int width, int height) const;
 
-    // The position AOV of one pixel (column, row; row 0 the top): x, y, z of the hit and 1,
-    // or 0 where the ray missed. A one-pixel read, for picking what the picture shows.
+    // The position AOV of one pixel (column, row; row 0 the top): x, y, z of the hit less
+    // the eye it was drawn from (ReliefRenderer::draw) and 1, or 0 where the ray missed. A
+    // one-pixel read, for picking what the picture shows.
     glm::vec4 positionAt(int column, int row) const;
 
     int width() const { return width_; }

@@ -181,6 +181,9 @@ public:
     // framebuffer: relief.frag's colour to draw buffer 0 and, where the framebuffer's
     // draw buffers take them, the hit position, statistics and shadow to 1 to 3
     // (OffscreenTarget has all four; a framebuffer with the colour alone drops the rest).
+    // The hit position is the world's less camera.eye: the draw traces relative to the
+    // eye, the eye subtracted in double, so a relief far from the world's origin is as
+    // exact as one at it (core/scene/FloatLimits.h; RenderedFrame::positionOrigin).
     // The colour is linear, for an sRGB target with GL_FRAMEBUFFER_SRGB on (gl::SrgbWrites,
     // gl/StateGuard.h): with it off the linear values are stored as they are and the
     // picture comes out dark. The same rays

@@ -2,7 +2,8 @@
 // (src/relief.js: raycast, traceRays), the answers written as the bits of floats into an
 // RGBA8 target, one float a pixel, so that they read back exactly on any WebGL 2 (no float
 // render target needed). The rays are the texels of two RGBA32F textures of W x H: origin
-// and tMin, direction and tMax (world; t in units of the direction's length). The target is
+// and tMin, direction and tMax (world about the first ray's origin, src/relief.js
+// traceRays; t in units of the direction's length). The target is
 // W x 12 H: rows [k H, (k + 1) H) hold field k of every ray: 0 t, 1 kind (MR_RELIEF_*),
 // 2 exhausted, 3-5 the world hit (origin + t dir, as relief.frag computes it), 6-8 the world
 // unit normal, 9-10 uv (three's convention), 11 iterations.

@@ -32,7 +32,10 @@ uniform float mrHeightScale;   // s
 uniform vec3 mrFrameScale;     // curved bases: (R, L / 2, R) or the ellipsoid's radii
 uniform float mrPixelError;    // level of detail in pixels (0: exact)
 
-// This draw's camera (the view's or a light's shadow camera).
+// This draw's camera (the view's or a light's shadow camera). "World" below is three's world
+// moved by minus mrWorldOrigin, the camera's position (src/relief.js composes the matrices
+// in double), so that a relief far from three's origin is traced as exactly as one at it.
+uniform vec3 mrWorldOrigin;     // three's world position of this shader's world origin
 uniform vec3 mrRayOrigin, mrRayOriginDx, mrRayOriginDy;
 uniform vec3 mrRayDir, mrRayDirDx, mrRayDirDy;
 uniform vec4 mrViewport;        // x, y, width, height in window pixels; width 0: NDC from mrClip
@@ -63,11 +66,11 @@ vec2 mrPixelNdc() {
 }
 
 struct mrPixel {
-    vec3 origin;       // world
+    vec3 origin;       // world (about mrWorldOrigin)
     vec3 dir;          // world, not unit
     mr_ReliefHit hit;  // the library's answer, in the base's frame
     bool exhausted;    // the traversal ran out of its budget (never silent: shown magenta)
-    vec3 world;        // the hit, world: origin + t dir
+    vec3 world;        // the hit, world (about mrWorldOrigin): origin + t dir
     vec3 normal;       // world, unit
     vec2 uv;           // three's convention: (u, 1 - v), the image's row 0 at uv.y = 1
 };

@@ -39,7 +39,11 @@ void mrBeginPixel() {
 #ifdef MR_SHADOW_PASS
     if (mrExhausted) discard;  // no shadow from a ray that did not finish
 #endif
+    // `world` about the camera (relief_three.glsl), for this draw's matrices; `threeWorld`
+    // three's own, for its world-space uniforms (shadow and light matrices, fog of the
+    // world, environment maps).
     vec3 world = mrHitPixel.world, normal = mrHitPixel.normal;
+    vec3 threeWorld = world + mrWorldOrigin;
     vec4 clip;
     float depth = mrExhausted ? gl_FragCoord.z : mrWindowDepth(world, clip);
 #ifdef USE_LOGARITHMIC_DEPTH_BUFFER
@@ -62,7 +66,7 @@ void mrBeginPixel() {
     vClipPosition = -viewHit;
 #endif
 #ifdef MR_HAS_vWorldPosition
-    vWorldPosition = world;
+    vWorldPosition = threeWorld;
 #endif
 #ifdef MR_HAS_vHighPrecisionZW
     vHighPrecisionZW = clip.zw;
@@ -75,15 +79,15 @@ void mrBeginPixel() {
 #endif
 #ifdef MR_HAS_vDirectionalShadowCoord
     for (int i = 0; i < NUM_DIR_LIGHT_SHADOWS; ++i)
-        vDirectionalShadowCoord[i] = directionalShadowMatrix[i] * vec4(world + normal * directionalLightShadows[i].shadowNormalBias, 1.0);
+        vDirectionalShadowCoord[i] = directionalShadowMatrix[i] * vec4(threeWorld + normal * directionalLightShadows[i].shadowNormalBias, 1.0);
 #endif
 #ifdef MR_HAS_vPointShadowCoord
     for (int i = 0; i < NUM_POINT_LIGHT_SHADOWS; ++i)
-        vPointShadowCoord[i] = pointShadowMatrix[i] * vec4(world + normal * pointLightShadows[i].shadowNormalBias, 1.0);
+        vPointShadowCoord[i] = pointShadowMatrix[i] * vec4(threeWorld + normal * pointLightShadows[i].shadowNormalBias, 1.0);
 #endif
 #ifdef MR_HAS_vSpotLightCoord
     for (int i = 0; i < NUM_SPOT_LIGHT_COORDS; ++i) {
-        vec3 p = world;
+        vec3 p = threeWorld;
 #if defined(USE_SHADOWMAP) && NUM_SPOT_LIGHT_SHADOWS > 0
         if (i < NUM_SPOT_LIGHT_SHADOWS) p += normal * spotLightShadows[i].shadowNormalBias;
 #endif
@@ -91,7 +95,7 @@ void mrBeginPixel() {
     }
 #endif
 #ifdef MR_HAS_vSunShadowWorldPosition
-    vSunShadowWorldPosition = vec4(world, -viewHit.z);
+    vSunShadowWorldPosition = vec4(threeWorld, -viewHit.z);
 #endif
 #ifdef MR_HAS_vSunShadowWorldNormal
     vSunShadowWorldNormal = normal;

@@ -129,6 +129,7 @@ export class Relief extends THREE.Mesh {
             mrViewport: {value: new THREE.Vector4()}, mrRange: {value: new THREE.Vector2()}, mrFaces: {value: 2},
             mrViewProjection: {value: new THREE.Matrix4()}, mrCameraToWorld: {value: new THREE.Matrix4()},
             mrWorldToCamera: {value: new THREE.Matrix4()}, mrPerspective: {value: 1},
+            mrWorldOrigin: {value: new THREE.Vector3()},
         };
         // The box (ReliefRenderer::uploadBox): the bounds from the pyramid's top, grown.
         const extent = reliefExtent(w, h, reliefMap.maxHeight, this.heightScale, shape);
@@ -155,12 +156,22 @@ export class Relief extends THREE.Mesh {
 
     // This draw's uniforms: the model, the camera's rays, which faces run, the viewport
     // (the view's camera; a shadow pass takes its NDC from the clip position instead).
+    // Traced relative to the camera, as the library's renderer traces relative to the eye
+    // (ReliefRenderer::parameters): the shader's world is three's moved by minus the
+    // camera's position, each matrix that meets a world position composed with that move
+    // here in double (JavaScript's numbers), so that a relief far from three's origin (a
+    // planet, a large level) is traced as exactly as one at it; mrWorldOrigin gives three's
+    // own world-space uniforms (shadow matrices) their world back.
     prepareDraw(renderer, camera, withViewport) {
         const u = this.uniforms;
-        u.mrObjectToWorld.value.copy(this.matrixWorld);
-        u.mrWorldToObject.value.copy(this.matrixWorld).invert();
+        const origin = _origin.setFromMatrixPosition(camera.matrixWorld);
+        _fromOrigin.makeTranslation(origin.x, origin.y, origin.z);
+        _toOrigin.makeTranslation(-origin.x, -origin.y, -origin.z);
+        u.mrWorldOrigin.value.copy(origin);
+        u.mrObjectToWorld.value.multiplyMatrices(_toOrigin, this.matrixWorld);
+        u.mrWorldToObject.value.copy(this.matrixWorld).invert().multiply(_fromOrigin);
         const rays = cameraRays(camera);
-        u.mrRayOrigin.value.copy(rays.origin);
+        u.mrRayOrigin.value.copy(rays.origin).sub(origin);
         u.mrRayOriginDx.value.copy(rays.originDx);
         u.mrRayOriginDy.value.copy(rays.originDy);
         u.mrRayDir.value.copy(rays.dir);
@@ -168,9 +179,9 @@ export class Relief extends THREE.Mesh {
         u.mrRayDirDy.value.copy(rays.dirDy);
         u.mrRange.value.set(...rays.range);
         u.mrPerspective.value = rays.perspective ? 1 : 0;
-        u.mrViewProjection.value.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
-        u.mrCameraToWorld.value.copy(camera.matrixWorld);
-        u.mrWorldToCamera.value.copy(camera.matrixWorldInverse);
+        u.mrViewProjection.value.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse).multiply(_fromOrigin);
+        u.mrCameraToWorld.value.multiplyMatrices(_toOrigin, camera.matrixWorld);
+        u.mrWorldToCamera.value.multiplyMatrices(camera.matrixWorldInverse, _fromOrigin);
         // The viewport GL rasterises this draw into (three's own record of it starts empty
         // until setSize, setViewport or setRenderTarget is called).
         if (withViewport) u.mrViewport.value.fromArray(renderer.getContext().getParameter(renderer.getContext().VIEWPORT));
@@ -236,9 +247,12 @@ export class Relief extends THREE.Mesh {
         const {scene, camera, material} = pickResources;
         const width = Math.min(n, 1024), rows = Math.ceil(n / width);
         const rayData = [new Float32Array(4 * width * rows), new Float32Array(4 * width * rows)];
+        // Relative to the first ray's origin, in double, as prepareDraw traces relative to
+        // the camera: the origins and the hits are floats about it, put back here.
+        const base = [origins[0] ?? 0, origins[1] ?? 0, origins[2] ?? 0];
         for (let k = 0; k < n; ++k) {
             const range = ranges.length === 2 ? ranges : ranges.slice(2 * k, 2 * k + 2);
-            rayData[0].set([origins[3 * k], origins[3 * k + 1], origins[3 * k + 2], range[0]], 4 * k);
+            rayData[0].set([origins[3 * k] - base[0], origins[3 * k + 1] - base[1], origins[3 * k + 2] - base[2], range[0]], 4 * k);
             rayData[1].set([directions[3 * k], directions[3 * k + 1], directions[3 * k + 2], Math.min(range[1], 3.4e38)], 4 * k);
         }
         const textures = rayData.map((data) => {
@@ -250,8 +264,8 @@ export class Relief extends THREE.Mesh {
         this.updateWorldMatrix(true, false);
         const u = material.uniforms;
         Object.assign(u, this.uniforms);
-        u.mrObjectToWorld = {value: this.matrixWorld.clone()};
-        u.mrWorldToObject = {value: this.matrixWorld.clone().invert()};
+        u.mrObjectToWorld = {value: new THREE.Matrix4().makeTranslation(-base[0], -base[1], -base[2]).multiply(this.matrixWorld)};
+        u.mrWorldToObject = {value: this.matrixWorld.clone().invert().multiply(new THREE.Matrix4().makeTranslation(...base))};
         u.mrRayOrigins = {value: textures[0]};
         u.mrRayDirections = {value: textures[1]};
         u.mrRayRows = {value: rows};
@@ -280,7 +294,10 @@ export class Relief extends THREE.Mesh {
             fields.forEach((f, c) => field(f).forEach((v, k) => (out[fields.length * k + c] = v)));
             return out;
         };
-        return {t: field(0).slice(), kind: field(1).slice(), exhausted: field(2).slice(), point: interleave([3, 4, 5]),
+        const point = interleave([3, 4, 5]);
+        const world = new Float64Array(3 * n);
+        for (let k = 0; k < 3 * n; ++k) world[k] = point[k] + base[k % 3];
+        return {t: field(0).slice(), kind: field(1).slice(), exhausted: field(2).slice(), point: world,
                 normal: interleave([6, 7, 8]), uv: interleave([9, 10]), iterations: field(11).slice()};
     }
 
@@ -292,6 +309,7 @@ export class Relief extends THREE.Mesh {
 }
 
 const _m = new THREE.Matrix4(), _inverse = new THREE.Matrix4(), _ray = new THREE.Ray();
+const _origin = new THREE.Vector3(), _fromOrigin = new THREE.Matrix4(), _toOrigin = new THREE.Matrix4();
 
 // A full-viewport triangle tracing a batch of rays (glsl/pick.frag), shared by all reliefs.
 function makePickResources() {

@@ -125,6 +125,12 @@ BaseType cylinderBaseType() {
                         int h) { return std::sqrt(2.0 * kPi * b.radius / w * b.length / h); },
         // Around the axis W texels span 2 pi at radius 1, along it H texels span 2 units.
         .texelsPerFrameUnit = [](int w, int h) { return std::max(w / (2.0 * kPi), 0.5 * h); },
+        // 2 pi R / W around, L / H along.
+        .shortestTexelSide =
+            [](const BaseShape& b, int w, int h) {
+                return std::min(2.0 * kPi * b.radius / w, b.length / h);
+            },
+        .frameStretchesPastTexels = false,
         // The frame normal r w - (s W / 2 pi) gx e_phi - (s H / 2) gy e_y, at most
         // r (1 + along) + around (base_cylinder.glsl, mr_baseTopNormal).
         .objectNormalRange =

@@ -147,6 +147,13 @@ BaseType ellipsoidRow(const char* name, const char* summary, std::vector<BaseSiz
             },
         // Around the axis W texels span 2 pi at radius 1, along it H texels pi radians.
         .texelsPerFrameUnit = [](int w, int h) { return std::max(w / (2.0 * kPi), h / kPi); },
+        // On the equator of the smallest radius r: 2 pi r / W around, pi r / H along.
+        .shortestTexelSide =
+            [](const BaseShape& b, int w, int h) {
+                const double r = std::min({b.radii.x, b.radii.y, b.radii.z});
+                return std::min(2.0 * kPi * r / w, kPi * r / h);
+            },
+        .frameStretchesPastTexels = true,
         // The frame normal r w - (s H / pi) gy e_theta - (s W / 2 pi) gx e_phi / sin theta,
         // at most its parts' sum with sin theta >= 1e-6 (base_ellipsoid.glsl).
         .objectNormalRange =

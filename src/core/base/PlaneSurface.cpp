@@ -130,6 +130,8 @@ BaseType planeBaseType() {
         .boxIsSymmetric = false,
         .texelSize = [](const BaseShape&, int w, int h) { return 1.0 / std::max(w, h); },
         .texelsPerFrameUnit = [](int w, int h) { return double(std::max(w, h)); },
+        .shortestTexelSide = [](const BaseShape&, int w, int h) { return 1.0 / std::max(w, h); },
+        .frameStretchesPastTexels = false,
         // Top (-gx T, 1 / s, -gy T) with |g| <= max h a texel along each axis; walls T and
         // the bottom 1 / s along one axis (base_plane.glsl, mr_baseObjectNormal).
         .objectNormalRange =

@@ -19,7 +19,8 @@ double CameraFrame::pixelWidthPerUnit() const {
     return 2.0 * glm::length(up) / height;  // `up` is scaled by tan(fovy / 2)
 }
 
-CameraFrame resolveCamera(const Camera& camera, int width, int height, double sceneRadius) {
+CameraFrame resolveCamera(const Camera& camera, int width, int height, double sceneRadius,
+                          const glm::dvec3& sceneCentre) {
     if (width <= 0 || height <= 0) throwBadInput("the picture size must be positive");
     if (!(camera.fovyDegrees > 0.0 && camera.fovyDegrees < 180.0)) {
         throwBadInput("{camera.fovyDegrees} must lie strictly between 0 and 180 degrees");
@@ -48,7 +49,7 @@ CameraFrame resolveCamera(const Camera& camera, int width, int height, double sc
 
     // Depth range around the scene; depth clamping in the renderer makes near/far
     // clipping harmless, so these only set the depth buffer's precision.
-    const double centre = glm::length(camera.eye);
+    const double centre = glm::length(camera.eye - sceneCentre);
     const double zFar = centre + 2.0 * sceneRadius;
     const double zNear = std::max(1e-4 * zFar, centre - 2.0 * sceneRadius);
     const glm::dmat4 projection =

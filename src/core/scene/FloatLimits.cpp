@@ -51,28 +51,57 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
                       " the renderer's float arithmetic holds; lower {heightScale}, or use "
                       "{map.load.normalize} and a {heightScale} of the relief's height");
     }
-    //    The box as placed, on any base and through the model: its farthest corner. A
-    //    cylinder of --length 1e8 loses 12 % of its hits to the proxy box's clipping in
-    //    float (every hit from 1e9), and is right up to 1e7 (measured): the bound is the
-    //    plane's, 1e6.
+    //    The box as placed, on any base and through the model, as the shader sees it:
+    //    relative to the eye (ReliefRenderer::draw subtracts it in double), its corners
+    //    go through the float model and clip transforms to the rasteriser. A cylinder of
+    //    --length 1e8 loses 12 % of its hits to the proxy box's clipping in float (every
+    //    hit from 1e9), and is right up to 1e7 (measured with the box about the eye):
+    //    the bound is the plane's, 1e6, on the corners' distance from the eye.
+    //    Absolute positions only meet double: within kMaxWorldPosition, and where
+    //    double's step there (2^-52 of the coordinate, once for the eye and once for
+    //    the model's translation) is 1/1024 of the relief's shortest texel side in the
+    //    world (the object's side, shrunk at most by the model's smallest scale).
     {
         const glm::dvec3 lo = base.boxMin(map.width, map.height, top);
         const glm::dvec3 hi = base.boxMax(map.width, map.height, top);
-        double farthest = 0.0;
+        double fromEye = 0.0, fromOrigin = 0.0;
         for (int corner = 0; corner < 8; ++corner) {
             const glm::dvec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
                                (corner & 4) ? hi.z : lo.z);
             const glm::dvec3 world = model.pointToWorld(p);
-            farthest =
-                std::max({farthest, std::abs(world.x), std::abs(world.y), std::abs(world.z)});
+            const glm::dvec3 seen = world - camera.eye;
+            fromEye = std::max({fromEye, std::abs(seen.x), std::abs(seen.y), std::abs(seen.z)});
+            fromOrigin =
+                std::max({fromOrigin, std::abs(world.x), std::abs(world.y), std::abs(world.z)});
         }
-        if (!(farthest <= kMaxWorldCoordinate)) {
+        if (!(fromOrigin <= kMaxWorldPosition)) {
             throwBadInput(source + ": the relief's box on " + baseFlags(base) +
                           (model.isIdentity() ? "" : " placed by {model}") + " reaches " +
-                          number(farthest) + " world units from the origin, beyond the " +
+                          number(fromOrigin) + " world units from the origin, beyond the " +
+                          number(kMaxWorldPosition) + " world positions may have");
+        }
+        if (!(fromEye <= kMaxWorldCoordinate)) {
+            throwBadInput(source + ": the relief's box on " + baseFlags(base) +
+                          (model.isIdentity() ? "" : " placed by {model}") + " reaches " +
+                          number(fromEye) + " world units from {camera.eye}, beyond the " +
                           number(kMaxWorldCoordinate) +
-                          " the renderer's float arithmetic holds (box corners, depth range and "
-                          "AOV are floats); use a smaller base or model scale");
+                          " the renderer's float arithmetic holds (the box's corners and depth "
+                          "are floats about the eye); use a smaller base or model scale, or "
+                          "come nearer");
+        }
+        const double eyeReach =
+            std::max({std::abs(camera.eye.x), std::abs(camera.eye.y), std::abs(camera.eye.z)});
+        const double reach = std::max(fromOrigin, eyeReach);
+        const double texelWorld =
+            type.shortestTexelSide(base, map.width, map.height) * model.smallestScale();
+        const double doubleStepTexels = 2.0 * reach * std::ldexp(1.0, -52) / texelWorld;
+        if (!(doubleStepTexels <= std::ldexp(1.0, -10))) {
+            throwBadInput(source + (model.isIdentity() ? "" : " placed by {model}") +
+                          " and {camera.eye} lie " + number(reach) +
+                          " world units from the origin, where double keeps positions to " +
+                          number(doubleStepTexels) +
+                          " of the relief's texel, more than the 1/1024 the renderer allows "
+                          "itself; move the scene nearer the origin or scale the relief up");
         }
     }
 
@@ -98,10 +127,13 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
                           " overflow the shader's float patch solve (largest height x " +
                           number(dxy) + " texels per ray unit, and 1 / {heightScale} x " +
                           number(longest) + ", must stay below 2^58); " +
-                          (model.isIdentity()
-                               ? "use {map.load.normalize} and a {heightScale} of the relief's height"
-                               : "{model} shrinks the relief by " + number(model.smallestScale()) +
-                                     ", which lengthens the rays in its object space as much"));
+                          (!model.isIdentity()
+                               ? "{model} shrinks the relief by " + number(model.smallestScale()) +
+                                     ", which lengthens the rays in its object space as much"
+                           : dh > solveLimit
+                               ? std::string("raise {heightScale} (1 / {heightScale} overflows)")
+                               : "use {map.load.normalize} and a {heightScale} of the relief's "
+                                 "height"));
         }
     }
 
@@ -154,20 +186,36 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
                       "no ray's entry into the relief's box to 1/32 texel; use fewer tiles or a "
                       "smaller map");
     }
+    //    On an ellipsoid the frame point's error is also |object coordinate| 2^-23
+    //    object units on each axis, whatever the frame's unit is long there, counted in
+    //    its shortest texel side (BaseType::frameStretchesPastTexels): radii 4e5, 0.5,
+    //    0.5 seen near the tip were 8 silhouette pixels wrong at 48 x 32 before.
     const glm::dvec3 object = model.pointToObject(camera.eye);
     const glm::dvec3 eye = plane ? object : object / base.frameScale();
+    const double objectTexels =
+        type.frameStretchesPastTexels
+            ? std::max({std::abs(object.x), std::abs(object.y), std::abs(object.z)}) /
+                  type.shortestTexelSide(base, map.width, map.height)
+            : 0.0;
     const double eyeTexels =
         plane ? std::max({std::abs(eye.x) * texelsPerUnit + 0.5 * map.width,
                           std::abs(eye.z) * texelsPerUnit + 0.5 * map.height,
                           std::abs(eye.y) * texelsPerUnit})
-              : std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}) * texelsPerUnit;
+              : std::max(std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}) *
+                             texelsPerUnit,
+                         objectTexels);
     if (eyeTexels > entryLimit) {
         throwBadInput("{camera.eye} " + number(camera.eye.x) + "," + number(camera.eye.y) + "," +
                       number(camera.eye.z) + " is too far from " + source +
                       (plane ? "" : " on " + baseFlags(base)) +
                       (model.isIdentity() ? "" : " (placed by {model})") + " for exact hits: " +
-                      number(eyeTexels) + " texels away (" + number(texelsPerUnit) + " a " +
-                      (plane ? "world unit" : "unit of the base's frame") +
+                      number(eyeTexels) + " texels away (" +
+                      (plane || eyeTexels > objectTexels
+                           ? number(texelsPerUnit) + " a " +
+                                 (plane ? "world unit" : "unit of the base's frame")
+                           : "of the base's shortest texel side, " +
+                                 number(type.shortestTexelSide(base, map.width, map.height)) +
+                                 " object units") +
                       "), more than the 2^18 = 262144 at which float keeps the ray's entry into "
                       "the relief's box to 1/32 texel");
     }

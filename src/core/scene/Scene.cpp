@@ -40,14 +40,17 @@ void collect(std::vector<FieldError>& errors, const std::string& field, Check ch
 
 }  // namespace
 
-// A point the shader gets as floats: coordinates beyond the limit also make exact hits
-// impossible (core/scene/FloatLimits.h).
-void checkPoint(std::vector<FieldError>& errors, const std::string& field, const glm::dvec3& p) {
-    if (!finite(p) || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxWorldCoordinate) {
+// A point: coordinates beyond the limit make exact hits impossible (core/scene/FloatLimits.h).
+void checkPoint(std::vector<FieldError>& errors, const std::string& field, const glm::dvec3& p,
+                double limit) {
+    if (!finite(p) || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > limit) {
         errors.push_back({field, "{" + field + "} " + vectorText(p) +
-                                     ": each component must lie within +-" + number(kMaxWorldCoordinate) +
-                                     " (world units, the relief spans 1; the shader's float "
-                                     "arithmetic holds no more)"});
+                                     ": each component must lie within +-" + number(limit) +
+                                     (limit == kMaxWorldPosition
+                                          ? " (world units; the renderer subtracts positions in "
+                                            "double, which holds no more)"
+                                          : " (world units, the relief spans 1; the shader's "
+                                            "float arithmetic holds no more)")});
     }
 }
 
@@ -125,7 +128,7 @@ std::vector<FieldError> ViewDesc::validate() const {
     std::vector<FieldError> errors;
     checkPoint(errors, "camera.eye", camera.eye);
     checkPoint(errors, "camera.target", camera.target);
-    checkPoint(errors, "camera.up", camera.up);
+    checkPoint(errors, "camera.up", camera.up, kMaxWorldCoordinate);
     checkDirection(errors, "camera.up", camera.up);
     if (errors.empty()) {
         // The camera resolves: a field of view, the eye apart from the target, an up that
@@ -146,7 +149,7 @@ std::vector<FieldError> ViewDesc::validate() const {
     if (!(method.pixelError >= 0.0f) || !std::isfinite(method.pixelError))
         errors.push_back({"method.pixelError", "{method.pixelError} must be a number >= 0"});
     if (shading.lightPosition) {
-        checkPoint(errors, "shading.lightPosition", glm::dvec3(*shading.lightPosition));
+        checkPoint(errors, "shading.lightPosition", *shading.lightPosition);
     } else {
         checkDirection(errors, "shading.lightDirection", glm::dvec3(shading.lightDirection));
     }

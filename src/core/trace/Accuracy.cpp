@@ -159,8 +159,8 @@ Accuracy compareWithReference(const RenderedFrame& frame, const CameraFrame& cam
     return measureAccuracy(
         camera, reference,
         [&](int column, int row, const Ray&) {
-            const float* p = frame.positionAt(column, row);
-            return PixelHit{p[3] > 0.5f, glm::dvec3(p[0], p[1], p[2]),
+            return PixelHit{frame.positionAt(column, row)[3] > 0.5f,
+                            frame.worldPositionAt(column, row),
                             frame.statsAt(column, row)[3] > 0.0f};
         },
         scope);

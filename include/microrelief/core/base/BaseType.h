@@ -64,6 +64,19 @@ struct BaseType {
     double (*texelSize)(const BaseShape& shape, int mapWidth, int mapHeight);
     // Texels per unit of the base's frame, the most over its axes (core/scene/FloatLimits).
     double (*texelsPerFrameUnit)(int mapWidth, int mapHeight);
+    // The object size of a texel's shorter side where texels are smallest but for a
+    // pole's shrinking ones (the equator of the smallest radius on an ellipsoid): what
+    // core/scene/FloatLimits counts double's rounding of positions in.
+    double (*shortestTexelSide)(const BaseShape& shape, int mapWidth, int mapHeight);
+    // Whether the frame's unit can be far longer than the texels where the frame point is
+    // largest, so that the frame's float rounding at the eye (|object coordinate| 2^-23
+    // object units an axis) must be counted in shortestTexelSide too (FloatLimits, check
+    // 4): an ellipsoid of radii 4e5, 0.5, 0.5 seen near its tip, where texels are 0.006
+    // wide and the frame's x unit 4e5 (8 pixels' silhouettes wrong at 48 x 32, measured).
+    // Not where the frame's axes are its texels' (the plane; the cylinder, whose axis
+    // rounding moves a ray along texels as long as the frame's unit allows: a cylinder
+    // 1e6 long seen near y = 4.5e5 is exact).
+    bool frameStretchesPastTexels;
     // The least and the most length of the object-space normals the shader makes before
     // it normalises them, for height scale s and heights up to `maxHeight` (core/scene/
     // FloatLimits, check 3). The gradient is at most `maxHeight` map units a texel: the

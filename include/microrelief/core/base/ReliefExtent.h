@@ -20,7 +20,12 @@ ReliefExtent reliefExtent(int width, int height, double maxHeight, double height
 // Scans the map for its max.
 ReliefExtent reliefExtent(const HeightMap& map, double heightScale, const BaseShape& base = {});
 // The radius resolveCamera gets for this relief (it sets the depth range only): about
-// the world's origin, of the box placed by `objectToWorld` (the model transform).
+// sceneCentre (the model's translation: the world's origin for the identity), of the box
+// placed by `objectToWorld` (the model transform), so that a relief far from the origin
+// gets the depth range of one at it.
 double sceneRadius(const ReliefExtent& extent, const glm::dmat4& objectToWorld = glm::dmat4(1.0));
+inline glm::dvec3 sceneCentre(const glm::dmat4& objectToWorld) {
+    return glm::dvec3(objectToWorld[3]);
+}
 
 }  // namespace microrelief

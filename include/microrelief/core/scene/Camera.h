@@ -39,7 +39,9 @@ struct CameraFrame {
 
 // Throws Error(BadInput) for a degenerate camera (eye at the target, up along the view
 // direction, field of view outside (0, 180)). `sceneRadius` bounds the scene around
-// the origin and sets the depth range.
-CameraFrame resolveCamera(const Camera& camera, int width, int height, double sceneRadius);
+// `sceneCentre` (the world's origin, or the relief's: core/base/ReliefExtent.h) and sets
+// the depth range.
+CameraFrame resolveCamera(const Camera& camera, int width, int height, double sceneRadius,
+                          const glm::dvec3& sceneCentre = glm::dvec3(0.0));
 
 }  // namespace microrelief

@@ -2,15 +2,21 @@
 // beyond which the picture stops being exact (or finite), checked before a render.
 //
 // Every number the shader works with is a 32-bit float (24-bit significand, largest
-// 3.4e38). In map space (map_space.glsl) a ray is origin + t dir with X, Y in texels and
+// 3.4e38). World positions never reach it as they are: the renderer traces relative to
+// the eye (ReliefRenderer::draw), subtracting the eye from the model's translation, the
+// light and the clip transform in double first, so a relief 9e5 units from the world's
+// origin is traced as exactly as one at it; what float sees is the scene as seen from the
+// eye, and the relief's object space (the model's inverse, taken in double). In map space (map_space.glsl) a ray is origin + t dir with X, Y in texels and
 // the height in map units h = y / s (s = --height-scale), so
 //   dir.xy = world direction (x, z) * T,  T = max(W, H) texels per world unit,
 //   dir.h  = world direction y / s.
 // Five things can go wrong, each bounded here with the margins the comments in
 // FloatLimits.cpp derive (numbered as there):
-//  1. World coordinates that float cannot carry: the box corners, the eye and the depth
-//     range are uniforms. Camera vectors, the relief's top s * max h and the box's
-//     corners as placed (any base, through the model): within kMaxWorldCoordinate.
+//  1. World coordinates: the relief's top s * max h within kMaxWorldCoordinate (it is
+//     a size the shader works with); positions (the eye, the target, a point light, the
+//     box's corners as placed, any base, through the model) within kMaxWorldPosition, and
+//     near enough to the origin that double, in which they are subtracted, keeps them to
+//     1/1024 of the relief's texel (a relief 1e-3 wide at 1e12 is not).
 //  2. Overflow in the exact patch solve (bilinear_patch.glsl, mr_intersectPatch): B^2 and
 //     4AC are products of (height difference * dir.xy) and dir.h terms; they must stay
 //     below 2^128. Bounded by max h * Dxy <= 2^58 and Dh <= 2^58, Dxy and Dh the largest
@@ -30,7 +36,11 @@
 //     eye taken into object space by the model's inverse (a relief grown 1e5 times is
 //     seen from 1e5 times as far), then into the frame (on a curved base, the canonical
 //     frame of radius 1, T_frame texels a frame unit: W / 2 pi around, H / 2 along a
-//     cylinder, H / pi in latitude).
+//     cylinder, H / pi in latitude). On an ellipsoid the frame point's error is also
+//     |object coordinate| 2^-23 object units on each axis, however long the frame's unit
+//     is there (radii 4e5, 0.5, 0.5 seen near the tip keep the eye to 0.05 units, 8
+//     times the texel there): the eye's object coordinates, in texels of its shortest
+//     texel side (BaseType::frameStretchesPastTexels), within 2^18 as well.
 //  5. Rays of neighbouring pixels that float cannot tell apart: 2 tan(fovy / 2) / height
 //     at least 2^-19 (32 ulps of a unit direction's components).
 #pragma once
@@ -44,9 +54,12 @@
 
 namespace microrelief {
 
-// Camera coordinates (--eye, --target) and the relief's top s * max h, in world units
-// (the relief spans one); also the largest component of --up and --light.
+// The relief's top s * max h, in world units (the relief spans one); also the largest
+// component of --up and --light, and of a base's sizes.
 inline constexpr double kMaxWorldCoordinate = 1e6;
+// Positions (--eye, --target, --light-position, the relief's box as --model places it),
+// in world units: differenced in double before the shader sees them (check 1).
+inline constexpr double kMaxWorldPosition = 1e12;
 // Directions (--up, --light) need a largest component of at least this (smaller ones
 // lose their length to underflow when squared in float).
 inline constexpr double kMinDirectionComponent = 1e-6;

@@ -74,7 +74,7 @@ struct ShadingOptions {
     glm::vec3 lightDirection =
         glm::normalize(glm::vec3(-0.45f, 0.8f, -0.35f));  // towards a directional light
     // A point light at this world position instead (--light-position).
-    std::optional<glm::vec3> lightPosition;
+    std::optional<glm::dvec3> lightPosition;  // double: the renderer subtracts the eye first
     ShadowMode shadows = ShadowMode::Off;
     float lightSizeDegrees = 1.0f;          // soft shadows: the light's angular diameter
     glm::vec3 albedo{0.60f, 0.58f, 0.55f};  // without an albedo texture

@@ -22,6 +22,7 @@
 #include "microrelief/core/base/BaseShape.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/core/scene/Method.h"
 #include "microrelief/core/scene/ModelTransform.h"
 #include "microrelief/core/scene/SceneFields.h"
@@ -103,8 +104,11 @@ std::vector<FieldError> validateScene(const ReliefDesc& relief, const ViewDesc& 
 
 // The checks of a point and of a direction the shader gets as floats, on a value still in
 // double (a command line's text, before a desc stores it in float: a light of 1e-300 is
-// refused as too short, not rounded to zero first). validate() runs them on the desc.
-void checkPoint(std::vector<FieldError>& errors, const std::string& field, const glm::dvec3& p);
+// refused as too short, not rounded to zero first). validate() runs them on the desc. A
+// point's components lie within `limit`: kMaxWorldPosition for a position (the renderer
+// subtracts the eye in double first), kMaxWorldCoordinate for --up (core/scene/FloatLimits.h).
+void checkPoint(std::vector<FieldError>& errors, const std::string& field, const glm::dvec3& p,
+                double limit = kMaxWorldPosition);
 void checkDirection(std::vector<FieldError>& errors, const std::string& field, const glm::dvec3& v);
 
 // Throws Error(BadInput) with the first of `errors`; nothing when there are none.

@@ -25,6 +25,7 @@
 #include "microrelief/core/Log.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/io/AtomicFile.h"
 #include "microrelief/io/HeightMapFile.h"
 
 using namespace microrelief;
@@ -179,6 +180,29 @@ void checkOutputFolder(const std::filesystem::path& folder) {
         throwBadInput("--out-dir " + folder.string() + where + " is not a folder");
     if (::access(existing.c_str(), W_OK | X_OK) != 0)
         throwBadInput("--out-dir " + folder.string() + where + ": cannot write there");
+}
+
+// Before any work: no map measured is a file the run writes into --out-dir (a plot over
+// the map it plots). Only files there now can be maps: the reports and plots by name, and
+// the Pareto plots, named after the maps, as they are.
+void checkMapsAreNotOutputs(const std::filesystem::path& folder,
+                            const std::vector<MapEntry>& maps) {
+    std::vector<NamedFile> read;
+    for (const MapEntry& map : maps)
+        if (map.source.file) read.push_back({*map.source.file, "the map"});
+    std::vector<NamedFile> written;
+    for (const char* name :
+         {"bench.csv", "bench.md", "plots.gnuplot", "plot_data.txt", "time_vs_size.png",
+          "fetches_vs_size.png", "rebuild.csv", "rebuild.md", "materials.csv", "materials.md",
+          "terrain.csv", "terrain.md", "terrain.png"})
+        written.push_back({folder / name, "--out-dir"});
+    std::error_code ec;
+    for (auto it = std::filesystem::directory_iterator(folder, ec);
+         !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+        if (it->path().filename().string().rfind("pareto-", 0) == 0)
+            written.push_back({it->path(), "--out-dir"});
+    }
+    checkOutputsAreNotInputs(written, read);
 }
 
 // What was asked for and is not measured, a line each (bench.md and the console say so,
@@ -350,7 +374,7 @@ int main(int argc, char** argv) {
                      std::to_string(terrainDefaults.height));
     app.add_option("--memory", memoryMib, "The page pool's budget for --terrain, MiB")
         ->capture_default_str()
-        ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
+        ->check(wholeNumberIn(1, std::size_t{1} << 20));
     app.add_flag("--quick", quick,
                  "The procedural relief at 256 and 4096 (other maps only where --maps names "
                  "them), views 45 and 80 degrees, 256x256, step budgets up to 1024 (minutes on a "
@@ -482,6 +506,7 @@ int main(int argc, char** argv) {
         refuseRepeats(options.interpolations, "--interpolations",
                       [](Interpolation i) { return std::string(interpolationName(i)); });
         checkOutputFolder(outDir);
+        checkMapsAreNotOutputs(outDir, options.assets);
         if (int(rebuild) + int(materials) + int(terrain) > 1)
             throwBadInput("--rebuild, --materials and --terrain: one at a time");
         if (options.glsl330 && (rebuild || materials || terrain))

@@ -63,8 +63,7 @@ std::vector<FrameFiles> frameFiles(const RenderOptions& o, std::size_t pathLengt
         FrameFiles f{frame, out.expand("frame", frame), std::nullopt};
         if (aov) f.aov = aov->expand("frame", frame);
         if (files.empty()) {
-            if (f.aov && f.aov->extension() != ".exr")
-                throwBadInput(f.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
+            if (f.aov) checkAovExtension(*f.aov);
             checkOutputTargets(f.aov ? std::vector{f.out, *f.aov} : std::vector{f.out});
         }
         for (const auto* file : {&f.out, f.aov ? &*f.aov : nullptr}) {
@@ -111,6 +110,35 @@ std::filesystem::path manifestFile(const RenderOptions& o) {
                                .string();
     return FramePattern(text, "--manifest", {"shard", "shards"})
         .expand({{"shard", shard.index}, {"shards", shard.count}});
+}
+
+// Before anything is read or written: the manifest is no frame's file, and no file the run
+// writes (frames, AOVs, the manifest) is one it reads (the camera file, each selected
+// frame's map and albedo), through a link or not.
+void checkFilesWritten(const RenderOptions& o, const CameraPath& path,
+                       const std::vector<FrameFiles>& files,
+                       const std::filesystem::path& manifest) {
+    for (const FrameFiles& f : files) {
+        if (manifest.lexically_normal() == f.out.lexically_normal() ||
+            (f.aov && manifest.lexically_normal() == f.aov->lexically_normal()))
+            throwBadInput(manifest.string() + ": given for the manifest and an output");
+    }
+    std::vector<NamedFile> read;
+    if (o.batch.cameras) read.push_back({*o.batch.cameras, "--cameras"});
+    std::set<std::filesystem::path> seen;
+    for (const FrameFiles& f : files) {
+        const PathFrame frame = path.frame(f.frame);
+        for (NamedFile& file :
+             filesRead(frame.scene.job, o.batch.cameras ? frame.origin + ": " : "")) {
+            if (seen.insert(file.file).second) read.push_back(std::move(file));
+        }
+    }
+    std::vector<NamedFile> written{{manifest, "--manifest"}};
+    for (const FrameFiles& f : files) {
+        written.push_back({f.out, "--out"});
+        if (f.aov) written.push_back({*f.aov, "--aov"});
+    }
+    checkOutputsAreNotInputs(written, read);
 }
 
 // Removes the temporary files that a killed run left beside this run's outputs; those
@@ -289,23 +317,29 @@ int runBatch(const RenderOptions& o) {
     const Shard shard = o.batch.shard.value_or(Shard{});
     const std::vector<int> frames = selectFrames(path.size(), o.batch.frames, shard);
     const std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
-    checkMapFiles(path, frames);
-    CheckedFrames checked = checkFrames(o, path, frames);
+    const std::filesystem::path manifestPath = manifestFile(o);
+    checkFilesWritten(o, path, files, manifestPath);
+    BatchProgress progress(static_cast<int>(frames.size()),
+                           !o.quiet && BatchProgress::stderrIsTerminal());
+    // --skip-existing: the frames whose files are whole already. Nothing of theirs is read:
+    // no map loaded, no pyramid file opened or built, no cache folder made.
+    std::vector<bool> done(files.size(), false);
+    std::vector<int> toDraw;
+    for (std::size_t k = 0; k < files.size(); ++k) {
+        const FrameFiles& f = files[k];
+        done[k] = o.batch.skipExisting && complete(f.out, progress) &&
+                  (!f.aov || complete(*f.aov, progress));
+        if (!done[k]) toDraw.push_back(f.frame);
+    }
+    checkMapFiles(path, toDraw);
+    CheckedFrames checked = checkFrames(o, path, toDraw);
     std::optional<LoadedMap>& checkedMap = checked.last;
     if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(kLightSizeUnused);
-    const std::filesystem::path manifestPath = manifestFile(o);
-    for (const FrameFiles& f : files) {
-        if (manifestPath.lexically_normal() == f.out.lexically_normal() ||
-            (f.aov && manifestPath.lexically_normal() == f.aov->lexically_normal()))
-            throwBadInput(manifestPath.string() + ": given for the manifest and an output");
-    }
 
     ManifestWriter manifest(manifestPath);
     if (const int removed = removeAbandonedTemporaries(files); removed > 0)
         logInfo("removed " + std::to_string(removed) + " temporary file(s) of a killed run");
 
-    BatchProgress progress(static_cast<int>(frames.size()),
-                           !o.quiet && BatchProgress::stderrIsTerminal());
     std::unique_ptr<GlContext> context;
     std::optional<HeadlessRenderer> renderer;
     // The map drawn, for the eye's check (none from a file); shared with the renderer, whose
@@ -319,12 +353,12 @@ int runBatch(const RenderOptions& o) {
     std::optional<std::optional<std::filesystem::path>> loadedAlbedo;
     int rendered = 0, skipped = 0, mapsLoaded = 0;
 
-    for (const FrameFiles& f : files) {
+    for (std::size_t index = 0; index < files.size(); ++index) {
+        const FrameFiles& f = files[index];
         const PathFrame frame = path.frame(f.frame);
         const std::string camera =
             cameraFlags(frame.scene.job.camera) + (frame.flags.empty() ? "" : " " + frame.flags);
-        if (o.batch.skipExisting && complete(f.out, progress) &&
-            (!f.aov || complete(*f.aov, progress))) {
+        if (done[index]) {
             manifest.append({f.frame, f.out.string(), camera, 0.0, "skipped"});
             ++skipped;
             progress.frameDone(false, 0.0);

@@ -178,15 +178,16 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
 int run(const RenderOptions& o) {
     if (o.batch.active()) return runBatch(o);  // a camera path: many frames
     const auto start = std::chrono::steady_clock::now();
-    if (o.aov && o.aov->extension() != ".exr") {
-        throwBadInput(o.aov->string() + ": the AOV must be an OpenEXR file (.exr)");
-    }
+    if (o.aov) checkAovExtension(*o.aov);
     checkOutputTargets(o.aov ? std::vector<std::filesystem::path>{o.out, *o.aov}
                              : std::vector{o.out});
+    // Neither output may be a file the picture is drawn from (the map, its albedo).
+    std::vector<NamedFile> outputs{{o.out, "--out"}};
+    if (o.aov) outputs.push_back({*o.aov, "--aov"});
+    checkOutputsAreNotInputs(outputs, filesRead(o.scene.job));
     if (o.lightSizeGiven && o.scene.job.shading.shadows != ShadowMode::Soft)
         logWarning(kLightSizeUnused);
-    const std::filesystem::path heightFile =
-        o.scene.job.map.file ? *o.scene.job.map.file : defaultHeightMapPath();
+    const std::filesystem::path heightFile = heightMapPath(o.scene.job);
     const Drawn drawn =
         o.pyramidCache ? drawFromPyramidFile(o, heightFile) : drawLoadedMap(o, heightFile);
     const RenderedFrame& frame = drawn.result.frame;

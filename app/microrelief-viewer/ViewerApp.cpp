@@ -564,6 +564,8 @@ void ViewerApp::undo() {
 void ViewerApp::saveMap(const std::filesystem::path& file) {
     const bool automated = options_.saveMap.has_value() && file == *options_.saveMap;
     try {
+        // Never over a file the view is drawn from (the map, its albedo).
+        checkOutputsAreNotInputs({{file, ""}}, filesRead(state_.scene.job));
         // An animated relief's heights are the field's, read back; a sculpted map's are its
         // mirror, kept equal to the GPU's samples dab by dab.
         const HeightMap map = animated_ ? renderer_->textures()->readSamples(window_->gl()) : *map_;

@@ -200,6 +200,13 @@ ParseResult<ViewerOptions> parseViewerOptions(int argc, char** argv) {
         for (const auto* file : {&o.saveMap, &o.screenshot, &o.windowScreenshot})
             if (*file) outputs.push_back(**file);
         checkOutputTargets(outputs);
+        // Nor one the viewer reads (the map, its albedo), which writing it would replace.
+        std::vector<NamedFile> written;
+        for (const auto& [file, flag] :
+             {std::pair{&o.saveMap, "--save-map"}, std::pair{&o.screenshot, "--screenshot"},
+              std::pair{&o.windowScreenshot, "--window-screenshot"}})
+            if (*file) written.push_back({**file, flag});
+        checkOutputsAreNotInputs(written, filesRead(o.scene.job));
         return o;
     });
 }

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <new>
 #include <optional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -66,11 +67,12 @@ inline std::string unexpectedArgumentsText(const std::vector<std::string>& words
     return join(options) + (options.size() > 1 ? " are not options" : " is not an option");
 }
 
-// CLI11's parse error in the programs' words: an option given twice, a value that is not
-// of the option's type and arguments not expected said plainly (CLI11 says "--size: At
-// Most 1 required but received 2", "Could not convert: --channel = 1.5" and "The following
-// argument was not expected: --heigth"); the others as CLI11 puts them. `app` is the one
-// that threw, which holds the words it did not expect.
+// CLI11's parse error in the programs' words: an option given twice, an option without its
+// value, a flag given one, a value that is not of the option's type and arguments not
+// expected said plainly (CLI11 says "--size: At Most 1 required but received 2", "--height:
+// 1 required TEXT missing", "--quiet: too many inputs for a flag", "Could not convert:
+// --channel = 1.5" and "The following argument was not expected: --heigth"); the others as
+// CLI11 puts them. `app` is the one that threw, which holds the words it did not expect.
 inline std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app) {
     std::string message = e.what();
     if (dynamic_cast<const CLI::ExtrasError*>(&e) && !app.remaining().empty())
@@ -81,8 +83,18 @@ inline std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app)
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     const std::string atMost = ": at most 1 required but received ";
     const std::string convert = "Could not convert: ";
+    // "--height: 1 required TEXT missing": the option came last, without its value.
+    static const std::regex missing(R"(^(\S+): \d+ required \S+ missing$)");
+    // "--quiet: too many inputs for a flag", "-q was given a disallowed flag override".
+    static const std::regex flagValue(
+        R"(^(\S+)(: too many inputs for a flag| was given a disallowed flag override)$)");
+    std::smatch match;
     if (const std::size_t at = lower.find(atMost); at != std::string::npos) {
         message = message.substr(0, at) + " is given more than once";
+    } else if (std::regex_match(message, match, missing)) {
+        message = match[1].str() + " needs a value";
+    } else if (std::regex_match(message, match, flagValue)) {
+        message = match[1].str() + " takes no value";
     } else if (message.rfind(convert, 0) == 0) {
         const std::size_t equals = message.find(" = ", convert.size());
         if (equals != std::string::npos) {
@@ -91,6 +103,22 @@ inline std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app)
         }
     }
     return message;
+}
+
+// A CLI11 check: a whole number from `lo` to `hi`, digits only, which fails as the
+// programs' other flags do, "--memory: 'abc' is not a whole number from 1 to 1048576"
+// (CLI11's Range says "Value abc not in range 1 to 1048576", and takes "1e3").
+inline CLI::Validator wholeNumberIn(std::size_t lo, std::size_t hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            const bool digits = !text.empty() && text.size() <= 19 &&
+                                text.find_first_not_of("0123456789") == std::string::npos;
+            const unsigned long long value = digits ? std::stoull(text) : 0;
+            if (digits && value >= lo && value <= hi) return {};
+            return "'" + text + "' is not a whole number from " + std::to_string(lo) + " to " +
+                   std::to_string(hi);
+        },
+        "UINT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
 }
 
 // A program's one line for a parse error: parseErrorText and where to look.

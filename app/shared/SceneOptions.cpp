@@ -12,6 +12,7 @@
 #include <sstream>
 #include <vector>
 
+#include "CommandLine.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Machine.h"
@@ -548,6 +549,13 @@ std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief) {
     return std::nullopt;
 }
 
+std::vector<NamedFile> filesRead(const ReliefDesc& relief, const std::string& where) {
+    std::vector<NamedFile> files{{heightMapPath(relief), where + flagName("map.file")}};
+    if (const std::optional<std::filesystem::path> albedo = albedoPath(relief))
+        files.push_back({*albedo, where + flagName("albedo")});
+    return files;
+}
+
 bool bundledColoursFit(const ReliefDesc& relief) {
     // The bundled map's colours go with its stones: not with a field that replaces them.
     return relief.map.bundled() &&
@@ -637,7 +645,7 @@ CLI::Option* addMemoryFlag(CLI::App& app, std::size_t& mib, const std::string& d
                     "(such a map is read through pages, " +
                         drawn + ")")
         ->capture_default_str()
-        ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 20));
+        ->check(wholeNumberIn(1, std::size_t{1} << 20));
 }
 
 void allowPagedMaps(HeightMapLoadOptions& load) {

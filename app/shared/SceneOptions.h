@@ -17,6 +17,7 @@
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/scene/Georeference.h"
 #include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/io/AtomicFile.h"
 
 namespace CLI {
 class App;
@@ -112,6 +113,10 @@ std::filesystem::path heightMapPath(const ReliefDesc& relief);
 // (unless an animated field, waves or ripples, replaces its heights); none for
 // AlbedoSource::Kind::None or another map without one.
 std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief);
+// The files drawing `relief` reads, named by their flags after `where` (a camera file's
+// row: "cams.csv: line 4 (frame 2): "): the height map and the albedo, if any. What no
+// output of a run may be (io/AtomicFile.h: checkOutputsAreNotInputs).
+std::vector<NamedFile> filesRead(const ReliefDesc& relief, const std::string& where = "");
 // Whether the bundled map's colours go with `relief`'s heights: the bundled map, unless an
 // animated field replaces them (albedoPath's rule for AlbedoSource::Kind::Default).
 bool bundledColoursFit(const ReliefDesc& relief);

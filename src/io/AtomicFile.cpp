@@ -177,6 +177,40 @@ void checkReplaceable(const std::filesystem::path& file) {
         throwBadInput(file.string() + ": is not a regular file (a device, FIFO or socket)");
 }
 
+FileIdentity::FileIdentity(const std::filesystem::path& file) {
+    std::error_code ec;
+    resolved_ = std::filesystem::weakly_canonical(std::filesystem::absolute(file, ec), ec);
+    if (ec) resolved_ = std::filesystem::absolute(file, ec).lexically_normal();
+    struct stat info {};
+    if (::stat(file.c_str(), &info) == 0)
+        inode_ = std::make_pair(static_cast<std::uint64_t>(info.st_dev),
+                                static_cast<std::uint64_t>(info.st_ino));
+}
+
+bool FileIdentity::sameFileAs(const FileIdentity& other) const {
+    return resolved_ == other.resolved_ || (inode_ && other.inode_ && *inode_ == *other.inode_);
+}
+
+void checkOutputsAreNotInputs(const std::vector<NamedFile>& outputs,
+                              const std::vector<NamedFile>& inputs) {
+    if (outputs.empty() || inputs.empty()) return;
+    std::vector<FileIdentity> read;
+    for (const NamedFile& input : inputs) read.emplace_back(input.file);
+    const auto named = [](const NamedFile& f) {
+        return f.what.empty() ? f.file.string() : f.what + " " + f.file.string();
+    };
+    for (const NamedFile& output : outputs) {
+        const FileIdentity written(output.file);
+        for (std::size_t k = 0; k < inputs.size(); ++k) {
+            if (written.sameFileAs(read[k])) {
+                throwBadInput(named(output) + ": the same file as " + named(inputs[k]) +
+                              ", which this run reads; writing it would replace it (name "
+                              "another file)");
+            }
+        }
+    }
+}
+
 StagedFile::StagedFile(const std::filesystem::path& target) : target_(target) {
     CleanupRegistry& registry = CleanupRegistry::instance();
     for (;;) {

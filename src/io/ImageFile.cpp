@@ -2,7 +2,6 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <sys/stat.h>
 
 #include <cstddef>
 #include <limits>
@@ -52,25 +51,6 @@ public:
 
 private:
     StagedFile& file_;
-};
-
-// A path as the file system sees it: symbolic links and "..", resolved as far as the
-// path exists (std::filesystem::weakly_canonical), and the file's device and inode when
-// it exists, so that a hard link counts as the same file.
-struct FileIdentity {
-    std::filesystem::path resolved;
-    std::optional<std::pair<dev_t, ino_t>> inode;
-
-    explicit FileIdentity(const std::filesystem::path& file) {
-        std::error_code ec;
-        resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(file, ec), ec);
-        if (ec) resolved = std::filesystem::absolute(file).lexically_normal();
-        struct stat info {};
-        if (::stat(file.c_str(), &info) == 0) inode = std::make_pair(info.st_dev, info.st_ino);
-    }
-    bool sameFileAs(const FileIdentity& other) const {
-        return resolved == other.resolved || (inode && other.inode && *inode == *other.inode);
-    }
 };
 
 }  // namespace

@@ -15,7 +15,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -242,7 +241,8 @@ void writePyramidFile(const std::filesystem::path& file, const MapRows& rows, bo
 std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path& file) {
     const std::string name = file.string();
     checkRegularFile(file, name);
-    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    // O_NONBLOCK: a FIFO put there since the check would hold open(2) until a writer came.
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) throwBadInput(name + ": cannot open (" + errnoText() + ")");
     struct Closer {
         int fd;
@@ -253,6 +253,8 @@ std::shared_ptr<const PyramidFile> PyramidFile::open(const std::filesystem::path
     } closer{fd};
     struct stat st {};
     if (::fstat(fd, &st) != 0) throwBadInput(name + ": cannot stat (" + errnoText() + ")");
+    if (!S_ISREG(st.st_mode))
+        throwBadInput(name + ": is not a regular file (a FIFO, device or socket)");
     const auto fileBytes = static_cast<std::uint64_t>(st.st_size);
     const auto readExactly = [&](void* to, std::size_t size, std::uint64_t at) {
         auto* bytes = static_cast<unsigned char*>(to);
@@ -541,11 +543,29 @@ namespace {
 
 // Whether `file` is a pyramid file of another version than this build's (a cache rebuilds
 // it; PyramidFile::open refuses it).
+// Opened without blocking and asked what it is before a byte is read: a FIFO there (or a
+// link to one) would hold a plain open(2) until a writer came.
 bool otherVersion(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) return false;
+    struct stat st {};
     unsigned char head[12] = {};
-    return in.read(reinterpret_cast<char*>(head), sizeof head) &&
-           std::memcmp(head, kMagic, sizeof kMagic) == 0 && get32(head + 8) != kVersion;
+    const bool other = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+                       ::pread(fd, head, sizeof head, 0) == static_cast<ssize_t>(sizeof head) &&
+                       std::memcmp(head, kMagic, sizeof kMagic) == 0 && get32(head + 8) != kVersion;
+    ::close(fd);
+    return other;
+}
+
+// The map's stem as the start of its pyramid file's name, cut to at most 128 bytes (at a
+// character's start): with the hash and the extension the name stays within the 255 bytes
+// a file system allows, whatever the map is called.
+std::string stemForName(const std::filesystem::path& mapFile) {
+    std::string stem = mapFile.stem().string();
+    if (stem.size() <= 128) return stem;
+    std::size_t end = 128;
+    while (end > 0 && (static_cast<unsigned char>(stem[end]) & 0xC0) == 0x80) --end;
+    return stem.substr(0, end);
 }
 
 }  // namespace
@@ -565,11 +585,17 @@ std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem:
     for (const unsigned char c : identity) fnv = (fnv ^ c) * 1099511628211ull;
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv));
-    const std::filesystem::path file =
-        cacheFolder / (mapFile.stem().string() + "-" + hash + ".mrpyr");
+    const std::filesystem::path file = cacheFolder / (stemForName(mapFile) + "-" + hash + ".mrpyr");
     if (built) *built = false;
     std::error_code error;
-    if (std::filesystem::exists(cacheFolder) && !std::filesystem::is_directory(cacheFolder))
+    // What is there, asked with error codes: a name too long or a folder that cannot be
+    // searched is said in one line, not as std::filesystem's exception.
+    const std::filesystem::file_status folder = std::filesystem::status(cacheFolder, error);
+    if (folder.type() != std::filesystem::file_type::not_found && error) {
+        throwBadInput(cacheFolder.string() + ": cannot be the pyramid files' cache (" +
+                      error.message() + ")");
+    }
+    if (std::filesystem::exists(folder) && !std::filesystem::is_directory(folder))
         throwBadInput(cacheFolder.string() + ": is not a folder (the pyramid files' cache)");
     // The folder is made, if missing, by the build's own staging (writePyramidFile's
     // FileWriteBatch), which takes it away again when the build fails or is interrupted:
@@ -580,7 +606,17 @@ std::shared_ptr<const PyramidFile> openOrBuildPyramidFile(const std::filesystem:
         if (abandonedTemporaryTarget(entry.path()) == file)
             std::filesystem::remove(entry.path(), error);
     }
-    if (std::filesystem::exists(file) && !otherVersion(file)) {
+    // Its kind before anything opens it: a FIFO there (or a link to one) is refused, not
+    // waited on; a folder or device likewise.
+    const std::filesystem::file_status there = std::filesystem::status(file, error);
+    if (there.type() != std::filesystem::file_type::not_found && error)
+        throwBadInput(file.string() + ": cannot read (" + error.message() + ")");
+    if (std::filesystem::exists(there) && !std::filesystem::is_regular_file(there)) {
+        throwBadInput(file.string() +
+                      ": is not a regular file (a folder, FIFO, device or socket) where the "
+                      "map's pyramid file goes; remove it");
+    }
+    if (std::filesystem::exists(there) && !otherVersion(file)) {
         std::shared_ptr<const PyramidFile> found = PyramidFile::open(file);
         if (found->sourceKey() == key) return found;
     }

@@ -343,6 +343,37 @@ TEST_F(BatchCli, SkipExistingLeavesCompleteFramesAlone) {
     EXPECT_EQ(hiddenFiles(out), std::vector<std::string>{});
 }
 
+// With every frame there, --skip-existing reads nothing that drawing takes (issue 47): no
+// map loaded, no pyramid file opened or built, no cache folder made, so it runs where the
+// cache cannot be made or written. A frame missing is drawn, its pyramid file built then.
+TEST_F(BatchCli, SkipExistingWithEveryFrameThereOpensNoPyramidFile) {
+    const auto out = dir / "f";
+    const std::string args =
+        small + "--turntable 3 --out '" + (out / "v{frame}.png").string() + "' --skip-existing";
+    ASSERT_EQ(run(args + " --pyramid-cache " + (dir / "cache").string()).status, 0);
+    test::writeBytes(dir / "file", {'x'});
+    std::filesystem::create_directory(dir / "read-only");
+    std::filesystem::permissions(
+        dir / "read-only", std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    // Under a file no folder can be made, whoever runs the test; a read-only folder holds
+    // back all but root.
+    for (const auto& cache :
+         {dir / "file" / "cache", dir / "missing" / "cache", dir / "read-only"}) {
+        const test::RunResult r = run(args + " --pyramid-cache " + cache.string());
+        EXPECT_EQ(r.status, 0) << cache << ": " << r.err;
+        EXPECT_NE(r.out.find("0 rendered, 3 skipped"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("0 maps loaded"), std::string::npos) << r.out;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "missing")) << "a cache folder was made";
+    EXPECT_TRUE(std::filesystem::is_empty(dir / "read-only")) << "a pyramid file was built";
+    std::filesystem::remove(out / "v1.png");
+    const test::RunResult one =
+        run(args + " --pyramid-cache " + (dir / "missing" / "cache").string());
+    ASSERT_EQ(one.status, 0) << one.err;
+    EXPECT_NE(one.out.find("1 rendered, 2 skipped"), std::string::npos) << one.out;
+    EXPECT_FALSE(std::filesystem::is_empty(dir / "missing" / "cache"));
+}
+
 // A full disk (a file size limit smaller than a frame, as tests/cli/FullDiskCliTest.cpp
 // has it): the last frame fails with one line and exit 1, is marked failed and never
 // rendered, and no cut-off file or temporary is left for --skip-existing to keep.

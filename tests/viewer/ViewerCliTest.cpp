@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "TestSupport.h"
+#include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
 
@@ -41,6 +42,25 @@ TEST_F(ViewerCli, HelpListsTheRenderersSceneFlags) {
     EXPECT_NE(version.out.find("microrelief-viewer"), std::string::npos);
 }
 
+// No file the viewer writes is one it reads (issue 47): the map and its albedo stay as
+// they were, through a link too; refused before any window.
+TEST_F(ViewerCli, OutputsThatAreInputsAreRefused) {
+    const auto map = dir / "c.png";
+    test::writeMap(map, synth::valueNoise(16, 16, 4, 2, 3), PixelType::UInt16);
+    std::filesystem::create_symlink(map, dir / "link.png");
+    const std::vector<std::uint8_t> bytes = test::readBytes(map);
+    for (const std::string& flag : {"--save-map", "--screenshot", "--window-screenshot"}) {
+        for (const auto& out : {map, dir / "link.png"}) {
+            expectFailure(
+                run("--height " + map.string() + " " + flag + " " + out.string()), 2,
+                flag + " " + out.string() + ": the same file as --height " + map.string());
+        }
+    }
+    expectFailure(run("--albedo " + map.string() + " --screenshot " + map.string()), 2,
+                  "the same file as --albedo");
+    EXPECT_EQ(test::readBytes(map), bytes);
+}
+
 TEST_F(ViewerCli, BadArgumentsExitTwo) {
     expectFailure(run("--size 0x10"), 2, "--size");
     expectFailure(run("--eye 1,2"), 2, "--eye");
@@ -71,7 +91,10 @@ TEST_F(ViewerCli, BadSculptingFlagsExitTwo) {
     expectFailure(run("--brush-strength -1"), 2, "--brush-strength");
     expectFailure(run("--brush-strength inf"), 2, "--brush-strength");
     expectFailure(run("--undo -1"), 2, "--undo");
-    expectFailure(run("--save-map " + (dir / "m.tif").string()), 2, "m.tif");
+    // A GeoTIFF keeps a DEM's ground: not for the bundled map, an image.
+    expectFailure(run("--save-map " + (dir / "m.tif").string()), 2,
+                  "m.tif: a map is saved as a GeoTIFF only where it came from an elevation model");
+    expectFailure(run("--save-map " + (dir / "m.jpg").string()), 2, "m.jpg: a map is saved as");
     expectFailure(run("--animate tides"), 2, "--animate 'tides'");
     // The brush paints one map: not a tiled one, nor an animated field.
     expectFailure(run("--tile 2,2 --stroke raise,0.2,0.5,0.8,0.5"), 2, "untiled map only");

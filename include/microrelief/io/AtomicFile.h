@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -102,6 +103,33 @@ void writeFileAtomically(const std::filesystem::path& file, std::string_view byt
 // device) when something other than a regular file is at `file` (links followed), which
 // a write would move away or never finish.
 void checkReplaceable(const std::filesystem::path& file);
+
+// Where a file lies, to tell two names of one file apart from two files: its path
+// resolved (std::filesystem::weakly_canonical: symbolic links and ".." followed as far as
+// the path exists) and, where it exists, its device and inode (hard links, bind mounts).
+class FileIdentity {
+public:
+    explicit FileIdentity(const std::filesystem::path& file);
+    bool sameFileAs(const FileIdentity& other) const;
+
+private:
+    std::filesystem::path resolved_;
+    std::optional<std::pair<std::uint64_t, std::uint64_t>> inode_;  // st_dev, st_ino
+};
+
+// A file a program reads or writes, with what the program calls it in a message: its flag
+// ("--height"), or where it was named ("cams.csv: line 4 (frame 2): --height").
+struct NamedFile {
+    std::filesystem::path file;
+    std::string what;
+};
+
+// Before anything is written: no output is one of the files the run reads (FileIdentity:
+// the same path, or the same inode through a link), which writing it would replace. Throws
+// Error(BadInput) "--out c.png: the same file as --height c.png, which this run reads;
+// writing it would replace it (name another file)".
+void checkOutputsAreNotInputs(const std::vector<NamedFile>& outputs,
+                              const std::vector<NamedFile>& inputs);
 
 // The target whose temporary `file` is, when it is one of StagedFile's temporaries and
 // the process that wrote it is gone: a writer killed before its rename (SIGKILL, a power

@@ -13,6 +13,7 @@
 
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/io/AtomicFile.h"
 
 namespace microrelief::bench {
@@ -40,6 +41,12 @@ std::string portableFileName(const std::string& name) {
             control || std::string_view("<>:\"/\\|?*").find(c) != std::string_view::npos ? '-' : c;
     }
     return portable;
+}
+
+std::string markdownText(const std::string& text) {
+    std::string out;
+    for (const char c : printable(text)) out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
 }
 
 std::string gnuplotString(const std::string& text) {
@@ -176,8 +183,8 @@ std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
             plane && ml->hitPct > 0.0 && plane->hitPct > 0.0
                 ? (frameMs(*ml, wall) / ml->hitPct) / (frameMs(*plane, wall) / plane->hitPct)
                 : 0.0;
-        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
-           << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
+        md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
+           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
            << (plane ? fixed(frameMs(*plane, wall), 2) : "-") << " | " << fixed(ml->hitPct, 0)
            << " (" << (plane ? fixed(plane->hitPct, 0) : "-") << ") | "
            << (perHit > 0.0 ? fixed(perHit, 2) + "x" : "-") << " | " << fixed(ml->fetchesMean, 1)
@@ -208,7 +215,7 @@ std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
         }
         if (!exact.count(256) || exact.size() < 2) continue;
         const int big = exact.rbegin()->first;
-        md << "- " << name << ": time at " << big << " / time at 256, " << view
+        md << "- " << markdownText(name) << ": time at " << big << " / time at 256, " << view
            << "°: " << fixed(frameMs(*exact[big], wall) / frameMs(*exact[256], wall), 2);
         if (flat.count(256) && flat.count(big))
             md << " (the plane's: "
@@ -251,9 +258,9 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
                       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
                 any = true;
             }
-            md << "| " << name << " | " << std::get<1>(key) << " | " << std::get<2>(key) << "° | "
-               << method << " | " << fixed(frameMs(*q, wall), 2) << " | "
-               << fixed(frameMs(*l, wall), 2) << " | "
+            md << "| " << markdownText(name) << " | " << std::get<1>(key) << " | "
+               << std::get<2>(key) << "° | " << method << " | " << fixed(frameMs(*q, wall), 2)
+               << " | " << fixed(frameMs(*l, wall), 2) << " | "
                << fixed(frameMs(*q, wall) / frameMs(*l, wall), 2) << "x | "
                << fixed(q->fetchesMean, 1) << " | " << fixed(l->fetchesMean, 1) << " | "
                << fixed(l->fetchesMean > 0.0 ? q->fetchesMean / l->fetchesMean : 0.0, 2) << "x | "
@@ -281,10 +288,10 @@ std::string equalTimeSection(const std::vector<Measurement>& rows, bool wall,
     for (const Key& key : keys(rows)) {
         const Measurement* ml = find(rows, key, "multilevel", "exact");
         if (!ml || ml->interpolation != "bilinear") continue;
-        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
-           << "° | " << fixed(frameMs(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
-           << " | " << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->p99ErrorTexels, 2)
-           << " |";
+        md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
+           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
+           << fixed(ml->coverageMismatchPct, 3) << " | " << fixed(ml->offHalfTexelPct, 3) << " | "
+           << fixed(ml->p99ErrorTexels, 2) << " |";
         for (const std::string& p : peers) {
             const bool top = !tracesTheSolid(p);
             if (const Measurement* pick = equalTime(rows, p, *ml, wall)) {
@@ -333,7 +340,7 @@ std::string throughputSection(const std::vector<Measurement>& rows, bool wall) {
             const Measurement* eq = ml ? equalAccuracy(rows, key, method, *ml) : nullptr;
             const Measurement* second = method == "multilevel" ? first : eq ? eq : last;
             for (const Measurement* r : {first, second}) {
-                md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | "
+                md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
                    << std::get<2>(key) << "° | " << method << " | " << r->param << " | "
                    << fixed(frameMs(*r, wall), 2) << " | "
                    << fixed(megapixelsPerSecond(*r, wall), 2) << " | " << fixed(r->fetchesMean, 1)
@@ -362,7 +369,7 @@ std::string costSection(const std::vector<Measurement>& rows) {
         const auto id = std::make_tuple(r.map, r.mapSize, r.method);
         if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
         seen.push_back(id);
-        md << "| " << r.map << " | " << r.mapSize << " | " << r.method << " | "
+        md << "| " << markdownText(r.map) << " | " << r.mapSize << " | " << r.method << " | "
            << fixed(r.bytesPerTexel, 2) << " | "
            << (r.preprocessWhere == "-" ? std::string("-")
                                         : fixed(r.preprocessMs, 1) + " (" + r.preprocessWhere + ")")
@@ -439,7 +446,7 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
                << "'\nset ylabel '% wrong: hit/miss + hits off > 1/2 texel (0 drawn at "
                << kZeroDrawnAt << ")'\n"
                << "set multiplot layout 1," << views.size() << " title "
-               << gnuplotString(map + " " + std::to_string(size) +
+               << gnuplotString(printable(map) + " " + std::to_string(size) +
                                 ": time against error, every setting")
                << "\n";
         for (std::size_t v = 0; v < views.size(); ++v) {
@@ -533,7 +540,7 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
        << ", in ms.\n\n";
     if (!info.notes.empty()) {
         md << "Not measured:\n\n";
-        for (const std::string& line : info.notes) md << "- " << line << '\n';
+        for (const std::string& line : info.notes) md << "- " << markdownText(line) << '\n';
         md << '\n';
     }
     if (std::none_of(rows.begin(), rows.end(),
@@ -561,8 +568,8 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         const Measurement* ml = find(rows, key, "multilevel", "exact");
         // The biquadratic rows, without peers, have a table of their own.
         if (!ml || ml->interpolation != "bilinear") continue;
-        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
-           << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
+        md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
+           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
            << fixed(megapixelsPerSecond(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
            << " | " << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->fetchesMean, 1) << " |";
         for (const std::string& p : peers) {
@@ -594,12 +601,12 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         const Measurement* one = find(rows, key, "multilevel", "1px");
         const Measurement* four = find(rows, key, "multilevel", "4px");
         if (!e || !one || !four) continue;
-        md << "| " << std::get<0>(key) << " | " << std::get<1>(key) << " | " << std::get<2>(key)
-           << "° | " << fixed(frameMs(*e, wall), 2) << " | " << fixed(frameMs(*one, wall), 2)
-           << " | " << fixed(one->offHalfTexelPct, 2) << " | " << fixed(one->meanErrorPx, 2)
-           << " / " << fixed(one->p99ErrorPx, 1) << " | " << fixed(frameMs(*four, wall), 2) << " | "
-           << fixed(four->offHalfTexelPct, 2) << " | " << fixed(four->meanErrorPx, 2) << " / "
-           << fixed(four->p99ErrorPx, 1) << " |\n";
+        md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
+           << std::get<2>(key) << "° | " << fixed(frameMs(*e, wall), 2) << " | "
+           << fixed(frameMs(*one, wall), 2) << " | " << fixed(one->offHalfTexelPct, 2) << " | "
+           << fixed(one->meanErrorPx, 2) << " / " << fixed(one->p99ErrorPx, 1) << " | "
+           << fixed(frameMs(*four, wall), 2) << " | " << fixed(four->offHalfTexelPct, 2) << " | "
+           << fixed(four->meanErrorPx, 2) << " / " << fixed(four->p99ErrorPx, 1) << " |\n";
     }
 
     // The targets of issue 5, as measured (where the procedural relief was).

@@ -28,6 +28,11 @@ std::string csvQuote(const std::string& text);
 // A CSV field as it is where it holds no comma, quote or line break, else csvQuote'd (a map
 // named by its file may hold any of them).
 std::string csvField(const std::string& text);
+// `text` (a map's name, a note naming one) as Markdown shows it in a table cell or a list
+// item: a line break or other control character written as its escape ("\n",
+// core/Text.h: printable) and '|' as "\|", so that a map named "a|b" or with a line
+// break in its name keeps the row whole.
+std::string markdownText(const std::string& text);
 // A gnuplot string in single quotes, a quote inside doubled: a file or map name as written.
 std::string gnuplotString(const std::string& text);
 // A number with `digits` decimals.

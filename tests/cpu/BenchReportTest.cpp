@@ -2,6 +2,11 @@
 // made-up measurements: which setting a peer is reported at, and on which pixels.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <sstream>
+
 #include "Report.h"
 
 using namespace microrelief::bench;
@@ -107,4 +112,53 @@ TEST(BenchReport, NamesAreQuotedWhereTheyHoldSyntax) {
     EXPECT_EQ(portableFileName("rock:1"), "rock-1");
     EXPECT_EQ(portableFileName("a<b>c\"d/e\\f|g?h*i\tj"), "a-b-c-d-e-f-g-h-i-j");
     EXPECT_EQ(portableFileName("it's x,y"), "it's x,y");
+}
+
+// A map named with a '|' or a line break (its file's name) keeps bench.md's tables whole
+// (issue 47): the '|' escaped, the line break written as "\n"; every row of a table has as
+// many cells as its header.
+TEST(BenchReport, MarkdownTablesKeepTheirCellsWhateverTheMapsAreCalled) {
+    EXPECT_EQ(markdownText("rock"), "rock");
+    EXPECT_EQ(markdownText("a|b"), "a\\|b");
+    EXPECT_EQ(markdownText("two\nlines|x"), "two\\nlines\\|x");
+    std::vector<Measurement> rows;
+    for (const std::string map : {"a|b", "two\nlines", "plain"}) {
+        for (const char* param : {"exact", "1px", "4px"}) {
+            Measurement r = row("multilevel", param, 10.0, 0.0, 0.0, 0.0);
+            r.map = map;
+            rows.push_back(r);
+        }
+        Measurement peer = row("maxmip", "64", 5.0, 0.0, 0.0, 0.0);
+        peer.map = map;
+        rows.push_back(peer);
+    }
+    const auto file =
+        std::filesystem::temp_directory_path() / ("bench-md-" + std::to_string(::getpid()) + ".md");
+    const std::string md =
+        writeMarkdown(file, RunInfo{"llvmpipe", "2026-12-06", "bench", {}}, rows);
+    std::filesystem::remove(file);
+    // A row's cells: its '|' not escaped, less one (a row starts and ends with one).
+    const auto cells = [](const std::string& line) {
+        int bars = 0;
+        for (std::size_t k = 0; k < line.size(); ++k)
+            bars += line[k] == '|' && (k == 0 || line[k - 1] != '\\');
+        return bars - 1;
+    };
+    std::istringstream lines(md);
+    int header = -1, tableRows = 0;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty() || line[0] != '|') {
+            header = -1;
+            continue;
+        }
+        if (header < 0) {
+            header = cells(line);
+            continue;
+        }
+        EXPECT_EQ(cells(line), header) << line;
+        ++tableRows;
+    }
+    EXPECT_GT(tableRows, 6);
+    EXPECT_NE(md.find("| a\\|b |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| two\\nlines |"), std::string::npos) << md;
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Serves the WebGL 2 page (web/) from a local HTTP server and prints its URL.
 # Usage: bash scripts/web.sh [--port N] [--root DIR]
-#   --port N    the port (default: a free one)
+#   --port N    the port, 1 to 65535 (default, or 0: a free one)
 #   --root DIR  the folder holding web/, shaders/ and assets/ (default: the build tree's
 #               share/microrelief, built first by scripts/setup.sh where it is missing;
 #               an installed <prefix>/share/microrelief works too)
@@ -26,8 +26,11 @@ while (($#)); do
     *) echo "web.sh: error: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-if ! [[ "$port" =~ ^[0-9]+$ ]] || ((port > 65535)); then
-  echo "web.sh: error: --port $port: expected a number from 0 to 65535" >&2
+# Decimal digits only, no leading zero (bash's arithmetic would read 080 as octal and fail,
+# and wrap a number past 2^63), then compared as a decimal number: 1 to 65535, or 0 for a
+# free one. %q keeps what was given on one line.
+if ! [[ "$port" =~ ^(0|[1-9][0-9]{0,4})$ ]] || ((10#$port > 65535)); then
+  printf 'web.sh: error: --port %q: expected a whole number from 1 to 65535 (0: a free one)\n' "$port" >&2
   exit 2
 fi
 if [ -z "$serve_root" ]; then

@@ -248,13 +248,28 @@ def serve(root, port=0, verbose=False, header_seconds=HEADER_SECONDS, idle_secon
     return server, f"http://127.0.0.1:{server.server_address[1]}/web/"
 
 
+def port_number(text):
+    """`text` as a port: ASCII decimal digits without a leading zero (int() would take
+    " 80", "+80", "8_0" and other scripts' digits), 0 to 65535; None otherwise."""
+    if not re.fullmatch(r"0|[1-9][0-9]{0,4}", text, flags=re.ASCII):
+        return None
+    port = int(text)
+    return port if port <= 65535 else None
+
+
 def main():
     parser = argparse.ArgumentParser(description="Serve the microrelief web page locally.")
     parser.add_argument("--root", default=str(pathlib.Path(__file__).resolve().parent.parent),
                         help="folder holding web/, shaders/ and assets/ (default: this file's repository)")
-    parser.add_argument("--port", type=int, default=0, help="port (default: a free one)")
+    parser.add_argument("--port", default="0", help="port, 1 to 65535 (default, or 0: a free one)")
     parser.add_argument("--verbose", action="store_true", help="log every request")
     args = parser.parse_args()
+    port = port_number(args.port)
+    if port is None:
+        print(f"serve.py: error: --port {args.port!r}: expected a whole number from 1 to 65535 "
+              "(0: a free one)", file=sys.stderr)
+        return 2
+    args.port = port
     try:
         server, url = serve(args.root, args.port, args.verbose)
     except OSError as e:

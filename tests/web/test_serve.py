@@ -210,6 +210,50 @@ class ServeTest(unittest.TestCase):
         self.expect("/web/app.js", 200)
 
 
+class PortTest(unittest.TestCase):
+    """--port, to serve.py and to scripts/web.sh: decimal digits, 1 to 65535 (0: a free
+    one), anything else refused in one line with status 2, never a traceback (issue 47:
+    '080' passed web.sh's range check as bash's octal, a port past 2^64 ended serve.py in
+    an OverflowError)."""
+
+    BAD = ["080", "65536", "99999999999999999999999", "-1", "+80", " 80", "8_0", "\u0668\u0660",
+           "0x50", "8\n0", ""]
+
+    def run_tool(self, argv):
+        import subprocess
+        return subprocess.run(argv, capture_output=True, text=True, timeout=30)
+
+    def expect_refused(self, argv, tool):
+        r = self.run_tool(argv)
+        self.assertEqual(r.returncode, 2, f"{argv}: {r.stderr}")
+        self.assertEqual(r.stderr.count("\n"), 1, f"{argv}: {r.stderr!r}")
+        self.assertTrue(r.stderr.startswith(f"{tool}: error: --port "), r.stderr)
+        self.assertIn("expected a whole number from 1 to 65535", r.stderr)
+        self.assertNotIn("Traceback", r.stderr)
+
+    def test_serve_py_refuses_what_is_no_port(self):
+        for port in self.BAD:
+            self.expect_refused([sys.executable, SERVE_PY, "--port", port], "serve.py")
+
+    def test_web_sh_refuses_what_is_no_port(self):
+        web_sh = pathlib.Path(SERVE_PY).resolve().parent.parent / "scripts" / "web.sh"
+        for port in self.BAD:
+            self.expect_refused(["bash", str(web_sh), "--port", port], "web.sh")
+        # A port it takes goes on to the next check, the served folder's.
+        with tempfile.TemporaryDirectory() as top:
+            for port in ("1", "8000", "65535", "0"):
+                r = self.run_tool(["bash", str(web_sh), "--port", port, "--root", top])
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertIn("no web/index.html there", r.stderr)
+
+    def test_port_numbers(self):
+        serve = load_serve()
+        self.assertEqual(serve.port_number("8000"), 8000)
+        self.assertEqual(serve.port_number("0"), 0)
+        for port in self.BAD:
+            self.assertIsNone(serve.port_number(port), port)
+
+
 def main():
     global SERVE_PY
     if len(sys.argv) < 2:

@@ -1,8 +1,13 @@
 # Installing the library for engines: static archives (position-independent, so they
 # link into shared objects too), the public headers, glad2's generated header for
 # microrelief::gl, a CMake package with one export set per component, pkg-config files,
-# and (cmake/RuntimeData.cmake) the GLSL library under share/microrelief/shaders.
+# the licence (MIT, LICENSE) under share/doc/microrelief, and (cmake/RuntimeData.cmake) the
+# GLSL library under share/microrelief/shaders.
 include(CMakePackageConfigHelpers)
+
+# The licence, where a distribution's package keeps it (CMAKE_INSTALL_DOCDIR:
+# share/doc/microrelief); the CMake and pkg-config files have no field for it.
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 set(MICRORELIEF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/microrelief)
 

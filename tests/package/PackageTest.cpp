@@ -173,6 +173,15 @@ TEST_F(Package, PkgConfigNamesTheDataAndShaderFolders) {
     }
 }
 
+// The licence travels with the install (issue 48): the repository's LICENSE, as it is, in
+// share/doc/microrelief, where a distribution's package keeps it.
+TEST_F(Package, TheLicenceIsInstalledWithThePackage) {
+    const std::filesystem::path licence = prefix() / "share" / "doc" / "microrelief" / "LICENSE";
+    ASSERT_TRUE(std::filesystem::is_regular_file(licence)) << licence << " is not installed";
+    EXPECT_EQ(test::readText(licence), test::readText(kSource / "LICENSE"));
+    EXPECT_NE(test::readText(licence).find("MIT License"), std::string::npos);
+}
+
 // The library configured with its core alone (MICRORELIEF_LIBRARIES=core, no programs):
 // CMake is told that OpenImageIO, OpenGL, GLFW, zlib and CLI11 cannot be found, so any
 // lookup of them that is REQUIRED stops the configure; glad2 must not be looked up either.

@@ -22,20 +22,47 @@ std::string lowerExtension(const std::filesystem::path& file) {
 
 }  // namespace
 
+std::optional<MapGround> mapGround(const HeightMapFile& loaded) {
+    if (!loaded.georeference || !loaded.placement) return std::nullopt;
+    return MapGround{*loaded.georeference, *loaded.placement};
+}
+
 void checkMapExtension(const std::filesystem::path& file) {
     checkReplaceable(file);  // a folder is named as one, not as a name without an extension
     const std::string extension = lowerExtension(file);
-    if (extension != ".png" && extension != ".exr")
+    if (extension != ".png" && extension != ".exr" && extension != ".tif" && extension != ".tiff")
         throwBadInput(file.string() +
-                      ": a map is saved as .png (16 bits, heights 0 to 1) or .exr (float)");
+                      ": a map is saved as .png (16 bits, heights 0 to 1), .exr (float) or, "
+                      "from an elevation model, .tif (a GeoTIFF of metres on its grid)");
 }
 
-void saveHeightMap(const HeightMap& map, const std::filesystem::path& file) {
+void checkMapSave(const std::filesystem::path& file, const std::optional<MapGround>& ground) {
     checkMapExtension(file);
-    if (lowerExtension(file) == ".exr") {
+    const std::string extension = lowerExtension(file);
+    if ((extension == ".tif" || extension == ".tiff") && !ground)
+        throwBadInput(file.string() +
+                      ": a map is saved as a GeoTIFF only where it came from an elevation "
+                      "model, whose grid on the ground it keeps; save this one as .png or .exr");
+}
+
+std::string saveHeightMap(const HeightMap& map, const std::filesystem::path& file,
+                          const std::optional<MapGround>& ground) {
+    checkMapSave(file, ground);
+    const std::string extension = lowerExtension(file);
+    if (extension == ".tif" || extension == ".tiff") {
+        saveElevationModel(file, map, ground->georeference, ground->placement);
+        return {};
+    }
+    // What a PNG or an OpenEXR of the samples does not keep of a DEM's map.
+    const std::string dropped =
+        ground ? file.string() +
+                     ": saved without the elevation model's georeference (where it lies, and "
+                     "the metres its heights 0 to 1 stand for); save as .tif to keep it"
+               : std::string();
+    if (extension == ".exr") {
         writeImageAtomically(
             file, {map.width, map.height, 1, PixelType::Float, map.samples.data(), {"Y"}});
-        return;
+        return dropped;
     }
     const float highest = map.maxValue();
     if (highest > 1.0f) {
@@ -47,6 +74,7 @@ void saveHeightMap(const HeightMap& map, const std::filesystem::path& file) {
         return static_cast<std::uint16_t>(std::lround(std::clamp(h, 0.0f, 1.0f) * 65535.0f));
     });
     writeImageAtomically(file, {map.width, map.height, 1, PixelType::UInt16, levels.data(), {}});
+    return dropped;
 }
 
 }  // namespace microrelief

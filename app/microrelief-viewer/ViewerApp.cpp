@@ -74,6 +74,9 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     const std::filesystem::path file = options.scene.job.map.file.value_or(defaultHeightMapPath());
     HeightMapFile loaded = loadHeightMapFile(file, options.scene.job.map.load);
     const std::string fitted = fitRelief(loaded, file.string());
+    ground_ = mapGround(loaded);
+    // --save-map FILE.tif keeps a DEM's grid: refused for another map before a window opens.
+    if (options.saveMap) checkMapSave(*options.saveMap, ground_);
     const RenderJob& job = state_.scene.job;  // the command line's, over the map
     map_ = std::make_shared<HeightMap>(std::move(loaded.map));
     mapMaxHeight_ = map_->maxValue();  // once per map, not per frame
@@ -112,8 +115,9 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     }
     state_.sculpt = options.sculpt && sculptable();
     state_.brush = options.brush;
-    state_.savePath =
-        (std::filesystem::path("out") / (file.stem().string() + "-edited.exr")).string();
+    state_.savePath = (std::filesystem::path("out") /
+                       (file.stem().string() + (ground_ ? "-edited.tif" : "-edited.exr")))
+                          .string();
     if (albedo) renderer_->setAlbedo(&*albedo, albedoFile->string());
     state_.albedoName = albedoFile ? albedoFile->filename().string() : "";
 
@@ -569,7 +573,13 @@ void ViewerApp::saveMap(const std::filesystem::path& file) {
         // An animated relief's heights are the field's, read back; a sculpted map's are its
         // mirror, kept equal to the GPU's samples dab by dab.
         const HeightMap map = animated_ ? renderer_->textures()->readSamples(window_->gl()) : *map_;
-        saveHeightMap(map, file);
+        // A DEM's map saved as .png or .exr: said, in one line, that its ground is not kept.
+        if (const std::string dropped = saveHeightMap(map, file, ground_); !dropped.empty()) {
+            if (automated)
+                logWarning(dropped);
+            else
+                note(dropped);
+        }
     } catch (const Error& e) {
         if (automated) throw;
         note(std::string("map not saved: ") + shown(e));
@@ -805,6 +815,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
             file ? std::optional(std::filesystem::absolute(*file)) : std::nullopt;
         applyRelief(map, path.string());
         map_ = std::move(map);
+        ground_ = mapGround(loaded);
         mapMaxHeight_ = map_->maxValue();
     } catch (const Error& e) {
         // The current map stays, and so do the file and options it was loaded with, and
@@ -822,8 +833,9 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     state_.mapEdited = false;
     strokeIds_.clear();
     savedStrokeId_ = 0;
-    state_.savePath =
-        (std::filesystem::path("out") / (path.stem().string() + "-edited.exr")).string();
+    state_.savePath = (std::filesystem::path("out") /
+                       (path.stem().string() + (ground_ ? "-edited.tif" : "-edited.exr")))
+                          .string();
     if (animated_) {
         animated_->forgetMap();
         evaluateAnimation();

@@ -13,6 +13,7 @@
 #include "CameraController.h"
 #include "FrameStats.h"
 #include "ImGuiLayer.h"
+#include "MapFile.h"
 #include "ReliefPicker.h"
 #include "ShaderWatcher.h"
 #include "ViewerOptions.h"
@@ -157,6 +158,8 @@ private:
     // The CPU mirror of the samples on the GPU (edited); a map read through pages is read
     // from this very object by the pages, and so never written (sculptable(), refusals).
     std::shared_ptr<HeightMap> map_;
+    // Where the current map is a DEM's: what a .tif save keeps (MapFile.h).
+    std::optional<MapGround> ground_;
     float mapMaxHeight_ = 0.0f;        // the surface's top: map_'s largest sample
     CameraController controller_;
     ReliefPicker picker_;

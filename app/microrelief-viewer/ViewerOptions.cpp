@@ -36,8 +36,9 @@ void addSculptFlags(CLI::App& app, ViewerOptions& o, SculptFlags& f) {
         ->take_all();
     app.add_option("--undo", o.undo, "For scripts: undo this many strokes after --stroke");
     app.add_option("--save-map", f.saveMap,
-                   "After the last frame, write the edited map: FILE.png (16 bits, heights 0 to 1) "
-                   "or FILE.exr (float)");
+                   "After the last frame, write the edited map: FILE.png (16 bits, heights 0 to "
+                   "1), FILE.exr (float) or, for an elevation model's, FILE.tif (a GeoTIFF of "
+                   "metres on its grid)");
 }
 
 BrushMode parseBrushMode(const std::string& name) {

@@ -39,8 +39,8 @@ struct ViewerOptions {
     Brush brush;
     bool sculpt = false;
     // For scripts and tests, before the first frame: strokes, then --undo N of them; after
-    // the last frame (--frames), --save-map FILE writes the edited map (16-bit PNG or
-    // float EXR, atomically).
+    // the last frame (--frames), --save-map FILE writes the edited map (16-bit PNG, float
+    // EXR or a DEM's GeoTIFF, atomically: MapFile.h).
     std::vector<ScriptedStroke> strokes;
     int undo = 0;
     std::optional<std::filesystem::path> saveMap;

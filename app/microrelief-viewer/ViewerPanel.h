@@ -28,7 +28,7 @@ struct ViewerState {
     // Sculpting (B): the left button paints with `brush` on the relief under the cursor.
     bool sculpt = false;
     Brush brush;
-    std::string savePath;  // where "Save map" writes (.png 16-bit or .exr float)
+    std::string savePath;  // where "Save map" writes (.png 16-bit, .exr float, .tif a DEM's)
     // An animated relief (--animate): scene.job.time advances while it plays.
     bool playing = true;
 

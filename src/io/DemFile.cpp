@@ -1,11 +1,15 @@
 #include "io/DemFile.h"
 
 #include <cpl_error.h>
+#include <cpl_vsi.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -14,10 +18,12 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "io/CheckedImageInput.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/io/AtomicFile.h"
 
 namespace microrelief {
 
@@ -375,6 +381,8 @@ DemRows demRows(const std::filesystem::path& file, const HeightMapLoadOptions& o
     // columns, each line and the lines' order read in reverse where they run the other way.
     DemRows result;
     result.georeference = geo;
+    const char* const wkt = dataset->GetProjectionRef();
+    result.placement = {grid.geotransform, wkt ? wkt : ""};
     result.rows.width = grid.width;
     result.rows.height = grid.height;
     // Map rows y0 .. y1 - 1: [lowest, highest] metres -> [0, 1], worked in double and rounded
@@ -418,12 +426,69 @@ HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOpti
         result.map = HeightMap(dem.rows.width, dem.rows.height);
         dem.rows.read(0, dem.rows.height, result.map.samples.data());
         result.georeference = dem.georeference;
+        result.placement = dem.placement;
         return result;
     } catch (const std::bad_alloc&) {
         throwRuntime(file.string() + ": not enough memory for its " +
                      std::to_string(dem.rows.width) + " x " + std::to_string(dem.rows.height) +
                      " samples");
     }
+}
+
+void writeDem(const std::filesystem::path& file, const HeightMap& map, const Georeference& geo,
+              const GroundPlacement& placement) {
+    const std::string name = file.string();
+    const double lowest = geo.lowestMetres, range = geo.highestMetres - geo.lowestMetres;
+    if (range == 0.0 &&
+        std::any_of(map.samples.begin(), map.samples.end(), [](float h) { return h != 0.0f; })) {
+        std::ostringstream message;
+        message << name << ": the elevation model it came from is flat (every height " << lowest
+                << " m), so the map's heights have no size in metres; save it as .exr";
+        throwBadInput(message.str());
+    }
+    const QuietGdal quiet;
+    // GDAL writes the GeoTIFF in memory; it goes to the file whole or not at all
+    // (io/AtomicFile.h), as every output does.
+    static std::atomic<unsigned> serial{0};
+    const std::string memory = "/vsimem/microrelief-" + std::to_string(::getpid()) + "-" +
+                               std::to_string(serial++) + ".tif";
+    struct MemoryFile {
+        std::string path;
+        ~MemoryFile() { VSIUnlink(path.c_str()); }
+    } const inMemory{memory};
+    GDALDriver* const driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    if (!driver) throwRuntime(name + ": GDAL has no GeoTIFF writer");
+    const char* const options[] = {"TILED=YES", "COMPRESS=DEFLATE", "PREDICTOR=3",
+                                   "BIGTIFF=IF_SAFER", nullptr};
+    std::unique_ptr<GDALDataset, DatasetCloser> dataset(driver->Create(
+        memory.c_str(), map.width, map.height, 1, GDT_Float32, const_cast<char**>(options)));
+    const auto failed = [&] {
+        throwRuntime(name + ": cannot write the elevation model (" + QuietGdal::lastError() + ")");
+    };
+    if (!dataset) failed();
+    std::array<double, 6> gt = placement.geotransform;
+    if (dataset->SetGeoTransform(gt.data()) != CE_None) failed();
+    if (!placement.projectionWkt.empty() &&
+        dataset->SetProjection(placement.projectionWkt.c_str()) != CE_None)
+        failed();
+    GDALRasterBand* const band = dataset->GetRasterBand(1);
+    band->SetUnitType("m");
+    std::vector<float> row(static_cast<std::size_t>(map.width));
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x)
+            row[x] = static_cast<float>(lowest + static_cast<double>(map.at(x, y)) * range);
+        if (band->RasterIO(GF_Write, 0, y, map.width, 1, row.data(), map.width, 1, GDT_Float32, 0,
+                           0) != CE_None)
+            failed();
+    }
+    CPLErrorReset();
+    dataset.reset();  // GDALClose: the file's last blocks and directory
+    if (CPLGetLastErrorType() == CE_Failure) failed();
+    vsi_l_offset length = 0;
+    const GByte* const bytes = VSIGetMemFileBuffer(memory.c_str(), &length, FALSE);
+    if (!bytes) failed();
+    writeFileAtomically(file, std::string_view(reinterpret_cast<const char*>(bytes),
+                                               static_cast<std::size_t>(length)));
 }
 
 }  // namespace microrelief

@@ -28,6 +28,7 @@ bool isElevationModelFile(const std::filesystem::path& file);
 struct DemRows {
     MapRows rows;
     Georeference georeference;
+    GroundPlacement placement;
 };
 // `firstPass` (may be empty) is told the rows of that first pass read so far, out of the
 // map's height.
@@ -42,5 +43,9 @@ Georeference demGrid(const std::filesystem::path& file);
 
 // The file (a GeoTIFF, an SRTM .hgt) as loadHeightMapFile reads a DEM: demRows, read whole.
 HeightMapFile loadDem(const std::filesystem::path& file, const HeightMapLoadOptions& options);
+
+// saveElevationModel (io/HeightMapFile.h), through GDAL.
+void writeDem(const std::filesystem::path& file, const HeightMap& map, const Georeference& geo,
+              const GroundPlacement& placement);
 
 }  // namespace microrelief

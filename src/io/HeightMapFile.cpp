@@ -93,6 +93,18 @@ HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
     return {loadImage(file, options), std::nullopt};
 }
 
+void saveElevationModel(const std::filesystem::path& file, const HeightMap& map,
+                        const Georeference& geo, const GroundPlacement& placement) {
+#if MICRORELIEF_WITH_GDAL
+    writeDem(file, map, geo, placement);
+#else
+    (void)map, (void)geo, (void)placement;
+    throwBadInput(file.string() +
+                  ": an elevation model; this build of microrelief writes them only with GDAL "
+                  "(build with -DMICRORELIEF_WITH_GDAL=ON and libgdal-dev)");
+#endif
+}
+
 HeightMap loadHeightMap(const std::filesystem::path& file, const HeightMapLoadOptions& options) {
     return loadHeightMapFile(file, options).map;
 }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -221,6 +222,77 @@ TEST(DemFile, EveryGridAlongTheAxesIsTurnedNorthUpExactly) {
         EXPECT_EQ(grid->sampleWidthMetres, 30.0);
         EXPECT_EQ(grid->sampleHeightMetres, 20.0);
     }
+}
+
+// A DEM's map saved (the viewer's --save-map FILE.tif) is a GeoTIFF of metres that lies where
+// the map came from: the north-up geotransform and the coordinate system of the file it was
+// read from (here one turned 90 degrees), one Float32 band in metres; read back, the same
+// map and georeference. Edited heights above 1 stand at their metres. Seen red: before,
+// only .png and .exr were written, with no grid.
+TEST(DemFile, ASavedElevationModelLiesWhereItCameFrom) {
+    test::ScratchDir dir;
+    const TwinGround ground;
+    DemSpec turned = laidOut(ground, kGridLayouts[5]);
+    writeDem(dir / "turned.tif", turned, GDT_Float32);
+    HeightMapFile dem = loadHeightMapFile(dir / "turned.tif");
+    ASSERT_TRUE(dem.georeference);
+    ASSERT_TRUE(dem.placement);
+    EXPECT_EQ(dem.placement->geotransform,
+              (std::array<double, 6>{ground.x0, ground.dx, 0.0, ground.y0, 0.0, -ground.dy}));
+    saveElevationModel(dir / "saved.tif", dem.map, *dem.georeference, *dem.placement);
+
+    GDALAllRegister();
+    GDALDataset* saved = GDALDataset::Open((dir / "saved.tif").c_str(), GDAL_OF_RASTER);
+    ASSERT_NE(saved, nullptr);
+    double gt[6];
+    ASSERT_EQ(saved->GetGeoTransform(gt), CE_None);
+    EXPECT_EQ(std::vector<double>(gt, gt + 6),
+              (std::vector<double>{ground.x0, ground.dx, 0.0, ground.y0, 0.0, -ground.dy}));
+    OGRSpatialReference utm;
+    ASSERT_EQ(utm.SetFromUserInput("EPSG:32633"), OGRERR_NONE);
+    ASSERT_NE(saved->GetSpatialRef(), nullptr);
+    EXPECT_TRUE(saved->GetSpatialRef()->IsSame(&utm));
+    EXPECT_EQ(saved->GetRasterXSize(), ground.width);
+    GDALRasterBand* band = saved->GetRasterBand(1);
+    EXPECT_EQ(band->GetRasterDataType(), GDT_Float32);
+    EXPECT_STREQ(band->GetUnitType(), "m");
+    float corner[2] = {};
+    ASSERT_EQ(band->RasterIO(GF_Read, 0, 0, 2, 1, corner, 2, 1, GDT_Float32, 0, 0), CE_None);
+    EXPECT_NEAR(corner[0], ground.value(0, 0), 1e-3);  // the north-west corner, in metres
+    EXPECT_NEAR(corner[1], ground.value(1, 0), 1e-3);  // east of it
+    GDALClose(saved);
+
+    const HeightMapFile again = loadHeightMapFile(dir / "saved.tif");
+    EXPECT_EQ(again.placement, dem.placement);
+    ASSERT_TRUE(again.georeference);
+    EXPECT_EQ(again.georeference->sampleWidthMetres, 30.0);
+    EXPECT_EQ(again.georeference->sampleHeightMetres, 20.0);
+    EXPECT_EQ(again.georeference->lowestMetres, dem.georeference->lowestMetres);
+    EXPECT_EQ(again.georeference->highestMetres, dem.georeference->highestMetres);
+    EXPECT_EQ(again.georeference->crs, dem.georeference->crs);
+    ASSERT_EQ(again.map.samples.size(), dem.map.samples.size());
+    for (std::size_t k = 0; k < dem.map.samples.size(); ++k)
+        ASSERT_NEAR(again.map.samples[k], dem.map.samples[k], 1e-6) << k;
+
+    // Raised past the highest sample: 1.5 of the range above the lowest.
+    dem.map.at(3, 4) = 1.5f;
+    saveElevationModel(dir / "raised.tif", dem.map, *dem.georeference, *dem.placement);
+    const double range = dem.georeference->highestMetres - dem.georeference->lowestMetres;
+    EXPECT_NEAR(loadHeightMapFile(dir / "raised.tif").georeference->highestMetres,
+                dem.georeference->lowestMetres + 1.5 * range, 1e-3);
+
+    // A flat DEM's map has no metres for heights other than 0: refused, nothing written.
+    Georeference flat = *dem.georeference;
+    flat.highestMetres = flat.lowestMetres;
+    try {
+        saveElevationModel(dir / "flat.tif", dem.map, flat, *dem.placement);
+        ADD_FAILURE() << "a flat DEM's edited map was saved";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("flat.tif: the elevation model it came from is flat"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "flat.tif"));
 }
 
 // A grid turned by another angle, or sheared, cannot be turned north up sample for sample:

@@ -368,4 +368,56 @@ TEST(MapFile, SavesExactlyOrRefusesAndLeavesTheOldFile) {
     EXPECT_EQ(loadHeightMap(dir / "old.exr").at(7, 7), 1.5f);
 }
 
+// A DEM's map (loaded from one, then edited) saved as .tif is a GeoTIFF that lies where the
+// map came from (io/HeightMapFile.h: saveElevationModel; tests/terrain checks the file with
+// GDAL): read back, the same ground and the same map. Saved as .png or .exr it keeps the
+// samples and the save says, in one line naming the file, what it did not keep. Seen red:
+// the .tif refused for every map, the .png and .exr saved without a word.
+TEST(MapFile, ADemsMapKeepsItsGroundAsAGeoTiffOrSaysItDoesNot) {
+    if (!readsGeoreferencedMaps()) GTEST_SKIP() << "the io component was built without GDAL";
+    test::ScratchDir dir;
+    HeightMap map = synth::whiteNoise(37, 21, 4);
+    map.at(3, 4) = 0.0f;
+    map.at(5, 6) = 1.0f;
+    MapGround ground;
+    ground.georeference.sampleWidthMetres = 30.0;
+    ground.georeference.sampleHeightMetres = 20.0;
+    ground.georeference.lowestMetres = 100.0;
+    ground.georeference.highestMetres = 420.0;
+    ground.placement.geotransform = {500000.0, 30.0, 0.0, 5000000.0, 0.0, -20.0};
+    EXPECT_EQ(saveHeightMap(map, dir / "dem.tif", ground), "");
+    const HeightMapFile dem = loadHeightMapFile(dir / "dem.tif");
+    const std::optional<MapGround> loaded = mapGround(dem);
+    ASSERT_TRUE(loaded);
+    EXPECT_EQ(loaded->placement, ground.placement);
+    EXPECT_EQ(loaded->georeference.lowestMetres, 100.0);
+    EXPECT_EQ(loaded->georeference.highestMetres, 420.0);
+    EXPECT_EQ(loaded->georeference.sampleHeightMetres, 20.0);
+    ASSERT_EQ(dem.map.samples.size(), map.samples.size());
+    for (std::size_t k = 0; k < map.samples.size(); ++k)
+        ASSERT_NEAR(dem.map.samples[k], map.samples[k], 1e-6) << k;
+    EXPECT_FALSE(mapGround(HeightMapFile{map, std::nullopt, std::nullopt}));  // an image's
+
+    for (const char* name : {"dem.png", "dem.exr"}) {
+        const std::string said = saveHeightMap(dem.map, dir / name, loaded);
+        EXPECT_NE(said.find(std::string(name) + ": saved without the elevation model's "
+                                                "georeference"),
+                  std::string::npos)
+            << said;
+        EXPECT_NE(said.find("save as .tif to keep it"), std::string::npos) << said;
+        EXPECT_EQ(said.find('\n'), std::string::npos) << said;
+        EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+    }
+    EXPECT_EQ(saveHeightMap(map, dir / "image.exr"), "");  // an image's map loses nothing
+    try {
+        checkMapSave(dir / "image.TIFF", std::nullopt);
+        ADD_FAILURE() << "an image's map was let be saved as a GeoTIFF";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("image.TIFF: a map is saved as a GeoTIFF only where "
+                                             "it came from an elevation model"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 }  // namespace

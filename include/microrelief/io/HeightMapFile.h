@@ -4,8 +4,10 @@
 // was built with it (docs/terrain.md).
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/scene/Georeference.h"
@@ -24,9 +26,21 @@ namespace microrelief {
 HeightMap loadHeightMap(const std::filesystem::path& file,
                         const HeightMapLoadOptions& options = {});
 
+// Where a DEM's map lies on the ground, as GDAL says it: the map's own geotransform, north
+// up ({x0, dx, 0, y0, 0, -dy}: the corner of sample (i, j) at x0 + i dx, y0 - j dy), in the
+// coordinate system `projectionWkt` (OGC WKT; empty where the file names none). What a map
+// saved from it needs to lie where it came from (saveElevationModel).
+struct GroundPlacement {
+    std::array<double, 6> geotransform{};
+    std::string projectionWkt;
+
+    bool operator==(const GroundPlacement&) const = default;
+};
+
 struct HeightMapFile {
     HeightMap map;
     std::optional<Georeference> georeference;  // where the file has one
+    std::optional<GroundPlacement> placement;  // a DEM's, with its georeference
 };
 
 // A georeferenced elevation model (a .tif or .tiff whose first directory holds a GeoTIFF
@@ -50,6 +64,18 @@ HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
 // goes on (core/scene/Georeference.h: fittedBase). Throws Error(BadInput) as
 // loadHeightMapFile does for a DEM it cannot read.
 std::optional<Georeference> readMapGrid(const std::filesystem::path& file);
+
+// Writes `map`, a DEM's as loadHeightMapFile read it (or edited since), as a GeoTIFF
+// elevation model where it came from: one Float32 band of metres, lowest + h (highest -
+// lowest) for map value h (`geo`'s range; nodata samples stay at the lowest height they
+// were filled with, and no nodata value is written), unit metres, over `placement`'s
+// geotransform and coordinate system. Read back, it is the same map (to float rounding) at
+// the same place. Written whole or not at all (io/AtomicFile.h). Throws Error(BadInput)
+// naming the file for a DEM with no range (one height: map values other than 0 have no
+// size in metres) whose map has any, and where the io component was built without GDAL;
+// Error(Runtime) when the write fails.
+void saveElevationModel(const std::filesystem::path& file, const HeightMap& map,
+                        const Georeference& geo, const GroundPlacement& placement);
 
 // Whether the io component reads georeferenced maps (it was built with GDAL).
 bool readsGeoreferencedMaps();

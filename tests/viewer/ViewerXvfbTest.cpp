@@ -384,20 +384,22 @@ TEST_F(ViewerUnderX, AFailedSaveLeavesTheOldFileUntouched) {
 }
 
 // A full disk (a file size limit below each output, as tests/cli/FullDiskCliTest.cpp has
-// it): --save-map onto the very map the viewer opened fails with one line and exit 1 and
-// leaves that map as it was, byte for byte; so does --screenshot; no temporary is left.
+// it): --save-map onto an earlier save of the map fails with one line and exit 1 and leaves
+// that file as it was, byte for byte; so does --screenshot; no temporary is left. (The map
+// the viewer opened is never written: ViewerCli.OutputsThatAreInputsAreRefused.)
 TEST_F(ViewerUnderX, AFullDiskLeavesTheMapAndTheScreenshotAsTheyWere) {
-    const auto map = dir / "map.png", shot = dir / "shot.bmp";
+    const auto map = dir / "map.png", saved = dir / "saved.png", shot = dir / "shot.bmp";
     test::writeMap(map, synth::valueNoise(128, 128, 4, 2, 7), PixelType::UInt16);
-    const std::vector<std::uint8_t> original = test::readBytes(map);
+    std::filesystem::copy_file(map, saved);
+    const std::vector<std::uint8_t> original = test::readBytes(saved);
     const std::string viewer = std::string(MICRORELIEF_VIEWER_EXE) + " --size 64x48 ";
     const test::RunResult save = test::runCommandWithFileSizeLimit(
         viewer + "--height " + map.string() + " --stroke raise,0.2,0.5,0.8,0.5 --save-map " +
-            map.string(),
+            saved.string(),
         original.size() / 2);
     test::expectOneLineFailure(save, "microrelief-viewer", 1,
-                               map.string() + ": cannot write (File too large)");
-    EXPECT_EQ(test::readBytes(map), original);
+                               saved.string() + ": cannot write (File too large)");
+    EXPECT_EQ(test::readBytes(saved), original);
 
     // 64 x 48 RGB as a BMP: 9270 bytes.
     const std::vector<std::uint8_t> old = {'o', 'l', 'd'};
@@ -409,7 +411,7 @@ TEST_F(ViewerUnderX, AFullDiskLeavesTheMapAndTheScreenshotAsTheyWere) {
     EXPECT_EQ(test::readBytes(shot), old);
     EXPECT_EQ(test::hiddenFilesIn(dir.path()), std::vector<std::string>{});
     // The premise: without the limit both are written.
-    EXPECT_EQ(run(viewer + "--height " + map.string() + " --save-map " + map.string() +
+    EXPECT_EQ(run(viewer + "--height " + map.string() + " --save-map " + saved.string() +
                   " --screenshot " + shot.string())
                   .status,
               0);

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Checks that code a page quotes from the repository is the file as it stands.
 
-A fenced code block right after a line `<!-- excerpt: PATH from LINE -->` (PATH from the
+In README.md, docs/**/*.md and the packages' READMEs (packages/*/README.md), a fenced code
+block right after a line `<!-- excerpt: PATH from LINE -->` (PATH from the
 repository root, LINE counted from 1) must hold exactly the lines of PATH from LINE to its
 end: the page shows the file, and this keeps the two one source (a change to the file
 without the page, or to the page without the file, fails here). A marker ending
@@ -41,7 +42,7 @@ def excerpts(text):
 
 def main():
     root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parents[2])
-    pages = [root / "README.md", *sorted((root / "docs").rglob("*.md"))]
+    pages = [root / "README.md", *sorted((root / "docs").rglob("*.md")), *sorted(root.glob("packages/*/README.md"))]
     found, bad = 0, []
     for page in pages:
         for path, first, block, at, most in excerpts(page.read_text(encoding="utf-8")):

@@ -458,10 +458,10 @@ function build(options) {
         } else {
             writeText(folder, options.out, 'pyramid_wasm.js', header +
                 'export default async function createPyramidModule() {\n' +
-                '    throw new Error(\'this build of microrelief-three has no WebAssembly pyramid (built with --no-wasm): the CPU path is unavailable\');\n}\n');
+                '    throw new Error("microrelief-three: no WebAssembly pyramid in this package (packed without emscripten, --no-wasm): pyramid \'cpu\' is unavailable; \'gpu\' needs EXT_color_buffer_float");\n}\n');
             writeText(folder, options.out, 'scene_checks_wasm.js', header +
                 'export default async function createSceneChecksModule() {\n' +
-                '    throw new Error(\'this build of microrelief-three has no WebAssembly scene checks (built with --no-wasm)\');\n}\n');
+                '    throw new Error(\'microrelief-three: no WebAssembly scene checks in this package (packed without emscripten, --no-wasm): loadSceneChecks is unavailable\');\n}\n');
         }
         writeText(folder, options.out, 'manifest.json', JSON.stringify({source: 'microrelief', files: manifest}, null, 1) + '\n');
         const made = fs.readdirSync(folder).sort().join(', ');

@@ -12,6 +12,7 @@
 import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
+import {requireSupportedThree} from './three_version.js';
 
 const kBases = {plane: 0, cylinder: 1, ellipsoid: 2};
 const kInterpolations = {bilinear: 0, biquadratic: 1};
@@ -124,6 +125,7 @@ function attach(material, relief) {
 function reliefMaterial(Base, name) {
     return class extends Base {
         constructor(parameters = {}) {
+            requireSupportedThree();
             const {albedoMap = null, selfShadow = false, ...rest} = parameters;
             super(rest);
             this.isReliefMaterial = true;
@@ -217,6 +219,7 @@ void main() {
 export class ReliefShadingMaterial extends THREE.ShaderMaterial {
     constructor({lightDirection = new THREE.Vector3(-0.45, 0.8, -0.35).normalize(), albedoMap = null,
                  albedo = new THREE.Color(0.6, 0.58, 0.55), shadows = 'off'} = {}) {
+        requireSupportedThree();
         if (!['off', 'hard'].includes(shadows)) throw new TypeError(`ReliefShadingMaterial: shadows '${shadows}' (expected off or hard)`);
         super({vertexShader: kShadingVertex, fragmentShader: '', toneMapped: false});
         this.isReliefMaterial = true;

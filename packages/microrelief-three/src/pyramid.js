@@ -17,6 +17,7 @@ import * as THREE from 'three';
 
 import {glue, pyramid as passes} from '../generated/glsl.js';
 import {HeightMapError} from './heights.js';
+import {requireSupportedThree} from './three_version.js';
 
 // A WebGL that cannot do what was asked (an extension missing, a texture too large).
 export class ReliefGpuError extends Error {
@@ -318,6 +319,7 @@ async function buildOnCpu(map, wrapU) {
 // with it), pyramid: 'auto' (the GPU where WebGL 2 renders into R16F, else the CPU),
 // 'gpu' or 'cpu'.
 export async function createReliefMap(renderer, map, {wrapU = false, pyramid = 'auto'} = {}) {
+    requireSupportedThree();
     if (!renderer || !renderer.isWebGLRenderer) throw new TypeError('createReliefMap: the first argument must be a THREE.WebGLRenderer');
     if (!['auto', 'gpu', 'cpu'].includes(pyramid)) throw new TypeError(`createReliefMap: pyramid '${pyramid}' (expected auto, gpu or cpu)`);
     if (!map || !(map.samples instanceof Float32Array) || map.samples.length !== map.width * map.height)

@@ -13,6 +13,7 @@ import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefStandardMaterial} from './materials.js';
+import {requireSupportedThree} from './three_version.js';
 
 const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
 
@@ -102,13 +103,16 @@ export class Relief extends THREE.Mesh {
     // or {kind, radius, length, radii}), interpolation ('bilinear' or 'biquadratic'),
     // pixelError (level of detail in pixels; 0 is exact).
     constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
+        requireSupportedThree();
         if (!reliefMap || !reliefMap.windows) throw new TypeError('Relief: the first argument must be a ReliefMap (createReliefMap)');
         if (!(heightScale > 0) || !Number.isFinite(heightScale)) throw new TypeError('Relief: heightScale must be a positive finite number');
         if (!['bilinear', 'biquadratic'].includes(interpolation)) throw new TypeError(`Relief: interpolation '${interpolation}' (expected bilinear or biquadratic)`);
         if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
         const shape = baseShape(base);
-        if ((shape.kind !== 'plane') !== reliefMap.wrapU)
-            throw new TypeError(`Relief: a ${shape.kind} base needs a map built with wrapU: ${shape.kind !== 'plane'} (its u ${shape.kind !== 'plane' ? 'wraps round' : 'does not wrap'})`);
+        if ((shape.kind !== 'plane') !== reliefMap.wrapU) {
+            const kind = typeof base === 'string' ? base : base.kind;  // as asked: 'sphere' stays a sphere
+            throw new TypeError(`Relief: ${/^[aeiou]/.test(kind) ? 'an' : 'a'} ${kind} base needs a map built with wrapU: ${shape.kind !== 'plane'} (its u ${shape.kind !== 'plane' ? 'wraps round' : 'does not wrap'})`);
+        }
         super(new THREE.BufferGeometry(), material ?? new ReliefStandardMaterial());
         this.isRelief = true;
         this.type = 'Relief';

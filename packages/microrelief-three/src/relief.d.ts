@@ -1,0 +1,106 @@
+// Declarations of relief.js (hand-written; tests/three's typecheck holds them to the module).
+import type {Box3, BufferGeometry, Camera, IUniform, Intersection, Mesh, Raycaster, Vector2, Vector3, WebGLRenderer} from 'three';
+
+import type {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
+import type {ReliefMap} from './pyramid.js';
+
+type Triple = [number, number, number];
+
+/** A base surface as asked for: a name takes microrelief-render's sizes (cylinder radius 0.3, length 1; sphere radius 0.5). */
+export type BaseSpec =
+    | 'plane' | 'cylinder' | 'sphere' | 'ellipsoid'
+    | {kind: 'plane'}
+    | {kind: 'cylinder'; radius?: number; length?: number}
+    | {kind: 'sphere'; radius?: number}
+    | {kind: 'ellipsoid'; radii?: Triple};
+
+/** A base surface with its sizes (a sphere is an ellipsoid of equal radii). */
+export type BaseShape = {kind: 'plane'} | {kind: 'cylinder'; radius: number; length: number} | {kind: 'ellipsoid'; radii: Triple};
+
+export function baseShape(base?: BaseSpec): BaseShape;
+
+/** The relief's object-space bounds for a top of `maxHeight`. */
+export function reliefExtent(width: number, height: number, maxHeight: number, heightScale: number, base: BaseShape): {min: Triple; max: Triple};
+
+/** A camera's rays as affine functions of the pixel's NDC, computed in double. */
+export interface CameraRays {
+    perspective: boolean;
+    origin: Vector3;
+    originDx: Vector3;
+    originDy: Vector3;
+    dir: Vector3;
+    dirDx: Vector3;
+    dirDy: Vector3;
+    range: [number, number];
+}
+
+export function cameraRays(camera: Camera): CameraRays;
+
+export type ReliefInterpolation = 'bilinear' | 'biquadratic';
+
+export type ReliefMaterial = ReliefStandardMaterial | ReliefPhysicalMaterial | ReliefShadingMaterial;
+
+export interface ReliefOptions<TMaterial extends ReliefMaterial = ReliefMaterial> {
+    /** Its own material (one a relief); a ReliefStandardMaterial by default. */
+    material?: TMaterial | null;
+    /** s: heights from 0 to s times the map's values. Default 0.1. */
+    heightScale?: number;
+    /** Default 'plane'. A curved base needs a map made with wrapU: true. */
+    base?: BaseSpec;
+    /** The finest level's surface. Default 'bilinear'. */
+    interpolation?: ReliefInterpolation;
+    /** The level of detail in pixels; 0 (the default) is exact. */
+    pixelError?: number;
+}
+
+/** The hit a pixel shows. */
+export interface ReliefHit {
+    distance: number;
+    point: Vector3;
+    /** three's convention: row 0 of the image at uv.y = 1. */
+    uv: Vector2;
+    /** Object space, as three's Mesh gives it. */
+    normal: Vector3;
+    worldNormal: Vector3;
+    /** 1 the surface, 2 to 5 the box's walls, bottom or caps. */
+    kind: number;
+    iterations: number;
+}
+
+/** Many rays' hits: n values each (point and normal 3 n, uv 2 n); kind 0 is a miss. */
+export interface TracedRays {
+    t: Float32Array;
+    kind: Float32Array;
+    exhausted: Float32Array;
+    point: Float64Array;
+    normal: Float32Array;
+    uv: Float32Array;
+    iterations: Float32Array;
+}
+
+/** The relief: a THREE.Mesh (its proxy box) whose material traces the height map in every pixel. */
+export class Relief<TMaterial extends ReliefMaterial = ReliefMaterial> extends Mesh<BufferGeometry, TMaterial> {
+    constructor(reliefMap: ReliefMap, options?: ReliefOptions<TMaterial>);
+    readonly isRelief: true;
+    reliefMap: ReliefMap;
+    base: BaseShape;
+    interpolation: ReliefInterpolation;
+    heightScale: number;
+    /** Settable at any time. */
+    pixelError: number;
+    /** The proxy box, object space. */
+    box: Box3;
+    uniforms: Record<string, IUniform>;
+    customDepthMaterial: ReliefDepthMaterial;
+    customDistanceMaterial: ReliefDistanceMaterial;
+    /** This draw's uniforms (called before each draw). */
+    prepareDraw(renderer: WebGLRenderer, camera: Camera, withViewport: boolean): void;
+    /** Which faces of the box run for `camera` (1 front, 2 back, 3 both). */
+    facesFor(camera: Camera, range: [number, number]): number;
+    raycast(raycaster: Raycaster, intersects: Intersection[]): void;
+    /** The first hit of the world ray origin + t direction, t in [near, far], or null. */
+    trace(origin: Vector3, direction: Vector3, near?: number, far?: number): ReliefHit | null;
+    /** Many world rays at once: 3 n origins, 3 n directions, 2 or 2 n range values. */
+    traceRays(origins: ArrayLike<number>, directions: ArrayLike<number>, ranges?: ArrayLike<number>): TracedRays;
+    dispose(): void;
+}

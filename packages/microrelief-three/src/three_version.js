@@ -1,0 +1,16 @@
+// three_version.js: the three.js this package runs on. What makes a relief (createReliefMap,
+// Relief, the materials) asks first, so that a three older than the oldest the package is
+// tested on is one line naming the range (package.json's peerDependencies), not an error
+// inside three's renderer later (three 0.170: "Invalid value used as weak map key"). Asked
+// at first use, not at import: the package has no side effects on import (sideEffects: false).
+import {REVISION} from 'three';
+
+// three's revision r<N> is its version 0.<N>.x.
+export const kOldestThreeRevision = 171;
+
+// Throws where the 'three' this package imports is older than its range.
+export function requireSupportedThree() {
+    if (Number.parseInt(REVISION, 10) >= kOldestThreeRevision) return;
+    const found = REVISION === undefined ? 'a module without REVISION' : `r${REVISION}`;
+    throw new Error(`microrelief-three needs three >=0.${kOldestThreeRevision}.0 (r${kOldestThreeRevision} or newer), but the 'three' it imports is ${found}`);
+}

@@ -1,0 +1,46 @@
+// microrelief-three's declarations in use, checked by tsc --noEmit --strict (tests/three:
+// ThreeTarball.TheDeclarationsTypecheckUnderStrict) in a project that installed the packed
+// tarball, three and @types/three: a crater from a typed array, lit by three, picked. Each
+// line marked as an expected error must be one: declarations that were `any` would pass them.
+import * as THREE from 'three';
+import {createReliefMap, heightsFromArray, HeightMapError, loadAlbedo, loadReliefMap, loadSceneChecks, readWindowLevel, Relief, ReliefGpuError,
+        ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, type ReliefHit, type TracedRays} from 'microrelief-three';
+
+export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | null> {
+    const renderer = new THREE.WebGLRenderer({canvas});
+    const size = 64, samples = new Float32Array(size * size);
+    for (let k = 0; k < samples.length; ++k) samples[k] = Math.min(1, Math.hypot(k % size - 32, Math.floor(k / size) - 32) / 24);
+    const heights = heightsFromArray(samples, size, size, {name: 'crater'});
+    const map = await createReliefMap(renderer, heights, {pyramid: 'auto'});
+    const relief = new Relief(map, {heightScale: 0.2, interpolation: 'biquadratic',
+                                    material: new ReliefStandardMaterial({albedoMap: await loadAlbedo('albedo.png'), roughness: 0.6, selfShadow: true})});
+    relief.pixelError = 0.5;
+    relief.castShadow = relief.receiveShadow = true;
+    const scene = new THREE.Scene();
+    scene.add(relief, new THREE.DirectionalLight(0xffffff, 3));
+    const camera = new THREE.PerspectiveCamera(45, canvas.width / canvas.height, 0.01, 20);
+    renderer.render(scene, camera);
+    const hits: THREE.Intersection[] = new THREE.Raycaster(camera.position, new THREE.Vector3(0, -1, 0)).intersectObject(relief);
+    const rays: TracedRays = relief.traceRays([0, 1, 0], [0, -1, 0]);
+    const level: Float32Array = readWindowLevel(map, map.levelCount - 1);
+    const sphere = new Relief(await loadReliefMap(renderer, 'globe.png', {wrapU: true}), {base: {kind: 'sphere', radius: 0.4},
+                                                                                          material: new ReliefPhysicalMaterial({clearcoat: 1})});
+    const shaded = new Relief(map, {material: new ReliefShadingMaterial({shadows: 'hard', lightDirection: new THREE.Vector3(0, 1, 0)})});
+    const refusal: string = (await loadSceneChecks()).refusal({eye: [1, 1, 1], target: [0, 0, 0]});
+    const errors: Error[] = [new HeightMapError('a map'), new ReliefGpuError('a GPU')];
+    console.log(hits.length, rays.point[0], level[0], sphere.base.kind, shaded.material.shadows, refusal, errors.length, map.builtOn, map.gpuBytes);
+
+    // @ts-expect-error: interpolation is 'bilinear' or 'biquadratic'
+    new Relief(map, {interpolation: 'trilinear'});
+    // @ts-expect-error: pyramid is 'auto', 'gpu' or 'cpu'
+    void createReliefMap(renderer, heights, {pyramid: 'wasm'});
+    // @ts-expect-error: selfShadow is a boolean
+    new ReliefStandardMaterial({selfShadow: 'yes'});
+    // @ts-expect-error: a Relief takes a ReliefMap, not the heights
+    new Relief(heights);
+    // @ts-expect-error: heightsFromArray takes typed arrays
+    heightsFromArray([0, 1, 2, 3], 2, 2);
+    // @ts-expect-error: a base's name is plane, cylinder, sphere or ellipsoid
+    new Relief(map, {base: 'torus'});
+    return relief.trace(new THREE.Vector3(0, 1, 0), new THREE.Vector3(0, -1, 0));
+}

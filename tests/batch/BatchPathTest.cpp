@@ -414,6 +414,12 @@ TEST(CameraFile, BadFilesNameTheFileTheLineAndTheReason) {
     EXPECT_BAD_INPUT(
         parse("# c\n" + kColumns + "\n" + good + "# c\n" + good + "0.5,0.5,0.5,0.5,0.5,0.5\n"),
         "cams.csv: line 6 (frame 2)", "the eye and the target are the same point");
+    // Positions beyond kMaxWorldPosition, as --eye and --target have it (a row's eye of 1e300
+    // was called the target's point, one of 1.0000000005e12 drawn).
+    EXPECT_BAD_INPUT(parse(kColumns + "\n1e300,0,0,0,0,0\n"), "line 2 (frame 0)",
+                     "the eye 1e+300,0,0: each component must lie within +-1e+12");
+    EXPECT_BAD_INPUT(parse(kColumns + "\n1,1,1,2e12,0,0\n"), "line 2 (frame 0)",
+                     "the target 2e+12,0,0: each component must lie within +-1e+12");
     EXPECT_BAD_INPUT(parse(kColumns + ",up_x,up_y,up_z\n0,1,0,0,0,0,0,2,0\n"), "line 2 (frame 0)",
                      "--up must not be parallel");
     EXPECT_BAD_INPUT(parse(kColumns + ",fovy\n1,1,1,0,0,0,180\n"), "line 2 (frame 0)",

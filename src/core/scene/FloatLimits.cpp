@@ -15,6 +15,14 @@ namespace {
 // A figure in a message (core/Text.h).
 std::string number(double value) { return formatNumber(value, 3); }
 
+// `value` past `limit`, with the digits that tell them apart (1.00000005e+12 beyond 1e+12,
+// not 1e+12 beyond 1e+12).
+std::string numberBeyond(double value, double limit) {
+    int digits = 3;
+    while (digits < 17 && formatNumber(value, digits) == formatNumber(limit, digits)) ++digits;
+    return formatNumber(value, digits);
+}
+
 // The base as the scene's fields give it: "{base} cylinder {base.radius} 0.3 {base.length} 1".
 std::string baseFlags(const BaseShape& base) {
     const BaseType& type = baseType(base);
@@ -77,13 +85,13 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
         if (!(fromOrigin <= kMaxWorldPosition)) {
             throwBadInput(source + ": the relief's box on " + baseFlags(base) +
                           (model.isIdentity() ? "" : " placed by {model}") + " reaches " +
-                          number(fromOrigin) + " world units from the origin, beyond the " +
-                          number(kMaxWorldPosition) + " world positions may have");
+                          numberBeyond(fromOrigin, kMaxWorldPosition) + " world units from the origin, beyond the " +
+                          number(kMaxWorldPosition) + " a world position may lie from it");
         }
         if (!(fromEye <= kMaxWorldCoordinate)) {
             throwBadInput(source + ": the relief's box on " + baseFlags(base) +
                           (model.isIdentity() ? "" : " placed by {model}") + " reaches " +
-                          number(fromEye) + " world units from {camera.eye}, beyond the " +
+                          numberBeyond(fromEye, kMaxWorldCoordinate) + " world units from {camera.eye}, beyond the " +
                           number(kMaxWorldCoordinate) +
                           " the renderer's float arithmetic holds (the box's corners and depth "
                           "are floats about the eye); use a smaller base or model scale, or "
@@ -99,7 +107,7 @@ void checkFloatLimits(const MapExtent& map, double heightScale, const BaseShape&
             throwBadInput(source + (model.isIdentity() ? "" : " placed by {model}") +
                           " and {camera.eye} lie " + number(reach) +
                           " world units from the origin, where double keeps positions to " +
-                          number(doubleStepTexels) +
+                          numberBeyond(doubleStepTexels, std::ldexp(1.0, -10)) +
                           " of the relief's texel, more than the 1/1024 the renderer allows "
                           "itself; move the scene nearer the origin or scale the relief up");
         }

@@ -114,7 +114,9 @@ int run(const Options& o) {
         gl.BindVertexArray(noVertices.id());
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
     }
-    const RenderedFrame frame = target.read();
+    // This shader gets the eye as it is, so its positions are the world's (origin 0); a
+    // ReliefRenderer's draw writes them about the eye: read(camera.eye) then.
+    const RenderedFrame frame = target.read(glm::dvec3(0.0));
     const std::vector<std::uint8_t> rgb = rgbFromRgba(frame.color, frame.width, frame.height);
     writeImageAtomically(o.out, {frame.width, frame.height, 3, PixelType::UInt8, rgb.data(), {}});
     std::printf("relief-headless: wrote %s (%dx%d, %s)\n", o.out.c_str(), o.width, o.height_,

@@ -15,8 +15,6 @@
 #include "CommandLine.h"
 #include "Csv.h"
 #include "microrelief/core/Error.h"
-#include "microrelief/core/Text.h"
-#include "microrelief/core/scene/FloatLimits.h"
 
 namespace microrelief {
 
@@ -30,18 +28,14 @@ void checkCamera(const Camera& camera, const std::string& where) {
         throwBadInput(where + "the eye and the target are the same point");
     if (!(camera.fovyDegrees > 0.0 && camera.fovyDegrees < 180.0))
         throwBadInput(where + "fovy must lie strictly between 0 and 180 degrees");
-    // The positions' range first, as --eye and --target have it (core/scene/FloatLimits.h:
-    // kMaxWorldPosition): a turntable's turned eye or a row's columns may leave it, and an
-    // eye of 1e300 would otherwise be called the target's point.
-    for (const auto& [name, p] : {std::pair{"eye", camera.eye}, std::pair{"target", camera.target}}) {
-        if (!(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) <= kMaxWorldPosition)) {
-            throwBadInput(where + "the " + name + " " + formatNumber(p.x, 6) + "," +
-                          formatNumber(p.y, 6) + "," + formatNumber(p.z, 6) +
-                          ": each component must lie within +-" +
-                          formatNumber(kMaxWorldPosition, 6) + " (world units)");
-        }
-    }
+    // The positions' range first, as --eye and --target have it (core/scene/Scene.h,
+    // checkPoint): a turntable's turned eye or a row's columns may leave it, and an eye of
+    // 1e300 would otherwise be called the target's point.
+    std::vector<FieldError> errors;
+    checkPoint(errors, "camera.eye", camera.eye);
+    checkPoint(errors, "camera.target", camera.target);
     try {
+        throwIfInvalid(errors);
         resolveCamera(camera, 1, 1, 1.0);  // the rules a picture is drawn by
     } catch (const Error& e) {
         throw e.after(where);

@@ -417,9 +417,9 @@ TEST(CameraFile, BadFilesNameTheFileTheLineAndTheReason) {
     // Positions beyond kMaxWorldPosition, as --eye and --target have it (a row's eye of 1e300
     // was called the target's point, one of 1.0000000005e12 drawn).
     EXPECT_BAD_INPUT(parse(kColumns + "\n1e300,0,0,0,0,0\n"), "line 2 (frame 0)",
-                     "the eye 1e+300,0,0: each component must lie within +-1e+12");
+                     "--eye 1e+300,0,0: each component must lie within +-1e+12");
     EXPECT_BAD_INPUT(parse(kColumns + "\n1,1,1,2e12,0,0\n"), "line 2 (frame 0)",
-                     "the target 2e+12,0,0: each component must lie within +-1e+12");
+                     "--target 2e+12,0,0: each component must lie within +-1e+12");
     EXPECT_BAD_INPUT(parse(kColumns + ",up_x,up_y,up_z\n0,1,0,0,0,0,0,2,0\n"), "line 2 (frame 0)",
                      "--up must not be parallel");
     EXPECT_BAD_INPUT(parse(kColumns + ",fovy\n1,1,1,0,0,0,180\n"), "line 2 (frame 0)",

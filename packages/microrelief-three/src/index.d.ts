@@ -9,6 +9,8 @@ export type {HeightMap, HeightsOptions, PngHeightsOptions} from './heights.js';
 export {createReliefMap, ReliefGpuError, ReliefMap, readTextureFloats, readWindowLevel, windowLevelSizes} from './pyramid.js';
 export type {PyramidBuilder, ReliefMapOptions, ReliefMapParts} from './pyramid.js';
 export {albedoFromBytes, loadAlbedo} from './albedo.js';
+export {ReliefMapLoader} from './loader.js';
+export type {ReliefMapLoaderOptions} from './loader.js';
 export {patchFragment, patchVertex, ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 export type {ReliefMaterialParameters, ReliefShadingParameters} from './materials.js';
 export {baseShape, cameraRays, Relief, reliefExtent} from './relief.js';

@@ -6,6 +6,7 @@
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
 export {createReliefMap, ReliefGpuError, ReliefMap, readTextureFloats, readWindowLevel, windowLevelSizes} from './pyramid.js';
 export {albedoFromBytes, loadAlbedo} from './albedo.js';
+export {ReliefMapLoader} from './loader.js';
 export {patchFragment, patchVertex, ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 export {baseShape, cameraRays, Relief, reliefExtent} from './relief.js';
 export {kFieldNames, loadSceneChecks, SceneChecks} from './checks.js';

@@ -4,7 +4,7 @@
 // line marked as an expected error must be one: declarations that were `any` would pass them.
 import * as THREE from 'three';
 import {createReliefMap, heightsFromArray, HeightMapError, loadAlbedo, loadReliefMap, loadSceneChecks, readWindowLevel, Relief, ReliefGpuError,
-        ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, type ReliefHit, type TracedRays} from 'microrelief-three';
+        ReliefMapLoader, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, type ReliefHit, type TracedRays} from 'microrelief-three';
 
 export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | null> {
     const renderer = new THREE.WebGLRenderer({canvas});
@@ -25,7 +25,10 @@ export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | nul
     const level: Float32Array = readWindowLevel(map, map.levelCount - 1);
     const sphere = new Relief(await loadReliefMap(renderer, 'globe.png', {wrapU: true}), {base: {kind: 'sphere', radius: 0.4},
                                                                                           material: new ReliefPhysicalMaterial({clearcoat: 1})});
-    const shaded = new Relief(map, {material: new ReliefShadingMaterial({shadows: 'hard', lightDirection: new THREE.Vector3(0, 1, 0)})});
+    const loader = new ReliefMapLoader(renderer, new THREE.LoadingManager()).setPath('maps/').setOptions({pyramid: 'gpu', channel: 0});
+    const loaded = await loader.loadAsync('cobbles.png', (event: ProgressEvent) => console.log(event.loaded));
+    loader.load('cobbles.png', (m) => console.log(m.levelCount), undefined, (e: unknown) => console.error(e));
+    const shaded = new Relief(loaded, {material: new ReliefShadingMaterial({shadows: 'hard', lightDirection: new THREE.Vector3(0, 1, 0)})});
     const refusal: string = (await loadSceneChecks()).refusal({eye: [1, 1, 1], target: [0, 0, 0]});
     const errors: Error[] = [new HeightMapError('a map'), new ReliefGpuError('a GPU')];
     console.log(hits.length, rays.point[0], level[0], sphere.base.kind, shaded.material.shadows, refusal, errors.length, map.builtOn, map.gpuBytes);
@@ -34,6 +37,8 @@ export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | nul
     new Relief(map, {interpolation: 'trilinear'});
     // @ts-expect-error: pyramid is 'auto', 'gpu' or 'cpu'
     void createReliefMap(renderer, heights, {pyramid: 'wasm'});
+    // @ts-expect-error: the loader's options are createReliefMap's and the channel
+    loader.setOptions({interpolation: 'bilinear'});
     // @ts-expect-error: selfShadow is a boolean
     new ReliefStandardMaterial({selfShadow: 'yes'});
     // @ts-expect-error: a Relief takes a ReliefMap, not the heights

@@ -106,12 +106,26 @@ inline std::vector<double> numbers(const std::string& text) {
 
 class ThreePage : public browser::BrowserTest {
 protected:
+    // The folder the pages are served from: the build tree's (MICRORELIEF_WEB_ROOT, with the
+    // package's own three), or MICRORELIEF_THREE_SITE's: a copy of it with another three in
+    // web/three/node_modules/three (tests/three/three_range.py, ctest three.range: the
+    // oldest three of the peer range and the newest on the registry).
+    static std::filesystem::path site() {
+        const char* other = std::getenv("MICRORELIEF_THREE_SITE");
+        return other && *other ? std::filesystem::path(other)
+                               : std::filesystem::path(MICRORELIEF_WEB_ROOT);
+    }
+
+    // BrowserTest's runPage, served from site() unless told otherwise.
+    PageRun runPage(const std::string& steps, const std::filesystem::path& root = site()) {
+        return browser::BrowserTest::runPage(steps, root);
+    }
+
     void SetUp() override {
         failures_ = "three-failures";
         browser::BrowserTest::SetUp();
         if (HasFatalFailure() || IsSkipped()) return;
-        const std::filesystem::path page =
-            std::filesystem::path(MICRORELIEF_WEB_ROOT) / "web/three/index.html";
+        const std::filesystem::path page = site() / "web/three/index.html";
         if (!std::filesystem::exists(page)) {
             const char* allow = std::getenv("MICRORELIEF_ALLOW_MISSING_BROWSER");
             const std::string why = "examples/three is not staged (" + page.string() +

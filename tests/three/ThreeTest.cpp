@@ -490,8 +490,8 @@ const std::vector<std::string> kTarballFiles = {"package/LICENSE",
 
 // The most a refusal of the package may say: one line naming the range.
 const std::string kBelowTheRange =
-    "Error: microrelief-three needs three >=0.171.0 (r171 or newer), but the 'three' it imports is "
-    "r170";
+    "Error: microrelief-three needs three >=0.182.0 (r182 or newer), but the 'three' it imports is "
+    "r181";
 
 // A program where CMake found it, else in /usr/bin or on PATH.
 std::string findTool(const std::string& configured, const std::string& name) {
@@ -700,7 +700,7 @@ TEST_F(ThreeTarball, TheTarballHoldsExactlyWhatAConsumerRuns) {
         fields.out,
         "MIT\n./src/index.d.ts\nfalse\ntypes default\n./src/index.d.ts\n. ./package.json\ngit\n"
         "git+https://github.com/microrelief/microrelief.git\npackages/"
-        "microrelief-three\n>=0.171.0\nfalse\n")
+        "microrelief-three\n>=0.182.0\nfalse\n")
         << fields.err;
     // Packed with em++: the WebAssembly itself, not the stubs of a package packed without it.
     EXPECT_EQ(
@@ -745,8 +745,9 @@ TEST_F(ThreeTarball, TheDeclarationsTypecheckUnderStrict) {
 
 // Below the oldest three in the range, each call that makes a relief is one line naming
 // the range (three 0.170 failed inside three's renderer: "Invalid value used as weak map
-// key"), and the installed three passes: the installed package beside a three that is the
-// installed one with REVISION '170'. Red before three_version.js: the calls went on.
+// key"; 0.171 to 0.181 put a relief's point-light shadow in the wrong places), and the
+// installed three passes: the installed package beside a three that is the installed one
+// with REVISION '181'. Red before three_version.js: the calls went on.
 TEST_F(ThreeTarball, BelowTheOldestThreeEachReliefIsOneLineNamingTheRange) {
     const Packed& p = packed();
     const fs::path old = dir / "old-three", modules = old / "node_modules";
@@ -754,12 +755,12 @@ TEST_F(ThreeTarball, BelowTheOldestThreeEachReliefIsOneLineNamingTheRange) {
     fs::copy(p.project / "node_modules" / "microrelief-three", modules / "microrelief-three",
              fs::copy_options::recursive);
     std::ofstream(modules / "three" / "package.json")
-        << "{\"name\": \"three\", \"version\": \"0.170.0\", \"type\": \"module\", \"exports\": "
+        << "{\"name\": \"three\", \"version\": \"0.181.0\", \"type\": \"module\", \"exports\": "
            "{\".\": \"./index.js\"}}\n";
     std::ofstream(modules / "three" / "index.js")
         << "export * from '"
         << (p.project / "node_modules" / "three" / "build" / "three.module.js").string()
-        << "';\nexport const REVISION = '170';\n";
+        << "';\nexport const REVISION = '181';\n";
     std::ofstream(old / "package.json") << "{\"name\": \"old-three\", \"private\": true}\n";
     const std::vector<std::string> refused = sortedLines(nodeChecks(old, "revision"));
     ASSERT_EQ(refused.size(), 5u);

@@ -1,12 +1,16 @@
 // three_version.js: the three.js this package runs on. What makes a relief (createReliefMap,
 // Relief, the materials) asks first, so that a three older than the oldest the package is
 // tested on is one line naming the range (package.json's peerDependencies), not an error
-// inside three's renderer later (three 0.170: "Invalid value used as weak map key"). Asked
+// inside three's renderer later (three 0.170: "Invalid value used as weak map key") or a
+// picture subtly wrong (0.171 to 0.181: a relief's point-light shadow falls in the wrong
+// places, 285 of 1,895 points of ctest three.range's cast-point view, when point shadows
+// were a packed 2D atlas; r182 made them cube textures; r171 to r179 also named the
+// logarithmic depth buffer USE_LOGDEPTHBUF, and the relief's depth was then linear). Asked
 // at first use, not at import: the package has no side effects on import (sideEffects: false).
 import {REVISION} from 'three';
 
 // three's revision r<N> is its version 0.<N>.x.
-export const kOldestThreeRevision = 171;
+export const kOldestThreeRevision = 182;
 
 // Throws where the 'three' this package imports is older than its range.
 export function requireSupportedThree() {

@@ -12,7 +12,6 @@ export async function cobbles(canvas, {eye = [0.8, 0.5, 0.85], target = [0, -0.0
     const sun = new THREE.DirectionalLight(0xfff4e0, 3);
     sun.position.set(-0.9, 1.6, -0.7);
     sun.castShadow = true;
-    sun.shadow.normalBias = 0.01;  // the floor meets its own depth in the shadow map: acne without it (docs/three.md)
     Object.assign(sun.shadow.camera, {left: -0.8, right: 0.8, bottom: -0.8, top: 0.8});
     scene.add(sun, new THREE.HemisphereLight(0xbfd4ff, 0x3b3025, 0.8));
     const [map, albedoMap] = await Promise.all([loadReliefMap(renderer, '../../assets/cobbles.png'), loadAlbedo('../../assets/cobbles-albedo.png')]);

@@ -33,6 +33,51 @@ vec3 mrSurfaceAlbedo() {
 }
 #endif
 
+#ifdef USE_SHADOWMAP
+// The shadow bias that follows the shadow map's texel (docs/three.md, "Shadow acne"). A
+// shadow-map texel holds the traced depth of the one light ray through its centre; a
+// receiver's traced hit P compares its own depth with texels whose centres lie up to a
+// reach d (world units, across the light's rays) from its own ray: half a texel's diagonal
+// for the nearest texel (BASIC), the PCF taps' radius plus a diagonal for three's filtered
+// lookups (each tap a bilinear compare of the four texels about it). Where the surface is
+// locally a plane at an angle theta between its normal and the light, the depth of a ray d
+// away differs from P's by at most d tan(theta) world units along the light, unbounded at
+// grazing light. Moved along its normal by b before the lookup, P stands b / cos(theta)
+// nearer the light than the plane below it along the ray, so no texel within d shadows it
+// where b / cos(theta) > d tan(theta), i.e. b > d sin(theta): b = d holds at every angle.
+// d is reach texels of the map's world size at P: the frustum's width / mapSize for a
+// directional light, the same at P's depth for a spot light (its projective matrix's
+// derivative), 2 |P - light|_max / mapSize on a point light's cube face. Concave bends
+// within d and the depth buffer's own steps are not covered (the user's normalBias and bias
+// add to it).
+float mrShadowReach(float radius) {
+#ifdef SHADOWMAP_TYPE_BASIC
+    return 0.70710678;
+#else
+    return radius + 1.41421356;
+#endif
+}
+
+// The world size of a shadow-map texel at `p` for a light whose matrix takes the world to the
+// map's [0, 1] (projective for a spot light): 1 over the steepest rate of its coordinates.
+float mrShadowTexel(mat4 m, vec3 p, vec2 mapSize) {
+    vec4 c = m * vec4(p, 1.0);
+    vec3 x = vec3(m[0][0], m[1][0], m[2][0]), y = vec3(m[0][1], m[1][1], m[2][1]), w = vec3(m[0][3], m[1][3], m[2][3]);
+    vec2 perUnit = vec2(length(x - (c.x / c.w) * w), length(y - (c.y / c.w) * w)) * mapSize / abs(c.w);
+    return 1.0 / min(perUnit.x, perUnit.y);
+}
+
+// The normal offset the texel asks for, world units (mrShadowReach texels).
+float mrShadowTexelBias(mat4 m, vec3 p, vec2 mapSize, float radius) {
+    return mrShadowReach(radius) * mrShadowTexel(m, p, mapSize);
+}
+
+float mrPointShadowTexelBias(mat4 m, vec3 p, vec2 mapSize, float radius) {
+    vec3 a = abs((m * vec4(p, 1.0)).xyz);  // the light to p: the cube face's depth is its largest
+    return mrShadowReach(radius) * 2.0 * max(a.x, max(a.y, a.z)) / mapSize.x;
+}
+#endif
+
 void mrBeginPixel() {
     if (mrFaceRejected() || !mrTracePixel(mrHitPixel)) discard;
     mrExhausted = mrHitPixel.exhausted;
@@ -79,17 +124,20 @@ void mrBeginPixel() {
 #endif
 #ifdef MR_HAS_vDirectionalShadowCoord
     for (int i = 0; i < NUM_DIR_LIGHT_SHADOWS; ++i)
-        vDirectionalShadowCoord[i] = directionalShadowMatrix[i] * vec4(threeWorld + normal * directionalLightShadows[i].shadowNormalBias, 1.0);
+        vDirectionalShadowCoord[i] = directionalShadowMatrix[i] * vec4(threeWorld + normal * (directionalLightShadows[i].shadowNormalBias +
+            mrShadowTexelBias(directionalShadowMatrix[i], threeWorld, directionalLightShadows[i].shadowMapSize, directionalLightShadows[i].shadowRadius)), 1.0);
 #endif
 #ifdef MR_HAS_vPointShadowCoord
     for (int i = 0; i < NUM_POINT_LIGHT_SHADOWS; ++i)
-        vPointShadowCoord[i] = pointShadowMatrix[i] * vec4(threeWorld + normal * pointLightShadows[i].shadowNormalBias, 1.0);
+        vPointShadowCoord[i] = pointShadowMatrix[i] * vec4(threeWorld + normal * (pointLightShadows[i].shadowNormalBias +
+            mrPointShadowTexelBias(pointShadowMatrix[i], threeWorld, pointLightShadows[i].shadowMapSize, pointLightShadows[i].shadowRadius)), 1.0);
 #endif
 #ifdef MR_HAS_vSpotLightCoord
     for (int i = 0; i < NUM_SPOT_LIGHT_COORDS; ++i) {
         vec3 p = threeWorld;
 #if defined(USE_SHADOWMAP) && NUM_SPOT_LIGHT_SHADOWS > 0
-        if (i < NUM_SPOT_LIGHT_SHADOWS) p += normal * spotLightShadows[i].shadowNormalBias;
+        if (i < NUM_SPOT_LIGHT_SHADOWS) p += normal * (spotLightShadows[i].shadowNormalBias +
+            mrShadowTexelBias(spotLightMatrix[i], threeWorld, spotLightShadows[i].shadowMapSize, spotLightShadows[i].shadowRadius));
 #endif
         vSpotLightCoord[i] = spotLightMatrix[i] * vec4(p, 1.0);
     }

@@ -22,11 +22,12 @@ export interface ReliefMaterialParameters {
 export class ReliefStandardMaterial extends MeshStandardMaterial {
     constructor(parameters?: MeshStandardMaterialParameters & ReliefMaterialParameters);
     readonly isReliefMaterial: true;
-    /** The Relief it draws (one material a relief). */
+    /** The Relief it draws next: the last one drawn with it, or the first given it (reliefs may share it). */
     relief: Relief | null;
     albedoMap: Texture | null;
     selfShadow: boolean;
-    attachRelief(relief: Relief): void;
+    /** Also from three's own MeshStandardMaterial: the way to give a Relief one. */
+    copy(source: MeshStandardMaterial): this;
 }
 
 /** three's MeshPhysicalMaterial on a Relief. */
@@ -36,7 +37,8 @@ export class ReliefPhysicalMaterial extends MeshPhysicalMaterial {
     relief: Relief | null;
     albedoMap: Texture | null;
     selfShadow: boolean;
-    attachRelief(relief: Relief): void;
+    /** Also from three's own MeshPhysicalMaterial. */
+    copy(source: MeshPhysicalMaterial): this;
 }
 
 /** The relief's depth from a light's camera for directional and spot lights' shadow maps (Relief sets it). */
@@ -67,5 +69,4 @@ export class ReliefShadingMaterial extends ShaderMaterial {
     readonly isReliefMaterial: true;
     relief: Relief | null;
     shadows: 'off' | 'hard';
-    attachRelief(relief: Relief): void;
 }

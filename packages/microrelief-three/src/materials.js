@@ -107,14 +107,63 @@ function reliefDefines(relief) {
     };
 }
 
-// What the relief's materials have in common: attached to one Relief (whose uniforms they
-// read), the box drawn from both sides with the faces chosen per draw (mrFaces).
-function attach(material, relief) {
-    if (material.relief && material.relief !== relief)
-        throw new Error('microrelief-three: this material already belongs to another Relief; give each relief its own material');
-    material.relief = relief;
+// The program variant a relief needs: its base and its last level.
+function reliefVariant(relief) {
+    return relief ? `${relief.base.kind}:${relief.interpolation}` : '';
+}
+
+// One material, many reliefs. A relief's own uniforms (its map's textures and sizes, its
+// height scale, this draw's rays and matrices: Relief.uniforms) are not the material's, yet
+// three uploads a material's uniforms only when the program or the material changes between
+// two draws (and at the first draw of each render). Two ways were weighed:
+//   - a per-relief instance derived from the shared material, kept in step by its version:
+//     three then sees another material for each relief and uploads on each switch, but the
+//     relief draws with a material that is not the one assigned (relief.material would have
+//     to answer with the instance, or three would draw the shared one);
+//   - uniforms resolved per draw (chosen): the material's relief uniforms are getters that
+//     read the relief it is about to draw (`material.relief`, set in onBeforeRender below,
+//     which three calls between the object's onBeforeRender and the draw), and where that
+//     relief is another than the last one drawn with it, the bound program is let go
+//     (renderer.state.useProgram(null)) so that three's setProgram binds it again and
+//     uploads every uniform, as on a change of material.
+// Both cost the same upload per switch (three's own per-uniform caches skip the values that
+// did not change); measured on SwiftShader (tests/three/objects.js, uniformCalls): two
+// reliefs drawn with one material make the same number of gl.uniform* calls a frame as two
+// with a material each. The chosen way keeps relief.material the object assigned, as a
+// three.js mesh does. Reliefs of different bases or last levels sharing one material
+// switch programs at each switch (material.needsUpdate: three finds the compiled variant in
+// its cache, one compile each).
+function reliefUniformSlots(material, relief) {
+    const slots = {};
+    for (const name of Object.keys(relief.uniforms)) {
+        slots[name] = {get value() {
+            return material.relief.uniforms[name].value;
+        }};
+    }
+    return slots;
+}
+
+// Called by three before each draw of `object` with `material`.
+function drawRelief(material, name, renderer, object) {
+    if (!object.isRelief) throw new Error(`microrelief-three: a ${name} draws only on a Relief (new Relief(map, {material}) or relief.material = ...)`);
+    if (material.relief !== object) {
+        material.relief = object;
+        renderer.state.useProgram(null);  // three uploads this relief's uniforms (above)
+    }
+    const variant = reliefVariant(object);
+    if (material.reliefVariant !== variant) {
+        if (material.reliefVariant !== undefined) material.needsUpdate = true;
+        material.reliefVariant = variant;
+    }
+}
+
+// What the relief's materials have in common: drawn from both sides of the box, the faces
+// chosen per draw (mrFaces); any number of reliefs may share one.
+function initReliefMaterial(material) {
+    material.isReliefMaterial = true;
+    material.relief = null;  // the Relief it draws next (the last one drawn or given it)
+    material.reliefVariant = undefined;
     material.side = THREE.DoubleSide;
-    material.needsUpdate = true;
 }
 
 // ReliefStandardMaterial and ReliefPhysicalMaterial: three's MeshStandardMaterial and
@@ -128,9 +177,7 @@ function reliefMaterial(Base, name) {
             requireSupportedThree();
             const {albedoMap = null, selfShadow = false, ...rest} = parameters;
             super(rest);
-            this.isReliefMaterial = true;
-            this.relief = null;
-            this.side = THREE.DoubleSide;
+            initReliefMaterial(this);
             this.shadowSide = THREE.DoubleSide;  // the depth materials choose faces per draw too
             this.albedoUniform = {value: albedoMap};
             this.selfShadow = selfShadow;
@@ -145,31 +192,39 @@ function reliefMaterial(Base, name) {
             this.albedoUniform.value = texture;
         }
 
-        attachRelief(relief) {
-            attach(this, relief);
+        onBeforeRender(renderer, scene, camera, geometry, object) {
+            drawRelief(this, name, renderer, object);
         }
 
         onBeforeCompile(shader) {
-            if (!this.relief) throw new Error(`microrelief-three: a ${name} draws only on a Relief (new Relief(map, {material}))`);
+            if (!this.relief) throw new Error(`microrelief-three: a ${name} draws only on a Relief (new Relief(map, {material}) or relief.material = ...)`);
             shader.defines = {...shader.defines, ...reliefDefines(this.relief)};
             if (this.selfShadow) shader.defines.MR_SELF_SHADOW = '';
             if (this.albedoUniform.value) shader.defines.MR_ALBEDO_MAP = '';
-            Object.assign(shader.uniforms, this.relief.uniforms, {mrAlbedoMap: this.albedoUniform});
+            Object.assign(shader.uniforms, reliefUniformSlots(this, this.relief), {mrAlbedoMap: this.albedoUniform});
             shader.vertexShader = patchVertex(shader.vertexShader);
             shader.fragmentShader = patchFragment(shader.fragmentShader);
         }
 
         customProgramCacheKey() {
-            const relief = this.relief;
-            return `microrelief:${relief ? relief.base.kind + ':' + relief.interpolation : ''}:${this.selfShadow ? 1 : 0}:${this.albedoUniform.value ? 1 : 0}`;
+            return `microrelief:${reliefVariant(this.relief)}:${this.selfShadow ? 1 : 0}:${this.albedoUniform.value ? 1 : 0}`;
         }
 
+        // Also from three's own MeshStandardMaterial or MeshPhysicalMaterial (the way to
+        // give a Relief one: new ReliefStandardMaterial().copy(material)).
         copy(source) {
             super.copy(source);
-            this.albedoUniform = {value: source.albedoUniform ? source.albedoUniform.value : null};
-            this.selfShadow = source.selfShadow;
-            this.relief = null;
+            this.albedoUniform.value = source.isReliefMaterial ? source.albedoUniform.value : null;
+            this.selfShadow = source.isReliefMaterial ? source.selfShadow : false;
             return this;
+        }
+
+        // three's own record (ObjectLoader reads it as a MeshStandardMaterial or
+        // MeshPhysicalMaterial), the relief's parameters in userData (Relief.fromMesh).
+        toJSON(meta) {
+            const data = super.toJSON(meta);
+            data.userData = {...data.userData, microrelief: {type: name, selfShadow: this.selfShadow}};
+            return data;
         }
     };
 }
@@ -203,6 +258,8 @@ function reliefShadowMaterial(Base, name, parameters) {
 export const ReliefDepthMaterial = reliefShadowMaterial(THREE.MeshDepthMaterial, 'ReliefDepthMaterial', {depthPacking: THREE.RGBADepthPacking});
 export const ReliefDistanceMaterial = reliefShadowMaterial(THREE.MeshDistanceMaterial, 'ReliefDistanceMaterial', {});
 
+const kShadingFragment = '#include <common>\n#include <logdepthbuf_pars_fragment>\n' + library + glue.reliefThree + glue.microreliefShading;
+
 const kShadingVertex = `
 varying vec4 mrClip;
 void main() {
@@ -221,10 +278,8 @@ export class ReliefShadingMaterial extends THREE.ShaderMaterial {
                  albedo = new THREE.Color(0.6, 0.58, 0.55), shadows = 'off'} = {}) {
         requireSupportedThree();
         if (!['off', 'hard'].includes(shadows)) throw new TypeError(`ReliefShadingMaterial: shadows '${shadows}' (expected off or hard)`);
-        super({vertexShader: kShadingVertex, fragmentShader: '', toneMapped: false});
-        this.isReliefMaterial = true;
-        this.relief = null;
-        this.side = THREE.DoubleSide;
+        super({vertexShader: kShadingVertex, fragmentShader: kShadingFragment, toneMapped: false});
+        initReliefMaterial(this);
         this.shadows = shadows;
         this.uniforms = {
             mrLightDirection: {value: lightDirection.clone()},
@@ -233,14 +288,40 @@ export class ReliefShadingMaterial extends THREE.ShaderMaterial {
         };
     }
 
-    attachRelief(relief) {
-        attach(this, relief);
-        this.defines = {
-            ...reliefDefines(relief),
+    onBeforeRender(renderer, scene, camera, geometry, object) {
+        drawRelief(this, 'ReliefShadingMaterial', renderer, object);
+    }
+
+    // The relief's uniforms beside the material's own (not in this.uniforms, which clone,
+    // copy and toJSON see).
+    onBeforeCompile(shader) {
+        if (!this.relief) throw new Error('microrelief-three: a ReliefShadingMaterial draws only on a Relief (new Relief(map, {material}) or relief.material = ...)');
+        shader.defines = {
+            ...shader.defines,
+            ...reliefDefines(this.relief),
             MICRORELIEF_ALBEDO_MAP: this.uniforms.albedoMap.value ? '1' : '0',
             MICRORELIEF_SHADOWS: this.shadows === 'hard' ? '1' : '0',
         };
-        Object.assign(this.uniforms, relief.uniforms);
-        this.fragmentShader = '#include <common>\n#include <logdepthbuf_pars_fragment>\n' + library + glue.reliefThree + glue.microreliefShading;
+        shader.uniforms = {...shader.uniforms, ...reliefUniformSlots(this, this.relief)};
+    }
+
+    customProgramCacheKey() {
+        return `microrelief-shading:${reliefVariant(this.relief)}:${this.shadows}:${this.uniforms.albedoMap.value ? 1 : 0}`;
+    }
+
+    copy(source) {
+        super.copy(source);
+        this.shadows = source.shadows;
+        return this;
+    }
+
+    // Material's record, not ShaderMaterial's (whose shaders are the package's, 200 kB, and
+    // draw nothing without a relief); the parameters in userData (Relief.fromMesh).
+    toJSON(meta) {
+        const data = THREE.Material.prototype.toJSON.call(this, meta);
+        data.userData = {...data.userData, microrelief: {type: 'ReliefShadingMaterial', shadows: this.shadows,
+                                                         lightDirection: this.uniforms.mrLightDirection.value.toArray(),
+                                                         albedo: this.uniforms.albedo.value.toArray()}};
+        return data;
     }
 }

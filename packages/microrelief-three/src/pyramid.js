@@ -148,7 +148,9 @@ class GpuPyramidBuilder {
         geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(9), 3));
         this.quad = new THREE.Mesh(geometry, this.finest);
         this.quad.frustumCulled = false;
-        this.camera = new THREE.Camera();
+        // A camera three can turn to reversed depth (a renderer with reversedDepthBuffer calls
+        // its updateProjectionMatrix, which THREE.Camera lacks); pass.vert ignores it.
+        this.camera = new THREE.OrthographicCamera();
     }
 
     draw(material, target) {

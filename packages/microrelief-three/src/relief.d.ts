@@ -1,5 +1,5 @@
 // Declarations of relief.js (hand-written; tests/three's typecheck holds them to the module).
-import type {Box3, BufferGeometry, Camera, IUniform, Intersection, Mesh, Raycaster, Vector2, Vector3, WebGLRenderer} from 'three';
+import type {Box3, BufferGeometry, Camera, IUniform, Intersection, JSONMeta, Mesh, MeshJSON, Raycaster, Texture, Vector2, Vector3, WebGLRenderer} from 'three';
 
 import type {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 import type {ReliefMap} from './pyramid.js';
@@ -41,7 +41,7 @@ export type ReliefInterpolation = 'bilinear' | 'biquadratic';
 export type ReliefMaterial = ReliefStandardMaterial | ReliefPhysicalMaterial | ReliefShadingMaterial;
 
 export interface ReliefOptions<TMaterial extends ReliefMaterial = ReliefMaterial> {
-    /** Its own material (one a relief); a ReliefStandardMaterial by default. */
+    /** A relief material, which reliefs may share; a ReliefStandardMaterial by default. three's own materials are refused (copy them into a relief material). */
     material?: TMaterial | null;
     /** s: heights from 0 to s times the map's values. Default 0.1. */
     heightScale?: number;
@@ -82,12 +82,24 @@ export interface TracedRays {
 export class Relief<TMaterial extends ReliefMaterial = ReliefMaterial> extends Mesh<BufferGeometry, TMaterial> {
     constructor(reliefMap: ReliefMap, options?: ReliefOptions<TMaterial>);
     readonly isRelief: true;
+    /** Settable at any time (its wrapU must suit the base). */
     reliefMap: ReliefMap;
-    base: BaseShape;
+    /** The base's shape; set it as the constructor's option at any time (held to the map's wrapU). */
+    get base(): BaseShape;
+    set base(value: BaseSpec);
+    /** Settable at any time, as every option: the box is rebuilt, the program variant switched at the next render. */
     interpolation: ReliefInterpolation;
     heightScale: number;
-    /** Settable at any time. */
     pixelError: number;
+    /** The options as the constructor takes them (the material the same object). */
+    readonly options: Required<ReliefOptions<TMaterial>> & {base: BaseShape; material: TMaterial};
+    /** The same map and material, its own box, uniforms and shadow materials. */
+    clone(recursive?: boolean): this;
+    copy(source: Relief<TMaterial>, recursive?: boolean): this;
+    /** A plain Mesh record (ObjectLoader reads it) with the options in userData.microrelief: the heights are not in it. */
+    toJSON(meta?: JSONMeta): MeshJSON;
+    /** The Relief a Relief's toJSON describes, from ObjectLoader's Mesh and the map (and the albedoMap, also not in the JSON). */
+    static fromMesh(mesh: Mesh, reliefMap: ReliefMap, options?: {albedoMap?: Texture | null}): Relief;
     /** The proxy box, object space. */
     box: Box3;
     uniforms: Record<string, IUniform>;

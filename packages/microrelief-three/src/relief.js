@@ -12,7 +12,7 @@
 import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
-import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefStandardMaterial} from './materials.js';
+import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 import {requireSupportedThree} from './three_version.js';
 
 const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
@@ -96,37 +96,73 @@ export function cameraRays(camera) {
 
 let pickResources = null;
 
+// A base and a map that disagree on wrapU: a curved base needs it, the plane must not have it.
+function checkBaseForMap(shape, spec, reliefMap) {
+    if ((shape.kind !== 'plane') === reliefMap.wrapU) return;
+    const kind = typeof spec === 'string' ? spec : spec.kind;  // as asked: 'sphere' stays a sphere
+    throw new TypeError(`Relief: ${/^[aeiou]/.test(kind) ? 'an' : 'a'} ${kind} base needs a map built with wrapU: ${shape.kind !== 'plane'} (its u ${shape.kind !== 'plane' ? 'wraps round' : 'does not wrap'})`);
+}
+
+function checkHeightScale(value) {
+    if (!(value > 0) || !Number.isFinite(value)) throw new TypeError('Relief: heightScale must be a positive finite number');
+}
+
+function checkInterpolation(value) {
+    if (!['bilinear', 'biquadratic'].includes(value)) throw new TypeError(`Relief: interpolation '${value}' (expected bilinear or biquadratic)`);
+}
+
+// What a Relief draws with: a relief material, never three's own (whose shader does not
+// trace): one line saying which to use instead.
+function checkMaterial(material) {
+    if (material && material.isReliefMaterial) return;
+    const what = Array.isArray(material) ? 'an array of materials' : material && material.isMaterial ? `a ${material.type}` : String(material);
+    const instead = material && material.isMeshPhysicalMaterial ? 'new ReliefPhysicalMaterial().copy(material)'
+                                                                 : 'new ReliefStandardMaterial().copy(material)';
+    throw new TypeError(`Relief: the material must be a ReliefStandardMaterial, ReliefPhysicalMaterial or ReliefShadingMaterial, not ${what}` +
+                        (material && (material.isMeshStandardMaterial) ? ` (${instead} traces the relief with its parameters)` : ''));
+}
+
+// The relief material a material's three record stands for (Relief.fromMesh).
+function reliefMaterialFrom(material, albedoMap) {
+    const record = (material && material.userData && material.userData.microrelief) || {};
+    if (record.type === 'ReliefShadingMaterial') {
+        return new ReliefShadingMaterial({shadows: record.shadows, lightDirection: new THREE.Vector3().fromArray(record.lightDirection),
+                                          albedo: new THREE.Color().fromArray(record.albedo), albedoMap});
+    }
+    const result = material && material.isMeshPhysicalMaterial ? new ReliefPhysicalMaterial() : new ReliefStandardMaterial();
+    if (material && material.isMeshStandardMaterial) result.copy(material);
+    result.selfShadow = !!record.selfShadow;
+    result.albedoMap = albedoMap;
+    delete result.userData.microrelief;
+    return result;
+}
+
 export class Relief extends THREE.Mesh {
     // `reliefMap`: createReliefMap's. Options: material (a ReliefStandardMaterial,
-    // ReliefPhysicalMaterial or ReliefShadingMaterial of its own; a ReliefStandardMaterial
-    // by default), heightScale (s, 0.1), base ('plane', 'cylinder', 'sphere', 'ellipsoid',
-    // or {kind, radius, length, radii}), interpolation ('bilinear' or 'biquadratic'),
-    // pixelError (level of detail in pixels; 0 is exact).
+    // ReliefPhysicalMaterial or ReliefShadingMaterial, which reliefs may share; a
+    // ReliefStandardMaterial by default), heightScale (s, 0.1), base ('plane', 'cylinder',
+    // 'sphere', 'ellipsoid', or {kind, radius, length, radii}), interpolation ('bilinear' or
+    // 'biquadratic'), pixelError (level of detail in pixels; 0 is exact). Each option is a
+    // property too, settable at any time: the box is rebuilt and the materials' program
+    // variant switched where a change needs it.
     constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
         requireSupportedThree();
         if (!reliefMap || !reliefMap.windows) throw new TypeError('Relief: the first argument must be a ReliefMap (createReliefMap)');
-        if (!(heightScale > 0) || !Number.isFinite(heightScale)) throw new TypeError('Relief: heightScale must be a positive finite number');
-        if (!['bilinear', 'biquadratic'].includes(interpolation)) throw new TypeError(`Relief: interpolation '${interpolation}' (expected bilinear or biquadratic)`);
+        checkHeightScale(heightScale);
+        checkInterpolation(interpolation);
         if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
         const shape = baseShape(base);
-        if ((shape.kind !== 'plane') !== reliefMap.wrapU) {
-            const kind = typeof base === 'string' ? base : base.kind;  // as asked: 'sphere' stays a sphere
-            throw new TypeError(`Relief: ${/^[aeiou]/.test(kind) ? 'an' : 'a'} ${kind} base needs a map built with wrapU: ${shape.kind !== 'plane'} (its u ${shape.kind !== 'plane' ? 'wraps round' : 'does not wrap'})`);
-        }
+        checkBaseForMap(shape, base, reliefMap);
+        if (material !== null) checkMaterial(material);
         super(new THREE.BufferGeometry(), material ?? new ReliefStandardMaterial());
         this.isRelief = true;
         this.type = 'Relief';
-        this.reliefMap = reliefMap;
-        this.base = shape;
-        this.interpolation = interpolation;
-        this.heightScale = Math.fround(heightScale);
-        const [w, h] = [reliefMap.width, reliefMap.height];
         this.uniforms = {
-            mrHeights: {value: reliefMap.heights}, mrWindows: {value: reliefMap.windows},
-            mrMapSize: {value: new THREE.Vector2(w, h)}, mrPyramidSize: {value: new THREE.Vector2(w, h)},
-            mrLevelCount: {value: reliefMap.levelCount}, mrMaxHeight: {value: reliefMap.maxHeight},
+            mrHeights: {value: null}, mrWindows: {value: null},
+            mrMapSize: {value: new THREE.Vector2()}, mrPyramidSize: {value: new THREE.Vector2()},
+            mrLevelCount: {value: 0}, mrMaxHeight: {value: 0},
             mrObjectToWorld: {value: new THREE.Matrix4()}, mrWorldToObject: {value: new THREE.Matrix4()},
-            mrHeightScale: {value: this.heightScale}, mrFrameScale: {value: new THREE.Vector3(...frameScale(shape))},
+            mrHeightScale: {value: 0}, mrFrameScale: {value: new THREE.Vector3()},
             mrPixelError: {value: pixelError},
             mrRayOrigin: {value: new THREE.Vector3()}, mrRayOriginDx: {value: new THREE.Vector3()}, mrRayOriginDy: {value: new THREE.Vector3()},
             mrRayDir: {value: new THREE.Vector3()}, mrRayDirDx: {value: new THREE.Vector3()}, mrRayDirDy: {value: new THREE.Vector3()},
@@ -135,14 +171,7 @@ export class Relief extends THREE.Mesh {
             mrWorldToCamera: {value: new THREE.Matrix4()}, mrPerspective: {value: 1},
             mrWorldOrigin: {value: new THREE.Vector3()},
         };
-        // The box (ReliefRenderer::uploadBox): the bounds from the pyramid's top, grown.
-        const extent = reliefExtent(w, h, reliefMap.maxHeight, this.heightScale, shape);
-        const lo = extent.min.map((c) => Math.fround(Math.fround(c) - kBoxMargin));
-        const hi = extent.max.map((c) => Math.fround(Math.fround(c) + kBoxMargin));
-        this.box = new THREE.Box3(new THREE.Vector3(...lo), new THREE.Vector3(...hi));
-        const size = this.box.getSize(new THREE.Vector3()), centre = this.box.getCenter(new THREE.Vector3());
-        this.geometry = new THREE.BoxGeometry(size.x, size.y, size.z).translate(centre.x, centre.y, centre.z);
-        this.material.attachRelief(this);
+        this.setReliefMap(reliefMap, shape, Math.fround(heightScale), interpolation);
         this.customDepthMaterial = new ReliefDepthMaterial(this);
         this.customDistanceMaterial = new ReliefDistanceMaterial(this);
         this.onBeforeRender = (renderer, scene, camera) => this.prepareDraw(renderer, camera, true);
@@ -156,6 +185,155 @@ export class Relief extends THREE.Mesh {
     set pixelError(value) {
         if (!(value >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
         this.uniforms.mrPixelError.value = value;
+    }
+
+    // The material three draws the box with: a relief material (one many reliefs may share),
+    // never three's own, refused here in one line naming what to use.
+    get material() {
+        return this._material;
+    }
+
+    set material(material) {
+        checkMaterial(material);
+        this._material = material;
+        if (material.relief === null) material.relief = this;  // renderer.compile's variant before a draw
+    }
+
+    get heightScale() {
+        return this.uniforms.mrHeightScale.value;
+    }
+
+    set heightScale(value) {
+        checkHeightScale(value);
+        this.uniforms.mrHeightScale.value = Math.fround(value);
+        this.updateBox();
+    }
+
+    // The base's shape ({kind, radius, length} or {kind, radii}, frozen); set it as the
+    // constructor's option (a name or a shape), held to the map's wrapU as there.
+    get base() {
+        return this._base;
+    }
+
+    set base(value) {
+        const shape = baseShape(value);
+        checkBaseForMap(shape, value, this.reliefMap);
+        this._base = Object.freeze(shape);
+        this.uniforms.mrFrameScale.value.set(...frameScale(shape));
+        this.updateBox();
+        this.shadowMaterialsNeedUpdate();
+    }
+
+    get interpolation() {
+        return this._interpolation;
+    }
+
+    set interpolation(value) {
+        checkInterpolation(value);
+        this._interpolation = value;
+        this.shadowMaterialsNeedUpdate();
+    }
+
+    get reliefMap() {
+        return this._reliefMap;
+    }
+
+    // Another map for this relief (its wrapU must suit the base).
+    set reliefMap(reliefMap) {
+        if (!reliefMap || !reliefMap.windows) throw new TypeError('Relief: reliefMap must be a ReliefMap (createReliefMap)');
+        this.setReliefMap(reliefMap, this._base, this.heightScale, this._interpolation);
+    }
+
+    setReliefMap(reliefMap, shape, heightScale, interpolation) {
+        checkBaseForMap(shape, shape.kind, reliefMap);
+        this._reliefMap = reliefMap;
+        const u = this.uniforms, [w, h] = [reliefMap.width, reliefMap.height];
+        u.mrHeights.value = reliefMap.heights;
+        u.mrWindows.value = reliefMap.windows;
+        u.mrMapSize.value.set(w, h);
+        u.mrPyramidSize.value.set(w, h);
+        u.mrLevelCount.value = reliefMap.levelCount;
+        u.mrMaxHeight.value = reliefMap.maxHeight;
+        u.mrHeightScale.value = heightScale;
+        this._base = Object.freeze(shape);
+        u.mrFrameScale.value.set(...frameScale(shape));
+        this._interpolation = interpolation;
+        this.updateBox();
+        this.shadowMaterialsNeedUpdate();
+    }
+
+    // The box (ReliefRenderer::uploadBox): the bounds from the pyramid's top, grown; a new
+    // geometry (a clone's box is its own).
+    updateBox() {
+        const extent = reliefExtent(this._reliefMap.width, this._reliefMap.height, this._reliefMap.maxHeight, this.heightScale, this._base);
+        const lo = extent.min.map((c) => Math.fround(Math.fround(c) - kBoxMargin));
+        const hi = extent.max.map((c) => Math.fround(Math.fround(c) + kBoxMargin));
+        this.box = new THREE.Box3(new THREE.Vector3(...lo), new THREE.Vector3(...hi));
+        const size = this.box.getSize(new THREE.Vector3()), centre = this.box.getCenter(new THREE.Vector3());
+        const previous = this.geometry;
+        // A BufferGeometry, not the BoxGeometry (whose parameters, all toJSON writes of it,
+        // do not hold the translation).
+        this.geometry = new THREE.BufferGeometry().copy(new THREE.BoxGeometry(size.x, size.y, size.z).translate(centre.x, centre.y, centre.z));
+        previous.dispose();
+    }
+
+    shadowMaterialsNeedUpdate() {
+        if (this.customDepthMaterial) this.customDepthMaterial.needsUpdate = true;
+        if (this.customDistanceMaterial) this.customDistanceMaterial.needsUpdate = true;
+    }
+
+    // The options, as the constructor takes them (the material shared).
+    get options() {
+        return {material: this.material, heightScale: this.heightScale, base: this._base, interpolation: this._interpolation, pixelError: this.pixelError};
+    }
+
+    // three's clone: the same ReliefMap and material (as a Mesh's clone shares its geometry
+    // and material), its own box, uniforms and shadow materials; the same picture.
+    clone(recursive) {
+        return new this.constructor(this._reliefMap, this.options).copy(this, recursive);
+    }
+
+    copy(source, recursive) {
+        const box = this.geometry;
+        super.copy(source, recursive);  // Mesh: the transform, flags, userData and material (and the geometry: not the source's here)
+        this.geometry = box;
+        this.pixelError = source.pixelError;
+        this.setReliefMap(source.reliefMap, source.base, source.heightScale, source.interpolation);
+        return this;
+    }
+
+    // three's JSON cannot hold a relief: its heights and pyramid are GPU textures a ReliefMap
+    // holds for one renderer, megabytes that a scene file should not carry. So toJSON writes
+    // what ObjectLoader reads, a plain Mesh (the proxy box with its material's three record:
+    // a MeshStandardMaterial or MeshPhysicalMaterial of the same parameters), and the relief's
+    // options in userData.microrelief; Relief.fromMesh(mesh, reliefMap) makes the relief
+    // again from ObjectLoader's Mesh and the map, loaded as it was the first time.
+    toJSON(meta) {
+        const data = super.toJSON(meta);
+        data.object.type = 'Mesh';
+        const base = {...this._base};
+        data.object.userData = {...data.object.userData, microrelief: {
+            heightScale: this.heightScale, base, interpolation: this.interpolation, pixelError: this.pixelError,
+            map: {width: this._reliefMap.width, height: this._reliefMap.height, wrapU: this._reliefMap.wrapU},
+        }};
+        return data;
+    }
+
+    // The Relief a Relief's toJSON describes: `mesh` as ObjectLoader made it (its transform,
+    // name, flags and userData kept), drawn with `reliefMap` and a relief material of the
+    // recorded one's parameters; its albedoMap (a texture the app loads, as it loads the
+    // heights: not in the JSON) given again here.
+    static fromMesh(mesh, reliefMap, {albedoMap = null} = {}) {
+        const record = mesh && mesh.userData && mesh.userData.microrelief;
+        if (!record) throw new TypeError('Relief.fromMesh: the mesh has no userData.microrelief (not written by a Relief\'s toJSON)');
+        const {width, height, wrapU} = record.map;
+        if (reliefMap && (reliefMap.width !== width || reliefMap.height !== height || reliefMap.wrapU !== wrapU))
+            throw new TypeError(`Relief.fromMesh: the relief was drawn with a ${width} x ${height} map${wrapU ? ' (wrapU)' : ''}, not this ${reliefMap.width} x ${reliefMap.height} one${reliefMap.wrapU ? ' (wrapU)' : ''}`);
+        const relief = new this(reliefMap, {heightScale: record.heightScale, base: record.base, interpolation: record.interpolation,
+                                            pixelError: record.pixelError, material: reliefMaterialFrom(mesh.material, albedoMap)});
+        THREE.Object3D.prototype.copy.call(relief, mesh, false);
+        delete relief.userData.microrelief;
+        return relief;
     }
 
     // This draw's uniforms: the model, the camera's rays, which faces run, the viewport
@@ -329,5 +507,7 @@ function makePickResources() {
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(9), 3));
     const mesh = new THREE.Mesh(geometry, material);
     mesh.frustumCulled = false;
-    return {scene: mesh, camera: new THREE.Camera(), material};
+    // A camera three can turn to reversed depth (reversedDepthBuffer: THREE.Camera has no
+    // updateProjectionMatrix); the vertex shader ignores it.
+    return {scene: mesh, camera: new THREE.OrthographicCamera(), material};
 }

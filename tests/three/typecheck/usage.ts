@@ -33,6 +33,26 @@ export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | nul
     const errors: Error[] = [new HeightMapError('a map'), new ReliefGpuError('a GPU')];
     console.log(hits.length, rays.point[0], level[0], sphere.base.kind, shaded.material.shadows, refusal, errors.length, map.builtOn, map.gpuBytes);
 
+    // Relief and its materials as three's objects: options set later, a material assigned
+    // later and shared, clone, toJSON and back.
+    relief.heightScale = 0.15;
+    relief.interpolation = 'bilinear';
+    sphere.base = 'sphere';
+    sphere.base = {kind: 'ellipsoid', radii: [0.5, 0.4, 0.3]};
+    const radii: [number, number, number] | undefined = sphere.base.kind === 'ellipsoid' ? sphere.base.radii : undefined;
+    const lit = new ReliefStandardMaterial().copy(new THREE.MeshStandardMaterial({roughness: 0.4}));
+    relief.material = lit;
+    const twin: Relief<ReliefStandardMaterial> = relief.clone();
+    twin.material = lit;
+    twin.copy(relief);
+    const json: THREE.MeshJSON = relief.toJSON();
+    const record = new THREE.ObjectLoader().parse(json);
+    const again: Relief = Relief.fromMesh(record as THREE.Mesh, map, {albedoMap: null});
+    console.log(radii, twin.options.heightScale, again.base.kind, lit.relief?.heightScale);
+    // @ts-expect-error: a Relief draws with a relief material, not three's own
+    relief.material = new THREE.MeshStandardMaterial();
+    // @ts-expect-error: a base is a BaseSpec
+    relief.base = 'torus';
     // @ts-expect-error: interpolation is 'bilinear' or 'biquadratic'
     new Relief(map, {interpolation: 'trilinear'});
     // @ts-expect-error: pyramid is 'auto', 'gpu' or 'cpu'

@@ -126,12 +126,15 @@ TEST_F(ThreeObjects, AMaterialAssignedAfterConstructionDraws) {
 
 // Two reliefs (different height scales and places) sharing one material draw what the same
 // two draw with a material each (they were refused: "this material already belongs to
-// another Relief"); the uniform uploads a frame are counted, as the comment in materials.js
-// reports them.
+// another Relief"): library-shaded, three-lit, and with different last levels (one material,
+// two program variants); the uniform uploads a frame are counted, as the comment in
+// materials.js reports them.
 TEST_F(ThreeObjects, ReliefsShareAMaterial) {
     const Fields& f = check("sharedMaterial");
     expectSamePixels(f, "picture");
     expectChanged(f, "alone");
+    expectSamePixels(f, "standard");
+    expectSamePixels(f, "variants");
     // Counts, not times: the switch between reliefs uploads what a switch between materials
     // does (seen 9 calls a frame either way).
     EXPECT_GT(number(f, "uniformCalls.shared"), 0);

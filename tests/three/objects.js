@@ -154,24 +154,31 @@ window.objectChecks = (() => {
         return calls;
     }
 
-    // Two reliefs of different height scales and places sharing one material,
-    // against the same two each with its own: the same picture.
+    // Two reliefs of different height scales and places sharing one material, against the
+    // same two each with its own: the same picture. Also with a three-lit material, and with
+    // the two reliefs' last levels differing (two program variants of one material).
     function sharedMaterial() {
         return run(() => {
             const {microrelief, map, relief: pageRelief} = app();
-            const make = (material, heightScale, x) => {
-                const relief = new microrelief.Relief(map, {material, heightScale});
+            const make = (material, heightScale, x, interpolation = 'bilinear') => {
+                const relief = new microrelief.Relief(map, {material, heightScale, interpolation});
                 relief.position.set(x, 0, -0.1 * x);
                 relief.scale.setScalar(0.6);
                 return relief;
             };
+            const s = pageRelief.heightScale;
+            const pair = (first, second, interpolation) => sceneOf(make(first, s, -0.3), make(second, 2 * s, 0.3, interpolation));
             const one = shading();
-            const shared = sceneOf(make(one, pageRelief.heightScale, -0.3), make(one, 2 * pageRelief.heightScale, 0.3));
-            const own = sceneOf(make(shading(), pageRelief.heightScale, -0.3), make(shading(), 2 * pageRelief.heightScale, 0.3));
+            const shared = pair(one, one), own = pair(shading(), shading());
             const drawnShared = picture(shared), drawnOwn = picture(own);
             // Either relief alone: the pair's picture is not one relief drawn twice.
-            const alone = difference(drawnOwn, picture(sceneOf(make(shading(), pageRelief.heightScale, -0.3))));
-            return {picture: difference(drawnShared, drawnOwn), alone,
+            const alone = difference(drawnOwn, picture(sceneOf(make(shading(), s, -0.3))));
+            const lit = () => new microrelief.ReliefStandardMaterial({color: 0xd8c8a8, roughness: 0.7});
+            const litOne = lit();
+            const standard = difference(picture(pair(litOne, litOne)), picture(pair(lit(), lit())));
+            const both = shading();
+            const variants = difference(picture(pair(both, both, 'biquadratic')), picture(pair(shading(), shading(), 'biquadratic')));
+            return {picture: difference(drawnShared, drawnOwn), alone, standard, variants,
                     uniformCalls: {shared: uniformCalls(shared), own: uniformCalls(own)}};
         });
     }

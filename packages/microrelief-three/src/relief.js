@@ -13,6 +13,7 @@ import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
+import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
 import {requireSupportedThree} from './three_version.js';
 
 const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
@@ -174,7 +175,12 @@ export class Relief extends THREE.Mesh {
         this.setReliefMap(reliefMap, shape, Math.fround(heightScale), interpolation);
         this.customDepthMaterial = new ReliefDepthMaterial(this);
         this.customDistanceMaterial = new ReliefDistanceMaterial(this);
-        this.onBeforeRender = (renderer, scene, camera) => this.prepareDraw(renderer, camera, true);
+        this.onBeforeRender = (renderer, scene, camera, geometry, material, group) => {
+            this.prepareDraw(renderer, camera, true);
+            // scene.overrideMaterial (normal, depth, distance): the traced surface (override.js).
+            drawUnderOverride(this, renderer, scene, camera, geometry, material, group);
+        };
+        this.onAfterRender = (renderer, scene, camera, geometry) => restoreDrawRange(geometry);
         this.onBeforeShadow = (renderer, object, camera, shadowCamera) => this.prepareDraw(renderer, shadowCamera, false);
     }
 
@@ -487,6 +493,7 @@ export class Relief extends THREE.Mesh {
         this.geometry.dispose();
         this.customDepthMaterial.dispose();
         this.customDistanceMaterial.dispose();
+        disposeOverrides(this);
     }
 }
 

@@ -146,8 +146,8 @@ TEST_P(BundlerCases, GlslBundle) {
     const fs::path entry = dir / "shaders/microrelief/multilevel_trace.glsl";
     std::string text = "// main\n" + c.get("include") + "\n";
     if (!c.get("padding").empty())
-        text += "// " + std::string(std::stoul(c.get("padding")), '.') + "\n";
-    std::ofstream(entry, std::ios::binary) << text << "void main() {}\n";
+        text += "#define MICRORELIEF_PADDING " + std::string(std::stoul(c.get("padding")), '.') + "\n";
+    std::ofstream(entry, std::ios::binary) << text << "void main() {" << c.get("main") << "}\n";
     const fs::path out = dir / c.get("out.bundle", "out/bundle.glsl");
     fs::create_directories(out.parent_path());
     const std::string command = std::string("timeout 20 ") + MICRORELIEF_GLSL_BUNDLE_EXE + " " +

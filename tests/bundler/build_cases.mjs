@@ -99,8 +99,8 @@ const listing = (folder) => fs.readdirSync(folder).sort().map((f) => [f, fs.read
 function runCase(c, dir) {
     makeTree(dir);
     let text = `// main\n${c.get('include')}\n`;
-    if (c.get('padding')) text += `// ${'.'.repeat(Number(c.get('padding')))}\n`;
-    fs.writeFileSync(path.join(dir, 'shaders/microrelief/multilevel_trace.glsl'), `${text}void main() {}\n`);
+    if (c.get('padding')) text += `#define MICRORELIEF_PADDING ${'.'.repeat(Number(c.get('padding')))}\n`;
+    fs.writeFileSync(path.join(dir, 'shaders/microrelief/multilevel_trace.glsl'), `${text}void main() {${c.get('main')}}\n`);
     const out = path.join(dir, c.get('out.build', 'out/generated'));
     fs.mkdirSync(path.dirname(out), {recursive: true});
     const args = ['--source', dir, '--out', out, '--no-wasm'];
@@ -122,6 +122,12 @@ function runCase(c, dir) {
         const glsl = fs.readFileSync(path.join(out, 'glsl.js'), 'utf8');
         for (const part of c.all('contains')) expect(glsl.includes(part), `glsl.js does not hold '${part}'`);
         for (const part of c.all('once')) expect(count(glsl, part) === 1, `glsl.js holds '${part}' ${count(glsl, part)} times, not once`);
+        for (const part of c.all('stripped')) expect(!glsl.includes(part), `glsl.js still holds '${part}'`);
+        const library = JSON.parse(/^export const library = (.*);$/m.exec(glsl)[1]).split('\n');
+        for (const spec of c.all('line')) {
+            const [, n, text] = /^(\d+) (.*)$/s.exec(spec);
+            expect(library[Number(n) - 1] === text, `the library's line ${n} is '${library[Number(n) - 1]}', not '${text}'`);
+        }
     } else {
         expectOneLineFailure(r, status, c.get('reason'));
         if (c.get('at')) expect(r.err.includes(c.get('at')), `the error does not say where ('${c.get('at')}'): ${r.err}`);
@@ -150,7 +156,7 @@ function staleFilesGo(dir) {
     expect(!fs.existsSync(path.join(out, 'stale.js')), 'stale.js survived the run');
     expect(fs.readFileSync(path.join(out, 'png.js'), 'utf8').includes('// png.js'), 'png.js was not made again');
     expect(JSON.stringify(fs.readdirSync(out).sort()) ===
-               JSON.stringify(['glsl.js', 'manifest.json', 'png.js', 'pyramid_wasm.js', 'scene_checks.js', 'scene_checks_wasm.js']),
+               JSON.stringify(['glsl.js', 'manifest.json', 'png.js', 'pyramid_wasm.js', 'scene_checks.js', 'scene_checks_wasm.js', 'twin_wasm.js']),
            `generated/ holds ${fs.readdirSync(out)}`);
     expect(hiddenFilesIn(dir).length === 0, `temporaries left: ${hiddenFilesIn(dir)}`);
 }

@@ -148,7 +148,7 @@ void mrBeginPixel() {
 #ifdef MR_HAS_vSunShadowWorldNormal
     vSunShadowWorldNormal = normal;
 #endif
-    // MR_UV_ASSIGNMENTS (src/materials.js: each uv varying of this shader, through its map's transform)
+    MR_UV_ASSIGNMENTS  // src/materials.js puts here each uv varying of this shader, through its map's transform (no comment: the build strips those)
 }
 
 // The tangent frame at the hit in view space (three's getTangentFrame, which takes it from

@@ -11,7 +11,8 @@
 //    (links followed) lie inside shaders/; the same messages, "file:line: #include ...:
 //    reason" (tests/bundler holds both tools to one table of cases); the pyramid builder's
 //    passes (shaders/pyramid/) the same way; and the package's own glue (glsl/*), the files
-//    as they are;
+//    as they are; all of it stripped of comments, of the functions no shader can call and
+//    of blank space (scripts/strip_glsl.mjs says how, conservatively, under every #if);
 //  * generated/png.js: web/png.js, the page's PNG decoder (16-bit maps keep their low byte);
 //  * generated/scene_checks.js: web/scene_checks.js, the programs' checks of a scene in the
 //    pages' words, and generated/scene_checks_wasm.js: the C++ checks it drives (the files
@@ -403,6 +404,18 @@ function writeText(folder, out, name, text) {
 
 // ---- the build ----
 
+import {strip} from './strip_glsl.mjs';
+
+// Every identifier of the package's JavaScript (src/*.js): the GLSL names it splices into
+// three's shaders or replaces, kept by the stripper whatever the GLSL says.
+function identifiersOfTheJavaScript(read) {
+    const roots = new Set();
+    const src = path.join(packageDir, 'src');
+    for (const file of fs.readdirSync(src).sort().filter((f) => f.endsWith('.js')))
+        for (const m of read(path.join(src, file)).matchAll(/[A-Za-z_]\w*/g)) roots.add(m[0]);
+    return roots;
+}
+
 function build(options) {
     const shaderRoot = path.join(options.source, 'shaders');
     if (!fs.existsSync(path.join(shaderRoot, 'microrelief', 'multilevel_trace.glsl')))
@@ -426,7 +439,7 @@ function build(options) {
     };
 
     const bundler = new Bundler(shaderRoot, options.source, read);
-    const library = bundler.bundle(['microrelief/multilevel_trace.glsl', 'microrelief/map_space.glsl',
+    let library = bundler.bundle(['microrelief/multilevel_trace.glsl', 'microrelief/map_space.glsl',
                                     'microrelief/shading.glsl', 'microrelief/shadow.glsl', 'microrelief/albedo.glsl']);
     const pyramid = {
         pass: bundler.bundle(['pyramid/pass.vert']),
@@ -439,6 +452,17 @@ function build(options) {
     for (const file of fs.readdirSync(glueDir).sort()) {
         const key = file.replace(/\.\w+$/, '').replace(/_(\w)/g, (_, c) => c.toUpperCase());
         glue[key] = `// ---- microrelief-three: glsl/${file} ----\n` + readNamed(path.join(glueDir, file));
+    }
+    // Stripped together: the library with the glue (joined at run time in any combination),
+    // the pyramid's passes with each other.
+    const roots = identifiersOfTheJavaScript(readNamed);
+    try {
+        const shaders = strip({library, ...Object.fromEntries(Object.entries(glue).map(([k, v]) => [`glue.${k}`, v]))}, roots).texts;
+        library = shaders.library;
+        for (const key of Object.keys(glue)) glue[key] = shaders[`glue.${key}`];
+        Object.assign(pyramid, strip(pyramid, roots).texts);
+    } catch (e) {
+        throw badInput(e.message);
     }
     const png = readNamed(path.join(options.source, 'web', 'png.js'));
     const checks = readNamed(path.join(options.source, 'web', 'scene_checks.js'));

@@ -60,7 +60,7 @@ function varyingsToGlobals(source) {
 // The relief's GLSL for three's own fragment shaders: the library, then the glue.
 function reliefPrelude(uvAssignments) {
     return library + glue.reliefThree +
-        glue.threeMaterial.replace(/^[ \t]*\/\/ MR_UV_ASSIGNMENTS.*$/m, () => uvAssignments.join('\n'));
+        glue.threeMaterial.replace(/^[ \t]*MR_UV_ASSIGNMENTS\b.*$/m, () => uvAssignments.join('\n'));
 }
 
 function replaceOnce(source, pattern, replacement, what) {

@@ -473,6 +473,7 @@ const std::vector<std::string> kTarballFiles = {"package/LICENSE",
                                                 "package/generated/pyramid_wasm.js",
                                                 "package/generated/scene_checks.js",
                                                 "package/generated/scene_checks_wasm.js",
+                                                "package/generated/twin_wasm.js",
                                                 "package/src/albedo.d.ts",
                                                 "package/src/albedo.js",
                                                 "package/src/checks.d.ts",
@@ -490,6 +491,8 @@ const std::vector<std::string> kTarballFiles = {"package/LICENSE",
                                                 "package/src/pyramid.js",
                                                 "package/src/relief.d.ts",
                                                 "package/src/relief.js",
+                                                "package/src/twin.d.ts",
+                                                "package/src/twin.js",
                                                 "package/src/three_version.js"};
 
 // The most a refusal of the package may say: one line naming the range.

@@ -21,6 +21,10 @@
 //    HeightMap.cpp, and core/Error.cpp with core/scene/SceneFields.cpp, which its errors use)
 //    compiled to WebAssembly by emscripten (em++ on PATH), one ES module with the wasm
 //    inside: the CPU path where WebGL 2 cannot render into R16F.
+//  * generated/twin_wasm.js: the CPU twin of the traversal (src/core/trace/
+//    MultilevelTracer.cpp with the base surfaces, the surface patches, the pyramid and
+//    ModelTransform.cpp) behind wasm/twin_wasm.cpp, compiled the same way: the picks
+//    (src/twin.js; without emscripten a stub, and the picks are traced on the GPU).
 //  * generated/manifest.json: every source file read and its SHA-256.
 //
 // generated/ is made whole in a temporary folder beside it and then put in its place: a run
@@ -33,8 +37,8 @@
 // Usage: node scripts/build.mjs [--out DIR] [--source DIR] [--no-wasm]
 //   --out DIR     where to write (default: generated/ beside this folder)
 //   --source DIR  the repository (default: MICRORELIEF_SOURCE_DIR, else ../.. of the package)
-//   --no-wasm     no emscripten: the CPU pyramid path and the scene checks then refuse with
-//                 a clear message
+//   --no-wasm     no emscripten: the CPU pyramid path, the CPU twin's picks and the scene
+//                 checks then refuse with a clear message (picks go to the GPU)
 import {execFileSync} from 'node:child_process';
 import {createHash} from 'node:crypto';
 import * as fs from 'node:fs';
@@ -48,7 +52,7 @@ const kProgram = 'microrelief-three build';
 const kMaxShaderFileBytes = 4 * 1024 * 1024;
 const kMaxIncludeDepth = 32;
 const kBadInput = 2, kRuntime = 1;  // exit statuses, as the programs' (core/Error.h)
-const kOutputs = ['glsl.js', 'png.js', 'scene_checks.js', 'scene_checks_wasm.js', 'pyramid_wasm.js', 'manifest.json'];
+const kOutputs = ['glsl.js', 'png.js', 'scene_checks.js', 'scene_checks_wasm.js', 'pyramid_wasm.js', 'twin_wasm.js', 'manifest.json'];
 
 class BuildError extends Error {
     constructor(status, message) {
@@ -314,6 +318,19 @@ function buildWasm(options, into, read) {
               '-sALLOW_MEMORY_GROWTH', '-sMAXIMUM_MEMORY=4GB', '-sEXPORT_NAME=createPyramidModule',
               '-sEXPORTED_FUNCTIONS=_mr_build_windows,_mr_level_count,_mr_level_size,_mr_copy_level,_mr_max_height,_mr_scale_exponent,_mr_release,_mr_last_error,_malloc,_free',
               '-sEXPORTED_RUNTIME_METHODS=UTF8ToString']);
+        // The CPU twin of the traversal, for the picks (wasm/twin_wasm.cpp).
+        const twin = from(['src/core/trace/MultilevelTracer.cpp', 'src/core/base/BaseShape.cpp', 'src/core/base/BaseTable.cpp',
+                           'src/core/base/CurvedSurface.cpp', 'src/core/base/CylinderSurface.cpp', 'src/core/base/EllipsoidSurface.cpp',
+                           'src/core/base/PlaneSurface.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/heightmap/SurfacePatch.cpp',
+                           'src/core/heightmap/MaxPyramid.cpp', 'src/core/ParallelRows.cpp', 'src/core/Error.cpp',
+                           'src/core/scene/SceneFields.cpp', 'src/core/scene/ModelTransform.cpp']);
+        for (const f of twin) read(f);
+        const constants = generateConstants(options.source, scratch, read);
+        emxx(['-I', path.join(options.source, 'include'), '-I', path.join(options.source, 'src'), '-I', constants,
+              ...twin, path.join(packageDir, 'wasm', 'twin_wasm.cpp'), '-o', path.join(into, 'twin_wasm.js'),
+              '-sALLOW_MEMORY_GROWTH', '-sMAXIMUM_MEMORY=4GB', '-sEXPORT_NAME=createTwinModule',
+              '-sEXPORTED_FUNCTIONS=_mr_twin_create,_mr_twin_bytes,_mr_twin_trace,_mr_twin_release,_mr_twin_count,_mr_twin_last_error,_malloc,_free',
+              '-sEXPORTED_RUNTIME_METHODS=UTF8ToString']);
         // The scene checks: the page's build of them (web/wasm/CMakeLists.txt), from the same list.
         const list = read(path.join(options.source, 'web', 'wasm', 'scene_checks_sources.txt'));
         const checks = from(list.split('\n').map((l) => l.trim()).filter((l) => l && !l.startsWith('#')));
@@ -321,7 +338,7 @@ function buildWasm(options, into, read) {
         const cmake = read(path.join(options.source, 'web', 'wasm', 'CMakeLists.txt'));
         const exports = /set\(MICRORELIEF_SCENE_CHECKS_EXPORTS "([^"]*)"\)/.exec(cmake);
         if (!exports) throw new BuildError(kRuntime, 'web/wasm/CMakeLists.txt: no MICRORELIEF_SCENE_CHECKS_EXPORTS to export');
-        emxx(['-I', path.join(options.source, 'include'), '-I', path.join(options.source, 'src'), '-I', generateConstants(options.source, scratch, read),
+        emxx(['-I', path.join(options.source, 'include'), '-I', path.join(options.source, 'src'), '-I', constants,
               ...checks, '-o', path.join(into, 'scene_checks_wasm.js'), '-sEXPORT_NAME=createSceneChecksModule',
               `-sEXPORTED_FUNCTIONS=${exports[1].replace(/\\\s*/g, '')}`, '-sEXPORTED_RUNTIME_METHODS=cwrap,UTF8ToString']);
     } finally {
@@ -483,6 +500,9 @@ function build(options) {
             writeText(folder, options.out, 'pyramid_wasm.js', header +
                 'export default async function createPyramidModule() {\n' +
                 '    throw new Error("microrelief-three: no WebAssembly pyramid in this package (packed without emscripten, --no-wasm): pyramid \'cpu\' is unavailable; \'gpu\' needs EXT_color_buffer_float");\n}\n');
+            writeText(folder, options.out, 'twin_wasm.js', header +
+                'export default async function createTwinModule() {\n' +
+                '    throw new Error("microrelief-three: no WebAssembly twin in this package (packed without emscripten, --no-wasm): picks are traced on the GPU; pickWith \'cpu\' is unavailable");\n}\n');
             writeText(folder, options.out, 'scene_checks_wasm.js', header +
                 'export default async function createSceneChecksModule() {\n' +
                 '    throw new Error(\'microrelief-three: no WebAssembly scene checks in this package (packed without emscripten, --no-wasm): loadSceneChecks is unavailable\');\n}\n');

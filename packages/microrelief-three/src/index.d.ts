@@ -14,7 +14,7 @@ export type {ReliefMapLoaderOptions} from './loader.js';
 export {patchFragment, patchVertex, ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 export type {ReliefMaterialParameters, ReliefShadingParameters} from './materials.js';
 export {baseShape, cameraRays, Relief, reliefExtent} from './relief.js';
-export type {BaseShape, BaseSpec, CameraRays, ReliefHit, ReliefInterpolation, ReliefMaterial, ReliefOptions, TracedRays} from './relief.js';
+export type {BaseShape, BaseSpec, CameraRays, PickWith, ReliefHit, ReliefInterpolation, ReliefMaterial, ReliefOptions, TraceOptions, TracedRays} from './relief.js';
 export {kFieldNames, loadSceneChecks, SceneChecks} from './checks.js';
 export type {SceneMap, SceneView} from './checks.js';
 

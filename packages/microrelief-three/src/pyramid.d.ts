@@ -56,6 +56,8 @@ export class ReliefMap implements ReliefMapParts {
     name: string;
     /** GPU memory of the textures, bytes. */
     readonly gpuBytes: number;
+    /** WebAssembly memory of the picks' CPU twins, bytes (0 before the first pick; freed by dispose). */
+    readonly twinBytes: number;
     dispose(): void;
 }
 

@@ -18,6 +18,7 @@ import * as THREE from 'three';
 import {glue, pyramid as passes} from '../generated/glsl.js';
 import {HeightMapError} from './heights.js';
 import {requireSupportedThree} from './three_version.js';
+import {loadTwin, releaseTwins, twinBytes} from './twin.js';
 
 // A WebGL that cannot do what was asked (an extension missing, a texture too large).
 export class ReliefGpuError extends Error {
@@ -69,9 +70,15 @@ export class ReliefMap {
         return 4 * this.width * this.height + 2 * this.levelSizes.reduce((sum, [w, h]) => sum + w * h, 0);
     }
 
+    // WebAssembly memory of the CPU twins the picks built (twin.js), bytes: 0 before the first.
+    get twinBytes() {
+        return twinBytes(this);
+    }
+
     dispose() {
         this.heights.dispose();
         this.windows.dispose();
+        releaseTwins(this);
     }
 }
 
@@ -342,5 +349,6 @@ export async function createReliefMap(renderer, map, {wrapU = false, pyramid = '
         throw new ReliefGpuError('this WebGL 2 has no EXT_color_buffer_float, so it cannot render the max pyramid into R16F textures; pyramid: \'cpu\' (or \'auto\') builds it in WebAssembly instead');
     const onGpu = pyramid === 'gpu' || (pyramid === 'auto' && renderable);
     const built = onGpu ? gpuBuilder(renderer).build({...map, maxSample}, wrapU) : await buildOnCpu({...map, name}, wrapU);
+    await loadTwin();  // the picks' CPU twin, where the package has it (twin.js)
     return new ReliefMap({renderer, ...built, width: map.width, height: map.height, maxSample, wrapU, builtOn: onGpu ? 'gpu' : 'cpu', name});
 }

@@ -67,15 +67,25 @@ export interface ReliefHit {
     iterations: number;
 }
 
+/** What traces the picks: 'auto' (the CPU twin in WebAssembly where the package has it, else the GPU), 'cpu' or 'gpu'. */
+export type PickWith = 'auto' | 'cpu' | 'gpu';
+
+export interface TraceOptions {
+    /** What traces the rays; the relief's pickWith by default. */
+    on?: PickWith;
+}
+
 /** Many rays' hits: n values each (point and normal 3 n, uv 2 n); kind 0 is a miss. */
 export interface TracedRays {
-    t: Float32Array;
+    t: Float64Array;
     kind: Float32Array;
     exhausted: Float32Array;
     point: Float64Array;
-    normal: Float32Array;
-    uv: Float32Array;
+    normal: Float64Array;
+    uv: Float64Array;
     iterations: Float32Array;
+    /** What traced them: the CPU twin (its doubles) or the GPU (its floats). */
+    on: 'cpu' | 'gpu';
 }
 
 /** The relief: a THREE.Mesh (its proxy box) whose material traces the height map in every pixel. */
@@ -109,10 +119,14 @@ export class Relief<TMaterial extends ReliefMaterial = ReliefMaterial> extends M
     prepareDraw(renderer: WebGLRenderer, camera: Camera, withViewport: boolean): void;
     /** Which faces of the box run for `camera` (1 front, 2 back, 3 both). */
     facesFor(camera: Camera, range: [number, number]): number;
+    /** What traces raycast, trace and traceRays: 'auto' (the default), 'cpu' (refused in a package packed without emscripten) or 'gpu'. */
+    pickWith: PickWith;
     raycast(raycaster: Raycaster, intersects: Intersection[]): void;
     /** The first hit of the world ray origin + t direction, t in [near, far], or null. */
-    trace(origin: Vector3, direction: Vector3, near?: number, far?: number): ReliefHit | null;
+    trace(origin: Vector3, direction: Vector3, near?: number, far?: number, options?: TraceOptions): ReliefHit | null;
     /** Many world rays at once: 3 n origins, 3 n directions, 2 or 2 n range values. */
-    traceRays(origins: ArrayLike<number>, directions: ArrayLike<number>, ranges?: ArrayLike<number>): TracedRays;
+    traceRays(origins: ArrayLike<number>, directions: ArrayLike<number>, ranges?: ArrayLike<number>, options?: TraceOptions): TracedRays;
+    /** traceRays on the GPU (glsl/pick.frag). */
+    traceRaysOnGpu(origins: ArrayLike<number>, directions: ArrayLike<number>, ranges: ArrayLike<number>): TracedRays;
     dispose(): void;
 }

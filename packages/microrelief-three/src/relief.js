@@ -7,14 +7,17 @@
 //
 // Per draw (onBeforeRender, and onBeforeShadow for three's shadow maps) it hands its
 // materials the camera's rays (glsl/relief_three.glsl), which faces of the box run, the
-// camera's matrices and the viewport. Raycaster hits are traced by the same GLSL on the GPU
-// (raycast), so a pick returns the point, uv and normal the pixel shows.
+// camera's matrices and the viewport. Raycaster hits (raycast, trace, traceRays) are traced by
+// the library's CPU twin of that GLSL, in double, compiled to WebAssembly (twin.js), or by
+// the GLSL itself on the GPU (pickWith), so a pick returns the point, uv and normal the pixel
+// shows.
 import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
 import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
 import {requireSupportedThree} from './three_version.js';
+import {traceOnTwin, twinLoaded, twinUnavailable} from './twin.js';
 
 const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
 
@@ -396,9 +399,22 @@ export class Relief extends THREE.Mesh {
         return nearest < near ? 3 : 1;
     }
 
-    // three's Raycaster: the relief's own hit, traced on the GPU by the library (the same
-    // GLSL as the picture): {distance, point, uv (three's convention), normal (object space,
-    // as three's Mesh gives it), worldNormal, object}.
+    // What traces the picks (raycast, trace, traceRays): 'auto' (the default: the CPU twin
+    // where the package has it, generated/twin_wasm.js, else the GPU), 'cpu' (the twin;
+    // refused in a package packed without emscripten) or 'gpu' (glsl/pick.frag: a draw and a
+    // readback, which waits for the GPU's queue).
+    get pickWith() {
+        return this._pickWith ?? 'auto';
+    }
+
+    set pickWith(value) {
+        if (!['auto', 'cpu', 'gpu'].includes(value)) throw new TypeError(`Relief: pickWith '${value}' (expected auto, cpu or gpu)`);
+        this._pickWith = value;
+    }
+
+    // three's Raycaster: the relief's own hit (pickWith says what traces it): {distance,
+    // point, uv (three's convention), normal (object space, as three's Mesh gives it),
+    // worldNormal, object}.
     raycast(raycaster, intersects) {
         if (this.material === undefined || this.reliefMap.renderer === undefined) return;
         _inverse.copy(this.matrixWorld).invert();
@@ -411,8 +427,9 @@ export class Relief extends THREE.Mesh {
 
     // The first hit of the world ray origin + t direction (direction unit), t in [near, far]:
     // {distance, point, uv, normal, worldNormal, kind, iterations}, or null for a miss.
-    trace(origin, direction, near = 0, far = Infinity) {
-        const rays = this.traceRays([origin.x, origin.y, origin.z], [direction.x, direction.y, direction.z], [near, far]);
+    // options.on: what traces it (pickWith's values; this.pickWith by default).
+    trace(origin, direction, near = 0, far = Infinity, options = {}) {
+        const rays = this.traceRays([origin.x, origin.y, origin.z], [direction.x, direction.y, direction.z], [near, far], options);
         if (rays.kind[0] === 0 || rays.exhausted[0]) return null;
         const worldNormal = new THREE.Vector3().fromArray(rays.normal, 0);
         // three's Mesh gives the object-space normal: the world one through the model's transpose.
@@ -421,15 +438,27 @@ export class Relief extends THREE.Mesh {
                 normal, worldNormal, kind: rays.kind[0], iterations: rays.iterations[0]};
     }
 
-    // Many world rays at once, traced on the GPU by the library: `origins` and `directions`
-    // are 3 n numbers, `ranges` 2 n (tMin, tMax; t in units of each direction's length) or one
-    // pair for all. Returns typed arrays: t, kind (0 a miss, 1 the surface, 2 to 5 the box's
-    // walls, bottom or caps), exhausted, point (3 n, world), normal (3 n, world unit), uv
-    // (2 n, three's convention), iterations.
-    traceRays(origins, directions, ranges = [0, Infinity]) {
+    // Many world rays at once: `origins` and `directions` are 3 n numbers, `ranges` 2 n (tMin,
+    // tMax; t in units of each direction's length) or one pair for all. options.on: what
+    // traces them ('auto', 'cpu' or 'gpu'; this.pickWith by default). Returns t, kind (0 a
+    // miss, 1 the surface, 2 to 5 the box's walls, bottom or caps), exhausted, point (3 n,
+    // world), normal (3 n, world unit), uv (2 n, three's convention), iterations, and on
+    // ('cpu' or 'gpu': what traced them). The twin's values are its doubles; the GPU's
+    // floats (its points about the first ray's origin, in double).
+    traceRays(origins, directions, ranges = [0, Infinity], {on = this.pickWith} = {}) {
         const n = origins.length / 3;
         if (!Number.isInteger(n) || directions.length !== origins.length || (ranges.length !== 2 && ranges.length !== 2 * n))
             throw new TypeError('Relief.traceRays: 3 n origins, 3 n directions and 2 or 2 n range values');
+        if (!['auto', 'cpu', 'gpu'].includes(on)) throw new TypeError(`Relief.traceRays: on '${on}' (expected auto, cpu or gpu)`);
+        if (on === 'cpu' && !twinLoaded()) throw new Error(twinUnavailable());
+        this.updateWorldMatrix(true, false);
+        if (on !== 'gpu' && twinLoaded()) return traceOnTwin(this, origins, directions, ranges);
+        return this.traceRaysOnGpu(origins, directions, ranges);
+    }
+
+    // traceRays on the GPU (glsl/pick.frag).
+    traceRaysOnGpu(origins, directions, ranges) {
+        const n = origins.length / 3;
         const renderer = this.reliefMap.renderer;
         if (!pickResources) pickResources = makePickResources();
         const {scene, camera, material} = pickResources;
@@ -485,8 +514,8 @@ export class Relief extends THREE.Mesh {
         const point = interleave([3, 4, 5]);
         const world = new Float64Array(3 * n);
         for (let k = 0; k < 3 * n; ++k) world[k] = point[k] + base[k % 3];
-        return {t: field(0).slice(), kind: field(1).slice(), exhausted: field(2).slice(), point: world,
-                normal: interleave([6, 7, 8]), uv: interleave([9, 10]), iterations: field(11).slice()};
+        return {t: Float64Array.from(field(0)), kind: field(1).slice(), exhausted: field(2).slice(), point: world,
+                normal: Float64Array.from(interleave([6, 7, 8])), uv: Float64Array.from(interleave([9, 10])), iterations: field(11).slice(), on: 'gpu'};
     }
 
     dispose() {

@@ -22,6 +22,12 @@ export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | nul
     renderer.render(scene, camera);
     const hits: THREE.Intersection[] = new THREE.Raycaster(camera.position, new THREE.Vector3(0, -1, 0)).intersectObject(relief);
     const rays: TracedRays = relief.traceRays([0, 1, 0], [0, -1, 0]);
+    // Picks on the CPU twin (WebAssembly) or on the GPU.
+    relief.pickWith = 'gpu';
+    const onGpu: 'cpu' | 'gpu' = relief.traceRays([0, 1, 0], [0, -1, 0], [0, 2], {on: 'cpu'}).on;
+    const twinHit = relief.trace(new THREE.Vector3(0, 1, 0), new THREE.Vector3(0, -1, 0), 0, 2, {on: 'auto'});
+    const t: Float64Array = rays.t;
+    console.log(onGpu, twinHit?.distance, t[0], map.twinBytes);
     const level: Float32Array = readWindowLevel(map, map.levelCount - 1);
     const sphere = new Relief(await loadReliefMap(renderer, 'globe.png', {wrapU: true}), {base: {kind: 'sphere', radius: 0.4},
                                                                                           material: new ReliefPhysicalMaterial({clearcoat: 1})});
@@ -59,6 +65,8 @@ export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | nul
     void createReliefMap(renderer, heights, {pyramid: 'wasm'});
     // @ts-expect-error: the loader's options are createReliefMap's and the channel
     loader.setOptions({interpolation: 'bilinear'});
+    // @ts-expect-error: picks are traced on 'auto', 'cpu' or 'gpu'
+    relief.pickWith = 'wasm';
     // @ts-expect-error: selfShadow is a boolean
     new ReliefStandardMaterial({selfShadow: 'yes'});
     // @ts-expect-error: a Relief takes a ReliefMap, not the heights

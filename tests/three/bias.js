@@ -63,9 +63,9 @@ window.threeBiasChecks = (() => {
     // the sun lights (adds at least 24 levels a channel in B) is darker where A loses more
     // than a quarter of what the sun adds. Returns [lit top pixels, darker in A]; the canvas
     // keeps A.
-    function acneOnTops(top) {
+    function acneOnTops(top, sun = sunOf()) {
         const {renderer, scene, camera, floor} = app();
-        const sun = sunOf(), intensity = sun.intensity;
+        const intensity = sun.intensity;
         const draw = ({inMap = true, shown = true, sunOn = true}) => {
             floor.castShadow = inMap;
             floor.visible = shown;
@@ -97,6 +97,30 @@ window.threeBiasChecks = (() => {
         }).join('\n');
     }
 
+    // The same for a spot or point light as three makes it (its default shadow camera, near
+    // 0.5, far 500; a spot's cone of 60 degrees about the floor's centre), at `position`,
+    // `mapSize` texels a side (a point light's cube faces), no bias; the example's sun off.
+    // Returns "kind mapSize px,py,pz lit darker".
+    function acneOf(kind, mapSize, position, top = tops()) {
+        const {THREE, scene} = app();
+        const sun = sunOf(), made = {intensity: sun.intensity, castShadow: sun.castShadow};
+        const light = kind === 'spot' ? new THREE.SpotLight(0xffffff, 6, 0, Math.PI / 3, 0, 0) : new THREE.PointLight(0xffffff, 6, 0, 0);
+        light.position.set(...position);
+        light.castShadow = true;
+        light.shadow.mapSize.set(mapSize, mapSize);
+        scene.add(light);
+        if (light.target) scene.add(light.target);
+        Object.assign(sun, {intensity: 0, castShadow: false});
+        try {
+            return `${kind} ${mapSize} ${position.join(',')} ${acneOnTops(top, light).join(' ')}`;
+        } finally {
+            scene.remove(light);
+            if (light.target) scene.remove(light.target);
+            light.dispose();
+            Object.assign(sun, made);
+        }
+    }
+
     // Leaves the canvas with case [mapSize, light, userBias] drawn (for a picture).
     function draw(mapSize, light, userBias) {
         setSun(mapSize, light, userBias);
@@ -105,5 +129,5 @@ window.threeBiasChecks = (() => {
         return 'drawn';
     }
 
-    return {acne, draw, tops};
+    return {acne, acneOf, draw, tops};
 })();

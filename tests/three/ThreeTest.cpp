@@ -836,8 +836,10 @@ TEST_F(ThreeTarball, PackedWithoutEmscriptenTheWebAssemblyRefusesInOneLine) {
               "--no-wasm): loadSceneChecks is unavailable\n"
               "cpu: Error: microrelief-three: no WebAssembly pyramid in this package (packed "
               "without emscripten, --no-wasm): "
-              "pyramid 'cpu' is unavailable; 'gpu' needs EXT_color_buffer_float\n");
-    EXPECT_EQ(nodeChecks(p.project, "wasm"), "checks: ok\ncpu: ok\n");
+              "pyramid 'cpu' is unavailable; 'gpu' needs EXT_color_buffer_float\n"
+              "pick: Error: microrelief-three: no WebAssembly twin in this package (packed without "
+              "emscripten, --no-wasm): picks are traced on the GPU; pickWith 'cpu' is unavailable\n");
+    EXPECT_EQ(nodeChecks(p.project, "wasm"), "checks: ok\ncpu: ok\npick: ok\n");
 }
 
 // `npm pack` in the source folder is refused in one line that names the way (npm run

@@ -4,7 +4,7 @@
 // \n, so a two-line message shows).
 //   node node_checks.mjs revision   the calls that make a relief, on whatever three is installed
 //   node node_checks.mjs base       a base and a map that disagree on wrapU
-//   node node_checks.mjs wasm       the WebAssembly's two uses (loadSceneChecks, pyramid 'cpu')
+//   node node_checks.mjs wasm       the WebAssembly's uses (loadSceneChecks, pyramid 'cpu', the picks' twin)
 import {createRequire} from 'node:module';
 import * as path from 'node:path';
 import {pathToFileURL} from 'node:url';
@@ -38,6 +38,12 @@ const cases = {
     wasm: {
         checks: () => m.loadSceneChecks(),
         cpu: () => m.createReliefMap(renderer, heights, {pyramid: 'cpu'}),
+        // A pick on the CPU twin (createReliefMap, just above, loaded it where there is one).
+        pick: () => {
+            const relief = new m.Relief({...map(false), heights: {image: {data: heights.samples}}, name: 'tiny'});
+            const rays = relief.traceRays([0, 1, 0], [0, -1, 0], [0, 2], {on: 'cpu'});
+            if (rays.kind[0] !== 1 || rays.on !== 'cpu') throw new Error(`kind ${rays.kind[0]} on ${rays.on}`);
+        },
     },
 };
 

@@ -20,81 +20,46 @@
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/core/scene/Scene.h"
+#include "microrelief/core/scene/SceneFields.h"
 
 namespace microrelief {
 
 namespace {
 
-// The scene's fields and the flags that set them: each flag's name written once, here.
-struct FieldFlag {
-    const char* field;
-    const char* flag;
-};
-constexpr FieldFlag kFieldFlags[] = {
-    {"map.file", "--height"},
-    {"albedo", "--albedo"},
-    {"map.load.channel", "--channel"},
-    {"map.load.normalize", "--normalize"},
-    {"heightScale", "--height-scale"},
-    {"interpolation", "--interpolation"},
-    {"base", "--base"},
-    {"tiles", "--tile"},
-    {"animation", "--animate"},
-    {"time", "--time"},
-    {"camera.eye", "--eye"},
-    {"camera.target", "--target"},
-    {"camera.up", "--up"},
-    {"camera.fovyDegrees", "--fovy"},
-    {"size", "--size"},
-    {"model", "--model"},
-    {"shading.lightDirection", "--light"},
-    {"shading.lightPosition", "--light-position"},
-    {"shading.shadows", "--shadows"},
-    {"shading.lightSizeDegrees", "--light-size"},
-    {"method", "--method"},
-    {"method.steps", "--steps"},
-    {"method.pixelError", "--pixel-error"},
-    {"shading.view", "--view"},
-    {"background", "--background"},
-};
-
 // The program's own flag over a georeferenced map's proportions (no scene field: the fit
 // writes the height scale, SceneOptions.h).
 constexpr const char* kExaggerationFlag = "--exaggeration";
 
-// A base size's flag, from its field in the table of bases (core/base/BaseType.h):
-// "base.radius" is --radius, "base.minorRadius" would be --minor-radius. Empty for a field
-// that is not a base size.
-std::string baseSizeFlag(std::string_view field) {
-    const auto& sizes = baseSizeFields();
-    if (std::find(sizes.begin(), sizes.end(), field) == sizes.end()) return {};
-    std::string flag = "--";
-    for (char c : field.substr(field.find('.') + 1)) {
-        if (std::isupper(static_cast<unsigned char>(c))) {
-            flag += '-';
-            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        }
-        flag += c;
+// The flag of a field, from the table of scene fields (core/scene/SceneFields.h) or, for a
+// base's size, from its field in the table of bases (core/base/BaseType.h); empty for
+// neither.
+std::string fieldFlag(std::string_view field) {
+    if (isBaseSizeField(std::string(field))) {
+        const auto& sizes = baseSizeFields();
+        if (std::find(sizes.begin(), sizes.end(), field) == sizes.end()) return {};
     }
-    return flag;
+    return sceneFieldFlag(field);
 }
 
 // The flag of a field (a programming error when there is none).
 std::string flag(std::string_view field) {
-    for (const FieldFlag& f : kFieldFlags)
-        if (f.field == field) return f.flag;
-    std::string size = baseSizeFlag(field);
-    if (size.empty()) std::abort();
-    return size;
+    std::string name = fieldFlag(field);
+    if (name.empty()) std::abort();
+    return name;
+}
+
+// The field's line in --help, from its row (a programming error when there is none).
+std::string help(std::string_view field) {
+    const SceneField* row = findSceneField(field);
+    if (!row || row->help.empty()) std::abort();
+    return std::string(row->help);
 }
 
 }  // namespace
 
 std::string flagName(const std::string& field) {
-    for (const FieldFlag& f : kFieldFlags)
-        if (field == f.field) return f.flag;
-    const std::string size = baseSizeFlag(field);
-    return size.empty() ? field : size;
+    const std::string name = fieldFlag(field);
+    return name.empty() ? field : name;
 }
 
 std::vector<double> parseNumberList(const std::string& flag, const std::string& text,
@@ -239,113 +204,69 @@ SceneFlags::SceneFlags(RenderJob& job, bool withAlbedo)
     }
 }
 
+// Each flag's name and --help line from its field's row (core/scene/SceneFields.h).
 void SceneFlags::addMapAndCamera(CLI::App& app) {
-    app.add_option(flag("map.file"), height_,
-                   "Height map image (any format OpenImageIO reads); default: the bundled map");
-    if (withAlbedo_) {
-        app.add_option(flag("albedo"), albedo_,
-                       "The map's colours: an image over its (u, v), any size (sRGB unless float), "
-                       "or none; default: the bundled map's own with the bundled map");
-    }
-    app.add_option(flag("map.load.channel"), job_.map.load.channel, "Image channel holding the heights")
-        ->capture_default_str();
-    app.add_flag(flag("map.load.normalize"), job_.map.load.normalize, "Map the map's [min, max] to [0, 1]");
-    heightScaleOption_ = app.add_option(flag("heightScale"), job_.heightScale,
-                                        "World height of map value 1 (the map spans 1 unit); "
-                                        "default for a georeferenced map: its true proportions")
-                             ->capture_default_str();
+    const auto option = [&](const char* field, auto& target) {
+        return app.add_option(flag(field), target, help(field));
+    };
+    option("map.file", height_);
+    if (withAlbedo_) option("albedo", albedo_);
+    option("map.load.channel", job_.map.load.channel)->capture_default_str();
+    app.add_flag(flag("map.load.normalize"), job_.map.load.normalize, help("map.load.normalize"));
+    heightScaleOption_ = option("heightScale", job_.heightScale)->capture_default_str();
     if (fit_) {
         app.add_option(kExaggerationFlag, exaggeration_,
                        "A georeferenced map (GeoTIFF DEM, SRTM .hgt): its heights "
                        "times this over their true proportions (default 1)");
     }
-    app.add_option(flag("interpolation"), interpolation_,
-                   "The last level: bilinear, or biquadratic (the quadratic B-spline of the "
-                   "samples: smooth)")
-        ->capture_default_str();
-    std::string bases =
-        "Base surface the map is laid over (u wraps around a curved base's y axis):";
+    option("interpolation", interpolation_)->capture_default_str();
+    std::string bases = help("base");
     for (const BaseType& type : baseTypes())
         bases += std::string(&type == &baseTypes().front() ? " " : ", ") + type.name + " (" +
                  type.summary + ")";
     baseOption_ = app.add_option(flag("base"), base_, bases)->capture_default_str();
     for (const std::string& field : baseSizeFields()) {
         // "Radius of the cylinder (default 0.3) or the sphere (default 0.5), world units"
-        std::string help;
+        std::string text;
         int count = 1;
         for (const BaseType& type : baseTypes()) {
             for (const BaseSize& size : type.sizes) {
                 if (size.field != field) continue;
                 count = size.count;  // the same in every row (tests/batch: SceneFlags)
-                if (help.empty())
-                    help = std::string(size.label) + (size.count == 3 ? " x,y,z" : "") + " of the ";
+                if (text.empty())
+                    text = std::string(size.label) + (size.count == 3 ? " x,y,z" : "") + " of the ";
                 else
-                    help += " or the ";
-                help += std::string(type.name) + " (default " + sizeText(size, type.defaults) + ")";
+                    text += " or the ";
+                text += std::string(type.name) + " (default " + sizeText(size, type.defaults) + ")";
             }
         }
-        app.add_option(flag(field), sizes_[field], help + ", world units")
+        app.add_option(flag(field), sizes_[field], text + ", world units")
             ->type_name(count == 1 ? "FLOAT" : "X,Y,Z");
     }
-    app.add_option(
-        flag("tiles"), tile_,
-        "Repeat the map N,M times across the base (N around a curved base), as the N x M "
-        "larger image made by repeating it (default 1,1)");
-    app.add_option(flag("animation"), animate_,
-                   "An animated relief over the map's grid, evaluated on the GPU: waves, ripples, "
-                   "or flood (the map under rising and falling water)");
-    app.add_option(flag("time"), time_, "With --animate: the moment drawn, seconds (default 0)");
-    app.add_option(flag("camera.eye"), eye_, "Camera position x,y,z (world, y up)")->capture_default_str();
-    app.add_option(flag("camera.target"), target_, "Point the camera looks at, x,y,z")->capture_default_str();
-    app.add_option(flag("camera.up"), up_, "Camera up direction x,y,z")->capture_default_str();
-    app.add_option(flag("camera.fovyDegrees"), job_.camera.fovyDegrees, "Vertical field of view in degrees")
-        ->capture_default_str();
-    app.add_option(flag("size"), size_, "Picture size WIDTHxHEIGHT")->capture_default_str();
-    modelOption_ = app.add_option(
-        flag("model"), model_,
-        "Where the relief sits in the world: a 3 x 4 affine matrix, 12 numbers in rows "
-        "(m00,m01,m02,tx,m10,...,tz); default: the identity");
+    option("tiles", tile_);
+    option("animation", animate_);
+    option("time", time_);
+    option("camera.eye", eye_)->capture_default_str();
+    option("camera.target", target_)->capture_default_str();
+    option("camera.up", up_)->capture_default_str();
+    option("camera.fovyDegrees", job_.camera.fovyDegrees)->capture_default_str();
+    option("size", size_)->capture_default_str();
+    modelOption_ = option("model", model_);
 }
 
 void SceneFlags::addShading(CLI::App& app) {
-    app.add_option(flag("shading.lightDirection"), light_,
-                   "Direction towards the light x,y,z (default -0.45,0.8,-0.35)");
-    app.add_option(flag("shading.lightPosition"), lightPosition_,
-                   "A point light at x,y,z (world) instead of the directional light");
-    app.add_option(flag("shading.shadows"), shadows_,
-                   "Self-shadows: off, hard (exact: a second trace towards the light) or soft (an "
-                   "estimate for a round light of --light-size); multilevel, maxmip and cone")
-        ->capture_default_str();
-    app.add_option(flag("shading.lightSizeDegrees"), job_.shading.lightSizeDegrees,
-                   "Soft shadows: the light's angular diameter in degrees (the sun's is 0.53)")
-        ->capture_default_str();
-    app.add_option(
-           flag("method"), method_,
-           "How rays are traced: multilevel (the paper's method, exact), or a peer for comparison: "
-           "normal, offset, steep, pom, relief, maxmip, cone (cone step mapping, exact), rcsm "
-           "(relaxed cone stepping; cone and rcsm on an untiled plane)")
-        ->capture_default_str();
-    app.add_option(
-           flag("method.steps"), job_.method.steps,
-           "Peers' quality knob: steep layers, pom samples at grazing angles, relief linear steps, "
-           "rcsm relaxed cone steps (the same default; --steps 15 is the published setting), "
-           "each then 8 binary steps for relief and rcsm")
-        ->capture_default_str();
-    app.add_option(
-           flag("method.pixelError"), job_.method.pixelError,
-           "multilevel: stop at pyramid levels whose windows project to less than this many pixels "
-           "(0: exact)")
-        ->capture_default_str();
-    app.add_option(
-           flag("shading.view"), view_,
-           "What the picture shows: shaded, or a debug view of the method: iterations (segments "
-           "visited, heat map), level (pyramid level where the ray stopped), normal, depth, "
-           "position")
-        ->capture_default_str();
-    app.add_option(flag("background"), background_,
-                   "Background colour r,g,b (linear, each >= 0; 1 is full, above it saturates "
-                   "an 8-bit picture)")
-        ->capture_default_str();
+    const auto option = [&](const char* field, auto& target) {
+        return app.add_option(flag(field), target, help(field));
+    };
+    option("shading.lightDirection", light_);
+    option("shading.lightPosition", lightPosition_);
+    option("shading.shadows", shadows_)->capture_default_str();
+    option("shading.lightSizeDegrees", job_.shading.lightSizeDegrees)->capture_default_str();
+    option("method", method_)->capture_default_str();
+    option("method.steps", job_.method.steps)->capture_default_str();
+    option("method.pixelError", job_.method.pixelError)->capture_default_str();
+    option("shading.view", view_)->capture_default_str();
+    option("background", background_)->capture_default_str();
 }
 
 namespace {
@@ -382,10 +303,11 @@ BaseShape parseBase(const std::string& name, const std::map<std::string, std::st
 
 glm::ivec2 parseTiles(const std::string& text) {
     const std::vector<double> counts =
-        parseNumberList("--tile", text, 2, "two whole numbers N,M of at least 1");
+        parseNumberList(flag("tiles"), text, 2, "two whole numbers N,M of at least 1");
     for (double n : counts) {
         if (n != std::floor(n) || n < 1.0 || n > kMaxTiles) {
-            throwBadInput("--tile " + text + ": each count must be a whole number from 1 to " +
+            throwBadInput(flag("tiles") + " " + text +
+                          ": each count must be a whole number from 1 to " +
                           std::to_string(kMaxTiles));
         }
     }
@@ -405,7 +327,7 @@ void SceneFlags::apply() {
     if (!tile_.empty()) job_.tiles = parseTiles(tile_);
     if (!animate_.empty()) job_.animation = animate_;
     if (time_) {
-        if (animate_.empty()) throwBadInput("--time needs --animate NAME");
+        if (animate_.empty()) throwBadInput(flag("time") + " needs " + flag("animation") + " NAME");
         job_.time = *time_;
     }
     const char* const xyz = "three numbers x,y,z";
@@ -421,7 +343,9 @@ void SceneFlags::apply() {
         job_.shading.lightDirection = glm::vec3(light);
     }
     if (!lightPosition_.empty()) {
-        if (!light_.empty()) throwBadInput("--light and --light-position are two lights: give one");
+        if (!light_.empty())
+            throwBadInput(flag("shading.lightDirection") + " and " + flag("shading.lightPosition") +
+                          " are two lights: give one");
         const glm::dvec3 position =
             parseVectorFlag(flag("shading.lightPosition"), lightPosition_, xyz, kMaxWorldPosition);
         std::vector<FieldError> errors;
@@ -569,7 +493,7 @@ bool albedoOffered(const ReliefDesc& relief) {
 std::string renderCommandLine(const SceneOptions& o, const std::string& program) {
     const RenderJob& job = o.job;
     std::string line = program;
-    // Each field's flag by name (kFieldFlags); `value` quoted, or after "=" where a
+    // Each field's flag by name (core/scene/SceneFields.h); `value` quoted, or after "=" where a
     // leading minus must not read as a flag in any parser.
     const auto add = [&](const char* field, const std::string& value) {
         line += std::string(" ") + flag(field) + (value.empty() ? "" : " " + shellQuote(value));

@@ -1,9 +1,10 @@
 // The flags that describe a view of a height map (scene-and-cli.md): the programs' names
 // for the fields of the library's scene values (core/scene/Scene.h: ReliefDesc, ViewDesc).
 // microrelief-render and microrelief-viewer register them through this one file, so the
-// viewer's "copy as command" writes exactly what the renderer parses; each flag's name is
-// written once, in the table of fields and flags (flagName), which also names the flag
-// in every error the library reports about a field.
+// viewer's "copy as command" writes exactly what the renderer parses. Each flag's name and
+// --help line is its field's row in the library's table of scene fields
+// (core/scene/SceneFields.h), which also names the flag in every error the library reports
+// about a field (flagName).
 #pragma once
 
 #include <filesystem>

@@ -1,0 +1,143 @@
+// scene_field_table: docs/cli.md's table of scene options, written from the library's table
+// of scene fields (core/scene/SceneFields.h) and of bases (core/base/BaseType.h), and the
+// check that the committed page holds exactly that table (ctest docs.cli_table).
+//
+//   scene_field_table print              the table, Markdown, on stdout
+//   scene_field_table check FILE.md      exit 1, saying how to regenerate, where FILE's
+//                                        table differs
+//   scene_field_table write FILE.md      replace FILE's table with the generated one
+//
+// The table sits between two marker lines (kBegin, kEnd); the rest of the page is prose.
+#include <cctype>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "microrelief/core/base/BaseType.h"
+#include "microrelief/core/scene/SceneFields.h"
+
+namespace {
+
+using namespace microrelief;
+
+constexpr const char* kBegin =
+    "<!-- scene options: generated from src/core/scene/SceneFields.cpp by "
+    "tests/docs/scene_field_table.cpp (cmake --build build --target docs-cli-table); "
+    "edit the rows there -->";
+constexpr const char* kEnd = "<!-- end of the generated scene options -->";
+constexpr const char* kRegenerate = "cmake --build build --target docs-cli-table";
+
+std::string cell(std::string_view text) {
+    return text.empty() ? std::string() : std::string(text);
+}
+
+std::string row(const std::string& option, const std::string& key, const std::string& defaults,
+                const std::string& range, const std::string& meaning) {
+    return "| " + option + " | " + (key.empty() ? "" : "`" + key + "`") + " | " + defaults + " | " +
+           range + " | " + meaning + " |\n";
+}
+
+// A size of the bases, one row for its field ("--radius R | 0.3 (cylinder), 0.5 (sphere)").
+std::string baseSizeRow(const std::string& field) {
+    std::string value, defaults, owners, label;
+    for (const BaseType& type : baseTypes()) {
+        for (const BaseSize& size : type.sizes) {
+            if (size.field != field) continue;
+            double numbers[3] = {};
+            size.read(type.defaults, numbers);
+            std::ostringstream text;
+            for (int i = 0; i < size.count; ++i) text << (i ? "," : "") << numbers[i];
+            defaults += (defaults.empty() ? "" : ", ") + text.str() + " (" + type.name + ")";
+            owners += (owners.empty() ? "the " : " or the ") + std::string(type.name);
+            label = size.label;
+            value = size.count == 3 ? "x,y,z" : std::string(1, label.front());
+        }
+    }
+    for (char& c : label) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    // The page's key for a size is its flag's name (web/scene.js: radius, length, radii).
+    const std::string flag = sceneFieldFlag(field);
+    return row("`" + flag + " " + value + "`", flag.substr(2), defaults, "world units, > 0",
+               "the " + label + (value == "x,y,z" ? " along x, y, z" : "") + " of " + owners +
+                   " (`--base`)");
+}
+
+std::string generatedTable() {
+    std::string table = std::string(kBegin) + "\n\n";
+    table += "| option | page key | default | range, unit | meaning |\n|---|---|---|---|---|\n";
+    for (const SceneField& field : sceneFieldTable()) {
+        if (field.flag.empty()) continue;  // a library user's only (map.samples)
+        std::string option = std::string(field.flag);
+        if (!field.valueName.empty()) option += " " + std::string(field.valueName);
+        table += row("`" + option + "`", cell(field.urlKey), cell(field.defaultText),
+                     cell(field.range), cell(field.doc.empty() ? field.help : field.doc));
+        if (field.path == "base")
+            for (const std::string& size : baseSizeFields()) table += baseSizeRow(size);
+    }
+    return table + "\n" + kEnd + "\n";
+}
+
+bool read(const std::string& path, std::string& text) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::ostringstream all;
+    all << in.rdbuf();
+    text = all.str();
+    return true;
+}
+
+// Where the generated table lies in `text`: [begin, end) covering both markers' lines.
+bool findTable(const std::string& text, std::size_t& begin, std::size_t& end) {
+    begin = text.find(kBegin);
+    const std::size_t close = text.find(kEnd);
+    if (begin == std::string::npos || close == std::string::npos || close < begin) return false;
+    end = close + std::string(kEnd).size();
+    if (end < text.size() && text[end] == '\n') ++end;
+    return true;
+}
+
+int fail(const std::string& message) {
+    std::cerr << "scene_field_table: " << message << "\n";
+    return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string mode = argc > 1 ? argv[1] : "";
+    if (mode == "print" && argc == 2) {
+        std::cout << generatedTable();
+        return 0;
+    }
+    if ((mode != "check" && mode != "write") || argc != 3)
+        return fail("usage: scene_field_table print | check FILE.md | write FILE.md");
+    const std::string path = argv[2];
+    std::string text;
+    if (!read(path, text)) return fail(path + ": cannot be read");
+    std::size_t begin = 0, end = 0;
+    if (!findTable(text, begin, end))
+        return fail(path + ": no generated table (a line '" + kBegin + "', then one '" + kEnd +
+                    "')");
+    const std::string generated = generatedTable();
+    const std::string committed = text.substr(begin, end - begin);
+    if (mode == "check") {
+        if (committed == generated) {
+            std::cout << "scene_field_table: " << path << " holds the table of scene fields\n";
+            return 0;
+        }
+        // The first line that differs, so that the failure says what changed.
+        std::istringstream a(committed), b(generated);
+        std::string lineA, lineB;
+        int number = 1;
+        while (std::getline(a, lineA) && std::getline(b, lineB) && lineA == lineB) ++number;
+        return fail(path +
+                    ": its table of scene options is not the one the table of scene "
+                    "fields (src/core/scene/SceneFields.cpp) makes; regenerate it: " +
+                    kRegenerate + "\n  table line " + std::to_string(number) + " is:\n    " +
+                    lineA + "\n  generated:\n    " + lineB);
+    }
+    text.replace(begin, end - begin, generated);
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!(out << text) || !out.flush()) return fail(path + ": cannot be written");
+    return 0;
+}

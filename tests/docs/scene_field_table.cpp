@@ -6,11 +6,15 @@
 //   scene_field_table check FILE.md      exit 1, saying how to regenerate, where FILE's
 //                                        table differs
 //   scene_field_table write FILE.md      replace FILE's table with the generated one
+//   scene_field_table keys scene.js      exit 1 where web/scene.js's URL keys are not the
+//                                        rows' (ctest web.field_keys)
 //
 // The table sits between two marker lines (kBegin, kEnd); the rest of the page is prose.
 #include <cctype>
 #include <fstream>
 #include <iostream>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -101,6 +105,58 @@ int fail(const std::string& message) {
     return 1;
 }
 
+// The keys of the page's own, no scene field's, and why (tests/web/check_url_keys.py lists
+// the same).
+const std::set<std::string> kPageOwnKeys = {
+    "resolution",  // the page draws at 1/N of its pixels while it moves
+    "clean",       // the picture without the panel, for screenshots
+};
+
+// Every key `pattern`'s first group matches in `text`.
+std::set<std::string> matches(const std::string& text, const char* pattern) {
+    std::set<std::string> keys;
+    const std::regex expression(pattern);
+    for (auto m = std::sregex_iterator(text.begin(), text.end(), expression);
+         m != std::sregex_iterator(); ++m)
+        keys.insert((*m)[1].str());
+    return keys;
+}
+
+// web/scene.js reads (viewFromQuery: get('key', ...)) and writes (queryFromView:
+// q.set('key', ...)) exactly the rows' URL keys, the bases' sizes (by their flags' names)
+// and its own keys.
+int checkKeys(const std::string& path, const std::string& text) {
+    std::set<std::string> table = kPageOwnKeys;
+    for (const SceneField& field : sceneFieldTable())
+        if (!field.urlKey.empty()) table.insert(std::string(field.urlKey));
+    for (const std::string& size : baseSizeFields()) table.insert(sceneFieldFlag(size).substr(2));
+    const std::set<std::string> readKeys = matches(text, R"(\bget\('([a-z][a-z-]*)')");
+    const std::set<std::string> writtenKeys = matches(text, R"(\bq\.set\('([a-z][a-z-]*)')");
+    std::vector<std::string> problems;
+    for (const auto& [keys, what] :
+         {std::pair{&readKeys, "reads (get)"}, std::pair{&writtenKeys, "writes (q.set)"}}) {
+        for (const std::string& key : table)
+            if (!keys->count(key))
+                problems.push_back("the page never " + std::string(what) + " key " + key);
+        for (const std::string& key : *keys)
+            if (!table.count(key))
+                problems.push_back("the page " + std::string(what) + " key " + key +
+                                   ", which no row of the table of scene fields has");
+    }
+    if (readKeys.empty() || writtenKeys.empty())
+        problems.push_back("no get('key' or q.set('key' found: the check no longer reads the page");
+    if (problems.empty()) {
+        std::cout << "scene_field_table: " << path << " reads and writes the " << table.size()
+                  << " keys of the table of scene fields\n";
+        return 0;
+    }
+    std::string message = path +
+                          ": its URL keys are not the table of scene fields' "
+                          "(src/core/scene/SceneFields.cpp: a row's urlKey):";
+    for (const std::string& problem : problems) message += "\n  " + problem;
+    return fail(message);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -109,11 +165,13 @@ int main(int argc, char** argv) {
         std::cout << generatedTable();
         return 0;
     }
-    if ((mode != "check" && mode != "write") || argc != 3)
-        return fail("usage: scene_field_table print | check FILE.md | write FILE.md");
+    if ((mode != "check" && mode != "write" && mode != "keys") || argc != 3)
+        return fail(
+            "usage: scene_field_table print | check FILE.md | write FILE.md | keys FILE.js");
     const std::string path = argv[2];
     std::string text;
     if (!read(path, text)) return fail(path + ": cannot be read");
+    if (mode == "keys") return checkKeys(path, text);
     std::size_t begin = 0, end = 0;
     if (!findTable(text, begin, end))
         return fail(path + ": no generated table (a line '" + kBegin + "', then one '" + kEnd +

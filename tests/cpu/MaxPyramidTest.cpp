@@ -126,11 +126,10 @@ TEST(MaxPyramid, FinestLevelIsTheExactSurfaceMaxOverEachTexel) {
 // mirror of max_pyramid.glsl), at the level the traversal picks for it.
 double traversalBound(const MaxPyramid& p, glm::dvec2 a, glm::dvec2 b, int* fetches = nullptr,
                       int* level = nullptr) {
-    int counted = 0, read = -1;
-    const double bound = p.segmentBound(a, b, read, counted);
-    if (fetches) *fetches = counted;
-    if (level) *level = read;
-    return bound;
+    const BoundRead read = p.segmentBound(a, b);
+    if (fetches) *fetches = read.fetches;
+    if (level) *level = read.level;
+    return read.bound;
 }
 
 // The surface's max along the segment's path, densely sampled: what a bound must exceed.
@@ -373,8 +372,7 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
                 }
                 for (int trial = 0; trial < 400; ++trial) {
                     const auto [lo, hi] = randomFootprint(random, w, h, wrapU);
-                    int level = -1, fetches = 0;
-                    const double bound = p.footprintBound(lo, hi, level, fetches);
+                    const double bound = p.footprintBound(lo, hi).bound;
                     ASSERT_GE(bound, denseMax(surface, lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
                         << w << "x" << h << (wrapU ? " wrapped" : "") << " [" << lo.x << "," << lo.y
                         << "] - [" << hi.x << "," << hi.y << "]";
@@ -384,7 +382,7 @@ TEST(MaxPyramid, BiquadraticBoundsCoverThePatchesOnEitherAddressing) {
                             const glm::dvec2 q = lo + (hi - lo) * (k / 300.0);
                             along = std::max(along, surface(q.x, q.y));
                         }
-                        ASSERT_GE(p.segmentBound(lo, hi, level, fetches), along - 1e-12);
+                        ASSERT_GE(p.segmentBound(lo, hi).bound, along - 1e-12);
                     }
                 }
             }
@@ -425,8 +423,7 @@ TEST(MaxPyramid, TiledBoundsCoverTheWholeSurface) {
                 }
                 for (int trial = 0; trial < 300; ++trial) {
                     const auto [lo, hi] = randomFootprint(random, W, H, wrapU);
-                    int level = -1, fetches = 0;
-                    ASSERT_GE(p.footprintBound(lo, hi, level, fetches),
+                    ASSERT_GE(p.footprintBound(lo, hi).bound,
                               denseMax(surface, lo.x, lo.y, hi.x, hi.y, 30) - 1e-12)
                         << name << " [" << lo.x << "," << lo.y << "] - [" << hi.x << "," << hi.y
                         << "]";
@@ -593,8 +590,7 @@ TEST(MaxPyramid, HalfPrecisionWindowsCoverTheSurfaceAlongAnySegment) {
                 const double reach = std::max(w, h) * unit(random) * unit(random);
                 glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
                 hi = glm::min(hi, glm::dvec2(wrapU ? lo.x + w - 1e-9 : w, h));
-                int level = -1, fetches = 0;
-                const double bound = p.footprintBound(lo, hi, level, fetches);
+                const double bound = p.footprintBound(lo, hi).bound;
                 double dense = 0.0;
                 for (int b = 0; b <= 24; ++b)
                     for (int a = 0; a <= 24; ++a)

@@ -390,20 +390,19 @@ int MaxPyramid::windowLevel(glm::ivec2 lo, glm::ivec2 hi) const {
     return std::min(level, windowLevelCount() - 1);
 }
 
-double MaxPyramid::windowOver(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const {
-    level = windowLevel(lo, hi);
-    ++fetches;
+BoundRead MaxPyramid::windowOver(glm::ivec2 lo, glm::ivec2 hi) const {
+    const int level = windowLevel(lo, hi);
     // The last window of a row or column holds what lies past it (its blocks' remainder).
     const glm::ivec2 p = glm::min(lo >> level, windowSizes_[level] - 1);
-    return window(level, p.x, p.y);
+    return {window(level, p.x, p.y), level, 1};
 }
 
-double MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const {
+BoundRead MaxPyramid::segmentBound(glm::dvec2 a, glm::dvec2 b) const {
     const glm::ivec2 ta = finestTexelAt(a), tb = finestTexelAt(b);
-    return windowOver(glm::min(ta, tb), glm::max(ta, tb), level, fetches);
+    return windowOver(glm::min(ta, tb), glm::max(ta, tb));
 }
 
-double MaxPyramid::tiledWindows(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const {
+BoundRead MaxPyramid::tiledWindows(glm::ivec2 lo, glm::ivec2 hi) const {
     // max_pyramid.glsl: mr_tiledWindows. Per axis the tile's texels the footprint covers, or
     // the whole tile; across a seam between tiles the tile's top.
     const glm::ivec2 tile(mapWidth_, mapHeight_), span = hi - lo;
@@ -415,23 +414,24 @@ double MaxPyramid::tiledWindows(glm::ivec2 lo, glm::ivec2 hi, int& level, int& f
         }
     }
     const bool split = b.x >= tile.x || b.y >= tile.y;
-    return split ? windowOver({0, 0}, tile - 1, level, fetches) : windowOver(a, b, level, fetches);
+    return split ? windowOver({0, 0}, tile - 1) : windowOver(a, b);
 }
 
-double MaxPyramid::footprintBound(glm::dvec2 lo, glm::dvec2 hi, int& level, int& fetches) const {
+BoundRead MaxPyramid::footprintBound(glm::dvec2 lo, glm::dvec2 hi) const {
     if (addressing_.tiled()) {
         const glm::ivec2 tlo = finestTexelAt(lo);
         glm::ivec2 thi = finestTexelAt(hi);
         if (wrapU_ && hi.x >= mapWidth_ * addressing_.tilesX)
             thi.x = static_cast<int>(std::floor(hi.x));  // past the seam
-        return tiledWindows(tlo, thi, level, fetches);
+        return tiledWindows(tlo, thi);
     }
-    if (!wrapU_ || hi.x < mapWidth_)
-        return windowOver(finestTexelAt(lo), finestTexelAt(hi), level, fetches);
-    // Across the seam: [lo.x, W) and [0, hi.x - W], each held by a window of its own.
+    if (!wrapU_ || hi.x < mapWidth_) return windowOver(finestTexelAt(lo), finestTexelAt(hi));
+    // Across the seam: [lo.x, W) and [0, hi.x - W], each held by a window of its own; the
+    // level is the second's, as the shader reports it.
     const glm::ivec2 tlo = finestTexelAt(lo), thi = finestTexelAt(hi - glm::dvec2(mapWidth_, 0.0));
-    const double right = windowOver(tlo, {mapWidth_ - 1, thi.y}, level, fetches);
-    return std::max(right, windowOver({0, tlo.y}, thi, level, fetches));
+    const BoundRead right = windowOver(tlo, {mapWidth_ - 1, thi.y});
+    const BoundRead left = windowOver({0, tlo.y}, thi);
+    return {std::max(right.bound, left.bound), left.level, right.fetches + left.fetches};
 }
 
 }  // namespace microrelief

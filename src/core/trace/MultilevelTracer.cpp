@@ -73,10 +73,12 @@ void MultilevelTracer::mapChanged(const HeightMap& map, const TexelRect& changed
 
 // Fetches are counted as the shader's GLSL 4.00 variant counts them: one textureGather
 // per bilinear patch and four per biquadratic one (relief_patch.glsl), one texel per
-// pyramid read. Cells lie between samples i..i+1 (bilinear) or over texel square i (its
-// samples i-1..i+1), wrapped in i on a curved base, clamped otherwise.
-SurfacePatch MultilevelTracer::patchAt(int i, int j, int& fetches) const {
-    fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1;
+// pyramid read (BoundRead). Cells lie between samples i..i+1 (bilinear) or over texel
+// square i (its samples i-1..i+1), wrapped in i on a curved base, clamped otherwise.
+// The walk's steps take the ray's TraversalStats and add to them where they read, so a
+// new figure is a field there and a line where it is counted.
+SurfacePatch MultilevelTracer::patchAt(int i, int j, TraversalStats& stats) const {
+    stats.fetches += interpolation_ == Interpolation::Biquadratic ? 4 : 1;
     return SurfacePatch::at(map_, i, j, addressing_, interpolation_);
 }
 
@@ -101,8 +103,8 @@ glm::dvec3 MultilevelTracer::topNormal(const SurfacePatch& patch,
 // leaf_walk.glsl: mr_intersectStraightLeaf, on the plane. The cells the segment crosses, in
 // ray order, each solved exactly; from a cell to the neighbour across the boundary the
 // ray meets first.
-auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, int& fetches) const
-    -> std::optional<LeafHit> {
+auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb,
+                                     TraversalStats& stats) const -> std::optional<LeafHit> {
     const glm::dvec3 pa = ray.at(ta), pb = ray.at(tb);
     glm::ivec2 at(std::floor(pa.x - 0.5), std::floor(pa.y - 0.5));  // the cell's origin sample
     const glm::ivec2 last(std::floor(pb.x - 0.5), std::floor(pb.y - 0.5));
@@ -113,7 +115,7 @@ auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, 
                             : last.y < at.y ? -1
                                             : 0);
     const int pieces = std::abs(last.x - at.x) + std::abs(last.y - at.y) + 1;
-    SurfacePatch cell = patchAt(at.x, at.y, fetches);
+    SurfacePatch cell = patchAt(at.x, at.y, stats);
     double t0 = ta;
     for (int piece = 0; piece < pieces; ++piece) {
         double exits[2] = {tb, tb};
@@ -129,7 +131,7 @@ auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, 
         if (t1 >= tb) break;
         const int axis = exits[0] <= exits[1] ? 0 : 1;
         at[axis] += toward[axis];
-        cell = patchAt(at.x, at.y, fetches);
+        cell = patchAt(at.x, at.y, stats);
         t0 = t1;
     }
     return std::nullopt;
@@ -139,16 +141,16 @@ auto MultilevelTracer::intersectLeaf(const FrameRay& ray, double ta, double tb, 
 // split there, so that on each piece X and Y are both monotone and the cells the path
 // crosses are walked in order.
 auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double tb,
-                                          int& fetches) const -> std::optional<LeafHit> {
+                                          TraversalStats& stats) const -> std::optional<LeafHit> {
     const std::optional<double> turn = base_->turnY(ray);
     constexpr double kAll = std::numeric_limits<double>::infinity();
     // The branches of the line before and after the turn, on each of which Y is monotone.
     const glm::dvec2 before(-kAll, turn ? *turn : kAll), after(turn ? *turn : -kAll, kAll);
     if (turn && *turn > ta && *turn < tb) {
-        if (auto hit = walkLeafCells(ray, ta, *turn, before, fetches)) return hit;
-        return walkLeafCells(ray, *turn, tb, after, fetches);
+        if (auto hit = walkLeafCells(ray, ta, *turn, before, stats)) return hit;
+        return walkLeafCells(ray, *turn, tb, after, stats);
     }
-    return walkLeafCells(ray, ta, tb, turn && *turn <= ta ? after : before, fetches);
+    return walkLeafCells(ray, ta, tb, turn && *turn <= ta ? after : before, stats);
 }
 
 // leaf_walk.glsl: mr_walkLeafCells. A DDA over the cells of a path whose X and Y are
@@ -160,7 +162,7 @@ auto MultilevelTracer::intersectLeafCells(const FrameRay& ray, double ta, double
 // walk steps on. (The shader splits the walk in two loops, cells tested in the inner one and
 // solved in the outer; it visits and reads the same cells in the same order.)
 auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to, glm::dvec2 branch,
-                                     int& fetches) const -> std::optional<LeafHit> {
+                                     TraversalStats& stats) const -> std::optional<LeafHit> {
     const BaseSurface& base = *base_;
     const int w = width_, h = height_;
     const double offset = SurfacePatch::offset(interpolation_);
@@ -198,7 +200,7 @@ auto MultilevelTracer::walkLeafCells(const FrameRay& ray, double from, double to
                 stepY = true;
             }
         }
-        const SurfacePatch patch = patchAt(i, j, fetches);
+        const SurfacePatch patch = patchAt(i, j, stats);
         if (const auto root = cellStretchHit(ray, patch, t0, t1))
             return LeafHit{*root, topNormal(patch, ray.at(*root))};
         if (!stepX && !stepY) break;  // the stretch ended at `to`
@@ -362,18 +364,18 @@ auto MultilevelTracer::subdivideSegment(const FrameRay& ray, double span, bool f
         bool mayHit = floorExit && tb == span;
         double bound = parentBound;
         if (!mayHit && footprint.lowest <= parentBound) {
-            int level = 0;
-            bound = std::min(
-                bound, pyramid_.footprintBound(footprint.lo, footprint.hi, level, stats.fetches));
-            stats.stopLevel = level;
+            const BoundRead read = pyramid_.footprintBound(footprint.lo, footprint.hi);
+            stats.fetches += read.fetches;
+            stats.stopLevel = read.level;
+            bound = std::min(bound, read.bound);
             mayHit = footprint.lowest <= bound;
         }
         if (mayHit) {
             if (footprint.extent() <= kLeafTexels || depth >= kMaxDepth) {
                 // From where a falling ray comes down to the bound (see the shader).
                 const double tFrom = base_->descendTo(ray, ta, tb, bound);
-                auto hit = cellWalk ? intersectLeafCells(ray, tFrom, tb, stats.fetches)
-                                    : intersectLeaf(ray, tFrom, tb, stats.fetches);
+                auto hit = cellWalk ? intersectLeafCells(ray, tFrom, tb, stats)
+                                    : intersectLeaf(ray, tFrom, tb, stats);
                 if (hit) return hit;
             } else {
                 // The near half, or the far one when the near one lies above the bound.
@@ -395,7 +397,7 @@ auto MultilevelTracer::subdivideSegment(const FrameRay& ray, double span, bool f
                 const double offset = SurfacePatch::offset(interpolation_);
                 const SurfacePatch patch =
                     patchAt(static_cast<int>(std::floor(exit.x - offset)),
-                            static_cast<int>(std::floor(exit.y - offset)), stats.fetches);
+                            static_cast<int>(std::floor(exit.y - offset)), stats);
                 return LeafHit{span, topNormal(patch, exit)};
             }
             return std::nullopt;

@@ -132,6 +132,16 @@ struct PyramidRegions {
 PyramidRegions pyramidUpdateRegions(const std::vector<glm::ivec2>& levelSizes, int mapWidth,
                                     int mapHeight, bool wrapU, const TexelRect& changed);
 
+// What a read of the pyramid gives a traversal (MaxPyramid::segmentBound, footprintBound):
+// the bound, the level of the last window read (the statistics' stop level), and how many
+// texels it read, counted as the shader's fetches. A traversal adds the reads' counts to
+// its own (TraversalStats), so a new count is a field here and a line where it is kept.
+struct BoundRead {
+    double bound = 0.0;
+    int level = -1;
+    int fetches = 0;
+};
+
 class MaxPyramid {
 public:
     // `wrapU`: the map's u is periodic (a curved base), column W - 1 joins column 0.
@@ -186,16 +196,14 @@ public:
 
     // The bound over the segment from a to b that the shader reads (max_pyramid.glsl:
     // segmentBound): one overlapping texel, the window at windowLevel that holds the
-    // segment's footprint; `level` is set to that level and `fetches` counts the read.
-    // Never below the surface anywhere along the segment's path.
-    double segmentBound(glm::dvec2 a, glm::dvec2 b, int& level, int& fetches) const;
+    // segment's footprint. Never below the surface anywhere along the segment's path.
+    BoundRead segmentBound(glm::dvec2 a, glm::dvec2 b) const;
 
     // The bound over a footprint rectangle [lo, hi] of map points (lo <= hi per axis), the
     // curved bases' form of segmentBound (max_pyramid.glsl: mr_footprintBound): one window,
     // or on a wrapped map whose rectangle reaches past X = W (hi.x >= W, lo.x < W), the
-    // larger of the windows over its two parts, [lo.x, W) and [0, hi.x - W]. `level` is
-    // the level of the last window read.
-    double footprintBound(glm::dvec2 lo, glm::dvec2 hi, int& level, int& fetches) const;
+    // larger of the windows over its two parts, [lo.x, W) and [0, hi.x - W].
+    BoundRead footprintBound(glm::dvec2 lo, glm::dvec2 hi) const;
     bool wrapsU() const { return wrapU_; }
     const MapAddressing& addressing() const { return addressing_; }
 
@@ -209,9 +217,9 @@ private:
     void computeWindows(int level, const TexelRect& rect);
 
     // The window at windowLevel over the finest texels lo..hi, one fetch.
-    double windowOver(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const;
+    BoundRead windowOver(glm::ivec2 lo, glm::ivec2 hi) const;
     // A tiled map's bound over its finest texels lo..hi (max_pyramid.glsl: mr_tiledWindows).
-    double tiledWindows(glm::ivec2 lo, glm::ivec2 hi, int& level, int& fetches) const;
+    BoundRead tiledWindows(glm::ivec2 lo, glm::ivec2 hi) const;
 
     int mapWidth_, mapHeight_;
     bool wrapU_ = false;

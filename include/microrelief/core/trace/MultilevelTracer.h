@@ -87,13 +87,14 @@ private:
         double t;
         glm::dvec3 normal;  // in the base's frame (BaseSurface::topNormal)
     };
-    SurfacePatch patchAt(int i, int j, int& fetches) const;
+    // The walk's steps add what they read to the ray's `stats`.
+    SurfacePatch patchAt(int i, int j, TraversalStats& stats) const;
     std::optional<LeafHit> intersectLeaf(const FrameRay& ray, double ta, double tb,
-                                         int& fetches) const;
+                                         TraversalStats& stats) const;
     std::optional<LeafHit> intersectLeafCells(const FrameRay& ray, double ta, double tb,
-                                              int& fetches) const;
+                                              TraversalStats& stats) const;
     std::optional<LeafHit> walkLeafCells(const FrameRay& ray, double from, double to,
-                                         glm::dvec2 branch, int& fetches) const;
+                                         glm::dvec2 branch, TraversalStats& stats) const;
     std::optional<double> cellStretchHit(const FrameRay& ray, const SurfacePatch& patch, double c0,
                                          double c1) const;
     std::optional<LeafHit> subdivideSegment(const FrameRay& ray, double span, bool floorExit,

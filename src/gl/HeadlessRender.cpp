@@ -231,7 +231,8 @@ void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
                               "budget holds (" +
                               std::to_string(pager->capacity()) + " pages of " +
                               std::to_string(pager->pageSide()) +
-                              "^2 texels): raise the memory budget (--memory)");
+                              "^2 texels): raise the memory budget (" +
+                              renderer_->paging().budgetName + ")");
             }
             ++result.paging.splits;
             const int w0 = (part.width + 1) / 2, h0 = (part.height + 1) / 2;

@@ -136,7 +136,8 @@ PagedPyramid::PagedPyramid(const GL& gl, std::shared_ptr<const PyramidPages> pag
         throwBadInput(source + ": the GL cannot allocate a page pool of " +
                       std::to_string((layers * pageBytes) >> 20) + " MiB (" +
                       std::to_string(layers) + " pages of " + std::to_string(side) + " x " +
-                      std::to_string(side) + " texels): lower the memory budget (--memory)");
+                      std::to_string(side) + " texels): lower the memory budget (" +
+                      settings.budgetName + ")");
     } else if (error != GL_NO_ERROR) {
         throwRuntime("GL error " + gl::enumHex(error) + " allocating the page pool for " + source);
     }

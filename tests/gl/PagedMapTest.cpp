@@ -201,17 +201,27 @@ TEST_F(PagedMap, APyramidFileDrawsTheMapsPictureAndRefusesACorruptPage) {
     }
 }
 
+// The error names the budget as the host calls it (PagingSettings::budgetName): the command
+// line's flag by default, a host's own name where it gives one.
 TEST_F(PagedMap, BudgetBelowWhatOneRayNeedsIsRefused) {
     const HeightMap map = synth::cobbles(150, 110, 4);
     const RenderJob job = obliqueView(16, 12);
     PagingSettings paging = smallPages();
     paging.memoryBytes = 16 * 16 * 4;  // one page
-    try {
-        (void)renderPaged(map, job, paging);
-        FAIL() << "a one-page budget drew a picture";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
-        EXPECT_NE(std::string(e.what()).find("raise"), std::string::npos) << e.what();
+    for (const std::string name : {"", "memoryBudgetMiB"}) {
+        if (!name.empty()) paging.budgetName = name;
+        const std::string said =
+            "raise the memory budget (" + (name.empty() ? "--memory" : name) + ")";
+        try {
+            (void)renderPaged(map, job, paging);
+            FAIL() << "a one-page budget drew a picture";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+            EXPECT_NE(std::string(e.what()).find(said), std::string::npos) << e.what();
+            if (!name.empty()) {
+                EXPECT_EQ(std::string(e.what()).find("--memory"), std::string::npos) << e.what();
+            }
+        }
     }
     paging.memoryBytes = 100;  // less than a page
     EXPECT_THROW((void)renderPaged(map, job, paging), Error);

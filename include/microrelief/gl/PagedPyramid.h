@@ -44,6 +44,10 @@ struct PagingSettings {
     int pageSide = 256;
     // The pool's budget, bytes (--memory): pages of pageSide^2 R32F texels, at least one.
     std::size_t memoryBytes = std::size_t{512} << 20;
+    // What the host calls the budget, for the errors that say to raise or lower it: the
+    // command line's flag by default; a host whose setting has another name (an option's
+    // key, a field of its own) gives that, so the message speaks of what its user sets.
+    std::string budgetName = "--memory";
     // Window levels whose sides are at most this stay whole in one texture.
     int residentSide = 2048;
 };

@@ -107,7 +107,7 @@ mr_ReliefHit traceInFrame(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3
 // The step-based peers on a curved base, as engines run them there (pom, relief): in the
 // base's tangent frame where the ray enters the shell, map space taken as flat from there
 // on; their answer, a map point, is then placed on the base (off the ray, like offset's).
-#define MICRORELIEF_TANGENT_PEER (MICRORELIEF_BASE != 0 && (MICRORELIEF_METHOD == 4 || MICRORELIEF_METHOD == 5))
+#define MICRORELIEF_TANGENT_PEER (!MICRORELIEF_BASE_STRAIGHT_PATH && (MICRORELIEF_METHOD == 4 || MICRORELIEF_METHOD == 5))
 
 mr_ReliefHit traceRay(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
 #if MICRORELIEF_TANGENT_PEER
@@ -160,7 +160,8 @@ float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bo
 #if MICRORELIEF_SHADOWS == 2
     // Object-space angles: heights of the frame in object units, the ray's object length.
     float heightToObject = heightScale;
-#if MICRORELIEF_BASE != 0
+    // A curved base: heights are fractions of the frame's unit.
+#if !MICRORELIEF_BASE_STRAIGHT_PATH
     heightToObject *= (frameScale.x + frameScale.y + frameScale.z) / 3.0;
 #endif
     return mr_softShadow(relief, windowPyramid, heightSamples, hit, frameToLight, tMaxLight, lightTanRadius,

@@ -24,7 +24,8 @@
 // is a pixel's footprint, small), X taken the short way round the seam.
 vec2 mr_mapDelta(mr_Relief relief, vec3 q, vec3 delta) {
     vec3 dq = mr_baseFrameVector(relief, delta);
-#if MICRORELIEF_BASE == 0
+    // The frame is map space: the displacement is the map point's.
+#if MICRORELIEF_BASE_STRAIGHT_PATH
     return dq.xy;
 #else
     vec2 d = mr_baseMapPoint(relief, q + dq).xy - mr_baseMapPoint(relief, q).xy;
@@ -80,7 +81,7 @@ vec3 mr_surfaceAlbedo(sampler2D albedo, mr_Relief relief, mr_ReliefHit hit, vec3
     vec2 tileSize = mr_tileSize(relief.map), tiles = relief.map.size / tileSize;
     vec2 uv = m.xy / tileSize;
     vec2 halfTexel = 0.5 / vec2(textureSize(albedo, 0));
-#if MICRORELIEF_BASE == 0
+#if !MICRORELIEF_BASE_WRAPS_U
     uv = clamp(uv, halfTexel, tiles - halfTexel);  // the map's edges clamp (the texture repeats)
 #else
     uv.y = clamp(uv.y, halfTexel.y, tiles.y - halfTexel.y);  // u wraps round the base

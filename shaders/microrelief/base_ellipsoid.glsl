@@ -8,7 +8,10 @@
 #include "base_curved.glsl"
 #include "relief_map.glsl"
 
-// The ray's path over the map is a curve: leaf_walk.glsl subdivides a leaf's stretches.
+// Its traits (base_surface.glsl): u wraps round the axis across the seam, v clamps (at the poles),
+// and the ray's path over the map is a curve (leaf_walk.glsl subdivides a leaf's stretches).
+#define MICRORELIEF_BASE_WRAPS_U 1
+#define MICRORELIEF_BASE_WRAPS_V 0
 #define MICRORELIEF_BASE_STRAIGHT_PATH 0
 
 float mr_ellipsoidRadial(vec3 q) { return length(q); }

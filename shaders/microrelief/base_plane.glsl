@@ -10,8 +10,11 @@
 #include "map_space.glsl"
 #include "relief_map.glsl"
 
-// The ray's path over the map is a straight line in (X, Y, h): leaf_walk.glsl solves a
-// leaf's patches as polynomials along it.
+// The plane's traits (base_surface.glsl): the map's edges clamp in u and in v, and the
+// frame is map space, where the ray's path over the map is the straight line o + t d
+// (leaf_walk.glsl solves a leaf's patches as polynomials along it).
+#define MICRORELIEF_BASE_WRAPS_U 0
+#define MICRORELIEF_BASE_WRAPS_V 0
 #define MICRORELIEF_BASE_STRAIGHT_PATH 1
 
 // Object space and the frame: G of the paper (map_space.glsl).
@@ -37,7 +40,7 @@ vec3 mr_baseRaise(mr_Relief relief, vec3 q, float by) { return vec3(q.xy, q.z + 
 // the floor going down (it meets h = 0, inside the solid, there).
 vec2 mr_baseClipToShell(mr_Relief relief, vec3 origin, vec3 dir, out int entryFace, out bool floorExit) {
     int entryAxis, exitAxis;
-    vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);
+    vec2 range = mr_clipToReliefBox(relief, origin, dir, MICRORELIEF_BASE_WRAPS_U == 1, entryAxis, exitAxis);
     entryFace = entryAxis == 0   ? MR_RELIEF_WALL_X
                 : entryAxis == 1 ? MR_RELIEF_WALL_Y
                 : entryAxis == 2 && dir.z > 0.0 ? MR_RELIEF_BOTTOM

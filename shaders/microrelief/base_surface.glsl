@@ -10,6 +10,15 @@
 //
 // The tracers work in the base's frame, where the ray is a straight line o + t d with the
 // world's t (mr_baseFramePoint, mr_baseFrameVector). Every base file defines the same set:
+//  * its traits, macros 0 or 1 that the library's files ask instead of the base's number
+//    (each file that asks one includes this one, so the base is chosen before any use):
+//    MICRORELIEF_BASE_WRAPS_U (the map's columns join across the seam u = 0: cells,
+//    texels, pyramid nodes and footprints wrap in X; else X clamps at the edges),
+//    MICRORELIEF_BASE_WRAPS_V (the same in v; no base has it yet, and the traversal refuses
+//    it below), MICRORELIEF_BASE_STRAIGHT_PATH (the frame is map space, where the ray's path
+//    over the map is the straight line itself: a leaf is solved by polynomials along it, a
+//    segment's ends are its points, the step-based peers run in it as they are; else the
+//    path is a curve, bounded and walked through the functions below);
 //  * the frame: mr_baseObjectToFrame, mr_baseObjectToFrameVector, mr_baseFrameToObject,
 //    mr_baseObjectNormal (a frame normal in object space);
 //  * the map over it: mr_baseMapY, mr_baseMapPoint (X, Y, h) of a frame point,
@@ -25,9 +34,8 @@
 //    most one interior extremum, so each extreme over a segment is at an end or at one
 //    interior point found in closed form;
 //  * the leaf's walk over cells (leaf_walk.glsl): mr_baseXIncreases, mr_baseCrossX,
-//    mr_baseCrossY (where the path crosses a cell boundary, in closed form),
-//    MR_BASE_FINAL_LENGTH, and MICRORELIEF_BASE_STRAIGHT_PATH (1 where the path over the
-//    map is a straight line, so that a leaf is solved by polynomials along it);
+//    mr_baseCrossY (where the path crosses a cell boundary, in closed form) and
+//    MR_BASE_FINAL_LENGTH;
 //  * normals: mr_baseTopNormal (from the map's gradient), mr_baseFaceNormal.
 // Built on the set, here: the model transform's part (mr_baseFramePoint,
 // mr_baseFrameVector, mr_baseWorldPoint, mr_baseWorldNormal), mr_baseFootprint and
@@ -49,6 +57,15 @@
 #include "base_ellipsoid.glsl"
 #else
 #include "base_plane.glsl"
+#endif
+
+// A base file that leaves out a trait is caught here, before any file asks it (#if takes an
+// undefined name for 0 on some compilers). No file handles a map that wraps in v yet.
+#if !defined(MICRORELIEF_BASE_WRAPS_U) || !defined(MICRORELIEF_BASE_WRAPS_V) || !defined(MICRORELIEF_BASE_STRAIGHT_PATH)
+#error a base file defines MICRORELIEF_BASE_WRAPS_U, _WRAPS_V and _STRAIGHT_PATH (base_surface.glsl)
+#endif
+#if MICRORELIEF_BASE_WRAPS_V
+#error a base whose map wraps in v needs the traversal made to wrap Y first (docs/bases.md)
 #endif
 
 // Between the world and the base's frame, in two steps: the model transform

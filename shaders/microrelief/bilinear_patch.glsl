@@ -5,12 +5,13 @@
 // `heights` is the W x H sample texture (CLAMP_TO_EDGE; its filter is not used). Cell
 // (i, j) is the patch between the sample centres (i + 0.5, j + 0.5) and (i + 1.5, j + 1.5);
 // cells -1 and W - 1 (H - 1) are the clamped half-texel borders, flat across the edge.
-// On a curved base (MICRORELIEF_BASE != 0) u wraps: the texture's S wrap is REPEAT, cell
-// W - 1 joins sample W - 1 to sample 0 across the seam, and cell indices are kept in
-// 0..W - 1 (mr_wrapCell).
+// On a curved base u wraps (MICRORELIEF_BASE_WRAPS_U, base_surface.glsl): the texture's S
+// wrap is REPEAT, cell W - 1 joins sample W - 1 to sample 0 across the seam, and cell
+// indices are kept in 0..W - 1 (mr_wrapCell).
 #ifndef MICRORELIEF_BILINEAR_PATCH_GLSL
 #define MICRORELIEF_BILINEAR_PATCH_GLSL
 
+#include "base_surface.glsl"
 #include "fetch_count.glsl"
 #include "map_addressing.glsl"
 #include "relief_map.glsl"
@@ -41,7 +42,7 @@ vec4 mr_cellCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
     vec4 g = MICRORELIEF_GATHER_SAMPLES(heights, (vec2(mr_sampleTexel(relief, cell)) + 1.0) / mr_tileSize(relief.map));
     vec4 h = vec4(g.w, g.z, g.x, g.y);
     ivec2 last = ivec2(relief.map.size) - 1;
-#if MICRORELIEF_BASE == 0
+#if !MICRORELIEF_BASE_WRAPS_U
     h.yw = (cell.x < 0 || cell.x >= last.x) ? h.xz : h.yw;
 #endif
     h.zw = (cell.y < 0 || cell.y >= last.y) ? h.xy : h.zw;
@@ -59,7 +60,7 @@ vec4 mr_cellCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
     ivec2 last = ivec2(relief.map.size) - 1;
     ivec2 c0 = clamp(cell, ivec2(0), last);
     ivec2 c1 = clamp(cell + 1, ivec2(0), last);
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     c0.x = cell.x;
     c1.x = cell.x + 1 > last.x ? 0 : cell.x + 1;
 #endif
@@ -95,7 +96,7 @@ vec4 mr_neighbourCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, inout iv
 
 // A cell index in 0..W - 1 on a curved base (u wraps); unchanged on the plane.
 ivec2 mr_wrapCell(mr_Relief relief, ivec2 cell) {
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     cell.x = mr_wrapIndex(cell.x, int(relief.map.size.x));
 #endif
     return cell;
@@ -109,7 +110,7 @@ ivec2 mr_cellAt(vec2 xy) { return ivec2(floor(xy - 0.5)); }
 // (map_addressing.glsl: mr_wrapLocalX).
 vec2 mr_cellLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
     vec2 f = xy - (vec2(cell) + 0.5);
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     f.x = mr_wrapLocalX(relief, f.x);
 #endif
     return f;

@@ -12,6 +12,7 @@
 #ifndef MICRORELIEF_BIQUADRATIC_PATCH_GLSL
 #define MICRORELIEF_BIQUADRATIC_PATCH_GLSL
 
+#include "base_surface.glsl"
 #include "bilinear_patch.glsl"
 #include "fetch_count.glsl"
 #include "final_piece.glsl"
@@ -59,7 +60,7 @@ mat3 mr_biquadraticNet(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 squa
     mat3 gathered = c;
     for (int k = 0; k < 3; ++k) {
         ivec2 pick = clamp(square - 1 + k, ivec2(0), last) - s + 1;
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
         pick.x = k;  // u wraps: the gathered columns are the square's
 #endif
         c[k] = gathered[pick.x];

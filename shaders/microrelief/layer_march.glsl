@@ -51,7 +51,7 @@ vec3 mr_tangentSpaceDirection(mr_Relief relief, vec3 dir) {
 bool mr_marchLayers(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, int layers,
                  inout mr_ReliefHit hit, out mr_LayerSample above, out mr_LayerSample below) {
     int entryAxis, exitAxis;
-    vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);
+    vec2 range = mr_clipToReliefBox(relief, origin, dir, MICRORELIEF_BASE_WRAPS_U == 1, entryAxis, exitAxis);
     float tNear = max(range.x, 0.0), tFar = range.y;
     above = mr_LayerSample(tNear, -1.0);
     below = above;

@@ -172,9 +172,10 @@ float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_
 bool mr_nextLeafCell(int width, bool xUp, bool yUp, bool stepX, bool stepY, float t1, vec3 next,
                      inout ivec2 cell, inout float t0, inout vec3 point) {
     if (!stepX && !stepY) return false;  // the stretch ended at `to`
-#if MICRORELIEF_BASE == 0
+#if !MICRORELIEF_BASE_WRAPS_U
     if (stepX) cell.x += xUp ? 1 : -1;
 #else
+    // Past the last column comes the first.
     if (stepX) cell.x = xUp ? (cell.x + 1 == width ? 0 : cell.x + 1) : (cell.x == 0 ? width - 1 : cell.x - 1);
 #endif
     if (stepY) cell.y += yUp ? 1 : -1;
@@ -220,8 +221,8 @@ float mr_walkLeafCells(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origi
     vec3 start = mr_baseMapPoint(relief, origin + from * dir);
     cell = mr_patchCellAt(relief, start.xy);
     cell.y = clamp(cell.y, firstRow, lastRow);
-#if MICRORELIEF_BASE == 0
-    cell.x = clamp(cell.x, firstRow, width - 1);
+#if !MICRORELIEF_BASE_WRAPS_U
+    cell.x = clamp(cell.x, firstRow, width - 1);  // as Y; wrapped, it is in 0..W - 1 (mr_wrapCell)
 #endif
     bool xUp = mr_baseXIncreases(origin, dir);
     float yTo = mr_baseMapY(relief, origin + to * dir);
@@ -239,9 +240,9 @@ float mr_walkLeafCells(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origi
             t1 = to;
             stepX = false;
             stepY = false;
-            // A curved map one sample wide has no boundary in X: its one cell goes all the way
+            // A wrapping map one sample wide has no boundary in X: its one cell goes all the way
             // round.
-            float tx = MICRORELIEF_BASE == 0 || width > 1
+            float tx = MICRORELIEF_BASE_WRAPS_U == 0 || width > 1
                            ? mr_baseCrossX(relief, origin, dir, float(cell.x) + MR_PATCH_OFFSET + (xUp ? 1.0 : 0.0), t0)
                            : MR_NEVER;
             if (tx <= t1) {

@@ -1,11 +1,13 @@
 // map_addressing.glsl: which texel of the height texture holds a sample of the map. The
 // map's samples are addressed as scene-and-cli.md has it: clamped to the edge beyond the
-// map, wrapped round a curved base in X (u); a tiled map (relief_map.glsl,
-// MICRORELIEF_TILING) is its N x M larger image, each sample taken from the tile it falls
-// in, so that tiles join across their seams as one image's neighbouring texels do.
+// map, wrapped round a curved base in X (u: MICRORELIEF_BASE_WRAPS_U); a tiled map
+// (relief_map.glsl, MICRORELIEF_TILING) is its N x M larger image, each sample taken from
+// the tile it falls in, so that tiles join across their seams as one image's neighbouring
+// texels do.
 #ifndef MICRORELIEF_MAP_ADDRESSING_GLSL
 #define MICRORELIEF_MAP_ADDRESSING_GLSL
 
+#include "base_surface.glsl"
 #include "relief_map.glsl"
 
 // i modulo n, in 0..n - 1 (n > 0), in integers alone: % of non-negative operands only,
@@ -29,7 +31,7 @@ float mr_wrapLocalX(mr_Relief relief, float fx) {
 // The texel holding sample p (integer sample coordinates of the whole map).
 ivec2 mr_sampleTexel(mr_Relief relief, ivec2 p) {
     ivec2 count = ivec2(relief.map.size);
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     p.x = mr_wrapIndex(p.x, count.x);  // u wraps round the base
 #else
     p.x = clamp(p.x, 0, count.x - 1);

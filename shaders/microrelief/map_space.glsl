@@ -34,13 +34,15 @@ vec3 mr_mapToObjectPoint(mr_Relief relief, vec3 m) {
 // Ray against the map-space box [0, W] x [0, H] x [0, maxHeight]: the parameter interval
 // inside it, and which slab the entry and the exit cross (0: X, 1: Y, 2: h). Empty when
 // x > y. The plane's bounding shell (base_plane.glsl), and the step-based peers' box in
-// their local frame (layer_march.glsl), where under a curved base X wraps and has no walls.
-vec2 mr_clipToReliefBox(mr_Relief relief, vec3 origin, vec3 dir, out int entryAxis, out int exitAxis) {
+// their local frame (layer_march.glsl). `wrapsX`: X wraps, the box has no walls in X (the
+// peers' box under a base whose map wraps in u, MICRORELIEF_BASE_WRAPS_U; a parameter, since
+// this file comes before the base's, base_surface.glsl).
+vec2 mr_clipToReliefBox(mr_Relief relief, vec3 origin, vec3 dir, bool wrapsX, out int entryAxis, out int exitAxis) {
     vec3 lo = vec3(0.0), hi = vec3(relief.map.size, relief.map.maxHeight);
     float tEnter = -1e30, tExit = 1e30;
     entryAxis = -1;
     exitAxis = -1;
-    for (int axis = MICRORELIEF_BASE != 0 ? 1 : 0; axis < 3; ++axis) {
+    for (int axis = wrapsX ? 1 : 0; axis < 3; ++axis) {
         if (dir[axis] == 0.0) {
             if (origin[axis] < lo[axis] || origin[axis] > hi[axis]) return vec2(1.0, 0.0);
             continue;

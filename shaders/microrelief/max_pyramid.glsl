@@ -16,6 +16,7 @@
 #ifndef MICRORELIEF_MAX_PYRAMID_GLSL
 #define MICRORELIEF_MAX_PYRAMID_GLSL
 
+#include "base_surface.glsl"
 #include "fetch_count.glsl"
 #include "relief_map.glsl"
 #include "texture_reads.glsl"
@@ -108,18 +109,18 @@ float mr_tiledWindows(mr_Relief relief, MICRORELIEF_SAMPLER windows, ivec2 lo, i
 #endif
 
 // The bound over a segment's footprint, the map rectangle [lo, hi] (base_surface.glsl):
-// the window that holds its texels; on a curved base, a rectangle that reaches past
-// X = W wraps across the seam, and the larger of the windows over its two parts,
+// the window that holds its texels; where u wraps (a curved base), a rectangle that reaches
+// past X = W wraps across the seam, and the larger of the windows over its two parts,
 // [lo.x, W) and [0, hi.x - W], bounds it (two fetches, for the segments that cross it).
 float mr_footprintBound(mr_Relief relief, MICRORELIEF_SAMPLER windows, vec2 lo, vec2 hi, out int level) {
 #if MICRORELIEF_TILING
     ivec2 tlo = mr_finestTexelAt(relief, lo), thi = mr_finestTexelAt(relief, hi);
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     if (hi.x >= relief.map.size.x) thi.x = int(floor(hi.x));  // past the seam: the tile's period takes it round
 #endif
     return mr_tiledWindows(relief, windows, tlo, thi, level);
 #else
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     if (hi.x >= relief.map.size.x) {
         ivec2 tlo = mr_finestTexelAt(relief, lo), thi = mr_finestTexelAt(relief, hi - vec2(relief.map.size.x, 0.0));
         float right = mr_windowOver(relief, windows, tlo, ivec2(int(relief.map.size.x) - 1, thi.y), level);

@@ -18,6 +18,7 @@
 #ifndef MICRORELIEF_MAXMIP_TRACE_GLSL
 #define MICRORELIEF_MAXMIP_TRACE_GLSL
 
+#include "base_surface.glsl"
 #include "leaf_walk.glsl"
 #include "relief_patch.glsl"
 #include "max_pyramid.glsl"
@@ -37,7 +38,8 @@ struct mr_MaxMipCourse {
 };
 
 mr_MaxMipCourse mr_maxMipCourse(mr_Relief relief, vec3 origin, vec3 dir, float tFar) {
-#if MICRORELIEF_BASE == 0
+    // The path is the line itself: X and Y go dir's way.
+#if MICRORELIEF_BASE_STRAIGHT_PATH
     return mr_MaxMipCourse(ivec2(sign(dir.xy)), vec2(-MR_NEVER, MR_NEVER), MR_NEVER);
 #else
     // The branch of the line the segment starts on: before the turn, or after it where the
@@ -76,7 +78,8 @@ void mr_maxMipTurn(inout mr_MaxMipCourse course) {
 vec2 mr_maxMipNodeExits(mr_Relief relief, ivec2 node, int level, vec3 origin, vec3 dir, float t, mr_MaxMipCourse course) {
     float size = exp2(float(level));
     vec2 exits = vec2(MR_NEVER);
-#if MICRORELIEF_BASE == 0
+    // The sides are met along the line itself, and X has walls (no seam to go round).
+#if MICRORELIEF_BASE_STRAIGHT_PATH && !MICRORELIEF_BASE_WRAPS_U
     for (int axis = 0; axis < 2; ++axis) {
         if (dir[axis] == 0.0) continue;
         float side = (float(node[axis]) + (dir[axis] > 0.0 ? 1.0 : 0.0)) * size;
@@ -123,7 +126,7 @@ float mr_maxMipNodeHeight(mr_Relief relief, MICRORELIEF_SAMPLER pyramid, ivec2 n
 void mr_maxMipNextNode(mr_Relief relief, inout ivec2 node, inout int level, int topLevel, vec2 exits, float tExit,
                     ivec2 step) {
     ivec2 next = node + ivec2(exits.x <= tExit ? step.x : 0, exits.y <= tExit ? step.y : 0);
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     int lastColumn = (int(relief.map.size.x) - 1) >> level;
     if (next.x > lastColumn) next.x = 0;
     if (next.x < 0) next.x = lastColumn;

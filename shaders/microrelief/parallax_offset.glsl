@@ -30,7 +30,7 @@
 mr_ReliefHit mr_traceParallaxOffset(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir) {
     mr_ReliefHit hit = mr_reliefMissHit();
     int entryAxis, exitAxis;
-    vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);
+    vec2 range = mr_clipToReliefBox(relief, origin, dir, MICRORELIEF_BASE_WRAPS_U == 1, entryAxis, exitAxis);
     float tNear = max(range.x, 0.0);
     if (tNear > range.y) return hit;
     vec3 entry = origin + tNear * dir;

@@ -42,7 +42,7 @@ mr_ReliefHit mr_traceRelaxedCones(mr_Relief relief, MICRORELIEF_SAMPLER cones, M
                                   vec3 dir, int coneSteps, int binarySteps) {
     mr_ReliefHit hit = mr_reliefMissHit();
     int entryAxis, exitAxis;
-    vec2 range = mr_clipToReliefBox(relief, origin, dir, entryAxis, exitAxis);
+    vec2 range = mr_clipToReliefBox(relief, origin, dir, MICRORELIEF_BASE_WRAPS_U == 1, entryAxis, exitAxis);
     float tNear = max(range.x, 0.0), tFar = range.y;
     if (tNear > tFar || !(dir.z < 0.0)) return hit;  // a ray that does not descend: no surface ahead
     hit.stopLevel = 0;

@@ -12,6 +12,7 @@
 #ifndef MICRORELIEF_RELIEF_PATCH_GLSL
 #define MICRORELIEF_RELIEF_PATCH_GLSL
 
+#include "base_surface.glsl"
 #include "bilinear_patch.glsl"
 #include "biquadratic_patch.glsl"
 #include "relief_map.glsl"
@@ -37,7 +38,7 @@ ivec2 mr_patchCellAt(mr_Relief relief, vec2 xy) { return mr_wrapCell(relief, ive
 // the points just past X = 0 too (map_addressing.glsl: mr_wrapLocalX).
 vec2 mr_patchLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
     vec2 f = xy - (vec2(cell) + MR_PATCH_OFFSET);
-#if MICRORELIEF_BASE != 0
+#if MICRORELIEF_BASE_WRAPS_U
     f.x = mr_wrapLocalX(relief, f.x);
 #endif
     return f;
@@ -89,7 +90,7 @@ float mr_reliefHeight(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 xy) {
 vec2 mr_reliefSlope(mr_Relief relief, mr_ReliefPatch cellPatch, ivec2 cell, vec2 xy) {
     vec2 g = mr_patchSlope(cellPatch, clamp(mr_patchLocal(relief, cell, xy), 0.0, 1.0));
 #if MICRORELIEF_INTERPOLATION == 0
-#if MICRORELIEF_BASE == 0
+#if !MICRORELIEF_BASE_WRAPS_U
     if (cell.x < 0 || cell.x >= int(relief.map.size.x) - 1) g.x = 0.0;
 #endif
     if (cell.y < 0 || cell.y >= int(relief.map.size.y) - 1) g.y = 0.0;

@@ -65,7 +65,8 @@ mr_BaseFootprint mr_walkFootprint(mr_Relief relief, inout mr_SegmentWalk walk, v
     int shift = MICRORELIEF_MAX_DEPTH - walk.depth;
     walk.ta = span * (float(walk.index << shift) * kUnit);
     walk.tb = span * (float((walk.index + 1u) << shift) * kUnit);
-#if MICRORELIEF_BASE != 0
+    // A curved path: its ends cost a map point each, kept.
+#if !MICRORELIEF_BASE_STRAIGHT_PATH
     vec3 ea = walk.ta == walk.lastA ? walk.endA : walk.ta == walk.lastB ? walk.endB : mr_baseEnd(relief, start + walk.ta * dir);
     vec3 eb = walk.tb == walk.lastB ? walk.endB : mr_baseEnd(relief, start + walk.tb * dir);
     walk.lastA = walk.ta;

@@ -27,7 +27,8 @@
 // that is 0 everywhere clear of its floor.
 float mr_shadowClearance(mr_Relief relief) {
     float clearance = 2.0 * MR_PATCH_TOP_MARGIN * relief.map.maxHeight + 1e-30;
-#if MICRORELIEF_BASE != 0
+    // A curved base: the height is a radius, rounded there.
+#if !MICRORELIEF_BASE_STRAIGHT_PATH
     float s = relief.placement.heightScale;
     clearance += MR_PATCH_TOP_MARGIN * (1.0 + s * relief.map.maxHeight) / s;
 #endif

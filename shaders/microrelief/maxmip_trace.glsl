@@ -209,16 +209,8 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyra
             t = tExit;
         }
     }
-    hit.iterations = iteration;
-    if (!finished) {
-        hit.exhausted = true;
-    } else if (solved && query.anyHit) {
-        mr_setAnyHit(hit, origin, dir, tHit);
-    } else if (solved) {
-        mr_setTopHit(hit, relief, origin, dir, tHit, corners, cell);
-    } else {
-        mr_setWalkEndHit(hit, relief, heights, origin, dir, tFar, floorExit);  // out of the box
-    }
+    // tHit >= 0 only where a leaf solved it.
+    mr_finishWalk(hit, relief, query, heights, origin, dir, tFar, floorExit, iteration, finished, solved, tHit, corners, cell);
 }
 
 // As mr_traceMultilevel, over the aligned pyramid.

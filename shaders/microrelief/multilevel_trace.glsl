@@ -119,18 +119,7 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
             finished = true;
         }
     }
-    hit.iterations = iteration;
-    if (!finished) {
-        hit.exhausted = true;
-    } else if (query.anyHit && tHit >= 0.0) {
-        mr_setAnyHit(hit, start, dir, tHit);
-    } else if (solved) {
-        mr_setTopHit(hit, relief, start, dir, tHit, corners, cell);
-    } else if (tHit >= 0.0) {
-        mr_setTopHitAt(hit, relief, heights, tHit, start + tHit * dir);
-    } else {
-        mr_setWalkEndHit(hit, relief, heights, start, dir, span, floorExit);  // past the root's end
-    }
+    mr_finishWalk(hit, relief, query, heights, start, dir, span, floorExit, iteration, finished, solved, tHit, corners, cell);
 }
 
 // The first hit of the ray origin + t dir (in the base's frame: mr_baseFramePoint,

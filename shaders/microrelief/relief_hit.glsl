@@ -1,7 +1,8 @@
 // relief_hit.glsl: the answer every relief tracer of the library gives (mr_ReliefHit), and
 // the pieces they share to fill it: the ray's interval in the relief's bounding shell
 // (base_surface.glsl), the empty answer, a hit on a side wall, the bottom face or a cap
-// where the ray enters, and a hit on the top surface (relief_patch.glsl) with its normal.
+// where the ray enters, a hit on the top surface (relief_patch.glsl) with its normal, and
+// how an exact walk ends (mr_finishWalk: the multilevel, maxmip and cone tracers').
 //
 // Inputs are in the base's frame (relief_map.glsl): map space on the plane, the canonical
 // frame on a curved base; t is the ray parameter, the same in world and frame. The normal
@@ -131,6 +132,29 @@ void mr_setAnyHit(inout mr_ReliefHit hit, vec3 start, vec3 dir, float t) {
     hit.kind = MR_RELIEF_TOP;
     hit.t = t;
     hit.position = start + t * dir;
+}
+
+// How an exact walk over start + t dir, t in [0, tEnd], ends: the multilevel, maxmip and cone
+// walks' common last step. `iterations` spent; out of them before the walk was `finished`, the
+// answer is not trustworthy (exhausted). Otherwise a hit at tHit >= 0: as an any-hit query
+// reports it, or with its normal, from the patch `cellPatch` of `cell` that solved it
+// (`solved`), else from the surface there (a hit no patch solved: the multilevel method's
+// level of detail, mr_baseDescendTo); or no hit before tEnd (mr_setWalkEndHit).
+void mr_finishWalk(inout mr_ReliefHit hit, mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER heights, vec3 start,
+                   vec3 dir, float tEnd, bool floorExit, int iterations, bool finished, bool solved, float tHit,
+                   mr_ReliefPatch cellPatch, ivec2 cell) {
+    hit.iterations = iterations;
+    if (!finished) {
+        hit.exhausted = true;
+    } else if (query.anyHit && tHit >= 0.0) {
+        mr_setAnyHit(hit, start, dir, tHit);
+    } else if (solved) {
+        mr_setTopHit(hit, relief, start, dir, tHit, cellPatch, cell);
+    } else if (tHit >= 0.0) {
+        mr_setTopHitAt(hit, relief, heights, tHit, start + tHit * dir);
+    } else {
+        mr_setWalkEndHit(hit, relief, heights, start, dir, tEnd, floorExit);  // past the walk's end
+    }
 }
 
 // A hit found from `start` (mr_enterReliefShell) as a parameter from the eye.

@@ -100,14 +100,14 @@ TEST_F(ThreeShaders, EachReliefProgramIsUnderItsBoundAndTheGlslHasNoComment) {
     EXPECT_EQ(lines.find("comment")->second, "-") << "a comment in generated/glsl.js";
 }
 
-// Every relief function (mr...) a program calls is defined in it, or is a macro or a
-// struct: read from the sources, on every base, so that a function only another base's
-// #if branch calls counts (the plane's programs hold the cylinder's calls too, under
-// #if MICRORELIEF_BASE != 0: the compiler, not this test, drops them). Seen red with a naive
-// stripper that counted only the references under the plane's branches (the default
-// MICRORELIEF_BASE 0): mr_curvedMapX, mr_wrapIndex and 12 more missing from every program,
-// the plane's page still drawing, the cylinder's failing to compile ('mr_curvedInsideRadius':
-// no matching overloaded function found).
+// Every relief function (mr...) a program calls is defined in it, or is a macro or a struct:
+// read from the sources, on every base, so that a function only another base's #if branch calls
+// counts (the plane's programs hold the cylinder's calls too, under #if
+// MICRORELIEF_BASE_WRAPS_U and the other traits: the compiler, not this test, drops them). Seen
+// red with a naive stripper that counted only the references under the plane's branches (the
+// default MICRORELIEF_BASE 0): mr_curvedMapX, mr_wrapIndex and 12 more missing from every
+// program, the plane's page still drawing, the cylinder's failing to compile
+// ('mr_curvedInsideRadius': no matching overloaded function found).
 TEST_F(ThreeShaders, EveryFunctionSomeIfBranchCallsIsKept) {
     const auto& lines = report();
     int programs = 0;

@@ -90,9 +90,10 @@ PagedPyramid::PagedPyramid(const GL& gl, std::shared_ptr<const PyramidPages> pag
     const int side = 1 << shift_;
     const std::size_t pageBytes = std::size_t{4} << (2 * shift_);
     if (settings.memoryBytes < pageBytes) {
-        throwBadInput("a memory budget of " + std::to_string(settings.memoryBytes) +
-                      " bytes hold no page of " + std::to_string(side) + " x " +
-                      std::to_string(side) + " texels (" + std::to_string(pageBytes) + " bytes)");
+        throwBadInput(source + ": a memory budget of " + std::to_string(settings.memoryBytes) +
+                      " bytes holds no page of " + std::to_string(side) + " x " +
+                      std::to_string(side) + " texels (" + std::to_string(pageBytes) +
+                      " bytes): raise the memory budget (" + settings.budgetName + ")");
     }
 
     std::vector<std::uint32_t> words(PageTableLayout::kEntriesAt, 0u);

@@ -223,8 +223,18 @@ TEST_F(PagedMap, BudgetBelowWhatOneRayNeedsIsRefused) {
             }
         }
     }
-    paging.memoryBytes = 100;  // less than a page
-    EXPECT_THROW((void)renderPaged(map, job, paging), Error);
+    // Less than a page: refused at once, naming the budget as the host calls it.
+    paging.memoryBytes = 100;
+    try {
+        (void)renderPaged(map, job, paging);
+        FAIL() << "a budget of less than a page drew a picture";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find("a memory budget of 100 bytes holds no page"),
+                  std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("(memoryBudgetMiB)"), std::string::npos) << e.what();
+    }
 }
 
 // The pool is one texture array: a budget of more pages than the GL has layers grows the

@@ -334,7 +334,7 @@ int runBatch(const RenderOptions& o) {
     checkMapFiles(path, toDraw);
     CheckedFrames checked = checkFrames(o, path, toDraw);
     std::optional<LoadedMap>& checkedMap = checked.last;
-    if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(kLightSizeUnused);
+    if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(lightSizeUnused());
 
     ManifestWriter manifest(manifestPath);
     if (const int removed = removeAbandonedTemporaries(files); removed > 0)
@@ -347,7 +347,7 @@ int runBatch(const RenderOptions& o) {
     std::shared_ptr<const HeightMap> map;
     std::optional<MapKey> mapHeld;   // the key of the frame `map` was loaded or set for
     std::optional<MapKey> pagesSet;  // the map whose pyramid file the renderer reads
-    int eyeInside = 0;             // frames whose eye lies inside the solid
+    int eyeInside = 0;               // frames whose eye lies inside the solid
     std::string firstEyeInside;
     // The albedo file set on the renderer (itself optional: none); unset before the first.
     std::optional<std::optional<std::filesystem::path>> loadedAlbedo;
@@ -454,8 +454,7 @@ int runBatch(const RenderOptions& o) {
                 // The frame's own error is the one to report.
             }
             // The row's data at fault: say which row (a GL or disk failure is no row's).
-            if (e.kind() == ErrorKind::BadInput)
-                throw e.after(frame.origin + ": ");
+            if (e.kind() == ErrorKind::BadInput) throw e.after(frame.origin + ": ");
             throw;
         }
         const double seconds = secondsSince(frameStart);

@@ -70,6 +70,12 @@ struct RowCamera {
     std::string flags;
 };
 
+// What a row's flags are, with two of them as examples.
+std::string rowFlagsAre() {
+    return "a row's flags are map and shading flags, such as " + flagName("map.file") + " or " +
+           flagName("shading.lightDirection");
+}
+
 // The row's flags on top of the command line's scene: the flags' parser (SceneFlags)
 // seeded with the scene's fields, so that a row's flag sets its field and every other
 // field keeps the scene's value.
@@ -84,13 +90,10 @@ SceneOptions applyRowFlags(const SceneOptions& base, const std::string& flags,
         app.parse(flags, false);
     } catch (const CLI::CallForHelp&) {
         // CLI11 would say "This should be caught in your main function".
-        throwBadInput(where +
-                      "flags: --help is not a row flag (a row's flags are map and "
-                      "shading flags, such as --height or --light)");
+        throwBadInput(where + "flags: --help is not a row flag (" + rowFlagsAre() + ")");
     } catch (const CLI::ExtrasError& e) {
-        throwBadInput(where + "flags: " + parseErrorText(e, app) +
-                      "; a row's flags are map and shading flags, such as --height or --light "
-                      "(--out, --memory and the like are the command line's)");
+        throwBadInput(where + "flags: " + parseErrorText(e, app) + "; " + rowFlagsAre() +
+                      " (--out, --memory and the like are the command line's)");
     } catch (const CLI::ParseError& e) {
         throwBadInput(where + "flags: " + parseErrorText(e, app));
     }
@@ -454,8 +457,11 @@ bool skipped(const std::string& line) {
 }  // namespace
 
 std::string cameraFlags(const Camera& camera) {
-    return "--eye=" + exactVector(camera.eye) + " --target=" + exactVector(camera.target) +
-           " --up=" + exactVector(camera.up) + " --fovy " + exactNumber(camera.fovyDegrees);
+    // The flags by field (core/scene/SceneFields.h); "=" keeps a leading minus a value.
+    return flagName("camera.eye") + "=" + exactVector(camera.eye) + " " +
+           flagName("camera.target") + "=" + exactVector(camera.target) + " " +
+           flagName("camera.up") + "=" + exactVector(camera.up) + " " +
+           flagName("camera.fovyDegrees") + " " + exactNumber(camera.fovyDegrees);
 }
 
 PathFrame turntableFrame(const SceneOptions& base, int views, int k) {

@@ -36,6 +36,11 @@ void applyBatchFlags(const CLI::App& app, RenderOptions& o, const std::string& c
 
 }  // namespace
 
+std::string lightSizeUnused() {
+    return flagName("shading.lightSizeDegrees") + " sets the light of soft shadows, and " +
+           flagName("shading.shadows") + " is not soft: it changes nothing";
+}
+
 ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
     RenderOptions o;
     CLI::App app{
@@ -56,8 +61,9 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
                    "pattern: {frame}, {frame:04d} (default out/microrelief-{frame:04d}.png)")
         ->capture_default_str();
     app.add_option("--aov", aov,
-                   "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss; with "
-                   "--shadows a fifth channel, shadow: 1 lit, 0 shadowed or a miss");
+                   "World position AOV, OpenEXR: R,G,B = hit x,y,z, A = 1 hit / 0 miss; with " +
+                       flagName("shading.shadows") +
+                       " a fifth channel, shadow: 1 lit, 0 shadowed or a miss");
     scene.addShading(app);
     app.add_option("--backend", backend, "GL backend: auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();
@@ -108,7 +114,7 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         o.out = out;
         if (!aov.empty()) o.aov = aov;
         applyBatchFlags(app, o, cameras, frames, shard, manifest);
-        o.lightSizeGiven = app.count("--light-size") > 0;
+        o.lightSizeGiven = app.count(flagName("shading.lightSizeDegrees")) > 0;
         o.paging.memoryBytes = memoryMib << 20;
         // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
         allowPagedMaps(o.scene.job.map.load);

@@ -9,9 +9,9 @@
 #include "CommandLine.h"
 #include "FrameSelection.h"
 #include "SceneOptions.h"
-#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/headless/HeadlessContext.h"
 
 namespace microrelief {
 
@@ -46,8 +46,7 @@ struct RenderOptions {
 };
 
 // The warning for a --light-size that no frame uses (soft shadows are off).
-inline constexpr const char* kLightSizeUnused =
-    "--light-size sets the light of soft shadows, and --shadows is not soft: it changes nothing";
+std::string lightSizeUnused();
 
 ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv);
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "Progress.h"
+#include "SceneOptions.h"
 #include "microrelief/core/Error.h"
 
 namespace microrelief {
@@ -50,16 +51,17 @@ BaseShape drawnBase(const SceneOptions& scene, const std::filesystem::path& map)
 std::string pyramidFileRefusal(const RenderJob& job, bool compareReference) {
     if (job.method.method != Method::Multilevel) {
         return "--pyramid-cache reads the map through pages, which only the multilevel method "
-               "reads: not --method " +
-               std::string(methodName(job.method.method));
+               "reads: not " +
+               flagName("method") + " " + std::string(methodName(job.method.method));
     }
-    if (job.tiles != glm::ivec2(1, 1)) return "--pyramid-cache draws one map: not with --tile";
+    if (job.tiles != glm::ivec2(1, 1))
+        return "--pyramid-cache draws one map: not with " + flagName("tiles");
     if (!job.animation.empty())
-        return "--pyramid-cache draws a map's own heights: not with --animate";
+        return "--pyramid-cache draws a map's own heights: not with " + flagName("animation");
     if (compareReference && job.base.kind != BaseKind::Plane) {
         return "--compare-reference over a pyramid file traces the plane's reference: not "
-               "with --base " +
-               baseName(job.base);
+               "with " +
+               flagName("base") + " " + baseName(job.base);
     }
     return {};
 }

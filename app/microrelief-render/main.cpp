@@ -13,6 +13,7 @@
 #include "Options.h"
 #include "Progress.h"
 #include "PyramidCache.h"
+#include "SceneOptions.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
@@ -153,8 +154,9 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
     if (o.compareReference && job.tiles != glm::ivec2(1, 1) &&
         map.samples.size() * job.tiles.x * job.tiles.y > (std::size_t(1) << 26)) {
         throwBadInput(
-            "--compare-reference with --tile compares with the larger image the tiles "
-            "make, at most 67108864 samples (this one would have " +
+            "--compare-reference with " + flagName("tiles") +
+            " compares with the larger image the tiles make, at most 67108864 samples (this "
+            "one would have " +
             std::to_string(map.samples.size() * job.tiles.x * job.tiles.y) + ")");
     }
     const std::optional<AlbedoImage> albedo = loadAlbedoOf(albedoPath(job));
@@ -167,7 +169,8 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
     // An animated relief is held to the heights the GPU evaluated, read back.
     const HeightMap& traced = drawn.result.animatedMap ? *drawn.result.animatedMap : map;
     if (eyeInsideTheSolid(traced, job)) {  // the camera checked by now
-        logWarning("--eye lies inside the relief's solid (under the surface of " +
+        logWarning(flagName("camera.eye") +
+                   " lies inside the relief's solid (under the surface of " +
                    heightFile.filename().string() +
                    "): the picture is undefined there; move the eye above the surface");
     }
@@ -186,7 +189,7 @@ int run(const RenderOptions& o) {
     if (o.aov) outputs.push_back({*o.aov, "--aov"});
     checkOutputsAreNotInputs(outputs, filesRead(o.scene.job));
     if (o.lightSizeGiven && o.scene.job.shading.shadows != ShadowMode::Soft)
-        logWarning(kLightSizeUnused);
+        logWarning(lightSizeUnused());
     const std::filesystem::path heightFile = heightMapPath(o.scene.job);
     const Drawn drawn =
         o.pyramidCache ? drawFromPyramidFile(o, heightFile) : drawLoadedMap(o, heightFile);

@@ -357,7 +357,8 @@ void ViewerApp::handleKey(int key, int mods) {
                          ? "sculpting: on (the left button paints, Alt+drag turns the view, B ends)"
                          : "sculpting: off");
             else
-                note(animated_ ? "sculpting: not while the relief is animated (--animate)"
+                note(animated_ ? "sculpting: not while the relief is animated (" +
+                                     flagName("animation") + ")"
                      : renderer_->paged() ? "sculpting: not a map read through pages (larger "
                                             "than the GL's textures)"
                                           : "sculpting: an untiled map only (Tiles 1, 1)");

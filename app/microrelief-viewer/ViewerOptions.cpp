@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "MapFile.h"
+#include "SceneOptions.h"
 #include "microrelief/Version.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/io/AtomicFile.h"
@@ -84,9 +85,11 @@ void finishSculpt(ViewerOptions& o, const SculptFlags& f) {
     if ((o.sculpt || !o.strokes.empty() || o.undo > 0) && !sculptable(o.scene.job)) {
         throwBadInput(o.scene.job.animation.empty()
                           ? "--sculpt, --stroke and --undo: the viewer sculpts an untiled map only "
-                            "(--tile 1,1)"
+                            "(" +
+                                flagName("tiles") + " 1,1)"
                           : "--sculpt, --stroke and --undo: an animated relief cannot be sculpted "
-                            "(--animate)");
+                            "(" +
+                                flagName("animation") + ")");
     }
     // Undone are the strokes the script draws (a map opened is not sculpted yet).
     if (o.undo > static_cast<int>(o.strokes.size())) {
@@ -108,8 +111,8 @@ void addViewerFlags(CLI::App& app, ViewerOptions& o, std::string& screenshot,
                    "window closes");
     addMemoryFlag(app, memoryMib, "refined over frames until exact");
     app.add_option("--screenshot", screenshot,
-                   "After the last frame, write the 3D view (no panel) at exactly --size (implies "
-                   "--frames 1)");
+                   "After the last frame, write the 3D view (no panel) at exactly " +
+                       flagName("size") + " (implies --frames 1)");
     app.add_option(
         "--window-screenshot", windowScreenshot,
         "After the last frame, write the whole window, panel included (implies --frames 1)");

@@ -19,7 +19,7 @@ const ControlHelp kControls[] = {
     {"[ and ]", "Sculpt mode: a smaller or larger brush"},
     {"Ctrl+Z", "Undo the last stroke"},
     {"Ctrl+S", "Save the edited map (panel: Sculpt)"},
-    {"Space", "--animate: play or pause the animation"},
+    {"Space", flagName("animation") + ": play or pause the animation"},
     {"Right or middle drag, Shift+left drag", "Pan"},
     {"Scroll", "Zoom; close in, the target moves along (into the box)"},
     {"Double-click", "Orbit about the point under the cursor"},
@@ -98,7 +98,8 @@ void mapSection(ViewerState& s, PanelActions& actions) {
         s.scene.job.map.load.channel = std::max(s.scene.job.map.load.channel, 0);
         actions.reloadMap = true;
     }
-    if (ImGui::Checkbox("Normalise to [0, 1]", &s.scene.job.map.load.normalize)) actions.reloadMap = true;
+    if (ImGui::Checkbox("Normalise to [0, 1]", &s.scene.job.map.load.normalize))
+        actions.reloadMap = true;
     if (ImGui::SliderFloat("Height scale", &s.scene.job.heightScale, 0.001f, 1.0f, "%.4f",
                            ImGuiSliderFlags_Logarithmic)) {
         s.scene.job.heightScale = std::max(s.scene.job.heightScale, 1e-4f);
@@ -120,10 +121,10 @@ void mapSection(ViewerState& s, PanelActions& actions) {
     }
     ImGui::EndDisabled();
     if (!offered && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-        ImGui::SetTooltip(
-            "No colours to show: the bundled map's go with its stones (not with "
-            "another map, nor a field that replaces them); --albedo FILE gives a "
-            "map its own");
+        ImGui::SetTooltip("%s", ("No colours to show: the bundled map's go with its stones (not "
+                                 "with another map, nor a field that replaces them); " +
+                                 flagName("albedo") + " FILE gives a map its own")
+                                    .c_str());
     if (!s.albedoName.empty()) {
         ImGui::SameLine();
         ImGui::TextDisabled("%s", s.albedoName.c_str());
@@ -371,7 +372,7 @@ void logAndHelp(const ViewerState& s) {
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(kControls[k].input);
             ImGui::TableNextColumn();
-            ImGui::TextWrapped("%s", kControls[k].action);
+            ImGui::TextWrapped("%s", kControls[k].action.c_str());
         }
         ImGui::EndTable();
     }

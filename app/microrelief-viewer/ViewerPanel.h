@@ -80,7 +80,7 @@ PanelActions drawPanel(ViewerState& state, float uiScale);
 // The controls, for the panel's help and the README: key or mouse, what it does.
 struct ControlHelp {
     const char* input;
-    const char* action;
+    std::string action;  // a flag in it by its field (flagName), as the row spells it
 };
 extern const ControlHelp kControls[];
 extern const int kControlCount;

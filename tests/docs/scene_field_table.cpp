@@ -6,17 +6,22 @@
 //   scene_field_table check FILE.md      exit 1, saying how to regenerate, where FILE's
 //                                        table differs
 //   scene_field_table write FILE.md      replace FILE's table with the generated one
-//   scene_field_table keys scene.js      exit 1 where web/scene.js's URL keys are not the
-//                                        rows' (ctest web.field_keys)
+//   scene_field_table keys SOURCE_DIR    exit 1 where the pages' URL keys (web/scene.js,
+//                                        examples/three/view.js) are not the rows' and the
+//                                        pages' own (tests/web/page_keys.txt; ctest
+//                                        web.field_keys)
 //
 // The table sits between two marker lines (kBegin, kEnd); the rest of the page is prose.
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/SceneFields.h"
@@ -105,12 +110,19 @@ int fail(const std::string& message) {
     return 1;
 }
 
-// The keys of the page's own, no scene field's, and why (tests/web/check_url_keys.py lists
-// the same).
-const std::set<std::string> kPageOwnKeys = {
-    "resolution",  // the page draws at 1/N of its pixels while it moves
-    "clean",       // the picture without the panel, for screenshots
+// A page whose URL keys are held to the table, and how much of it the page takes.
+struct Page {
+    const char* path;  // from the source folder
+    // The whole table: the page reads (viewFromQuery: get('key', ...)) and writes
+    // (queryFromView: q.set('key', ...)) every key of it. Else the page reads some keys
+    // (get('key', ...)), none outside the table.
+    bool whole;
 };
+constexpr Page kPages[] = {{"web/scene.js", true}, {"examples/three/view.js", false}};
+constexpr const char* kPageKeysFile = "tests/web/page_keys.txt";
+// A key the page reads (get('eye', ...)) and one it writes (q.set('eye', ...)).
+constexpr const char* kReadKey = R"(\bget\('([a-z][a-z-]*)')";
+constexpr const char* kWrittenKey = R"(\bq\.set\('([a-z][a-z-]*)')";
 
 // Every key `pattern`'s first group matches in `text`.
 std::set<std::string> matches(const std::string& text, const char* pattern) {
@@ -122,39 +134,109 @@ std::set<std::string> matches(const std::string& text, const char* pattern) {
     return keys;
 }
 
-// web/scene.js reads (viewFromQuery: get('key', ...)) and writes (queryFromView:
-// q.set('key', ...)) exactly the rows' URL keys, the bases' sizes (by their flags' names)
-// and its own keys.
-int checkKeys(const std::string& path, const std::string& text) {
-    std::set<std::string> table = kPageOwnKeys;
-    for (const SceneField& field : sceneFieldTable())
-        if (!field.urlKey.empty()) table.insert(std::string(field.urlKey));
-    for (const std::string& size : baseSizeFields()) table.insert(sceneFieldFlag(size).substr(2));
-    const std::set<std::string> readKeys = matches(text, R"(\bget\('([a-z][a-z-]*)')");
-    const std::set<std::string> writtenKeys = matches(text, R"(\bq\.set\('([a-z][a-z-]*)')");
+// The keys that are a page's own, no scene field's (resolution, clean, ...), by page, from
+// tests/web/page_keys.txt: a page, a key and why, a line; '#' starts a comment line.
+// tests/web/check_url_keys.py (ctest web.keys) reads the same list. False, with `error`
+// set, where a line is not one.
+bool readPageKeys(const std::string& text, std::map<std::string, std::set<std::string>>& own,
+                  std::string& error) {
+    std::istringstream lines(text);
+    std::string line;
+    for (int number = 1; std::getline(lines, line); ++number) {
+        std::istringstream fields(line);
+        std::string path, key, why;
+        if (!(fields >> path) || path.front() == '#') continue;
+        const bool known = std::any_of(std::begin(kPages), std::end(kPages),
+                                       [&](const Page& p) { return path == p.path; });
+        if (!(fields >> key >> why) || !known) {
+            error = std::string(kPageKeysFile) + ":" + std::to_string(number) +
+                    ": not 'PAGE KEY WHY' with a page this check reads: " + line;
+            return false;
+        }
+        own[path].insert(key);
+    }
+    return true;
+}
+
+// The keys the table gives a page: the rows' URL keys and the bases' sizes (by their flags'
+// names: radius, length, radii). A page that takes part of the table (the three.js example)
+// may also read, by its flag's name, a field the web page does not take (model).
+std::set<std::string> tableKeys(bool whole) {
+    std::set<std::string> keys;
+    for (const SceneField& field : sceneFieldTable()) {
+        if (!field.urlKey.empty())
+            keys.insert(std::string(field.urlKey));
+        else if (!whole && !field.flag.empty())
+            keys.insert(std::string(field.flag.substr(2)));
+    }
+    for (const std::string& size : baseSizeFields()) keys.insert(sceneFieldFlag(size).substr(2));
+    return keys;
+}
+
+// `page`'s keys against the table's and its own (see Page); the problems found.
+std::vector<std::string> checkPage(const Page& page, const std::string& text,
+                                   const std::set<std::string>& own) {
+    const std::set<std::string> table = tableKeys(page.whole);
+    const std::set<std::string> readKeys = matches(text, kReadKey);
+    const std::set<std::string> writtenKeys = matches(text, kWrittenKey);
     std::vector<std::string> problems;
-    for (const auto& [keys, what] :
-         {std::pair{&readKeys, "reads (get)"}, std::pair{&writtenKeys, "writes (q.set)"}}) {
-        for (const std::string& key : table)
-            if (!keys->count(key))
-                problems.push_back("the page never " + std::string(what) + " key " + key);
-        for (const std::string& key : *keys)
-            if (!table.count(key))
-                problems.push_back("the page " + std::string(what) + " key " + key +
-                                   ", which no row of the table of scene fields has");
+    const auto outside = [&](const std::string& key, const char* what) {
+        if (!table.count(key) && !own.count(key))
+            problems.push_back("it " + std::string(what) + " key " + key +
+                               ", which no row of the table of scene fields has (nor " +
+                               kPageKeysFile + " as the page's own)");
+    };
+    for (const std::string& key : readKeys) outside(key, "reads (get)");
+    for (const std::string& key : own)
+        if (!readKeys.count(key))
+            problems.push_back(std::string(kPageKeysFile) + " lists key " + key +
+                               " as the page's own, but it never reads it (get)");
+    if (readKeys.empty())
+        problems.push_back("no get('key' found: the check no longer reads the page");
+    if (!page.whole) return problems;
+    for (const std::string& key : writtenKeys) outside(key, "writes (q.set)");
+    for (const std::string& key : table) {
+        if (!readKeys.count(key)) problems.push_back("it never reads (get) key " + key);
+        if (!writtenKeys.count(key)) problems.push_back("it never writes (q.set) key " + key);
     }
-    if (readKeys.empty() || writtenKeys.empty())
-        problems.push_back("no get('key' or q.set('key' found: the check no longer reads the page");
-    if (problems.empty()) {
-        std::cout << "scene_field_table: " << path << " reads and writes the " << table.size()
-                  << " keys of the table of scene fields\n";
-        return 0;
+    for (const std::string& key : own)
+        if (!writtenKeys.count(key)) problems.push_back("it never writes (q.set) key " + key);
+    if (writtenKeys.empty())
+        problems.push_back("no q.set('key' found: the check no longer reads the page");
+    return problems;
+}
+
+// Each page of kPages under `source` holds the table's URL keys (ctest web.field_keys).
+int checkKeys(const std::string& source) {
+    std::string ownText;
+    if (!read(source + "/" + kPageKeysFile, ownText))
+        return fail(source + "/" + kPageKeysFile + ": cannot be read");
+    std::map<std::string, std::set<std::string>> ownKeys;
+    if (std::string error; !readPageKeys(ownText, ownKeys, error)) return fail(error);
+    std::string message;
+    for (const Page& page : kPages) {
+        const std::string path = source + "/" + page.path;
+        std::string text;
+        if (!read(path, text)) return fail(path + ": cannot be read");
+        const std::set<std::string>& own = ownKeys[page.path];
+        const std::vector<std::string> problems = checkPage(page, text, own);
+        if (problems.empty()) {
+            if (page.whole)
+                std::cout << "scene_field_table: " << page.path << " reads and writes the "
+                          << tableKeys(true).size() + own.size()
+                          << " keys of the table of scene fields and its own\n";
+            else
+                std::cout << "scene_field_table: " << page.path << " reads "
+                          << matches(text, kReadKey).size()
+                          << " keys, each the table of scene fields' or its own\n";
+            continue;
+        }
+        message += (message.empty() ? "" : "\n") + path +
+                   ": its URL keys are not the table of scene fields' "
+                   "(src/core/scene/SceneFields.cpp: a row's urlKey):";
+        for (const std::string& problem : problems) message += "\n  " + problem;
     }
-    std::string message = path +
-                          ": its URL keys are not the table of scene fields' "
-                          "(src/core/scene/SceneFields.cpp: a row's urlKey):";
-    for (const std::string& problem : problems) message += "\n  " + problem;
-    return fail(message);
+    return message.empty() ? 0 : fail(message);
 }
 
 }  // namespace
@@ -167,11 +249,11 @@ int main(int argc, char** argv) {
     }
     if ((mode != "check" && mode != "write" && mode != "keys") || argc != 3)
         return fail(
-            "usage: scene_field_table print | check FILE.md | write FILE.md | keys FILE.js");
+            "usage: scene_field_table print | check FILE.md | write FILE.md | keys SOURCE_DIR");
     const std::string path = argv[2];
+    if (mode == "keys") return checkKeys(path);
     std::string text;
     if (!read(path, text)) return fail(path + ": cannot be read");
-    if (mode == "keys") return checkKeys(path, text);
     std::size_t begin = 0, end = 0;
     if (!findTable(text, begin, end))
         return fail(path + ": no generated table (a line '" + kBegin + "', then one '" + kEnd +

@@ -10,11 +10,11 @@ microrelief-render itself: every key that is not one of a page's own is a flag i
 lists, every word a page offers for a key is one the program takes (a 1x1 render with that
 flag alone), every flag the command line writes is the program's, and every name the pages'
 checks give a scene's field in a message (web/scene_checks.js: kFieldNames) is a key a page
-reads, or, dashes and all, a flag of the program's. Where a key or a word
-is a page's own (the page's resolution, a clean picture, three's shading), it is listed
-below with the reason, and a listed one that is no longer in the page fails, so the list
-cannot go stale. The web page's lists whose positions it hands the shader as numbers
-(INDEXED) are the program's whole lists, in the program's order: the order in which it
+reads, or, dashes and all, a flag of the program's. Where a key is a page's own (the
+page's resolution, a clean picture, three's shading), tests/web/page_keys.txt lists it with
+the reason (tests/docs/scene_field_table.cpp reads the same list); a word, below. A listed
+key or word that is no longer in the page fails, so the lists cannot go stale. The web
+page's lists whose positions it hands the shader as numbers (INDEXED) are the program's whole lists, in the program's order: the order in which it
 names the choices when it refuses an unknown word (its names tables, the enums' order).
 """
 import os
@@ -23,18 +23,9 @@ import subprocess
 import sys
 import tempfile
 
-# Keys and words that belong to a page, not to microrelief-render.
-PAGE_KEYS = {
-    'web/scene.js': {
-        'resolution': 'the page draws at 1/N of its pixels while it moves',
-        'clean': 'the picture without the panel, for screenshots',
-    },
-    'examples/three/view.js': {
-        'clean': 'the picture without the panel, for screenshots',
-        'shading': "three.js's materials or the library's own shading",
-        'pyramid': 'where the page builds the max pyramid (GPU or WebAssembly)',
-    },
-}
+# The pages whose URL keys are checked.
+PAGES = ['web/scene.js', 'examples/three/view.js']
+# Words that belong to a page, not to microrelief-render (its own keys: page_keys.txt).
 # albedo=map is the bundled map's colours, which microrelief-render draws without --albedo.
 PAGE_WORDS = {('albedo', 'map')}
 # web/scene.js's lists whose index is a #define of relief.frag or a uniform (relief_gl.js:
@@ -50,6 +41,20 @@ WHOLE = {'base'}
 def fail(message):
     print(f'check_url_keys: {message}')
     sys.exit(1)
+
+
+def page_keys(path):
+    """The pages' own keys, page -> {key: why}, from page_keys.txt: a page, a key and the
+    reason a line; '#' starts a comment line."""
+    keys = {page: {} for page in PAGES}
+    for number, line in enumerate(open(path, encoding='utf-8'), 1):
+        if not line.strip() or line.lstrip().startswith('#'):
+            continue
+        fields = line.split(None, 2)
+        if len(fields) < 3 or fields[0] not in keys:
+            fail(f'{path}:{number}: not "PAGE KEY WHY" with PAGE one of {PAGES}: {line.strip()}')
+        keys[fields[0]][fields[1]] = fields[2].strip()
+    return keys
 
 
 def words_of(text, expression, page, key, problems):
@@ -89,7 +94,8 @@ def main():
     problems = []
     words_to_try = set()
     offered_words = {}  # (page, key): the words the page offers for the key
-    for page, own in PAGE_KEYS.items():
+    own_keys = page_keys(os.path.join(source, 'tests', 'web', 'page_keys.txt'))
+    for page, own in own_keys.items():
         text = open(os.path.join(source, page), encoding='utf-8').read()
         keys = set(re.findall(r"\bget\('([a-z][a-z-]*)'", text))
         if not keys:
@@ -118,7 +124,7 @@ def main():
                 problems.append(f'{page}: renderCommandLine writes {flag}, which microrelief-render does not take')
     # The names the checks' messages give the fields: a page's key, or the program's flag.
     read_keys = set()
-    for page in PAGE_KEYS:
+    for page in PAGES:
         read_keys |= set(re.findall(r"\bget\('([a-z][a-z-]*)'", open(os.path.join(source, page), encoding='utf-8').read()))
     checks = open(os.path.join(source, 'web/scene_checks.js'), encoding='utf-8').read()
     table = re.search(r'export const kFieldNames = \{([^}]*)\}', checks)

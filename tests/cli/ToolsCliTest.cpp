@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <OpenImageIO/imageio.h>
 
@@ -569,6 +570,56 @@ TEST_F(ToolsCli, BenchTerrainDrawsEachSizeWholeAndThroughPagesExactly) {
     }
     EXPECT_TRUE(std::filesystem::exists(dir / "t" / "terrain.md"));
     EXPECT_FALSE(std::filesystem::exists(dir / "t" / "terrain-pyramids")) << "files removed";
+}
+
+// The runs as subcommands (issue 49): each --help lists its own options only, a run takes
+// no other run's option, an option before the subcommand's name (which the default run
+// would take, and the subcommand lose) is refused in one line, and a subcommand runs as its
+// old spelling does (rebuild --map-sizes as --rebuild --rebuild-sizes). Seen red: with the
+// options before the name not refused, '--quick terrain --map-sizes 0' went on to run (and
+// refused its empty list).
+TEST_F(ToolsCli, BenchRunsAreSubcommandsEachWithItsOwnOptions) {
+    const test::RunResult help = run(MICRORELIEF_BENCH_EXE, "--help");
+    ASSERT_EQ(help.status, 0) << help.err;
+    for (const char* subcommand : {"methods", "materials", "rebuild", "terrain"})
+        EXPECT_NE(help.out.find(std::string("\n  ") + subcommand + " "), std::string::npos)
+            << subcommand << ": " << help.out;
+    // Each run's --help: the options it takes, and none of another run's.
+    for (const auto& [subcommand, takes, not_] :
+         std::vector<std::tuple<std::string, std::string, std::string>>{
+             {"methods", "--glsl330", "--memory"},
+             {"materials", "--quick", "--map-sizes"},
+             {"rebuild", "--map-sizes", "--views"},
+             {"terrain", "--memory", "--maps"}}) {
+        const test::RunResult r = run(MICRORELIEF_BENCH_EXE, subcommand + " --help");
+        ASSERT_EQ(r.status, 0) << subcommand << ": " << r.err;
+        EXPECT_NE(r.out.find("microrelief-bench " + subcommand + " [OPTIONS]"), std::string::npos)
+            << r.out;
+        EXPECT_NE(r.out.find("  " + takes + " "), std::string::npos) << subcommand << r.out;
+        EXPECT_EQ(r.out.find(not_), std::string::npos) << subcommand << r.out;
+        EXPECT_EQ(r.out.find("--rebuild"), std::string::npos) << subcommand << r.out;
+    }
+    const auto out = " --out-dir " + (dir / "r").string();
+    for (const auto& [args, mentions] : std::vector<std::pair<std::string, std::string>>{
+             {"--quick terrain --map-sizes 0", "--quick comes before 'terrain'"},
+             {"--terrain terrain --map-sizes 0", "--terrain comes before 'terrain'"},
+             {"terrain --maps default", "--maps is not an option"},
+             {"rebuild --quick", "--quick is not an option"},
+             {"rebuild --map-sizes 64,,32", "--map-sizes: '' is not a map side"},
+             {"terrain --memory 0", "--memory: '0' is not a whole number from 1 to 1048576"},
+             {"terrain rebuild", "'rebuild' was not expected"}}) {
+        const test::RunResult r = run(MICRORELIEF_BENCH_EXE, args + out);
+        test::expectOneLineFailure(r, "microrelief-bench", 2, mentions);
+        EXPECT_EQ(r.out, "") << args;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "r"));
+    const test::RunResult r =
+        run(MICRORELIEF_BENCH_EXE, "rebuild --map-sizes 33 --size 48x40 --frames 10" + out);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<std::vector<std::string>> csv = readBenchCsv(dir / "r" / "rebuild.csv");
+    ASSERT_EQ(csv.size(), 2u);
+    EXPECT_EQ(csv[1][0], "33");
+    EXPECT_TRUE(std::filesystem::exists(dir / "r" / "rebuild.md"));
 }
 
 }  // namespace

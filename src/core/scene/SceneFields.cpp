@@ -168,8 +168,7 @@ const std::vector<std::string>& sceneFields() {
 }
 
 bool isSceneField(const std::string& path) {
-    const auto& fields = sceneFields();
-    return std::find(fields.begin(), fields.end(), path) != fields.end() || isBaseSizeField(path);
+    return findSceneField(path) != nullptr || isBaseSizeField(path);
 }
 
 bool isBaseSizeField(const std::string& path) {

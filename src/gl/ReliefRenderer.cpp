@@ -17,8 +17,13 @@ namespace microrelief {
 
 ReliefRenderer::ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
                                const MethodSettings& method)
-    : gl_(gl), shaderDir_(shaderDir), method_(method) {
-    reloadShaders();
+    : ReliefRenderer(std::make_shared<ReliefPrograms>(gl, shaderDir), method) {}
+
+ReliefRenderer::ReliefRenderer(std::shared_ptr<ReliefPrograms> programs,
+                               const MethodSettings& method)
+    : gl_(programs->gl()), programs_(std::move(programs)), method_(method) {
+    program(configFor(method_, countFetches_, base_.kind, interpolation_, true, ShadowMode::Off,
+                      false, tiled(), paged()));
     parameterBuffer_ = gl::Buffer::create(gl_);
     boxArray_ = gl::VertexArray::create(gl_);
     boxVertices_ = gl::Buffer::create(gl_);
@@ -118,19 +123,15 @@ ReliefShaderConfig ReliefRenderer::configFor(const MethodSettings& settings, boo
 void ReliefRenderer::reloadShaders() {
     const ReliefShaderConfig config = configFor(method_, countFetches_, base_.kind, interpolation_,
                                                 true, ShadowMode::Off, false, tiled(), paged());
-    ReliefShader fresh(gl_, shaderDir_, config);  // throws before anything changes
+    programs_->reload(config);  // throws before anything changes
     ++rebuilds_.programs;
-    programs_.clear();
-    programs_.emplace(config, std::move(fresh));
 }
 
 ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
-    auto found = programs_.find(config);
-    if (found == programs_.end()) {
-        found = programs_.emplace(config, ReliefShader(gl_, shaderDir_, config)).first;
-        ++rebuilds_.programs;
-    }
-    return found->second;
+    const bool compiles = !programs_->has(config);
+    ReliefShader& shader = programs_->program(config);
+    if (compiles) ++rebuilds_.programs;
+    return shader;
 }
 
 bool ReliefRenderer::pages(const HeightMap& map) const {
@@ -164,20 +165,6 @@ void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches
     if (textures_) addConeMapFor(gl_, *textures_, settings.method, pyramidBuilder());
     method_ = settings;
     countFetches_ = countFetches;
-}
-
-void ReliefRenderer::setBase(const BaseShape& base) {
-    validateBaseShape(base);
-    if (textures_ && base.wrapsU() != textures_->wrapsU()) {
-        throwRuntime(
-            "ReliefRenderer::setBase: between the plane and a curved base the map must "
-            "be uploaded again (setHeightMap)");
-    }
-    checkMethodSupportsBase(method_.method, base);
-    program(configFor(method_, countFetches_, base.kind, interpolation_, true, ShadowMode::Off,
-                      false, tiled(), paged()));  // may throw
-    base_ = base;
-    if (textures_) uploadBox();
 }
 
 bool ReliefRenderer::needsHeights(const ReliefDesc& relief) const {
@@ -222,7 +209,7 @@ void ReliefRenderer::applyOf(const ReliefDesc& relief, const HeightMap* heights,
         if (applied_ && samePyramid(*applied_, relief)) applied_ = relief;
     }
     setHeightScale(relief.heightScale);  // the box, fitted to the base and the scale
-    setModel(relief.model);
+    model_ = relief.model;
 }
 
 void ReliefRenderer::apply(const ReliefDesc& relief, const MethodSettings& method,
@@ -257,13 +244,6 @@ void ReliefRenderer::applyOf(const ReliefDesc& relief, const MethodSettings& met
         throw;
     }
     setMethod(method, countFetches_);
-}
-
-void ReliefRenderer::setInterpolation(Interpolation interpolation) {
-    if (interpolation == interpolation_) return;
-    program(configFor(method_, countFetches_, base_.kind, interpolation, true, ShadowMode::Off,
-                      false, tiled(), paged()));  // may throw
-    interpolation_ = interpolation;
 }
 
 void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
@@ -343,11 +323,6 @@ void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& sou
     }
     albedo_.emplace(AlbedoTexture(gl_, *albedo, source));  // made before the old one goes
     ++rebuilds_.albedos;
-}
-
-PyramidBuilder& ReliefRenderer::pyramidBuilder() {
-    if (!builder_) builder_.emplace(gl_, shaderDir_);
-    return *builder_;
 }
 
 void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {

@@ -31,6 +31,7 @@
 #include "microrelief/gl/StateGuard.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefPrograms.h"
 #include "microrelief/gl/ReliefRenderer.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/ReferenceTracer.h"
@@ -365,6 +366,52 @@ TEST_F(SceneObject, AReliefAndItsMethodApplyTogetherInEitherOrder) {
         EXPECT_EQ(e.kind(), ErrorKind::BadInput);
     }
     EXPECT_EQ(renderer.render(plane).frame.position, before.frame.position);
+}
+
+// Reliefs in one context share its programs (gl/ReliefPrograms.h): a second renderer given
+// the first one's ReliefPrograms compiles nothing for a configuration the first compiled,
+// draws its own map with it (the picture a renderer with programs of its own draws, bit for
+// bit), and the cache holds each configuration once. A reload by one renderer drops the
+// programs for both; the other compiles what it needs again at its next draw.
+TEST_F(SceneObject, RenderersOfOneContextShareItsPrograms) {
+    const HeightMap cobbles = synth::cobbles(32, 32, 5);
+    const HeightMap other = synth::cobbles(48, 40, 9);
+    const CameraFrame camera = resolveCamera(test::orbitCamera(40.0, 30.0, 1.8), 32, 32, 1.0);
+    OffscreenTarget target(gl(), 32, 32);
+    const auto draw = [&](ReliefRenderer& renderer) {
+        target.clear(glm::vec3(0.0f));
+        renderer.draw(camera, ShadingOptions{});
+        return target.read(camera.eye);
+    };
+    const auto programs = std::make_shared<ReliefPrograms>(gl(), shaderDirectory());
+    ReliefRenderer first(programs);
+    first.setHeightMap(cobbles, "cobbles");
+    (void)draw(first);
+    const int afterFirst = programs->compiled();
+    EXPECT_EQ(first.rebuilds().programs, afterFirst);
+    EXPECT_GE(afterFirst, 1);
+
+    ReliefRenderer second(programs);
+    second.setHeightMap(other, "other");
+    const RenderedFrame shared = draw(second);
+    EXPECT_EQ(second.rebuilds().programs, 0);
+    EXPECT_EQ(programs->compiled(), afterFirst);
+
+    ReliefRenderer alone(gl(), shaderDirectory());
+    alone.setHeightMap(other, "other");
+    const RenderedFrame own = draw(alone);
+    EXPECT_GE(alone.rebuilds().programs, 1);
+    EXPECT_EQ(shared.color, own.color);
+    EXPECT_EQ(shared.position, own.position);
+    int hits = 0;  // the relief is in the picture
+    for (std::size_t k = 3; k < shared.position.size(); k += 4) hits += shared.position[k] > 0.5f;
+    EXPECT_GT(hits, 100);
+
+    first.reloadShaders();
+    EXPECT_EQ(programs->compiled(), afterFirst + 1);
+    const RenderedFrame reloaded = draw(second);
+    EXPECT_EQ(reloaded.position, shared.position);
+    EXPECT_EQ(programs->compiled(), afterFirst + 1 + second.rebuilds().programs);
 }
 
 // The window depth written for each convention: OpenGL's [-1, 1] clip depth and

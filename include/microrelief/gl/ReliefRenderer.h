@@ -1,6 +1,8 @@
 // Draws microrelief with the multilevel method: the base surface's bounding box is the
 // proxy geometry, and each of its fragments traces its own ray (shaders/relief.frag).
-// Owns the GL objects it needs; draws into whatever framebuffer is bound (see draw).
+// Owns one map's GL objects; the programs are its context's (gl/ReliefPrograms.h), shared
+// with every renderer given the same ReliefPrograms. Draws into whatever framebuffer is
+// bound (see draw).
 #pragma once
 
 #include <algorithm>
@@ -24,6 +26,7 @@
 #include "microrelief/gl/AlbedoTexture.h"
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/PyramidBuilder.h"
+#include "microrelief/gl/ReliefPrograms.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
 
@@ -38,8 +41,9 @@ struct PictureTile {
 };
 
 // What a renderer has built so far, for tests and tools that hold it to rebuilding only what
-// changed: max pyramids built whole (setHeightMap, heightsReplaced), programs compiled,
-// albedo textures uploaded.
+// changed: max pyramids built whole (setHeightMap, heightsReplaced), programs compiled for
+// it (not those another renderer sharing its ReliefPrograms compiled first), albedo
+// textures uploaded.
 struct RebuildCounts {
     int pyramids = 0;
     int programs = 0;
@@ -49,10 +53,15 @@ struct RebuildCounts {
 
 class ReliefRenderer {
 public:
-    // `shaderDir` holds relief_box.vert, relief.frag, relief_parameters.glsl and
-    // microrelief/; `method` is the program compiled first.
+    // Its own programs, compiled from `shaderDir` (which holds relief_box.vert, relief.frag,
+    // relief_parameters.glsl, pyramid/ and microrelief/); `method` is the program compiled
+    // first. Throws Error(Runtime) when it does not compile.
     ReliefRenderer(const GL& gl, const std::filesystem::path& shaderDir,
                    const MethodSettings& method = {});
+    // The programs of `programs`, shared with the other renderers of its context: a
+    // configuration one of them compiled is not compiled again.
+    explicit ReliefRenderer(std::shared_ptr<ReliefPrograms> programs,
+                            const MethodSettings& method = {});
 
     // A relief as a whole (core/scene/Scene.h). needsHeights: whether apply() needs the
     // relief's heights, because no pyramid was built for a relief yet, or the one built is
@@ -63,7 +72,7 @@ public:
     // without, the one built is kept, and must serve the relief's addressing and tiles
     // (else Error(Runtime)). Then the base, the last level, the height scale and the model.
     // The albedo and an animation are the caller's: they need files, a time. Throws as
-    // setHeightMap and setBase do, for a method that does not run on the relief's base.
+    // setHeightMap does, for a method that does not run on the relief's base.
     void apply(const ReliefDesc& relief, const HeightMap* heights = nullptr,
                const std::string& source = {}, PyramidBuild build = PyramidBuild::Cpu);
     // A relief and the method that is to trace it, together: the pair is checked first (the
@@ -131,18 +140,12 @@ public:
     void heightsReplaced();
     // The surface's maximum, map units: the pyramid's top texel.
     float maxHeight() const { return textures_ ? textures_->shape().maxHeight : 0.0f; }
-    // The GPU pyramid builder this renderer uses, made on first use.
-    PyramidBuilder& pyramidBuilder();
+    // The GPU pyramid builder this renderer uses (its ReliefPrograms'), made on first use.
+    PyramidBuilder& pyramidBuilder() { return programs_->pyramidBuilder(); }
+    const std::shared_ptr<ReliefPrograms>& programs() const { return programs_; }
     void setHeightScale(float scale);
-    // Another base of the same addressing as the map was uploaded with (the curved bases
-    // among themselves, a new size of the same one); a change between the plane and a
-    // curved base needs setHeightMap. Throws Error(BadInput) for a method that does not run
-    // on it, keeping the base it had.
-    void setBase(const BaseShape& base);
+    // The base and the last level applied last (apply, setHeightMap).
     const BaseShape& base() const { return base_; }
-    // The last level drawn: another program, the same pyramid. Throws and keeps the one it
-    // had when the program does not compile.
-    void setInterpolation(Interpolation interpolation);
     Interpolation interpolation() const { return interpolation_; }
 
     // The surface's colour from `albedo` over the map's (u, v) (core/image/Albedo.h), or, with
@@ -151,8 +154,8 @@ public:
     void setAlbedo(const AlbedoImage* albedo, const std::string& source = "the albedo");
     bool hasAlbedo() const { return albedo_.has_value(); }
 
-    // Where the relief sits in the world (the identity: where the spec puts it).
-    void setModel(const ModelTransform& model) { model_ = model; }
+    // Where the relief sits in the world (apply's relief.model; the identity: where the
+    // spec puts it).
     const ModelTransform& model() const { return model_; }
     // The depth convention of the caller's projection and framebuffer (the default:
     // OpenGL's [-1, 1] clip depth, a standard depth test).
@@ -160,7 +163,8 @@ public:
     const DepthConvention& depthConvention() const { return depth_; }
 
     // Recompiles the current program from the files; on failure throws and keeps the
-    // previous program. Other programs compiled before are dropped (they may be stale).
+    // previous program. Other programs compiled before are dropped (they may be stale),
+    // for every renderer sharing its ReliefPrograms.
     void reloadShaders();
 
     // Chooses the tracing method; each configuration (ReliefShaderConfig) is compiled once
@@ -216,8 +220,8 @@ private:
     void applyOf(const ReliefDesc& relief, const MethodSettings& method, const HeightMap* heights,
                  std::shared_ptr<const HeightMap> shared, const std::string& source,
                  PyramidBuild build);
-    // The program for the configuration, compiled on first use; throws and changes
-    // nothing on failure.
+    // The program for the configuration, compiled on first use (counted in rebuilds_);
+    // throws and changes nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);
     // Whether the eye lies outside the proxy box (with a margin): then its front faces
     // are drawn, else its back faces.
@@ -227,11 +231,9 @@ private:
     void uploadBox();
 
     const GL& gl_;
-    std::filesystem::path shaderDir_;
-    std::map<ReliefShaderConfig, ReliefShader> programs_;
-    std::optional<ReliefTextures> textures_;  // the map's; none yet
+    std::shared_ptr<ReliefPrograms> programs_;  // the context's, maybe shared
+    std::optional<ReliefTextures> textures_;    // the map's; none yet
     std::optional<AlbedoTexture> albedo_;
-    std::optional<PyramidBuilder> builder_;   // made for the first GPU build
     gl::Buffer parameterBuffer_;              // MicroreliefParameters
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;

@@ -30,20 +30,9 @@ namespace {
 // writes the height scale, SceneOptions.h).
 constexpr const char* kExaggerationFlag = "--exaggeration";
 
-// The flag of a field, from the table of scene fields (core/scene/SceneFields.h) or, for a
-// base's size, from its field in the table of bases (core/base/BaseType.h); empty for
-// neither.
-std::string fieldFlag(std::string_view field) {
-    if (isBaseSizeField(std::string(field))) {
-        const auto& sizes = baseSizeFields();
-        if (std::find(sizes.begin(), sizes.end(), field) == sizes.end()) return {};
-    }
-    return sceneFieldFlag(field);
-}
-
 // The flag of a field (a programming error when there is none).
 std::string flag(std::string_view field) {
-    std::string name = fieldFlag(field);
+    std::string name = sceneFieldFlag(field);
     if (name.empty()) std::abort();
     return name;
 }
@@ -58,7 +47,7 @@ std::string help(std::string_view field) {
 }  // namespace
 
 std::string flagName(const std::string& field) {
-    const std::string name = fieldFlag(field);
+    const std::string name = sceneFieldFlag(field);
     return name.empty() ? field : name;
 }
 

@@ -545,6 +545,8 @@ TEST(SceneFlags, EveryFieldAMessageMayNameHasAFlag) {
     // field: none of them is another field's flag, and a size shared by bases has one count.
     EXPECT_EQ(Error(ErrorKind::BadInput, "{base.radius} and {base.radii}").message(flagName),
               "--radius and --radii");
+    // A field of a size's form that no base has is no flag: the message keeps the field.
+    EXPECT_EQ(flagName("base.minorRadius"), "base.minorRadius");
     std::set<std::string> flags;
     for (const std::string& field : fields) {
         if (field == "map.samples") continue;

@@ -32,6 +32,18 @@ BaseShape resized(const BaseType& type) {
 
 }  // namespace
 
+// A size's flag is its field's name (core/scene/SceneFields.h: sceneFieldFlag), and only
+// the sizes of this table have one: a field of their form that no base has sets nothing,
+// though a message may name it (isSceneField goes by the form alone).
+TEST(BaseTable, OnlyItsSizesHaveFlags) {
+    EXPECT_EQ(sceneFieldFlag("base.radius"), "--radius");
+    EXPECT_EQ(sceneFieldFlag("base.radii"), "--radii");
+    EXPECT_EQ(sceneFieldFlag("camera.eye"), "--eye");
+    EXPECT_EQ(sceneFieldFlag("map.samples"), "");
+    EXPECT_TRUE(isBaseSizeField("base.minorRadius"));
+    EXPECT_EQ(sceneFieldFlag("base.minorRadius"), "");
+}
+
 TEST(BaseTable, NamesAndSizesAgreeWithTheLookups) {
     std::set<std::string> names;
     for (const BaseType& type : baseTypes()) {

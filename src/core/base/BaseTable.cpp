@@ -1,10 +1,12 @@
 // The table of base surfaces (core/base/BaseType.h). Each row is written in its base's own
 // file, beside the BaseSurface it makes; a new base is a line here.
 #include <algorithm>
+#include <cctype>
 
 #include "microrelief/core/Error.h"
 #include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/core/base/BaseType.h"
+#include "microrelief/core/scene/SceneFields.h"
 
 namespace microrelief {
 
@@ -58,6 +60,23 @@ std::vector<std::string> baseSizeFields() {
             if (std::find(fields.begin(), fields.end(), size.field) == fields.end())
                 fields.push_back(size.field);
     return fields;
+}
+
+// core/scene/SceneFields.h's, here beside the sizes it names: a row's flag, or a size's
+// from its field, for the sizes this table has and no other field of their form.
+std::string sceneFieldFlag(std::string_view path) {
+    if (const SceneField* field = findSceneField(path)) return std::string(field->flag);
+    const std::vector<std::string> sizes = baseSizeFields();
+    if (std::find(sizes.begin(), sizes.end(), path) == sizes.end()) return {};
+    std::string flag = "--";
+    for (char c : path.substr(path.find('.') + 1)) {
+        if (std::isupper(static_cast<unsigned char>(c))) {
+            flag += '-';
+            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        }
+        flag += c;
+    }
+    return flag;
 }
 
 }  // namespace microrelief

@@ -144,19 +144,8 @@ const SceneField* findSceneField(std::string_view path) {
     return nullptr;
 }
 
-std::string sceneFieldFlag(std::string_view path) {
-    if (const SceneField* field = findSceneField(path)) return std::string(field->flag);
-    if (!isBaseSizeField(std::string(path))) return {};
-    std::string flag = "--";
-    for (char c : path.substr(path.find('.') + 1)) {
-        if (std::isupper(static_cast<unsigned char>(c))) {
-            flag += '-';
-            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        }
-        flag += c;
-    }
-    return flag;
-}
+// sceneFieldFlag is core/base/BaseTable.cpp's: a size's flag needs the table of bases,
+// which the WebAssembly builds that compile this file leave out.
 
 const std::vector<std::string>& sceneFields() {
     static const std::vector<std::string> fields = [] {

@@ -35,7 +35,9 @@ std::span<const SceneField> sceneFieldTable();
 // The row of `path`, or null.
 const SceneField* findSceneField(std::string_view path);
 // The flag that sets `path`: its row's, or a base size's from its field ("base.radius" is
-// --radius, "base.minorRadius" would be --minor-radius); empty for a field no flag sets.
+// --radius, "base.minorRadius" would be --minor-radius); empty for a field no flag sets,
+// such as one of a size's form that no base has. Defined in core/base/BaseTable.cpp, which
+// holds the sizes (the WebAssembly builds compile SceneFields.cpp without it).
 std::string sceneFieldFlag(std::string_view path);
 
 // Every member path of ReliefDesc and ViewDesc that a check concerns (the table's paths),

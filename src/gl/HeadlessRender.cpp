@@ -89,12 +89,7 @@ void HeadlessRenderer::setHeights(const RenderJob& job, std::shared_ptr<const He
 void HeadlessRenderer::upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
                               const std::function<void(PyramidBuild)>& build) {
     context_.makeCurrent();
-    try {
-        build(PyramidBuild::Gpu);
-    } catch (const Error& e) {
-        if (e.kind() == ErrorKind::BadInput) throw;  // the map's fault, not the GL's
-        build(PyramidBuild::Cpu);
-    }
+    build(PyramidBuild::GpuElseCpu);  // on the CPU where the GL cannot build it
     if (animated_) animated_->forgetMap();
     source_ = source;
     mapWidth_ = map.width * tiles.x;  // the whole, tiles included

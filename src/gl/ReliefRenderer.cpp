@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/gl/ReliefMapUpload.h"
 #include "microrelief/gl/StateGuard.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
 
@@ -132,14 +133,6 @@ ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
     ReliefShader& shader = programs_->program(config);
     if (compiles) ++rebuilds_.programs;
     return shader;
-}
-
-bool ReliefRenderer::pages(const HeightMap& map) const {
-    if (paging_.mode != PagingSettings::Mode::Auto)
-        return paging_.mode == PagingSettings::Mode::Always;
-    GLint maxSize = 0;
-    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    return map.width > maxSize || map.height > maxSize;
 }
 
 void ReliefRenderer::setGlsl330(bool on) {
@@ -269,22 +262,16 @@ void ReliefRenderer::setHeightMapOf(const HeightMap& map, std::shared_ptr<const 
     if (tiles.x < 1 || tiles.y < 1) throwBadInput("{tiles}: counts must be at least 1");
     // Both throw before anything changes: the program is compiled (or looked up) first,
     // the textures are made before the old ones go.
-    const bool paging = pages(map);
+    const bool paging = readsThroughPages(gl_, map, paging_);
     if (paging) checkPagedMap(method_.method, tiles, source);
     program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
                       false, tiles != glm::ivec2(1, 1), paging));
-    const bool maxMip = method_.method == Method::MaxMip;
-    // The GPU builder bounds texel squares within one map: a tiled one's is the CPU's.
-    if (paging) {
-        // The pages keep the map: the caller's where it shares it, else a copy.
-        if (!shared) shared = std::make_shared<const HeightMap>(map);
-        textures_.emplace(ReliefTextures(gl_, std::move(shared), source, base.wrapsU(), paging_));
-    } else if (build == PyramidBuild::Gpu && tiles == glm::ivec2(1, 1)) {
-        textures_.emplace(
-            ReliefTextures(gl_, map, source, base.wrapsU(), pyramidBuilder(), maxMip));
-    } else {
-        textures_.emplace(ReliefTextures(gl_, map, source, base.wrapsU(), maxMip, tiles));
-    }
+    const MapUploadSettings upload{.wrapU = base.wrapsU(),
+                                   .tiles = tiles,
+                                   .withMaxMip = method_.method == Method::MaxMip,
+                                   .build = build,
+                                   .paging = paging_};
+    textures_.emplace(uploadReliefMap(*programs_, map, std::move(shared), source, upload));
     ++rebuilds_.pyramids;
     applied_.reset();  // of heights no relief named; apply() names them
     addConeMapFor(gl_, *textures_, method_.method, pyramidBuilder());

@@ -9,6 +9,8 @@
 
 #include <bit>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -16,9 +18,12 @@
 #include "GlTestBackend.h"
 #include "TestSupport.h"
 #include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/PyramidBuilder.h"
+#include "microrelief/gl/ReliefMapUpload.h"
+#include "microrelief/gl/ReliefPrograms.h"
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/peers/MaxMipPyramid.h"
 
@@ -104,6 +109,53 @@ HeightMap wideRangeNoise(int width, int height, std::uint32_t seed) {
         }
     }
     return map;
+}
+
+// Where a map's textures come from is decided in one place (gl/ReliefMapUpload.h): with a
+// pyramid pass that does not compile (a GL error, not the map's), GpuElseCpu builds on the
+// CPU (the CPU pyramid's texels) and Gpu throws it; a tiled map is built on the CPU whatever
+// was asked (the GPU's passes never run); paging asked for reads the map through pages, and
+// refuses tiles in one line naming the map.
+TEST_F(GpuPyramid, UploadPolicyFallsBackOnlyForTheGlsFaultAndPagesWhenAsked) {
+    test::ScratchDir dir;
+    std::filesystem::copy(shaderDirectory(), dir.path(), std::filesystem::copy_options::recursive);
+    const std::filesystem::path pass = dir / "pyramid/window_level.frag";
+    std::ofstream(pass, std::ios::app) << "\nundeclaredThing();\n";
+    ReliefPrograms broken(gl(), dir.path());
+    const HeightMap map = synth::cobbles(37, 29, 4);
+
+    MapUploadSettings settings;
+    settings.build = PyramidBuild::GpuElseCpu;
+    const ReliefTextures fallen = uploadReliefMap(broken, map, nullptr, "cobbles", settings);
+    EXPECT_EQ(fallen.paged(), nullptr);
+    expectEqual(fallen, halfPyramid(map, false), "the CPU's after a failed GPU build");
+
+    settings.build = PyramidBuild::Gpu;
+    try {
+        (void)uploadReliefMap(broken, map, nullptr, "cobbles", settings);
+        ADD_FAILURE() << "PyramidBuild::Gpu fell back to the CPU";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Runtime) << e.what();
+    }
+
+    settings.tiles = {2, 3};
+    const ReliefTextures tiled = uploadReliefMap(broken, map, nullptr, "cobbles", settings);
+    EXPECT_EQ(tiled.tiles(), glm::ivec2(2, 3));
+
+    ReliefPrograms programs(gl(), shaderDirectory());
+    settings.paging.mode = PagingSettings::Mode::Always;
+    try {
+        (void)uploadReliefMap(programs, map, nullptr, "cobbles", settings);
+        ADD_FAILURE() << "a tiled map was read through pages";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_EQ(std::string(e.what()), "cobbles: a map read through pages is not tiled");
+    }
+    settings.tiles = {1, 1};
+    const ReliefTextures paged = uploadReliefMap(programs, map, nullptr, "cobbles", settings);
+    EXPECT_NE(paged.paged(), nullptr);
+    settings.paging.mode = PagingSettings::Mode::Auto;  // the map is far below the GL's limit
+    EXPECT_EQ(uploadReliefMap(programs, map, nullptr, "cobbles", settings).paged(), nullptr);
 }
 
 }  // namespace

@@ -105,8 +105,9 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    // The map uploaded by `build` (on the GPU, or on the CPU where the GPU's build fails for
-    // a reason other than the map), then what the renderer keeps of it.
+    // The map uploaded by `build`, given PyramidBuild::GpuElseCpu (gl/ReliefMapUpload.h: on
+    // the CPU where the GPU's build fails for a reason other than the map), then what the
+    // renderer keeps of it.
     void upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
                 const std::function<void(PyramidBuild)>& build);
 

@@ -99,7 +99,8 @@ public:
     // exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that base or tiles;
     // `source` names the map in that message.
     // `build`: the pyramid made on the CPU and uploaded, or on the GPU from the samples
-    // (the same texels; see gl/PyramidBuilder.h). A tiled map's is made on the CPU.
+    // (the same texels; see gl/PyramidBuilder.h), or on the GPU where that works
+    // (gl/ReliefMapUpload.h holds the policy). A tiled map's is made on the CPU.
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
@@ -207,8 +208,6 @@ private:
                                  Interpolation interpolation, bool frontFaces, ShadowMode shadows,
                                  bool albedoMap, bool tiled, bool paged) const;
     bool tiled() const { return tiles() != glm::ivec2(1, 1); }
-    // Whether setHeightMap pages `map` (paging_).
-    bool pages(const HeightMap& map) const;
     // setHeightMap's work; `shared`, where not null, is `map`, shared by the caller.
     void setHeightMapOf(const HeightMap& map, std::shared_ptr<const HeightMap> shared,
                         const std::string& source, const BaseShape& base,

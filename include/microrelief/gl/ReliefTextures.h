@@ -37,9 +37,11 @@ struct ReliefMapShape {
 
 class PyramidBuilder;
 
-// Where a map's max pyramids are built: on the CPU (MaxPyramid, then uploaded) or on the
-// GPU from the uploaded samples (gl/PyramidBuilder.h). The texels are the same.
-enum class PyramidBuild { Cpu, Gpu };
+// Where a map's max pyramids are built: on the CPU (MaxPyramid, then uploaded), on the
+// GPU from the uploaded samples (gl/PyramidBuilder.h), or on the GPU where its build works
+// and else on the CPU (gl/ReliefMapUpload.h says which errors fall back). The texels are
+// the same.
+enum class PyramidBuild { Cpu, Gpu, GpuElseCpu };
 
 class ReliefTextures {
 public:

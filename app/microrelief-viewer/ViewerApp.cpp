@@ -470,7 +470,7 @@ void ViewerApp::updatePick() {
                                                   : picker_.pick(cameraFrame(), column, row);
 }
 
-std::optional<PickResult> ViewerApp::pickFromPicture(int column, int row) const {
+std::optional<WorldHit> ViewerApp::pickFromPicture(int column, int row) const {
     if (!target_ || column < 0 || row < 0 || column >= target_->width() || row >= target_->height())
         return std::nullopt;
     const glm::vec4 hit = target_->positionAt(column, row);
@@ -482,7 +482,7 @@ std::optional<PickResult> ViewerApp::pickFromPicture(int column, int row) const 
     const glm::dvec3 world = drawnEye_ + glm::dvec3(hit);
     const glm::dvec3 object = job.model.pointToObject(world);
     const glm::dvec3 p = surface->mapPoint(object / job.base.frameScale());
-    PickResult pick;
+    WorldHit pick;
     pick.uv = glm::dvec2(p.x / map_->width, p.y / map_->height);
     pick.height = p.z;
     pick.position = world;

@@ -14,7 +14,7 @@
 #include "FrameStats.h"
 #include "ImGuiLayer.h"
 #include "MapFile.h"
-#include "ReliefPicker.h"
+#include "microrelief/core/trace/CpuRelief.h"
 #include "ShaderWatcher.h"
 #include "ViewerOptions.h"
 #include "ViewerPanel.h"
@@ -112,7 +112,7 @@ private:
     void evaluateAnimation();
     // What the picture shows under pixel (column, row): its position AOV, for an animated
     // relief (which the CPU twin does not follow).
-    std::optional<PickResult> pickFromPicture(int column, int row) const;
+    std::optional<WorldHit> pickFromPicture(int column, int row) const;
 
     // The relief of the scene (state_.scene.job) on the renderer and the picker, over
     // `heights` (the samples its map names, as the viewer holds them; `source` names them):
@@ -162,7 +162,7 @@ private:
     std::optional<MapGround> ground_;
     float mapMaxHeight_ = 0.0f;        // the surface's top: map_'s largest sample
     CameraController controller_;
-    ReliefPicker picker_;
+    CpuRelief picker_;  // the relief on the CPU, for picks
     float uiScale_ = 1.0f;
     int mapGeneration_ = 0, shaderGeneration_ = 0;
     std::optional<RenderKey> rendered_;  // what the target holds

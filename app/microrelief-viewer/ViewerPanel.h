@@ -8,7 +8,7 @@
 #include <string>
 
 #include "FrameStats.h"
-#include "ReliefPicker.h"
+#include "microrelief/core/trace/CpuRelief.h"
 #include "SceneOptions.h"
 #include "microrelief/gl/HeightEditor.h"
 
@@ -47,7 +47,7 @@ struct ViewerState {
     int iterationBudget = 0;
     bool pagedMap = false;  // the map is read through pages (larger than the GL's textures)
     std::string paging;     // then its pool and whether the view is exact
-    std::optional<PickResult> pick;
+    std::optional<WorldHit> pick;
     int undoSteps = 0;
     bool mapEdited = false;  // sculpted since it was opened or saved
     double yawDegrees = 0.0, pitchDegrees = 0.0;

@@ -12,7 +12,6 @@
 
 #include "CameraController.h"
 #include "MapFile.h"
-#include "ReliefPicker.h"
 #include "ShaderWatcher.h"
 #include "TestSupport.h"
 #include "ViewerOptions.h"
@@ -237,83 +236,6 @@ TEST(ViewerOptions, ColoursAreOfferedWhereTurningThemOnDrawsSome) {
     other.albedo.file = "my-colours.png";  // its own, turned off
     other.albedo.kind = AlbedoSource::Kind::None;
     EXPECT_TRUE(offeredAndDrawn(other));
-}
-
-// --- picking
-
-TEST(ReliefPicker, PicksTheMapUnderThePixel) {
-    // A ramp along u: h = u at the sample centres, so the picked height reads the uv.
-    HeightMap ramp(32, 16);
-    for (int j = 0; j < ramp.height; ++j) {
-        for (int i = 0; i < ramp.width; ++i) ramp.at(i, j) = (i + 0.5f) / ramp.width;
-    }
-    ReliefPicker picker;
-    const auto heights = std::make_shared<const HeightMap>(ramp);
-    ReliefDesc relief;
-    relief.heightScale = 0.2f;
-    picker.apply(relief, heights);
-    Camera top;
-    top.eye = {0.0, 2.0, 0.0};
-    top.up = {0.0, 0.0, -1.0};
-    top.fovyDegrees = 30.0;
-    const CameraFrame frame = resolveCamera(top, 101, 101, 1.0);
-    // The centre pixel looks straight down at u = v = 0.5.
-    const std::optional<PickResult> centre = picker.pick(frame, 50, 50);
-    ASSERT_TRUE(centre);
-    EXPECT_NEAR(centre->uv.x, 0.5, 1e-6);
-    EXPECT_NEAR(centre->uv.y, 0.5, 1e-6);
-    EXPECT_NEAR(centre->height, 0.5, 1e-6);
-    EXPECT_EQ(centre->face, HitFace::Top);
-    // Image row 0 is v = 0 (far side, -z); column 0 is u = 0 (-x): left of centre is lower.
-    const std::optional<PickResult> left = picker.pick(frame, 40, 50);
-    ASSERT_TRUE(left);
-    EXPECT_LT(left->uv.x, 0.5);
-    EXPECT_NEAR(left->height, left->uv.x, 1e-6);
-    EXPECT_FALSE(picker.pick(frame, 0, 0)) << "the corner ray passes beside the relief";
-    EXPECT_FALSE(picker.pick(frame, -1, 50));
-    EXPECT_EQ(picker.tracersBuilt(), 1);
-    relief.heightScale = 0.4f;
-    picker.apply(relief, heights);  // rebuilt for the new scale; h is the map's value still
-    EXPECT_NEAR(picker.pick(frame, 50, 50)->height, 0.5, 1e-6);
-    EXPECT_EQ(picker.tracersBuilt(), 2);
-}
-
-// The picker builds its tracer again only for what the twin is built from; a model, an
-// albedo, an animation's time move nothing (the model moves the ray), and the picks follow.
-TEST(ReliefPicker, BuildsItsTracerAgainOnlyForWhatItIsBuiltFrom) {
-    const auto heights = std::make_shared<const HeightMap>(HeightMap(16, 16, 0.5f));
-    Camera top;
-    top.eye = {0.0, 2.0, 0.0};
-    top.up = {0.0, 0.0, -1.0};
-    top.fovyDegrees = 30.0;
-    const CameraFrame frame = resolveCamera(top, 101, 101, 1.0);
-    ReliefPicker picker;
-    ReliefDesc relief;
-    picker.apply(relief, heights);
-    ASSERT_TRUE(picker.pick(frame, 50, 50));
-    EXPECT_NEAR(picker.pick(frame, 50, 50)->position.y, 0.05, 1e-6);
-    relief.model = ModelTransform::fromRows({1, 0, 0, 0, 0, 1, 0, 0.25, 0, 0, 1, 0});  // up by 0.25
-    relief.albedo.kind = AlbedoSource::Kind::None;
-    relief.time = 2.0;
-    picker.apply(relief, heights);
-    EXPECT_NEAR(picker.pick(frame, 50, 50)->position.y, 0.3, 1e-6);
-    EXPECT_EQ(picker.tracersBuilt(), 1);
-    const std::vector<std::function<void(ReliefDesc&)>> rebuilt = {
-        [](ReliefDesc& r) { r.heightScale = 0.2f; },
-        [](ReliefDesc& r) { r.base = BaseShape::cylinder(0.3, 1.0); },
-        [](ReliefDesc& r) { r.base = BaseShape::cylinder(0.35, 1.0); },
-        [](ReliefDesc& r) { r.interpolation = Interpolation::Biquadratic; },
-        [](ReliefDesc& r) { r.tiles = {2, 2}; },
-    };
-    for (std::size_t i = 0; i < rebuilt.size(); ++i) {
-        rebuilt[i](relief);
-        picker.apply(relief, heights);
-        (void)picker.pick(frame, 50, 50);
-        EXPECT_EQ(picker.tracersBuilt(), static_cast<int>(i) + 2) << "change " << i;
-    }
-    picker.apply(relief, std::make_shared<const HeightMap>(*heights));  // other heights
-    (void)picker.pick(frame, 50, 50);
-    EXPECT_EQ(picker.tracersBuilt(), static_cast<int>(rebuilt.size()) + 2);
 }
 
 // --- hot reload

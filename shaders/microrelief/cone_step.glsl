@@ -83,14 +83,10 @@ void mr_walkCones(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones
     ivec2 stepDir = ivec2(sign(dir.xy));
     float t = 0.0;
     ivec2 texel = mr_coneTexelAt(relief, origin.xy, dir.xy);
-    bool finished = false, solved = false;
-    float tHit = -1.0;
-    mr_ReliefPatch corners;
-    ivec2 cell;
-    int iteration = 0;
+    mr_WalkEnd end = mr_walkEnd();
     hit.stopLevel = 0;
-    while (iteration < query.maxIterations) {
-        iteration += 1;
+    while (end.iterations < query.maxIterations) {
+        end.iterations += 1;
         vec2 cone = mr_coneOfLastLevel(MICRORELIEF_READ_CONE(cones, texel));
         MICRORELIEF_FETCHED_BOUNDS(1);
         vec2 exits = mr_coneTexelExits(texel, origin, dir);
@@ -104,7 +100,7 @@ void mr_walkCones(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones
             float slope = (run > 0.0 ? run / cone.y : 0.0) + drop;
             float tCone = slope > 0.0 ? t + (z - cone.x) / slope : MR_NEVER;
             if (tCone >= tFar) {
-                finished = true;  // above the surface to the walk's end
+                end.finished = true;  // above the surface to the walk's end
                 break;
             }
             if (tCone > tExit) {
@@ -117,27 +113,27 @@ void mr_walkCones(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones
         }
         if (leaf) {
             // At or under the plateau in this texel: the exact first hit over the rest of it.
-            tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, corners, cell);
-            if (tHit >= 0.0) {
-                finished = solved = true;
+            end.tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, end.cellPatch, end.cell);
+            if (end.tHit >= 0.0) {
+                end.finished = end.solved = true;
                 break;
             }
         }
         if (tExit >= tFar) {
-            finished = true;
+            end.finished = true;
             break;
         }
         // Into the neighbour across the side(s) it leaves by (a 2D DDA step: rounding in
         // the texel found from a point cannot hold the walk at a boundary).
         texel += ivec2(exits.x <= tExit ? stepDir.x : 0, exits.y <= tExit ? stepDir.y : 0);
         if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(relief.map.size)))) {
-            finished = true;  // off the map: nothing more to meet (rounding kept tFar ahead)
+            end.finished = true;  // off the map: nothing more to meet (rounding kept tFar ahead)
             break;
         }
         t = tExit;
     }
     // tHit >= 0 only where a leaf solved it.
-    mr_finishWalk(hit, relief, query, heights, origin, dir, tFar, floorExit, iteration, finished, solved, tHit, corners, cell);
+    mr_finishWalk(hit, relief, query, heights, origin, dir, tFar, floorExit, end);
 }
 
 // As mr_traceMultilevel, with the cone map for the pyramid.

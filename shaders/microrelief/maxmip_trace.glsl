@@ -150,19 +150,15 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyra
     int topLevel = relief.map.levelCount - 1;
     int level = topLevel;
     ivec2 node = ivec2(0);  // the root covers the whole map
-    bool finished = false, solved = false;
-    float tHit = -1.0;
-    mr_ReliefPatch corners;
-    ivec2 cell;
-    int iteration = 0;
+    mr_WalkEnd end = mr_walkEnd();
     vec2 exits = vec2(0.0);  // where the ray leaves the current node's column, per axis
     float tExit = 0.0;
     mr_MaxMipCourse course = mr_maxMipCourse(relief, origin, dir, tFar);
-    while (!finished) {
+    while (!end.finished) {
         // Down the walk to a finest texel whose box the ray meets, or to the walk's end.
         bool atLeaf = false;
-        while (iteration < query.maxIterations) {
-            iteration += 1;
+        while (end.iterations < query.maxIterations) {
+            end.iterations += 1;
             hit.stopLevel = level;
             exits = mr_maxMipNodeExits(relief, node, level, origin, dir, t, course);
             // Where Y turns the node's side ahead in Y changes: a stop of its own.
@@ -182,7 +178,7 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyra
                 continue;
             }
             if (tExit >= tFar) {
-                finished = true;
+                end.finished = true;
                 break;
             }
             if (tExit == course.turn) {
@@ -195,11 +191,11 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyra
         if (!atLeaf) break;  // finished, or out of iterations
         // At level 0 the texel spans parts of up to four bilinear patches; the ray is
         // solved exactly against those it crosses, in order.
-        tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, corners, cell);
-        if (tHit >= 0.0) {
-            finished = solved = true;
+        end.tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, end.cellPatch, end.cell);
+        if (end.tHit >= 0.0) {
+            end.finished = end.solved = true;
         } else if (tExit >= tFar) {
-            finished = true;
+            end.finished = true;
         } else {
             if (tExit == course.turn) {
                 mr_maxMipTurn(course);
@@ -210,7 +206,7 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyra
         }
     }
     // tHit >= 0 only where a leaf solved it.
-    mr_finishWalk(hit, relief, query, heights, origin, dir, tFar, floorExit, iteration, finished, solved, tHit, corners, cell);
+    mr_finishWalk(hit, relief, query, heights, origin, dir, tFar, floorExit, end);
 }
 
 // As mr_traceMultilevel, over the aligned pyramid.

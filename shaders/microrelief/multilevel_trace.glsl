@@ -50,18 +50,14 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
                          vec3 dir, float span, float tStart, bool floorExit, inout mr_ReliefHit hit) {
     mr_SegmentWalk walk = mr_segmentWalk();
     // The outcome, reported after the loops (which keeps their bodies small): a hit at
-    // tHit >= 0, solved exactly on the patch `corners` of `cell` or else taken as is.
-    bool finished = false, solved = false;
-    float tHit = -1.0;
-    mr_ReliefPatch corners;
-    ivec2 cell;
-    int iteration = 0;
+    // tHit >= 0, solved exactly on a leaf's patch or else taken as is.
+    mr_WalkEnd end = mr_walkEnd();
     float leafBound = 0.0;  // the bound of the leaf the inner loop stopped at
-    while (!finished) {
+    while (!end.finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
-        while (iteration < query.maxIterations) {
-            iteration += 1;
+        while (end.iterations < query.maxIterations) {
+            end.iterations += 1;
             mr_BaseFootprint footprint = mr_walkFootprint(relief, walk, start, dir, span);
             // A segment down to the floor (h = 0, in the solid) may hit; one above its
             // parent's bound cannot, and needs no fetch; any other is bounded by the
@@ -83,8 +79,8 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
                     // texels wide, projects to less than the tolerated pixel error, so its
                     // max box stands for the surface here: the hit is where the ray comes
                     // down to it.
-                    tHit = mr_baseDescendTo(relief, start, dir, walk.ta, walk.tb, bound);
-                    finished = true;
+                    end.tHit = mr_baseDescendTo(relief, start, dir, walk.ta, walk.tb, bound);
+                    end.finished = true;
                     break;
                 }
                 if (mr_walkAtLeaf(walk, footprint)) {
@@ -105,21 +101,21 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
             // coarsest segment starting there, and so near the surface come back down
             // through levels whose bounds seldom reject.)
             if (!mr_walkNext(walk, footprint.lowest - bound > 2.0 * footprint.drop)) {
-                finished = true;
+                end.finished = true;
                 break;
             }
         }
         if (!atLeaf) break;  // finished, or out of iterations
         // No hit before the ray comes down to the leaf's bound: solve from there.
         float tFrom = mr_baseDescendTo(relief, start, dir, walk.ta, walk.tb, leafBound);
-        tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, walk.tb, corners, cell);
-        if (tHit >= 0.0) {
-            finished = solved = true;
+        end.tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, walk.tb, end.cellPatch, end.cell);
+        if (end.tHit >= 0.0) {
+            end.finished = end.solved = true;
         } else if (!mr_walkNext(walk, false)) {
-            finished = true;
+            end.finished = true;
         }
     }
-    mr_finishWalk(hit, relief, query, heights, start, dir, span, floorExit, iteration, finished, solved, tHit, corners, cell);
+    mr_finishWalk(hit, relief, query, heights, start, dir, span, floorExit, end);
 }
 
 // The first hit of the ray origin + t dir (in the base's frame: mr_baseFramePoint,

@@ -134,24 +134,44 @@ void mr_setAnyHit(inout mr_ReliefHit hit, vec3 start, vec3 dir, float t) {
     hit.position = start + t * dir;
 }
 
+// Where an exact walk (the multilevel, maxmip and cone walks) stands when it stops, filled
+// as it goes and read by mr_finishWalk.
+struct mr_WalkEnd {
+    int iterations;            // segments, nodes or texels visited (the query's budget)
+    bool finished;             // the walk ran to its end or to a hit; false: out of iterations
+    bool solved;               // a leaf solved the hit exactly, on `cellPatch` of `cell`
+    float tHit;                // ray parameter of the hit (from the walk's start); < 0: none
+    mr_ReliefPatch cellPatch;  // the patch that solved it (when `solved`)
+    ivec2 cell;                // that patch's cell, in map samples
+};
+
+// A walk about to start: nothing visited, no hit.
+mr_WalkEnd mr_walkEnd() {
+    mr_WalkEnd end;
+    end.iterations = 0;
+    end.finished = false;
+    end.solved = false;
+    end.tHit = -1.0;
+    return end;
+}
+
 // How an exact walk over start + t dir, t in [0, tEnd], ends: the multilevel, maxmip and cone
-// walks' common last step. `iterations` spent; out of them before the walk was `finished`, the
-// answer is not trustworthy (exhausted). Otherwise a hit at tHit >= 0: as an any-hit query
-// reports it, or with its normal, from the patch `cellPatch` of `cell` that solved it
-// (`solved`), else from the surface there (a hit no patch solved: the multilevel method's
-// level of detail, mr_baseDescendTo); or no hit before tEnd (mr_setWalkEndHit).
+// walks' common last step. Out of iterations before the walk `finished`, the answer is not
+// trustworthy (exhausted). Otherwise a hit at tHit >= 0: as an any-hit query reports it, or
+// with its normal, from the patch that solved it (`solved`), else from the surface there (a
+// hit no patch solved: the multilevel method's level of detail, mr_baseDescendTo); or no hit
+// before tEnd (mr_setWalkEndHit).
 void mr_finishWalk(inout mr_ReliefHit hit, mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER heights, vec3 start,
-                   vec3 dir, float tEnd, bool floorExit, int iterations, bool finished, bool solved, float tHit,
-                   mr_ReliefPatch cellPatch, ivec2 cell) {
-    hit.iterations = iterations;
-    if (!finished) {
+                   vec3 dir, float tEnd, bool floorExit, mr_WalkEnd end) {
+    hit.iterations = end.iterations;
+    if (!end.finished) {
         hit.exhausted = true;
-    } else if (query.anyHit && tHit >= 0.0) {
-        mr_setAnyHit(hit, start, dir, tHit);
-    } else if (solved) {
-        mr_setTopHit(hit, relief, start, dir, tHit, cellPatch, cell);
-    } else if (tHit >= 0.0) {
-        mr_setTopHitAt(hit, relief, heights, tHit, start + tHit * dir);
+    } else if (query.anyHit && end.tHit >= 0.0) {
+        mr_setAnyHit(hit, start, dir, end.tHit);
+    } else if (end.solved) {
+        mr_setTopHit(hit, relief, start, dir, end.tHit, end.cellPatch, end.cell);
+    } else if (end.tHit >= 0.0) {
+        mr_setTopHitAt(hit, relief, heights, end.tHit, start + end.tHit * dir);
     } else {
         mr_setWalkEndHit(hit, relief, heights, start, dir, tEnd, floorExit);  // past the walk's end
     }

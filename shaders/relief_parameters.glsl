@@ -36,7 +36,7 @@ layout(std140) uniform MicroreliefParameters {
     int methodMinSteps;   // pom: samples when looking straight down
     int methodRefineSteps;  // relief: binary search steps
     int depthZeroToOne;   // 1: clip-space depth in [0, 1] (glClipControl), 0: [-1, 1]
-    int blockPadding;
+    int blockPadding;     // std140 padding: lightPosition starts a 16-byte row; hosts write 0
     vec4 lightPosition;   // xyz: a point light, world; w: 1 for it, 0 for lightDirection's
     float lightTanRadius;  // soft shadows: tan of the light's angular radius
     int albedoFinest;     // 1: the albedo's finest level only (no filtering; tests compare)

@@ -754,6 +754,7 @@ export class ReliefRenderer {
             methodMinSteps: scene.minSteps(view.steps),
             methodRefineSteps: 8,  // relief mapping's binary steps
             depthZeroToOne: 0,  // WebGL's clip depth is [-1, 1]
+            blockPadding: 0,  // std140 padding before lightPosition
             lightPosition: [0, 0, 0, 0],  // a directional light
             lightTanRadius: Math.tan(0.5 * view.lightSize * 0.01745329251994329576923690768489),
             albedoFinest: 0,  // filtered over the pixel's footprint

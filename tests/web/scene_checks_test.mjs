@@ -5,8 +5,9 @@
 // exactly the message microrelief-render prints for the same flags at that --size, its
 // flags written as the page's URL keys; a view the program draws passes. No browser: node
 // runs the pages' own modules as staged in the build tree (the browser tests show the pages
-// act on it: tests/web, tests/three). One line a case on stdout; exit status 1 when one
-// failed.
+// act on it: tests/web, tests/three). And the page's parameter block (relief_layout.js's
+// writeParameters) refuses a member left out. One line a case on stdout; exit status 1 when
+// one failed.
 //
 // node tests/web/scene_checks_test.mjs RENDER STAGED_SHARE   (STAGED_SHARE: share/microrelief)
 import {spawnSync} from 'node:child_process';
@@ -110,6 +111,27 @@ for (const c of cases.filter((c) => c.page === 'web' || withThree)) {
 // Every field a message may name has a name on the pages, but map.samples (no text sets it).
 const unnamed = checks.unnamedFields();
 report('every field has a name', JSON.stringify(unnamed) === '["map.samples"]' ? '' : `no names for ${unnamed}`);
-const run = cases.filter((c) => c.page === 'web' || withThree).length + 1;
+// The page fills the parameter block through relief_layout.js (generated from
+// shaders/relief_parameters.glsl): a member left out, a name that is not a member, or a wrong
+// count is refused, and a block with every member given is written whole.
+const layout = await load('relief_layout.js');
+const everyMember = Object.fromEntries(Object.entries(layout.kParameters).map(([name, m]) => [name, m.count === 1 ? 1 : new Array(m.count).fill(1)]));
+const refusedWith = (values) => {
+    try {
+        layout.writeParameters(values);
+        return '';
+    } catch (e) {
+        return e.message;
+    }
+};
+const [firstMember] = Object.keys(layout.kParameters);
+const {[firstMember]: _left, ...allButFirst} = everyMember;
+const writes = [
+    ['every member given', refusedWith(everyMember), ''],
+    ['a member left out', refusedWith(allButFirst), `${layout.kParametersBlock}: no value for ${firstMember}`],
+    ['an unknown member', refusedWith({...everyMember, noSuchMember: 1}), `${layout.kParametersBlock} has no member noSuchMember`],
+];
+for (const [name, got, want] of writes) report(`writeParameters: ${name}`, got === want ? '' : `'${got}', not '${want}'`);
+const run = cases.filter((c) => c.page === 'web' || withThree).length + 1 + writes.length;
 console.log(`scene_checks_test: ${run - failed} of ${run} passed`);
 process.exit(failed ? 1 : 0);

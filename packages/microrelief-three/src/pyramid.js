@@ -349,7 +349,13 @@ export async function createReliefMap(renderer, map, {wrapU = false, pyramid = '
         throw new ReliefGpuError('this WebGL 2 has no EXT_color_buffer_float, so it cannot render the max pyramid into R16F textures; pyramid: \'cpu\' (or \'auto\') builds it in WebAssembly instead');
     const onGpu = pyramid === 'gpu' || (pyramid === 'auto' && renderable);
     const twin = loadTwin();  // the picks' CPU twin, where the package has it (twin.js); never rejects
-    const built = onGpu ? gpuBuilder(renderer).build({...map, maxSample}, wrapU) : await buildOnCpu({...map, name}, wrapU);
-    await twin;
+    let built;
+    try {
+        built = onGpu ? gpuBuilder(renderer).build({...map, maxSample}, wrapU) : await buildOnCpu({...map, name}, wrapU);
+    } finally {
+        // Settled either way before this returns or throws: a pick after a refused map knows
+        // whether the package has a twin, rather than finding it still loading.
+        await twin;
+    }
     return new ReliefMap({renderer, ...built, width: map.width, height: map.height, maxSample, wrapU, builtOn: onGpu ? 'gpu' : 'cpu', name});
 }

@@ -90,7 +90,7 @@ HeightMapFile loadHeightMapFile(const std::filesystem::path& file,
                       ": an elevation model; this build of microrelief reads them only with "
                       "GDAL (build with -DMICRORELIEF_WITH_GDAL=ON and libgdal-dev)");
 #endif
-    return {loadImage(file, options), std::nullopt};
+    return {loadImage(file, options), std::nullopt, std::nullopt};  // no georeference, no placement
 }
 
 void saveElevationModel(const std::filesystem::path& file, const HeightMap& map,

@@ -43,8 +43,8 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
 void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                     const BaseShape& base, Interpolation interpolation,
                                     glm::ivec2 tiles) {
-    upload(map, source, tiles, [&](PyramidBuild build) {
-        renderer_->setHeightMap(map, source, base, interpolation, build, tiles);
+    upload(map, source, tiles, [&] {
+        renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles);
     });
 }
 
@@ -52,8 +52,8 @@ void HeadlessRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const 
                                     const BaseShape& base, Interpolation interpolation,
                                     glm::ivec2 tiles) {
     if (!map) throwRuntime("HeadlessRenderer::setHeightMap: no map");
-    upload(*map, source, tiles, [&](PyramidBuild build) {
-        renderer_->setHeightMap(map, source, base, interpolation, build, tiles);
+    upload(*map, source, tiles, [&] {
+        renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles);
     });
 }
 
@@ -75,21 +75,21 @@ void HeadlessRenderer::setHeights(const RenderJob& job, const HeightMap& map,
                                   const std::string& source) {
     // With the job's method: the last job's may not run on this relief's base or tiles.
     upload(map, source, job.tiles,
-           [&](PyramidBuild build) { renderer_->apply(job, job.method, &map, source, build); });
+           [&] { renderer_->apply(job, job.method, &map, source, kBuild); });
 }
 
 void HeadlessRenderer::setHeights(const RenderJob& job, std::shared_ptr<const HeightMap> map,
                                   const std::string& source) {
     if (!map) throwRuntime("HeadlessRenderer::setHeights: no map");
-    // The pointer copied into each try: the CPU build after a failed GPU one shares it too.
+    // Shared: a map read through pages keeps this one rather than a copy.
     upload(*map, source, job.tiles,
-           [&](PyramidBuild build) { renderer_->apply(job, job.method, map, source, build); });
+           [&] { renderer_->apply(job, job.method, map, source, kBuild); });
 }
 
 void HeadlessRenderer::upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
-                              const std::function<void(PyramidBuild)>& build) {
+                              const std::function<void()>& set) {
     context_.makeCurrent();
-    build(PyramidBuild::GpuElseCpu);  // on the CPU where the GL cannot build it
+    set();
     if (animated_) animated_->forgetMap();
     source_ = source;
     mapWidth_ = map.width * tiles.x;  // the whole, tiles included

@@ -7,13 +7,15 @@ namespace microrelief {
 ReliefPrograms::ReliefPrograms(const GL& gl, std::filesystem::path shaderDir)
     : gl_(gl), shaderDir_(std::move(shaderDir)) {}
 
-ReliefShader& ReliefPrograms::program(const ReliefShaderConfig& config) {
+ReliefShader& ReliefPrograms::program(const ReliefShaderConfig& config, bool* compiled) {
     auto found = programs_.find(config);
-    if (found == programs_.end()) {
+    const bool compiles = found == programs_.end();
+    if (compiles) {
         // Compiled before it is inserted: a failure leaves the map as it was.
         found = programs_.emplace(config, ReliefShader(gl_, shaderDir_, config)).first;
         ++compiled_;
     }
+    if (compiled) *compiled = compiles;
     return found->second;
 }
 

@@ -129,9 +129,9 @@ void ReliefRenderer::reloadShaders() {
 }
 
 ReliefShader& ReliefRenderer::program(const ReliefShaderConfig& config) {
-    const bool compiles = !programs_->has(config);
-    ReliefShader& shader = programs_->program(config);
-    if (compiles) ++rebuilds_.programs;
+    bool compiled = false;
+    ReliefShader& shader = programs_->program(config, &compiled);  // one lookup a draw
+    if (compiled) ++rebuilds_.programs;
     return shader;
 }
 

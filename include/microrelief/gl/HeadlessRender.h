@@ -105,11 +105,12 @@ public:
     std::size_t gpuBytes() const;
 
 private:
-    // The map uploaded by `build`, given PyramidBuild::GpuElseCpu (gl/ReliefMapUpload.h: on
-    // the CPU where the GPU's build fails for a reason other than the map), then what the
-    // renderer keeps of it.
+    // Its maps' pyramids: on the GPU, or on the CPU where the GPU's build fails for a reason
+    // other than the map (gl/ReliefMapUpload.h).
+    static constexpr PyramidBuild kBuild = PyramidBuild::GpuElseCpu;
+    // The map set on the renderer by `set` (with kBuild), then what this keeps of it.
     void upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
-                const std::function<void(PyramidBuild)>& build);
+                const std::function<void()>& set);
 
     // One tile of the picture into `result`; a paged map's drawn until it is exact.
     void drawTile(const RenderJob& job, const CameraFrame& camera, const PictureTile& part,

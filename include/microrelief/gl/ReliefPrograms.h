@@ -28,11 +28,11 @@ public:
     ReliefPrograms(const ReliefPrograms&) = delete;
     ReliefPrograms& operator=(const ReliefPrograms&) = delete;
 
-    // The program of `config`, compiled on first use and kept; on a compile failure throws
-    // Error(Runtime) (the compiler's log mapped to the files) and keeps nothing new. The
-    // reference stays valid until reload().
-    ReliefShader& program(const ReliefShaderConfig& config);
-    bool has(const ReliefShaderConfig& config) const { return programs_.contains(config); }
+    // The program of `config`, compiled on first use and kept (`compiled`, where given, says
+    // whether this call compiled it); on a compile failure throws Error(Runtime) (the
+    // compiler's log mapped to the files) and keeps nothing new. The reference stays valid
+    // until reload().
+    ReliefShader& program(const ReliefShaderConfig& config, bool* compiled = nullptr);
     // Compiles `config` from the files again; on failure throws and keeps every program it
     // had. On success the others are dropped, for every relief that shares them (they may
     // be stale), and compiled again when next asked for.

@@ -10,7 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "microrelief/core/Error.h"
-#include "microrelief/gl/ReliefMapUpload.h"
+#include "microrelief/gl/ReliefMap.h"
 #include "microrelief/gl/StateGuard.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
 
@@ -32,22 +32,6 @@ ReliefRenderer::ReliefRenderer(std::shared_ptr<ReliefPrograms> programs,
 }
 
 namespace {
-// The cone map a method reads (cone, rcsm), built where it is missing: cone's on the GPU
-// by `builder`, rcsm's on the CPU.
-void addConeMapFor(const GL& gl, ReliefTextures& textures, Method method, PyramidBuilder& builder) {
-    if (method == Method::Cone)
-        textures.addConeMap(gl, ReliefTextures::ConeKind::Conservative, &builder);
-    if (method == Method::Rcsm) textures.addConeMap(gl, ReliefTextures::ConeKind::Relaxed);
-}
-
-// After the samples changed: the cone maps made so far are stale, built again whole (the one
-// the method reads now, the other when next asked for).
-void refreshConeMaps(const GL& gl, ReliefTextures& textures, Method method,
-                     PyramidBuilder& builder) {
-    if (!textures.hasConeMaps()) return;
-    textures.dropConeMaps();
-    addConeMapFor(gl, textures, method, builder);
-}
 // What a paged map's draw binds beyond StateGuard's (gl/PagedPyramid.h): the pool on its
 // unit, the page table and the wants on their storage bindings; restored after.
 class PagedBindings {
@@ -152,16 +136,14 @@ void ReliefRenderer::setMethod(const MethodSettings& settings, bool countFetches
     checkMethodSupportsTiles(settings.method, tiles());
     program(configFor(settings, countFetches, base_.kind, interpolation_, true, ShadowMode::Off,
                       false, tiled(), paged()));  // may throw
-    // The aligned pyramid is made only for the peer that walks it.
-    if (settings.method == Method::MaxMip && textures_ && !textures_->hasMaxMipPyramid())
-        textures_->addMaxMipPyramid(gl_, pyramidBuilder());
-    if (textures_) addConeMapFor(gl_, *textures_, settings.method, pyramidBuilder());
+    // The aligned pyramid and the cone maps are made only for the peers that read them.
+    if (map_) map_->prepareFor(settings.method);
     method_ = settings;
     countFetches_ = countFetches;
 }
 
 bool ReliefRenderer::needsHeights(const ReliefDesc& relief) const {
-    return !applied_ || !textures_ || !samePyramid(*applied_, relief);
+    return !applied_ || !map_ || !samePyramid(*applied_, relief);
 }
 
 void ReliefRenderer::apply(const ReliefDesc& relief, const HeightMap* heights,
@@ -183,10 +165,10 @@ void ReliefRenderer::applyOf(const ReliefDesc& relief, const HeightMap* heights,
                        build, relief.tiles);
         applied_ = relief;
     } else {
-        if (!textures_) throwRuntime("ReliefRenderer::apply: no heights yet");
+        if (!map_) throwRuntime("ReliefRenderer::apply: no heights yet");
         if (relief.tiles != tiles())
             throwRuntime("ReliefRenderer::apply: the map was set for other tiles");
-        if (relief.base.wrapsU() != textures_->wrapsU()) {
+        if (relief.base.wrapsU() != map_->wrapsU()) {
             throwRuntime(
                 "ReliefRenderer::apply: between the plane and a curved base the map must be "
                 "uploaded again (apply with its heights)");
@@ -271,13 +253,42 @@ void ReliefRenderer::setHeightMapOf(const HeightMap& map, std::shared_ptr<const 
                                    .withMaxMip = method_.method == Method::MaxMip,
                                    .build = build,
                                    .paging = paging_};
-    textures_.emplace(uploadReliefMap(*programs_, map, std::move(shared), source, upload));
+    useMap(ReliefMap::upload(programs_, map, std::move(shared), source, upload), base,
+           interpolation);
     ++rebuilds_.pyramids;
     applied_.reset();  // of heights no relief named; apply() names them
-    addConeMapFor(gl_, *textures_, method_.method, pyramidBuilder());
+}
+
+void ReliefRenderer::apply(const ReliefDesc& relief, std::shared_ptr<ReliefMap> map) {
+    if (!map) throwRuntime("ReliefRenderer::apply: no map");
+    if (map->wrapsU() != relief.base.wrapsU()) {
+        throwRuntime("ReliefRenderer::apply: " + map->source() + " was built for " +
+                     (map->wrapsU() ? "a curved base" : "the plane") + ", not this relief's base");
+    }
+    if (map->tiles() != relief.tiles) {
+        throwRuntime("ReliefRenderer::apply: " + map->source() +
+                     " was built for other tiles than this relief's");
+    }
+    validateBaseShape(relief.base);
+    checkMethodSupportsBase(method_.method, relief.base);
+    checkMethodSupportsTiles(method_.method, relief.tiles);
+    if (map->paged()) checkPagedMap(method_.method, relief.tiles, map->source());
+    // Throw before anything changes: the program first, then what the method reads.
+    program(configFor(method_, countFetches_, relief.base.kind, relief.interpolation, true,
+                      ShadowMode::Off, false, relief.tiles != glm::ivec2(1, 1), map->paged()));
+    map->prepareFor(method_.method);
+    heightScale_ = relief.heightScale;
+    useMap(std::move(map), relief.base, relief.interpolation);
+    applied_ = relief;  // the caller built the map of the relief's heights
+    model_ = relief.model;
+}
+
+void ReliefRenderer::useMap(std::shared_ptr<ReliefMap> map, const BaseShape& base,
+                            Interpolation interpolation) {
+    map->prepareFor(method_.method);
+    map_ = std::move(map);
     base_ = base;
     interpolation_ = interpolation;
-    maxIterations_ = traversalBudget(map.width * tiles.x, map.height * tiles.y);
     uploadBox();
 }
 
@@ -293,14 +304,10 @@ void ReliefRenderer::setPyramidPages(std::shared_ptr<const PyramidPages> pages,
     checkPagedMap(method_.method, {1, 1}, source);
     program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
                       false, false, true));
-    const int width = pages->mapWidth(), height = pages->mapHeight();
-    textures_.emplace(ReliefTextures(gl_, std::move(pages), source, paging_));
+    useMap(ReliefMap::fromPages(programs_, std::move(pages), source, paging_), base,
+           interpolation);
     ++rebuilds_.pyramids;
     applied_.reset();
-    base_ = base;
-    interpolation_ = interpolation;
-    maxIterations_ = traversalBudget(width, height);
-    uploadBox();
 }
 
 void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {
@@ -313,41 +320,32 @@ void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& sou
 }
 
 void ReliefRenderer::heightsChanged(const std::vector<TexelRect>& changed) {
-    if (!textures_) return;
-    if (paged()) throwRuntime("a map read through pages is not edited on the GPU");
-    if (tiled()) {
-        textures_->rebuildFromSamples(gl_);  // the GPU builder bounds one map, not tiles
-    } else {
-        pyramidBuilder().update(*textures_, changed);
-    }
-    refreshConeMaps(gl_, *textures_, method_.method, pyramidBuilder());
+    if (!map_) return;
+    map_->heightsChanged(changed);
+    map_->prepareFor(method_.method);
     uploadBox();
 }
 
 void ReliefRenderer::heightsReplaced() {
-    if (!textures_) return;
-    if (paged()) throwRuntime("a map read through pages is not edited on the GPU");
-    if (tiled()) {
-        textures_->rebuildFromSamples(gl_);
-    } else {
-        pyramidBuilder().build(*textures_);
-    }
-    refreshConeMaps(gl_, *textures_, method_.method, pyramidBuilder());
+    if (!map_) return;
+    map_->heightsReplaced();
+    map_->prepareFor(method_.method);
     ++rebuilds_.pyramids;
     uploadBox();
 }
 
 void ReliefRenderer::setHeightScale(float scale) {
     heightScale_ = scale;
-    if (textures_) uploadBox();
+    if (map_) uploadBox();
 }
 
 void ReliefRenderer::uploadBox() {
     // A small margin keeps every pixel whose ray meets the exact box inside the
     // rasterised proxy; the shader clips the ray to the exact shell itself.
-    const ReliefMapShape& shape = textures_->shape();
+    const ReliefMapShape shape = map_->textures().shape();
     const ReliefExtent extent =
         reliefExtent(shape.size.x, shape.size.y, shape.maxHeight, heightScale_, base_);
+    boxGeneration_ = map_->generation();
     const glm::vec3 lo = glm::vec3(extent.min) - 1e-3f, hi = glm::vec3(extent.max) + 1e-3f;
     boxMin_ = lo;
     boxMax_ = hi;
@@ -414,8 +412,9 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.tMax = 3.4e38f;
     // The multilevel method reads the windows, maxmip its aligned quadtree: each its own
     // pyramid's size and levels.
+    const ReliefTextures& textures = map_->textures();
     const ReliefMapShape shape =
-        method_.method == Method::MaxMip ? textures_->maxMipShape() : textures_->shape();
+        method_.method == Method::MaxMip ? textures.maxMipShape() : textures.shape();
     p.heightScale = heightScale_;
     p.reliefMaxHeight = shape.maxHeight;
     p.frameScale = glm::vec3(base_.frameScale());
@@ -424,7 +423,7 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     p.reliefBoxMin = glm::vec3(extent.min);
     p.reliefBoxMax = glm::vec3(extent.max);
     p.pyramidLevels = shape.levelCount;
-    p.maxIterations = maxIterations_;
+    p.maxIterations = map_->traversalBudget();
     p.lightDirection = glm::normalize(shading.lightDirection);
     if (shading.lightPosition)
         p.lightPosition = glm::vec4(glm::vec3(*shading.lightPosition - camera.eye), 1.0f);
@@ -447,7 +446,12 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
 
 void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading,
                           const PictureTile& tile) {
-    if (!textures_) return;
+    if (!map_) return;
+    // Another renderer drawing the map, or the host, may have edited it since this one
+    // last looked: the box is fitted to its maximum now, and what the method reads is
+    // built again where the edit dropped it.
+    if (boxGeneration_ != map_->generation()) uploadBox();
+    map_->prepareFor(method_.method);
     const PictureTile whole{0, 0, camera.width, camera.height};
     const PictureTile& t = tile.width > 0 ? tile : whole;
     // Front faces from outside the box, back faces from inside it: exactly one fragment
@@ -463,15 +467,16 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.BindBuffer(GL_UNIFORM_BUFFER, parameterBuffer_.id());
     gl_.BufferData(GL_UNIFORM_BUFFER, sizeof values, &values, GL_STREAM_DRAW);
     shader.use();
+    const ReliefTextures& textures = map_->textures();
     shader.bindParameters(parameterBuffer_.id())
-        .bindMaxPyramid(textures_->maxPyramid())
-        .bindHeights(textures_->samples())
-        .bindWindowPyramid(textures_->windowPyramid());
+        .bindMaxPyramid(textures.maxPyramid())
+        .bindHeights(textures.samples())
+        .bindWindowPyramid(textures.windowPyramid());
     if (albedo_) shader.bindAlbedo(albedo_->id());
     std::optional<PagedBindings> pagedBindings;
-    if (const PagedPyramid* paged = textures_->paged()) pagedBindings.emplace(gl_, *paged);
+    if (const PagedPyramid* paged = textures.paged()) pagedBindings.emplace(gl_, *paged);
     if (method_.method == Method::Cone || method_.method == Method::Rcsm) {
-        shader.bindConeMap(textures_->coneMap(method_.method == Method::Cone
+        shader.bindConeMap(textures.coneMap(method_.method == Method::Cone
                                                   ? ReliefTextures::ConeKind::Conservative
                                                   : ReliefTextures::ConeKind::Relaxed));
     }

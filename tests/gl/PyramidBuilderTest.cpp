@@ -22,7 +22,7 @@
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/PyramidBuilder.h"
-#include "microrelief/gl/ReliefMapUpload.h"
+#include "microrelief/gl/ReliefMap.h"
 #include "microrelief/gl/ReliefPrograms.h"
 #include "microrelief/gl/ReliefTextures.h"
 #include "microrelief/peers/MaxMipPyramid.h"
@@ -111,7 +111,7 @@ HeightMap wideRangeNoise(int width, int height, std::uint32_t seed) {
     return map;
 }
 
-// Where a map's textures come from is decided in one place (gl/ReliefMapUpload.h): with a
+// Where a map's textures come from is decided in one place (gl/ReliefMap.h): with a
 // pyramid pass that does not compile (a GL error, not the map's), GpuElseCpu builds on the
 // CPU (the CPU pyramid's texels) and Gpu throws it; a tiled map is built on the CPU whatever
 // was asked (the GPU's passes never run); paging asked for reads the map through pages, and

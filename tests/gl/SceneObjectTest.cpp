@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -31,6 +32,7 @@
 #include "microrelief/gl/StateGuard.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/gl/OffscreenTarget.h"
+#include "microrelief/gl/ReliefMap.h"
 #include "microrelief/gl/ReliefPrograms.h"
 #include "microrelief/gl/ReliefRenderer.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
@@ -412,6 +414,87 @@ TEST_F(SceneObject, RenderersOfOneContextShareItsPrograms) {
     const RenderedFrame reloaded = draw(second);
     EXPECT_EQ(reloaded.position, shared.position);
     EXPECT_EQ(programs->compiled(), afterFirst + 1 + second.rebuilds().programs);
+}
+
+// Reliefs share a map (gl/ReliefMap.h): three renderers draw one ReliefMap, each its own
+// relief (the plane; the plane twice as tall and moved; the plane traced by the cone peer,
+// whose cone map the map builds once for it), and each picture is the one a renderer that
+// uploaded the map for itself draws, bit for bit. A relief of other addressing (a cylinder)
+// is refused and changes nothing. An edit through one renderer reaches the others: at their
+// next draw their boxes fit the raised maximum and the cone map is built again, and their
+// pictures are those of fresh renderers over the edited heights.
+TEST_F(SceneObject, ReliefsOfOneMapShareItsTextures) {
+    HeightMap heights = synth::cobbles(32, 32, 5);
+    const CameraFrame camera = resolveCamera(test::orbitCamera(40.0, 30.0, 1.8), 40, 32, 1.0);
+    OffscreenTarget target(gl(), 40, 32);
+    const auto draw = [&](ReliefRenderer& renderer) {
+        target.clear(glm::vec3(0.0f));
+        renderer.draw(camera, ShadingOptions{});
+        return target.read(camera.eye);
+    };
+    const auto programs = std::make_shared<ReliefPrograms>(gl(), shaderDirectory());
+    const std::shared_ptr<ReliefMap> map =
+        ReliefMap::upload(programs, heights, nullptr, "cobbles", MapUploadSettings{});
+    ReliefDesc plane;
+    ReliefDesc tall = plane;
+    tall.heightScale = 0.2f;
+    tall.model = ModelTransform(glm::translate(glm::dmat4(1.0), glm::dvec3(0.05, 0.0, -0.1)));
+    MethodSettings multilevel, cone;
+    cone.method = Method::Cone;
+    struct Relief {
+        const char* name;
+        ReliefDesc desc;
+        MethodSettings method;
+    };
+    const Relief reliefs[] = {{"plane", plane, multilevel},
+                              {"tall, moved", tall, multilevel},
+                              {"cone", plane, cone}};
+    std::vector<std::unique_ptr<ReliefRenderer>> sharers;
+    for (const Relief& r : reliefs) {
+        sharers.push_back(std::make_unique<ReliefRenderer>(programs, r.method));
+        sharers.back()->apply(r.desc, map);
+        EXPECT_EQ(sharers.back()->map(), map) << r.name;
+        EXPECT_EQ(sharers.back()->rebuilds().pyramids, 0) << r.name;
+    }
+    const auto expectAsIfAlone = [&](const char* when) {
+        for (std::size_t k = 0; k < sharers.size(); ++k) {
+            ReliefRenderer alone(programs, reliefs[k].method);
+            alone.apply(reliefs[k].desc, &heights, "cobbles");
+            const RenderedFrame own = draw(alone);
+            const RenderedFrame shared = draw(*sharers[k]);
+            EXPECT_EQ(shared.color, own.color) << reliefs[k].name << ", " << when;
+            EXPECT_EQ(shared.position, own.position) << reliefs[k].name << ", " << when;
+            int hits = 0;  // the relief is in the picture
+            for (std::size_t i = 3; i < shared.position.size(); i += 4)
+                hits += shared.position[i] > 0.5f;
+            EXPECT_GT(hits, 100) << reliefs[k].name << ", " << when;
+        }
+    };
+    expectAsIfAlone("as built");
+    const RenderedFrame before = draw(*sharers[1]);
+
+    ReliefDesc cylinder = plane;
+    cylinder.base = BaseShape::cylinder(0.3, 1.0);
+    try {
+        sharers[1]->apply(cylinder, map);
+        ADD_FAILURE() << "a cylinder over the plane's map was not refused";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Runtime);
+    }
+    EXPECT_EQ(draw(*sharers[1]).position, before.position);
+
+    // A spike four times the map's maximum in the middle, written through the first
+    // renderer's textures: the others' boxes were fitted to the old maximum.
+    const TexelRect spike{13, 13, 19, 19};
+    const float top = 4.0f * map->maxHeight();
+    for (int j = spike.y0; j < spike.y1; ++j)
+        for (int i = spike.x0; i < spike.x1; ++i) heights.at(i, j) = top;
+    const std::vector<float> values(static_cast<std::size_t>(spike.width() * spike.height()), top);
+    sharers[0]->textures()->writeSamples(gl(), spike, values.data());
+    sharers[0]->heightsChanged({spike});
+    EXPECT_EQ(map->maxHeight(), top);
+    expectAsIfAlone("after an edit through the first");
+    EXPECT_NE(draw(*sharers[1]).position, before.position);  // the edit shows
 }
 
 // The window depth written for each convention: OpenGL's [-1, 1] clip depth and

@@ -106,7 +106,7 @@ public:
 
 private:
     // Its maps' pyramids: on the GPU, or on the CPU where the GPU's build fails for a reason
-    // other than the map (gl/ReliefMapUpload.h).
+    // other than the map (gl/ReliefMap.h).
     static constexpr PyramidBuild kBuild = PyramidBuild::GpuElseCpu;
     // The map set on the renderer by `set` (with kBuild), then what this keeps of it.
     void upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,

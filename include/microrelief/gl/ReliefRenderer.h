@@ -1,11 +1,13 @@
 // Draws microrelief with the multilevel method: the base surface's bounding box is the
 // proxy geometry, and each of its fragments traces its own ray (shaders/relief.frag).
-// Owns one map's GL objects; the programs are its context's (gl/ReliefPrograms.h), shared
-// with every renderer given the same ReliefPrograms. Draws into whatever framebuffer is
-// bound (see draw).
+// One renderer is one relief: its base, height scale, model and method. The map it draws
+// (gl/ReliefMap.h) and the programs (gl/ReliefPrograms.h) are shared: with every renderer
+// given the same ReliefMap or ReliefPrograms. Draws into whatever framebuffer is bound
+// (see draw).
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -25,6 +27,7 @@
 #include "microrelief/gl/AlbedoTexture.h"
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/PyramidBuilder.h"
+#include "microrelief/gl/ReliefMap.h"
 #include "microrelief/gl/ReliefPrograms.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
@@ -90,6 +93,15 @@ public:
     void apply(const ReliefDesc& relief, const MethodSettings& method,
                std::shared_ptr<const HeightMap> heights, const std::string& source = {},
                PyramidBuild build = PyramidBuild::Cpu);
+    // `relief` drawn over `map`, which the caller built of the relief's heights
+    // (ReliefMap::upload, fromPages) and may share with other renderers of its context:
+    // nothing of the map is built again but what this renderer's method reads and the map
+    // lacks (ReliefMap::prepareFor). The map's addressing must be the relief's (u wrapping
+    // on a curved base, the tiles): else Error(Runtime), and nothing changes. Then the
+    // base, the last level, the height scale and the model, as apply() with heights.
+    void apply(const ReliefDesc& relief, std::shared_ptr<ReliefMap> map);
+    // The map drawn (null before a map is set), for another renderer to share.
+    const std::shared_ptr<ReliefMap>& map() const { return map_; }
 
     // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base),
     // which bounds the surface either last level makes of it, the map repeated `tiles`
@@ -99,7 +111,7 @@ public:
     // `source` names the map in that message.
     // `build`: the pyramid made on the CPU and uploaded, or on the GPU from the samples
     // (the same texels; see gl/PyramidBuilder.h), or on the GPU where that works
-    // (gl/ReliefMapUpload.h holds the policy). A tiled map's is made on the CPU.
+    // (gl/ReliefMap.h holds the policy). A tiled map's is made on the CPU.
     void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
                       Interpolation interpolation = Interpolation::Bilinear,
                       PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
@@ -115,7 +127,7 @@ public:
     void setPyramidPages(std::shared_ptr<const PyramidPages> pages, const std::string& source,
                          const BaseShape& base = {},
                          Interpolation interpolation = Interpolation::Bilinear);
-    glm::ivec2 tiles() const { return textures_ ? textures_->tiles() : glm::ivec2(1, 1); }
+    glm::ivec2 tiles() const { return map_ ? map_->tiles() : glm::ivec2(1, 1); }
     // When setHeightMap reads a map through pages (gl/PagedPyramid.h), and how: by default
     // never (Mode::Never: a map larger than GL_MAX_TEXTURE_SIZE is refused), since a paged
     // map's draw is exact only when repeated until its pager wants nothing
@@ -124,22 +136,22 @@ public:
     void setPaging(const PagingSettings& paging) { paging_ = paging; }
     const PagingSettings& paging() const { return paging_; }
     // The pager of the map set, where it is paged; else null.
-    PagedPyramid* pager() { return textures_ ? textures_->paged() : nullptr; }
-    bool paged() const { return textures_ && textures_->paged(); }
+    PagedPyramid* pager() { return map_ ? map_->pager() : nullptr; }
+    bool paged() const { return map_ && map_->paged(); }
 
     // A map that changes on the GPU (sculpting, animation). The map's textures, for a pass
     // of the caller's that draws into the samples (null before setHeightMap).
-    ReliefTextures* textures() { return textures_ ? &*textures_ : nullptr; }
-    const ReliefTextures* textures() const { return textures_ ? &*textures_ : nullptr; }
-    // After the caller changed the samples inside `changed` (map texels): the pyramids
-    // brought up to date on the GPU over those texels only, and the box fitted to the
-    // map's new maximum. heightsReplaced: every sample changed, the pyramids built anew.
-    // A tiled map's pyramids are built again on the CPU from the samples read back (the
-    // GPU builder bounds one map, not tiles): fine for the small tiles tiling is for.
+    ReliefTextures* textures() { return map_ ? &map_->textures() : nullptr; }
+    const ReliefTextures* textures() const { return map_ ? &map_->textures() : nullptr; }
+    // After the caller changed the samples inside `changed` (map texels): the map's
+    // pyramids brought up to date (ReliefMap::heightsChanged), what the method reads built
+    // again, and the box fitted to the map's new maximum (other renderers drawing the map
+    // fit theirs at their next draw). heightsReplaced: every sample changed, the pyramids
+    // built anew.
     void heightsChanged(const std::vector<TexelRect>& changed);
     void heightsReplaced();
     // The surface's maximum, map units: the pyramid's top texel.
-    float maxHeight() const { return textures_ ? textures_->shape().maxHeight : 0.0f; }
+    float maxHeight() const { return map_ ? map_->maxHeight() : 0.0f; }
     // The GPU pyramid builder this renderer uses (its ReliefPrograms'), made on first use.
     PyramidBuilder& pyramidBuilder() { return programs_->pyramidBuilder(); }
     const std::shared_ptr<ReliefPrograms>& programs() const { return programs_; }
@@ -199,7 +211,7 @@ public:
     void draw(const CameraFrame& camera, const ShadingOptions& shading,
               const PictureTile& tile = {});
 
-    int maxIterations() const { return maxIterations_; }
+    int maxIterations() const { return map_ ? map_->traversalBudget() : 0; }
     const RebuildCounts& rebuilds() const { return rebuilds_; }
 
 private:
@@ -221,6 +233,10 @@ private:
     // The program for the configuration, compiled on first use (counted in rebuilds_);
     // throws and changes nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);
+    // `map` drawn from now on, with `base` and `interpolation`, what the method reads
+    // prepared first (may throw: then nothing changed), the box fitted.
+    void useMap(std::shared_ptr<ReliefMap> map, const BaseShape& base,
+                Interpolation interpolation);
     // Whether the eye lies outside the proxy box (with a margin): then its front faces
     // are drawn, else its back faces.
     bool eyeOutsideBox(const glm::dvec3& eye) const;
@@ -230,15 +246,15 @@ private:
 
     const GL& gl_;
     std::shared_ptr<ReliefPrograms> programs_;  // the context's, maybe shared
-    std::optional<ReliefTextures> textures_;    // the map's; none yet
+    std::shared_ptr<ReliefMap> map_;            // maybe shared; none yet
     std::optional<AlbedoTexture> albedo_;
     gl::Buffer parameterBuffer_;              // MicroreliefParameters
     gl::VertexArray boxArray_;
     gl::Buffer boxVertices_;
     gl::Buffer boxIndices_;
     glm::dvec3 boxMin_{0.0}, boxMax_{0.0};  // the proxy box drawn, object space
+    std::uint64_t boxGeneration_ = 0;       // the map's generation() the box was fitted for
     float heightScale_ = 0.1f;
-    int maxIterations_ = 0;
     MethodSettings method_;
     bool countFetches_ = false;
     bool glsl330_ = false;

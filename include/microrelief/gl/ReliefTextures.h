@@ -39,7 +39,7 @@ class PyramidBuilder;
 
 // Where a map's max pyramids are built: on the CPU (MaxPyramid, then uploaded), on the
 // GPU from the uploaded samples (gl/PyramidBuilder.h), or on the GPU where its build works
-// and else on the CPU (gl/ReliefMapUpload.h says which errors fall back). The texels are
+// and else on the CPU (gl/ReliefMap.h says which errors fall back). The texels are
 // the same.
 enum class PyramidBuild { Cpu, Gpu, GpuElseCpu };
 

@@ -207,9 +207,10 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
     const bool gpu = !softwareRenderer(context.renderer());
 
     for (const BenchMap& m : maps) {
-        renderer.setHeightScale(static_cast<float>(m.heightScale));
-        renderer.setMethod(MethodSettings{});  // runs on every base
-        renderer.setHeightMap(*m.map, m.name, m.base, m.interpolation);
+        const ReliefDesc relief{.base = m.base,
+                                .interpolation = m.interpolation,
+                                .heightScale = static_cast<float>(m.heightScale)};
+        renderer.apply(relief, MethodSettings{}, m.map.get(), m.name);  // runs on every base
         const int mapSize = std::max(m.map->width, m.map->height);
         const std::map<Method, MethodCost> costs =
             measureCosts(gl, renderer, options.methods, m);

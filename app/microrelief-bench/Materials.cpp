@@ -60,9 +60,7 @@ std::vector<MaterialRow> runMaterialsBenchmark(GlContext& context, int width, in
     // Shadows: the bench's relief at 45 degrees, lights high and low.
     for (int size : quick ? std::vector<int>{256} : std::vector<int>{256, 4096}) {
         const HeightMap map = benchRelief(size);
-        renderer.setHeightScale(0.1f);
-        renderer.setMethod(MethodSettings{});
-        renderer.setHeightMap(map, "cobbles");
+        renderer.apply(ReliefDesc{.heightScale = 0.1f}, MethodSettings{}, &map, "cobbles");
         const ReliefExtent extent = reliefExtent(map, 0.1);
         const CameraFrame camera =
             resolveCamera(viewCamera(45, {}, extent.topHeight), width, height, sceneRadius(extent));
@@ -102,9 +100,7 @@ std::vector<MaterialRow> runMaterialsBenchmark(GlContext& context, int width, in
     const int counts[] = {1, 2, 16, 256};
     std::vector<double> ms;
     for (int n : counts) {
-        renderer.setHeightScale(0.1f / n);
-        renderer.setHeightMap(tile, "cobbles", {}, Interpolation::Bilinear, PyramidBuild::Cpu,
-                              {n, n});
+        renderer.apply(ReliefDesc{.tiles = {n, n}, .heightScale = 0.1f / n}, &tile, "cobbles");
         const ReliefExtent extent =
             reliefExtent(256 * n, 256 * n, tile.maxValue(), 0.1 / n, BaseShape{});
         const CameraFrame camera =

@@ -34,8 +34,10 @@ void checkSweepCase(const test::SweepMap& m, bool glsl330) {
     context.makeCurrent();
     const GL& gl = context.gl();
     ReliefRenderer renderer(gl, shaderDirectory());
-    renderer.setHeightScale(static_cast<float>(m.heightScale));
-    renderer.setHeightMap(*m.map, m.name, m.base, m.interpolation);
+    renderer.apply(ReliefDesc{.base = m.base,
+                              .interpolation = m.interpolation,
+                              .heightScale = static_cast<float>(m.heightScale)},
+                   m.map.get(), m.name);
     renderer.setGlsl330(glsl330);
     OffscreenTarget target(gl, test::kSweepSize, test::kSweepSize);
     const MultilevelTracer twin(*m.map, m.heightScale, m.base, m.interpolation);

@@ -106,9 +106,11 @@ TEST_F(Sculpting, HitsAfterStrokesMatchTheReferenceOfTheEditedMap) {
         const float heightScale = 0.1f;
         OffscreenTarget target(gl(), 96, 96);
         ReliefRenderer renderer(gl(), shaderDirectory());
-        renderer.setHeightScale(heightScale);
-        renderer.setHeightMap(synth::cobbles(72, 56, 3), "cobbles", c.base, c.interpolation,
-                              PyramidBuild::Gpu);
+        const HeightMap cobbles = synth::cobbles(72, 56, 3);
+        renderer.apply(ReliefDesc{.base = c.base,
+                                  .interpolation = c.interpolation,
+                                  .heightScale = heightScale},
+                       &cobbles, "cobbles", PyramidBuild::Gpu);
         HeightEditor editor(gl(), shaderDirectory());
         sculpt(editor, renderer, {72.0, 56.0});
         const HeightMap edited = renderer.textures()->readSamples(gl());

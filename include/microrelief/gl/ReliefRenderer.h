@@ -155,7 +155,6 @@ public:
     // The GPU pyramid builder this renderer uses (its ReliefPrograms'), made on first use.
     PyramidBuilder& pyramidBuilder() { return programs_->pyramidBuilder(); }
     const std::shared_ptr<ReliefPrograms>& programs() const { return programs_; }
-    void setHeightScale(float scale);
     // The base and the last level applied last (apply, setHeightMap).
     const BaseShape& base() const { return base_; }
     Interpolation interpolation() const { return interpolation_; }
@@ -233,6 +232,8 @@ private:
     // The program for the configuration, compiled on first use (counted in rebuilds_);
     // throws and changes nothing on failure.
     ReliefShader& program(const ReliefShaderConfig& config);
+    // The relief's height scale (apply's relief.heightScale), the box fitted to it.
+    void setHeightScale(float scale);
     // `map` drawn from now on, with `base` and `interpolation`, what the method reads
     // prepared first (may throw: then nothing changed), the box fitted.
     void useMap(std::shared_ptr<ReliefMap> map, const BaseShape& base,

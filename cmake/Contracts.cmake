@@ -7,8 +7,17 @@
 #    and a writer) for the page and any JavaScript host;
 #  * the GLSL library's constants that the C++ twin shares, listed below as
 #    FILE:GLSL_NAME:CppName (include/microrelief/core/GlslConstants.h, namespace
-#    microrelief::glsl, and the same module).
-# Adding a member to the block is a line in the GLSL; sharing another constant, a line here.
+#    microrelief::glsl, and the same module);
+#  * the enumerations whose values choose a variant of the shaders (the host's #defines
+#    MICRORELIEF_METHOD, _BASE, _INTERPOLATION, _SHADOWS, _DEPTH_LAYOUT) or a uniform's
+#    meaning (debugView), written once as `#define MR_METHOD_MAXMIP 6` ... in
+#    shaders/microrelief/variants.glsl (and debug_views.glsl), listed below as
+#    FILE:PREFIX:CppEnum: a constant a member and a table of names in the same header
+#    (src/gl/ReliefShader.cpp asserts each C++ enum's members against them, so a reordered
+#    enum stops the build) and a name -> value map in the same module (kMethodValues ...),
+#    which the page and microrelief-three set the #defines from.
+# Adding a member to the block is a line in the GLSL; sharing another constant or
+# enumeration, a line here.
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
 
 set(MICRORELIEF_SHARED_CONSTANTS
@@ -20,11 +29,19 @@ set(MICRORELIEF_SHARED_CONSTANTS
   relief_query.glsl:MR_BUDGET_PER_TEXEL:kBudgetPerTexel
   relief_query.glsl:MR_BUDGET_BASE:kBudgetBase)
 
+set(MICRORELIEF_SHARED_ENUMS
+  variants.glsl:MR_METHOD:Method
+  variants.glsl:MR_BASE:BaseKind
+  variants.glsl:MR_INTERPOLATION:Interpolation
+  variants.glsl:MR_SHADOWS:ShadowMode
+  variants.glsl:MR_DEPTH_LAYOUT:DepthLayout
+  debug_views.glsl:MR_DEBUG_VIEW:DebugView)
+
 set(MICRORELIEF_PARAMETERS_HEADER ${PROJECT_BINARY_DIR}/include/microrelief/gl/ReliefParameters.h)
 set(MICRORELIEF_CONSTANTS_HEADER ${PROJECT_BINARY_DIR}/include/microrelief/core/GlslConstants.h)
 set(MICRORELIEF_LAYOUT_MODULE ${PROJECT_BINARY_DIR}/${MICRORELIEF_DATA_SUBDIR}/web/relief_layout.js)
 set(constant_files)
-foreach(spec IN LISTS MICRORELIEF_SHARED_CONSTANTS)
+foreach(spec IN LISTS MICRORELIEF_SHARED_CONSTANTS MICRORELIEF_SHARED_ENUMS)
   string(REPLACE ":" ";" parts ${spec})
   list(GET parts 0 file)
   list(APPEND constant_files ${PROJECT_SOURCE_DIR}/shaders/microrelief/${file})
@@ -36,12 +53,13 @@ add_custom_command(
           --block ${PROJECT_SOURCE_DIR}/shaders/relief_parameters.glsl
           --shaders ${PROJECT_SOURCE_DIR}/shaders/microrelief
           --constants ${MICRORELIEF_SHARED_CONSTANTS}
+          --enums ${MICRORELIEF_SHARED_ENUMS}
           --struct ${MICRORELIEF_PARAMETERS_HEADER}
           --constants-header ${MICRORELIEF_CONSTANTS_HEADER}
           --js ${MICRORELIEF_LAYOUT_MODULE}
   DEPENDS ${PROJECT_SOURCE_DIR}/cmake/generate_contracts.py
           ${PROJECT_SOURCE_DIR}/shaders/relief_parameters.glsl ${constant_files}
-  COMMENT "Generating the uniform block's C++ and JavaScript layouts and the shared constants"
+  COMMENT "Generating the uniform block's C++ and JavaScript layouts, the shared constants and enumerations"
   VERBATIM)
 add_custom_target(microrelief_contracts ALL
   DEPENDS ${MICRORELIEF_PARAMETERS_HEADER} ${MICRORELIEF_CONSTANTS_HEADER} ${MICRORELIEF_LAYOUT_MODULE})

@@ -5,25 +5,30 @@
 // depth convention, so the relief depth-composites with other geometry. The colour is
 // linear: an sRGB framebuffer encodes it (OffscreenTarget's is one).
 //
-// Host defines: MICRORELIEF_TILING (the map repeated: relief_map.glsl); MICRORELIEF_METHOD (0 multilevel, 1 normal, 2 offset, 3 steep, 4 pom,
-// 5 relief, 6 maxmip, 7 cone, 8 rcsm); MICRORELIEF_BASE (0 plane, 1 cylinder, 2 ellipsoid:
-// base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the instrumented variant, which
-// writes texel reads to the statistics and keeps misses (so they are counted too);
-// MICRORELIEF_SHADOWS (0 none, 1 hard, 2 soft: shadow.glsl; the exact methods only);
+// Host defines, their values named in microrelief/variants.glsl (MR_METHOD_MAXMIP ...):
+// MICRORELIEF_TILING (the map repeated: relief_map.glsl); MICRORELIEF_METHOD (multilevel,
+// normal, offset, steep, pom, relief, maxmip, cone, rcsm); MICRORELIEF_BASE (plane,
+// cylinder, ellipsoid: base_surface.glsl); MICRORELIEF_COUNT_FETCHES for the
+// instrumented variant, which writes texel reads to the statistics and keeps misses (so
+// they are counted too);
+// MICRORELIEF_SHADOWS (off, hard, soft: shadow.glsl; the exact methods only);
 // MICRORELIEF_ALBEDO_MAP (1: the surface's colour from the albedo texture);
 // MICRORELIEF_DEPTH_LAYOUT, what the depth written promises against the rasterised
-// proxy's (0 nothing, 1 greater or equal, 2 less or equal), which keeps early depth tests
+// proxy's (any: nothing; greater or equal; less or equal), which keeps early depth tests
 // where the GL has conservative depth (GL 4.2, ARB_conservative_depth);
 // MICRORELIEF_PAGED (1: a map larger than one texture, read through pages:
 // paged_map.glsl, GLSL 4.30; the multilevel method only).
+// variants.glsl is defines only on desktop GL (its precision statements are GLSL ES's, which
+// never takes the #extension below), so the #extension may follow it.
+#include "microrelief/variants.glsl"
 #ifndef MICRORELIEF_DEPTH_LAYOUT
-#define MICRORELIEF_DEPTH_LAYOUT 0
+#define MICRORELIEF_DEPTH_LAYOUT MR_DEPTH_LAYOUT_ANY
 #endif
-#if MICRORELIEF_DEPTH_LAYOUT != 0 && __VERSION__ < 420 && defined(GL_ARB_conservative_depth)
+#if MICRORELIEF_DEPTH_LAYOUT != MR_DEPTH_LAYOUT_ANY && __VERSION__ < 420 && defined(GL_ARB_conservative_depth)
 #extension GL_ARB_conservative_depth : enable
 #endif
-#if MICRORELIEF_DEPTH_LAYOUT != 0 && (__VERSION__ >= 420 || defined(GL_ARB_conservative_depth))
-#if MICRORELIEF_DEPTH_LAYOUT == 1
+#if MICRORELIEF_DEPTH_LAYOUT != MR_DEPTH_LAYOUT_ANY && (__VERSION__ >= 420 || defined(GL_ARB_conservative_depth))
+#if MICRORELIEF_DEPTH_LAYOUT == MR_DEPTH_LAYOUT_GREATER
 layout(depth_greater) out float gl_FragDepth;
 #else
 layout(depth_less) out float gl_FragDepth;
@@ -46,10 +51,10 @@ layout(depth_less) out float gl_FragDepth;
 // Every method is included (the host splices includes before the preprocessor runs);
 // MICRORELIEF_METHOD picks the one that is called, and the compiler drops the rest.
 #ifndef MICRORELIEF_METHOD
-#define MICRORELIEF_METHOD 0
+#define MICRORELIEF_METHOD MR_METHOD_MULTILEVEL
 #endif
 #ifndef MICRORELIEF_SHADOWS
-#define MICRORELIEF_SHADOWS 0
+#define MICRORELIEF_SHADOWS MR_SHADOWS_OFF
 #endif
 #include "microrelief/albedo.glsl"
 #include "microrelief/debug_views.glsl"
@@ -83,31 +88,33 @@ vec3 surfaceAlbedo(mr_Relief relief, mr_ReliefHit hit, vec3 dir, vec3 n) {
 }
 
 mr_ReliefHit traceInFrame(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
-#if MICRORELIEF_METHOD == 1
+#if MICRORELIEF_METHOD == MR_METHOD_NORMAL
     return mr_traceNormalMapping(relief, heightSamples, origin, dir);
-#elif MICRORELIEF_METHOD == 2
+#elif MICRORELIEF_METHOD == MR_METHOD_OFFSET
     return mr_traceParallaxOffset(relief, heightSamples, origin, dir);
-#elif MICRORELIEF_METHOD == 3
+#elif MICRORELIEF_METHOD == MR_METHOD_STEEP
     return mr_traceSteepParallax(relief, heightSamples, origin, dir, methodSteps);
-#elif MICRORELIEF_METHOD == 4
+#elif MICRORELIEF_METHOD == MR_METHOD_POM
     return mr_traceParallaxOcclusion(relief, heightSamples, origin, dir, methodMinSteps, methodSteps);
-#elif MICRORELIEF_METHOD == 5
+#elif MICRORELIEF_METHOD == MR_METHOD_RELIEF
     return mr_traceReliefMapping(relief, heightSamples, origin, dir, methodSteps, methodRefineSteps);
-#elif MICRORELIEF_METHOD == 6
+#elif MICRORELIEF_METHOD == MR_METHOD_MAXMIP
     return mr_traceMaxMip(relief, query, maxPyramid, heightSamples, origin, dir);
-#elif MICRORELIEF_METHOD == 7
+#elif MICRORELIEF_METHOD == MR_METHOD_CONE
     return mr_traceConeStep(relief, query, coneMap, heightSamples, origin, dir);
-#elif MICRORELIEF_METHOD == 8
+#elif MICRORELIEF_METHOD == MR_METHOD_RCSM
     return mr_traceRelaxedCones(relief, coneMap, heightSamples, origin, dir, methodSteps, methodRefineSteps);
-#else
+#elif MICRORELIEF_METHOD == MR_METHOD_MULTILEVEL
     return mr_traceMultilevel(relief, query, windowPyramid, heightSamples, origin, dir);
+#else
+#error MICRORELIEF_METHOD is none of microrelief/variants.glsl's MR_METHOD_*
 #endif
 }
 
 // The step-based peers on a curved base, as engines run them there (pom, relief): in the
 // base's tangent frame where the ray enters the shell, map space taken as flat from there
 // on; their answer, a map point, is then placed on the base (off the ray, like offset's).
-#define MICRORELIEF_TANGENT_PEER (!MICRORELIEF_BASE_STRAIGHT_PATH && (MICRORELIEF_METHOD == 4 || MICRORELIEF_METHOD == 5))
+#define MICRORELIEF_TANGENT_PEER (!MICRORELIEF_BASE_STRAIGHT_PATH && (MICRORELIEF_METHOD == MR_METHOD_POM || MICRORELIEF_METHOD == MR_METHOD_RELIEF))
 
 mr_ReliefHit traceRay(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
 #if MICRORELIEF_TANGENT_PEER
@@ -138,9 +145,9 @@ float windowDepth(vec3 p) {
     float ndc = clip.z / clip.w;
     float unit = depthZeroToOne != 0 ? ndc : 0.5 + 0.5 * ndc;
     float depth = clamp(gl_DepthRange.near + gl_DepthRange.diff * unit, 0.0, 1.0);
-#if MICRORELIEF_DEPTH_LAYOUT == 1
+#if MICRORELIEF_DEPTH_LAYOUT == MR_DEPTH_LAYOUT_GREATER
     depth = max(depth, gl_FragCoord.z);
-#elif MICRORELIEF_DEPTH_LAYOUT == 2
+#elif MICRORELIEF_DEPTH_LAYOUT == MR_DEPTH_LAYOUT_LESS
     depth = min(depth, gl_FragCoord.z);
 #endif
     return depth;
@@ -151,13 +158,13 @@ float windowDepth(vec3 p) {
 // by the multilevel method whichever exact method traced the picture. A shadow ray that
 // runs out of its budget marks the hit exhausted, as a primary ray would.
 float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bool pointLight) {
-#if MICRORELIEF_SHADOWS != 0 && (MICRORELIEF_METHOD == 0 || MICRORELIEF_METHOD == 6 || MICRORELIEF_METHOD == 7)
+#if MICRORELIEF_SHADOWS != MR_SHADOWS_OFF && (MICRORELIEF_METHOD == MR_METHOD_MULTILEVEL || MICRORELIEF_METHOD == MR_METHOD_MAXMIP || MICRORELIEF_METHOD == MR_METHOD_CONE)
     // The shadow ray in the frame: to a point light's frame position (t = 1 there), or
     // along a direction for ever.
     vec3 frameToLight = pointLight ? mr_baseFramePoint(relief, lightPosition.xyz) - hit.position
                                    : mr_baseFrameVector(relief, toLight);
     float tMaxLight = pointLight ? 1.0 : MR_T_INFINITY;
-#if MICRORELIEF_SHADOWS == 2
+#if MICRORELIEF_SHADOWS == MR_SHADOWS_SOFT
     // Object-space angles: heights of the frame in object units, the ray's object length.
     float heightToObject = heightScale;
     // A curved base: heights are fractions of the frame's unit.
@@ -224,7 +231,7 @@ void main() {
 #endif
     }
 
-#if MICRORELIEF_METHOD == 2 || MICRORELIEF_TANGENT_PEER
+#if MICRORELIEF_METHOD == MR_METHOD_OFFSET || MICRORELIEF_TANGENT_PEER
     // Parallax offset's answer is not on the ray (it shifts the texture lookup instead),
     // nor is a tangent-frame peer's on a curved base.
     vec3 world = mr_baseWorldPoint(relief, hit.position);

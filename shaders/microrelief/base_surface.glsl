@@ -46,14 +46,15 @@
 #include "base_curved.glsl"
 #include "map_space.glsl"
 #include "relief_map.glsl"
+#include "variants.glsl"
 
 // The one base the host chose. Hosts splice each file once, wherever it is first included,
 // before the preprocessor runs (the library's own resolver, the page's, the bundler): what
 // two base files share is included above, outside the choice, or the branch that comes
 // second would find it spliced into the first.
-#if MICRORELIEF_BASE == 1
+#if MICRORELIEF_BASE == MR_BASE_CYLINDER
 #include "base_cylinder.glsl"
-#elif MICRORELIEF_BASE == 2
+#elif MICRORELIEF_BASE == MR_BASE_ELLIPSOID
 #include "base_ellipsoid.glsl"
 #else
 #include "base_plane.glsl"

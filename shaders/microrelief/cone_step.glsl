@@ -28,6 +28,7 @@
 #include "relief_map.glsl"
 #include "relief_query.glsl"
 #include "texture_reads.glsl"
+#include "variants.glsl"
 
 // A cone map texel (B_T, r_T) at integer texel `texel`.
 #ifndef MICRORELIEF_READ_CONE
@@ -48,7 +49,7 @@
 // the bilinear surface's at T's corners, edge midpoints and centre: under B_T already.
 // A ratio of 0 (T's column) leaves no cone: every texel is then a leaf.
 vec2 mr_coneOfLastLevel(vec2 cone) {
-#if MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
     cone.x = cone.y > 0.0 ? (cone.x + 0.5 / cone.y) * (1.0 + exp2(-20.0)) : MR_NEVER;
 #endif
     return cone;

@@ -28,6 +28,7 @@
 #include "relief_map.glsl"
 #include "relief_patch.glsl"
 #include "texture_reads.glsl"
+#include "variants.glsl"
 
 // The depth of the subdivision of one cell's stretch (the curved bases').
 #ifndef MICRORELIEF_CELL_DEPTH
@@ -43,7 +44,7 @@ const float MR_BIQUADRATIC_FINAL_FOOTPRINT = 1.0 / 64.0;
 // for the biquadratic surface once its footprint is MR_BIQUADRATIC_FINAL_FOOTPRINT texels
 // wide; the bilinear surface along a straight path is a quadratic the parabola holds exactly.
 const float MR_FINAL_LENGTH = MR_BASE_FINAL_LENGTH;
-#if MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
 const float MR_FINAL_FOOTPRINT = MR_BIQUADRATIC_FINAL_FOOTPRINT;
 #else
 const float MR_FINAL_FOOTPRINT = 1e30;
@@ -98,7 +99,7 @@ float mr_cellGap(mr_ReliefPatch cellPatch, vec3 local) { return mr_patchValue(ce
 // descends to, or the end of the piece it moves on to. Every margin pads a bound outwards.
 float mr_cellStretchHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_ReliefPatch cellPatch, float c0, float c1,
                      vec3 startPoint, vec3 endPoint) {
-#if MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
     // The plane's path is straight: the gap is one quartic (biquadratic_patch.glsl).
     vec3 pa = mr_cellLocalPoint(relief, cell, startPoint), pb = mr_cellLocalPoint(relief, cell, endPoint);
     mr_Quartic gap = mr_biquadraticPathGap(cellPatch, pa, pb);
@@ -191,7 +192,7 @@ bool mr_nextLeafCell(int width, bool xUp, bool yUp, bool stepX, bool stepY, floa
 bool mr_cellStretchMayHit(mr_Relief relief, vec3 origin, vec3 dir, ivec2 cell, mr_ReliefPatch cellPatch, float c0,
                           float c1, vec3 startPoint, vec3 endPoint) {
     vec3 fa = mr_cellLocalPoint(relief, cell, startPoint), fb = mr_cellLocalPoint(relief, cell, endPoint);
-#if MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
     mr_Quartic gap = mr_biquadraticPathGap(cellPatch, fa, fb);
     return max(max(max(gap.c.x, gap.c.y), max(gap.c.z, gap.c.w)), gap.c4) >= -MR_PATCH_TOP_MARGIN * relief.map.maxHeight;
 #else
@@ -301,7 +302,7 @@ float mr_intersectLeafCells(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 
 // patch of the hit.
 float mr_baseIntersectLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec3 origin, vec3 dir, float ta, float tb,
                         out mr_ReliefPatch cellPatch, out ivec2 cell) {
-#if MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_INTERPOLATION == 0
+#if MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BILINEAR
     return mr_intersectStraightLeaf(relief, heights, origin, dir, ta, tb, cellPatch, cell);
 #else
     return mr_intersectLeafCells(relief, heights, origin, dir, ta, tb, cellPatch, cell);

@@ -10,21 +10,25 @@
 // mr_ReliefPlacement takes it into the world; the tracers take their ray in the world and
 // report t, which an affine transform keeps.
 //
-// The base surface (base_surface.glsl) is chosen by the host with MICRORELIEF_BASE: 0 the
-// plane y = 0, 1 a cylinder, 2 an ellipsoid (scene-and-cli.md, "Base surfaces"). The
+// The base surface (base_surface.glsl) is chosen by the host with MICRORELIEF_BASE
+// (variants.glsl): MR_BASE_PLANE the plane y = 0, MR_BASE_CYLINDER a cylinder,
+// MR_BASE_ELLIPSOID an ellipsoid (scene-and-cli.md, "Base surfaces"). The
 // traversal runs in the base's frame, where the ray is a straight line with the world's
 // t: map space itself on the plane (the relief occupies X in [0, W], Y in [0, H],
 // 0 <= h <= h(X, Y)), the canonical frame q = object / frameScale on a curved base.
 #ifndef MICRORELIEF_RELIEF_MAP_GLSL
 #define MICRORELIEF_RELIEF_MAP_GLSL
 
+#include "variants.glsl"
+
 #ifndef MICRORELIEF_BASE
-#define MICRORELIEF_BASE 0
+#define MICRORELIEF_BASE MR_BASE_PLANE
 #endif
 
-// The last level's interpolation (relief_patch.glsl): 0 bilinear, 1 biquadratic.
+// The last level's interpolation (relief_patch.glsl): MR_INTERPOLATION_BILINEAR or
+// MR_INTERPOLATION_BIQUADRATIC.
 #ifndef MICRORELIEF_INTERPOLATION
-#define MICRORELIEF_INTERPOLATION 0
+#define MICRORELIEF_INTERPOLATION MR_INTERPOLATION_BILINEAR
 #endif
 #include "precision.glsl"
 

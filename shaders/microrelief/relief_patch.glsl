@@ -17,8 +17,9 @@
 #include "biquadratic_patch.glsl"
 #include "relief_map.glsl"
 #include "texture_reads.glsl"
+#include "variants.glsl"
 
-#if MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
 #define mr_ReliefPatch mat3
 const float MR_PATCH_OFFSET = 0.0;
 #else
@@ -45,7 +46,7 @@ vec2 mr_patchLocal(mr_Relief relief, ivec2 cell, vec2 xy) {
 }
 
 mr_ReliefPatch mr_patchAt(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
-#if MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
     return mr_biquadraticNet(relief, heights, cell);
 #else
     return mr_cellCorners(relief, heights, cell);
@@ -54,7 +55,7 @@ mr_ReliefPatch mr_patchAt(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 c
 
 // Height and gradient (per texel) of the patch at local coordinates f.
 float mr_patchValue(mr_ReliefPatch cellPatch, vec2 f) {
-#if MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
     return mr_biquadraticHeight(cellPatch, f);
 #else
     return mr_patchHeight(cellPatch, f);
@@ -62,7 +63,7 @@ float mr_patchValue(mr_ReliefPatch cellPatch, vec2 f) {
 }
 
 vec2 mr_patchSlope(mr_ReliefPatch cellPatch, vec2 f) {
-#if MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
     return mr_biquadraticGradient(cellPatch, f);
 #else
     return mr_patchGradient(cellPatch, f);
@@ -71,7 +72,7 @@ vec2 mr_patchSlope(mr_ReliefPatch cellPatch, vec2 f) {
 
 // The patch's max over the local rectangle [lo, hi], never below it.
 float mr_patchTop(mr_ReliefPatch cellPatch, vec2 lo, vec2 hi) {
-#if MICRORELIEF_INTERPOLATION == 1
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
     return mr_biquadraticMaxOver(cellPatch, lo, hi);
 #else
     return mr_patchMaxOver(cellPatch, lo, hi);
@@ -89,7 +90,7 @@ float mr_reliefHeight(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 xy) {
 // flat there by itself: its edge control points repeat).
 vec2 mr_reliefSlope(mr_Relief relief, mr_ReliefPatch cellPatch, ivec2 cell, vec2 xy) {
     vec2 g = mr_patchSlope(cellPatch, clamp(mr_patchLocal(relief, cell, xy), 0.0, 1.0));
-#if MICRORELIEF_INTERPOLATION == 0
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BILINEAR
 #if !MICRORELIEF_BASE_WRAPS_U
     if (cell.x < 0 || cell.x >= int(relief.map.size.x) - 1) g.x = 0.0;
 #endif

@@ -3,10 +3,61 @@
 #include <vector>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/GlslConstants.h"
 #include "microrelief/gl/PagedPyramid.h"
 #include "microrelief/gl/ShaderProgram.h"
 
 namespace microrelief {
+
+namespace {
+
+// The numbers cast into the #defines below (and into the block's debugView) are the C++
+// enums' values; the GLSL names them in shaders/microrelief/variants.glsl and
+// debug_views.glsl, whose values core/GlslConstants.h carries (generated from the GLSL,
+// cmake/Contracts.cmake). Each member is held to its GLSL name, and each enum's count to
+// the GLSL's, so a member reordered, added or renamed on one side stops the build here.
+template <typename Enum>
+constexpr bool is(Enum member, int glsl) {
+    return static_cast<int>(member) == glsl;
+}
+
+static_assert(is(Method::Multilevel, glsl::kMethodMultilevel) &&
+                  is(Method::Normal, glsl::kMethodNormal) &&
+                  is(Method::Offset, glsl::kMethodOffset) &&
+                  is(Method::Steep, glsl::kMethodSteep) && is(Method::Pom, glsl::kMethodPom) &&
+                  is(Method::Relief, glsl::kMethodRelief) &&
+                  is(Method::MaxMip, glsl::kMethodMaxmip) && is(Method::Cone, glsl::kMethodCone) &&
+                  is(Method::Rcsm, glsl::kMethodRcsm) && is(Method::Rcsm, glsl::kMethodCount - 1),
+              "Method and the MR_METHOD_* of variants.glsl differ");
+static_assert(is(BaseKind::Plane, glsl::kBaseKindPlane) &&
+                  is(BaseKind::Cylinder, glsl::kBaseKindCylinder) &&
+                  is(BaseKind::Ellipsoid, glsl::kBaseKindEllipsoid) &&
+                  is(BaseKind::Ellipsoid, glsl::kBaseKindCount - 1),
+              "BaseKind and the MR_BASE_* of variants.glsl differ");
+static_assert(is(Interpolation::Bilinear, glsl::kInterpolationBilinear) &&
+                  is(Interpolation::Biquadratic, glsl::kInterpolationBiquadratic) &&
+                  is(Interpolation::Biquadratic, glsl::kInterpolationCount - 1),
+              "Interpolation and the MR_INTERPOLATION_* of variants.glsl differ");
+static_assert(is(ShadowMode::Off, glsl::kShadowModeOff) &&
+                  is(ShadowMode::Hard, glsl::kShadowModeHard) &&
+                  is(ShadowMode::Soft, glsl::kShadowModeSoft) &&
+                  is(ShadowMode::Soft, glsl::kShadowModeCount - 1),
+              "ShadowMode and the MR_SHADOWS_* of variants.glsl differ");
+static_assert(is(DepthLayout::Any, glsl::kDepthLayoutAny) &&
+                  is(DepthLayout::Greater, glsl::kDepthLayoutGreater) &&
+                  is(DepthLayout::Less, glsl::kDepthLayoutLess) &&
+                  is(DepthLayout::Less, glsl::kDepthLayoutCount - 1),
+              "DepthLayout and the MR_DEPTH_LAYOUT_* of variants.glsl differ");
+static_assert(is(DebugView::Shaded, glsl::kDebugViewShaded) &&
+                  is(DebugView::Iterations, glsl::kDebugViewIterations) &&
+                  is(DebugView::Level, glsl::kDebugViewLevel) &&
+                  is(DebugView::Normal, glsl::kDebugViewNormal) &&
+                  is(DebugView::Depth, glsl::kDebugViewDepth) &&
+                  is(DebugView::Position, glsl::kDebugViewPosition) &&
+                  is(DebugView::Position, glsl::kDebugViewCount - 1),
+              "DebugView and the MR_DEBUG_VIEW_* of debug_views.glsl differ");
+
+}  // namespace
 
 std::string describe(const ReliefShaderConfig& config) {
     return std::string("relief (") + methodName(config.method) + ", " +

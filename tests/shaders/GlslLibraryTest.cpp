@@ -4,6 +4,8 @@
 // shader, the way another engine would include it. The app's own shaders are checked as 3.30.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -12,6 +14,7 @@
 #include <sstream>
 
 #include "TestSupport.h"
+#include "microrelief/core/GlslConstants.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/gl/PagedPyramid.h"
 #include "microrelief/gl/ShaderSource.h"
@@ -230,10 +233,11 @@ TEST(GlslLibrary, EveryPublicNameCarriesThePrefix) {
             if (m[2].matched) {
                 EXPECT_EQ(m[2].str().rfind("MR_", 0), 0u) << file.filename() << ": " << line;
             }
-            // A macro is an option (MICRORELIEF_) or a type chosen by one (mr_ReliefPatch).
+            // A macro is an option (MICRORELIEF_), a type chosen by one (mr_ReliefPatch), or
+            // a constant an #if compares an option with (MR_, as the constants: variants.glsl).
             if (m[3].matched) {
                 EXPECT_TRUE(m[3].str().rfind("MICRORELIEF_", 0) == 0 ||
-                            m[3].str().rfind("mr_", 0) == 0)
+                            m[3].str().rfind("mr_", 0) == 0 || m[3].str().rfind("MR_", 0) == 0)
                     << file.filename() << ": " << line;
             }
         }
@@ -264,7 +268,7 @@ TEST(GlslLibrary, EveryFileRunsAtHighpUnderGlslEs) {
 TEST(GlslLibrary, AppShadersCompileAsGlsl330And400AndEs300) {
     test::ScratchDir dir;
     for (const char* version : {"330 core", "400 core", "300 es"}) {
-        for (int method = 0; method <= 6; ++method) {
+        for (int method = 0; method < glsl::kMethodCount; ++method) {
             for (const char* name : {"relief_box.vert", "relief.frag"}) {
                 const std::filesystem::path file = kShaders / name;
                 const ShaderSource source =
@@ -309,18 +313,29 @@ TEST(GlslLibrary, PagedVariantCompilesAsGlsl430) {
 }
 
 // Each row of the table of bases (core/base/BaseType.h) names the file base_surface.glsl
-// chooses for its kind: `#if`/`#elif MICRORELIEF_BASE == kind` then its #include, or the
-// `#else` branch's for a kind the choice does not list.
+// chooses for its kind: `#if`/`#elif MICRORELIEF_BASE == MR_BASE_NAME` (the kind's value by
+// its name in variants.glsl, core/GlslConstants.h) then its #include, or the `#else`
+// branch's for a kind the choice does not list.
 TEST(GlslLibrary, EveryBaseRowsFileIsTheChoiceForItsKind) {
     const std::string text = readText(kShaders / "microrelief" / "base_surface.glsl");
     const std::regex branch(
-        "#\\s*(?:el)?if\\s+MICRORELIEF_BASE\\s*==\\s*(\\d+)\\s*\\n\\s*#\\s*include\\s+\"([^\"]+)"
-        "\"");
+        "#\\s*(?:el)?if\\s+MICRORELIEF_BASE\\s*==\\s*MR_BASE_(\\w+)\\s*\\n\\s*#\\s*include\\s+"
+        "\"([^\"]+)\"");
     const std::regex otherwise("#\\s*else\\s*\\n\\s*#\\s*include\\s+\"(base_[^\"]+)\"");
     std::map<int, std::string> chosen;
     for (auto it = std::sregex_iterator(text.begin(), text.end(), branch);
-         it != std::sregex_iterator(); ++it)
-        chosen[std::stoi((*it)[1])] = (*it)[2];
+         it != std::sregex_iterator(); ++it) {
+        std::string name = (*it)[1];
+        for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        const auto member =
+            std::find_if(std::begin(glsl::kBaseKindValues), std::end(glsl::kBaseKindValues),
+                         [&](const glsl::EnumMember& m) { return m.name == name; });
+        ASSERT_NE(member, std::end(glsl::kBaseKindValues))
+            << "MR_BASE_" << (*it)[1] << " (base_surface.glsl) is none of variants.glsl's";
+        chosen[member->value] = (*it)[2];
+    }
+    EXPECT_FALSE(chosen.empty())
+        << "no #if MICRORELIEF_BASE == MR_BASE_... read in base_surface.glsl";
     std::smatch fallback;
     ASSERT_TRUE(std::regex_search(text, fallback, otherwise))
         << "base_surface.glsl has no #else base";

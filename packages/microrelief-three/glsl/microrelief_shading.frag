@@ -6,7 +6,7 @@
 // src/materials.js.
 //
 // options: MICRORELIEF_ALBEDO_MAP (1: the albedo texture, else `albedo`), MICRORELIEF_SHADOWS
-//          (0 off, 1 hard).
+//          (MR_SHADOWS_OFF or MR_SHADOWS_HARD: the library's variants.glsl).
 uniform vec3 mrLightDirection;  // towards the light, world, unit
 uniform vec3 albedo;            // linear, without an albedo texture
 uniform sampler2D albedoMap;    // the map's colours, row 0 at v = 0 (flipY false), sRGB, mipmapped
@@ -32,7 +32,7 @@ void main() {
     }
     mr_Relief relief = mrRelief();
     float visibility = 1.0;
-#if MICRORELIEF_SHADOWS == 1
+#if MICRORELIEF_SHADOWS == MR_SHADOWS_HARD
     bool exhausted = false;
     visibility = mr_hardShadow(relief, mrWindows, mrHeights, p.hit, mr_baseFrameVector(relief, mrLightDirection),
                                MR_T_INFINITY, exhausted);

@@ -24,7 +24,8 @@
 // WebGL 2 renders into R16F only with EXT_color_buffer_float (the builder's passes need it,
 // and reading the top back as floats); without it there is no pyramid and the page says so.
 import {ShaderFiles, mapCompilerLog} from './shader_source.js';
-import {kParametersSize, writeParameters} from './relief_layout.js';
+import {defineValue, kBaseKindValues, kDebugViewValues, kInterpolationValues, kMethodValues, kParametersSize, kShadowModeValues,
+        writeParameters} from './relief_layout.js';
 import * as scene from './scene.js';
 
 const kBandRows = 64, kBandsFrom = 4 * kBandRows;
@@ -539,13 +540,15 @@ export class ReliefRenderer {
         const gl = this.gl, version = '300 es';
         const what = `relief (${c.method}, ${c.base}, ${c.interpolation})`;
         const defines = [
-            ['MICRORELIEF_METHOD', String(scene.kMethods.indexOf(c.method))],
-            ['MICRORELIEF_BASE', String(scene.kBaseKinds[c.base])],
-            ['MICRORELIEF_INTERPOLATION', String(scene.kInterpolations.indexOf(c.interpolation))],
+            // Each value by its name, from the GLSL's own table (variants.glsl, through the
+            // generated relief_layout.js).
+            ['MICRORELIEF_METHOD', defineValue(kMethodValues, c.method, 'MICRORELIEF_METHOD')],
+            ['MICRORELIEF_BASE', defineValue(kBaseKindValues, c.base, 'MICRORELIEF_BASE')],
+            ['MICRORELIEF_INTERPOLATION', defineValue(kInterpolationValues, c.interpolation, 'MICRORELIEF_INTERPOLATION')],
             // No depth layout: WebGL 2 has no conservative depth, and the page draws the
             // relief alone.
             ['MICRORELIEF_DEPTH_LAYOUT', '0'],
-            ['MICRORELIEF_SHADOWS', String(scene.kShadows.indexOf(c.shadows))],
+            ['MICRORELIEF_SHADOWS', defineValue(kShadowModeValues, c.shadows, 'MICRORELIEF_SHADOWS')],
             ['MICRORELIEF_ALBEDO_MAP', c.albedoMap ? '1' : '0'],
             ['MICRORELIEF_TILING', '0'],
         ];
@@ -744,7 +747,7 @@ export class ReliefRenderer {
             reliefBoxMax: extent.max,
             maxIterations: scene.traversalBudget(shape.size[0], shape.size[1]),
             lightDirection: scene.normalizeFloat(view.light),
-            debugView: scene.kViews.indexOf(view.view),
+            debugView: Number(defineValue(kDebugViewValues, view.view, 'debugView')),
             albedo: scene.toFloat([0.6, 0.58, 0.55]),  // ShadingOptions::albedo, without a texture
             methodSteps: view.steps,
             reliefSize: shape.size,

@@ -96,11 +96,14 @@ function multiply(a, b) {
 
 // ---- base surfaces (src/core/base/BaseShape.cpp) ----
 
-export const kBaseKinds = {plane: 0, cylinder: 1, ellipsoid: 2, sphere: 2};
+// --base's words: the kinds (the shader's MICRORELIEF_BASE takes the kind's value from
+// relief_layout.js's kBaseKindValues, generated from variants.glsl) and the sphere, an
+// ellipsoid of equal radii.
+export const kBaseNames = ['plane', 'cylinder', 'ellipsoid', 'sphere'];
 
 // {kind: 'plane' | 'cylinder' | 'ellipsoid', radius, length, radii}; `name` is --base's.
 export function baseShape(name, sizes = {}) {
-    if (!(name in kBaseKinds)) throw new Error(`unknown base '${name}' (expected plane, cylinder, ellipsoid or sphere)`);
+    if (!kBaseNames.includes(name)) throw new Error(`unknown base '${name}' (expected plane, cylinder, ellipsoid or sphere)`);
     const positive = (value, flag) => {
         if (!(value > 0) || !Number.isFinite(value)) throw new Error(`${flag} must be a positive finite number`);
         return value;
@@ -205,6 +208,11 @@ export const traversalBudget = (width, height) => kBudgetPerTexel * (width + hei
 
 // ---- methods, views and shadows (src/core/scene/Method.cpp) ----
 
+// The programs' words, in the order microrelief-render names them (tests/web/check_url_keys.py
+// holds the two together); the number each selects in the shader comes by its name from
+// relief_layout.js (kMethodValues, kDebugViewValues, ...: generated from variants.glsl and
+// debug_views.glsl), never from a position in these lists.
+
 export const kMethods = ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', 'maxmip', 'cone', 'rcsm'];
 export const kViews = ['shaded', 'iterations', 'level', 'normal', 'depth', 'position'];
 export const kShadows = ['off', 'hard', 'soft'];
@@ -291,7 +299,7 @@ export function viewFromQuery(search) {
         v.size = [+m[1], +m[2]];
     });
     get('height-scale', (t) => (v.heightScale = f32(numbers('height-scale', t, 1)[0])));
-    get('base', (t) => (v.base = choice('base', t, Object.keys(kBaseKinds))));
+    get('base', (t) => (v.base = choice('base', t, kBaseNames)));
     get('radius', (t) => (v.radius = numbers('radius', t, 1)[0]));
     get('length', (t) => (v.length = numbers('length', t, 1)[0]));
     get('radii', (t) => (v.radii = numbers('radii', t, 3)));

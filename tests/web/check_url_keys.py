@@ -14,8 +14,11 @@ reads, or, dashes and all, a flag of the program's. Where a key is a page's own 
 page's resolution, a clean picture, three's shading), tests/web/page_keys.txt lists it with
 the reason (tests/docs/scene_field_table.cpp reads the same list); a word, below. A listed
 key or word that is no longer in the page fails, so the lists cannot go stale. The web
-page's lists whose positions it hands the shader as numbers (INDEXED) are the program's whole lists, in the program's order: the order in which it
-names the choices when it refuses an unknown word (its names tables, the enums' order).
+page's lists of a choice the shader takes as a number (INDEXED) are the program's whole
+lists, in the program's order: the order in which it names the choices when it refuses an
+unknown word (its names tables, the enums' order). The numbers themselves come by name
+from relief_layout.js (generated from shaders/microrelief/variants.glsl), not from a
+position in these lists.
 """
 import os
 import re
@@ -28,7 +31,7 @@ PAGES = ['web/scene.js', 'examples/three/view.js']
 # Words that belong to a page, not to microrelief-render (its own keys: page_keys.txt).
 # albedo=map is the bundled map's colours, which microrelief-render draws without --albedo.
 PAGE_WORDS = {('albedo', 'map')}
-# web/scene.js's lists whose index is a #define of relief.frag or a uniform (relief_gl.js:
+# web/scene.js's lists of a choice that is a #define of relief.frag or a uniform (relief_gl.js:
 # MICRORELIEF_METHOD, MICRORELIEF_SHADOWS, MICRORELIEF_INTERPOLATION, debugView), by key.
 INDEXED = {'method': 'kMethods', 'view': 'kViews', 'shadows': 'kShadows',
            'interpolation': 'kInterpolations'}
@@ -148,7 +151,7 @@ def main():
             program_list = program_choices(render, key, out, problems)
             if program_list is not None and page_list != program_list:
                 problems.append(f'web/scene.js: {constant} is {page_list}; microrelief-render\'s --{key} '
-                                f'takes {program_list}, in that order (the page hands the shader positions)')
+                                f'takes {program_list}, in that order')
         for key in sorted(WHOLE):
             pages = sorted(page for (page, k) in offered_words if k == key)
             if not pages:

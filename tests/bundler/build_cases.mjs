@@ -66,6 +66,22 @@ function makeTree(root) {
         } else if (kind === 'sparse') fs.truncateSync((fs.writeFileSync(file, ''), file), Number(rest));
         else throw new Error(`cases.txt: unknown tree entry '${kind}'`);
     }
+    copyContracts(root);
+}
+
+// build.mjs makes generated/relief_layout.js with cmake/generate_contracts.py from the lists
+// of cmake/Contracts.cmake: those, and the GLSL files they name, as the repository has them.
+function copyContracts(root) {
+    const repository = path.resolve(here, '..', '..');
+    const contracts = fs.readFileSync(path.join(repository, 'cmake', 'Contracts.cmake'), 'utf8');
+    const specs = ['MICRORELIEF_SHARED_CONSTANTS', 'MICRORELIEF_SHARED_ENUMS'].flatMap((name) =>
+        new RegExp(`set\\(${name}\\s+([^)]*)\\)`).exec(contracts)[1].trim().split(/\s+/));
+    const files = ['cmake/Contracts.cmake', 'cmake/generate_contracts.py', 'shaders/relief_parameters.glsl',
+                   ...specs.map((spec) => `shaders/microrelief/${spec.split(':')[0]}`)];
+    for (const file of new Set(files)) {
+        fs.mkdirSync(path.dirname(path.join(root, file)), {recursive: true});
+        fs.copyFileSync(path.join(repository, file), path.join(root, file));
+    }
 }
 
 // ---- running build.mjs ----
@@ -156,7 +172,7 @@ function staleFilesGo(dir) {
     expect(!fs.existsSync(path.join(out, 'stale.js')), 'stale.js survived the run');
     expect(fs.readFileSync(path.join(out, 'png.js'), 'utf8').includes('// png.js'), 'png.js was not made again');
     expect(JSON.stringify(fs.readdirSync(out).sort()) ===
-               JSON.stringify(['glsl.js', 'manifest.json', 'png.js', 'pyramid_wasm.js', 'scene_checks.js', 'scene_checks_wasm.js', 'twin_wasm.js']),
+               JSON.stringify(['glsl.js', 'manifest.json', 'png.js', 'pyramid_wasm.js', 'relief_layout.js', 'scene_checks.js', 'scene_checks_wasm.js', 'twin_wasm.js']),
            `generated/ holds ${fs.readdirSync(out)}`);
     expect(hiddenFilesIn(dir).length === 0, `temporaries left: ${hiddenFilesIn(dir)}`);
 }

@@ -471,6 +471,7 @@ const std::vector<std::string> kTarballFiles = {"package/LICENSE",
                                                 "package/generated/manifest.json",
                                                 "package/generated/png.js",
                                                 "package/generated/pyramid_wasm.js",
+                                                "package/generated/relief_layout.js",
                                                 "package/generated/scene_checks.js",
                                                 "package/generated/scene_checks_wasm.js",
                                                 "package/generated/twin_wasm.js",
@@ -792,7 +793,8 @@ TEST_F(ThreeTarball, AWrapUMismatchNamesTheBaseAsAsked) {
               "does not wrap)\n");
 }
 
-// Packed where there is no em++ (PATH holds node, npm and sh alone): the same files, a note
+// Packed where there is no em++ (PATH holds node, npm, sh and python3 alone: python3 runs
+// cmake/generate_contracts.py for generated/relief_layout.js): the same files, a note
 // saying what is left out, and the WebAssembly's two uses each refuse in one line at run
 // time; the tarball with em++ runs both (the installed project). Red before: npm pack
 // failed ("no em++ on PATH").
@@ -800,7 +802,9 @@ TEST_F(ThreeTarball, PackedWithoutEmscriptenTheWebAssemblyRefusesInOneLine) {
     const Packed& p = packed();
     const fs::path bin = dir / "bin", out = dir / "npm", project = dir / "no-wasm";
     fs::create_directories(bin);
-    for (const std::string& tool : {p.node, p.npm, std::string("/bin/sh")})
+    const std::string python = findTool("", "python3");
+    ASSERT_FALSE(python.empty()) << "no python3 (the build needs it)";
+    for (const std::string& tool : {p.node, p.npm, std::string("/bin/sh"), python})
         fs::create_symlink(tool, bin / fs::path(tool).filename());
     const test::RunResult pack =
         runIn(MICRORELIEF_PACKAGE_DIR,

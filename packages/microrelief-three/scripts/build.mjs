@@ -13,6 +13,11 @@
 //    passes (shaders/pyramid/) the same way; and the package's own glue (glsl/*), the files
 //    as they are; all of it stripped of comments, of the functions no shader can call and
 //    of blank space (scripts/strip_glsl.mjs says how, conservatively, under every #if);
+//  * generated/relief_layout.js: the ES module cmake/generate_contracts.py makes (python3)
+//    from the GLSL, the page's own: the uniform block's layout, the shared constants and
+//    the enumerations whose values the package's #defines take by name (kBaseKindValues
+//    ..., written in shaders/microrelief/variants.glsl), with the lists of
+//    cmake/Contracts.cmake;
 //  * generated/png.js: web/png.js, the page's PNG decoder (16-bit maps keep their low byte);
 //  * generated/scene_checks.js: web/scene_checks.js, the programs' checks of a scene in the
 //    pages' words, and generated/scene_checks_wasm.js: the C++ checks it drives (the files
@@ -52,7 +57,7 @@ const kProgram = 'microrelief-three build';
 const kMaxShaderFileBytes = 4 * 1024 * 1024;
 const kMaxIncludeDepth = 32;
 const kBadInput = 2, kRuntime = 1;  // exit statuses, as the programs' (core/Error.h)
-const kOutputs = ['glsl.js', 'png.js', 'scene_checks.js', 'scene_checks_wasm.js', 'pyramid_wasm.js', 'twin_wasm.js', 'manifest.json'];
+const kOutputs = ['glsl.js', 'relief_layout.js', 'png.js', 'scene_checks.js', 'scene_checks_wasm.js', 'pyramid_wasm.js', 'twin_wasm.js', 'manifest.json'];
 
 class BuildError extends Error {
     constructor(status, message) {
@@ -284,30 +289,38 @@ function emscripten(scratch) {
     };
 }
 
-// The shared constants the base surfaces include (include/microrelief/core/GlslConstants.h),
-// made as the CMake build makes them: cmake/generate_contracts.py with the list
-// cmake/Contracts.cmake gives (python3, which emscripten itself runs on).
-function generateConstants(source, scratch, read) {
+// What C++, JavaScript and GLSL share, made as the CMake build makes it: cmake/
+// generate_contracts.py with the lists cmake/Contracts.cmake gives (python3, which emscripten
+// itself runs on): the ES module's text (its stdout; written into --out with the rest) and,
+// with `scratch`, the headers the C++ in WebAssembly includes (core/GlslConstants.h) in the
+// folder returned as `include`.
+function generateContracts(source, scratch, read) {
     const contracts = read(path.join(source, 'cmake', 'Contracts.cmake'));
-    const list = /set\(MICRORELIEF_SHARED_CONSTANTS\s+([^)]*)\)/.exec(contracts);
-    if (!list) throw new BuildError(kRuntime, 'cmake/Contracts.cmake: no MICRORELIEF_SHARED_CONSTANTS list to generate GlslConstants.h from');
-    const include = path.join(scratch, 'include');
+    const list = (name) => {
+        const found = new RegExp(`set\\(${name}\\s+([^)]*)\\)`).exec(contracts);
+        if (!found) throw new BuildError(kRuntime, `cmake/Contracts.cmake: no ${name} list to generate the contracts from`);
+        return found[1].trim().split(/\s+/);
+    };
+    const include = scratch ? path.join(scratch, 'include') : null;
     const script = path.join(source, 'cmake', 'generate_contracts.py');
-    read(script);
+    const shaders = path.join(source, 'shaders', 'microrelief');
+    const block = path.join(source, 'shaders', 'relief_parameters.glsl');
+    const constants = list('MICRORELIEF_SHARED_CONSTANTS'), enums = list('MICRORELIEF_SHARED_ENUMS');
+    // The files it reads, in the manifest.
+    for (const file of [script, block, ...new Set([...constants, ...enums].map((spec) => path.join(shaders, spec.split(':')[0])))]) read(file);
+    const headers = include ? ['--struct', path.join(include, 'microrelief', 'gl', 'ReliefParameters.h'),
+                               '--constants-header', path.join(include, 'microrelief', 'core', 'GlslConstants.h')] : [];
     try {
-        execFileSync('python3', [script, '--block', path.join(source, 'shaders', 'relief_parameters.glsl'),
-                                 '--shaders', path.join(source, 'shaders', 'microrelief'), '--constants', ...list[1].trim().split(/\s+/),
-                                 '--struct', path.join(include, 'microrelief', 'gl', 'ReliefParameters.h'),
-                                 '--constants-header', path.join(include, 'microrelief', 'core', 'GlslConstants.h'),
-                                 '--js', path.join(scratch, 'relief_layout.js')],
-                     {stdio: ['ignore', 'inherit', 'inherit']});
+        const layout = execFileSync('python3', [script, '--block', block, '--shaders', shaders, '--constants', ...constants, '--enums', ...enums,
+                                                ...headers, '--js', '-'],
+                                    {stdio: ['ignore', 'pipe', 'inherit'], encoding: 'utf8'});
+        return {include, layout};
     } catch (e) {
         throw new BuildError(kRuntime, `cmake/generate_contracts.py failed (${printable(e.message.split('\n')[0])})`);
     }
-    return include;
 }
 
-function buildWasm(options, into, read) {
+function buildWasm(options, into, read, constants) {
     const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'microrelief-three-'));
     try {
         const emxx = emscripten(scratch);
@@ -325,7 +338,6 @@ function buildWasm(options, into, read) {
                            'src/core/heightmap/MaxPyramid.cpp', 'src/core/ParallelRows.cpp', 'src/core/Error.cpp',
                            'src/core/scene/SceneFields.cpp', 'src/core/scene/ModelTransform.cpp']);
         for (const f of twin) read(f);
-        const constants = generateConstants(options.source, scratch, read);
         emxx(['-I', path.join(options.source, 'include'), '-I', path.join(options.source, 'src'), '-I', constants,
               ...twin, path.join(packageDir, 'wasm', 'twin_wasm.cpp'), '-o', path.join(into, 'twin_wasm.js'),
               '-sALLOW_MEMORY_GROWTH', '-sMAXIMUM_MEMORY=4GB', '-sEXPORT_NAME=createTwinModule',
@@ -483,8 +495,20 @@ function build(options) {
     }
     const png = readNamed(path.join(options.source, 'web', 'png.js'));
     const checks = readNamed(path.join(options.source, 'web', 'scene_checks.js'));
-    checkOut(options.out, inputs);
+    // The headers only for the C++ in WebAssembly: a build without it writes no file but --out.
+    const scratch = options.wasm ? fs.mkdtempSync(path.join(os.tmpdir(), 'microrelief-three-contracts-')) : null;
+    try {
+        const contracts = generateContracts(options.source, scratch, readNamed);
+        checkOut(options.out, inputs);
+        writeGenerated(options, {library, pyramid, glue, png, checks, contracts}, manifest, readNamed);
+    } finally {
+        if (scratch) fs.rmSync(scratch, {recursive: true, force: true});
+    }
+    console.log(`${kProgram}: ${path.relative(process.cwd(), options.out) || '.'}: ${kOutputs.join(', ')}${options.wasm ? '' : ' (the WebAssembly ones stubs)'}`);
+}
 
+// generated/, whole: the texts made above, the WebAssembly (or its stubs) and the manifest.
+function writeGenerated(options, {library, pyramid, glue, png, checks, contracts}, manifest, readNamed) {
     const header = '// Generated by microrelief-three scripts/build.mjs from the microrelief repository; do not edit.\n';
     const from = (file) => header.replace('; do not edit', ` (${file}); do not edit`);
     replaceFolder(options.out, (folder) => {
@@ -492,10 +516,11 @@ function build(options) {
             `export const library = ${JSON.stringify(library)};\n` +
             `export const pyramid = ${JSON.stringify(pyramid, null, 1)};\n` +
             `export const glue = ${JSON.stringify(glue, null, 1)};\n`);
+        writeText(folder, options.out, 'relief_layout.js', contracts.layout);
         writeText(folder, options.out, 'png.js', from('web/png.js') + png);
         writeText(folder, options.out, 'scene_checks.js', from('web/scene_checks.js') + checks);
         if (options.wasm) {
-            buildWasm(options, folder, readNamed);
+            buildWasm(options, folder, readNamed, contracts.include);
         } else {
             writeText(folder, options.out, 'pyramid_wasm.js', header +
                 'export default async function createPyramidModule() {\n' +
@@ -511,7 +536,6 @@ function build(options) {
         const made = fs.readdirSync(folder).sort().join(', ');
         if (made !== [...kOutputs].sort().join(', ')) throw new BuildError(kRuntime, `${printable(options.out)}: made ${made}, not the ${kOutputs.length} files expected`);
     });
-    console.log(`${kProgram}: ${path.relative(process.cwd(), options.out) || '.'}: ${kOutputs.join(', ')}${options.wasm ? '' : ' (the WebAssembly ones stubs)'}`);
 }
 
 try {

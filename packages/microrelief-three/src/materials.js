@@ -12,10 +12,8 @@
 import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
+import {defineValue, kBaseKindValues, kInterpolationValues, kShadowModeValues} from '../generated/relief_layout.js';
 import {requireSupportedThree} from './three_version.js';
-
-const kBases = {plane: 0, cylinder: 1, ellipsoid: 2};
-const kInterpolations = {bilinear: 0, biquadratic: 1};
 
 // three's #include <chunk>, resolved as three resolves them (so that what follows can see
 // the whole shader).
@@ -99,11 +97,13 @@ export function patchVertex(vertexShader) {
     return source.slice(0, end) + '\tmrClip = gl_Position;\n' + source.slice(end);
 }
 
-// The defines every relief material shares: the base and the last level.
-function reliefDefines(relief) {
+// The defines every relief program shares (the materials here, override.js's equivalents,
+// the picks' program): the base and the last level, each value by its name from the
+// library's own table (variants.glsl, through the generated relief_layout.js).
+export function reliefDefines(relief) {
     return {
-        MICRORELIEF_BASE: String(kBases[relief.base.kind]),
-        MICRORELIEF_INTERPOLATION: String(kInterpolations[relief.interpolation]),
+        MICRORELIEF_BASE: defineValue(kBaseKindValues, relief.base.kind, 'MICRORELIEF_BASE'),
+        MICRORELIEF_INTERPOLATION: defineValue(kInterpolationValues, relief.interpolation, 'MICRORELIEF_INTERPOLATION'),
     };
 }
 
@@ -300,7 +300,7 @@ export class ReliefShadingMaterial extends THREE.ShaderMaterial {
             ...shader.defines,
             ...reliefDefines(this.relief),
             MICRORELIEF_ALBEDO_MAP: this.uniforms.albedoMap.value ? '1' : '0',
-            MICRORELIEF_SHADOWS: this.shadows === 'hard' ? '1' : '0',
+            MICRORELIEF_SHADOWS: defineValue(kShadowModeValues, this.shadows, 'MICRORELIEF_SHADOWS'),
         };
         shader.uniforms = {...shader.uniforms, ...reliefUniformSlots(this, this.relief)};
     }

@@ -16,9 +16,7 @@
 // other Mesh*Materials) draw the box as before.
 import * as THREE from 'three';
 
-import {patchFragment, patchVertex} from './materials.js';
-
-const kBases = {plane: 0, cylinder: 1, ellipsoid: 2};
+import {patchFragment, patchVertex, reliefDefines} from './materials.js';
 
 // The override materials the relief answers with its traced surface.
 export function answersOverride(material) {
@@ -40,8 +38,7 @@ function makeEquivalent(relief, override) {
     patched.onBeforeCompile = (shader) => {
         shader.defines = {
             ...shader.defines,
-            MICRORELIEF_BASE: String(kBases[relief.base.kind]),
-            MICRORELIEF_INTERPOLATION: relief.interpolation === 'biquadratic' ? '1' : '0',
+            ...reliefDefines(relief),
             MR_SHADOW_PASS: '',  // no lighting at the hit: an exhausted ray draws nothing
         };
         Object.assign(shader.uniforms, relief.uniforms);

@@ -14,7 +14,7 @@
 import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
-import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial} from './materials.js';
+import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, reliefDefines} from './materials.js';
 import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
 import {requireSupportedThree} from './three_version.js';
 import {traceOnTwin, twinLoaded, twinUnavailable} from './twin.js';
@@ -488,8 +488,7 @@ export class Relief extends THREE.Mesh {
         u.mrRayRows = {value: rows};
         const key = `${this.base.kind}:${this.interpolation}`;
         if (material.userData.key !== key) {
-            material.defines = {MICRORELIEF_BASE: String({plane: 0, cylinder: 1, ellipsoid: 2}[this.base.kind]),
-                                MICRORELIEF_INTERPOLATION: this.interpolation === 'biquadratic' ? '1' : '0'};
+            material.defines = reliefDefines(this);
             material.userData.key = key;
             material.needsUpdate = true;
         }

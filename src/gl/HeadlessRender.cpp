@@ -43,58 +43,41 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
 void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,
                                     const BaseShape& base, Interpolation interpolation,
                                     glm::ivec2 tiles) {
-    upload(map, source, tiles, [&] {
-        renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles);
-    });
+    upload([&] { renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles); });
 }
 
 void HeadlessRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
                                     const BaseShape& base, Interpolation interpolation,
                                     glm::ivec2 tiles) {
     if (!map) throwRuntime("HeadlessRenderer::setHeightMap: no map");
-    upload(*map, source, tiles, [&] {
-        renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles);
-    });
+    upload([&] { renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles); });
 }
 
 void HeadlessRenderer::setPyramidPages(std::shared_ptr<const PyramidPages> pages,
                                        const std::string& source, const BaseShape& base,
                                        Interpolation interpolation) {
     context_.makeCurrent();
-    const glm::ivec2 size(pages->mapWidth(), pages->mapHeight());
-    const float largest = pages->largestSample();
     renderer_->setPyramidPages(std::move(pages), source, base, interpolation);
     if (animated_) animated_->forgetMap();
-    source_ = source;
-    mapWidth_ = size.x;
-    mapHeight_ = size.y;
-    maxHeight_ = largest;
 }
 
 void HeadlessRenderer::setHeights(const RenderJob& job, const HeightMap& map,
                                   const std::string& source) {
     // With the job's method: the last job's may not run on this relief's base or tiles.
-    upload(map, source, job.tiles,
-           [&] { renderer_->apply(job, job.method, &map, source, kBuild); });
+    upload([&] { renderer_->apply(job, job.method, &map, source, kBuild); });
 }
 
 void HeadlessRenderer::setHeights(const RenderJob& job, std::shared_ptr<const HeightMap> map,
                                   const std::string& source) {
     if (!map) throwRuntime("HeadlessRenderer::setHeights: no map");
     // Shared: a map read through pages keeps this one rather than a copy.
-    upload(*map, source, job.tiles,
-           [&] { renderer_->apply(job, job.method, map, source, kBuild); });
+    upload([&] { renderer_->apply(job, job.method, map, source, kBuild); });
 }
 
-void HeadlessRenderer::upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
-                              const std::function<void()>& set) {
+void HeadlessRenderer::upload(const std::function<void()>& set) {
     context_.makeCurrent();
     set();
     if (animated_) animated_->forgetMap();
-    source_ = source;
-    mapWidth_ = map.width * tiles.x;  // the whole, tiles included
-    mapHeight_ = map.height * tiles.y;
-    maxHeight_ = map.maxValue();
 }
 
 std::size_t HeadlessRenderer::gpuBytes() const {
@@ -113,12 +96,13 @@ void HeadlessRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& s
 HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     checkHeightScale(job.heightScale);
     checkPictureSize(job.width, job.height);
-    if (mapWidth_ == 0) throwRuntime("HeadlessRenderer::render: no height map");
+    const ReliefMap* map = renderer_->map().get();
+    if (!map) throwRuntime("HeadlessRenderer::render: no height map");
     {
         // Before any GL work: the float range and precision the shader needs.
         const CameraFrame frame = resolveCamera(job.camera, job.width, job.height, 1.0);
-        checkFloatLimits({mapWidth_, mapHeight_, maxHeight_}, job.heightScale, job.base, job.model,
-                         job.camera, frame, source_);
+        checkFloatLimits({map->size().x, map->size().y, map->highestSample()}, job.heightScale,
+                         job.base, job.model, job.camera, frame, map->source());
     }
     context_.makeCurrent();
     const GL& gl = context_.gl();
@@ -132,19 +116,15 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     renderer_->apply(job, job.method);  // each program compiled once, then looked up
     if (animated_ && animated_->evaluated() && animated_->name() != job.animation) {
         animated_->restore(*renderer_);  // another field, or the map's own heights again
-        maxHeight_ = renderer_->maxHeight();
     }
     if (!job.animation.empty()) {
         if (!animated_ || animated_->name() != job.animation)
             animated_ = std::make_unique<AnimatedHeights>(gl, shaderDirectory(), job.animation);
         animated_->evaluate(*renderer_, job.time);
-        maxHeight_ = renderer_->maxHeight();
     }
-    const CameraFrame camera = resolveCamera(
-        job.camera, job.width, job.height,
-        sceneRadius(reliefExtent(mapWidth_, mapHeight_, maxHeight_, job.heightScale, job.base),
-                    job.model.objectToWorld()),
-        sceneCentre(job.model.objectToWorld()));
+    // Against the map's highest sample as uploaded, or its pyramid's top once edited
+    // (ReliefMap::highestSample: an animation's heights are written on the GPU).
+    const CameraFrame camera = renderer_->resolveCamera(job.camera, job.width, job.height);
 
     // Tiles no larger than the GL's viewport and renderbuffer limits, and kDefaultTileSide
     // (a 4096 x 4096 target holds 640 MB of attachments; llvmpipe fails to complete one of
@@ -196,7 +176,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     gl.Finish();
     const GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)
-        throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + source_);
+        throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + map->source());
     return result;
 }
 
@@ -221,7 +201,7 @@ void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
         if (wanted.empty()) break;
         if (!pager->load(wanted, kept)) {
             if (part.width == 1 && part.height == 1) {
-                throwBadInput(source_ +
+                throwBadInput(renderer_->map()->source() +
                               ": one pixel's ray needs more pages than the memory "
                               "budget holds (" +
                               std::to_string(pager->capacity()) + " pages of " +

@@ -42,11 +42,12 @@ ReliefTextures uploadReliefMap(ReliefPrograms& programs, const HeightMap& map,
 }
 
 ReliefMap::ReliefMap(std::shared_ptr<ReliefPrograms> programs, ReliefTextures textures,
-                     std::string source, glm::ivec2 wholeSize)
+                     std::string source, float highestSample)
     : programs_(std::move(programs)),
       textures_(std::move(textures)),
       source_(std::move(source)),
-      traversalBudget_(microrelief::traversalBudget(wholeSize.x, wholeSize.y)) {}
+      traversalBudget_(microrelief::traversalBudget(size().x, size().y)),
+      highestSample_(highestSample) {}
 
 std::shared_ptr<ReliefMap> ReliefMap::upload(std::shared_ptr<ReliefPrograms> programs,
                                              const HeightMap& heights,
@@ -55,10 +56,9 @@ std::shared_ptr<ReliefMap> ReliefMap::upload(std::shared_ptr<ReliefPrograms> pro
                                              const MapUploadSettings& settings) {
     if (!programs) throwRuntime("ReliefMap::upload: no programs");
     ReliefTextures textures = uploadReliefMap(*programs, heights, std::move(shared), source, settings);
-    const glm::ivec2 whole = glm::ivec2(heights.width, heights.height) * settings.tiles;
     // The constructor is private (maps are shared, never copied): make_shared cannot call it.
     return std::shared_ptr<ReliefMap>(
-        new ReliefMap(std::move(programs), std::move(textures), source, whole));
+        new ReliefMap(std::move(programs), std::move(textures), source, heights.maxValue()));
 }
 
 std::shared_ptr<ReliefMap> ReliefMap::fromPages(std::shared_ptr<ReliefPrograms> programs,
@@ -66,10 +66,10 @@ std::shared_ptr<ReliefMap> ReliefMap::fromPages(std::shared_ptr<ReliefPrograms> 
                                                 const std::string& source,
                                                 const PagingSettings& paging) {
     if (!programs || !pages) throwRuntime("ReliefMap::fromPages: no programs or no pages");
-    const glm::ivec2 whole(pages->mapWidth(), pages->mapHeight());
+    const float highest = pages->largestSample();
     ReliefTextures textures(programs->gl(), std::move(pages), source, paging);
     return std::shared_ptr<ReliefMap>(
-        new ReliefMap(std::move(programs), std::move(textures), source, whole));
+        new ReliefMap(std::move(programs), std::move(textures), source, highest));
 }
 
 void ReliefMap::prepareFor(Method method) {
@@ -96,6 +96,7 @@ void ReliefMap::heightsChanged(const std::vector<TexelRect>& changed) {
         programs_->pyramidBuilder().update(textures_, changed);
     }
     textures_.dropConeMaps();  // stale: built again when next asked for
+    highestSample_ = maxHeight();
     ++generation_;
 }
 
@@ -107,6 +108,7 @@ void ReliefMap::heightsReplaced() {
         programs_->pyramidBuilder().build(textures_);
     }
     textures_.dropConeMaps();
+    highestSample_ = maxHeight();
     ++generation_;
 }
 

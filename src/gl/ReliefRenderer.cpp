@@ -495,4 +495,21 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.DrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, nullptr);
 }
 
+CameraFrame ReliefRenderer::resolveCamera(const Camera& camera, int width, int height) const {
+    if (!map_) throwRuntime("ReliefRenderer::resolveCamera: no map");
+    const glm::ivec2 size = map_->size();
+    const ReliefExtent extent =
+        reliefExtent(size.x, size.y, map_->highestSample(), heightScale_, base_);
+    return microrelief::resolveCamera(camera, width, height,
+                                      sceneRadius(extent, model_.objectToWorld()),
+                                      sceneCentre(model_.objectToWorld()));
+}
+
+CameraFrame ReliefRenderer::draw(const ViewDesc& view, const PictureTile& tile) {
+    setMethod(view.method, countFetches_);  // a program compiled once, then looked up
+    const CameraFrame camera = resolveCamera(view.camera, view.width, view.height);
+    draw(camera, view.shading, tile);
+    return camera;
+}
+
 }  // namespace microrelief

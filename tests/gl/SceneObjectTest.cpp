@@ -497,6 +497,59 @@ TEST_F(SceneObject, ReliefsOfOneMapShareItsTextures) {
     EXPECT_NE(draw(*sharers[1]).position, before.position);  // the edit shows
 }
 
+// A relief drawn from the scene value alone (ReliefRenderer::draw(ViewDesc)): the camera
+// it resolves against its own relief and map (the map's size and highest sample, the base,
+// the height scale, the model) is the one HeadlessRenderer resolves, near and far planes
+// and all, and the one resolved by hand from the heights' largest value; the picture is
+// renderHeadless's, bit for bit, with the view's method: on a moved, scaled plane with the
+// cone peer, and on a sphere.
+TEST_F(SceneObject, AViewDrawsAsHeadlessRendersIt) {
+    HeightMap map = synth::cobbles(48, 40, 7);
+    // A largest value no half holds: the pyramid's top (rounded up) is not it.
+    for (float& h : map.samples) h *= 0.91234567f;
+    RenderJob plane;
+    plane.width = 48;
+    plane.height = 40;
+    plane.heightScale = 0.15f;
+    plane.model = skewModel(false);
+    plane.camera = test::orbitCamera(40.0, 25.0, 2.5, plane.model.pointToWorld({0.0, 0.0, 0.0}));
+    plane.method.method = Method::Cone;
+    RenderJob sphere = plane;
+    sphere.base = BaseShape::sphere(0.45);
+    sphere.model = ModelTransform();
+    sphere.camera = test::orbitCamera(30.0, 60.0, 1.9);
+    sphere.method.method = Method::Multilevel;
+    sphere.shading.shadows = ShadowMode::Hard;
+    for (const RenderJob* job : {&plane, &sphere}) {
+        const char* what = job == &plane ? "plane, cone" : "sphere, hard shadows";
+        const HeadlessResult expected = renderHeadless(test::glContext(), map, "cobbles", *job);
+        ReliefRenderer renderer(gl(), shaderDirectory());
+        renderer.apply(*job, &map, "cobbles");  // the view's method: draw's to set
+        OffscreenTarget target(gl(), job->width, job->height);
+        target.clear(job->background);
+        CameraFrame camera;
+        {
+            const gl::SrgbWrites srgb(gl());  // as HeadlessRenderer draws
+            camera = renderer.draw(static_cast<const ViewDesc&>(*job));
+        }
+        EXPECT_EQ(camera.viewProjection, expected.camera.viewProjection) << what;
+        EXPECT_EQ(camera.eye, expected.camera.eye) << what;
+        // Both against the map's exact highest sample, not its pyramid's rounded top.
+        const glm::dmat4 toWorld = job->model.objectToWorld();
+        const CameraFrame byHand = resolveCamera(
+            job->camera, job->width, job->height,
+            sceneRadius(reliefExtent(map, job->heightScale, job->base), toWorld),
+            sceneCentre(toWorld));
+        EXPECT_EQ(camera.viewProjection, byHand.viewProjection) << what;
+        const RenderedFrame frame = target.read(camera.eye);
+        EXPECT_EQ(frame.color, expected.frame.color) << what;
+        EXPECT_EQ(frame.position, expected.frame.position) << what;
+        int hits = 0;  // the relief is in the picture
+        for (std::size_t k = 3; k < frame.position.size(); k += 4) hits += frame.position[k] > 0.5f;
+        EXPECT_GT(hits, 200) << what;
+    }
+}
+
 // The window depth written for each convention: OpenGL's [-1, 1] clip depth and
 // glClipControl's [0, 1], each standard and reversed (near at 1, a GREATER test, cleared to
 // 0). Unprojecting a hit pixel's depth through the projection gives back the AOV's world

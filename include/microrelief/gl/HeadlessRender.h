@@ -108,9 +108,9 @@ private:
     // Its maps' pyramids: on the GPU, or on the CPU where the GPU's build fails for a reason
     // other than the map (gl/ReliefMap.h).
     static constexpr PyramidBuild kBuild = PyramidBuild::GpuElseCpu;
-    // The map set on the renderer by `set` (with kBuild), then what this keeps of it.
-    void upload(const HeightMap& map, const std::string& source, glm::ivec2 tiles,
-                const std::function<void()>& set);
+    // The map set on the renderer by `set` (with kBuild); the map's facts are its
+    // (ReliefMap: size, highest sample, name).
+    void upload(const std::function<void()>& set);
 
     // One tile of the picture into `result`; a paged map's drawn until it is exact.
     void drawTile(const RenderJob& job, const CameraFrame& camera, const PictureTile& part,
@@ -119,9 +119,6 @@ private:
     GlContext& context_;
     std::optional<ReliefRenderer> renderer_;
     std::optional<OffscreenTarget> target_;
-    std::string source_;
-    int mapWidth_ = 0, mapHeight_ = 0;  // 0: no map yet
-    double maxHeight_ = 0.0;
     std::unique_ptr<AnimatedHeights> animated_;
     int maxTileSide_ = kDefaultTileSide;
 };

@@ -88,8 +88,16 @@ public:
     glm::ivec2 tiles() const { return textures_.tiles(); }
     bool paged() const { return textures_.paged() != nullptr; }
     PagedPyramid* pager() { return textures_.paged(); }
-    // The surface's maximum, map units: the pyramid's top texel.
+    // The surface's maximum, map units: the pyramid's top texel (a bound, rounded up to a
+    // half's precision).
     float maxHeight() const { return textures_.shape().maxHeight; }
+    // The map's facts a camera and the float checks are resolved with (core/scene/
+    // FloatLimits.h, sceneRadius), held here alone: the whole's size in texels (tiles
+    // included), and its highest sample: exactly as uploaded (the heights' maxValue, a
+    // pyramid file's largestSample); after an edit on the GPU, whose samples nothing reads
+    // back, the pyramid's top (maxHeight).
+    glm::ivec2 size() const { return textures_.shape().size; }
+    float highestSample() const { return highestSample_; }
     // The most segments a ray's traversal may visit on a map of this size (the whole, tiles
     // included: core/trace/MultilevelTracer.h's traversalBudget).
     int traversalBudget() const { return traversalBudget_; }
@@ -115,13 +123,14 @@ public:
 
 private:
     ReliefMap(std::shared_ptr<ReliefPrograms> programs, ReliefTextures textures,
-              std::string source, glm::ivec2 wholeSize);
+              std::string source, float highestSample);
     void refuseIfPaged() const;
 
     std::shared_ptr<ReliefPrograms> programs_;  // its context's: the GL and the builder
     ReliefTextures textures_;
     std::string source_;
     int traversalBudget_ = 0;
+    float highestSample_ = 0.0f;
     std::uint64_t generation_ = 0;
 };
 

@@ -210,6 +210,17 @@ public:
     void draw(const CameraFrame& camera, const ShadingOptions& shading,
               const PictureTile& tile = {});
 
+    // The picture `view` describes, as draw() above draws it: the view's method set
+    // (setMethod), its camera resolved against this relief (resolveCamera), its shading.
+    // The background is the caller's (clear the framebuffer first). Returns the camera
+    // drawn, whose rays the hit positions are of.
+    CameraFrame draw(const ViewDesc& view, const PictureTile& tile = {});
+    // `camera` resolved for a width x height picture of this relief: an automatic distance
+    // and clip range from the relief's extent (its map's size and highest sample, its base
+    // and height scale) placed by its model, as every program resolves one. Throws
+    // Error(Runtime) before a map is set.
+    CameraFrame resolveCamera(const Camera& camera, int width, int height) const;
+
     int maxIterations() const { return map_ ? map_->traversalBudget() : 0; }
     const RebuildCounts& rebuilds() const { return rebuilds_; }
 

@@ -107,8 +107,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     }
     timer_ = std::make_unique<GpuTimer>(gl);
     watcher_ = std::make_unique<ShaderWatcher>(shaders);
-    editor_ = std::make_unique<HeightEditor>(gl, shaders);
-    footprint_ = std::make_unique<BrushFootprint>(gl, shaders);
+    sculptTool_ = std::make_unique<SculptTool>(gl, shaders);
     if (!options.scene.job.animation.empty()) {
         animated_ = std::make_unique<AnimatedHeights>(gl, shaders, options.scene.job.animation);
         evaluateAnimation();  // at --time: the first frame drawn shows it
@@ -494,7 +493,7 @@ void ViewerApp::sculpt() {
                           ImGui::IsMouseDown(ImGuiMouseButton_Left) && !ImGui::GetIO().KeyAlt &&
                           !ImGui::GetIO().KeyShift;
     if (!painting) {
-        if (strokeActive_) endStroke();
+        if (sculptTool_->strokeActive()) endStroke();
         return;
     }
     if (!state_.pick || state_.pick->face != HitFace::Top) return;  // not over the surface
@@ -502,66 +501,38 @@ void ViewerApp::sculpt() {
 }
 
 void ViewerApp::dabAt(const glm::dvec2& mapPoint, bool invert) {
-    Brush brush = state_.brush;
-    if (!strokeActive_) {
-        strokeActive_ = true;
-        strokeCounted_ = false;
-        flattenLevel_ =
-            static_cast<float>(map_->surface(mapPoint.x, mapPoint.y, state_.scene.job.base.wrapsU(),
-                                             state_.scene.job.interpolation));
-    }
-    brush.level = flattenLevel_;
-    if (invert && brush.mode == BrushMode::Raise)
-        brush.mode = BrushMode::Lower;
-    else if (invert && brush.mode == BrushMode::Lower)
-        brush.mode = BrushMode::Raise;
     try {
-        const std::vector<TexelRect> changed = editor_->dab(*renderer_, mapPoint, brush);
-        // A stroke is one of the map's states once it changes a sample (the editor drops
-        // one that changes none).
-        if (!changed.empty() && !strokeCounted_) {
-            strokeIds_.push_back(nextStrokeId_++);
-            strokeCounted_ = true;
-        }
-        mapEdited(changed);
+        mapEdited(sculptTool_->dab(*renderer_, *map_, state_.scene.job, mapPoint, state_.brush,
+                                   invert));
     } catch (const Error& e) {
         note(std::string("brush: ") + shown(e));
     }
 }
 
 void ViewerApp::endStroke() {
-    editor_->endStroke();
-    strokeActive_ = false;
-    state_.undoSteps = editor_->undoSteps();
-    if (options_.verbose && strokeCounted_)
+    const bool counted = sculptTool_->endStroke();
+    state_.undoSteps = sculptTool_->undoSteps();
+    if (options_.verbose && counted)
         note("stroke drawn: " + std::to_string(state_.undoSteps) + " to undo");
-    strokeCounted_ = false;
 }
 
 void ViewerApp::mapEdited(const std::vector<TexelRect>& changed) {
     if (changed.empty()) return;
-    const ReliefTextures& textures = *renderer_->textures();
-    for (const TexelRect& rect : changed) {
-        const std::vector<float> values = textures.readSamples(window_->gl(), rect);
-        for (int j = rect.y0; j < rect.y1; ++j)
-            std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(j - rect.y0) * rect.width(),
-                        rect.width(), &map_->at(rect.x0, j));
-    }
+    copyChangedSamples(window_->gl(), *renderer_->textures(), changed, *map_);
     picker_.mapChanged(map_, changed);
     mapMaxHeight_ = renderer_->maxHeight();
-    state_.undoSteps = editor_->undoSteps();
+    state_.undoSteps = sculptTool_->undoSteps();
     discardAsked_ = false;
     // Edited: not the state last saved or opened (undone back to it, it is that state).
-    state_.mapEdited = (strokeIds_.empty() ? 0 : strokeIds_.back()) != savedStrokeId_;
+    state_.mapEdited = sculptTool_->edited();
     quitWarned_ = false;
     ++mapGeneration_;
 }
 
 void ViewerApp::undo() {
-    if (strokeActive_) endStroke();
-    const std::vector<TexelRect> changed = editor_->undo(*renderer_);
+    if (sculptTool_->strokeActive()) endStroke();
+    const std::vector<TexelRect> changed = sculptTool_->undo(*renderer_);
     if (changed.empty()) return;
-    if (!strokeIds_.empty()) strokeIds_.pop_back();
     mapEdited(changed);
     note("undone: " + std::to_string(state_.undoSteps) + " stroke(s) left to undo");
 }
@@ -587,24 +558,17 @@ void ViewerApp::saveMap(const std::filesystem::path& file) {
         return;
     }
     state_.mapEdited = false;
-    savedStrokeId_ = strokeIds_.empty() ? 0 : strokeIds_.back();
+    sculptTool_->saved();
     note("saved the map to " + file.string());
 }
 
 void ViewerApp::runScript() {
     for (const ScriptedStroke& stroke : options_.strokes) {
-        Brush brush = state_.brush;
-        brush.mode = stroke.mode;
-        const glm::dvec2 size(map_->width, map_->height);
-        const glm::dvec2 from = stroke.from * size, to = stroke.to * size;
-        // Dabs a quarter of the radius apart along the stroke, as a hand's would fall.
-        const int dabs = std::max(
-            1, static_cast<int>(std::ceil(glm::length(to - from) / (0.25 * brush.radius))) + 1);
         const Brush saved = state_.brush;
-        state_.brush = brush;
-        for (int k = 0; k < dabs; ++k)
-            dabAt(dabs == 1 ? from : glm::mix(from, to, static_cast<double>(k) / (dabs - 1)),
-                  false);
+        state_.brush.mode = stroke.mode;
+        for (const glm::dvec2& point :
+             scriptedDabs(stroke, glm::dvec2(map_->width, map_->height), state_.brush.radius))
+            dabAt(point, false);
         state_.brush = saved;
         endStroke();
     }
@@ -630,18 +594,11 @@ void ViewerApp::evaluateAnimation() {
 void ViewerApp::drawFootprint() {
     if (!state_.sculpt || !sculptable() || !state_.pick || state_.pick->face != HitFace::Top)
         return;
-    const RenderJob& job = state_.scene.job;
     const glm::dvec2 centre = state_.pick->uv * glm::dvec2(map_->width, map_->height);
-    const std::vector<glm::vec3> ring =
-        footprintRing(*map_, job.base, job.interpolation, job.heightScale, job.model, centre,
-                      state_.brush.radius);
     const CameraFrame camera = cameraFrame();
     target_->bind();
     window_->gl().Viewport(0, 0, target_->width(), target_->height());
-    const bool lowering = state_.brush.mode == BrushMode::Lower;
-    footprint_->draw(
-        ring, glm::mat4(camera.viewProjection), glm::vec3(camera.eye),
-        lowering ? glm::vec4(0.3f, 0.6f, 1.0f, 1.0f) : glm::vec4(1.0f, 0.75f, 0.2f, 1.0f));
+    sculptTool_->drawFootprint(*map_, state_.scene.job, centre, state_.brush, camera);
 }
 
 void ViewerApp::renderView() {
@@ -829,11 +786,9 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
         note(std::string("cannot open: ") + shown(e));
         return;
     }
-    editor_->clear();
+    sculptTool_->clear();
     state_.undoSteps = 0;
     state_.mapEdited = false;
-    strokeIds_.clear();
-    savedStrokeId_ = 0;
     state_.savePath = (std::filesystem::path("out") /
                        (path.stem().string() + (ground_ ? "-edited.tif" : "-edited.exr")))
                           .string();

@@ -9,17 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "BrushFootprint.h"
 #include "CameraController.h"
 #include "FrameStats.h"
 #include "ImGuiLayer.h"
 #include "MapFile.h"
 #include "microrelief/core/trace/CpuRelief.h"
+#include "SculptTool.h"
 #include "ShaderWatcher.h"
 #include "ViewerOptions.h"
 #include "ViewerPanel.h"
 #include "microrelief/gl/AnimatedHeights.h"
-#include "microrelief/gl/HeightEditor.h"
 #include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/gl/ReliefRenderer.h"
 #include "microrelief/glfw/GlfwContext.h"
@@ -87,9 +86,9 @@ private:
     // --screenshot and --window-screenshot, after the last frame.
     void writeAutomationOutputs();
 
-    // Sculpting: a dab at the cursor while the left button paints, the stroke ended when it
-    // is let go; the samples a dab or an undo changed read back into the map's CPU mirror
-    // (map_), which the picker and the footprint use and "Save map" writes.
+    // Sculpting (SculptTool.h): a dab at the cursor while the left button paints, the stroke
+    // ended when it is let go; the samples a dab or an undo changed read back into the map's
+    // CPU mirror (map_), which the picker and the footprint use and "Save map" writes.
     void sculpt();
     // The brush paints an untiled map that is not animated (a tiled map's picks land on
     // the whole, the brush on one tile; an animated one's heights are the field's) nor read
@@ -177,8 +176,6 @@ private:
     double lastStatisticsTime_ = -1.0, lastFrameTime_ = 0.0;
     int framesToDraw_ = 0;  // frames to draw before waiting for events again
     std::optional<std::filesystem::path> droppedFile_;
-    bool strokeActive_ = false;
-    float flattenLevel_ = 0.0f;     // the height under a stroke's first dab
     int animatedFrames_ = 0;        // frames since the animation started (scripts: 1/30 s each)
     // Keys pressed since the last frame, with the modifiers held as each went down (read at
     // the frame, Ctrl may be up again: a quick Ctrl+Z within one slow frame).
@@ -188,11 +185,6 @@ private:
     std::vector<KeyPress> pressedKeys_;
     bool quitWarned_ = false;    // asked to quit with unsaved edits, told so
     bool discardAsked_ = false;  // asked to open a map over unsaved edits, told so
-    // The map's states: an id a stroke that changed it, the undoable ones in order; the
-    // state saved or opened (0: no stroke), which undoing back to is not an edit.
-    std::vector<int> strokeIds_;
-    int nextStrokeId_ = 1, savedStrokeId_ = 0;
-    bool strokeCounted_ = false;              // the stroke being drawn has its id
     std::vector<std::uint8_t> windowPixels_;  // --window-screenshot, RGB
     int windowPixelsWidth_ = 0, windowPixelsHeight_ = 0;
 
@@ -203,9 +195,8 @@ private:
     std::unique_ptr<OffscreenTarget> target_;
     std::unique_ptr<GpuTimer> timer_;
     std::unique_ptr<ShaderWatcher> watcher_;
-    std::unique_ptr<HeightEditor> editor_;
+    std::unique_ptr<SculptTool> sculptTool_;
     std::unique_ptr<AnimatedHeights> animated_;
-    std::unique_ptr<BrushFootprint> footprint_;
 };
 
 // Where the viewer reads and watches shaders: --shader-dir, else the source tree's

@@ -1,7 +1,8 @@
 // The parts of microrelief-viewer that need no window: the camera controller (never
 // flips, keeps the command line's camera exactly until the first rotation, reaches
 // grazing angles and the inside of the relief's box), "copy as command" read back by
-// the same flags, picking, and the shader folder watch.
+// the same flags, picking, the shader folder watch, and the sculpting's history (what
+// counts as an edit, what undo takes back) and scripted dabs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "CameraController.h"
 #include "MapFile.h"
 #include "ShaderWatcher.h"
+#include "StrokeHistory.h"
 #include "TestSupport.h"
 #include "ViewerOptions.h"
 #include "microrelief/core/Error.h"
@@ -340,6 +342,85 @@ TEST(MapFile, ADemsMapKeepsItsGroundAsAGeoTiffOrSaysItDoesNot) {
                   std::string::npos)
             << e.what();
     }
+}
+
+// The map's edit states (StrokeHistory.h), as the quit and open warnings read them: a
+// stroke that changed nothing is no state; undoing back to the state saved is not an edit,
+// and undoing past it is one again; another map forgets the strokes. Seen red: with
+// strokeChanged counting every dab (no once-per-stroke), and with edited() comparing to
+// "no strokes" instead of the state saved.
+TEST(StrokeHistory, AnEditIsADifferenceFromTheStateSaved) {
+    StrokeHistory history;
+    EXPECT_FALSE(history.edited());
+    history.startStroke();
+    EXPECT_TRUE(history.strokeActive());
+    EXPECT_FALSE(history.endStroke()) << "a stroke whose dabs changed nothing";
+    EXPECT_FALSE(history.strokeActive());
+    EXPECT_FALSE(history.edited());
+
+    history.startStroke();  // stroke 1: three dabs, one state
+    for (int dab = 0; dab < 3; ++dab) history.strokeChanged();
+    EXPECT_TRUE(history.endStroke());
+    EXPECT_TRUE(history.edited());
+    history.saved();
+    EXPECT_FALSE(history.edited());
+
+    history.startStroke();  // stroke 2, after the save
+    history.strokeChanged();
+    history.strokeChanged();
+    history.endStroke();
+    EXPECT_TRUE(history.edited());
+    history.undone();  // back to the state saved: one undo takes the whole stroke
+    EXPECT_FALSE(history.edited());
+    history.undone();  // before it: unsaved again
+    EXPECT_TRUE(history.edited());
+    history.undone();  // nothing more to take back
+    EXPECT_TRUE(history.edited());
+
+    history.clear();  // another map opened
+    EXPECT_FALSE(history.edited());
+    history.startStroke();
+    history.strokeChanged();
+    history.endStroke();
+    EXPECT_TRUE(history.edited()) << "a new stroke differs from the map opened";
+}
+
+// Ctrl swaps raise and lower only, and every dab of a stroke flattens towards one level.
+TEST(StrokeHistory, TheDabsBrushInvertsRaiseAndLowerOnly) {
+    Brush brush;
+    brush.radius = 5.0;
+    const struct {
+        BrushMode mode;
+        bool invert;
+        BrushMode painted;
+    } cases[] = {{BrushMode::Raise, false, BrushMode::Raise},
+                 {BrushMode::Raise, true, BrushMode::Lower},
+                 {BrushMode::Lower, true, BrushMode::Raise},
+                 {BrushMode::Smooth, true, BrushMode::Smooth},
+                 {BrushMode::Flatten, true, BrushMode::Flatten}};
+    for (const auto& c : cases) {
+        brush.mode = c.mode;
+        const Brush painted = strokeBrush(brush, 0.25f, c.invert);
+        EXPECT_EQ(painted.mode, c.painted) << brushModeName(c.mode) << " invert " << c.invert;
+        EXPECT_EQ(painted.level, 0.25f);
+        EXPECT_EQ(painted.radius, 5.0);
+    }
+}
+
+// A --stroke's dabs: from its start to its end in map texels, at most a quarter of the
+// radius apart; a stroke of no length is one dab.
+TEST(StrokeHistory, ScriptedDabsFallAQuarterOfTheRadiusApart) {
+    ScriptedStroke stroke;
+    stroke.from = {0.25, 0.5};
+    stroke.to = {0.75, 0.5};
+    const std::vector<glm::dvec2> dabs = scriptedDabs(stroke, {64.0, 32.0}, 8.0);
+    ASSERT_EQ(dabs.size(), 17u);  // 32 texels in steps of 2
+    EXPECT_EQ(dabs.front(), glm::dvec2(16.0, 16.0));
+    EXPECT_EQ(dabs.back(), glm::dvec2(48.0, 16.0));
+    for (std::size_t k = 1; k < dabs.size(); ++k)
+        EXPECT_LE(glm::length(dabs[k] - dabs[k - 1]), 2.0 + 1e-12) << k;
+    stroke.to = stroke.from;
+    EXPECT_EQ(scriptedDabs(stroke, {64.0, 32.0}, 8.0), (std::vector<glm::dvec2>{{16.0, 16.0}}));
 }
 
 }  // namespace

@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <glm/gtc/constants.hpp>
 
 #include "MapFile.h"
@@ -44,13 +43,6 @@ constexpr std::size_t kPagesPerFrame = 256;
 
 double now() {
     return glfwGetTime();
-}
-
-std::string timestamp() {
-    const std::time_t t = std::time(nullptr);
-    char text[32];
-    std::strftime(text, sizeof text, "%Y%m%d-%H%M%S", std::localtime(&t));
-    return text;
 }
 
 }  // namespace
@@ -114,9 +106,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     }
     state_.sculpt = options.sculpt && sculptable();
     state_.brush = options.brush;
-    state_.savePath = (std::filesystem::path("out") /
-                       (file.stem().string() + (ground_ ? "-edited.tif" : "-edited.exr")))
-                          .string();
+    state_.savePath = editedMapPath(file, ground_.has_value());
     if (albedo) renderer_->setAlbedo(&*albedo, albedoFile->string());
     state_.albedoName = albedoFile ? albedoFile->filename().string() : "";
 
@@ -235,23 +225,14 @@ void ViewerApp::writeAutomationOutputs() {
     if (error != GL_NO_ERROR) throwRuntime("GL error " + gl::enumHex(error) + " while rendering");
     if (options_.saveMap) saveMap(*options_.saveMap);  // throws: a failed save fails the run
     ImageWriteBatch batch;                             // both files or neither
-    std::vector<std::uint8_t> view;
     if (options_.screenshot && pagesWanted_) {
         logWarning(options_.screenshot->string() +
                    ": not the exact picture: its view reads more pages at once than --memory "
                    "holds (drawn from coarser bounds in parts)");
     }
-    if (options_.screenshot) {
-        const RenderedFrame picture = target_->read(drawnEye_);
-        view = rgbFromRgba(picture.color, picture.width, picture.height, false);
-        const ImageData image{picture.width, picture.height, 3, PixelType::UInt8, view.data(), {}};
-        batch.write(*options_.screenshot, image);
-    }
-    if (options_.windowScreenshot) {
-        const ImageData image{windowPixelsWidth_, windowPixelsHeight_,  3,
-                              PixelType::UInt8,   windowPixels_.data(), {}};
-        batch.write(*options_.windowScreenshot, image);
-    }
+    const RgbPicture view = options_.screenshot ? viewPicture(*target_, drawnEye_) : RgbPicture{};
+    if (options_.screenshot) batch.write(*options_.screenshot, view.image());
+    if (options_.windowScreenshot) batch.write(*options_.windowScreenshot, windowPixels_.image());
     batch.commit();
 }
 
@@ -708,21 +689,8 @@ void ViewerApp::present(bool captureWindow) {
     gl.Viewport(0, 0, fb.x, fb.y);
 
     imgui_->render();
-    if (captureWindow) windowPixels_ = readWindow(windowPixelsWidth_, windowPixelsHeight_);
+    if (captureWindow) windowPixels_ = windowPicture(gl, fb);
     glfwSwapBuffers(window_->window());
-}
-
-std::vector<std::uint8_t> ViewerApp::readWindow(int& width, int& height) const {
-    const GL& gl = window_->gl();
-    const glm::ivec2 fb = framebufferSize();
-    width = fb.x;
-    height = fb.y;
-    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4);
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl.ReadBuffer(GL_BACK);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    return rgbFromRgba(rgba, width, height, true);
 }
 
 void ViewerApp::applyRelief(const std::shared_ptr<HeightMap>& heights, const std::string& source) {
@@ -789,9 +757,7 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
     sculptTool_->clear();
     state_.undoSteps = 0;
     state_.mapEdited = false;
-    state_.savePath = (std::filesystem::path("out") /
-                       (path.stem().string() + (ground_ ? "-edited.tif" : "-edited.exr")))
-                          .string();
+    state_.savePath = editedMapPath(path, ground_.has_value());
     if (animated_) {
         animated_->forgetMap();
         evaluateAnimation();
@@ -893,17 +859,9 @@ void ViewerApp::setBase(bool frame) {
 }
 
 void ViewerApp::takeScreenshot() {
-    std::filesystem::path file = std::filesystem::path("out") / ("viewer-" + timestamp() + ".png");
-    for (int n = 2; std::filesystem::exists(file); ++n) {
-        file = std::filesystem::path("out") /
-               ("viewer-" + timestamp() + "-" + std::to_string(n) + ".png");
-    }
+    const std::filesystem::path file = screenshotPath("out", localTimestamp());
     try {
-        const RenderedFrame picture = target_->read(drawnEye_);
-        const std::vector<std::uint8_t> rgb =
-            rgbFromRgba(picture.color, picture.width, picture.height, false);
-        writeImageAtomically(file,
-                             {picture.width, picture.height, 3, PixelType::UInt8, rgb.data(), {}});
+        writeImageAtomically(file, viewPicture(*target_, drawnEye_).image());
         note("wrote " + file.string());
     } catch (const Error& e) {
         note(std::string("screenshot failed: ") + shown(e));

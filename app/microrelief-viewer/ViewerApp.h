@@ -14,8 +14,10 @@
 #include "ImGuiLayer.h"
 #include "MapFile.h"
 #include "microrelief/core/trace/CpuRelief.h"
+#include "OutputFiles.h"
 #include "SculptTool.h"
 #include "ShaderWatcher.h"
+#include "ViewCapture.h"
 #include "ViewerOptions.h"
 #include "ViewerPanel.h"
 #include "microrelief/gl/AnimatedHeights.h"
@@ -147,7 +149,6 @@ private:
     ViewRect viewRect() const;
     CameraFrame cameraFrame() const;
     RenderKey renderKey() const;
-    std::vector<std::uint8_t> readWindow(int& width, int& height) const;
 
     ViewerOptions options_;
     ViewerState state_;
@@ -185,8 +186,7 @@ private:
     std::vector<KeyPress> pressedKeys_;
     bool quitWarned_ = false;    // asked to quit with unsaved edits, told so
     bool discardAsked_ = false;  // asked to open a map over unsaved edits, told so
-    std::vector<std::uint8_t> windowPixels_;  // --window-screenshot, RGB
-    int windowPixelsWidth_ = 0, windowPixelsHeight_ = 0;
+    RgbPicture windowPixels_;  // --window-screenshot
 
     // GL owners after the window: they are destroyed first, while its context lives.
     std::unique_ptr<GlfwContext> window_;

@@ -1,8 +1,9 @@
 // The parts of microrelief-viewer that need no window: the camera controller (never
 // flips, keeps the command line's camera exactly until the first rotation, reaches
 // grazing angles and the inside of the relief's box), "copy as command" read back by
-// the same flags, picking, the shader folder watch, and the sculpting's history (what
-// counts as an edit, what undo takes back) and scripted dabs.
+// the same flags, picking, the shader folder watch, the sculpting's history (what
+// counts as an edit, what undo takes back) and scripted dabs, and the names of the files
+// the viewer writes.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 
 #include "CameraController.h"
 #include "MapFile.h"
+#include "OutputFiles.h"
 #include "ShaderWatcher.h"
 #include "StrokeHistory.h"
 #include "TestSupport.h"
@@ -421,6 +423,26 @@ TEST(StrokeHistory, ScriptedDabsFallAQuarterOfTheRadiusApart) {
         EXPECT_LE(glm::length(dabs[k] - dabs[k - 1]), 2.0 + 1e-12) << k;
     stroke.to = stroke.from;
     EXPECT_EQ(scriptedDabs(stroke, {64.0, 32.0}, 8.0), (std::vector<glm::dvec2>{{16.0, 16.0}}));
+}
+
+// A screenshot never writes over a file there (a second P within the same second gets -2,
+// then -3); an edited map saves beside the others in out/, as a GeoTIFF where it is a DEM's.
+// Seen red: with one try at -2 instead of counting on (the third over the second), and
+// with the .tif for every map.
+TEST(OutputFiles, AScreenshotNeverOverwritesAndAnEditedMapKeepsItsGround) {
+    test::ScratchDir dir;
+    EXPECT_EQ(screenshotPath(dir.path(), "20260101-120000"), dir / "viewer-20260101-120000.png");
+    test::writeBytes(dir / "viewer-20260101-120000.png", {'p'});
+    EXPECT_EQ(screenshotPath(dir.path(), "20260101-120000"),
+              dir / "viewer-20260101-120000-2.png");
+    test::writeBytes(dir / "viewer-20260101-120000-2.png", {'p'});
+    EXPECT_EQ(screenshotPath(dir.path(), "20260101-120000"),
+              dir / "viewer-20260101-120000-3.png");
+    EXPECT_EQ(localTimestamp().size(), 15u) << localTimestamp();
+
+    const std::filesystem::path out = "out";
+    EXPECT_EQ(editedMapPath("maps/crater.png", false), (out / "crater-edited.exr").string());
+    EXPECT_EQ(editedMapPath("/data/dem.tif", true), (out / "dem-edited.tif").string());
 }
 
 }  // namespace

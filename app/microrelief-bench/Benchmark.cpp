@@ -207,9 +207,10 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
     const bool gpu = !softwareRenderer(context.renderer());
 
     for (const BenchMap& m : maps) {
-        const ReliefDesc relief{.base = m.base,
-                                .interpolation = m.interpolation,
-                                .heightScale = static_cast<float>(m.heightScale)};
+        ReliefDesc relief;
+        relief.base = m.base;
+        relief.interpolation = m.interpolation;
+        relief.heightScale = static_cast<float>(m.heightScale);
         renderer.apply(relief, MethodSettings{}, m.map.get(), m.name);  // runs on every base
         const int mapSize = std::max(m.map->width, m.map->height);
         const std::map<Method, MethodCost> costs =

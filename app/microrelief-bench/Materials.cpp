@@ -60,7 +60,7 @@ std::vector<MaterialRow> runMaterialsBenchmark(GlContext& context, int width, in
     // Shadows: the bench's relief at 45 degrees, lights high and low.
     for (int size : quick ? std::vector<int>{256} : std::vector<int>{256, 4096}) {
         const HeightMap map = benchRelief(size);
-        renderer.apply(ReliefDesc{.heightScale = 0.1f}, MethodSettings{}, &map, "cobbles");
+        renderer.apply(ReliefDesc{}, MethodSettings{}, &map, "cobbles");  // height scale 0.1
         const ReliefExtent extent = reliefExtent(map, 0.1);
         const CameraFrame camera =
             resolveCamera(viewCamera(45, {}, extent.topHeight), width, height, sceneRadius(extent));
@@ -100,7 +100,10 @@ std::vector<MaterialRow> runMaterialsBenchmark(GlContext& context, int width, in
     const int counts[] = {1, 2, 16, 256};
     std::vector<double> ms;
     for (int n : counts) {
-        renderer.apply(ReliefDesc{.tiles = {n, n}, .heightScale = 0.1f / n}, &tile, "cobbles");
+        ReliefDesc tiled;
+        tiled.tiles = {n, n};
+        tiled.heightScale = 0.1f / n;
+        renderer.apply(tiled, &tile, "cobbles");
         const ReliefExtent extent =
             reliefExtent(256 * n, 256 * n, tile.maxValue(), 0.1 / n, BaseShape{});
         const CameraFrame camera =

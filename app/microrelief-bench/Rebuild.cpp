@@ -28,8 +28,8 @@ void runRebuild(GlContext& context, const RebuildOptions& options,
         ReliefRenderer renderer(gl, shaderDirectory());
 
         // The path the pyramid took before: built on the CPU, uploaded whole.
-        row.cpuBuildMs = wallMs(gl, [&] { renderer.setHeightMap(map, "relief"); });
-        renderer.setHeightMap(map, "relief", {}, Interpolation::Bilinear, PyramidBuild::Gpu);
+        row.cpuBuildMs = wallMs(gl, [&] { renderer.apply(ReliefDesc{}, &map, "relief"); });
+        renderer.apply(ReliefDesc{}, &map, "relief", PyramidBuild::Gpu);
         row.bytesPerTexel =
             static_cast<double>(renderer.textures()->gpuBytes(gl)) / (static_cast<double>(n) * n);
 

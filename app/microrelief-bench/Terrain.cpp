@@ -93,7 +93,7 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
             path == TerrainPath::Whole ? PagingSettings::Mode::Never : PagingSettings::Mode::Always;
         paging.memoryBytes = options.memoryBytes;
         renderer.setPaging(paging);
-        renderer.setHeightMap(small, "relief");
+        renderer.setHeights(RenderJob{}, small, "relief");
         for (int degrees : options.viewDegrees) {
             RenderJob job;
             job.width = options.width;
@@ -111,7 +111,7 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
             renderer.render(job);
             renderer.setCountFetches(false);
         }
-        renderer.setHeightMap(tiny, "relief");
+        renderer.setHeights(RenderJob{}, tiny, "relief");
     }
 
     // One size's rows of one path, its map prepared; `map` where it is held in memory, else
@@ -197,7 +197,7 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
             row.processMiB = residentMiB();
             report(row);
         }
-        renderer.setHeightMap(tiny, "relief");
+        renderer.setHeights(RenderJob{}, tiny, "relief");
     };
 
     for (int n : options.mapSizes) {
@@ -212,7 +212,7 @@ void runTerrainBenchmark(GlContext& context, const TerrainOptions& options,
         for (const TerrainPath path : {TerrainPath::Whole, TerrainPath::Paged}) {
             if (!map || (path == TerrainPath::Whole && n > maxTexture)) continue;
             HeadlessRenderer& renderer = renderers.at(path);
-            const double prepareMs = wallMs(gl, [&] { renderer.setHeightMap(map, "relief"); });
+            const double prepareMs = wallMs(gl, [&] { renderer.setHeights(RenderJob{}, map, "relief"); });
             measure(renderer, path, n, prepareMs, 0.0, map->maxValue(), &*map, nullptr, references);
         }
 

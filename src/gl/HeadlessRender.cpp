@@ -40,25 +40,23 @@ HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& met
     renderer_->setPaging(PagingSettings{});  // Auto: it draws a paged map until it is exact
 }
 
-void HeadlessRenderer::setHeightMap(const HeightMap& map, const std::string& source,
-                                    const BaseShape& base, Interpolation interpolation,
-                                    glm::ivec2 tiles) {
-    upload([&] { renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles); });
-}
-
-void HeadlessRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
-                                    const BaseShape& base, Interpolation interpolation,
-                                    glm::ivec2 tiles) {
-    if (!map) throwRuntime("HeadlessRenderer::setHeightMap: no map");
-    upload([&] { renderer_->setHeightMap(map, source, base, interpolation, kBuild, tiles); });
-}
-
 void HeadlessRenderer::setPyramidPages(std::shared_ptr<const PyramidPages> pages,
                                        const std::string& source, const BaseShape& base,
                                        Interpolation interpolation) {
-    context_.makeCurrent();
-    renderer_->setPyramidPages(std::move(pages), source, base, interpolation);
-    if (animated_) animated_->forgetMap();
+    if (!pages) throwRuntime("HeadlessRenderer::setPyramidPages: no pages");
+    validateBaseShape(base);
+    if (base.wrapsU() != pages->wrapsU()) {
+        throwBadInput(source + ": its pyramid was built for " +
+                      (pages->wrapsU() ? "a curved base" : "the plane") + ", not this base");
+    }
+    ReliefDesc relief;
+    relief.base = base;
+    relief.interpolation = interpolation;
+    upload([&] {
+        renderer_->apply(relief, ReliefMap::fromPages(renderer_->programs(), std::move(pages),
+                                                      source, renderer_->paging()));
+    });
+    fromPages_ = true;  // of no relief's heights: any relief set with heights builds its own
 }
 
 void HeadlessRenderer::setHeights(const RenderJob& job, const HeightMap& map,
@@ -77,6 +75,7 @@ void HeadlessRenderer::setHeights(const RenderJob& job, std::shared_ptr<const He
 void HeadlessRenderer::upload(const std::function<void()>& set) {
     context_.makeCurrent();
     set();
+    fromPages_ = false;
     if (animated_) animated_->forgetMap();
 }
 
@@ -85,7 +84,7 @@ std::size_t HeadlessRenderer::gpuBytes() const {
 }
 
 bool HeadlessRenderer::needsHeights(const ReliefDesc& relief) const {
-    return renderer_->needsHeights(relief);
+    return fromPages_ || renderer_->needsHeights(relief);
 }
 
 void HeadlessRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {
@@ -251,18 +250,16 @@ HeadlessResult renderMap(GlContext& context, const HeightMap& map, const std::st
 HeadlessResult renderHeadless(GlContext& context, const HeightMap& map, const std::string& source,
                               const RenderJob& job, const AlbedoImage* albedo,
                               const PagingSettings& paging) {
-    return renderMap(context, map, source, job, albedo, paging, [&](HeadlessRenderer& renderer) {
-        renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
-    });
+    return renderMap(context, map, source, job, albedo, paging,
+                     [&](HeadlessRenderer& renderer) { renderer.setHeights(job, map, source); });
 }
 
 HeadlessResult renderHeadless(GlContext& context, std::shared_ptr<const HeightMap> map,
                               const std::string& source, const RenderJob& job,
                               const AlbedoImage* albedo, const PagingSettings& paging) {
     if (!map) throwRuntime("renderHeadless: no map");
-    return renderMap(context, *map, source, job, albedo, paging, [&](HeadlessRenderer& renderer) {
-        renderer.setHeightMap(map, source, job.base, job.interpolation, job.tiles);
-    });
+    return renderMap(context, *map, source, job, albedo, paging,
+                     [&](HeadlessRenderer& renderer) { renderer.setHeights(job, map, source); });
 }
 
 }  // namespace microrelief

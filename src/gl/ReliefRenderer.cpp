@@ -221,19 +221,6 @@ void ReliefRenderer::applyOf(const ReliefDesc& relief, const MethodSettings& met
     setMethod(method, countFetches_);
 }
 
-void ReliefRenderer::setHeightMap(const HeightMap& map, const std::string& source,
-                                  const BaseShape& base, Interpolation interpolation,
-                                  PyramidBuild build, glm::ivec2 tiles) {
-    setHeightMapOf(map, nullptr, source, base, interpolation, build, tiles);
-}
-
-void ReliefRenderer::setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
-                                  const BaseShape& base, Interpolation interpolation,
-                                  PyramidBuild build, glm::ivec2 tiles) {
-    if (!map) throwRuntime("ReliefRenderer::setHeightMap: no map");
-    setHeightMapOf(*map, map, source, base, interpolation, build, tiles);
-}
-
 void ReliefRenderer::setHeightMapOf(const HeightMap& map, std::shared_ptr<const HeightMap> shared,
                                     const std::string& source, const BaseShape& base,
                                     Interpolation interpolation, PyramidBuild build,
@@ -290,24 +277,6 @@ void ReliefRenderer::useMap(std::shared_ptr<ReliefMap> map, const BaseShape& bas
     base_ = base;
     interpolation_ = interpolation;
     uploadBox();
-}
-
-void ReliefRenderer::setPyramidPages(std::shared_ptr<const PyramidPages> pages,
-                                     const std::string& source, const BaseShape& base,
-                                     Interpolation interpolation) {
-    validateBaseShape(base);
-    if (base.wrapsU() != pages->wrapsU()) {
-        throwBadInput(source + ": its pyramid was built for " +
-                      (pages->wrapsU() ? "a curved base" : "the plane") + ", not this base");
-    }
-    checkMethodSupportsBase(method_.method, base);
-    checkPagedMap(method_.method, {1, 1}, source);
-    program(configFor(method_, countFetches_, base.kind, interpolation, true, ShadowMode::Off,
-                      false, false, true));
-    useMap(ReliefMap::fromPages(programs_, std::move(pages), source, paging_), base,
-           interpolation);
-    ++rebuilds_.pyramids;
-    applied_.reset();
 }
 
 void ReliefRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& source) {

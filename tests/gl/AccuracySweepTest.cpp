@@ -34,9 +34,7 @@ void checkSweepCase(const test::SweepMap& m, bool glsl330) {
     context.makeCurrent();
     const GL& gl = context.gl();
     ReliefRenderer renderer(gl, shaderDirectory());
-    renderer.apply(ReliefDesc{.base = m.base,
-                              .interpolation = m.interpolation,
-                              .heightScale = static_cast<float>(m.heightScale)},
+    renderer.apply(test::relief(m.base, m.interpolation, static_cast<float>(m.heightScale)),
                    m.map.get(), m.name);
     renderer.setGlsl330(glsl330);
     OffscreenTarget target(gl, test::kSweepSize, test::kSweepSize);

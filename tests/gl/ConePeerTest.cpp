@@ -73,7 +73,7 @@ TEST_F(ConePeers, ConeIsExact) {
     for (const auto& [map, name] : {std::pair{&bundled, std::string("bundled")},
                                     std::pair{&rough, std::string("noise 128")}}) {
         HeadlessRenderer renderer(test::glContext());
-        renderer.setHeightMap(*map, name);
+        renderer.setHeights(RenderJob{}, *map, name);
         for (const ConeView& view : coneViews()) {
             const std::string where = name + ", " + view.name;
             const test::Accuracy a = render(renderer, *map, where, Method::Cone, view.camera);
@@ -95,7 +95,9 @@ TEST_F(ConePeers, ConeIsExactOnTheBiquadraticLevel) {
     for (const test::ConeCase& c : test::coneCases()) maps.emplace_back(c.map, c.name);
     for (const auto& [map, name] : maps) {
         HeadlessRenderer renderer(test::glContext());
-        renderer.setHeightMap(map, name, BaseShape::plane(), Interpolation::Biquadratic);
+        RenderJob biquadratic;
+        biquadratic.interpolation = Interpolation::Biquadratic;
+        renderer.setHeights(biquadratic, map, name);
         for (const ConeView& view : coneViews()) {
             const std::string where = name + ", biquadratic, " + view.name;
             const test::Accuracy a = render(renderer, map, where, Method::Cone, view.camera, 15,
@@ -113,7 +115,7 @@ TEST_F(ConePeers, ConeIsExactOnTheBiquadraticLevel) {
 TEST_F(ConePeers, ConeFollowsHeightsThatChange) {
     const HeightMap map = synth::valueNoise(64, 64, 4.0, 2, 3);
     HeadlessRenderer renderer(test::glContext());
-    renderer.setHeightMap(map, "noise 64");
+    renderer.setHeights(RenderJob{}, map, "noise 64");
     for (const char* field : {"", "ripples"}) {
         RenderJob job;
         job.camera = test::orbitCamera(35.0, 40.0, 1.2, {0.0, 0.02, 0.0});
@@ -141,7 +143,7 @@ TEST_F(ConePeers, ConeFollowsHeightsThatChange) {
 TEST_F(ConePeers, RcsmRunsAndReportsItsError) {
     const HeightMap bundled = synth::cobbles(128, 128, 7);
     HeadlessRenderer renderer(test::glContext());
-    renderer.setHeightMap(bundled, "cobbles 128");
+    renderer.setHeights(RenderJob{}, bundled, "cobbles 128");
     for (const ConeView& view : coneViews()) {
         for (int steps : {15, 60}) {
             const std::string where =

@@ -107,10 +107,8 @@ TEST_F(Sculpting, HitsAfterStrokesMatchTheReferenceOfTheEditedMap) {
         OffscreenTarget target(gl(), 96, 96);
         ReliefRenderer renderer(gl(), shaderDirectory());
         const HeightMap cobbles = synth::cobbles(72, 56, 3);
-        renderer.apply(ReliefDesc{.base = c.base,
-                                  .interpolation = c.interpolation,
-                                  .heightScale = heightScale},
-                       &cobbles, "cobbles", PyramidBuild::Gpu);
+        renderer.apply(test::relief(c.base, c.interpolation, heightScale), &cobbles, "cobbles",
+                       PyramidBuild::Gpu);
         HeightEditor editor(gl(), shaderDirectory());
         sculpt(editor, renderer, {72.0, 56.0});
         const HeightMap edited = renderer.textures()->readSamples(gl());
@@ -137,8 +135,8 @@ TEST_F(Sculpting, HitsAfterStrokesMatchTheReferenceOfTheEditedMap) {
 TEST_F(Sculpting, UndoReturnsTheExactPreviousMapStrokeByStroke) {
     for (const BaseShape& base : {BaseShape::plane(), BaseShape::cylinder()}) {
         ReliefRenderer renderer(gl(), shaderDirectory());
-        renderer.setHeightMap(synth::whiteNoise(45, 31, 8), "noise", base, Interpolation::Bilinear,
-                              PyramidBuild::Gpu);
+        const HeightMap noise = synth::whiteNoise(45, 31, 8);
+        renderer.apply(test::relief(base), &noise, "noise", PyramidBuild::Gpu);
         HeightEditor editor(gl(), shaderDirectory());
         std::vector<HeightMap> before;
         const Brush brushes[] = {{BrushMode::Raise, 6.0, 0.5f},
@@ -169,7 +167,7 @@ TEST_F(Sculpting, UndoReturnsTheExactPreviousMapStrokeByStroke) {
 TEST_F(Sculpting, EachBrushDoesWhatItSays) {
     ReliefRenderer renderer(gl(), shaderDirectory());
     const HeightMap flat = synth::flat(40, 30, 0.5f);
-    renderer.setHeightMap(flat, "flat", {}, Interpolation::Bilinear, PyramidBuild::Gpu);
+    renderer.apply(ReliefDesc{}, &flat, "flat", PyramidBuild::Gpu);
     HeightEditor editor(gl(), shaderDirectory());
     const glm::dvec2 centre(20.5, 15.5);  // sample (20, 15)'s centre: the falloff is 1 there
 
@@ -200,8 +198,7 @@ TEST_F(Sculpting, EachBrushDoesWhatItSays) {
     // Across a cylinder's seam: a dab at X = 1 reaches columns W - 2 and W - 1 as it
     // reaches 2 and 3, at the same distances.
     ReliefRenderer column(gl(), shaderDirectory());
-    column.setHeightMap(flat, "flat", BaseShape::cylinder(), Interpolation::Bilinear,
-                        PyramidBuild::Gpu);
+    column.apply(test::relief(BaseShape::cylinder()), &flat, "flat", PyramidBuild::Gpu);
     const std::vector<TexelRect> changed =
         editor.dab(column, {1.0, 15.5}, {BrushMode::Raise, 3.0, 0.4f});
     EXPECT_EQ(changed.size(), 2u);
@@ -225,7 +222,7 @@ TEST_F(Sculpting, AnimatedReliefIsRebuiltEveryFrameAndTracedExactly) {
             const std::string what = name + " on the " + baseName(base);
             OffscreenTarget target(gl(), 80, 80);
             ReliefRenderer renderer(gl(), shaderDirectory());
-            renderer.setHeightMap(map, "cobbles", base, Interpolation::Bilinear, PyramidBuild::Gpu);
+            renderer.apply(test::relief(base), &map, "cobbles", PyramidBuild::Gpu);
             AnimatedHeights animated(gl(), shaderDirectory(), name);
             std::vector<HeightMap> moments;
             for (const double time : {0.0, 1.3, 4.9}) {

@@ -111,10 +111,7 @@ TEST_F(PagedMap, PagesKeepASharedMapRatherThanACopy) {
         renderer.setHeights(job, map, "shared");
         EXPECT_EQ(map.use_count(), 2) << "setHeights: the pages hold the caller's map";
         expectSamePicture(renderer.render(job), copied, "setHeights");
-        renderer.setHeightMap(map, "shared");
-        EXPECT_EQ(map.use_count(), 2) << "setHeightMap: the pages hold the caller's map";
         EXPECT_THROW(renderer.setHeights(job, std::shared_ptr<const HeightMap>(), "none"), Error);
-        EXPECT_THROW(renderer.setHeightMap(std::shared_ptr<const HeightMap>(), "none"), Error);
         EXPECT_THROW(
             renderHeadless(test::glContext(), std::shared_ptr<const HeightMap>(), "none", job),
             Error);
@@ -290,7 +287,7 @@ TEST_F(PagedMap, ASingleDrawRendererRefusesAMapPastTheTextureLimit) {
     const HeightMap wide(maxSize + 1, 2, 0.5f);
     ReliefRenderer renderer(gl(), shaderDirectory());
     try {
-        renderer.setHeightMap(wide, "wide.png");
+        renderer.apply(ReliefDesc{}, &wide, "wide.png");
         FAIL() << "a single-draw renderer paged the map";
     } catch (const Error& e) {
         EXPECT_EQ(e.kind(), ErrorKind::BadInput);
@@ -298,7 +295,7 @@ TEST_F(PagedMap, ASingleDrawRendererRefusesAMapPastTheTextureLimit) {
     }
     EXPECT_EQ(renderer.pager(), nullptr);
     renderer.setPaging(PagingSettings{});  // Auto
-    renderer.setHeightMap(wide, "wide.png");
+    renderer.apply(ReliefDesc{}, &wide, "wide.png");
     EXPECT_NE(renderer.pager(), nullptr);
 }
 

@@ -278,8 +278,7 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwin) {
           std::pair{Interpolation::Biquadratic, 45.0},
           std::pair{Interpolation::Biquadratic, 10.0}}) {
         ReliefRenderer renderer(context.gl(), shaderDirectory());
-        renderer.apply(ReliefDesc{.interpolation = interpolation, .heightScale = heightScale},
-                       &map, "cobbles");
+        renderer.apply(test::relief({}, interpolation, heightScale), &map, "cobbles");
         renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
         const MultilevelTracer twin(map, heightScale, BaseShape::plane(), interpolation);
         const CameraFrame camera = resolveCamera(
@@ -336,8 +335,7 @@ TEST_F(Render, Glsl330ReadsEachSampleAloneAndWalksTheSameSegments) {
         resolveCamera(test::orbitCamera(45.0, 40.0, 1.3, {0.0, 0.04, 0.0}), size, size, 2.0);
     for (Interpolation interpolation : {Interpolation::Bilinear, Interpolation::Biquadratic}) {
         ReliefRenderer renderer(context.gl(), shaderDirectory());
-        renderer.apply(ReliefDesc{.interpolation = interpolation, .heightScale = 0.1f}, &map,
-                       "cobbles");
+        renderer.apply(test::relief({}, interpolation), &map, "cobbles");
         renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
         RenderedFrame frames[2];
         for (bool glsl330 : {false, true}) {
@@ -384,9 +382,7 @@ TEST_F(Render, ShaderWalksTheSameSegmentsAsTheTwinOnCurvedBases) {
           std::pair{BaseShape::cylinder(0.3, 0.8), Interpolation::Biquadratic},
           std::pair{BaseShape::sphere(0.4), Interpolation::Biquadratic}}) {
         ReliefRenderer renderer(context.gl(), shaderDirectory());
-        renderer.apply(
-            ReliefDesc{.base = base, .interpolation = interpolation, .heightScale = heightScale},
-            &map, "cobbles");
+        renderer.apply(test::relief(base, interpolation, heightScale), &map, "cobbles");
         renderer.setMethod(MethodSettings{}, /*countFetches=*/true);
         const MultilevelTracer twin(map, heightScale, base, interpolation);
         const std::string name = baseName(base) + " " + interpolationName(interpolation);

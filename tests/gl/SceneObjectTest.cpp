@@ -387,20 +387,20 @@ TEST_F(SceneObject, RenderersOfOneContextShareItsPrograms) {
     };
     const auto programs = std::make_shared<ReliefPrograms>(gl(), shaderDirectory());
     ReliefRenderer first(programs);
-    first.setHeightMap(cobbles, "cobbles");
+    first.apply(ReliefDesc{}, &cobbles, "cobbles");
     (void)draw(first);
     const int afterFirst = programs->compiled();
     EXPECT_EQ(first.rebuilds().programs, afterFirst);
     EXPECT_GE(afterFirst, 1);
 
     ReliefRenderer second(programs);
-    second.setHeightMap(other, "other");
+    second.apply(ReliefDesc{}, &other, "other");
     const RenderedFrame shared = draw(second);
     EXPECT_EQ(second.rebuilds().programs, 0);
     EXPECT_EQ(programs->compiled(), afterFirst);
 
     ReliefRenderer alone(gl(), shaderDirectory());
-    alone.setHeightMap(other, "other");
+    alone.apply(ReliefDesc{}, &other, "other");
     const RenderedFrame own = draw(alone);
     EXPECT_GE(alone.rebuilds().programs, 1);
     EXPECT_EQ(shared.color, own.color);
@@ -561,7 +561,7 @@ TEST_F(SceneObject, DepthRoundTripsUnderEveryConvention) {
     const bool clipControl = gl().ClipControl != nullptr;
     if (!clipControl) std::printf("    no glClipControl here: [0, 1] depth not tried\n");
     ReliefRenderer renderer(gl(), shaderDirectory());
-    renderer.setHeightMap(map, "cobbles");
+    renderer.apply(ReliefDesc{}, &map, "cobbles");
     const CameraFrame base = resolveCamera(test::orbitCamera(35.0, 40.0, 1.6), 64, 64, 1.0);
     OffscreenTarget target(gl(), 64, 64);
     std::optional<RenderedFrame> first;
@@ -694,7 +694,7 @@ TEST_F(SceneObject, DrawLeavesTheGlStateAsItFoundIt) {
     const HeightMap map = synth::cobbles(32, 32, 5);
     OffscreenTarget target(g, 32, 32);
     ReliefRenderer renderer(g, shaderDirectory());
-    renderer.setHeightMap(map, "cobbles");
+    renderer.apply(ReliefDesc{}, &map, "cobbles");
     target.clear(glm::vec3(0.0f));  // binds the target: the one change the caller asked for
     renderer.draw(resolveCamera(test::orbitCamera(40.0, 30.0, 1.8), 32, 32, 1.0), ShadingOptions{});
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);

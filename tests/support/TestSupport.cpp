@@ -157,6 +157,16 @@ void expectOneLineFailure(const RunResult& r, const std::string& program, int st
         << "expected '" << mentions << "' in: " << r.err;
 }
 
+ReliefDesc relief(const BaseShape& base, Interpolation interpolation, float heightScale,
+                  glm::ivec2 tiles) {
+    ReliefDesc r;
+    r.base = base;
+    r.interpolation = interpolation;
+    r.heightScale = heightScale;
+    r.tiles = tiles;
+    return r;
+}
+
 Camera orbitCamera(double elevationDeg, double azimuthDeg, double distance, glm::dvec3 target,
                    double fovyDeg) {
     const double e = glm::radians(elevationDeg), a = glm::radians(azimuthDeg);

@@ -14,6 +14,7 @@
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/io/ImageFile.h"
 #include "microrelief/core/scene/Camera.h"
+#include "microrelief/core/scene/Scene.h"
 #include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/core/trace/Accuracy.h"
 
@@ -130,6 +131,11 @@ std::string keepForInspection(const std::string& folder, const std::string& name
 bool missingBackendAllowed(Backend backend);
 // The line a test prints for a missing backend: allowed (skipped) or not (failing).
 std::string missingBackendMessage(Backend backend);
+
+// A relief over `base` with `interpolation`, `heightScale` and `tiles`, the rest as
+// ReliefDesc has it (designated initializers would have GCC warn of every member left out).
+ReliefDesc relief(const BaseShape& base = {}, Interpolation interpolation = Interpolation::Bilinear,
+                  float heightScale = 0.1f, glm::ivec2 tiles = {1, 1});
 
 // A camera on a sphere around the origin: `elevationDeg` above the base plane,
 // `azimuthDeg` around y from +x towards +z, looking at `target`.

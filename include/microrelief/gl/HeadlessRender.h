@@ -46,43 +46,33 @@ struct HeadlessResult {
 
 // Pictures of one map at a time, keeping what they share from one to the next: the
 // programs (each method compiled once), the map's textures and max pyramid (built
-// again only by setHeightMap) and the framebuffer (made again only for another size).
+// again only by setHeights or setPyramidPages) and the framebuffer (made again only for another size).
 // Its GL objects belong to `context`: it must not outlive it.
 class HeadlessRenderer {
 public:
     // Compiles `method`'s program first. Throws Error.
     explicit HeadlessRenderer(GlContext& context, const MethodSettings& method = {});
 
-    // Uploads the map and builds its pyramid for `base` (wrapped in u on a curved base), on
-    // the GPU (gl/PyramidBuilder.h; on the CPU where the GL cannot render into R16F, and
-    // for a map tiled `tiles` times, whose bounds the GPU builder does not make);
-    // `source` names it in error messages. A job may then take another size of that base,
-    // another curved base or last level; between the plane and a curved base, or for other
-    // tiles, set the map again.
-    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
-                      Interpolation interpolation = Interpolation::Bilinear,
-                      glm::ivec2 tiles = {1, 1});
-    // The same for a map the caller shares: read through pages, the pages keep it rather
-    // than a copy (ReliefRenderer::setHeightMap).
-    void setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
-                      const BaseShape& base = {},
-                      Interpolation interpolation = Interpolation::Bilinear,
-                      glm::ivec2 tiles = {1, 1});
-    // The same for a map whose samples and pyramid `pages` keeps (ReliefRenderer::
-    // setPyramidPages): read through pages.
-    void setPyramidPages(std::shared_ptr<const PyramidPages> pages, const std::string& source,
-                         const BaseShape& base = {},
-                         Interpolation interpolation = Interpolation::Bilinear);
-    // The same, for the relief of `job` with its method (ReliefRenderer::apply): `map`
-    // holds the heights its map source names (loaded by the caller). Then needsHeights says
-    // whether another relief needs heights of its own: no map yet, or one set for another
-    // pyramid (core/scene/Scene.h: samePyramid; after setHeightMap, always). A caller loads
-    // maps only when it does.
+    // The map of the relief of `job`, with its method (ReliefRenderer::apply): `map` holds
+    // the heights its map source names (loaded by the caller), `source` names it in error
+    // messages. Its pyramid is built on the GPU (gl/PyramidBuilder.h; on the CPU where the
+    // GL cannot render into R16F, and for a tiled map, whose bounds the GPU builder does not
+    // make). A job may then take another size of that base, another curved base or last
+    // level; between the plane and a curved base, or for other tiles, set the map again.
+    // needsHeights says whether another relief needs heights of its own: no map yet, or one
+    // set for another pyramid (core/scene/Scene.h: samePyramid; after setPyramidPages,
+    // always). A caller loads maps only when it does.
     void setHeights(const RenderJob& job, const HeightMap& map, const std::string& source);
     // The same for a map the caller shares: read through pages, the pages keep it rather
     // than a copy (a camera path over a map past GL_MAX_TEXTURE_SIZE).
     void setHeights(const RenderJob& job, std::shared_ptr<const HeightMap> map,
                     const std::string& source);
+    // A map whose samples and pyramid `pages` keeps (a pyramid file, io/PyramidFile.h;
+    // ReliefMap::fromPages): read through pages, laid over `base` (Error(BadInput) naming
+    // `source` where the pyramid was built for other addressing).
+    void setPyramidPages(std::shared_ptr<const PyramidPages> pages, const std::string& source,
+                         const BaseShape& base = {},
+                         Interpolation interpolation = Interpolation::Bilinear);
     bool needsHeights(const ReliefDesc& relief) const;
     // What has been built so far (gl/ReliefRenderer.h): render() of another job builds
     // only what the job changed.
@@ -91,7 +81,7 @@ public:
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
     // Renders `job` of the current map. Throws Error.
     HeadlessResult render(const RenderJob& job);
-    // When setHeightMap / setHeights read a map through pages (ReliefRenderer::setPaging;
+    // When setHeights reads a map through pages (ReliefRenderer::setPaging;
     // by default Auto: maps larger than GL_MAX_TEXTURE_SIZE).
     void setPaging(const PagingSettings& paging) { renderer_->setPaging(paging); }
     // The largest tile a picture is drawn in, pixels a side (kDefaultTileSide; the GL's
@@ -120,6 +110,7 @@ private:
     std::optional<ReliefRenderer> renderer_;
     std::optional<OffscreenTarget> target_;
     std::unique_ptr<AnimatedHeights> animated_;
+    bool fromPages_ = false;  // the map set is a pyramid file's (setPyramidPages)
     int maxTileSide_ = kDefaultTileSide;
 };
 // Throws Error(BadInput) for a picture size beyond the limits above.

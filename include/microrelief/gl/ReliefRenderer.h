@@ -43,7 +43,7 @@ struct PictureTile {
 };
 
 // What a renderer has built so far, for tests and tools that hold it to rebuilding only what
-// changed: max pyramids built whole (setHeightMap, heightsReplaced), programs compiled for
+// changed: max pyramids built whole (apply with heights, heightsReplaced), programs compiled for
 // it (not those another renderer sharing its ReliefPrograms compiled first), albedo
 // textures uploaded.
 struct RebuildCounts {
@@ -69,12 +69,18 @@ public:
     // relief's heights, because no pyramid was built for a relief yet, or the one built is
     // of other heights, addressing or tiles (samePyramid with the relief applied last).
     bool needsHeights(const ReliefDesc& relief) const;
-    // Applies `relief`, rebuilding only what it changes (rebuilds() counts): with `heights`
-    // (its map, named `source` in messages) the pyramid is built of them (setHeightMap);
-    // without, the one built is kept, and must serve the relief's addressing and tiles
-    // (else Error(Runtime)). Then the base, the last level, the height scale and the model.
-    // The albedo and an animation are the caller's: they need files, a time. Throws as
-    // setHeightMap does, for a method that does not run on the relief's base.
+    // Applies `relief`, rebuilding only what it changes (rebuilds() counts). With `heights`
+    // (its map, named `source` in messages) a map of them is built (ReliefMap::upload):
+    // the max pyramid laid over the relief's base (wrapped in u on a curved base), which
+    // bounds the surface either last level makes of it, the map repeated relief.tiles times,
+    // uploaded with the samples; `build` says where the pyramid is made (the CPU, the GPU, or
+    // the GPU where that works: gl/ReliefMap.h holds the policy; a tiled map's on the CPU),
+    // and setPaging whether the map is read through pages. Without heights, the map built is
+    // kept, and must serve the relief's addressing and tiles (else Error(Runtime)). Then the
+    // base, the last level, the height scale and the model. The albedo and an animation are
+    // the caller's: they need files, a time. Throws Error(BadInput) naming `source` for a
+    // map past GL_MAX_TEXTURE_SIZE (not paged), and for a method that does not run on the
+    // relief's base or tiles; nothing changes then.
     void apply(const ReliefDesc& relief, const HeightMap* heights = nullptr,
                const std::string& source = {}, PyramidBuild build = PyramidBuild::Cpu);
     // A relief and the method that is to trace it, together: the pair is checked first (the
@@ -87,14 +93,16 @@ public:
                const HeightMap* heights = nullptr, const std::string& source = {},
                PyramidBuild build = PyramidBuild::Cpu);
     // Both for heights the caller shares: read through pages, the pages keep them rather
-    // than a copy (as setHeightMap's shared overload); null heights keep the pyramid built.
+    // than a copy (a map past GL_MAX_TEXTURE_SIZE: 1.6 GB at 20000 x 20000); null heights
+    // keep the map built.
     void apply(const ReliefDesc& relief, std::shared_ptr<const HeightMap> heights,
                const std::string& source = {}, PyramidBuild build = PyramidBuild::Cpu);
     void apply(const ReliefDesc& relief, const MethodSettings& method,
                std::shared_ptr<const HeightMap> heights, const std::string& source = {},
                PyramidBuild build = PyramidBuild::Cpu);
     // `relief` drawn over `map`, which the caller built of the relief's heights
-    // (ReliefMap::upload, fromPages) and may share with other renderers of its context:
+    // (ReliefMap::upload; fromPages for a pyramid file, read through pages whatever
+    // setPaging says) and may share with other renderers of its context:
     // nothing of the map is built again but what this renderer's method reads and the map
     // lacks (ReliefMap::prepareFor). The map's addressing must be the relief's (u wrapping
     // on a curved base, the tiles): else Error(Runtime), and nothing changes. Then the
@@ -103,36 +111,12 @@ public:
     // The map drawn (null before a map is set), for another renderer to share.
     const std::shared_ptr<ReliefMap>& map() const { return map_; }
 
-    // Builds the max pyramid of `map` laid over `base` (wrapped in u on a curved base),
-    // which bounds the surface either last level makes of it, the map repeated `tiles`
-    // times across the base (--tile), and uploads it with the samples; `interpolation` is
-    // the last level drawn. Throws Error(BadInput) when the map
-    // exceeds GL_MAX_TEXTURE_SIZE or the method does not run on that base or tiles;
-    // `source` names the map in that message.
-    // `build`: the pyramid made on the CPU and uploaded, or on the GPU from the samples
-    // (the same texels; see gl/PyramidBuilder.h), or on the GPU where that works
-    // (gl/ReliefMap.h holds the policy). A tiled map's is made on the CPU.
-    void setHeightMap(const HeightMap& map, const std::string& source, const BaseShape& base = {},
-                      Interpolation interpolation = Interpolation::Bilinear,
-                      PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
-    // The same for a map the caller shares: read through pages, the pages keep this map
-    // rather than a copy of it (a map past GL_MAX_TEXTURE_SIZE: 1.6 GB at 20000 x 20000).
-    void setHeightMap(std::shared_ptr<const HeightMap> map, const std::string& source,
-                      const BaseShape& base = {},
-                      Interpolation interpolation = Interpolation::Bilinear,
-                      PyramidBuild build = PyramidBuild::Cpu, glm::ivec2 tiles = {1, 1});
-    // The same for a map whose samples and pyramid `pages` keeps (a pyramid file,
-    // io/PyramidFile.h): always read through pages, whatever setPaging says but its budget
-    // and page side; untiled.
-    void setPyramidPages(std::shared_ptr<const PyramidPages> pages, const std::string& source,
-                         const BaseShape& base = {},
-                         Interpolation interpolation = Interpolation::Bilinear);
     glm::ivec2 tiles() const { return map_ ? map_->tiles() : glm::ivec2(1, 1); }
-    // When setHeightMap reads a map through pages (gl/PagedPyramid.h), and how: by default
+    // When apply() reads heights through pages (gl/PagedPyramid.h), and how: by default
     // never (Mode::Never: a map larger than GL_MAX_TEXTURE_SIZE is refused), since a paged
     // map's draw is exact only when repeated until its pager wants nothing
     // (PagedPyramid::takeWanted, load), as HeadlessRenderer repeats it. For the next
-    // setHeightMap.
+    // map built; its budget and page side for ReliefMap::fromPages too.
     void setPaging(const PagingSettings& paging) { paging_ = paging; }
     const PagingSettings& paging() const { return paging_; }
     // The pager of the map set, where it is paged; else null.
@@ -140,7 +124,7 @@ public:
     bool paged() const { return map_ && map_->paged(); }
 
     // A map that changes on the GPU (sculpting, animation). The map's textures, for a pass
-    // of the caller's that draws into the samples (null before setHeightMap).
+    // of the caller's that draws into the samples (null before a map is set).
     ReliefTextures* textures() { return map_ ? &map_->textures() : nullptr; }
     const ReliefTextures* textures() const { return map_ ? &map_->textures() : nullptr; }
     // After the caller changed the samples inside `changed` (map texels): the map's
@@ -155,7 +139,7 @@ public:
     // The GPU pyramid builder this renderer uses (its ReliefPrograms'), made on first use.
     PyramidBuilder& pyramidBuilder() { return programs_->pyramidBuilder(); }
     const std::shared_ptr<ReliefPrograms>& programs() const { return programs_; }
-    // The base and the last level applied last (apply, setHeightMap).
+    // The base and the last level applied last.
     const BaseShape& base() const { return base_; }
     Interpolation interpolation() const { return interpolation_; }
 
@@ -229,7 +213,8 @@ private:
                                  Interpolation interpolation, bool frontFaces, ShadowMode shadows,
                                  bool albedoMap, bool tiled, bool paged) const;
     bool tiled() const { return tiles() != glm::ivec2(1, 1); }
-    // setHeightMap's work; `shared`, where not null, is `map`, shared by the caller.
+    // A map of `map` built (ReliefMap::upload) and drawn with `base` and `interpolation`;
+    // `shared`, where not null, is `map`, shared by the caller.
     void setHeightMapOf(const HeightMap& map, std::shared_ptr<const HeightMap> shared,
                         const std::string& source, const BaseShape& base,
                         Interpolation interpolation, PyramidBuild build, glm::ivec2 tiles);

@@ -25,6 +25,7 @@
 #include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/GlslConstants.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/ReliefTextures.h"
@@ -773,7 +774,8 @@ void main() {
     outWrapped = vec4(float(mr_wrapIndex(i, n)), float(i), float(n), 1.0);
 }
 )";
-    const std::string macros = "#version 330 core\n#define MICRORELIEF_BASE 1\n";
+    const std::string macros = "#version 330 core\n#define MICRORELIEF_BASE " +
+                               std::to_string(glsl::kBaseKindCylinder) + "\n";  // u wraps
     const gl::Shader vertex =
         gl::compileShader(g, GL_VERTEX_SHADER, {kFullScreenTriangle, {}, "330 core"});
     const gl::Shader fragment =

@@ -36,10 +36,6 @@ constexpr int kLogLines = 8;
 constexpr double kStatisticsInterval = 0.25;
 // Fly speed, world units a second (the map spans 1); Shift and Ctrl scale it.
 constexpr double kFlySpeed = 0.25;
-// Pages a frame loads at most for a paged map's view (gl/PagedPyramid.h): 64 MiB of
-// 256^2 float pages, so that a view that wants thousands refines over frames, each
-// answering the mouse, instead of stalling.
-constexpr std::size_t kPagesPerFrame = 256;
 
 double now() {
     return glfwGetTime();
@@ -188,7 +184,7 @@ int ViewerApp::run() {
     bool laidOut = false;
     lastFrameTime_ = now();
     while (!glfwWindowShouldClose(window_->window()) &&
-           (options_.frames == 0 || drawn < options_.frames || refiningPages())) {
+           (options_.frames == 0 || drawn < options_.frames || pages_.refining())) {
         waitForEvents();
         if (framebufferSize().x == 0 || framebufferSize().y == 0) {
             glfwWaitEvents();  // minimised: nothing to draw until it comes back
@@ -207,7 +203,7 @@ int ViewerApp::run() {
         const double start = now();
         frame();
         // A paged map's view draws on past --frames until it is exact.
-        const bool last = drawn + 1 >= options_.frames && !refiningPages();
+        const bool last = drawn + 1 >= options_.frames && !pages_.refining();
         present(last && options_.windowScreenshot.has_value());
         state_.frameMilliseconds = (now() - start) * 1e3;
         ++drawn;
@@ -225,7 +221,7 @@ void ViewerApp::writeAutomationOutputs() {
     if (error != GL_NO_ERROR) throwRuntime("GL error " + gl::enumHex(error) + " while rendering");
     if (options_.saveMap) saveMap(*options_.saveMap);  // throws: a failed save fails the run
     ImageWriteBatch batch;                             // both files or neither
-    if (options_.screenshot && pagesWanted_) {
+    if (options_.screenshot && pages_.pagesWanted()) {
         logWarning(options_.screenshot->string() +
                    ": not the exact picture: its view reads more pages at once than --memory "
                    "holds (drawn from coarser bounds in parts)");
@@ -616,43 +612,25 @@ void ViewerApp::renderView() {
 void ViewerApp::loadWantedPages() {
     PagedPyramid* pager = renderer_->pager();
     if (!pager) {
-        pagesWanted_ = poolTooSmall_ = false;
+        pages_.noPages();
         state_.paging.clear();
         return;
     }
     RenderKey view = renderKey();
     view.pageGeneration = 0;
-    if (refinedView_ != view) {  // another view: what the last one kept may go
-        refinedView_ = view;
-        pagesKept_.clear();
-        poolTooSmall_ = false;
+    const bool anotherView = refinedView_ != view;
+    refinedView_ = view;
+    const auto load = [pager](const std::vector<int>& pages, const std::vector<int>& keep) {
+        return pager->load(pages, keep);
+    };
+    if (pages_.afterDraw(anotherView, pager->takeWanted(), load)) {
+        note("this view reads more pages at once than --memory holds (" +
+             std::to_string(pager->capacity()) + " pages of " + std::to_string(pager->pageSide()) +
+             "^2 texels): parts of it stay drawn from coarser bounds; raise --memory");
     }
-    const std::vector<int> wanted = pager->takeWanted();
-    pagesWanted_ = !wanted.empty();
-    if (pagesWanted_ && !poolTooSmall_) {
-        // Each load keeps what the view's draws loaded before, so the view either ends
-        // wanting nothing or runs out of pool: it never loads the same page twice.
-        const std::vector<int> some(
-            wanted.begin(),
-            wanted.begin() + static_cast<std::ptrdiff_t>(std::min(wanted.size(), kPagesPerFrame)));
-        if (pager->load(some, pagesKept_)) {
-            pagesKept_.insert(pagesKept_.end(), some.begin(), some.end());
-            ++pageGeneration_;  // the view is drawn again with them
-        } else {
-            poolTooSmall_ = true;
-            note("this view reads more pages at once than --memory holds (" +
-                 std::to_string(pager->capacity()) + " pages of " +
-                 std::to_string(pager->pageSide()) +
-                 "^2 texels): parts of it stay drawn from coarser bounds; raise --memory");
-        }
-    }
-    const std::string resident = "pages " + std::to_string(pager->residentCount()) + " of " +
-                                 std::to_string(pager->capacity()) + " resident, " +
-                                 std::to_string(pager->pagesLoaded()) + " loaded: ";
-    state_.paging =
-        resident + (!pagesWanted_   ? "exact"
-                    : poolTooSmall_ ? "coarse in parts, raise --memory"
-                                    : "refining, " + std::to_string(wanted.size()) + " wanted");
+    state_.paging = "pages " + std::to_string(pager->residentCount()) + " of " +
+                    std::to_string(pager->capacity()) + " resident, " +
+                    std::to_string(pager->pagesLoaded()) + " loaded: " + pages_.progress();
 }
 
 void ViewerApp::sampleStatistics() {
@@ -932,7 +910,7 @@ CameraFrame ViewerApp::cameraFrame() const {
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {
     RenderKey key{state_.scene.job, state_.scene.job, mapGeneration_, shaderGeneration_,
-                  pageGeneration_};
+                  pages_.generation()};
     key.view.camera = controller_.camera();
     const glm::ivec2 size = viewSize();
     key.view.width = size.x;

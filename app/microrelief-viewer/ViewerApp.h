@@ -15,6 +15,7 @@
 #include "MapFile.h"
 #include "microrelief/core/trace/CpuRelief.h"
 #include "OutputFiles.h"
+#include "PageRefiner.h"
 #include "SculptTool.h"
 #include "ShaderWatcher.h"
 #include "ViewCapture.h"
@@ -74,15 +75,10 @@ private:
     void applyPanel(const PanelActions& actions);
     void updatePick();
     void renderView();
-    // A map read through pages (gl/PagedPyramid.h), after each draw: the pages the draw
-    // wanted loaded (at most kPagesPerFrame a frame) and the view drawn again, until a draw
-    // wants none (the exact picture, as microrelief-render draws it) or the view needs more
-    // pages at once than the pool holds (then it stays drawn partly from coarser windows,
-    // which lie above the surface: coarse, never a hole; a note says to raise --memory).
-    // Pages loaded for the view being refined are kept for it; another view starts afresh.
+    // A map read through pages, after each draw: the pages it wanted loaded, the view
+    // refined over frames (PageRefiner.h); where the pool falls short, a note says to raise
+    // --memory.
     void loadWantedPages();
-    // Whether a paged view is still being refined: --frames draws on until it is not.
-    bool refiningPages() const { return pagesWanted_ && !poolTooSmall_; }
     void sampleStatistics();
     void present(bool captureWindow);
     // --screenshot and --window-screenshot, after the last frame.
@@ -168,11 +164,9 @@ private:
     std::optional<RenderKey> rendered_;  // what the target holds
     glm::dvec3 drawnEye_{0.0};           // the eye the target was drawn from: its positions' origin
     // Paging (loadWantedPages): the view whose pages are kept (its key at page generation
-    // 0), those pages, whether the last draw wanted any, whether the pool fell short.
-    int pageGeneration_ = 0;
+    // 0), and its refinement.
     std::optional<RenderKey> refinedView_;
-    std::vector<int> pagesKept_;
-    bool pagesWanted_ = false, poolTooSmall_ = false;
+    PageRefiner pages_;
     bool statisticsStale_ = true;
     double lastStatisticsTime_ = -1.0, lastFrameTime_ = 0.0;
     int framesToDraw_ = 0;  // frames to draw before waiting for events again

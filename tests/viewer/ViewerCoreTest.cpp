@@ -2,8 +2,8 @@
 // flips, keeps the command line's camera exactly until the first rotation, reaches
 // grazing angles and the inside of the relief's box), "copy as command" read back by
 // the same flags, picking, the shader folder watch, the sculpting's history (what
-// counts as an edit, what undo takes back) and scripted dabs, and the names of the files
-// the viewer writes.
+// counts as an edit, what undo takes back) and scripted dabs, the names of the files the
+// viewer writes, and how a paged map's view is refined over frames.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +15,7 @@
 #include "CameraController.h"
 #include "MapFile.h"
 #include "OutputFiles.h"
+#include "PageRefiner.h"
 #include "ShaderWatcher.h"
 #include "StrokeHistory.h"
 #include "TestSupport.h"
@@ -443,6 +444,54 @@ TEST(OutputFiles, AScreenshotNeverOverwritesAndAnEditedMapKeepsItsGround) {
     const std::filesystem::path out = "out";
     EXPECT_EQ(editedMapPath("maps/crater.png", false), (out / "crater-edited.exr").string());
     EXPECT_EQ(editedMapPath("/data/dem.tif", true), (out / "dem-edited.tif").string());
+}
+
+// A paged view refined over frames against a pool of `capacity` pages (a stand-in for
+// PagedPyramid::load: it refuses a load whose pages and those kept do not fit): 600 wanted
+// pages load 256, 256 and 88 over three draws, each kept for the next load and each a new
+// generation; a draw that wants none is exact. Another view forgets what was kept; a view
+// that needs more than the pool holds stops refining, said once. Seen red: with the kept
+// pages not passed on (the third load fits a pool of 300), and with kPagesPerFrame ignored.
+TEST(PageRefiner, AViewLoadsItsPagesOverFramesUntilExactOrThePoolIsFull) {
+    std::size_t capacity = 700;
+    std::vector<std::size_t> loads;
+    const PageRefiner::Load load = [&](const std::vector<int>& pages, const std::vector<int>& keep) {
+        if (pages.size() + keep.size() > capacity) return false;
+        loads.push_back(pages.size());
+        return true;
+    };
+    std::vector<int> wanted(600);
+    for (int k = 0; k < 600; ++k) wanted[static_cast<std::size_t>(k)] = k;
+
+    PageRefiner refiner;
+    EXPECT_EQ(refiner.progress(), "exact");
+    EXPECT_FALSE(refiner.afterDraw(true, wanted, load));
+    EXPECT_TRUE(refiner.refining());
+    EXPECT_EQ(refiner.progress(), "refining, 600 wanted");
+    EXPECT_FALSE(refiner.afterDraw(false, {wanted.begin() + 256, wanted.end()}, load));
+    EXPECT_FALSE(refiner.afterDraw(false, {wanted.begin() + 512, wanted.end()}, load));
+    EXPECT_EQ(loads, (std::vector<std::size_t>{256, 256, 88}));
+    EXPECT_EQ(refiner.kept(), wanted);
+    EXPECT_EQ(refiner.generation(), 3);
+    EXPECT_FALSE(refiner.afterDraw(false, {}, load));
+    EXPECT_FALSE(refiner.refining());
+    EXPECT_EQ(refiner.progress(), "exact");
+    EXPECT_EQ(refiner.generation(), 3) << "a draw that wanted nothing is the last";
+
+    capacity = 300;  // another view, in a smaller pool
+    EXPECT_FALSE(refiner.afterDraw(true, wanted, load));
+    EXPECT_EQ(refiner.kept().size(), 256u) << "the last view's pages are not kept for this one";
+    EXPECT_TRUE(refiner.afterDraw(false, {wanted.begin() + 256, wanted.end()}, load));
+    EXPECT_TRUE(refiner.poolTooSmall());
+    EXPECT_FALSE(refiner.refining());
+    EXPECT_EQ(refiner.progress(), "coarse in parts, raise --memory");
+    EXPECT_FALSE(refiner.afterDraw(false, {wanted.begin() + 256, wanted.end()}, load))
+        << "said once a view";
+    EXPECT_EQ(refiner.generation(), 4);
+
+    refiner.noPages();
+    EXPECT_FALSE(refiner.pagesWanted());
+    EXPECT_FALSE(refiner.poolTooSmall());
 }
 
 }  // namespace

@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <glm/gtc/constants.hpp>
 
 #include "MapFile.h"
 #include "SceneOptions.h"
@@ -302,31 +301,32 @@ void ViewerApp::askToQuit() {
 }
 
 void ViewerApp::handleKey(int key, int mods) {
-    const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
-    switch (key) {
-        case GLFW_KEY_ESCAPE:
+    int debugView = 0;
+    switch (keyCommand(key, mods, state_.flyMode, &debugView)) {
+        case ViewerCommand::None:
+            break;
+        case ViewerCommand::Quit:
             askToQuit();
             break;
-        case GLFW_KEY_F:
+        case ViewerCommand::ToggleFly:
             state_.flyMode = !state_.flyMode;
             break;
-        case GLFW_KEY_R:
+        case ViewerCommand::ResetView:
             controller_.reset();
             break;
-        case GLFW_KEY_TAB:
+        case ViewerCommand::TogglePanel:
             state_.panelVisible = !state_.panelVisible;
             break;
-        case GLFW_KEY_F12:
-        case GLFW_KEY_P:
+        case ViewerCommand::Screenshot:
             takeScreenshot();
             break;
-        case GLFW_KEY_C:
+        case ViewerCommand::CopyCommand:
             copyCommand();
             break;
-        case GLFW_KEY_V:
+        case ViewerCommand::ToggleVsync:
             setVsync(!state_.vsync);
             break;
-        case GLFW_KEY_B:
+        case ViewerCommand::ToggleSculpt:
             state_.sculpt = !state_.sculpt && sculptable();
             if (sculptable())
                 note(state_.sculpt
@@ -339,32 +339,29 @@ void ViewerApp::handleKey(int key, int mods) {
                                             "than the GL's textures)"
                                           : "sculpting: an untiled map only (Tiles 1, 1)");
             break;
-        case GLFW_KEY_Z:
-            if (ctrl) undo();
+        case ViewerCommand::Undo:
+            undo();
             break;
-        case GLFW_KEY_S:
-            if (ctrl && !state_.flyMode) saveMap(state_.savePath);
+        case ViewerCommand::SaveMap:
+            saveMap(state_.savePath);
             break;
-        case GLFW_KEY_LEFT_BRACKET:
+        case ViewerCommand::ShrinkBrush:
             state_.brush.radius = std::max(state_.brush.radius * 0.8, 0.5);
             break;
-        case GLFW_KEY_RIGHT_BRACKET:
+        case ViewerCommand::GrowBrush:
             state_.brush.radius = std::min(state_.brush.radius * 1.25, 512.0);
             break;
-        case GLFW_KEY_SPACE:
+        case ViewerCommand::TogglePlay:
             state_.playing = !state_.playing;
             break;
-        default:
-            if (key >= GLFW_KEY_1 && key <= GLFW_KEY_6)
-                state_.scene.job.shading.view = static_cast<DebugView>(key - GLFW_KEY_1);
+        case ViewerCommand::DebugView:
+            state_.scene.job.shading.view = static_cast<DebugView>(debugView);
+            break;
     }
 }
 
 void ViewerApp::flyKeys(double seconds) {
-    const auto down = [](int key) { return ImGui::IsKeyDown(key) ? 1.0 : 0.0; };
-    const glm::dvec3 direction(down(GLFW_KEY_D) - down(GLFW_KEY_A),
-                               down(GLFW_KEY_E) - down(GLFW_KEY_Q),
-                               down(GLFW_KEY_W) - down(GLFW_KEY_S));
+    const glm::dvec3 direction = flyDirection([](int key) { return ImGui::IsKeyDown(key); });
     if (direction == glm::dvec3(0.0)) return;
     const ImGuiIO& io = ImGui::GetIO();
     const double speed = kFlySpeed * (io.KeyShift ? 4.0 : 1.0) * (io.KeyCtrl ? 0.2 : 1.0);
@@ -386,17 +383,9 @@ void ViewerApp::handleMouse() {
     const bool movingLight =
         dragging(ImGuiMouseButton_Left) && glfwGetKey(window_->window(), GLFW_KEY_L) == GLFW_PRESS;
     if (movingLight && (dx != 0.0 || dy != 0.0)) {
-        // L held: the drag turns the light about the vertical (across) and raises or
-        // lowers it (up and down), a quarter turn per 400 window units.
+        // L held: the drag turns the light (InputBindings.h).
         ShadingOptions& shading = state_.scene.job.shading;
-        const glm::dvec3 l = glm::normalize(glm::dvec3(shading.lightDirection));
-        const double azimuth = std::atan2(l.z, l.x) + dx * (glm::half_pi<double>() / 400.0);
-        const double elevation = std::clamp(
-            std::asin(std::clamp(l.y, -1.0, 1.0)) - dy * (glm::half_pi<double>() / 400.0),
-            glm::radians(0.5), glm::radians(89.5));
-        shading.lightDirection =
-            glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
-                      std::cos(elevation) * std::sin(azimuth));
+        shading.lightDirection = turnLight(shading.lightDirection, dx, dy);
         shading.lightPosition.reset();
     } else if (panning) {
         // The picture's height in window units, which is what the mouse moves in.

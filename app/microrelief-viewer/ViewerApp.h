@@ -12,6 +12,7 @@
 #include "CameraController.h"
 #include "FrameStats.h"
 #include "ImGuiLayer.h"
+#include "InputBindings.h"
 #include "MapFile.h"
 #include "microrelief/core/trace/CpuRelief.h"
 #include "OutputFiles.h"

@@ -3,7 +3,9 @@
 // grazing angles and the inside of the relief's box), "copy as command" read back by
 // the same flags, picking, the shader folder watch, the sculpting's history (what
 // counts as an edit, what undo takes back) and scripted dabs, the names of the files the
-// viewer writes, and how a paged map's view is refined over frames.
+// viewer writes, how a paged map's view is refined over frames, and the key bindings.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 #include <thread>
 
 #include "CameraController.h"
+#include "InputBindings.h"
 #include "MapFile.h"
 #include "OutputFiles.h"
 #include "PageRefiner.h"
@@ -492,6 +495,63 @@ TEST(PageRefiner, AViewLoadsItsPagesOverFramesUntilExactOrThePoolIsFull) {
     refiner.noPages();
     EXPECT_FALSE(refiner.pagesWanted());
     EXPECT_FALSE(refiner.poolTooSmall());
+}
+
+// The key table (docs/viewer.md): cases as data, each named by its key. Ctrl+S saves only
+// out of fly mode, where S flies back; Z and S alone do nothing. Seen red: with Ctrl+S
+// saving in fly mode, and with the debug views counted from key 0.
+TEST(InputBindings, KeysGiveTheCommandsTheTableNames) {
+    const struct {
+        const char* name;
+        int key, mods;
+        bool flyMode;
+        ViewerCommand command;
+    } cases[] = {
+        {"Esc", GLFW_KEY_ESCAPE, 0, false, ViewerCommand::Quit},
+        {"F", GLFW_KEY_F, 0, false, ViewerCommand::ToggleFly},
+        {"R", GLFW_KEY_R, 0, false, ViewerCommand::ResetView},
+        {"Tab", GLFW_KEY_TAB, 0, false, ViewerCommand::TogglePanel},
+        {"P", GLFW_KEY_P, 0, false, ViewerCommand::Screenshot},
+        {"F12", GLFW_KEY_F12, 0, false, ViewerCommand::Screenshot},
+        {"C", GLFW_KEY_C, 0, false, ViewerCommand::CopyCommand},
+        {"V", GLFW_KEY_V, 0, false, ViewerCommand::ToggleVsync},
+        {"B", GLFW_KEY_B, 0, false, ViewerCommand::ToggleSculpt},
+        {"Ctrl+Z", GLFW_KEY_Z, GLFW_MOD_CONTROL, false, ViewerCommand::Undo},
+        {"Z", GLFW_KEY_Z, 0, false, ViewerCommand::None},
+        {"Ctrl+S", GLFW_KEY_S, GLFW_MOD_CONTROL, false, ViewerCommand::SaveMap},
+        {"Ctrl+S flying", GLFW_KEY_S, GLFW_MOD_CONTROL, true, ViewerCommand::None},
+        {"S", GLFW_KEY_S, 0, false, ViewerCommand::None},
+        {"[", GLFW_KEY_LEFT_BRACKET, 0, false, ViewerCommand::ShrinkBrush},
+        {"]", GLFW_KEY_RIGHT_BRACKET, 0, false, ViewerCommand::GrowBrush},
+        {"Space", GLFW_KEY_SPACE, 0, false, ViewerCommand::TogglePlay},
+        {"7", GLFW_KEY_7, 0, false, ViewerCommand::None},
+    };
+    for (const auto& c : cases)
+        EXPECT_EQ(keyCommand(c.key, c.mods, c.flyMode), c.command) << c.name;
+    for (int k = 0; k < 6; ++k) {
+        int view = -1;
+        EXPECT_EQ(keyCommand(GLFW_KEY_1 + k, 0, false, &view), ViewerCommand::DebugView) << k + 1;
+        EXPECT_EQ(view, k) << "key " << k + 1;
+    }
+}
+
+// W flies forward, A left, E up; a drag with L held turns the light a quarter turn per 400
+// window units and never takes it to the horizon or the zenith.
+TEST(InputBindings, FlyKeysAndTheLightDrag) {
+    EXPECT_EQ(flyDirection([](int key) { return key == GLFW_KEY_W || key == GLFW_KEY_A; }),
+              glm::dvec3(-1.0, 0.0, 1.0));
+    EXPECT_EQ(flyDirection([](int key) { return key == GLFW_KEY_E || key == GLFW_KEY_Q; }),
+              glm::dvec3(0.0));
+    const glm::vec3 light = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));  // 45 degrees up
+    const glm::vec3 across = turnLight(light, 400.0, 0.0);  // a quarter turn about y
+    EXPECT_NEAR(across.x, 0.0, 1e-6);
+    EXPECT_NEAR(across.y, std::sqrt(0.5), 1e-6);
+    EXPECT_NEAR(across.z, std::sqrt(0.5), 1e-6);
+    // A float's y near 1 read back through asin: its rounding (6e-8) grows by 1/cos(89.5
+    // degrees), about 115; 1e-4 radians is a hundredth of a degree.
+    EXPECT_NEAR(std::asin(turnLight(light, 0.0, -1e4).y), glm::radians(89.5), 1e-4);
+    EXPECT_NEAR(std::asin(turnLight(light, 0.0, 1e4).y), glm::radians(0.5), 1e-4);
+    EXPECT_NEAR(glm::length(turnLight(light, 123.0, 45.0)), 1.0, 1e-6);
 }
 
 }  // namespace

@@ -71,14 +71,30 @@ void checkDrawnFromPyramidFile(const RenderJob& job, bool compareReference) {
         throwBadInput(refusal);
 }
 
-HeightMapFile loadMapOrPointToCache(const std::filesystem::path& file, const RenderJob& job,
-                                    bool compareReference) {
+namespace {
+
+// `load()`, a map it refuses for this machine's memory pointed to --pyramid-cache where that
+// would draw `job`.
+template <class Load>
+auto pointingToCache(const RenderJob& job, bool compareReference, const Load& load) {
     try {
-        return loadHeightMapFile(file, job.map.load);
+        return load();
     } catch (const MapOverMemory& e) {
         if (!pyramidFileRefusal(job, compareReference).empty()) throw;
         throw e.followedBy("; --pyramid-cache FOLDER draws it from disk");
     }
+}
+
+}  // namespace
+
+HeightMapFile loadMapOrPointToCache(const std::filesystem::path& file, const RenderJob& job,
+                                    bool compareReference) {
+    return pointingToCache(job, compareReference,
+                           [&] { return loadHeightMapFile(file, job.map.load); });
+}
+
+ReliefFiles loadFilesOrPointToCache(const RenderJob& job, bool compareReference) {
+    return pointingToCache(job, compareReference, [&] { return loadReliefFiles(job); });
 }
 
 }  // namespace microrelief

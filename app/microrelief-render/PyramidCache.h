@@ -8,6 +8,7 @@
 #include "Options.h"
 #include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/PyramidFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief {
 
@@ -36,5 +37,8 @@ void checkDrawnFromPyramidFile(const RenderJob& job, bool compareReference);
 // that --pyramid-cache would draw for `job` says so.
 HeightMapFile loadMapOrPointToCache(const std::filesystem::path& file, const RenderJob& job,
                                     bool compareReference);
+// loadReliefFiles (io/ReliefFiles.h: the map and the albedo `job` names), with the same
+// word for a map refused for this machine's memory.
+ReliefFiles loadFilesOrPointToCache(const RenderJob& job, bool compareReference);
 
 }  // namespace microrelief

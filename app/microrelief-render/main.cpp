@@ -146,11 +146,12 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
 
 // The map loaded whole and drawn (through pages where it is larger than the GL's textures).
 Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightFile) {
-    HeightMapFile loaded = loadMapOrPointToCache(heightFile, o.scene.job, o.compareReference);
-    // Shared with the renderer: a map read through pages is kept by its pages, not copied.
-    const auto shared = std::make_shared<const HeightMap>(std::move(loaded.map));
+    // The map and its colours, as the description names them (io/ReliefFiles.h). The map is
+    // shared with the renderer: one read through pages is kept by its pages, not copied.
+    const ReliefFiles files = loadFilesOrPointToCache(o.scene.job, o.compareReference);
+    const std::shared_ptr<const HeightMap>& shared = files.heights;
     const HeightMap& map = *shared;
-    const RenderJob job = jobOverMap(o, heightFile, map.width, map.height, loaded.georeference);
+    const RenderJob job = jobOverMap(o, heightFile, map.width, map.height, files.georeference);
     if (o.compareReference && job.tiles != glm::ivec2(1, 1) &&
         map.samples.size() * job.tiles.x * job.tiles.y > (std::size_t(1) << 26)) {
         throwBadInput(
@@ -159,11 +160,10 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
             "one would have " +
             std::to_string(map.samples.size() * job.tiles.x * job.tiles.y) + ")");
     }
-    const std::optional<AlbedoImage> albedo = loadAlbedoOf(albedoPath(job));
     const auto context = openContext(o);
     Drawn drawn;
     drawn.result = renderHeadless(*context, shared, heightFile.string(), job,
-                                  albedo ? &*albedo : nullptr, o.paging);
+                                  files.albedo ? &*files.albedo : nullptr, o.paging);
     drawn.context = context->description();
     drawn.mapSize = {map.width, map.height};
     // An animated relief is held to the heights the GPU evaluated, read back.

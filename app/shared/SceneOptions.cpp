@@ -445,38 +445,11 @@ std::string shellQuote(const std::string& text) {
     return quoted + "'";
 }
 
-std::filesystem::path heightMapPath(const ReliefDesc& relief) {
-    return relief.map.file ? *relief.map.file : defaultHeightMapPath();
-}
-
-std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief) {
-    switch (relief.albedo.kind) {
-        case AlbedoSource::Kind::None:
-            return std::nullopt;
-        case AlbedoSource::Kind::File:
-            return relief.albedo.file;
-        case AlbedoSource::Kind::Default:
-            break;
-    }
-    if (bundledColoursFit(relief)) return defaultAlbedoPath();
-    return std::nullopt;
-}
-
 std::vector<NamedFile> filesRead(const ReliefDesc& relief, const std::string& where) {
     std::vector<NamedFile> files{{heightMapPath(relief), where + flagName("map.file")}};
     if (const std::optional<std::filesystem::path> albedo = albedoPath(relief))
         files.push_back({*albedo, where + flagName("albedo")});
     return files;
-}
-
-bool bundledColoursFit(const ReliefDesc& relief) {
-    // The bundled map's colours go with its stones: not with a field that replaces them.
-    return relief.map.bundled() &&
-           (relief.animation.empty() || animatedFieldShowsTheMap(relief.animation));
-}
-
-bool albedoOffered(const ReliefDesc& relief) {
-    return !relief.albedo.file.empty() || bundledColoursFit(relief);
 }
 
 std::string renderCommandLine(const SceneOptions& o, const std::string& program) {

@@ -19,6 +19,7 @@
 #include "microrelief/core/scene/Georeference.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/io/AtomicFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace CLI {
 class App;
@@ -108,22 +109,11 @@ std::string exactNumber(double value);
 // "x,y,z" with exactNumber() components.
 std::string exactVector(const glm::dvec3& v);
 
-// The height map file `relief` draws: its own, or the bundled default map.
-std::filesystem::path heightMapPath(const ReliefDesc& relief);
-// The albedo file `relief` draws with: its own, or the bundled map's with the bundled map
-// (unless an animated field, waves or ripples, replaces its heights); none for
-// AlbedoSource::Kind::None or another map without one.
-std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief);
+// heightMapPath, albedoPath, bundledColoursFit, albedoOffered: io/ReliefFiles.h.
 // The files drawing `relief` reads, named by their flags after `where` (a camera file's
 // row: "cams.csv: line 4 (frame 2): "): the height map and the albedo, if any. What no
 // output of a run may be (io/AtomicFile.h: checkOutputsAreNotInputs).
 std::vector<NamedFile> filesRead(const ReliefDesc& relief, const std::string& where = "");
-// Whether the bundled map's colours go with `relief`'s heights: the bundled map, unless an
-// animated field replaces them (albedoPath's rule for AlbedoSource::Kind::Default).
-bool bundledColoursFit(const ReliefDesc& relief);
-// Whether `relief` has colours to turn on, whatever albedo.kind says now: a file of its
-// own (kept while turned off), or the bundled map's (bundledColoursFit).
-bool albedoOffered(const ReliefDesc& relief);
 
 // `job` over a W x H map read with the georeference `geo` (io/HeightMapFile.h:
 // loadHeightMapFile): the true proportions where `fit` lets (core/scene/Georeference.h),

@@ -1,0 +1,53 @@
+#include "microrelief/io/ReliefFiles.h"
+
+#include <utility>
+
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/io/AlbedoFile.h"
+
+namespace microrelief {
+
+std::filesystem::path heightMapPath(const ReliefDesc& relief) {
+    return relief.map.file ? *relief.map.file : defaultHeightMapPath();
+}
+
+std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief) {
+    switch (relief.albedo.kind) {
+        case AlbedoSource::Kind::None:
+            return std::nullopt;
+        case AlbedoSource::Kind::File:
+            return relief.albedo.file;
+        case AlbedoSource::Kind::Default:
+            break;
+    }
+    if (bundledColoursFit(relief)) return defaultAlbedoPath();
+    return std::nullopt;
+}
+
+bool bundledColoursFit(const ReliefDesc& relief) {
+    // The bundled map's colours go with its stones: not with a field that replaces them.
+    return relief.map.bundled() &&
+           (relief.animation.empty() || animatedFieldShowsTheMap(relief.animation));
+}
+
+bool albedoOffered(const ReliefDesc& relief) {
+    return !relief.albedo.file.empty() || bundledColoursFit(relief);
+}
+
+ReliefFiles loadReliefFiles(const ReliefDesc& relief) {
+    ReliefFiles files;
+    if (relief.map.samples) {
+        files.heights = relief.map.samples;
+    } else {
+        files.heightFile = heightMapPath(relief);
+        HeightMapFile read = loadHeightMapFile(*files.heightFile, relief.map.load);
+        files.heights = std::make_shared<const HeightMap>(std::move(read.map));
+        files.georeference = std::move(read.georeference);
+        files.placement = std::move(read.placement);
+    }
+    files.albedoFile = albedoPath(relief);
+    if (files.albedoFile) files.albedo = loadAlbedo(*files.albedoFile);
+    return files;
+}
+
+}  // namespace microrelief

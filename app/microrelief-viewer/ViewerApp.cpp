@@ -887,14 +887,10 @@ ViewerApp::ViewRect ViewerApp::viewRect() const {
 }
 
 CameraFrame ViewerApp::cameraFrame() const {
+    // Against the relief the renderer holds, which every panel change applies at once (or
+    // puts back in the panel): the clip range microrelief-render resolves for the same scene.
     const glm::ivec2 size = viewSize();
-    return resolveCamera(
-        controller_.camera(), size.x, size.y,
-        sceneRadius(reliefExtent(map_->width * state_.scene.job.tiles.x,
-                                 map_->height * state_.scene.job.tiles.y, mapMaxHeight_,
-                                 state_.scene.job.heightScale, state_.scene.job.base),
-                    state_.scene.job.model.objectToWorld()),
-        sceneCentre(state_.scene.job.model.objectToWorld()));
+    return renderer_->resolveCamera(controller_.camera(), size.x, size.y);
 }
 
 ViewerApp::RenderKey ViewerApp::renderKey() const {

@@ -157,7 +157,10 @@ private:
     std::shared_ptr<HeightMap> map_;
     // Where the current map is a DEM's: what a .tif save keeps (MapFile.h).
     std::optional<MapGround> ground_;
-    float mapMaxHeight_ = 0.0f;        // the surface's top: map_'s largest sample
+    // The surface's top (map_'s largest sample, the pyramid's top once edited or animated),
+    // which a new base is framed by (setBase); the view's camera is resolved by the
+    // renderer against its own relief (cameraFrame).
+    float mapMaxHeight_ = 0.0f;
     CameraController controller_;
     CpuRelief picker_;  // the relief on the CPU, for picks
     float uiScale_ = 1.0f;

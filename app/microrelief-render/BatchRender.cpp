@@ -306,61 +306,216 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
     return checked;
 }
 
-}  // namespace
+// The stages of a run, in the order runBatch calls them. Each says what it hands the next.
 
-int runBatch(const RenderOptions& o) {
-    const auto start = Clock::now();
-    const SceneOptions& base = o.scene;
-    // Frames are made one at a time as they are drawn: a path of a million views holds none.
-    const CameraPath path = o.batch.cameras ? CameraPath(readCameraFile(*o.batch.cameras, base))
-                                            : CameraPath::turntable(base, o.batch.turntable);
+// Stage 1, the plan: the path (frames made one at a time as they are drawn: a path of a
+// million views holds none), the frames the --frames range and the --shard select, their
+// files and the manifest's, all checked before anything is read or written.
+struct BatchPlan {
+    CameraPath path;
+    Shard shard;
+    std::vector<int> frames;
+    std::vector<FrameFiles> files;
+    std::filesystem::path manifest;
+};
+
+BatchPlan planBatch(const RenderOptions& o) {
+    CameraPath path = o.batch.cameras ? CameraPath(readCameraFile(*o.batch.cameras, o.scene))
+                                      : CameraPath::turntable(o.scene, o.batch.turntable);
     const Shard shard = o.batch.shard.value_or(Shard{});
-    const std::vector<int> frames = selectFrames(path.size(), o.batch.frames, shard);
-    const std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
-    const std::filesystem::path manifestPath = manifestFile(o);
-    checkFilesWritten(o, path, files, manifestPath);
-    BatchProgress progress(static_cast<int>(frames.size()),
-                           !o.quiet && BatchProgress::stderrIsTerminal());
-    // --skip-existing: the frames whose files are whole already. Nothing of theirs is read:
-    // no map loaded, no pyramid file opened or built, no cache folder made.
-    std::vector<bool> done(files.size(), false);
-    std::vector<int> toDraw;
+    std::vector<int> frames = selectFrames(path.size(), o.batch.frames, shard);
+    std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
+    std::filesystem::path manifest = manifestFile(o);
+    checkFilesWritten(o, path, files, manifest);
+    return {std::move(path), shard, std::move(frames), std::move(files), std::move(manifest)};
+}
+
+// Stage 2, --skip-existing: which of the plan's frames have whole files already (done, by
+// the plan's index), and the frames left to draw. Nothing of a done frame's is read: no map
+// loaded, no pyramid file opened or built, no cache folder made.
+struct FramesToDraw {
+    std::vector<bool> done;
+    std::vector<int> frames;
+};
+
+FramesToDraw framesToDraw(const RenderOptions& o, const std::vector<FrameFiles>& files,
+                          BatchProgress& progress) {
+    FramesToDraw left{std::vector<bool>(files.size(), false), {}};
     for (std::size_t k = 0; k < files.size(); ++k) {
         const FrameFiles& f = files[k];
-        done[k] = o.batch.skipExisting && complete(f.out, progress) &&
-                  (!f.aov || complete(*f.aov, progress));
-        if (!done[k]) toDraw.push_back(f.frame);
+        left.done[k] = o.batch.skipExisting && complete(f.out, progress) &&
+                       (!f.aov || complete(*f.aov, progress));
+        if (!left.done[k]) left.frames.push_back(f.frame);
     }
-    checkMapFiles(path, toDraw);
-    CheckedFrames checked = checkFrames(o, path, toDraw);
-    std::optional<LoadedMap>& checkedMap = checked.last;
-    if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(lightSizeUnused());
+    return left;
+}
 
-    ManifestWriter manifest(manifestPath);
+// Stage 3, the frames to draw checked before the first is drawn: their map and albedo files
+// are there, then checkFrames. Hands on each map's facts and the last map it loaded.
+CheckedFrames checkFramesToDraw(const RenderOptions& o, const CameraPath& path,
+                                const std::vector<int>& frames) {
+    checkMapFiles(path, frames);
+    CheckedFrames checked = checkFrames(o, path, frames);
+    if (o.lightSizeGiven && !path.anySoftShadows()) logWarning(lightSizeUnused());
+    return checked;
+}
+
+// Stage 4, before the first frame is written: the temporaries a killed run left beside
+// this run's outputs go (the manifest is opened before, by the caller).
+void removeTemporariesOfAKilledRun(const std::vector<FrameFiles>& files) {
     if (const int removed = removeAbandonedTemporaries(files); removed > 0)
         logInfo("removed " + std::to_string(removed) + " temporary file(s) of a killed run");
+}
 
-    std::unique_ptr<GlContext> context;
-    std::optional<HeadlessRenderer> renderer;
+// Stage 5's renderer: the context and renderer, made for the first frame drawn, and the map
+// and albedo set on it, changed only for a frame that draws another. Hands each frame's
+// picture back, and keeps the counts the summary gives (maps loaded, eyes inside the solid).
+class FrameRenderer {
+public:
+    FrameRenderer(const RenderOptions& o, CheckedFrames& checked) : o_(o), checked_(checked) {}
+
+    HeadlessResult render(const PathFrame& frame, const RenderJob& job, const MapKey& key,
+                          const MapFacts& facts) {
+        start(frame);
+        setMap(job, key, facts);
+        setAlbedo(job);
+        HeadlessResult result = renderer_->render(job);
+        noteEyeInside(frame, job, result);
+        return result;
+    }
+
+    const GlContext* context() const { return context_.get(); }
+    int mapsLoaded() const { return mapsLoaded_; }
+    int eyeInside() const { return eyeInside_; }
+    const std::string& firstEyeInside() const { return firstEyeInside_; }
+
+private:
+    // The context and renderer, for the first frame drawn (none where every frame is skipped).
+    void start(const PathFrame& frame) {
+        if (context_) return;
+        context_ = createHeadlessContext(o_.backend);
+        if (o_.verbose)
+            logInfo("GL: " + context_->renderer() + ", " + context_->version() + " via " +
+                    context_->description());
+        renderer_.emplace(*context_, frame.scene.job.method);
+        renderer_->setPaging(o_.paging);
+    }
+
+    // A map is loaded and its pyramid built only for a frame whose relief has another
+    // pyramid than the last (core/scene/Scene.h: samePyramid).
+    void setMap(const RenderJob& job, const MapKey& key, const MapFacts& facts) {
+        if (facts.fromPyramidFile) {
+            // Pages stay resident from frame to frame while the map is the same (another
+            // size of its base, last level or view is the job's own: render applies it).
+            if (pagesSet_ != key) {
+                renderer_->setPyramidPages(
+                    openPyramidCache(o_, std::get<0>(key), job.map.load, job.base.wrapsU()),
+                    std::get<0>(key).string(), job.base, job.interpolation);
+                pagesSet_ = key;
+                map_.reset();
+                mapHeld_.reset();
+                ++mapsLoaded_;
+            }
+        } else if (renderer_->needsHeights(job)) {
+            // The same samples for another pyramid (another base or tiles): the map held.
+            // The check's map, where it has the same samples, is not read again either.
+            std::optional<LoadedMap>& checkedMap = checked_.last;
+            const bool held = map_ && mapHeld_ && sameSamples(*mapHeld_, key);
+            const bool checkedHere = checkedMap && sameSamples(checkedMap->key, key);
+            auto heights = held ? map_
+                                : std::make_shared<const HeightMap>(
+                                      checkedHere ? std::move(checkedMap->map)
+                                                  : loadHeightMap(std::get<0>(key), job.map.load));
+            checkedMap.reset();  // taken, or held already, or of another map: not kept
+            if (!held) {
+                map_.reset();  // the last map, kept now only by pages that setHeights lets go
+                mapHeld_.reset();
+                ++mapsLoaded_;
+            }
+            renderer_->setHeights(job, heights, std::get<0>(key).string());
+            map_ = std::move(heights);
+            mapHeld_ = key;
+        }
+    }
+
+    // The albedo, loaded again only where it is another file (or none) than the last frame's.
+    void setAlbedo(const RenderJob& job) {
+        const std::optional<std::filesystem::path> albedo = albedoPath(job);
+        if (albedo == loadedAlbedo_) return;
+        loadedAlbedo_.reset();
+        if (albedo) {
+            const AlbedoImage image = loadAlbedo(*albedo);
+            renderer_->setAlbedo(&image, albedo->string());
+        } else {
+            renderer_->setAlbedo(nullptr, "");
+        }
+        loadedAlbedo_ = albedo;
+    }
+
+    // A map drawn from its pyramid file is not in memory to hold the eye to.
+    void noteEyeInside(const PathFrame& frame, const RenderJob& job, const HeadlessResult& result) {
+        const HeightMap* traced = result.animatedMap ? &*result.animatedMap
+                                  : map_             ? map_.get()
+                                                     : nullptr;
+        if (traced && eyeInsideTheSolid(*traced, job) && eyeInside_++ == 0)
+            firstEyeInside_ = frame.origin;
+    }
+
+    const RenderOptions& o_;
+    CheckedFrames& checked_;
+    std::unique_ptr<GlContext> context_;
+    std::optional<HeadlessRenderer> renderer_;
     // The map drawn, for the eye's check (none from a file); shared with the renderer, whose
     // pages keep it rather than a copy where it reads it through pages.
-    std::shared_ptr<const HeightMap> map;
-    std::optional<MapKey> mapHeld;   // the key of the frame `map` was loaded or set for
-    std::optional<MapKey> pagesSet;  // the map whose pyramid file the renderer reads
-    int eyeInside = 0;               // frames whose eye lies inside the solid
-    std::string firstEyeInside;
+    std::shared_ptr<const HeightMap> map_;
+    std::optional<MapKey> mapHeld_;   // the key of the frame `map_` was loaded or set for
+    std::optional<MapKey> pagesSet_;  // the map whose pyramid file the renderer reads
     // The albedo file set on the renderer (itself optional: none); unset before the first.
-    std::optional<std::optional<std::filesystem::path>> loadedAlbedo;
-    int rendered = 0, skipped = 0, mapsLoaded = 0;
+    std::optional<std::optional<std::filesystem::path>> loadedAlbedo_;
+    int mapsLoaded_ = 0;
+    int eyeInside_ = 0;  // frames whose eye lies inside the solid
+    std::string firstEyeInside_;
+};
 
-    for (std::size_t index = 0; index < files.size(); ++index) {
-        const FrameFiles& f = files[index];
-        const PathFrame frame = path.frame(f.frame);
+// Stage 5's end for a frame: a warning for pixels that ran out of the iteration budget, then
+// the picture (and its AOVs) written whole or not at all.
+void writeFrame(const FrameFiles& f, const RenderJob& job, const RenderedFrame& pixels,
+                BatchProgress& progress) {
+    std::size_t exhausted = 0;
+    for (std::size_t p = 3; p < pixels.stats.size(); p += 4) exhausted += pixels.stats[p] > 0.0f;
+    if (exhausted > 0) {
+        progress.clear();
+        logWarning("frame " + std::to_string(f.frame) + ": " + std::to_string(exhausted) +
+                   " pixel(s) ran out of the iteration budget (shown magenta)");
+    }
+    ImageWriteBatch batch;
+    const std::vector<std::uint8_t> rgb = rgbFromRgba(pixels.color, pixels.width, pixels.height);
+    batch.write(f.out, {pixels.width, pixels.height, 3, PixelType::UInt8, rgb.data(), {}});
+    if (f.aov) writeAov(batch, *f.aov, pixels, job.shading.shadows != ShadowMode::Off);
+    batch.commit();
+}
+
+// Stage 5, every frame of the plan in order: a skipped one gets its row, one to draw is drawn
+// over its map (as the check found it) and written, then gets its row. A frame that fails
+// gets a "failed" row and its error names its row where the row's data is at fault. Hands
+// the summary the counts.
+struct FrameCounts {
+    int rendered = 0;
+    int skipped = 0;
+};
+
+FrameCounts drawFrames(const BatchPlan& plan, const std::vector<bool>& done,
+                       const CheckedFrames& checked, FrameRenderer& renderer,
+                       ManifestWriter& manifest, BatchProgress& progress) {
+    FrameCounts counts;
+    for (std::size_t index = 0; index < plan.files.size(); ++index) {
+        const FrameFiles& f = plan.files[index];
+        const PathFrame frame = plan.path.frame(f.frame);
         const std::string camera =
             cameraFlags(frame.scene.job.camera) + (frame.flags.empty() ? "" : " " + frame.flags);
         if (done[index]) {
             manifest.append({f.frame, f.out.string(), camera, 0.0, "skipped"});
-            ++skipped;
+            ++counts.skipped;
             progress.frameDone(false, 0.0);
             continue;
         }
@@ -369,82 +524,8 @@ int runBatch(const RenderOptions& o) {
             const MapKey key = mapKey(frame.scene);
             const MapFacts& facts = checked.maps.at(key);
             const RenderJob job = frameJob(frame, facts);
-            if (!context) {
-                context = createHeadlessContext(o.backend);
-                if (o.verbose)
-                    logInfo("GL: " + context->renderer() + ", " + context->version() + " via " +
-                            context->description());
-                renderer.emplace(*context, frame.scene.job.method);
-                renderer->setPaging(o.paging);
-            }
-            // A map is loaded and its pyramid built only for a frame whose relief has
-            // another pyramid than the last (core/scene/Scene.h: samePyramid).
-            if (facts.fromPyramidFile) {
-                // Pages stay resident from frame to frame while the map is the same (another
-                // size of its base, last level or view is the job's own: render applies it).
-                if (pagesSet != key) {
-                    renderer->setPyramidPages(
-                        openPyramidCache(o, std::get<0>(key), job.map.load, job.base.wrapsU()),
-                        std::get<0>(key).string(), job.base, job.interpolation);
-                    pagesSet = key;
-                    map.reset();
-                    mapHeld.reset();
-                    ++mapsLoaded;
-                }
-            } else if (renderer->needsHeights(job)) {
-                // The same samples for another pyramid (another base or tiles): the map held.
-                // The check's map, where it has the same samples, is not read again either.
-                const bool held = map && mapHeld && sameSamples(*mapHeld, key);
-                const bool checkedHere = checkedMap && sameSamples(checkedMap->key, key);
-                auto heights =
-                    held ? map
-                         : std::make_shared<const HeightMap>(
-                               checkedHere ? std::move(checkedMap->map)
-                                           : loadHeightMap(std::get<0>(key), job.map.load));
-                checkedMap.reset();  // taken, or held already, or of another map: not kept
-                if (!held) {
-                    map.reset();  // the last map, kept now only by pages that setHeights lets go
-                    mapHeld.reset();
-                    ++mapsLoaded;
-                }
-                renderer->setHeights(job, heights, std::get<0>(key).string());
-                map = std::move(heights);
-                mapHeld = key;
-            }
-            if (const std::optional<std::filesystem::path> albedo = albedoPath(job);
-                albedo != loadedAlbedo) {
-                loadedAlbedo.reset();
-                if (albedo) {
-                    const AlbedoImage image = loadAlbedo(*albedo);
-                    renderer->setAlbedo(&image, albedo->string());
-                } else {
-                    renderer->setAlbedo(nullptr, "");
-                }
-                loadedAlbedo = albedo;
-            }
-            const HeadlessResult result = renderer->render(job);
-            const RenderedFrame& pixels = result.frame;
-            // A map drawn from its pyramid file is not in memory to hold the eye to.
-            const HeightMap* traced = result.animatedMap ? &*result.animatedMap
-                                      : map              ? map.get()
-                                                         : nullptr;
-            if (traced && eyeInsideTheSolid(*traced, job) && eyeInside++ == 0)
-                firstEyeInside = frame.origin;
-
-            std::size_t exhausted = 0;
-            for (std::size_t p = 3; p < pixels.stats.size(); p += 4)
-                exhausted += pixels.stats[p] > 0.0f;
-            if (exhausted > 0) {
-                progress.clear();
-                logWarning("frame " + std::to_string(f.frame) + ": " + std::to_string(exhausted) +
-                           " pixel(s) ran out of the iteration budget (shown magenta)");
-            }
-            ImageWriteBatch batch;
-            const std::vector<std::uint8_t> rgb =
-                rgbFromRgba(pixels.color, pixels.width, pixels.height);
-            batch.write(f.out, {pixels.width, pixels.height, 3, PixelType::UInt8, rgb.data(), {}});
-            if (f.aov) writeAov(batch, *f.aov, pixels, job.shading.shadows != ShadowMode::Off);
-            batch.commit();
+            const HeadlessResult result = renderer.render(frame, job, key, facts);
+            writeFrame(f, job, result.frame, progress);
         } catch (const Error& e) {
             progress.clear();
             try {
@@ -459,35 +540,58 @@ int runBatch(const RenderOptions& o) {
         }
         const double seconds = secondsSince(frameStart);
         manifest.append({f.frame, f.out.string(), camera, seconds * 1e3, "rendered"});
-        ++rendered;
+        ++counts.rendered;
         progress.frameDone(true, seconds);
     }
-    progress.finish();
-    if (eyeInside > 0) {
-        logWarning(plural(eyeInside, "frame") + " of " + std::to_string(files.size()) +
+    return counts;
+}
+
+// Stage 6, after the last frame: the eyes inside the solid, then (unless --quiet) one line
+// of what was drawn, to where, how fast, and from how many maps.
+void reportRun(const RenderOptions& o, const BatchPlan& plan, const FrameCounts& counts,
+               const FrameRenderer& renderer, Clock::time_point start) {
+    if (renderer.eyeInside() > 0) {
+        logWarning(plural(renderer.eyeInside(), "frame") + " of " +
+                   std::to_string(plan.files.size()) +
                    " drawn with the eye inside the relief's solid (under its surface; first: " +
-                   firstEyeInside +
+                   renderer.firstEyeInside() +
                    "): the pictures are undefined there; move the eye above the surface");
     }
+    if (o.quiet) return;
+    const double seconds = secondsSince(start);
+    char timing[64];
+    std::snprintf(timing, sizeof timing, "%.2f s, %.3g fps", seconds,
+                  seconds > 0.0 ? counts.rendered / seconds : 0.0);
+    std::string line =
+        "microrelief-render: " + plural(static_cast<int>(plan.frames.size()), "frame") + " of " +
+        std::to_string(plan.path.size()) + " (" +
+        (o.batch.cameras ? o.batch.cameras->string() : "turntable");
+    if (o.batch.shard)
+        line +=
+            ", shard " + std::to_string(plan.shard.index) + "/" + std::to_string(plan.shard.count);
+    line += "): " + std::to_string(counts.rendered) + " rendered, " +
+            std::to_string(counts.skipped) + " skipped, to " + o.out.string() +
+            (o.aov ? " and " + o.aov->string() : "") + "; manifest " + plan.manifest.string() +
+            "; " + timing + ", " + plural(renderer.mapsLoaded(), "map") + " loaded" +
+            (renderer.context() ? ", " + renderer.context()->description() : "");
+    std::printf("%s\n", line.c_str());
+}
 
-    if (!o.quiet) {
-        const double seconds = secondsSince(start);
-        char timing[64];
-        std::snprintf(timing, sizeof timing, "%.2f s, %.3g fps", seconds,
-                      seconds > 0.0 ? rendered / seconds : 0.0);
-        std::string line =
-            "microrelief-render: " + plural(static_cast<int>(frames.size()), "frame") + " of " +
-            std::to_string(path.size()) + " (" +
-            (o.batch.cameras ? o.batch.cameras->string() : "turntable");
-        if (o.batch.shard)
-            line += ", shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count);
-        line += "): " + std::to_string(rendered) + " rendered, " + std::to_string(skipped) +
-                " skipped, to " + o.out.string() + (o.aov ? " and " + o.aov->string() : "") +
-                "; manifest " + manifestPath.string() + "; " + timing + ", " +
-                plural(mapsLoaded, "map") + " loaded" +
-                (context ? ", " + context->description() : "");
-        std::printf("%s\n", line.c_str());
-    }
+}  // namespace
+
+int runBatch(const RenderOptions& o) {
+    const auto start = Clock::now();
+    const BatchPlan plan = planBatch(o);
+    BatchProgress progress(static_cast<int>(plan.frames.size()),
+                           !o.quiet && BatchProgress::stderrIsTerminal());
+    const FramesToDraw left = framesToDraw(o, plan.files, progress);
+    CheckedFrames checked = checkFramesToDraw(o, plan.path, left.frames);
+    ManifestWriter manifest(plan.manifest);
+    removeTemporariesOfAKilledRun(plan.files);
+    FrameRenderer renderer(o, checked);
+    const FrameCounts counts = drawFrames(plan, left.done, checked, renderer, manifest, progress);
+    progress.finish();
+    reportRun(o, plan, counts, renderer, start);
     return 0;
 }
 

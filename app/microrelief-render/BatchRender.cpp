@@ -238,6 +238,41 @@ RenderJob frameJob(const PathFrame& frame, const MapFacts& facts) {
                         heightMapPath(frame.scene.job).string());
 }
 
+// The facts of a frame's map, the first time a frame draws it: with --pyramid-cache from its
+// pyramid file (opened, built where missing, and closed again), else from the map loaded
+// whole, which `last` keeps for the first frame that draws it.
+MapFacts readMapFacts(const RenderOptions& o, const PathFrame& frame, const MapKey& key,
+                      std::optional<LoadedMap>& last) {
+    if (o.pyramidCache) {
+        const std::shared_ptr<const PyramidFile> pages =
+            openPyramidCache(o, std::get<0>(key), frame.scene.job.map.load,
+                             drawnBase(frame.scene, std::get<0>(key)).wrapsU());
+        const MapExtent extent{pages->mapWidth(), pages->mapHeight(), pages->largestSample()};
+        return MapFacts{extent, pages->georeference(), true};
+    }
+    HeightMapFile loaded =
+        loadMapOrPointToCache(std::get<0>(key), frame.scene.job, o.compareReference);
+    const HeightMap& map = loaded.map;
+    MapFacts facts{{map.width, map.height, map.maxValue()}, loaded.georeference, false};
+    last = LoadedMap{key, std::move(loaded.map)};
+    return facts;
+}
+
+// What a map's facts tell the user, once a map: an exaggeration its grid leaves unused and,
+// unless --quiet, what its georeference gave.
+void reportMapFacts(const RenderOptions& o, const PathFrame& frame, const MapKey& key,
+                    const MapFacts& facts) {
+    if (const std::string unused = exaggerationUnused(std::get<0>(key).string(),
+                                                      frame.scene.georeference, facts.georeference);
+        !unused.empty())
+        logWarning(unused);
+    if (facts.georeference && !o.quiet)
+        std::printf("microrelief-render: %s\n",
+                    georeferenceSummary(std::get<0>(key).string(), *facts.georeference,
+                                        frameJob(frame, facts), frame.scene.georeference)
+                        .c_str());
+}
+
 // Every selected frame, checked before the first is drawn, its errors naming its row: the
 // maps it draws load (each once) and, with its camera, stay within what the shader's
 // float arithmetic holds (core/scene/FloatLimits.h); its albedo loads. An animated frame's
@@ -246,7 +281,6 @@ RenderJob frameJob(const PathFrame& frame, const MapFacts& facts) {
 // map's pyramid file is opened (built where missing) in place of the map: never read whole.
 CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                           const std::vector<int>& frames) {
-    const bool quiet = o.quiet;
     CheckedFrames checked;
     std::set<std::filesystem::path> albedos;
     for (const int k : frames) {
@@ -256,36 +290,8 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
             auto facts = checked.maps.find(key);
             if (facts == checked.maps.end()) {
                 checked.last.reset();
-                if (o.pyramidCache) {
-                    const std::shared_ptr<const PyramidFile> pages =
-                        openPyramidCache(o, std::get<0>(key), frame.scene.job.map.load,
-                                         drawnBase(frame.scene, std::get<0>(key)).wrapsU());
-                    const MapExtent extent{pages->mapWidth(), pages->mapHeight(),
-                                           pages->largestSample()};
-                    facts = checked.maps.emplace(key, MapFacts{extent, pages->georeference(), true})
-                                .first;
-                } else {
-                    HeightMapFile loaded = loadMapOrPointToCache(std::get<0>(key), frame.scene.job,
-                                                                 o.compareReference);
-                    const HeightMap& map = loaded.map;
-                    facts = checked.maps
-                                .emplace(key, MapFacts{{map.width, map.height, map.maxValue()},
-                                                       loaded.georeference,
-                                                       false})
-                                .first;
-                    checked.last = LoadedMap{key, std::move(loaded.map)};
-                }
-                if (const std::string unused =
-                        exaggerationUnused(std::get<0>(key).string(), frame.scene.georeference,
-                                           facts->second.georeference);
-                    !unused.empty())
-                    logWarning(unused);
-                if (facts->second.georeference && !quiet)
-                    std::printf("microrelief-render: %s\n",
-                                georeferenceSummary(
-                                    std::get<0>(key).string(), *facts->second.georeference,
-                                    frameJob(frame, facts->second), frame.scene.georeference)
-                                    .c_str());
+                facts = checked.maps.emplace(key, readMapFacts(o, frame, key, checked.last)).first;
+                reportMapFacts(o, frame, key, facts->second);
             }
             const RenderJob job = frameJob(frame, facts->second);
             checkPictureSize(job.width, job.height);

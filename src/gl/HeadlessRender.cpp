@@ -11,28 +11,6 @@
 
 namespace microrelief {
 
-namespace {
-
-void checkHeightScale(float heightScale) {
-    if (!(heightScale > 0.0f) || !std::isfinite(heightScale)) {
-        throwBadInput("{heightScale} must be a positive number");
-    }
-}
-
-}  // namespace
-
-void checkPictureSize(int width, int height) {
-    const double pixels = static_cast<double>(width) * height;
-    if (width <= 0 || height <= 0 || width > kMaxPictureSide || height > kMaxPictureSide ||
-        pixels > static_cast<double>(kMaxPicturePixels)) {
-        throwBadInput("{size} " + std::to_string(width) + "x" + std::to_string(height) +
-                      " is outside the pictures this program renders: sides up to " +
-                      std::to_string(kMaxPictureSide) + ", at most " +
-                      std::to_string(kMaxPicturePixels) + " pixels (16384 x 16384; " +
-                      std::to_string(kFrameBytesPerPixel) + " bytes a pixel in memory)");
-    }
-}
-
 HeadlessRenderer::HeadlessRenderer(GlContext& context, const MethodSettings& method)
     : context_(context) {
     context_.makeCurrent();
@@ -93,8 +71,8 @@ void HeadlessRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& s
 }
 
 HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
-    checkHeightScale(job.heightScale);
-    checkPictureSize(job.width, job.height);
+    // The door: the scene as a whole (core/scene/Scene.h), once, before any GL work.
+    throwIfInvalid(validateScene(job, job));
     const ReliefMap* map = renderer_->map().get();
     if (!map) throwRuntime("HeadlessRenderer::render: no height map");
     {
@@ -231,9 +209,8 @@ HeadlessResult renderMap(GlContext& context, const HeightMap& map, const std::st
                          const RenderJob& job, const AlbedoImage* albedo,
                          const PagingSettings& paging,
                          const std::function<void(HeadlessRenderer&)>& set) {
-    // Refused before the pyramid is built; render checks them again.
-    checkHeightScale(job.heightScale);
-    checkPictureSize(job.width, job.height);
+    // Refused before the pyramid is built; render checks the scene again.
+    throwIfInvalid(validateScene(job, job));
     checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxValue()},
                      job.heightScale, job.base, job.model, job.camera,
                      resolveCamera(job.camera, job.width, job.height, 1.0), source);

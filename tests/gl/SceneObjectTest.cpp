@@ -551,6 +551,43 @@ TEST_F(SceneObject, AViewDrawsAsHeadlessRendersIt) {
     }
 }
 
+// The scene is checked once, as a whole, at the renderer's door (validateScene): a job the
+// description refuses (here a light wider than a hemisphere, which nothing below the scene
+// checks) is refused by HeadlessRenderer::render and renderHeadless with the scene's own
+// message, before anything is drawn; the renderer then draws the next job as before.
+TEST_F(SceneObject, TheSceneIsCheckedAtTheDoor) {
+    const HeightMap map = synth::cobbles(32, 32, 5);
+    RenderJob job;
+    job.width = job.height = 24;
+    job.camera = test::orbitCamera(40.0, 25.0, 1.7);
+    HeadlessRenderer renderer(test::glContext(), job.method);
+    renderer.setHeights(job, map, "cobbles");
+    const HeadlessResult before = renderer.render(job);
+    RenderJob wide = job;
+    wide.shading.lightSizeDegrees = 95.0f;
+    ASSERT_FALSE(validateScene(wide, wide).empty());
+    std::string expected;  // the scene's first refusal, as throwIfInvalid words it
+    try {
+        throwIfInvalid(validateScene(wide, wide));
+    } catch (const Error& e) {
+        expected = e.what();
+    }
+    EXPECT_NE(expected.find("shading.lightSizeDegrees"), std::string::npos) << expected;
+    for (const char* door : {"HeadlessRenderer::render", "renderHeadless"}) {
+        try {
+            if (std::string(door) == "renderHeadless")
+                (void)renderHeadless(test::glContext(), map, "cobbles", wide);
+            else
+                (void)renderer.render(wide);
+            ADD_FAILURE() << door << " drew a scene the description refuses";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput) << door;
+            EXPECT_EQ(std::string(e.what()), expected) << door;
+        }
+    }
+    EXPECT_EQ(renderer.render(job).frame.position, before.frame.position);
+}
+
 // The window depth written for each convention: OpenGL's [-1, 1] clip depth and
 // glClipControl's [0, 1], each standard and reversed (near at 1, a GREATER test, cleared to
 // 0). Unprojecting a hit pixel's depth through the projection gives back the AOV's world

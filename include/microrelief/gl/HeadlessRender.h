@@ -79,7 +79,9 @@ public:
     const RebuildCounts& rebuilds() const { return renderer_->rebuilds(); }
     // The map's colours (core/image/Albedo.h), or none (the shading's one colour). Throws Error.
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
-    // Renders `job` of the current map. Throws Error.
+    // Renders `job` of the current map. The scene is checked as a whole first
+    // (validateScene: Error(BadInput) with its first refusal, before any GL work). Throws
+    // Error.
     HeadlessResult render(const RenderJob& job);
     // When setHeights reads a map through pages (ReliefRenderer::setPaging;
     // by default Auto: maps larger than GL_MAX_TEXTURE_SIZE).
@@ -113,8 +115,6 @@ private:
     bool fromPages_ = false;  // the map set is a pyramid file's (setPyramidPages)
     int maxTileSide_ = kDefaultTileSide;
 };
-// Throws Error(BadInput) for a picture size beyond the limits above.
-void checkPictureSize(int width, int height);
 
 // `source` names the map in error messages; `paging`: when and how the map is read through
 // pages (by default, past GL_MAX_TEXTURE_SIZE). Throws Error.

@@ -124,6 +124,23 @@ bool ViewDesc::operator==(const ViewDesc& o) const {
            background == o.background;
 }
 
+std::optional<FieldError> pictureSizeError(int width, int height) {
+    const double pixels = static_cast<double>(width) * height;
+    if (width > 0 && height > 0 && width <= kMaxPictureSide && height <= kMaxPictureSide &&
+        pixels <= static_cast<double>(kMaxPicturePixels))
+        return std::nullopt;
+    return FieldError{"size", "{size} " + std::to_string(width) + "x" + std::to_string(height) +
+                                  " is outside the pictures this program renders: sides up to " +
+                                  std::to_string(kMaxPictureSide) + ", at most " +
+                                  std::to_string(kMaxPicturePixels) + " pixels (16384 x 16384; " +
+                                  std::to_string(kFrameBytesPerPixel) + " bytes a pixel in memory)"};
+}
+
+void checkPictureSize(int width, int height) {
+    if (std::optional<FieldError> size = pictureSizeError(width, height))
+        throwBadInput(size->message);
+}
+
 std::vector<FieldError> ViewDesc::validate() const {
     std::vector<FieldError> errors;
     checkPoint(errors, "camera.eye", camera.eye);
@@ -135,15 +152,8 @@ std::vector<FieldError> ViewDesc::validate() const {
         // is no view direction (core/scene/Camera.h says each, by field).
         collect(errors, "camera", [&] { resolveCamera(camera, 1, 1, 1.0); });
     }
-    const double pixels = static_cast<double>(width) * height;
-    if (width <= 0 || height <= 0 || width > kMaxPictureSide || height > kMaxPictureSide ||
-        pixels > static_cast<double>(kMaxPicturePixels)) {
-        errors.push_back({"size", "{size} " + std::to_string(width) + "x" + std::to_string(height) +
-                                      " is outside the pictures this program renders: sides up to " +
-                                      std::to_string(kMaxPictureSide) + ", at most " +
-                                      std::to_string(kMaxPicturePixels) + " pixels (16384 x 16384; " +
-                                      std::to_string(kFrameBytesPerPixel) + " bytes a pixel in memory)"});
-    }
+    if (std::optional<FieldError> size = pictureSizeError(width, height))
+        errors.push_back(std::move(*size));
     if (method.steps < 1 || method.steps > 65536)
         errors.push_back({"method.steps", "{method.steps} must lie in 1..65536"});
     if (!(method.pixelError >= 0.0f) || !std::isfinite(method.pixelError))

@@ -121,6 +121,10 @@ void throwIfInvalid(const std::vector<FieldError>& errors);
 inline constexpr int kMaxPictureSide = 65536;
 inline constexpr long long kMaxPicturePixels = 16384LL * 16384;
 inline constexpr int kFrameBytesPerPixel = 4 + 16 + 16 + 4;
+// What ViewDesc::validate says of a picture size beyond the limits above; nothing within.
+std::optional<FieldError> pictureSizeError(int width, int height);
+// Throws Error(BadInput) with pictureSizeError's message.
+void checkPictureSize(int width, int height);
 // The most tiles a side (the whole map's side in float map coordinates stays exact to 2^-7
 // of a texel at 256 tiles of a 256 map).
 inline constexpr int kMaxTiles = 4096;

@@ -49,7 +49,7 @@ TEST_F(ViewerCli, OutputsThatAreInputsAreRefused) {
     test::writeMap(map, synth::valueNoise(16, 16, 4, 2, 3), PixelType::UInt16);
     std::filesystem::create_symlink(map, dir / "link.png");
     const std::vector<std::uint8_t> bytes = test::readBytes(map);
-    for (const std::string& flag : {"--save-map", "--screenshot", "--window-screenshot"}) {
+    for (const std::string flag : {"--save-map", "--screenshot", "--window-screenshot"}) {
         for (const auto& out : {map, dir / "link.png"}) {
             expectFailure(
                 run("--height " + map.string() + " " + flag + " " + out.string()), 2,

@@ -44,7 +44,7 @@ struct TerrainRow {
     TerrainPath path = TerrainPath::Whole;
     bool paged() const { return path != TerrainPath::Whole; }
     int viewDegrees = 0;
-    // setHeightMap: the pyramid built (GPU whole, CPU paged), uploaded; a file: built (the
+    // setHeights: the pyramid built (GPU whole, CPU paged), uploaded; a file: built (the
     // map's rows made too), opened and the coarse levels uploaded.
     double prepareMs = 0.0;
     double fileMiB = 0.0;    // the pyramid file's size

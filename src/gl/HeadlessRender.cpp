@@ -1,7 +1,6 @@
 #include "microrelief/gl/HeadlessRender.h"
 
 #include <algorithm>
-#include <cmath>
 #include <functional>
 
 #include "microrelief/core/DataPaths.h"

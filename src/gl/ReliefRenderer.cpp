@@ -12,7 +12,6 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/gl/ReliefMap.h"
 #include "microrelief/gl/StateGuard.h"
-#include "microrelief/core/trace/MultilevelTracer.h"
 
 namespace microrelief {
 

@@ -15,14 +15,12 @@
 #include "Manifest.h"
 #include "Progress.h"
 #include "PyramidCache.h"
-#include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
 #include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/headless/HeadlessContext.h"
-#include "microrelief/io/AlbedoFile.h"
-#include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/ImageFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief {
 
@@ -80,16 +78,15 @@ std::vector<FrameFiles> frameFiles(const RenderOptions& o, std::size_t pathLengt
     return files;
 }
 
-// Every map and albedo file a selected frame names is there, before anything is drawn (what is in
-// it is checked when it is loaded).
+// Every map and albedo file a selected frame reads (io/ReliefFiles.h: heightMapPath,
+// albedoPath) is there, before anything is drawn (what is in it is checked when it is loaded).
 void checkMapFiles(const CameraPath& path, const std::vector<int>& frames) {
     std::set<std::filesystem::path> checked;
     for (const int k : frames) {
         const PathFrame frame = path.frame(k);
-        const AlbedoSource& albedo = frame.scene.job.albedo;
-        const std::optional<std::filesystem::path> albedoFile =
-            albedo.kind == AlbedoSource::Kind::File ? std::optional(albedo.file) : std::nullopt;
-        for (const auto* file : {&frame.scene.job.map.file, &albedoFile}) {
+        const std::optional<std::filesystem::path> mapFile = heightMapPath(frame.scene.job),
+                                                   albedoFile = albedoPath(frame.scene.job);
+        for (const auto* file : {&mapFile, &albedoFile}) {
             if (!*file || !checked.insert(**file).second) continue;
             std::error_code ec;
             const auto status = std::filesystem::status(**file, ec);
@@ -199,7 +196,7 @@ bool sameSamples(const MapKey& a, const MapKey& b) {
 }
 
 MapKey mapKey(const SceneOptions& scene) {
-    return {scene.job.map.file ? *scene.job.map.file : defaultHeightMapPath(),
+    return {heightMapPath(scene.job),
             scene.job.map.load.channel,
             scene.job.map.load.normalize,
             scene.job.base.wrapsU(),
@@ -212,7 +209,7 @@ MapKey mapKey(const SceneOptions& scene) {
 // frame that draws it (no second load where the whole path draws one map).
 struct LoadedMap {
     MapKey key;
-    HeightMap map;
+    std::shared_ptr<const HeightMap> map;
 };
 
 // What the frames need of each map they draw: its size and largest height (the float
@@ -250,11 +247,11 @@ MapFacts readMapFacts(const RenderOptions& o, const PathFrame& frame, const MapK
         const MapExtent extent{pages->mapWidth(), pages->mapHeight(), pages->largestSample()};
         return MapFacts{extent, pages->georeference(), true};
     }
-    HeightMapFile loaded =
-        loadMapOrPointToCache(std::get<0>(key), frame.scene.job, o.compareReference);
-    const HeightMap& map = loaded.map;
+    ReliefFiles loaded =
+        loadFilesOrPointToCache(frame.scene.job, o.compareReference, ReliefParts::Heights);
+    const HeightMap& map = *loaded.heights;
     MapFacts facts{{map.width, map.height, map.maxValue()}, loaded.georeference, false};
-    last = LoadedMap{key, std::move(loaded.map)};
+    last = LoadedMap{key, std::move(loaded.heights)};
     return facts;
 }
 
@@ -304,7 +301,7 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                                  std::get<0>(key).string());
             }
             if (const auto albedo = albedoPath(job); albedo && albedos.insert(*albedo).second)
-                loadAlbedo(*albedo);  // what is in it: its pixels, finite
+                (void)loadReliefFiles(job, ReliefParts::Albedo);  // what is in it: finite
         } catch (const Error& e) {
             throw e.after(frame.origin + ": ");
         }
@@ -428,10 +425,10 @@ private:
             std::optional<LoadedMap>& checkedMap = checked_.last;
             const bool held = map_ && mapHeld_ && sameSamples(*mapHeld_, key);
             const bool checkedHere = checkedMap && sameSamples(checkedMap->key, key);
-            auto heights = held ? map_
-                                : std::make_shared<const HeightMap>(
-                                      checkedHere ? std::move(checkedMap->map)
-                                                  : loadHeightMap(std::get<0>(key), job.map.load));
+            std::shared_ptr<const HeightMap> heights =
+                held          ? map_
+                : checkedHere ? std::move(checkedMap->map)
+                              : loadReliefFiles(job, ReliefParts::Heights).heights;
             checkedMap.reset();  // taken, or held already, or of another map: not kept
             if (!held) {
                 map_.reset();  // the last map, kept now only by pages that setHeights lets go
@@ -446,16 +443,12 @@ private:
 
     // The albedo, loaded again only where it is another file (or none) than the last frame's.
     void setAlbedo(const RenderJob& job) {
-        const std::optional<std::filesystem::path> albedo = albedoPath(job);
-        if (albedo == loadedAlbedo_) return;
+        if (albedoPath(job) == loadedAlbedo_) return;
         loadedAlbedo_.reset();
-        if (albedo) {
-            const AlbedoImage image = loadAlbedo(*albedo);
-            renderer_->setAlbedo(&image, albedo->string());
-        } else {
-            renderer_->setAlbedo(nullptr, "");
-        }
-        loadedAlbedo_ = albedo;
+        const ReliefFiles colours = loadReliefFiles(job, ReliefParts::Albedo);
+        renderer_->setAlbedo(colours.albedo ? &*colours.albedo : nullptr,
+                             colours.albedoFile ? colours.albedoFile->string() : "");
+        loadedAlbedo_ = colours.albedoFile;
     }
 
     // A map drawn from its pyramid file is not in memory to hold the eye to.

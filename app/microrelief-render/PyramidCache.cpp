@@ -7,6 +7,7 @@
 #include "Progress.h"
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/io/HeightMapFile.h"
 
 namespace microrelief {
 
@@ -71,30 +72,14 @@ void checkDrawnFromPyramidFile(const RenderJob& job, bool compareReference) {
         throwBadInput(refusal);
 }
 
-namespace {
-
-// `load()`, a map it refuses for this machine's memory pointed to --pyramid-cache where that
-// would draw `job`.
-template <class Load>
-auto pointingToCache(const RenderJob& job, bool compareReference, const Load& load) {
+ReliefFiles loadFilesOrPointToCache(const RenderJob& job, bool compareReference,
+                                    ReliefParts parts) {
     try {
-        return load();
+        return loadReliefFiles(job, parts);
     } catch (const MapOverMemory& e) {
         if (!pyramidFileRefusal(job, compareReference).empty()) throw;
         throw e.followedBy("; --pyramid-cache FOLDER draws it from disk");
     }
-}
-
-}  // namespace
-
-HeightMapFile loadMapOrPointToCache(const std::filesystem::path& file, const RenderJob& job,
-                                    bool compareReference) {
-    return pointingToCache(job, compareReference,
-                           [&] { return loadHeightMapFile(file, job.map.load); });
-}
-
-ReliefFiles loadFilesOrPointToCache(const RenderJob& job, bool compareReference) {
-    return pointingToCache(job, compareReference, [&] { return loadReliefFiles(job); });
 }
 
 }  // namespace microrelief

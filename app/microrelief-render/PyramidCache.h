@@ -6,7 +6,6 @@
 #include <memory>
 
 #include "Options.h"
-#include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/PyramidFile.h"
 #include "microrelief/io/ReliefFiles.h"
 
@@ -33,12 +32,10 @@ std::string pyramidFileRefusal(const RenderJob& job, bool compareReference);
 // Throws Error(BadInput) with pyramidFileRefusal's reason, if any.
 void checkDrawnFromPyramidFile(const RenderJob& job, bool compareReference);
 
-// loadHeightMapFile, except that a map refused for this machine's memory (MapOverMemory)
-// that --pyramid-cache would draw for `job` says so.
-HeightMapFile loadMapOrPointToCache(const std::filesystem::path& file, const RenderJob& job,
-                                    bool compareReference);
-// loadReliefFiles (io/ReliefFiles.h: the map and the albedo `job` names), with the same
-// word for a map refused for this machine's memory.
-ReliefFiles loadFilesOrPointToCache(const RenderJob& job, bool compareReference);
+// loadReliefFiles (io/ReliefFiles.h: the map and the albedo `job` names, as `parts` asks),
+// except that a map refused for this machine's memory (MapOverMemory) that --pyramid-cache
+// would draw for `job` says so.
+ReliefFiles loadFilesOrPointToCache(const RenderJob& job, bool compareReference,
+                                    ReliefParts parts = ReliefParts::HeightsAndAlbedo);
 
 }  // namespace microrelief

@@ -14,16 +14,15 @@
 #include "Progress.h"
 #include "PyramidCache.h"
 #include "SceneOptions.h"
-#include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
 #include "microrelief/core/trace/Accuracy.h"
 #include "microrelief/core/trace/ReferenceTracer.h"
 #include "microrelief/headless/HeadlessContext.h"
-#include "microrelief/io/AlbedoFile.h"
 #include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/ImageFile.h"
 #include "microrelief/io/PyramidFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 using namespace microrelief;
 
@@ -65,11 +64,6 @@ std::string pagingSummary(const PagingReport& paging) {
     if (paging.draws == 0) return "";
     return ", paged: " + std::to_string(paging.draws) + " draws, " +
            std::to_string(paging.pagesLoaded) + " pages loaded";
-}
-
-// The job's albedo, where it has one.
-std::optional<AlbedoImage> loadAlbedoOf(const std::optional<std::filesystem::path>& file) {
-    return file ? std::optional<AlbedoImage>(loadAlbedo(*file)) : std::nullopt;
 }
 
 // The GL context of --backend, named with -v.
@@ -117,15 +111,14 @@ Drawn drawFromPyramidFile(const RenderOptions& o, const std::filesystem::path& h
         openPyramidCache(o, heightFile, asked.map.load, asked.base.wrapsU());
     const RenderJob job =
         jobOverMap(o, heightFile, pages->mapWidth(), pages->mapHeight(), pages->georeference());
-    const std::optional<std::filesystem::path> albedoFile = albedoPath(job);
-    const std::optional<AlbedoImage> albedo = loadAlbedoOf(albedoFile);
+    const ReliefFiles colours = loadReliefFiles(job, ReliefParts::Albedo);
     const auto context = openContext(o);
     Drawn drawn;
     {
         HeadlessRenderer renderer(*context, job.method);  // its GL objects die before the context
         renderer.setPaging(o.paging);
         renderer.setPyramidPages(pages, name, job.base, job.interpolation);
-        if (albedo) renderer.setAlbedo(&*albedo, albedoFile->string());
+        if (colours.albedo) renderer.setAlbedo(&*colours.albedo, colours.albedoFile->string());
         drawn.result = renderer.render(job);
     }
     drawn.context = context->description();

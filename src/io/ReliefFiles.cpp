@@ -34,19 +34,35 @@ bool albedoOffered(const ReliefDesc& relief) {
     return !relief.albedo.file.empty() || bundledColoursFit(relief);
 }
 
-ReliefFiles loadReliefFiles(const ReliefDesc& relief) {
+std::shared_ptr<HeightMap> ReliefFiles::takeHeights() {
+    std::shared_ptr<HeightMap> own;
+    if (read_ && read_ == heights)
+        own = std::move(read_);  // the samples read here, handed over
+    else if (heights)
+        own = std::make_shared<HeightMap>(*heights);
+    read_.reset();
+    heights.reset();
+    return own;
+}
+
+ReliefFiles loadReliefFiles(const ReliefDesc& relief, ReliefParts parts) {
     ReliefFiles files;
-    if (relief.map.samples) {
-        files.heights = relief.map.samples;
-    } else {
-        files.heightFile = heightMapPath(relief);
-        HeightMapFile read = loadHeightMapFile(*files.heightFile, relief.map.load);
-        files.heights = std::make_shared<const HeightMap>(std::move(read.map));
-        files.georeference = std::move(read.georeference);
-        files.placement = std::move(read.placement);
+    if (parts != ReliefParts::Albedo) {
+        if (relief.map.samples) {
+            files.heights = relief.map.samples;
+        } else {
+            files.heightFile = heightMapPath(relief);
+            HeightMapFile read = loadHeightMapFile(*files.heightFile, relief.map.load);
+            files.read_ = std::make_shared<HeightMap>(std::move(read.map));
+            files.heights = files.read_;
+            files.georeference = std::move(read.georeference);
+            files.placement = std::move(read.placement);
+        }
     }
-    files.albedoFile = albedoPath(relief);
-    if (files.albedoFile) files.albedo = loadAlbedo(*files.albedoFile);
+    if (parts != ReliefParts::Heights) {
+        files.albedoFile = albedoPath(relief);
+        if (files.albedoFile) files.albedo = loadAlbedo(*files.albedoFile);
+    }
     return files;
 }
 

@@ -93,4 +93,62 @@ TEST(ReliefFiles, ADescriptionReadsTheFilesItsRulesName) {
     }
 }
 
+// One part asked for: the other is not read (a file that is not there refuses nothing).
+TEST(ReliefFiles, APartAskedForReadsOnlyItsFiles) {
+    test::ScratchDir scratch;
+    const std::filesystem::path ownFile = scratch / "own.exr";
+    test::writeMap(ownFile, HeightMap(6, 4, 0.25f), PixelType::Float);
+
+    ReliefDesc noColours;  // its own map, its colour file not there
+    noColours.map.file = ownFile;
+    noColours.albedo = {AlbedoSource::Kind::File, scratch / "nowhere.png"};
+    const ReliefFiles heights = loadReliefFiles(noColours, ReliefParts::Heights);
+    EXPECT_EQ(heights.heightFile, ownFile);
+    ASSERT_TRUE(heights.heights);
+    EXPECT_EQ(heights.heights->width, 6);
+    EXPECT_FALSE(heights.albedoFile);
+    EXPECT_FALSE(heights.albedo);
+
+    ReliefDesc noMap;  // the bundled colours named, its map not there
+    noMap.map.file = scratch / "nowhere.exr";
+    noMap.albedo = {AlbedoSource::Kind::File, defaultAlbedoPath()};
+    const ReliefFiles colours = loadReliefFiles(noMap, ReliefParts::Albedo);
+    EXPECT_FALSE(colours.heightFile);
+    EXPECT_FALSE(colours.heights);
+    EXPECT_EQ(colours.albedoFile, defaultAlbedoPath());
+    EXPECT_TRUE(colours.albedo);
+    // The bundled map's own colours, by the same rule as both parts read together.
+    EXPECT_EQ(loadReliefFiles(ReliefDesc{}, ReliefParts::Albedo).albedoFile, defaultAlbedoPath());
+
+    EXPECT_THROW((void)loadReliefFiles(noColours), Error);
+    EXPECT_THROW((void)loadReliefFiles(noMap), Error);
+}
+
+// The heights a host edits: those read from a file handed over (the very samples, no copy);
+// samples the description holds copied, the shared ones left as they were.
+TEST(ReliefFiles, HeightsTakenToEditAreTheCallersOwn) {
+    test::ScratchDir scratch;
+    const std::filesystem::path ownFile = scratch / "own.exr";
+    test::writeMap(ownFile, HeightMap(6, 4, 0.25f), PixelType::Float);
+    ReliefDesc fromFile;
+    fromFile.map.file = ownFile;
+    ReliefFiles read = loadReliefFiles(fromFile, ReliefParts::Heights);
+    const HeightMap* samples = read.heights.get();
+    const std::shared_ptr<HeightMap> taken = read.takeHeights();
+    EXPECT_EQ(taken.get(), samples);  // handed over, not copied
+    EXPECT_FALSE(read.heights);
+    EXPECT_EQ(taken.use_count(), 1);  // the caller's alone
+
+    const auto shared = std::make_shared<const HeightMap>(5, 3, 0.5f);
+    ReliefDesc inMemory;
+    inMemory.map.samples = shared;
+    ReliefFiles given = loadReliefFiles(inMemory, ReliefParts::Heights);
+    const std::shared_ptr<HeightMap> copy = given.takeHeights();
+    ASSERT_TRUE(copy);
+    EXPECT_NE(copy.get(), shared.get());
+    copy->at(0, 0) = 1.0f;
+    EXPECT_EQ(shared->at(0, 0), 0.5f);  // the description's samples untouched
+    EXPECT_EQ(copy->at(1, 1), 0.5f);
+}
+
 }  // namespace

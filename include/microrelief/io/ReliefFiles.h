@@ -29,21 +29,38 @@ bool bundledColoursFit(const ReliefDesc& relief);
 // own (kept while turned off), or the bundled map's (bundledColoursFit).
 bool albedoOffered(const ReliefDesc& relief);
 
+// What loadReliefFiles reads: the map and its colours, or one of them where a host holds
+// the other already (a camera path's frames change colours over one map; the viewer turns
+// colours on and off over the map it holds, and opens another map under the same colours
+// rule).
+enum class ReliefParts { HeightsAndAlbedo, Heights, Albedo };
+
 // What a relief's map and albedo hold.
 struct ReliefFiles {
     // The file the heights were read from (heightMapPath); none where the description
-    // holds its samples in memory (MapSource::samples).
+    // holds its samples in memory (MapSource::samples) or the heights were not asked for.
     std::optional<std::filesystem::path> heightFile;
     std::shared_ptr<const HeightMap> heights;  // shared with the description's, or read
     std::optional<Georeference> georeference;  // a DEM's (io/HeightMapFile.h)
     std::optional<GroundPlacement> placement;  // a DEM's, with its georeference
-    std::optional<std::filesystem::path> albedoFile;  // albedoPath
+    std::optional<std::filesystem::path> albedoFile;  // albedoPath, where asked for
     std::optional<AlbedoImage> albedo;                // its texels, where it names one
+
+    // The heights for a host that edits them (the viewer's sculpting), `heights` left empty:
+    // those read from the file handed over as they are (no copy: a copy of `heights` kept
+    // from before sees the edits), the description's samples in memory copied (they are
+    // shared, not the caller's to change).
+    std::shared_ptr<HeightMap> takeHeights();
+
+private:
+    friend ReliefFiles loadReliefFiles(const ReliefDesc&, ReliefParts);
+    std::shared_ptr<HeightMap> read_;  // `heights` as read from the file, before takeHeights
 };
 
-// Reads what `relief` names: the samples it holds, or its map file as relief.map.load says
-// (loadHeightMapFile), then the albedo where albedoPath names one (loadAlbedo). Throws as
-// those do: one Error(BadInput) naming the file and the reason.
-ReliefFiles loadReliefFiles(const ReliefDesc& relief);
+// Reads what `relief` names, as `parts` asks: the samples it holds, or its map file as
+// relief.map.load says (loadHeightMapFile); the albedo where albedoPath names one
+// (loadAlbedo). Throws as those do: one Error(BadInput) naming the file and the reason.
+ReliefFiles loadReliefFiles(const ReliefDesc& relief,
+                            ReliefParts parts = ReliefParts::HeightsAndAlbedo);
 
 }  // namespace microrelief

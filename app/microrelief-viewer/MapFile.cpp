@@ -22,7 +22,7 @@ std::string lowerExtension(const std::filesystem::path& file) {
 
 }  // namespace
 
-std::optional<MapGround> mapGround(const HeightMapFile& loaded) {
+std::optional<MapGround> mapGround(const ReliefFiles& loaded) {
     if (!loaded.georeference || !loaded.placement) return std::nullopt;
     return MapGround{*loaded.georeference, *loaded.placement};
 }

@@ -11,6 +11,7 @@
 
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief {
 
@@ -20,8 +21,8 @@ struct MapGround {
     Georeference georeference;
     GroundPlacement placement;
 };
-// The ground of a loaded map: a DEM's; none for an image.
-std::optional<MapGround> mapGround(const HeightMapFile& loaded);
+// The ground of a loaded map (io/ReliefFiles.h): a DEM's; none for an image.
+std::optional<MapGround> mapGround(const ReliefFiles& loaded);
 
 // Throws Error(BadInput) naming the file unless its extension is .png, .exr, .tif or .tiff
 // (any case).

@@ -15,9 +15,8 @@
 #include "microrelief/core/Log.h"
 #include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/gl/StateGuard.h"
-#include "microrelief/io/AlbedoFile.h"
-#include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/ImageFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief {
 
@@ -58,20 +57,19 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.scene = options.scene;
     state_.vsync = options.vsync && options.frames == 0;
     state_.panelVisible = options.panel;
-    const std::filesystem::path file = options.scene.job.map.file.value_or(defaultHeightMapPath());
-    HeightMapFile loaded = loadHeightMapFile(file, options.scene.job.map.load);
+    // The map the scene names (io/ReliefFiles.h), the viewer's own to sculpt.
+    const std::filesystem::path file = heightMapPath(options.scene.job);
+    ReliefFiles loaded = loadReliefFiles(options.scene.job, ReliefParts::Heights);
     const std::string fitted = fitRelief(loaded, file.string());
     ground_ = mapGround(loaded);
     // --save-map FILE.tif keeps a DEM's grid: refused for another map before a window opens.
     if (options.saveMap) checkMapSave(*options.saveMap, ground_);
     const RenderJob& job = state_.scene.job;  // the command line's, over the map
-    map_ = std::make_shared<HeightMap>(std::move(loaded.map));
+    map_ = loaded.takeHeights();
     mapMaxHeight_ = map_->maxValue();  // once per map, not per frame
     loadedWith_ = options.scene.job.map.load;
     // A bad albedo is a bad argument too: refused before any window opens.
-    const std::optional<std::filesystem::path> albedoFile = albedoPath(options.scene.job);
-    const std::optional<AlbedoImage> albedo =
-        albedoFile ? std::optional<AlbedoImage>(loadAlbedo(*albedoFile)) : std::nullopt;
+    const ReliefFiles colours = loadReliefFiles(options.scene.job, ReliefParts::Albedo);
     // A degenerate camera is a bad argument: refuse it before any window opens.
     resolveCamera(controller_.camera(), job.width, job.height,
                   sceneRadius(reliefExtent(map_->width * job.tiles.x, map_->height * job.tiles.y,
@@ -102,8 +100,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     state_.sculpt = options.sculpt && sculptable();
     state_.brush = options.brush;
     state_.savePath = editedMapPath(file, ground_.has_value());
-    if (albedo) renderer_->setAlbedo(&*albedo, albedoFile->string());
-    state_.albedoName = albedoFile ? albedoFile->filename().string() : "";
+    if (colours.albedo) renderer_->setAlbedo(&*colours.albedo, colours.albedoFile->string());
+    state_.albedoName = colours.albedoFile ? colours.albedoFile->filename().string() : "";
 
     if (state_.scene.job.map.file)
         state_.scene.job.map.file = std::filesystem::absolute(*state_.scene.job.map.file);
@@ -116,7 +114,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     if (!fitted.empty()) note(fitted);
 }
 
-std::string ViewerApp::fitRelief(const HeightMapFile& loaded, const std::string& source) {
+std::string ViewerApp::fitRelief(const ReliefFiles& loaded, const std::string& source) {
     RenderJob& job = state_.scene.job;
     const GeoreferenceFit& fit = options_.scene.georeference;
     if (georeferenced_) {
@@ -125,7 +123,8 @@ std::string ViewerApp::fitRelief(const HeightMapFile& loaded, const std::string&
         if (!fit.keepModel) job.model = given.model;
         if (!fit.keepBase) job.base = given.base;
     }
-    job = sceneOverMap(job, fit, loaded.map.width, loaded.map.height, loaded.georeference, source);
+    job = sceneOverMap(job, fit, loaded.heights->width, loaded.heights->height, loaded.georeference,
+                       source);
     georeferenced_ = loaded.georeference.has_value();
     return loaded.georeference ? georeferenceSummary(source, *loaded.georeference, job, fit)
                                : exaggerationUnused(source, fit, loaded.georeference);
@@ -679,7 +678,10 @@ void ViewerApp::applyRelief(const std::shared_ptr<HeightMap>& heights, const std
 }
 
 void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
-    const std::filesystem::path path = file.value_or(defaultHeightMapPath());
+    // The scene over the map asked for: that file, or none for the bundled map.
+    ReliefDesc asked = state_.scene.job;
+    asked.map.file = file;
+    const std::filesystem::path path = heightMapPath(asked);
     std::string fitted;
     const RenderJob before = state_.scene.job;
     const bool georeferencedBefore = georeferenced_;
@@ -692,9 +694,9 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
                 "the map has edits not saved (Ctrl+S or Save map writes them); open "
                 "again to drop them");
         }
-        HeightMapFile loaded = loadHeightMapFile(path, state_.scene.job.map.load);
+        ReliefFiles loaded = loadReliefFiles(asked, ReliefParts::Heights);
         fitted = fitRelief(loaded, path.string());
-        auto map = std::make_shared<HeightMap>(std::move(loaded.map));
+        std::shared_ptr<HeightMap> map = loaded.takeHeights();
         // An animated field replaces the samples on the GPU, which a paged map does not
         // hold whole (as at start: refused).
         GLint maxTexture = 0;
@@ -744,15 +746,13 @@ void ViewerApp::openMap(const std::optional<std::filesystem::path>& file) {
 }
 
 void ViewerApp::applyAlbedo() {
-    const std::optional<std::filesystem::path> file = albedoPath(state_.scene.job);
     try {
-        if (file) {
-            const AlbedoImage albedo = loadAlbedo(*file);
-            renderer_->setAlbedo(&albedo, file->string());
-        } else {
+        const ReliefFiles colours = loadReliefFiles(state_.scene.job, ReliefParts::Albedo);
+        if (colours.albedo)
+            renderer_->setAlbedo(&*colours.albedo, colours.albedoFile->string());
+        else
             renderer_->setAlbedo(nullptr);
-        }
-        state_.albedoName = file ? file->filename().string() : "";
+        state_.albedoName = colours.albedoFile ? colours.albedoFile->filename().string() : "";
     } catch (const Error& e) {
         // The colours go; the relief stays.
         renderer_->setAlbedo(nullptr);

@@ -26,7 +26,7 @@
 #include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/gl/ReliefRenderer.h"
 #include "microrelief/glfw/GlfwContext.h"
-#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief {
 
@@ -124,7 +124,7 @@ private:
     // to the one the renderer kept, and a note says why. Whether it was applied.
     bool changeRelief(const std::string& what);
     void openMap(const std::optional<std::filesystem::path>& file);
-    // The colours the scene asks for (albedoPath), loaded into the renderer, or none.
+    // The colours the scene asks for (io/ReliefFiles.h), loaded into the renderer, or none.
     void applyAlbedo();
     void reloadShaders();
     void setMethod();
@@ -136,10 +136,11 @@ private:
     void copyCommand();
     void setVsync(bool on);
     void note(const std::string& message);
-    // The relief over a map just loaded: a georeferenced map's true proportions where the
-    // command line lets (app/shared/SceneOptions.h, sceneOverMap); where the map before it
-    // set them, the command line's own values come back first. Returns the line to note.
-    std::string fitRelief(const HeightMapFile& loaded, const std::string& source);
+    // The relief over a map just loaded (its heights still in `loaded`): a georeferenced
+    // map's true proportions where the command line lets (app/shared/SceneOptions.h,
+    // sceneOverMap); where the map before it set them, the command line's own values come
+    // back first. Returns the line to note.
+    std::string fitRelief(const ReliefFiles& loaded, const std::string& source);
 
     glm::ivec2 framebufferSize() const;
     glm::ivec2 viewSize() const;

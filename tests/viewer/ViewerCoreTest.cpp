@@ -25,6 +25,7 @@
 #include "ViewerOptions.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ReliefFiles.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 
 using namespace microrelief;
@@ -316,20 +317,22 @@ TEST(MapFile, ADemsMapKeepsItsGroundAsAGeoTiffOrSaysItDoesNot) {
     ground.georeference.highestMetres = 420.0;
     ground.placement.geotransform = {500000.0, 30.0, 0.0, 5000000.0, 0.0, -20.0};
     EXPECT_EQ(saveHeightMap(map, dir / "dem.tif", ground), "");
-    const HeightMapFile dem = loadHeightMapFile(dir / "dem.tif");
+    ReliefDesc relief;  // the map as the viewer reads it (io/ReliefFiles.h)
+    relief.map.file = dir / "dem.tif";
+    const ReliefFiles dem = loadReliefFiles(relief, ReliefParts::Heights);
     const std::optional<MapGround> loaded = mapGround(dem);
     ASSERT_TRUE(loaded);
     EXPECT_EQ(loaded->placement, ground.placement);
     EXPECT_EQ(loaded->georeference.lowestMetres, 100.0);
     EXPECT_EQ(loaded->georeference.highestMetres, 420.0);
     EXPECT_EQ(loaded->georeference.sampleHeightMetres, 20.0);
-    ASSERT_EQ(dem.map.samples.size(), map.samples.size());
+    ASSERT_EQ(dem.heights->samples.size(), map.samples.size());
     for (std::size_t k = 0; k < map.samples.size(); ++k)
-        ASSERT_NEAR(dem.map.samples[k], map.samples[k], 1e-6) << k;
-    EXPECT_FALSE(mapGround(HeightMapFile{map, std::nullopt, std::nullopt}));  // an image's
+        ASSERT_NEAR(dem.heights->samples[k], map.samples[k], 1e-6) << k;
+    EXPECT_FALSE(mapGround(ReliefFiles{}));  // an image's
 
     for (const char* name : {"dem.png", "dem.exr"}) {
-        const std::string said = saveHeightMap(dem.map, dir / name, loaded);
+        const std::string said = saveHeightMap(*dem.heights, dir / name, loaded);
         EXPECT_NE(said.find(std::string(name) + ": saved without the elevation model's "
                                                 "georeference"),
                   std::string::npos)

@@ -15,7 +15,10 @@
 #    FILE:PREFIX:CppEnum: a constant a member and a table of names in the same header
 #    (src/gl/ReliefShader.cpp asserts each C++ enum's members against them, so a reordered
 #    enum stops the build) and a name -> value map in the same module (kMethodValues ...),
-#    which the page and microrelief-three set the #defines from.
+#    which the page and microrelief-three set the #defines from;
+#  * the methods' rows (MR_TRAITS_MAXMIP ... of MR_TRAIT_* bits, in variants.glsl; the enum
+#    spec's :MR_TRAIT:MR_TRAITS): glsl::kMethodTraits[] (core/scene/Method.h: methodHas) and
+#    kMethodTraits, each method's trait names (the page's menus).
 # Adding a member to the block is a line in the GLSL; sharing another constant or
 # enumeration, a line here.
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
@@ -30,7 +33,7 @@ set(MICRORELIEF_SHARED_CONSTANTS
   relief_query.glsl:MR_BUDGET_BASE:kBudgetBase)
 
 set(MICRORELIEF_SHARED_ENUMS
-  variants.glsl:MR_METHOD:Method
+  variants.glsl:MR_METHOD:Method:MR_TRAIT:MR_TRAITS
   variants.glsl:MR_BASE:BaseKind
   variants.glsl:MR_INTERPOLATION:Interpolation
   variants.glsl:MR_SHADOWS:ShadowMode

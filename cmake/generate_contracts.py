@@ -15,7 +15,13 @@ is committed):
     value;`) of FILE a member, values 0, 1, 2 ... in the file's order; in C++ a constexpr a
     member (glsl::kCppEnumName), the count and a table of names and values (the same
     header), in JavaScript a frozen name -> value map (kCppEnumValues, the same module),
-    keyed by the member's lower-case name (MR_METHOD_MAXMIP: 'maxmip').
+    keyed by the member's lower-case name (MR_METHOD_MAXMIP: 'maxmip');
+  * the rows of an enumeration: an --enums spec FILE:PREFIX:CppEnum:TRAIT:ROW, every
+    `#define TRAIT_NAME bit` of FILE a trait (distinct powers of two) and every `#define
+    ROW_MEMBER (TRAIT_A | TRAIT_B ...)` the row of the member PREFIX_MEMBER (one for each
+    member, no more); in C++ a constexpr a trait (glsl::kCppEnumTraitName) and the rows by
+    value (glsl::kCppEnumTraits[]), in JavaScript the trait names of each member
+    (kCppEnumTraits: {maxmip: ['solid', ...]}) and the traits' bits (kCppEnumTraitValues).
 
 Python 3 standard library only. A block or constant this script cannot read is an error
 that names the file and the line, so the build stops rather than guess.
@@ -158,8 +164,11 @@ def read_constant(shaders, spec):
 
 
 def read_enum(shaders, spec):
-    """(C++ enum name, prefix, file, [(NAME, value, line)]) of FILE:PREFIX:CppEnum."""
-    file, prefix, cpp = spec.split(":")
+    """(C++ enum name, prefix, file, [(NAME, value, line)]) of FILE:PREFIX:CppEnum (and
+    FILE:PREFIX:CppEnum:TRAIT:ROW, whose rows read_rows reads)."""
+    if spec.count(":") not in (2, 4):
+        fail("--enums", f"'{spec}' is neither FILE:PREFIX:CppEnum nor FILE:PREFIX:CppEnum:TRAIT:ROW")
+    file, prefix, cpp = spec.split(":")[:3]
     path = pathlib.Path(shaders) / file
     members = []
     for number, line in enumerate(path.read_text().splitlines(), 1):
@@ -182,6 +191,47 @@ def read_enum(shaders, spec):
     if not members:
         fail(path, f"defines no {prefix}_* (#define {prefix}_NAME value)")
     return cpp, prefix, file, members
+
+
+def read_rows(shaders, spec, members):
+    """(C++ enum name, trait prefix, row prefix, file, [(TRAIT, bit, line)], {MEMBER: (bits,
+    [TRAIT], line)}, members) of FILE:PREFIX:CppEnum:TRAIT:ROW, the enumeration's `members`
+    as read_enum read them."""
+    file, _, cpp, trait_prefix, row_prefix = spec.split(":")
+    path = pathlib.Path(shaders) / file
+    traits, rows = [], {}
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        where = f"{path}:{number}"
+        m = re.match(rf"\s*#\s*define\s+{trait_prefix}_(\w+)\s+(\S+)\s*(//.*)?$", line)
+        if m:
+            if not re.fullmatch(r"\d+", m.group(2)):
+                fail(where, f"{trait_prefix}_{m.group(1)} is '{m.group(2)}', not a plain positive integer")
+            bit = int(m.group(2))
+            if bit <= 0 or bit & (bit - 1) or any(bit == b for _, b, _ in traits):
+                fail(where, f"{trait_prefix}_{m.group(1)} is {bit}: each trait is a power of two of its own")
+            traits.append((m.group(1), bit, number))
+            continue
+        m = re.match(rf"\s*#\s*define\s+{row_prefix}_(\w+)\s+(.+?)\s*(//.*)?$", line)
+        if not m:
+            continue
+        member, text = m.group(1), m.group(2)
+        if member not in [name for name, _, _ in members]:
+            fail(where, f"{row_prefix}_{member} is the row of no member of {cpp}")
+        if member in rows:
+            fail(where, f"{row_prefix}_{member} is defined twice")
+        body = text[1:-1] if text.startswith("(") and text.endswith(")") else text
+        names = [] if body.strip() == "0" else [part.strip() for part in body.split("|")]
+        known = {f"{trait_prefix}_{name}": (name, bit) for name, bit, _ in traits}
+        for name in names:
+            if name not in known:
+                fail(where, f"{row_prefix}_{member}: '{name}' is not a {trait_prefix}_* defined above it")
+        rows[member] = (sum(known[n][1] for n in names), [known[n][0] for n in names], number)
+    if not traits:
+        fail(path, f"defines no {trait_prefix}_* (#define {trait_prefix}_NAME bit)")
+    missing = [name for name, _, _ in members if name not in rows]
+    if missing:
+        fail(path, f"no row for {', '.join(row_prefix + '_' + n for n in missing)} (#define {row_prefix}_NAME (TRAITS))")
+    return cpp, trait_prefix, row_prefix, file, traits, rows, members
 
 
 def camel(name):
@@ -213,7 +263,22 @@ def cpp_enums(enums):
     return out
 
 
-def cpp_constants(constants, enums=()):
+def cpp_rows(all_rows):
+    out = []
+    for cpp, trait_prefix, row_prefix, file, traits, rows, members in all_rows:
+        out += ["", f"// {trait_prefix}_* ({file}:{traits[0][2]}-{traits[-1][2]}): what a {cpp} is, one bit each."]
+        for name, bit, line in traits:
+            out.append(f"inline constexpr unsigned k{cpp}Trait{camel(name)} = {bit}u;")
+        out.append(f"// {row_prefix}_* ({file}): each {cpp}'s traits, by its value.")
+        out.append(f"inline constexpr unsigned k{cpp}Traits[] = {{")
+        for name, value, line in members:
+            bits, names, row_line = rows[name]
+            out.append(f"    {bits}u,  // {name.lower()}: {' | '.join(n.lower() for n in names) or 'none'}")
+        out.append("};")
+    return out
+
+
+def cpp_constants(constants, enums=(), rows=()):
     out = [
         "// Generated by cmake/generate_contracts.py from the GLSL library: do not edit; edit the",
         "// GLSL. The constants the C++ twin (trace/, base/) shares with the shaders, each the",
@@ -228,11 +293,12 @@ def cpp_constants(constants, enums=()):
         out.append(f"inline constexpr int {cpp} = {int(value)};" if integer
                    else f"inline constexpr double {cpp} = {float(value)!r};")
     out += cpp_enums(enums)
+    out += cpp_rows(rows)
     out += ["", "}  // namespace microrelief::glsl", ""]
     return "\n".join(out)
 
 
-def js_module(block, placed, size, constants, source, enums=()):
+def js_module(block, placed, size, constants, source, enums=(), all_rows=()):
     out = [
         f"// Generated from {source} and the GLSL library by cmake/generate_contracts.py: do not",
         f"// edit. The uniform block {block} (std140), the library's shared constants and the",
@@ -290,6 +356,15 @@ def js_module(block, placed, size, constants, source, enums=()):
     for cpp, prefix, file, members in enums:
         body = ", ".join(f"{name.lower()}: {value}" for name, value, line in members)
         out.append(f"export const k{cpp}Values = Object.freeze({{{body}}});  // {prefix}_*, {file}:{members[0][2]}")
+    for cpp, trait_prefix, row_prefix, file, traits, rows, members in all_rows:
+        body = ", ".join(f"{name.lower()}: {bit}" for name, bit, line in traits)
+        out += ["", f"// What a {cpp} is ({trait_prefix}_*, {file}:{traits[0][2]}) and each one's traits ({row_prefix}_*)."]
+        out.append(f"export const k{cpp}TraitValues = Object.freeze({{{body}}});")
+        out.append(f"export const k{cpp}Traits = Object.freeze({{")
+        for name, value, line in members:
+            names = ", ".join(f"'{n.lower()}'" for n in rows[name][1])
+            out.append(f"    {name.lower()}: Object.freeze([{names}]),")
+        out.append("});")
     if enums:
         out += [
             "",
@@ -322,7 +397,7 @@ def main():
     parser.add_argument("--block", required=True, help="the GLSL file holding the uniform block")
     parser.add_argument("--shaders", required=True, help="shaders/microrelief, where --constants' files are")
     parser.add_argument("--constants", nargs="*", default=[], help="FILE:GLSL_NAME:CppName, each")
-    parser.add_argument("--enums", nargs="*", default=[], help="FILE:PREFIX:CppEnum, each")
+    parser.add_argument("--enums", nargs="*", default=[], help="FILE:PREFIX:CppEnum or FILE:PREFIX:CppEnum:TRAIT:ROW, each")
     parser.add_argument("--struct", help="the C++ header of the block to write")
     parser.add_argument("--constants-header", help="the C++ header of the constants and enumerations to write")
     parser.add_argument("--js", required=True, help="the ES module to write; - for stdout")
@@ -332,11 +407,13 @@ def main():
     placed, size = layout(members)
     constants = [read_constant(args.shaders, spec) for spec in args.constants]
     enums = [read_enum(args.shaders, spec) for spec in args.enums]
+    rows = [read_rows(args.shaders, spec, enum[3]) for spec, enum in zip(args.enums, enums)
+            if spec.count(":") == 4]
     if args.struct:
         write_if_changed(args.struct, cpp_struct(block, placed, size, source))
     if args.constants_header:
-        write_if_changed(args.constants_header, cpp_constants(constants, enums))
-    module = js_module(block, placed, size, constants, source, enums)
+        write_if_changed(args.constants_header, cpp_constants(constants, enums, rows))
+    module = js_module(block, placed, size, constants, source, enums, rows)
     if args.js == "-":
         sys.stdout.write(module)
     else:

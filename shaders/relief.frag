@@ -53,6 +53,29 @@ layout(depth_less) out float gl_FragDepth;
 #ifndef MICRORELIEF_METHOD
 #define MICRORELIEF_METHOD MR_METHOD_MULTILEVEL
 #endif
+// The method's row (variants.glsl: MR_TRAITS_*), what the choices below read.
+#if MICRORELIEF_METHOD == MR_METHOD_MULTILEVEL
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_MULTILEVEL
+#elif MICRORELIEF_METHOD == MR_METHOD_NORMAL
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_NORMAL
+#elif MICRORELIEF_METHOD == MR_METHOD_OFFSET
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_OFFSET
+#elif MICRORELIEF_METHOD == MR_METHOD_STEEP
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_STEEP
+#elif MICRORELIEF_METHOD == MR_METHOD_POM
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_POM
+#elif MICRORELIEF_METHOD == MR_METHOD_RELIEF
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_RELIEF
+#elif MICRORELIEF_METHOD == MR_METHOD_MAXMIP
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_MAXMIP
+#elif MICRORELIEF_METHOD == MR_METHOD_CONE
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_CONE
+#elif MICRORELIEF_METHOD == MR_METHOD_RCSM
+#define MICRORELIEF_METHOD_TRAITS MR_TRAITS_RCSM
+#else
+#error MICRORELIEF_METHOD is none of microrelief/variants.glsl's MR_METHOD_*
+#endif
+#define MICRORELIEF_METHOD_HAS(trait) ((MICRORELIEF_METHOD_TRAITS & (trait)) != 0)
 #ifndef MICRORELIEF_SHADOWS
 #define MICRORELIEF_SHADOWS MR_SHADOWS_OFF
 #endif
@@ -104,17 +127,15 @@ mr_ReliefHit traceInFrame(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3
     return mr_traceConeStep(relief, query, coneMap, heightSamples, origin, dir);
 #elif MICRORELIEF_METHOD == MR_METHOD_RCSM
     return mr_traceRelaxedCones(relief, coneMap, heightSamples, origin, dir, methodSteps, methodRefineSteps);
-#elif MICRORELIEF_METHOD == MR_METHOD_MULTILEVEL
+#else  // MR_METHOD_MULTILEVEL: the row's ladder above refuses any other value
     return mr_traceMultilevel(relief, query, windowPyramid, heightSamples, origin, dir);
-#else
-#error MICRORELIEF_METHOD is none of microrelief/variants.glsl's MR_METHOD_*
 #endif
 }
 
 // The step-based peers on a curved base, as engines run them there (pom, relief): in the
 // base's tangent frame where the ray enters the shell, map space taken as flat from there
 // on; their answer, a map point, is then placed on the base (off the ray, like offset's).
-#define MICRORELIEF_TANGENT_PEER (!MICRORELIEF_BASE_STRAIGHT_PATH && (MICRORELIEF_METHOD == MR_METHOD_POM || MICRORELIEF_METHOD == MR_METHOD_RELIEF))
+#define MICRORELIEF_TANGENT_PEER (!MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_METHOD_HAS(MR_TRAIT_TANGENT_FRAME))
 
 mr_ReliefHit traceRay(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
 #if MICRORELIEF_TANGENT_PEER
@@ -158,7 +179,7 @@ float windowDepth(vec3 p) {
 // by the multilevel method whichever exact method traced the picture. A shadow ray that
 // runs out of its budget marks the hit exhausted, as a primary ray would.
 float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bool pointLight) {
-#if MICRORELIEF_SHADOWS != MR_SHADOWS_OFF && (MICRORELIEF_METHOD == MR_METHOD_MULTILEVEL || MICRORELIEF_METHOD == MR_METHOD_MAXMIP || MICRORELIEF_METHOD == MR_METHOD_CONE)
+#if MICRORELIEF_SHADOWS != MR_SHADOWS_OFF && MICRORELIEF_METHOD_HAS(MR_TRAIT_SOLID)
     // The shadow ray in the frame: to a point light's frame position (t = 1 there), or
     // along a direction for ever.
     vec3 frameToLight = pointLight ? mr_baseFramePoint(relief, lightPosition.xyz) - hit.position
@@ -231,7 +252,7 @@ void main() {
 #endif
     }
 
-#if MICRORELIEF_METHOD == MR_METHOD_OFFSET || MICRORELIEF_TANGENT_PEER
+#if MICRORELIEF_METHOD_HAS(MR_TRAIT_OFF_RAY) || MICRORELIEF_TANGENT_PEER
     // Parallax offset's answer is not on the ray (it shifts the texture lookup instead),
     // nor is a tangent-frame peer's on a curved base.
     vec3 world = mr_baseWorldPoint(relief, hit.position);

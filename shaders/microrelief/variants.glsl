@@ -29,6 +29,35 @@
 #define MR_METHOD_CONE 7
 #define MR_METHOD_RCSM 8
 
+// What each method is: its row, MR_TRAITS_<METHOD>, the MR_TRAIT_* it has, or'ed. The
+// programs' checks and lists (core/scene/Method.h: methodHas), the page's menus and
+// relief.frag's choices (MICRORELIEF_METHOD_HAS) all read these rows. A method is a value
+// above, a row here and two lines in relief.frag: its row chosen, and its GLSL entry
+// (mr_traceMultilevel, mr_traceMaxMip ...) called in traceInFrame.
+// cmake/generate_contracts.py requires a row for every method and bits that are distinct
+// powers of two.
+#define MR_TRAIT_STEPS 1             // its quality knob is a step count (--steps)
+#define MR_TRAIT_SOLID 2             // traces the whole solid, side walls and bottom face
+                                     // included: exact, and its hits take self-shadows
+#define MR_TRAIT_CURVED 4            // runs on the curved bases
+#define MR_TRAIT_TANGENT_FRAME 8     // on a curved base, steps in the base's tangent frame
+                                     // where the ray enters the shell, as engines run it
+#define MR_TRAIT_TILES 16            // takes a tiled map (--tile)
+#define MR_TRAIT_OFF_RAY 32          // its answer is a map point off the ray (a shifted lookup)
+#define MR_TRAIT_MAX_PYRAMID 64      // reads the map's own quadtree (aligned max levels)
+#define MR_TRAIT_CONE_MAP 128        // reads a conservative cone map (peers/ConeMap.h)
+#define MR_TRAIT_RELAXED_CONE_MAP 256  // reads a relaxed cone map
+
+#define MR_TRAITS_MULTILEVEL (MR_TRAIT_SOLID | MR_TRAIT_CURVED | MR_TRAIT_TILES)
+#define MR_TRAITS_NORMAL (MR_TRAIT_TILES)
+#define MR_TRAITS_OFFSET (MR_TRAIT_TILES | MR_TRAIT_OFF_RAY)
+#define MR_TRAITS_STEEP (MR_TRAIT_STEPS | MR_TRAIT_TILES)
+#define MR_TRAITS_POM (MR_TRAIT_STEPS | MR_TRAIT_CURVED | MR_TRAIT_TANGENT_FRAME | MR_TRAIT_TILES)
+#define MR_TRAITS_RELIEF (MR_TRAIT_STEPS | MR_TRAIT_CURVED | MR_TRAIT_TANGENT_FRAME | MR_TRAIT_TILES)
+#define MR_TRAITS_MAXMIP (MR_TRAIT_SOLID | MR_TRAIT_CURVED | MR_TRAIT_MAX_PYRAMID)
+#define MR_TRAITS_CONE (MR_TRAIT_SOLID | MR_TRAIT_CONE_MAP)
+#define MR_TRAITS_RCSM (MR_TRAIT_STEPS | MR_TRAIT_RELAXED_CONE_MAP)
+
 // MICRORELIEF_BASE (base_surface.glsl): the base surface (core/base/BaseShape.h: BaseKind).
 #define MR_BASE_PLANE 0
 #define MR_BASE_CYLINDER 1

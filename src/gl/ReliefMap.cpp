@@ -75,12 +75,13 @@ std::shared_ptr<ReliefMap> ReliefMap::fromPages(std::shared_ptr<ReliefPrograms> 
 void ReliefMap::prepareFor(Method method) {
     if (paged()) return;  // the multilevel method's alone: nothing beyond the windows
     const GL& gl = programs_->gl();
-    if (method == Method::MaxMip && !textures_.hasMaxMipPyramid())
+    // What the method's row says it reads beyond the samples and the windows.
+    if (methodHas(method, MethodTrait::MaxPyramid) && !textures_.hasMaxMipPyramid())
         textures_.addMaxMipPyramid(gl, programs_->pyramidBuilder());
     using Kind = ReliefTextures::ConeKind;
-    if (method == Method::Cone && !textures_.coneMap(Kind::Conservative))
+    if (methodHas(method, MethodTrait::ConeMap) && !textures_.coneMap(Kind::Conservative))
         textures_.addConeMap(gl, Kind::Conservative, &programs_->pyramidBuilder());
-    if (method == Method::Rcsm && !textures_.coneMap(Kind::Relaxed))
+    if (methodHas(method, MethodTrait::RelaxedConeMap) && !textures_.coneMap(Kind::Relaxed))
         textures_.addConeMap(gl, Kind::Relaxed);
 }
 

@@ -236,7 +236,7 @@ void ReliefRenderer::setHeightMapOf(const HeightMap& map, std::shared_ptr<const 
                       false, tiles != glm::ivec2(1, 1), paging));
     const MapUploadSettings upload{.wrapU = base.wrapsU(),
                                    .tiles = tiles,
-                                   .withMaxMip = method_.method == Method::MaxMip,
+                                   .withMaxMip = methodHas(method_.method, MethodTrait::MaxPyramid),
                                    .build = build,
                                    .paging = paging_};
     useMap(ReliefMap::upload(programs_, map, std::move(shared), source, upload), base,
@@ -381,8 +381,9 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
     // The multilevel method reads the windows, maxmip its aligned quadtree: each its own
     // pyramid's size and levels.
     const ReliefTextures& textures = map_->textures();
-    const ReliefMapShape shape =
-        method_.method == Method::MaxMip ? textures.maxMipShape() : textures.shape();
+    const ReliefMapShape shape = methodHas(method_.method, MethodTrait::MaxPyramid)
+                                     ? textures.maxMipShape()
+                                     : textures.shape();
     p.heightScale = heightScale_;
     p.reliefMaxHeight = shape.maxHeight;
     p.frameScale = glm::vec3(base_.frameScale());
@@ -443,11 +444,10 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     if (albedo_) shader.bindAlbedo(albedo_->id());
     std::optional<PagedBindings> pagedBindings;
     if (const PagedPyramid* paged = textures.paged()) pagedBindings.emplace(gl_, *paged);
-    if (method_.method == Method::Cone || method_.method == Method::Rcsm) {
-        shader.bindConeMap(textures.coneMap(method_.method == Method::Cone
-                                                  ? ReliefTextures::ConeKind::Conservative
-                                                  : ReliefTextures::ConeKind::Relaxed));
-    }
+    if (methodHas(method_.method, MethodTrait::ConeMap))
+        shader.bindConeMap(textures.coneMap(ReliefTextures::ConeKind::Conservative));
+    if (methodHas(method_.method, MethodTrait::RelaxedConeMap))
+        shader.bindConeMap(textures.coneMap(ReliefTextures::ConeKind::Relaxed));
 
     // Depth clamping keeps faces nearer than the near plane (an eye close to the box). A
     // model that mirrors (a negative determinant) turns the box's winding round.

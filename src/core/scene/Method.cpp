@@ -1,6 +1,9 @@
 #include "microrelief/core/scene/Method.h"
 
+#include <string_view>
+
 #include "microrelief/core/Error.h"
+#include "microrelief/core/GlslConstants.h"
 
 namespace microrelief {
 
@@ -8,8 +11,37 @@ namespace {
 constexpr const char* kDebugViewNames[] = {"shaded", "iterations", "level",
                                            "normal", "depth",      "position"};
 constexpr const char* kShadowModeNames[] = {"off", "hard", "soft"};
-constexpr const char* kMethodNames[] = {"multilevel", "normal", "offset", "steep", "pom",
-                                        "relief",     "maxmip", "cone",   "rcsm"};
+
+// The methods' names and rows are variants.glsl's (generated: core/GlslConstants.h), in
+// the order of the enum, which src/gl/ReliefShader.cpp holds to them value by value.
+static_assert(glsl::kMethodCount == static_cast<int>(Method::Rcsm) + 1);
+constexpr bool bitIs(MethodTrait trait, unsigned bit) {
+    return static_cast<unsigned>(trait) == bit;
+}
+static_assert(bitIs(MethodTrait::Steps, glsl::kMethodTraitSteps) &&
+                  bitIs(MethodTrait::Solid, glsl::kMethodTraitSolid) &&
+                  bitIs(MethodTrait::Curved, glsl::kMethodTraitCurved) &&
+                  bitIs(MethodTrait::TangentFrame, glsl::kMethodTraitTangentFrame) &&
+                  bitIs(MethodTrait::Tiles, glsl::kMethodTraitTiles) &&
+                  bitIs(MethodTrait::OffRay, glsl::kMethodTraitOffRay) &&
+                  bitIs(MethodTrait::MaxPyramid, glsl::kMethodTraitMaxPyramid) &&
+                  bitIs(MethodTrait::ConeMap, glsl::kMethodTraitConeMap) &&
+                  bitIs(MethodTrait::RelaxedConeMap, glsl::kMethodTraitRelaxedConeMap),
+              "MethodTrait's bits are the GLSL's trait bits (core/GlslConstants.h)");
+
+// "a, b and c": the names of the methods whose rows have `trait`.
+std::string methodsWith(MethodTrait trait) {
+    std::string list;
+    int count = 0, total = 0;
+    for (int m = 0; m < glsl::kMethodCount; ++m) total += methodHas(static_cast<Method>(m), trait);
+    for (int m = 0; m < glsl::kMethodCount; ++m) {
+        if (!methodHas(static_cast<Method>(m), trait)) continue;
+        ++count;
+        list += std::string(count == 1 ? "" : count == total ? " and " : ", ") +
+                glsl::kMethodValues[m].name;
+    }
+    return list;
+}
 
 // The enum value whose name is `name`, by position in `names`; throws Error(BadInput)
 // naming the flag and the choices.
@@ -24,32 +56,33 @@ Enum parseName(const char* const (&names)[N], const std::string& name, const cha
 }
 }  // namespace
 
+bool methodHas(Method method, MethodTrait trait) {
+    return (glsl::kMethodTraits[static_cast<int>(method)] & static_cast<unsigned>(trait)) != 0;
+}
+
 Method parseMethod(const std::string& name) {
-    return parseName<Method>(kMethodNames, name, "{method}");
+    std::string choices;
+    for (int m = 0; m < glsl::kMethodCount; ++m) {
+        if (name == glsl::kMethodValues[m].name) return static_cast<Method>(m);
+        choices += std::string(m == 0 ? "" : m + 1 == glsl::kMethodCount ? " or " : ", ") +
+                   glsl::kMethodValues[m].name;
+    }
+    throwBadInput("unknown {method} '" + name + "' (expected " + choices + ")");
 }
 
 const char* methodName(Method method) {
-    return kMethodNames[static_cast<int>(method)];
-}
-
-bool methodHasSteps(Method method) {
-    return method == Method::Steep || method == Method::Pom || method == Method::Relief ||
-           method == Method::Rcsm;
-}
-
-bool methodTracesTheSolid(Method method) {
-    return method == Method::Multilevel || method == Method::MaxMip || method == Method::Cone;
+    return glsl::kMethodValues[static_cast<int>(method)].name;
 }
 
 bool methodRunsOnBase(Method method, const BaseShape& base) {
-    return !base.curved() || method == Method::Multilevel || method == Method::MaxMip ||
-           method == Method::Pom || method == Method::Relief;
+    return !base.curved() || methodHas(method, MethodTrait::Curved);
 }
 
 void checkMethodSupportsBase(Method method, const BaseShape& base) {
     if (methodRunsOnBase(method, base)) return;
     throwBadInput(std::string("{method} ") + methodName(method) + " does not run on {base} " +
-                  baseName(base) + " (curved bases take multilevel, maxmip, pom and relief)");
+                  baseName(base) + " (curved bases take " + methodsWith(MethodTrait::Curved) +
+                  ")");
 }
 
 ShadowMode parseShadowMode(const std::string& name) {
@@ -60,22 +93,12 @@ const char* shadowModeName(ShadowMode mode) {
     return kShadowModeNames[static_cast<int>(mode)];
 }
 
-bool methodTakesTiles(Method method) {
-    return method != Method::MaxMip && method != Method::Cone && method != Method::Rcsm;
-}
-
 void checkMethodSupportsTiles(Method method, glm::ivec2 tiles) {
     if (tiles == glm::ivec2(1, 1) || methodTakesTiles(method)) return;
-    if (method == Method::MaxMip) {
-        throwBadInput(
-            "{method} maxmip does not take {tiles} (its quadtree is the map's own; the "
-            "multilevel method and the step-based peers do)");
-    }
-    if (method == Method::Cone || method == Method::Rcsm) {
-        throwBadInput(std::string("{method} ") + methodName(method) +
-                      " does not take {tiles} (its cone map is the map's own; the multilevel "
-                      "method and the step-based peers do)");
-    }
+    // What it reads that is the map's own, untiled.
+    const char* own = methodHas(method, MethodTrait::MaxPyramid) ? "quadtree" : "cone map";
+    throwBadInput(std::string("{method} ") + methodName(method) + " does not take {tiles} (its " +
+                  own + " is the map's own; " + methodsWith(MethodTrait::Tiles) + " do)");
 }
 
 DebugView parseDebugView(const std::string& name) {

@@ -20,25 +20,52 @@ namespace microrelief {
 // published; both over a cone map, peers/ConeMap.h).
 enum class Method { Multilevel = 0, Normal, Offset, Steep, Pom, Relief, MaxMip, Cone, Rcsm };
 
-// "multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip", "cone", "rcsm";
-// throws Error(BadInput).
+// What a method is: the traits of its row, written once in
+// shaders/microrelief/variants.glsl (MR_TRAITS_MAXMIP ...), where relief.frag and the pages
+// read them too; each value here is its MR_TRAIT_* bit (Method.cpp asserts them).
+enum class MethodTrait : unsigned {
+    Steps = 1,              // its quality knob is a step count (--steps)
+    Solid = 2,              // traces the whole solid, side walls and bottom face included:
+                            // exact, and its hits take self-shadows
+    Curved = 4,             // runs on the curved bases
+    TangentFrame = 8,       // on a curved base, steps in the base's tangent frame where the
+                            // ray enters the shell, as engines run it there
+    Tiles = 16,             // takes a tiled map (--tile)
+    OffRay = 32,            // its answer is a map point off the ray (a shifted lookup)
+    MaxPyramid = 64,        // reads the map's own quadtree (aligned max levels)
+    ConeMap = 128,          // reads a conservative cone map (peers/ConeMap.h)
+    RelaxedConeMap = 256,   // reads a relaxed cone map
+};
+
+// Whether `method`'s row has `trait`.
+bool methodHas(Method method, MethodTrait trait);
+
+// "multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip", "cone", "rcsm" (the
+// values of the GLSL's methods, core/GlslConstants.h); throws Error(BadInput).
 Method parseMethod(const std::string& name);
 const char* methodName(Method method);
 // Whether a method's quality knob is a step count (steep, pom, relief, rcsm).
-bool methodHasSteps(Method method);
+inline bool methodHasSteps(Method method) {
+    return methodHas(method, MethodTrait::Steps);
+}
 // Whether a method traces the whole solid, side walls and bottom face included
 // (multilevel, maxmip, cone); the others know the top surface only.
-bool methodTracesTheSolid(Method method);
+inline bool methodTracesTheSolid(Method method) {
+    return methodHas(method, MethodTrait::Solid);
+}
 // Whether a method runs on a base: every method on the plane; on a curved base the exact
 // ones (multilevel, maxmip) and the peers engines ship there, pom and relief stepping in
-// the base's tangent frame. Otherwise throws Error(BadInput) naming both flags.
+// the base's tangent frame. Otherwise throws Error(BadInput) naming both flags and the
+// methods that do.
 void checkMethodSupportsBase(Method method, const BaseShape& base);
 // Whether a method takes a tiled map (--tile): every method but maxmip, whose quadtree is
 // the map's own, and cone and rcsm, whose cone maps are. Otherwise throws Error(BadInput)
 // naming both flags.
 void checkMethodSupportsTiles(Method method, glm::ivec2 tiles);
 bool methodRunsOnBase(Method method, const BaseShape& base);
-bool methodTakesTiles(Method method);
+inline bool methodTakesTiles(Method method) {
+    return methodHas(method, MethodTrait::Tiles);
+}
 
 struct MethodSettings {
     Method method = Method::Multilevel;

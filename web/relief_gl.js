@@ -26,6 +26,7 @@
 import {ShaderFiles, mapCompilerLog} from './shader_source.js';
 import {defineValue, kBaseKindValues, kDebugViewValues, kInterpolationValues, kMethodValues, kParametersSize, kShadowModeValues,
         writeParameters} from './relief_layout.js';
+import * as core from './relief_core.js';
 import * as scene from './scene.js';
 
 const kBandRows = 64, kBandsFrom = 4 * kBandRows;
@@ -75,12 +76,12 @@ export class ReliefTextures {
         this.gl = gl;
         this.size = [width, height];
         this.wrapU = wrapU;
-        this.levelSizes = scene.windowLevelSizes(width, height);
+        this.levelSizes = core.windowLevelSizes(width, height);
         this.maxHeight = 0;
         let largest = 0;
         for (const h of samples) largest = Math.max(largest, h);
         this.maxSample = largest;
-        this.scaleExponent = scene.initialScaleExponent(largest);
+        this.scaleExponent = core.initialScaleExponent(largest);
 
         gl.activeTexture(gl.TEXTURE0);
         gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
@@ -112,7 +113,7 @@ export class ReliefTextures {
     }
 
     alignedSizes() {
-        return scene.pyramidLevelSizes(this.size[0], this.size[1]);
+        return core.maxMipLevelSizes(this.size[0], this.size[1]);
     }
 
     // mr_ReliefMap's numbers for the multilevel method's windows, or maxmip's quadtree.
@@ -244,10 +245,17 @@ export class PyramidBuilder {
         return this.conePass;
     }
 
-    // Every texel of the pyramids of `textures`, then its top and S.
+    // Every texel of the pyramids of `textures`, then its top and S, settled as
+    // PyramidBuilder::settleScale settles it (relief_core.js): where the top asks for another
+    // S than the texels were drawn with, every texel again with that S.
     build(textures) {
-        this.drawAll(textures);
-        this.settleScale(textures);
+        const settled = core.settleScale(textures.scaleExponent, (s) => {
+            textures.scaleExponent = s;
+            this.drawAll(textures);
+            return this.readTop(textures);
+        });
+        textures.scaleExponent = settled.scaleExponent;
+        textures.maxHeight = settled.maxHeight;
     }
 
     // maxmip's aligned pyramid, made and built (with the windows' S).
@@ -454,29 +462,6 @@ export class PyramidBuilder {
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
         return top[0];
     }
-
-    // As PyramidBuilder::settleScale: where the top moved to another binade than S was
-    // chosen for, every texel again with the S it asks for.
-    settleScale(textures) {
-        const ldexp = (x, e) => Math.fround(x * 2 ** e);
-        const least = scene.pyramidScaleExponent(0), most = scene.pyramidScaleExponent(3e38);
-        for (let attempt = 0; ; ++attempt) {
-            const s = textures.scaleExponent;
-            const stored = this.readTop(textures);
-            let fitting;
-            if (stored === Infinity) fitting = s + 16;
-            else if (stored === 0) fitting = least;
-            else if (stored <= 2 ** -14) fitting = s - 28;
-            else fitting = scene.pyramidScaleExponent(ldexp(stored, s));
-            fitting = Math.min(Math.max(fitting, least), most);
-            if (fitting === s || attempt === 16) {
-                textures.maxHeight = ldexp(stored, s);
-                return;
-            }
-            textures.scaleExponent = fitting;
-            this.drawAll(textures);
-        }
-    }
 }
 
 // The relief program's variants and their draw (src/gl/ReliefShader.cpp,
@@ -657,7 +642,7 @@ export class ReliefRenderer {
         const shape = t.shape(maxMip);
 
         // The box, from the windows' top (ReliefRenderer::uploadBox), in floats.
-        const boxExtent = scene.reliefExtent(t.size[0], t.size[1], t.maxHeight, heightScale, base);
+        const boxExtent = core.reliefExtent(t.size[0], t.size[1], t.maxHeight, heightScale, base);
         const margin = Math.fround(1e-3);
         const lo = boxExtent.min.map((c) => Math.fround(Math.fround(c) - margin));
         const hi = boxExtent.max.map((c) => Math.fround(Math.fround(c) + margin));
@@ -665,7 +650,7 @@ export class ReliefRenderer {
                                           lo[0], hi[1], lo[2], hi[0], hi[1], lo[2], hi[0], hi[1], hi[2], lo[0], hi[1], hi[2]]);
 
         // The camera's depth range from the samples' maximum (HeadlessRenderer::render).
-        const radius = scene.sceneRadius(scene.reliefExtent(t.size[0], t.size[1], t.maxSample, heightScale, base));
+        const radius = scene.sceneRadius(core.reliefExtent(t.size[0], t.size[1], t.maxSample, heightScale, base));
         const camera = scene.resolveCamera(view, pixels[0], pixels[1], radius);
 
         // Front faces from outside the box grown by a margin, back faces from inside.
@@ -721,7 +706,7 @@ export class ReliefRenderer {
     // MicroreliefParameters (ReliefRenderer::parameters), laid out by the module generated
     // from shaders/relief_parameters.glsl.
     parameters(view, camera, shape, base, pixels) {
-        const extent = scene.reliefExtent(shape.size[0], shape.size[1], shape.maxHeight, view.heightScale, base);
+        const extent = core.reliefExtent(shape.size[0], shape.size[1], shape.maxHeight, view.heightScale, base);
         // Traced relative to the eye, as ReliefRenderer::parameters does: the page places
         // the relief at the origin, so the model is the move by minus the eye, its inverse
         // the move back, and the clip transform takes the eye-relative world (its last
@@ -740,12 +725,12 @@ export class ReliefRenderer {
             reliefMaxHeight: shape.maxHeight,
             cameraForward: camera.forward,
             tMin: 0,
-            frameScale: scene.frameScale(base),
+            frameScale: core.frameScale(base),
             tMax: 3.4e38,
             reliefBoxMin: extent.min,
             pyramidLevels: shape.levelCount,
             reliefBoxMax: extent.max,
-            maxIterations: scene.traversalBudget(shape.size[0], shape.size[1]),
+            maxIterations: core.traversalBudget(shape.size[0], shape.size[1]),
             lightDirection: scene.normalizeFloat(view.light),
             debugView: Number(defineValue(kDebugViewValues, view.view, 'debugView')),
             albedo: scene.toFloat([0.6, 0.58, 0.55]),  // ShadingOptions::albedo, without a texture

@@ -1,13 +1,15 @@
 // scene.js: the scene as microrelief-render has it (docs/scene-and-cli.md), in the
-// page's JavaScript: the camera resolved to rays (src/core/scene/Camera.cpp), the base
-// surfaces' sizes and boxes (src/core/base/BaseShape.cpp, ReliefExtent.cpp), the pyramids'
-// level sizes and scale (src/core/heightmap/MaxPyramid.cpp), the methods' names and rules
-// (src/core/scene/Method.cpp), and the view as a URL query and as a command line
-// (app/shared/SceneOptions.cpp). The arithmetic follows the C++ step for step, in doubles
-// where it has doubles and in floats (Math.fround) where it has floats, so that the page
-// hands the shader the uniforms microrelief-render hands it.
+// page's JavaScript: the camera resolved to rays (src/core/scene/Camera.cpp), the methods'
+// names and rules (src/core/scene/Method.cpp), and the view as a URL query and as a command
+// line (app/shared/SceneOptions.cpp); the bases, the pyramids' sizes and scale and the
+// traversal's budget are relief_core.js's, the host core microrelief-three shares. The
+// arithmetic follows the C++ step for step, in doubles where it has doubles and in floats
+// (Math.fround) where it has floats, so that the page hands the shader the uniforms
+// microrelief-render hands it.
 
-import {kBudgetBase, kBudgetPerTexel} from './relief_layout.js';
+import {baseName, baseShape, kBaseNames} from './relief_core.js';
+
+export {wrapsU} from './relief_core.js';
 
 const f32 = Math.fround;
 
@@ -94,117 +96,15 @@ function multiply(a, b) {
     return m;
 }
 
-// ---- base surfaces (src/core/base/BaseShape.cpp) ----
+// ---- base surfaces (their table, shapes and boxes: relief_core.js) ----
 
-// --base's words: the kinds (the shader's MICRORELIEF_BASE takes the kind's value from
-// relief_layout.js's kBaseKindValues, generated from variants.glsl) and the sphere, an
-// ellipsoid of equal radii.
-export const kBaseNames = ['plane', 'cylinder', 'ellipsoid', 'sphere'];
-
-// {kind: 'plane' | 'cylinder' | 'ellipsoid', radius, length, radii}; `name` is --base's.
-export function baseShape(name, sizes = {}) {
-    if (!kBaseNames.includes(name)) throw new Error(`unknown base '${name}' (expected plane, cylinder, ellipsoid or sphere)`);
-    const positive = (value, flag) => {
-        if (!(value > 0) || !Number.isFinite(value)) throw new Error(`${flag} must be a positive finite number`);
-        return value;
-    };
-    if (name === 'cylinder')
-        return {kind: 'cylinder', radius: positive(sizes.radius ?? 0.3, 'radius'), length: positive(sizes.length ?? 1, 'length')};
-    if (name === 'sphere') {
-        const r = positive(sizes.radius ?? 0.5, 'radius');
-        return {kind: 'ellipsoid', radii: [r, r, r]};
-    }
-    if (name === 'ellipsoid') return {kind: 'ellipsoid', radii: (sizes.radii ?? [0.5, 0.5, 0.5]).map((r) => positive(r, 'radii'))};
-    return {kind: 'plane'};
-}
-
-export function baseName(base) {
-    if (base.kind === 'ellipsoid') return base.radii[0] === base.radii[1] && base.radii[1] === base.radii[2] ? 'sphere' : 'ellipsoid';
-    return base.kind;
-}
-
-export const wrapsU = (base) => base.kind !== 'plane';
-
-export function frameScale(base) {
-    if (base.kind === 'cylinder') return [base.radius, 0.5 * base.length, base.radius];
-    if (base.kind === 'ellipsoid') return base.radii.slice();
-    return [1, 1, 1];
-}
-
-// The relief's object-space box for a top of `top` (s max h): {min, max, top}.
-export function reliefExtent(mapWidth, mapHeight, maxHeight, heightScale, base) {
-    const top = heightScale * maxHeight;
-    let high;
-    if (base.kind === 'cylinder') high = [base.radius * (1 + top), 0.5 * base.length, base.radius * (1 + top)];
-    else if (base.kind === 'ellipsoid') high = base.radii.map((r) => r * (1 + top));
-    else {
-        const longer = Math.max(mapWidth, mapHeight);
-        high = [(0.5 * mapWidth) / longer, top, (0.5 * mapHeight) / longer];
-    }
-    const low = base.kind === 'plane' ? [-high[0], 0, -high[2]] : high.map((c) => -c);
-    return {min: low, max: high, top};
-}
-
-// Twice the largest coordinate of the box's corners (the model is the identity here).
+// Twice the largest coordinate of the box's corners (core/base/ReliefExtent.cpp: sceneRadius;
+// the model is the identity here).
 export function sceneRadius(extent) {
     let radius = 0;
     for (const c of [...extent.min, ...extent.max]) radius = Math.max(radius, Math.abs(c));
     return 2 * radius;
 }
-
-// ---- the pyramids (src/core/heightmap/MaxPyramid.cpp) ----
-
-const floatBits = (() => {
-    const f = new Float32Array(1), u = new Uint32Array(f.buffer);
-    return {
-        bits(value) {
-            f[0] = value;
-            return u[0];
-        },
-        value(bits) {
-            u[0] = bits >>> 0;
-            return f[0];
-        },
-    };
-})();
-
-// GL's mip sizes of W x H down to 1 x 1: the windows' levels.
-export function windowLevelSizes(width, height) {
-    const sizes = [];
-    for (let w = width, h = height; ; w = Math.max(w >> 1, 1), h = Math.max(h >> 1, 1)) {
-        sizes.push([w, h]);
-        if (w === 1 && h === 1) return sizes;
-    }
-}
-
-const ceilPowerOfTwo = (n) => 2 ** Math.ceil(Math.log2(n));
-
-// The aligned levels (maxmip's quadtree): W and H rounded up to powers of two, halved.
-export function pyramidLevelSizes(width, height) {
-    return windowLevelSizes(ceilPowerOfTwo(width), ceilPowerOfTwo(height));
-}
-
-// S for a pyramid whose top is `top`: e - 14 for its binary exponent e, clamped.
-export function pyramidScaleExponent(top) {
-    const e = (floatBits.bits(top) >>> 23) - 127;
-    return Math.min(Math.max(e - 14, -112), 113);
-}
-
-// The top's bound as the GPU keeps it (storedBound, BoundPrecision::Half): the value
-// rounded up to 11 significant bits, at least the least normal half times 2^S.
-export function storedHalfBound(bound, scaleExponent) {
-    const bits = floatBits.bits(Math.abs(bound)) & 0x7fffffff;
-    if (bits === 0) return 0;
-    const smallest = ((scaleExponent - 14 + 127) << 23) >>> 0;
-    return floatBits.value(Math.max(((bits + 0x1fff) & ~0x1fff) >>> 0, smallest));
-}
-
-// S for the samples at hand, as ReliefTextures takes it before a GPU build.
-export function initialScaleExponent(maxSample) {
-    return pyramidScaleExponent(storedHalfBound(maxSample, pyramidScaleExponent(maxSample)));
-}
-
-export const traversalBudget = (width, height) => kBudgetPerTexel * (width + height) + kBudgetBase;
 
 // ---- methods, views and shadows (src/core/scene/Method.cpp) ----
 
@@ -323,8 +223,10 @@ export function viewFromQuery(search) {
     return v;
 }
 
+// The view's base shape (relief_core.js: baseShape; a size the view leaves null, the row's
+// default); throws Error naming the key of a size that is not a positive finite number.
 export function viewBase(v) {
-    return baseShape(v.base, {radius: v.radius ?? undefined, length: v.length ?? undefined, radii: v.radii ?? undefined});
+    return baseShape(v.base, {radius: v.radius, length: v.length, radii: v.radii});
 }
 
 // pom's samples looking straight down: MethodSettings::setSteps.

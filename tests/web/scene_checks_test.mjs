@@ -28,7 +28,7 @@ const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'scene-checks-'));
 process.on('exit', () => fs.rmSync(scratch, {recursive: true, force: true}));
 // examples/three is staged where the build stages microrelief-three (MICRORELIEF_BUILD_THREE).
 const withThree = fs.existsSync(path.join(share, 'web', 'three', 'view.js'));
-const modules = ['scene.js', 'relief_layout.js', 'scene_checks.js', 'png.js', 'generated/scene_checks_wasm.js', ...(withThree ? ['three/view.js'] : [])];
+const modules = ['scene.js', 'relief_core.js', 'relief_layout.js', 'scene_checks.js', 'png.js', 'generated/scene_checks_wasm.js', ...(withThree ? ['three/view.js'] : [])];
 for (const file of modules) {
     fs.mkdirSync(path.dirname(path.join(scratch, file)), {recursive: true});
     fs.copyFileSync(path.join(share, 'web', file), path.join(scratch, file));

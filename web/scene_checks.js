@@ -10,6 +10,7 @@
 //   const checks = await SceneChecks.load(createSceneChecksModule);
 //   checks.refusal(view)                              // '' or why the programs refuse it
 //   checks.refusal(view, {width, height, maxHeight, name}, [W, H])   // and the float limits
+import {baseSizeKey} from './relief_core.js';  // a base size's key: "base.minorRadius" -> "minor-radius"
 
 // The pages' names for the scene's fields (core/scene/SceneFields.h): their URL keys, which
 // are microrelief-render's flags without the dashes (tests/web/check_url_keys.py). A field
@@ -43,9 +44,6 @@ export const kFieldNames = {
     'shading.view': 'view',
     background: 'background',
 };
-
-// "base.minorRadius" -> "minor-radius", as a program derives a base size's flag.
-const baseSizeKey = (field) => field.slice('base.'.length).replace(/[A-Z]/g, (c) => `-${c.toLowerCase()}`);
 
 export class SceneChecks {
     // The checks from emscripten's module factory (createSceneChecksModule). Rejects with

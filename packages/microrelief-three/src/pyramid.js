@@ -8,14 +8,16 @@
 //    into a WebGLRenderTarget of its own and copied into its mip level of the windows
 //    texture (copyTextureToTexture: a blit); the top read back as its float's bits through
 //    an RGBA8 target, and S settled as the C++ builder settles it (PyramidBuilder::
-//    settleScale, web/relief_gl.js). Rendering into R16F needs EXT_color_buffer_float. Every
-//    draw goes through three (render targets, materials, renderer.render), and the
-//    renderer's render target is put back: three's state stays three's.
+//    settleScale, in generated/relief_core.js). Rendering into R16F needs
+//    EXT_color_buffer_float. Every draw goes through three (render targets, materials,
+//    renderer.render), and the renderer's render target is put back: three's state stays
+//    three's.
 //  * on the CPU: the C++ MaxPyramid itself (src/core/heightmap/MaxPyramid.cpp), compiled to
 //    WebAssembly (generated/pyramid_wasm.js), uploaded as halves.
 import * as THREE from 'three';
 
 import {glue, pyramid as passes} from '../generated/glsl.js';
+import * as core from '../generated/relief_core.js';
 import {HeightMapError} from './heights.js';
 import {requireSupportedThree} from './three_version.js';
 import {loadTwin, releaseTwins, twinBytes} from './twin.js';
@@ -28,35 +30,8 @@ export class ReliefGpuError extends Error {
     }
 }
 
-// GL's mip sizes of W x H down to 1 x 1 (MaxPyramid's windowLevelSizes).
-export function windowLevelSizes(width, height) {
-    const sizes = [];
-    for (let w = width, h = height; ; w = Math.max(w >> 1, 1), h = Math.max(h >> 1, 1)) {
-        sizes.push([w, h]);
-        if (w === 1 && h === 1) return sizes;
-    }
-}
-
-const floatBits = (() => {
-    const f = new Float32Array(1), u = new Uint32Array(f.buffer);
-    return {
-        bits: (v) => ((f[0] = v), u[0]),
-        value: (b) => ((u[0] = b >>> 0), f[0]),
-    };
-})();
-
-// S for a pyramid whose top is `top` (pyramidScaleExponent, MaxPyramid.h).
-export function pyramidScaleExponent(top) {
-    const e = (floatBits.bits(top) >>> 23) - 127;
-    return Math.min(Math.max(e - 14, -112), 113);
-}
-
-// S for the samples before a GPU build: the largest sample rounded up to a half's 11 bits,
-// as MaxPyramid::build takes it (the top is that value).
-function initialScaleExponent(maxSample) {
-    const bits = floatBits.bits(maxSample) & 0x7fffffff;
-    return pyramidScaleExponent(floatBits.value(((bits + 0x1fff) & ~0x1fff) >>> 0));
-}
+// GL's mip sizes of W x H down to 1 x 1 (MaxPyramid's windowLevelSizes): relief_core.js's.
+export const windowLevelSizes = core.windowLevelSizes;
 
 // The map's textures and the numbers mr_ReliefMap takes. Built by createReliefMap.
 export class ReliefMap {
@@ -214,29 +189,17 @@ class GpuPyramidBuilder {
         const renderer = this.renderer;
         const previous = [renderer.getRenderTarget(), renderer.getActiveCubeFace(), renderer.getActiveMipmapLevel()];
         const heights = samplesTexture(map, wrapU);
-        const levelSizes = windowLevelSizes(map.width, map.height);
+        const levelSizes = core.windowLevelSizes(map.width, map.height);
         let targets = [];
         try {
-            let scaleExponent = initialScaleExponent(map.maxSample), maxHeight;
-            const least = pyramidScaleExponent(0), most = pyramidScaleExponent(3e38);
-            // As PyramidBuilder::settleScale: where the top lies in another binade than S was
-            // chosen for, every texel again with the S it asks for.
-            for (let attempt = 0; ; ++attempt) {
+            // As PyramidBuilder::settleScale (relief_core.js): where the top lies in another
+            // binade than S was chosen for, every texel again with the S it asks for.
+            const {scaleExponent, maxHeight} = core.settleScale(core.initialScaleExponent(map.maxSample), (s) => {
                 for (const t of targets) t.dispose();
-                targets = this.drawLevels(heights, map.width, map.height, wrapU, scaleExponent, levelSizes);
-                const stored = this.readFloats(targets[targets.length - 1].texture, 0, 1, 1)[0];
-                let fitting;
-                if (stored === Infinity) fitting = scaleExponent + 16;
-                else if (stored === 0) fitting = least;
-                else if (stored <= 2 ** -14) fitting = scaleExponent - 28;
-                else fitting = pyramidScaleExponent(Math.fround(stored * 2 ** scaleExponent));
-                fitting = Math.min(Math.max(fitting, least), most);
-                if (fitting === scaleExponent || attempt === 16) {
-                    maxHeight = Math.fround(stored * 2 ** scaleExponent);
-                    break;
-                }
-                scaleExponent = fitting;
-            }
+                targets = [];  // none held while drawLevels runs (it disposes its own where it throws)
+                targets = this.drawLevels(heights, map.width, map.height, wrapU, s, levelSizes);
+                return this.readFloats(targets[targets.length - 1].texture, 0, 1, 1)[0];
+            });
             const windows = windowsTexture(levelSizes);
             for (let k = 0; k < targets.length; ++k) renderer.copyTextureToTexture(targets[k].texture, windows, null, null, 0, k);
             return {heights, windows, levelSizes, maxHeight, scaleExponent};

@@ -14,6 +14,7 @@
 import * as THREE from 'three';
 
 import {glue, library} from '../generated/glsl.js';
+import * as core from '../generated/relief_core.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, reliefDefines} from './materials.js';
 import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
 import {requireSupportedThree} from './three_version.js';
@@ -23,41 +24,16 @@ const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by thi
 
 // The base surface: {kind: 'plane'} or {kind: 'cylinder', radius, length} or
 // {kind: 'ellipsoid', radii: [a, b, c]}; 'sphere' is an ellipsoid of equal radii. Strings
-// take microrelief-render's defaults (radius 0.3 and length 1; a sphere of radius 0.5).
+// take microrelief-render's defaults (the table of bases' rows: generated/relief_core.js).
 export function baseShape(base = 'plane') {
-    const spec = typeof base === 'string' ? {kind: base} : {...base};
-    const positive = (value, what) => {
-        if (!(value > 0) || !Number.isFinite(value)) throw new TypeError(`Relief: base ${what} must be a positive finite number`);
-        return value;
-    };
-    if (spec.kind === 'plane') return {kind: 'plane'};
-    if (spec.kind === 'cylinder') return {kind: 'cylinder', radius: positive(spec.radius ?? 0.3, 'radius'), length: positive(spec.length ?? 1, 'length')};
-    if (spec.kind === 'sphere') {
-        const r = positive(spec.radius ?? 0.5, 'radius');
-        return {kind: 'ellipsoid', radii: [r, r, r]};
-    }
-    if (spec.kind === 'ellipsoid') return {kind: 'ellipsoid', radii: (spec.radii ?? [0.5, 0.5, 0.5]).map((r) => positive(r, 'radii'))};
-    throw new TypeError(`Relief: unknown base '${spec.kind}' (expected plane, cylinder, ellipsoid or sphere)`);
-}
-
-function frameScale(base) {
-    if (base.kind === 'cylinder') return [base.radius, 0.5 * base.length, base.radius];
-    if (base.kind === 'ellipsoid') return base.radii.slice();
-    return [1, 1, 1];
+    const {kind, ...sizes} = typeof base === 'string' ? {kind: base} : {...base};
+    return core.baseShape(kind, sizes, (message, size) => new TypeError(`Relief: ${size ? 'base ' : ''}${message}`));
 }
 
 // The relief's object-space bounds for a top of `maxHeight` (ReliefExtent.cpp).
 export function reliefExtent(width, height, maxHeight, heightScale, base) {
-    const top = heightScale * maxHeight;
-    let high;
-    if (base.kind === 'cylinder') high = [base.radius * (1 + top), 0.5 * base.length, base.radius * (1 + top)];
-    else if (base.kind === 'ellipsoid') high = base.radii.map((r) => r * (1 + top));
-    else {
-        const longer = Math.max(width, height);
-        high = [(0.5 * width) / longer, top, (0.5 * height) / longer];
-    }
-    const low = base.kind === 'plane' ? [-high[0], 0, -high[2]] : high.map((c) => -c);
-    return {min: low, max: high};
+    const {min, max} = core.reliefExtent(width, height, maxHeight, heightScale, base);
+    return {min, max};
 }
 
 // The six vectors of glsl/relief_three.glsl for `camera`: its rays as affine functions of
@@ -102,9 +78,10 @@ let pickResources = null;
 
 // A base and a map that disagree on wrapU: a curved base needs it, the plane must not have it.
 function checkBaseForMap(shape, spec, reliefMap) {
-    if ((shape.kind !== 'plane') === reliefMap.wrapU) return;
+    const wraps = core.wrapsU(shape);
+    if (wraps === reliefMap.wrapU) return;
     const kind = typeof spec === 'string' ? spec : spec.kind;  // as asked: 'sphere' stays a sphere
-    throw new TypeError(`Relief: ${/^[aeiou]/.test(kind) ? 'an' : 'a'} ${kind} base needs a map built with wrapU: ${shape.kind !== 'plane'} (its u ${shape.kind !== 'plane' ? 'wraps round' : 'does not wrap'})`);
+    throw new TypeError(`Relief: ${/^[aeiou]/.test(kind) ? 'an' : 'a'} ${kind} base needs a map built with wrapU: ${wraps} (its u ${wraps ? 'wraps round' : 'does not wrap'})`);
 }
 
 function checkHeightScale(value) {
@@ -228,7 +205,7 @@ export class Relief extends THREE.Mesh {
         const shape = baseShape(value);
         checkBaseForMap(shape, value, this.reliefMap);
         this._base = Object.freeze(shape);
-        this.uniforms.mrFrameScale.value.set(...frameScale(shape));
+        this.uniforms.mrFrameScale.value.set(...core.frameScale(shape));
         this.updateBox();
         this.shadowMaterialsNeedUpdate();
     }
@@ -265,7 +242,7 @@ export class Relief extends THREE.Mesh {
         u.mrMaxHeight.value = reliefMap.maxHeight;
         u.mrHeightScale.value = heightScale;
         this._base = Object.freeze(shape);
-        u.mrFrameScale.value.set(...frameScale(shape));
+        u.mrFrameScale.value.set(...core.frameScale(shape));
         this._interpolation = interpolation;
         this.updateBox();
         this.shadowMaterialsNeedUpdate();

@@ -1,15 +1,19 @@
 // The installed package, used the way an engine uses it (issue 13): the build installed
-// into a scratch prefix; examples/headless configured with find_package(microrelief)
-// against it, built and run, its picture held to microrelief-render's for the same
-// camera; a program that links microrelief::core alone, built through find_package and
-// through pkg-config, run, and its binary checked to load no GL, EGL, OpenImageIO or
-// GLFW library. One scratch install serves every test (it takes a while).
+// into a scratch prefix; examples/headless and examples/renderer configured with
+// find_package(microrelief) against it, built and run, their pictures held to
+// microrelief-render's for the same camera; a program that links microrelief::core alone,
+// built through find_package and through pkg-config, run, and its binary checked to load no
+// GL, EGL, OpenImageIO or GLFW library. One scratch install serves every test (it takes a
+// while).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
+
+#include <glm/glm.hpp>
 
 #include "TestSupport.h"
 #include "microrelief/Version.h"
@@ -109,6 +113,53 @@ TEST_F(Package, ExampleBuiltAgainstTheInstallRendersWhatTheRendererRenders) {
         const bool ok = d.max <= 2 && d.mean < 0.02 && d.overOne * 1000 <= values;
         EXPECT_TRUE(ok) << v.name << ": "
                         << test::keepForInspection("package-failures", v.name, actual, expected);
+    }
+}
+
+// examples/renderer (docs/api.md's walk-through) draws with the library's renderer from the
+// scene value: its picture is microrelief-render's, pixel for pixel (the same programs,
+// the same pyramid texels whichever builds them, the same camera resolved against the map),
+// with the bundled map's colours and without them (a map file of its own). Its pick at the
+// centre by the relief on the CPU lands within half a texel of the picture's hit (a texel
+// of the 256-texel bundled map on the plane's unit side: 1/256; accuracy.md holds the twin
+// and the shader to half of one).
+TEST_F(Package, RendererExampleDrawsWhatMicroreliefRenderDraws) {
+    const std::filesystem::path build =
+        buildAgainstInstall(kSource / "examples" / "renderer", "renderer-example");
+    struct Case {
+        const char* name;
+        std::string map;  // flags for both programs
+    };
+    const std::string cobbles = quote(kSource / "assets" / "cobbles.png");
+    for (const Case& c : {Case{"bundled", ""}, Case{"file", "--height " + cobbles}}) {
+        const std::filesystem::path example = *scratch_ / (std::string(c.name) + "-renderer.png");
+        const std::filesystem::path render = *scratch_ / (std::string(c.name) + "-render.png");
+        const test::RunResult a = test::runCommand(
+            quote(build / "relief-renderer") + " " + c.map + " --out " + quote(example),
+            *scratch_ / "");
+        ASSERT_EQ(a.status, 0) << a.out << a.err;
+        const test::RunResult b =
+            test::runCommand(quote(MICRORELIEF_RENDER_EXE) + " -q --size 640x360 " + c.map +
+                                 " --out " + quote(render),
+                             *scratch_ / "");
+        ASSERT_EQ(b.status, 0) << b.out << b.err;
+        const test::Image actual = test::readImage(example), expected = test::readImage(render);
+        ASSERT_EQ(actual.width, expected.width);
+        ASSERT_EQ(actual.height, expected.height);
+        const test::Difference d =
+            test::difference(actual, expected, 0, 0, actual.width, actual.height);
+        EXPECT_EQ(d.max, 0) << c.name << ": "
+                            << test::keepForInspection("package-failures", c.name, actual,
+                                                       expected);
+
+        glm::dvec3 gpu, cpu;
+        const std::size_t at = a.out.find("centre: ");
+        ASSERT_NE(at, std::string::npos) << c.name << ": no pick at the centre\n" << a.out;
+        ASSERT_EQ(std::sscanf(a.out.c_str() + at, "centre: gpu %lf %lf %lf, cpu %lf %lf %lf",
+                              &gpu.x, &gpu.y, &gpu.z, &cpu.x, &cpu.y, &cpu.z),
+                  6)
+            << a.out;
+        EXPECT_LT(glm::length(gpu - cpu), 0.5 / 256) << c.name << ": " << a.out;
     }
 }
 

@@ -5,6 +5,7 @@
 #include <ctime>
 
 #include "microrelief/io/AtomicFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief::bench {
 
@@ -95,7 +96,7 @@ void checkMapsAreNotOutputs(const std::filesystem::path& folder,
                             const std::vector<MapEntry>& maps) {
     std::vector<NamedFile> read;
     for (const MapEntry& map : maps)
-        if (map.source.file) read.push_back({*map.source.file, "the map"});
+        read.push_back({heightMapPath(map.source), "the map"});
     std::vector<NamedFile> written;
     for (const char* name :
          {"bench.csv", "bench.md", "plots.gnuplot", "plot_data.txt", "time_vs_size.png",

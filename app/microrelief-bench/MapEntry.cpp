@@ -1,7 +1,7 @@
 #include "MapEntry.h"
 
-#include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief::bench {
 
@@ -49,7 +49,7 @@ MapSource parseMapEntry(const std::string& text) {
 }
 
 std::string mapName(const MapSource& source) {
-    std::string name = (source.file ? *source.file : defaultHeightMapPath()).stem().string();
+    std::string name = heightMapPath(source).stem().string();
     if (source.load.channel != 0) name += ":" + std::to_string(source.load.channel);
     if (source.load.normalize) name += ":normalize";
     return name;

@@ -25,7 +25,8 @@ MapSource parseMapEntry(const std::string& text);
 
 // What the report calls the map: the file's stem, then ":CHANNEL" for a channel other than
 // 0 and ":normalize" ("rock", "rock:1", "terrain:normalize", "stone:2:normalize"), so that
-// one file's channels stay apart. The bundled map goes by its file's stem.
+// one file's channels stay apart. The bundled map goes by its file's stem (io/ReliefFiles.h:
+// heightMapPath).
 std::string mapName(const MapSource& source);
 
 }  // namespace microrelief::bench

@@ -14,11 +14,10 @@
 #include "Commands.h"
 #include "Report.h"
 #include "SceneOptions.h"
-#include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/headless/HeadlessContext.h"
-#include "microrelief/io/HeightMapFile.h"
+#include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief::bench {
 
@@ -123,12 +122,11 @@ std::vector<BenchMap> loadMaps(const BenchOptions& options) {
     // The files first: a bad one is refused before minutes of making reliefs.
     std::vector<std::pair<std::string, std::shared_ptr<const HeightMap>>> files;
     for (const MapEntry& entry : options.assets) {
-        const MapSource& source = entry.source;
+        ReliefDesc relief;
+        relief.map = entry.source;
         try {
-            files.emplace_back(
-                mapName(source),
-                std::make_shared<const HeightMap>(loadHeightMap(
-                    source.file ? *source.file : defaultHeightMapPath(), source.load)));
+            files.emplace_back(mapName(entry.source),
+                               loadReliefFiles(relief, ReliefParts::Heights).heights);
         } catch (const Error& e) {
             throw Error(e.kind(), entry.given + ": " + e.message(entryFieldName));
         }

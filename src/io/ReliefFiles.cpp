@@ -7,8 +7,12 @@
 
 namespace microrelief {
 
+std::filesystem::path heightMapPath(const MapSource& map) {
+    return map.file ? *map.file : defaultHeightMapPath();
+}
+
 std::filesystem::path heightMapPath(const ReliefDesc& relief) {
-    return relief.map.file ? *relief.map.file : defaultHeightMapPath();
+    return heightMapPath(relief.map);
 }
 
 std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief) {

@@ -94,6 +94,32 @@ TEST(ReliefFiles, ADescriptionReadsTheFilesItsRulesName) {
 }
 
 // One part asked for: the other is not read (a file that is not there refuses nothing).
+// A map named alone (microrelief-bench's --maps entries): its file or the bundled map, read
+// as its load options say, as a description holding it reads it.
+TEST(ReliefFiles, AMapSourceNamesItsFileOrTheBundledMap) {
+    test::ScratchDir scratch;
+    const std::filesystem::path ownFile = scratch / "tall.exr";
+    HeightMap tall(4, 2, 1.0f);
+    tall.at(3, 1) = 4.0f;
+    test::writeMap(ownFile, tall, PixelType::Float);
+
+    EXPECT_EQ(heightMapPath(MapSource{}), defaultHeightMapPath());
+    MapSource own;
+    own.file = ownFile;
+    own.load.normalize = true;
+    EXPECT_EQ(heightMapPath(own), ownFile);
+
+    ReliefDesc relief;
+    relief.map = own;
+    EXPECT_EQ(heightMapPath(relief), ownFile);
+    const ReliefFiles files = loadReliefFiles(relief, ReliefParts::Heights);
+    EXPECT_EQ(files.heightFile, ownFile);
+    ASSERT_TRUE(files.heights);
+    EXPECT_EQ(files.heights->maxValue(), 1.0f);  // normalised: 4 read as 1
+    relief.map = MapSource{};
+    EXPECT_EQ(heightMapPath(relief), defaultHeightMapPath());
+}
+
 TEST(ReliefFiles, APartAskedForReadsOnlyItsFiles) {
     test::ScratchDir scratch;
     const std::filesystem::path ownFile = scratch / "own.exr";

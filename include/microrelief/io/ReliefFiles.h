@@ -3,7 +3,8 @@
 // the relief's own file or the bundled default (share/microrelief/assets/cobbles.png); the
 // colours are the relief's albedo file, none, or by default the bundled map's own colours,
 // which go only with the bundled map's stones. Every program (microrelief-render, its camera
-// paths, the viewer) and an engine reading a scene resolve files here rather than by hand.
+// paths, the viewer, microrelief-bench's maps) and an engine reading a scene resolve files
+// here rather than by hand.
 #pragma once
 
 #include <filesystem>
@@ -16,7 +17,10 @@
 
 namespace microrelief {
 
-// The height map file `relief` draws: its own, or the bundled default map.
+// The height map file `map` names: its own, or the bundled default map where it names none
+// (a list of maps, such as microrelief-bench's, resolves each entry here). `relief`'s: its
+// map's.
+std::filesystem::path heightMapPath(const MapSource& map);
 std::filesystem::path heightMapPath(const ReliefDesc& relief);
 // The albedo file `relief` draws with: its own, or the bundled map's with the bundled map
 // (unless an animated field, waves or ripples, replaces its heights); none for

@@ -112,7 +112,7 @@ async function albedoFromBytes(bytes) {
 // Makes `map` the current one: its textures and pyramids first, then the switch (the
 // cone maps under way for the old one dropped; the new one's made when drawn).
 function useMap(map) {
-    app.renderer.setMap(map.samples, map.width, map.height, scene.wrapsU(scene.viewBase(app.view)), app.view.method === 'maxmip');
+    app.renderer.setMap(map.samples, map.width, map.height, scene.wrapsU(scene.viewBase(app.view)), scene.methodReadsMaxPyramid(app.view.method));
     app.coneMaps.cancel('a new map');
     app.coneBuilds.clear();
     app.coneSeconds = {};
@@ -323,7 +323,7 @@ function edit(change) {
     try {
         if (app.map && wraps !== app.mapWrapsU) useMap(app.map);  // the seam: the pyramid wraps in u or not
         else if (app.map && next.albedo !== before.albedo) app.renderer.setAlbedo(app.map.bundled && next.albedo ? app.albedoImage : null);
-        if (next.method === 'maxmip') app.renderer.ensureMaxMip();
+        if (scene.methodReadsMaxPyramid(next.method)) app.renderer.ensureMaxMip();
     } catch (e) {
         fail(e.message);
         return;
@@ -596,7 +596,7 @@ async function start() {
         const [heights, albedo] = await Promise.all([fetchBytes(kDefaultMap), fetchBytes(kDefaultAlbedo)]);
         app.albedoImage = await albedoFromBytes(albedo);
         useMap({...(await mapFromBytes(heights)), name: 'cobbles.png', bundled: true});
-        if (app.view.method === 'maxmip') app.renderer.ensureMaxMip();
+        if (scene.methodReadsMaxPyramid(app.view.method)) app.renderer.ensureMaxMip();
     } catch (e) {
         fail(`${kDefaultMap}: ${e.message}`);
         return;

@@ -638,7 +638,7 @@ export class ReliefRenderer {
         const gl = this.gl, t = this.textures;
         const base = scene.viewBase(view);
         const heightScale = view.heightScale;
-        const maxMip = view.method === 'maxmip';
+        const maxMip = scene.methodReadsMaxPyramid(view.method);
         const shape = t.shape(maxMip);
 
         // The box, from the windows' top (ReliefRenderer::uploadBox), in floats.

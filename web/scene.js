@@ -7,6 +7,7 @@
 // (Math.fround) where it has floats, so that the page hands the shader the uniforms
 // microrelief-render hands it.
 
+import {kMethodTraits} from './relief_layout.js';
 import {baseName, baseShape, kBaseNames} from './relief_core.js';
 
 export {wrapsU} from './relief_core.js';
@@ -113,17 +114,22 @@ export function sceneRadius(extent) {
 // relief_layout.js (kMethodValues, kDebugViewValues, ...: generated from variants.glsl and
 // debug_views.glsl), never from a position in these lists.
 
-export const kMethods = ['multilevel', 'normal', 'offset', 'steep', 'pom', 'relief', 'maxmip', 'cone', 'rcsm'];
+// The methods and what each is: their rows in variants.glsl (MR_TRAITS_*), which the
+// programs' checks read too (core/scene/Method.h: methodHas), generated into relief_layout.js.
+export const kMethods = Object.keys(kMethodTraits);
+const methodHas = (m, trait) => kMethodTraits[m].includes(trait);
 export const kViews = ['shaded', 'iterations', 'level', 'normal', 'depth', 'position'];
 export const kShadows = ['off', 'hard', 'soft'];
 export const kInterpolations = ['bilinear', 'biquadratic'];
-export const methodHasSteps = (m) => m === 'steep' || m === 'pom' || m === 'relief' || m === 'rcsm';
-export const methodTracesTheSolid = (m) => m === 'multilevel' || m === 'maxmip' || m === 'cone';
+export const methodHasSteps = (m) => methodHas(m, 'steps');
+export const methodTracesTheSolid = (m) => methodHas(m, 'solid');
 // The cone map a method reads (peers/ConeMap.h), or null: cone's conservative map, rcsm's
-// relaxed one (src/gl/ReliefRenderer.cpp: addConeMapFor).
-export const methodConeMap = (m) => (m === 'cone' ? 'conservative' : m === 'rcsm' ? 'relaxed' : null);
-export const methodRunsOnBase = (m, base) =>
-    base.kind === 'plane' || m === 'multilevel' || m === 'maxmip' || m === 'pom' || m === 'relief';
+// relaxed one (ReliefMap::prepareFor).
+export const methodConeMap = (m) =>
+    (methodHas(m, 'cone_map') ? 'conservative' : methodHas(m, 'relaxed_cone_map') ? 'relaxed' : null);
+export const methodRunsOnBase = (m, base) => base.kind === 'plane' || methodHas(m, 'curved');
+// Whether a method reads the map's own quadtree (maxmip's aligned max levels).
+export const methodReadsMaxPyramid = (m) => methodHas(m, 'max_pyramid');
 
 // ---- the view: defaults, URL query, command line ----
 

@@ -33,8 +33,7 @@ PAGES = ['web/scene.js', 'examples/three/view.js']
 PAGE_WORDS = {('albedo', 'map')}
 # web/scene.js's lists of a choice that is a #define of relief.frag or a uniform (relief_gl.js:
 # MICRORELIEF_METHOD, MICRORELIEF_SHADOWS, MICRORELIEF_INTERPOLATION, debugView), by key.
-INDEXED = {'method': 'kMethods', 'view': 'kViews', 'shadows': 'kShadows',
-           'interpolation': 'kInterpolations'}
+INDEXED = {'view': 'kViews', 'shadows': 'kShadows', 'interpolation': 'kInterpolations'}
 # Keys whose words every page that offers the key offers all of, in any order: a base added
 # to the program's table of bases (docs/bases.md, "Adding a base") is named here with the
 # pages that must learn it.
@@ -43,6 +42,10 @@ WHOLE = {'base'}
 # writes: ctest web.core (tests/web/relief_core_test.mjs) holds each, name by name and in
 # order, to the C++ table it mirrors, so this check takes them as read.
 CORE_LISTS = {'kBaseNames': 'the table of bases (core/base/BaseType.h)'}
+# Word lists a page takes from relief_layout.js, generated from the GLSL's rows that
+# microrelief-render names its choices from too (cmake/generate_contracts.py): the same words
+# in the same order by construction. The list -> what the page must import for it.
+GENERATED_LISTS = {'kMethods': 'kMethodTraits'}
 
 
 def fail(message):
@@ -117,6 +120,14 @@ def main():
         offered = 0
         for key, words in re.findall(r"choice\('([a-z][a-z-]*)', t, (\[[^\]]*\]|Object\.keys\(\w+\)|\w+)\)", text):
             if words in CORE_LISTS and re.search(r"import \{[^}]*\b" + words + r"\b[^}]*\} from './relief_core\.js'", text):
+                offered += 1
+                continue
+            if words in GENERATED_LISTS:
+                source_list = GENERATED_LISTS[words]
+                if not (re.search(r"import \{[^}]*\b" + source_list + r"\b[^}]*\} from './relief_layout\.js'", text)
+                        and re.search(r'const ' + words + r' = Object\.keys\(' + source_list + r'\)', text)):
+                    problems.append(f"{page}: {words} is not Object.keys({source_list}) from './relief_layout.js' "
+                                    f"(the generated rows): a list written by hand drifts from microrelief-render's")
                 offered += 1
                 continue
             for word in words_of(text, words.strip(), page, key, problems):

@@ -12,6 +12,8 @@
 // bytes a map texel: 3.9 MB for a 512 x 512 map), built at the first pick of that
 // configuration and kept with the ReliefMap (the kMaxTwinsPerMap configurations picked
 // last) until ReliefMap.dispose frees them.
+import {kBaseKindValues, kInterpolationValues} from '../generated/relief_layout.js';
+
 let twinModule = null;  // the module once loaded, or the Error of a package without it
 let loading = null;
 
@@ -72,9 +74,11 @@ function twinFor(relief) {
     try {
         new Float32Array(m.HEAPF32.buffer, input, samples.length).set(samples);
         const b = relief.base;
-        const [kind, a, bb, c] = b.kind === 'cylinder' ? [1, b.radius, b.length, 0] : b.kind === 'ellipsoid' ? [2, ...b.radii] : [0, 0, 0, 0];
-        handle = m._mr_twin_create(input, reliefMap.width, reliefMap.height, relief.heightScale, kind, a, bb, c,
-                                   relief.interpolation === 'biquadratic' ? 1 : 0);
+        // The base and the last level by their GLSL values (variants.glsl), which twin_wasm.cpp
+        // reads through core/GlslConstants.h; the sizes as mr_twin_create takes them.
+        const [a, bb, c] = b.kind === 'cylinder' ? [b.radius, b.length, 0] : b.kind === 'ellipsoid' ? b.radii : [0, 0, 0];
+        handle = m._mr_twin_create(input, reliefMap.width, reliefMap.height, relief.heightScale,
+                                   kBaseKindValues[b.kind], a, bb, c, kInterpolationValues[relief.interpolation]);
     } finally {
         m._free(input);
     }

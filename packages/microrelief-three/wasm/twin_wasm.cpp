@@ -16,6 +16,7 @@
 
 #include <glm/glm.hpp>
 
+#include "microrelief/core/GlslConstants.h"
 #include "microrelief/core/scene/ModelTransform.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
 
@@ -50,23 +51,26 @@ double kindOf(HitFace face) {
 extern "C" {
 
 // A twin of the relief over `samples` (width x height floats, row 0 first): its height
-// scale, base (0 plane, 1 cylinder of radius a and length b, 2 ellipsoid of radii a, b, c)
-// and last level (0 bilinear, 1 biquadratic). The twin copies the map and builds its max
-// pyramid (half bounds, the GPU's texels). A handle, or 0 with mr_twin_last_error() saying
-// why (heightMapFromSamples's and BaseShape's messages).
+// scale, base (variants.glsl's MR_BASE_*: the plane, a cylinder of radius a and length b, an
+// ellipsoid of radii a, b, c) and last level (MR_INTERPOLATION_*). The twin copies the map
+// and builds its max pyramid (half bounds, the GPU's texels). A handle, or 0 with
+// mr_twin_last_error() saying why (heightMapFromSamples's and BaseShape's messages).
 int mr_twin_create(const float* samples, int width, int height, double heightScale, int base,
                    double a, double b, double c, int interpolation) {
     try {
         const HeightMap map = heightMapFromSamples(samples, width, height,
                                                    static_cast<std::size_t>(width) * sizeof(float),
                                                    {}, "the height map");
-        const BaseShape shape = base == 1   ? BaseShape::cylinder(a, b)
-                                : base == 2 ? BaseShape::ellipsoid({a, b, c})
-                                            : BaseShape::plane();
+        // `base` and `interpolation` are the GLSL's values (variants.glsl), as twin.js gives
+        // them from relief_layout.js.
+        const BaseShape shape = base == glsl::kBaseKindCylinder    ? BaseShape::cylinder(a, b)
+                                : base == glsl::kBaseKindEllipsoid ? BaseShape::ellipsoid({a, b, c})
+                                                                   : BaseShape::plane();
         validateBaseShape(shape);
         twins.push_back(std::make_unique<MultilevelTracer>(
             map, heightScale, shape,
-            interpolation == 1 ? Interpolation::Biquadratic : Interpolation::Bilinear));
+            interpolation == glsl::kInterpolationBiquadratic ? Interpolation::Biquadratic
+                                                             : Interpolation::Bilinear));
         return static_cast<int>(twins.size());
     } catch (const std::exception& e) {
         lastError = e.what();

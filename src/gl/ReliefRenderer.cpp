@@ -474,6 +474,15 @@ CameraFrame ReliefRenderer::resolveCamera(const Camera& camera, int width, int h
 }
 
 CameraFrame ReliefRenderer::draw(const ViewDesc& view, const PictureTile& tile) {
+    // The view checked at this door as HeadlessRenderer checks a scene at its own: its values,
+    // then with the relief applied (the method on its base and tiles, shadows on a method
+    // that traces the solid), before anything is drawn or set.
+    std::vector<FieldError> errors = view.validate();
+    ReliefDesc applied;
+    applied.base = base_;
+    applied.tiles = tiles();
+    for (FieldError& e : validateTogether(applied, view)) errors.push_back(std::move(e));
+    throwIfInvalid(errors);
     setMethod(view.method, countFetches_);  // a program compiled once, then looked up
     const CameraFrame camera = resolveCamera(view.camera, view.width, view.height);
     draw(camera, view.shading, tile);

@@ -588,6 +588,52 @@ TEST_F(SceneObject, TheSceneIsCheckedAtTheDoor) {
     EXPECT_EQ(renderer.render(job).frame.position, before.frame.position);
 }
 
+// ReliefRenderer::draw(view) is a door too: a view the description refuses with the relief
+// applied (pom, which knows the top surface only, with hard shadows; cone on the sphere) is
+// refused with the scene's message before anything is drawn or set, and the next view draws
+// as before.
+TEST_F(SceneObject, ADrawnViewIsCheckedAtTheDoor) {
+    const HeightMap map = synth::cobbles(32, 32, 5);
+    RenderJob job;
+    job.width = job.height = 24;
+    job.camera = test::orbitCamera(40.0, 25.0, 1.7);
+    RenderJob sphere = job;
+    sphere.base = BaseShape::sphere();
+    RenderJob pomShadows = job;
+    pomShadows.method.method = Method::Pom;
+    pomShadows.shading.shadows = ShadowMode::Hard;
+    RenderJob coneOnSphere = sphere;
+    coneOnSphere.method.method = Method::Cone;
+    for (const auto& [relief, refused] :
+         {std::pair{&job, &pomShadows}, std::pair{&sphere, &coneOnSphere}}) {
+        ReliefRenderer renderer(gl(), shaderDirectory());
+        renderer.apply(*relief, &map, "cobbles");
+        OffscreenTarget target(gl(), job.width, job.height);
+        const auto drawn = [&](const ViewDesc& view) {
+            target.clear(view.background);
+            const CameraFrame camera = renderer.draw(view);
+            return target.read(camera.eye).position;
+        };
+        const std::vector<float> before = drawn(*relief);
+        std::string expected;  // the scene's first refusal, as throwIfInvalid words it
+        try {
+            throwIfInvalid(validateScene(*refused, *refused));
+        } catch (const Error& e) {
+            expected = e.what();
+        }
+        ASSERT_FALSE(expected.empty());
+        try {
+            (void)renderer.draw(static_cast<const ViewDesc&>(*refused));
+            ADD_FAILURE() << "draw(view) drew a view the description refuses: " << expected;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+            EXPECT_EQ(std::string(e.what()), expected);
+        }
+        EXPECT_EQ(renderer.method().method, relief->method.method) << expected;
+        EXPECT_EQ(drawn(*relief), before) << expected;
+    }
+}
+
 // The window depth written for each convention: OpenGL's [-1, 1] clip depth and
 // glClipControl's [0, 1], each standard and reversed (near at 1, a GREATER test, cleared to
 // 0). Unprojecting a hit pixel's depth through the projection gives back the AOV's world

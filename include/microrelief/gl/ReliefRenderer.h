@@ -197,7 +197,9 @@ public:
     // The picture `view` describes, as draw() above draws it: the view's method set
     // (setMethod), its camera resolved against this relief (resolveCamera), its shading.
     // The background is the caller's (clear the framebuffer first). Returns the camera
-    // drawn, whose rays the hit positions are of.
+    // drawn, whose rays the hit positions are of. The view is checked first, alone and with
+    // the relief applied (core/scene/Scene.h: ViewDesc::validate, validateTogether): a view
+    // the description refuses throws Error(BadInput) with its message, and nothing changes.
     CameraFrame draw(const ViewDesc& view, const PictureTile& tile = {});
     // `camera` resolved for a width x height picture of this relief: an automatic distance
     // and clip range from the relief's extent (its map's size and highest sample, its base

@@ -29,8 +29,9 @@ static_assert(bitIs(MethodTrait::Steps, glsl::kMethodTraitSteps) &&
                   bitIs(MethodTrait::RelaxedConeMap, glsl::kMethodTraitRelaxedConeMap),
               "MethodTrait's bits are the GLSL's trait bits (core/GlslConstants.h)");
 
-// "a, b and c": the names of the methods whose rows have `trait`.
-std::string methodsWith(MethodTrait trait) {
+}  // namespace
+
+std::string methodNamesWith(MethodTrait trait) {
     std::string list;
     int count = 0, total = 0;
     for (int m = 0; m < glsl::kMethodCount; ++m) total += methodHas(static_cast<Method>(m), trait);
@@ -42,6 +43,8 @@ std::string methodsWith(MethodTrait trait) {
     }
     return list;
 }
+
+namespace {
 
 // The enum value whose name is `name`, by position in `names`; throws Error(BadInput)
 // naming the flag and the choices.
@@ -81,7 +84,7 @@ bool methodRunsOnBase(Method method, const BaseShape& base) {
 void checkMethodSupportsBase(Method method, const BaseShape& base) {
     if (methodRunsOnBase(method, base)) return;
     throwBadInput(std::string("{method} ") + methodName(method) + " does not run on {base} " +
-                  baseName(base) + " (curved bases take " + methodsWith(MethodTrait::Curved) +
+                  baseName(base) + " (curved bases take " + methodNamesWith(MethodTrait::Curved) +
                   ")");
 }
 
@@ -98,7 +101,7 @@ void checkMethodSupportsTiles(Method method, glm::ivec2 tiles) {
     // What it reads that is the map's own, untiled.
     const char* own = methodHas(method, MethodTrait::MaxPyramid) ? "quadtree" : "cone map";
     throwBadInput(std::string("{method} ") + methodName(method) + " does not take {tiles} (its " +
-                  own + " is the map's own; " + methodsWith(MethodTrait::Tiles) + " do)");
+                  own + " is the map's own; " + methodNamesWith(MethodTrait::Tiles) + " do)");
 }
 
 DebugView parseDebugView(const std::string& name) {

@@ -181,7 +181,8 @@ std::vector<FieldError> validateTogether(const ReliefDesc& relief, const ViewDes
     if (view.shading.shadows != ShadowMode::Off && !methodTracesTheSolid(view.method.method)) {
         errors.push_back({"shading.shadows", std::string("{shading.shadows} ") +
                                                  shadowModeName(view.shading.shadows) +
-                                                 " takes the exact methods, multilevel, maxmip and cone (not {method} " +
+                                                 " takes the exact methods, " +
+                                                 methodNamesWith(MethodTrait::Solid) + " (not {method} " +
                                                  methodName(view.method.method) + ")"});
     }
     return errors;

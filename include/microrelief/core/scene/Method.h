@@ -39,6 +39,8 @@ enum class MethodTrait : unsigned {
 
 // Whether `method`'s row has `trait`.
 bool methodHas(Method method, MethodTrait trait);
+// The methods whose rows have `trait`, for messages: "multilevel, maxmip and cone".
+std::string methodNamesWith(MethodTrait trait);
 
 // "multilevel", "normal", "offset", "steep", "pom", "relief", "maxmip", "cone", "rcsm" (the
 // values of the GLSL's methods, core/GlslConstants.h); throws Error(BadInput).

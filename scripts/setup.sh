@@ -12,7 +12,7 @@ build="${MICRORELIEF_BUILD_DIR:-$root/build}"
 packages=(
   cmake ninja-build g++ pkg-config
   libglfw3-dev libglm-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
-  libopenimageio-dev openimageio-tools zlib1g-dev libgdal-dev
+  libopenimageio-dev openimageio-tools zlib1g-dev libgdal-dev libassimp-dev assimp-testmodels
   libgtest-dev libcli11-dev python3-glad glslang-tools
   libimgui-dev xvfb xauth xdotool
   chromium python3 emscripten

@@ -146,7 +146,7 @@ template <typename Visit>
 void forEachObjLine(const std::string& text, Visit visit) {
     ObjLine line;
     std::size_t number = 1;
-    std::size_t at = 0;
+    std::size_t at = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // a UTF-8 BOM, as Assimp skips it
     while (at < text.size()) {
         const std::size_t newline = std::min(text.find('\n', at), text.size());
         std::size_t end = newline;
@@ -181,6 +181,9 @@ std::string objTextForAssimp(const std::filesystem::path& file, const std::strin
     std::ifstream in(file, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!in && !in.eof()) throwBadInput(name + ": cannot read the file");
+    // Assimp converts UTF-16 and UTF-32 to UTF-8 before it reads; the checks below read bytes.
+    if (text.find('\0') != std::string::npos)
+        throwBadInput(name + ": not OBJ text in ASCII or UTF-8 (a NUL byte: UTF-16, or binary)");
 
     std::vector<std::size_t> appendZeroAt;  // after the u of `vt u` lines
     std::size_t triangles = 0, texCoordLines = 0, faces = 0, cornerWithoutTexCoord = 0;

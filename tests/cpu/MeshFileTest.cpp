@@ -440,6 +440,10 @@ TEST(MeshFile, RefusesWhatIsNotAMeshFile) {
     const auto text = scratch / "text.glb";
     writeText(text, "this is not a mesh\n");
     EXPECT_NE(refusal(text).find("not a mesh Assimp reads ("), std::string::npos);
+    const auto utf16 = scratch / "utf16.obj";
+    const char utf16Text[] = {'\xFE', '\xFF', 0, 'v', 0, ' ', 0, '0'};  // "v 0", a BOM first
+    writeText(utf16, std::string(utf16Text, sizeof utf16Text));
+    EXPECT_NE(refusal(utf16).find("not OBJ text in ASCII or UTF-8"), std::string::npos);
     const auto json = scratch / "other.gltf";
     writeText(json, R"({"a": 1})");
     EXPECT_NE(refusal(json).find("not a mesh Assimp reads ("), std::string::npos);
@@ -556,6 +560,10 @@ TEST(MeshFile, RefusesObjLinesAssimpWouldReadWrong) {
     writeText(short_, "v 0 0 0\nv 1 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
     EXPECT_NE(refusal(short_).find(": line 2: a position of 2 numbers (3, 4 or 6 are read"),
               std::string::npos);
+    // The same on the first line after a UTF-8 byte order mark (which Assimp skips).
+    const auto bom = scratch / "bom.obj";
+    writeText(bom, "\xEF\xBB\xBFv 1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 2/1 3/1 4/1\n");
+    EXPECT_NE(refusal(bom).find(": line 1: a position of 2 numbers"), std::string::npos);
 }
 
 TEST(MeshFile, RefusesAVertexWhoseTrianglesCancel) {
@@ -658,6 +666,11 @@ TEST(MeshFile, RefusesRealBadMeshes) {
                   .find(": glTF 1.0; only glTF 2.0 is read"),
               std::string::npos);
     EXPECT_NE(refusal(kTestModels / "OBJ/box.obj").find(": no texture coordinates"),
+              std::string::npos);
+    EXPECT_NE(refusal(kTestModels / "OBJ/box_UTF16BE.obj").find(": not OBJ text in ASCII or UTF-8"),
+              std::string::npos);
+    EXPECT_NE(refusal(kTestModels / "OBJ/multiple_spaces.obj")
+                  .find(": line 11: a face corner without a texture coordinate"),
               std::string::npos);
 }
 

@@ -49,7 +49,8 @@ struct MeshLimits {
 // Reads an OBJ (.obj) or glTF 2.0 (.gltf, .glb) file, by its extension in any case. Throws
 // Error(BadInput), one line naming the file and the reason, for: a path that is not a regular
 // file, an empty file or one past limits.maxFileBytes, another extension, a file Assimp
-// cannot read (Assimp's reason in the message), glTF 1.0, an OBJ line Assimp 5.2 would read
+// cannot read (Assimp's reason in the message), glTF 1.0, OBJ text with a NUL byte (UTF-16 or
+// binary: the OBJ checks read ASCII or UTF-8), an OBJ line Assimp 5.2 would read
 // wrong without a word (a position of other than 3, 4 or 6 numbers, which it skips, so that
 // every later index names the wrong position; a texture coordinate that is not finite,
 // which it reads as 0), a face corner or part without texture coordinates, positions,

@@ -16,17 +16,18 @@
 
 namespace microrelief {
 
-void checkRegularFile(const std::filesystem::path& file, const std::string& name) {
+void checkRegularFile(const std::filesystem::path& file, const std::string& name,
+                      const std::string& what) {
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(file, ec);
     if (status.type() == std::filesystem::file_type::not_found)
         throwBadInput(name + ": no such file");
     if (ec) throwBadInput(name + ": cannot read (" + ec.message() + ")");
     if (status.type() == std::filesystem::file_type::directory)
-        throwBadInput(name + ": is a directory, not an image");
+        throwBadInput(name + ": is a directory, not " + what);
     if (status.type() != std::filesystem::file_type::regular)
-        throwBadInput(name +
-                      ": is not a regular file (a device, FIFO or socket); give an image file");
+        throwBadInput(name + ": is not a regular file (a device, FIFO or socket); give " + what +
+                      " file");
 }
 
 void checkSize(const std::string& name, long long width, long long height, int maxSide,
@@ -56,7 +57,8 @@ void checkSize(const std::string& name, long long width, long long height, int m
 }
 
 std::string oneLine(std::string text) {
-    std::replace(text.begin(), text.end(), '\n', ' ');
+    std::replace_if(
+        text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
     while (!text.empty() && text.back() == ' ') text.pop_back();
     return text;
 }

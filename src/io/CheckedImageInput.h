@@ -22,15 +22,17 @@ std::unique_ptr<OIIO::ImageInput> openCheckedImage(const std::filesystem::path& 
                                                    std::size_t maxSamples = 0);
 
 // Before a reader sees the path: a device (/dev/zero), a FIFO or a socket never ends or
-// blocks, and format probes would read it forever. Throws Error(BadInput) naming `name`.
-void checkRegularFile(const std::filesystem::path& file, const std::string& name);
+// blocks, and format probes would read it forever. Throws Error(BadInput) naming `name`
+// and what the file should be (`what`: "an image", "a mesh").
+void checkRegularFile(const std::filesystem::path& file, const std::string& name,
+                      const std::string& what = "an image");
 // A size from a header, before anything is allocated: empty, a side beyond `maxSide`, or
 // more samples than `maxSamples` (0: no bound; the message says what drawing them would
 // take in memory, kPagedBytesPerSample a sample: MapOverMemory) is refused
 // (Error(BadInput), `what` as above).
 void checkSize(const std::string& name, long long width, long long height, int maxSide,
                const std::string& what, std::size_t maxSamples = 0);
-// OpenImageIO's messages on one line.
+// A library's message (OpenImageIO's, Assimp's) on one line.
 std::string oneLine(std::string text);
 
 }  // namespace microrelief

@@ -22,6 +22,8 @@
 //   importer; refused.
 #include "microrelief/io/MeshFile.h"
 
+#include "CheckedImageInput.h"  // checkRegularFile, oneLine
+
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/commonMetaData.h>
 #include <assimp/scene.h>
@@ -58,26 +60,11 @@ std::string lowercase(std::string text) {
     return text;
 }
 
-std::string oneLine(std::string text) {
-    std::replace_if(
-        text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
-}
 
 // The path, the extension and the size, before anything reads the file.
 MeshFormat checkMeshPath(const std::filesystem::path& file, const std::string& name,
                          const MeshLimits& limits) {
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(file, ec);
-    if (status.type() == std::filesystem::file_type::not_found)
-        throwBadInput(name + ": no such file");
-    if (ec) throwBadInput(name + ": cannot read (" + ec.message() + ")");
-    if (status.type() == std::filesystem::file_type::directory)
-        throwBadInput(name + ": is a directory, not a mesh");
-    if (status.type() != std::filesystem::file_type::regular)
-        throwBadInput(name +
-                      ": is not a regular file (a device, FIFO or socket); give a mesh file");
+    checkRegularFile(file, name, "a mesh");
 
     const std::string extension = lowercase(file.extension().string());
     MeshFormat format;
@@ -88,6 +75,7 @@ MeshFormat checkMeshPath(const std::filesystem::path& file, const std::string& n
     } else {
         throwBadInput(name + ": not a mesh file this program reads (.obj, .gltf or .glb)");
     }
+    std::error_code ec;
     const std::uintmax_t bytes = std::filesystem::file_size(file, ec);
     if (ec) throwBadInput(name + ": cannot read (" + ec.message() + ")");
     if (bytes == 0) throwBadInput(name + ": the file is empty (0 bytes)");

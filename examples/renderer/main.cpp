@@ -4,12 +4,12 @@
 //
 //   relief-renderer [--height FILE] [--out FILE]
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/scene/Scene.h"
 #include "microrelief/core/trace/CpuRelief.h"
@@ -35,9 +35,9 @@ int run(const std::string& heightFile, const std::string& out) {
     checkOutputTargets({out});  // an image extension, not a folder: before any work
 
     // Its files: the heights and, with the bundled map, its colours. The library looks for
-    // the bundled map beside the running program (../share/microrelief), or where
-    // MICRORELIEF_DATA_DIR says: this program does not live in the package's prefix.
-    setenv("MICRORELIEF_DATA_DIR", DATA_DIR, /*overwrite=*/0);
+    // its data folder (the bundled map, the shaders) beside the running program
+    // (../share/microrelief); this program does not live in the package's prefix: it names it.
+    setDataDirectory(DATA_DIR);
     const ReliefFiles files = loadReliefFiles(relief);
     const std::string name = files.heightFile ? files.heightFile->string() : "the map";
 
@@ -45,7 +45,7 @@ int run(const std::string& heightFile, const std::string& out) {
     // objects are made after the context, so they go before it.
     const std::unique_ptr<GlContext> context = createHeadlessContext(Backend::Auto);
     const GL& gl = context->gl();
-    const auto programs = std::make_shared<ReliefPrograms>(gl, SHADER_DIR);
+    const auto programs = std::make_shared<ReliefPrograms>(gl, shaderDirectory());
     const std::shared_ptr<ReliefMap> map =
         ReliefMap::upload(programs, *files.heights, files.heights, name,
                           {.wrapU = relief.base.wrapsU(), .tiles = relief.tiles});

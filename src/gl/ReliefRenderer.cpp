@@ -415,7 +415,7 @@ ReliefParameters ReliefRenderer::parameters(const CameraFrame& camera,
 
 void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shading,
                           const PictureTile& tile) {
-    if (!map_) return;
+    if (!map_) throwRuntime("ReliefRenderer::draw: no map (apply a relief first)");
     // Another renderer drawing the map, or the host, may have edited it since this one
     // last looked: the box is fitted to its maximum now, and what the method reads is
     // built again where the edit dropped it.

@@ -634,6 +634,26 @@ TEST_F(SceneObject, ADrawnViewIsCheckedAtTheDoor) {
     }
 }
 
+// Before any map, both draws say so (Error(Runtime)) rather than draw nothing.
+TEST_F(SceneObject, DrawingBeforeAMapIsRefused) {
+    ReliefRenderer renderer(gl(), shaderDirectory());
+    RenderJob job;
+    job.width = job.height = 8;
+    const CameraFrame camera = resolveCamera(job.camera, job.width, job.height, 2.0, {});
+    for (const char* which : {"draw(camera, shading)", "draw(view)"}) {
+        try {
+            if (std::string(which) == "draw(view)")
+                (void)renderer.draw(static_cast<const ViewDesc&>(job));
+            else
+                renderer.draw(camera, job.shading);
+            ADD_FAILURE() << which << " drew without a map";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::Runtime) << which;
+            EXPECT_NE(std::string(e.what()).find("no map"), std::string::npos) << e.what();
+        }
+    }
+}
+
 // The window depth written for each convention: OpenGL's [-1, 1] clip depth and
 // glClipControl's [0, 1], each standard and reversed (near at 1, a GREATER test, cleared to
 // 0). Unprojecting a hit pixel's depth through the projection gives back the AOV's world

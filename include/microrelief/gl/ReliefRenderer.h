@@ -191,6 +191,7 @@ public:
     // buffer at binding 0, textures on units 0 to 2, face culling and winding, the depth test
     // and its function, depth clamping, the viewport) and restores each as it found it
     // (gl/StateGuard.h). The depth mask stays the caller's: with it off nothing is written.
+    // Before any map (apply) it throws Error(Runtime) rather than draw nothing.
     void draw(const CameraFrame& camera, const ShadingOptions& shading,
               const PictureTile& tile = {});
 

@@ -55,6 +55,8 @@ std::shared_ptr<ReliefMap> ReliefMap::upload(std::shared_ptr<ReliefPrograms> pro
                                              const std::string& source,
                                              const MapUploadSettings& settings) {
     if (!programs) throwRuntime("ReliefMap::upload: no programs");
+    if (shared && shared.get() != &heights)
+        throwRuntime("ReliefMap::upload: `shared` is not `heights` (" + source + ")");
     ReliefTextures textures = uploadReliefMap(*programs, heights, std::move(shared), source, settings);
     // The constructor is private (maps are shared, never copied): make_shared cannot call it.
     return std::shared_ptr<ReliefMap>(

@@ -634,6 +634,40 @@ TEST_F(SceneObject, ADrawnViewIsCheckedAtTheDoor) {
     }
 }
 
+// A GL error an earlier call left on the context is said as the caller's, not taken for the
+// render's own ("while rendering"); the next render draws. A map uploaded with `shared`
+// other than its `heights` is refused.
+TEST_F(SceneObject, ErrorsThatAreNotTheLibrarysAreSaidAsSuch) {
+    const HeightMap map = synth::cobbles(32, 32, 5);
+    RenderJob job;
+    job.width = job.height = 16;
+    job.camera = test::orbitCamera(40.0, 25.0, 1.7);
+    HeadlessRenderer renderer(test::glContext(), job.method);
+    renderer.setHeights(job, map, "cobbles");
+    const HeadlessResult before = renderer.render(job);
+    gl().Enable(0x7fff);  // no capability: GL_INVALID_ENUM, left pending
+    try {
+        (void)renderer.render(job);
+        ADD_FAILURE() << "a render over a pending GL error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Runtime);
+        EXPECT_EQ(std::string(e.what()),
+                  "GL error 0x0500 left by an earlier call on this context, before rendering "
+                  "cobbles");
+    }
+    EXPECT_EQ(renderer.render(job).frame.position, before.frame.position);
+
+    const auto programs = std::make_shared<ReliefPrograms>(gl(), shaderDirectory());
+    const auto other = std::make_shared<const HeightMap>(synth::cobbles(8, 8, 1));
+    try {
+        (void)ReliefMap::upload(programs, map, other, "cobbles", MapUploadSettings{});
+        ADD_FAILURE() << "a map uploaded with another map as its shared heights";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Runtime);
+        EXPECT_EQ(std::string(e.what()), "ReliefMap::upload: `shared` is not `heights` (cobbles)");
+    }
+}
+
 // Before any map, both draws say so (Error(Runtime)) rather than draw nothing.
 TEST_F(SceneObject, DrawingBeforeAMapIsRefused) {
     ReliefRenderer renderer(gl(), shaderDirectory());

@@ -62,7 +62,8 @@ class ReliefMap {
 public:
     // `heights`' resources as `settings` say (uploadReliefMap: the policy), the GPU's work
     // done with `programs`' pyramid builder. `shared`, where not null, is `heights` shared by
-    // the caller: pages keep it rather than a copy. Throws as uploadReliefMap does.
+    // the caller: pages keep it rather than a copy (another map there is Error(Runtime)).
+    // Throws as uploadReliefMap does.
     static std::shared_ptr<ReliefMap> upload(std::shared_ptr<ReliefPrograms> programs,
                                              const HeightMap& heights,
                                              std::shared_ptr<const HeightMap> shared,

@@ -1,0 +1,90 @@
+#!/usr/bin/env node
+// translate.mjs: a GLSL entry and the library it includes, assembled as the page assembles its
+// shaders (web/shader_source.js: #version, the #defines, each #include "..." spliced once),
+// written as GLSL or translated to WGSL by naga's GLSL front end (the npm package naga-wasm,
+// a devDependency of microrelief-three). docs/webgpu.md says why naga and what it needs of the
+// GLSL. For WGSL the entry is assembled as GLSL 4.50 with VULKAN defined (separate textures
+// and samplers: tests/webgpu/entry.frag sets the library's read hooks for them).
+//
+// Usage: node tests/webgpu/translate.mjs --entry FILE --out FILE [--shaders DIR]
+//            [--version '300 es' | --wgsl] [--define NAME=VALUE ...]
+//   --shaders DIR  the folder whose microrelief/ the entry includes (default: the repository's)
+//   --wgsl         translate (else write the assembled GLSL for --version, default '300 es')
+// An error is one line on stderr and exit status 2 (bad arguments, a missing file) or 1 (naga
+// refused the source: its first lines, with the assembled line it names).
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import {fileURLToPath, pathToFileURL} from 'node:url';
+
+const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const fail = (status, message) => {
+    process.stderr.write(`translate.mjs: ${message}\n`);
+    process.exit(status);
+};
+
+const options = {
+    shaders: path.join(repo, 'shaders'),
+    version: '300 es',
+    wgsl: false,
+    defines: []
+};
+const argv = process.argv.slice(2);
+for (let k = 0; k < argv.length; ++k) {
+    const a = argv[k], value = () => (k + 1 < argv.length ? argv[++k] : fail(2, `${a} needs a value`));
+    if (a === '--entry')
+        options.entry = path.resolve(value());
+    else if (a === '--out')
+        options.out = path.resolve(value());
+    else if (a === '--shaders')
+        options.shaders = path.resolve(value());
+    else if (a === '--version')
+        options.version = value();
+    else if (a === '--wgsl')
+        options.wgsl = true;
+    else if (a === '--define') {
+        const [name, ...rest] = value().split('=');
+        options.defines.push([name, rest.join('=')]);
+    } else
+        fail(2, `unknown argument '${a}' (see the header of tests/webgpu/translate.mjs)`);
+}
+if (!options.entry || !options.out) fail(2, '--entry and --out are required');
+
+// The page's own assembler, reading files: fetch and document.baseURI as the page has them.
+globalThis.document = {
+    baseURI: pathToFileURL(options.entry).href
+};
+globalThis.fetch = async (url) => {
+    const file = fileURLToPath(url);
+    if (!fs.existsSync(file) || !fs.statSync(file).isFile()) return {status: 404, ok: false};
+    return {status: 200, ok: true, text: async () => fs.readFileSync(file, 'utf8')};
+};
+const {ShaderFiles} = await import(pathToFileURL(path.join(repo, 'web/shader_source.js')).href);
+const version = options.wgsl ? '450' : options.version;
+const defines = options.wgsl ? [['VULKAN', ''], ...options.defines] : options.defines;
+let source;
+try {
+    source = await new ShaderFiles().assemble(
+        pathToFileURL(options.entry).href, version, defines, [pathToFileURL(options.shaders).href + '/']);
+} catch (e) {
+    fail(2, e.message);
+}
+// naga's preprocessor takes `#line N` but not the source-string numbers the page adds.
+const text = source.text.replace(/^#line (\d+) \d+$/gm, '// line $1');
+if (!options.wgsl) {
+    fs.writeFileSync(options.out, source.text);
+    process.exit(0);
+}
+const nagaEntry = path.join(repo, 'packages/microrelief-three/node_modules/naga-wasm/dist/node.js');
+if (!fs.existsSync(nagaEntry))
+    fail(2, `no ${path.relative(repo, nagaEntry)}: run npm ci in packages/microrelief-three`);
+const naga = await import(pathToFileURL(nagaEntry).href);
+try {
+    const module = naga.parseGlsl(text, {stage: 'fragment'});
+    fs.writeFileSync(
+        options.out,
+        `// naga ${naga.nagaVersion} from ${path.relative(repo, options.entry)}\n` +
+            naga.writeWgsl(module, naga.validate(module)));
+} catch (e) {
+    const report = (e.formatted || e.message).split('\n').filter((l) => l.trim()).slice(0, 6).join(' | ');
+    fail(1, `${path.relative(repo, options.entry)}: naga ${e.kind || 'error'}: ${report}`);
+}

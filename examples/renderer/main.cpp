@@ -48,7 +48,7 @@ int run(const std::string& heightFile, const std::string& out) {
     const auto programs = std::make_shared<ReliefPrograms>(gl, shaderDirectory());
     const std::shared_ptr<ReliefMap> map =
         ReliefMap::upload(programs, *files.heights, files.heights, name,
-                          {.wrapU = relief.base.wrapsU(), .tiles = relief.tiles});
+                          MapUploadSettings::of(relief));
     ReliefRenderer renderer(programs, view.method);
     renderer.apply(relief, map);
     if (files.albedo) renderer.setAlbedo(&*files.albedo, files.albedoFile->string());

@@ -668,6 +668,29 @@ TEST_F(SceneObject, ErrorsThatAreNotTheLibrarysAreSaidAsSuch) {
     }
 }
 
+// MapUploadSettings::of(relief) builds the map with the relief's addressing: the sphere's
+// (u wraps) and a tiled plane's are taken by apply(relief, map); the plain plane's map is not
+// the sphere's.
+TEST_F(SceneObject, AMapBuiltForAReliefIsTheOneItDraws) {
+    const auto heights = std::make_shared<const HeightMap>(synth::cobbles(32, 32, 5));
+    const auto programs = std::make_shared<ReliefPrograms>(gl(), shaderDirectory());
+    ReliefDesc sphere, tiled, plane;
+    sphere.base = BaseShape::sphere();
+    tiled.tiles = {3, 2};
+    for (const ReliefDesc* relief : {&sphere, &tiled, &plane}) {
+        const MapUploadSettings settings = MapUploadSettings::of(*relief);
+        EXPECT_EQ(settings.wrapU, relief->base.wrapsU());
+        EXPECT_EQ(settings.tiles, relief->tiles);
+        const std::shared_ptr<ReliefMap> map =
+            ReliefMap::upload(programs, *heights, heights, "cobbles", settings);
+        ReliefRenderer renderer(programs, MethodSettings{});
+        EXPECT_NO_THROW(renderer.apply(*relief, map)) << baseName(relief->base);
+        if (relief == &plane) {
+            EXPECT_THROW(renderer.apply(sphere, map), Error);
+        }
+    }
+}
+
 // Before any map, both draws say so (Error(Runtime)) rather than draw nothing.
 TEST_F(SceneObject, DrawingBeforeAMapIsRefused) {
     ReliefRenderer renderer(gl(), shaderDirectory());

@@ -20,6 +20,7 @@
 
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/heightmap/PyramidPages.h"
+#include "microrelief/core/scene/Scene.h"
 #include "microrelief/core/scene/Method.h"
 #include "microrelief/gl/Objects.h"
 #include "microrelief/gl/PagedPyramid.h"
@@ -36,6 +37,15 @@ struct MapUploadSettings {
     // When the map is read through pages (never, by default: a single draw of a paged map is
     // not exact, gl/PagedPyramid.h).
     PagingSettings paging{PagingSettings::Mode::Never};
+
+    // The settings whose addressing is `relief`'s (u wrapping on a curved base, its tiles),
+    // the rest as above: what a map drawn by `relief` must be built with.
+    static MapUploadSettings of(const ReliefDesc& relief) {
+        MapUploadSettings settings;
+        settings.wrapU = relief.base.wrapsU();
+        settings.tiles = relief.tiles;
+        return settings;
+    }
 };
 
 // Whether `map` is read through pages under `paging`: always, never, or (Mode::Auto) where

@@ -75,7 +75,9 @@ layout(depth_less) out float gl_FragDepth;
 #else
 #error MICRORELIEF_METHOD is none of microrelief/variants.glsl's MR_METHOD_*
 #endif
-#define MICRORELIEF_METHOD_HAS(trait) ((MICRORELIEF_METHOD_TRAITS & (trait)) != 0)
+// The choices test a trait as (MICRORELIEF_METHOD_TRAITS & MR_TRAIT_X) != 0, spelled out:
+// naga's preprocessor (the WGSL translation, docs/webgpu.md) takes no function-like macro
+// in an #if.
 #ifndef MICRORELIEF_SHADOWS
 #define MICRORELIEF_SHADOWS MR_SHADOWS_OFF
 #endif
@@ -135,7 +137,7 @@ mr_ReliefHit traceInFrame(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3
 // The step-based peers on a curved base, as engines run them there (pom, relief): in the
 // base's tangent frame where the ray enters the shell, map space taken as flat from there
 // on; their answer, a map point, is then placed on the base (off the ray, like offset's).
-#define MICRORELIEF_TANGENT_PEER (!MICRORELIEF_BASE_STRAIGHT_PATH && MICRORELIEF_METHOD_HAS(MR_TRAIT_TANGENT_FRAME))
+#define MICRORELIEF_TANGENT_PEER (!MICRORELIEF_BASE_STRAIGHT_PATH && (MICRORELIEF_METHOD_TRAITS & MR_TRAIT_TANGENT_FRAME) != 0)
 
 mr_ReliefHit traceRay(mr_Relief relief, mr_RayQuery query, vec3 origin, vec3 dir) {
 #if MICRORELIEF_TANGENT_PEER
@@ -179,7 +181,7 @@ float windowDepth(vec3 p) {
 // by the multilevel method whichever exact method traced the picture. A shadow ray that
 // runs out of its budget marks the hit exhausted, as a primary ray would.
 float lightVisibility(mr_Relief relief, inout mr_ReliefHit hit, vec3 toLight, bool pointLight) {
-#if MICRORELIEF_SHADOWS != MR_SHADOWS_OFF && MICRORELIEF_METHOD_HAS(MR_TRAIT_SOLID)
+#if MICRORELIEF_SHADOWS != MR_SHADOWS_OFF && (MICRORELIEF_METHOD_TRAITS & MR_TRAIT_SOLID) != 0
     // The shadow ray in the frame: to a point light's frame position (t = 1 there), or
     // along a direction for ever.
     vec3 frameToLight = pointLight ? mr_baseFramePoint(relief, lightPosition.xyz) - hit.position
@@ -252,7 +254,7 @@ void main() {
 #endif
     }
 
-#if MICRORELIEF_METHOD_HAS(MR_TRAIT_OFF_RAY) || MICRORELIEF_TANGENT_PEER
+#if (MICRORELIEF_METHOD_TRAITS & MR_TRAIT_OFF_RAY) != 0 || MICRORELIEF_TANGENT_PEER
     // Parallax offset's answer is not on the ray (it shifts the texture lookup instead),
     // nor is a tangent-frame peer's on a curved base.
     vec3 world = mr_baseWorldPoint(relief, hit.position);

@@ -31,7 +31,7 @@
 
 // What each method is: its row, MR_TRAITS_<METHOD>, the MR_TRAIT_* it has, or'ed. The
 // programs' checks and lists (core/scene/Method.h: methodHas), the page's menus and
-// relief.frag's choices (MICRORELIEF_METHOD_HAS) all read these rows. A method is a value
+// relief.frag's choices (MICRORELIEF_METHOD_TRAITS) all read these rows. A method is a value
 // above, a row here and two lines in relief.frag: its row chosen, and its GLSL entry
 // (mr_traceMultilevel, mr_traceMaxMip ...) called in traceInFrame.
 // cmake/generate_contracts.py requires a row for every method and bits that are distinct

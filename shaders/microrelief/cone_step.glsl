@@ -114,7 +114,13 @@ void mr_walkCones(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER cones
         }
         if (leaf) {
             // At or under the plateau in this texel: the exact first hit over the rest of it.
-            end.tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, end.cellPatch, end.cell);
+            // Two locals, copied into end after the call (what out means in GLSL anyway): WGSL
+            // refuses two pointer arguments into one variable (docs/webgpu.md).
+            mr_ReliefPatch leafPatch;
+            ivec2 leafCell;
+            end.tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, leafPatch, leafCell);
+            end.cellPatch = leafPatch;
+            end.cell = leafCell;
             if (end.tHit >= 0.0) {
                 end.finished = end.solved = true;
                 break;

@@ -191,7 +191,13 @@ void mr_walkMaxMip(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER pyra
         if (!atLeaf) break;  // finished, or out of iterations
         // At level 0 the texel spans parts of up to four bilinear patches; the ray is
         // solved exactly against those it crosses, in order.
-        end.tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, end.cellPatch, end.cell);
+        // Two locals, copied into end after the call (what out means in GLSL anyway): WGSL
+        // refuses two pointer arguments into one variable (docs/webgpu.md).
+        mr_ReliefPatch leafPatch;
+        ivec2 leafCell;
+        end.tHit = mr_baseIntersectLeaf(relief, heights, origin, dir, t, tExit, leafPatch, leafCell);
+        end.cellPatch = leafPatch;
+        end.cell = leafCell;
         if (end.tHit >= 0.0) {
             end.finished = end.solved = true;
         } else if (tExit >= tFar) {

@@ -108,7 +108,13 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
         if (!atLeaf) break;  // finished, or out of iterations
         // No hit before the ray comes down to the leaf's bound: solve from there.
         float tFrom = mr_baseDescendTo(relief, start, dir, walk.ta, walk.tb, leafBound);
-        end.tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, walk.tb, end.cellPatch, end.cell);
+        // Two locals, copied into end after the call (what out means in GLSL anyway): WGSL
+        // refuses two pointer arguments into one variable (docs/webgpu.md).
+        mr_ReliefPatch leafPatch;
+        ivec2 leafCell;
+        end.tHit = mr_baseIntersectLeaf(relief, heights, start, dir, tFrom, walk.tb, leafPatch, leafCell);
+        end.cellPatch = leafPatch;
+        end.cell = leafCell;
         if (end.tHit >= 0.0) {
             end.finished = end.solved = true;
         } else if (!mr_walkNext(walk, false)) {

@@ -12,15 +12,22 @@ A case passes when the hit kinds, traversal iterations, stop levels and hard sha
 equal at every pixel and t, the normals, the soft shadow and the colour agree to 1e-6
 relative (t) and 1e-5 absolute (the rest: unit vectors and fractions in [0, 1]; on SwiftShader
 all but one soft-shadow pixel of 115200 are bit-identical, that one 1.5e-6 apart), and the
-scene is worth comparing (hits, shadowed pixels, penumbrae). Not in the ctest suite yet (the
-library needs the changes docs/webgpu.md lists before naga takes it).
+scene is worth comparing (hits, shadowed pixels, penumbrae). In ctest as web.wgsl
+(tests/webgpu/CMakeLists.txt) on two cases, plane_bilinear and cylinder_biquadratic.
 
-Usage: tests/webgpu/glsl_wgsl_equal.py [--wgsl-shaders DIR] [--generated DIR] [--out DIR] [CASE ...]
-Exit status 0: every case passed; 1: a case differed or failed to draw; 2: a translation failed.
+Needs chromium, node and naga-wasm (`npm ci` in packages/microrelief-three): where chromium or
+naga-wasm is missing it fails saying so, or skips (exit status 77, a line saying what is
+missing) under MICRORELIEF_ALLOW_MISSING_BROWSER=1, as the web and three suites do.
+
+Usage: tests/webgpu/glsl_wgsl_equal.py [--wgsl-shaders DIR] [--generated DIR] [--chromium EXE]
+           [--out DIR] [CASE ...]
+Exit status 0: every case passed; 1: a case differed or failed to draw, or a program is missing;
+2: a translation failed; 77: skipped (a program missing, and MICRORELIEF_ALLOW_MISSING_BROWSER=1).
 """
 import argparse
 import base64
 import json
+import os
 import pathlib
 import shutil
 import subprocess
@@ -34,6 +41,18 @@ CASES = {  # name: (base, MICRORELIEF_BASE, MICRORELIEF_INTERPOLATION), values o
     "cylinder_bilinear": ("cylinder", 1, 0), "cylinder_biquadratic": ("cylinder", 1, 1),
     "ellipsoid_bilinear": ("ellipsoid", 2, 0), "ellipsoid_biquadratic": ("ellipsoid", 2, 1),
 }
+NAGA = REPO / "packages/microrelief-three/node_modules/naga-wasm/dist/node.js"  # translate.mjs's
+SKIPPED = 77  # ctest's SKIP_RETURN_CODE for web.wgsl
+
+
+def missing(chromium):
+    """What this machine lacks to run the check (one line each), or an empty list."""
+    why = [] if shutil.which(chromium) else [f"no chromium ('{chromium}' not found: Debian package chromium)"]
+    if not shutil.which("node"):
+        why.append("no node (Debian package nodejs)")
+    if not NAGA.exists():
+        why.append(f"no {NAGA.relative_to(REPO)} (npm ci in packages/microrelief-three)")
+    return why
 
 
 def verdict(s):
@@ -52,12 +71,21 @@ def main():
     parser.add_argument("cases", nargs="*", metavar="CASE", help=", ".join(CASES) + " (default: all)")
     parser.add_argument("--wgsl-shaders", default=str(REPO / "shaders"), help="the shaders/ naga translates")
     parser.add_argument("--generated", help="a built microrelief-three's generated/ (make_map.mjs's default if unset)")
+    parser.add_argument("--chromium", default="chromium", help="the browser (default: chromium on PATH)")
     parser.add_argument("--out", help="where to write CASE.png (WebGL 2 | WebGPU | differing pixels in white)")
     args = parser.parse_args()
     unknown = [c for c in args.cases if c not in CASES]
     if unknown:
         parser.error(f"no case {', '.join(unknown)} (the cases: {', '.join(CASES)})")
     cases = args.cases or list(CASES)
+    lacking = missing(args.chromium)
+    if lacking:
+        if os.environ.get("MICRORELIEF_ALLOW_MISSING_BROWSER") == "1":
+            print(f"SKIPPED: {'; '.join(lacking)}")
+            return SKIPPED
+        print(f"glsl_wgsl_equal.py: {'; '.join(lacking)}; MICRORELIEF_ALLOW_MISSING_BROWSER=1 skips this check instead",
+              file=sys.stderr)
+        return 1
 
     sys.path.insert(0, str(REPO / "tests/web"))
     sys.path.insert(0, str(REPO / "web"))
@@ -89,7 +117,7 @@ def main():
 
         drive_chromium.FLAGS = [*drive_chromium.FLAGS, "--enable-unsafe-webgpu", "--use-webgpu-adapter=swiftshader"]
         server, url = serve.serve(str(root))
-        browser = drive_chromium.Browser(shutil.which("chromium") or "chromium", str(root / "profile"))
+        browser = drive_chromium.Browser(shutil.which(args.chromium), str(root / "profile"))
         target = browser.send("Target.createTarget", {"url": "about:blank"}, session=False)["targetId"]
         browser.session = browser.send("Target.attachToTarget", {"targetId": target, "flatten": True},
                                        session=False)["sessionId"]

@@ -13,6 +13,7 @@
 // An error is one line on stderr and exit status 2 (bad arguments, a missing file) or 1 (naga
 // refused the source: its first lines, with the assembled line it names).
 import * as fs from 'node:fs';
+import * as os from 'node:os';
 import * as path from 'node:path';
 import {fileURLToPath, pathToFileURL} from 'node:url';
 
@@ -58,7 +59,13 @@ globalThis.fetch = async (url) => {
     if (!fs.existsSync(file) || !fs.statSync(file).isFile()) return {status: 404, ok: false};
     return {status: 200, ok: true, text: async () => fs.readFileSync(file, 'utf8')};
 };
-const {ShaderFiles} = await import(pathToFileURL(path.join(repo, 'web/shader_source.js')).href);
+// Copied into a scratch folder marked as ES modules: node before 22 (Debian 12's is 18)
+// reads a .js file as CommonJS unless a package.json says otherwise.
+const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'translate-'));
+process.on('exit', () => fs.rmSync(scratch, {recursive: true, force: true}));
+fs.copyFileSync(path.join(repo, 'web/shader_source.js'), path.join(scratch, 'shader_source.js'));
+fs.writeFileSync(path.join(scratch, 'package.json'), '{"type": "module"}\n');
+const {ShaderFiles} = await import(pathToFileURL(path.join(scratch, 'shader_source.js')).href);
 const version = options.wgsl ? '450' : options.version;
 const defines = options.wgsl ? [['VULKAN', ''], ...options.defines] : options.defines;
 let source;

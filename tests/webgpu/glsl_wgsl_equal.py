@@ -41,7 +41,7 @@ CASES = {  # name: (base, MICRORELIEF_BASE, MICRORELIEF_INTERPOLATION), values o
     "cylinder_bilinear": ("cylinder", 1, 0), "cylinder_biquadratic": ("cylinder", 1, 1),
     "ellipsoid_bilinear": ("ellipsoid", 2, 0), "ellipsoid_biquadratic": ("ellipsoid", 2, 1),
 }
-NAGA = REPO / "packages/microrelief-three/node_modules/naga-wasm/dist/node.js"  # translate.mjs's
+WGSL_MJS = REPO / "packages/microrelief-three/scripts/wgsl.mjs"  # the translator, as the package's build runs it
 SKIPPED = 77  # ctest's SKIP_RETURN_CODE for web.wgsl
 
 
@@ -49,9 +49,10 @@ def missing(chromium):
     """What this machine lacks to run the check (one line each), or an empty list."""
     why = [] if shutil.which(chromium) else [f"no chromium ('{chromium}' not found: Debian package chromium)"]
     if not shutil.which("node"):
-        why.append("no node (Debian package nodejs)")
-    if not NAGA.exists():
-        why.append(f"no {NAGA.relative_to(REPO)} (npm ci in packages/microrelief-three)")
+        return why + ["no node (Debian package nodejs)"]
+    naga = subprocess.run(["node", str(WGSL_MJS), "--version"], capture_output=True, text=True)
+    if naga.returncode:
+        why.append(naga.stderr.strip() or f"{WGSL_MJS.relative_to(REPO)} --version failed")
     return why
 
 

@@ -1,17 +1,17 @@
 #!/usr/bin/env node
 // translate.mjs: a GLSL entry and the library it includes, assembled as the page assembles its
 // shaders (web/shader_source.js: #version, the #defines, each #include "..." spliced once),
-// written as GLSL or translated to WGSL by naga's GLSL front end (the npm package naga-wasm,
-// a devDependency of microrelief-three). docs/webgpu.md says why naga and what it needs of the
-// GLSL. For WGSL the entry is assembled as GLSL 4.50 with VULKAN defined (separate textures
+// written as GLSL or translated to WGSL by naga's GLSL front end through
+// packages/microrelief-three/scripts/wgsl.mjs, as the package's build translates
+// (docs/webgpu.md says why naga and what it needs of the GLSL). For WGSL the entry is assembled as GLSL 4.50 with VULKAN defined (separate textures
 // and samplers: tests/webgpu/entry.frag sets the library's read hooks for them).
 //
 // Usage: node tests/webgpu/translate.mjs --entry FILE --out FILE [--shaders DIR]
 //            [--version '300 es' | --wgsl] [--define NAME=VALUE ...]
 //   --shaders DIR  the folder whose microrelief/ the entry includes (default: the repository's)
 //   --wgsl         translate (else write the assembled GLSL for --version, default '300 es')
-// An error is one line on stderr and exit status 2 (bad arguments, a missing file) or 1 (naga
-// refused the source: its first lines, with the assembled line it names).
+// An error is one line on stderr and exit status 2 (bad arguments, a missing file, no naga-wasm)
+// or 1 (naga refused the source: its first lines, with the assembled line it names).
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
@@ -75,23 +75,17 @@ try {
 } catch (e) {
     fail(2, e.message);
 }
-// naga's preprocessor takes `#line N` but not the source-string numbers the page adds.
-const text = source.text.replace(/^#line (\d+) \d+$/gm, '// line $1');
 if (!options.wgsl) {
     fs.writeFileSync(options.out, source.text);
     process.exit(0);
 }
-const nagaEntry = path.join(repo, 'packages/microrelief-three/node_modules/naga-wasm/dist/node.js');
-if (!fs.existsSync(nagaEntry))
-    fail(2, `no ${path.relative(repo, nagaEntry)}: run npm ci in packages/microrelief-three`);
-const naga = await import(pathToFileURL(nagaEntry).href);
+// The translator as the package's build runs it (packages/microrelief-three/scripts/wgsl.mjs).
+const {loadNaga, translate, WgslError} = await import(pathToFileURL(path.join(repo, 'packages/microrelief-three/scripts/wgsl.mjs')).href);
 try {
-    const module = naga.parseGlsl(text, {stage: 'fragment'});
-    fs.writeFileSync(
-        options.out,
-        `// naga ${naga.nagaVersion} from ${path.relative(repo, options.entry)}\n` +
-            naga.writeWgsl(module, naga.validate(module)));
+    const naga = await loadNaga();
+    fs.writeFileSync(options.out, `// naga ${naga.nagaVersion} from ${path.relative(repo, options.entry)}\n` +
+                                      translate(naga, source.text, path.relative(repo, options.entry)));
 } catch (e) {
-    const report = (e.formatted || e.message).split('\n').filter((l) => l.trim()).slice(0, 6).join(' | ');
-    fail(1, `${path.relative(repo, options.entry)}: naga ${e.kind || 'error'}: ${report}`);
+    if (!(e instanceof WgslError)) throw e;
+    fail(/^no naga-wasm/.test(e.message) ? 2 : 1, e.message);
 }

@@ -202,6 +202,30 @@ TEST(HeightMapSurface, BilinearBetweenCentresClampedOutside) {
     EXPECT_DOUBLE_EQ(map.surface(0.1, 1.0), 1.0);  // clamped in X, interpolated in Y
 }
 
+// A grazing ray's far end lies ~1e15 texels away: the surface there is the edge's (clamped)
+// or a whole number of periods back (repeating), never an overflowed texel index (CI's
+// UBSan run caught the int cast of such a coordinate).
+TEST(HeightMapSurface, FarCoordinatesAreTheEdgeOrWholePeriodsBack) {
+    HeightMap map = ramp(4, 3);
+    for (Interpolation interpolation : {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+        const MapAddressing clamped{false}, repeating{true};
+        for (double far : {1e10, 1e15, 1e300}) {
+            EXPECT_EQ(map.surface(far, 1.2, clamped, interpolation),
+                      map.surface(4.0, 1.2, clamped, interpolation));
+            EXPECT_EQ(map.surface(-far, -far, clamped, interpolation),
+                      map.surface(-1.0, -1.0, clamped, interpolation));
+            EXPECT_EQ(map.surface(2.25, far, repeating, interpolation),
+                      map.surface(2.25, 3.0, repeating, interpolation));
+        }
+        // 2^40 + 1.25 is exact in a double and four periods of 4 divide 2^40.
+        const double shifted = std::ldexp(1.0, 40) + 1.25;
+        EXPECT_EQ(map.surface(shifted, 1.7, repeating, interpolation),
+                  map.surface(1.25, 1.7, repeating, interpolation));
+        EXPECT_EQ(map.surface(-shifted, 1.7, repeating, interpolation),
+                  map.surface(4.0 - 1.25, 1.7, repeating, interpolation));
+    }
+}
+
 namespace {
 
 const std::filesystem::path kCorpus = MICRORELIEF_FUZZ_CORPUS_DIR;

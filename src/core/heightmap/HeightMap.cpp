@@ -39,8 +39,26 @@ double HeightMap::surface(double x, double y, bool wrapU, Interpolation interpol
     return surface(x, y, MapAddressing{wrapU}, interpolation);
 }
 
+namespace {
+
+// A texel coordinate moved into [-2, n + 2) without changing the surface there: clamped
+// beyond the edge (every sample a stencil reaches past it is the edge's sample), or, where
+// the map repeats, moved by whole periods (std::fmod is exact). Coordinates already in
+// range are left as they are, bit for bit. Without it a ray's far end (x ~ 1e15 for a grazing
+// ray) overflows the int cast of its texel, which is undefined behaviour.
+double intoRange(double x, int n, bool repeats) {
+    if (x >= -2.0 && x < n + 2.0) return x;
+    if (!repeats) return std::clamp(x, -2.0, n + 2.0);
+    const double r = std::fmod(x, static_cast<double>(n));
+    return r < 0.0 ? r + n : r;
+}
+
+}  // namespace
+
 double HeightMap::surface(double x, double y, const MapAddressing& a,
                           Interpolation interpolation) const {
+    x = intoRange(x, width * a.tilesX, a.wrapU);
+    y = intoRange(y, height * a.tilesY, false);
     if (interpolation == Interpolation::Bilinear) {
         // Sample centres sit at half-integers: shift so that sample i is at integer i.
         const double sx = x - 0.5, sy = y - 0.5;

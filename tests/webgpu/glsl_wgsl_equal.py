@@ -12,7 +12,10 @@ A case passes when the hit kinds, traversal iterations, stop levels and hard sha
 equal at every pixel and t, the normals, the soft shadow and the colour agree to 1e-6
 relative (t) and 1e-5 absolute (the rest: unit vectors and fractions in [0, 1]; on SwiftShader
 all but one soft-shadow pixel of 115200 are bit-identical, that one 1.5e-6 apart), and the
-scene is worth comparing (hits, shadowed pixels, penumbrae). In ctest as web.wgsl
+scene is worth comparing (hits, shadowed pixels, penumbrae). With --generated, the package's
+built WGSL (generated/wgsl.js: one module a variant, scripts/build.mjs) is compiled too, each
+module without a message from Chromium's WebGPU (Tint refuses what naga's validator lets by,
+such as two pointer arguments into one variable). In ctest as web.wgsl
 (tests/webgpu/CMakeLists.txt) on two cases, plane_bilinear and cylinder_biquadratic.
 
 Needs chromium, node and naga-wasm (`npm ci` in packages/microrelief-three): where chromium or
@@ -43,6 +46,17 @@ CASES = {  # name: (base, MICRORELIEF_BASE, MICRORELIEF_INTERPOLATION), values o
 }
 WGSL_MJS = REPO / "packages/microrelief-three/scripts/wgsl.mjs"  # the translator, as the package's build runs it
 SKIPPED = 77  # ctest's SKIP_RETURN_CODE for web.wgsl
+# node -e: writes each module of a built generated/wgsl.js (argv[1]) as package_NAME.wgsl into
+# argv[2] and prints the names; refuses a package built without the WGSL.
+PACKAGE_WGSL = """
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import {pathToFileURL} from 'node:url';
+const m = await import(pathToFileURL(process.argv[1]).href);
+if (m.unavailable) throw new Error(m.unavailable);
+for (const [name, text] of Object.entries(m.wgsl)) fs.writeFileSync(path.join(process.argv[2], `package_${name}.wgsl`), text);
+console.log(Object.keys(m.wgsl).join(' '));
+"""
 
 
 def missing(chromium):
@@ -115,6 +129,14 @@ def main():
                     status = 2
         if status:
             return status
+        # The package's built WGSL (generated/wgsl.js, one module a variant), each compiled below.
+        package_wgsl = []
+        if args.generated:
+            listed = node("--input-type=module", "-e", PACKAGE_WGSL, pathlib.Path(args.generated).resolve() / "wgsl.js", page)
+            if listed.returncode:
+                print(f"glsl_wgsl_equal.py: {args.generated}/wgsl.js: {listed.stderr.strip()}", file=sys.stderr)
+                return 1
+            package_wgsl = listed.stdout.split()
 
         drive_chromium.FLAGS = [*drive_chromium.FLAGS, "--enable-unsafe-webgpu", "--use-webgpu-adapter=swiftshader"]
         server, url = serve.serve(str(root))
@@ -143,6 +165,13 @@ def main():
             why = verdict(result["stats"])
             print(f"{name}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
             status = status or (1 if why else 0)
+        for name in package_wgsl:
+            answer = browser.send("Runtime.evaluate", {"expression": f"compileWgsl('package_{name}.wgsl')",
+                                                       "returnByValue": True, "awaitPromise": True}, timeout=120)
+            messages = json.loads(answer["result"]["value"]) if "exceptionDetails" not in answer else [
+                f"FAILED: {answer['exceptionDetails'].get('text')}"]
+            print(f"package {name}: {'compiles' if not messages else '; '.join(messages[:3])}")
+            status = status or (1 if messages else 0)
         for line in drive_chromium.page_log(browser.events):
             print(f"page: {line}", file=sys.stderr)
     except (drive_chromium.StepFailed, OSError) as e:

@@ -33,6 +33,12 @@
 //    MultilevelTracer.cpp with the base surfaces, the surface patches, the pyramid and
 //    ModelTransform.cpp) behind wasm/twin_wasm.cpp, compiled the same way: the picks
 //    (src/twin.js; without emscripten a stub, and the picks are traced on the GPU).
+//  * generated/wgsl.js: the library of glsl.js (stripped, as the WebGL entry has it) in WGSL,
+//    one module per variant the WebGPU entry needs (each base, each last level; the
+//    multilevel method), translated by naga through scripts/wgsl.mjs (naga-wasm, a
+//    devDependency: `npm ci` here): `wgsl.plane_bilinear` ...; a variant naga refuses fails the
+//    build, named in its one line. Not edited by hand: tests/webgpu/wgsl_generated.mjs
+//    translates again and compares (ctest web.wgsl.generated);
 //  * generated/manifest.json: every source file read and its SHA-256.
 //
 // generated/ is made whole in a temporary folder beside it and then put in its place: a run
@@ -42,11 +48,12 @@
 // status 2 for bad input (an include, an argument), 1 for the environment (a full disk,
 // em++).
 //
-// Usage: node scripts/build.mjs [--out DIR] [--source DIR] [--no-wasm]
+// Usage: node scripts/build.mjs [--out DIR] [--source DIR] [--no-wasm] [--no-wgsl]
 //   --out DIR     where to write (default: generated/ beside this folder)
 //   --source DIR  the repository (default: MICRORELIEF_SOURCE_DIR, else ../.. of the package)
 //   --no-wasm     no emscripten: the CPU pyramid path, the CPU twin's picks and the scene
 //                 checks then refuse with a clear message (picks go to the GPU)
+//   --no-wgsl     no naga-wasm: wgsl.js says so (`unavailable`) and holds no module
 import {execFileSync} from 'node:child_process';
 import {createHash} from 'node:crypto';
 import * as fs from 'node:fs';
@@ -60,7 +67,7 @@ const kProgram = 'microrelief-three build';
 const kMaxShaderFileBytes = 4 * 1024 * 1024;
 const kMaxIncludeDepth = 32;
 const kBadInput = 2, kRuntime = 1;  // exit statuses, as the programs' (core/Error.h)
-const kOutputs = ['glsl.js', 'relief_layout.js', 'relief_core.js', 'png.js', 'scene_checks.js', 'scene_checks_wasm.js', 'pyramid_wasm.js', 'twin_wasm.js', 'manifest.json'];
+const kOutputs = ['glsl.js', 'wgsl.js', 'relief_layout.js', 'relief_core.js', 'png.js', 'scene_checks.js', 'scene_checks_wasm.js', 'pyramid_wasm.js', 'twin_wasm.js', 'manifest.json'];
 
 class BuildError extends Error {
     constructor(status, message) {
@@ -83,12 +90,13 @@ function reason(e) {
 }
 
 function parseArguments(argv) {
-    const options = {out: path.join(packageDir, 'generated'), source: process.env.MICRORELIEF_SOURCE_DIR || path.resolve(packageDir, '../..'), wasm: true};
+    const options = {out: path.join(packageDir, 'generated'), source: process.env.MICRORELIEF_SOURCE_DIR || path.resolve(packageDir, '../..'), wasm: true, wgsl: true};
     for (let k = 0; k < argv.length; ++k) {
         const a = argv[k];
         if (a === '--out' && k + 1 < argv.length) options.out = path.resolve(argv[++k]);
         else if (a === '--source' && k + 1 < argv.length) options.source = path.resolve(argv[++k]);
         else if (a === '--no-wasm') options.wasm = false;
+        else if (a === '--no-wgsl') options.wgsl = false;
         else throw badInput(`unknown argument '${printable(a)}' (see the header of scripts/build.mjs)`);
     }
     return options;
@@ -437,6 +445,21 @@ function writeText(folder, out, name, text) {
 // ---- the build ----
 
 import {strip} from './strip_glsl.mjs';
+import {kWgslVariants, libraryWgsl, loadNaga, WgslError} from './wgsl.mjs';
+
+// The library's WGSL, each variant (scripts/wgsl.mjs), or null under --no-wgsl. No translator
+// is the environment's fault (status 1); a variant naga refuses, the source's (2).
+async function translateLibrary(options, library) {
+    if (!options.wgsl) return null;
+    try {
+        const naga = await loadNaga();
+        return {naga: naga.nagaVersion, modules: libraryWgsl(naga, library)};
+    } catch (e) {
+        if (!(e instanceof WgslError)) throw e;
+        throw new BuildError(/^no naga-wasm|^naga-wasm does not load/.test(e.message) ? kRuntime : kBadInput,
+                             /^no naga-wasm/.test(e.message) ? `${e.message}, or --no-wgsl for a package without the WGSL` : e.message);
+    }
+}
 
 // Every identifier of the package's JavaScript (src/*.js): the GLSL names it splices into
 // three's shaders or replaces, kept by the stripper whatever the GLSL says.
@@ -448,7 +471,7 @@ function identifiersOfTheJavaScript(read) {
     return roots;
 }
 
-function build(options) {
+async function build(options) {
     const shaderRoot = path.join(options.source, 'shaders');
     if (!fs.existsSync(path.join(shaderRoot, 'microrelief', 'multilevel_trace.glsl')))
         throw badInput(`${printable(options.source)}: not the microrelief repository (no shaders/microrelief/multilevel_trace.glsl); set MICRORELIEF_SOURCE_DIR or --source`);
@@ -496,6 +519,7 @@ function build(options) {
     } catch (e) {
         throw badInput(e.message);
     }
+    const wgsl = await translateLibrary(options, library);
     const core = readNamed(path.join(options.source, 'web', 'relief_core.js'));
     const png = readNamed(path.join(options.source, 'web', 'png.js'));
     const checks = readNamed(path.join(options.source, 'web', 'scene_checks.js'));
@@ -504,15 +528,16 @@ function build(options) {
     try {
         const contracts = generateContracts(options.source, scratch, readNamed);
         checkOut(options.out, inputs);
-        writeGenerated(options, {library, pyramid, glue, core, png, checks, contracts}, manifest, readNamed);
+        writeGenerated(options, {library, pyramid, glue, wgsl, core, png, checks, contracts}, manifest, readNamed);
     } finally {
         if (scratch) fs.rmSync(scratch, {recursive: true, force: true});
     }
-    console.log(`${kProgram}: ${path.relative(process.cwd(), options.out) || '.'}: ${kOutputs.join(', ')}${options.wasm ? '' : ' (the WebAssembly ones stubs)'}`);
+    const stubs = [options.wasm ? '' : 'the WebAssembly ones stubs', options.wgsl ? '' : 'wgsl.js without WGSL'].filter(Boolean);
+    console.log(`${kProgram}: ${path.relative(process.cwd(), options.out) || '.'}: ${kOutputs.join(', ')}${stubs.length ? ` (${stubs.join(', ')})` : ''}`);
 }
 
 // generated/, whole: the texts made above, the WebAssembly (or its stubs) and the manifest.
-function writeGenerated(options, {library, pyramid, glue, core, png, checks, contracts}, manifest, readNamed) {
+function writeGenerated(options, {library, pyramid, glue, wgsl, core, png, checks, contracts}, manifest, readNamed) {
     const header = '// Generated by microrelief-three scripts/build.mjs from the microrelief repository; do not edit.\n';
     const from = (file) => header.replace('; do not edit', ` (${file}); do not edit`);
     replaceFolder(options.out, (folder) => {
@@ -520,6 +545,16 @@ function writeGenerated(options, {library, pyramid, glue, core, png, checks, con
             `export const library = ${JSON.stringify(library)};\n` +
             `export const pyramid = ${JSON.stringify(pyramid, null, 1)};\n` +
             `export const glue = ${JSON.stringify(glue, null, 1)};\n`);
+        // The variants' WGSL (scripts/wgsl.mjs says what each holds), or none and why.
+        const variants = Object.fromEntries(kWgslVariants.map(({name, ...v}) => [name, v]));
+        writeText(folder, options.out, 'wgsl.js', header.replace('; do not edit', ' (the library of glsl.js through naga: scripts/wgsl.mjs); do not edit') + (wgsl ?
+            `export const naga = ${JSON.stringify(wgsl.naga)};\n` +
+            'export const unavailable = null;\n' +
+            `export const variants = ${JSON.stringify(variants, null, 1)};\n` +
+            `export const wgsl = ${JSON.stringify(wgsl.modules, null, 1)};\n` :
+            'export const naga = null;\n' +
+            'export const unavailable = \'microrelief-three: no WGSL in this package (built without naga-wasm, --no-wgsl)\';\n' +
+            'export const variants = {};\nexport const wgsl = {};\n'));
         writeText(folder, options.out, 'relief_layout.js', contracts.layout);
         writeText(folder, options.out, 'relief_core.js', from('web/relief_core.js') + core);
         writeText(folder, options.out, 'png.js', from('web/png.js') + png);
@@ -544,7 +579,7 @@ function writeGenerated(options, {library, pyramid, glue, core, png, checks, con
 }
 
 try {
-    build(parseArguments(process.argv.slice(2)));
+    await build(parseArguments(process.argv.slice(2)));
 } catch (e) {
     // One line, never a stack trace: the cause of anything unforeseen, as the environment's.
     const status = e instanceof BuildError ? e.status : kRuntime;

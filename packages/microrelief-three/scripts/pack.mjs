@@ -17,11 +17,12 @@
 // into the tree. An error is one line on stderr, exit status 2 for bad input, 1 for the
 // environment (npm, a full disk).
 //
-// Usage: node scripts/pack.mjs [--out DIR] [--source DIR] [--no-wasm]
+// Usage: node scripts/pack.mjs [--out DIR] [--source DIR] [--no-wasm] [--no-wgsl]
 //   --out DIR     where to stage and write the tarball (default: the repository's build/npm);
 //                 never the package's folder or a folder holding it
 //   --source DIR  the repository (default: MICRORELIEF_SOURCE_DIR, else ../.. of the package)
 //   --no-wasm     pack without the WebAssembly even where em++ is there
+//   --no-wgsl     pack without the library's WGSL (build.mjs --no-wgsl: no naga-wasm)
 import {execFileSync} from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
@@ -43,12 +44,13 @@ const printable = (text) => String(text).replace(/[\x00-\x1f\x7f]/g, (c) => `\\x
 const firstLine = (e) => printable(String(e && e.message ? e.message : e).split('\n')[0]);
 
 function parseArguments(argv) {
-    const options = {source: process.env.MICRORELIEF_SOURCE_DIR || path.resolve(packageDir, '../..'), out: null, wasm: true, refuse: false};
+    const options = {source: process.env.MICRORELIEF_SOURCE_DIR || path.resolve(packageDir, '../..'), out: null, wasm: true, wgsl: true, refuse: false};
     for (let k = 0; k < argv.length; ++k) {
         const a = argv[k];
         if (a === '--out' && k + 1 < argv.length) options.out = path.resolve(argv[++k]);
         else if (a === '--source' && k + 1 < argv.length) options.source = path.resolve(argv[++k]);
         else if (a === '--no-wasm') options.wasm = false;
+        else if (a === '--no-wgsl') options.wgsl = false;
         else if (a === '--refuse-in-place') options.refuse = true;
         else throw new PackError(kBadInput, `unknown argument '${printable(a)}' (see the header of scripts/pack.mjs)`);
     }
@@ -157,7 +159,7 @@ function pack(options) {
         console.error(`${kProgram}: note: no em++ on PATH (Debian package emscripten): packing without the WebAssembly, so the CPU pyramid path and the scene checks refuse at run time`);
     try {
         execFileSync(process.execPath, [path.join(packageDir, 'scripts', 'build.mjs'), '--out', path.join(stage, 'generated'), '--source', options.source,
-                                        ...(wasm ? [] : ['--no-wasm'])], {stdio: ['ignore', 'ignore', 'inherit']});
+                                        ...(wasm ? [] : ['--no-wasm']), ...(options.wgsl ? [] : ['--no-wgsl'])], {stdio: ['ignore', 'ignore', 'inherit']});
     } catch (e) {
         // build.mjs said why, in one line of its own.
         throw new PackError(e.status === kBadInput ? kBadInput : kRuntime, 'scripts/build.mjs failed (above)');

@@ -83,7 +83,7 @@ export function libraryEntry(library, variant) {
                      ['MICRORELIEF_INTERPOLATION', `MR_INTERPOLATION_${variant.interpolation.toUpperCase()}`]];
     for (const [, value] of defines)
         if (!new RegExp(`^\\s*#\\s*define\\s+${value}\\b`, 'm').test(library))
-            throw new WgslError(`${variant.name}: the library defines no ${value} (shaders/microrelief/variants.glsl)`);
+            throw new WgslError(`WGSL variant ${variant.name}: the library defines no ${value} (shaders/microrelief/variants.glsl)`);
     return '#version 450\n' + defines.map(([name, value]) => `#define ${name} ${value}\n`).join('') + kWebGpuHooks + library + '\nvoid main() {}\n';
 }
 

@@ -136,11 +136,16 @@ async function renderWebGL(esSource, sc) {
 }
 
 let device = null;
-async function renderWebGPU(wgsl, sc) {
+async function webgpuDevice() {
     if (!device) {
         const ad = await navigator.gpu.requestAdapter();
         device = await ad.requestDevice({requiredLimits: {maxColorAttachmentBytesPerSample: 64}});
     }
+    return device;
+}
+
+async function renderWebGPU(wgsl, sc) {
+    await webgpuDevice();
     device.pushErrorScope('validation');
     const module = device.createShaderModule({code: wgsl});
     const info = await module.getCompilationInfo();
@@ -320,4 +325,12 @@ globalThis.runCase = async (name, base) => {
     const g = await renderWebGL(await text(`${name}.es.frag`), sc);
     const w = await renderWebGPU(await text(`${name}.wgsl`), sc);
     return JSON.stringify({stats: compare(g, w), png: await picture(g, w)});
+};
+
+// The messages Chromium's WebGPU (Tint) gives for the WGSL module in `file`, each
+// "type line:column text": the package's built variants compile without one.
+globalThis.compileWgsl = async (file) => {
+    const module = (await webgpuDevice()).createShaderModule({code: await text(file)});
+    const info = await module.getCompilationInfo();
+    return JSON.stringify(info.messages.map((m) => `${m.type} ${m.lineNum}:${m.linePos} ${m.message}`));
 };

@@ -19,7 +19,7 @@ import * as THREE from 'three';
 import {glue, pyramid as passes} from '../generated/glsl.js';
 import * as core from '../generated/relief_core.js';
 import {HeightMapError} from './heights.js';
-import {requireSupportedThree} from './three_version.js';
+import {requireSupportedThree, requireWebGLRenderer} from './three_version.js';
 import {loadTwin, releaseTwins, twinBytes} from './twin.js';
 
 // A WebGL that cannot do what was asked (an extension missing, a texture too large).
@@ -292,7 +292,7 @@ async function buildOnCpu(map, wrapU) {
 // 'gpu' or 'cpu'.
 export async function createReliefMap(renderer, map, {wrapU = false, pyramid = 'auto'} = {}) {
     requireSupportedThree();
-    if (!renderer || !renderer.isWebGLRenderer) throw new TypeError('createReliefMap: the first argument must be a THREE.WebGLRenderer');
+    requireWebGLRenderer(renderer, 'createReliefMap');
     if (!['auto', 'gpu', 'cpu'].includes(pyramid)) throw new TypeError(`createReliefMap: pyramid '${pyramid}' (expected auto, gpu or cpu)`);
     if (!map || !(map.samples instanceof Float32Array) || map.samples.length !== map.width * map.height)
         throw new TypeError('createReliefMap: the map must be {width, height, samples: Float32Array} (heights.js: loadHeights, heightsFromArray, ...)');

@@ -17,7 +17,7 @@ import {glue, library} from '../generated/glsl.js';
 import * as core from '../generated/relief_core.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, reliefDefines} from './materials.js';
 import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
-import {requireSupportedThree} from './three_version.js';
+import {kWebGPURendererUnsupported, requireSupportedThree} from './three_version.js';
 import {traceOnTwin, twinLoaded, twinUnavailable} from './twin.js';
 
 const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
@@ -118,6 +118,14 @@ function reliefMaterialFrom(material, albedoMap) {
     return result;
 }
 
+// The WebGPURenderers told that a Relief does not draw in them (once each).
+const _toldWebGPU = new WeakSet();
+function warnWebGPURenderer(renderer) {
+    if (_toldWebGPU.has(renderer)) return;
+    _toldWebGPU.add(renderer);
+    console.error(`Relief: ${kWebGPURendererUnsupported}`);
+}
+
 export class Relief extends THREE.Mesh {
     // `reliefMap`: createReliefMap's. Options: material (a ReliefStandardMaterial,
     // ReliefPhysicalMaterial or ReliefShadingMaterial, which reliefs may share; a
@@ -156,6 +164,8 @@ export class Relief extends THREE.Mesh {
         this.customDepthMaterial = new ReliefDepthMaterial(this);
         this.customDistanceMaterial = new ReliefDistanceMaterial(this);
         this.onBeforeRender = (renderer, scene, camera, geometry, material, group) => {
+            // A WebGPURenderer draws the box with none of this: said once, in one line.
+            if (renderer.isWebGPURenderer) return warnWebGPURenderer(renderer);
             this.prepareDraw(renderer, camera, true);
             // scene.overrideMaterial (normal, depth, distance): the traced surface (override.js).
             drawUnderOverride(this, renderer, scene, camera, geometry, material, group);

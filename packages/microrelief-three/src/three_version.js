@@ -18,3 +18,15 @@ export function requireSupportedThree() {
     const found = REVISION === undefined ? 'a module without REVISION' : `r${REVISION}`;
     throw new Error(`microrelief-three needs three >=0.${kOldestThreeRevision}.0 (r${kOldestThreeRevision} or newer), but the 'three' it imports is ${found}`);
 }
+
+// The renderer this entry draws with: THREE.WebGLRenderer. A WebGPURenderer is named as such
+// (issue 51: tried as a new user would, it was refused as "not a WebGLRenderer", and a relief
+// drew as its white box in it, silently), pointing at the WebGPU entry, which does not exist
+// yet: one line saying so.
+export const kWebGPURendererUnsupported = "microrelief-three draws with THREE.WebGLRenderer; a WebGPURenderer needs the WebGPU entry 'microrelief-three/webgpu', which is not yet available (WebGPU is unsupported for now)";
+
+// Throws a TypeError for anything but a WebGLRenderer; `what` names the caller.
+export function requireWebGLRenderer(renderer, what) {
+    if (renderer && renderer.isWebGPURenderer) throw new TypeError(`${what}: ${kWebGPURendererUnsupported}`);
+    if (!renderer || !renderer.isWebGLRenderer) throw new TypeError(`${what}: the first argument must be a THREE.WebGLRenderer`);
+}

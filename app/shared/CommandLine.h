@@ -52,12 +52,7 @@ inline std::string unexpectedArgumentsText(const std::vector<std::string>& words
             std::isalpha(static_cast<unsigned char>(word[letter])))
             options.push_back(word.substr(0, word.find('=')));
     }
-    const auto join = [](const std::vector<std::string>& parts) {
-        std::string text;
-        for (std::size_t k = 0; k < parts.size(); ++k)
-            text += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
-        return text;
-    };
+    const auto join = [](const std::vector<std::string>& parts) { return joinWords(parts, " and "); };
     if (options.empty()) {
         std::vector<std::string> quoted;
         for (const std::string& word : words) quoted.push_back("'" + word + "'");

@@ -68,4 +68,13 @@ std::string formatNumber(double value, int significant) {
     return text.str();
 }
 
+std::string joinWords(const std::vector<std::string>& words, std::string_view last) {
+    std::string text;
+    for (std::size_t k = 0; k < words.size(); ++k) {
+        if (k > 0) text += k + 1 == words.size() ? std::string(last) : std::string(", ");
+        text += words[k];
+    }
+    return text;
+}
+
 }  // namespace microrelief

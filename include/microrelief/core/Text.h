@@ -6,6 +6,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace microrelief {
 
@@ -17,5 +18,8 @@ std::string printable(std::string_view text);
 // `value` in a message, with `significant` digits at most ("0.3", "1e+07"): what a reader
 // needs, not an exact copy (for those, the programs' exactNumber).
 std::string formatNumber(double value, int significant);
+
+// Words as a list in a sentence: "a", "a or b", "a, b or c" (`last` is " or " or " and ").
+std::string joinWords(const std::vector<std::string>& words, std::string_view last);
 
 }  // namespace microrelief

@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/SceneFields.h"
@@ -39,13 +40,13 @@ const BaseType& baseType(const BaseShape& shape) {
 }
 
 const BaseType& baseType(std::string_view name) {
-    std::string names;
-    const auto& table = baseTypes();
-    for (std::size_t i = 0; i < table.size(); ++i) {
-        if (table[i].name == name) return table[i];
-        names += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + std::string(table[i].name);
+    std::vector<std::string> names;
+    for (const BaseType& type : baseTypes()) {
+        if (type.name == name) return type;
+        names.emplace_back(type.name);
     }
-    throwBadInput("unknown {base} '" + std::string(name) + "' (expected " + names + ")");
+    throwBadInput("unknown {base} '" + std::string(name) + "' (expected " + joinWords(names, " or ") +
+                  ")");
 }
 
 std::unique_ptr<BaseSurface> BaseSurface::make(const BaseShape& shape, int mapWidth, int mapHeight,

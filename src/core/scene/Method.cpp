@@ -1,9 +1,12 @@
 #include "microrelief/core/scene/Method.h"
 
+#include <iterator>
 #include <string_view>
+#include <vector>
 
 #include "microrelief/core/Error.h"
 #include "microrelief/core/GlslConstants.h"
+#include "microrelief/core/Text.h"
 
 namespace microrelief {
 
@@ -32,16 +35,11 @@ static_assert(bitIs(MethodTrait::Steps, glsl::kMethodTraitSteps) &&
 }  // namespace
 
 std::string methodNamesWith(MethodTrait trait) {
-    std::string list;
-    int count = 0, total = 0;
-    for (int m = 0; m < glsl::kMethodCount; ++m) total += methodHas(static_cast<Method>(m), trait);
+    std::vector<std::string> names;
     for (int m = 0; m < glsl::kMethodCount; ++m) {
-        if (!methodHas(static_cast<Method>(m), trait)) continue;
-        ++count;
-        list += std::string(count == 1 ? "" : count == total ? " and " : ", ") +
-                glsl::kMethodValues[m].name;
+        if (methodHas(static_cast<Method>(m), trait)) names.push_back(glsl::kMethodValues[m].name);
     }
-    return list;
+    return joinWords(names, " and ");
 }
 
 namespace {
@@ -50,12 +48,11 @@ namespace {
 // naming the flag and the choices.
 template <class Enum, std::size_t N>
 Enum parseName(const char* const (&names)[N], const std::string& name, const char* flag) {
-    std::string choices;
     for (std::size_t k = 0; k < N; ++k) {
         if (name == names[k]) return static_cast<Enum>(k);
-        choices += std::string(k == 0 ? "" : k + 1 == N ? " or " : ", ") + names[k];
     }
-    throwBadInput(std::string("unknown ") + flag + " '" + name + "' (expected " + choices + ")");
+    throwBadInput(std::string("unknown ") + flag + " '" + name + "' (expected " +
+                  joinWords({std::begin(names), std::end(names)}, " or ") + ")");
 }
 }  // namespace
 
@@ -64,13 +61,12 @@ bool methodHas(Method method, MethodTrait trait) {
 }
 
 Method parseMethod(const std::string& name) {
-    std::string choices;
+    std::vector<std::string> choices;
     for (int m = 0; m < glsl::kMethodCount; ++m) {
         if (name == glsl::kMethodValues[m].name) return static_cast<Method>(m);
-        choices += std::string(m == 0 ? "" : m + 1 == glsl::kMethodCount ? " or " : ", ") +
-                   glsl::kMethodValues[m].name;
+        choices.push_back(glsl::kMethodValues[m].name);
     }
-    throwBadInput("unknown {method} '" + name + "' (expected " + choices + ")");
+    throwBadInput("unknown {method} '" + name + "' (expected " + joinWords(choices, " or ") + ")");
 }
 
 const char* methodName(Method method) {

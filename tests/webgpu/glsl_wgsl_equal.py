@@ -12,7 +12,9 @@ A case passes when the hit kinds, traversal iterations, stop levels and hard sha
 equal at every pixel and t, the normals, the soft shadow and the colour agree to 1e-6
 relative (t) and 1e-5 absolute (the rest: unit vectors and fractions in [0, 1]; on SwiftShader
 all but one soft-shadow pixel of 115200 are bit-identical, that one 1.5e-6 apart), and the
-scene is worth comparing (hits, shadowed pixels, penumbrae). With --generated, the package's
+scene is worth comparing (hits, shadowed pixels, penumbrae). For each case, tracers.frag (every
+tracer of the library, the peers too) is translated and compiled, not drawn: each without a
+message from Chromium's WebGPU. With --generated, the package's
 built WGSL (generated/wgsl.js: one module a variant, scripts/build.mjs) is compiled too, each
 module without a message from Chromium's WebGPU (Tint refuses what naga's validator lets by,
 such as two pointer arguments into one variable). In ctest as web.wgsl
@@ -123,7 +125,9 @@ def main():
             es = node(HERE / "translate.mjs", "--entry", HERE / "entry.frag", "--out", page / f"{name}.es.frag", *defines)
             wgsl = node(HERE / "translate.mjs", "--entry", HERE / "entry.frag", "--out", page / f"{name}.wgsl", "--wgsl",
                         "--shaders", args.wgsl_shaders, *defines)
-            for done in (es, wgsl):
+            tracers = node(HERE / "translate.mjs", "--entry", HERE / "tracers.frag", "--out", page / f"{name}.tracers.wgsl",
+                           "--wgsl", "--shaders", args.wgsl_shaders, *defines)
+            for done in (es, wgsl, tracers):
                 if done.returncode:
                     print(f"{name}: {done.stderr.strip()}", file=sys.stderr)
                     status = 2
@@ -165,12 +169,14 @@ def main():
             why = verdict(result["stats"])
             print(f"{name}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
             status = status or (1 if why else 0)
-        for name in package_wgsl:
-            answer = browser.send("Runtime.evaluate", {"expression": f"compileWgsl('package_{name}.wgsl')",
+        compiled = [(f"{name} tracers", f"{name}.tracers.wgsl") for name in cases]
+        compiled += [(f"package {name}", f"package_{name}.wgsl") for name in package_wgsl]
+        for what, file in compiled:
+            answer = browser.send("Runtime.evaluate", {"expression": f"compileWgsl({file!r})",
                                                        "returnByValue": True, "awaitPromise": True}, timeout=120)
             messages = json.loads(answer["result"]["value"]) if "exceptionDetails" not in answer else [
                 f"FAILED: {answer['exceptionDetails'].get('text')}"]
-            print(f"package {name}: {'compiles' if not messages else '; '.join(messages[:3])}")
+            print(f"{what}: {'compiles' if not messages else '; '.join(messages[:3])}")
             status = status or (1 if messages else 0)
         for line in drive_chromium.page_log(browser.events):
             print(f"page: {line}", file=sys.stderr)

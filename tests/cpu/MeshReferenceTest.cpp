@@ -255,6 +255,12 @@ TEST(MeshReference, AFlatGridIsThePlane) {
                         EXPECT_NEAR(hit.uv.x - shift.x, expected.uv.x, 1e-9) << where;
                         EXPECT_NEAR(hit.uv.y - shift.y, expected.uv.y, 1e-9) << where;
                         EXPECT_NEAR(s * hit.height, expected.position.y, 1e-9) << where;
+                        // The outward normal: the plane's (top, walls, bottom), to the
+                        // slopes' change over the positions' 1e-9 and rounding.
+                        if (hit.surface != MeshSurface::Inside) {
+                            EXPECT_LE(glm::length(hit.normal - expected.normal), 1e-6)
+                                << where << ": " << surfaceName(hit.surface);
+                        }
                     }
                     // Each family reaches the relief often (the level and grazing ones from
                     // any height in the shell): no family passes by missing.
@@ -403,6 +409,14 @@ TEST(MeshReference, TheWallAtAUvSeamIsHit) {
                     EXPECT_NEAR(hit.t, (*expected)[0], 1e-9) << where;
                     EXPECT_NEAR(hit.height, t, 1e-9) << where;
                     EXPECT_NEAR(hit.barycentric[1], 0.0, 1e-9) << where;  // on edge 0-2
+                    // The ruled wall's normal dX/dw x dX/dt there, facing the low side the
+                    // ray comes from.
+                    const double w = (*expected)[1];
+                    glm::dvec3 normal = glm::normalize(
+                        glm::cross((seam.p2 - seam.p1) + seam.s * t * (seam.n2 - seam.n1),
+                                   (1 - w) * seam.n1 + w * seam.n2));
+                    if (normal.x > 0.0) normal = -normal;
+                    EXPECT_LE(glm::length(hit.normal - normal), 1e-9) << where;
                 }
             }
         }
@@ -456,6 +470,13 @@ TEST(MeshReference, FromBelowTheMeshAndFromInsideTheShell) {
             EXPECT_NEAR(hit.t, (*expected)[0], 1e-9) << k;
             EXPECT_NEAR(hit.barycentric[1], (*expected)[1], 1e-9) << k;
             EXPECT_NEAR(hit.barycentric[2], (*expected)[2], 1e-9) << k;
+            // The mesh triangle's own normal, towards the hollow the ray comes from.
+            const glm::uvec3 tri = mesh.triangles[hit.triangle];
+            glm::dvec3 normal = glm::normalize(
+                glm::cross(glm::dvec3(mesh.positions[tri[1]] - mesh.positions[tri[0]]),
+                           glm::dvec3(mesh.positions[tri[2]] - mesh.positions[tri[0]])));
+            if (glm::dot(normal, ray.direction) > 0.0) normal = -normal;
+            EXPECT_LE(glm::length(hit.normal - normal), 1e-12) << k;
         }
         // From inside the shell, in the solid: X(b, t) for t below h, any direction; the hit
         // is the origin itself.
@@ -502,11 +523,15 @@ TEST(MeshReference, AFoldedShellGivesTheFirstHitOfTheUnion) {
     std::vector<glm::dvec2> ends;
     for (int k = 0; k <= 64; ++k)
         ends.push_back(reach * glm::dvec2(mesh.normals[k].x, mesh.normals[k].z));
-    // Where the line x = x0 meets that polygon on the far side (z < 0).
+    // Where the line x = x0 meets that polygon on the far side (z < 0), and that chord's
+    // normal in xz facing -z.
+    glm::dvec3 chordNormal(0.0);
     const auto farChord = [&](double x0) -> std::optional<double> {
         for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
             const glm::dvec2 a = ends[k], b = ends[k + 1];
             if (a.y > 0.0 || (a.x - x0) * (b.x - x0) > 0.0 || a.x == b.x) continue;
+            chordNormal = glm::normalize(glm::dvec3(b.y - a.y, 0.0, a.x - b.x));
+            if (chordNormal.z > 0.0) chordNormal = -chordNormal;
             return a.y + (x0 - a.x) / (b.x - a.x) * (b.y - a.y);
         }
         return std::nullopt;
@@ -527,6 +552,13 @@ TEST(MeshReference, AFoldedShellGivesTheFirstHitOfTheUnion) {
                     << where << ": " << surfaceName(hit.surface);
                 EXPECT_NEAR(hit.position.z, *z, 1e-9) << where;
                 EXPECT_NEAR(hit.height, 1.0, 1e-9) << where;
+                // The top there (h = 1 flat) is the offset triangle at t = 1, along the
+                // chord: its normal, facing the ray, though D points away from the mesh.
+                // (x = 0 is a chord's end, on an edge of the solid, where either side's
+                // normal is the surface's.)
+                if (x0 != 0.0) {
+                    EXPECT_LE(glm::length(hit.normal - chordNormal), 1e-6) << where;
+                }
                 const glm::dvec2 uv = hit.uv - glm::floor(hit.uv);
                 EXPECT_GT(uv.x, 12.5 / 32) << where;  // a band prism's, from the other side
                 EXPECT_LT(uv.x, 19.5 / 32) << where;
@@ -538,6 +570,11 @@ TEST(MeshReference, AFoldedShellGivesTheFirstHitOfTheUnion) {
             ASSERT_TRUE(end) << x0;
             EXPECT_EQ(end.surface, MeshSurface::Wall) << x0 << ": " << surfaceName(end.surface);
             EXPECT_NEAR(end.position.y, 0.5, 1e-9) << x0;
+            // That wall, between two horizontal normal lines of the end ring, is the plane
+            // y = 1/2: its normal +y, out of the tube.
+            if (x0 != 0.0) {
+                EXPECT_LE(glm::length(end.normal - glm::dvec3(0.0, 1.0, 0.0)), 1e-9) << x0;
+            }
             EXPECT_FALSE(reference.trace({{x0, 2.0, *z - 0.01}, {0.0, -1.0, 0.0}})) << x0;
         }
     }
@@ -747,6 +784,82 @@ TEST(MeshReference, OnFoldedMeshesTheHitIsWhereTheRayFirstEntersTheSolid) {
         }
     }
     EXPECT_GT(folds, 0);
+}
+
+// ---- The normal at the hit ----
+
+// The top surface Z(b_1, b_2) = X(b, h(uv(b))) of triangle k, from the mesh and the
+// contract's h (contractHeight, apart from the reference's patches).
+glm::dvec3 topPoint(const TriangleMesh& mesh, std::size_t k, const HeightMap& map,
+                    Interpolation interpolation, double s, double b1, double b2) {
+    const glm::uvec3 tri = mesh.triangles[k];
+    const glm::dvec3 b(1.0 - b1 - b2, b1, b2);
+    glm::dvec3 base(0.0), along(0.0);
+    glm::dvec2 uv(0.0);
+    for (int i = 0; i < 3; ++i) {
+        base += b[i] * glm::dvec3(mesh.positions[tri[i]]);
+        along += b[i] * glm::dvec3(mesh.normals[tri[i]]);
+        uv += b[i] * glm::dvec2(mesh.texCoords[tri[i]]);
+    }
+    return base + s * contractHeight(map, interpolation, uv) * along;
+}
+
+// On a tube, folded tubes and the twisted prism: a Top hit's normal is the top surface's,
+// by central differences in b (a step of 1e-6: rounding 1e-10 of the derivatives, the
+// truncation smaller still; a bilinear kink within the step, 1 in 1e5 hits, would show);
+// every hit's normal is a unit vector facing the ray (which enters the solid there); at a
+// fold the solid lies behind the normal: a step of 1e-4 of the scene back along it is
+// inside, forward outside, as the contract's solid has it point by point.
+TEST(MeshReference, TheNormalIsTheSurfacesOwn) {
+    std::vector<FoldedCase> cases = foldedCases();
+    cases.push_back({"outward tube", tube(16, 2, 0.3f, 0.8f, false),
+                     seamless(synth::valueNoise(16, 8, 3.0, 2, 21)), 0.1, 1.2});
+    int tops = 0, folds = 0, foldsInside = 0, foldsOutside = 0;
+    for (const FoldedCase& c : cases) {
+        if (c.name == "twisted prism, a spike") continue;  // the spike's kinks, 4000 rays
+        for (const Interpolation interpolation :
+             {Interpolation::Bilinear, Interpolation::Biquadratic}) {
+            const MeshReference reference(c.mesh, c.map, c.s, interpolation);
+            const ContractSolid solid{c.mesh, c.map, c.s, interpolation};
+            std::mt19937 rays(3);  // as the folded test: its seeds give folds
+            for (int k = 0; k < c.rays; ++k) {
+                const double angle = uniform(rays, 0.0, 2.0 * kPi);
+                const glm::dvec3 eye(c.eyeRadius * std::cos(angle), uniform(rays, -0.7, 0.7),
+                                     c.eyeRadius * std::sin(angle));
+                const glm::dvec3 aim = {uniform(rays, -0.3, 0.3), uniform(rays, -0.45, 0.45),
+                                        uniform(rays, -0.3, 0.3)};
+                const Ray ray{eye, aim - eye};
+                const MeshHit hit = reference.trace(ray);
+                if (!hit) continue;
+                const std::string where = c.name + ", " + interpolationName(interpolation) +
+                                          ", ray " + std::to_string(k) + ", " +
+                                          surfaceName(hit.surface);
+                EXPECT_NEAR(glm::length(hit.normal), 1.0, 1e-12) << where;
+                EXPECT_LT(glm::dot(hit.normal, ray.direction), 0.0) << where;
+                if (hit.surface == MeshSurface::Top) {
+                    const double b1 = hit.barycentric[1], b2 = hit.barycentric[2], e = 1e-6;
+                    const auto z = [&](double x, double y) {
+                        return topPoint(c.mesh, hit.triangle, c.map, interpolation, c.s, x, y);
+                    };
+                    const glm::dvec3 d1 = (z(b1 + e, b2) - z(b1 - e, b2)) / (2.0 * e);
+                    const glm::dvec3 d2 = (z(b1, b2 + e) - z(b1, b2 - e)) / (2.0 * e);
+                    glm::dvec3 normal = glm::normalize(glm::cross(d1, d2));
+                    if (glm::dot(normal, hit.normal) < 0.0) normal = -normal;
+                    EXPECT_LE(glm::length(hit.normal - normal), 1e-6) << where;
+                    ++tops;
+                }
+                if (hit.surface == MeshSurface::Fold) {
+                    ++folds;
+                    foldsInside += solid.depth(hit.position - 1e-4 * hit.normal) > 0.0;
+                    foldsOutside += solid.depth(hit.position + 1e-4 * hit.normal) < 0.0;
+                }
+            }
+        }
+    }
+    EXPECT_GT(tops, 500);
+    EXPECT_GT(folds, 0);
+    EXPECT_EQ(foldsInside, folds);
+    EXPECT_EQ(foldsOutside, folds);
 }
 
 // ---- A ray in one offset plane of a curved triangle ----

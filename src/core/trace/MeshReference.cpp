@@ -81,6 +81,38 @@ public:
         return h;
     }
 
+    // (dh/du, dh/dv) at uv: the derivative of the patch that height() evaluates there (on a
+    // bilinear cell's edge, where h has a kink, the cell height() reads: its floor).
+    glm::dvec2 gradient(glm::dvec2 uv) const {
+        if (!quadratic_) {
+            const double x = uv.x * map_.width - 0.5, y = uv.y * map_.height - 0.5;
+            const double i = std::floor(x), j = std::floor(y), fx = x - i, fy = y - j;
+            const double h00 = sample(i, j), h10 = sample(i + 1, j);
+            const double h01 = sample(i, j + 1), h11 = sample(i + 1, j + 1);
+            return {map_.width * ((1.0 - fy) * (h10 - h00) + fy * (h11 - h01)),
+                    map_.height * ((1.0 - fx) * (h01 - h00) + fx * (h11 - h10))};
+        }
+        const double x = uv.x * map_.width, y = uv.y * map_.height;
+        const double i = std::floor(x), j = std::floor(y);
+        const double fx = x - i - 0.5, fy = y - j - 0.5;
+        // The weights of height() and their derivatives in f.
+        const double wx[3] = {0.5 * (0.5 - fx) * (0.5 - fx), 0.75 - fx * fx,
+                              0.5 * (0.5 + fx) * (0.5 + fx)};
+        const double wy[3] = {0.5 * (0.5 - fy) * (0.5 - fy), 0.75 - fy * fy,
+                              0.5 * (0.5 + fy) * (0.5 + fy)};
+        const double dx[3] = {fx - 0.5, -2.0 * fx, 0.5 + fx};
+        const double dy[3] = {fy - 0.5, -2.0 * fy, 0.5 + fy};
+        glm::dvec2 g(0.0);
+        for (int b = 0; b < 3; ++b) {
+            for (int a = 0; a < 3; ++a) {
+                const double h = sample(i - 1 + a, j - 1 + b);
+                g.x += dx[a] * wy[b] * h;
+                g.y += wx[a] * dy[b] * h;
+            }
+        }
+        return {map_.width * g.x, map_.height * g.y};
+    }
+
     // An upper bound of h over the uv rectangle [lo, hi], never below it: the exact max
     // for bilinear cells (a bilinear patch is linear along each axis, so it peaks at a
     // corner of the rectangle's part in each cell); the largest point of the Bezier net of
@@ -563,6 +595,72 @@ std::optional<glm::dvec2> clipToBox(const Ray& ray, const glm::dvec3& lo, const 
     return glm::dvec2(std::max(enter, 0.0), leave);
 }
 
+// The outward unit normal at a hit of surface Top, Base, Wall or Fold (MeshHit::normal),
+// from the hit's b, t (the contract's) and uv. Each surface is a level set of a function
+// of the prism's coordinates (b, t), whose gradient in space is the normal; its sign is
+// where that function leaves the solid.
+glm::dvec3 outwardNormal(const Prism& p, double s, const HeightSurface& surface, const MeshHit& hit,
+                         int wall, const glm::dvec3& rayDirection) {
+    const glm::dvec3 b = hit.barycentric;
+    const double t = hit.height;
+    const glm::dvec3 along = p.n0 + b.y * p.f1 + b.z * p.f2;  // D(b): dX/dt = s D
+    // The offset triangle's edges at height t: dX/db_k at fixed t (k = 1, 2, b_0 the rest).
+    const glm::dvec3 a1 = p.e1 + s * t * p.f1, a2 = p.e2 + s * t * p.f2;
+    // n oriented so that n . w < 0 for a w pointing into the solid; as a unit vector.
+    const auto facing = [](glm::dvec3 n, const glm::dvec3& into) {
+        if (glm::dot(n, into) > 0.0) n = -n;
+        const double length = glm::length(n);
+        return length > 0.0 ? n / length : n;
+    };
+    switch (hit.surface) {
+        case MeshSurface::Top: {
+            // The top X(b, h(uv(b))): dX/db_k = A_k + s (dh/db_k) D, dh/db_k = grad h . dT_k
+            // (A_k = E_k + s h F_k, t = h on it). Its normal is the gradient of
+            // t - h(uv(b)) in space, which grows along dX/dt = s D (moving up at fixed b
+            // leaves the solid): -D points into it.
+            const glm::dvec2 g = surface.gradient(hit.uv);
+            const glm::dvec3 d1 = a1 + s * glm::dot(g, p.dt1) * along;
+            const glm::dvec3 d2 = a2 + s * glm::dot(g, p.dt2) * along;
+            return facing(glm::cross(d1, d2), -along);
+        }
+        case MeshSurface::Base:
+            // The mesh itself, t = 0, the plane of E_1 and E_2; the solid is at t > 0, up
+            // along D.
+            return facing(glm::cross(p.e1, p.e2), along);
+        case MeshSurface::Wall: {
+            // The side wall b_i = 0 (i = `wall`), the ruled surface between the offset
+            // corners Q_j(t), Q_k(t) of the other two vertices (Q_v = P_v + s t N_v):
+            // X(w, t) = (1 - w) Q_j + w Q_k, w = b_k. Its normal is the gradient of b_i,
+            // which grows towards Q_i at fixed t: from the wall into the triangle.
+            const int i = wall;
+            const glm::dvec3 q[3] = {p.p0 + s * t * p.n0, p.p0 + a1 + s * t * p.n0,
+                                     p.p0 + a2 + s * t * p.n0};
+            const int j = (i + 1) % 3, k = (i + 2) % 3;
+            const double w = b[j] + b[k] > 0.0 ? b[k] / (b[j] + b[k]) : 0.5;
+            const glm::dvec3 nj = j == 0 ? p.n0 : p.n0 + (j == 1 ? p.f1 : p.f2);
+            const glm::dvec3 nk = k == 0 ? p.n0 : p.n0 + (k == 1 ? p.f1 : p.f2);
+            const glm::dvec3 onWall = (1.0 - w) * q[j] + w * q[k];
+            return facing(glm::cross(q[k] - q[j], (1.0 - w) * nj + w * nk), q[i] - onWall);
+        }
+        case MeshSurface::Fold: {
+            // The envelope of the offset triangles, where X(b, t) is singular: the Jacobian
+            // (A_1, A_2, s D) has rank 2 there, and the envelope's tangent plane is its
+            // range, normal to each cross product of two of its columns (all parallel at
+            // rank 2: the longest is the best conditioned). Which side the folded sheets
+            // cover is a second-order matter; the ray enters the solid there (the hit is
+            // its first point), so the outward side is the one the ray comes from.
+            const glm::dvec3 c[3] = {glm::cross(a1, a2), glm::cross(a2, along),
+                                     glm::cross(along, a1)};
+            glm::dvec3 n = c[0];
+            for (const glm::dvec3& x : c)
+                if (glm::length(x) > glm::length(n)) n = x;
+            return facing(n, rayDirection);
+        }
+        default:
+            return glm::dvec3(0.0);  // Inside: the origin; no surface there
+    }
+}
+
 }  // namespace
 
 struct MeshReference::Data {
@@ -694,15 +792,18 @@ MeshHit MeshReference::trace(const Ray& ray) const {
     const bool baseFirst = std::abs(base - top) <= d.tolerance ? fromBelow : base < top;
     double closest = baseFirst ? base : top;
     hit.surface = baseFirst ? MeshSurface::Base : MeshSurface::Top;
+    int wall = 0;
     for (int i = 0; i < 3; ++i) {
-        if (const double wall = std::abs(bestPoint.b[i]) * p.altitude[i]; wall < closest) {
-            closest = wall;
+        if (const double distance = std::abs(bestPoint.b[i]) * p.altitude[i]; distance < closest) {
+            closest = distance;
             hit.surface = MeshSurface::Wall;
+            wall = i;
         }
     }
     // None of them holds: the ray came in where the prism folds over itself. (At a fold t
     // is found to about the square root of the tolerance, hence the margin.)
     if (closest > kFoldMargin * d.diagonal) hit.surface = MeshSurface::Fold;
+    hit.normal = outwardNormal(p, d.s, d.surface, hit, wall, ray.direction);
     return hit;
 }
 

@@ -82,13 +82,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     }
     context_.makeCurrent();
     const GL& gl = context_.gl();
-    // An error an earlier call on this context left would be taken at the end for the
-    // render's own: said as such (as the page pool says it, gl/PagedPyramid.cpp).
-    if (const GLenum earlier = gl.GetError(); earlier != GL_NO_ERROR) {
-        throwRuntime("GL error " + gl::enumHex(earlier) +
-                     " left by an earlier call on this context, before rendering " +
-                     map->source());
-    }
+    gl::refuseEarlierError(gl, "rendering " + map->source());
     if (!job.animation.empty() && job.tiles != glm::ivec2(1, 1)) {
         // The animated field is written on the GPU, whose pyramid builder bounds one map.
         throwBadInput("{animation} and {tiles}: an animated height field does not tile");

@@ -120,12 +120,7 @@ PagedPyramid::PagedPyramid(const GL& gl, std::shared_ptr<const PyramidPages> pag
         freeLayers_.push_back(layer);
 
     const PagerBindings saved(gl);
-    // An error an earlier call left would be taken below for the pool's own: said as such.
-    if (const GLenum earlier = gl.GetError(); earlier != GL_NO_ERROR)
-        throwRuntime("GL error " + gl::enumHex(earlier) +
-                     " left by an earlier call, before "
-                     "the page pool for " +
-                     source + " was allocated");
+    gl::refuseEarlierError(gl, "allocating the page pool for " + source);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
     pool_ = gl::Texture::create(gl);
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, pool_.id());

@@ -261,6 +261,23 @@ TEST_F(PagedMap, ABudgetPastTheGlsLayersGrowsThePages) {
     EXPECT_EQ(kept.pageSide(), 16);
 }
 
+// A GL error that a caller left pending is said as theirs, not taken for the pool's
+// allocation failing (gl::refuseEarlierError, as HeadlessRenderer::render says it).
+TEST_F(PagedMap, AnEarlierGlErrorIsNotThePools) {
+    const HeightMap small = synth::cobbles(40, 30, 4);
+    gl().Enable(0x7fff);  // no capability: GL_INVALID_ENUM, left pending
+    try {
+        const PagedPyramid pager(gl(), inMemory(small), smallPages(), "small");
+        ADD_FAILURE() << "a page pool allocated over a pending GL error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Runtime);
+        EXPECT_EQ(std::string(e.what()),
+                  "GL error 0x0500 left by an earlier call on this context, before allocating "
+                  "the page pool for small");
+    }
+    EXPECT_EQ(gl().GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(PagedMap, OnlyTheMultilevelMethodReadsPages) {
     const HeightMap map = synth::cobbles(40, 30, 4);
     RenderJob job;

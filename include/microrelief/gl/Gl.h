@@ -14,4 +14,10 @@ using GL = GladGLContext;
 namespace microrelief::gl {
 // "0x0502": GL enums and error codes as the specification writes them.
 std::string enumHex(GLenum value);
+
+// An error an earlier call on this context left would be taken for the next step's own
+// (each step reads glGetError once at its end): throws Error(Runtime) "GL error 0x.... left
+// by an earlier call on this context, before <what>" if one is pending, so that it is said
+// as such. Clears that error (glGetError does).
+void refuseEarlierError(const GL& gl, const std::string& what);
 }  // namespace microrelief::gl

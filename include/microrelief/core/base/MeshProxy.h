@@ -42,14 +42,18 @@
 // at least `padding` across every hull face that holds it, before it is rounded to float:
 // every point of every face then moves outward of that face's plane by at least padding
 // less the rounding (half an ulp a coordinate), so the float surface still encloses the
-// exact hull. padding: 16 float ulps of the largest coordinate of the mesh's shell, at
-// least (a few hundred-thousandths of a per cent of its size); where a hull comes to a
-// sharp edge (a knife-like fold), the vertex moves further, as it must.
+// exact hull. padding: 32 2^-24 of the largest coordinate of the mesh's shell (16 float
+// ulps there or more; 2e-6 of that coordinate); where a hull comes to a sharp edge (a
+// knife-like fold), the vertex moves further, as it must.
 //
 // Each proxy triangle is wound counter-clockwise seen from outside its hull and carries
 // its mesh triangle's index. Cost: at most 8 proxy triangles (24 float3 positions and 8
-// indices) a mesh triangle; a ray's pixel is shaded once for each hull it crosses, twice
-// without culling (a front and a back face).
+// indices) a mesh triangle; a pixel is shaded once for each hull its ray crosses, twice
+// without culling (a front and a back face). The eye inside a hull (inside the shell, or
+// near a fold) sees only that hull's back faces: drawn with back faces culled, such a hull
+// gives no fragment, so either everything is drawn without culling, or the hulls that hold
+// the eye (a test against their face planes, per frame) are drawn without it and the rest
+// with back faces culled.
 #pragma once
 
 #include <cstddef>

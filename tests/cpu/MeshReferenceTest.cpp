@@ -668,6 +668,9 @@ struct ContractSolid {
                 const double b1 = glm::dot(glm::cross(y - q0, e2), m) / glm::dot(m, m);
                 const double b2 = glm::dot(glm::cross(e1, y - q0), m) / glm::dot(m, m);
                 const glm::dvec3 bary(1.0 - b1 - b2, b1, b2);
+                // At a focal height the offset triangle is a segment or a point (m = 0) and
+                // b is not defined: no preimage taken there (UBSan saw the NaN uv's cast).
+                if (!std::isfinite(b1) || !std::isfinite(b2)) continue;
                 glm::dvec2 uv(0.0);
                 for (int i = 0; i < 3; ++i) uv += bary[i] * glm::dvec2(mesh.texCoords[tri[i]]);
                 const double h = contractHeight(map, interpolation, uv);

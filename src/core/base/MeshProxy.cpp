@@ -251,10 +251,14 @@ float topHeight(const HeightMap& map, glm::dvec2 t0, glm::dvec2 t1, glm::dvec2 t
         return std::min(static_cast<int>(r), n - 1);
     };
     float best = 0.0f;
-    for (double j = j0; j < j0 + rows; j += 1.0) {
-        const int jj = wrap(j, map.height);
-        for (double i = i0; i < i0 + columns; i += 1.0)
-            best = std::max(best, map.at(wrap(i, map.width), jj));
+    const int first = wrap(i0, map.width), count = static_cast<int>(columns);
+    for (int r = 0; r < static_cast<int>(rows); ++r) {
+        const float* row = &map.samples[static_cast<std::size_t>(wrap(j0 + r, map.height)) *
+                                        static_cast<std::size_t>(map.width)];
+        for (int c = 0, i = first; c < count; ++c) {
+            best = std::max(best, row[i]);
+            if (++i == map.width) i = 0;
+        }
     }
     return best;
 }

@@ -5,12 +5,16 @@
 // naga's GLSL front end and so WGSL: WGSL has no combined texture-samplers, so the library's
 // read hooks (texture_reads.glsl, albedo's) take separate textures and samplers there.
 #ifdef VULKAN
+// The reads as microrelief-three's WGSL makes them (scripts/wgsl.mjs: kWebGpuHooks): the
+// heights and the pyramid by texelFetch without a sampler (WGSL's textureLoad), four reads a
+// cell; the albedo through a sampler. mrNearest stays bound (binding 4), unused.
+#extension GL_EXT_samplerless_texture_functions : require
 layout(set = 0, binding = 4) uniform sampler mrNearest;
 layout(set = 0, binding = 5) uniform sampler mrAlbedoSampler;
 #define MICRORELIEF_SAMPLER texture2D
-#define MICRORELIEF_READ_SAMPLE(heights, texel) texelFetch(sampler2D(heights, mrNearest), texel, 0).r
-#define MICRORELIEF_GATHER_SAMPLES(heights, uv) textureGather(sampler2D(heights, mrNearest), uv)
-#define MICRORELIEF_READ_PYRAMID(pyramid, texel, level, levelSize) textureLod(sampler2D(pyramid, mrNearest), (vec2(texel) + 0.5) / (levelSize), float(level)).r
+#define MICRORELIEF_TEXTURE_GATHER 0
+#define MICRORELIEF_READ_SAMPLE(heights, texel) texelFetch(heights, texel, 0).r
+#define MICRORELIEF_READ_PYRAMID(pyramid, texel, level, levelSize) texelFetch(pyramid, texel, level).r
 #define MICRORELIEF_ALBEDO_TEXTURE texture2D
 #define MICRORELIEF_ALBEDO_SAMPLED(t) sampler2D(t, mrAlbedoSampler)
 #define MR_TEXTURE(n) layout(set = 0, binding = n) uniform texture2D

@@ -3,7 +3,8 @@
 // shading, every answer written out as floats (four RGBA32F targets). The same GLSL for
 // WebGL 2 (assembled as ES 3.00, the library's default reads) and, with VULKAN defined, for
 // naga's GLSL front end and so WGSL: WGSL has no combined texture-samplers, so the library's
-// read hooks (texture_reads.glsl, albedo's) take separate textures and samplers there.
+// read hooks (texture_reads.glsl, albedo's) take textures without samplers there, and the
+// albedo a separate sampler.
 #ifdef VULKAN
 // The reads as microrelief-three's WGSL makes them (scripts/wgsl.mjs: kWebGpuHooks): the
 // heights and the pyramid by texelFetch without a sampler (WGSL's textureLoad), four reads a

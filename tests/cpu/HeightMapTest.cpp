@@ -223,6 +223,9 @@ TEST(HeightMapSurface, FarCoordinatesAreTheEdgeOrWholePeriodsBack) {
                   map.surface(1.25, 1.7, repeating, interpolation));
         EXPECT_EQ(map.surface(-shifted, 1.7, repeating, interpolation),
                   map.surface(4.0 - 1.25, 1.7, repeating, interpolation));
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        EXPECT_TRUE(std::isnan(map.surface(nan, 1.0, repeating, interpolation)));
+        EXPECT_TRUE(std::isnan(map.surface(1.0, nan, clamped, interpolation)));
     }
 }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include "microrelief/core/Error.h"
@@ -57,6 +58,8 @@ double intoRange(double x, int n, bool repeats) {
 
 double HeightMap::surface(double x, double y, const MapAddressing& a,
                           Interpolation interpolation) const {
+    // A NaN coordinate (a caller's degenerate case) has no surface: NaN, not a texel.
+    if (std::isnan(x) || std::isnan(y)) return std::numeric_limits<double>::quiet_NaN();
     x = intoRange(x, width * a.tilesX, a.wrapU);
     y = intoRange(y, height * a.tilesY, false);
     if (interpolation == Interpolation::Bilinear) {

@@ -325,6 +325,37 @@ TEST(MeshProxy, EveryReferenceHitCrossesItsPrismsProxyFirst) {
     EXPECT_GT(inside, 50);
 }
 
+// An eye inside a prism's solid (or anywhere in its hull) is named by hullsThatMayHold,
+// so that the renderer draws that hull without culling; an eye far off names none.
+TEST(MeshProxy, AnEyeInsideAHullIsNamed) {
+    std::mt19937 random(5);
+    for (const ProxyCase& c : proxyCases()) {
+        const MeshProxy proxy = buildMeshProxy(c.mesh, c.map, c.s);
+        for (int n = 0; n < 200; ++n) {
+            const std::size_t k = random() % c.mesh.triangles.size();
+            const glm::uvec3 tri = c.mesh.triangles[k];
+            double b1 = uniform(random, 0, 1), b2 = uniform(random, 0, 1);
+            if (b1 + b2 > 1.0) b1 = 1.0 - b1, b2 = 1.0 - b2;
+            const glm::dvec3 b(1.0 - b1 - b2, b1, b2);
+            // Up to the top height: in the hull, whether or not under the map's surface.
+            const double t = uniform(random, 0.0, 1.0) * proxy.topHeights[k];
+            glm::dvec3 eye(0.0);
+            for (int i = 0; i < 3; ++i)
+                eye += b[i] * (glm::dvec3(c.mesh.positions[tri[i]]) +
+                               c.s * t * glm::dvec3(c.mesh.normals[tri[i]]));
+            const std::vector<std::uint32_t> named = hullsThatMayHold(proxy, eye);
+            EXPECT_TRUE(std::binary_search(named.begin(), named.end(), k))
+                << c.name << ", triangle " << k;
+            // Local where the shell is thin against the triangles (the folded tubes' hulls
+            // overlap across the tube, as their prisms do): a few neighbours.
+            if (c.name == "flat grid" || c.name == "tube") {
+                EXPECT_LE(named.size(), 16u) << c.name;
+            }
+        }
+        EXPECT_TRUE(hullsThatMayHold(proxy, glm::dvec3(10.0, 10.0, 10.0)).empty()) << c.name;
+    }
+}
+
 // h(uv) repeated in u and v: the map tiled 3 x 3 and read in its middle tile, where the
 // neighbours' samples are the repeated map's (an evaluation apart from the builder's).
 double repeatedHeight(const HeightMap& tiled, Interpolation interpolation, glm::dvec2 uv) {

@@ -317,4 +317,19 @@ MeshProxy buildMeshProxy(const TriangleMesh& mesh, const HeightMap& map, double 
     return proxy;
 }
 
+std::vector<std::uint32_t> hullsThatMayHold(const MeshProxy& proxy, const glm::dvec3& point) {
+    std::vector<std::uint32_t> holding;
+    for (std::size_t k = 0; k + 1 < proxy.firstProxyTriangle.size(); ++k) {
+        glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+        for (std::uint32_t v = 3 * proxy.firstProxyTriangle[k];
+             v < 3 * proxy.firstProxyTriangle[k + 1]; ++v) {
+            lo = glm::min(lo, glm::dvec3(proxy.positions[v]));
+            hi = glm::max(hi, glm::dvec3(proxy.positions[v]));
+        }
+        if (glm::all(glm::lessThanEqual(lo, point)) && glm::all(glm::lessThanEqual(point, hi)))
+            holding.push_back(static_cast<std::uint32_t>(k));
+    }
+    return holding;
+}
+
 }  // namespace microrelief

@@ -52,8 +52,8 @@
 // without culling (a front and a back face). The eye inside a hull (inside the shell, or
 // near a fold) sees only that hull's back faces: drawn with back faces culled, such a hull
 // gives no fragment, so either everything is drawn without culling, or the hulls that hold
-// the eye (a test against their face planes, per frame) are drawn without it and the rest
-// with back faces culled. Building it takes about 7 microseconds a triangle for the hull and
+// the eye (hullsThatMayHold(), per frame) are drawn without it and the rest with back
+// faces culled. Building it takes about 7 microseconds a triangle for the hull and
 // a read of each sample in H_tri's texels (Debian's assimp-testmodels spider.obj, 1312
 // triangles whose uv boxes hold 8457 samples of a 512 x 512 map on average: 24 ms, one core,
 // 2026-12-07).
@@ -100,5 +100,13 @@ float topHeight(const HeightMap& map, glm::dvec2 t0, glm::dvec2 t1, glm::dvec2 t
 // height scale `heightScale` (s, in the mesh's units, >= 0). The interpolation does not
 // matter: H_tri bounds both.
 MeshProxy buildMeshProxy(const TriangleMesh& mesh, const HeightMap& map, double heightScale);
+
+// The mesh triangles whose proxy may enclose `point` (an eye): those whose proxy's float
+// vertices' box holds it, a superset of those whose hull holds it (a closed surface
+// encloses nothing outside its vertices' convex hull, which the box holds; and the float
+// surface encloses the exact hull). Drawn without face culling, they give an eye inside
+// them their back faces' fragments; the others can be drawn with back faces culled. In
+// increasing order; O(triangles).
+std::vector<std::uint32_t> hullsThatMayHold(const MeshProxy& proxy, const glm::dvec3& point);
 
 }  // namespace microrelief

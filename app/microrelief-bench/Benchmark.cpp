@@ -203,8 +203,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
     OffscreenTarget target(gl, options.width, options.height);
     Timer timer(gl);
     const ShadingOptions shading;
-    bool firstMeasurement = true;
-    const bool gpu = !softwareRenderer(context.renderer());
+    bool firstView = true;
 
     for (const BenchMap& m : maps) {
         ReliefDesc relief;
@@ -213,9 +212,15 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
         relief.heightScale = static_cast<float>(m.heightScale);
         renderer.apply(relief, MethodSettings{}, m.map.get(), m.name);  // runs on every base
         const int mapSize = std::max(m.map->width, m.map->height);
-        const std::map<Method, MethodCost> costs =
-            measureCosts(gl, renderer, options.methods, m);
+        const std::map<Method, MethodCost> costs = measureCosts(gl, renderer, options.methods, m);
         const ReliefExtent extent = reliefExtent(*m.map, m.heightScale, m.base);
+        // Every setting of every method measured on this map, in the report's order.
+        std::vector<std::pair<Method, Setting>> settings;
+        for (Method method : options.methods) {
+            if (!whyNotMeasured(method, m).empty()) continue;
+            for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps))
+                settings.emplace_back(method, setting);
+        }
         for (int degrees : options.viewDegrees) {
             const CameraFrame camera =
                 resolveCamera(viewCamera(degrees, m.base, extent.topHeight), options.width,
@@ -223,100 +228,105 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
             const ReferencePicture reference = traceReferencePicture(
                 camera, ReliefGeometry{m.map.get(), m.heightScale, m.base, m.interpolation});
             const std::vector<bool> inBox = pixelsInBox(camera, extent);
-            bool afterPause = true;  // the CPU has just traced the reference
             std::size_t referenceHits = 0;
             for (const auto& hit : reference.hits) referenceHits += hit.has_value();
-            for (Method method : options.methods) {
-                if (!whyNotMeasured(method, m).empty()) continue;
-                for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps)) {
-                    Measurement r;
-                    r.method = methodName(method);
-                    r.param = setting.param;
-                    r.map = m.name;
-                    r.base = baseName(m.base);
-                    r.interpolation = interpolationName(m.interpolation);
-                    r.hitPct = 100.0 * referenceHits / reference.hits.size();
-                    const MethodCost& cost = costs.at(method);
-                    r.bytesPerTexel = cost.bytesPerTexel;
-                    r.preprocessMs = cost.preprocessMs;
-                    r.preprocessWhere = cost.where;
-                    r.cpuPreprocessMs = cost.cpuPreprocessMs;
-                    r.mapSize = mapSize;
-                    r.viewDegrees = degrees;
-                    r.width = options.width;
-                    r.height = options.height;
-                    auto draw = [&] {
-                        target.clear(glm::vec3(0.0f));
-                        renderer.draw(camera, shading);
-                    };
+            auto draw = [&] {
+                target.clear(glm::vec3(0.0f));
+                renderer.draw(camera, shading);
+            };
+            std::vector<Measurement> rows(settings.size());
 
-                    // Timing: the plain variant, two warm-up frames, then the median. The
-                    // first measurement of a run warms up for half a second: the frames
-                    // right after start-up ran up to 1.7x slow on llvmpipe, enough to move
-                    // the median of ten. On llvmpipe the first measurement of each view
-                    // warms up for 300 ms too: it follows the reference's trace on every
-                    // core, and ran up to 10 % slow there (the multilevel method, always
-                    // first: the rock wall at 80 degrees 4.5 to 4.7 ms first against 4.2 to
-                    // 4.4 ms second, 2026-12-05). On a GPU every measurement warms up for
-                    // 300 ms: it idles while the CPU builds cone maps, traces the reference
-                    // and checks the last picture, and on an H200 the frames after such a
-                    // pause ran up to 5.4x slow, probably at lowered clocks (the same walk
-                    // timed at 12.97 and 2.42 ms a second apart:
-                    // docs/perf/2026-12-04-gpu-h200.md).
+            // Timing: every setting in the same rounds, a frame each in turn (Timing.h:
+            // interleavedOrder), so that a slow spell of a shared machine falls on them
+            // alike and the ratios between them hold still from run to run (issue 52: the
+            // settings timed one after another, ten frames each, gave the rock wall's cone
+            // ratio 1.14x and then 0.59x a few minutes apart). Before the rounds each
+            // setting draws twice (its program and llvmpipe's variant of it made), then
+            // all draw in turn for 300 ms, 500 ms in the run's first view: the frames right
+            // after start-up ran up to 1.7x slow on llvmpipe; the first frames after the
+            // reference's trace on every core up to 10 % slow there (2026-12-05); and a
+            // GPU idle while the CPU traced the reference ran up to 5.4x slow after it, at
+            // lowered clocks (docs/perf/2026-12-04-gpu-h200.md).
+            const auto warmUntil =
+                std::chrono::steady_clock::now() + std::chrono::milliseconds(firstView ? 500 : 300);
+            firstView = false;
+            for (const auto& [method, setting] : settings) {
+                renderer.setMethod(setting.method, false);
+                draw();
+                draw();
+            }
+            while (std::chrono::steady_clock::now() < warmUntil) {
+                for (const auto& [method, setting] : settings) {
                     renderer.setMethod(setting.method, false);
-                    const int warmMs = firstMeasurement ? 500 : gpu || afterPause ? 300 : 0;
-                    const auto warmUntil =
-                        std::chrono::steady_clock::now() + std::chrono::milliseconds(warmMs);
-                    firstMeasurement = afterPause = false;
                     draw();
-                    draw();
-                    while (std::chrono::steady_clock::now() < warmUntil) {
-                        draw();
-                        gl.Finish();
-                    }
-                    std::vector<double> gpu, wall;
-                    for (int f = 0; f < options.frames; ++f) {
-                        const auto [g, w] = timer.time(draw);
-                        gpu.push_back(g);
-                        wall.push_back(w);
-                    }
-                    r.msMedian = median(gpu);
-                    r.msWallMedian = median(wall);
-
-                    // Accuracy from the plain variant's AOV: over every pixel, and over
-                    // those whose rays come in through the top face.
-                    const RenderedFrame frame = target.read(camera.eye);
-                    const Accuracy accuracy = compareWithReference(frame, camera, reference);
-                    r.coverageMismatchPct = accuracy.coverageMismatchPercent();
-                    r.offHalfTexelPct = accuracy.offHalfTexelPercent();
-                    r.meanErrorPx = accuracy.meanErrorPixels;
-                    r.p99ErrorPx = accuracy.p99ErrorPixels;
-                    r.p99ErrorTexels = accuracy.p99ErrorTexels;
-                    r.exhausted = accuracy.exhausted;
-                    const Accuracy top =
-                        compareWithReference(frame, camera, reference, AccuracyScope::TopSurface);
-                    r.topCoverageMismatchPct = top.coverageMismatchPercent();
-                    r.topOffHalfTexelPct = top.offHalfTexelPercent();
-                    r.topP99ErrorTexels = top.p99ErrorTexels;
-
-                    // Fetches: the instrumented variant, once.
-                    renderer.setMethod(setting.method, true);
-                    draw();
-                    const RenderedFrame counted = target.read(camera.eye);
-                    double sum = 0.0, boundSum = 0.0;
-                    std::size_t covered = 0;
-                    for (std::size_t k = 0; k < inBox.size(); ++k) {
-                        if (!inBox[k]) continue;
-                        const double fetches = counted.stats[k * 4 + 1];
-                        sum += fetches;
-                        boundSum += counted.stats[k * 4 + 2];
-                        ++covered;
-                        r.fetchesMax = std::max(r.fetchesMax, fetches);
-                    }
-                    r.fetchesMean = covered ? sum / covered : 0.0;
-                    r.boundFetchesMean = covered ? boundSum / covered : 0.0;
-                    report(r);
+                    gl.Finish();
                 }
+            }
+            for (const std::size_t k : interleavedOrder(settings.size(), options.frames)) {
+                renderer.setMethod(settings[k].second.method, false);
+                const FrameTimes t = timer.frame(draw);
+                rows[k].gpuFrames.push_back(t.gpu);
+                rows[k].wallFrames.push_back(t.wall);
+                rows[k].cpuFrames.push_back(t.cpu);
+            }
+
+            for (std::size_t k = 0; k < settings.size(); ++k) {
+                const auto& [method, setting] = settings[k];
+                Measurement& r = rows[k];
+                r.method = methodName(method);
+                r.param = setting.param;
+                r.map = m.name;
+                r.base = baseName(m.base);
+                r.interpolation = interpolationName(m.interpolation);
+                r.hitPct = 100.0 * referenceHits / reference.hits.size();
+                const MethodCost& cost = costs.at(method);
+                r.bytesPerTexel = cost.bytesPerTexel;
+                r.preprocessMs = cost.preprocessMs;
+                r.preprocessWhere = cost.where;
+                r.cpuPreprocessMs = cost.cpuPreprocessMs;
+                r.mapSize = mapSize;
+                r.viewDegrees = degrees;
+                r.width = options.width;
+                r.height = options.height;
+                r.msMedian = median(r.gpuFrames);
+                r.msWallMedian = median(r.wallFrames);
+                r.msCpuMedian = median(r.cpuFrames);
+
+                // Accuracy from the plain variant's AOV: over every pixel, and over
+                // those whose rays come in through the top face.
+                renderer.setMethod(setting.method, false);
+                draw();
+                const RenderedFrame frame = target.read(camera.eye);
+                const Accuracy accuracy = compareWithReference(frame, camera, reference);
+                r.coverageMismatchPct = accuracy.coverageMismatchPercent();
+                r.offHalfTexelPct = accuracy.offHalfTexelPercent();
+                r.meanErrorPx = accuracy.meanErrorPixels;
+                r.p99ErrorPx = accuracy.p99ErrorPixels;
+                r.p99ErrorTexels = accuracy.p99ErrorTexels;
+                r.exhausted = accuracy.exhausted;
+                const Accuracy top =
+                    compareWithReference(frame, camera, reference, AccuracyScope::TopSurface);
+                r.topCoverageMismatchPct = top.coverageMismatchPercent();
+                r.topOffHalfTexelPct = top.offHalfTexelPercent();
+                r.topP99ErrorTexels = top.p99ErrorTexels;
+
+                // Fetches: the instrumented variant, once.
+                renderer.setMethod(setting.method, true);
+                draw();
+                const RenderedFrame counted = target.read(camera.eye);
+                double sum = 0.0, boundSum = 0.0;
+                std::size_t covered = 0;
+                for (std::size_t p = 0; p < inBox.size(); ++p) {
+                    if (!inBox[p]) continue;
+                    const double fetches = counted.stats[p * 4 + 1];
+                    sum += fetches;
+                    boundSum += counted.stats[p * 4 + 2];
+                    ++covered;
+                    r.fetchesMax = std::max(r.fetchesMax, fetches);
+                }
+                r.fetchesMean = covered ? sum / covered : 0.0;
+                r.boundFetchesMean = covered ? boundSum / covered : 0.0;
+                report(r);
             }
         }
     }

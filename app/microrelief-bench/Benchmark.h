@@ -1,6 +1,7 @@
 // microrelief-bench's measurements: for each method and knob setting, map and view, the
-// median frame time (GL timer queries and glFinish wall time), texel fetches per pixel
-// (the instrumented shader variant) and accuracy against the exact CPU reference.
+// frame times (GL timer queries, glFinish wall time and the process's CPU time; every
+// setting of a map and view timed in the same rounds, a frame each in turn), texel fetches
+// per pixel (the instrumented shader variant) and accuracy against the exact CPU reference.
 #pragma once
 
 #include <functional>
@@ -37,7 +38,12 @@ struct Measurement {
     int width = 0, height = 0;
     double msMedian = 0.0;      // GL_TIME_ELAPSED
     double msWallMedian = 0.0;  // draw + glFinish on the CPU clock
-    double fetchesMean = 0.0;   // over pixels whose ray meets the relief's box
+    double msCpuMedian = 0.0;   // the process's CPU time, all its threads, draw + glFinish
+    // Each timed frame's times, in round order: every setting of a map and view is timed
+    // in the same rounds, a frame each in turn (Timing.h: interleavedOrder), so that frame
+    // k of two rows of one map and view were drawn in the same round (pairedRatio).
+    std::vector<double> gpuFrames, wallFrames, cpuFrames;
+    double fetchesMean = 0.0;  // over pixels whose ray meets the relief's box
     double fetchesMax = 0.0;
     // The traversal's share of fetchesMean: reads of its bounds (a max pyramid, a cone map);
     // the rest read the samples (the last level, the surface).
@@ -72,7 +78,7 @@ struct BenchOptions {
     std::vector<int> viewDegrees;
     int width = 512, height = 512;
     int maxSteps = 4096;  // cap on the step budgets of steep, pom and relief
-    int frames = 10;      // timed frames per measurement, after warm-up
+    int frames = 10;      // timed rounds (a frame of each setting) per map and view
     std::vector<Method> methods;
     std::vector<BaseShape> bases{BaseShape::plane()};  // each map on each base
     // Each map and base on each; the biquadratic surface with the exact methods only.

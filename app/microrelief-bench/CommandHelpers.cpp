@@ -15,7 +15,8 @@ void addRunOptions(CLI::App& app, RunFlags& flags, const std::string& quickHelp,
     app.add_option_function<std::string>(
         "--size", [&flags](const std::string& text) { flags.size = text; }, sizeHelp);
     app.add_option("--frames", flags.frames,
-                   "Timed frames per measurement, after two warm-up frames (at least 10)")
+                   "Timed frames per measurement, after warm-up (at least 10); methods: rounds, "
+                   "each a frame of every setting of a map and view in turn")
         ->capture_default_str();
     app.add_option("--backend", flags.backend, "auto, egl or osmesa")->capture_default_str();
     app.add_option("--out-dir", flags.outDir, outDirHelp)->capture_default_str();

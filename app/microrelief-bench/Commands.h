@@ -35,6 +35,7 @@ struct MethodsFlags {
     std::string bases = "plane,cylinder,sphere";
     std::string interpolations = "bilinear,biquadratic";
     bool glsl330 = false;
+    std::string clock = "auto";                        // the tables' clock (Report.h)
     std::optional<std::string> maps, views, mapSizes;  // absent: the defaults
 };
 void addMethodsOptions(CLI::App& app, MethodsFlags& flags);
@@ -48,6 +49,7 @@ struct MethodsRun {
     bool quick = false;
     std::string noFetchedMaps;  // the "not measured" line where the default found none
     std::string backend, outDir;
+    std::string clock = "auto";  // checked: parseClock takes it
 };
 MethodsRun checkMethods(const MethodsFlags& flags, bool readsFetchedMaps);
 int runMethodsCommand(const MethodsRun& run);

@@ -191,6 +191,12 @@ void addMethodsOptions(CLI::App& app, MethodsFlags& flags) {
                    "Comma-separated base surfaces, each at microrelief-render's default size "
                    "(curved bases take multilevel, maxmip, pom and relief)")
         ->capture_default_str();
+    app.add_option("--clock", flags.clock,
+                   "What the tables' times and ratios read: timer (the GL timer query), wall "
+                   "(the wall time to glFinish), cpu (the process's CPU time to glFinish, every "
+                   "thread), or auto: the timer on a GPU, cpu on a CPU rasteriser (llvmpipe), "
+                   "whose timer query misses its work. The CSV has all three medians")
+        ->capture_default_str();
     app.add_flag("--glsl330", flags.glsl330,
                  "The shaders as GLSL 3.30, whatever the context gives (four texel reads a "
                  "bilinear cell where 4.00 gathers them): the path of an engine in a GL 3.3 "
@@ -230,6 +236,8 @@ MethodsRun checkMethods(const MethodsFlags& flags, bool readsFetchedMaps) {
     run.quick = flags.run.quick;
     run.backend = flags.run.backend;
     run.outDir = flags.run.outDir;
+    parseClock(flags.clock);  // refused before any work
+    run.clock = flags.clock;
     checkFrames(flags.run);
     options.frames = flags.run.frames;
     options.glsl330 = flags.glsl330;
@@ -292,8 +300,10 @@ int runMethodsCommand(const MethodsRun& run) {
     RunInfo info{context->renderer(),
                  today(),
                  "microrelief-bench" + std::string(run.quick ? " --quick" : "") +
-                     (options.glsl330 ? " --glsl330" : ""),
-                 {}};
+                     (options.glsl330 ? " --glsl330" : "") +
+                     (run.clock != "auto" ? " --clock " + run.clock : std::string()),
+                 {},
+                 parseClock(run.clock)};
     if (options.assets.empty() && options.mapSizes.empty())
         throwBadInput(
             "nothing to measure: no map (--maps names none, and --map-sizes 0 leaves out the "
@@ -318,9 +328,9 @@ int runMethodsCommand(const MethodsRun& run) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf(
             "[%3zu/%zu %5.0f s] %-10s %-5s %s %d %2d deg: %8.3f ms timer, %8.3f ms wall, "
-            "%7.1f fetches, %.3f %% / %.3f %%\n",
+            "%8.3f ms cpu, %7.1f fetches, %.3f %% / %.3f %%\n",
             rows.size(), total, elapsed, r.method.c_str(), r.param.c_str(), r.map.c_str(),
-            r.mapSize, r.viewDegrees, r.msMedian, r.msWallMedian, r.fetchesMean,
+            r.mapSize, r.viewDegrees, r.msMedian, r.msWallMedian, r.msCpuMedian, r.fetchesMean,
             r.coverageMismatchPct, r.offHalfTexelPct);
         std::fflush(stdout);
     });

@@ -80,7 +80,8 @@ void peerTableHeader(std::ostream& md, const std::vector<std::string>& leading,
                      const std::vector<std::string>& peers) {
     md << '|';
     for (const std::string& column : leading) md << ' ' << column << " |";
-    for (const std::string& p : peers) md << ' ' << p << (tracesTheSolid(p) ? "" : " (top)") << " |";
+    for (const std::string& p : peers)
+        md << ' ' << p << (tracesTheSolid(p) ? "" : " (top)") << " |";
     md << "\n|";
     for (std::size_t k = 0; k < leading.size() + peers.size(); ++k) md << "---|";
     md << '\n';
@@ -102,8 +103,28 @@ Key keyOf(const Measurement& r) {
     return {r.map, r.mapSize, r.viewDegrees};
 }
 
-double frameMs(const Measurement& r, bool wall) {
-    return wall ? r.msWallMedian : r.msMedian;
+// What the tables' times are, as bench.md's first line says.
+std::string clockDescription(Clock clock) {
+    switch (clock) {
+        case Clock::Cpu:
+            return "the process's CPU time to glFinish, every thread (the rasteriser's "
+                   "included; on a CPU rasteriser the GL timer query misses its work)";
+        case Clock::Wall:
+            return "the wall time to glFinish";
+        default:
+            return "GL_TIME_ELAPSED timer queries";
+    }
+}
+
+std::string clockLabel(Clock clock) {
+    switch (clock) {
+        case Clock::Cpu:
+            return "frame time, process CPU time (ms)";
+        case Clock::Wall:
+            return "frame time, wall clock (ms)";
+        default:
+            return "GPU time per frame (ms)";
+    }
 }
 
 const Measurement* find(const std::vector<Measurement>& rows, const Key& key,
@@ -147,7 +168,7 @@ std::vector<std::string> methods(const std::vector<Measurement>& rows) {
 // sphere beside the plane, the same map and view; its fetches against 2 (log2 N + 1);
 // the growth from 256 to the largest map beside the plane's; what pom and relief get
 // wrong at their largest budget.
-std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
+std::string curvedSection(const std::vector<Measurement>& rows, Clock clock) {
     std::vector<std::string> curved;
     for (const Measurement& r : rows) {
         if (r.base != "plane" && r.interpolation == "bilinear" &&
@@ -181,11 +202,11 @@ std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
         if (!ml) continue;
         const double perHit =
             plane && ml->hitPct > 0.0 && plane->hitPct > 0.0
-                ? (frameMs(*ml, wall) / ml->hitPct) / (frameMs(*plane, wall) / plane->hitPct)
+                ? (frameMs(*ml, clock) / ml->hitPct) / (frameMs(*plane, clock) / plane->hitPct)
                 : 0.0;
         md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
-           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
-           << (plane ? fixed(frameMs(*plane, wall), 2) : "-") << " | " << fixed(ml->hitPct, 0)
+           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, clock), 2) << " | "
+           << (plane ? fixed(frameMs(*plane, clock), 2) : "-") << " | " << fixed(ml->hitPct, 0)
            << " (" << (plane ? fixed(plane->hitPct, 0) : "-") << ") | "
            << (perHit > 0.0 ? fixed(perHit, 2) + "x" : "-") << " | " << fixed(ml->fetchesMean, 1)
            << " (" << fixed(2.0 * (std::log2(ml->mapSize) + 1.0), 0) << ") |";
@@ -216,10 +237,10 @@ std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
         if (!exact.count(256) || exact.size() < 2) continue;
         const int big = exact.rbegin()->first;
         md << "- " << markdownText(name) << ": time at " << big << " / time at 256, " << view
-           << "°: " << fixed(frameMs(*exact[big], wall) / frameMs(*exact[256], wall), 2);
+           << "°: " << fixed(frameMs(*exact[big], clock) / frameMs(*exact[256], clock), 2);
         if (flat.count(256) && flat.count(big))
             md << " (the plane's: "
-               << fixed(frameMs(*flat[big], wall) / frameMs(*flat[256], wall), 2)
+               << fixed(frameMs(*flat[big], clock) / frameMs(*flat[256], clock), 2)
                << "; target: no worse)";
         md << ".\n";
     }
@@ -228,7 +249,7 @@ std::string curvedSection(const std::vector<Measurement>& rows, bool wall) {
 
 // Issue 12's figures: the biquadratic last level beside the bilinear one for the same map,
 // base and view, with the exact methods; targets: time <= 1.5x, fetches <= 1.2x.
-std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) {
+std::string biquadraticSection(const std::vector<Measurement>& rows, Clock clock) {
     const std::string suffix = "-biquadratic";
     std::ostringstream md;
     bool any = false;
@@ -259,9 +280,9 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
                 any = true;
             }
             md << "| " << markdownText(name) << " | " << std::get<1>(key) << " | "
-               << std::get<2>(key) << "° | " << method << " | " << fixed(frameMs(*q, wall), 2)
-               << " | " << fixed(frameMs(*l, wall), 2) << " | "
-               << fixed(frameMs(*q, wall) / frameMs(*l, wall), 2) << "x | "
+               << std::get<2>(key) << "° | " << method << " | " << fixed(frameMs(*q, clock), 2)
+               << " | " << fixed(frameMs(*l, clock), 2) << " | "
+               << fixed(frameMs(*q, clock) / frameMs(*l, clock), 2) << "x | "
                << fixed(q->fetchesMean, 1) << " | " << fixed(l->fetchesMean, 1) << " | "
                << fixed(l->fetchesMean > 0.0 ? q->fetchesMean / l->fetchesMean : 0.0, 2) << "x | "
                << fixed(q->boundFetchesMean, 1) << " | " << fixed(l->boundFetchesMean, 1) << " | "
@@ -274,7 +295,7 @@ std::string biquadraticSection(const std::vector<Measurement>& rows, bool wall) 
 
 // Equal-time accuracy: for each peer, its most accurate setting within the
 // multilevel method's exact time.
-std::string equalTimeSection(const std::vector<Measurement>& rows, bool wall,
+std::string equalTimeSection(const std::vector<Measurement>& rows, Clock clock,
                              const std::vector<std::string>& peers) {
     std::ostringstream md;
     md << "\nEqual-time accuracy: for each peer, of its settings whose time is within the "
@@ -283,32 +304,32 @@ std::string equalTimeSection(const std::vector<Measurement>& rows, bool wall,
           "%, off % and p99 error in texels (over the hits), and its time. *none*: every "
           "setting takes longer (its cheapest in brackets). Peers marked *(top)* on the pixels "
           "whose rays come in through the top face.\n\n";
-    peerTableHeader(md, {"map", "size", "view", "multilevel ms", "hit/miss %", "off %", "p99 texels"},
-                    peers);
+    peerTableHeader(
+        md, {"map", "size", "view", "multilevel ms", "hit/miss %", "off %", "p99 texels"}, peers);
     for (const Key& key : keys(rows)) {
         const Measurement* ml = find(rows, key, "multilevel", "exact");
         if (!ml || ml->interpolation != "bilinear") continue;
         md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
-           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
+           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, clock), 2) << " | "
            << fixed(ml->coverageMismatchPct, 3) << " | " << fixed(ml->offHalfTexelPct, 3) << " | "
            << fixed(ml->p99ErrorTexels, 2) << " |";
         for (const std::string& p : peers) {
             const bool top = !tracesTheSolid(p);
-            if (const Measurement* pick = equalTime(rows, p, *ml, wall)) {
+            if (const Measurement* pick = equalTime(rows, p, *ml, clock)) {
                 const PeerAccuracy a = peerAccuracy(*pick, top);
                 md << ' ' << pick->param << ": " << fixed(a.mismatchPct, 3) << " / "
                    << fixed(a.offPct, 3) << " / " << fixed(a.p99Texels, 2) << " ("
-                   << fixed(frameMs(*pick, wall), 2) << " ms) |";
+                   << fixed(frameMs(*pick, clock), 2) << " ms) |";
                 continue;
             }
             const Measurement* cheapest = nullptr;
             for (const Measurement& r : rows) {
                 if (keyOf(r) == key && r.method == p &&
-                    (!cheapest || frameMs(r, wall) < frameMs(*cheapest, wall)))
+                    (!cheapest || frameMs(r, clock) < frameMs(*cheapest, clock)))
                     cheapest = &r;
             }
             md << (cheapest ? " none (" + cheapest->param + ": " +
-                                  fixed(frameMs(*cheapest, wall), 2) + " ms) |"
+                                  fixed(frameMs(*cheapest, clock), 2) + " ms) |"
                             : std::string(" - |"));
         }
         md << '\n';
@@ -318,7 +339,7 @@ std::string equalTimeSection(const std::vector<Measurement>& rows, bool wall,
 
 // Figures to hold against published ones: throughput and fetches beside each
 // time (every setting), the traversal's reads of its bounds beside the total.
-std::string throughputSection(const std::vector<Measurement>& rows, bool wall) {
+std::string throughputSection(const std::vector<Measurement>& rows, Clock clock) {
     std::ostringstream md;
     md << "\nThroughput and fetches: each method's first (exact, or fewest steps) and the "
           "equal-accuracy or largest setting; Mpix/s: the whole picture over the frame's time; "
@@ -342,8 +363,8 @@ std::string throughputSection(const std::vector<Measurement>& rows, bool wall) {
             for (const Measurement* r : {first, second}) {
                 md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
                    << std::get<2>(key) << "° | " << method << " | " << r->param << " | "
-                   << fixed(frameMs(*r, wall), 2) << " | "
-                   << fixed(megapixelsPerSecond(*r, wall), 2) << " | " << fixed(r->fetchesMean, 1)
+                   << fixed(frameMs(*r, clock), 2) << " | "
+                   << fixed(megapixelsPerSecond(*r, clock), 2) << " | " << fixed(r->fetchesMean, 1)
                    << " | " << fixed(r->boundFetchesMean, 1) << " | "
                    << fixed(r->fetchesMean - r->boundFetchesMean, 1) << " |\n";
                 if (second == first) break;
@@ -387,7 +408,7 @@ std::string costSection(const std::vector<Measurement>& rows) {
 // of hits off by more than half a texel (PeerAccuracy::wrongPct), drawn at 0.001 where
 // it is 0 (a log axis). Adds the pictures' names to `outputs`; the data beside them.
 std::string paretoScript(const std::filesystem::path& folder, const std::vector<Measurement>& rows,
-                         bool wall, std::vector<std::string>& outputs) {
+                         Clock clock, std::vector<std::string>& outputs) {
     constexpr double kZeroDrawnAt = 1e-3;
     // A colour and a point type per method, the same in every panel and picture (gnuplot's
     // own cycle repeats after eight).
@@ -428,7 +449,7 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
                         r.method != method)
                         continue;
                     const PeerAccuracy a = peerAccuracy(r, !tracesTheSolid(method));
-                    points << frameMs(r, wall) << ' ' << std::max(a.wrongPct(), kZeroDrawnAt)
+                    points << frameMs(r, clock) << ' ' << std::max(a.wrongPct(), kZeroDrawnAt)
                            << " \"" << r.param << "\"\n";
                 }
                 if (points.str().empty()) continue;
@@ -442,7 +463,7 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
                << "set output " << gnuplotString((folder / (stem + ".png.part")).string()) << "\n"
                << "unset logscale\nset logscale xy\nset key inside top right font ',9'\n"
                << "set grid\nset yrange [" << 0.5 * kZeroDrawnAt << ":200]\n"
-               << "set xlabel '" << (wall ? "frame time, wall clock (ms)" : "GPU time (ms)")
+               << "set xlabel '" << clockLabel(clock)
                << "'\nset ylabel '% wrong: hit/miss + hits off > 1/2 texel (0 drawn at "
                << kZeroDrawnAt << ")'\n"
                << "set multiplot layout 1," << views.size() << " title "
@@ -468,33 +489,78 @@ std::string paretoScript(const std::filesystem::path& folder, const std::vector<
 
 }  // namespace
 
+Clock parseClock(const std::string& name) {
+    for (Clock clock : {Clock::Auto, Clock::Timer, Clock::Wall, Clock::Cpu})
+        if (name == clockName(clock)) return clock;
+    throwBadInput("--clock: '" + name + "' is not one of auto, timer, wall, cpu");
+}
+
+const char* clockName(Clock clock) {
+    switch (clock) {
+        case Clock::Auto:
+            return "auto";
+        case Clock::Timer:
+            return "timer";
+        case Clock::Wall:
+            return "wall";
+        case Clock::Cpu:
+            return "cpu";
+    }
+    return "auto";
+}
+
+Clock resolveClock(Clock clock, const std::string& renderer) {
+    if (clock != Clock::Auto) return clock;
+    return softwareRenderer(renderer) ? kSoftwareClock : Clock::Timer;
+}
+
+Clock clockOf(const RunInfo& info) {
+    return resolveClock(info.clock, info.renderer);
+}
+
+double frameMs(const Measurement& r, Clock clock) {
+    return clock == Clock::Cpu ? r.msCpuMedian : clock == Clock::Wall ? r.msWallMedian : r.msMedian;
+}
+
+const std::vector<double>& frameSeries(const Measurement& r, Clock clock) {
+    return clock == Clock::Cpu ? r.cpuFrames : clock == Clock::Wall ? r.wallFrames : r.gpuFrames;
+}
+
+Spread timeRatio(const Measurement& r, const Measurement& base, Clock clock) {
+    const std::vector<double>&a = frameSeries(r, clock), &b = frameSeries(base, clock);
+    if (!a.empty() && a.size() == b.size()) return pairedRatio(a, b);
+    const double ratio =
+        frameMs(base, clock) > 0.0 ? frameMs(r, clock) / frameMs(base, clock) : 0.0;
+    return {ratio, ratio, ratio};
+}
+
 PeerAccuracy peerAccuracy(const Measurement& r, bool topOnly) {
     if (topOnly) return {r.topCoverageMismatchPct, r.topOffHalfTexelPct, r.topP99ErrorTexels};
     return {r.coverageMismatchPct, r.offHalfTexelPct, r.p99ErrorTexels};
 }
 
 const Measurement* equalTime(const std::vector<Measurement>& rows, const std::string& method,
-                             const Measurement& multilevel, bool wall) {
+                             const Measurement& multilevel, Clock clock) {
     const bool top = !tracesTheSolid(method);
     const Measurement* best = nullptr;
     for (const Measurement& r : rows) {
         if (keyOf(r) != keyOf(multilevel) || r.method != method ||
-            frameMs(r, wall) > frameMs(multilevel, wall))
+            frameMs(r, clock) > frameMs(multilevel, clock))
             continue;
         if (!best) {
             best = &r;
             continue;
         }
         const PeerAccuracy a = peerAccuracy(r, top), b = peerAccuracy(*best, top);
-        if (std::make_tuple(a.wrongPct(), a.p99Texels, frameMs(r, wall)) <
-            std::make_tuple(b.wrongPct(), b.p99Texels, frameMs(*best, wall)))
+        if (std::make_tuple(a.wrongPct(), a.p99Texels, frameMs(r, clock)) <
+            std::make_tuple(b.wrongPct(), b.p99Texels, frameMs(*best, clock)))
             best = &r;
     }
     return best;
 }
 
-double megapixelsPerSecond(const Measurement& r, bool wall) {
-    const double ms = frameMs(r, wall);
+double megapixelsPerSecond(const Measurement& r, Clock clock) {
+    const double ms = frameMs(r, clock);
     return ms > 0.0 ? static_cast<double>(r.width) * r.height / (ms * 1e3) : 0.0;
 }
 
@@ -508,9 +574,12 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
            "top_coverage_mismatch_pct,top_off_half_texel_pct,"
            "mean_error_px,p99_error_px,exhausted_px,hit_pct,interpolation,renderer,"
            "fetches_bounds_mean,p99_error_texels,top_p99_error_texels,mpix_per_s,"
-           "bytes_per_texel,preprocess_ms,preprocess_where,preprocess_cpu_ms\n";
-    const bool wall = softwareRenderer(info.renderer);
+           "bytes_per_texel,preprocess_ms,preprocess_where,preprocess_cpu_ms,"
+           "ms_cpu_median,clock,ms_spread_pct,ratio_to_multilevel,ratio_spread_pct\n";
+    const Clock clock = clockOf(info);
     for (const Measurement& r : rows) {
+        const Measurement* base = find(rows, keyOf(r), "multilevel", "exact");
+        const Spread ratio = base ? timeRatio(r, *base, clock) : Spread{};
         out << r.method << ',' << r.param << ',' << csvField(r.map) << ',' << r.base << ','
             << r.mapSize << ',' << r.viewDegrees << ',' << r.width << ',' << r.height << ','
             << fixed(r.msMedian, 4) << ',' << fixed(r.msWallMedian, 4) << ','
@@ -520,24 +589,28 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
             << fixed(r.meanErrorPx, 3) << ',' << fixed(r.p99ErrorPx, 3) << ',' << r.exhausted << ','
             << fixed(r.hitPct, 2) << ',' << r.interpolation << ',' << csvQuote(info.renderer) << ','
             << fixed(r.boundFetchesMean, 2) << ',' << fixed(r.p99ErrorTexels, 3) << ','
-            << fixed(r.topP99ErrorTexels, 3) << ',' << fixed(megapixelsPerSecond(r, wall), 3) << ','
-            << fixed(r.bytesPerTexel, 3) << ',' << fixed(r.preprocessMs, 2) << ','
+            << fixed(r.topP99ErrorTexels, 3) << ',' << fixed(megapixelsPerSecond(r, clock), 3)
+            << ',' << fixed(r.bytesPerTexel, 3) << ',' << fixed(r.preprocessMs, 2) << ','
             << r.preprocessWhere << ','
-            << (r.cpuPreprocessMs >= 0.0 ? fixed(r.cpuPreprocessMs, 2) : std::string()) << '\n';
+            << (r.cpuPreprocessMs >= 0.0 ? fixed(r.cpuPreprocessMs, 2) : std::string()) << ','
+            << fixed(r.msCpuMedian, 4) << ',' << clockName(clock) << ','
+            << fixed(spreadOf(frameSeries(r, clock)).halfIqrPercent(), 2) << ','
+            << (base ? fixed(ratio.median, 4) : std::string()) << ','
+            << (base ? fixed(ratio.halfIqrPercent(), 2) : std::string()) << '\n';
     }
     writeTextAtomically(file, out.str());
 }
 
 std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info,
                           const std::vector<Measurement>& rows) {
-    const bool wall = softwareRenderer(info.renderer);
+    const Clock clock = clockOf(info);
     std::ostringstream md;
     md << "Run " << info.date << " on " << info.renderer << " (`" << info.command
-       << "`). Times: median of the "
-       << (wall
-               ? "frame's glFinish wall time (a CPU rasteriser: the GL timer query misses its work)"
-               : "GL_TIME_ELAPSED timer queries")
-       << ", in ms.\n\n";
+       << "`). Times: " << clockDescription(clock)
+       << ", in ms: the median of each setting's frames, every setting of a map and view timed "
+          "in the same rounds, a frame each in turn. Ratios: the median over the rounds of the "
+          "round's ratio, and beside it +- half the interquartile range of those ratios, in % "
+          "of the median.\n\n";
     if (!info.notes.empty()) {
         md << "Not measured:\n\n";
         for (const std::string& line : info.notes) md << "- " << markdownText(line) << '\n';
@@ -562,32 +635,35 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         all.erase(std::remove(all.begin(), all.end(), "multilevel"), all.end());
         return all;
     }();
-    peerTableHeader(md, {"map", "size", "view", "multilevel ms", "Mpix/s", "mismatch %", "off %", "fetches"},
-                    peers);
+    peerTableHeader(
+        md, {"map", "size", "view", "multilevel ms", "Mpix/s", "mismatch %", "off %", "fetches"},
+        peers);
     for (const Key& key : keys(rows)) {
         const Measurement* ml = find(rows, key, "multilevel", "exact");
         // The biquadratic rows, without peers, have a table of their own.
         if (!ml || ml->interpolation != "bilinear") continue;
         md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
-           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, wall), 2) << " | "
-           << fixed(megapixelsPerSecond(*ml, wall), 2) << " | " << fixed(ml->coverageMismatchPct, 3)
-           << " | " << fixed(ml->offHalfTexelPct, 3) << " | " << fixed(ml->fetchesMean, 1) << " |";
+           << std::get<2>(key) << "° | " << fixed(frameMs(*ml, clock), 2) << " | "
+           << fixed(megapixelsPerSecond(*ml, clock), 2) << " | "
+           << fixed(ml->coverageMismatchPct, 3) << " | " << fixed(ml->offHalfTexelPct, 3) << " | "
+           << fixed(ml->fetchesMean, 1) << " |";
         for (const std::string& p : peers) {
             const Measurement* eq = equalAccuracy(rows, key, p, *ml);
             if (!eq) {
                 md << " never |";
             } else {
-                md << ' ' << eq->param << ": " << fixed(frameMs(*eq, wall), 2) << " ms ("
-                   << fixed(frameMs(*eq, wall) / frameMs(*ml, wall), 1) << "x; "
-                   << fixed(megapixelsPerSecond(*eq, wall), 2) << " Mpix/s, "
+                const Spread ratio = timeRatio(*eq, *ml, clock);
+                md << ' ' << eq->param << ": " << fixed(frameMs(*eq, clock), 2) << " ms ("
+                   << fixed(ratio.median, 2) << "x +-" << fixed(ratio.halfIqrPercent(), 0) << " %; "
+                   << fixed(megapixelsPerSecond(*eq, clock), 2) << " Mpix/s, "
                    << fixed(eq->fetchesMean, 1) << " fetches) |";
             }
         }
         md << '\n';
     }
 
-    md << equalTimeSection(rows, wall, peers);
-    md << throughputSection(rows, wall);
+    md << equalTimeSection(rows, clock, peers);
+    md << throughputSection(rows, clock);
     md << costSection(rows);
 
     md << "\nAccuracy-controlled level of detail (multilevel, `--pixel-error`): time and "
@@ -602,10 +678,10 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
         const Measurement* four = find(rows, key, "multilevel", "4px");
         if (!e || !one || !four) continue;
         md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
-           << std::get<2>(key) << "° | " << fixed(frameMs(*e, wall), 2) << " | "
-           << fixed(frameMs(*one, wall), 2) << " | " << fixed(one->offHalfTexelPct, 2) << " | "
+           << std::get<2>(key) << "° | " << fixed(frameMs(*e, clock), 2) << " | "
+           << fixed(frameMs(*one, clock), 2) << " | " << fixed(one->offHalfTexelPct, 2) << " | "
            << fixed(one->meanErrorPx, 2) << " / " << fixed(one->p99ErrorPx, 1) << " | "
-           << fixed(frameMs(*four, wall), 2) << " | " << fixed(four->offHalfTexelPct, 2) << " | "
+           << fixed(frameMs(*four, clock), 2) << " | " << fixed(four->offHalfTexelPct, 2) << " | "
            << fixed(four->meanErrorPx, 2) << " / " << fixed(four->p99ErrorPx, 1) << " |\n";
     }
 
@@ -626,13 +702,13 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
     if (at45.count(256) && at45.size() > 1) {
         const Measurement& big = *at45.rbegin()->second;
         targets << "- Time at " << big.mapSize << " / time at 256, multilevel at " << view45
-                << "°: " << fixed(frameMs(big, wall) / frameMs(*at45[256], wall), 2) << " exact";
+                << "°: " << fixed(frameMs(big, clock) / frameMs(*at45[256], clock), 2) << " exact";
         const Key bigKey{big.map, big.mapSize, big.viewDegrees};
         const Measurement* bigOne = find(rows, bigKey, "multilevel", "1px");
         const Measurement* smallOne =
             find(rows, Key{big.map, 256, big.viewDegrees}, "multilevel", "1px");
         if (bigOne && smallOne)
-            targets << ", " << fixed(frameMs(*bigOne, wall) / frameMs(*smallOne, wall), 2)
+            targets << ", " << fixed(frameMs(*bigOne, clock) / frameMs(*smallOne, clock), 2)
                     << " with `--pixel-error 1`";
         targets << " (target <= 1.5).\n";
     }
@@ -642,15 +718,15 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
                 << " (target <= " << fixed(budget, 0) << ").\n";
     }
     if (!targets.str().empty()) md << "\nTargets:\n\n" << targets.str();
-    md << curvedSection(rows, wall);
-    md << biquadraticSection(rows, wall);
+    md << curvedSection(rows, clock);
+    md << biquadraticSection(rows, clock);
     writeTextAtomically(file, md.str());
     return md.str();
 }
 
 bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
                 const std::vector<Measurement>& rows, std::string& why) {
-    const bool wall = softwareRenderer(info.renderer);
+    const Clock clock = clockOf(info);
     if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
         why = "gnuplot is not installed (apt-get install gnuplot-nox)";
         return false;
@@ -685,7 +761,7 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
                 }
             }
             if (!pick) continue;
-            block << pick->mapSize << ' ' << frameMs(*pick, wall) << ' ' << pick->fetchesMean
+            block << pick->mapSize << ' ' << frameMs(*pick, clock) << ' ' << pick->fetchesMean
                   << '\n';
             ++points;
         }
@@ -701,9 +777,7 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
     std::vector<std::string> outputs;
     // Against the map's size only where the procedural relief was measured.
     for (const auto& [output, column, label] :
-         {std::tuple<std::string, int, std::string>{
-              "time_vs_size.png", 2,
-              wall ? "frame time, wall clock (ms)" : "GPU time per frame (ms)"},
+         {std::tuple<std::string, int, std::string>{"time_vs_size.png", 2, clockLabel(clock)},
           {"fetches_vs_size.png", 3, "texel fetches per pixel (mean)"}}) {
         if (names.empty()) break;
         outputs.push_back(output);
@@ -719,7 +793,7 @@ bool writePlots(const std::filesystem::path& folder, const RunInfo& info,
         }
         script << '\n';
     }
-    script << paretoScript(folder, rows, wall, outputs);
+    script << paretoScript(folder, rows, clock, outputs);
     writeTextAtomically(folder / "plots.gnuplot", script.str());
     const std::string command =
         "gnuplot " + shellQuote((folder / "plots.gnuplot").string()) + " 2>&1";

@@ -7,15 +7,42 @@
 #include <vector>
 
 #include "Benchmark.h"
+#include "Timing.h"
 
 namespace microrelief::bench {
 
+// The clock the tables, ratios and plots read (--clock): the GL timer query's, the wall
+// clock's to glFinish, or the process's CPU time to glFinish (Timing.h). Auto: the timer
+// query on a GPU; on a CPU rasteriser (softwareRenderer), whose timer query misses the
+// deferred rasterisation, kSoftwareClock.
+enum class Clock { Auto, Timer, Wall, Cpu };
+// The clock of a CPU rasteriser's tables: its CPU time, which other processes on the
+// machine's cores hardly move, where they move its wall time by up to 3x. On 2 shared cores
+// (load 2 to 12) each ratio to the multilevel method varied by at most 7 % over nine runs
+// on it, and by up to 47 % over five on the wall clock, both paired round by round
+// (docs/perf/2026-12-07-steady-ratios.md).
+inline constexpr Clock kSoftwareClock = Clock::Cpu;
+Clock parseClock(const std::string& name);  // auto, timer, wall, cpu; Error(BadInput) else
+const char* clockName(Clock clock);
+Clock resolveClock(Clock clock, const std::string& renderer);
+
 struct RunInfo {
-    std::string renderer;  // GL_RENDERER
-    std::string date;      // ISO date of the run
-    std::string command;   // how it was run
+    std::string renderer;            // GL_RENDERER
+    std::string date;                // ISO date of the run
+    std::string command;             // how it was run
     std::vector<std::string> notes;  // what was asked for and not measured, a line each
+    Clock clock = Clock::Auto;       // what the tables read (resolveClock)
 };
+Clock clockOf(const RunInfo& info);
+
+// A row's median frame time and its frames in round order, on `clock` (not Auto).
+double frameMs(const Measurement& r, Clock clock);
+const std::vector<double>& frameSeries(const Measurement& r, Clock clock);
+
+// The ratio the tables give, `r`'s time over `base`'s (the multilevel method's exact, the
+// same map, size and view): the median and quartiles of the rounds' ratios where both were
+// timed in the same rounds (Timing.h: pairedRatio), else the ratio of their medians.
+Spread timeRatio(const Measurement& r, const Measurement& base, Clock clock);
 
 // `name` as a part of a file name any file system takes: each of < > : " / \ | ? * and
 // each control character as '-' ("rock:1" -> "rock-1"; the Pareto plots' names).
@@ -50,15 +77,15 @@ struct PeerAccuracy {
 PeerAccuracy peerAccuracy(const Measurement& r, bool topOnly);
 
 // Equal-time accuracy: of `method`'s settings on `multilevel`'s map, size and view, those
-// whose time (`wall`: the glFinish wall time, else the timer query's) is within the
-// multilevel method's exact time, the most accurate: the fewest wrong (wrongPct), then the
-// smallest p99 error, then the faster. Null where every setting takes longer.
+// whose time on `clock` is within the multilevel method's exact time, the most accurate:
+// the fewest wrong (wrongPct), then the smallest p99 error, then the faster. Null where
+// every setting takes longer.
 const Measurement* equalTime(const std::vector<Measurement>& rows, const std::string& method,
-                             const Measurement& multilevel, bool wall);
+                             const Measurement& multilevel, Clock clock);
 
-// Pixels a second: the whole picture over the frame's time (as frame rates at a
-// resolution are quoted), millions.
-double megapixelsPerSecond(const Measurement& r, bool wall);
+// Pixels a second: the whole picture over the frame's time on `clock` (as frame rates at
+// a resolution are quoted; on the CPU clock, per second of the CPU's work), millions.
+double megapixelsPerSecond(const Measurement& r, Clock clock);
 
 // Rewrites the whole CSV atomically (called after every measurement, so a long run
 // that is interrupted keeps what it measured).

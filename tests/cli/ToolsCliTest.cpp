@@ -136,6 +136,9 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
     expectRefused("--bases torus --out-dir " + (dir / "b").string(), "unknown --bases 'torus'");
     expectRefused("--interpolations bicubic --out-dir " + (dir / "b").string(),
                   "unknown --interpolations 'bicubic'");
+    // The tables' clock, one of four (Report.h: Clock).
+    expectRefused("--clock gpu --out-dir " + (dir / "b").string(),
+                  "--clock: 'gpu' is not one of auto, timer, wall, cpu");
     // Views and the relief's sides: whole numbers in range, one clear line each.
     expectRefused("--views 95 --out-dir " + (dir / "b").string(), "--views: '95' is not a whole number");
     expectRefused("--views '' --out-dir " + (dir / "b").string(), "--views names no view");

@@ -8,12 +8,10 @@
 # tables take the GL timer query's times wherever the renderer is not a CPU rasteriser.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# gnuplot for the plots, installed by the set-up with the rest (its package lists brought up
+# to date first, as a bare machine needs): the plots are the benchmark's, not the build's.
+export MICRORELIEF_EXTRA_PACKAGES="${MICRORELIEF_EXTRA_PACKAGES:+$MICRORELIEF_EXTRA_PACKAGES }gnuplot-nox"
 source "$root/scripts/setup.sh"
-if ! command -v gnuplot >/dev/null 2>&1; then
-  echo "bench: installing gnuplot-nox for the plots"
-  if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends gnuplot-nox >/dev/null
-fi
 if [ "${MICRORELIEF_BENCH_NO_FETCH:-0}" != 1 ]; then
   bash "$root/scripts/bench-maps.sh" "$root/out/bench-maps" ||
     echo "bench: warning: no real maps fetched; running without them" >&2

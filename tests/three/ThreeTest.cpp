@@ -487,6 +487,7 @@ const std::vector<std::string> kTarballFiles = {"package/LICENSE",
                                                 "package/src/index.js",
                                                 "package/src/loader.d.ts",
                                                 "package/src/loader.js",
+                                                "package/src/map_host.js",
                                                 "package/src/materials.d.ts",
                                                 "package/src/materials.js",
                                                 "package/src/override.js",
@@ -494,9 +495,12 @@ const std::vector<std::string> kTarballFiles = {"package/LICENSE",
                                                 "package/src/pyramid.js",
                                                 "package/src/relief.d.ts",
                                                 "package/src/relief.js",
+                                                "package/src/relief_host.js",
                                                 "package/src/twin.d.ts",
                                                 "package/src/twin.js",
-                                                "package/src/three_version.js"};
+                                                "package/src/three_version.js",
+                                                "package/src/webgpu.d.ts",
+                                                "package/src/webgpu.js"};
 
 // The most a refusal of the package may say: one line naming the range.
 const std::string kBelowTheRange =
@@ -708,7 +712,7 @@ TEST_F(ThreeTarball, TheTarballHoldsExactlyWhatAConsumerRuns) {
               dir.path());
     EXPECT_EQ(
         fields.out,
-        "MIT\n./src/index.d.ts\nfalse\ntypes default\n./src/index.d.ts\n. ./package.json\ngit\n"
+        "MIT\n./src/index.d.ts\nfalse\ntypes default\n./src/index.d.ts\n. ./webgpu ./package.json\ngit\n"
         "git+https://github.com/microrelief/microrelief.git\npackages/"
         "microrelief-three\n>=0.182.0\nfalse\n")
         << fields.err;

@@ -22,11 +22,11 @@ const webgpu = {isWebGPURenderer: true, isRenderer: true, capabilities: {maxText
 const heights = m.heightsFromArray(new Float32Array([0, 0.5, 0.25, 1]), 2, 2, {name: 'tiny'});
 const map = {windows: {}, heights: {}, wrapU: false, width: 2, height: 2, maxHeight: 1, levelCount: 2};
 
-// The one line: names the renderer, the entry to use and that it does not exist yet.
+// The one line: names the renderer and the entry to import instead.
 function pointsAtWebGPUEntry(message) {
     const why = [];
     if (message.includes('\n')) why.push('more than one line');
-    for (const part of ['WebGPURenderer', "'microrelief-three/webgpu'", 'not yet available', 'WebGLRenderer'])
+    for (const part of ['WebGPURenderer', "import from 'microrelief-three/webgpu'", 'WebGLRenderer'])
         if (!message.includes(part)) why.push(`no '${part}'`);
     return why;
 }

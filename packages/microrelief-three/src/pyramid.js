@@ -18,8 +18,8 @@ import * as THREE from 'three';
 
 import {glue, pyramid as passes} from '../generated/glsl.js';
 import * as core from '../generated/relief_core.js';
-import {HeightMapError} from './heights.js';
 import {requireSupportedThree, requireWebGLRenderer} from './three_version.js';
+import {checkHeightMap, largestSample, windowLevelsOnCpu} from './map_host.js';
 import {loadTwin, releaseTwins, twinBytes} from './twin.js';
 
 // A WebGL that cannot do what was asked (an extension missing, a texture too large).
@@ -242,48 +242,11 @@ export function readWindowLevel(reliefMap, level) {
     return readTextureFloats(reliefMap.renderer, reliefMap.windows, level, w, h);
 }
 
-// ---- the CPU builder: the C++ MaxPyramid in WebAssembly ----
-
-let wasmModule = null;
-async function pyramidModule() {
-    if (!wasmModule) {
-        wasmModule = import('../generated/pyramid_wasm.js').then((m) => m.default());
-        wasmModule.catch(() => (wasmModule = null));
-    }
-    return wasmModule;
-}
+// ---- the CPU builder: the C++ MaxPyramid in WebAssembly (map_host.js, shared with the WebGPU entry) ----
 
 async function buildOnCpu(map, wrapU) {
-    const m = await pyramidModule();
-    const bytes = 4 * map.width * map.height;
-    const input = m._malloc(bytes);
-    if (!input) throw new HeightMapError(`${map.name}: no memory for ${map.width} x ${map.height} samples in WebAssembly`);
-    let handle = 0;
-    try {
-        new Float32Array(m.HEAPF32.buffer, input, map.width * map.height).set(map.samples);
-        handle = m._mr_build_windows(input, map.width, map.height, wrapU ? 1 : 0);
-        if (!handle) throw new HeightMapError(m.UTF8ToString(m._mr_last_error()));
-        const levelSizes = [], levels = [];
-        for (let k = 0; k < m._mr_level_count(handle); ++k) {
-            const packed = m._mr_level_size(handle, k);
-            const [w, h] = [packed >>> 16, packed & 0xffff];
-            const out = m._malloc(2 * w * h);
-            try {
-                m._mr_copy_level(handle, k, out);
-                levels.push(new Uint16Array(m.HEAPU16.buffer, out, w * h).slice());
-            } finally {
-                m._free(out);
-            }
-            levelSizes.push([w, h]);
-        }
-        return {
-            heights: samplesTexture(map, wrapU), windows: windowsTexture(levelSizes, levels), levelSizes,
-            maxHeight: m._mr_max_height(handle), scaleExponent: m._mr_scale_exponent(handle),
-        };
-    } finally {
-        if (handle) m._mr_release(handle);
-        m._free(input);
-    }
+    const {levels, levelSizes, maxHeight, scaleExponent} = await windowLevelsOnCpu(map, wrapU);
+    return {heights: samplesTexture(map, wrapU), windows: windowsTexture(levelSizes, levels), levelSizes, maxHeight, scaleExponent};
 }
 
 // The textures of `map` ({width, height, samples, name}: heights.js) for `renderer`.
@@ -294,19 +257,12 @@ export async function createReliefMap(renderer, map, {wrapU = false, pyramid = '
     requireSupportedThree();
     requireWebGLRenderer(renderer, 'createReliefMap');
     if (!['auto', 'gpu', 'cpu'].includes(pyramid)) throw new TypeError(`createReliefMap: pyramid '${pyramid}' (expected auto, gpu or cpu)`);
-    if (!map || !(map.samples instanceof Float32Array) || map.samples.length !== map.width * map.height)
-        throw new TypeError('createReliefMap: the map must be {width, height, samples: Float32Array} (heights.js: loadHeights, heightsFromArray, ...)');
+    checkHeightMap(map, 'createReliefMap');
     const name = map.name || 'height map';
     const maxSize = renderer.capabilities.maxTextureSize;
     if (map.width > maxSize || map.height > maxSize)
         throw new ReliefGpuError(`${name}: ${map.width} x ${map.height} is larger than this GPU's MAX_TEXTURE_SIZE (${maxSize})`);
-    let maxSample = 0;
-    for (let k = 0; k < map.samples.length; ++k) {
-        const h = map.samples[k];
-        if (!(h >= 0) || h === Infinity)
-            throw new HeightMapError(`${name}: sample (${k % map.width}, ${Math.floor(k / map.width)}) is ${h}; heights must be finite and >= 0`);
-        maxSample = Math.max(maxSample, h);
-    }
+    const maxSample = largestSample(map);
     const renderable = renderer.extensions.has('EXT_color_buffer_float');
     if (pyramid === 'gpu' && !renderable)
         throw new ReliefGpuError('this WebGL 2 has no EXT_color_buffer_float, so it cannot render the max pyramid into R16F textures; pyramid: \'cpu\' (or \'auto\') builds it in WebAssembly instead');

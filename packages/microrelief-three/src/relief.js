@@ -16,81 +16,12 @@ import * as THREE from 'three';
 import {glue, library} from '../generated/glsl.js';
 import * as core from '../generated/relief_core.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, reliefDefines} from './materials.js';
+import {baseShape, boxFaces, cameraRays, checkBaseForMap, checkHeightScale, checkInterpolation, reliefBox, reliefExtent, reliefFrame, reliefMapUniforms, reliefUniforms} from './relief_host.js';
 import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
 import {kWebGPURendererUnsupported, requireSupportedThree} from './three_version.js';
 import {traceOnTwin, twinLoaded, twinUnavailable} from './twin.js';
 
-const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
-
-// The base surface: {kind: 'plane'} or {kind: 'cylinder', radius, length} or
-// {kind: 'ellipsoid', radii: [a, b, c]}; 'sphere' is an ellipsoid of equal radii. Strings
-// take microrelief-render's defaults (the table of bases' rows: generated/relief_core.js).
-export function baseShape(base = 'plane') {
-    const {kind, ...sizes} = typeof base === 'string' ? {kind: base} : {...base};
-    return core.baseShape(kind, sizes, (message, size) => new TypeError(`Relief: ${size ? 'base ' : ''}${message}`));
-}
-
-// The relief's object-space bounds for a top of `maxHeight` (ReliefExtent.cpp).
-export function reliefExtent(width, height, maxHeight, heightScale, base) {
-    const {min, max} = core.reliefExtent(width, height, maxHeight, heightScale, base);
-    return {min, max};
-}
-
-// The six vectors of glsl/relief_three.glsl for `camera`: its rays as affine functions of
-// the pixel's NDC, computed in double. Perspective: the eye, the direction through NDC
-// (0, 0) scaled to a unit component along the view axis (t is then the view depth) and its
-// steps per unit of NDC x and y. Otherwise (orthographic): origins on the near plane, one
-// unit direction, t from the near plane. Also the t range, [near, far].
-const _v = new THREE.Vector3(), _a = new THREE.Vector3(), _b = new THREE.Vector3(), _axis = new THREE.Vector3();
-function unproject(camera, x, y, z, target) {
-    return target.set(x, y, z).applyMatrix4(camera.projectionMatrixInverse).applyMatrix4(camera.matrixWorld);
-}
-
-export function cameraRays(camera) {
-    const e = camera.projectionMatrix.elements;
-    const perspective = e[11] === -1 && e[15] === 0;
-    // NDC depths of two points in front of the camera, whatever its depth convention.
-    const near = camera.near ?? 0.1, far = camera.far ?? 1000;
-    const ndcZ = (viewDepth) => _v.set(0, 0, -viewDepth).applyMatrix4(camera.projectionMatrix).z;
-    const zNear = ndcZ(near), zMid = ndcZ(0.5 * (near + far));
-    const rays = {perspective};
-    if (perspective) {
-        const eye = new THREE.Vector3().setFromMatrixPosition(camera.matrixWorld);
-        _axis.set(0, 0, -1).transformDirection(camera.matrixWorld);
-        const d0 = unproject(camera, 0, 0, zMid, new THREE.Vector3()).sub(eye);
-        const scale = 1 / d0.dot(_axis);
-        const dx = unproject(camera, 1, 0, zMid, new THREE.Vector3()).sub(unproject(camera, 0, 0, zMid, _a)).multiplyScalar(scale);
-        const dy = unproject(camera, 0, 1, zMid, new THREE.Vector3()).sub(unproject(camera, 0, 0, zMid, _a)).multiplyScalar(scale);
-        Object.assign(rays, {origin: eye, originDx: new THREE.Vector3(), originDy: new THREE.Vector3(),
-                             dir: d0.multiplyScalar(scale), dirDx: dx, dirDy: dy, range: [near, far]});
-    } else {
-        const o0 = unproject(camera, 0, 0, zNear, new THREE.Vector3());
-        const ox = unproject(camera, 1, 0, zNear, new THREE.Vector3()).sub(o0);
-        const oy = unproject(camera, 0, 1, zNear, new THREE.Vector3()).sub(o0);
-        const dir = unproject(camera, 0, 0, zMid, _b).sub(o0).normalize().clone();
-        Object.assign(rays, {origin: o0, originDx: ox, originDy: oy, dir, dirDx: new THREE.Vector3(), dirDy: new THREE.Vector3(),
-                             range: [0, far - near]});
-    }
-    return rays;
-}
-
 let pickResources = null;
-
-// A base and a map that disagree on wrapU: a curved base needs it, the plane must not have it.
-function checkBaseForMap(shape, spec, reliefMap) {
-    const wraps = core.wrapsU(shape);
-    if (wraps === reliefMap.wrapU) return;
-    const kind = typeof spec === 'string' ? spec : spec.kind;  // as asked: 'sphere' stays a sphere
-    throw new TypeError(`Relief: ${/^[aeiou]/.test(kind) ? 'an' : 'a'} ${kind} base needs a map built with wrapU: ${wraps} (its u ${wraps ? 'wraps round' : 'does not wrap'})`);
-}
-
-function checkHeightScale(value) {
-    if (!(value > 0) || !Number.isFinite(value)) throw new TypeError('Relief: heightScale must be a positive finite number');
-}
-
-function checkInterpolation(value) {
-    if (!['bilinear', 'biquadratic'].includes(value)) throw new TypeError(`Relief: interpolation '${value}' (expected bilinear or biquadratic)`);
-}
 
 // What a Relief draws with: a relief material, never three's own (whose shader does not
 // trace): one line saying which to use instead.
@@ -126,6 +57,8 @@ function warnWebGPURenderer(renderer) {
     console.error(`Relief: ${kWebGPURendererUnsupported}`);
 }
 
+export {baseShape, cameraRays, reliefExtent};
+
 export class Relief extends THREE.Mesh {
     // `reliefMap`: createReliefMap's. Options: material (a ReliefStandardMaterial,
     // ReliefPhysicalMaterial or ReliefShadingMaterial, which reliefs may share; a
@@ -146,20 +79,7 @@ export class Relief extends THREE.Mesh {
         super(new THREE.BufferGeometry(), material ?? new ReliefStandardMaterial());
         this.isRelief = true;
         this.type = 'Relief';
-        this.uniforms = {
-            mrHeights: {value: null}, mrWindows: {value: null},
-            mrMapSize: {value: new THREE.Vector2()}, mrPyramidSize: {value: new THREE.Vector2()},
-            mrLevelCount: {value: 0}, mrMaxHeight: {value: 0},
-            mrObjectToWorld: {value: new THREE.Matrix4()}, mrWorldToObject: {value: new THREE.Matrix4()},
-            mrHeightScale: {value: 0}, mrFrameScale: {value: new THREE.Vector3()},
-            mrPixelError: {value: pixelError},
-            mrRayOrigin: {value: new THREE.Vector3()}, mrRayOriginDx: {value: new THREE.Vector3()}, mrRayOriginDy: {value: new THREE.Vector3()},
-            mrRayDir: {value: new THREE.Vector3()}, mrRayDirDx: {value: new THREE.Vector3()}, mrRayDirDy: {value: new THREE.Vector3()},
-            mrViewport: {value: new THREE.Vector4()}, mrRange: {value: new THREE.Vector2()}, mrFaces: {value: 2},
-            mrViewProjection: {value: new THREE.Matrix4()}, mrCameraToWorld: {value: new THREE.Matrix4()},
-            mrWorldToCamera: {value: new THREE.Matrix4()}, mrPerspective: {value: 1},
-            mrWorldOrigin: {value: new THREE.Vector3()},
-        };
+        this.uniforms = reliefUniforms(pixelError);
         this.setReliefMap(reliefMap, shape, Math.fround(heightScale), interpolation);
         this.customDepthMaterial = new ReliefDepthMaterial(this);
         this.customDistanceMaterial = new ReliefDistanceMaterial(this);
@@ -243,13 +163,10 @@ export class Relief extends THREE.Mesh {
     setReliefMap(reliefMap, shape, heightScale, interpolation) {
         checkBaseForMap(shape, shape.kind, reliefMap);
         this._reliefMap = reliefMap;
-        const u = this.uniforms, [w, h] = [reliefMap.width, reliefMap.height];
+        const u = this.uniforms;
         u.mrHeights.value = reliefMap.heights;
         u.mrWindows.value = reliefMap.windows;
-        u.mrMapSize.value.set(w, h);
-        u.mrPyramidSize.value.set(w, h);
-        u.mrLevelCount.value = reliefMap.levelCount;
-        u.mrMaxHeight.value = reliefMap.maxHeight;
+        reliefMapUniforms(reliefMap, u);
         u.mrHeightScale.value = heightScale;
         this._base = Object.freeze(shape);
         u.mrFrameScale.value.set(...core.frameScale(shape));
@@ -261,15 +178,10 @@ export class Relief extends THREE.Mesh {
     // The box (ReliefRenderer::uploadBox): the bounds from the pyramid's top, grown; a new
     // geometry (a clone's box is its own).
     updateBox() {
-        const extent = reliefExtent(this._reliefMap.width, this._reliefMap.height, this._reliefMap.maxHeight, this.heightScale, this._base);
-        const lo = extent.min.map((c) => Math.fround(Math.fround(c) - kBoxMargin));
-        const hi = extent.max.map((c) => Math.fround(Math.fround(c) + kBoxMargin));
-        this.box = new THREE.Box3(new THREE.Vector3(...lo), new THREE.Vector3(...hi));
-        const size = this.box.getSize(new THREE.Vector3()), centre = this.box.getCenter(new THREE.Vector3());
+        const {box, geometry} = reliefBox(this._reliefMap, this.heightScale, this._base);
+        this.box = box;
         const previous = this.geometry;
-        // A BufferGeometry, not the BoxGeometry (whose parameters, all toJSON writes of it,
-        // do not hold the translation).
-        this.geometry = new THREE.BufferGeometry().copy(new THREE.BoxGeometry(size.x, size.y, size.z).translate(centre.x, centre.y, centre.z));
+        this.geometry = geometry;
         previous.dispose();
     }
 
@@ -342,48 +254,17 @@ export class Relief extends THREE.Mesh {
     // own world-space uniforms (shadow matrices) their world back.
     prepareDraw(renderer, camera, withViewport) {
         const u = this.uniforms;
-        const origin = _origin.setFromMatrixPosition(camera.matrixWorld);
-        _fromOrigin.makeTranslation(origin.x, origin.y, origin.z);
-        _toOrigin.makeTranslation(-origin.x, -origin.y, -origin.z);
-        u.mrWorldOrigin.value.copy(origin);
-        u.mrObjectToWorld.value.multiplyMatrices(_toOrigin, this.matrixWorld);
-        u.mrWorldToObject.value.copy(this.matrixWorld).invert().multiply(_fromOrigin);
-        const rays = cameraRays(camera);
-        u.mrRayOrigin.value.copy(rays.origin).sub(origin);
-        u.mrRayOriginDx.value.copy(rays.originDx);
-        u.mrRayOriginDy.value.copy(rays.originDy);
-        u.mrRayDir.value.copy(rays.dir);
-        u.mrRayDirDx.value.copy(rays.dirDx);
-        u.mrRayDirDy.value.copy(rays.dirDy);
-        u.mrRange.value.set(...rays.range);
-        u.mrPerspective.value = rays.perspective ? 1 : 0;
-        u.mrViewProjection.value.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse).multiply(_fromOrigin);
-        u.mrCameraToWorld.value.multiplyMatrices(_toOrigin, camera.matrixWorld);
-        u.mrWorldToCamera.value.multiplyMatrices(camera.matrixWorldInverse, _fromOrigin);
+        const rays = reliefFrame(this, camera, u);
         // The viewport GL rasterises this draw into (three's own record of it starts empty
         // until setSize, setViewport or setRenderTarget is called).
         if (withViewport) u.mrViewport.value.fromArray(renderer.getContext().getParameter(renderer.getContext().VIEWPORT));
         else u.mrViewport.value.set(0, 0, 0, 0);
-        u.mrFaces.value = this.facesFor(camera, rays.range);
+        u.mrFaces.value = boxFaces(this.box, this.matrixWorld, camera, rays.range);
     }
 
-    // The box's back faces are never cut by the near plane: they run unless the far plane
-    // cuts the box; then its front faces, and both where near and far both cut it.
-    facesFor(camera, [near, far]) {
-        let nearest = Infinity, farthest = -Infinity;
-        const toView = _m.multiplyMatrices(camera.matrixWorldInverse, this.matrixWorld);
-        for (let k = 0; k < 8; ++k) {
-            _v.set(k & 1 ? this.box.max.x : this.box.min.x, k & 2 ? this.box.max.y : this.box.min.y, k & 4 ? this.box.max.z : this.box.min.z).applyMatrix4(toView);
-            nearest = Math.min(nearest, -_v.z);
-            farthest = Math.max(farthest, -_v.z);
-        }
-        if (camera.isOrthographicCamera || camera.projectionMatrix.elements[15] === 1) {
-            nearest -= camera.near;
-            farthest -= camera.near;
-            [near, far] = [0, far];
-        }
-        if (farthest <= far) return 2;
-        return nearest < near ? 3 : 1;
+    // Which faces of the box run for `camera` (relief_host.js: boxFaces).
+    facesFor(camera, range) {
+        return boxFaces(this.box, this.matrixWorld, camera, range);
     }
 
     // What traces the picks (raycast, trace, traceRays): 'auto' (the default: the CPU twin
@@ -513,7 +394,6 @@ export class Relief extends THREE.Mesh {
 }
 
 const _m = new THREE.Matrix4(), _inverse = new THREE.Matrix4(), _ray = new THREE.Ray();
-const _origin = new THREE.Vector3(), _fromOrigin = new THREE.Matrix4(), _toOrigin = new THREE.Matrix4();
 
 // A full-viewport triangle tracing a batch of rays (glsl/pick.frag), shared by all reliefs.
 function makePickResources() {

@@ -3,6 +3,8 @@
 // tarball, three and @types/three: a crater from a typed array, lit by three, picked. Each
 // line marked as an expected error must be one: declarations that were `any` would pass them.
 import * as THREE from 'three';
+import * as WebGPU from 'three/webgpu';
+import * as onWebGPU from 'microrelief-three/webgpu';
 import {createReliefMap, heightsFromArray, HeightMapError, loadAlbedo, loadReliefMap, loadSceneChecks, readWindowLevel, Relief, ReliefGpuError,
         ReliefMapLoader, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, type ReliefHit, type TracedRays} from 'microrelief-three';
 
@@ -76,4 +78,22 @@ export async function crater(canvas: HTMLCanvasElement): Promise<ReliefHit | nul
     // @ts-expect-error: a base's name is plane, cylinder, sphere or ellipsoid
     new Relief(map, {base: 'torus'});
     return relief.trace(new THREE.Vector3(0, 1, 0), new THREE.Vector3(0, -1, 0));
+}
+
+// The WebGPU entry ('microrelief-three/webgpu', docs/three.md): the same crater in a
+// WebGPURenderer with the library's own shading.
+export async function craterOnWebGPU(canvas: HTMLCanvasElement): Promise<number> {
+    const renderer = new WebGPU.WebGPURenderer({canvas});
+    const size = 64, samples = new Float32Array(size * size);
+    for (let k = 0; k < samples.length; ++k) samples[k] = Math.min(1, Math.hypot(k % size - 32, Math.floor(k / size) - 32) / 24);
+    const map = await onWebGPU.createReliefMap(renderer, onWebGPU.heightsFromArray(samples, size, size, {name: 'crater'}));
+    const relief = new onWebGPU.Relief(map, {heightScale: 0.2, interpolation: 'biquadratic',
+                                              material: new onWebGPU.ReliefShadingNodeMaterial({shadows: 'hard'})});
+    const scene = new WebGPU.Scene();
+    scene.add(relief);
+    // @ts-expect-error: the WebGPU entry's Relief takes its own materials, not the WebGL entry's
+    new onWebGPU.Relief(map, {material: new ReliefStandardMaterial()});
+    // @ts-expect-error: createReliefMap takes a WebGPURenderer
+    await onWebGPU.createReliefMap(new THREE.WebGLRenderer(), onWebGPU.heightsFromArray(samples, size, size));
+    return relief.heightScale;
 }

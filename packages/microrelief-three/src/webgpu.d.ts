@@ -1,0 +1,99 @@
+// Declarations of webgpu.js, the entry 'microrelief-three/webgpu' (hand-written; tests/three's
+// typecheck uses them under tsc --strict). docs/three.md: the API.
+import type {BufferGeometry, Box3, Color, DataTexture, Mesh, MeshBasicNodeMaterial, UniformNode, Vector3, WebGPURenderer} from 'three/webgpu';
+
+import type {HeightMap} from './heights.js';
+import type {BaseShape, BaseSpec, ReliefInterpolation} from './relief.js';
+
+export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
+export type {HeightMap, HeightsOptions, PngHeightsOptions} from './heights.js';
+export {baseShape, cameraRays, reliefExtent} from './relief.js';
+export type {BaseShape, BaseSpec, CameraRays, ReliefInterpolation} from './relief.js';
+
+/** The bases this entry draws so far (the WebGL entry draws every base). */
+export const kWebGPUBases: readonly string[];
+
+/** The one line a WebGLRenderer gets from this entry. */
+export const kWebGLRendererHere: string;
+
+/** A WebGPU that cannot do what was asked (no adapter, a map past the device's limits). */
+export class ReliefGpuError extends Error {
+    constructor(message: string);
+    name: 'ReliefGpuError';
+}
+
+/** The top-level items of a naga WGSL module. */
+export function wgslItems(module: string): Array<{name: string; text: string}>;
+/** The items of a WGSL module that `roots` reach, in the module's order. */
+export function reachableWgsl(module: string, roots: readonly string[]): string;
+
+export interface WebGPUReliefMapOptions {
+    /** true for the curved bases (not drawn by this entry yet). Default false. */
+    wrapU?: boolean;
+}
+
+/** A height map's textures for a WebGPURenderer, the pyramid built in WebAssembly. */
+export class ReliefMap {
+    renderer: WebGPURenderer;
+    heights: DataTexture;
+    windows: DataTexture;
+    width: number;
+    height: number;
+    levelSizes: Array<[number, number]>;
+    levelCount: number;
+    maxHeight: number;
+    maxSample: number;
+    scaleExponent: number;
+    wrapU: boolean;
+    builtOn: 'cpu';
+    name: string;
+    readonly gpuBytes: number;
+    dispose(): void;
+}
+
+/** The textures of `map` for `renderer` (awaits its init); refuses a WebGLRenderer and a WebGPURenderer without a WebGPU adapter. */
+export function createReliefMap(renderer: WebGPURenderer, map: HeightMap, options?: WebGPUReliefMapOptions): Promise<ReliefMap>;
+
+export interface ReliefShadingNodeParameters {
+    /** Towards the light, world. */
+    lightDirection?: Vector3;
+    /** Linear. */
+    albedo?: Color;
+    /** Default 'off'. */
+    shadows?: 'off' | 'hard';
+}
+
+/** The library's own shading as a node material (one relief a material so far). */
+export class ReliefShadingNodeMaterial extends MeshBasicNodeMaterial {
+    constructor(parameters?: ReliefShadingNodeParameters);
+    readonly isReliefMaterial: true;
+    relief: Relief | null;
+    shadows: 'off' | 'hard';
+    lightDirection: UniformNode<Vector3>;
+    albedo: UniformNode<Color>;
+}
+
+export interface WebGPUReliefOptions {
+    material?: ReliefShadingNodeMaterial | null;
+    /** Default 0.1. */
+    heightScale?: number;
+    /** 'plane' (the one base this entry draws so far). */
+    base?: BaseSpec;
+    /** Default 'bilinear'. */
+    interpolation?: ReliefInterpolation;
+    /** Level of detail in pixels; 0 (the default) is exact. */
+    pixelError?: number;
+}
+
+/** The relief as a three.js Mesh for a WebGPURenderer: its proxy box, traced per pixel. */
+export class Relief extends Mesh<BufferGeometry, ReliefShadingNodeMaterial> {
+    constructor(reliefMap: ReliefMap, options?: WebGPUReliefOptions);
+    readonly isRelief: true;
+    readonly reliefMap: ReliefMap;
+    readonly base: BaseShape;
+    readonly interpolation: ReliefInterpolation;
+    readonly heightScale: number;
+    pixelError: number;
+    box: Box3;
+    dispose(): void;
+}

@@ -1,0 +1,371 @@
+// microrelief-three/webgpu: exact microrelief in three.js's WebGPURenderer (docs/three.md,
+// docs/webgpu.md). The first slice: the library's own shading (ReliefShadingNodeMaterial,
+// as the WebGL entry's ReliefShadingMaterial draws it) on the plane base, both last levels;
+// the windows pyramid built by the C++ MaxPyramid in WebAssembly.
+//
+//   import {WebGPURenderer} from 'three/webgpu';
+//   import {createReliefMap, loadHeights, Relief, ReliefShadingNodeMaterial} from 'microrelief-three/webgpu';
+//   const map = await createReliefMap(renderer, await loadHeights('cobbles.png'));
+//   scene.add(new Relief(map, {material: new ReliefShadingNodeMaterial()}));
+//
+// The relief is the WebGL entry's: the same host code (relief_host.js: the base, the box,
+// the option checks, each draw's rays and matrices; map_host.js: the map's checks and its
+// pyramid), the same library (naga's WGSL of shaders/microrelief/, generated/wgsl.js, the
+// functions the WebGL entry calls in GLSL). What is WebGPU's own is here: the textures (read
+// by textureLoad, no sampler) and the glue (kGlue below: relief_three.glsl's mrTracePixel and
+// microrelief_shading.frag's main, in WGSL), called from a node material by wgslFn.
+import * as THREE from 'three/webgpu';
+import {code, Discard, Fn, frontFacing, If, screenCoordinate, screenSize, texture, uniform, vec4, wgslFn} from 'three/tsl';
+
+import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
+import * as core from '../generated/relief_core.js';
+import {checkHeightMap, largestSample, windowLevelsOnCpu} from './map_host.js';
+import {baseShape, boxFaces, checkBaseForMap, checkHeightScale, checkInterpolation, reliefBox, reliefFrame, reliefMapUniforms, reliefUniforms} from './relief_host.js';
+import {requireSupportedThree} from './three_version.js';
+
+export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
+export {baseShape, cameraRays, reliefExtent} from './relief_host.js';
+
+// What this slice draws; the rest is refused in one line naming it.
+export const kWebGPUBases = Object.freeze(['plane']);
+
+// A WebGPU that cannot do what was asked (no adapter, a map past the device's limits).
+export class ReliefGpuError extends Error {
+    constructor(message) {
+        super(message);
+        this.name = 'ReliefGpuError';
+    }
+}
+
+// The one line a WebGLRenderer gets here.
+export const kWebGLRendererHere = "microrelief-three/webgpu draws with three's WebGPURenderer; a WebGLRenderer takes the WebGL entry: import from 'microrelief-three'";
+
+function requireWebGPURenderer(renderer, what) {
+    if (renderer && renderer.isWebGLRenderer) throw new TypeError(`${what}: ${kWebGLRendererHere}`);
+    if (!renderer || !renderer.isWebGPURenderer) throw new TypeError(`${what}: the first argument must be a WebGPURenderer (three/webgpu)`);
+}
+
+// ---- the library's WGSL, as a node material includes it ----
+
+// The top-level items of a naga module: {name, text}. naga writes each item from column 0:
+// `struct` and `fn` up to a `}` line, `const` and `var` in one statement, attributes (`@...`)
+// on lines of their own before their item; its comments (the module's header) are dropped.
+// Anything else is refused: the module is then not what this reader was written for.
+export function wgslItems(module) {
+    const lines = module.split('\n'), items = [];
+    let attributes = '';
+    for (let k = 0; k < lines.length; ++k) {
+        const line = lines[k];
+        if (line.trim() === '' || line.startsWith('//')) continue;
+        if (line.startsWith('@') && !/\b(fn|var)\b/.test(line)) {
+            attributes += line + '\n';
+            continue;
+        }
+        const head = /^(?:@\S+\s+)*(struct|fn|const|var(?:<[^>]*>)?)\s+([A-Za-z_][A-Za-z0-9_]*)/.exec(line);
+        if (!head) throw new Error(`microrelief-three/webgpu: a WGSL line this reader does not know: '${line.slice(0, 80)}'`);
+        let text = attributes + line;
+        attributes = '';
+        if (head[1] === 'struct' || head[1] === 'fn') {
+            if (!/\{\s*\}\s*$/.test(line)) while (lines[k] !== '}' && k + 1 < lines.length) text += '\n' + lines[++k];
+        } else {
+            while (!/;\s*$/.test(lines[k]) && k + 1 < lines.length) text += '\n' + lines[++k];
+        }
+        items.push({name: head[2], text});
+    }
+    return items;
+}
+
+// The items of `module` that `roots` reach (by name, through every identifier each item's
+// text holds), in the module's order: what a node material includes. The module's empty
+// entry point (`fn main`) and the albedo's sampler (a binding of its own, which a node
+// material cannot hold beside three's) are reached by none of the functions the glue calls.
+export function reachableWgsl(module, roots) {
+    const items = wgslItems(module);
+    const byName = new Map(items.map((item) => [item.name, item]));
+    const kept = new Set(), stack = [...roots];
+    while (stack.length) {
+        const name = stack.pop();
+        if (kept.has(name)) continue;
+        if (!byName.has(name)) throw new Error(`microrelief-three/webgpu: the library's WGSL has no ${name}`);
+        kept.add(name);
+        for (const word of byName.get(name).text.match(/[A-Za-z_][A-Za-z0-9_]*/g))
+            if (byName.has(word) && !kept.has(word)) stack.push(word);
+    }
+    return items.filter((item) => kept.has(item.name)).map((item) => item.text).join('\n');
+}
+
+// The library functions the glue calls.
+const kGlueCalls = ['mr_traceMultilevel', 'mr_hardShadow', 'mr_shadeRelief', 'mr_reliefWorldNormal', 'mr_baseFramePoint',
+                    'mr_baseFrameVector', 'mr_traversalBudget', 'MR_RELIEF_MISS', 'MR_T_INFINITY'];
+
+// relief_three.glsl's mrTracePixel and microrelief_shading.frag's main, in WGSL: one pixel's
+// ray through its centre, traced, shaded, its depth. Returns (colour, depth); depth -1 where
+// the pixel shows nothing (a miss, or a face that does not run: mrFaces). The NDC is the
+// pixel centre's, from the fragment's position (WebGPU's y runs down) and the target's size:
+// the relief fills the whole viewport (this slice). Depth: WebGPU's clip z / w is already in
+// [0, 1] (three's WebGPU projection, reversed or not), the depth buffer's value.
+const kGlue = /* wgsl */`
+fn mrShadePixel(heights: texture_2d<f32>, windows: texture_2d<f32>, fragCoord: vec2<f32>, targetSize: vec2<f32>,
+                front: bool, faces: f32, mapSize: vec2<f32>, pyramidSize: vec2<f32>, levelCount: f32, maxHeight: f32,
+                objectToWorld: mat4x4<f32>, worldToObject: mat4x4<f32>, heightScale: f32, frameScale: vec3<f32>,
+                pixelError: f32, rayOrigin: vec3<f32>, rayOriginDx: vec3<f32>, rayOriginDy: vec3<f32>,
+                rayDir: vec3<f32>, rayDirDx: vec3<f32>, rayDirDy: vec3<f32>, range: vec2<f32>,
+                viewProjection: mat4x4<f32>, lightDirection: vec3<f32>, albedo: vec3<f32>, shadows: f32) -> vec4<f32> {
+    let runs = select(select(true, front, faces == 1.0), !front, faces == 2.0);
+    if (!runs) { return vec4<f32>(0.0, 0.0, 0.0, -1.0); }
+    let ndc = vec2<f32>(fragCoord.x / targetSize.x * 2.0 - 1.0, 1.0 - fragCoord.y / targetSize.y * 2.0);
+    let origin = rayOrigin + ndc.x * rayOriginDx + ndc.y * rayOriginDy;
+    let dir = rayDir + ndc.x * rayDirDx + ndc.y * rayDirDy;
+    let relief = mr_Relief(mr_ReliefMap(mapSize, vec2<i32>(pyramidSize), i32(levelCount), maxHeight, vec2<i32>(1)),
+                           mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
+    var lodCone = 0.0;
+    if (pixelError > 0.0) {
+        let pixelAngle = 2.0 * length(rayDirDy) / targetSize.y;
+        let objectLength = length((worldToObject * vec4<f32>(dir, 0.0)).xyz);
+        lodCone = pixelError * pixelAngle * objectLength * max(mapSize.x, mapSize.y);
+    }
+    let query = mr_RayQuery(range.x, range.y, false, mr_traversalBudget(relief.map), lodCone);
+    let hit = mr_traceMultilevel(relief, query, windows, heights, mr_baseFramePoint(relief, origin), mr_baseFrameVector(relief, dir));
+    var world = origin + max(hit.t, range.x) * dir;
+    var colour = vec3<f32>(1.0, 0.0, 1.0);  // never silent: an exhausted traversal shows magenta
+    if (!hit.exhausted) {
+        if (hit.kind == MR_RELIEF_MISS) { return vec4<f32>(0.0, 0.0, 0.0, -1.0); }
+        world = origin + hit.t * dir;
+        let normal = mr_reliefWorldNormal(relief, hit);
+        var visibility = 1.0;
+        var shadowExhausted = false;
+        if (shadows == 1.0) {
+            visibility = mr_hardShadow(relief, windows, heights, hit, mr_baseFrameVector(relief, lightDirection), MR_T_INFINITY, &shadowExhausted);
+        }
+        let material = mr_ReliefMaterial(albedo, 0.25, 48.0);
+        colour = mr_shadeRelief(material, normal, normalize(lightDirection), normalize(-dir), vec3<f32>(visibility));
+        if (shadowExhausted) { colour = vec3<f32>(1.0, 0.0, 1.0); }
+    }
+    let clip = viewProjection * vec4<f32>(world, 1.0);
+    return vec4<f32>(colour, clamp(clip.z / clip.w, 0.0, 1.0));
+}
+`;
+
+// The glue for a variant (`base`_`interpolation`), its library included: one wgslFn a
+// variant, made once.
+const _glues = new Map();
+function glueFor(variant) {
+    if (!_glues.has(variant)) {
+        if (wgslUnavailable) throw new Error(`microrelief-three/webgpu: this package was built without its WGSL (${wgslUnavailable})`);
+        const module = wgslModules[variant];
+        if (!module) throw new Error(`microrelief-three/webgpu: no WGSL variant ${variant}`);
+        _glues.set(variant, wgslFn(kGlue, [code(reachableWgsl(module, kGlueCalls))]));
+    }
+    return _glues.get(variant);
+}
+
+// ---- the map ----
+
+// A height map's textures for a WebGPURenderer: the samples (r32float, W x H) and the
+// windows pyramid (r16float, GL's mip sizes of W x H, one mip level a window level), both
+// read by textureLoad (no sampler, no filtering: the texels the library asks for).
+export class ReliefMap {
+    constructor({renderer, heights, windows, width, height, levelSizes, maxHeight, maxSample, scaleExponent, wrapU, name}) {
+        Object.assign(this, {renderer, heights, windows, width, height, levelSizes, maxHeight, maxSample, scaleExponent, wrapU, name});
+        this.levelCount = levelSizes.length;
+        this.builtOn = 'cpu';
+    }
+
+    // GPU memory of the textures, bytes: 4 a sample, 2 a window texel.
+    get gpuBytes() {
+        return 4 * this.width * this.height + 2 * this.levelSizes.reduce((sum, [w, h]) => sum + w * h, 0);
+    }
+
+    dispose() {
+        this.heights.dispose();
+        this.windows.dispose();
+    }
+}
+
+function readTexture(texture) {
+    texture.minFilter = texture.magFilter = THREE.NearestFilter;
+    texture.wrapS = texture.wrapT = THREE.ClampToEdgeWrapping;
+    texture.generateMipmaps = false;
+    texture.flipY = false;
+    texture.needsUpdate = true;
+    return texture;
+}
+
+// Waits for the renderer's backend; throws ReliefGpuError where it is not WebGPU (no
+// adapter: three falls back to WebGL 2, where the WGSL cannot run).
+async function requireWebGPUBackend(renderer, what) {
+    if (renderer.init) await renderer.init();
+    if (!renderer.backend || !renderer.backend.isWebGPUBackend)
+        throw new ReliefGpuError(`${what}: this WebGPURenderer has no WebGPU adapter (three fell back to WebGL 2, where microrelief-three/webgpu cannot draw); draw with a WebGLRenderer and 'microrelief-three' instead`);
+}
+
+// The textures of `map` ({width, height, samples, name}: heights.js) for `renderer`, a
+// WebGPURenderer (awaited: init). options: wrapU (true for the curved bases; this slice
+// draws the plane, which takes false).
+export async function createReliefMap(renderer, map, {wrapU = false} = {}) {
+    requireSupportedThree();
+    requireWebGPURenderer(renderer, 'createReliefMap');
+    checkHeightMap(map, 'createReliefMap');
+    await requireWebGPUBackend(renderer, 'createReliefMap');
+    const name = map.name || 'height map';
+    const maxSize = renderer.backend.device.limits.maxTextureDimension2D;
+    if (map.width > maxSize || map.height > maxSize)
+        throw new ReliefGpuError(`${name}: ${map.width} x ${map.height} is larger than this WebGPU device's maxTextureDimension2D (${maxSize})`);
+    const maxSample = largestSample(map);
+    const {levels, levelSizes, maxHeight, scaleExponent} = await windowLevelsOnCpu({...map, name}, wrapU);
+    const heights = readTexture(new THREE.DataTexture(map.samples, map.width, map.height, THREE.RedFormat, THREE.FloatType));
+    const windows = readTexture(new THREE.DataTexture(null, levelSizes[0][0], levelSizes[0][1], THREE.RedFormat, THREE.HalfFloatType));
+    windows.mipmaps = levelSizes.map(([w, h], k) => ({data: levels[k], width: w, height: h}));
+    windows.image = windows.mipmaps[0];
+    return new ReliefMap({renderer, heights, windows, width: map.width, height: map.height, levelSizes, maxHeight, maxSample, scaleExponent, wrapU, name});
+}
+
+// ---- the material and the relief ----
+
+// A relief uniform the node material reads per draw from the relief drawn (Relief.uniforms).
+function reliefUniform(name, value) {
+    return uniform(value).onObjectUpdate(({object}) => object.uniforms[name].value);
+}
+
+// The library's own shading, as microrelief-render draws it and as the WebGL entry's
+// ReliefShadingMaterial does: one directional light (`lightDirection`, world, towards the
+// light), a grey `albedo` (linear), the hard self-shadow with `shadows: 'hard'`; not lit
+// by three's lights; three's output conversion applies (toneMapped false). A node material
+// (MeshBasicNodeMaterial) whose colour and depth are the traced pixel's. In this slice one
+// material draws one relief (the textures are bound when its program is built).
+export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
+    constructor({lightDirection = new THREE.Vector3(-0.45, 0.8, -0.35).normalize(), albedo = new THREE.Color(0.6, 0.58, 0.55), shadows = 'off'} = {}) {
+        requireSupportedThree();
+        if (!['off', 'hard'].includes(shadows)) throw new TypeError(`ReliefShadingNodeMaterial: shadows '${shadows}' (expected off or hard)`);
+        super();
+        this.isReliefMaterial = true;
+        this.relief = null;
+        this.side = THREE.DoubleSide;  // the faces that run are chosen per draw (mrFaces)
+        this.toneMapped = false;
+        this.fog = false;
+        this.shadows = shadows;
+        this.lightDirection = uniform(lightDirection.clone());
+        this.albedo = uniform(new THREE.Color().copy(albedo));
+    }
+
+    customProgramCacheKey() {
+        return `microrelief-webgpu:${this.relief ? `${this.relief.base.kind}:${this.relief.interpolation}` : ''}:${this.shadows}`;
+    }
+
+    setup(builder) {
+        const relief = builder.object;
+        if (!relief || !relief.isRelief) throw new Error('microrelief-three/webgpu: a ReliefShadingNodeMaterial draws only on a Relief (new Relief(map, {material}))');
+        const u = (name) => reliefUniform(name, relief.uniforms[name].value);
+        const shade = glueFor(`${relief.base.kind}_${relief.interpolation}`);
+        const traced = shade({
+            heights: texture(relief.reliefMap.heights), windows: texture(relief.reliefMap.windows),
+            fragCoord: screenCoordinate, targetSize: screenSize, front: frontFacing, faces: u('mrFaces'),
+            mapSize: u('mrMapSize'), pyramidSize: u('mrPyramidSize'), levelCount: u('mrLevelCount'), maxHeight: u('mrMaxHeight'),
+            objectToWorld: u('mrObjectToWorld'), worldToObject: u('mrWorldToObject'), heightScale: u('mrHeightScale'),
+            frameScale: u('mrFrameScale'), pixelError: u('mrPixelError'),
+            rayOrigin: u('mrRayOrigin'), rayOriginDx: u('mrRayOriginDx'), rayOriginDy: u('mrRayOriginDy'),
+            rayDir: u('mrRayDir'), rayDirDx: u('mrRayDirDx'), rayDirDy: u('mrRayDirDy'), range: u('mrRange'),
+            viewProjection: u('mrViewProjection'), lightDirection: this.lightDirection, albedo: this.albedo,
+            shadows: uniform(this.shadows === 'hard' ? 1 : 0),
+        }).toVar('mrTraced');
+        this.depthNode = traced.w.max(0);
+        this.colorNode = Fn(() => {
+            If(traced.w.lessThan(0), () => {
+                Discard();
+            });
+            return vec4(traced.xyz, 1);
+        })();
+        return super.setup(builder);
+    }
+
+    copy(source) {
+        super.copy(source);
+        this.shadows = source.shadows;
+        if (source.lightDirection) this.lightDirection.value.copy(source.lightDirection.value);
+        if (source.albedo) this.albedo.value.copy(source.albedo.value);
+        return this;
+    }
+}
+
+// The WebGLRenderers told that this entry's Relief does not draw in them (once each, in one
+// line, as the WebGL entry tells a WebGPURenderer: the scene goes on).
+const _toldWebGL = new WeakSet();
+function warnWebGLRenderer(renderer) {
+    if (_toldWebGL.has(renderer)) return;
+    _toldWebGL.add(renderer);
+    console.error(`Relief: ${kWebGLRendererHere}`);
+}
+
+// The relief as a three.js object: a THREE.Mesh whose geometry is its proxy box and whose
+// material traces it in every pixel the box covers (relief.js's Relief, for a
+// WebGPURenderer). Options as there: material (a ReliefShadingNodeMaterial), heightScale,
+// base ('plane' in this slice), interpolation ('bilinear' or 'biquadratic'), pixelError.
+export class Relief extends THREE.Mesh {
+    constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
+        requireSupportedThree();
+        if (!reliefMap || !reliefMap.windows || !reliefMap.heights) throw new TypeError('Relief: the first argument must be a ReliefMap (createReliefMap)');
+        if (!reliefMap.heights.isDataTexture || reliefMap.builtOn === 'gpu')
+            throw new TypeError('Relief: this ReliefMap is the WebGL entry\'s; microrelief-three/webgpu draws a map its own createReliefMap made');
+        checkHeightScale(heightScale);
+        checkInterpolation(interpolation);
+        if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
+        const shape = baseShape(base);
+        if (!kWebGPUBases.includes(shape.kind))
+            throw new TypeError(`Relief: microrelief-three/webgpu draws the ${kWebGPUBases.join(', ')} base so far, not the ${shape.kind} (the WebGL entry draws every base)`);
+        checkBaseForMap(shape, base, reliefMap);
+        if (material !== null && !(material instanceof ReliefShadingNodeMaterial))
+            throw new TypeError('Relief: the material must be a ReliefShadingNodeMaterial (microrelief-three/webgpu)');
+        super(new THREE.BufferGeometry(), material ?? new ReliefShadingNodeMaterial());
+        if (this.material.relief && this.material.relief !== this)
+            throw new TypeError('Relief: this ReliefShadingNodeMaterial draws another relief (one material a relief in microrelief-three/webgpu so far)');
+        this.material.relief = this;
+        this.isRelief = true;
+        this.type = 'Relief';
+        this.uniforms = reliefUniforms(pixelError);
+        this.heightScaleValue = Math.fround(heightScale);
+        this._base = Object.freeze(shape);
+        this._interpolation = interpolation;
+        this._reliefMap = reliefMap;
+        reliefMapUniforms(reliefMap, this.uniforms);
+        this.uniforms.mrHeightScale.value = this.heightScaleValue;
+        this.uniforms.mrFrameScale.value.set(...core.frameScale(shape));
+        const {box, geometry} = reliefBox(reliefMap, this.heightScaleValue, shape);
+        this.box = box;
+        this.geometry.dispose();
+        this.geometry = geometry;
+        this.onBeforeRender = (renderer, scene, camera) => {
+            if (renderer.isWebGLRenderer) return warnWebGLRenderer(renderer);
+            const rays = reliefFrame(this, camera, this.uniforms);
+            this.uniforms.mrFaces.value = boxFaces(this.box, this.matrixWorld, camera, rays.range);
+        };
+    }
+
+    get reliefMap() {
+        return this._reliefMap;
+    }
+
+    get base() {
+        return this._base;
+    }
+
+    get interpolation() {
+        return this._interpolation;
+    }
+
+    get heightScale() {
+        return this.uniforms.mrHeightScale.value;
+    }
+
+    get pixelError() {
+        return this.uniforms.mrPixelError.value;
+    }
+
+    set pixelError(value) {
+        if (!(value >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
+        this.uniforms.mrPixelError.value = value;
+    }
+
+    dispose() {
+        this.geometry.dispose();
+    }
+}

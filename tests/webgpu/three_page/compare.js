@@ -1,0 +1,154 @@
+// compare.js: one plane scene drawn by microrelief-three's WebGL entry (WebGLRenderer,
+// ReliefShadingMaterial) and by its WebGPU entry (WebGPURenderer, ReliefShadingNodeMaterial),
+// each into a W x H RGBA8 render target, read back and compared pixel by pixel
+// (three_webgpu_equal.py serves this folder with three and the staged package beside it, and
+// judges). A box of three's own crosses the relief in both scenes: the relief's depth
+// decides which shows where (the picture composes with other meshes only if it is right).
+// Writes document.documentElement.dataset.api = 'webgpu' once the WebGPU entry's first frame
+// is drawn. compareEntries(view, interpolation) -> JSON {stats, png}; png: WebGL | WebGPU | differing pixels.
+import * as THREE from 'three';
+import * as GPU from 'three/webgpu';
+import * as gl from 'microrelief-three';
+import * as wg from 'microrelief-three/webgpu';
+
+const W = 128, H = 96;  // a multiple of 64 wide: WebGPU's 256-byte rows need no padding
+
+// Waves and one-texel spikes, 64 x 48 (deterministic).
+function heights() {
+    const w = 64, h = 48, samples = new Float32Array(w * h);
+    for (let y = 0; y < h; ++y)
+        for (let x = 0; x < w; ++x)
+            samples[y * w + x] = 0.5 + 0.25 * Math.sin(x * 0.37) * Math.cos(y * 0.29) + ((x * 7 + y * 13) % 23 === 0 ? 0.4 : 0);
+    return {w, h, samples};
+}
+
+const kViews = {
+    oblique: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0]},
+    low: {eye: [-0.7, 0.16, 0.35], target: [0.05, 0.03, 0]},
+};
+
+function setUp(T, view, relief) {
+    const scene = new T.Scene();
+    scene.add(relief);
+    const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
+    box.position.set(0.0, 0.02, 0.05);  // half buried: the relief's depth draws the line between them
+    scene.add(box);
+    const camera = new T.PerspectiveCamera(45, W / H, 0.05, 10);
+    camera.position.set(...kViews[view].eye);
+    camera.lookAt(...kViews[view].target);
+    camera.updateMatrixWorld();
+    return {scene, camera};
+}
+
+let webgl = null, webgpu = null;
+async function renderers() {
+    if (!webgl) {
+        webgl = new THREE.WebGLRenderer({canvas: new OffscreenCanvas(W, H)});
+        webgl.setSize(W, H, false);
+        webgpu = new GPU.WebGPURenderer({canvas: new OffscreenCanvas(W, H)});
+        webgpu.setSize(W, H, false);
+        await webgpu.init();
+    }
+    return {webgl, webgpu};
+}
+
+const light = new THREE.Vector3(-0.45, 0.8, -0.35).normalize();
+
+async function drawWebGL(view, interpolation) {
+    const {webgl: renderer} = await renderers();
+    const {w, h, samples} = heights();
+    const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu'});
+    const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, material: new gl.ReliefShadingMaterial({lightDirection: light, shadows: 'hard'})});
+    const {scene, camera} = setUp(THREE, view, relief);
+    const target = new THREE.WebGLRenderTarget(W, H);
+    renderer.setRenderTarget(target);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear();
+    renderer.render(scene, camera);
+    renderer.setRenderTarget(null);
+    const pixels = new Uint8Array(4 * W * H);
+    renderer.readRenderTargetPixels(target, 0, 0, W, H, pixels);  // rows from the bottom
+    target.dispose();
+    map.dispose();
+    return pixels;
+}
+
+async function drawWebGPU(view, interpolation) {
+    const {webgpu: renderer} = await renderers();
+    const {w, h, samples} = heights();
+    const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}));
+    const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, material: new wg.ReliefShadingNodeMaterial({lightDirection: light, shadows: 'hard'})});
+    const {scene, camera} = setUp(GPU, view, relief);
+    const target = new GPU.RenderTarget(W, H);
+    renderer.setRenderTarget(target);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear();
+    renderer.render(scene, camera);
+    const read = await renderer.readRenderTargetPixelsAsync(target, 0, 0, W, H);  // rows from the top
+    renderer.setRenderTarget(null);
+    document.documentElement.dataset.api = 'webgpu';
+    const pixels = new Uint8Array(4 * W * H);
+    for (let y = 0; y < H; ++y) pixels.set(new Uint8Array(read.buffer, read.byteOffset + 4 * W * (H - 1 - y), 4 * W), 4 * W * y);
+    target.dispose();
+    map.dispose();
+    return pixels;
+}
+
+// The pictures of `view` with last level `interpolation` compared: per pixel the largest channel difference (of 255), hit
+// (alpha) agreement, and a PNG strip (bottom row first in the data, drawn upright).
+async function compareEntries(view, interpolation) {
+    const a = await drawWebGL(view, interpolation), b = await drawWebGPU(view, interpolation);
+    let sum = 0, max = 0, differing = 0, hitsGl = 0, hitsGpu = 0, hitDisagree = 0, reliefGl = 0;
+    const canvas = new OffscreenCanvas(3 * W, H), ctx = canvas.getContext('2d'), image = ctx.createImageData(3 * W, H);
+    for (let y = 0; y < H; ++y)
+        for (let x = 0; x < W; ++x) {
+            const k = 4 * (y * W + x);
+            let d = 0;
+            for (let c = 0; c < 3; ++c) d = Math.max(d, Math.abs(a[k + c] - b[k + c]));
+            const hitA = a[k + 3] > 0, hitB = b[k + 3] > 0;
+            hitsGl += hitA;
+            hitsGpu += hitB;
+            if (hitA !== hitB) ++hitDisagree;
+            if (hitA && !(a[k + 2] > 150 && a[k] < 100)) ++reliefGl;  // not the blue box
+            sum += d;
+            max = Math.max(max, d);
+            if (d > 2 || hitA !== hitB) ++differing;
+            const row = H - 1 - y;
+            for (const [panel, src] of [[0, a], [1, b]])
+                image.data.set([src[k], src[k + 1], src[k + 2], 255], 4 * (row * 3 * W + panel * W + x));
+            const v = d > 2 || hitA !== hitB ? 255 : 0;
+            image.data.set([v, v, v, 255], 4 * (row * 3 * W + 2 * W + x));
+        }
+    ctx.putImageData(image, 0, 0);
+    const blob = await canvas.convertToBlob({type: 'image/png'});
+    const png = btoa(String.fromCharCode(...new Uint8Array(await blob.arrayBuffer())));
+    const n = W * H;
+    return JSON.stringify({stats: {pixels: n, meanDiff: sum / n, maxDiff: max, differingFraction: differing / n,
+                                   hitsGl, hitsGpu, hitDisagree, reliefGl}, png});
+}
+
+// What the WebGPU entry says where it cannot draw: given a WebGLRenderer, and given a
+// WebGPURenderer without a WebGPU adapter (forceWebGL: three's fallback to WebGL 2, as where
+// the browser has no adapter). -> JSON {[case]: {name, message}} (no name: nothing thrown).
+async function refusals() {
+    const {w, h, samples} = heights();
+    const map = wg.heightsFromArray(samples, w, h, {name: 'waves'});
+    const said = {};
+    const attempt = async (what, call) => {
+        try {
+            await call();
+            said[what] = {name: '', message: ''};
+        } catch (e) {
+            said[what] = {name: e.name, message: e.message};
+        }
+    };
+    const fallback = new GPU.WebGPURenderer({canvas: new OffscreenCanvas(8, 8), forceWebGL: true});
+    await attempt('webglRenderer', () => wg.createReliefMap(new THREE.WebGLRenderer({canvas: new OffscreenCanvas(8, 8)}), map));
+    await attempt('noAdapter', () => wg.createReliefMap(fallback, map));
+    fallback.dispose();
+    return JSON.stringify(said);
+}
+
+window.refusals = refusals;
+window.compareEntries = compareEntries;
+document.documentElement.dataset.state = 'ready';

@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+"""three_webgpu_equal.py: does microrelief-three's WebGPU entry draw what its WebGL entry draws?
+
+One plane scene (a 64 x 48 map of waves and one-texel spikes, both last levels' first, the
+bilinear, in view `oblique`; the biquadratic in view `low`; the library's shading with the
+hard self-shadow; a box of three's own crossing the relief) drawn 128 x 96 by the WebGL
+entry (WebGLRenderer, ReliefShadingMaterial) and by the WebGPU entry (WebGPURenderer,
+ReliefShadingNodeMaterial) in headless Chromium (SwiftShader for both APIs), each into an
+RGBA8 render target, and compared pixel by pixel (three_page/compare.js).
+
+Thresholds (colours in 8-bit steps of the linear output): mean channel difference <= 0.05,
+largest <= 8 (a pixel whose ray grazes an edge may differ), pixels differing by more than 2
+or in hit/miss <= 0.5 %, hit/miss disagreeing at <= 0.2 % of the pixels; and the scene is
+worth comparing (the relief covers at least 20 % of the picture). The page must also write
+document.documentElement.dataset.api = 'webgpu' once the WebGPU entry's first frame is drawn,
+and the entry refuse in one line, before the pictures: a WebGLRenderer (a TypeError pointing at
+'microrelief-three') and a WebGPURenderer without a WebGPU adapter (forceWebGL, three's fallback
+to WebGL 2: a ReliefGpuError).
+
+Usage: three_webgpu_equal.py --package DIR (a built microrelief-three: its src/ and
+generated/) [--three DIR (three's package; default the package's node_modules/three)]
+[--chromium EXE] [--out DIR (VIEW.png: WebGL | WebGPU | differing pixels)]
+Exit status 0: equal within the thresholds; 1: not, or a program missing; 77: skipped (chromium
+missing and MICRORELIEF_ALLOW_MISSING_BROWSER=1). ctest three.webgpu (label three).
+"""
+import argparse
+import base64
+import json
+import os
+import pathlib
+import shutil
+import sys
+import tempfile
+
+HERE = pathlib.Path(__file__).resolve().parent
+REPO = HERE.parent.parent
+SKIPPED = 77
+VIEWS = (("oblique", "bilinear"), ("low", "biquadratic"))  # a view, a last level
+LIMITS = {"meanDiff": 0.05, "maxDiff": 8, "differingFraction": 0.005}
+HIT_DISAGREE_FRACTION = 0.002
+# What the WebGPU entry says where it cannot draw (one line each, then the page draws on):
+# case: (the error's name, what its message names).
+REFUSALS = {
+    "webglRenderer": ("TypeError", ["WebGLRenderer", "import from 'microrelief-three'"]),
+    "noAdapter": ("ReliefGpuError", ["no WebGPU adapter", "WebGLRenderer", "'microrelief-three'"]),
+}
+THREE_FILES = ("three.module.js", "three.core.js", "three.webgpu.js", "three.tsl.js")
+
+
+def verdict(s):
+    """Why stats `s` fail, or an empty list."""
+    why = [f"{k} {s[k]:.4g} > {limit}" for k, limit in LIMITS.items() if s[k] > limit]
+    if s["hitDisagree"] > HIT_DISAGREE_FRACTION * s["pixels"]:
+        why.append(f"hit/miss disagree at {s['hitDisagree']} pixels (> {HIT_DISAGREE_FRACTION:.1%})")
+    if s["reliefGl"] < 0.2 * s["pixels"]:
+        why.append(f"the relief covers {s['reliefGl']} pixels (< 20 %: the scene tests little)")
+    return why
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--package", required=True, help="a built microrelief-three (src/, generated/)")
+    parser.add_argument("--three", default=str(REPO / "packages/microrelief-three/node_modules/three"))
+    parser.add_argument("--chromium", default="chromium")
+    parser.add_argument("--out", help="where to write VIEW.png")
+    args = parser.parse_args()
+    package, three = pathlib.Path(args.package), pathlib.Path(args.three)
+    lacking = [] if shutil.which(args.chromium) else [f"no chromium ('{args.chromium}' not found: Debian package chromium)"]
+    lacking += [f"no {three / 'build' / f} (npm ci in packages/microrelief-three)" for f in THREE_FILES
+                if not (three / "build" / f).is_file()]
+    lacking += [f"no {package / d} (build microrelief-three)" for d in ("src/webgpu.js", "generated/wgsl.js")
+                if not (package / d).is_file()]
+    if lacking:
+        if os.environ.get("MICRORELIEF_ALLOW_MISSING_BROWSER") == "1":
+            print(f"SKIPPED: {'; '.join(lacking)}")
+            return SKIPPED
+        print(f"three_webgpu_equal.py: {'; '.join(lacking)}", file=sys.stderr)
+        return 1
+
+    sys.path.insert(0, str(REPO / "tests/web"))
+    sys.path.insert(0, str(REPO / "web"))
+    import drive_chromium
+    import serve
+
+    root = pathlib.Path(tempfile.mkdtemp(prefix="microrelief-three-webgpu-"))
+    browser, server, status = None, None, 0
+    try:
+        page = root / "web"
+        shutil.copytree(HERE / "three_page", page)
+        # Copies, not links: the server serves no link out of its folder.
+        for f in THREE_FILES:
+            (page / "node_modules/three/build").mkdir(parents=True, exist_ok=True)
+            shutil.copy(three / "build" / f, page / "node_modules/three/build" / f)
+        for d in ("src", "generated"):
+            shutil.copytree(package / d, page / "node_modules/microrelief-three" / d)
+        drive_chromium.FLAGS = [*drive_chromium.FLAGS, "--enable-unsafe-webgpu", "--use-webgpu-adapter=swiftshader"]
+        server, url = serve.serve(str(root))
+        browser = drive_chromium.Browser(shutil.which(args.chromium), str(root / "profile"))
+        target = browser.send("Target.createTarget", {"url": "about:blank"}, session=False)["targetId"]
+        browser.session = browser.send("Target.attachToTarget", {"targetId": target, "flatten": True},
+                                       session=False)["sessionId"]
+        browser.send("Page.enable")
+        browser.send("Runtime.enable")
+        browser.send("Page.navigate", {"url": url})
+        browser.wait_event("Page.loadEventFired")
+        out = pathlib.Path(args.out) if args.out else None
+        if out:
+            out.mkdir(parents=True, exist_ok=True)
+        evaluate = lambda expression: browser.send("Runtime.evaluate", {"expression": expression, "returnByValue": True,
+                                                                          "awaitPromise": True}, timeout=300)
+        ready = evaluate("new Promise((done) => { const t = setInterval(() => { if (window.compareEntries) "
+                         "{ clearInterval(t); done(true); } }, 50); setTimeout(() => done(false), 30000); })")
+        if not ready.get("result", {}).get("value"):
+            print("three_webgpu_equal.py: the page did not load (compare.js: its imports?)")
+            status = 1
+        answer = evaluate("refusals()") if not status else {}
+        if not status:
+            said = json.loads(answer["result"]["value"]) if "exceptionDetails" not in answer else {}
+            for case, (name, parts) in REFUSALS.items():
+                got = said.get(case, {"name": "", "message": f"refusals() threw: {answer.get('exceptionDetails')}"})
+                why = ([f"{got['name'] or 'nothing'} thrown, not a {name}"] if got["name"] != name else [])
+                why += ["more than one line"] if "\n" in got["message"] else []
+                why += [f"no '{p}'" for p in parts if p not in got["message"]]
+                print(f"refusal {case}: {'FAILED: ' + '; '.join(why) if why else 'ok'}: {got['message']}")
+                status = status or (1 if why else 0)
+        for view, interpolation in VIEWS if not status else ():
+            answer = evaluate(f"compareEntries({view!r}, {interpolation!r})")
+            if "exceptionDetails" in answer:
+                details = answer["exceptionDetails"]
+                print(f"{view} {interpolation}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
+                status = 1
+                continue
+            result = json.loads(answer["result"]["value"])
+            if out:
+                (out / f"{view}.png").write_bytes(base64.b64decode(result["png"]))
+            why = verdict(result["stats"])
+            print(f"{view} {interpolation}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
+            status = status or (1 if why else 0)
+        api = evaluate("document.documentElement.dataset.api || ''").get("result", {}).get("value")
+        if api != "webgpu":
+            print(f"document.documentElement.dataset.api is '{api}', not 'webgpu'")
+            status = 1
+        for line in drive_chromium.page_log(browser.events):
+            print(f"page: {line}", file=sys.stderr)
+    except (drive_chromium.StepFailed, OSError) as e:
+        print(f"three_webgpu_equal.py: {e}", file=sys.stderr)
+        status = 1
+    finally:
+        if browser:
+            browser.close()
+        if server:
+            server.shutdown()
+        shutil.rmtree(root, ignore_errors=True)
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """three_webgpu_equal.py: does microrelief-three's WebGPU entry draw what its WebGL entry draws?
 
-One plane scene (a 64 x 48 map of waves and one-texel spikes, both last levels' first, the
-bilinear, in view `oblique`; the biquadratic in view `low`; the library's shading with the
-hard self-shadow; a box of three's own crossing the relief) drawn 128 x 96 by the WebGL
+One map (64 x 48, waves and one-texel spikes) on the plane in two views (`oblique` with the
+bilinear last level, `low` with the biquadratic) and on the cylinder (`round`, biquadratic;
+with --all also the ellipsoid, bilinear), the library's shading with the hard self-shadow, a
+box of three's own half buried in the plane's relief, drawn 128 x 96 by the WebGL
 entry (WebGLRenderer, ReliefShadingMaterial) and by the WebGPU entry (WebGPURenderer,
 ReliefShadingNodeMaterial) in headless Chromium (SwiftShader for both APIs), each into an
 RGBA8 render target, and compared pixel by pixel (three_page/compare.js).
@@ -19,7 +20,7 @@ to WebGL 2: a ReliefGpuError).
 
 Usage: three_webgpu_equal.py --package DIR (a built microrelief-three: its src/ and
 generated/) [--three DIR (three's package; default the package's node_modules/three)]
-[--chromium EXE] [--out DIR (VIEW.png: WebGL | WebGPU | differing pixels)]
+[--chromium EXE] [--out DIR (VIEW_BASE.png: WebGL | WebGPU | differing pixels)] [--all]
 Exit status 0: equal within the thresholds; 1: not, or a program missing; 77: skipped (chromium
 missing and MICRORELIEF_ALLOW_MISSING_BROWSER=1). ctest three.webgpu (label three).
 """
@@ -35,7 +36,10 @@ import tempfile
 HERE = pathlib.Path(__file__).resolve().parent
 REPO = HERE.parent.parent
 SKIPPED = 77
-VIEWS = (("oblique", "bilinear"), ("low", "biquadratic"))  # a view, a last level
+# A view, a last level, a base: the suite's cases, then (with --all) the ellipsoid, whose
+# traversal SwiftShader runs slowly (about 25 s of the 37 s all four take on two cores).
+VIEWS = (("oblique", "bilinear", "plane"), ("low", "biquadratic", "plane"), ("round", "biquadratic", "cylinder"))
+MORE_VIEWS = (("round", "bilinear", "ellipsoid"),)
 LIMITS = {"meanDiff": 0.05, "maxDiff": 8, "differingFraction": 0.005}
 HIT_DISAGREE_FRACTION = 0.002
 # What the WebGPU entry says where it cannot draw (one line each, then the page draws on):
@@ -62,7 +66,8 @@ def main():
     parser.add_argument("--package", required=True, help="a built microrelief-three (src/, generated/)")
     parser.add_argument("--three", default=str(REPO / "packages/microrelief-three/node_modules/three"))
     parser.add_argument("--chromium", default="chromium")
-    parser.add_argument("--out", help="where to write VIEW.png")
+    parser.add_argument("--out", help="where to write VIEW_BASE.png")
+    parser.add_argument("--all", action="store_true", help="the ellipsoid too (slow on SwiftShader)")
     args = parser.parse_args()
     package, three = pathlib.Path(args.package), pathlib.Path(args.three)
     lacking = [] if shutil.which(args.chromium) else [f"no chromium ('{args.chromium}' not found: Debian package chromium)"]
@@ -123,18 +128,18 @@ def main():
                 why += [f"no '{p}'" for p in parts if p not in got["message"]]
                 print(f"refusal {case}: {'FAILED: ' + '; '.join(why) if why else 'ok'}: {got['message']}")
                 status = status or (1 if why else 0)
-        for view, interpolation in VIEWS if not status else ():
-            answer = evaluate(f"compareEntries({view!r}, {interpolation!r})")
+        for view, interpolation, base in (VIEWS + (MORE_VIEWS if args.all else ())) if not status else ():
+            answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r})")
             if "exceptionDetails" in answer:
                 details = answer["exceptionDetails"]
-                print(f"{view} {interpolation}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
+                print(f"{view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
                 status = 1
                 continue
             result = json.loads(answer["result"]["value"])
             if out:
-                (out / f"{view}.png").write_bytes(base64.b64decode(result["png"]))
+                (out / f"{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
             why = verdict(result["stats"])
-            print(f"{view} {interpolation}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
+            print(f"{view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
             status = status or (1 if why else 0)
         api = evaluate("document.documentElement.dataset.api || ''").get("result", {}).get("value")
         if api != "webgpu":

@@ -10,7 +10,7 @@ export type {HeightMap, HeightsOptions, PngHeightsOptions} from './heights.js';
 export {baseShape, cameraRays, reliefExtent} from './relief.js';
 export type {BaseShape, BaseSpec, CameraRays, ReliefInterpolation} from './relief.js';
 
-/** The bases this entry draws so far (the WebGL entry draws every base). */
+/** The bases this entry draws: plane, cylinder, ellipsoid. */
 export const kWebGPUBases: readonly string[];
 
 /** The one line a WebGLRenderer gets from this entry. */
@@ -28,7 +28,7 @@ export function wgslItems(module: string): Array<{name: string; text: string}>;
 export function reachableWgsl(module: string, roots: readonly string[]): string;
 
 export interface WebGPUReliefMapOptions {
-    /** true for the curved bases (not drawn by this entry yet). Default false. */
+    /** true for the curved bases (cylinder, sphere, ellipsoid): u wraps round. Default false. */
     wrapU?: boolean;
 }
 
@@ -77,7 +77,7 @@ export interface WebGPUReliefOptions {
     material?: ReliefShadingNodeMaterial | null;
     /** Default 0.1. */
     heightScale?: number;
-    /** 'plane' (the one base this entry draws so far). */
+    /** Default 'plane'. A curved base needs a map made with wrapU: true. */
     base?: BaseSpec;
     /** Default 'bilinear'. */
     interpolation?: ReliefInterpolation;

@@ -1,7 +1,7 @@
 // microrelief-three/webgpu: exact microrelief in three.js's WebGPURenderer (docs/three.md,
 // docs/webgpu.md). The first slice: the library's own shading (ReliefShadingNodeMaterial,
-// as the WebGL entry's ReliefShadingMaterial draws it) on the plane base, both last levels;
-// the windows pyramid built by the C++ MaxPyramid in WebAssembly.
+// as the WebGL entry's ReliefShadingMaterial draws it) on every base, both last levels; the
+// windows pyramid built by the C++ MaxPyramid in WebAssembly.
 //
 //   import {WebGPURenderer} from 'three/webgpu';
 //   import {createReliefMap, loadHeights, Relief, ReliefShadingNodeMaterial} from 'microrelief-three/webgpu';
@@ -26,8 +26,8 @@ import {requireSupportedThree} from './three_version.js';
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
 export {baseShape, cameraRays, reliefExtent} from './relief_host.js';
 
-// What this slice draws; the rest is refused in one line naming it.
-export const kWebGPUBases = Object.freeze(['plane']);
+// The bases this entry draws (a base outside them is refused in one line naming it).
+export const kWebGPUBases = Object.freeze(['plane', 'cylinder', 'ellipsoid']);
 
 // A WebGPU that cannot do what was asked (no adapter, a map past the device's limits).
 export class ReliefGpuError extends Error {
@@ -200,8 +200,8 @@ async function requireWebGPUBackend(renderer, what) {
 }
 
 // The textures of `map` ({width, height, samples, name}: heights.js) for `renderer`, a
-// WebGPURenderer (awaited: init). options: wrapU (true for the curved bases; this slice
-// draws the plane, which takes false).
+// WebGPURenderer (awaited: init). options: wrapU (true for the curved bases: their u wraps
+// round, and the pyramid's seam with it).
 export async function createReliefMap(renderer, map, {wrapU = false} = {}) {
     requireSupportedThree();
     requireWebGPURenderer(renderer, 'createReliefMap');
@@ -299,7 +299,8 @@ function warnWebGLRenderer(renderer) {
 // The relief as a three.js object: a THREE.Mesh whose geometry is its proxy box and whose
 // material traces it in every pixel the box covers (relief.js's Relief, for a
 // WebGPURenderer). Options as there: material (a ReliefShadingNodeMaterial), heightScale,
-// base ('plane' in this slice), interpolation ('bilinear' or 'biquadratic'), pixelError.
+// base ('plane', 'cylinder', 'sphere', 'ellipsoid' or a shape), interpolation ('bilinear'
+// or 'biquadratic'), pixelError.
 export class Relief extends THREE.Mesh {
     constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
         requireSupportedThree();
@@ -311,7 +312,7 @@ export class Relief extends THREE.Mesh {
         if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
         const shape = baseShape(base);
         if (!kWebGPUBases.includes(shape.kind))
-            throw new TypeError(`Relief: microrelief-three/webgpu draws the ${kWebGPUBases.join(', ')} base so far, not the ${shape.kind} (the WebGL entry draws every base)`);
+            throw new TypeError(`Relief: microrelief-three/webgpu draws the ${kWebGPUBases.join(', ')} bases, not the ${shape.kind}`);
         checkBaseForMap(shape, base, reliefMap);
         if (material !== null && !(material instanceof ReliefShadingNodeMaterial))
             throw new TypeError('Relief: the material must be a ReliefShadingNodeMaterial (microrelief-three/webgpu)');

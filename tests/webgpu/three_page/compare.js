@@ -1,11 +1,12 @@
-// compare.js: one plane scene drawn by microrelief-three's WebGL entry (WebGLRenderer,
-// ReliefShadingMaterial) and by its WebGPU entry (WebGPURenderer, ReliefShadingNodeMaterial),
-// each into a W x H RGBA8 render target, read back and compared pixel by pixel
-// (three_webgpu_equal.py serves this folder with three and the staged package beside it, and
-// judges). A box of three's own crosses the relief in both scenes: the relief's depth
-// decides which shows where (the picture composes with other meshes only if it is right).
-// Writes document.documentElement.dataset.api = 'webgpu' once the WebGPU entry's first frame
-// is drawn. compareEntries(view, interpolation) -> JSON {stats, png}; png: WebGL | WebGPU | differing pixels.
+// compare.js: one map's scenes (a view, a last level, a base) drawn by microrelief-three's
+// WebGL entry (WebGLRenderer, ReliefShadingMaterial) and by its WebGPU entry (WebGPURenderer,
+// ReliefShadingNodeMaterial), each into a W x H RGBA8 render target, read back and compared
+// pixel by pixel (three_webgpu_equal.py serves this folder with three and the staged package
+// beside it, and judges). A box of three's own crosses the plane's relief in both pictures:
+// the relief's depth decides which shows where (the picture composes with other meshes only if
+// it is right). Writes document.documentElement.dataset.api = 'webgpu' once the WebGPU entry's
+// first frame is drawn. compareEntries(view, interpolation, base) -> JSON {stats, png}; png:
+// WebGL | WebGPU | differing pixels.
 import * as THREE from 'three';
 import * as GPU from 'three/webgpu';
 import * as gl from 'microrelief-three';
@@ -25,6 +26,7 @@ function heights() {
 const kViews = {
     oblique: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0]},
     low: {eye: [-0.7, 0.16, 0.35], target: [0.05, 0.03, 0]},
+    round: {eye: [0.9, 0.5, 1.0], target: [0, 0, 0]},
 };
 
 function setUp(T, view, relief) {
@@ -54,11 +56,11 @@ async function renderers() {
 
 const light = new THREE.Vector3(-0.45, 0.8, -0.35).normalize();
 
-async function drawWebGL(view, interpolation) {
+async function drawWebGL(view, interpolation, base = 'plane') {
     const {webgl: renderer} = await renderers();
     const {w, h, samples} = heights();
-    const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu'});
-    const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, material: new gl.ReliefShadingMaterial({lightDirection: light, shadows: 'hard'})});
+    const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
+    const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, base, material: new gl.ReliefShadingMaterial({lightDirection: light, shadows: 'hard'})});
     const {scene, camera} = setUp(THREE, view, relief);
     const target = new THREE.WebGLRenderTarget(W, H);
     renderer.setRenderTarget(target);
@@ -73,11 +75,11 @@ async function drawWebGL(view, interpolation) {
     return pixels;
 }
 
-async function drawWebGPU(view, interpolation) {
+async function drawWebGPU(view, interpolation, base = 'plane') {
     const {webgpu: renderer} = await renderers();
     const {w, h, samples} = heights();
-    const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}));
-    const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, material: new wg.ReliefShadingNodeMaterial({lightDirection: light, shadows: 'hard'})});
+    const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
+    const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, base, material: new wg.ReliefShadingNodeMaterial({lightDirection: light, shadows: 'hard'})});
     const {scene, camera} = setUp(GPU, view, relief);
     const target = new GPU.RenderTarget(W, H);
     renderer.setRenderTarget(target);
@@ -96,8 +98,8 @@ async function drawWebGPU(view, interpolation) {
 
 // The pictures of `view` with last level `interpolation` compared: per pixel the largest channel difference (of 255), hit
 // (alpha) agreement, and a PNG strip (bottom row first in the data, drawn upright).
-async function compareEntries(view, interpolation) {
-    const a = await drawWebGL(view, interpolation), b = await drawWebGPU(view, interpolation);
+async function compareEntries(view, interpolation, base) {
+    const a = await drawWebGL(view, interpolation, base), b = await drawWebGPU(view, interpolation, base);
     let sum = 0, max = 0, differing = 0, hitsGl = 0, hitsGpu = 0, hitDisagree = 0, reliefGl = 0;
     const canvas = new OffscreenCanvas(3 * W, H), ctx = canvas.getContext('2d'), image = ctx.createImageData(3 * W, H);
     for (let y = 0; y < H; ++y)

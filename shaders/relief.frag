@@ -18,6 +18,9 @@
 // where the GL has conservative depth (GL 4.2, ARB_conservative_depth);
 // MICRORELIEF_PAGED (1: a map larger than one texture, read through pages:
 // paged_map.glsl, GLSL 4.30; the multilevel method only).
+// MICRORELIEF_COARSE_TILE (T: each pixel's walk starts where the coarse pass found its
+// T x T tile's rays may first meet the solid, coarse_start.frag; the multilevel method on
+// the plane only; undefined: the single pass).
 // variants.glsl is defines only on desktop GL (its precision statements are GLSL ES's, which
 // never takes the #extension below), so the #extension may follow it.
 #include "microrelief/variants.glsl"
@@ -95,6 +98,9 @@ uniform sampler2D windowPyramid;
 uniform sampler2D heightSamples;
 uniform sampler2D albedoMap;  // unit 3: the surface's colour over (u, v), mipmapped
 uniform sampler2D coneMap;    // unit 4: cone and rcsm's cone map (peers/ConeMap.h), linear
+#ifdef MICRORELIEF_COARSE_TILE
+uniform sampler2D coarseStart;  // unit 6: the coarse pass's starts, a texel per tile (coarse_start.frag)
+#endif
 
 #ifndef MICRORELIEF_ALBEDO_MAP
 #define MICRORELIEF_ALBEDO_MAP 0
@@ -223,8 +229,19 @@ void main() {
     float objectLength = length(mat3(worldToObject) * dir);
     float lodCone = pixelErrorTolerance * pixelAngle * objectLength * max(reliefSize.x, reliefSize.y);
     mr_RayQuery query = mr_RayQuery(tMin, tMax, false, maxIterations, lodCone);
+#ifdef MICRORELIEF_COARSE_TILE
+    // The coarse pass's start for this pixel's tile (coarse_start.glsl: never after any of
+    // the tile's first hits; MR_COARSE_KEEP leaves the range as it is).
+    MICRORELIEF_FETCHED(1);
+    vec4 coarse = texelFetch(coarseStart, ivec2(gl_FragCoord.xy) / MICRORELIEF_COARSE_TILE, 0);
+    query.tMin = max(query.tMin, coarse.x);
+    mr_coarseFirstLength = coarse.z;  // the primary ray's walk only: shadow rays start at the root
+#endif
 
     mr_ReliefHit hit = traceRay(relief, query, mr_baseFramePoint(relief, eye), mr_baseFrameVector(relief, dir));
+#ifdef MICRORELIEF_COARSE_TILE
+    mr_coarseFirstLength = 0.0;
+#endif
 #ifdef MICRORELIEF_COUNT_FETCHES
     // The instrumented variant: the bounds' share of the reads where the stop level was
     // (fetch_count.glsl).

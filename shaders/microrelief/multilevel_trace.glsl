@@ -35,6 +35,16 @@
 #include "segment_walk.glsl"
 #include "texture_reads.glsl"
 
+#ifdef MICRORELIEF_COARSE_TILE
+// The coarse pass's hint (relief.frag, coarse_start.glsl): the t length of the first
+// segment that may hold a hit in the pixel's tile; 0: none. The walk then starts at the
+// depth whose segments are about that long rather than at the root: segments at any depth,
+// walked in order from index 0, cover [0, span] as the root does (mr_walkNext ends past
+// the root's end at any depth), so the hit found is the same; the root's bounds above a
+// first segment are only read later, where the walk climbs.
+float mr_coarseFirstLength = 0.0;
+#endif
+
 // The binary subdivision of the segment start + t dir, t in [0, span] (`floorExit`: a ray
 // that leaves the plane's box through its floor); tStart is the segment's distance from
 // the eye in t, for the level-of-detail cone. Fills `hit` with frame positions and local t.
@@ -49,6 +59,10 @@
 void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights, vec3 start,
                          vec3 dir, float span, float tStart, bool floorExit, inout mr_ReliefHit hit) {
     mr_SegmentWalk walk = mr_segmentWalk();
+#ifdef MICRORELIEF_COARSE_TILE
+    if (mr_coarseFirstLength > 0.0 && span > mr_coarseFirstLength)
+        walk.depth = min(int(log2(span / mr_coarseFirstLength)), MICRORELIEF_MAX_DEPTH - 8);
+#endif
     // The outcome, reported after the loops (which keeps their bodies small): a hit at
     // tHit >= 0, solved exactly on a leaf's patch or else taken as is.
     mr_WalkEnd end = mr_walkEnd();

@@ -11,6 +11,7 @@
 
 #include "microrelief/core/Error.h"
 #include "microrelief/gl/ReliefMap.h"
+#include "microrelief/gl/ShaderProgram.h"
 #include "microrelief/gl/StateGuard.h"
 
 namespace microrelief {
@@ -427,14 +428,29 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     // per pixel the box covers either way (it is convex), and the depth layout the
     // program promises holds for the faces drawn.
     const bool frontFaces = eyeOutsideBox(camera.eye);
-    ReliefShader& shader =
-        program(configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces,
-                          shading.shadows, albedo_.has_value(), tiled(), paged()));
+    ReliefShaderConfig config =
+        configFor(method_, countFetches_, base_.kind, interpolation_, frontFaces, shading.shadows,
+                  albedo_.has_value(), tiled(), paged());
+    const bool coarse = coarsePassApplies();
+    if (coarse) config.coarseTile = coarseTile_;
+    ReliefShader& shader = program(config);
 
     const gl::StateGuard saved(gl_);
     const ReliefParameters values = parameters(camera, shading, t);
     gl_.BindBuffer(GL_UNIFORM_BUFFER, parameterBuffer_.id());
     gl_.BufferData(GL_UNIFORM_BUFFER, sizeof values, &values, GL_STREAM_DRAW);
+    coarseDrawn_ = false;
+    // The coarse pass's unit is past StateGuard's: its binding is restored here.
+    GLint activeUnit = 0, coarseUnitTexture = 0;
+    if (coarse) {
+        drawCoarsePass(values, t);
+        gl_.GetIntegerv(GL_ACTIVE_TEXTURE, &activeUnit);
+        gl_.ActiveTexture(GL_TEXTURE0 + ReliefShader::kCoarseStartUnit);
+        gl_.GetIntegerv(GL_TEXTURE_BINDING_2D, &coarseUnitTexture);
+        gl_.BindTexture(GL_TEXTURE_2D, coarseTexture_.id());
+        gl_.ActiveTexture(static_cast<GLenum>(activeUnit));
+        coarseDrawn_ = true;
+    }
     shader.use();
     const ReliefTextures& textures = map_->textures();
     shader.bindParameters(parameterBuffer_.id())
@@ -461,6 +477,88 @@ void ReliefRenderer::draw(const CameraFrame& camera, const ShadingOptions& shadi
     gl_.Viewport(0, 0, t.width, t.height);
     gl_.BindVertexArray(boxArray_.id());
     gl_.DrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, nullptr);
+    if (coarse) {
+        gl_.ActiveTexture(GL_TEXTURE0 + ReliefShader::kCoarseStartUnit);
+        gl_.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(coarseUnitTexture));
+        gl_.ActiveTexture(static_cast<GLenum>(activeUnit));
+    }
+}
+
+void ReliefRenderer::setCoarsePass(int tileSize) {
+    if (tileSize != 0 && (tileSize < 2 || tileSize > 64)) {
+        throwBadInput("ReliefRenderer::setCoarsePass: a tile of " + std::to_string(tileSize) +
+                      " pixels; 0 (off) or 2 to 64");
+    }
+    coarseTile_ = tileSize;
+}
+
+bool ReliefRenderer::coarsePassApplies() const {
+    // The plane's frame is an affine image of the world (coarse_start.glsl's argument);
+    // a paged map's reads are its pager's.
+    return coarseTile_ > 0 && method_.method == Method::Multilevel &&
+           base_.kind == BaseKind::Plane && !paged();
+}
+
+void ReliefRenderer::drawCoarsePass(const ReliefParameters& values, const PictureTile& t) {
+    (void)values;  // in the parameter buffer already, which the pass reads as the draw does
+    const std::tuple<int, bool, bool> key{coarseTile_, tiled(), glsl330_};
+    if (!coarseProgram_ || coarseProgramKey_ != key) {
+        GLint major = 0;
+        gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
+        const std::string version = major >= 4 && !glsl330_ ? "400 core" : "330 core";
+        const std::vector<ShaderDefine> defines = {
+            {"MICRORELIEF_BASE", std::to_string(static_cast<int>(BaseKind::Plane))},
+            {"MICRORELIEF_TILING", tiled() ? "1" : "0"},
+            {"MICRORELIEF_COARSE_TILE", std::to_string(coarseTile_)}};
+        const std::filesystem::path& dir = programs_->shaderDir();
+        const gl::Shader vertex = gl::compileShader(
+            gl_, GL_VERTEX_SHADER, assembleShader(dir / "pyramid" / "pass.vert", version));
+        const gl::Shader fragment = gl::compileShader(
+            gl_, GL_FRAGMENT_SHADER, assembleShader(dir / "coarse_start.frag", version, defines));
+        gl::Program linked = gl::linkProgram(gl_, vertex, fragment,
+                                             "coarse pass (" + std::to_string(coarseTile_) + ")");
+        GLint previous = 0;
+        gl_.GetIntegerv(GL_CURRENT_PROGRAM, &previous);
+        gl_.UseProgram(linked.id());
+        gl_.Uniform1i(gl::uniform(gl_, linked, "windowPyramid"), ReliefShader::kWindowPyramidUnit);
+        gl_.UseProgram(static_cast<GLuint>(previous));
+        const GLuint block = gl_.GetUniformBlockIndex(linked.id(), "MicroreliefParameters");
+        if (block == GL_INVALID_INDEX)
+            throwRuntime("the coarse pass has no MicroreliefParameters block");
+        gl_.UniformBlockBinding(linked.id(), block, ReliefShader::kParametersBinding);
+        coarseProgram_ = std::move(linked);
+        coarseProgramKey_ = key;
+    }
+    coarseSize_ = {(t.width + coarseTile_ - 1) / coarseTile_,
+                   (t.height + coarseTile_ - 1) / coarseTile_};
+    const gl::PassGuard pass(gl_);  // the caller's framebuffers and state back after the pass
+    if (!coarseTexture_ || glm::any(glm::greaterThan(coarseSize_, coarseCapacity_))) {
+        coarseCapacity_ = glm::max(coarseSize_, coarseCapacity_);
+        coarseTexture_ = gl::Texture::create(gl_);
+        gl_.ActiveTexture(GL_TEXTURE0);
+        gl_.BindTexture(GL_TEXTURE_2D, coarseTexture_.id());
+        gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, coarseCapacity_.x, coarseCapacity_.y, 0,
+                       GL_RGBA, GL_FLOAT, nullptr);
+        gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        coarseFramebuffer_ = gl::Framebuffer::create(gl_);
+        gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, coarseFramebuffer_.id());
+        gl_.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                                 coarseTexture_.id(), 0);
+        if (gl_.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throwRuntime("the coarse pass's framebuffer (RGBA32F) is not complete");
+    }
+    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, coarseFramebuffer_.id());
+    const GLenum buffer = GL_COLOR_ATTACHMENT0;
+    gl_.DrawBuffers(1, &buffer);
+    gl_.Viewport(0, 0, coarseSize_.x, coarseSize_.y);
+    gl_.UseProgram(coarseProgram_.id());
+    gl_.BindBufferBase(GL_UNIFORM_BUFFER, ReliefShader::kParametersBinding, parameterBuffer_.id());
+    gl_.ActiveTexture(GL_TEXTURE0 + ReliefShader::kWindowPyramidUnit);
+    gl_.BindTexture(GL_TEXTURE_2D, map_->textures().windowPyramid());
+    gl_.BindVertexArray(boxArray_.id());
+    gl_.DrawArrays(GL_TRIANGLES, 0, 3);
 }
 
 CameraFrame ReliefRenderer::resolveCamera(const Camera& camera, int width, int height) const {

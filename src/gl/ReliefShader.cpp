@@ -62,7 +62,8 @@ static_assert(is(DebugView::Shaded, glsl::kDebugViewShaded) &&
 std::string describe(const ReliefShaderConfig& config) {
     return std::string("relief (") + methodName(config.method) + ", " +
            baseName(BaseShape{config.base}) + ", " + interpolationName(config.interpolation) +
-           (config.paged ? ", paged" : "") + (config.glsl330 ? ", GLSL 3.30" : "") + ")";
+           (config.paged ? ", paged" : "") + (config.glsl330 ? ", GLSL 3.30" : "") +
+           (config.coarseTile > 0 ? ", coarse " + std::to_string(config.coarseTile) : "") + ")";
 }
 
 ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
@@ -82,6 +83,8 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
         {"MICRORELIEF_ALBEDO_MAP", config.albedoMap ? "1" : "0"},
         {"MICRORELIEF_TILING", config.tiled ? "1" : "0"}};
     if (config.countFetches) defines.push_back({"MICRORELIEF_COUNT_FETCHES", ""});
+    if (config.coarseTile > 0)
+        defines.push_back({"MICRORELIEF_COARSE_TILE", std::to_string(config.coarseTile)});
     if (config.paged) {
         defines.push_back({"MICRORELIEF_PAGED", "1"});
         defines.push_back({"MICRORELIEF_PAGE_INFO_AT", std::to_string(PageTableLayout::kInfoAt)});
@@ -105,6 +108,8 @@ ReliefShader::ReliefShader(const GL& gl, const std::filesystem::path& shaderDir,
     gl.Uniform1i(gl::uniform(gl, program_, "windowPyramid"), kWindowPyramidUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "albedoMap"), kAlbedoUnit);
     gl.Uniform1i(gl::uniform(gl, program_, "coneMap"), kConeMapUnit);
+    if (config.coarseTile > 0)
+        gl.Uniform1i(gl::uniform(gl, program_, "coarseStart"), kCoarseStartUnit);
     if (config.paged) {
         gl.Uniform1i(gl::uniform(gl, program_, "mr_pagePool"), kPagePoolUnit);
         gl.Uniform1i(gl::uniform(gl, program_, "mr_pageCoarse"), kWindowPyramidUnit);

@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include <glm/glm.hpp>
@@ -176,6 +177,24 @@ public:
     void setGlsl330(bool on);
     bool glsl330() const { return glsl330_; }
 
+    // The coarse pass (issue 52, docs/api.md): before the relief's draw, one fragment per
+    // tileSize x tileSize tile of pixels walks the frustum of the tile's rays through the
+    // max pyramid (shaders/coarse_start.frag) to the first distance where any of them may
+    // meet the solid, and each pixel's walk starts there instead of at the box: the same
+    // picture (exact, pixelError 0: positions equal to float rounding), fewer reads per
+    // pixel where rays cross much empty space. For the multilevel method on the plane, a
+    // map not paged; any other draw is the single pass. 0, the default, turns it off.
+    // Throws Error(BadInput) for a size outside 0 and 2 to 64.
+    void setCoarsePass(int tileSize);
+    int coarsePass() const { return coarseTile_; }
+    // Whether the last draw ran the coarse pass; its texture (RGBA32F, a texel per tile: x
+    // the start, coarse_start.glsl's MR_COARSE_KEEP, MR_COARSE_MISS or a t; y the pyramid
+    // texels the tile read) and the texels used, ceil(width / T) x ceil(height / T), for
+    // tests and tools.
+    bool coarsePassDrawn() const { return coarseDrawn_; }
+    GLuint coarseStartTexture() const { return coarseTexture_.id(); }
+    glm::ivec2 coarseStartSize() const { return coarseSize_; }
+
     // Draws the picture `camera` describes, or the tile of it given, into the bound
     // framebuffer: relief.frag's colour to draw buffer 0 and, where the framebuffer's
     // draw buffers take them, the hit position, statistics and shadow to 1 to 3
@@ -216,6 +235,10 @@ private:
                                  Interpolation interpolation, bool frontFaces, ShadowMode shadows,
                                  bool albedoMap, bool tiled, bool paged) const;
     bool tiled() const { return tiles() != glm::ivec2(1, 1); }
+    // Whether this draw runs the coarse pass (setCoarsePass), and the pass itself into
+    // coarseTexture_ for the picture tile `t` (after which the relief's draw reads it).
+    bool coarsePassApplies() const;
+    void drawCoarsePass(const ReliefParameters& values, const PictureTile& t);
     // A map of `map` built (ReliefMap::upload) and drawn with `base` and `interpolation`;
     // `shared`, where not null, is `map`, shared by the caller.
     void setHeightMapOf(const HeightMap& map, std::shared_ptr<const HeightMap> shared,
@@ -265,6 +288,16 @@ private:
     RebuildCounts rebuilds_;
     PagingSettings paging_{PagingSettings::Mode::Never};
     std::optional<ReliefDesc> applied_;  // the relief whose heights the pyramid is of (apply)
+    // The coarse pass: its tile size (0: off), its program (compiled for coarseProgramKey_:
+    // tile size, tiled map, GLSL 3.30), its texture (coarseCapacity_ texels allocated) and
+    // framebuffer.
+    int coarseTile_ = 0;
+    bool coarseDrawn_ = false;
+    gl::Program coarseProgram_;
+    std::tuple<int, bool, bool> coarseProgramKey_{0, false, false};
+    gl::Texture coarseTexture_;
+    gl::Framebuffer coarseFramebuffer_;
+    glm::ivec2 coarseCapacity_{0, 0}, coarseSize_{0, 0};
 };
 
 }  // namespace microrelief

@@ -56,6 +56,10 @@ struct ReliefShaderConfig {
     // texel reads a bilinear cell where 4.00 gathers them; ES 3.00 reads so too). Not for
     // paged maps, which need 4.30.
     bool glsl330 = false;
+    // The multilevel method on the plane after the coarse pass (shaders/coarse_start.frag):
+    // each pixel starts where its coarseTile x coarseTile tile may first meet the solid,
+    // read from unit 6 (kCoarseStartUnit). 0: the single pass.
+    int coarseTile = 0;
 
     auto operator<=>(const ReliefShaderConfig&) const = default;
 };
@@ -78,6 +82,7 @@ public:
     // A paged map's pool (a texture array, gl/PagedPyramid.h) and its page table and wants
     // (shader storage bindings); its coarse windows are the window pyramid's unit.
     static constexpr GLuint kPagePoolUnit = 5;
+    static constexpr GLuint kCoarseStartUnit = 6;  // the coarse pass's starts (coarseTile > 0)
     static constexpr GLuint kPageTableBinding = 1;
     static constexpr GLuint kPageWantsBinding = 2;
     static constexpr GLuint kParametersBinding = 0;

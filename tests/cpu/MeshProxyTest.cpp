@@ -90,8 +90,8 @@ TriangleMesh bumpyFoldedTube(std::uint32_t seed) {
         const float r = static_cast<float>(uniform(random, 0.8, 1.2));
         mesh.positions[v].x *= r;
         mesh.positions[v].z *= r;
-        const glm::vec3 tilt(uniform(random, -0.4, 0.4), uniform(random, -0.4, 0.4),
-                             uniform(random, -0.4, 0.4));
+        const glm::vec3 tilt{uniform(random, -0.4, 0.4), uniform(random, -0.4, 0.4),
+                             uniform(random, -0.4, 0.4)};
         mesh.normals[v] = glm::normalize(mesh.normals[v] + tilt);
     }
     return mesh;
@@ -249,8 +249,8 @@ Ray randomRay(std::mt19937& random, const glm::dvec3& lo, const glm::dvec3& hi, 
     const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
     const double reach = 2.0 * glm::length(half);
     const auto inBox = [&] {
-        return glm::dvec3(uniform(random, lo.x, hi.x), uniform(random, lo.y, hi.y),
-                          uniform(random, lo.z, hi.z));
+        return glm::dvec3{uniform(random, lo.x, hi.x), uniform(random, lo.y, hi.y),
+                          uniform(random, lo.z, hi.z)};
     };
     const auto direction = [&] {
         glm::dvec3 d;

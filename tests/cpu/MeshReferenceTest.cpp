@@ -302,8 +302,8 @@ TEST(MeshReference, AFineTubeIsCloseToTheCylinder) {
             const glm::dvec3 outward(std::sin(phi), 0.0, std::cos(phi));
             const glm::dvec3 aim = radius * outward + glm::dvec3(0.0, y, 0.0);
             glm::dvec3 away =
-                outward + glm::dvec3(uniform(random, -0.6, 0.6), uniform(random, -0.6, 0.6),
-                                     uniform(random, -0.6, 0.6));
+                outward + glm::dvec3{uniform(random, -0.6, 0.6), uniform(random, -0.6, 0.6),
+                                     uniform(random, -0.6, 0.6)};
             if (glm::dot(glm::normalize(away), outward) < std::cos(40.0 * kPi / 180.0)) continue;
             const Ray ray{aim + 1.5 * glm::normalize(away), -glm::normalize(away)};
             const ReferenceHit expected = cylinder.trace(ray);
@@ -690,8 +690,8 @@ TriangleMesh bumpyFoldedTube(std::uint32_t seed) {
         const float r = static_cast<float>(uniform(random, 0.8, 1.2));
         mesh.positions[v].x *= r;
         mesh.positions[v].z *= r;
-        const glm::vec3 tilt(uniform(random, -0.4, 0.4), uniform(random, -0.4, 0.4),
-                             uniform(random, -0.4, 0.4));
+        const glm::vec3 tilt{uniform(random, -0.4, 0.4), uniform(random, -0.4, 0.4),
+                             uniform(random, -0.4, 0.4)};
         mesh.normals[v] = glm::normalize(mesh.normals[v] + tilt);
     }
     return mesh;
@@ -723,8 +723,13 @@ struct FoldedCase {
 
 std::vector<FoldedCase> foldedCases() {
     std::vector<FoldedCase> cases;
-    // Seeds whose meshes have rays that come in through a fold (two each, of 300 rays).
-    for (const std::uint32_t seed : {14u, 20u, 26u}) {
+    // Seeds whose meshes have rays that come in through a fold (one or two each, of 300
+    // rays; found by scanning seeds 0 to 119, which gave 7 such). The meshes are the same
+    // whichever the compiler: every draw of several numbers is a braced list, evaluated
+    // left to right (a constructor's arguments in parentheses are not: GCC drew them right
+    // to left and Clang left to right, so Clang's sanitizer build had other meshes and no
+    // fold at all).
+    for (const std::uint32_t seed : {50u, 56u, 87u}) {
         cases.push_back({"bumpy tube, seed " + std::to_string(seed), bumpyFoldedTube(seed),
                          seamless(synth::valueNoise(16, 8, 3.0, 2, 9 + seed)), 0.6, 1.2});
     }
@@ -894,10 +899,10 @@ TEST(MeshReference, ARayInAnOffsetPlaneOfACurvedTriangle) {
                 return x;
             };
             // bOut: one or two b_i below 0 (outside an edge or a corner); bIn inside.
-            glm::dvec3 bOut(uniform(random, -0.6, 1.2), uniform(random, -0.6, 1.2), 0.0);
+            glm::dvec3 bOut{uniform(random, -0.6, 1.2), uniform(random, -0.6, 1.2), 0.0};
             bOut.z = 1.0 - bOut.x - bOut.y;
             if (std::min({bOut.x, bOut.y, bOut.z}) >= 0.0) continue;
-            glm::dvec3 bIn(uniform(random, 0.05, 0.9), uniform(random, 0.05, 0.9), 0.0);
+            glm::dvec3 bIn{uniform(random, 0.05, 0.9), uniform(random, 0.05, 0.9), 0.0};
             bIn.z = 1.0 - bIn.x - bIn.y;
             if (bIn.z < 0.05) continue;
             double entry = 0.0;  // where every b_i >= 0 along bOut + lambda (bIn - bOut)

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """three_webgpu_equal.py: does microrelief-three's WebGPU entry draw what its WebGL entry draws?
 
-One map (64 x 48, waves and one-texel spikes) on the plane in two views (`oblique` with the
-bilinear last level, `low` with the biquadratic) and on the cylinder (`round`, biquadratic;
+One map (64 x 48, waves and one-texel spikes) on the plane in four views (`oblique` with the
+bilinear last level, `low` with the biquadratic, `ortho` through an orthographic camera,
+`corner` into a 96 x 64 viewport of the target) and on the cylinder (`round`, biquadratic;
 with --all also the ellipsoid, bilinear), the library's shading with the hard self-shadow, a
 box of three's own half buried in the plane's relief, drawn 128 x 96 by the WebGL
 entry (WebGLRenderer, ReliefShadingMaterial) and by the WebGPU entry (WebGPURenderer,
@@ -38,7 +39,8 @@ REPO = HERE.parent.parent
 SKIPPED = 77
 # A view, a last level, a base: the suite's cases, then (with --all) the ellipsoid, whose
 # traversal SwiftShader runs slowly (about 25 s of the 37 s all four take on two cores).
-VIEWS = (("oblique", "bilinear", "plane"), ("low", "biquadratic", "plane"), ("round", "biquadratic", "cylinder"))
+VIEWS = (("oblique", "bilinear", "plane"), ("low", "biquadratic", "plane"), ("ortho", "bilinear", "plane"),
+         ("corner", "bilinear", "plane"), ("round", "biquadratic", "cylinder"))
 MORE_VIEWS = (("round", "bilinear", "ellipsoid"),)
 LIMITS = {"meanDiff": 0.05, "maxDiff": 8, "differingFraction": 0.005}
 HIT_DISAGREE_FRACTION = 0.002

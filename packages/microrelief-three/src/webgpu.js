@@ -15,7 +15,7 @@
 // by textureLoad, no sampler) and the glue (kGlue below: relief_three.glsl's mrTracePixel and
 // microrelief_shading.frag's main, in WGSL), called from a node material by wgslFn.
 import * as THREE from 'three/webgpu';
-import {code, Discard, Fn, frontFacing, If, screenCoordinate, screenSize, texture, uniform, vec4, wgslFn} from 'three/tsl';
+import {code, Discard, Fn, frontFacing, If, screenCoordinate, texture, uniform, vec4, viewport, wgslFn} from 'three/tsl';
 
 import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
 import * as core from '../generated/relief_core.js';
@@ -101,11 +101,13 @@ const kGlueCalls = ['mr_traceMultilevel', 'mr_hardShadow', 'mr_shadeRelief', 'mr
 // relief_three.glsl's mrTracePixel and microrelief_shading.frag's main, in WGSL: one pixel's
 // ray through its centre, traced, shaded, its depth. Returns (colour, depth); depth -1 where
 // the pixel shows nothing (a miss, or a face that does not run: mrFaces). The NDC is the
-// pixel centre's, from the fragment's position (WebGPU's y runs down) and the target's size:
-// the relief fills the whole viewport (this slice). Depth: WebGPU's clip z / w is already in
-// [0, 1] (three's WebGPU projection, reversed or not), the depth buffer's value.
+// pixel centre's, from the fragment's position and the viewport (x, y, width, height in the
+// target's pixels; WebGPU's y, and three's WebGPU viewport's, run down from the top), never an
+// interpolated box position (relief_three.glsl says why). Depth: WebGPU's clip z / w is
+// already in [0, 1] (three's WebGPU projection, reversed or not), the depth buffer's value
+// for the viewport's default depth range [0, 1].
 const kGlue = /* wgsl */`
-fn mrShadePixel(heights: texture_2d<f32>, windows: texture_2d<f32>, fragCoord: vec2<f32>, targetSize: vec2<f32>,
+fn mrShadePixel(heights: texture_2d<f32>, windows: texture_2d<f32>, fragCoord: vec2<f32>, viewport: vec4<f32>,
                 front: bool, faces: f32, mapSize: vec2<f32>, pyramidSize: vec2<f32>, levelCount: f32, maxHeight: f32,
                 objectToWorld: mat4x4<f32>, worldToObject: mat4x4<f32>, heightScale: f32, frameScale: vec3<f32>,
                 pixelError: f32, rayOrigin: vec3<f32>, rayOriginDx: vec3<f32>, rayOriginDy: vec3<f32>,
@@ -113,14 +115,14 @@ fn mrShadePixel(heights: texture_2d<f32>, windows: texture_2d<f32>, fragCoord: v
                 viewProjection: mat4x4<f32>, lightDirection: vec3<f32>, albedo: vec3<f32>, shadows: f32) -> vec4<f32> {
     let runs = select(select(true, front, faces == 1.0), !front, faces == 2.0);
     if (!runs) { return vec4<f32>(0.0, 0.0, 0.0, -1.0); }
-    let ndc = vec2<f32>(fragCoord.x / targetSize.x * 2.0 - 1.0, 1.0 - fragCoord.y / targetSize.y * 2.0);
+    let ndc = vec2<f32>((fragCoord.x - viewport.x) / viewport.z * 2.0 - 1.0, 1.0 - (fragCoord.y - viewport.y) / viewport.w * 2.0);
     let origin = rayOrigin + ndc.x * rayOriginDx + ndc.y * rayOriginDy;
     let dir = rayDir + ndc.x * rayDirDx + ndc.y * rayDirDy;
     let relief = mr_Relief(mr_ReliefMap(mapSize, vec2<i32>(pyramidSize), i32(levelCount), maxHeight, vec2<i32>(1)),
                            mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
     var lodCone = 0.0;
     if (pixelError > 0.0) {
-        let pixelAngle = 2.0 * length(rayDirDy) / targetSize.y;
+        let pixelAngle = 2.0 * length(rayDirDy) / viewport.w;
         let objectLength = length((worldToObject * vec4<f32>(dir, 0.0)).xyz);
         lodCone = pixelError * pixelAngle * objectLength * max(mapSize.x, mapSize.y);
     }
@@ -259,7 +261,7 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
         const shade = glueFor(`${relief.base.kind}_${relief.interpolation}`);
         const traced = shade({
             heights: texture(relief.reliefMap.heights), windows: texture(relief.reliefMap.windows),
-            fragCoord: screenCoordinate, targetSize: screenSize, front: frontFacing, faces: u('mrFaces'),
+            fragCoord: screenCoordinate, viewport, front: frontFacing, faces: u('mrFaces'),
             mapSize: u('mrMapSize'), pyramidSize: u('mrPyramidSize'), levelCount: u('mrLevelCount'), maxHeight: u('mrMaxHeight'),
             objectToWorld: u('mrObjectToWorld'), worldToObject: u('mrWorldToObject'), heightScale: u('mrHeightScale'),
             frameScale: u('mrFrameScale'), pixelError: u('mrPixelError'),

@@ -27,6 +27,9 @@ const kViews = {
     oblique: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0]},
     low: {eye: [-0.7, 0.16, 0.35], target: [0.05, 0.03, 0]},
     round: {eye: [0.9, 0.5, 1.0], target: [0, 0, 0]},
+    ortho: {eye: [0.6, 0.7, 0.5], target: [0, 0.02, 0], orthographic: true},  // a directional light's kind of camera
+    // Drawn into part of the target (x, y from the bottom, width, height): the NDC from the viewport.
+    corner: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0], viewport: [16, 8, 96, 64]},
 };
 
 function setUp(T, view, relief) {
@@ -35,7 +38,9 @@ function setUp(T, view, relief) {
     const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
     box.position.set(0.0, 0.02, 0.05);  // half buried: the relief's depth draws the line between them
     scene.add(box);
-    const camera = new T.PerspectiveCamera(45, W / H, 0.05, 10);
+    const [, , vw, vh] = kViews[view].viewport ?? [0, 0, W, H];
+    const camera = kViews[view].orthographic ? new T.OrthographicCamera(-0.6, 0.6, 0.45, -0.45, 0.05, 10)
+                                             : new T.PerspectiveCamera(45, vw / vh, 0.05, 10);
     camera.position.set(...kViews[view].eye);
     camera.lookAt(...kViews[view].target);
     camera.updateMatrixWorld();
@@ -63,6 +68,7 @@ async function drawWebGL(view, interpolation, base = 'plane') {
     const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, base, material: new gl.ReliefShadingMaterial({lightDirection: light, shadows: 'hard'})});
     const {scene, camera} = setUp(THREE, view, relief);
     const target = new THREE.WebGLRenderTarget(W, H);
+    if (kViews[view].viewport) target.viewport.set(...kViews[view].viewport);  // GL's y from the bottom
     renderer.setRenderTarget(target);
     renderer.setClearColor(0x000000, 0);
     renderer.clear();
@@ -82,6 +88,10 @@ async function drawWebGPU(view, interpolation, base = 'plane') {
     const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, base, material: new wg.ReliefShadingNodeMaterial({lightDirection: light, shadows: 'hard'})});
     const {scene, camera} = setUp(GPU, view, relief);
     const target = new GPU.RenderTarget(W, H);
+    if (kViews[view].viewport) {  // the same pixels: WebGPU's y from the top
+        const [x, y, w, h] = kViews[view].viewport;
+        target.viewport.set(x, H - y - h, w, h);
+    }
     renderer.setRenderTarget(target);
     renderer.setClearColor(0x000000, 0);
     renderer.clear();

@@ -92,7 +92,7 @@ TriangleMesh bumpyGrid(int n, double lean, std::mt19937& random) {
     TriangleMesh mesh = flatGrid(n, 1.0f, 1.0f);
     for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
         mesh.positions[k].y = static_cast<float>(uniform(random, -0.05, 0.05));
-        const glm::dvec3 normal(uniform(random, -lean, lean), 1.0, uniform(random, -lean, lean));
+        const glm::dvec3 normal{uniform(random, -lean, lean), 1.0, uniform(random, -lean, lean)};
         mesh.normals[k] = glm::vec3(glm::normalize(normal));
     }
     return mesh;
@@ -156,11 +156,11 @@ TEST(MeshTracer, PiecesHoldTheRaysPreimageAndAreMonotone) {
         // One triangle, normals leaning up to 60 degrees, shell up to 1.5 times its size: folds.
         TriangleMesh mesh;
         for (int i = 0; i < 3; ++i) {
-            mesh.positions.push_back(glm::vec3(uniform(random, -0.5, 0.5), uniform(random, -0.1, 0.1),
-                                               uniform(random, -0.5, 0.5)));
-            mesh.normals.push_back(glm::vec3(glm::normalize(glm::dvec3(
-                uniform(random, -1.7, 1.7), 1.0, uniform(random, -1.7, 1.7)))));
-            mesh.texCoords.push_back(glm::vec2(uniform(random, -1.5, 1.5), uniform(random, -1.5, 1.5)));
+            mesh.positions.push_back(glm::vec3{uniform(random, -0.5, 0.5), uniform(random, -0.1, 0.1),
+                                               uniform(random, -0.5, 0.5)});
+            mesh.normals.push_back(glm::vec3(glm::normalize(glm::dvec3{
+                uniform(random, -1.7, 1.7), 1.0, uniform(random, -1.7, 1.7)})));
+            mesh.texCoords.push_back(glm::vec2{uniform(random, -1.5, 1.5), uniform(random, -1.5, 1.5)});
         }
         mesh.triangles = {{0, 1, 2}};
         const double s = uniform(random, 0.1, 1.5);
@@ -169,9 +169,9 @@ TEST(MeshTracer, PiecesHoldTheRaysPreimageAndAreMonotone) {
         const glm::dvec3 p[3] = {mesh.positions[0], mesh.positions[1], mesh.positions[2]};
         const glm::dvec3 n[3] = {mesh.normals[0], mesh.normals[1], mesh.normals[2]};
         for (int r = 0; r < 10; ++r) {
-            const glm::dvec3 from(uniform(random, -2, 2), uniform(random, -1, 2), uniform(random, -2, 2));
-            const glm::dvec3 to(uniform(random, -0.5, 0.5), uniform(random, 0.0, 0.8),
-                                uniform(random, -0.5, 0.5));
+            const glm::dvec3 from{uniform(random, -2, 2), uniform(random, -1, 2), uniform(random, -2, 2)};
+            const glm::dvec3 to{uniform(random, -0.5, 0.5), uniform(random, 0.0, 0.8),
+                                uniform(random, -0.5, 0.5)};
             const Ray ray{from, to - from};
             const double lambdaMax = 3.0;
             PrismPath path;
@@ -289,13 +289,13 @@ TEST(MeshTracer, FootprintBoundsHoldTheRepeatedSurface) {
             // Rectangles up to 3 texels (a few up to 40), anywhere in [-40, 40]^2, half of them
             // at the period's edges.
             const double size = k % 10 == 0 ? 40.0 : 3.0;
-            glm::dvec2 lo(uniform(random, -40, 40), uniform(random, -40, 40));
+            glm::dvec2 lo{uniform(random, -40, 40), uniform(random, -40, 40)};
             if (k % 2 == 0) {
                 lo = glm::dvec2(16.0 * std::round(lo.x / 16.0), 8.0 * std::round(lo.y / 8.0)) +
-                     glm::dvec2(uniform(random, -2, 0.5), uniform(random, -2, 0.5));
+                     glm::dvec2{uniform(random, -2, 0.5), uniform(random, -2, 0.5)};
                 ++nearEdges;
             }
-            const glm::dvec2 hi = lo + glm::dvec2(uniform(random, 0, size), uniform(random, 0, size));
+            const glm::dvec2 hi = lo + glm::dvec2{uniform(random, 0, size), uniform(random, 0, size)};
             const double bound = tracer.footprintBound(lo, hi).bound;
             double highest = 0.0;
             for (int i = 0; i <= 24; ++i)
@@ -360,12 +360,12 @@ Agreement compare(const TriangleMesh& mesh, const HeightMap& map, double s,
 std::vector<Ray> gridRays(std::mt19937& random, double top, int count) {
     std::vector<Ray> rays;
     for (int k = 0; k < count; ++k) {
-        const glm::dvec3 target(uniform(random, -0.45, 0.45), uniform(random, 0.0, top),
-                                uniform(random, -0.2, 0.2));
+        const glm::dvec3 target{uniform(random, -0.45, 0.45), uniform(random, 0.0, top),
+                                uniform(random, -0.2, 0.2)};
         switch (k % 5) {
             case 0: {  // from above, steep to 30 degrees
-                const glm::dvec3 eye = target + glm::dvec3(uniform(random, -1, 1), uniform(random, 0.6, 2),
-                                                           uniform(random, -1, 1));
+                const glm::dvec3 eye = target + glm::dvec3{uniform(random, -1, 1), uniform(random, 0.6, 2),
+                                                           uniform(random, -1, 1)};
                 rays.push_back({eye, target - eye});
                 break;
             }
@@ -376,8 +376,8 @@ std::vector<Ray> gridRays(std::mt19937& random, double top, int count) {
                 break;
             }
             case 2: {  // from below the mesh, up
-                const glm::dvec3 eye(target.x + uniform(random, -0.3, 0.3), -uniform(random, 0.1, 1),
-                                     target.z + uniform(random, -0.3, 0.3));
+                const glm::dvec3 eye{target.x + uniform(random, -0.3, 0.3), -uniform(random, 0.1, 1),
+                                     target.z + uniform(random, -0.3, 0.3)};
                 rays.push_back({eye, target - eye});
                 break;
             }
@@ -458,7 +458,7 @@ TEST(MeshTracer, CurvedFoldedAndSeamedMeshesAgreeWithTheReference) {
                 const glm::dvec3 out(std::sin(phi), 0.0, std::cos(phi));
                 const glm::dvec3 aim = radius * out + glm::dvec3(0.0, y, 0.0);
                 const glm::dvec3 away = glm::normalize(
-                    out + glm::dvec3(uniform(random, -1, 1), uniform(random, -0.5, 0.5), uniform(random, -1, 1)));
+                    out + glm::dvec3{uniform(random, -1, 1), uniform(random, -0.5, 0.5), uniform(random, -1, 1)});
                 if (k % 3 == 2)
                     rays.push_back({glm::dvec3(0.0, y, 0.0), away});  // from the axis
                 else
@@ -475,9 +475,9 @@ TEST(MeshTracer, CurvedFoldedAndSeamedMeshesAgreeWithTheReference) {
             const double s = 0.5 * 0.3 / noise.maxValue() * 2.5;
             std::vector<Ray> rays;
             for (int k = 0; k < 200; ++k) {
-                const glm::dvec3 eye(uniform(random, -0.25, 0.25), uniform(random, -0.6, 0.6),
-                                     uniform(random, -0.25, 0.25));
-                const glm::dvec3 d(uniform(random, -1, 1), uniform(random, -0.3, 0.3), uniform(random, -1, 1));
+                const glm::dvec3 eye{uniform(random, -0.25, 0.25), uniform(random, -0.6, 0.6),
+                                     uniform(random, -0.25, 0.25)};
+                const glm::dvec3 d{uniform(random, -1, 1), uniform(random, -0.3, 0.3), uniform(random, -1, 1)};
                 rays.push_back({eye, d});
             }
             const Agreement a = compare(tube(12, 3, 0.3f, 1.0f, true), noise, s, interpolation,

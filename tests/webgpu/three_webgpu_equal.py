@@ -16,8 +16,9 @@ or in hit/miss <= 0.5 %, hit/miss disagreeing at <= 0.2 % of the pixels; and the
 worth comparing (the relief covers at least 20 % of the picture). The page must also write
 document.documentElement.dataset.api = 'webgpu' once the WebGPU entry's first frame is drawn,
 and the entry refuse in one line, before the pictures: a WebGLRenderer (a TypeError pointing at
-'microrelief-three') and a WebGPURenderer without a WebGPU adapter (forceWebGL, three's fallback
-to WebGL 2: a ReliefGpuError).
+'microrelief-three'), a WebGPURenderer without a WebGPU adapter (forceWebGL, three's fallback
+to WebGL 2: a ReliefGpuError), and the entry's Relief drawn by a WebGLRenderer (a TypeError out
+of its render, rather than three's failing to compile a node material).
 
 Usage: three_webgpu_equal.py --package DIR (a built microrelief-three: its src/ and
 generated/) [--three DIR (three's package; default the package's node_modules/three)]
@@ -49,6 +50,7 @@ HIT_DISAGREE_FRACTION = 0.002
 REFUSALS = {
     "webglRenderer": ("TypeError", ["WebGLRenderer", "import from 'microrelief-three'"]),
     "noAdapter": ("ReliefGpuError", ["no WebGPU adapter", "WebGLRenderer", "'microrelief-three'"]),
+    "drawnByWebGL": ("TypeError", ["Relief:", "WebGLRenderer", "import from 'microrelief-three'"]),
 }
 THREE_FILES = ("three.module.js", "three.core.js", "three.webgpu.js", "three.tsl.js")
 

@@ -289,15 +289,6 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
     }
 }
 
-// The WebGLRenderers told that this entry's Relief does not draw in them (once each, in one
-// line, as the WebGL entry tells a WebGPURenderer: the scene goes on).
-const _toldWebGL = new WeakSet();
-function warnWebGLRenderer(renderer) {
-    if (_toldWebGL.has(renderer)) return;
-    _toldWebGL.add(renderer);
-    console.error(`Relief: ${kWebGLRendererHere}`);
-}
-
 // The relief as a three.js object: a THREE.Mesh whose geometry is its proxy box and whose
 // material traces it in every pixel the box covers (relief.js's Relief, for a
 // WebGPURenderer). Options as there: material (a ReliefShadingNodeMaterial), heightScale,
@@ -337,7 +328,9 @@ export class Relief extends THREE.Mesh {
         this.geometry.dispose();
         this.geometry = geometry;
         this.onBeforeRender = (renderer, scene, camera) => {
-            if (renderer.isWebGLRenderer) return warnWebGLRenderer(renderer);
+            // A WebGLRenderer cannot compile a node material (three's own error then says
+            // nothing of why): this one line instead, thrown out of its render.
+            if (renderer.isWebGLRenderer) throw new TypeError(`Relief: ${kWebGLRendererHere}`);
             const rays = reliefFrame(this, camera, this.uniforms);
             this.uniforms.mrFaces.value = boxFaces(this.box, this.matrixWorld, camera, rays.range);
         };

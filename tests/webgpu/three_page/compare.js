@@ -139,9 +139,9 @@ async function compareEntries(view, interpolation, base) {
                                    hitsGl, hitsGpu, hitDisagree, reliefGl}, png});
 }
 
-// What the WebGPU entry says where it cannot draw: given a WebGLRenderer, and given a
+// What the WebGPU entry says where it cannot draw: given a WebGLRenderer, given a
 // WebGPURenderer without a WebGPU adapter (forceWebGL: three's fallback to WebGL 2, as where
-// the browser has no adapter). -> JSON {[case]: {name, message}} (no name: nothing thrown).
+// the browser has no adapter), and its Relief drawn by a WebGLRenderer. -> JSON {[case]: {name, message}} (no name: nothing thrown).
 async function refusals() {
     const {w, h, samples} = heights();
     const map = wg.heightsFromArray(samples, w, h, {name: 'waves'});
@@ -158,6 +158,13 @@ async function refusals() {
     await attempt('webglRenderer', () => wg.createReliefMap(new THREE.WebGLRenderer({canvas: new OffscreenCanvas(8, 8)}), map));
     await attempt('noAdapter', () => wg.createReliefMap(fallback, map));
     fallback.dispose();
+    // This entry's Relief in a WebGLRenderer's scene.
+    const {webgl: glRenderer, webgpu: gpuRenderer} = await renderers();
+    const relief = new wg.Relief(await wg.createReliefMap(gpuRenderer, map));
+    const scene = new THREE.Scene();
+    scene.add(relief);
+    await attempt('drawnByWebGL', () => glRenderer.render(scene, new THREE.PerspectiveCamera()));
+    relief.reliefMap.dispose();
     return JSON.stringify(said);
 }
 

@@ -23,7 +23,7 @@ constexpr double kPi = std::numbers::pi;
 FrameRay randomLine(std::mt19937& random, int kind) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0), radius(0.0, 1.3);
     std::normal_distribution<double> normal;
-    glm::dvec3 through(unit(random), unit(random), unit(random));
+    glm::dvec3 through{unit(random), unit(random), unit(random)};
     through *= radius(random) / std::max(glm::length(through), 1e-9);
     glm::dvec3 dir(normal(random), normal(random), normal(random));
     if (kind == 1) through.x = through.z = 1e-7 * unit(random);  // next to the axis
@@ -258,7 +258,7 @@ TEST(MaxPyramidWrapped, BoundsTheSurfaceAcrossTheSeam) {
         std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0);
         for (int trial = 0; trial < 3000; ++trial) {
             glm::dvec2 lo(x(random), y(random));
-            const glm::dvec2 size(std::pow(unit(random), 2.0) * w, std::pow(unit(random), 2.0) * h);
+            const glm::dvec2 size{std::pow(unit(random), 2.0) * w, std::pow(unit(random), 2.0) * h};
             glm::dvec2 hi = glm::min(lo + size, glm::dvec2(lo.x + w, h));
             const BoundRead read = p.footprintBound(lo, hi);
             const double bound = read.bound;

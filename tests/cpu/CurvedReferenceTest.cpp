@@ -106,8 +106,8 @@ TEST(CurvedReference, AConstantMapIsAColumnOrAnEllipsoidOfKnownRadius) {
         if (column) scale.y = c.base.frameScale().y;  // the caps stay at +-L/2
         int hits = 0, caps = 0;
         for (int k = 0; k < 2000; ++k) {
-            const glm::dvec3 eye = 1.5 * glm::dvec3(unit(random), unit(random), unit(random));
-            const glm::dvec3 aim = 0.5 * glm::dvec3(unit(random), unit(random), unit(random));
+            const glm::dvec3 eye = 1.5 * glm::dvec3{unit(random), unit(random), unit(random)};
+            const glm::dvec3 aim = 0.5 * glm::dvec3{unit(random), unit(random), unit(random)};
             const Ray ray = through(eye, aim);
             bool cap = false;
             const auto exact = enterScaled(ray, scale, column, cap);
@@ -241,13 +241,13 @@ TEST(CurvedReference, RandomRaysHitTheSolidFirstWhereTheyEnterIt) {
         for (int n = 0; n < 40; ++n) {
             glm::dvec3 eye;
             do {
-                eye = 2.0 * box * glm::dvec3(unit(random), unit(random), unit(random));
+                eye = 2.0 * box * glm::dvec3{unit(random), unit(random), unit(random)};
             } while (solid.deepInside(eye, 0.0));
             // Aimed at the body, or anywhere.
             const Ray ray =
                 n % 2 == 0
-                    ? through(eye, 0.6 * box * glm::dvec3(unit(random), unit(random), unit(random)))
-                    : Ray{eye, glm::dvec3(unit(random), unit(random), unit(random))};
+                    ? through(eye, 0.6 * box * glm::dvec3{unit(random), unit(random), unit(random)})
+                    : Ray{eye, glm::dvec3{unit(random), unit(random), unit(random)}};
             const ReferenceHit hit = traceReference(solid.relief, ray);
             SCOPED_TRACE(testing::Message()
                          << "trial " << trial << " ray " << n << " " << baseName(base));

@@ -42,7 +42,7 @@ std::pair<glm::dvec2, glm::dvec2> randomFootprint(std::mt19937& random, int w, i
     std::uniform_real_distribution<double> x(0.0, w), y(0.0, h), unit(0.0, 1.0);
     const glm::dvec2 lo(x(random), y(random));
     const double reach = std::max(w, h) * unit(random) * unit(random);
-    glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
+    glm::dvec2 hi = lo + reach * glm::dvec2{unit(random), unit(random)};
     hi.y = std::min(hi.y, static_cast<double>(h));
     hi.x = std::min(hi.x, wrapU ? lo.x + w - 1e-9 : static_cast<double>(w));
     return {lo, hi};
@@ -588,7 +588,7 @@ TEST(MaxPyramid, HalfPrecisionWindowsCoverTheSurfaceAlongAnySegment) {
             for (int trial = 0; trial < 1500; ++trial) {
                 const glm::dvec2 lo(x(random), y(random));
                 const double reach = std::max(w, h) * unit(random) * unit(random);
-                glm::dvec2 hi = lo + reach * glm::dvec2(unit(random), unit(random));
+                glm::dvec2 hi = lo + reach * glm::dvec2{unit(random), unit(random)};
                 hi = glm::min(hi, glm::dvec2(wrapU ? lo.x + w - 1e-9 : w, h));
                 const double bound = p.footprintBound(lo, hi).bound;
                 double dense = 0.0;

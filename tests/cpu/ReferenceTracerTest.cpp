@@ -479,7 +479,7 @@ TEST(ReferenceTracerPatch, SlantedRaysAgreeWithBisection) {
     std::uniform_real_distribution<double> inCell(-0.24, 0.24), unit(-1.0, 1.0);
     for (int n = 0; n < 200; ++n) {
         const glm::dvec3 target(inCell(random), 0.0, inCell(random));
-        const glm::dvec3 origin(target.x + 0.2 * unit(random), 1.0, target.z + 0.2 * unit(random));
+        const glm::dvec3 origin{target.x + 0.2 * unit(random), 1.0, target.z + 0.2 * unit(random)};
         const Ray ray = through(origin, target);
         const ReferenceHit hit = traceReference(relief, ray);
         ASSERT_EQ(hit.face, HitFace::Top);
@@ -562,9 +562,9 @@ TEST(ReferenceTracerBiquadratic, SlantedRaysAgreeWithBisection) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     int hits = 0;
     for (int k = 0; k < 300; ++k) {
-        const glm::dvec3 target(0.45 * unit(random), 0.0, 0.3 * unit(random));
+        const glm::dvec3 target{0.45 * unit(random), 0.0, 0.3 * unit(random)};
         const glm::dvec3 eye =
-            target + glm::dvec3(unit(random), 0.6 + 0.5 * unit(random), unit(random));
+            target + glm::dvec3{unit(random), 0.6 + 0.5 * unit(random), unit(random)};
         const Ray ray = through(eye, {target.x, surfaceY(relief, target.x, target.z), target.z});
         const ReferenceHit hit = traceReference(relief, ray);
         ASSERT_TRUE(hit) << k;  // the target itself is on the surface

@@ -40,7 +40,7 @@ TEST(SurfacePatch, IsTheMapsSurfaceAndItsDerivative) {
                     for (int k = 0; k < 20; ++k) {
                         // Inside the cell (off its edges, where the surface's finite
                         // differences would straddle two patches).
-                        const glm::dvec2 f(0.01 + 0.98 * unit(random), 0.01 + 0.98 * unit(random));
+                        const glm::dvec2 f{0.01 + 0.98 * unit(random), 0.01 + 0.98 * unit(random)};
                         const glm::dvec2 x = c.corner + f;
                         const auto h = [&](glm::dvec2 q) {
                             return map.surface(q.x, q.y, wrapU, interpolation);
@@ -79,9 +79,9 @@ TEST(SurfacePatch, MaxOverBoundsThePatchOnAnyRectangle) {
                 const int j = static_cast<int>(unit(random) * map.height);
                 const SurfacePatch patch = SurfacePatch::at(map, i, j, true, interpolation);
                 const double size = std::pow(unit(random), 3.0);
-                glm::dvec2 lo(unit(random), unit(random));
+                glm::dvec2 lo{unit(random), unit(random)};
                 lo *= 1.0 - size;
-                const glm::dvec2 hi = lo + size * glm::dvec2(unit(random), unit(random));
+                const glm::dvec2 hi = lo + size * glm::dvec2{unit(random), unit(random)};
                 double sampled = 0.0;
                 for (int b = 0; b <= 20; ++b)
                     for (int a = 0; a <= 20; ++a)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Set up (plus gnuplot for the plots), fetch the real height maps (scripts/bench-maps.sh,
+# Set up (gnuplot for the plots among the set-up's packages), fetch the real height maps (scripts/bench-maps.sh,
 # into out/bench-maps; MICRORELIEF_BENCH_NO_FETCH=1 skips it, and a fetch that fails only
 # warns: the benchmark then runs without them), build, and run microrelief-bench; arguments
 # go to it (e.g. --quick, or a subcommand and its options: terrain --quick). Results:
@@ -8,9 +8,6 @@
 # tables take the GL timer query's times wherever the renderer is not a CPU rasteriser.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-# gnuplot for the plots, installed by the set-up with the rest (its package lists brought up
-# to date first, as a bare machine needs): the plots are the benchmark's, not the build's.
-export MICRORELIEF_EXTRA_PACKAGES="${MICRORELIEF_EXTRA_PACKAGES:+$MICRORELIEF_EXTRA_PACKAGES }gnuplot-nox"
 source "$root/scripts/setup.sh"
 if [ "${MICRORELIEF_BENCH_NO_FETCH:-0}" != 1 ]; then
   bash "$root/scripts/bench-maps.sh" "$root/out/bench-maps" ||

@@ -2,6 +2,7 @@
 # Installs what is missing (Debian 12 packages), configures and builds microrelief in
 # build/. Idempotent: a second run installs nothing and rebuilds only what changed.
 # Sourced by run.sh and test.sh; usable alone: bash scripts/setup.sh
+# gnuplot-nox draws the benchmark's plots (and lets the cli tests check them).
 # MICRORELIEF_EXTRA_PACKAGES adds packages (sanitize.sh and fuzz.sh: clang and its
 # runtime); MICRORELIEF_SETUP_NO_BUILD=1 installs only.
 set -euo pipefail
@@ -16,6 +17,7 @@ packages=(
   libgtest-dev libcli11-dev python3-glad glslang-tools
   libimgui-dev xvfb xauth xdotool
   chromium python3 emscripten
+  gnuplot-nox
 )
 read -r -a extra <<< "${MICRORELIEF_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")

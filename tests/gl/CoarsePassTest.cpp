@@ -54,14 +54,13 @@ std::vector<View> views() {
             {"eye in the solid", test::orbitCamera(4.0, 300.0, 0.35, {0.05, 0.06, 0.0})}};
 }
 
-// With the pass (8 x 8 and 4 x 4 tiles), every pixel hits or misses as without it, at the
-// same point to float rounding: positions (about the eye) within 2e-5 of the hit's distance,
-// some 300 float ulps (the walk starts elsewhere, so its leaves solve from other points of
-// the same ray: the roots agree, their rounding does not). And each tile's start is at most
-// the single pass's hit distance of each of its pixels (t = |position| / |direction|), and
-// a tile whose rays all miss holds only missing pixels. Fetches per pixel with and without
-// (the instrumented variant; the pass's own reads per pixel besides) are printed, not
-// asserted.
+// With the pass (8 x 8 tiles, and 4 x 4 on the bilinear surface), every pixel hits or misses as
+// without it, at the same point to float rounding: positions (about the eye) within 2e-5 of the
+// hit's distance, some 300 float ulps (the walk starts elsewhere, so its leaves solve from other
+// points of the same ray: the roots agree, their rounding does not). And each tile's start is at
+// most the single pass's hit distance of each of its pixels (t = |position| / |direction|), and a
+// tile whose rays all miss holds only missing pixels. Fetches per pixel with and without (the
+// instrumented variant; the pass's own reads per pixel besides) are printed, not asserted.
 TEST_F(CoarsePass, PicturesAreTheSinglePassesAndTheStartNeverPassesAHit) {
     GlContext& context = test::glContext();
     context.makeCurrent();
@@ -94,7 +93,9 @@ TEST_F(CoarsePass, PicturesAreTheSinglePassesAndTheStartNeverPassesAHit) {
             std::size_t hits = 0;
             for (int i = 0; i < width * height; ++i) hits += single.position[4 * i + 3] != 0.0f;
             ASSERT_GT(hits, std::size_t(width * height / 10)) << view.name;
+            // 4 x 4 on the bilinear surface only (the test's time on OSMesa).
             for (const int tile : {8, 4}) {
+                if (tile == 4 && interpolation == Interpolation::Biquadratic) continue;
                 const std::string what = std::string(interpolationName(interpolation)) + ", " +
                                          view.name + ", tile " + std::to_string(tile);
                 const RenderedFrame coarse = drawn(tile, false);

@@ -15,6 +15,7 @@
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/gl/OffscreenTarget.h"
 #include "microrelief/gl/ReliefRenderer.h"
+#include "microrelief/gl/ReliefShader.h"
 #include "microrelief/gl/StateGuard.h"
 
 using namespace microrelief;
@@ -175,6 +176,73 @@ TEST_F(CoarsePass, OtherMethodsAndBasesDrawTheSinglePass) {
     renderer.setMethod(MethodSettings{});
     renderer.draw(camera, ShadingOptions{});
     EXPECT_TRUE(renderer.coarsePassDrawn());
+}
+
+// Drawn in picture tiles (PictureTile, 40 x 30: not a multiple of the pass's 8) with the
+// pass, the picture is the one drawn whole with it, to the same rounding as above: each
+// draw's pass covers its own pixels. And the draw leaves the caller's draw framebuffer and
+// the texture on the pass's unit as they were.
+TEST_F(CoarsePass, PictureTilesAreTheWholePictureAndTheCallersStateStays) {
+    GlContext& context = test::glContext();
+    context.makeCurrent();
+    const GL& gl = context.gl();
+    const HeightMap map = synth::cobbles(128, 128, 5);
+    const int width = 80, height = 60, tileW = 40, tileH = 30;
+    ReliefRenderer renderer(gl, shaderDirectory());
+    renderer.apply(test::relief({}, Interpolation::Bilinear, 0.1f), &map, "cobbles");
+    renderer.setCoarsePass(8);
+    const CameraFrame camera =
+        renderer.resolveCamera(test::orbitCamera(8.0, 70.0, 1.0, {0.0, 0.03, 0.0}), width, height);
+    OffscreenTarget whole(gl, width, height);
+    whole.clear(glm::vec3(0.0f));
+    renderer.draw(camera, ShadingOptions{});
+    const RenderedFrame expected = whole.read(camera.eye);
+
+    auto marker = gl::Texture::create(gl);
+    OffscreenTarget part(gl, tileW, tileH);
+    RenderedFrame tiled = expected;
+    std::fill(tiled.position.begin(), tiled.position.end(), -1.0f);
+    for (int y = 0; y < height; y += tileH) {
+        for (int x = 0; x < width; x += tileW) {
+            part.clear(glm::vec3(0.0f));
+            gl.ActiveTexture(GL_TEXTURE0 + ReliefShader::kCoarseStartUnit);
+            gl.BindTexture(GL_TEXTURE_2D, marker.id());
+            gl.ActiveTexture(GL_TEXTURE0);
+            GLint framebuffer = 0, unitTexture = 0;
+            gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+            renderer.draw(camera, ShadingOptions{}, PictureTile{x, y, tileW, tileH});
+            ASSERT_TRUE(renderer.coarsePassDrawn());
+            GLint framebufferAfter = 0, activeAfter = 0;
+            gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebufferAfter);
+            gl.GetIntegerv(GL_ACTIVE_TEXTURE, &activeAfter);
+            gl.ActiveTexture(GL_TEXTURE0 + ReliefShader::kCoarseStartUnit);
+            gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &unitTexture);
+            gl.ActiveTexture(GL_TEXTURE0);
+            EXPECT_EQ(framebufferAfter, framebuffer);
+            EXPECT_EQ(activeAfter, GLint(GL_TEXTURE0));
+            EXPECT_EQ(GLuint(unitTexture), marker.id());
+            part.readInto(tiled, x, y, tileW, tileH);
+        }
+    }
+    std::size_t same = 0, hits = 0;
+    double worst = 0.0;
+    for (int row = 0; row < height; ++row) {
+        for (int column = 0; column < width; ++column) {
+            const float* a = expected.positionAt(column, row);
+            const float* b = tiled.positionAt(column, row);
+            if (a[3] == 0.0f) {
+                same += b[3] == 0.0f;
+                continue;
+            }
+            ++hits;
+            const glm::dvec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]);
+            const double error = glm::length(pa - pb) / std::max(glm::length(pa), 1e-30);
+            worst = std::max(worst, error);
+            same += b[3] != 0.0f && error <= 2e-5;
+        }
+    }
+    EXPECT_GT(hits, std::size_t(width * height / 4));
+    EXPECT_EQ(same, std::size_t(width * height)) << "worst " << worst;
 }
 
 }  // namespace

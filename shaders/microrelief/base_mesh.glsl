@@ -1,0 +1,515 @@
+// base_mesh.glsl: the mesh base's traversal in one triangle's prism (docs/bases.md, "The mesh",
+// "The mesh's traversal"; issue 50), the GLSL of core/trace/MeshTracer.cpp, function for
+// function: mr_meshPath (MeshTracer::path), mr_meshPointOn (pointOn), the cuts and pieces
+// (pieces), mr_meshFootprintBound (footprintBound), mr_meshWalkPiece (walkPiece),
+// mr_meshLeaf (leaf), mr_meshTraceTriangle (traceTriangle). One fragment of a prism's hull
+// (shaders/mesh_relief.frag) traces its ray in that prism; the depth test keeps the least
+// over prisms, which is MeshTracer::trace's least.
+//
+// The prism of triangle k: X(b, t) = B(b) + s t D(b), b in the triangle, 0 <= t <= H (H the
+// pyramid's top). The ray's preimage is parametrised by the height t: lambda = num / c,
+// b_1 = n1 / c, b_2 = n2 / c (c quadratic, num cubic, n quadratic). [0, H] is cut at the
+// roots of c, of b's numerators and of the turning numerators of lambda, b, u and v, so that
+// on each piece lambda, t, b, u and v are monotone and b lies on one side of each wall.
+//
+// What is reused and what is not:
+//  * segment_walk.glsl's naming and stepping of segments (mr_SegmentWalk, mr_walkDescend,
+//    mr_walkNext) and max_pyramid.glsl's window read (mr_windowOver) are used as they are:
+//    the walk over a piece's parameter p in [0, 1] visits segments by the same rules as the
+//    plane's walk over its ray.
+//  * mr_walkFootprint and mr_baseFootprintOf are not: they place a segment on a straight
+//    line start + t dir and map its ends through one base (mr_baseEnd: one frame for the
+//    whole map), where a piece's points come from per-triangle polynomials in t (a rational
+//    curve in map space), and the piece's footprint must be read through the map repeated
+//    in u and v (both axes wrap; the library's MICRORELIEF_BASE_WRAPS_U wraps u alone). The
+//    few lines that place a segment are here, in the piece's terms.
+//  * bilinear_patch.glsl's mr_patchHeight and mr_patchMaxOver are used for the leaf; the
+//    cell's corners are read here with both indices wrapped (the library's reads clamp v).
+//
+// Float: the parameter is t, so a ray at a grazing angle g to the mesh resolves a texel of
+// size e only while g e is well above H 2^-24 (docs/bases.md). Not handled in this slice:
+// level pieces (a ray parallel to every offset plane, c = 0 identically, such as a ray
+// exactly level over a flat mesh: MeshTracer's PrismPath::level), dropped here; the
+// biquadratic last level (bilinear only).
+#ifndef MICRORELIEF_BASE_MESH_GLSL
+#define MICRORELIEF_BASE_MESH_GLSL
+
+#include "bilinear_patch.glsl"
+#include "final_piece.glsl"
+#include "max_pyramid.glsl"
+#include "relief_map.glsl"
+#include "segment_walk.glsl"
+
+// The triangle table: per mesh triangle 8 RGBA32F texels, triangle k's at texel
+// ((k % MR_MESH_TABLE_ROW) * 8 + j, k / MR_MESH_TABLE_ROW):
+// j = 0..2: P_i, T_i.x; j = 3..5: N_i, T_i.y; j = 6: H_tri, 0, 0, 0; j = 7 unused.
+const int MR_MESH_TABLE_ROW = 256;
+
+struct mr_MeshTriangle {
+    vec3 p0, e1, e2;  // P0, P1 - P0, P2 - P0
+    vec3 n0, f1, f2;  // N0, N1 - N0, N2 - N0
+    vec2 uv0, uv1, uv2;
+};
+
+mr_MeshTriangle mr_meshTriangle(sampler2D table, int k) {
+    ivec2 at = ivec2((k % MR_MESH_TABLE_ROW) * 8, k / MR_MESH_TABLE_ROW);
+    vec4 a0 = texelFetch(table, at, 0), a1 = texelFetch(table, at + ivec2(1, 0), 0);
+    vec4 a2 = texelFetch(table, at + ivec2(2, 0), 0), m0 = texelFetch(table, at + ivec2(3, 0), 0);
+    vec4 m1 = texelFetch(table, at + ivec2(4, 0), 0), m2 = texelFetch(table, at + ivec2(5, 0), 0);
+    return mr_MeshTriangle(a0.xyz, a1.xyz - a0.xyz, a2.xyz - a0.xyz, m0.xyz, m1.xyz - m0.xyz,
+                           m2.xyz - m0.xyz, vec2(a0.w, m0.w), vec2(a1.w, m1.w), vec2(a2.w, m2.w));
+}
+
+// ---- Polynomials in t of degree <= 4: float[5], coefficients of t^0 .. t^4 ----
+
+float mr_polyValue(float p[5], float t) {
+    return (((p[4] * t + p[3]) * t + p[2]) * t + p[1]) * t + p[0];
+}
+
+float[5] mr_polyDerivative(float p[5]) {
+    return float[5](p[1], 2.0 * p[2], 3.0 * p[3], 4.0 * p[4], 0.0);
+}
+
+// a + sb b.
+float[5] mr_polyPlus(float a[5], float b[5], float sb) {
+    return float[5](a[0] + sb * b[0], a[1] + sb * b[1], a[2] + sb * b[2], a[3] + sb * b[3], a[4] + sb * b[4]);
+}
+
+float[5] mr_polyScaled(float a[5], float s) {
+    return float[5](s * a[0], s * a[1], s * a[2], s * a[3], s * a[4]);
+}
+
+// The product truncated to degree 4 (every product taken here has degree <= 4).
+float[5] mr_polyTimes(float a[5], float b[5]) {
+    float r[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; i + j < 5; ++j) r[i + j] += a[i] * b[j];
+    return r;
+}
+
+// The numerator of (n / c)': n' c - n c'.
+float[5] mr_turnNumerator(float n[5], float c[5]) {
+    return mr_polyPlus(mr_polyTimes(mr_polyDerivative(n), c), mr_polyTimes(n, mr_polyDerivative(c)), -1.0);
+}
+
+// Where p changes sign in [a, b] (p(a) has the sign of fa), to adjacent floats: the end on
+// p(b)'s side. 160 halvings reach adjacent floats from any interval of [0, H].
+float mr_polyBisect(float p[5], float a, float b, float fa) {
+    for (int k = 0; k < 160; ++k) {
+        float m = 0.5 * (a + b);
+        if (m == a || m == b) break;
+        float fm = mr_polyValue(p, m);
+        if (fm != 0.0 && (fm < 0.0) == (fa < 0.0)) a = m;
+        else b = m;
+    }
+    return b;
+}
+
+// The real roots of p in (lo, hi), ascending, at most 4 (MeshTracer's rootsIn): those of
+// each derivative isolate the next one's, from the linear one up to p.
+int mr_polyRoots(float p[5], float lo, float hi, out float roots[4]) {
+    int count = 0;
+    roots = float[4](0.0, 0.0, 0.0, 0.0);
+    for (int k = 3; k >= 0; --k) {
+        float dk[5] = p;  // p's k-th derivative (no arrays of arrays in GLSL 3.30 / ES 3.00)
+        for (int i = 0; i < 3; ++i)
+            if (i < k) dk = mr_polyDerivative(dk);
+        float points[6];
+        int n = 0;
+        points[n++] = lo;
+        for (int r = 0; r < 4; ++r)
+            if (r < count) points[n++] = roots[r];
+        points[n++] = hi;
+        int next = 0;
+        float found[4] = float[4](0.0, 0.0, 0.0, 0.0);
+        for (int r = 0; r + 1 < n; ++r) {
+            float a = points[r], b = points[r + 1];
+            float fa = mr_polyValue(dk, a), fb = mr_polyValue(dk, b);
+            if (fa == 0.0 && r > 0) {
+                if (next < 4) found[next++] = a;
+            } else if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
+                if (next < 4) found[next++] = mr_polyBisect(dk, a, b, fa);
+            }
+        }
+        count = next;
+        roots = found;
+    }
+    return count;
+}
+
+// ---- One ray in one prism ----
+
+// lambda = num / c, b_1 = n1 / c, b_2 = n2 / c (MeshTracer::path; the algebra in
+// MeshReference.h): A_k(t) = E_k + s t F_k, W(t) = (O - P0) - s t N0, m = A1 x A2.
+struct mr_MeshPath {
+    float c[5], num[5], n1[5], n2[5];
+    vec2 uv0, uv1, uv2;
+    bool level;
+};
+
+// Coefficients of a x b with a = a0 + t a1, b = b0 + t b1: t^0, t^1, t^2.
+void mr_crossLinear(vec3 a0, vec3 a1, vec3 b0, vec3 b1, out vec3 m0, out vec3 m1, out vec3 m2) {
+    m0 = cross(a0, b0);
+    m1 = cross(a0, b1) + cross(a1, b0);
+    m2 = cross(a1, b1);
+}
+
+mr_MeshPath mr_meshPath(mr_MeshTriangle tri, vec3 origin, vec3 v, float s, float top) {
+    mr_MeshPath path;
+    vec3 w0 = origin - tri.p0, w1 = -s * tri.n0;
+    vec3 m0, m1, m2;
+    mr_crossLinear(tri.e1, s * tri.f1, tri.e2, s * tri.f2, m0, m1, m2);
+    path.c = float[5](dot(v, m0), dot(v, m1), dot(v, m2), 0.0, 0.0);
+    path.num = float[5](-dot(w0, m0), -(dot(w0, m1) + dot(w1, m0)), -(dot(w0, m2) + dot(w1, m1)), -dot(w1, m2), 0.0);
+    vec3 q0, q1, q2;
+    mr_crossLinear(w0, w1, tri.e2, s * tri.f2, q0, q1, q2);
+    path.n1 = float[5](dot(v, q0), dot(v, q1), dot(v, q2), 0.0, 0.0);
+    mr_crossLinear(tri.e1, s * tri.f1, w0, w1, q0, q1, q2);
+    path.n2 = float[5](dot(v, q0), dot(v, q1), dot(v, q2), 0.0, 0.0);
+    path.uv0 = tri.uv0;
+    path.uv1 = tri.uv1;
+    path.uv2 = tri.uv2;
+    // Parallel to every offset plane, to float's resolution: |c| below 2^-20 of |V| |m|.
+    float cSize = abs(path.c[0]) + abs(path.c[1]) * top + abs(path.c[2]) * top * top;
+    float mSize = length(m0) + length(m1) * top + length(m2) * top * top;
+    path.level = cSize <= 1e-6 * length(v) * mSize;
+    return path;
+}
+
+// A stretch of [0, H] on which lambda, t, b, u and v are monotone and b lies in the triangle;
+// p in [0, 1] runs from its lower-lambda end A to B, t linear in p.
+struct mr_MeshPiece {
+    float tA, tB, lambdaA, lambdaB;
+};
+
+struct mr_MeshPoint {
+    float lambda, t;
+    vec3 b;
+    vec2 uv;
+};
+
+mr_MeshPoint mr_meshPointOn(mr_MeshPath path, mr_MeshPiece piece, float p) {
+    mr_MeshPoint m;
+    m.t = p >= 1.0 ? piece.tB : piece.tA + p * (piece.tB - piece.tA);
+    float c = mr_polyValue(path.c, m.t);
+    m.lambda = mr_polyValue(path.num, m.t) / c;
+    m.b.y = mr_polyValue(path.n1, m.t) / c;
+    m.b.z = mr_polyValue(path.n2, m.t) / c;
+    m.b.x = 1.0 - m.b.y - m.b.z;
+    m.uv = m.b.x * path.uv0 + m.b.y * path.uv1 + m.b.z * path.uv2;
+    return m;
+}
+
+// ---- The map repeated in u and v ----
+
+// The pyramid's bound over the texel rectangle [lo, hi] (X = u W, Y = v H, any values: the map
+// repeats), never below the repeated surface there (MeshTracer::footprintBound): per axis the
+// finest texels floor(lo)..floor(hi) taken into one period, split in two where they cross the
+// period's edge, the whole axis where they span a period; one window (mr_windowOver) over
+// each of the at most four rectangles. The finest texels bound their squares with the
+// wrapped neighbours (the pyramid of the map tiled 3 x 3, MaxPyramid's tiled addressing), so
+// each window bounds the repeated surface over its rectangle's texel squares.
+float mr_meshFootprintBound(mr_Relief relief, MICRORELIEF_SAMPLER windows, vec2 lo, vec2 hi) {
+    ivec2 size = ivec2(relief.map.size);
+    ivec2 first[2], last[2];  // [range] per axis in .x (u) and .y (v)
+    ivec2 counts = ivec2(1);
+    for (int axis = 0; axis < 2; ++axis) {
+        float a = floor(lo[axis]), b = floor(hi[axis]);
+        int n = size[axis];
+        if (!(b - a < float(n - 1))) {
+            first[0][axis] = 0;
+            last[0][axis] = n - 1;
+            continue;
+        }
+        int f = int(a - float(n) * floor(a / float(n)));
+        f = clamp(f, 0, n - 1);  // a / n rounded up to the next integer in float: the edge
+        int l = f + int(b - a);
+        if (l < n) {
+            first[0][axis] = f;
+            last[0][axis] = l;
+        } else {
+            first[0][axis] = f;
+            last[0][axis] = n - 1;
+            first[1][axis] = 0;
+            last[1][axis] = l - n;
+            counts[axis] = 2;
+        }
+    }
+    float bound = 0.0;
+    for (int x = 0; x < 2; ++x) {
+        for (int y = 0; y < 2; ++y) {
+            if (x >= counts.x || y >= counts.y) continue;
+            int level;
+            ivec2 a = ivec2(first[x].x, first[y].y), b = ivec2(last[x].x, last[y].y);
+            bound = max(bound, mr_windowOver(relief, windows, a, b, level));
+        }
+    }
+    return bound;
+}
+
+// The corners of bilinear cell (i, j) of the repeated map (samples i..i+1 by j..j+1, both
+// indices wrapped), in mr_patchHeight's order.
+vec4 mr_meshCellCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
+    ivec2 n = ivec2(relief.map.size);
+    ivec2 a = cell - n * ivec2(floor(vec2(cell) / vec2(n)));
+    a = clamp(a, ivec2(0), n - 1);
+    ivec2 b = ivec2(a.x + 1 == n.x ? 0 : a.x + 1, a.y + 1 == n.y ? 0 : a.y + 1);
+    MICRORELIEF_FETCHED(1);
+    return vec4(texelFetch(heights, a, 0).r, texelFetch(heights, ivec2(b.x, a.y), 0).r,
+                texelFetch(heights, ivec2(a.x, b.y), 0).r, texelFetch(heights, b, 0).r);
+}
+
+float mr_meshSurfaceAt(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 uv) {
+    vec2 x = uv * relief.map.size - 0.5;
+    vec2 cell = floor(x);
+    return mr_patchHeight(mr_meshCellCorners(relief, heights, ivec2(cell)), clamp(x - cell, 0.0, 1.0));
+}
+
+// Cell coordinates (X - 1/2, Y - 1/2, t) of a piece's point.
+vec3 mr_meshCellPoint(mr_Relief relief, mr_MeshPath path, mr_MeshPiece piece, float p) {
+    mr_MeshPoint m = mr_meshPointOn(path, piece, p);
+    return vec3(m.uv * relief.map.size - 0.5, m.t);
+}
+
+// ---- The leaf: MeshTracer::leaf ----
+
+// The first p in [p0, p1] where the piece's path is on or under the surface, or -1: the cells
+// it crosses in order (u and v monotone on the piece, so the cells' sequence is a staircase:
+// each cell's exit is where u or v first passes the cell's boundary ahead, found by
+// bisection on that monotone coordinate), each stretch subdivided near half first, a part
+// dropped when its lowest t (an end's: t linear in p) is above the bilinear patch's max over
+// its ends' box (exact: the patch peaks at a corner of any rectangle, and u, v monotone keep
+// the part's path in the box of its ends), final parts solved by the parabola.
+float mr_meshLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, mr_MeshPath path, mr_MeshPiece piece,
+                  float p0, float p1, float top) {
+    vec3 start = mr_meshCellPoint(relief, path, piece, p0), end = mr_meshCellPoint(relief, path, piece, p1);
+    ivec2 at = ivec2(floor(start.xy)), last = ivec2(floor(end.xy));
+    ivec2 stepDir = ivec2(last.x > at.x ? 1 : -1, last.y > at.y ? 1 : -1);
+    int cells = abs(last.x - at.x) + abs(last.y - at.y) + 1;
+    float pc = p0;
+    for (int k = 0; k < 4096; ++k) {
+        if (k >= cells) break;
+        float exits[2] = float[2](p1, p1);
+        for (int axis = 0; axis < 2; ++axis) {
+            if (at[axis] == last[axis]) continue;
+            float boundary = float(at[axis] + (stepDir[axis] > 0 ? 1 : 0));
+            float a = pc, b = p1;
+            for (int i = 0; i < 60; ++i) {
+                float m = 0.5 * (a + b);
+                if (m <= a || m >= b) break;
+                float x = mr_meshCellPoint(relief, path, piece, m)[axis];
+                bool past = stepDir[axis] > 0 ? x >= boundary : x <= boundary;
+                if (past) b = m;
+                else a = m;
+            }
+            exits[axis] = b;
+        }
+        float pe = min(exits[0], exits[1]);
+        vec4 h = mr_meshCellCorners(relief, heights, at);
+        vec2 cell = vec2(at);
+        const int kFinalDepth = 20;
+        float finalFootprint = 1.0 / 4096.0, finalDrop = top / 4096.0;
+        int depth = 0;
+        uint index = 0u;
+        for (int guard = 0; guard < 1 << 16; ++guard) {
+            float width = (pe - pc) / float(1 << depth);
+            float a = pc + float(index) * width;
+            float b = index + 1u == (1u << depth) ? pe : a + width;
+            vec3 fa = mr_meshCellPoint(relief, path, piece, a) - vec3(cell, 0.0);
+            vec3 fb = mr_meshCellPoint(relief, path, piece, b) - vec3(cell, 0.0);
+            vec2 lo = min(fa.xy, fb.xy), hi = max(fa.xy, fb.xy);
+            // Widened by float's rounding of the path's points (n / c), in texels.
+            float widen = 1.0 / 1024.0;
+            float peak = mr_patchMaxOver(h, lo - widen, hi + widen);
+            bool may = min(fa.z, fb.z) <= peak;
+            bool final = depth == kFinalDepth ||
+                         (max(hi.x - lo.x, hi.y - lo.y) <= finalFootprint && abs(fb.z - fa.z) <= finalDrop);
+            if (may && !final) {
+                depth += 1;
+                index *= 2u;
+                continue;
+            }
+            if (may) {
+                vec3 fm = mr_meshCellPoint(relief, path, piece, 0.5 * (a + b)) - vec3(cell, 0.0);
+                float ga = mr_patchHeight(h, clamp(fa.xy, 0.0, 1.0)) - fa.z;
+                float gm = mr_patchHeight(h, clamp(fm.xy, 0.0, 1.0)) - fm.z;
+                float gb = mr_patchHeight(h, clamp(fb.xy, 0.0, 1.0)) - fb.z;
+                float s = mr_parabolaFirstRoot(ga, gm, gb);
+                if (s >= 0.0) return a + s * (b - a);
+            }
+            index += 1u;
+            while (depth > 0 && (index & 1u) == 0u) {
+                index >>= 1;
+                depth -= 1;
+            }
+            if (depth == 0) break;
+        }
+        if (pe >= p1) break;
+        int axis = exits[0] <= exits[1] ? 0 : 1;
+        at[axis] += stepDir[axis];
+        pc = pe;
+    }
+    return -1.0;
+}
+
+// ---- The walk over a piece: MeshTracer::walkPiece ----
+
+// The binary subdivision of p in [0, 1], near half first, one window read per segment
+// unless the parent's bound clears it, with the piece's answers to what the plane's
+// mr_baseFootprintOf gives:
+//  * lowest: the lesser of t at the segment's ends. Exact: t is linear in p, so its least
+//    over [pa, pb] is at an end;
+//  * footprint: the box of the ends' uv, in texels, widened by float's rounding of the
+//    points. A bound: u and v are monotone on the piece, so every point of the segment's
+//    path lies between its ends';
+//  * the leaf from where t comes down to the bound (t linear in p), never later.
+// Returns the hit's p, or -1.
+float mr_meshWalkPiece(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights,
+                       mr_MeshPath path, mr_MeshPiece piece, float top, int budget) {
+    const float kUnit = 1.0 / float(1 << MICRORELIEF_MAX_DEPTH);
+    mr_SegmentWalk walk = mr_segmentWalk();
+    for (int iteration = 0; iteration < budget; ++iteration) {
+        int shift = MICRORELIEF_MAX_DEPTH - walk.depth;
+        float pa = float(walk.index << shift) * kUnit, pb = float((walk.index + 1u) << shift) * kUnit;
+        mr_MeshPoint ma = mr_meshPointOn(path, piece, pa), mb = mr_meshPointOn(path, piece, pb);
+        vec2 xa = ma.uv * relief.map.size, xb = mb.uv * relief.map.size;
+        // Float's rounding of n / c and of the uv sums: a few ulps of the coordinate, and of
+        // the path's own rounding near its ends; 2^-10 texel plus 2^-18 of the coordinate.
+        vec2 lo = min(xa, xb), hi = max(xa, xb);
+        lo -= 1.0 / 1024.0 + abs(lo) * (1.0 / 262144.0);
+        hi += 1.0 / 1024.0 + abs(hi) * (1.0 / 262144.0);
+        float lowest = min(ma.t, mb.t), drop = abs(mb.t - ma.t);
+        bool mayHit = false;
+        float bound = walk.parentBound;
+        if (lowest <= walk.parentBound) {
+            bound = min(bound, mr_meshFootprintBound(relief, windows, lo, hi));
+            mayHit = lowest <= bound;
+        }
+        if (mayHit) {
+            bool leaf = max(hi.x - lo.x, hi.y - lo.y) <= float(MICRORELIEF_LEAF_TEXELS) ||
+                        walk.depth >= MICRORELIEF_MAX_DEPTH;
+            if (leaf) {
+                float from = pa;
+                if (ma.t > bound && mb.t < ma.t)
+                    from = clamp(pa + (pb - pa) * (ma.t - bound) / (ma.t - mb.t), pa, pb);
+                from = max(pa, from - (1.0 / 65536.0) * (pb - pa));
+                float hit = mr_meshLeaf(relief, heights, path, piece, from, pb, top);
+                if (hit >= 0.0) return hit;
+            } else {
+                float tm = mr_meshPointOn(path, piece, 0.5 * (pa + pb)).t;
+                mr_walkDescend(walk, bound, min(ma.t, tm) > bound);
+                continue;
+            }
+        }
+        // After a far half, climb to the parent when the segment cleared its bound by more
+        // than twice its drop (the next one, as long, cannot reach it).
+        if (!mr_walkNext(walk, lowest - bound > 2.0 * drop)) return -1.0;
+    }
+    return -1.0;
+}
+
+// ---- The pieces and the trace: MeshTracer::pieces and traceTriangle ----
+
+// The first hit of the ray origin + lambda v (lambda in [0, lambdaMax]) in the prism of `tri`:
+// lambda, or -1; `hitT` the hit's height, `hitUv` its texture coordinate (not wrapped).
+float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights,
+                           mr_MeshTriangle tri, vec3 origin, vec3 v, float s, float top, float lambdaMax,
+                           int budget, out float hitT, out vec2 hitUv) {
+    hitT = 0.0;
+    hitUv = vec2(0.0);
+    mr_MeshPath path = mr_meshPath(tri, origin, v, s, top);
+    if (path.level) return -1.0;  // level pieces: not in this slice (the header)
+    float n0[5] = mr_polyPlus(mr_polyPlus(path.c, path.n1, -1.0), path.n2, -1.0);
+    vec2 du1 = path.uv1 - path.uv0, du2 = path.uv2 - path.uv0;
+    float nu[5] = mr_polyPlus(mr_polyPlus(mr_polyScaled(path.c, path.uv0.x), path.n1, du1.x), path.n2, du2.x);
+    float nv[5] = mr_polyPlus(mr_polyPlus(mr_polyScaled(path.c, path.uv0.y), path.n1, du1.y), path.n2, du2.y);
+    // The cuts of [0, H]: its ends, the roots of c, of b's numerators and of the turning
+    // numerators of lambda, b_0..2, u and v; sorted by insertion as they come.
+    float cuts[42];
+    int cutCount = 0;
+    cuts[cutCount++] = 0.0;
+    cuts[cutCount++] = top;
+    for (int source = 0; source < 10; ++source) {
+        float p[5];
+        if (source == 0) p = path.c;
+        else if (source == 1) p = n0;
+        else if (source == 2) p = path.n1;
+        else if (source == 3) p = path.n2;
+        else if (source == 4) p = mr_turnNumerator(path.num, path.c);
+        else if (source == 5) p = mr_turnNumerator(n0, path.c);
+        else if (source == 6) p = mr_turnNumerator(path.n1, path.c);
+        else if (source == 7) p = mr_turnNumerator(path.n2, path.c);
+        else if (source == 8) p = mr_turnNumerator(nu, path.c);
+        else p = mr_turnNumerator(nv, path.c);
+        float roots[4];
+        int n = mr_polyRoots(p, 0.0, top, roots);
+        for (int r = 0; r < 4; ++r) {
+            if (r >= n) break;
+            int at = cutCount++;
+            while (at > 0 && cuts[at - 1] > roots[r]) {
+                cuts[at] = cuts[at - 1];
+                at -= 1;
+            }
+            cuts[at] = roots[r];
+        }
+    }
+    float best = -1.0;
+    for (int i = 0; i + 1 < 42; ++i) {
+        if (i + 1 >= cutCount) break;
+        float ta = cuts[i], tb = cuts[i + 1];
+        if (!(tb > ta)) continue;
+        float tm = 0.5 * (ta + tb), cm = mr_polyValue(path.c, tm);
+        if (cm == 0.0) continue;
+        // b's signs are fixed inside the piece (cut at the roots of its numerators and of c).
+        if (mr_polyValue(path.n1, tm) / cm < 0.0 || mr_polyValue(path.n2, tm) / cm < 0.0 ||
+            mr_polyValue(n0, tm) / cm < 0.0)
+            continue;
+        // lambda at an end; at a pole the infinity it tends to from inside.
+        float la, lb;
+        {
+            float c = mr_polyValue(path.c, ta), num = mr_polyValue(path.num, ta);
+            la = (c == 0.0 || (c > 0.0) != (cm > 0.0)) ? (num * cm >= 0.0 ? MR_NEVER : -MR_NEVER) : num / c;
+            c = mr_polyValue(path.c, tb);
+            num = mr_polyValue(path.num, tb);
+            lb = (c == 0.0 || (c > 0.0) != (cm > 0.0)) ? (num * cm >= 0.0 ? MR_NEVER : -MR_NEVER) : num / c;
+        }
+        float limit = best >= 0.0 ? min(best, lambdaMax) : lambdaMax;
+        if (max(la, lb) < 0.0 || min(la, lb) > limit) continue;
+        bool forward = la <= lb;
+        mr_MeshPiece piece = mr_MeshPiece(forward ? ta : tb, forward ? tb : ta, forward ? la : lb, forward ? lb : la);
+        // Clipped to lambda in [0, limit] where lambda = L: the sign of (num - L c) sign(c)
+        // is that of lambda - L inside; the bracket's end where lambda >= L.
+        for (int side = 0; side < 2; ++side) {
+            float L = side == 0 ? 0.0 : limit;
+            bool clip = side == 0 ? piece.lambdaA < 0.0 : piece.lambdaB > limit;
+            if (!clip) continue;
+            float g[5] = mr_polyPlus(path.num, path.c, -L);
+            if (cm < 0.0) g = mr_polyScaled(g, -1.0);
+            float fa = mr_polyValue(g, piece.tA);
+            float t = fa >= 0.0 ? piece.tA : mr_polyBisect(g, piece.tA, piece.tB, fa);
+            float lt = mr_polyValue(path.num, t) / mr_polyValue(path.c, t);
+            if (side == 0) {
+                piece.tA = t;
+                piece.lambdaA = max(0.0, lt);
+            } else {
+                piece.tB = t;
+                piece.lambdaB = lt;
+            }
+        }
+        // Starting at or below the surface: entered through the piece's start (the mesh, a
+        // wall, a fold or the eye inside the solid).
+        mr_MeshPoint m0 = mr_meshPointOn(path, piece, 0.0);
+        float p = mr_meshSurfaceAt(relief, heights, m0.uv) >= m0.t
+                      ? 0.0
+                      : mr_meshWalkPiece(relief, windows, heights, path, piece, top, budget);
+        if (p < 0.0) continue;
+        mr_MeshPoint m = mr_meshPointOn(path, piece, p);
+        if (best >= 0.0 && m.lambda >= best) continue;
+        best = max(m.lambda, 0.0);
+        hitT = m.t;
+        hitUv = m.uv;
+    }
+    return best;
+}
+
+#endif

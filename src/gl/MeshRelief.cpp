@@ -1,0 +1,157 @@
+#include "microrelief/gl/MeshRelief.h"
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "microrelief/core/Error.h"
+#include "microrelief/core/base/MeshProxy.h"
+#include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/trace/MultilevelTracer.h"
+#include "microrelief/gl/ShaderProgram.h"
+#include "microrelief/gl/ShaderSource.h"
+#include "microrelief/gl/StateGuard.h"
+
+namespace microrelief::gl {
+
+namespace {
+
+// base_mesh.glsl's MR_MESH_TABLE_ROW: triangles a row of the table, 8 texels each.
+constexpr int kTableRow = 256;
+
+void nearestTexture(const GL& gl, const Texture& texture, int maxLevel) {
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                     maxLevel > 0 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, maxLevel);
+}
+
+}  // namespace
+
+MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
+                       const TriangleMesh& mesh, const HeightMap& map, double heightScale)
+    : gl_(gl) {
+    if (map.empty()) throwBadInput("MeshRelief: an empty map");
+    const std::string version = "330 core";
+    const Shader vertex = compileShader(
+        gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "mesh_relief.vert", version));
+    const Shader fragment = compileShader(
+        gl, GL_FRAGMENT_SHADER,
+        assembleShader(shaderDir / "mesh_relief.frag", version, {}, {shaderDir}));
+    program_ = linkProgram(gl, vertex, fragment, "mesh relief");
+    viewProjection_ = uniform(gl, program_, "mr_viewProjection");
+    eye_ = uniform(gl, program_, "mr_eye");
+
+    const StateGuard saved(gl);
+    // The pyramid of the map repeated in u and v, as MeshTracer reads it: the tile's windows,
+    // the finest bounding each texel square with its wrapped neighbours (3 x 3 tiles, Half:
+    // the grid the GPU's pyramids keep), held divided by 2^S (max_pyramid.glsl).
+    const MaxPyramid pyramid(map, MapAddressing{false, 3, 3}, BoundPrecision::Half);
+    top_ = std::max(pyramid.maxHeight(), 1e-6f);  // MeshTracer's top: a shell even over zeros
+    heightScale_ = static_cast<float>(heightScale);
+    mapSize_ = {static_cast<float>(map.width), static_cast<float>(map.height)};
+    levelCount_ = pyramid.windowLevelCount();
+    const float unscale = std::ldexp(1.0f, -pyramid.scaleExponent());
+
+    windows_ = Texture::create(gl);
+    nearestTexture(gl, windows_, levelCount_ - 1);
+    for (int level = 0; level < levelCount_; ++level) {
+        std::vector<float> texels = pyramid.windowLevelData(level);
+        for (float& x : texels) x *= unscale;  // a power of two: exact
+        gl.TexImage2D(GL_TEXTURE_2D, level, GL_R32F, pyramid.windowLevelWidth(level),
+                      pyramid.windowLevelHeight(level), 0, GL_RED, GL_FLOAT, texels.data());
+    }
+    heights_ = Texture::create(gl);
+    nearestTexture(gl, heights_, 0);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, map.width, map.height, 0, GL_RED, GL_FLOAT,
+                  map.samples.data());
+
+    // The triangle table (base_mesh.glsl): 8 RGBA32F texels a triangle.
+    const MeshProxy proxy = buildMeshProxy(mesh, map, heightScale);
+    const int triangles = static_cast<int>(mesh.triangleCount());
+    const int rows = (triangles + kTableRow - 1) / kTableRow;
+    GLint maxSize = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (rows > maxSize)
+        throwBadInput("MeshRelief: " + std::to_string(triangles) +
+                      " triangles need a table of " + std::to_string(rows) +
+                      " rows, more than the GL's texture size " + std::to_string(maxSize));
+    std::vector<float> table(static_cast<std::size_t>(std::max(rows, 1)) * kTableRow * 8 * 4, 0.0f);
+    for (int k = 0; k < triangles; ++k) {
+        float* row = &table[static_cast<std::size_t>(k) * 8 * 4];
+        const glm::uvec3 v = mesh.triangles[k];
+        for (int i = 0; i < 3; ++i) {
+            const glm::vec3 p = mesh.positions[v[i]], n = mesh.normals[v[i]];
+            const glm::vec2 uv = mesh.texCoords[v[i]];
+            float* a = row + 4 * i;
+            float* m = row + 4 * (3 + i);
+            a[0] = p.x, a[1] = p.y, a[2] = p.z, a[3] = uv.x;
+            m[0] = n.x, m[1] = n.y, m[2] = n.z, m[3] = uv.y;
+        }
+        row[4 * 6] = proxy.topHeights[k];
+    }
+    table_ = Texture::create(gl);
+    nearestTexture(gl, table_, 0);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTableRow * 8, std::max(rows, 1), 0, GL_RGBA,
+                  GL_FLOAT, table.data());
+
+    // The proxy: positions and the flat mesh-triangle index a vertex.
+    proxyTriangles_ = static_cast<int>(proxy.triangleCount());
+    std::vector<std::uint32_t> index(proxy.positions.size());
+    for (std::size_t i = 0; i < index.size(); ++i) index[i] = proxy.meshTriangles[i / 3];
+    vertexArray_ = VertexArray::create(gl);
+    gl.BindVertexArray(vertexArray_.id());
+    positions_ = Buffer::create(gl);
+    gl.BindBuffer(GL_ARRAY_BUFFER, positions_.id());
+    gl.BufferData(GL_ARRAY_BUFFER,
+                  static_cast<GLsizeiptr>(proxy.positions.size() * sizeof(glm::vec3)),
+                  proxy.positions.data(), GL_STATIC_DRAW);
+    gl.EnableVertexAttribArray(0);
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    indices_ = Buffer::create(gl);
+    gl.BindBuffer(GL_ARRAY_BUFFER, indices_.id());
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(index.size() * sizeof(std::uint32_t)),
+                  index.data(), GL_STATIC_DRAW);
+    gl.EnableVertexAttribArray(1);
+    gl.VertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+    gl.BindVertexArray(0);
+
+    gl.UseProgram(program_.id());
+    gl.Uniform1i(uniform(gl, program_, "mr_meshTable"), 0);
+    gl.Uniform1i(uniform(gl, program_, "mr_meshHeights"), 1);
+    gl.Uniform1i(uniform(gl, program_, "mr_meshWindows"), 2);
+    gl.Uniform1f(uniform(gl, program_, "mr_heightScale"), heightScale_);
+    gl.Uniform1f(uniform(gl, program_, "mr_top"), top_);
+    gl.Uniform2f(uniform(gl, program_, "mr_mapSize"), mapSize_.x, mapSize_.y);
+    gl.Uniform1i(uniform(gl, program_, "mr_levelCount"), levelCount_);
+    gl.Uniform1i(uniform(gl, program_, "mr_budget"), traversalBudget(map.width, map.height));
+    const GLenum error = gl.GetError();
+    if (error != GL_NO_ERROR) throwRuntime("MeshRelief: GL error " + enumHex(error) + " uploading the mesh");
+}
+
+void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) const {
+    const StateGuard saved(gl_);
+    gl_.UseProgram(program_.id());
+    gl_.UniformMatrix4fv(viewProjection_, 1, GL_FALSE, &viewProjection[0][0]);
+    gl_.Uniform3f(eye_, static_cast<float>(eye.x), static_cast<float>(eye.y),
+                  static_cast<float>(eye.z));
+    const GLuint units[3] = {table_.id(), heights_.id(), windows_.id()};
+    for (int i = 0; i < 3; ++i) {
+        gl_.ActiveTexture(GL_TEXTURE0 + i);
+        gl_.BindTexture(GL_TEXTURE_2D, units[i]);
+    }
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(GL_LESS);
+    gl_.Disable(GL_CULL_FACE);
+    gl_.BindVertexArray(vertexArray_.id());
+    gl_.DrawArrays(GL_TRIANGLES, 0, 3 * proxyTriangles_);
+    gl_.BindVertexArray(0);
+}
+
+}  // namespace microrelief::gl

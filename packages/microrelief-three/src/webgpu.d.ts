@@ -89,10 +89,12 @@ export interface WebGPUReliefOptions {
 export class Relief extends Mesh<BufferGeometry, ReliefShadingNodeMaterial> {
     constructor(reliefMap: ReliefMap, options?: WebGPUReliefOptions);
     readonly isRelief: true;
-    readonly reliefMap: ReliefMap;
-    readonly base: BaseShape;
-    readonly interpolation: ReliefInterpolation;
-    readonly heightScale: number;
+    /** Each option is a property too, settable at any time. */
+    reliefMap: ReliefMap;
+    get base(): BaseShape;
+    set base(value: BaseSpec);
+    interpolation: ReliefInterpolation;
+    heightScale: number;
     pixelError: number;
     box: Box3;
     dispose(): void;

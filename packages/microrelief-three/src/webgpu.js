@@ -251,7 +251,9 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
     }
 
     customProgramCacheKey() {
-        return `microrelief-webgpu:${this.relief ? `${this.relief.base.kind}:${this.relief.interpolation}` : ''}:${this.shadows}`;
+        // The variant and the map (the program binds its textures: another map, another program).
+        const relief = this.relief;
+        return `microrelief-webgpu:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}:${this.shadows}`;
     }
 
     setup(builder) {
@@ -289,23 +291,33 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
     }
 }
 
+// A map this entry made (the WebGL entry's textures are its renderer's).
+function checkReliefMap(reliefMap, what) {
+    if (!(reliefMap instanceof ReliefMap))
+        throw new TypeError(`Relief: ${what} must be a ReliefMap of microrelief-three/webgpu's createReliefMap${reliefMap && reliefMap.windows ? ' (this one is the WebGL entry\'s)' : ''}`);
+}
+
+// A base this entry draws, as baseShape makes it.
+function drawnBase(base) {
+    const shape = baseShape(base);
+    if (!kWebGPUBases.includes(shape.kind))
+        throw new TypeError(`Relief: microrelief-three/webgpu draws the ${kWebGPUBases.join(', ')} bases, not the ${shape.kind}`);
+    return shape;
+}
+
 // The relief as a three.js object: a THREE.Mesh whose geometry is its proxy box and whose
 // material traces it in every pixel the box covers (relief.js's Relief, for a
 // WebGPURenderer). Options as there: material (a ReliefShadingNodeMaterial), heightScale,
 // base ('plane', 'cylinder', 'sphere', 'ellipsoid' or a shape), interpolation ('bilinear'
-// or 'biquadratic'), pixelError.
+// or 'biquadratic'), pixelError; each a property too, settable at any time.
 export class Relief extends THREE.Mesh {
     constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
         requireSupportedThree();
-        if (!reliefMap || !reliefMap.windows || !reliefMap.heights) throw new TypeError('Relief: the first argument must be a ReliefMap (createReliefMap)');
-        if (!reliefMap.heights.isDataTexture || reliefMap.builtOn === 'gpu')
-            throw new TypeError('Relief: this ReliefMap is the WebGL entry\'s; microrelief-three/webgpu draws a map its own createReliefMap made');
+        checkReliefMap(reliefMap, 'the first argument');
         checkHeightScale(heightScale);
         checkInterpolation(interpolation);
         if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
-        const shape = baseShape(base);
-        if (!kWebGPUBases.includes(shape.kind))
-            throw new TypeError(`Relief: microrelief-three/webgpu draws the ${kWebGPUBases.join(', ')} bases, not the ${shape.kind}`);
+        const shape = drawnBase(base);
         checkBaseForMap(shape, base, reliefMap);
         if (material !== null && !(material instanceof ReliefShadingNodeMaterial))
             throw new TypeError('Relief: the material must be a ReliefShadingNodeMaterial (microrelief-three/webgpu)');
@@ -316,17 +328,9 @@ export class Relief extends THREE.Mesh {
         this.isRelief = true;
         this.type = 'Relief';
         this.uniforms = reliefUniforms(pixelError);
-        this.heightScaleValue = Math.fround(heightScale);
-        this._base = Object.freeze(shape);
+        this.uniforms.mrHeightScale.value = Math.fround(heightScale);
         this._interpolation = interpolation;
-        this._reliefMap = reliefMap;
-        reliefMapUniforms(reliefMap, this.uniforms);
-        this.uniforms.mrHeightScale.value = this.heightScaleValue;
-        this.uniforms.mrFrameScale.value.set(...core.frameScale(shape));
-        const {box, geometry} = reliefBox(reliefMap, this.heightScaleValue, shape);
-        this.box = box;
-        this.geometry.dispose();
-        this.geometry = geometry;
+        this.setMapAndBase(reliefMap, shape);
         this.onBeforeRender = (renderer, scene, camera) => {
             // A WebGLRenderer cannot compile a node material (three's own error then says
             // nothing of why): this one line instead, thrown out of its render.
@@ -336,20 +340,65 @@ export class Relief extends THREE.Mesh {
         };
     }
 
+    // The map's and the base's uniforms, the box; the material's program again where the
+    // textures or the variant changed (its program binds them).
+    setMapAndBase(reliefMap, shape) {
+        const rebuild = this._reliefMap !== undefined && (this._reliefMap !== reliefMap || this._base.kind !== shape.kind);
+        this._reliefMap = reliefMap;
+        this._base = Object.freeze(shape);
+        reliefMapUniforms(reliefMap, this.uniforms);
+        this.uniforms.mrFrameScale.value.set(...core.frameScale(shape));
+        this.updateBox();
+        if (rebuild) this.material.needsUpdate = true;
+    }
+
+    updateBox() {
+        const {box, geometry} = reliefBox(this._reliefMap, this.heightScale, this._base);
+        this.box = box;
+        const previous = this.geometry;
+        this.geometry = geometry;
+        previous.dispose();
+    }
+
+    // Each option is a property too, settable at any time, as in the WebGL entry.
     get reliefMap() {
         return this._reliefMap;
+    }
+
+    set reliefMap(reliefMap) {
+        checkReliefMap(reliefMap, 'reliefMap');
+        checkBaseForMap(this._base, this._base.kind, reliefMap);
+        this.setMapAndBase(reliefMap, this._base);
     }
 
     get base() {
         return this._base;
     }
 
+    set base(value) {
+        const shape = drawnBase(value);
+        checkBaseForMap(shape, value, this._reliefMap);
+        this.setMapAndBase(this._reliefMap, shape);
+    }
+
     get interpolation() {
         return this._interpolation;
     }
 
+    set interpolation(value) {
+        checkInterpolation(value);
+        if (value !== this._interpolation) this.material.needsUpdate = true;
+        this._interpolation = value;
+    }
+
     get heightScale() {
         return this.uniforms.mrHeightScale.value;
+    }
+
+    set heightScale(value) {
+        checkHeightScale(value);
+        this.uniforms.mrHeightScale.value = Math.fround(value);
+        this.updateBox();
     }
 
     get pixelError() {

@@ -91,6 +91,10 @@ export async function craterOnWebGPU(canvas: HTMLCanvasElement): Promise<number>
                                               material: new onWebGPU.ReliefShadingNodeMaterial({shadows: 'hard'})});
     const scene = new WebGPU.Scene();
     scene.add(relief);
+    relief.base = 'plane';
+    relief.heightScale = 0.1;
+    // @ts-expect-error: a last level is bilinear or biquadratic
+    relief.interpolation = 'bicubic';
     // @ts-expect-error: the WebGPU entry's Relief takes its own materials, not the WebGL entry's
     new onWebGPU.Relief(map, {material: new ReliefStandardMaterial()});
     // @ts-expect-error: createReliefMap takes a WebGPURenderer

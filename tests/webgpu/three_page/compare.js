@@ -27,6 +27,10 @@ const kViews = {
     oblique: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0]},
     low: {eye: [-0.7, 0.16, 0.35], target: [0.05, 0.03, 0]},
     round: {eye: [0.9, 0.5, 1.0], target: [0, 0, 0]},
+    // `low` again, the WebGPU relief drawn first (into the target: a first frame into the
+    // OffscreenCanvas lost SwiftShader's WebGPU device) with another map, height scale and last
+    // level, then given the view's: its options live, its program made again.
+    lowLive: {eye: [-0.7, 0.16, 0.35], target: [0.05, 0.03, 0], live: true},
     ortho: {eye: [0.6, 0.7, 0.5], target: [0, 0.02, 0], orthographic: true},  // a directional light's kind of camera
     // Drawn into part of the target (x, y from the bottom, width, height): the NDC from the viewport.
     corner: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0], viewport: [16, 8, 96, 64]},
@@ -91,6 +95,16 @@ async function drawWebGPU(view, interpolation, base = 'plane') {
     if (kViews[view].viewport) {  // the same pixels: WebGPU's y from the top
         const [x, y, w, h] = kViews[view].viewport;
         target.viewport.set(x, H - y - h, w, h);
+    }
+    if (kViews[view].live) {
+        const flat = await wg.createReliefMap(renderer, wg.heightsFromArray(samples.map((x) => 0.5 * x), w, h, {name: 'half'}));
+        relief.reliefMap = flat;
+        relief.heightScale = 0.05;
+        relief.interpolation = interpolation === 'bilinear' ? 'biquadratic' : 'bilinear';
+        renderer.setRenderTarget(target);
+        renderer.render(scene, camera);
+        [relief.reliefMap, relief.heightScale, relief.interpolation] = [map, 0.08, interpolation];
+        flat.dispose();
     }
     renderer.setRenderTarget(target);
     renderer.setClearColor(0x000000, 0);

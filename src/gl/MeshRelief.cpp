@@ -149,6 +149,12 @@ void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) co
     gl_.Enable(GL_DEPTH_TEST);
     gl_.DepthFunc(GL_LESS);
     gl_.Disable(GL_CULL_FACE);
+    // No clipping at the near plane: an eye inside a hull (inside the shell) may have that
+    // hull's faces nearer than it, and its rays' hits may be too; clipped, the prism would
+    // give no fragment and the pixel would show a later prism's hit. The clip volume's
+    // -w <= x, y <= w still clips what lies behind the eye. Hits nearer than the near plane
+    // get depth 0 (the shader clamps), so among those the first drawn is kept.
+    gl_.Enable(GL_DEPTH_CLAMP);
     gl_.BindVertexArray(vertexArray_.id());
     gl_.DrawArrays(GL_TRIANGLES, 0, 3 * proxyTriangles_);
     gl_.BindVertexArray(0);

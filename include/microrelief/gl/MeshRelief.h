@@ -12,7 +12,9 @@
 //
 // Drawn with the depth test (GL_LESS) and no face culling: an eye inside a hull sees only its
 // back faces (MeshProxy.h), and a ray crossing a hull gets one fragment a face it crosses,
-// each tracing the same prism from the eye (the same hit, the depth test keeps one). The
+// each tracing the same prism from the eye (the same hit, the depth test keeps one); and with
+// depth clamping on, so that a hull's faces nearer than the near plane (the eye inside the
+// shell) are not clipped away (the hits before the near plane get depth 0). The
 // position AOV is the hit less `eye` (OffscreenTarget's), in the mesh's units; no model
 // transform (the mesh's units are the world's). This slice: the bilinear last level, no
 // shadows, no albedo; the colour is the hit's height in grey.

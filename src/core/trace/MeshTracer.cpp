@@ -9,13 +9,12 @@
 #include "microrelief/core/GlslConstants.h"
 #include "microrelief/core/heightmap/SurfacePatch.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
+#include "microrelief/core/trace/SegmentWalk.h"
 
 namespace microrelief {
 
 namespace {
 
-using glsl::kLeafTexels;
-using glsl::kMaxDepth;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -450,69 +449,60 @@ double MeshTracer::surfaceAt(glm::dvec2 uv, MeshTraceStats& stats) const {
     return patch.height(glm::clamp(glm::dvec2(x - i, y - j), 0.0, 1.0));
 }
 
-// mr_subdivideSegment over a piece: segments [pa, pb] of p in [0, 1] named by depth and index,
-// near half first, one window read per segment unless the parent's bound already clears it.
-double MeshTracer::walkPiece(const PrismPath& path, const MeshPiece& piece,
-                             MeshTraceStats& stats) const {
-    const double unit = std::ldexp(1.0, -kMaxDepth);
-    int depth = 0;
-    std::uint32_t index = 0;
-    double parentBound = kInf;
-    // Margin of the footprint: double rounding of n / c and of the uv sums, in texels.
-    const auto widen = [](double x) { return 1e-9 + 1e-12 * std::abs(x); };
-    for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
-        ++stats.iterations;
-        const int shift = kMaxDepth - depth;
-        const double pa = static_cast<double>(index << shift) * unit;
-        const double pb = static_cast<double>((index + 1u) << shift) * unit;
-        const MeshPathPoint ma = pointOn(path, piece, pa), mb = pointOn(path, piece, pb);
-        const glm::dvec3 xa = texelPoint(ma), xb = texelPoint(mb);
-        glm::dvec2 lo = glm::min(glm::dvec2(xa), glm::dvec2(xb));
-        glm::dvec2 hi = glm::max(glm::dvec2(xa), glm::dvec2(xb));
-        lo -= glm::dvec2(widen(lo.x), widen(lo.y));
-        hi += glm::dvec2(widen(hi.x), widen(hi.y));
+// A piece, p in [0, 1], as the segment walk's path (SegmentWalk.h). Why each answer is a
+// bound, in texels for the footprint and map height units for t: MeshTracer.h.
+class MeshTracer::PiecePath {
+public:
+    using Hit = double;  // p of the hit
+
+    PiecePath(const MeshTracer& tracer, const PrismPath& path, const MeshPiece& piece)
+        : tracer_(tracer), path_(path), piece_(piece) {}
+
+    double span() const { return 1.0; }
+    bool floorExit() const { return false; }  // a piece ends at a cut, not through a floor
+    Footprint footprint(double pa, double pb) const {
+        const glm::dvec3 xa = end(pa), xb = end(pb);
+        Footprint f;
+        f.lo = glm::min(glm::dvec2(xa), glm::dvec2(xb));
+        f.hi = glm::max(glm::dvec2(xa), glm::dvec2(xb));
+        // Margin of the footprint: double rounding of n / c and of the uv sums, in texels.
+        const auto widen = [](double x) { return 1e-9 + 1e-12 * std::abs(x); };
+        f.lo -= glm::dvec2(widen(f.lo.x), widen(f.lo.y));
+        f.hi += glm::dvec2(widen(f.hi.x), widen(f.hi.y));
         // t is linear in p (fixed on a level piece): its least over [pa, pb] is at an end.
-        const double lowest = std::min(xa.z, xb.z), drop = std::abs(xb.z - xa.z);
-        bool mayHit = false;
-        double bound = parentBound;
-        if (lowest <= parentBound) {
-            const BoundRead read = footprintBound(lo, hi);
-            stats.fetches += read.fetches;
-            bound = std::min(bound, read.bound);
-            mayHit = lowest <= bound;
-        }
-        if (mayHit) {
-            if (std::max(hi.x - lo.x, hi.y - lo.y) <= kLeafTexels || depth >= kMaxDepth) {
-                // From where t comes down to the bound (t linear in p), never later.
-                double from = pa;
-                if (xa.z > bound && xb.z < xa.z)
-                    from = std::clamp(pa + (pb - pa) * (xa.z - bound) / (xa.z - xb.z), pa, pb);
-                from = std::max(pa, from - 1e-12 * (pb - pa));
-                const double hit = leaf(path, piece, from, pb, stats);
-                if (hit >= 0.0) return hit;
-            } else {
-                ++depth;
-                index *= 2u;
-                parentBound = bound;
-                const double tm = pointOn(path, piece, 0.5 * (pa + pb)).t;
-                if (std::min(xa.z, tm) > bound) ++index;
-                continue;
-            }
-        }
-        const bool farHalf = (index & 1u) == 1u;
-        ++index;
-        if ((index >> depth) != 0u) return -1.0;
-        if (farHalf) {
-            parentBound = kInf;
-            if (lowest - bound > 2.0 * drop) {
-                index >>= 1;
-                --depth;
-            }
-        }
+        f.lowest = std::min(xa.z, xb.z);
+        f.drop = std::abs(xb.z - xa.z);
+        return f;
     }
-    stats.exhausted = true;
-    return -1.0;
-}
+    double lowest(double pa, double pb) const {
+        return std::min(tracer_.pointOn(path_, piece_, pa).t, tracer_.pointOn(path_, piece_, pb).t);
+    }
+    double bound(const Footprint& footprint, MeshTraceStats& stats) const {
+        const BoundRead read = tracer_.footprintBound(footprint.lo, footprint.hi);
+        stats.fetches += read.fetches;
+        return read.bound;
+    }
+    // Where t comes down to h (t linear in p), never later: moved back by 1e-12 of the segment.
+    double descendTo(double pa, double pb, double h) const {
+        const double ta = tracer_.pointOn(path_, piece_, pa).t,
+                     tb = tracer_.pointOn(path_, piece_, pb).t;
+        double from = pa;
+        if (ta > h && tb < ta) from = std::clamp(pa + (pb - pa) * (ta - h) / (ta - tb), pa, pb);
+        return std::max(pa, from - 1e-12 * (pb - pa));
+    }
+    std::optional<double> leaf(double from, double to, MeshTraceStats& stats) const {
+        const double p = tracer_.leaf(path_, piece_, from, to, stats);
+        return p >= 0.0 ? std::optional<double>(p) : std::nullopt;
+    }
+    std::optional<double> floorHit(MeshTraceStats&) const { return std::nullopt; }
+
+private:
+    glm::dvec3 end(double p) const { return tracer_.texelPoint(tracer_.pointOn(path_, piece_, p)); }
+
+    const MeshTracer& tracer_;
+    const PrismPath& path_;
+    const MeshPiece& piece_;
+};
 
 // The leaf: the cells the path crosses on [p0, p1] in order (u and v monotone), each cell's
 // stretch ending where u or v crosses the cell's boundary ahead (bisection on the monotone
@@ -626,7 +616,7 @@ MeshTraceHit MeshTracer::traceTriangle(const Ray& ray, std::size_t k, double lam
             p = 0.0;
             surface = piece.entry;
         } else {
-            p = walkPiece(path, piece, stats);
+            p = walkSegments(PiecePath(*this, path, piece), maxIterations_, stats).value_or(-1.0);
         }
         if (p < 0.0) continue;
         const MeshPathPoint m = pointOn(path, piece, p);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "microrelief/core/GlslConstants.h"
+#include "microrelief/core/trace/SegmentWalk.h"
 
 namespace microrelief {
 
@@ -13,8 +14,6 @@ namespace {
 
 using glsl::kBiquadraticFinalFootprint;
 using glsl::kCellDepth;
-using glsl::kLeafTexels;
-using glsl::kMaxDepth;
 
 // bilinear_patch.glsl: mr_intersectPatch.
 double intersectPatch(const SurfacePatch& c, const glm::dvec3& start, const glm::dvec3& dir,
@@ -291,6 +290,58 @@ std::optional<double> MultilevelTracer::cellStretchHit(const FrameRay& ray,
     }
 }
 
+// The frame ray from the shell's entry, origin + t dir with t in [0, span], as the segment
+// walk's path (SegmentWalk.h): the base-surface seam answers for its segments (BaseSurface.h
+// says why each answer is a bound), the pyramid's one window (two across a curved base's seam)
+// bounds a footprint, and the leaf is the plane's bilinear quadratic per cell or the cell walk.
+class MultilevelTracer::FramePath {
+public:
+    using Hit = LeafHit;
+
+    FramePath(const MultilevelTracer& tracer, const FrameRay& ray, double span, bool floorExit)
+        : tracer_(tracer),
+          base_(*tracer.base_),
+          ray_(ray),
+          span_(span),
+          floorExit_(floorExit),
+          // The plane's bilinear leaf is a quadratic per cell; every other leaf walks its cells.
+          cellWalk_(base_.shape().curved() || tracer.interpolation_ == Interpolation::Biquadratic) {}
+
+    double span() const { return span_; }
+    bool floorExit() const { return floorExit_; }
+    Footprint footprint(double ta, double tb) const { return base_.footprint(ray_, ta, tb); }
+    double lowest(double ta, double tb) const { return base_.lowest(ray_, ta, tb); }
+    double bound(const Footprint& footprint, TraversalStats& stats) const {
+        const BoundRead read = tracer_.pyramid_.footprintBound(footprint.lo, footprint.hi);
+        stats.fetches += read.fetches;
+        stats.stopLevel = read.level;
+        return read.bound;
+    }
+    double descendTo(double ta, double tb, double h) const {
+        return base_.descendTo(ray_, ta, tb, h);
+    }
+    std::optional<LeafHit> leaf(double from, double to, TraversalStats& stats) const {
+        return cellWalk_ ? tracer_.intersectLeafCells(ray_, from, to, stats)
+                         : tracer_.intersectLeaf(ray_, from, to, stats);
+    }
+    // The plane's: the ray leaves the box through h = 0 going down at span, in the solid.
+    std::optional<LeafHit> floorHit(TraversalStats& stats) const {
+        const glm::dvec3 exit = ray_.at(span_);
+        const double offset = SurfacePatch::offset(tracer_.interpolation_);
+        const SurfacePatch patch =
+            tracer_.patchAt(static_cast<int>(std::floor(exit.x - offset)),
+                            static_cast<int>(std::floor(exit.y - offset)), stats);
+        return LeafHit{span_, tracer_.topNormal(patch, exit)};
+    }
+
+private:
+    const MultilevelTracer& tracer_;
+    const BaseSurface& base_;
+    FrameRay ray_;
+    double span_;
+    bool floorExit_, cellWalk_;
+};
+
 std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& objectRay, const RayQuery& query,
                                                      TraversalStats* statsOut) const {
     TraversalStats stats;
@@ -334,84 +385,11 @@ std::optional<ReliefHit> MultilevelTracer::intersect(const Ray& objectRay, const
     // From the range's start on, as the shader works (relief_hit.glsl: mr_enterReliefShell).
     const FrameRay fromEntry{ray.at(tNear), ray.dir};
     const bool floorExit = span.floorExit && tFar == span.tExit;
-    if (auto hit = subdivideSegment(fromEntry, tFar - tNear, floorExit, stats)) {
+    const FramePath path(*this, fromEntry, tFar - tNear, floorExit);
+    if (auto hit = walkSegments(path, maxIterations_, stats)) {
         return finish(makeHit(HitFace::Top, tNear + hit->t, hit->normal));
     }
     return finish(std::nullopt);
-}
-
-// multilevel_trace.glsl: mr_subdivideSegment, over ray.origin + t ray.dir, t in [0, span].
-// The shader splits this loop in two (segments inside, the leaf outside) for the sake of
-// SIMD lanes; the segments and their order are the same, and a GL test compares them
-// per pixel.
-auto MultilevelTracer::subdivideSegment(const FrameRay& ray, double span, bool floorExit,
-                                        TraversalStats& stats) const -> std::optional<LeafHit> {
-    const double unit = std::ldexp(1.0, -kMaxDepth);
-    constexpr double kNoBound = std::numeric_limits<double>::infinity();
-    int depth = 0;
-    std::uint32_t index = 0;
-    double parentBound = kNoBound;  // over the parent's path (see the shader)
-    // The plane's bilinear leaf is a quadratic per cell; every other leaf walks its cells.
-    const bool cellWalk = base_->shape().curved() || interpolation_ == Interpolation::Biquadratic;
-    for (int iteration = 1; iteration <= maxIterations_; ++iteration) {
-        stats.iterations = iteration;
-        const int shift = kMaxDepth - depth;
-        const double ta = span * (static_cast<double>(index << shift) * unit);
-        const double tb = span * (static_cast<double>((index + 1u) << shift) * unit);
-        const Footprint footprint = base_->footprint(ray, ta, tb);
-        // Down to the floor (ending where the ray leaves through it): may hit; above the
-        // parent's bound: cannot; else one window (two across a curved base's seam).
-        bool mayHit = floorExit && tb == span;
-        double bound = parentBound;
-        if (!mayHit && footprint.lowest <= parentBound) {
-            const BoundRead read = pyramid_.footprintBound(footprint.lo, footprint.hi);
-            stats.fetches += read.fetches;
-            stats.stopLevel = read.level;
-            bound = std::min(bound, read.bound);
-            mayHit = footprint.lowest <= bound;
-        }
-        if (mayHit) {
-            if (footprint.extent() <= kLeafTexels || depth >= kMaxDepth) {
-                // From where a falling ray comes down to the bound (see the shader).
-                const double tFrom = base_->descendTo(ray, ta, tb, bound);
-                auto hit = cellWalk ? intersectLeafCells(ray, tFrom, tb, stats)
-                                    : intersectLeaf(ray, tFrom, tb, stats);
-                if (hit) return hit;
-            } else {
-                // The near half, or the far one when the near one lies above the bound.
-                ++depth;
-                index *= 2u;
-                parentBound = bound;
-                if (base_->lowest(ray, ta, 0.5 * (ta + tb)) > bound) ++index;
-                continue;
-            }
-        }
-        // On to index + 1 at this depth; after a far half cleared by a wide margin, one
-        // level up (see the shader).
-        const bool farHalf = (index & 1u) == 1u;
-        ++index;
-        if ((index >> depth) != 0u) {
-            // Leaving through the floor going down: the exit point is the hit (see the shader).
-            if (floorExit) {
-                const glm::dvec3 exit = ray.at(span);
-                const double offset = SurfacePatch::offset(interpolation_);
-                const SurfacePatch patch =
-                    patchAt(static_cast<int>(std::floor(exit.x - offset)),
-                            static_cast<int>(std::floor(exit.y - offset)), stats);
-                return LeafHit{span, topNormal(patch, exit)};
-            }
-            return std::nullopt;
-        }
-        if (farHalf) {
-            parentBound = kNoBound;
-            if (footprint.lowest - bound > 2.0 * footprint.drop) {
-                index >>= 1;
-                --depth;
-            }
-        }
-    }
-    stats.exhausted = true;
-    return std::nullopt;
 }
 
 }  // namespace microrelief

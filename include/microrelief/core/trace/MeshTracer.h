@@ -22,10 +22,11 @@
 // pieces, parametrised by lambda, t fixed, b linear in lambda.
 //
 // The traversal walks a piece's parameter p in [0, 1] (p = 0 its lower-lambda end; t linear in
-// p on a curve piece, lambda linear on a level piece) exactly as MultilevelTracer walks a
-// segment of a ray (segment_walk.glsl: binary subdivision, near half first, one pyramid read
-// per segment, the parent's bound, the far half's climb), with the base-seam answers
-// (BaseSurface.h) computed for the piece:
+// p on a curve piece, lambda linear on a level piece) with the very walk MultilevelTracer runs
+// over a segment of a ray (core/trace/SegmentWalk.h, segment_walk.glsl: binary subdivision, near
+// half first, one pyramid read per segment, the parent's bound, the far half's climb): the
+// piece is the walk's path (MeshTracer::PiecePath), answering the base-seam questions
+// (BaseSurface.h) for the piece:
 //  * lowest: the lesser of t at the segment's two ends. Exact: t is linear in p (a constant on
 //    a level piece), so its least over [pa, pb] is at an end;
 //  * footprint: the box of uv at the two ends, in texels, widened by 1e-9 texel plus 1e-12 of
@@ -157,8 +158,8 @@ private:
     PrismPath path(const Ray& ray, const Triangle& tri) const;
     glm::dvec3 texelPoint(const MeshPathPoint& m) const;  // (X, Y, t)
     double surfaceAt(glm::dvec2 uv, MeshTraceStats& stats) const;
-    // The walk over one piece; p of the hit or < 0.
-    double walkPiece(const PrismPath& path, const MeshPiece& piece, MeshTraceStats& stats) const;
+    // A piece as the path of the shared segment walk (core/trace/SegmentWalk.h).
+    class PiecePath;
     double leaf(const PrismPath& path, const MeshPiece& piece, double p0, double p1,
                 MeshTraceStats& stats) const;
 

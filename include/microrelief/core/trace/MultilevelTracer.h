@@ -1,6 +1,7 @@
 // The multilevel traversal of shaders/microrelief/multilevel_trace.glsl on the CPU: the
 // same algorithm over the same max pyramid and the same base-surface seam
-// (core/base/BaseSurface.h), step for step, for engines that need the relief for picking or
+// (core/base/BaseSurface.h), step for step (the segment walk is core/trace/SegmentWalk.h's,
+// shared with MeshTracer), for engines that need the relief for picking or
 // collision queries, and as a twin that tests hold the shader to.
 #pragma once
 
@@ -97,8 +98,9 @@ private:
                                          glm::dvec2 branch, TraversalStats& stats) const;
     std::optional<double> cellStretchHit(const FrameRay& ray, const SurfacePatch& patch, double c0,
                                          double c1) const;
-    std::optional<LeafHit> subdivideSegment(const FrameRay& ray, double span, bool floorExit,
-                                            TraversalStats& stats) const;
+    // The frame ray from the shell's entry as the path of the shared segment walk
+    // (core/trace/SegmentWalk.h).
+    class FramePath;
     glm::dvec3 topNormal(const SurfacePatch& patch, const glm::dvec3& framePoint) const;
 
     HeightMap map_;

@@ -27,9 +27,7 @@
 //    cell's corners are read here with both indices wrapped (the library's reads clamp v).
 //
 // Float: the parameter is t, so a ray at a grazing angle g to the mesh resolves a texel of
-// size e only while g e is well above H 2^-24 (docs/bases.md). Not handled in this slice:
-// level pieces (a ray parallel to every offset plane, c = 0 identically, such as a ray
-// exactly level over a flat mesh: MeshTracer's PrismPath::level), dropped here; the
+// size e only while g e is well above H 2^-24 (docs/bases.md). Not in this slice: the
 // biquadratic last level (bilinear only).
 #ifndef MICRORELIEF_BASE_MESH_GLSL
 #define MICRORELIEF_BASE_MESH_GLSL
@@ -177,9 +175,12 @@ mr_MeshPath mr_meshPath(mr_MeshTriangle tri, vec3 origin, vec3 v, float s, float
 }
 
 // A stretch of [0, H] on which lambda, t, b, u and v are monotone and b lies in the triangle;
-// p in [0, 1] runs from its lower-lambda end A to B, t linear in p.
+// p in [0, 1] runs from its lower-lambda end A to B, t linear in p; on a level piece t is
+// fixed at tA, lambda linear in p and b = b0 + lambda b1.
 struct mr_MeshPiece {
     float tA, tB, lambdaA, lambdaB;
+    bool level;
+    vec3 b0, b1;
 };
 
 struct mr_MeshPoint {
@@ -190,6 +191,13 @@ struct mr_MeshPoint {
 
 mr_MeshPoint mr_meshPointOn(mr_MeshPath path, mr_MeshPiece piece, float p) {
     mr_MeshPoint m;
+    if (piece.level) {
+        m.t = piece.tA;
+        m.lambda = p >= 1.0 ? piece.lambdaB : piece.lambdaA + p * (piece.lambdaB - piece.lambdaA);
+        m.b = piece.b0 + m.lambda * piece.b1;
+        m.uv = m.b.x * path.uv0 + m.b.y * path.uv1 + m.b.z * path.uv2;
+        return m;
+    }
     m.t = p >= 1.0 ? piece.tB : piece.tA + p * (piece.tB - piece.tA);
     float c = mr_polyValue(path.c, m.t);
     m.lambda = mr_polyValue(path.num, m.t) / c;
@@ -418,7 +426,53 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
     hitT = 0.0;
     hitUv = vec2(0.0);
     mr_MeshPath path = mr_meshPath(tri, origin, v, s, top);
-    if (path.level) return -1.0;  // level pieces: not in this slice (the header)
+    float best = -1.0;
+    if (path.level) {
+        // The ray lies in the offset plane of each root t* of num (MeshTracer::pieces): there
+        // b is linear in lambda, from the offset triangle's Gram system; the piece is where
+        // all three b_i >= 0, lambda in [0, lambdaMax]. t is fixed on it, so its lowest
+        // height is t* itself, exact; u and v are linear in lambda, so monotone.
+        float roots[4];
+        int n = mr_polyRoots(path.num, 0.0, top, roots);
+        for (int r = 0; r < 4; ++r) {
+            if (r >= n) break;
+            float t = roots[r];
+            vec3 a1 = tri.e1 + s * t * tri.f1, a2 = tri.e2 + s * t * tri.f2, q = tri.p0 + s * t * tri.n0;
+            float g11 = dot(a1, a1), g12 = dot(a1, a2), g22 = dot(a2, a2);
+            float det = g11 * g22 - g12 * g12;
+            if (!(det > 0.0)) continue;  // a focal height: the offset triangle collapsed
+            vec3 w = origin - q;
+            vec2 at0 = vec2(g22 * dot(a1, w) - g12 * dot(a2, w), g11 * dot(a2, w) - g12 * dot(a1, w)) / det;
+            vec2 slope = vec2(g22 * dot(a1, v) - g12 * dot(a2, v), g11 * dot(a2, v) - g12 * dot(a1, v)) / det;
+            mr_MeshPiece piece;
+            piece.level = true;
+            piece.tA = piece.tB = t;
+            piece.b0 = vec3(1.0 - at0.x - at0.y, at0.x, at0.y);
+            piece.b1 = vec3(-slope.x - slope.y, slope.x, slope.y);
+            float lo = 0.0, hi = best >= 0.0 ? min(best, lambdaMax) : lambdaMax;
+            bool empty = false;
+            for (int i = 0; i < 3; ++i) {
+                float b0 = piece.b0[i], b1 = piece.b1[i];
+                if (b1 == 0.0) empty = empty || b0 < 0.0;
+                else if (b1 > 0.0) lo = max(lo, -b0 / b1);
+                else hi = min(hi, -b0 / b1);
+            }
+            if (empty || lo > hi) continue;
+            piece.lambdaA = lo;
+            piece.lambdaB = hi;
+            mr_MeshPoint m0 = mr_meshPointOn(path, piece, 0.0);
+            float p = mr_meshSurfaceAt(relief, heights, m0.uv) >= m0.t
+                          ? 0.0
+                          : mr_meshWalkPiece(relief, windows, heights, path, piece, top, budget);
+            if (p < 0.0) continue;
+            mr_MeshPoint m = mr_meshPointOn(path, piece, p);
+            if (best >= 0.0 && m.lambda >= best) continue;
+            best = max(m.lambda, 0.0);
+            hitT = m.t;
+            hitUv = m.uv;
+        }
+        return best;
+    }
     float n0[5] = mr_polyPlus(mr_polyPlus(path.c, path.n1, -1.0), path.n2, -1.0);
     vec2 du1 = path.uv1 - path.uv0, du2 = path.uv2 - path.uv0;
     float nu[5] = mr_polyPlus(mr_polyPlus(mr_polyScaled(path.c, path.uv0.x), path.n1, du1.x), path.n2, du2.x);
@@ -453,7 +507,6 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
             cuts[at] = roots[r];
         }
     }
-    float best = -1.0;
     for (int i = 0; i + 1 < 42; ++i) {
         if (i + 1 >= cutCount) break;
         float ta = cuts[i], tb = cuts[i + 1];
@@ -476,7 +529,8 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
         float limit = best >= 0.0 ? min(best, lambdaMax) : lambdaMax;
         if (max(la, lb) < 0.0 || min(la, lb) > limit) continue;
         bool forward = la <= lb;
-        mr_MeshPiece piece = mr_MeshPiece(forward ? ta : tb, forward ? tb : ta, forward ? la : lb, forward ? lb : la);
+        mr_MeshPiece piece = mr_MeshPiece(forward ? ta : tb, forward ? tb : ta, forward ? la : lb,
+                                          forward ? lb : la, false, vec3(0.0), vec3(0.0));
         // Clipped to lambda in [0, limit] where lambda = L: the sign of (num - L c) sign(c)
         // is that of lambda - L inside; the bracket's end where lambda >= L.
         for (int side = 0; side < 2; ++side) {

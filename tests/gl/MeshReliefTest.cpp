@@ -6,10 +6,11 @@
 // half a texel (the texel's world size on the reference's hit triangle) of the reference's;
 // and the worst under 0.05 texel (float's rounding: 4e-4 measured). Cases: (a) a flat grid of
 // 8 x 8 quads seen at 40 degrees, (b) the same with the eye inside the shell (no face culling
-// and no near-plane clipping needed), (c) a tube of 24 sides seen from its side; seamless
+// and no near-plane clipping needed), (c) looking level inside the shell (a row of rays
+// parallel to the grid: level pieces), (d) a tube of 24 sides seen from its side; seamless
 // noise maps of 256 x 128 and 128 x 64 samples (a triangle's uv box 32 x 16 and 5 x 16
 // texels: the walk descends before its leaves; the tube's u wraps); 64 x 48 pixels, about
-// 2 s in all on llvmpipe.
+// 3 s in all on llvmpipe.
 // MICRORELIEF_MESH_PICTURE=<prefix> writes each picture's grey as <prefix><case>.pgm.
 #include "microrelief/gl/MeshRelief.h"
 
@@ -108,9 +109,9 @@ struct Agreement {
 };
 
 Agreement compare(const TriangleMesh& mesh, const HeightMap& map, double s, glm::dvec3 eye,
-                  glm::dvec3 target, const std::string& name) {
+                  glm::dvec3 target, const std::string& name, int height = 48) {
     const GL& gl = test::glContext().gl();
-    const int width = 64, height = 48;
+    const int width = 64;
     const glm::dmat4 view = glm::lookAt(eye, target, glm::dvec3(0.0, 1.0, 0.0));
     const glm::dmat4 projection = glm::perspective(glm::radians(40.0), double(width) / height, 0.05, 20.0);
     const glm::dmat4 viewProjection = projection * view;
@@ -181,6 +182,15 @@ TEST_F(MeshRelief, FromInsideTheShellTheGridIsTheReferencesPixelByPixel) {
     const double s = 0.08;
     expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, s, {-0.3, 0.6 * s, 0.35}, {0.2, 0.0, -0.2},
                             "inside"));
+}
+
+// Level: the eye inside the shell looking level, 47 rows, so that the middle row's rays are
+// parallel to the flat grid (c = 0 identically: level pieces, t fixed, b linear in lambda).
+TEST_F(MeshRelief, LookingLevelInsideTheShellTheGridIsTheReferencesPixelByPixel) {
+    const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
+    const double s = 0.08;
+    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, s, {-0.3, 0.7 * s, 0.35},
+                            {0.2, 0.7 * s, -0.2}, "level", 47));
 }
 
 TEST_F(MeshRelief, ATubeIsTheReferencesPixelByPixel) {

@@ -1,5 +1,6 @@
 #include "microrelief/gl/MeshRelief.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -38,11 +39,11 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
     : gl_(gl) {
     if (map.empty()) throwBadInput("MeshRelief: an empty map");
     const std::string version = "330 core";
-    const Shader vertex = compileShader(
-        gl, GL_VERTEX_SHADER, assembleShader(shaderDir / "mesh_relief.vert", version));
-    const Shader fragment = compileShader(
-        gl, GL_FRAGMENT_SHADER,
-        assembleShader(shaderDir / "mesh_relief.frag", version, {}, {shaderDir}));
+    const Shader vertex = compileShader(gl, GL_VERTEX_SHADER,
+                                        assembleShader(shaderDir / "mesh_relief.vert", version));
+    const Shader fragment =
+        compileShader(gl, GL_FRAGMENT_SHADER,
+                      assembleShader(shaderDir / "mesh_relief.frag", version, {}, {shaderDir}));
     program_ = linkProgram(gl, vertex, fragment, "mesh relief");
     viewProjection_ = uniform(gl, program_, "mr_viewProjection");
     eye_ = uniform(gl, program_, "mr_eye");
@@ -79,9 +80,9 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
     GLint maxSize = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (rows > maxSize)
-        throwBadInput("MeshRelief: " + std::to_string(triangles) +
-                      " triangles need a table of " + std::to_string(rows) +
-                      " rows, more than the GL's texture size " + std::to_string(maxSize));
+        throwBadInput("MeshRelief: " + std::to_string(triangles) + " triangles need a table of " +
+                      std::to_string(rows) + " rows, more than the GL's texture size " +
+                      std::to_string(maxSize));
     std::vector<float> table(static_cast<std::size_t>(std::max(rows, 1)) * kTableRow * 8 * 4, 0.0f);
     for (int k = 0; k < triangles; ++k) {
         float* row = &table[static_cast<std::size_t>(k) * 8 * 4];
@@ -91,8 +92,9 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
             const glm::vec2 uv = mesh.texCoords[v[i]];
             float* a = row + 4 * i;
             float* m = row + 4 * (3 + i);
-            a[0] = p.x, a[1] = p.y, a[2] = p.z, a[3] = uv.x;
-            m[0] = n.x, m[1] = n.y, m[2] = n.z, m[3] = uv.y;
+            const float corner[4] = {p.x, p.y, p.z, uv.x}, normal[4] = {n.x, n.y, n.z, uv.y};
+            std::copy(corner, corner + 4, a);
+            std::copy(normal, normal + 4, m);
         }
         row[4 * 6] = proxy.topHeights[k];
     }
@@ -132,7 +134,8 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
     gl.Uniform1i(uniform(gl, program_, "mr_levelCount"), levelCount_);
     gl.Uniform1i(uniform(gl, program_, "mr_budget"), traversalBudget(map.width, map.height));
     const GLenum error = gl.GetError();
-    if (error != GL_NO_ERROR) throwRuntime("MeshRelief: GL error " + enumHex(error) + " uploading the mesh");
+    if (error != GL_NO_ERROR)
+        throwRuntime("MeshRelief: GL error " + enumHex(error) + " uploading the mesh");
 }
 
 void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) const {

@@ -94,8 +94,10 @@ TriangleMesh tube(int around, int along, float radius, float length) {
 // The world size of one texel on triangle k: sqrt(world area / texel area).
 double texelSize(const TriangleMesh& mesh, const HeightMap& map, std::size_t k) {
     const glm::uvec3 v = mesh.triangles[k];
-    const glm::dvec3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]], p2 = mesh.positions[v[2]];
-    const glm::dvec2 t0 = mesh.texCoords[v[0]], t1 = mesh.texCoords[v[1]], t2 = mesh.texCoords[v[2]];
+    const glm::dvec3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]],
+                     p2 = mesh.positions[v[2]];
+    const glm::dvec2 t0 = mesh.texCoords[v[0]], t1 = mesh.texCoords[v[1]],
+                     t2 = mesh.texCoords[v[2]];
     const double world = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
     const glm::dvec2 a = (t1 - t0) * glm::dvec2(map.width, map.height),
                      b = (t2 - t0) * glm::dvec2(map.width, map.height);
@@ -113,7 +115,8 @@ Agreement compare(const TriangleMesh& mesh, const HeightMap& map, double s, glm:
     const GL& gl = test::glContext().gl();
     const int width = 64;
     const glm::dmat4 view = glm::lookAt(eye, target, glm::dvec3(0.0, 1.0, 0.0));
-    const glm::dmat4 projection = glm::perspective(glm::radians(40.0), double(width) / height, 0.05, 20.0);
+    const glm::dmat4 projection =
+        glm::perspective(glm::radians(40.0), double(width) / height, 0.05, 20.0);
     const glm::dmat4 viewProjection = projection * view;
     const gl::MeshRelief relief(gl, shaderDirectory(), mesh, map, s);
     OffscreenTarget picture(gl, width, height);
@@ -128,13 +131,15 @@ Agreement compare(const TriangleMesh& mesh, const HeightMap& map, double s, glm:
     std::vector<unsigned char> grey(static_cast<std::size_t>(width) * height);
     for (int row = 0; row < height; ++row) {
         for (int column = 0; column < width; ++column) {
-            const double x = (column + 0.5) / width * 2.0 - 1.0, y = 1.0 - (row + 0.5) / height * 2.0;
+            const double x = (column + 0.5) / width * 2.0 - 1.0,
+                         y = 1.0 - (row + 0.5) / height * 2.0;
             const glm::dvec4 near = inverse * glm::dvec4(x, y, -1.0, 1.0);
             const glm::dvec4 farPoint = inverse * glm::dvec4(x, y, 1.0, 1.0);
             const Ray ray{eye, glm::dvec3(farPoint) / farPoint.w - glm::dvec3(near) / near.w};
             const MeshHit hit = reference.trace(ray);
             const bool drawn = frame.positionAt(column, row)[3] > 0.5f;
-            grey[static_cast<std::size_t>(row) * width + column] = frame.color[(static_cast<std::size_t>(row) * width + column) * 4];
+            grey[static_cast<std::size_t>(row) * width + column] =
+                frame.color[(static_cast<std::size_t>(row) * width + column) * 4];
             ++a.pixels;
             if (drawn != static_cast<bool>(hit)) {
                 ++a.hitMiss;
@@ -151,10 +156,12 @@ Agreement compare(const TriangleMesh& mesh, const HeightMap& map, double s, glm:
     if (const char* prefix = std::getenv("MICRORELIEF_MESH_PICTURE")) {
         std::ofstream out(std::string(prefix) + name + ".pgm", std::ios::binary);
         out << "P5 " << width << " " << height << " 255\n";
-        out.write(reinterpret_cast<const char*>(grey.data()), static_cast<std::streamsize>(grey.size()));
+        out.write(reinterpret_cast<const char*>(grey.data()),
+                  static_cast<std::streamsize>(grey.size()));
     }
-    std::printf("%s: %d pixels, %d hits, hit/miss %d, more than half a texel off %d, worst %.3g texel\n",
-                name.c_str(), a.pixels, a.hits, a.hitMiss, a.far, a.worst);
+    std::printf(
+        "%s: %d pixels, %d hits, hit/miss %d, more than half a texel off %d, worst %.3g texel\n",
+        name.c_str(), a.pixels, a.hits, a.hitMiss, a.far, a.worst);
     return a;
 }
 
@@ -171,8 +178,8 @@ class MeshRelief : public test::GlTest {};
 
 TEST_F(MeshRelief, AFlatGridIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
-    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, 0.08, {0.0, 0.75, 0.95}, {0.0, 0.0, 0.0},
-                            "flat"));
+    expectAgreement(
+        compare(flatGrid(8, 1.0f, 1.0f), map, 0.08, {0.0, 0.75, 0.95}, {0.0, 0.0, 0.0}, "flat"));
 }
 
 // The eye inside the shell (at 0.6 of its height over the grid's corner region), looking
@@ -180,8 +187,8 @@ TEST_F(MeshRelief, AFlatGridIsTheReferencesPixelByPixel) {
 TEST_F(MeshRelief, FromInsideTheShellTheGridIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
     const double s = 0.08;
-    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, s, {-0.3, 0.6 * s, 0.35}, {0.2, 0.0, -0.2},
-                            "inside"));
+    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, s, {-0.3, 0.6 * s, 0.35},
+                            {0.2, 0.0, -0.2}, "inside"));
 }
 
 // Level: the eye inside the shell looking level, 47 rows, so that the middle row's rays are
@@ -195,8 +202,8 @@ TEST_F(MeshRelief, LookingLevelInsideTheShellTheGridIsTheReferencesPixelByPixel)
 
 TEST_F(MeshRelief, ATubeIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(128, 64, 7.0, 4, 11));
-    expectAgreement(compare(tube(24, 4, 0.3f, 1.0f), map, 0.05, {0.35, 0.3, 1.3}, {0.0, 0.0, 0.0},
-                            "tube"));
+    expectAgreement(
+        compare(tube(24, 4, 0.3f, 1.0f), map, 0.05, {0.35, 0.3, 1.3}, {0.0, 0.0, 0.0}, "tube"));
 }
 
 }  // namespace

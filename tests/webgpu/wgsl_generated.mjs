@@ -24,8 +24,11 @@ if (!built || process.argv.length !== 3 || !fs.existsSync(path.join(built, 'wgsl
     console.error(`wgsl_generated.mjs: no wgsl.js in '${process.argv[2] ?? ''}' (usage: node wgsl_generated.mjs GENERATED_DIR, a built microrelief-three's generated/)`);
     process.exit(2);
 }
-// The library functions the WebGPU entry calls, as the WebGL entry's glue does.
-const kCalled = ['mr_traceMultilevel', 'mr_hardShadow', 'mr_surfaceAlbedo', 'mr_shadeRelief', 'mr_reliefWorldNormal', 'mr_baseMapPoint'];
+// The library functions the WebGPU entry calls, as the WebGL entry's glue does, and the glue
+// naga translates with them (glsl/relief_three.glsl's shared part, glsl/webgpu_shading.glsl's
+// mrShadePixel, which src/webgpu.js calls).
+const kCalled = ['mr_traceMultilevel', 'mr_hardShadow', 'mr_surfaceAlbedo', 'mr_shadeRelief', 'mr_reliefWorldNormal', 'mr_baseMapPoint',
+                 'mrNdcOf', 'mrTraceRay', 'mrShadeHit', 'mrShadePixel'];
 const kVariants = ['plane', 'cylinder', 'ellipsoid'].flatMap((b) => [`${b}_bilinear`, `${b}_biquadratic`]);
 
 const {loadNaga} = await import(pathToFileURL(path.join(scripts, 'wgsl.mjs')).href);
@@ -72,5 +75,5 @@ try {
     fs.rmSync(scratch, {recursive: true, force: true});
 }
 for (const p of problems) console.log(`FAILED: ${p}`);
-if (!problems.length) console.log(`wgsl.js: the ${kVariants.length} modules are naga's translation of the library, as built`);
+if (!problems.length) console.log(`wgsl.js: the ${kVariants.length} modules are naga's translation of the library and the glue, as built`);
 process.exit(problems.length ? 1 : 0);

@@ -30,20 +30,17 @@ void main() {
         gl_FragDepth = gl_FragCoord.z;
         return;
     }
+    // The shading both entries run (relief_three.glsl's mrShadeHit).
     mr_Relief relief = mrRelief();
-    float visibility = 1.0;
-#if MICRORELIEF_SHADOWS == MR_SHADOWS_HARD
     bool exhausted = false;
-    visibility = mr_hardShadow(relief, mrWindows, mrHeights, p.hit, mr_baseFrameVector(relief, mrLightDirection),
-                               MR_T_INFINITY, exhausted);
+    vec3 colour = mrShadeHit(relief, mrWindows, mrHeights, p, mrLightDirection, surfaceAlbedo(relief, p),
+                             MICRORELIEF_SHADOWS == MR_SHADOWS_HARD, exhausted);
     if (exhausted) {
         gl_FragColor = vec4(1.0, 0.0, 1.0, 1.0);
         gl_FragDepth = gl_FragCoord.z;
         return;
     }
-#endif
-    mr_ReliefMaterial material = mr_ReliefMaterial(surfaceAlbedo(relief, p), 0.25, 48.0);
-    gl_FragColor = vec4(mr_shadeRelief(material, p.normal, normalize(mrLightDirection), normalize(-p.dir), vec3(visibility)), 1.0);
+    gl_FragColor = vec4(colour, 1.0);
     vec4 clip;
     float depth = mrWindowDepth(p.world, clip);
 #ifdef USE_LOGARITHMIC_DEPTH_BUFFER

@@ -20,6 +20,84 @@
 #ifndef MICRORELIEF_THREE_GLSL
 #define MICRORELIEF_THREE_GLSL
 
+// ---- The pixel in parameters only: the part both entries run. The WebGL entry calls it
+// through the uniforms below (mrTracePixel); the WebGPU entry's glsl/webgpu_shading.glsl calls
+// it too, translated with the library by naga (scripts/wgsl.mjs, generated/wgsl.js), where
+// MICRORELIEF_THREE_PARAMETERS_ONLY leaves out the uniforms (WGSL has none of GLSL's). ----
+
+struct mrPixel {
+    vec3 origin;       // world (about mrWorldOrigin)
+    vec3 dir;          // world, not unit
+    mr_ReliefHit hit;  // the library's answer, in the base's frame
+    bool exhausted;    // the traversal ran out of its budget (never silent: shown magenta)
+    vec3 world;        // the hit, world (about mrWorldOrigin): origin + t dir
+    vec3 normal;       // world, unit
+    vec2 uv;           // three's convention: (u, 1 - v), the image's row 0 at uv.y = 1
+};
+
+// A draw's camera rays (the uniforms mrRayOrigin ... mrRange below say what each is).
+struct mrCameraRays {
+    vec3 origin, originDx, originDy;
+    vec3 dir, dirDx, dirDy;
+    vec2 range;
+};
+
+// The centre of the pixel at `fragCoord` in NDC: (fragCoord - viewport.xy) / viewport.zw
+// * 2 - 1, with viewport (x, y, width, height) in the target's pixels. `yDown`: the window's
+// y runs down from the top (WebGPU's fragment position and viewport), NDC's y still up.
+vec2 mrNdcOf(vec2 fragCoord, vec4 viewport, bool yDown) {
+    vec2 ndc = (fragCoord - viewport.xy) / viewport.zw * 2.0 - 1.0;
+    if (yDown) ndc.y = -ndc.y;
+    return ndc;
+}
+
+// The ray at `ndc` traced in `relief`; false where it misses. `viewport` gives the pixel's
+// size for the level of detail (width 0: none, a shadow pass); `worldToObject` and `mapSize`
+// are the relief's (relief.map's).
+bool mrTraceRay(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights, mrCameraRays rays,
+                vec2 ndc, vec4 viewport, float pixelError, mat4 worldToObject, vec2 mapSize, out mrPixel p) {
+    p.origin = rays.origin + ndc.x * rays.originDx + ndc.y * rays.originDy;
+    p.dir = rays.dir + ndc.x * rays.dirDx + ndc.y * rays.dirDy;
+    // The level-of-detail cone of relief.frag: a window may stand for the surface once it
+    // projects to less than pixelError pixels (the view's camera only).
+    float lodCone = 0.0;
+    if (pixelError > 0.0 && viewport.z > 0.0) {
+        float pixelAngle = 2.0 * length(rays.dirDy) / viewport.w;
+        float objectLength = length(mat3(worldToObject) * p.dir);
+        lodCone = pixelError * pixelAngle * objectLength * max(mapSize.x, mapSize.y);
+    }
+    mr_RayQuery query = mr_RayQuery(rays.range.x, rays.range.y, false, mr_traversalBudget(relief.map), lodCone);
+    p.hit = mr_traceMultilevel(relief, query, windows, heights, mr_baseFramePoint(relief, p.origin),
+                               mr_baseFrameVector(relief, p.dir));
+    p.exhausted = p.hit.exhausted;
+    p.world = p.origin + max(p.hit.t, rays.range.x) * p.dir;
+    p.normal = vec3(0.0, 1.0, 0.0);
+    p.uv = vec2(0.0);
+    if (p.exhausted) return true;
+    if (p.hit.kind == MR_RELIEF_MISS) return false;
+    p.world = p.origin + p.hit.t * p.dir;  // on the ray exactly, as relief.frag has it
+    p.normal = mr_reliefWorldNormal(relief, p.hit);
+    vec3 m = mr_baseMapPoint(relief, p.hit.position);
+    p.uv = vec2(m.x / mapSize.x, 1.0 - m.y / mapSize.y);
+    return true;
+}
+
+// The library's shading of hit `p` (relief.frag's shaded view): one directional light
+// (`lightDirection`, world, towards the light), `albedo` (linear), the hard self-shadow where
+// `hardShadow`; `exhausted` where that shadow's traversal ran out of its budget.
+vec3 mrShadeHit(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights, mrPixel p,
+                vec3 lightDirection, vec3 albedo, bool hardShadow, out bool exhausted) {
+    exhausted = false;
+    float visibility = 1.0;
+    if (hardShadow)
+        visibility = mr_hardShadow(relief, windows, heights, p.hit, mr_baseFrameVector(relief, lightDirection),
+                                   MR_T_INFINITY, exhausted);
+    mr_ReliefMaterial material = mr_ReliefMaterial(albedo, 0.25, 48.0);
+    return mr_shadeRelief(material, p.normal, normalize(lightDirection), normalize(-p.dir), vec3(visibility));
+}
+
+#ifndef MICRORELIEF_THREE_PARAMETERS_ONLY
+
 uniform sampler2D mrHeights;   // the samples, R32F, W x H (nearest; u repeats on a curved base)
 uniform sampler2D mrWindows;   // the windows pyramid, R16F, GL's mip sizes of W x H
 uniform vec2 mrMapSize;        // W, H
@@ -61,48 +139,15 @@ bool mrFaceRejected() {
 
 // The pixel centre in NDC, as relief.frag computes it: (gl_FragCoord + 0) / size * 2 - 1.
 vec2 mrPixelNdc() {
-    if (mrViewport.z > 0.0) return (gl_FragCoord.xy - mrViewport.xy) / mrViewport.zw * 2.0 - 1.0;
+    if (mrViewport.z > 0.0) return mrNdcOf(gl_FragCoord.xy, mrViewport, false);
     return mrClip.xy / mrClip.w;
 }
 
-struct mrPixel {
-    vec3 origin;       // world (about mrWorldOrigin)
-    vec3 dir;          // world, not unit
-    mr_ReliefHit hit;  // the library's answer, in the base's frame
-    bool exhausted;    // the traversal ran out of its budget (never silent: shown magenta)
-    vec3 world;        // the hit, world (about mrWorldOrigin): origin + t dir
-    vec3 normal;       // world, unit
-    vec2 uv;           // three's convention: (u, 1 - v), the image's row 0 at uv.y = 1
-};
-
 // The pixel's ray traced; false where it misses the relief.
 bool mrTracePixel(out mrPixel p) {
-    vec2 ndc = mrPixelNdc();
-    p.origin = mrRayOrigin + ndc.x * mrRayOriginDx + ndc.y * mrRayOriginDy;
-    p.dir = mrRayDir + ndc.x * mrRayDirDx + ndc.y * mrRayDirDy;
-    mr_Relief relief = mrRelief();
-    // The level-of-detail cone of relief.frag: a window may stand for the surface once it
-    // projects to less than mrPixelError pixels (the view's camera only).
-    float lodCone = 0.0;
-    if (mrPixelError > 0.0 && mrViewport.z > 0.0) {
-        float pixelAngle = 2.0 * length(mrRayDirDy) / mrViewport.w;
-        float objectLength = length(mat3(mrWorldToObject) * p.dir);
-        lodCone = mrPixelError * pixelAngle * objectLength * max(mrMapSize.x, mrMapSize.y);
-    }
-    mr_RayQuery query = mr_RayQuery(mrRange.x, mrRange.y, false, mr_traversalBudget(relief.map), lodCone);
-    p.hit = mr_traceMultilevel(relief, query, mrWindows, mrHeights, mr_baseFramePoint(relief, p.origin),
-                               mr_baseFrameVector(relief, p.dir));
-    p.exhausted = p.hit.exhausted;
-    p.world = p.origin + max(p.hit.t, mrRange.x) * p.dir;
-    p.normal = vec3(0.0, 1.0, 0.0);
-    p.uv = vec2(0.0);
-    if (p.exhausted) return true;
-    if (p.hit.kind == MR_RELIEF_MISS) return false;
-    p.world = p.origin + p.hit.t * p.dir;  // on the ray exactly, as relief.frag has it
-    p.normal = mr_reliefWorldNormal(relief, p.hit);
-    vec3 m = mr_baseMapPoint(relief, p.hit.position);
-    p.uv = vec2(m.x / mrMapSize.x, 1.0 - m.y / mrMapSize.y);
-    return true;
+    return mrTraceRay(mrRelief(), mrWindows, mrHeights,
+                      mrCameraRays(mrRayOrigin, mrRayOriginDx, mrRayOriginDy, mrRayDir, mrRayDirDx, mrRayDirDy, mrRange),
+                      mrPixelNdc(), mrViewport, mrPixelError, mrWorldToObject, mrMapSize, p);
 }
 
 // The window depth of world point `world` for this draw's camera, as the fixed function
@@ -126,5 +171,7 @@ float mrLogarithmicDepth(vec4 clip, float depth) {
     return mrPerspective != 0 ? log2(1.0 + clip.w) * logDepthBufFC * 0.5 : depth;
 }
 #endif
+
+#endif  // MICRORELIEF_THREE_PARAMETERS_ONLY
 
 #endif

@@ -33,8 +33,10 @@
 //    MultilevelTracer.cpp with the base surfaces, the surface patches, the pyramid and
 //    ModelTransform.cpp) behind wasm/twin_wasm.cpp, compiled the same way: the picks
 //    (src/twin.js; without emscripten a stub, and the picks are traced on the GPU).
-//  * generated/wgsl.js: the library of glsl.js (stripped, as the WebGL entry has it) in WGSL,
-//    one module per variant the WebGPU entry needs (each base, each last level; the
+//  * generated/wgsl.js: the library of glsl.js (stripped, as the WebGL entry has it) in WGSL
+//    with the glue both entries share (glue.reliefThree's functions in parameters only) and
+//    the WebGPU entry's pixel that calls it (glue.webgpuShading's mrShadePixel), one module
+//    per variant the WebGPU entry needs (each base, each last level; the
 //    multilevel method), translated by naga through scripts/wgsl.mjs (naga-wasm, a
 //    devDependency: `npm ci` here): `wgsl.plane_bilinear` ...; a variant naga refuses fails the
 //    build, named in its one line. Not edited by hand: tests/webgpu/wgsl_generated.mjs
@@ -449,11 +451,11 @@ import {kWgslVariants, libraryWgsl, loadNaga, WgslError} from './wgsl.mjs';
 
 // The library's WGSL, each variant (scripts/wgsl.mjs), or null under --no-wgsl. No translator
 // is the environment's fault (status 1); a variant naga refuses, the source's (2).
-async function translateLibrary(options, library) {
+async function translateLibrary(options, library, glue) {
     if (!options.wgsl) return null;
     try {
         const naga = await loadNaga();
-        return {naga: naga.nagaVersion, modules: libraryWgsl(naga, library)};
+        return {naga: naga.nagaVersion, modules: libraryWgsl(naga, library, glue)};
     } catch (e) {
         if (!(e instanceof WgslError)) throw e;
         throw new BuildError(/^no naga-wasm|^naga-wasm does not load/.test(e.message) ? kRuntime : kBadInput,
@@ -519,7 +521,7 @@ async function build(options) {
     } catch (e) {
         throw badInput(e.message);
     }
-    const wgsl = await translateLibrary(options, library);
+    const wgsl = await translateLibrary(options, library, glue);
     const core = readNamed(path.join(options.source, 'web', 'relief_core.js'));
     const png = readNamed(path.join(options.source, 'web', 'png.js'));
     const checks = readNamed(path.join(options.source, 'web', 'scene_checks.js'));

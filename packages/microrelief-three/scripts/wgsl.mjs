@@ -11,7 +11,7 @@
 //
 // use:   const naga = await loadNaga();
 //        const wgsl = translate(naga, glsl, 'what');   // throws WgslError, one line
-//        const modules = libraryWgsl(naga, library);   // {plane_bilinear: wgsl, ...}
+//        const modules = libraryWgsl(naga, library, glue);   // {plane_bilinear: wgsl, ...}
 // as a program: node scripts/wgsl.mjs --version  prints naga's version, or one line saying
 //        why there is no translator (exit status 1): the tests ask it whether they can run.
 import {fileURLToPath} from 'node:url';
@@ -73,27 +73,38 @@ layout(set = 0, binding = 0) uniform sampler mrAlbedoSampler;
 #define MICRORELIEF_ALBEDO_SAMPLED(t) sampler2D(t, mrAlbedoSampler)
 `;
 
+// The package's glue (glsl/, as scripts/build.mjs's glue of generated/glsl.js names each
+// file) that each module holds after the library, in this order: relief_three.glsl's part in
+// parameters only (MICRORELIEF_THREE_PARAMETERS_ONLY: its uniforms and the functions that
+// read them left out) and webgpu_shading.glsl's mrShadePixel, which calls it: the WebGPU
+// entry's pixel from the GLSL the WebGL entry's pixel runs (docs/webgpu.md).
+export const kWgslGlue = ['reliefThree', 'webgpuShading'];
+
 // The GLSL naga reads for `variant` of `library` (the package's library: scripts/build.mjs's
-// bundle of shaders/microrelief/, stripped): #version, the variant's #defines by the names
-// variants.glsl gives them (MR_BASE_PLANE ...; a name the library does not define is refused
-// here, since #if would take it as 0, the plane, silently), the hooks, the library, and an
-// empty main (naga needs an entry point; the WGSL keeps it, `fn main`).
-export function libraryEntry(library, variant) {
+// bundle of shaders/microrelief/, stripped) and `glue` ({reliefThree, webgpuShading}: the
+// texts of kWgslGlue): #version, the variant's #defines by the names variants.glsl gives them
+// (MR_BASE_PLANE ...; a name the library does not define is refused here, since #if would
+// take it as 0, the plane, silently), the hooks, the library, the glue, and an empty main
+// (naga needs an entry point; the WGSL keeps it, `fn main`).
+export function libraryEntry(library, variant, glue) {
     const defines = [['MICRORELIEF_BASE', `MR_BASE_${variant.base.toUpperCase()}`],
                      ['MICRORELIEF_INTERPOLATION', `MR_INTERPOLATION_${variant.interpolation.toUpperCase()}`]];
     for (const [, value] of defines)
         if (!new RegExp(`^\\s*#\\s*define\\s+${value}\\b`, 'm').test(library))
             throw new WgslError(`WGSL variant ${variant.name}: the library defines no ${value} (shaders/microrelief/variants.glsl)`);
-    return '#version 450\n' + defines.map(([name, value]) => `#define ${name} ${value}\n`).join('') + kWebGpuHooks + library + '\nvoid main() {}\n';
+    for (const key of kWgslGlue)
+        if (typeof glue?.[key] !== 'string') throw new WgslError(`WGSL variant ${variant.name}: no glue ${key} (the package's glsl/)`);
+    return '#version 450\n' + defines.map(([name, value]) => `#define ${name} ${value}\n`).join('') + kWebGpuHooks + library +
+        '\n#define MICRORELIEF_THREE_PARAMETERS_ONLY\n' + kWgslGlue.map((key) => glue[key] + '\n').join('') + 'void main() {}\n';
 }
 
 // Every variant's WGSL: {name: text}, each with a header naming naga's version and the
 // variant. Throws WgslError naming the first variant that fails.
-export function libraryWgsl(naga, library, variants = kWgslVariants) {
+export function libraryWgsl(naga, library, glue, variants = kWgslVariants) {
     const modules = {};
     for (const variant of variants)
-        modules[variant.name] = `// naga ${naga.nagaVersion}: microrelief's library, ${variant.base} base, ${variant.interpolation} last level, ${variant.method}\n` +
-            translate(naga, libraryEntry(library, variant), `WGSL variant ${variant.name}`);
+        modules[variant.name] = `// naga ${naga.nagaVersion}: microrelief's library and microrelief-three's glue (${kWgslGlue.join(', ')}), ${variant.base} base, ${variant.interpolation} last level, ${variant.method}\n` +
+            translate(naga, libraryEntry(library, variant, glue), `WGSL variant ${variant.name}`);
     return modules;
 }
 

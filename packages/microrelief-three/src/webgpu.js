@@ -11,9 +11,11 @@
 // The relief is the WebGL entry's: the same host code (relief_host.js: the base, the box,
 // the option checks, each draw's rays and matrices; map_host.js: the map's checks and its
 // pyramid), the same library (naga's WGSL of shaders/microrelief/, generated/wgsl.js, the
-// functions the WebGL entry calls in GLSL). What is WebGPU's own is here: the textures (read
-// by textureLoad, no sampler) and the glue (kGlue below: relief_three.glsl's mrTracePixel and
-// microrelief_shading.frag's main, in WGSL), called from a node material by wgslFn.
+// functions the WebGL entry calls in GLSL) and the same glue (naga's WGSL of the package's
+// glsl/relief_three.glsl, the pixel's ray, trace and shading the WebGL entry runs, and of
+// glsl/webgpu_shading.glsl's mrShadePixel, which calls them), called from a node material by
+// wgslFn. What is WebGPU's own is here: the textures (read by textureLoad, no sampler) and
+// three's nodes passed to mrShadePixel.
 import * as THREE from 'three/webgpu';
 import {code, Discard, Fn, frontFacing, If, screenCoordinate, texture, uniform, vec4, viewport, wgslFn} from 'three/tsl';
 
@@ -94,71 +96,44 @@ export function reachableWgsl(module, roots) {
     return items.filter((item) => kept.has(item.name)).map((item) => item.text).join('\n');
 }
 
-// The library functions the glue calls.
-const kGlueCalls = ['mr_traceMultilevel', 'mr_hardShadow', 'mr_shadeRelief', 'mr_reliefWorldNormal', 'mr_baseFramePoint',
-                    'mr_baseFrameVector', 'mr_traversalBudget', 'MR_RELIEF_MISS', 'MR_T_INFINITY'];
+// The glue's pixel: glsl/webgpu_shading.glsl's mrShadePixel, which runs relief_three.glsl's
+// functions the WebGL entry's pixel runs (mrNdcOf, mrTraceRay, mrShadeHit), translated with
+// the library into each variant's module by naga (scripts/wgsl.mjs). Returns (colour,
+// depth); depth -1 where the pixel shows nothing.
+const kGlueEntry = 'mrShadePixel';
 
-// relief_three.glsl's mrTracePixel and microrelief_shading.frag's main, in WGSL: one pixel's
-// ray through its centre, traced, shaded, its depth. Returns (colour, depth); depth -1 where
-// the pixel shows nothing (a miss, or a face that does not run: mrFaces). The NDC is the
-// pixel centre's, from the fragment's position and the viewport (x, y, width, height in the
-// target's pixels; WebGPU's y, and three's WebGPU viewport's, run down from the top), never an
-// interpolated box position (relief_three.glsl says why). Depth: WebGPU's clip z / w is
-// already in [0, 1] (three's WebGPU projection, reversed or not), the depth buffer's value
-// for the viewport's default depth range [0, 1].
-const kGlue = /* wgsl */`
-fn mrShadePixel(heights: texture_2d<f32>, windows: texture_2d<f32>, fragCoord: vec2<f32>, viewport: vec4<f32>,
-                front: bool, faces: f32, mapSize: vec2<f32>, pyramidSize: vec2<f32>, levelCount: f32, maxHeight: f32,
-                objectToWorld: mat4x4<f32>, worldToObject: mat4x4<f32>, heightScale: f32, frameScale: vec3<f32>,
-                pixelError: f32, rayOrigin: vec3<f32>, rayOriginDx: vec3<f32>, rayOriginDy: vec3<f32>,
-                rayDir: vec3<f32>, rayDirDx: vec3<f32>, rayDirDy: vec3<f32>, range: vec2<f32>,
-                viewProjection: mat4x4<f32>, lightDirection: vec3<f32>, albedo: vec3<f32>, shadows: f32) -> vec4<f32> {
-    let runs = select(select(true, front, faces == 1.0), !front, faces == 2.0);
-    if (!runs) { return vec4<f32>(0.0, 0.0, 0.0, -1.0); }
-    let ndc = vec2<f32>((fragCoord.x - viewport.x) / viewport.z * 2.0 - 1.0, 1.0 - (fragCoord.y - viewport.y) / viewport.w * 2.0);
-    let origin = rayOrigin + ndc.x * rayOriginDx + ndc.y * rayOriginDy;
-    let dir = rayDir + ndc.x * rayDirDx + ndc.y * rayDirDy;
-    let relief = mr_Relief(mr_ReliefMap(mapSize, vec2<i32>(pyramidSize), i32(levelCount), maxHeight, vec2<i32>(1)),
-                           mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
-    var lodCone = 0.0;
-    if (pixelError > 0.0) {
-        let pixelAngle = 2.0 * length(rayDirDy) / viewport.w;
-        let objectLength = length((worldToObject * vec4<f32>(dir, 0.0)).xyz);
-        lodCone = pixelError * pixelAngle * objectLength * max(mapSize.x, mapSize.y);
-    }
-    let query = mr_RayQuery(range.x, range.y, false, mr_traversalBudget(relief.map), lodCone);
-    let hit = mr_traceMultilevel(relief, query, windows, heights, mr_baseFramePoint(relief, origin), mr_baseFrameVector(relief, dir));
-    var world = origin + max(hit.t, range.x) * dir;
-    var colour = vec3<f32>(1.0, 0.0, 1.0);  // never silent: an exhausted traversal shows magenta
-    if (!hit.exhausted) {
-        if (hit.kind == MR_RELIEF_MISS) { return vec4<f32>(0.0, 0.0, 0.0, -1.0); }
-        world = origin + hit.t * dir;
-        let normal = mr_reliefWorldNormal(relief, hit);
-        var visibility = 1.0;
-        var shadowExhausted = false;
-        if (shadows == 1.0) {
-            visibility = mr_hardShadow(relief, windows, heights, hit, mr_baseFrameVector(relief, lightDirection), MR_T_INFINITY, &shadowExhausted);
-        }
-        let material = mr_ReliefMaterial(albedo, 0.25, 48.0);
-        colour = mr_shadeRelief(material, normal, normalize(lightDirection), normalize(-dir), vec3<f32>(visibility));
-        if (shadowExhausted) { colour = vec3<f32>(1.0, 0.0, 1.0); }
-    }
-    let clip = viewProjection * vec4<f32>(world, 1.0);
-    return vec4<f32>(colour, clamp(clip.z / clip.w, 0.0, 1.0));
-}
-`;
-
-// The glue for a variant (`base`_`interpolation`), its library included: one wgslFn a
-// variant, made once.
+// The glue for a variant (`base`_`interpolation`): {fn, parameters}, fn the module's
+// mrShadePixel as a wgslFn with what it reaches included, parameters its GLSL parameter
+// names in order (naga may add a suffix _N to a name; the suffix is dropped here). Made once a
+// variant. No WGSL is written here: the call passes three's nodes by position (shade below).
 const _glues = new Map();
 function glueFor(variant) {
     if (!_glues.has(variant)) {
         if (wgslUnavailable) throw new Error(`microrelief-three/webgpu: this package was built without its WGSL (${wgslUnavailable})`);
         const module = wgslModules[variant];
         if (!module) throw new Error(`microrelief-three/webgpu: no WGSL variant ${variant}`);
-        _glues.set(variant, wgslFn(kGlue, [code(reachableWgsl(module, kGlueCalls))]));
+        const entry = wgslItems(module).find((item) => item.name === kGlueEntry);
+        if (!entry) throw new Error(`microrelief-three/webgpu: the WGSL variant ${variant} has no ${kGlueEntry}`);
+        const head = /^fn\s+\w+\(([^)]*)\)/.exec(entry.text);
+        const parameters = head[1].split(',').map((p) => p.trim().split(':')[0].trim().replace(/_\d+$/, ''));
+        // What mrShadePixel reaches, in the module's order: mrShadePixel itself last.
+        const reached = reachableWgsl(module, [kGlueEntry]);
+        if (!reached.endsWith('\n' + entry.text)) throw new Error(`microrelief-three/webgpu: ${kGlueEntry} is not the last function it reaches in ${variant}`);
+        const includes = reached.slice(0, -(entry.text.length + 1));
+        _glues.set(variant, {fn: wgslFn(entry.text, [code(includes)]), parameters});
     }
     return _glues.get(variant);
+}
+
+// mrShadePixel of `variant` called with `inputs` ({name: node}, by its GLSL parameter
+// names): each one given, none left over.
+function shade(variant, inputs) {
+    const {fn, parameters} = glueFor(variant);
+    const extra = Object.keys(inputs).filter((name) => !parameters.includes(name));
+    const missing = parameters.filter((name) => !(name in inputs));
+    if (extra.length || missing.length)
+        throw new Error(`microrelief-three/webgpu: ${kGlueEntry} of ${variant} takes ${parameters.join(', ')} (missing ${missing.join(', ') || 'none'}, extra ${extra.join(', ') || 'none'})`);
+    return fn(parameters.map((name) => inputs[name]));
 }
 
 // ---- the map ----
@@ -260,8 +235,7 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
         const relief = builder.object;
         if (!relief || !relief.isRelief) throw new Error('microrelief-three/webgpu: a ReliefShadingNodeMaterial draws only on a Relief (new Relief(map, {material}))');
         const u = (name) => reliefUniform(name, relief.uniforms[name].value);
-        const shade = glueFor(`${relief.base.kind}_${relief.interpolation}`);
-        const traced = shade({
+        const traced = shade(`${relief.base.kind}_${relief.interpolation}`, {
             heights: texture(relief.reliefMap.heights), windows: texture(relief.reliefMap.windows),
             fragCoord: screenCoordinate, viewport, front: frontFacing, faces: u('mrFaces'),
             mapSize: u('mrMapSize'), pyramidSize: u('mrPyramidSize'), levelCount: u('mrLevelCount'), maxHeight: u('mrMaxHeight'),

@@ -1,0 +1,43 @@
+// webgpu_shading.glsl: ReliefShadingNodeMaterial's pixel (microrelief-three/webgpu), the
+// counterpart of microrelief_shading.frag's main: one pixel's ray traced, shaded and its
+// depth, by relief_three.glsl's shared functions (mrNdcOf, mrTraceRay, mrShadeHit). Not for
+// WebGL: scripts/wgsl.mjs translates it with the library and relief_three.glsl (uniforms left
+// out) into each variant of generated/wgsl.js, and src/webgpu.js calls the WGSL mrShadePixel
+// from its node material by wgslFn, each parameter one of three's nodes (the textures, the
+// fragment's position, the viewport, the face, the relief's uniforms).
+//
+// Returns (colour, depth); depth -1 where the pixel shows nothing (a miss, or a face that
+// does not run: faces 1 front, 2 back, 3 both). fragCoord and viewport (x, y, width, height in
+// the target's pixels) run down from the top, as WebGPU's and three's WebGPU viewport's do.
+// Depth: WebGPU's clip z / w is already in [0, 1] (three's WebGPU projection, reversed or not),
+// the depth buffer's value for the viewport's default depth range [0, 1]. shadows: 1 the hard
+// self-shadow, 0 none. The other parameters are relief_three.glsl's uniforms of their names.
+#ifndef MICRORELIEF_WEBGPU_SHADING_GLSL
+#define MICRORELIEF_WEBGPU_SHADING_GLSL
+
+vec4 mrShadePixel(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2 fragCoord, vec4 viewport,
+                  bool front, float faces, vec2 mapSize, vec2 pyramidSize, float levelCount, float maxHeight,
+                  mat4 objectToWorld, mat4 worldToObject, float heightScale, vec3 frameScale,
+                  float pixelError, vec3 rayOrigin, vec3 rayOriginDx, vec3 rayOriginDy,
+                  vec3 rayDir, vec3 rayDirDx, vec3 rayDirDy, vec2 range,
+                  mat4 viewProjection, vec3 lightDirection, vec3 albedo, float shadows) {
+    bool runs = faces == 1.0 ? front : (faces == 2.0 ? !front : true);
+    if (!runs) return vec4(0.0, 0.0, 0.0, -1.0);
+    mr_Relief relief = mr_Relief(mr_ReliefMap(mapSize, ivec2(pyramidSize), int(levelCount), maxHeight, ivec2(1)),
+                                 mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
+    mrPixel p;
+    mrCameraRays rays = mrCameraRays(rayOrigin, rayOriginDx, rayOriginDy, rayDir, rayDirDx, rayDirDy, range);
+    if (!mrTraceRay(relief, windows, heights, rays, mrNdcOf(fragCoord, viewport, true), viewport, pixelError,
+                    worldToObject, mapSize, p))
+        return vec4(0.0, 0.0, 0.0, -1.0);
+    vec3 colour = vec3(1.0, 0.0, 1.0);  // never silent: an exhausted traversal shows magenta
+    if (!p.exhausted) {
+        bool shadowExhausted = false;
+        colour = mrShadeHit(relief, windows, heights, p, lightDirection, albedo, shadows == 1.0, shadowExhausted);
+        if (shadowExhausted) colour = vec3(1.0, 0.0, 1.0);
+    }
+    vec4 clip = viewProjection * vec4(p.world, 1.0);
+    return vec4(colour, clamp(clip.z / clip.w, 0.0, 1.0));
+}
+
+#endif

@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,20 @@ TriangleMesh tube(int around, int along, float radius, float length) {
             mesh.triangles.push_back({a, c, b});
             mesh.triangles.push_back({b, c, c + 1});
         }
+    }
+    return mesh;
+}
+
+// A bumpy grid whose normals lean at random by up to `lean` (MeshTracerTest's bumpyGrid; each
+// draw of two numbers a braced list, evaluated left to right under every compiler): with a
+// shell as thick as a quad the prisms twist and fold over their neighbours.
+TriangleMesh bumpyGrid(int n, double lean, std::mt19937& random) {
+    TriangleMesh mesh = flatGrid(n, 1.0f, 1.0f);
+    std::uniform_real_distribution<double> height(-0.05, 0.05), tilt(-lean, lean);
+    for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
+        mesh.positions[k].y = static_cast<float>(height(random));
+        const glm::dvec3 normal{tilt(random), 1.0, tilt(random)};
+        mesh.normals[k] = glm::vec3(glm::normalize(normal));
     }
     return mesh;
 }
@@ -198,6 +213,16 @@ TEST_F(MeshRelief, LookingLevelInsideTheShellTheGridIsTheReferencesPixelByPixel)
     const double s = 0.08;
     expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, s, {-0.3, 0.7 * s, 0.35},
                             {0.2, 0.7 * s, -0.2}, "level", 47));
+}
+
+// Folded prisms: a bumpy 4 x 4 grid whose normals lean by up to 0.8, under a shell 0.25 thick
+// (as thick as a quad), seen from 35 degrees.
+TEST_F(MeshRelief, FoldedPrismsAreTheReferencesPixelByPixel) {
+    const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
+    std::mt19937 random(9);
+    const TriangleMesh mesh = bumpyGrid(4, 0.8, random);
+    expectAgreement(
+        compare(mesh, map, 0.25 / map.maxValue(), {0.2, 0.8, 1.1}, {0.0, 0.05, 0.0}, "folded"));
 }
 
 TEST_F(MeshRelief, ATubeIsTheReferencesPixelByPixel) {

@@ -7,7 +7,8 @@
 // and the worst under 0.05 texel (float's rounding: 4e-4 measured). Cases: (a) a flat grid of
 // 8 x 8 quads seen at 40 degrees, (b) the same with the eye inside the shell (no face culling
 // and no near-plane clipping needed), (c) looking level inside the shell (a row of rays
-// parallel to the grid: level pieces), (d) a tube of 24 sides seen from its side; seamless
+// parallel to the grid: level pieces), (d) folded prisms (a bumpy grid with leaning normals
+// under a shell as thick as a quad), (e) a tube of 24 sides seen from its side; seamless
 // noise maps of 256 x 128 and 128 x 64 samples (a triangle's uv box 32 x 16 and 5 x 16
 // texels: the walk descends before its leaves; the tube's u wraps); 64 x 48 pixels, about
 // 3 s in all on llvmpipe.

@@ -1,8 +1,9 @@
 // base_mesh.glsl: the mesh base's traversal in one triangle's prism (docs/bases.md, "The mesh",
 // "The mesh's traversal"; issue 50), the GLSL of core/trace/MeshTracer.cpp, function for
 // function: mr_meshPath (MeshTracer::path), mr_meshPointOn (pointOn), the cuts and pieces
-// (pieces), mr_meshFootprintBound (footprintBound), mr_meshWalkPiece (walkPiece),
-// mr_meshLeaf (leaf), mr_meshTraceTriangle (traceTriangle). One fragment of a prism's hull
+// (pieces), mr_meshFootprintBound (footprintBound), mr_meshWalkPiece (walkSegments, in
+// core/trace/SegmentWalk.h, over MeshTracer::PiecePath), mr_meshLeaf (leaf),
+// mr_meshTraceTriangle (traceTriangle). One fragment of a prism's hull
 // (shaders/mesh_relief.frag) traces its ray in that prism; the depth test keeps the least
 // over prisms, which is MeshTracer::trace's least.
 //
@@ -360,7 +361,7 @@ float mr_meshLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, mr_MeshPath pat
     return -1.0;
 }
 
-// ---- The walk over a piece: MeshTracer::walkPiece ----
+// ---- The walk over a piece: walkSegments over MeshTracer::PiecePath ----
 
 // The binary subdivision of p in [0, 1], near half first, one window read per segment
 // unless the parent's bound clears it, with the piece's answers to what the plane's

@@ -1,0 +1,171 @@
+// The scene flags' bindings (app/shared/SceneBindings.h): one for each row of the table of
+// scene fields that has a flag (core/scene/SceneFields.h), registered, parsed and echoed by
+// SceneFlags and renderCommandLine in one loop. Pinned here: the command line echoed for
+// scenes that set every field (its text and its order), and a parse of no flags over a
+// scene keeps the scene (the flags' seeds read back exactly).
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "SceneOptions.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/scene/Scene.h"
+
+namespace microrelief {
+namespace {
+
+// Every field off its default but the tiles (no animation tiles), the base's sizes with a
+// space, the light a point.
+SceneOptions cylinderScene() {
+    SceneOptions scene;
+    scene.job.map.file = "/my maps/rock.exr";
+    scene.job.map.load.channel = 2;
+    scene.job.map.load.normalize = true;
+    scene.job.albedo = {AlbedoSource::Kind::File, "/maps/colours.png"};
+    scene.job.heightScale = 0.0734f;
+    scene.job.interpolation = Interpolation::Biquadratic;
+    scene.job.base = BaseShape::cylinder(0.3, 1.25);
+    scene.job.animation = "ripples";
+    scene.job.time = 1.0 / 3.0 - 40.0;
+    scene.job.camera.eye = {0.1 + 1.0 / 3.0, -std::sqrt(2.0) / 7.0, 1e-7 * M_PI};
+    scene.job.camera.target = {-0.25, 0.0, std::nextafter(0.1, 1.0)};
+    scene.job.camera.up = {0.0, 0.0, -1.0};
+    scene.job.camera.fovyDegrees = 37.123456789012345;
+    scene.job.width = 333;
+    scene.job.height = 217;
+    scene.job.model = ModelTransform::fromRows({0, -1, 0, 0.5, 1, 0, 0, -0.25, 0, 0, 2, 1e-3});
+    scene.job.shading.lightPosition = glm::dvec3{-1.5, 2.0 / 3.0, 4.0};
+    scene.job.shading.shadows = ShadowMode::Soft;
+    scene.job.shading.lightSizeDegrees = 0.53f;
+    scene.job.method.method = Method::Multilevel;
+    scene.job.method.setSteps(23);
+    scene.job.method.pixelError = 0.7f;
+    scene.job.shading.view = DebugView::Level;
+    scene.job.background = {0.3f, 0.01f, 1.0f / 3.0f};
+    return scene;
+}
+
+// A base whose size is a vector (echoed after "="), colours off, a directional light, hard
+// shadows with the default light size (not echoed), the default base kept over a map's own.
+SceneOptions ellipsoidScene() {
+    SceneOptions scene;
+    scene.job.albedo = {AlbedoSource::Kind::None, {}};
+    scene.job.base = BaseShape::ellipsoid({0.5, 0.35, 0.4});
+    scene.job.shading.lightDirection = {std::cos(1.1f), 0.3f, -std::sin(1.1f)};
+    scene.job.shading.shadows = ShadowMode::Hard;
+    scene.job.method.method = Method::MaxMip;
+    return scene;
+}
+
+// The tiles, a peer method, a light size without soft shadows (echoed), the default base
+// kept over a georeferenced map's own (echoed).
+SceneOptions tiledScene() {
+    SceneOptions scene;
+    scene.georeference.keepBase = true;
+    scene.job.tiles = {2, 3};
+    scene.job.method.method = Method::Relief;
+    scene.job.shading.lightSizeDegrees = 2.0f;
+    return scene;
+}
+
+TEST(SceneBindings, TheEchoedCommandLineIsPinned) {
+    EXPECT_EQ(renderCommandLine(SceneOptions{}),
+              "microrelief-render --height-scale 0.1 --eye=0.8,0.5,0.85 --target=0,-0.03,0 "
+              "--up=0,1,0 --fovy 45 --size 1280x720 --light=-0.45808792,0.81437856,-0.3562906 "
+              "--method multilevel --view shaded");
+    EXPECT_EQ(renderCommandLine(cylinderScene(), "microrelief-viewer"),
+              "microrelief-viewer --height '/my maps/rock.exr' --albedo /maps/colours.png "
+              "--channel 2 --normalize --height-scale 0.0734 --interpolation biquadratic "
+              "--base cylinder --radius 0.3 --length 1.25 --animate ripples "
+              "--time=-39.666666666666664 "
+              "--eye=0.43333333333333335,-0.20203050891044216,3.141592653589793e-07 "
+              "--target=-0.25,0,0.10000000000000002 --up=0,0,-1 --fovy 37.123456789012344 "
+              "--size 333x217 --model=0,-1,0,0.5,1,0,0,-0.25,0,0,2,0.001 "
+              "--light-position=-1.5,0.6666666666666666,4 --shadows soft --light-size 0.53 "
+              "--method multilevel --steps 23 --pixel-error 0.7 --view level --background "
+              "0.3,0.01,0.33333334");
+    EXPECT_EQ(renderCommandLine(ellipsoidScene()),
+              "microrelief-render --albedo none --height-scale 0.1 --base ellipsoid "
+              "--radii=0.5,0.35,0.4 --eye=0.8,0.5,0.85 --target=0,-0.03,0 --up=0,1,0 --fovy "
+              "45 --size 1280x720 --light=0.4535961,0.3,-0.8912074 --shadows hard --method "
+              "maxmip --view shaded");
+    EXPECT_EQ(renderCommandLine(tiledScene()),
+              "microrelief-render --height-scale 0.1 --tile 2,3 --base plane "
+              "--eye=0.8,0.5,0.85 --target=0,-0.03,0 --up=0,1,0 --fovy 45 --size 1280x720 "
+              "--light=-0.45808792,0.81437856,-0.3562906 --light-size 2 --method relief "
+              "--view shaded");
+}
+
+// A parse of no flags over a scene gives the scene back: each flag's seed is its field's
+// exact text.
+TEST(SceneBindings, NoFlagsOverASceneKeepIt) {
+    for (const SceneOptions& scene :
+         {SceneOptions{}, cylinderScene(), ellipsoidScene(), tiledScene()}) {
+        SceneOptions parsed = scene;
+        SceneFlags flags(parsed);
+        CLI::App app;
+        flags.addMapAndCamera(app);
+        flags.addShading(app);
+        app.parse(std::string(), false);
+        flags.apply();
+        EXPECT_TRUE(static_cast<const ReliefDesc&>(parsed.job) ==
+                    static_cast<const ReliefDesc&>(scene.job))
+            << renderCommandLine(parsed);
+        EXPECT_TRUE(static_cast<const ViewDesc&>(parsed.job) ==
+                    static_cast<const ViewDesc&>(scene.job))
+            << renderCommandLine(parsed);
+        EXPECT_EQ(renderCommandLine(parsed), renderCommandLine(scene));
+    }
+}
+
+// A flag over a scene changes its field; the rules between flags hold over the scene's
+// values too (a row of a camera file over the command line).
+TEST(SceneBindings, FlagsOverASceneAndTheRulesBetweenThem) {
+    const auto parse = [](SceneOptions scene, const std::string& line) {
+        SceneFlags flags(scene);
+        CLI::App app;
+        flags.addMapAndCamera(app);
+        flags.addShading(app);
+        app.parse(line, false);
+        flags.apply();
+        return scene;
+    };
+    const SceneOptions cylinder = cylinderScene();
+    const SceneOptions steps = parse(cylinder, "--steps 40 --method maxmip");
+    EXPECT_EQ(steps.job.method.steps, 40);
+    EXPECT_EQ(steps.job.method.minSteps, 10);
+    EXPECT_EQ(steps.job.method.method, Method::MaxMip);
+    EXPECT_EQ(steps.job.camera.eye, cylinder.job.camera.eye);
+    const auto message = [&](const SceneOptions& scene, const std::string& line) {
+        try {
+            parse(scene, line);
+        } catch (const Error& e) {
+            return e.message(flagName);
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message(cylinder, "--light 0,1,0"),
+              "--light and --light-position are two lights: give one");
+    EXPECT_EQ(message(SceneOptions{}, "--time 2"), "--time needs --animate NAME");
+    EXPECT_EQ(parse(cylinder, "--time 2").job.time, 2.0);
+    EXPECT_EQ(message(SceneOptions{}, "--radius 2"), "--radius does not apply to --base plane");
+    EXPECT_TRUE(parse(cylinder, "--radius 0.25").job.base == BaseShape::cylinder(0.25, 1.25));
+    // What a georeferenced map keeps of the flags given (core/scene/Georeference.h).
+    const SceneOptions given = parse(SceneOptions{}, "--height-scale 0.2 --base plane");
+    EXPECT_TRUE(given.georeference.keepHeightScale);
+    EXPECT_TRUE(given.georeference.keepBase);
+    EXPECT_FALSE(given.georeference.keepModel);
+    EXPECT_TRUE(parse(SceneOptions{}, "--model 1,0,0,0,0,1,0,0,0,0,1,0").georeference.keepModel);
+    EXPECT_EQ(parse(SceneOptions{}, "--exaggeration 3").georeference.exaggeration, 3.0);
+    EXPECT_EQ(message(SceneOptions{}, "--exaggeration 2 --height-scale 0.3"),
+              "--exaggeration scales a georeferenced map's true heights and --height-scale sets "
+              "the height scale outright: give one");
+}
+
+}  // namespace
+}  // namespace microrelief

@@ -18,7 +18,11 @@
 #    which the page and microrelief-three set the #defines from;
 #  * the methods' rows (MR_TRAITS_MAXMIP ... of MR_TRAIT_* bits, in variants.glsl; the enum
 #    spec's :MR_TRAIT:MR_TRAITS): glsl::kMethodTraits[] (core/scene/Method.h: methodHas) and
-#    kMethodTraits, each method's trait names (the page's menus).
+#    kMethodTraits, each method's trait names (the page's menus);
+#  * the named bases (`//@base` rows and their `//@size` lines, in variants.glsl beside
+#    MR_BASE_*; the enum spec's :@base): glsl::kBaseRows, which core/base/BaseTable.cpp
+#    builds the table of bases from, and kBaseRows, which web/relief_core.js builds the
+#    browser's from.
 # Adding a member to the block is a line in the GLSL; sharing another constant or
 # enumeration, a line here.
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
@@ -34,7 +38,7 @@ set(MICRORELIEF_SHARED_CONSTANTS
 
 set(MICRORELIEF_SHARED_ENUMS
   variants.glsl:MR_METHOD:Method:MR_TRAIT:MR_TRAITS
-  variants.glsl:MR_BASE:BaseKind
+  variants.glsl:MR_BASE:BaseKind:@base
   variants.glsl:MR_INTERPOLATION:Interpolation
   variants.glsl:MR_SHADOWS:ShadowMode
   variants.glsl:MR_DEPTH_LAYOUT:DepthLayout

@@ -21,7 +21,14 @@ is committed):
     ROW_MEMBER (TRAIT_A | TRAIT_B ...)` the row of the member PREFIX_MEMBER (one for each
     member, no more); in C++ a constexpr a trait (glsl::kCppEnumTraitName) and the rows by
     value (glsl::kCppEnumTraits[]), in JavaScript the trait names of each member
-    (kCppEnumTraits: {maxmip: ['solid', ...]}) and the traits' bits (kCppEnumTraitValues).
+    (kCppEnumTraits: {maxmip: ['solid', ...]}) and the traits' bits (kCppEnumTraitValues);
+  * the named rows of an enumeration: an --enums spec FILE:PREFIX:CppEnum:@TAG, every
+    comment line `//@TAG NAME MEMBER "summary"` of FILE a row (a name, the member of the
+    enumeration it is, PREFIX_MEMBER, and a line of text), each `//@size FIELD "Label"
+    SHAPE_MEMBER[WIDTH] = DEFAULTS [example NUMBERS]` under it one of its sizes (read_named
+    says what each part means and what is refused); in C++ glsl::kTagRows[] (struct
+    glsl::TagRow, its sizes glsl::TagSizeRow), in JavaScript kTagRows (the table of bases:
+    @base, glsl::kBaseRows and kBaseRows).
 
 Python 3 standard library only. A block or constant this script cannot read is an error
 that names the file and the line, so the build stops rather than guess.
@@ -165,9 +172,11 @@ def read_constant(shaders, spec):
 
 def read_enum(shaders, spec):
     """(C++ enum name, prefix, file, [(NAME, value, line)]) of FILE:PREFIX:CppEnum (and
-    FILE:PREFIX:CppEnum:TRAIT:ROW, whose rows read_rows reads)."""
-    if spec.count(":") not in (2, 4):
-        fail("--enums", f"'{spec}' is neither FILE:PREFIX:CppEnum nor FILE:PREFIX:CppEnum:TRAIT:ROW")
+    FILE:PREFIX:CppEnum:TRAIT:ROW, whose rows read_rows reads, and FILE:PREFIX:CppEnum:@TAG,
+    whose named rows read_named reads)."""
+    if spec.count(":") not in (2, 3, 4) or (spec.count(":") == 3 and not re.fullmatch(r"@[a-z]+", spec.split(":")[3])):
+        fail("--enums", f"'{spec}' is none of FILE:PREFIX:CppEnum, FILE:PREFIX:CppEnum:@TAG "
+                        "and FILE:PREFIX:CppEnum:TRAIT:ROW")
     file, prefix, cpp = spec.split(":")[:3]
     path = pathlib.Path(shaders) / file
     members = []
@@ -234,6 +243,202 @@ def read_rows(shaders, spec, members):
     return cpp, trait_prefix, row_prefix, file, traits, rows, members
 
 
+NUMBER = r"(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
+MOST_NUMBERS = 3  # a size is at most three numbers (BaseType.h: the C++ reads them into double[3])
+
+
+def read_named(shaders, spec, members):
+    """The named rows of FILE:PREFIX:CppEnum:@TAG, the enumeration's `members` as read_enum
+    read them: (C++ enum name, tag, file, first line, last line, [row]), a row {name, kind
+    (the member's NAME), value, summary, line, sizes: [{field, label, member, width, count,
+    defaults, example, line}]}, in the file's order.
+
+    A row is a comment line `//@TAG NAME KIND "summary"`: NAME lower case, KIND a member of
+    the enumeration (PREFIX_KIND), the summary one line without quotes or backslashes. Each
+    `//@size FIELD "Label" MEMBER = DEFAULTS` (or MEMBER[WIDTH] for a member of WIDTH
+    numbers, and `example NUMBERS` after the defaults) under it is one of its sizes: FIELD
+    the scene's (base.radius), the label a slider's, MEMBER the shape's member it sets, the
+    defaults positive numbers, as many as the member has or one that sets them all; a row
+    with such a size names only the shapes whose member has equal numbers (the sphere), a
+    row without one every shape of its kind that no such row takes. Refused, with the line:
+    a tagged line of another form, a size above every row, a name twice, a kind that is not
+    a member, a field twice in a row or with two counts, a member twice in a row or with two
+    widths, a number that is not positive, an example of another count; and, with the file,
+    a member of the enumeration that is no row's general kind, or two such rows, or two
+    rows that name the same shapes."""
+    file, prefix, cpp, tag = spec.split(":")
+    tag = tag[1:]
+    path = pathlib.Path(shaders) / file
+    kinds = {name: value for name, value, _ in members}
+    rows, lines = [], []
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        where = f"{path}:{number}"
+        m = re.match(r"\s*//\s*@(\w*)(.*)$", line)
+        if not m:
+            continue
+        lines.append(number)
+        if m.group(1) == tag:
+            r = re.fullmatch(rf'//@{tag}\s+(\S+)\s+(\S+)\s+"([^"\\]*)"\s*', line.strip())
+            if not r:
+                fail(where, f'not a row this generator reads (//@{tag} NAME KIND "summary")')
+            name, kind, summary = r.groups()
+            if not re.fullmatch(r"[a-z][a-z0-9_]*", name):
+                fail(where, f"//@{tag} {name}: a name is lower case (letters, digits, _)")
+            if any(row["name"] == name for row in rows):
+                fail(where, f"//@{tag} {name}: the name is a row's above")
+            if kind not in kinds:
+                fail(where, f"//@{tag} {name}: '{kind}' is not a member of {prefix}_* ({', '.join(kinds)})")
+            if not summary.strip():
+                fail(where, f"//@{tag} {name}: the summary is empty")
+            rows.append({"name": name, "kind": kind, "value": kinds[kind], "summary": summary, "line": number,
+                         "sizes": []})
+        elif m.group(1) == "size":
+            r = re.fullmatch(r'//@size\s+(\S+)\s+"([^"\\]*)"\s+([A-Za-z_]\w*)(?:\[(\d+)\])?\s*=\s*(.*?)'
+                             r'(?:\s+example\s+(.*?))?\s*', line.strip())
+            if not r:
+                fail(where, 'not a size this generator reads (//@size FIELD "Label" MEMBER[WIDTH] = NUMBERS '
+                            '[example NUMBERS])')
+            if not rows:
+                fail(where, f"a size above every row (//@{tag} NAME KIND \"summary\" first)")
+            field, label, member, width, defaults, example = r.groups()
+            row = rows[-1]
+            what = f"//@size {field} of {row['name']}"
+            if not re.fullmatch(r"[a-z]+\.[a-z][A-Za-z0-9]*", field):
+                fail(where, f"{what}: a field is the scene's, 'group.name' (base.minorRadius)")
+            if not label.strip():
+                fail(where, f"{what}: the label is empty")
+            width = 1 if width is None else int(width)
+            if not 1 <= width <= MOST_NUMBERS:
+                fail(where, f"{what}: {member}[{width}]: a member is 1 to {MOST_NUMBERS} numbers")
+
+            def numbers(text, part):
+                parts = text.split()
+                if not parts or not all(re.fullmatch(NUMBER, p) for p in parts):
+                    fail(where, f"{what}: its {part} '{text}' is not numbers (1, 0.35, 2e3), blank-separated")
+                values = [float(p) for p in parts]
+                if any(not v > 0 or v == float("inf") for v in values):
+                    fail(where, f"{what}: its {part} '{text}': a size is positive and finite")
+                return values
+            defaults = numbers(defaults, "defaults")
+            count = len(defaults)
+            if count not in (1, width):
+                fail(where, f"{what}: {count} defaults for {member}[{width}] (1, which sets every number, or {width})")
+            example = numbers(example, "example") if example is not None else list(defaults)
+            if len(example) != count:
+                fail(where, f"{what}: its example is {len(example)} numbers, its defaults {count}")
+            if any(size["field"] == field for size in row["sizes"]):
+                fail(where, f"{what}: the row has the field above")
+            if any(size["member"] == member for size in row["sizes"]):
+                fail(where, f"{what}: the row sets {member} above")
+            for other in rows:
+                for size in other["sizes"]:
+                    if size["field"] == field and size["count"] != count:
+                        fail(where, f"{what}: {count} numbers, where {other['name']}'s {field} is "
+                                    f"{size['count']} (a field has one count: one flag)")
+                    if size["member"] == member and size["width"] != width:
+                        fail(where, f"{what}: {member}[{width}], where {other['name']}'s is "
+                                    f"{member}[{size['width']}] (a member has one width)")
+            row["sizes"].append({"field": field, "label": label, "member": member, "width": width, "count": count,
+                                 "defaults": defaults, "example": example, "line": number})
+        else:
+            fail(where, f"'//@{m.group(1)}' is not a tag of {file} (//@{tag}, //@size)")
+    if not rows:
+        fail(path, f"defines no //@{tag} row")
+    # Which shapes a row names: the members its sizes set all at once (one number for three).
+    general, named = {}, {}
+    for row in rows:
+        row["equal"] = [size["member"] for size in row["sizes"] if size["count"] < size["width"]]
+        if not row["equal"]:
+            if row["kind"] in general:
+                fail(path, f"rows {general[row['kind']]['name']} and {row['name']} both name every {row['kind']} "
+                           f"(one row a kind takes every shape that no narrower row takes)")
+            general[row["kind"]] = row
+        else:
+            key = (row["kind"], tuple(sorted(row["equal"])))
+            if key in named:
+                fail(path, f"rows {named[key]['name']} and {row['name']} name the same shapes of {row['kind']}")
+            named[key] = row
+    missing = [kind for kind in kinds if kind not in general]
+    if missing:
+        fail(path, f"no //@{tag} row takes every shape of {', '.join(missing)} (a row whose sizes set each "
+                   "member whole)")
+    return cpp, tag, file, lines[0], lines[-1], rows
+
+
+def c_string(text):
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def js_string(text):
+    return "'" + text.replace("\\", "\\\\").replace("'", "\\'") + "'"
+
+
+def cpp_named(all_named):
+    out = []
+    for cpp, tag, file, first, last, rows in all_named:
+        Tag = tag.capitalize()
+        most = max(1, max(len(row["sizes"]) for row in rows))
+        out += [
+            "",
+            f"// //@{tag} and //@size ({file}:{first}-{last}): the named rows of {cpp}, in order, each",
+            f"// with its sizes (what core/base/BaseTable.cpp builds the table from).",
+            f"struct {Tag}SizeRow {{",
+            "    const char* field;     // the scene's field",
+            "    const char* label;     // a slider's",
+            "    const char* member;    // the shape's member it sets",
+            "    int memberWidth;       // how many numbers the member holds",
+            "    int count;             // how many the size is: memberWidth, or 1 for all of them",
+            f"    double defaults[{MOST_NUMBERS}];    // its first `count` numbers",
+            f"    double example[{MOST_NUMBERS}];",
+            "};",
+            f"inline constexpr int k{Tag}MostSizes = {most};",
+            f"struct {Tag}Row {{",
+            "    const char* name;",
+            f"    int kind;  // the member of {cpp}",
+            "    const char* summary;",
+            "    int sizeCount;",
+            f"    {Tag}SizeRow sizes[k{Tag}MostSizes];",
+            "};",
+            f"inline constexpr {Tag}Row k{Tag}Rows[] = {{",
+        ]
+
+        def numbers(values):
+            return "{" + ", ".join(repr(float(v)) for v in values) + "}"
+        for row in rows:
+            out.append(f"    {{{c_string(row['name'])}, k{cpp}{camel(row['kind'])}, {c_string(row['summary'])}, "
+                       f"{len(row['sizes'])},  // {file}:{row['line']}")
+            sizes = [f"{{{c_string(s['field'])}, {c_string(s['label'])}, {c_string(s['member'])}, {s['width']}, "
+                     f"{s['count']}, {numbers(s['defaults'])}, {numbers(s['example'])}}}" for s in row["sizes"]]
+            out.append("     {" + ",\n      ".join(sizes) + "}},")
+        out += ["};", f"inline constexpr int k{Tag}RowCount = {len(rows)};"]
+    return out
+
+
+def js_named(all_named):
+    out = []
+    for cpp, tag, file, first, last, rows in all_named:
+        Tag = tag.capitalize()
+        out += [
+            "",
+            f"// The named rows of {cpp} (//@{tag} and //@size, {file}:{first}-{last}), in order: each",
+            f"// row's name, kind (a key of k{cpp}Values), summary and sizes (the scene's field, a",
+            "// slider's label, the shape's member it sets and how many numbers that member holds, how",
+            "// many the size is, 1 for all of them, its defaults and the example a list offers).",
+            f"export const k{Tag}Rows = Object.freeze([",
+        ]
+
+        def numbers(values):
+            return "Object.freeze([" + ", ".join(repr(float(v)).removesuffix(".0") for v in values) + "])"
+        for row in rows:
+            sizes = [f"Object.freeze({{field: {js_string(s['field'])}, label: {js_string(s['label'])}, "
+                     f"member: {js_string(s['member'])}, memberWidth: {s['width']}, count: {s['count']}, "
+                     f"defaults: {numbers(s['defaults'])}, example: {numbers(s['example'])}}})" for s in row["sizes"]]
+            out.append(f"    Object.freeze({{name: {js_string(row['name'])}, kind: {js_string(row['kind'].lower())}, "
+                       f"summary: {js_string(row['summary'])}, sizes: Object.freeze([" +
+                       "".join(f"\n        {size}," for size in sizes) + ("\n    " if sizes else "") + "])}),")
+        out.append("]);")
+    return out
+
 def camel(name):
     return "".join(part.capitalize() for part in name.lower().split("_"))
 
@@ -278,7 +483,7 @@ def cpp_rows(all_rows):
     return out
 
 
-def cpp_constants(constants, enums=(), rows=()):
+def cpp_constants(constants, enums=(), rows=(), named=()):
     out = [
         "// Generated by cmake/generate_contracts.py from the GLSL library: do not edit; edit the",
         "// GLSL. The constants the C++ twin (trace/, base/) shares with the shaders, each the",
@@ -294,11 +499,12 @@ def cpp_constants(constants, enums=(), rows=()):
                    else f"inline constexpr double {cpp} = {float(value)!r};")
     out += cpp_enums(enums)
     out += cpp_rows(rows)
+    out += cpp_named(named)
     out += ["", "}  // namespace microrelief::glsl", ""]
     return "\n".join(out)
 
 
-def js_module(block, placed, size, constants, source, enums=(), all_rows=()):
+def js_module(block, placed, size, constants, source, enums=(), all_rows=(), named=()):
     out = [
         f"// Generated from {source} and the GLSL library by cmake/generate_contracts.py: do not",
         f"// edit. The uniform block {block} (std140), the library's shared constants and the",
@@ -365,6 +571,7 @@ def js_module(block, placed, size, constants, source, enums=(), all_rows=()):
             names = ", ".join(f"'{n.lower()}'" for n in rows[name][1])
             out.append(f"    {name.lower()}: Object.freeze([{names}]),")
         out.append("});")
+    out += js_named(named)
     if enums:
         out += [
             "",
@@ -397,7 +604,7 @@ def main():
     parser.add_argument("--block", required=True, help="the GLSL file holding the uniform block")
     parser.add_argument("--shaders", required=True, help="shaders/microrelief, where --constants' files are")
     parser.add_argument("--constants", nargs="*", default=[], help="FILE:GLSL_NAME:CppName, each")
-    parser.add_argument("--enums", nargs="*", default=[], help="FILE:PREFIX:CppEnum or FILE:PREFIX:CppEnum:TRAIT:ROW, each")
+    parser.add_argument("--enums", nargs="*", default=[], help="FILE:PREFIX:CppEnum, FILE:PREFIX:CppEnum:@TAG or FILE:PREFIX:CppEnum:TRAIT:ROW, each")
     parser.add_argument("--struct", help="the C++ header of the block to write")
     parser.add_argument("--constants-header", help="the C++ header of the constants and enumerations to write")
     parser.add_argument("--js", required=True, help="the ES module to write; - for stdout")
@@ -409,11 +616,13 @@ def main():
     enums = [read_enum(args.shaders, spec) for spec in args.enums]
     rows = [read_rows(args.shaders, spec, enum[3]) for spec, enum in zip(args.enums, enums)
             if spec.count(":") == 4]
+    named = [read_named(args.shaders, spec, enum[3]) for spec, enum in zip(args.enums, enums)
+             if spec.count(":") == 3]
     if args.struct:
         write_if_changed(args.struct, cpp_struct(block, placed, size, source))
     if args.constants_header:
-        write_if_changed(args.constants_header, cpp_constants(constants, enums, rows))
-    module = js_module(block, placed, size, constants, source, enums, rows)
+        write_if_changed(args.constants_header, cpp_constants(constants, enums, rows, named))
+    module = js_module(block, placed, size, constants, source, enums, rows, named)
     if args.js == "-":
         sys.stdout.write(module)
     else:

@@ -63,6 +63,29 @@
 #define MR_BASE_CYLINDER 1
 #define MR_BASE_ELLIPSOID 2
 
+// The named bases, written once: the rows of the table of bases (core/base/BaseType.h:
+// baseTypes(), built in core/base/BaseTable.cpp from glsl::kBaseRows; relief_layout.js's
+// kBaseRows, from which web/relief_core.js makes the browser's), in the order --help and the
+// lists give them. A row, `//@base NAME KIND "summary"`: the name the scene, --base and the
+// pages' base= take, its kind (MR_BASE_KIND: the GLSL file and the C++ geometry that draw
+// it) and what --help says of it. Each `//@size FIELD "Label" MEMBER = DEFAULTS [example
+// NUMBERS]` under it is one of its sizes: the scene's field (base.radius; its flag, --radius,
+// and the pages' key, radius, come from it), a slider's label, the core::BaseShape member
+// it sets (radii[3]: three numbers), its default (one number, or one a component) and the
+// example the viewer offers (the default unless given). One number for a member of three
+// sets all three, and such a row names only the shapes whose three are equal (the sphere);
+// a row of whole members every shape of its kind that no such row takes, one a kind.
+// cmake/generate_contracts.py (read_named) refuses a row it cannot read, naming the line.
+// These are comments to GLSL: no shader reads them.
+//@base plane PLANE "the plane y = 0, the map's longer side one unit"
+//@base cylinder CYLINDER "a column about the y axis with flat caps"
+//@size base.radius "Radius" radius = 0.3
+//@size base.length "Length" length = 1
+//@base ellipsoid ELLIPSOID "the ellipsoid of radii A, B, C about the origin"
+//@size base.radii "Radius" radii[3] = 0.5 0.5 0.5 example 0.5 0.35 0.4
+//@base sphere ELLIPSOID "the ellipsoid with equal radii"
+//@size base.radius "Radius" radii[3] = 0.5
+
 // MICRORELIEF_INTERPOLATION (relief_patch.glsl): the last level's surface
 // (core/heightmap/HeightMap.h: Interpolation).
 #define MR_INTERPOLATION_BILINEAR 0

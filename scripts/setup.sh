@@ -2,7 +2,8 @@
 # Installs what is missing (Debian 12 packages), configures and builds microrelief in
 # build/. Idempotent: a second run installs nothing and rebuilds only what changed.
 # Sourced by run.sh and test.sh; usable alone: bash scripts/setup.sh
-# gnuplot-nox draws the benchmark's plots (and lets the cli tests check them).
+# gnuplot-nox draws the benchmark's plots (and lets the cli tests check them); clang-tools-14
+# (clang-doc) writes the API reference (cmake/ApiReference.cmake).
 # MICRORELIEF_EXTRA_PACKAGES adds packages (sanitize.sh and fuzz.sh: clang and its
 # runtime); MICRORELIEF_SETUP_NO_BUILD=1 installs only.
 set -euo pipefail
@@ -17,7 +18,7 @@ packages=(
   libgtest-dev libcli11-dev python3-glad glslang-tools
   libimgui-dev xvfb xauth xdotool
   chromium python3 emscripten
-  gnuplot-nox
+  gnuplot-nox clang-tools-14
 )
 read -r -a extra <<< "${MICRORELIEF_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")

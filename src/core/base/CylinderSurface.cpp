@@ -97,22 +97,12 @@ glm::dvec3 cylinderFrame(const BaseShape& b) {
 
 }  // namespace
 
-// The cylinder's row of the table of bases (core/base/BaseType.h): radius R and length L.
-BaseType cylinderBaseType() {
+// The cylinder's geometry, the half of its rows that is code (core/base/BaseType.h; the
+// data, its name and sizes R and L, is its //@base line in variants.glsl).
+BaseType cylinderGeometry() {
     return {
-        .name = "cylinder",
         .kind = BaseKind::Cylinder,
         .shaderFile = "base_cylinder.glsl",
-        .summary = "a column about the y axis with flat caps",
-        .sizes = {{"base.radius", "Radius", 1,
-                   [](const BaseShape& b, double* n) { n[0] = b.radius; },
-                   [](BaseShape& b, const double* n) { b.radius = n[0]; }},
-                  {"base.length", "Length", 1,
-                   [](const BaseShape& b, double* n) { n[0] = b.length; },
-                   [](BaseShape& b, const double* n) { b.length = n[0]; }}},
-        .defaults = BaseShape::cylinder(),
-        .example = BaseShape::cylinder(),
-        .names = nullptr,
         .frameScale = [](const BaseShape& b) { return cylinderFrame(b); },
         // The column of the shell's radius 1 + top between the caps.
         .boxMax =

@@ -122,18 +122,15 @@ public:
     glm::dvec3 faceNormal(ShellFace, const FrameRay&) const override { return {0.0, 1.0, 0.0}; }
 };
 
-// The row of an ellipsoid of radii A, B, C (the frame's scale), named `name`, with `sizes`.
-BaseType ellipsoidRow(const char* name, const char* summary, std::vector<BaseSize> sizes,
-                      const BaseShape& defaults, const BaseShape& example) {
+}  // namespace
+
+// The ellipsoid's geometry, the half of its rows that is code (core/base/BaseType.h; the
+// data, the ellipsoid's and the sphere's names and sizes, is their //@base lines in
+// variants.glsl): radii A, B, C, the frame's scale.
+BaseType ellipsoidGeometry() {
     return {
-        .name = name,
         .kind = BaseKind::Ellipsoid,
         .shaderFile = "base_ellipsoid.glsl",
-        .summary = summary,
-        .sizes = std::move(sizes),
-        .defaults = defaults,
-        .example = example,
-        .names = nullptr,
         .frameScale = [](const BaseShape& b) { return b.radii; },
         // The ball of the shell's radius 1 + top.
         .boxMax = [](const BaseShape& b, int, int, double top) { return b.radii * (1.0 + top); },
@@ -177,32 +174,6 @@ BaseType ellipsoidRow(const char* name, const char* summary, std::vector<BaseSiz
             return std::make_unique<EllipsoidSurface>(shape, w, h, s, maxHeight);
         },
     };
-}
-
-}  // namespace
-
-// The ellipsoid's row of the table of bases (core/base/BaseType.h): radii A, B, C.
-BaseType ellipsoidBaseType() {
-    return ellipsoidRow("ellipsoid", "the ellipsoid of radii A, B, C about the origin",
-                        {{"base.radii", "Radius", 3,
-                          [](const BaseShape& b, double* n) {
-                              for (int axis = 0; axis < 3; ++axis) n[axis] = b.radii[axis];
-                          },
-                          [](BaseShape& b, const double* n) {
-                              b.radii = {n[0], n[1], n[2]};
-                          }}},
-                        BaseShape::ellipsoid(), BaseShape::ellipsoid({0.5, 0.35, 0.4}));
-}
-
-// The sphere's: the ellipsoid with equal radii, sized by one radius.
-BaseType sphereBaseType() {
-    BaseType row = ellipsoidRow(
-        "sphere", "the ellipsoid with equal radii",
-        {{"base.radius", "Radius", 1, [](const BaseShape& b, double* n) { n[0] = b.radii.x; },
-          [](BaseShape& b, const double* n) { b.radii = glm::dvec3(n[0]); }}},
-        BaseShape::sphere(), BaseShape::sphere());
-    row.names = [](const BaseShape& b) { return b.radii.x == b.radii.y && b.radii.y == b.radii.z; };
-    return row;
 }
 
 }  // namespace microrelief

@@ -108,18 +108,13 @@ public:
 
 }  // namespace
 
-// The plane's row of the table of bases (core/base/BaseType.h). Its frame is the world's,
-// the map's longer side one unit: T = max(W, H) texels a unit.
-BaseType planeBaseType() {
+// The plane's geometry, the half of its rows that is code (core/base/BaseType.h; the data,
+// its name and sizes, is its //@base line in variants.glsl). Its frame is the world's, the
+// map's longer side one unit: T = max(W, H) texels a unit.
+BaseType planeGeometry() {
     return {
-        .name = "plane",
         .kind = BaseKind::Plane,
         .shaderFile = "base_plane.glsl",
-        .summary = "the plane y = 0, the map's longer side one unit",
-        .sizes = {},
-        .defaults = BaseShape::plane(),
-        .example = BaseShape::plane(),
-        .names = nullptr,
         .frameScale = [](const BaseShape&) { return glm::dvec3(1.0); },
         // From y = 0 (the base) to the top, over the map's rectangle.
         .boxMax =

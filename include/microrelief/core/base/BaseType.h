@@ -5,10 +5,21 @@
 // viewer's list and sliders and the benchmark's --bases read the table instead of naming
 // the bases (the plane and the curved bases still differ where their traversals do).
 //
-// Adding a base (docs/bases.md, "Adding a base"): its GLSL file defining the mr_base* set
-// (shaders/microrelief/base_surface.glsl) with its line in that file's choice, one C++ file
-// with its BaseSurface and its row (as core/base/CylinderSurface.cpp has), its enumerator
-// in BaseKind and the row's line in baseTypes() (core/base/BaseTable.cpp). The exact
+// A row is two halves. Its data (name, kind, summary, sizes, defaults, example, which shapes
+// it names) is written once, as a `//@base` line and its `//@size` lines in
+// shaders/microrelief/variants.glsl, which cmake/generate_contracts.py turns into
+// glsl::kBaseRows (core/GlslConstants.h) for core/base/BaseTable.cpp and into kBaseRows
+// (relief_layout.js) for the browser's hosts (web/relief_core.js). Its geometry (the
+// functions below, and its GLSL file) is its kind's, written beside the kind's BaseSurface
+// (core/base/CylinderSurface.cpp: cylinderGeometry()).
+//
+// Adding a base (docs/bases.md, "Adding a base"): a row of a kind the table has (another
+// name for some ellipsoids) is its `//@base` lines alone. A new kind: its GLSL file defining
+// the mr_base* set (shaders/microrelief/base_surface.glsl) with its line in that file's
+// choice, one C++ file with its BaseSurface and its geometry (as core/base/
+// CylinderSurface.cpp has), its MR_BASE_* value and row in variants.glsl, its enumerator in
+// BaseKind, its line in BaseTable.cpp's kKinds (and its sizes' members in kShapeMembers
+// where BaseShape has them not yet), and its frame and box in web/relief_core.js. The exact
 // references the tests hold the traversal to (core/trace/CurvedReference.cpp) are written
 // apart from the table on purpose: a check that read the row would repeat its mistakes.
 #pragma once
@@ -25,33 +36,46 @@ namespace microrelief {
 
 class BaseSurface;
 
+struct BaseShapeMember;  // core/base/BaseTable.cpp: the members of BaseShape a size sets
+
 // One size of a base as the scene holds it: a field ("base.radius"; a program derives its
 // flag from it) of `count` numbers (1, or 3 for a vector), each a positive length in world
-// units, read from and written into the shape.
+// units, read from and written into a member of the shape.
 struct BaseSize {
     const char* field;  // the scene's field, "base.radius"
     const char* label;  // what the viewer's slider says: "Radius"
     int count;          // 1, or 3 (x, y, z)
-    void (*read)(const BaseShape& shape, double* numbers);
-    void (*write)(BaseShape& shape, const double* numbers);
+    // The member of BaseShape it is: `count` of its numbers, or one number for all three
+    // (the sphere's radius sets the ellipsoid's radii).
+    const BaseShapeMember* member;
+    // Its `count` numbers of `shape`; `shape` with them.
+    void read(const BaseShape& shape, double* numbers) const;
+    void write(BaseShape& shape, const double* numbers) const;
 };
 
 // A row of the table. Every function takes a shape of the row's kind.
 struct BaseType {
-    const char* name;        // the scene's "base" (and --base): "plane", "sphere"
-    BaseKind kind;           // the shader's MICRORELIEF_BASE
-    const char* shaderFile;  // the GLSL file base_surface.glsl chooses for `kind`
-    const char* summary;     // one line for --help: what the base is
-    std::vector<BaseSize> sizes;
+    // The row's data (variants.glsl's //@base line) and its kind's GLSL file: a kind's
+    // geometry (core/base/CylinderSurface.cpp: cylinderGeometry()) leaves the data to
+    // BaseTable.cpp, which fills it from the row.
+    const char* name = nullptr;        // the scene's "base" (and --base): "plane", "sphere"
+    BaseKind kind = BaseKind::Plane;   // the shader's MICRORELIEF_BASE
+    const char* shaderFile = nullptr;  // the GLSL file base_surface.glsl chooses for `kind`
+    const char* summary = nullptr;     // one line for --help: what the base is
+    std::vector<BaseSize> sizes = {};
     // The shape a scene gets when it names the base and none of its sizes.
-    BaseShape defaults;
+    BaseShape defaults = {};
     // A shape the viewer offers when the base is picked from its list: the defaults, or
     // sizes that show what the base is (an ellipsoid that is not a sphere).
-    BaseShape example;
-    // Whether a shape of `kind` goes by this row's name (a sphere is the ellipsoid with
-    // equal radii); null: every shape of `kind` that no row with `names` takes (a row with
-    // `names` that takes it wins wherever it sits: baseType(shape)).
-    bool (*names)(const BaseShape& shape);
+    BaseShape example = {};
+    // Whether the row names only the shapes of `kind` its sizes can give, a size of one
+    // number setting a member of three (a sphere is the ellipsoid with equal radii: takes);
+    // false: every shape of `kind` that no row with `names` takes (a row with `names` that
+    // takes it wins wherever it sits: baseType(shape)).
+    bool names = false;
+    // Whether `shape`, of `kind`, is one the row's sizes can give: every member that a size
+    // of one number sets has its numbers equal.
+    bool takes(const BaseShape& shape) const;
 
     // World size of the canonical frame's unit along x, y, z (BaseShape::frameScale).
     glm::dvec3 (*frameScale)(const BaseShape& shape);

@@ -7,31 +7,28 @@
 // that a host hands the shaders what the C++ renderer hands them. ctest web.core
 // (tests/web/relief_core_test.mjs) holds every row, default, size and exponent here to the
 // C++ itself.
-import {kBudgetBase, kBudgetPerTexel} from './relief_layout.js';
+import {kBaseKindValues, kBaseRows, kBudgetBase, kBudgetPerTexel} from './relief_layout.js';
 
-// ---- the table of bases (core/base/BaseType.h; each row written beside its surface in
-// core/base/PlaneSurface.cpp, CylinderSurface.cpp and EllipsoidSurface.cpp) ----
+// ---- the table of bases (core/base/BaseType.h; each row's data written once in
+// shaders/microrelief/variants.glsl, its //@base line, generated into relief_layout.js's
+// kBaseRows as into the C++'s glsl::kBaseRows; each kind's geometry written beside its surface
+// in core/base/PlaneSurface.cpp, CylinderSurface.cpp and EllipsoidSurface.cpp) ----
 //
-// A shape is BaseShape's members for its kind: {kind: 'plane'}, {kind: 'cylinder', radius,
-// length} or {kind: 'ellipsoid', radii: [A, B, C]}; a kind is its name in relief_layout.js's
-// kBaseKindValues (MICRORELIEF_BASE's values, generated from variants.glsl). A row: its name
-// (the scene's base, --base, the page's base=), its kind, its sizes (the scene's base.*
-// fields, each read from and written into a shape), its defaults (the shape a scene gets when
-// it names the base and none of its sizes), whether a shape of its kind goes by its name
-// (null: every one no other row takes), the frame's scale and the box's largest corner.
+// A shape is BaseShape's members that its row's sizes set, with its kind: {kind: 'plane'},
+// {kind: 'cylinder', radius, length} or {kind: 'ellipsoid', radii: [A, B, C]}; a kind is its
+// name in relief_layout.js's kBaseKindValues (MICRORELIEF_BASE's values, generated from
+// variants.glsl too). A row: its name (the scene's base, --base, the page's base=), its kind,
+// its summary, its sizes (the scene's base.* fields, each read from and written into a
+// shape), its defaults (the shape a scene gets when it names the base and none of its sizes),
+// whether a shape of its kind goes by its name (null: every one no other row takes), and its
+// kind's frame scale and box.
 
+// Each kind's geometry, the code the rows cannot be (BaseType.h's frameScale and boxMax, as
+// each kind's C++ file writes them): a kind of kBaseKindValues without its entry here stops
+// this module (ctest web.core says so first).
 const cylinderFrame = (b) => [b.radius, 0.5 * b.length, b.radius];
-const ellipsoidRow = (name, sizes, defaults) => ({
-    name, kind: 'ellipsoid', sizes, defaults, names: null,
-    frameScale: (b) => b.radii.slice(),
-    // The ball of the shell's radius 1 + top.
-    boxMax: (b, w, h, top) => b.radii.map((r) => r * (1 + top)),
-    boxIsSymmetric: true,
-});
-
-export const kBaseTypes = Object.freeze([
-    {
-        name: 'plane', kind: 'plane', sizes: [], defaults: {kind: 'plane'}, names: null,
+const kKindGeometry = {
+    plane: {
         frameScale: () => [1, 1, 1],
         // The map's rectangle, its longer side one unit, from y = 0 to the top.
         boxMax: (b, w, h, top) => {
@@ -40,11 +37,7 @@ export const kBaseTypes = Object.freeze([
         },
         boxIsSymmetric: false,
     },
-    {
-        name: 'cylinder', kind: 'cylinder',
-        sizes: [{field: 'base.radius', count: 1, read: (b) => [b.radius], write: (b, n) => (b.radius = n[0])},
-                {field: 'base.length', count: 1, read: (b) => [b.length], write: (b, n) => (b.length = n[0])}],
-        defaults: {kind: 'cylinder', radius: 0.3, length: 1}, names: null,
+    cylinder: {
         frameScale: cylinderFrame,
         // The column of the shell's radius 1 + top between the caps.
         boxMax: (b, w, h, top) => {
@@ -53,14 +46,47 @@ export const kBaseTypes = Object.freeze([
         },
         boxIsSymmetric: true,
     },
-    ellipsoidRow('ellipsoid', [{field: 'base.radii', count: 3, read: (b) => b.radii.slice(), write: (b, n) => (b.radii = n.slice())}],
-                 {kind: 'ellipsoid', radii: [0.5, 0.5, 0.5]}),
-    {
-        ...ellipsoidRow('sphere', [{field: 'base.radius', count: 1, read: (b) => [b.radii[0]], write: (b, n) => (b.radii = [n[0], n[0], n[0]])}],
-                        {kind: 'ellipsoid', radii: [0.5, 0.5, 0.5]}),
-        names: (b) => b.radii[0] === b.radii[1] && b.radii[1] === b.radii[2],
+    ellipsoid: {
+        frameScale: (b) => b.radii.slice(),
+        // The ball of the shell's radius 1 + top.
+        boxMax: (b, w, h, top) => b.radii.map((r) => r * (1 + top)),
+        boxIsSymmetric: true,
     },
-].map((row) => Object.freeze({...row, sizes: Object.freeze(row.sizes.map((size) => Object.freeze({...size, key: baseSizeKey(size.field)})))})));
+};
+for (const kind of Object.keys(kBaseKindValues))
+    if (!Object.hasOwn(kKindGeometry, kind)) throw new Error(`relief_core.js: no frame and box for the base kind '${kind}' (kKindGeometry)`);
+
+// A generated size as a row's: its numbers of a shape (`count` of its member's), and a shape
+// with them (one number for a member of three sets all three: the sphere's radius).
+function sizeOf(size) {
+    const {field, label, member, memberWidth, count} = size;
+    return {
+        field, label, count, member,
+        read: (b) => (memberWidth === 1 ? [b[member]] : b[member].slice(0, count)),
+        write: (b, n) => (b[member] = memberWidth === 1 ? n[0] : count === 1 ? new Array(memberWidth).fill(n[0]) : n.slice(0, count)),
+        // A member of more numbers than the size: the row takes the shapes whose are equal.
+        narrow: count < memberWidth,
+    };
+}
+
+// A generated row as the table's.
+function typeOf(row) {
+    const sizes = row.sizes.map(sizeOf);
+    const shape = (numbers) => {
+        const b = {kind: row.kind};
+        sizes.forEach((size, k) => size.write(b, numbers(row.sizes[k])));
+        return b;
+    };
+    const narrow = sizes.filter((size) => size.narrow);
+    return {
+        name: row.name, kind: row.kind, summary: row.summary, sizes,
+        defaults: shape((size) => size.defaults),
+        names: narrow.length ? (b) => narrow.every(({member}) => b[member].every((x) => x === b[member][0])) : null,
+        ...kKindGeometry[row.kind],
+    };
+}
+
+export const kBaseTypes = Object.freeze(kBaseRows.map(typeOf).map((row) => Object.freeze({...row, sizes: Object.freeze(row.sizes.map((size) => Object.freeze({...size, key: baseSizeKey(size.field)})))})));
 
 // A size's key (the page's URL key, microrelief-three's option, the flag without its dashes):
 // "base.minorRadius" -> "minor-radius", as a program derives a base size's flag

@@ -1,10 +1,10 @@
 // core_facts: what web/relief_core.js mirrors, as the C++ computes it, written as one JSON
 // object on stdout for tests/web/relief_core_test.mjs (ctest web.core) to hold the
-// browser's host core to: the table of bases (each row's name, kind, sizes, defaults and
-// refusals; for shapes of every row its name, frame, box and whether u wraps), the
-// pyramids' level sizes, S and tops for floats at every binade's edges, and the traversal's
-// budget. Floats are written as their bits, doubles with 17 digits (each reads back as
-// itself): the test compares exactly.
+// browser's host core to: the table of bases (each row's name, kind, summary, sizes with
+// their labels, defaults and refusals; for shapes of every row its name, frame, box and
+// whether u wraps), the pyramids' level sizes, S and tops for floats at every binade's
+// edges, and the traversal's budget. Floats are written as their bits, doubles with 17
+// digits (each reads back as itself): the test compares exactly.
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>
@@ -105,10 +105,12 @@ void bases() {
     const auto& table = baseTypes();
     for (std::size_t r = 0; r < table.size(); ++r) {
         const BaseType& type = table[r];
-        std::printf("%s{\"name\":%s,\"kind\":%d,\"sizes\":[", r ? "," : "", quoted(type.name).c_str(),
-                    static_cast<int>(type.kind));
+        std::printf("%s{\"name\":%s,\"kind\":%d,\"summary\":%s,\"sizes\":[", r ? "," : "",
+                    quoted(type.name).c_str(), static_cast<int>(type.kind),
+                    quoted(type.summary).c_str());
         for (std::size_t k = 0; k < type.sizes.size(); ++k)
-            std::printf("%s{\"field\":%s,\"count\":%d}", k ? "," : "", quoted(type.sizes[k].field).c_str(),
+            std::printf("%s{\"field\":%s,\"label\":%s,\"count\":%d}", k ? "," : "",
+                        quoted(type.sizes[k].field).c_str(), quoted(type.sizes[k].label).c_str(),
                         type.sizes[k].count);
         std::printf("],\"defaults\":%s,\"shapes\":[%s,%s", sizesOf(type, type.defaults).c_str(),
                     shapeFacts(type.defaults).c_str(), shapeFacts(type.example).c_str());

@@ -2,9 +2,14 @@
 // against the C++ it mirrors (ctest web.core; node, no browser): core_facts (core_facts.cpp)
 // writes what the C++ table of bases, the pyramids' level sizes and S and the traversal's
 // budget give, and every row, default, size, refusal, frame, box, level and exponent of the
-// module as staged in the build tree must be the same, exactly. A base added to the C++
-// table, a default changed there, or a row's box written otherwise in one language fails
-// here, naming the row. One line a failure; exit status 1 when one failed.
+// module as staged in the build tree must be the same, exactly. The rows' data (names,
+// kinds, summaries, sizes, defaults, which shapes a row names) comes to both from the one
+// place it is written (variants.glsl's //@base lines: glsl::kBaseRows, relief_layout.js's
+// kBaseRows); what this holds is how each language reads them (a size's member, one number
+// for three) and each kind's geometry, which both write: a size read or written otherwise, a
+// row's box or frame written otherwise in one language, or a generated row one side does not
+// read as the other fails here, naming the row. One line a failure; exit status 1 when one
+// failed.
 //
 // node tests/web/relief_core_test.mjs CORE_FACTS STAGED_SHARE   (STAGED_SHARE: share/microrelief)
 import {spawnSync} from 'node:child_process';
@@ -79,6 +84,8 @@ for (const row of facts.bases) {
     expect(`${row.name}: its kind (MICRORELIEF_BASE)`, kBaseKindValues[type.kind], row.kind);
     expect(`${row.name}: its sizes' fields`, type.sizes.map((s) => s.field), row.sizes.map((s) => s.field));
     expect(`${row.name}: its sizes' counts`, type.sizes.map((s) => s.count), row.sizes.map((s) => s.count));
+    expect(`${row.name}: its sizes' labels`, type.sizes.map((s) => s.label), row.sizes.map((s) => s.label));
+    expect(`${row.name}: its summary`, type.summary, row.summary);
     const defaults = core.baseShape(row.name);
     expect(`${row.name}: its defaults`, Object.values(sizesOf(type, defaults)), Object.values(row.defaults));
     for (const shape of row.shapes) attempt(`${row.name}: the ${shape.name} of ${text(shape.sizes)}`, () => {

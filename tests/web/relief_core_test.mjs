@@ -129,7 +129,9 @@ for (const [bits, s, topBits, fromTop, fromStored] of facts.scales) {
 // ---- the hosts' wording of a refusal (relief_core.js's own; no C++ to hold it to) ----
 const wording = (message, size) => new TypeError(`Relief: ${size ? 'base ' : ''}${message}`);
 expect('a host words a size\'s refusal', refusalOf(() => core.baseShape('cylinder', {length: 0}, wording)), 'Relief: base length must be a positive finite number', 'expected');
-expect('a host words an unknown base', refusalOf(() => core.baseShape('cone', {}, wording)), 'Relief: unknown base \'cone\' (expected plane, cylinder, ellipsoid or sphere)', 'expected');
+// The names as the C++ lists them (plane, cylinder, ellipsoid or sphere), from its table.
+const listed = facts.bases.map((row, k, all) => (k === 0 ? '' : k + 1 === all.length ? ' or ' : ', ') + row.name).join('');
+expect('a host words an unknown base', refusalOf(() => core.baseShape('cone', {}, wording)), `Relief: unknown base 'cone' (expected ${listed})`, 'expected');
 expect('a vector of the wrong length', refusalOf(() => core.baseShape('ellipsoid', {radii: [1, 2]})), 'radii must be 3 numbers, not 2', 'expected');
 expect('a size not given keeps its default', text(core.baseShape('cylinder', {radius: 0.4, length: null})), text({kind: 'cylinder', radius: 0.4, length: 1}), 'expected');
 

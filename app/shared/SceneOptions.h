@@ -4,7 +4,8 @@
 // viewer's "copy as command" writes exactly what the renderer parses. Each flag's name and
 // --help line is its field's row in the library's table of scene fields
 // (core/scene/SceneFields.h), which also names the flag in every error the library reports
-// about a field (flagName).
+// about a field (flagName); how it is read and written back is its binding
+// (SceneBindings.h), which SceneFlags and renderCommandLine go through in one loop.
 #pragma once
 
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include <glm/glm.hpp>
 
+#include "SceneBindings.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/scene/Georeference.h"
 #include "microrelief/gl/HeadlessRender.h"
@@ -65,17 +67,14 @@ public:
     void apply();
 
 private:
+    // Registers the group's flags, in the bindings' order.
+    void add(CLI::App& app, FlagGroup group);
+
     RenderJob& job_;
     bool withAlbedo_;
     GeoreferenceFit* fit_ = nullptr;  // SceneOptions': --exaggeration and the flags given
     std::optional<double> exaggeration_;
-    CLI::Option *heightScaleOption_ = nullptr, *modelOption_ = nullptr, *baseOption_ = nullptr;
-    std::string height_, eye_, target_, up_, size_, light_, method_, view_, background_;
-    std::string lightPosition_, shadows_ = "off", albedo_;
-    std::string base_ = "plane", interpolation_ = "bilinear", model_, tile_;
-    std::map<std::string, std::string> sizes_;  // the base's size fields' text, by field
-    std::optional<double> time_;
-    std::string animate_;
+    FlagSlots slots_;  // each binding's text, seeded from the job (SceneBindings.h)
 };
 
 // --memory MiB, both programs' (its default `mib` as given): the GPU memory for the pages of

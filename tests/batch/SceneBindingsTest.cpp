@@ -1,17 +1,21 @@
 // The scene flags' bindings (app/shared/SceneBindings.h): one for each row of the table of
 // scene fields that has a flag (core/scene/SceneFields.h), registered, parsed and echoed by
-// SceneFlags and renderCommandLine in one loop. Pinned here: the command line echoed for
-// scenes that set every field (its text and its order), and a parse of no flags over a
-// scene keeps the scene (the flags' seeds read back exactly).
+// SceneFlags and renderCommandLine in one loop. Here: the rows and the bindings match (a
+// row without its binding, or a binding without its row, is named); the command line
+// echoed for scenes that set every field, its text and its order (pinned before the flags
+// became bindings); a parse of no flags over a scene keeps the scene (the flags' seeds read
+// back exactly); the rules between flags.
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "SceneBindings.h"
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/scene/Scene.h"
@@ -165,6 +169,41 @@ TEST(SceneBindings, FlagsOverASceneAndTheRulesBetweenThem) {
     EXPECT_EQ(message(SceneOptions{}, "--exaggeration 2 --height-scale 0.3"),
               "--exaggeration scales a georeferenced map's true heights and --height-scale sets "
               "the height scale outright: give one");
+}
+
+// Every row with a flag has one binding and every binding a row with a flag (SceneFlags
+// stops a program that starts without); a table that lost one says which.
+TEST(SceneBindings, EveryRowWithAFlagHasOneBindingAndEveryBindingARow) {
+    const std::span<const SceneField> table = sceneFieldTable();
+    const std::span<const SceneBinding> bindings = sceneBindings();
+    for (const std::string& gap : sceneBindingGaps(table, bindings)) ADD_FAILURE() << gap;
+    for (const SceneBinding& binding : bindings) {
+        EXPECT_TRUE(binding.add && binding.echo) << binding.path;
+        EXPECT_TRUE(!binding.seed || binding.apply) << binding.path << " seeds and never reads";
+    }
+    // A new row with a flag and no binding.
+    std::vector<SceneField> rows(table.begin(), table.end());
+    rows.push_back({"shading.glow", "--glow", "G", "", "0", "", "Glow", ""});
+    EXPECT_EQ(sceneBindingGaps(rows, bindings),
+              std::vector<std::string>{"shading.glow: a row with the flag --glow and no binding"});
+    // A binding without its row, one for a row no flag sets, one twice.
+    std::vector<SceneBinding> more(bindings.begin(), bindings.end());
+    more.push_back({});
+    more.back().path = "shading.glow";
+    more.push_back({});
+    more.back().path = "map.samples";
+    more.push_back(more.front());
+    EXPECT_EQ(sceneBindingGaps(table, more),
+              (std::vector<std::string>{"shading.glow: a binding without a row that has a flag",
+                                        "map.samples: a binding without a row that has a flag",
+                                        std::string(more.front().path) + ": bound twice"}));
+    // A row whose binding went missing.
+    std::vector<SceneBinding> fewer(bindings.begin(), bindings.end());
+    fewer.erase(std::find_if(fewer.begin(), fewer.end(),
+                             [](const SceneBinding& b) { return b.path == "base"; }));
+    EXPECT_EQ(sceneBindingGaps(table, fewer),
+              (std::vector<std::string>{"base: a row with the flag --base and no binding",
+                                        "tiles: echoed before base, which has no binding"}));
 }
 
 }  // namespace

@@ -165,7 +165,8 @@ Camera viewCamera(int degrees, const BaseShape& base, double top) {
     return camera;
 }
 
-std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
+std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps,
+                                 const std::vector<int>& coarseTiles) {
     std::vector<Setting> settings;
     MethodSettings s;
     s.method = method;
@@ -174,6 +175,9 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
             s.pixelError = error;
             settings.push_back(
                 {s, error == 0.0f ? "exact" : std::to_string(static_cast<int>(error)) + "px"});
+            if (error != 0.0f) continue;
+            for (int tile : coarseTiles)
+                settings.push_back({s, "exact+coarse" + std::to_string(tile), tile});
         }
     } else if (method == Method::Rcsm) {
         // 15 relaxed cone steps and 8 binary steps as published, then more cone steps.
@@ -192,6 +196,36 @@ std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps) {
     }
     return settings;
 }
+
+const std::vector<int>& coarseTilesFor(const BenchOptions& options, const BenchMap& m) {
+    static const std::vector<int> none;
+    return m.base.kind == BaseKind::Plane ? options.coarseTiles : none;
+}
+
+namespace {
+
+// The coarse pass's own reads in its last draw (ReliefRenderer::coarseStartTexture: a texel
+// a tile, y its pyramid reads), summed over the tiles.
+double coarsePassReads(const GL& gl, const ReliefRenderer& renderer) {
+    if (!renderer.coarsePassDrawn()) return 0.0;
+    GLint width = 0, height = 0, previous = 0;
+    gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &previous);
+    gl.BindTexture(GL_TEXTURE_2D, renderer.coarseStartTexture());
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+    std::vector<float> texels(static_cast<std::size_t>(width) * height * 4);
+    gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texels.data());
+    gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous));
+    // The texture may be larger than the tiles drawn (it grows, never shrinks).
+    const glm::ivec2 used = renderer.coarseStartSize();
+    double sum = 0.0;
+    for (int y = 0; y < used.y; ++y)
+        for (int x = 0; x < used.x; ++x)
+            sum += texels[(static_cast<std::size_t>(y) * width + x) * 4 + 1];
+    return sum;
+}
+
+}  // namespace
 
 void runBenchmark(GlContext& context, const BenchOptions& options,
                   const std::vector<BenchMap>& maps,
@@ -218,7 +252,8 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
         std::vector<std::pair<Method, Setting>> settings;
         for (Method method : options.methods) {
             if (!whyNotMeasured(method, m).empty()) continue;
-            for (const Setting& setting : settingsFor(method, mapSize, options.maxSteps))
+            for (const Setting& setting :
+                 settingsFor(method, mapSize, options.maxSteps, coarseTilesFor(options, m)))
                 settings.emplace_back(method, setting);
         }
         for (int degrees : options.viewDegrees) {
@@ -250,20 +285,25 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
             const auto warmUntil =
                 std::chrono::steady_clock::now() + std::chrono::milliseconds(firstView ? 500 : 300);
             firstView = false;
+            // Each setting's method and coarse pass, the instrumented variant or not.
+            const auto use = [&](const Setting& setting, bool countFetches) {
+                renderer.setMethod(setting.method, countFetches);
+                renderer.setCoarsePass(setting.coarseTile);
+            };
             for (const auto& [method, setting] : settings) {
-                renderer.setMethod(setting.method, false);
+                use(setting, false);
                 draw();
                 draw();
             }
             while (std::chrono::steady_clock::now() < warmUntil) {
                 for (const auto& [method, setting] : settings) {
-                    renderer.setMethod(setting.method, false);
+                    use(setting, false);
                     draw();
                     gl.Finish();
                 }
             }
             for (const std::size_t k : interleavedOrder(settings.size(), options.frames)) {
-                renderer.setMethod(settings[k].second.method, false);
+                use(settings[k].second, false);
                 const FrameTimes t = timer.frame(draw);
                 rows[k].gpuFrames.push_back(t.gpu);
                 rows[k].wallFrames.push_back(t.wall);
@@ -294,7 +334,7 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
 
                 // Accuracy from the plain variant's AOV: over every pixel, and over
                 // those whose rays come in through the top face.
-                renderer.setMethod(setting.method, false);
+                use(setting, false);
                 draw();
                 const RenderedFrame frame = target.read(camera.eye);
                 const Accuracy accuracy = compareWithReference(frame, camera, reference);
@@ -311,9 +351,10 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                 r.topP99ErrorTexels = top.p99ErrorTexels;
 
                 // Fetches: the instrumented variant, once.
-                renderer.setMethod(setting.method, true);
+                use(setting, true);
                 draw();
                 const RenderedFrame counted = target.read(camera.eye);
+                const double passReads = coarsePassReads(gl, renderer);
                 double sum = 0.0, boundSum = 0.0;
                 std::size_t covered = 0;
                 for (std::size_t p = 0; p < inBox.size(); ++p) {
@@ -324,10 +365,14 @@ void runBenchmark(GlContext& context, const BenchOptions& options,
                     ++covered;
                     r.fetchesMax = std::max(r.fetchesMax, fetches);
                 }
-                r.fetchesMean = covered ? sum / covered : 0.0;
-                r.boundFetchesMean = covered ? boundSum / covered : 0.0;
+                // The coarse pass's reads are the pixels' too: they are counted over the
+                // same pixels, as bounds (the window pyramid's).
+                r.coarseFetchesMean = covered ? passReads / covered : 0.0;
+                r.fetchesMean = covered ? (sum + passReads) / covered : 0.0;
+                r.boundFetchesMean = covered ? (boundSum + passReads) / covered : 0.0;
                 report(r);
             }
+            renderer.setCoarsePass(0);
         }
     }
 }

@@ -27,6 +27,9 @@ struct BenchMap {
 struct Setting {
     MethodSettings method;
     std::string param;  // the knob as the CSV shows it: steps, pixel error, or "-"
+    // The coarse pass's tile (ReliefRenderer::setCoarsePass), 0: the single pass. A row of
+    // its own, "exact+coarseT", beside the multilevel method's exact one.
+    int coarseTile = 0;
 };
 
 struct Measurement {
@@ -48,6 +51,10 @@ struct Measurement {
     // The traversal's share of fetchesMean: reads of its bounds (a max pyramid, a cone map);
     // the rest read the samples (the last level, the surface).
     double boundFetchesMean = 0.0;
+    // With the coarse pass: its own pyramid reads over the same pixels (its tiles' reads
+    // summed, over the pixels whose ray meets the box), part of fetchesMean and of
+    // boundFetchesMean; 0 without it.
+    double coarseFetchesMean = 0.0;
     double coverageMismatchPct = 0.0;
     double offHalfTexelPct = 0.0;
     // The same two over the pixels whose rays come in through the top face: what the peers
@@ -86,6 +93,9 @@ struct BenchOptions {
     // The shaders as GLSL 3.30 in a newer context (ReliefRenderer::setGlsl330): the path of
     // a GL 3.3 engine, against 4.00's gathers in another run on the same machine.
     bool glsl330 = false;
+    // The coarse pass's tile sizes measured as rows of their own: the multilevel method's
+    // exact frame on the plane (the pass's one case today) with each; empty: none.
+    std::vector<int> coarseTiles{8};
 };
 
 // Why `method` is not measured on `m`, or "" where it is: on a curved base only the methods
@@ -98,8 +108,12 @@ std::string whyNotMeasured(Method method, const BenchMap& m);
 
 // The knob settings measured for `method` on a map of `mapSize` texels: step budgets in
 // powers of two from 8 to min(2 mapSize, maxSteps); pixel errors 0, 1 and 4 for the
-// multilevel method; one setting for the others.
-std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps);
+// multilevel method, and its exact frame with the coarse pass of each of `coarseTiles`
+// (the caller gives them where the pass applies); one setting for the others.
+std::vector<Setting> settingsFor(Method method, int mapSize, int maxSteps,
+                                 const std::vector<int>& coarseTiles = {});
+// The coarse tiles that apply to a map: the options' on the plane, none on a curved base.
+const std::vector<int>& coarseTilesFor(const BenchOptions& options, const BenchMap& m);
 
 // Runs everything; `report` is called after each measurement (progress and the CSV).
 void runBenchmark(GlContext& context, const BenchOptions& options,

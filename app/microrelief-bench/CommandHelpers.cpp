@@ -80,6 +80,15 @@ std::vector<int> parseMapSizes(const std::string& list) {
     return sizes;
 }
 
+std::vector<int> parseCoarseTiles(const std::string& list) {
+    if (list == "0") return {};
+    const std::vector<int> tiles =
+        parseList(list, "--coarse-tiles", "--coarse-tiles", wholeIn("--coarse-tiles", 2, 64));
+    if (tiles.empty()) throwBadInput("--coarse-tiles names no tile (0 for none)");
+    refuseRepeats(tiles, "--coarse-tiles", number);
+    return tiles;
+}
+
 void checkOutputFolder(const std::filesystem::path& folder) {
     std::error_code ec;
     std::filesystem::path existing = folder;

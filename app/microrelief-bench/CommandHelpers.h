@@ -64,6 +64,8 @@ std::vector<int> parseViews(const std::string& list);
 // --map-sizes of the procedural relief: sides from 0 to 65536, 0 left out (none), none
 // twice.
 std::vector<int> parseMapSizes(const std::string& list);
+// --coarse-tiles: tile sides from 2 to 64 (ReliefRenderer::setCoarsePass), or 0 alone: none.
+std::vector<int> parseCoarseTiles(const std::string& list);
 
 // Before any work: --out-dir is a folder we may write in, or the nearest part of it that
 // exists is one, so that it can be made. Throws Error(BadInput).

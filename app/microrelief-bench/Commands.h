@@ -36,6 +36,7 @@ struct MethodsFlags {
     std::string interpolations = "bilinear,biquadratic";
     bool glsl330 = false;
     std::string clock = "auto";                        // the tables' clock (Report.h)
+    std::string coarseTiles = "8";                     // BenchOptions::coarseTiles; 0: none
     std::optional<std::string> maps, views, mapSizes;  // absent: the defaults
 };
 void addMethodsOptions(CLI::App& app, MethodsFlags& flags);

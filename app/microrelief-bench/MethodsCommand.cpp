@@ -170,8 +170,9 @@ std::size_t countMeasurements(const BenchOptions& options, const std::vector<Ben
     for (const BenchMap& m : maps) {
         for (Method method : options.methods) {
             if (!whyNotMeasured(method, m).empty()) continue;
-            n +=
-                settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps).size();
+            n += settingsFor(method, std::max(m.map->width, m.map->height), options.maxSteps,
+                             coarseTilesFor(options, m))
+                     .size();
         }
     }
     return n * options.viewDegrees.size();
@@ -201,6 +202,12 @@ void addMethodsOptions(CLI::App& app, MethodsFlags& flags) {
                  "The shaders as GLSL 3.30, whatever the context gives (four texel reads a "
                  "bilinear cell where 4.00 gathers them): the path of an engine in a GL 3.3 "
                  "context, to set beside a run without it");
+    app.add_option("--coarse-tiles", flags.coarseTiles,
+                   "The coarse pass (a pass over T x T tiles of pixels that starts each pixel's "
+                   "walk where its tile's rays may first meet the relief) measured as rows of "
+                   "its own, 'exact+coarseT', beside the multilevel method's exact frame on the "
+                   "plane: comma-separated tile sides from 2 to 64, or 0 for none")
+        ->capture_default_str();
     app.add_option("--interpolations", flags.interpolations,
                    "Comma-separated last levels, bilinear and biquadratic (biquadratic with the "
                    "exact methods, multilevel, maxmip and cone)")
@@ -271,6 +278,7 @@ MethodsRun checkMethods(const MethodsFlags& flags, bool readsFetchedMaps) {
     }
     if (flags.views) options.viewDegrees = parseViews(*flags.views);
     if (flags.mapSizes) options.mapSizes = parseMapSizes(*flags.mapSizes);
+    options.coarseTiles = parseCoarseTiles(flags.coarseTiles);
     parseSizeFlag(size, options.width, options.height);
     options.methods = parseList(flags.methods, "--method", "--methods", parseMethod);
     options.bases = parseList(flags.bases, "--base", "--bases",

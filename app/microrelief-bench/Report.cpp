@@ -374,6 +374,41 @@ std::string throughputSection(const std::vector<Measurement>& rows, Clock clock)
     return md.str();
 }
 
+// The coarse pass (issue 52): the multilevel method's exact frame with each tile size
+// measured, beside the single pass on the same map and view.
+std::string coarseSection(const std::vector<Measurement>& rows, Clock clock) {
+    std::ostringstream md;
+    for (const Key& key : keys(rows)) {
+        const Measurement* exact = find(rows, key, "multilevel", "exact");
+        if (!exact) continue;
+        for (const Measurement& r : rows) {
+            if (keyOf(r) != key || r.method != "multilevel" ||
+                r.param.rfind("exact+coarse", 0) != 0)
+                continue;
+            if (md.tellp() == 0) {
+                md << "\nThe coarse pass (`--coarse-tiles`): the multilevel method's exact frame "
+                      "with a pass over T x T tiles of pixels that starts each pixel's walk where "
+                      "its tile's rays may first meet the relief, beside the single pass; its "
+                      "time over the single pass's (paired rounds), fetches a pixel in the box "
+                      "(the pass's own reads among them), and its accuracy (the same as the "
+                      "single pass's but for float rounding).\n\n"
+                      "| map | size | view | single ms | fetches | tile | ms | over single | "
+                      "fetches (pass) | off % (single) |\n"
+                      "|---|---|---|---|---|---|---|---|---|---|\n";
+            }
+            const Spread ratio = timeRatio(r, *exact, clock);
+            md << "| " << markdownText(std::get<0>(key)) << " | " << std::get<1>(key) << " | "
+               << std::get<2>(key) << "° | " << fixed(frameMs(*exact, clock), 2) << " | "
+               << fixed(exact->fetchesMean, 1) << " | " << r.param.substr(12) << " | "
+               << fixed(frameMs(r, clock), 2) << " | " << fixed(ratio.median, 2) << "x +-"
+               << fixed(ratio.halfIqrPercent(), 0) << " % | " << fixed(r.fetchesMean, 1) << " ("
+               << fixed(r.coarseFetchesMean, 1) << ") | " << fixed(r.offHalfTexelPct, 3) << " ("
+               << fixed(exact->offHalfTexelPct, 3) << ") |\n";
+        }
+    }
+    return md.str();
+}
+
 // Costs: GPU bytes a map texel and the build of each method's bounds, per map.
 std::string costSection(const std::vector<Measurement>& rows) {
     std::ostringstream md;
@@ -575,7 +610,8 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
            "mean_error_px,p99_error_px,exhausted_px,hit_pct,interpolation,renderer,"
            "fetches_bounds_mean,p99_error_texels,top_p99_error_texels,mpix_per_s,"
            "bytes_per_texel,preprocess_ms,preprocess_where,preprocess_cpu_ms,"
-           "ms_cpu_median,clock,ms_spread_pct,ratio_to_multilevel,ratio_spread_pct\n";
+           "ms_cpu_median,clock,ms_spread_pct,ratio_to_multilevel,ratio_spread_pct,"
+           "coarse_fetches_mean\n";
     const Clock clock = clockOf(info);
     for (const Measurement& r : rows) {
         const Measurement* base = find(rows, keyOf(r), "multilevel", "exact");
@@ -596,7 +632,8 @@ void writeCsv(const std::filesystem::path& file, const RunInfo& info,
             << fixed(r.msCpuMedian, 4) << ',' << clockName(clock) << ','
             << fixed(spreadOf(frameSeries(r, clock)).halfIqrPercent(), 2) << ','
             << (base ? fixed(ratio.median, 4) : std::string()) << ','
-            << (base ? fixed(ratio.halfIqrPercent(), 2) : std::string()) << '\n';
+            << (base ? fixed(ratio.halfIqrPercent(), 2) : std::string()) << ','
+            << fixed(r.coarseFetchesMean, 2) << '\n';
     }
     writeTextAtomically(file, out.str());
 }
@@ -664,6 +701,7 @@ std::string writeMarkdown(const std::filesystem::path& file, const RunInfo& info
 
     md << equalTimeSection(rows, clock, peers);
     md << throughputSection(rows, clock);
+    md << coarseSection(rows, clock);
     md << costSection(rows);
 
     md << "\nAccuracy-controlled level of detail (multilevel, `--pixel-error`): time and "

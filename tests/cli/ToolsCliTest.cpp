@@ -159,6 +159,13 @@ TEST_F(ToolsCli, BenchRefusesUnwritableOutputFoldersAndEmptyMethodsBeforeAnyWork
                   "--interpolations names bilinear twice");
     expectRefused("--maps '' --map-sizes 0 --out-dir " + (dir / "b").string(),
                   "nothing to measure: no map");
+    // The coarse pass's tiles: 2 to 64 (ReliefRenderer::setCoarsePass), each once, 0 alone.
+    expectRefused("--coarse-tiles 1 --out-dir " + (dir / "b").string(),
+                  "--coarse-tiles: '1' is not a whole number from 2 to 64");
+    expectRefused("--coarse-tiles 8,65 --out-dir " + (dir / "b").string(),
+                  "--coarse-tiles: '65' is not a whole number from 2 to 64");
+    expectRefused("--coarse-tiles 8,8 --out-dir " + (dir / "b").string(),
+                  "--coarse-tiles names 8 twice");
     // Maps: a missing file named, before any relief is made; 'fetched' with no list of
     // fetched maps (none under this scratch folder, the working folder here, whatever the
     // environment says) names the list it looked for.
@@ -245,8 +252,14 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
     const std::size_t method = column("method"), fetches = column("fetches_mean"),
                       bounds = column("fetches_bounds_mean"), bytes = column("bytes_per_texel"),
                       where = column("preprocess_where"), mpix = column("mpix_per_s"),
-                      p99 = column("p99_error_texels"), cpuBuild = column("preprocess_cpu_ms");
+                      p99 = column("p99_error_texels"), cpuBuild = column("preprocess_cpu_ms"),
+                      param = column("param"), pass = column("coarse_fetches_mean"),
+                      map = column("map"), off = column("off_half_texel_pct");
     std::set<std::string> seen;
+    // The coarse pass's row (the default --coarse-tiles 8) beside the exact one on the
+    // plane, bilinear and biquadratic: as exact (off % the same), its own reads counted
+    // among the pixels' fetches and bounds; no other row has any.
+    std::map<std::string, std::vector<std::string>> exactRows, coarseRows;
     for (std::size_t row = 1; row < rows.size(); ++row) {
         const std::vector<std::string>& f = rows[row];
         ASSERT_EQ(f.size(), header.size()) << "row " << row;
@@ -257,6 +270,14 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
         EXPECT_GE(std::stod(f[p99]), 0.0);
         // Samples R32F, 4 bytes a texel; the windows and maxmip's quadtree R16F mip chains
         // (2 x 4/3 for a 16 x 16 map); cone's map RG16F, 4.
+        if (f[param] == "exact+coarse8") {
+            coarseRows[f[map]] = f;
+            EXPECT_GT(std::stod(f[pass]), 0.0);
+            EXPECT_LE(std::stod(f[pass]), std::stod(f[bounds]));
+        } else {
+            EXPECT_EQ(std::stod(f[pass]), 0.0) << f[param];
+        }
+        if (m == "multilevel" && f[param] == "exact") exactRows[f[map]] = f;
         if (m == "multilevel" || m == "maxmip") {
             EXPECT_NEAR(std::stod(f[bytes]),
                         4.0 + 2.0 * (1.0 + 1 / 4. + 1 / 16. + 1 / 64. + 1 / 256.), 0.01);
@@ -280,6 +301,11 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
         }
     }
     EXPECT_EQ(seen, (std::set<std::string>{"multilevel", "maxmip", "cone", "relief"}));
+    EXPECT_EQ(coarseRows.size(), 2u);  // map and map-biquadratic
+    for (const auto& [name, row] : coarseRows) {
+        ASSERT_EQ(exactRows.count(name), 1u) << name;
+        EXPECT_EQ(row[off], exactRows[name][off]) << name;
+    }
     const std::string md = test::readText(dir / "b" / "bench.md");
     for (const char* section : {"Equal-time accuracy",
                                 "| map | size | view | method | setting | ms | Mpix/s | fetches | "
@@ -287,7 +313,9 @@ TEST_F(ToolsCli, BenchReportsEqualTimeAccuracyFetchSplitAndCosts) {
                                 "| map | size | method | bytes / texel | preprocessing ms |",
                                 "| map | 16 | cone | 8.00 |", " (gpu), ",
                                 "Not measured:\n\n- relief: not on the biquadratic level",
-                                "| map-biquadratic | 16 | 45° | cone | "})
+                                "| map-biquadratic | 16 | 45° | cone | ",
+                                "The coarse pass (`--coarse-tiles`)",
+                                "| single ms | fetches | tile | ms | over single |"})
         EXPECT_NE(md.find(section), std::string::npos) << section;
     // Without the procedural relief there are no size targets, and no empty heading.
     EXPECT_EQ(md.find("Targets:"), std::string::npos);

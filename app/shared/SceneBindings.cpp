@@ -495,6 +495,12 @@ SceneBinding kept(SceneBinding binding, bool GeoreferenceFit::*keep) {
     return binding;
 }
 
+// A binding read just after `path`'s (SceneBinding::parsedAfter).
+SceneBinding readAfter(std::string_view path, SceneBinding binding) {
+    binding.parsedAfter = path;
+    return binding;
+}
+
 // The bindings, in --help's order: SceneFlags::addMapAndCamera's, then addShading's. A plain
 // setting is one line here, by its kind.
 std::vector<SceneBinding> makeBindings() {
@@ -508,7 +514,7 @@ std::vector<SceneBinding> makeBindings() {
         number(MEMBER(map.load.channel)),
         toggle(MEMBER(map.load.normalize)),
         kept(number(MEMBER(heightScale), always), &GeoreferenceFit::keepHeightScale),
-        word(MEMBER(interpolation), interpolationName, parseInterpolation),
+        readAfter("base", word(MEMBER(interpolation), interpolationName, parseInterpolation)),
         base(),
         tiles(),
         animation(),
@@ -517,15 +523,15 @@ std::vector<SceneBinding> makeBindings() {
         vector(MEMBER(camera.target), position),
         vector(MEMBER(camera.up)),
         number(MEMBER(camera.fovyDegrees), always),
-        size(),
-        model(),
+        readAfter("shading.shadows", size()),
+        readAfter("background", model()),
     };
     std::vector<SceneBinding> shading{
         lightDirection(),
         lightPosition(),
         word(MEMBER(shading.shadows), shadowModeName, parseShadowMode),
         number(MEMBER(shading.lightSizeDegrees), softOrChanged),
-        word("method", method, methodName, parseMethod, always),
+        readAfter("shading.view", word("method", method, methodName, parseMethod, always)),
         steps(),
         number(MEMBER(method.pixelError)),
         word(MEMBER(shading.view), debugViewName, parseDebugView, always),
@@ -579,10 +585,24 @@ std::vector<std::string> sceneBindingGaps(std::span<const SceneField> rows,
         if (!row.flag.empty() && !bound.count(row.path))
             gaps.push_back(std::string(row.path) + ": a row with the flag " +
                            std::string(row.flag) + " and no binding");
-    for (const SceneBinding& b : bindings)
+    for (const SceneBinding& b : bindings) {
         if (!b.echoedBefore.empty() && !bound.count(b.echoedBefore))
             gaps.push_back(std::string(b.path) + ": echoed before " + std::string(b.echoedBefore) +
                            ", which has no binding");
+        if (!b.parsedAfter.empty() && !bound.count(b.parsedAfter))
+            gaps.push_back(std::string(b.path) + ": read after " + std::string(b.parsedAfter) +
+                           ", which has no binding");
+    }
+    // Each read after another comes back to one read in its place (no cycle).
+    for (const SceneBinding& b : bindings) {
+        std::string_view after = b.parsedAfter;
+        for (std::size_t step = 0; !after.empty() && step < bindings.size(); ++step) {
+            const auto next = std::find_if(bindings.begin(), bindings.end(),
+                                           [&](const SceneBinding& o) { return o.path == after; });
+            after = next == bindings.end() ? std::string_view() : next->parsedAfter;
+        }
+        if (!after.empty()) gaps.push_back(std::string(b.path) + ": read after itself");
+    }
     return gaps;
 }
 

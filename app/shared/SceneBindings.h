@@ -78,14 +78,19 @@ struct SceneBinding {
     // Echoed just before that path's binding rather than in its place (--tile before --base,
     // the order the echo has always had).
     std::string_view echoedBefore;
+    // Read just after that path's binding rather than in its place: where two flags are
+    // wrong at once, the one reported is the one it has always been (--base before
+    // --interpolation, the lights and --shadows before --size, --view before --method,
+    // --model last).
+    std::string_view parsedAfter;
 };
 
 // The bindings, in --help's order: each group's flags as SceneFlags registers them.
 std::span<const SceneBinding> sceneBindings();
 
 // What does not match between `rows` and `bindings`, one line each: a row with a flag and
-// no binding, a binding without a row that has a flag, a path bound twice, an echo placed
-// before a path that has no binding. Empty: they match.
+// no binding, a binding without a row that has a flag, a path bound twice, an echo or a
+// read placed by a path that has no binding. Empty: they match.
 std::vector<std::string> sceneBindingGaps(std::span<const SceneField> rows,
                                           std::span<const SceneBinding> bindings);
 

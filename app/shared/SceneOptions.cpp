@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -167,14 +168,19 @@ glm::ivec2 parseTiles(const std::string& text) {
 }
 
 void SceneFlags::apply() {
-    // The flags' text into the job's fields, in the bindings' order; each parse error names
-    // its flag. What is wrong with the values then is the scene's to say, field by field
+    // The flags' text into the job's fields, in the bindings' order (but those read after
+    // another); each parse error names its flag. What is wrong with the values then is the scene's to say, field by field
     // (validateScene).
-    for (const SceneBinding& binding : sceneBindings()) {
-        if (binding.albedoOnly && !withAlbedo_) continue;
-        const FlagSlot& slot = slots_.at(binding.path);
-        if (binding.apply) binding.apply(job_, slot, slots_);
-    }
+    const std::span<const SceneBinding> bindings = sceneBindings();
+    // A binding, then those read after it (SceneBinding::parsedAfter).
+    const std::function<void(const SceneBinding&)> read = [&](const SceneBinding& binding) {
+        if (binding.apply && !(binding.albedoOnly && !withAlbedo_))
+            binding.apply(job_, slots_.at(binding.path), slots_);
+        for (const SceneBinding& next : bindings)
+            if (next.parsedAfter == binding.path) read(next);
+    };
+    for (const SceneBinding& binding : bindings)
+        if (binding.parsedAfter.empty()) read(binding);
     if (fit_) {
         // Given here or by the scene this parse goes over (a camera file's row over the
         // command line): kept over a georeferenced map's own.

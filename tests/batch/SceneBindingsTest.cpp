@@ -159,6 +159,15 @@ TEST(SceneBindings, FlagsOverASceneAndTheRulesBetweenThem) {
     EXPECT_EQ(parse(cylinder, "--time 2").job.time, 2.0);
     EXPECT_EQ(message(SceneOptions{}, "--radius 2"), "--radius does not apply to --base plane");
     EXPECT_TRUE(parse(cylinder, "--radius 0.25").job.base == BaseShape::cylinder(0.25, 1.25));
+    // Two wrong flags at once: the one reported is the one it has always been.
+    EXPECT_EQ(message(SceneOptions{}, "--interpolation cubic --base cone"),
+              "unknown --base 'cone' (expected plane, cylinder, ellipsoid or sphere)");
+    EXPECT_EQ(message(SceneOptions{}, "--size 5x --light 0,0,0"), "--light must not be zero");
+    EXPECT_EQ(message(SceneOptions{}, "--model 1,2 --view foo --method bar"),
+              "unknown --view 'foo' (expected shaded, iterations, level, normal, depth or "
+              "position)");
+    EXPECT_EQ(message(SceneOptions{}, "--model 1,2 --background 1,2"),
+              "--background expects three numbers r,g,b, got '1,2'");
     // What a georeferenced map keeps of the flags given (core/scene/Georeference.h).
     const SceneOptions given = parse(SceneOptions{}, "--height-scale 0.2 --base plane");
     EXPECT_TRUE(given.georeference.keepHeightScale);
@@ -203,7 +212,17 @@ TEST(SceneBindings, EveryRowWithAFlagHasOneBindingAndEveryBindingARow) {
                              [](const SceneBinding& b) { return b.path == "base"; }));
     EXPECT_EQ(sceneBindingGaps(table, fewer),
               (std::vector<std::string>{"base: a row with the flag --base and no binding",
+                                        "interpolation: read after base, which has no binding",
                                         "tiles: echoed before base, which has no binding"}));
+    // Two read after each other: neither would be read.
+    std::vector<SceneBinding> cycle(bindings.begin(), bindings.end());
+    for (SceneBinding& b : cycle) {
+        if (b.path == "camera.eye") b.parsedAfter = "camera.target";
+        if (b.path == "camera.target") b.parsedAfter = "camera.eye";
+    }
+    EXPECT_EQ(sceneBindingGaps(table, cycle),
+              (std::vector<std::string>{"camera.eye: read after itself",
+                                        "camera.target: read after itself"}));
 }
 
 }  // namespace

@@ -12,9 +12,11 @@
 #    MICRORELIEF_METHOD, _BASE, _INTERPOLATION, _SHADOWS, _DEPTH_LAYOUT) or a uniform's
 #    meaning (debugView), written once as `#define MR_METHOD_MAXMIP 6` ... in
 #    shaders/microrelief/variants.glsl (and debug_views.glsl), listed below as
-#    FILE:PREFIX:CppEnum: a constant a member and a table of names in the same header
-#    (src/gl/ReliefShader.cpp asserts each C++ enum's members against them, so a reordered
-#    enum stops the build) and a name -> value map in the same module (kMethodValues ...),
+#    FILE:PREFIX:CppEnum: a constant a member, a table of names and an X-macro of the
+#    members (MICRORELIEF_GLSL_BASE_KIND_MEMBERS(X): BaseShape.h's BaseKind and the kinds'
+#    geometry in BaseTable.cpp are spelled from it) in the same header
+#    (src/gl/ReliefShader.cpp asserts the other C++ enums' members against them, so a
+#    reordered enum stops the build) and a name -> value map in the same module (kMethodValues ...),
 #    which the page and microrelief-three set the #defines from;
 #  * the methods' rows (MR_TRAITS_MAXMIP ... of MR_TRAIT_* bits, in variants.glsl; the enum
 #    spec's :MR_TRAIT:MR_TRAITS): glsl::kMethodTraits[] (core/scene/Method.h: methodHas) and

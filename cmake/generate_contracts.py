@@ -13,7 +13,8 @@ is committed):
   * the enumerations that choose a shader variant or a uniform's meaning (--enums): each
     FILE:PREFIX:CppEnum, every `#define PREFIX_NAME value` (or `const int PREFIX_NAME =
     value;`) of FILE a member, values 0, 1, 2 ... in the file's order; in C++ a constexpr a
-    member (glsl::kCppEnumName), the count and a table of names and values (the same
+    member (glsl::kCppEnumName), the count, a table of names and values and an X-macro
+    MICRORELIEF_GLSL_CPP_ENUM_MEMBERS(X), X(Name, name, value) a member (the same
     header), in JavaScript a frozen name -> value map (kCppEnumValues, the same module),
     keyed by the member's lower-case name (MR_METHOD_MAXMIP: 'maxmip');
   * the rows of an enumeration: an --enums spec FILE:PREFIX:CppEnum:TRAIT:ROW, every
@@ -443,6 +444,11 @@ def camel(name):
     return "".join(part.capitalize() for part in name.lower().split("_"))
 
 
+def snake(cpp):
+    """BaseKind: BASE_KIND."""
+    return re.sub(r"(?<!^)(?=[A-Z])", "_", cpp).upper()
+
+
 def cpp_enums(enums):
     if not enums:
         return []
@@ -465,6 +471,16 @@ def cpp_enums(enums):
         for name, value, line in members:
             out.append(f'    {{"{name.lower()}", {value}}},')
         out.append("};")
+        # The members as an X-macro, X(Name, name, value) each in order (MR_BASE_FOO_BAR:
+        # FooBar, fooBar, 3), so that C++ can spell an enumeration or a list of them from
+        # the GLSL: BaseShape.h's BaseKind and BaseTable.cpp's kinds' geometry.
+        macro = f"MICRORELIEF_GLSL_{snake(cpp)}_MEMBERS"
+        out.append(f"// {macro}(X): X(Name, name, value) for each member of {prefix}_*, in order.")
+        out.append(f"#define {macro}(X) \\")
+        for name, value, line in members:
+            Name = camel(name)
+            out.append(f"    X({Name}, {Name[0].lower() + Name[1:]}, {value}) \\")
+        out.append(f"    /* {file}:{members[0][2]}-{members[-1][2]} */")
     return out
 
 

@@ -29,11 +29,7 @@ static_assert(is(Method::Multilevel, glsl::kMethodMultilevel) &&
                   is(Method::MaxMip, glsl::kMethodMaxmip) && is(Method::Cone, glsl::kMethodCone) &&
                   is(Method::Rcsm, glsl::kMethodRcsm) && is(Method::Rcsm, glsl::kMethodCount - 1),
               "Method and the MR_METHOD_* of variants.glsl differ");
-static_assert(is(BaseKind::Plane, glsl::kBaseKindPlane) &&
-                  is(BaseKind::Cylinder, glsl::kBaseKindCylinder) &&
-                  is(BaseKind::Ellipsoid, glsl::kBaseKindEllipsoid) &&
-                  is(BaseKind::Ellipsoid, glsl::kBaseKindCount - 1),
-              "BaseKind and the MR_BASE_* of variants.glsl differ");
+// BaseKind is not held here: its enumerators are generated from MR_BASE_* (BaseShape.h).
 static_assert(is(Interpolation::Bilinear, glsl::kInterpolationBilinear) &&
                   is(Interpolation::Biquadratic, glsl::kInterpolationBiquadratic) &&
                   is(Interpolation::Biquadratic, glsl::kInterpolationCount - 1),

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "microrelief/core/Error.h"
+#include "microrelief/core/GlslConstants.h"
 #include "microrelief/core/base/BaseSurface.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/SceneFields.h"
@@ -115,4 +116,21 @@ TEST(BaseTable, ObjectPointsReadBackAndLieInTheBox) {
             }
         }
     }
+}
+
+// Every MR_BASE_* of variants.glsl is a kind the table has (BaseKind's enumerators and the
+// kinds' geometry are generated from that list), and BaseShape's defaults, members and
+// factories, are its rows' (BaseShape.h takes them from glsl::kBaseRows).
+TEST(BaseTable, EveryKindHasItsRowAndBaseShapeTakesTheRowsDefaults) {
+    for (const glsl::EnumMember& member : glsl::kBaseKindValues) {
+        SCOPED_TRACE(member.name);
+        BaseShape shape;
+        shape.kind = static_cast<BaseKind>(member.value);
+        EXPECT_EQ(static_cast<int>(baseType(shape).kind), member.value);
+    }
+    EXPECT_EQ(BaseShape{}, baseType("plane").defaults);
+    EXPECT_EQ(BaseShape::plane(), baseType("plane").defaults);
+    EXPECT_EQ(BaseShape::cylinder(), baseType("cylinder").defaults);
+    EXPECT_EQ(BaseShape::ellipsoid(), baseType("ellipsoid").defaults);
+    EXPECT_EQ(BaseShape::sphere(), baseType("sphere").defaults);
 }

@@ -1,10 +1,10 @@
 // The table of base surfaces (core/base/BaseType.h), built from its rows' data as
 // variants.glsl writes it (glsl::kBaseRows, generated) and each kind's geometry, written in
 // the kind's own file beside its BaseSurface. A new row of a kind the table has is a line in
-// variants.glsl; a new kind, its line in kKinds.
+// variants.glsl; a new kind, its MR_BASE_* there and its geometry function in its own file
+// (kKinds below is generated from the MR_BASE_* list).
 #include <algorithm>
 #include <cctype>
-#include <iterator>
 #include <string_view>
 
 #include "microrelief/core/Error.h"
@@ -16,9 +16,12 @@
 
 namespace microrelief {
 
-BaseType planeGeometry();      // core/base/PlaneSurface.cpp
-BaseType cylinderGeometry();   // core/base/CylinderSurface.cpp
-BaseType ellipsoidGeometry();  // core/base/EllipsoidSurface.cpp
+// Each kind's geometry, `<name>Geometry()` in core/base/<Name>Surface.cpp for MR_BASE_<NAME>
+// (planeGeometry() in PlaneSurface.cpp ...), declared here for every MR_BASE_* of
+// variants.glsl: a kind whose file does not define it fails to link, naming the function.
+#define MICRORELIEF_DECLARE_GEOMETRY(Name, name, value) BaseType name##Geometry();
+MICRORELIEF_GLSL_BASE_KIND_MEMBERS(MICRORELIEF_DECLARE_GEOMETRY)
+#undef MICRORELIEF_DECLARE_GEOMETRY
 
 // A member of BaseShape that a size sets, by the name variants.glsl's //@size lines give it,
 // and how many numbers it holds.
@@ -63,23 +66,15 @@ static_assert(
     "a //@size line of variants.glsl sets a member of BaseShape that kShapeMembers has not "
     "(or one of another width)");
 
-// Each kind's geometry, by its value (MICRORELIEF_BASE).
+// Each kind's geometry, by its value (MICRORELIEF_BASE), every MR_BASE_* in order.
 constexpr struct {
     BaseKind kind;
     BaseType (*geometry)();
 } kKinds[] = {
-    {BaseKind::Plane, planeGeometry},
-    {BaseKind::Cylinder, cylinderGeometry},
-    {BaseKind::Ellipsoid, ellipsoidGeometry},
+#define MICRORELIEF_KIND_GEOMETRY(Name, name, value) {BaseKind::Name, name##Geometry},
+    MICRORELIEF_GLSL_BASE_KIND_MEMBERS(MICRORELIEF_KIND_GEOMETRY)
+#undef MICRORELIEF_KIND_GEOMETRY
 };
-constexpr bool everyKindInOrder() {
-    for (std::size_t k = 0; k < std::size(kKinds); ++k)
-        if (static_cast<int>(kKinds[k].kind) != static_cast<int>(k)) return false;
-    return std::size(kKinds) == glsl::kBaseKindCount;
-}
-static_assert(everyKindInOrder(),
-              "kKinds is not every MR_BASE_* of variants.glsl once, in order (a kind without its "
-              "geometry?)");
 
 // The shape of `type`'s kind whose sizes are the row's defaults (or its example), every
 // other member BaseShape's default.

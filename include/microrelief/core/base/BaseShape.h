@@ -17,23 +17,56 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <glm/glm.hpp>
 
+#include "microrelief/core/GlslConstants.h"
+
 namespace microrelief {
 
-enum class BaseKind { Plane = 0, Cylinder = 1, Ellipsoid = 2 };
+// The kinds of base, one enumerator for each MR_BASE_* of shaders/microrelief/variants.glsl,
+// with its value (MICRORELIEF_BASE), generated from it (glsl::MICRORELIEF_GLSL_BASE_KIND_MEMBERS):
+// Plane = 0, Cylinder = 1, Ellipsoid = 2 today; MR_BASE_FOO_BAR would be FooBar.
+#define MICRORELIEF_BASE_KIND_ENUMERATOR(Name, name, value) Name = value,
+enum class BaseKind { MICRORELIEF_GLSL_BASE_KIND_MEMBERS(MICRORELIEF_BASE_KIND_ENUMERATOR) };
+#undef MICRORELIEF_BASE_KIND_ENUMERATOR
+
+// Number `i` of the default of row `base`'s size that sets BaseShape's `member`, as
+// variants.glsl's //@size line gives it (glsl::kBaseRows), so that BaseShape's defaults
+// below are the table's, written once. Used for constants only: a row or a size it does
+// not find is a throw, which stops the build at the constant.
+constexpr double baseRowDefault(std::string_view base, std::string_view member, int i = 0) {
+    for (const glsl::BaseRow& row : glsl::kBaseRows) {
+        if (std::string_view(row.name) != base) continue;
+        for (int k = 0; k < row.sizeCount; ++k) {
+            const glsl::BaseSizeRow& size = row.sizes[k];
+            if (std::string_view(size.member) == member) return size.defaults[size.count == 1 ? 0 : i];
+        }
+    }
+    throw "baseRowDefault: no such row of variants.glsl, or no size of it sets that member";
+}
+
+// The rows' defaults that BaseShape's members and factories take.
+inline constexpr double kCylinderRadius = baseRowDefault("cylinder", "radius");
+inline constexpr double kCylinderLength = baseRowDefault("cylinder", "length");
+inline constexpr double kEllipsoidRadii[3] = {baseRowDefault("ellipsoid", "radii", 0),
+                                              baseRowDefault("ellipsoid", "radii", 1),
+                                              baseRowDefault("ellipsoid", "radii", 2)};
+inline constexpr double kSphereRadius = baseRowDefault("sphere", "radii");
 
 struct BaseShape {
     BaseKind kind = BaseKind::Plane;
-    double radius = 0.3;              // cylinder (--radius)
-    double length = 1.0;              // cylinder (--length)
-    glm::dvec3 radii{0.5, 0.5, 0.5};  // ellipsoid (--radii; --base sphere --radius R)
+    double radius = kCylinderRadius;  // cylinder (--radius)
+    double length = kCylinderLength;  // cylinder (--length)
+    glm::dvec3 radii{kEllipsoidRadii[0], kEllipsoidRadii[1],
+                     kEllipsoidRadii[2]};  // ellipsoid (--radii; --base sphere --radius R)
 
     static BaseShape plane() { return {}; }
-    static BaseShape cylinder(double radius = 0.3, double length = 1.0);
-    static BaseShape ellipsoid(const glm::dvec3& radii = glm::dvec3(0.5));
-    static BaseShape sphere(double radius = 0.5) { return ellipsoid(glm::dvec3(radius)); }
+    static BaseShape cylinder(double radius = kCylinderRadius, double length = kCylinderLength);
+    static BaseShape ellipsoid(const glm::dvec3& radii = glm::dvec3{kEllipsoidRadii[0], kEllipsoidRadii[1],
+                                                                    kEllipsoidRadii[2]});
+    static BaseShape sphere(double radius = kSphereRadius) { return ellipsoid(glm::dvec3(radius)); }
 
     bool curved() const { return kind != BaseKind::Plane; }
     // Whether u is periodic (the curved bases): the map wraps across u = 0.

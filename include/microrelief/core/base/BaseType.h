@@ -17,9 +17,10 @@
 // name for some ellipsoids) is its `//@base` lines alone. A new kind: its GLSL file defining
 // the mr_base* set (shaders/microrelief/base_surface.glsl) with its line in that file's
 // choice, one C++ file with its BaseSurface and its geometry (as core/base/
-// CylinderSurface.cpp has), its MR_BASE_* value and row in variants.glsl, its enumerator in
-// BaseKind, its line in BaseTable.cpp's kKinds (and its sizes' members in kShapeMembers
-// where BaseShape has them not yet), and its frame and box in web/relief_core.js. The exact
+// CylinderSurface.cpp has: <name>Geometry()), its MR_BASE_* value and row in variants.glsl
+// (BaseKind's enumerator and BaseTable.cpp's list of geometries are generated from it; its
+// sizes' members in BaseShape and kShapeMembers where BaseShape has them not yet), and its
+// frame and box in web/relief_core.js. The exact
 // references the tests hold the traversal to (core/trace/CurvedReference.cpp) are written
 // apart from the table on purpose: a check that read the row would repeat its mistakes.
 #pragma once

@@ -98,6 +98,30 @@ export function baseSizeKey(field) {
 // The names, in the table's order (--help's, the viewer's list).
 export const kBaseNames = Object.freeze(kBaseTypes.map((type) => type.name));
 
+// The row named `name`, or undefined.
+export const baseTypeNamed = (name) => kBaseTypes.find((type) => type.name === name);
+
+// The sizes of every row, each field once, in the table's order (BaseTable.cpp:
+// baseSizeFields): {field, key, viewName, count, label, bases}, `viewName` a page's view's
+// name for it (the field after "base.": scene_checks.js reads a view's sizes so; not the
+// shape's member, which a row's size names), `bases` the names of the rows that have it. A field is one scene field, of one count in every row that has it.
+export const kBaseSizes = Object.freeze((() => {
+    const sizes = new Map();
+    for (const type of kBaseTypes)
+        for (const size of type.sizes) {
+            const seen = sizes.get(size.field);
+            if (seen && seen.count !== size.count) throw new Error(`relief_core.js: the base size ${size.field} is ${seen.count} numbers in one row, ${size.count} in ${type.name}`);
+            if (seen) seen.bases.push(type.name);
+            else sizes.set(size.field, {field: size.field, key: size.key, viewName: size.field.slice(size.field.indexOf('.') + 1), count: size.count, label: size.label, bases: [type.name]});
+        }
+    return [...sizes.values()].map((size) => Object.freeze({...size, bases: Object.freeze(size.bases)}));
+})());
+
+// A shape's sizes as its row reads them, in the row's order, every number in one list (the
+// sphere's radius one number): what a host hands a size-blind API (the twin's WebAssembly),
+// which makes the shape back from the row's name and these (baseShape's reverse).
+export const baseSizeNumbers = (shape) => baseType(shape).sizes.flatMap((size) => size.read(shape));
+
 // The row a shape goes by: its kind's rows, the first whose `names` takes it, else the
 // kind's own (BaseTable.cpp: baseType(shape)).
 export function baseType(shape) {

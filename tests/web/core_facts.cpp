@@ -151,6 +151,12 @@ void bases() {
     } catch (const Error& e) {
         std::printf("{\"name\":\"torus\",\"message\":%s}", quoted(pagesMessage(e)).c_str());
     }
+    // The sizes of every row, each field once (the page's size boxes and URL keys).
+    std::printf(",\"baseSizeFields\":[");
+    const std::vector<std::string> fields = baseSizeFields();
+    for (std::size_t k = 0; k < fields.size(); ++k)
+        std::printf("%s%s", k ? "," : "", quoted(fields[k].c_str()).c_str());
+    std::printf("]");
 }
 
 std::string sizes(const std::vector<glm::ivec2>& levels) {

@@ -105,6 +105,16 @@ for (const row of facts.bases) {
     for (const r of row.refusals)
         expect(`${row.name}: refuses ${text(r.sizes)}`, refusalOf(() => core.baseShape(row.name, byKey(r.sizes))), r.message);
 }
+// The sizes of every row, each field once (the pages' boxes and URL keys: kBaseSizes), with
+// the rows that have each; and a row's sizes as one list of numbers in its order (twin.js
+// hands them so to the C++ twin, which writes them back in the row's order).
+expect('the sizes of every row, each once (baseSizeFields)', core.kBaseSizes.map((size) => size.field), facts.baseSizeFields);
+for (const size of core.kBaseSizes)
+    expect(`${size.field}: the rows that have it`, size.bases, facts.bases.filter((row) => row.sizes.some((s) => s.field === size.field)).map((row) => row.name));
+for (const row of facts.bases)
+    for (const shape of row.shapes)
+        attempt(`${row.name}: the ${shape.name} of ${text(shape.sizes)} as one list`, () => expect(`${row.name}: the ${shape.name} of ${text(shape.sizes)}: baseSizeNumbers`,
+            core.baseSizeNumbers(core.baseShape(shape.name, byKey(shape.sizes))), Object.values(shape.sizes).flat()));
 expect(`refuses the base '${facts.unknownBase.name}'`, refusalOf(() => core.baseShape(facts.unknownBase.name)), facts.unknownBase.message);
 
 // ---- the pyramids and the traversal ----

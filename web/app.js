@@ -14,6 +14,7 @@ import createSceneChecksModule from './generated/scene_checks_wasm.js';
 import {ConeMapBuilder, ConeMapCancelled} from './cone_maps.js';
 import {decodePng, heightsFromPng, PngError} from './png.js';
 import {ReliefRenderer} from './relief_gl.js';
+import {baseTypeNamed, kBaseSizes, kBaseTypes} from './relief_core.js';
 import * as scene from './scene.js';
 import {largestSample, SceneChecks} from './scene_checks.js';
 
@@ -252,9 +253,12 @@ function syncPanel() {
     $('interpolation').value = v.interpolation;
     $('base').value = v.base;
     const base = scene.viewBase(v);
-    $('radius').value = base.kind === 'cylinder' ? base.radius : base.kind === 'ellipsoid' ? base.radii[0] : '';
-    $('length').value = base.kind === 'cylinder' ? base.length : '';
-    $('radii').value = base.kind === 'ellipsoid' ? base.radii.join(',') : '';
+    // Each size's box: its number(s) where the chosen base has it, else empty (and hidden).
+    const type = baseTypeNamed(v.base);
+    for (const {key} of kBaseSizes) {
+        const size = type.sizes.find((s) => s.key === key);
+        $(key).value = size ? size.read(base).join(',') : '';
+    }
     for (const label of document.querySelectorAll('[data-base]'))
         label.hidden = !label.dataset.base.split(' ').includes(v.base);
     // Ticked only where the colours are drawn: with a map of the user's the box is off and
@@ -340,6 +344,38 @@ function number(id) {
     return value;
 }
 
+// The bases' menu and a box for each of their sizes, from the table of bases
+// (relief_core.js). The menu lists a kind's rows together, in the table's order of kinds,
+// the rows that name some of its shapes before the kind's own (plane, cylinder, sphere,
+// ellipsoid: as baseType tries them). A size's box is labelled by its key in words
+// ("radii": Radii); one number is a number box, a vector a text box of comma-separated
+// numbers; each box is shown with the bases that have the size (data-base).
+function baseControls() {
+    const kinds = [...new Set(kBaseTypes.map((type) => type.kind))];
+    const rank = (type) => 2 * kinds.indexOf(type.kind) + (type.names === null ? 1 : 0);
+    const menu = $('base');
+    for (const type of [...kBaseTypes].sort((a, b) => rank(a) - rank(b))) menu.add(new Option(type.name));
+    let after = menu.closest('label');
+    for (const size of kBaseSizes) {
+        const label = document.createElement('label');
+        label.dataset.base = size.bases.join(' ');
+        const words = size.key.replace(/-/g, ' ');
+        label.append(`${words[0].toUpperCase()}${words.slice(1)} `);
+        const input = document.createElement('input');
+        input.id = size.key;
+        if (size.count === 1) Object.assign(input, {type: 'number', step: '0.05', min: '0.01'});
+        else {
+            // The placeholder: the size's default in the first row that has it (0.5,0.5,0.5).
+            const first = baseTypeNamed(size.bases[0]);
+            const placeholder = first.sizes.find((s) => s.field === size.field).read(first.defaults).join(',');
+            Object.assign(input, {type: 'text', placeholder});
+        }
+        label.append(input);
+        after.after(label);
+        after = label;
+    }
+}
+
 function wirePanel() {
     const method = $('method');
     for (const m of scene.kMethods) method.add(new Option(m, m));
@@ -349,12 +385,11 @@ function wirePanel() {
     on('interpolation', 'change', (v) => (v.interpolation = $('interpolation').value));
     on('base', 'change', (v) => {
         v.base = $('base').value;
-        v.radius = v.length = v.radii = null;
+        for (const size of kBaseSizes) v[size.viewName] = null;
         if (!scene.methodRunsOnBase(v.method, scene.viewBase(v))) v.method = 'multilevel';
     });
-    on('radius', 'change', (v) => (v.radius = number('radius')));
-    on('length', 'change', (v) => (v.length = number('length')));
-    on('radii', 'change', (v) => (v.radii = $('radii').value.split(',').map(Number)));
+    for (const size of kBaseSizes)
+        on(size.key, 'change', (v) => (v[size.viewName] = size.count === 1 ? number(size.key) : $(size.key).value.split(',').map(Number)));
     on('albedo', 'change', (v) => (v.albedo = $('albedo').checked));
     on('method', 'change', (v) => {
         v.method = method.value;
@@ -489,7 +524,7 @@ async function frame() {
     const view = app.view;
     const config = {
         method: view.method,
-        base: view.base === 'sphere' ? 'ellipsoid' : view.base,
+        base: baseTypeNamed(view.base).kind,  // the shader's MICRORELIEF_BASE: the row's kind (the sphere's, the ellipsoid)
         interpolation: view.interpolation,
         shadows: scene.methodTracesTheSolid(view.method) ? view.shadows : 'off',
         albedoMap: !!app.renderer.albedo,
@@ -556,6 +591,7 @@ async function frame() {
 // ---- start ----
 
 async function start() {
+    baseControls();  // the panel's bases as the markup had them, whatever happens next
     try {
         app.checks = await SceneChecks.load(createSceneChecksModule);
     } catch (e) {

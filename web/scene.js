@@ -8,7 +8,7 @@
 // microrelief-render hands it.
 
 import {kMethodTraits} from './relief_layout.js';
-import {baseName, baseShape, kBaseNames} from './relief_core.js';
+import {baseShape, baseType, kBaseNames, kBaseSizes} from './relief_core.js';
 
 export {wrapsU} from './relief_core.js';
 
@@ -145,9 +145,9 @@ export function defaultView() {
         size: null,  // [W, H] in CSS pixels; null: the canvas fills the page's view area
         heightScale: f32(0.1),
         base: 'plane',
-        radius: null,
-        length: null,
-        radii: null,
+        // Each size of the bases (relief_core.js: kBaseSizes; radius, length, radii), by its
+        // view name: null, its row's default.
+        ...Object.fromEntries(kBaseSizes.map((size) => [size.viewName, null])),
         interpolation: 'bilinear',
         method: 'multilevel',
         steps: 64,
@@ -206,9 +206,12 @@ export function viewFromQuery(search) {
     });
     get('height-scale', (t) => (v.heightScale = f32(numbers('height-scale', t, 1)[0])));
     get('base', (t) => (v.base = choice('base', t, kBaseNames)));
-    get('radius', (t) => (v.radius = numbers('radius', t, 1)[0]));
-    get('length', (t) => (v.length = numbers('length', t, 1)[0]));
-    get('radii', (t) => (v.radii = numbers('radii', t, 3)));
+    // A base's sizes by their keys (radius, length, radii: the rows' fields as flags).
+    for (const size of kBaseSizes)
+        get(size.key, (t) => {
+            const n = numbers(size.key, t, size.count);
+            v[size.viewName] = size.count === 1 ? n[0] : n;
+        });
     get('interpolation', (t) => (v.interpolation = choice('interpolation', t, kInterpolations)));
     get('method', (t) => (v.method = choice('method', t, kMethods)));
     get('steps', (t) => {
@@ -232,7 +235,7 @@ export function viewFromQuery(search) {
 // The view's base shape (relief_core.js: baseShape; a size the view leaves null, the row's
 // default); throws Error naming the key of a size that is not a positive finite number.
 export function viewBase(v) {
-    return baseShape(v.base, {radius: v.radius, length: v.length, radii: v.radii});
+    return baseShape(v.base, Object.fromEntries(kBaseSizes.map((size) => [size.key, v[size.viewName]])));
 }
 
 // pom's samples looking straight down: MethodSettings::setSteps.
@@ -262,10 +265,11 @@ export function queryFromView(v) {
     q.set('fovy', exactNumber(v.fovy));
     if (v.size) q.set('size', `${v.size[0]}x${v.size[1]}`);
     if (v.heightScale !== d.heightScale) q.set('height-scale', exactFloat(v.heightScale));
-    if (v.base !== 'plane') q.set('base', v.base);
-    if (v.radius !== null) q.set('radius', exactNumber(v.radius));
-    if (v.length !== null) q.set('length', exactNumber(v.length));
-    if (v.radii !== null) q.set('radii', vectorText(v.radii));
+    if (v.base !== d.base) q.set('base', v.base);
+    for (const size of kBaseSizes) {
+        const value = v[size.viewName];
+        if (value !== null) q.set(size.key, size.count === 1 ? exactNumber(value) : vectorText(value));
+    }
     if (v.interpolation !== d.interpolation) q.set('interpolation', v.interpolation);
     q.set('method', v.method);
     if (v.steps !== d.steps) q.set('steps', String(v.steps));
@@ -298,17 +302,17 @@ export function renderCommandLine(v, map, pixels) {
     if (map === null && !v.albedo) flag('--albedo', 'none');
     flag('--height-scale', exactFloat(v.heightScale));
     if (v.interpolation !== 'bilinear') flag('--interpolation', v.interpolation);
+    // The base by the name its shape goes by (an ellipsoid of equal radii is the sphere), and
+    // its row's sizes: one number as a flag and its value, a vector after "=".
     const base = viewBase(v);
-    if (base.kind === 'cylinder') {
-        flag('--base', 'cylinder');
-        flag('--radius', exactNumber(base.radius));
-        flag('--length', exactNumber(base.length));
-    } else if (baseName(base) === 'sphere') {
-        flag('--base', 'sphere');
-        flag('--radius', exactNumber(base.radii[0]));
-    } else if (base.kind === 'ellipsoid') {
-        flag('--base', 'ellipsoid');
-        parts.push(`--radii=${vectorText(base.radii)}`);
+    const type = baseType(base);
+    if (type.name !== defaultView().base) {
+        flag('--base', type.name);
+        for (const size of type.sizes) {
+            const n = size.read(base);
+            if (size.count === 1) flag(`--${size.key}`, exactNumber(n[0]));
+            else parts.push(`--${size.key}=${vectorText(n)}`);
+        }
     }
     // "=" keeps a leading minus from reading as a flag.
     parts.push(`--eye=${vectorText(v.eye)}`, `--target=${vectorText(v.target)}`, `--up=${vectorText(v.up)}`);

@@ -123,6 +123,13 @@ constexpr const char* kPageKeysFile = "tests/web/page_keys.txt";
 // A key the page reads (get('eye', ...)) and one it writes (q.set('eye', ...)).
 constexpr const char* kReadKey = R"(\bget\('([a-z][a-z-]*)')";
 constexpr const char* kWrittenKey = R"(\bq\.set\('([a-z][a-z-]*)')";
+// A page that takes the bases' sizes from the browser's table of bases (web/relief_core.js's
+// kBaseSizes, generated from the rows this program's baseSizeFields() reads, and held to
+// them by ctest web.core) reads (get(size.key, ...)) and writes (q.set(size.key, ...)) every
+// size's key in one loop.
+constexpr const char* kCoreSizes = R"(import \{[^}]*\bkBaseSizes\b[^}]*\} from '\.\.?/relief_core\.js')";
+constexpr const char* kReadSizes = "get(size.key,";
+constexpr const char* kWrittenSizes = "q.set(size.key,";
 
 // Every key `pattern`'s first group matches in `text`.
 std::set<std::string> matches(const std::string& text, const char* pattern) {
@@ -177,8 +184,14 @@ std::set<std::string> tableKeys(bool whole) {
 std::vector<std::string> checkPage(const Page& page, const std::string& text,
                                    const std::set<std::string>& own) {
     const std::set<std::string> table = tableKeys(page.whole);
-    const std::set<std::string> readKeys = matches(text, kReadKey);
-    const std::set<std::string> writtenKeys = matches(text, kWrittenKey);
+    std::set<std::string> readKeys = matches(text, kReadKey);
+    std::set<std::string> writtenKeys = matches(text, kWrittenKey);
+    if (std::regex_search(text, std::regex(kCoreSizes)))
+        for (const std::string& size : baseSizeFields()) {
+            const std::string key = sceneFieldFlag(size).substr(2);
+            if (text.find(kReadSizes) != std::string::npos) readKeys.insert(key);
+            if (text.find(kWrittenSizes) != std::string::npos) writtenKeys.insert(key);
+        }
     std::vector<std::string> problems;
     const auto outside = [&](const std::string& key, const char* what) {
         if (!table.count(key) && !own.count(key))

@@ -12,11 +12,12 @@
 #include <sstream>
 
 #include "ThreePage.h"
+#include "microrelief/core/base/BaseType.h"
 
 // wasm/twin_wasm.cpp, native.
 extern "C" {
-int mr_twin_create(const float* samples, int width, int height, double heightScale, int base,
-                   double a, double b, double c, int interpolation);
+int mr_twin_create(const float* samples, int width, int height, double heightScale,
+                   const char* base, const double* sizes, int sizeCount, int interpolation);
 int mr_twin_trace(int handle, const double* model, int count, const double* origins,
                   const double* directions, const double* ranges, double* out);
 void mr_twin_release(int handle);
@@ -75,7 +76,10 @@ TEST_F(ThreePick, TheWebAssemblyTwinIsTheNativeTwinToTheBit) {
     EXPECT_EQ(cases, 6);
     for (int c = 0; c < cases && !HasFailure(); ++c) {
         SCOPED_TRACE("case " + std::to_string(c));
-        const std::vector<double> head = take(8), model = take(16);
+        // Width, height, height scale, the base's kind (MICRORELIEF_BASE) and its sizes' count,
+        // the sizes, the last level (pick.js: twinCases).
+        const std::vector<double> head = take(5), sizes = take(static_cast<std::size_t>(head[4])),
+                                  level = take(1), model = take(16);
         const int width = static_cast<int>(head[0]), height = static_cast<int>(head[1]);
         const int n = static_cast<int>(take(1)[0]);
         const std::vector<double> samples = take(static_cast<std::size_t>(width) * height);
@@ -83,9 +87,14 @@ TEST_F(ThreePick, TheWebAssemblyTwinIsTheNativeTwinToTheBit) {
                                   ranges = take(2 * n), wasm = take(12 * n);
         ASSERT_FALSE(HasFailure());
         const std::vector<float> heights(samples.begin(), samples.end());
-        const int handle = mr_twin_create(heights.data(), width, height, head[2],
-                                          static_cast<int>(head[3]), head[4], head[5], head[6],
-                                          static_cast<int>(head[7]));
+        // The kind's own row (the one that names every shape of it: "ellipsoid", not "sphere").
+        const BaseKind kind = static_cast<BaseKind>(static_cast<int>(head[3]));
+        const auto row = std::find_if(baseTypes().begin(), baseTypes().end(),
+                                      [&](const BaseType& t) { return t.kind == kind && !t.names; });
+        ASSERT_NE(row, baseTypes().end()) << "no row of kind " << head[3];
+        const int handle = mr_twin_create(heights.data(), width, height, head[2], row->name,
+                                          sizes.data(), static_cast<int>(sizes.size()),
+                                          static_cast<int>(level[0]));
         ASSERT_NE(handle, 0) << mr_twin_last_error();
         std::vector<double> native(12 * n);
         ASSERT_EQ(mr_twin_trace(handle, model.data(), n, origins.data(), directions.data(),
@@ -96,7 +105,7 @@ TEST_F(ThreePick, TheWebAssemblyTwinIsTheNativeTwinToTheBit) {
         // The plane's traversal is +, -, *, /, sqrt and floor: IEEE's, the same bits on any
         // machine. The curved bases also call atan2, sin, cos and hypot, which glibc (native)
         // and emscripten's musl compute to within an ulp but not always to the same one.
-        const bool curved = head[3] != 0.0;
+        const bool curved = kind != BaseKind::Plane;
         int hits = 0, differing = 0, kindsDiffering = 0;
         double largest = 0.0;
         for (int k = 0; k < n; ++k) {

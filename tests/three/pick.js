@@ -89,9 +89,12 @@ window.threePick = (() => {
             const rays = raysAt(relief, count, 1.2, random);
             const traced = relief.traceRays(rays.origins, rays.directions, rays.ranges, {on: 'cpu'});
             if (traced.on !== 'cpu') throw new Error(`${c.name}: traced on ${traced.on}`);
-            const b = relief.base;
-            const size = b.kind === 'cylinder' ? [b.radius, b.length, 0] : b.kind === 'ellipsoid' ? b.radii : [0, 0, 0];
-            out.push(width, height, relief.heightScale, {plane: 0, cylinder: 1, ellipsoid: 2}[b.kind], ...size,
+            // The base as its kind's own row takes it (PickTest.cpp finds the row by the kind's
+            // MICRORELIEF_BASE): the kind's value, then its members' numbers in the shape's order
+            // (baseShape writes them in its row's: radius, length; radii), with their count.
+            const {kind, ...members} = relief.base;
+            const sizes = Object.values(members).flat();
+            out.push(width, height, relief.heightScale, {plane: 0, cylinder: 1, ellipsoid: 2}[kind], sizes.length, ...sizes,
                      relief.interpolation === 'biquadratic' ? 1 : 0, ...relief.matrixWorld.elements, count, ...heights.samples,
                      ...rays.origins, ...rays.directions, ...rays.ranges);
             for (let k = 0; k < count; ++k)

@@ -29,7 +29,10 @@ if (!built || process.argv.length !== 3 || !fs.existsSync(path.join(built, 'wgsl
 // mrShadePixel, which src/webgpu.js calls).
 const kCalled = ['mr_traceMultilevel', 'mr_hardShadow', 'mr_surfaceAlbedo', 'mr_shadeRelief', 'mr_reliefWorldNormal', 'mr_baseMapPoint',
                  'mrNdcOf', 'mrTraceRay', 'mrShadeHit', 'mrShadePixel'];
-const kVariants = ['plane', 'cylinder', 'ellipsoid'].flatMap((b) => [`${b}_bilinear`, `${b}_biquadratic`]);
+// Every kind of the table of bases (the staged package's relief_layout.js: kBaseKindValues,
+// generated from variants.glsl's MR_BASE_*), each last level.
+const {kBaseKindValues} = await import(pathToFileURL(path.join(built, 'relief_layout.js')).href);
+const kVariants = Object.keys(kBaseKindValues).flatMap((b) => [`${b}_bilinear`, `${b}_biquadratic`]);
 
 const {loadNaga} = await import(pathToFileURL(path.join(scripts, 'wgsl.mjs')).href);
 try {

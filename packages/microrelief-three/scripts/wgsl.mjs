@@ -11,7 +11,8 @@
 //
 // use:   const naga = await loadNaga();
 //        const wgsl = translate(naga, glsl, 'what');   // throws WgslError, one line
-//        const modules = libraryWgsl(naga, library, glue);   // {plane_bilinear: wgsl, ...}
+//        const modules = libraryWgsl(naga, library, glue, wgslVariants(Object.keys(kBaseKindValues)));
+//                                                              // {plane_bilinear: wgsl, ...}
 // as a program: node scripts/wgsl.mjs --version  prints naga's version, or one line saying
 //        why there is no translator (exit status 1): the tests ask it whether they can run.
 import {fileURLToPath} from 'node:url';
@@ -47,13 +48,15 @@ export function translate(naga, glsl, what) {
     }
 }
 
-// The package's variants: each base and each last level (relief_map.glsl's MICRORELIEF_BASE,
-// relief_patch.glsl's MICRORELIEF_INTERPOLATION), traced by the multilevel method, the one
+// The package's variants for the base kinds `kinds` (relief_layout.js's kBaseKindValues' keys,
+// generated from variants.glsl's MR_BASE_*: scripts/build.mjs gives them): each kind and each
+// last level (relief_map.glsl's MICRORELIEF_BASE, relief_patch.glsl's MICRORELIEF_INTERPOLATION),
+// traced by the multilevel method, the one
 // microrelief-three offers. The shadows are no variant of the library: MICRORELIEF_SHADOWS
 // chooses which library function the glue calls (glsl/microrelief_shading.frag), and every
 // module holds mr_hardShadow, as the WebGL entry's library does (the package's library has no
 // soft shadow: scripts/strip_glsl.mjs drops it, as nothing of the package calls it).
-export const kWgslVariants = ['plane', 'cylinder', 'ellipsoid'].flatMap((base) =>
+export const wgslVariants = (kinds) => kinds.flatMap((base) =>
     ['bilinear', 'biquadratic'].map((interpolation) => ({name: `${base}_${interpolation}`, base, interpolation, method: 'multilevel'})));
 
 // What a WebGPU host sets before the library (texture_reads.glsl's and albedo.glsl's hooks):
@@ -98,9 +101,9 @@ export function libraryEntry(library, variant, glue) {
         '\n#define MICRORELIEF_THREE_PARAMETERS_ONLY\n' + kWgslGlue.map((key) => glue[key] + '\n').join('') + 'void main() {}\n';
 }
 
-// Every variant's WGSL: {name: text}, each with a header naming naga's version and the
+// Every variant's WGSL (`variants`: wgslVariants'): {name: text}, each with a header naming naga's version and the
 // variant. Throws WgslError naming the first variant that fails.
-export function libraryWgsl(naga, library, glue, variants = kWgslVariants) {
+export function libraryWgsl(naga, library, glue, variants) {
     const modules = {};
     for (const variant of variants)
         modules[variant.name] = `// naga ${naga.nagaVersion}: microrelief's library and microrelief-three's glue (${kWgslGlue.join(', ')}), ${variant.base} base, ${variant.interpolation} last level, ${variant.method}\n` +

@@ -12,7 +12,8 @@
 // bytes a map texel: 3.9 MB for a 512 x 512 map), built at the first pick of that
 // configuration and kept with the ReliefMap (the kMaxTwinsPerMap configurations picked
 // last) until ReliefMap.dispose frees them.
-import {kBaseKindValues, kInterpolationValues} from '../generated/relief_layout.js';
+import {baseName, baseSizeNumbers} from '../generated/relief_core.js';
+import {kInterpolationValues} from '../generated/relief_layout.js';
 
 let twinModule = null;  // the module once loaded, or the Error of a package without it
 let loading = null;
@@ -51,8 +52,7 @@ const twins = new WeakMap();
 
 function keyOf(relief) {
     const b = relief.base;
-    const size = b.kind === 'cylinder' ? [b.radius, b.length, 0] : b.kind === 'ellipsoid' ? b.radii : [0, 0, 0];
-    return [relief.heightScale, b.kind, ...size, relief.interpolation].join(' ');
+    return [relief.heightScale, baseName(b), ...baseSizeNumbers(b), relief.interpolation].join(' ');
 }
 
 function twinFor(relief) {
@@ -68,17 +68,22 @@ function twinFor(relief) {
     const samples = reliefMap.heights && reliefMap.heights.image && reliefMap.heights.image.data;
     if (!(samples instanceof Float32Array) || samples.length !== reliefMap.width * reliefMap.height)
         throw new Error(`microrelief-three: ${reliefMap.name}: the map's samples are gone (disposed?); the twin cannot be built`);
-    const input = m._malloc(4 * samples.length);
+    // The base as its row's name and its sizes' numbers in the row's order (the table of
+    // bases, which twin_wasm.cpp reads in C++: BaseType.h), the last level by its GLSL value
+    // (variants.glsl, through core/GlslConstants.h there).
+    const b = relief.base;
+    const name = new TextEncoder().encode(`${baseName(b)}\0`), sizes = baseSizeNumbers(b);
+    const samplesBytes = 8 * Math.ceil(samples.length / 2);  // the sizes' doubles after them 8-aligned
+    const input = m._malloc(samplesBytes + 8 * sizes.length + name.length);
     if (!input) throw new Error(`microrelief-three: ${reliefMap.name}: no memory for the twin's ${reliefMap.width} x ${reliefMap.height} samples in WebAssembly`);
     let handle;
     try {
+        const sizesAt = input + samplesBytes, nameAt = sizesAt + 8 * sizes.length;
         new Float32Array(m.HEAPF32.buffer, input, samples.length).set(samples);
-        const b = relief.base;
-        // The base and the last level by their GLSL values (variants.glsl), which twin_wasm.cpp
-        // reads through core/GlslConstants.h; the sizes as mr_twin_create takes them.
-        const [a, bb, c] = b.kind === 'cylinder' ? [b.radius, b.length, 0] : b.kind === 'ellipsoid' ? b.radii : [0, 0, 0];
+        new Float64Array(m.HEAPF64.buffer, sizesAt, sizes.length).set(sizes);
+        m.HEAPU8.set(name, nameAt);
         handle = m._mr_twin_create(input, reliefMap.width, reliefMap.height, relief.heightScale,
-                                   kBaseKindValues[b.kind], a, bb, c, kInterpolationValues[relief.interpolation]);
+                                   nameAt, sizesAt, sizes.length, kInterpolationValues[relief.interpolation]);
     } finally {
         m._free(input);
     }

@@ -21,6 +21,7 @@ import {code, Discard, Fn, frontFacing, If, screenCoordinate, texture, uniform, 
 
 import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
 import * as core from '../generated/relief_core.js';
+import {kBaseKindValues} from '../generated/relief_layout.js';
 import {checkHeightMap, largestSample, windowLevelsOnCpu} from './map_host.js';
 import {baseShape, boxFaces, checkBaseForMap, checkHeightScale, checkInterpolation, reliefBox, reliefFrame, reliefMapUniforms, reliefUniforms} from './relief_host.js';
 import {requireSupportedThree} from './three_version.js';
@@ -28,8 +29,10 @@ import {requireSupportedThree} from './three_version.js';
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
 export {baseShape, cameraRays, reliefExtent} from './relief_host.js';
 
-// The bases this entry draws (a base outside them is refused in one line naming it).
-export const kWebGPUBases = Object.freeze(['plane', 'cylinder', 'ellipsoid']);
+// The bases this entry draws, by kind (a base outside them is refused in one line naming it):
+// every kind of the table of bases (relief_layout.js's kBaseKindValues, MICRORELIEF_BASE's
+// values), each a WGSL variant per last level (scripts/wgsl.mjs: wgslVariants).
+export const kWebGPUBases = Object.freeze(Object.keys(kBaseKindValues));
 
 // A WebGPU that cannot do what was asked (no adapter, a map past the device's limits).
 export class ReliefGpuError extends Error {
@@ -282,7 +285,7 @@ function drawnBase(base) {
 // The relief as a three.js object: a THREE.Mesh whose geometry is its proxy box and whose
 // material traces it in every pixel the box covers (relief.js's Relief, for a
 // WebGPURenderer). Options as there: material (a ReliefShadingNodeMaterial), heightScale,
-// base ('plane', 'cylinder', 'sphere', 'ellipsoid' or a shape), interpolation ('bilinear'
+// base (a row's name, core.kBaseNames: 'plane', 'sphere', ...; or a shape), interpolation ('bilinear'
 // or 'biquadratic'), pixelError; each a property too, settable at any time.
 export class Relief extends THREE.Mesh {
     constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {

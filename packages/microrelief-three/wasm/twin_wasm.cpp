@@ -16,7 +16,9 @@
 
 #include <glm/glm.hpp>
 
+#include "microrelief/core/Error.h"
 #include "microrelief/core/GlslConstants.h"
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/ModelTransform.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
 
@@ -51,21 +53,31 @@ double kindOf(HitFace face) {
 extern "C" {
 
 // A twin of the relief over `samples` (width x height floats, row 0 first): its height
-// scale, base (variants.glsl's MR_BASE_*: the plane, a cylinder of radius a and length b, an
-// ellipsoid of radii a, b, c) and last level (MR_INTERPOLATION_*). The twin copies the map
-// and builds its max pyramid (half bounds, the GPU's texels). A handle, or 0 with
-// mr_twin_last_error() saying why (heightMapFromSamples's and BaseShape's messages).
-int mr_twin_create(const float* samples, int width, int height, double heightScale, int base,
-                   double a, double b, double c, int interpolation) {
+// scale, base (the name of a row of the table of bases, BaseType.h: "plane", "sphere"; its
+// sizes' numbers, `sizeCount` of them, in the row's order, each size's `count`: a cylinder's
+// radius and length, an ellipsoid's three radii, a sphere's radius) and last level
+// (MR_INTERPOLATION_*). The twin copies the map and builds its max pyramid (half bounds, the
+// GPU's texels). A handle, or 0 with mr_twin_last_error() saying why (heightMapFromSamples's,
+// the table's and BaseShape's messages).
+int mr_twin_create(const float* samples, int width, int height, double heightScale,
+                   const char* base, const double* sizes, int sizeCount, int interpolation) {
     try {
         const HeightMap map = heightMapFromSamples(samples, width, height,
                                                    static_cast<std::size_t>(width) * sizeof(float),
                                                    {}, "the height map");
-        // `base` and `interpolation` are the GLSL's values (variants.glsl), as twin.js gives
-        // them from relief_layout.js.
-        const BaseShape shape = base == glsl::kBaseKindCylinder    ? BaseShape::cylinder(a, b)
-                                : base == glsl::kBaseKindEllipsoid ? BaseShape::ellipsoid({a, b, c})
-                                                                   : BaseShape::plane();
+        // The row by its name, its sizes written into its defaults in its order, as twin.js
+        // reads them from the shape (relief_core.js: baseSizeNumbers); `interpolation` is the
+        // GLSL's value (variants.glsl), as twin.js gives it from relief_layout.js.
+        const BaseType& type = baseType(std::string_view(base));
+        BaseShape shape = type.defaults;
+        int at = 0;
+        for (const BaseSize& size : type.sizes) {
+            if (at + size.count <= sizeCount) size.write(shape, sizes + at);
+            at += size.count;
+        }
+        if (at != sizeCount)
+            throwBadInput("the base " + std::string(type.name) + " has " + std::to_string(at) +
+                          " size numbers, not " + std::to_string(sizeCount));
         validateBaseShape(shape);
         twins.push_back(std::make_unique<MultilevelTracer>(
             map, heightScale, shape,

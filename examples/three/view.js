@@ -6,6 +6,12 @@
 // matrix in rows) and pyramid=auto|gpu|cpu (how the max pyramid is built).
 // A value that does not parse is an error naming the key; whether the view is one the
 // programs draw is their own checks' to say (microrelief-three's loadSceneChecks: main.js).
+// The bases and their sizes' keys are the table of bases' rows: the package's generated
+// relief_core.js (the web page's, from variants.glsl's rows), by its path beside this page as
+// the import map reaches the package (a module of no bare import, so that node can read this
+// file alone: ctest web.checks).
+import {kBaseNames, kBaseSizes} from './node_modules/microrelief-three/generated/relief_core.js';
+
 const f32 = Math.fround;
 
 function numbers(key, text, count) {
@@ -33,7 +39,7 @@ export function viewFromUrl(search) {
     const q = new URLSearchParams(search);
     const v = {
         eye: [0.8, 0.5, 0.85], target: [0, -0.03, 0], up: [0, 1, 0], fovy: 45, size: null, clean: false,
-        shading: 'three', base: 'plane', radius: undefined, length: undefined, radii: undefined,
+        shading: 'three', base: 'plane', ...Object.fromEntries(kBaseSizes.map((size) => [size.viewName, undefined])),
         interpolation: 'bilinear', heightScale: f32(0.1), light: [-0.45, 0.8, -0.35], shadows: 'off',
         albedo: true, pixelError: 0, pyramid: 'auto', model: null,
     };
@@ -53,10 +59,12 @@ export function viewFromUrl(search) {
     });
     get('clean', (t) => (v.clean = t === '1'));
     get('shading', (t) => (v.shading = choice('shading', t, ['three', 'microrelief'])));
-    get('base', (t) => (v.base = choice('base', t, ['plane', 'cylinder', 'ellipsoid', 'sphere'])));
-    get('radius', (t) => (v.radius = numbers('radius', t, 1)[0]));
-    get('length', (t) => (v.length = numbers('length', t, 1)[0]));
-    get('radii', (t) => (v.radii = numbers('radii', t, 3)));
+    get('base', (t) => (v.base = choice('base', t, kBaseNames)));
+    for (const size of kBaseSizes)
+        get(size.key, (t) => {
+            const n = numbers(size.key, t, size.count);
+            v[size.viewName] = size.count === 1 ? n[0] : n;
+        });
     get('interpolation', (t) => (v.interpolation = choice('interpolation', t, ['bilinear', 'biquadratic'])));
     get('height-scale', (t) => (v.heightScale = f32(numbers('height-scale', t, 1)[0])));
     get('light', (t) => (v.light = numbers('light', t, 3)));
@@ -70,10 +78,9 @@ export function viewFromUrl(search) {
     return v;
 }
 
-// The base as Relief takes it.
+// The base as Relief takes it: its name, with its row's sizes by their keys where it has any.
 export function viewBase(v) {
-    if (v.base === 'cylinder') return {kind: 'cylinder', radius: v.radius, length: v.length};
-    if (v.base === 'sphere') return {kind: 'sphere', radius: v.radius};
-    if (v.base === 'ellipsoid') return {kind: 'ellipsoid', radii: v.radii};
-    return 'plane';
+    const sizes = kBaseSizes.filter((size) => size.bases.includes(v.base));
+    if (!sizes.length) return v.base;
+    return {kind: v.base, ...Object.fromEntries(sizes.map((size) => [size.key, v[size.viewName]]))};
 }

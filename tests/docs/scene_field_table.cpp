@@ -124,10 +124,11 @@ constexpr const char* kPageKeysFile = "tests/web/page_keys.txt";
 constexpr const char* kReadKey = R"(\bget\('([a-z][a-z-]*)')";
 constexpr const char* kWrittenKey = R"(\bq\.set\('([a-z][a-z-]*)')";
 // A page that takes the bases' sizes from the browser's table of bases (web/relief_core.js's
-// kBaseSizes, generated from the rows this program's baseSizeFields() reads, and held to
+// kBaseSizes, or the package's copy of it, generated from the rows this program's baseSizeFields() reads, and held to
 // them by ctest web.core) reads (get(size.key, ...)) and writes (q.set(size.key, ...)) every
 // size's key in one loop.
-constexpr const char* kCoreSizes = R"(import \{[^}]*\bkBaseSizes\b[^}]*\} from '\.\.?/relief_core\.js')";
+constexpr const char* kCoreSizes =
+    R"(import \{[^}]*\bkBaseSizes\b[^}]*\} from '\./(node_modules/microrelief-three/generated/)?relief_core\.js')";
 constexpr const char* kReadSizes = "get(size.key,";
 constexpr const char* kWrittenSizes = "q.set(size.key,";
 

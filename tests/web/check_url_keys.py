@@ -40,8 +40,8 @@ INDEXED = {'view': 'kViews', 'shadows': 'kShadows', 'interpolation': 'kInterpola
 # them all.
 WHOLE = {'base'}
 # Word lists a page imports from web/relief_core.js, the browser's host core (the web page's
-# './relief_core.js', examples/three's '../relief_core.js' beside its folder), rather than
-# writes: ctest web.core (tests/web/relief_core_test.mjs) holds each, name by name and in
+# './relief_core.js', examples/three's the package's copy, './node_modules/microrelief-three/
+# generated/relief_core.js'), rather than writes: ctest web.core (tests/web/relief_core_test.mjs) holds each, name by name and in
 # order, to the C++ table it mirrors, so this check takes them as read.
 CORE_LISTS = {'kBaseNames': 'the table of bases (core/base/BaseType.h)'}
 # Word lists a page takes from relief_layout.js, generated from the GLSL's rows that
@@ -122,7 +122,7 @@ def main():
             problems.append(f'{page}: {key} is listed as the page\'s own key but the page reads no such key')
         offered = 0
         for key, words in re.findall(r"choice\('([a-z][a-z-]*)', t, (\[[^\]]*\]|Object\.keys\(\w+\)|\w+)\)", text):
-            if words in CORE_LISTS and re.search(r"import \{[^}]*\b" + words + r"\b[^}]*\} from '\.\.?/relief_core\.js'", text):
+            if words in CORE_LISTS and re.search(r"import \{[^}]*\b" + words + r"\b[^}]*\} from '\./(?:node_modules/microrelief-three/generated/)?relief_core\.js'", text):
                 offered += 1
                 core_offered.add((page, key))
                 continue

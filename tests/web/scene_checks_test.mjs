@@ -28,7 +28,11 @@ const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'scene-checks-'));
 process.on('exit', () => fs.rmSync(scratch, {recursive: true, force: true}));
 // examples/three is staged where the build stages microrelief-three (MICRORELIEF_BUILD_THREE).
 const withThree = fs.existsSync(path.join(share, 'web', 'three', 'view.js'));
-const modules = ['scene.js', 'relief_core.js', 'relief_layout.js', 'scene_checks.js', 'png.js', 'generated/scene_checks_wasm.js', ...(withThree ? ['three/view.js'] : [])];
+// examples/three's view.js reads the table of bases from the package beside it (its package.json
+// too: node takes a package's module type from it, not from above node_modules).
+const threePackage = 'three/node_modules/microrelief-three';
+const modules = ['scene.js', 'relief_core.js', 'relief_layout.js', 'scene_checks.js', 'png.js', 'generated/scene_checks_wasm.js',
+                 ...(withThree ? ['three/view.js', ...['package.json', 'generated/relief_core.js', 'generated/relief_layout.js'].map((f) => `${threePackage}/${f}`)] : [])];
 for (const file of modules) {
     fs.mkdirSync(path.dirname(path.join(scratch, file)), {recursive: true});
     fs.copyFileSync(path.join(share, 'web', file), path.join(scratch, file));

@@ -45,6 +45,31 @@
 float mr_coarseFirstLength = 0.0;
 #endif
 
+// The level of detail's normal (the hit that a window's max box stands for): the map
+// gradient at map point xy as the windows of level k see it, not the samples'. Windows
+// p - 1 and p (p = the level-k block holding xy) are centred at p 2^k and (p + 1) 2^k,
+// either side of xy, so their difference over 2^k is the slope along each axis, read from
+// the level the walk stopped at. A pixel that cannot tell that level's windows apart
+// cannot tell the samples' slope apart either; and this way an LOD frame reads nothing
+// finer than its level (a paged map, paged_map.glsl, wants only pages of that level, not
+// the samples' page under every pixel). Clamped to the level's windows at the map's edges
+// (a slope of 0 there, and in a row's last, partial block and at a curved base's seam
+// u = 0); a tiled map's windows are a tile's, so a tile's first block has a slope of 0 too.
+// Only the shading normal: the hit's position is the LOD's, as before. The CPU twin (the
+// core's MultilevelTracer) has no level of detail, so nothing there matches this.
+vec2 mr_lodSlope(mr_Relief relief, MICRORELIEF_SAMPLER windows, vec2 xy, int k) {
+    ivec2 texel = mr_finestTexelAt(relief, xy);
+#if MICRORELIEF_TILING
+    ivec2 tile = ivec2(mr_tileSize(relief.map));
+    texel -= tile * (texel / tile);
+#endif
+    ivec2 last = max(ivec2(1), relief.map.pyramidSize >> k) - 1;
+    ivec2 p = clamp(texel >> k, ivec2(0), last), q = clamp((texel >> k) - 1, ivec2(0), last);
+    float width = exp2(float(k));
+    return vec2(mr_pyramidTexel(relief, windows, ivec2(p.x, q.y), k) - mr_pyramidTexel(relief, windows, q, k),
+                mr_pyramidTexel(relief, windows, ivec2(q.x, p.y), k) - mr_pyramidTexel(relief, windows, q, k)) / width;
+}
+
 // The binary subdivision of the segment start + t dir, t in [0, span] (`floorExit`: a ray
 // that leaves the plane's box through its floor); tStart is the segment's distance from
 // the eye in t, for the level-of-detail cone. Fills `hit` with frame positions and local t.
@@ -67,6 +92,7 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
     // tHit >= 0, solved exactly on a leaf's patch or else taken as is.
     mr_WalkEnd end = mr_walkEnd();
     float leafBound = 0.0;  // the bound of the leaf the inner loop stopped at
+    int lodLevel = -1;      // the level whose window stood for the surface (level of detail)
     while (!end.finished) {
         // Down the walk to a leaf that may hold a hit, or to the walk's end.
         bool atLeaf = false;
@@ -94,6 +120,7 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
                     // max box stands for the surface here: the hit is where the ray comes
                     // down to it.
                     end.tHit = mr_baseDescendTo(relief, start, dir, walk.ta, walk.tb, bound);
+                    lodLevel = level;
                     end.finished = true;
                     break;
                 }
@@ -134,6 +161,16 @@ void mr_subdivideSegment(mr_Relief relief, mr_RayQuery query, MICRORELIEF_SAMPLE
         } else if (!mr_walkNext(walk, false)) {
             end.finished = true;
         }
+    }
+    if (lodLevel >= 0 && end.tHit >= 0.0 && !query.anyHit) {
+        // A hit the level of detail stood in for: on the window's box, its normal from
+        // that level (mr_lodSlope), no sample read.
+        hit.iterations = end.iterations;
+        hit.kind = MR_RELIEF_TOP;
+        hit.t = end.tHit;
+        hit.position = start + end.tHit * dir;
+        hit.normal = mr_baseTopNormal(relief, hit.position, mr_lodSlope(relief, windows, mr_baseMapPoint(relief, hit.position).xy, lodLevel));
+        return;
     }
     mr_finishWalk(hit, relief, query, heights, start, dir, span, floorExit, end);
 }

@@ -357,4 +357,56 @@ TEST_F(PagedMap, MapPastTheTextureLimitMatchesTheReference) {
     EXPECT_EQ(a.exhausted, 0u) << a.summary();
 }
 
+// A frame at the level of detail (method.pixelError 1) wants no more pages of the samples
+// than its pixels can tell apart: a hit the level of detail stands in for takes its normal
+// from the window level the walk stopped at (mr_lodSlope), not from the samples under it.
+// The cobbles of 1024^2 at obliqueView in 64 x 64 (about 10 texels a pixel at the centre):
+// 15 of the 256 sample pages wanted, by the pixels near the eye that walk to the leaves.
+// Drawn under a budget below what the frame wants, its picture is still the whole
+// textures', bit for bit. Seen red with the normal read from the samples (mr_setTopHitAt,
+// as before): 239 of the 256 sample pages wanted, as many as the exact frame.
+TEST_F(PagedMap, ALevelOfDetailFrameWantsNoPageFinerThanItsPixels) {
+    const HeightMap map = synth::cobbles(1024, 1024, 7);
+    RenderJob job = obliqueView(64, 64);
+    job.method.pixelError = 1.0f;
+    PagingSettings paging = smallPages();
+    paging.mode = PagingSettings::Mode::Always;
+    ReliefRenderer renderer(gl(), shaderDirectory());
+    renderer.setPaging(paging);
+    renderer.apply(job, job.method, &map, "cobbles");
+    OffscreenTarget target(gl(), job.width, job.height);
+    const CameraFrame camera = renderer.resolveCamera(job.camera, job.width, job.height);
+    PagedPyramid& pager = *renderer.pager();
+    // The pages lie in order by page level (0 the samples, 1 + k window level k), each
+    // level's pages across its size (the samples' that of window level 0).
+    const int side = pager.pageSide();
+    const std::vector<glm::ivec2> sizes = windowLevelSizes(map.width, map.height);
+    std::vector<int> firstOf{0};
+    for (int level = 0; level <= pager.pagedLevels(); ++level) {
+        const glm::ivec2 across = (sizes[std::max(level - 1, 0)] + side - 1) / side;
+        firstOf.push_back(firstOf.back() + across.x * across.y);
+    }
+    ASSERT_EQ(firstOf.back(), pager.pageCount());
+    const int samplePages = firstOf[1];
+    int wantedSamples = 0;
+    std::vector<int> kept;
+    for (int draw = 0;; ++draw) {
+        ASSERT_LT(draw, 10) << "the draws end once nothing is wanted";
+        target.clear(glm::vec3(0.0f));
+        renderer.draw(camera, ShadingOptions{});
+        const std::vector<int> wanted = pager.takeWanted();
+        if (wanted.empty()) break;
+        for (int id : wanted) wantedSamples += id < samplePages;
+        ASSERT_TRUE(pager.load(wanted, kept));
+        kept.insert(kept.end(), wanted.begin(), wanted.end());
+    }
+    EXPECT_LE(wantedSamples, samplePages / 8) << "of " << samplePages << " sample pages, " << kept.size() << " pages in all";
+
+    PagingSettings tight = smallPages();
+    tight.memoryBytes = 128 * 16 * 16 * 4;  // 128 pages of 16^2: fewer than the frame wants
+    const HeadlessResult paged = renderPaged(map, job, tight);
+    expectSamePicture(paged, renderWhole(map, job), "1 px level of detail");
+    EXPECT_GT(hits(paged.frame), 64u * 64 / 2) << "the relief fills the picture";
+}
+
 }  // namespace

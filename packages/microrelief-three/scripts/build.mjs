@@ -337,7 +337,14 @@ function buildWasm(options, into, read, constants) {
     const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'microrelief-three-'));
     try {
         const emxx = emscripten(scratch);
-        const from = (files) => files.map((f) => path.join(options.source, f));
+        // A '*' in a file name stands for any characters: the files of its folder that match,
+        // in name order (web/wasm/scene_checks_sources.txt's rule, which CMake reads alike).
+        const from = (files) => files.flatMap((f) => {
+            if (!f.includes('*')) return [path.join(options.source, f)];
+            const folder = path.join(options.source, path.dirname(f));
+            const name = new RegExp(`^${path.basename(f).split('*').map((p) => p.replace(/[.+?^${}()|[\]\\]/g, '\\$&')).join('.*')}$`);
+            return fs.readdirSync(folder).filter((n) => name.test(n)).sort().map((n) => path.join(folder, n));
+        });
         const pyramid = from(['src/core/heightmap/MaxPyramid.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/ParallelRows.cpp', 'src/core/Error.cpp', 'src/core/scene/SceneFields.cpp']);
         for (const f of pyramid) read(f);
         emxx(['-I', path.join(options.source, 'include'), ...pyramid, path.join(packageDir, 'wasm', 'pyramid_wasm.cpp'), '-o', path.join(into, 'pyramid_wasm.js'),
@@ -346,8 +353,7 @@ function buildWasm(options, into, read, constants) {
               '-sEXPORTED_RUNTIME_METHODS=UTF8ToString']);
         // The CPU twin of the traversal, for the picks (wasm/twin_wasm.cpp).
         const twin = from(['src/core/trace/MultilevelTracer.cpp', 'src/core/base/BaseShape.cpp', 'src/core/base/BaseTable.cpp',
-                           'src/core/base/CurvedSurface.cpp', 'src/core/base/CylinderSurface.cpp', 'src/core/base/EllipsoidSurface.cpp',
-                           'src/core/base/PlaneSurface.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/heightmap/SurfacePatch.cpp',
+                           'src/core/base/*Surface.cpp', 'src/core/heightmap/HeightMap.cpp', 'src/core/heightmap/SurfacePatch.cpp',
                            'src/core/heightmap/MaxPyramid.cpp', 'src/core/ParallelRows.cpp', 'src/core/Error.cpp',
                            'src/core/scene/SceneFields.cpp', 'src/core/scene/ModelTransform.cpp',
                            'src/core/Text.cpp']);  // the table's refusal of a base's name lists the names

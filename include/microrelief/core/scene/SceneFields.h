@@ -2,9 +2,10 @@
 // messages may name as {field} (core/Error.h), with what the programs, the page and the
 // documentation call it: microrelief-render's flag and --help line, the web page's URL key,
 // the default and the range as docs/cli.md states them. A user-visible setting is one row
-// here plus its use; the flags (app/shared/SceneOptions.cpp), docs/cli.md's table of scene
-// options (generated: tests/docs/scene_field_table.cpp) and the pages' keys (web/scene.js
-// and examples/three/view.js, checked against the rows: ctest web.field_keys) come from it.
+// here plus its use; the flags (app/shared/SceneOptions.cpp, through each row's binding in
+// app/shared/SceneBindings.cpp, checked one to one), docs/cli.md's table of scene options
+// (generated: tests/docs/scene_field_table.cpp) and the pages' keys (web/scene.js and
+// examples/three/view.js, checked against the rows: ctest web.field_keys) come from it.
 //
 // Apart from the scene itself so that the error type needs nothing but the standard
 // library (the WebAssembly pyramid of microrelief-three compiles it alone).

@@ -48,6 +48,9 @@ try {
 
 const problems = [];
 const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'wgsl-generated-'));
+// The fresh build's modules are ES modules, as in the package (its package.json says so):
+// Debian's node 18 reads a .js file outside such a folder as CommonJS.
+fs.writeFileSync(path.join(scratch, 'package.json'), '{"type": "module"}\n');
 try {
     const fresh = path.join(scratch, 'generated');
     const run = spawnSync(process.execPath, [path.join(scripts, 'build.mjs'), '--no-wasm', '--source', repo, '--out', fresh], {encoding: 'utf8'});

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "microrelief/core/base/BaseMeshes.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/MeshReference.h"
 
@@ -32,60 +33,11 @@ double uniform(std::mt19937& random, double lo, double hi) {
 
 // ---- Meshes (as MeshReferenceTest builds them) ----
 
-// n x n quads over [-a/2, a/2] x [-b/2, b/2] at y = 0, normals +y, uv over [0, 1]^2.
-TriangleMesh flatGrid(int n, float a, float b) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= n; ++j) {
-        for (int i = 0; i <= n; ++i) {
-            const float u = static_cast<float>(i) / n, v = static_cast<float>(j) / n;
-            mesh.positions.push_back({(u - 0.5f) * a, 0.0f, (v - 0.5f) * b});
-            mesh.normals.push_back({0.0f, 1.0f, 0.0f});
-            mesh.texCoords.push_back({u, v});
-        }
-    }
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            const unsigned k = j * (n + 1) + i, right = k + 1, up = k + n + 1;
-            mesh.triangles.push_back({k, up, right});
-            mesh.triangles.push_back({right, up, up + 1});
-        }
-    }
-    return mesh;
-}
-
-// A tube about the y axis, normals outward or inward (then each position is -R times its
-// normal: an inward tube's normal lines all meet the axis, a focal line at t = R / s).
-TriangleMesh tube(int around, int along, float radius, float length, bool inward) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= along; ++j) {
-        for (int k = 0; k <= around; ++k) {
-            const double u = static_cast<double>(k) / around, v = static_cast<double>(j) / along;
-            const double phi = 2.0 * kPi * (u - 0.5);
-            const glm::vec3 outward(static_cast<float>(std::sin(phi)), 0.0f,
-                                    static_cast<float>(std::cos(phi)));
-            const glm::vec3 normal = inward ? -outward : outward;
-            const float y = static_cast<float>((1.0 - 2.0 * v) * 0.5 * length);
-            const glm::vec3 onCircle = inward ? -radius * normal : radius * outward;
-            mesh.positions.push_back({onCircle.x, y, onCircle.z});
-            mesh.normals.push_back(normal);
-            mesh.texCoords.push_back({static_cast<float>(u), static_cast<float>(v)});
-        }
-    }
-    for (int j = 0; j < along; ++j) {
-        for (int k = 0; k < around; ++k) {
-            const unsigned a = j * (around + 1) + k, b = a + 1, c = a + around + 1;
-            mesh.triangles.push_back({a, c, b});
-            mesh.triangles.push_back({b, c, c + 1});
-        }
-    }
-    return mesh;
-}
-
 // An inward tube, bumpy, its normals tilted at random by up to 0.4: with a shell of 0.6
 // against a radius of about 0.25 its prisms fold across caustics.
 TriangleMesh bumpyFoldedTube(std::uint32_t seed) {
     std::mt19937 random(seed);
-    TriangleMesh mesh = tube(10, 2, 0.25f, 0.8f, true);
+    TriangleMesh mesh = cylinderTubeMesh(10, 2, 0.25f, 0.8f, true);
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
         const float r = static_cast<float>(uniform(random, 0.8, 1.2));
         mesh.positions[v].x *= r;
@@ -125,16 +77,16 @@ struct ProxyCase {
 std::vector<ProxyCase> proxyCases() {
     std::vector<ProxyCase> cases;
     const HeightMap noise = synth::valueNoise(32, 16, 5.0, 3, 7);
-    cases.push_back({"flat grid", flatGrid(8, 1.0f, 0.5f), noise, 0.1});
+    cases.push_back({"flat grid", planeGridMesh(8, 1.0f, 0.5f), noise, 0.1});
     // Plateaus at 0: flat proxies (the triangle itself) beside thick ones.
-    cases.push_back({"flat grid, zero plateaus", flatGrid(8, 1.0f, 0.5f),
+    cases.push_back({"flat grid, zero plateaus", planeGridMesh(8, 1.0f, 0.5f),
                      withZeroPlateaus(synth::valueNoise(8, 8, 2.0, 1, 3)), 0.1});
-    cases.push_back({"tube", tube(24, 3, 0.3f, 1.0f, false), noise, 0.05});
+    cases.push_back({"tube", cylinderTubeMesh(24, 3, 0.3f, 1.0f, false), noise, 0.05});
     for (const std::uint32_t seed : {14u, 20u}) {
         cases.push_back({"bumpy folded tube " + std::to_string(seed), bumpyFoldedTube(seed),
                          synth::valueNoise(16, 8, 3.0, 2, 9 + seed), 0.6});
     }
-    cases.push_back({"inward tube, focal line", tube(12, 2, 0.25f, 0.8f, true),
+    cases.push_back({"inward tube, focal line", cylinderTubeMesh(12, 2, 0.25f, 0.8f, true),
                      synth::valueNoise(16, 8, 3.0, 2, 4), 0.6});
     cases.push_back({"twisted prism", twistedPrism(), synth::valueNoise(8, 8, 2.0, 2, 6), 0.5});
     return cases;
@@ -373,7 +325,7 @@ TEST(MeshProxy, TheTopHeightIsAboveTheSurfaceOverItsTriangle) {
     map.at(5, 2) = 1.0f;
     map.at(0, 7) = 0.8f;  // at the corner: reached across the repeat
     const HeightMap tiled = repeatMap(map, 3, 3);
-    TriangleMesh mesh = flatGrid(24, 1.0f, 1.0f);
+    TriangleMesh mesh = planeGridMesh(24, 1.0f, 1.0f);
     for (glm::vec2& t : mesh.texCoords) t = 1.3f * t - glm::vec2(0.4f, 0.15f);
     const std::vector<float> bounds = [&] {
         std::vector<float> h;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "microrelief/core/base/BaseMeshes.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/ReferenceTracer.h"
 
@@ -33,60 +34,6 @@ HeightMap seamless(HeightMap map) {
     for (int j = 0; j < map.height; ++j) map.at(map.width - 1, j) = map.at(0, j);
     for (int i = 0; i < map.width; ++i) map.at(i, map.height - 1) = map.at(i, 0);
     return map;
-}
-
-// n x n quads over the plane base's footprint for a W x H map: y = 0, normals +y,
-// x = (u - 0.5) a, z = (v - 0.5) b (docs/bases.md, scene-and-cli.md), uv over [0, 1]^2 plus
-// `uvShift`. With a, b and 1 / n powers of two every float here is exact.
-TriangleMesh flatGrid(int n, float a, float b, glm::vec2 uvShift = glm::vec2(0.0f)) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= n; ++j) {
-        for (int i = 0; i <= n; ++i) {
-            const float u = static_cast<float>(i) / n, v = static_cast<float>(j) / n;
-            mesh.positions.push_back({(u - 0.5f) * a, 0.0f, (v - 0.5f) * b});
-            mesh.normals.push_back({0.0f, 1.0f, 0.0f});
-            mesh.texCoords.push_back(glm::vec2(u, v) + uvShift);
-        }
-    }
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            const unsigned k = j * (n + 1) + i, right = k + 1, up = k + n + 1;
-            mesh.triangles.push_back({k, up, right});
-            mesh.triangles.push_back({right, up, up + 1});
-        }
-    }
-    return mesh;
-}
-
-// A tube about the y axis as the cylinder base maps it: u = k / around at the angle
-// phi = 2 pi (u - 1/2) (the column u = 1 a copy of u = 0, the seam), v = j / along at
-// y = (1 - 2 v) L / 2, position R (sin phi, *, cos phi); normals the cylinder's, or their
-// opposites (`inward`). Inward with R a power of two, each position is exactly -R times its
-// float normal, so X(b, t) = (s t - R) D(b) across the section exactly.
-TriangleMesh tube(int around, int along, float radius, float length, bool inward) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= along; ++j) {
-        for (int k = 0; k <= around; ++k) {
-            const double u = static_cast<double>(k) / around, v = static_cast<double>(j) / along;
-            const double phi = 2.0 * kPi * (u - 0.5);
-            const glm::vec3 outward(static_cast<float>(std::sin(phi)), 0.0f,
-                                    static_cast<float>(std::cos(phi)));
-            const glm::vec3 normal = inward ? -outward : outward;
-            const float y = static_cast<float>((1.0 - 2.0 * v) * 0.5 * length);
-            const glm::vec3 onCircle = inward ? -radius * normal : radius * outward;
-            mesh.positions.push_back({onCircle.x, y, onCircle.z});
-            mesh.normals.push_back(normal);
-            mesh.texCoords.push_back({static_cast<float>(u), static_cast<float>(v)});
-        }
-    }
-    for (int j = 0; j < along; ++j) {
-        for (int k = 0; k < around; ++k) {
-            const unsigned a = j * (around + 1) + k, b = a + 1, c = a + around + 1;
-            mesh.triangles.push_back({a, c, b});
-            mesh.triangles.push_back({b, c, c + 1});
-        }
-    }
-    return mesh;
 }
 
 // The contract's h(uv), repeated in u and v, through HeightMap::surface (independent of
@@ -228,7 +175,7 @@ TEST(MeshReference, AFlatGridIsThePlane) {
              {Interpolation::Bilinear, Interpolation::Biquadratic}) {
             // uv over [0, 1]^2, and shifted by whole periods: the map repeats in u and v.
             for (const glm::vec2 shift : {glm::vec2(0.0f), glm::vec2(1.0f, -2.0f)}) {
-                const MeshReference mesh(flatGrid(8, 1.0f, 0.5f, shift), map, s, interpolation);
+                const MeshReference mesh(planeGridMesh(8, 1.0f, 0.5f, shift), map, s, interpolation);
                 const ReferenceTracer plane(
                     ReliefGeometry{&map, s, BaseShape::plane(), interpolation});
                 std::mt19937 random(11);
@@ -288,7 +235,7 @@ TEST(MeshReference, AFineTubeIsCloseToTheCylinder) {
     for (const Interpolation interpolation :
          {Interpolation::Bilinear, Interpolation::Biquadratic}) {
         const MeshReference mesh(
-            tube(around, 4, static_cast<float>(radius), static_cast<float>(length), false), map,
+            cylinderTubeMesh(around, 4, static_cast<float>(radius), static_cast<float>(length), false), map,
             s * radius, interpolation);
         const ReferenceTracer cylinder(
             ReliefGeometry{&map, s, BaseShape::cylinder(radius, length), interpolation});
@@ -452,7 +399,7 @@ TEST(MeshReference, FromBelowTheMeshAndFromInsideTheShell) {
          {Interpolation::Bilinear, Interpolation::Biquadratic}) {
         // A coarse tube, normals outward: its hollow is below the mesh. From the axis
         // outward, a ray meets the mesh itself (the chord polygon) at t = 0 first.
-        const TriangleMesh mesh = tube(12, 2, 0.25f, 1.0f, false);
+        const TriangleMesh mesh = cylinderTubeMesh(12, 2, 0.25f, 1.0f, false);
         const MeshReference reference(mesh, map, 0.05, interpolation);
         std::mt19937 random(8);
         for (int k = 0; k < 100; ++k) {
@@ -518,7 +465,7 @@ TEST(MeshReference, AFoldedShellGivesTheFirstHitOfTheUnion) {
     for (int j = 0; j < 4; ++j)
         for (int i = 12; i < 20; ++i) map.at(i, j) = 1.0f;
     const double radius = 0.25, s = 0.75, reach = s - radius;
-    const TriangleMesh mesh = tube(64, 2, static_cast<float>(radius), 1.0f, true);
+    const TriangleMesh mesh = cylinderTubeMesh(64, 2, static_cast<float>(radius), 1.0f, true);
     // The ends of the normal lines of the ring at y = 0.5 (all rings have the same xz).
     std::vector<glm::dvec2> ends;
     for (int k = 0; k <= 64; ++k)
@@ -685,7 +632,7 @@ struct ContractSolid {
 // fold across caustics (a shell of 0.6 against a radius about 0.25), no focal line.
 TriangleMesh bumpyFoldedTube(std::uint32_t seed) {
     std::mt19937 random(seed);
-    TriangleMesh mesh = tube(10, 2, 0.25f, 0.8f, true);
+    TriangleMesh mesh = cylinderTubeMesh(10, 2, 0.25f, 0.8f, true);
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
         const float r = static_cast<float>(uniform(random, 0.8, 1.2));
         mesh.positions[v].x *= r;
@@ -735,7 +682,7 @@ std::vector<FoldedCase> foldedCases() {
     }
     // The exact inward tube: every offset triangle collapses onto the axis at t = R / s,
     // inside the map's range, where some of the map is higher and some lower.
-    cases.push_back({"inward tube, focal line", tube(12, 2, 0.25f, 0.8f, true),
+    cases.push_back({"inward tube, focal line", cylinderTubeMesh(12, 2, 0.25f, 0.8f, true),
                      seamless(synth::valueNoise(16, 8, 3.0, 2, 4)), 0.6, 1.2});
     cases.push_back({"twisted prism, noise", twistedPrism(),
                      seamless(synth::valueNoise(8, 8, 2.0, 2, 6)), 0.5, 1.0});
@@ -820,7 +767,7 @@ glm::dvec3 topPoint(const TriangleMesh& mesh, std::size_t k, const HeightMap& ma
 // inside, forward outside, as the contract's solid has it point by point.
 TEST(MeshReference, TheNormalIsTheSurfacesOwn) {
     std::vector<FoldedCase> cases = foldedCases();
-    cases.push_back({"outward tube", tube(16, 2, 0.3f, 0.8f, false),
+    cases.push_back({"outward tube", cylinderTubeMesh(16, 2, 0.3f, 0.8f, false),
                      seamless(synth::valueNoise(16, 8, 3.0, 2, 21)), 0.1, 1.2});
     int tops = 0, folds = 0, foldsInside = 0, foldsOutside = 0;
     for (const FoldedCase& c : cases) {

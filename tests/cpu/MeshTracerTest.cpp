@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "microrelief/core/base/BaseMeshes.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/MeshReference.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
@@ -37,59 +38,10 @@ HeightMap seamless(HeightMap map) {
     return map;
 }
 
-// n x n quads on y = 0 over [-a/2, a/2] x [-b/2, b/2], normals +y, uv over [0, 1]^2: the
-// plane base's footprint for the map.
-TriangleMesh flatGrid(int n, float a, float b, glm::vec2 uvFrom = glm::vec2(0.0f),
-                      glm::vec2 uvTo = glm::vec2(1.0f)) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= n; ++j) {
-        for (int i = 0; i <= n; ++i) {
-            const float u = static_cast<float>(i) / n, v = static_cast<float>(j) / n;
-            mesh.positions.push_back({(u - 0.5f) * a, 0.0f, (v - 0.5f) * b});
-            mesh.normals.push_back({0.0f, 1.0f, 0.0f});
-            mesh.texCoords.push_back(uvFrom + glm::vec2(u, v) * (uvTo - uvFrom));
-        }
-    }
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            const unsigned k = j * (n + 1) + i, right = k + 1, up = k + n + 1;
-            mesh.triangles.push_back({k, up, right});
-            mesh.triangles.push_back({right, up, up + 1});
-        }
-    }
-    return mesh;
-}
-
-// A tube about the y axis, u around (the column u = 1 a copy of u = 0), v along; normals
-// outward or inward.
-TriangleMesh tube(int around, int along, float radius, float length, bool inward) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= along; ++j) {
-        for (int k = 0; k <= around; ++k) {
-            const double u = static_cast<double>(k) / around, v = static_cast<double>(j) / along;
-            const double phi = 2.0 * kPi * (u - 0.5);
-            const glm::vec3 outward(static_cast<float>(std::sin(phi)), 0.0f,
-                                    static_cast<float>(std::cos(phi)));
-            const float y = static_cast<float>((1.0 - 2.0 * v) * 0.5 * length);
-            mesh.positions.push_back({radius * outward.x, y, radius * outward.z});
-            mesh.normals.push_back(inward ? -outward : outward);
-            mesh.texCoords.push_back({static_cast<float>(u), static_cast<float>(v)});
-        }
-    }
-    for (int j = 0; j < along; ++j) {
-        for (int k = 0; k < around; ++k) {
-            const unsigned a = j * (around + 1) + k, b = a + 1, c = a + around + 1;
-            mesh.triangles.push_back({a, c, b});
-            mesh.triangles.push_back({b, c, c + 1});
-        }
-    }
-    return mesh;
-}
-
 // A bumpy grid whose normals lean at random by up to `lean`: with a thick shell the prisms
 // twist and fold over their neighbours.
 TriangleMesh bumpyGrid(int n, double lean, std::mt19937& random) {
-    TriangleMesh mesh = flatGrid(n, 1.0f, 1.0f);
+    TriangleMesh mesh = planeGridMesh(n, 1.0f, 1.0f);
     for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
         mesh.positions[k].y = static_cast<float>(uniform(random, -0.05, 0.05));
         const glm::dvec3 normal{uniform(random, -lean, lean), 1.0, uniform(random, -lean, lean)};
@@ -283,7 +235,7 @@ TEST(MeshTracer, FootprintBoundsHoldTheRepeatedSurface) {
     std::mt19937 random(13);
     for (const Interpolation interpolation :
          {Interpolation::Bilinear, Interpolation::Biquadratic}) {
-        const MeshTracer tracer(flatGrid(1, 1.0f, 1.0f), map, 1.0, interpolation);
+        const MeshTracer tracer(planeGridMesh(1, 1.0f, 1.0f), map, 1.0, interpolation);
         int nearEdges = 0;
         for (int k = 0; k < 4000; ++k) {
             // Rectangles up to 3 texels (a few up to 40), anywhere in [-40, 40]^2, half of them
@@ -407,7 +359,7 @@ TEST(MeshTracer, AFlatGridAgreesWithTheReference) {
     const HeightMap noise = seamless(synth::valueNoise(32, 16, 5.0, 3, 7));
     HeightMap plateaus = noise;
     for (float& h : plateaus.samples) h = std::max(0.0f, 2.0f * h - 1.0f);
-    const TriangleMesh mesh = flatGrid(8, 1.0f, 0.5f);
+    const TriangleMesh mesh = planeGridMesh(8, 1.0f, 0.5f);
     for (const HeightMap* map : {&noise, static_cast<const HeightMap*>(&plateaus)}) {
         for (const Interpolation interpolation :
              {Interpolation::Bilinear, Interpolation::Biquadratic}) {
@@ -430,7 +382,8 @@ TEST(MeshTracer, TheMapRepeatsInUAndV) {
     HeightMap map = synth::valueNoise(16, 8, 4.0, 2, 9);
     map.at(0, 0) = 1.5f;
     map.at(15, 7) = 1.2f;
-    const TriangleMesh mesh = flatGrid(4, 1.0f, 1.0f, {-0.7f, -1.3f}, {1.6f, 0.9f});
+    const TriangleMesh mesh = planeGridMesh(4, 1.0f, 1.0f, {-0.7f, -1.3f},
+                                                  glm::vec2{1.6f, 0.9f} - glm::vec2{-0.7f, -1.3f});
     for (const Interpolation interpolation :
          {Interpolation::Bilinear, Interpolation::Biquadratic}) {
         std::mt19937 random(21);
@@ -464,7 +417,7 @@ TEST(MeshTracer, CurvedFoldedAndSeamedMeshesAgreeWithTheReference) {
                 else
                     rays.push_back({aim + 1.0 * away, -away});
             }
-            const Agreement a = compare(tube(24, 4, 0.3f, 1.0f, false), noise, s, interpolation,
+            const Agreement a = compare(cylinderTubeMesh(24, 4, 0.3f, 1.0f, false), noise, s, interpolation,
                                         rays, kTexels, "tube");
             EXPECT_EQ(a.hitMiss, 0);
             EXPECT_EQ(a.farOff, 0);
@@ -480,7 +433,7 @@ TEST(MeshTracer, CurvedFoldedAndSeamedMeshesAgreeWithTheReference) {
                 const glm::dvec3 d{uniform(random, -1, 1), uniform(random, -0.3, 0.3), uniform(random, -1, 1)};
                 rays.push_back({eye, d});
             }
-            const Agreement a = compare(tube(12, 3, 0.3f, 1.0f, true), noise, s, interpolation,
+            const Agreement a = compare(cylinderTubeMesh(12, 3, 0.3f, 1.0f, true), noise, s, interpolation,
                                         rays, kTexels, "inward tube, folded");
             EXPECT_EQ(a.hitMiss, 0);
             EXPECT_EQ(a.farOff, 0);
@@ -522,7 +475,7 @@ TEST(MeshTracer, FetchesOnAFlatGridAgainstThePlane) {
     const MultilevelTracer plane(map, s);
     for (const double elevation : {60.0, 20.0}) {
     for (const int n : {1, 4, 16}) {
-        const TriangleMesh mesh = flatGrid(n, 1.0f, 1.0f);
+        const TriangleMesh mesh = planeGridMesh(n, 1.0f, 1.0f);
         const MeshTracer tracer(mesh, map, s);
         // A 32 x 32 picture of the footprint, seen from `elevation` degrees up.
         double planeFetches = 0, meshFetches = 0, prismFetches = 0, prisms = 0;

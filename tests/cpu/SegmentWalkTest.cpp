@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "microrelief/core/base/BaseMeshes.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/MeshTracer.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
@@ -136,31 +137,6 @@ std::vector<Row> analyticRows(const AnalyticCase& c, int seed) {
         rows.push_back({hit ? hit->t : -1.0, stats.fetches, stats.iterations, stats.stopLevel});
     }
     return rows;
-}
-
-// A tube about the y axis, normals outward, u around and v along (as MeshTracerTest's).
-TriangleMesh tube(int around, int along, float radius, float length) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= along; ++j) {
-        for (int k = 0; k <= around; ++k) {
-            const double u = static_cast<double>(k) / around, v = static_cast<double>(j) / along;
-            const double phi = 2.0 * kPi * (u - 0.5);
-            const glm::vec3 outward(static_cast<float>(std::sin(phi)), 0.0f,
-                                    static_cast<float>(std::cos(phi)));
-            const float y = static_cast<float>((1.0 - 2.0 * v) * 0.5 * length);
-            mesh.positions.push_back({radius * outward.x, y, radius * outward.z});
-            mesh.normals.push_back(outward);
-            mesh.texCoords.push_back({static_cast<float>(u), static_cast<float>(v)});
-        }
-    }
-    for (int j = 0; j < along; ++j) {
-        for (int k = 0; k < around; ++k) {
-            const unsigned a = j * (around + 1) + k, b = a + 1, c = a + around + 1;
-            mesh.triangles.push_back({a, c, b});
-            mesh.triangles.push_back({b, c, c + 1});
-        }
-    }
-    return mesh;
 }
 
 // A wavy n x n grid over [-0.5, 0.5]^2 whose normals lean by up to 0.4 and whose uv runs over
@@ -421,7 +397,7 @@ TEST(SegmentWalk, TheAnalyticBasesWalkAsBeforeTheSharing) {
 TEST(SegmentWalk, TheMeshWalksAsBeforeTheSharing) {
     const std::size_t first = analyticCases().size() * kRaysPerCase;
     expectRows("mesh tube cobbles 128 bilinear",
-               meshRows(tube(12, 4, 0.3f, 1.0f), synth::cobbles(128, 128, 4), 0.1,
+               meshRows(cylinderTubeMesh(12, 4, 0.3f, 1.0f), synth::cobbles(128, 128, 4), 0.1,
                         Interpolation::Bilinear, {-0.4, -0.5, -0.4}, {0.4, 0.5, 0.4}, 401),
                kRecorded + first);
     expectRows("mesh wavy grid cobbles 96 biquadratic (folds)",

@@ -16,10 +16,11 @@ import * as THREE from 'three';
 import {glue, library} from '../generated/glsl.js';
 import * as core from '../generated/relief_core.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, reliefDefines} from './materials.js';
-import {baseShape, boxFaces, cameraRays, checkBaseForMap, checkHeightScale, checkInterpolation, reliefBox, reliefExtent, reliefFrame, reliefMapUniforms, reliefUniforms} from './relief_host.js';
+import {baseShape, boxFaces, cameraRays, checkBaseForMap, checkHeightScale, checkInterpolation, checkRays, raycastRelief, reliefExtent, reliefFrame, reliefMapUniforms,
+        reliefUniforms, traceOne, traceRaysOnTwin, updateReliefBox} from './relief_host.js';
 import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
 import {kWebGPURendererUnsupported, requireSupportedThree} from './three_version.js';
-import {traceOnTwin, twinLoaded, twinUnavailable} from './twin.js';
+import {twinLoaded} from './twin.js';
 
 let pickResources = null;
 
@@ -176,13 +177,9 @@ export class Relief extends THREE.Mesh {
     }
 
     // The box (ReliefRenderer::uploadBox): the bounds from the pyramid's top, grown; a new
-    // geometry (a clone's box is its own).
+    // geometry (a clone's box is its own). relief_host.js: updateReliefBox, both entries'.
     updateBox() {
-        const {box, geometry} = reliefBox(this._reliefMap, this.heightScale, this._base);
-        this.box = box;
-        const previous = this.geometry;
-        this.geometry = geometry;
-        previous.dispose();
+        updateReliefBox(this);
     }
 
     shadowMaterialsNeedUpdate() {
@@ -284,26 +281,14 @@ export class Relief extends THREE.Mesh {
     // point, uv (three's convention), normal (object space, as three's Mesh gives it),
     // worldNormal, object}.
     raycast(raycaster, intersects) {
-        if (this.material === undefined || this.reliefMap.renderer === undefined) return;
-        _inverse.copy(this.matrixWorld).invert();
-        _ray.copy(raycaster.ray).applyMatrix4(_inverse);
-        if (!_ray.intersectsBox(this.box)) return;
-        const hit = this.trace(raycaster.ray.origin, raycaster.ray.direction, raycaster.near, raycaster.far);
-        if (!hit) return;
-        intersects.push({...hit, object: this, face: null, faceIndex: -1});
+        raycastRelief(this, raycaster, intersects);
     }
 
     // The first hit of the world ray origin + t direction (direction unit), t in [near, far]:
     // {distance, point, uv, normal, worldNormal, kind, iterations}, or null for a miss.
     // options.on: what traces it (pickWith's values; this.pickWith by default).
     trace(origin, direction, near = 0, far = Infinity, options = {}) {
-        const rays = this.traceRays([origin.x, origin.y, origin.z], [direction.x, direction.y, direction.z], [near, far], options);
-        if (rays.kind[0] === 0 || rays.exhausted[0]) return null;
-        const worldNormal = new THREE.Vector3().fromArray(rays.normal, 0);
-        // three's Mesh gives the object-space normal: the world one through the model's transpose.
-        const normal = worldNormal.clone().transformDirection(_m.copy(this.matrixWorld).transpose());
-        return {distance: rays.t[0], point: new THREE.Vector3().fromArray(rays.point, 0), uv: new THREE.Vector2().fromArray(rays.uv, 0),
-                normal, worldNormal, kind: rays.kind[0], iterations: rays.iterations[0]};
+        return traceOne(this, origin, direction, near, far, options);
     }
 
     // Many world rays at once: `origins` and `directions` are 3 n numbers, `ranges` 2 n (tMin,
@@ -314,13 +299,8 @@ export class Relief extends THREE.Mesh {
     // ('cpu' or 'gpu': what traced them). The twin's values are its doubles; the GPU's
     // floats (its points about the first ray's origin, in double).
     traceRays(origins, directions, ranges = [0, Infinity], {on = this.pickWith} = {}) {
-        const n = origins.length / 3;
-        if (!Number.isInteger(n) || directions.length !== origins.length || (ranges.length !== 2 && ranges.length !== 2 * n))
-            throw new TypeError('Relief.traceRays: 3 n origins, 3 n directions and 2 or 2 n range values');
-        if (!['auto', 'cpu', 'gpu'].includes(on)) throw new TypeError(`Relief.traceRays: on '${on}' (expected auto, cpu or gpu)`);
-        if (on === 'cpu' && !twinLoaded()) throw new Error(twinUnavailable());
-        this.updateWorldMatrix(true, false);
-        if (on !== 'gpu' && twinLoaded()) return traceOnTwin(this, origins, directions, ranges);
+        checkRays(origins, directions, ranges, on, ['auto', 'cpu', 'gpu']);
+        if (on === 'cpu' || (on === 'auto' && twinLoaded())) return traceRaysOnTwin(this, origins, directions, ranges);
         return this.traceRaysOnGpu(origins, directions, ranges);
     }
 
@@ -392,8 +372,6 @@ export class Relief extends THREE.Mesh {
         disposeOverrides(this);
     }
 }
-
-const _m = new THREE.Matrix4(), _inverse = new THREE.Matrix4(), _ray = new THREE.Ray();
 
 // A full-viewport triangle tracing a batch of rays (glsl/pick.frag), shared by all reliefs.
 function makePickResources() {

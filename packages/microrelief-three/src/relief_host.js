@@ -2,10 +2,12 @@
 // one, webgpu.js): the base's shape and the relief's bounds (the table of bases' rows in
 // generated/relief_core.js), the proxy box, the option checks, and each draw's camera rays
 // and matrices (the uniforms of glsl/relief_three.glsl, which the WebGPU entry's WGSL glue
-// takes too). Math only: no renderer.
+// takes too), and the picks (three's Raycaster and the relief's own rays, traced by the CPU
+// twin: twin.js). No renderer: each entry's Relief calls these from its own methods.
 import * as THREE from 'three';
 
 import * as core from '../generated/relief_core.js';
+import {traceOnTwin, twinLoaded, twinUnavailable} from './twin.js';
 
 const kBoxMargin = Math.fround(1e-3);  // ReliefRenderer's: the box grown by this, object units
 
@@ -90,6 +92,17 @@ export function reliefBox(reliefMap, heightScale, base) {
     return {box, geometry};
 }
 
+// `relief`'s box for its map, height scale and base (reliefBox): relief.box and a new
+// geometry, the previous one disposed. Each entry's Relief.updateBox, wherever one of the
+// three changes.
+export function updateReliefBox(relief) {
+    const {box, geometry} = reliefBox(relief.reliefMap, relief.heightScale, relief.base);
+    relief.box = box;
+    const previous = relief.geometry;
+    relief.geometry = geometry;
+    previous.dispose();
+}
+
 // This draw's model and camera in `u` (uniform records {value} named as relief_three.glsl
 // names them), and the camera's rays (returned). Traced relative to the camera, as the
 // library's renderer traces relative to the eye (ReliefRenderer::parameters): the shader's
@@ -165,5 +178,52 @@ export function boxFaces(box, matrixWorld, camera, [near, far]) {
     return nearest < near ? 3 : 1;
 }
 
-const _m = new THREE.Matrix4();
+// ---- the picks, both entries' ----
+
+// three's Raycaster on `relief` (each entry's Relief.raycast): the relief's own hit
+// (relief.trace) where the ray meets its box, pushed as three's Mesh pushes one, with the
+// fields of ReliefHit.
+export function raycastRelief(relief, raycaster, intersects) {
+    if (relief.material === undefined || relief.reliefMap.renderer === undefined) return;
+    _inverse.copy(relief.matrixWorld).invert();
+    _ray.copy(raycaster.ray).applyMatrix4(_inverse);
+    if (!_ray.intersectsBox(relief.box)) return;
+    const hit = relief.trace(raycaster.ray.origin, raycaster.ray.direction, raycaster.near, raycaster.far);
+    if (!hit) return;
+    intersects.push({...hit, object: relief, face: null, faceIndex: -1});
+}
+
+// The first hit of the world ray origin + t direction, t in [near, far], by
+// relief.traceRays (each entry's Relief.trace): {distance, point, uv, normal (object space,
+// as three's Mesh gives it), worldNormal, kind, iterations}, or null for a miss or an
+// exhausted traversal.
+export function traceOne(relief, origin, direction, near, far, options) {
+    const rays = relief.traceRays([origin.x, origin.y, origin.z], [direction.x, direction.y, direction.z], [near, far], options);
+    if (rays.kind[0] === 0 || rays.exhausted[0]) return null;
+    const worldNormal = new THREE.Vector3().fromArray(rays.normal, 0);
+    // three's Mesh gives the object-space normal: the world one through the model's transpose.
+    const normal = worldNormal.clone().transformDirection(_m.copy(relief.matrixWorld).transpose());
+    return {distance: rays.t[0], point: new THREE.Vector3().fromArray(rays.point, 0), uv: new THREE.Vector2().fromArray(rays.uv, 0),
+            normal, worldNormal, kind: rays.kind[0], iterations: rays.iterations[0]};
+}
+
+// traceRays's arguments checked (3 n origins, 3 n directions, 2 or 2 n range values) and
+// what traces them (`on`, one of `allowed`): a TypeError naming the wrong one.
+export function checkRays(origins, directions, ranges, on, allowed) {
+    const n = origins.length / 3;
+    if (!Number.isInteger(n) || directions.length !== origins.length || (ranges.length !== 2 && ranges.length !== 2 * n))
+        throw new TypeError('Relief.traceRays: 3 n origins, 3 n directions and 2 or 2 n range values');
+    if (!allowed.includes(on)) throw new TypeError(`Relief.traceRays: on '${on}' (expected ${allowed.slice(0, -1).join(', ')} or ${allowed.at(-1)})`);
+}
+
+// World rays traced by the CPU twin (twin.js) through `relief`'s matrixWorld as it is now:
+// traceRays's result, every value a double. Where the package has no twin (packed without
+// emscripten) or it is not loaded yet, its one line (an Error).
+export function traceRaysOnTwin(relief, origins, directions, ranges) {
+    if (!twinLoaded()) throw new Error(twinUnavailable());
+    relief.updateWorldMatrix(true, false);
+    return traceOnTwin(relief, origins, directions, ranges);
+}
+
+const _m = new THREE.Matrix4(), _inverse = new THREE.Matrix4(), _ray = new THREE.Ray();
 const _origin = new THREE.Vector3(), _fromOrigin = new THREE.Matrix4(), _toOrigin = new THREE.Matrix4();

@@ -1,14 +1,14 @@
 // Declarations of webgpu.js, the entry 'microrelief-three/webgpu' (hand-written; tests/three's
 // typecheck uses them under tsc --strict). docs/three.md: the API.
-import type {BufferGeometry, Box3, Color, DataTexture, Mesh, MeshBasicNodeMaterial, UniformNode, Vector3, WebGPURenderer} from 'three/webgpu';
+import type {BufferGeometry, Box3, Color, DataTexture, Intersection, Mesh, MeshBasicNodeMaterial, Raycaster, UniformNode, Vector3, WebGPURenderer} from 'three/webgpu';
 
 import type {HeightMap} from './heights.js';
-import type {BaseShape, BaseSpec, ReliefInterpolation} from './relief.js';
+import type {BaseShape, BaseSpec, ReliefHit, ReliefInterpolation, TracedRays} from './relief.js';
 
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
 export type {HeightMap, HeightsOptions, PngHeightsOptions} from './heights.js';
 export {baseShape, cameraRays, reliefExtent} from './relief.js';
-export type {BaseShape, BaseSpec, CameraRays, ReliefInterpolation} from './relief.js';
+export type {BaseShape, BaseSpec, CameraRays, ReliefHit, ReliefInterpolation, TracedRays} from './relief.js';
 
 /** The bases this entry draws: plane, cylinder, ellipsoid. */
 export const kWebGPUBases: readonly string[];
@@ -48,6 +48,8 @@ export class ReliefMap {
     builtOn: 'cpu';
     name: string;
     readonly gpuBytes: number;
+    /** WebAssembly memory of the picks' CPU twins, bytes (0 before the first pick; freed by dispose). */
+    readonly twinBytes: number;
     dispose(): void;
 }
 
@@ -97,5 +99,16 @@ export class Relief extends Mesh<BufferGeometry, ReliefShadingNodeMaterial> {
     heightScale: number;
     pixelError: number;
     box: Box3;
+    /** three's Raycaster calls it: the relief's own hit (ReliefHit's fields and `object`), traced by the CPU twin as in the WebGL entry. */
+    raycast(raycaster: Raycaster, intersects: Intersection[]): void;
+    /** The first hit of the world ray origin + t direction, t in [near, far]; null for a miss. */
+    trace(origin: Vector3, direction: Vector3, near?: number, far?: number, options?: WebGPUTraceOptions): ReliefHit | null;
+    /** Many world rays at once (3 n origins and directions, 2 or 2 n range values), traced by the CPU twin. */
+    traceRays(origins: ArrayLike<number>, directions: ArrayLike<number>, ranges?: ArrayLike<number>, options?: WebGPUTraceOptions): TracedRays;
     dispose(): void;
+}
+
+export interface WebGPUTraceOptions {
+    /** The CPU twin traces this entry's picks (no GPU picks here). Default 'auto'. */
+    on?: 'auto' | 'cpu';
 }

@@ -9,13 +9,13 @@
 //   scene.add(new Relief(map, {material: new ReliefShadingNodeMaterial()}));
 //
 // The relief is the WebGL entry's: the same host code (relief_host.js: the base, the box,
-// the option checks, each draw's rays and matrices; map_host.js: the map's checks and its
-// pyramid), the same library (naga's WGSL of shaders/microrelief/, generated/wgsl.js, the
-// functions the WebGL entry calls in GLSL) and the same glue (naga's WGSL of the package's
-// glsl/relief_three.glsl, the pixel's ray, trace and shading the WebGL entry runs, and of
-// glsl/webgpu_shading.glsl's mrShadePixel, which calls them), called from a node material by
-// wgslFn. What is WebGPU's own is here: the textures (read by textureLoad, no sampler) and
-// three's nodes passed to mrShadePixel.
+// the option checks, each draw's rays and matrices, the picks by the CPU twin of twin.js;
+// map_host.js: the map's checks and its pyramid), the same library (naga's WGSL of
+// shaders/microrelief/, generated/wgsl.js, the functions the WebGL entry calls in GLSL) and
+// the same glue (naga's WGSL of the package's glsl/relief_three.glsl, the pixel's ray, trace
+// and shading the WebGL entry runs, and of glsl/webgpu_shading.glsl's mrShadePixel, which
+// calls them), called from a node material by wgslFn. What is WebGPU's own is here: the
+// textures (read by textureLoad, no sampler) and three's nodes passed to mrShadePixel.
 import * as THREE from 'three/webgpu';
 import {code, Discard, Fn, frontFacing, If, screenCoordinate, texture, uniform, vec4, viewport, wgslFn} from 'three/tsl';
 
@@ -23,8 +23,10 @@ import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/
 import * as core from '../generated/relief_core.js';
 import {kBaseKindValues} from '../generated/relief_layout.js';
 import {checkHeightMap, largestSample, windowLevelsOnCpu} from './map_host.js';
-import {baseShape, boxFaces, checkBaseForMap, checkHeightScale, checkInterpolation, reliefBox, reliefFrame, reliefMapUniforms, reliefUniforms} from './relief_host.js';
+import {baseShape, boxFaces, checkBaseForMap, checkHeightScale, checkInterpolation, checkRays, raycastRelief, reliefFrame, reliefMapUniforms, reliefUniforms,
+        traceOne, traceRaysOnTwin, updateReliefBox} from './relief_host.js';
 import {requireSupportedThree} from './three_version.js';
+import {loadTwin, releaseTwins, twinBytes} from './twin.js';
 
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
 export {baseShape, cameraRays, reliefExtent} from './relief_host.js';
@@ -156,9 +158,15 @@ export class ReliefMap {
         return 4 * this.width * this.height + 2 * this.levelSizes.reduce((sum, [w, h]) => sum + w * h, 0);
     }
 
+    // WebAssembly memory of the CPU twins the picks built (twin.js), bytes: 0 before the first.
+    get twinBytes() {
+        return twinBytes(this);
+    }
+
     dispose() {
         this.heights.dispose();
         this.windows.dispose();
+        releaseTwins(this);
     }
 }
 
@@ -192,7 +200,14 @@ export async function createReliefMap(renderer, map, {wrapU = false} = {}) {
     if (map.width > maxSize || map.height > maxSize)
         throw new ReliefGpuError(`${name}: ${map.width} x ${map.height} is larger than this WebGPU device's maxTextureDimension2D (${maxSize})`);
     const maxSample = largestSample(map);
-    const {levels, levelSizes, maxHeight, scaleExponent} = await windowLevelsOnCpu({...map, name}, wrapU);
+    const twin = loadTwin();  // the picks' CPU twin (twin.js), as the WebGL entry's createReliefMap; never rejects
+    let built;
+    try {
+        built = await windowLevelsOnCpu({...map, name}, wrapU);
+    } finally {
+        await twin;  // settled either way: a pick knows whether the package has a twin
+    }
+    const {levels, levelSizes, maxHeight, scaleExponent} = built;
     const heights = readTexture(new THREE.DataTexture(map.samples, map.width, map.height, THREE.RedFormat, THREE.FloatType));
     const windows = readTexture(new THREE.DataTexture(null, levelSizes[0][0], levelSizes[0][1], THREE.RedFormat, THREE.HalfFloatType));
     windows.mipmaps = levelSizes.map(([w, h], k) => ({data: levels[k], width: w, height: h}));
@@ -286,7 +301,8 @@ function drawnBase(base) {
 // material traces it in every pixel the box covers (relief.js's Relief, for a
 // WebGPURenderer). Options as there: material (a ReliefShadingNodeMaterial), heightScale,
 // base (a row's name, core.kBaseNames: 'plane', 'sphere', ...; or a shape), interpolation ('bilinear'
-// or 'biquadratic'), pixelError; each a property too, settable at any time.
+// or 'biquadratic'), pixelError; each a property too, settable at any time. Its picks
+// (raycast, trace, traceRays) are the WebGL entry's: the CPU twin's, by the same host code.
 export class Relief extends THREE.Mesh {
     constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
         requireSupportedThree();
@@ -329,12 +345,9 @@ export class Relief extends THREE.Mesh {
         if (rebuild) this.material.needsUpdate = true;
     }
 
+    // The box: relief_host.js's updateReliefBox, as the WebGL entry's.
     updateBox() {
-        const {box, geometry} = reliefBox(this._reliefMap, this.heightScale, this._base);
-        this.box = box;
-        const previous = this.geometry;
-        this.geometry = geometry;
-        previous.dispose();
+        updateReliefBox(this);
     }
 
     // Each option is a property too, settable at any time, as in the WebGL entry.
@@ -385,6 +398,27 @@ export class Relief extends THREE.Mesh {
     set pixelError(value) {
         if (!(value >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
         this.uniforms.mrPixelError.value = value;
+    }
+
+    // three's Raycaster: the relief's own hit, {distance, point, uv (three's convention),
+    // normal (object space, as three's Mesh gives it), worldNormal, kind, iterations,
+    // object}, traced by the CPU twin in double (twin.js), as the WebGL entry's picks are
+    // (relief_host.js: raycastRelief, traceOne, traceRaysOnTwin, both entries' code).
+    raycast(raycaster, intersects) {
+        raycastRelief(this, raycaster, intersects);
+    }
+
+    // The first hit of the world ray origin + t direction (direction unit), t in [near, far],
+    // or null for a miss: the WebGL entry's Relief.trace.
+    trace(origin, direction, near = 0, far = Infinity, options = {}) {
+        return traceOne(this, origin, direction, near, far, options);
+    }
+
+    // Many world rays at once, as the WebGL entry's Relief.traceRays takes and returns them;
+    // options.on 'auto' or 'cpu' (the CPU twin: this entry has no GPU picks).
+    traceRays(origins, directions, ranges = [0, Infinity], {on = 'auto'} = {}) {
+        checkRays(origins, directions, ranges, on, ['auto', 'cpu']);
+        return traceRaysOnTwin(this, origins, directions, ranges);
     }
 
     dispose() {

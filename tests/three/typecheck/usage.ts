@@ -99,5 +99,15 @@ export async function craterOnWebGPU(canvas: HTMLCanvasElement): Promise<number>
     new onWebGPU.Relief(map, {material: new ReliefStandardMaterial()});
     // @ts-expect-error: createReliefMap takes a WebGPURenderer
     await onWebGPU.createReliefMap(new THREE.WebGLRenderer(), onWebGPU.heightsFromArray(samples, size, size));
-    return relief.heightScale;
+    // Picks as in the WebGL entry, by the CPU twin.
+    const camera = new WebGPU.PerspectiveCamera(45, canvas.width / canvas.height, 0.01, 20);
+    const raycaster = new WebGPU.Raycaster();
+    raycaster.setFromCamera(new WebGPU.Vector2(0.1, -0.2), camera);
+    const hits: WebGPU.Intersection[] = raycaster.intersectObject(relief);
+    const hit: onWebGPU.ReliefHit | null = relief.trace(new WebGPU.Vector3(0, 1, 0), new WebGPU.Vector3(0, -1, 0), 0, 2, {on: 'cpu'});
+    const rays: onWebGPU.TracedRays = relief.traceRays([0, 1, 0], [0, -1, 0], [0, 2]);
+    // @ts-expect-error: this entry's picks are the CPU twin's, not the GPU's
+    relief.traceRays([0, 1, 0], [0, -1, 0], [0, 2], {on: 'gpu'});
+    const twinBytes: number = map.twinBytes;
+    return relief.heightScale + hits.length + (hit ? hit.distance : 0) + rays.t[0] + twinBytes;
 }

@@ -6,7 +6,8 @@
 // the relief's depth decides which shows where (the picture composes with other meshes only if
 // it is right). Writes document.documentElement.dataset.api = 'webgpu' once the WebGPU entry's
 // first frame is drawn. compareEntries(view, interpolation, base) -> JSON {stats, png}; png:
-// WebGL | WebGPU | differing pixels.
+// WebGL | WebGPU | differing pixels. comparePicks: the two entries' Raycaster hits through
+// every pixel, against each other and against the WebGPU picture.
 import * as THREE from 'three';
 import * as GPU from 'three/webgpu';
 import * as gl from 'microrelief-three';
@@ -36,12 +37,14 @@ const kViews = {
     corner: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0], viewport: [16, 8, 96, 64]},
 };
 
-function setUp(T, view, relief) {
+function setUp(T, view, relief, {withBox = true} = {}) {
     const scene = new T.Scene();
     scene.add(relief);
-    const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
-    box.position.set(0.0, 0.02, 0.05);  // half buried: the relief's depth draws the line between them
-    scene.add(box);
+    if (withBox) {
+        const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
+        box.position.set(0.0, 0.02, 0.05);  // half buried: the relief's depth draws the line between them
+        scene.add(box);
+    }
     const [, , vw, vh] = kViews[view].viewport ?? [0, 0, W, H];
     const camera = kViews[view].orthographic ? new T.OrthographicCamera(-0.6, 0.6, 0.45, -0.45, 0.05, 10)
                                              : new T.PerspectiveCamera(45, vw / vh, 0.05, 10);
@@ -153,6 +156,103 @@ async function compareEntries(view, interpolation, base) {
                                    hitsGl, hitsGpu, hitDisagree, reliefGl}, png});
 }
 
+// The picks (three's Raycaster) of `view`'s scene, the relief alone, through every pixel's
+// centre: on the WebGPU entry's Relief against the WebGL entry's Relief of the same map and
+// options (both the CPU twin's, through relief_host.js), and against the WebGPU picture's
+// hit/miss (its alpha). `model`: the relief turned, scaled and moved (its matrixWorld).
+// -> JSON {pixels, picksGpu, picksGl, hitsPicture, pickDisagree (WebGPU's picks against the
+// WebGL's: hit/miss), maxDistance, maxPoint, maxNormal, maxUv (largest differences where both
+// hit), pictureDisagree (picks against the picture: hit/miss), maxPictureApart and
+// meanPictureApart (the pick's point against the picture's, the pixel centre unprojected at
+// its depth, where both hit: bothHit pixels), pictureApart (pixels where those are more than
+// kPictureApart apart), twinBytes (the WebGPU map's,
+// after the picks), twinBytesDisposed (after its dispose), exactDiffer (values of traceRays
+// of the same rays that differ between the entries)}.
+const kPictureApart = 1e-4;  // world units: a pick this far from the picture's point counts (pictureApart)
+async function comparePicks(view, interpolation, base, model) {
+    const {webgl: glRenderer, webgpu: renderer} = await renderers();
+    const {w, h, samples} = heights();
+    const options = {heightScale: 0.08, interpolation, base};
+    const glMap = await gl.createReliefMap(glRenderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
+    const glRelief = new gl.Relief(glMap, {...options, material: new gl.ReliefShadingMaterial({lightDirection: light, shadows: 'hard'})});
+    const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
+    const relief = new wg.Relief(map, {...options, material: new wg.ReliefShadingNodeMaterial({lightDirection: light, shadows: 'hard'})});
+    for (const r of [glRelief, relief])
+        if (model) {
+            r.rotation.set(0.3, -0.5, 0.2);
+            r.scale.set(1.2, 0.9, 1.1);
+            r.position.set(0.05, -0.03, 0.02);
+        }
+    const glScene = setUp(THREE, view, glRelief, {withBox: false});
+    const {scene, camera} = setUp(GPU, view, relief, {withBox: false});
+    // The picture and its depth (depth32float, which WebGPU copies to a buffer: three's
+    // backend's copyTextureToBuffer, as readRenderTargetPixelsAsync reads a colour texture).
+    const depthTexture = new GPU.DepthTexture(W, H);
+    depthTexture.type = GPU.FloatType;
+    const target = new GPU.RenderTarget(W, H, {depthTexture});
+    renderer.setRenderTarget(target);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear();
+    renderer.render(scene, camera);
+    const read = await renderer.readRenderTargetPixelsAsync(target, 0, 0, W, H);  // rows from the top
+    const depth = new Float32Array((await renderer.backend.copyTextureToBuffer(depthTexture, 0, 0, W, H, 0)).buffer);
+    renderer.setRenderTarget(null);
+    target.dispose();
+    glScene.scene.updateMatrixWorld();
+    const raycaster = new THREE.Raycaster(), ndc = new THREE.Vector2(), _p = new THREE.Vector3();
+    const s = {pixels: W * H, picksGpu: 0, picksGl: 0, hitsPicture: 0, pickDisagree: 0, pictureDisagree: 0,
+               maxDistance: 0, maxPoint: 0, maxNormal: 0, maxUv: 0, maxPictureApart: 0, meanPictureApart: 0, bothHit: 0, pictureApart: 0};
+    for (let row = 0; row < H; ++row)
+        for (let x = 0; x < W; ++x) {
+            ndc.set(((x + 0.5) / W) * 2 - 1, 1 - ((row + 0.5) / H) * 2);  // row 0 at the top, as read
+            raycaster.setFromCamera(ndc, camera);
+            const [a] = raycaster.intersectObject(relief, false);
+            raycaster.setFromCamera(ndc, glScene.camera);
+            const [b] = raycaster.intersectObject(glRelief, false);
+            const shown = read[4 * (row * W + x) + 3] > 0;
+            s.picksGpu += !!a;
+            s.picksGl += !!b;
+            s.hitsPicture += shown;
+            if (!!a !== !!b) ++s.pickDisagree;
+            if (!!a !== shown) ++s.pictureDisagree;
+            if (a && b) {  // a field missing (not the relief's own hit) counts as far apart
+                const apart = (p, q) => (p && q ? p.distanceTo(q) : Number.MAX_VALUE);
+                s.maxDistance = Math.max(s.maxDistance, Math.abs(a.distance - b.distance));
+                s.maxPoint = Math.max(s.maxPoint, apart(a.point, b.point));
+                s.maxNormal = Math.max(s.maxNormal, apart(a.normal, b.normal), apart(a.worldNormal, b.worldNormal));
+                s.maxUv = Math.max(s.maxUv, apart(a.uv, b.uv));
+            }
+            if (a && shown) {  // the picture's point: the pixel centre at its depth, unprojected
+                const seen = _p.set(ndc.x, ndc.y, depth[row * W + x]).unproject(camera);
+                const d = seen.distanceTo(a.point);
+                s.maxPictureApart = Math.max(s.maxPictureApart, d);
+                s.meanPictureApart += d;
+                s.bothHit += 1;
+                s.pictureApart += d > kPictureApart;
+            }
+        }
+    // The same rays (the WebGL camera's, every pixel's) through both entries' traceRays: the
+    // same twin on the same doubles, so every value the same to the bit (exactDiffer counts
+    // those that are not).
+    const origins = [], directions = [];
+    for (let row = 0; row < H; ++row)
+        for (let x = 0; x < W; ++x) {
+            raycaster.setFromCamera(ndc.set(((x + 0.5) / W) * 2 - 1, 1 - ((row + 0.5) / H) * 2), glScene.camera);
+            origins.push(...raycaster.ray.origin.toArray());
+            directions.push(...raycaster.ray.direction.toArray());
+        }
+    const [ta, tb] = [relief.traceRays(origins, directions), glRelief.traceRays(origins, directions, [0, Infinity], {on: 'cpu'})];
+    s.meanPictureApart /= Math.max(s.bothHit, 1);
+    s.exactDiffer = 0;
+    for (const field of ['t', 'kind', 'exhausted', 'point', 'normal', 'uv', 'iterations'])
+        ta[field].forEach((v, k) => (s.exactDiffer += !Object.is(v, tb[field][k])));
+    s.twinBytes = map.twinBytes;
+    map.dispose();
+    s.twinBytesDisposed = map.twinBytes;
+    glMap.dispose();
+    return JSON.stringify(s);
+}
+
 // What the WebGPU entry says where it cannot draw: given a WebGLRenderer, given a
 // WebGPURenderer without a WebGPU adapter (forceWebGL: three's fallback to WebGL 2, as where
 // the browser has no adapter), and its Relief drawn by a WebGLRenderer. -> JSON {[case]: {name, message}} (no name: nothing thrown).
@@ -178,10 +278,13 @@ async function refusals() {
     const scene = new THREE.Scene();
     scene.add(relief);
     await attempt('drawnByWebGL', () => glRenderer.render(scene, new THREE.PerspectiveCamera()));
+    // Its picks on the GPU: this entry has none (the CPU twin traces them).
+    await attempt('gpuPicks', () => relief.traceRays([0, 1, 0], [0, -1, 0], [0, 2], {on: 'gpu'}));
     relief.reliefMap.dispose();
     return JSON.stringify(said);
 }
 
 window.refusals = refusals;
+window.comparePicks = comparePicks;
 window.compareEntries = compareEntries;
 document.documentElement.dataset.state = 'ready';

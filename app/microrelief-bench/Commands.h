@@ -4,6 +4,7 @@
 //   materials  what shadows and tiling cost
 //   rebuild    what a changing map costs
 //   terrain    the multilevel method against map size to terrain scale
+//   mesh       the mesh base against the plane and cylinder it copies
 // Each has its options as the command line gives them (filled by CLI11: add*Options) and
 // a function that checks them, runs and writes its files (run*), throwing Error(BadInput)
 // for a bad value before any work. The old spelling, --materials, --rebuild and --terrain
@@ -76,6 +77,14 @@ struct TerrainFlags {
 };
 void addTerrainOptions(CLI::App& app, TerrainFlags& flags);
 int runTerrainCommand(const TerrainFlags& flags);
+
+struct MeshFlags {
+    RunFlags run;
+    int mapSize = 256;
+    std::string grids = "1,16,64", tubes = "32,128", views = "20,45,70";
+};
+void addMeshOptions(CLI::App& app, MeshFlags& flags);
+int runMeshCommand(const MeshFlags& flags);
 
 // The old spelling: on the default run's command line, --materials, --rebuild (with
 // --rebuild-sizes) and --terrain (with --memory) run those subcommands instead, after the

@@ -1,5 +1,5 @@
 // microrelief-bench: what the multilevel method costs, a run a subcommand (Commands.h):
-// methods (the default: against its peers), materials, rebuild and terrain. Each writes its
+// methods (the default: against its peers), materials, rebuild, terrain and mesh. Each writes its
 // reports into --out-dir and prints progress as it goes. main() parses and dispatches.
 #include <CLI/CLI.hpp>
 
@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
     MaterialsFlags materials;
     RebuildFlags rebuild;
     TerrainFlags terrain;
+    MeshFlags mesh;
     struct Subcommand {
         CLI::App* app;
         std::function<int()> run;
@@ -69,11 +70,17 @@ int main(int argc, char** argv) {
                             "texture limit and past memory too): preparation, first picture, "
                             "frame, fetches, memory, accuracy (terrain.csv, terrain.md, "
                             "terrain.png)"),
-         [&] { return runTerrainCommand(terrain); }}};
+         [&] { return runTerrainCommand(terrain); }},
+        {app.add_subcommand("mesh",
+                            "The mesh base against the analytic base it copies: flat grids "
+                            "against the plane, tubes against the cylinder, on the same map, "
+                            "pixels and camera: time, agreement, fetches (mesh.csv, mesh.md)"),
+         [&] { return runMeshCommand(mesh); }}};
     addMethodsOptions(*subcommands[0].app, methods);
     addMaterialsOptions(*subcommands[1].app, materials);
     addRebuildOptions(*subcommands[2].app, rebuild);
     addTerrainOptions(*subcommands[3].app, terrain);
+    addMeshOptions(*subcommands[4].app, mesh);
     app.require_subcommand(0, 1);
     // After the subcommands, which would take it as their own.
     app.footer("Without a subcommand: methods, with the options above.\n");

@@ -25,6 +25,20 @@ float mr_biquadraticSample(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 
     return MICRORELIEF_READ_SAMPLE(heights, mr_sampleTexel(relief, p));
 }
 
+// The Bezier net of the square whose 3 x 3 B-spline control points (samples) are c (c[a][b]:
+// column a, row b): per axis (c0 + c1) / 2, c1, (c1 + c2) / 2.
+mat3 mr_biquadraticNetOf(mat3 c) {
+    mat3 rows;
+    for (int b = 0; b < 3; ++b) {
+        rows[0][b] = 0.5 * (c[0][b] + c[1][b]);
+        rows[1][b] = c[1][b];
+        rows[2][b] = 0.5 * (c[1][b] + c[2][b]);
+    }
+    mat3 net;
+    for (int a = 0; a < 3; ++a) net[a] = vec3(0.5 * (rows[a][0] + rows[a][1]), rows[a][1], 0.5 * (rows[a][1] + rows[a][2]));
+    return net;
+}
+
 // The Bezier net of texel square `square` (net[a][b]: column a, row b, as a mat3 is
 // indexed). The 3 x 3 samples are four textureGathers of 2 x 2 samples each where the GL
 // has them (one fetch each), nine texelFetch otherwise.
@@ -77,16 +91,7 @@ mat3 mr_biquadraticNet(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 squa
     }
     MICRORELIEF_FETCHED(9);
 #endif
-    // B-spline control points to the Bezier net, along each axis.
-    mat3 rows;
-    for (int b = 0; b < 3; ++b) {
-        rows[0][b] = 0.5 * (c[0][b] + c[1][b]);
-        rows[1][b] = c[1][b];
-        rows[2][b] = 0.5 * (c[1][b] + c[2][b]);
-    }
-    mat3 net;
-    for (int a = 0; a < 3; ++a) net[a] = vec3(0.5 * (rows[a][0] + rows[a][1]), rows[a][1], 0.5 * (rows[a][1] + rows[a][2]));
-    return net;
+    return mr_biquadraticNetOf(c);
 }
 
 // The quadratic Bernstein polynomials at u.

@@ -3,7 +3,8 @@
 // function: mr_meshPath (MeshTracer::path), mr_meshPointOn (pointOn), the cuts and pieces
 // (pieces), mr_meshFootprintBound (footprintBound), mr_meshWalkPiece (walkSegments, in
 // core/trace/SegmentWalk.h, over MeshTracer::PiecePath), mr_meshLeaf (leaf),
-// mr_meshTraceTriangle (traceTriangle). One fragment of a prism's hull
+// mr_meshSolvePiece and mr_meshTraceTriangle (traceTriangle); and mr_meshNormal, the exact
+// surface's normal at the hit (MeshReference's MeshHit::normal). One fragment of a prism's hull
 // (shaders/mesh_relief.frag) traces its ray in that prism; the depth test keeps the least
 // over prisms, which is MeshTracer::trace's least.
 //
@@ -24,19 +25,23 @@
 //    curve in map space), and the piece's footprint must be read through the map repeated
 //    in u and v (both axes wrap; the library's MICRORELIEF_BASE_WRAPS_U wraps u alone). The
 //    few lines that place a segment are here, in the piece's terms.
-//  * bilinear_patch.glsl's mr_patchHeight and mr_patchMaxOver are used for the leaf; the
-//    cell's corners are read here with both indices wrapped (the library's reads clamp v).
+//  * the last level is relief_patch.glsl's, as the host chooses it (MICRORELIEF_INTERPOLATION):
+//    its patch type and mr_patchValue, mr_patchTop and mr_patchSlope (bilinear_patch.glsl's
+//    corners, biquadratic_patch.glsl's Bezier net, mr_biquadraticNetOf) in the leaf, as
+//    MeshTracer's leaf takes SurfacePatch; the patch's samples are read here with both
+//    indices wrapped (the library's reads clamp v): mr_meshPatch.
 //
 // Float: the parameter is t, so a ray at a grazing angle g to the mesh resolves a texel of
-// size e only while g e is well above H 2^-24 (docs/bases.md). Not in this slice: the
-// biquadratic last level (bilinear only).
+// size e only while g e is well above H 2^-24 (docs/bases.md).
 #ifndef MICRORELIEF_BASE_MESH_GLSL
 #define MICRORELIEF_BASE_MESH_GLSL
 
 #include "bilinear_patch.glsl"
+#include "biquadratic_patch.glsl"
 #include "final_piece.glsl"
 #include "max_pyramid.glsl"
 #include "relief_map.glsl"
+#include "relief_patch.glsl"
 #include "segment_walk.glsl"
 
 // The triangle table: per mesh triangle 8 RGBA32F texels, triangle k's at texel
@@ -175,6 +180,29 @@ mr_MeshPath mr_meshPath(mr_MeshTriangle tri, vec3 origin, vec3 v, float s, float
     return path;
 }
 
+// Which surface of the solid a hit is on (core/trace/MeshReference.h, MeshSurface): the top
+// t = h(uv), the mesh itself t = 0, the side wall b_i = 0 (i = kind - MR_MESH_WALL0), a fold
+// (where lambda(t) turns: the envelope of the offset triangles), or the eye inside the solid.
+// A piece's entry is the kind of its lower-lambda end: the cut it starts at (t = 0 the mesh,
+// t = H the top, a root of b_i's numerator that wall, of lambda's turning numerator or of c a
+// fold, a turn of b, u or v the top: the ray was inside before it only where the piece before
+// ends on the surface there) or the eye where lambda was clipped to 0.
+const int MR_MESH_NONE = 0;
+const int MR_MESH_TOP = 1;
+const int MR_MESH_BASE = 2;
+const int MR_MESH_WALL0 = 3;  // 3, 4, 5: b_0, b_1, b_2 = 0
+const int MR_MESH_FOLD = 6;
+const int MR_MESH_INSIDE = 7;
+
+// A prism's first hit: the ray parameter, the contract's height t, the barycentrics b and
+// texture coordinate uv (not wrapped) of its preimage, and the surface it is on.
+struct mr_MeshHit {
+    float lambda, t;
+    vec3 b;
+    vec2 uv;
+    int surface;
+};
+
 // A stretch of [0, H] on which lambda, t, b, u and v are monotone and b lies in the triangle;
 // p in [0, 1] runs from its lower-lambda end A to B, t linear in p; on a level piece t is
 // fixed at tA, lambda linear in p and b = b0 + lambda b1.
@@ -182,6 +210,7 @@ struct mr_MeshPiece {
     float tA, tB, lambdaA, lambdaB;
     bool level;
     vec3 b0, b1;
+    int entry;  // what the ray crosses into the prism through at A (MR_MESH_*)
 };
 
 struct mr_MeshPoint {
@@ -230,8 +259,8 @@ float mr_meshFootprintBound(mr_Relief relief, MICRORELIEF_SAMPLER windows, vec2 
             last[0][axis] = n - 1;
             continue;
         }
-        int f = int(a - float(n) * floor(a / float(n)));
-        f = clamp(f, 0, n - 1);  // a / n rounded up to the next integer in float: the edge
+        // In integers (mr_wrapIndex): a float quotient a / n may be 2.5 ulp off in GLSL.
+        int f = mr_wrapIndex(int(a), n);
         int l = f + int(b - a);
         if (l < n) {
             first[0][axis] = f;
@@ -260,24 +289,61 @@ float mr_meshFootprintBound(mr_Relief relief, MICRORELIEF_SAMPLER windows, vec2 
 // indices wrapped), in mr_patchHeight's order.
 vec4 mr_meshCellCorners(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
     ivec2 n = ivec2(relief.map.size);
-    ivec2 a = cell - n * ivec2(floor(vec2(cell) / vec2(n)));
-    a = clamp(a, ivec2(0), n - 1);
+    // In integers (map_addressing.glsl's mr_wrapIndex): GLSL's division may be 2.5 ulp off.
+    ivec2 a = ivec2(mr_wrapIndex(cell.x, n.x), mr_wrapIndex(cell.y, n.y));
     ivec2 b = ivec2(a.x + 1 == n.x ? 0 : a.x + 1, a.y + 1 == n.y ? 0 : a.y + 1);
     MICRORELIEF_FETCHED(1);
     return vec4(texelFetch(heights, a, 0).r, texelFetch(heights, ivec2(b.x, a.y), 0).r,
                 texelFetch(heights, ivec2(a.x, b.y), 0).r, texelFetch(heights, b, 0).r);
 }
 
-float mr_meshSurfaceAt(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 uv) {
-    vec2 x = uv * relief.map.size - 0.5;
-    vec2 cell = floor(x);
-    return mr_patchHeight(mr_meshCellCorners(relief, heights, ivec2(cell)), clamp(x - cell, 0.0, 1.0));
+// The patch of cell `cell` of the repeated map at the last level the host chose
+// (MICRORELIEF_INTERPOLATION, relief_patch.glsl): the bilinear cell's corners, or the
+// biquadratic texel square's Bezier net from its 3 x 3 samples, both indices wrapped
+// (biquadratic_patch.glsl's mr_biquadraticNetOf: the library's net; its own reads clamp v).
+mr_ReliefPatch mr_meshPatch(mr_Relief relief, MICRORELIEF_SAMPLER heights, ivec2 cell) {
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
+    ivec2 n = ivec2(relief.map.size);
+    mat3 c;
+    for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) {
+            ivec2 p = cell + ivec2(a - 1, b - 1);
+            c[a][b] = texelFetch(heights, ivec2(mr_wrapIndex(p.x, n.x), mr_wrapIndex(p.y, n.y)), 0).r;
+        }
+    }
+    MICRORELIEF_FETCHED(4);  // as MeshTracer counts a net: four gathers' worth
+    return mr_biquadraticNetOf(c);
+#else
+    return mr_meshCellCorners(relief, heights, cell);
+#endif
 }
 
-// Cell coordinates (X - 1/2, Y - 1/2, t) of a piece's point.
+// The cell of the repeated map holding uv and uv's local coordinates in it.
+ivec2 mr_meshCellOf(mr_Relief relief, vec2 uv, out vec2 local) {
+    vec2 x = uv * relief.map.size - MR_PATCH_OFFSET;
+    vec2 cell = floor(x);
+    local = clamp(x - cell, 0.0, 1.0);
+    return ivec2(cell);
+}
+
+float mr_meshSurfaceAt(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 uv) {
+    vec2 f;
+    ivec2 cell = mr_meshCellOf(relief, uv, f);
+    return mr_patchValue(mr_meshPatch(relief, heights, cell), f);
+}
+
+// The gradient of the surface h over (u, v) (map height units per unit of u and of v) at uv.
+vec2 mr_meshSurfaceGradient(mr_Relief relief, MICRORELIEF_SAMPLER heights, vec2 uv) {
+    vec2 f;
+    ivec2 cell = mr_meshCellOf(relief, uv, f);
+    return mr_patchSlope(mr_meshPatch(relief, heights, cell), f) * relief.map.size;
+}
+
+// Cell coordinates (X - offset, Y - offset, t) of a piece's point (offset: where cell 0
+// starts, MR_PATCH_OFFSET).
 vec3 mr_meshCellPoint(mr_Relief relief, mr_MeshPath path, mr_MeshPiece piece, float p) {
     mr_MeshPoint m = mr_meshPointOn(path, piece, p);
-    return vec3(m.uv * relief.map.size - 0.5, m.t);
+    return vec3(m.uv * relief.map.size - MR_PATCH_OFFSET, m.t);
 }
 
 // ---- The leaf: MeshTracer::leaf ----
@@ -314,7 +380,7 @@ float mr_meshLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, mr_MeshPath pat
             exits[axis] = b;
         }
         float pe = min(exits[0], exits[1]);
-        vec4 h = mr_meshCellCorners(relief, heights, at);
+        mr_ReliefPatch h = mr_meshPatch(relief, heights, at);
         vec2 cell = vec2(at);
         const int kFinalDepth = 20;
         float finalFootprint = 1.0 / 4096.0, finalDrop = top / 4096.0;
@@ -329,7 +395,12 @@ float mr_meshLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, mr_MeshPath pat
             vec2 lo = min(fa.xy, fb.xy), hi = max(fa.xy, fb.xy);
             // Widened by float's rounding of the path's points (n / c), in texels.
             float widen = 1.0 / 1024.0;
-            float peak = mr_patchMaxOver(h, lo - widen, hi + widen);
+            float peak = mr_patchTop(h, lo - widen, hi + widen);
+#if MICRORELIEF_INTERPOLATION == MR_INTERPOLATION_BIQUADRATIC
+            // The restricted net's float rounding, a few ulps of the largest height
+            // (relief_patch.glsl's margin, as the analytic bases' biquadratic leaves pad it).
+            peak += MR_PATCH_TOP_MARGIN * top;
+#endif
             bool may = min(fa.z, fb.z) <= peak;
             bool final = depth == kFinalDepth ||
                          (max(hi.x - lo.x, hi.y - lo.y) <= finalFootprint && abs(fb.z - fa.z) <= finalDrop);
@@ -340,9 +411,9 @@ float mr_meshLeaf(mr_Relief relief, MICRORELIEF_SAMPLER heights, mr_MeshPath pat
             }
             if (may) {
                 vec3 fm = mr_meshCellPoint(relief, path, piece, 0.5 * (a + b)) - vec3(cell, 0.0);
-                float ga = mr_patchHeight(h, clamp(fa.xy, 0.0, 1.0)) - fa.z;
-                float gm = mr_patchHeight(h, clamp(fm.xy, 0.0, 1.0)) - fm.z;
-                float gb = mr_patchHeight(h, clamp(fb.xy, 0.0, 1.0)) - fb.z;
+                float ga = mr_patchValue(h, clamp(fa.xy, 0.0, 1.0)) - fa.z;
+                float gm = mr_patchValue(h, clamp(fm.xy, 0.0, 1.0)) - fm.z;
+                float gb = mr_patchValue(h, clamp(fb.xy, 0.0, 1.0)) - fb.z;
                 float s = mr_parabolaFirstRoot(ga, gm, gb);
                 if (s >= 0.0) return a + s * (b - a);
             }
@@ -419,15 +490,28 @@ float mr_meshWalkPiece(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIE
 
 // ---- The pieces and the trace: MeshTracer::pieces and traceTriangle ----
 
+// One piece's first hit, kept in `best` when it is before the best so far (MeshTracer::
+// traceTriangle's loop body): at the piece's start when that is on or under the surface (the
+// ray entered through it: piece.entry), else where the walk finds the path coming down to the
+// top.
+void mr_meshSolvePiece(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights,
+                       mr_MeshPath path, mr_MeshPiece piece, float top, int budget, inout mr_MeshHit best) {
+    mr_MeshPoint m0 = mr_meshPointOn(path, piece, 0.0);
+    bool entered = mr_meshSurfaceAt(relief, heights, m0.uv) >= m0.t;
+    float p = entered ? 0.0 : mr_meshWalkPiece(relief, windows, heights, path, piece, top, budget);
+    if (p < 0.0) return;
+    mr_MeshPoint m = mr_meshPointOn(path, piece, p);
+    if (best.surface != MR_MESH_NONE && m.lambda >= best.lambda) return;
+    best = mr_MeshHit(max(m.lambda, 0.0), m.t, m.b, m.uv, entered ? piece.entry : MR_MESH_TOP);
+}
+
 // The first hit of the ray origin + lambda v (lambda in [0, lambdaMax]) in the prism of `tri`:
-// lambda, or -1; `hitT` the hit's height, `hitUv` its texture coordinate (not wrapped).
+// `hit`, its lambda returned, or -1 (hit.surface MR_MESH_NONE).
 float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights,
                            mr_MeshTriangle tri, vec3 origin, vec3 v, float s, float top, float lambdaMax,
-                           int budget, out float hitT, out vec2 hitUv) {
-    hitT = 0.0;
-    hitUv = vec2(0.0);
+                           int budget, out mr_MeshHit hit) {
+    hit = mr_MeshHit(-1.0, 0.0, vec3(0.0), vec2(0.0), MR_MESH_NONE);
     mr_MeshPath path = mr_meshPath(tri, origin, v, s, top);
-    float best = -1.0;
     if (path.level) {
         // The ray lies in the offset plane of each root t* of num (MeshTracer::pieces): there
         // b is linear in lambda, from the offset triangle's Gram system; the piece is where
@@ -450,48 +534,63 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
             piece.tA = piece.tB = t;
             piece.b0 = vec3(1.0 - at0.x - at0.y, at0.x, at0.y);
             piece.b1 = vec3(-slope.x - slope.y, slope.x, slope.y);
-            float lo = 0.0, hi = best >= 0.0 ? min(best, lambdaMax) : lambdaMax;
+            // Entered at lambda = 0 (the eye) unless a wall b_i = 0 comes later.
+            piece.entry = MR_MESH_INSIDE;
+            float lo = 0.0, hi = hit.surface != MR_MESH_NONE ? min(hit.lambda, lambdaMax) : lambdaMax;
             bool empty = false;
             for (int i = 0; i < 3; ++i) {
                 float b0 = piece.b0[i], b1 = piece.b1[i];
-                if (b1 == 0.0) empty = empty || b0 < 0.0;
-                else if (b1 > 0.0) lo = max(lo, -b0 / b1);
-                else hi = min(hi, -b0 / b1);
+                if (b1 == 0.0) {
+                    empty = empty || b0 < 0.0;
+                } else if (b1 > 0.0) {
+                    if (-b0 / b1 > lo) {
+                        lo = -b0 / b1;
+                        piece.entry = MR_MESH_WALL0 + i;
+                    }
+                } else {
+                    hi = min(hi, -b0 / b1);
+                }
             }
             if (empty || lo > hi) continue;
             piece.lambdaA = lo;
             piece.lambdaB = hi;
-            mr_MeshPoint m0 = mr_meshPointOn(path, piece, 0.0);
-            float p = mr_meshSurfaceAt(relief, heights, m0.uv) >= m0.t
-                          ? 0.0
-                          : mr_meshWalkPiece(relief, windows, heights, path, piece, top, budget);
-            if (p < 0.0) continue;
-            mr_MeshPoint m = mr_meshPointOn(path, piece, p);
-            if (best >= 0.0 && m.lambda >= best) continue;
-            best = max(m.lambda, 0.0);
-            hitT = m.t;
-            hitUv = m.uv;
+            mr_meshSolvePiece(relief, windows, heights, path, piece, top, budget, hit);
         }
-        return best;
+        return hit.surface != MR_MESH_NONE ? hit.lambda : -1.0;
     }
     float n0[5] = mr_polyPlus(mr_polyPlus(path.c, path.n1, -1.0), path.n2, -1.0);
     vec2 du1 = path.uv1 - path.uv0, du2 = path.uv2 - path.uv0;
     float nu[5] = mr_polyPlus(mr_polyPlus(mr_polyScaled(path.c, path.uv0.x), path.n1, du1.x), path.n2, du2.x);
     float nv[5] = mr_polyPlus(mr_polyPlus(mr_polyScaled(path.c, path.uv0.y), path.n1, du1.y), path.n2, du2.y);
     // The cuts of [0, H]: its ends, the roots of c, of b's numerators and of the turning
-    // numerators of lambda, b_0..2, u and v; sorted by insertion as they come.
+    // numerators of lambda, b_0..2, u and v; sorted by insertion as they come, each with the
+    // surface a piece starting there enters through (mr_MeshPiece.entry).
     float cuts[42];
+    int kinds[42];
     int cutCount = 0;
-    cuts[cutCount++] = 0.0;
-    cuts[cutCount++] = top;
+    cuts[cutCount] = 0.0;
+    kinds[cutCount++] = MR_MESH_BASE;
+    cuts[cutCount] = top;
+    kinds[cutCount++] = MR_MESH_TOP;
     for (int source = 0; source < 10; ++source) {
         float p[5];
-        if (source == 0) p = path.c;
-        else if (source == 1) p = n0;
-        else if (source == 2) p = path.n1;
-        else if (source == 3) p = path.n2;
-        else if (source == 4) p = mr_turnNumerator(path.num, path.c);
-        else if (source == 5) p = mr_turnNumerator(n0, path.c);
+        int kind = MR_MESH_TOP;
+        if (source == 0) {
+            p = path.c;
+            kind = MR_MESH_FOLD;
+        } else if (source == 1) {
+            p = n0;
+            kind = MR_MESH_WALL0;
+        } else if (source == 2) {
+            p = path.n1;
+            kind = MR_MESH_WALL0 + 1;
+        } else if (source == 3) {
+            p = path.n2;
+            kind = MR_MESH_WALL0 + 2;
+        } else if (source == 4) {
+            p = mr_turnNumerator(path.num, path.c);
+            kind = MR_MESH_FOLD;
+        } else if (source == 5) p = mr_turnNumerator(n0, path.c);
         else if (source == 6) p = mr_turnNumerator(path.n1, path.c);
         else if (source == 7) p = mr_turnNumerator(path.n2, path.c);
         else if (source == 8) p = mr_turnNumerator(nu, path.c);
@@ -503,9 +602,11 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
             int at = cutCount++;
             while (at > 0 && cuts[at - 1] > roots[r]) {
                 cuts[at] = cuts[at - 1];
+                kinds[at] = kinds[at - 1];
                 at -= 1;
             }
             cuts[at] = roots[r];
+            kinds[at] = kind;
         }
     }
     for (int i = 0; i + 1 < 42; ++i) {
@@ -527,11 +628,12 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
             num = mr_polyValue(path.num, tb);
             lb = (c == 0.0 || (c > 0.0) != (cm > 0.0)) ? (num * cm >= 0.0 ? MR_NEVER : -MR_NEVER) : num / c;
         }
-        float limit = best >= 0.0 ? min(best, lambdaMax) : lambdaMax;
+        float limit = hit.surface != MR_MESH_NONE ? min(hit.lambda, lambdaMax) : lambdaMax;
         if (max(la, lb) < 0.0 || min(la, lb) > limit) continue;
         bool forward = la <= lb;
         mr_MeshPiece piece = mr_MeshPiece(forward ? ta : tb, forward ? tb : ta, forward ? la : lb,
-                                          forward ? lb : la, false, vec3(0.0), vec3(0.0));
+                                          forward ? lb : la, false, vec3(0.0), vec3(0.0),
+                                          forward ? kinds[i] : kinds[i + 1]);
         // Clipped to lambda in [0, limit] where lambda = L: the sign of (num - L c) sign(c)
         // is that of lambda - L inside; the bracket's end where lambda >= L.
         for (int side = 0; side < 2; ++side) {
@@ -546,25 +648,73 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
             if (side == 0) {
                 piece.tA = t;
                 piece.lambdaA = max(0.0, lt);
+                piece.entry = MR_MESH_INSIDE;
             } else {
                 piece.tB = t;
                 piece.lambdaB = lt;
             }
         }
-        // Starting at or below the surface: entered through the piece's start (the mesh, a
-        // wall, a fold or the eye inside the solid).
-        mr_MeshPoint m0 = mr_meshPointOn(path, piece, 0.0);
-        float p = mr_meshSurfaceAt(relief, heights, m0.uv) >= m0.t
-                      ? 0.0
-                      : mr_meshWalkPiece(relief, windows, heights, path, piece, top, budget);
-        if (p < 0.0) continue;
-        mr_MeshPoint m = mr_meshPointOn(path, piece, p);
-        if (best >= 0.0 && m.lambda >= best) continue;
-        best = max(m.lambda, 0.0);
-        hitT = m.t;
-        hitUv = m.uv;
+        mr_meshSolvePiece(relief, windows, heights, path, piece, top, budget, hit);
     }
-    return best;
+    return hit.surface != MR_MESH_NONE ? hit.lambda : -1.0;
+}
+
+// ---- The hit's surface normal ----
+
+// The outward unit normal of the solid's surface at `hit` (MeshReference.h, MeshHit::normal:
+// the same surfaces, its formulas derived again here), in the mesh's units; zero for
+// MR_MESH_INSIDE (no surface at the eye). Each surface is a level set of a function of the
+// prism's coordinates (b, t), X(b, t) = B(b) + s t D(b); its normal is the cross product of
+// two tangents, turned to the side where that function leaves the solid:
+//  * top, t = h(uv(b)): the surface X(b, h(uv(b))) over (b_1, b_2) (b_0 = 1 - b_1 - b_2) has
+//    tangents dX/db_k = A_k + s (dh/db_k) D, A_k = E_k + s h F_k the offset triangle's edges
+//    at height h, dh/db_k = grad h . (T_k - T_0) (the map's gradient over uv through
+//    uv(b)); outward is up, along dX/dt = s D (moving up at fixed b leaves the solid:
+//    t - h grows);
+//  * the mesh itself, t = 0: the plane of E_1 and E_2, outward down, against D;
+//  * a wall b_i = 0: the ruled surface between the normal lines of the other two vertices j,
+//    k, X(w, t) = (1 - w) Q_j(t) + w Q_k(t), Q_v = P_v + s t N_v, w = b_k / (b_j + b_k), with
+//    tangents Q_k - Q_j and (1 - w) N_j + w N_k; outward away from Q_i (b_i grows into the
+//    triangle);
+//  * a fold: the envelope of the offset triangles, where the Jacobian (A_1, A_2, s D) of X
+//    has rank 2; its tangent plane is the Jacobian's range, normal to the cross product of
+//    any two columns (the longest taken: the best conditioned); outward towards the ray,
+//    which enters the solid there (`v` the ray's direction).
+// Float: the tangents are sums of a few products of the table's floats, so the normal is
+// good to a few ulps of their lengths over the sine of the angle between them.
+vec3 mr_meshNormal(mr_Relief relief, MICRORELIEF_SAMPLER heights, mr_MeshTriangle tri, float s, mr_MeshHit hit,
+                   vec3 v) {
+    vec3 b = hit.b;
+    float t = hit.t;
+    vec3 along = tri.n0 + b.y * tri.f1 + b.z * tri.f2;  // D(b)
+    vec3 a1 = tri.e1 + s * t * tri.f1, a2 = tri.e2 + s * t * tri.f2;
+    vec3 n = vec3(0.0), into = vec3(0.0);  // a normal and a direction into the solid
+    if (hit.surface == MR_MESH_TOP) {
+        vec2 g = mr_meshSurfaceGradient(relief, heights, hit.uv);
+        n = cross(a1 + s * dot(g, tri.uv1 - tri.uv0) * along, a2 + s * dot(g, tri.uv2 - tri.uv0) * along);
+        into = -along;
+    } else if (hit.surface == MR_MESH_BASE) {
+        n = cross(tri.e1, tri.e2);
+        into = along;
+    } else if (hit.surface >= MR_MESH_WALL0 && hit.surface <= MR_MESH_WALL0 + 2) {
+        int i = hit.surface - MR_MESH_WALL0, j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
+        vec3 q[3] = vec3[3](tri.p0, tri.p0 + a1, tri.p0 + a2);
+        vec3 normals[3] = vec3[3](tri.n0, tri.n0 + tri.f1, tri.n0 + tri.f2);
+        float w = b[j] + b[k] > 0.0 ? b[k] / (b[j] + b[k]) : 0.5;
+        vec3 qj = q[j] + s * t * tri.n0, qk = q[k] + s * t * tri.n0;
+        n = cross(qk - qj, mix(normals[j], normals[k], w));
+        into = q[i] + s * t * tri.n0 - mix(qj, qk, w);
+    } else if (hit.surface == MR_MESH_FOLD) {
+        vec3 sd = s * along;
+        vec3 c0 = cross(a1, a2), c1 = cross(a2, sd), c2 = cross(sd, a1);
+        n = c0;
+        if (dot(c1, c1) > dot(n, n)) n = c1;
+        if (dot(c2, c2) > dot(n, n)) n = c2;
+        into = v;
+    }
+    if (dot(n, into) > 0.0) n = -n;
+    float length2 = dot(n, n);
+    return length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0);
 }
 
 #endif

@@ -36,14 +36,28 @@ void nearestTexture(const GL& gl, const Texture& texture, int maxLevel) {
 
 MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
                        const TriangleMesh& mesh, const HeightMap& map, double heightScale)
+    : MeshRelief(gl, shaderDir, mesh, map, heightScale, MeshReliefOptions{}) {}
+
+MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
+                       const TriangleMesh& mesh, const HeightMap& map, double heightScale,
+                       const MeshReliefOptions& options)
     : gl_(gl) {
     if (map.empty()) throwBadInput("MeshRelief: an empty map");
+    const glm::vec3 light = options.lightDirection;
+    if (!std::isfinite(light.x) || !std::isfinite(light.y) || !std::isfinite(light.z) ||
+        glm::dot(light, light) == 0.0f)
+        throwBadInput("MeshRelief: the light's direction is zero or not finite");
+    if (options.view != DebugView::Shaded && options.view != DebugView::Normal)
+        throwBadInput(std::string("MeshRelief: the view ") + debugViewName(options.view) +
+                      " is not drawn on a mesh (shaded or normal)");
     const std::string version = "330 core";
     const Shader vertex = compileShader(gl, GL_VERTEX_SHADER,
                                         assembleShader(shaderDir / "mesh_relief.vert", version));
-    const Shader fragment =
-        compileShader(gl, GL_FRAGMENT_SHADER,
-                      assembleShader(shaderDir / "mesh_relief.frag", version, {}, {shaderDir}));
+    const std::vector<ShaderDefine> defines = {
+        {"MICRORELIEF_INTERPOLATION", std::to_string(static_cast<int>(options.interpolation))}};
+    const Shader fragment = compileShader(
+        gl, GL_FRAGMENT_SHADER,
+        assembleShader(shaderDir / "mesh_relief.frag", version, defines, {shaderDir}));
     program_ = linkProgram(gl, vertex, fragment, "mesh relief");
     viewProjection_ = uniform(gl, program_, "mr_viewProjection");
     eye_ = uniform(gl, program_, "mr_eye");
@@ -133,6 +147,13 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
     gl.Uniform2f(uniform(gl, program_, "mr_mapSize"), mapSize_.x, mapSize_.y);
     gl.Uniform1i(uniform(gl, program_, "mr_levelCount"), levelCount_);
     gl.Uniform1i(uniform(gl, program_, "mr_budget"), traversalBudget(map.width, map.height));
+    const glm::vec3 toLight = glm::normalize(light);
+    gl.Uniform3f(uniform(gl, program_, "mr_lightDirection"), toLight.x, toLight.y, toLight.z);
+    gl.Uniform3f(uniform(gl, program_, "mr_albedo"), options.albedo.r, options.albedo.g,
+                 options.albedo.b);
+    // DebugView's values are the MR_DEBUG_VIEW_* constants of debug_views.glsl (ReliefShader.cpp
+    // asserts it).
+    gl.Uniform1i(uniform(gl, program_, "mr_debugView"), static_cast<int>(options.view));
     const GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)
         throwRuntime("MeshRelief: GL error " + enumHex(error) + " uploading the mesh");

@@ -6,18 +6,31 @@
 // GLSL). Each fragment traces its ray in its prism and writes the hit's depth; the depth test
 // keeps the first over prisms.
 //
-// use:      MeshRelief relief(gl, shaderDirectory(), mesh, map, heightScale);
+// use:      MeshRelief relief(gl, shaderDirectory(), mesh, map, heightScale);   // defaults
+//           MeshRelief relief(gl, shaderDirectory(), mesh, map, heightScale, options);
 //           target.clear(background);                      // OffscreenTarget
 //           relief.draw(viewProjection, eye);              // into the bound framebuffer
+// options:  MeshReliefOptions: the last level (bilinear, biquadratic), the light's direction,
+//           the albedo, the colour view (shaded, or the normal debug view).
 //
 // Drawn with the depth test (GL_LESS) and no face culling: an eye inside a hull sees only its
 // back faces (MeshProxy.h), and a ray crossing a hull gets one fragment a face it crosses,
 // each tracing the same prism from the eye (the same hit, the depth test keeps one); and with
 // depth clamping on, so that a hull's faces nearer than the near plane (the eye inside the
-// shell) are not clipped away (the hits before the near plane get depth 0). The
-// position AOV is the hit less `eye` (OffscreenTarget's), in the mesh's units; no model
-// transform (the mesh's units are the world's). This slice: the bilinear last level, no
-// shadows, no albedo; the colour is the hit's height in grey.
+// shell) are not clipped away (the hits before the near plane get depth 0).
+//
+// Outputs (relief.frag's locations, OffscreenTarget's attachments): 0 the colour, linear (an
+// sRGB target encodes it while sRGB writes are on, gl::SrgbWrites): the library's shading
+// (shaders/microrelief/shading.glsl, mr_shadeRelief, as relief.frag shades the analytic
+// bases) of the albedo under one directional light at the hit's exact surface normal, no
+// shadows; 1 the position AOV, the hit less `eye` (OffscreenTarget's), in the mesh's units;
+// 2 the statistics (zero); 3 the light's share (1); and 4 the normal AOV, the hit's outward
+// unit normal (x, y, z) and 1, for a target with a fifth draw buffer (OffscreenTarget has
+// none yet: the GL drops it there). The normal is the exact surface's (MeshReference.h,
+// MeshHit::normal), computed at the hit in float: the top t = h(uv(b)) from the derivatives of
+// X(b, h(uv(b))) over the triangle (the map's gradient through uv(b)), the mesh itself at
+// t = 0, a wall b_i = 0, a fold; zero where the eye is inside the solid. No model transform
+// (the mesh's units are the world's). Not yet: shadows, an albedo map.
 #pragma once
 
 #include <filesystem>
@@ -26,9 +39,23 @@
 
 #include "microrelief/core/base/TriangleMesh.h"
 #include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/scene/Method.h"
 #include "microrelief/gl/Objects.h"
 
 namespace microrelief::gl {
+
+struct MeshReliefOptions {
+    // The last level (MICRORELIEF_INTERPOLATION): the bilinear cells between sample centres or
+    // the biquadratic B-spline, as MeshTracer and MeshReference have them.
+    Interpolation interpolation = Interpolation::Bilinear;
+    // Towards the directional light (normalised when set; not zero), and the surface's diffuse
+    // colour, linear: ShadingOptions' defaults (microrelief-render's).
+    glm::vec3 lightDirection = ShadingOptions{}.lightDirection;
+    glm::vec3 albedo = ShadingOptions{}.albedo;
+    // The colour: DebugView::Shaded, or DebugView::Normal (n * 0.5 + 0.5, debug_views.glsl, as
+    // microrelief-render's --view normal); the others are refused (Error(BadInput)).
+    DebugView view = DebugView::Shaded;
+};
 
 class MeshRelief {
 public:
@@ -38,6 +65,10 @@ public:
     // Error(Runtime) where the program does not compile.
     MeshRelief(const GL& gl, const std::filesystem::path& shaderDir, const TriangleMesh& mesh,
                const HeightMap& map, double heightScale);
+    // The same with `options` (MeshReliefOptions); Error(BadInput) also for a zero or
+    // non-finite light direction and a view other than Shaded or Normal.
+    MeshRelief(const GL& gl, const std::filesystem::path& shaderDir, const TriangleMesh& mesh,
+               const HeightMap& map, double heightScale, const MeshReliefOptions& options);
 
     // Draws the relief into the bound framebuffer (its viewport), seen through
     // `viewProjection` (mesh units to clip space) from `eye` (mesh units). GL state is

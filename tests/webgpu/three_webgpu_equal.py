@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """three_webgpu_equal.py: does microrelief-three's WebGPU entry draw what its WebGL entry draws?
 
-One map (64 x 48, waves and one-texel spikes) on the plane in four views (`oblique` with the
+One map (64 x 48, waves and one-texel spikes) on the plane in six views (`oblique` with the
 bilinear last level; `lowLive` with the biquadratic, after the WebGPU relief drew with another
 map, height scale and last level: its options set live; `ortho` through an orthographic
-camera; `corner` into a 96 x 64 viewport of the target) and on the cylinder (`round`,
+camera; `corner` into a 96 x 64 viewport of the target; `logDepth` and `logOrtho`, `oblique`
+and `ortho` drawn by renderers made with logarithmicDepthBuffer) and on the cylinder (`round`,
 biquadratic; with --all also `low` directly and the ellipsoid, bilinear), the library's
 shading with the hard self-shadow, a box of three's own half buried in the plane's relief,
 drawn 128 x 96 by the WebGL entry (WebGLRenderer, ReliefShadingMaterial) and by the WebGPU entry (WebGPURenderer,
@@ -48,12 +49,13 @@ import tempfile
 HERE = pathlib.Path(__file__).resolve().parent
 REPO = HERE.parent.parent
 SKIPPED = 77
-# A view, a last level, a base: the suite's cases (about 11 s on two idle cores, 22 s loaded,
-# the picks included),
+# A view, a last level, a base: the suite's cases (about 25 s on two loaded cores, the picks
+# included),
 # then with --all `low` (what `lowLive` ends with, drawn directly) and the ellipsoid, whose
 # traversal SwiftShader runs slowly (about 25 s more).
 VIEWS = (("oblique", "bilinear", "plane"), ("lowLive", "biquadratic", "plane"), ("ortho", "bilinear", "plane"),
-         ("corner", "bilinear", "plane"), ("round", "biquadratic", "cylinder"))
+         ("corner", "bilinear", "plane"), ("round", "biquadratic", "cylinder"), ("logDepth", "bilinear", "plane"),
+         ("logOrtho", "bilinear", "plane"))
 MORE_VIEWS = (("low", "biquadratic", "plane"), ("round", "bilinear", "ellipsoid"))
 LIMITS = {"meanDiff": 0.05, "maxDiff": 8, "differingFraction": 0.005}
 HIT_DISAGREE_FRACTION = 0.002

@@ -17,7 +17,8 @@
 // calls them), called from a node material by wgslFn. What is WebGPU's own is here: the
 // textures (read by textureLoad, no sampler) and three's nodes passed to mrShadePixel.
 import * as THREE from 'three/webgpu';
-import {code, Discard, Fn, frontFacing, If, screenCoordinate, texture, uniform, vec4, viewport, wgslFn} from 'three/tsl';
+import {cameraFar, cameraNear, code, Discard, Fn, frontFacing, If, screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth,
+        wgslFn} from 'three/tsl';
 
 import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
 import * as core from '../generated/relief_core.js';
@@ -226,7 +227,8 @@ function reliefUniform(name, value) {
 // ReliefShadingMaterial does: one directional light (`lightDirection`, world, towards the
 // light), a grey `albedo` (linear), the hard self-shadow with `shadows: 'hard'`; not lit
 // by three's lights; three's output conversion applies (toneMapped false). A node material
-// (MeshBasicNodeMaterial) whose colour and depth are the traced pixel's. In this slice one
+// (MeshBasicNodeMaterial) whose colour and depth are the traced pixel's (the depth
+// logarithmic where the renderer's depth buffer is, as three's meshes write it). In this slice one
 // material draws one relief (the textures are bound when its program is built).
 export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
     constructor({lightDirection = new THREE.Vector3(-0.45, 0.8, -0.35).normalize(), albedo = new THREE.Color(0.6, 0.58, 0.55), shadows = 'off'} = {}) {
@@ -253,6 +255,7 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
         const relief = builder.object;
         if (!relief || !relief.isRelief) throw new Error('microrelief-three/webgpu: a ReliefShadingNodeMaterial draws only on a Relief (new Relief(map, {material}))');
         const u = (name) => reliefUniform(name, relief.uniforms[name].value);
+        const logarithmic = builder.renderer.logarithmicDepthBuffer === true;
         const traced = shade(`${relief.base.kind}_${relief.interpolation}`, {
             heights: texture(relief.reliefMap.heights), windows: texture(relief.reliefMap.windows),
             fragCoord: screenCoordinate, viewport, front: frontFacing, faces: u('mrFaces'),
@@ -261,10 +264,17 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
             frameScale: u('mrFrameScale'), pixelError: u('mrPixelError'),
             rayOrigin: u('mrRayOrigin'), rayOriginDx: u('mrRayOriginDx'), rayOriginDy: u('mrRayOriginDy'),
             rayDir: u('mrRayDir'), rayDirDx: u('mrRayDirDx'), rayDirDy: u('mrRayDirDy'), range: u('mrRange'),
-            viewProjection: u('mrViewProjection'), lightDirection: this.lightDirection, albedo: this.albedo,
+            viewProjection: u(logarithmic ? 'mrDepthMatrix' : 'mrViewProjection'), lightDirection: this.lightDirection, albedo: this.albedo,
             shadows: uniform(this.shadows === 'hard' ? 1 : 0),
         }).toVar('mrTraced');
-        this.depthNode = traced.w.max(0);
+        // The depth three's other meshes write: the traced clip z / w; under a logarithmic
+        // depth buffer (NodeMaterial.setupDepth's) three's logarithmic depth of the hit's view
+        // z for a perspective camera, which mrDepthMatrix hands the glue as -z / far (a
+        // float's relative precision at any distance, as the buffer means to keep), and the
+        // traced clip z / w (its orthographic depth) for any other.
+        const depth = traced.w.max(0);
+        this.depthNode = !logarithmic ? depth
+                                      : select(u('mrPerspective').equal(1), viewZToLogarithmicDepth(depth.mul(cameraFar).negate(), cameraNear, cameraFar), depth);
         this.colorNode = Fn(() => {
             If(traced.w.lessThan(0), () => {
                 Discard();
@@ -282,6 +292,18 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
         return this;
     }
 }
+
+// The matrix the glue's depth is made with under a logarithmic depth buffer (u.mrDepthMatrix,
+// after reliefFrame): for a perspective camera its clip z / w is the camera-relative world
+// point's view depth over the far plane, -z / far (in [0, 1] up to the far plane, as the
+// glue's clamp keeps it), its clip w 1; for another camera the view-projection itself.
+function depthMatrix(u, camera, perspective) {
+    const m = u.mrDepthMatrix.value;
+    if (!perspective) return m.copy(u.mrViewProjection.value);
+    _toDepth.makeScale(1, 1, -1 / camera.far);
+    return m.multiplyMatrices(_toDepth, u.mrWorldToCamera.value);
+}
+const _toDepth = new THREE.Matrix4();
 
 // A map this entry made (the WebGL entry's textures are its renderer's).
 function checkReliefMap(reliefMap, what) {
@@ -321,6 +343,7 @@ export class Relief extends THREE.Mesh {
         this.isRelief = true;
         this.type = 'Relief';
         this.uniforms = reliefUniforms(pixelError);
+        this.uniforms.mrDepthMatrix = {value: new THREE.Matrix4()};  // depthMatrix's
         this.uniforms.mrHeightScale.value = Math.fround(heightScale);
         this._interpolation = interpolation;
         this.setMapAndBase(reliefMap, shape);
@@ -330,6 +353,7 @@ export class Relief extends THREE.Mesh {
             if (renderer.isWebGLRenderer) throw new TypeError(`Relief: ${kWebGLRendererHere}`);
             const rays = reliefFrame(this, camera, this.uniforms);
             this.uniforms.mrFaces.value = boxFaces(this.box, this.matrixWorld, camera, rays.range);
+            depthMatrix(this.uniforms, camera, rays.perspective);
         };
     }
 

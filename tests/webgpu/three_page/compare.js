@@ -35,6 +35,10 @@ const kViews = {
     ortho: {eye: [0.6, 0.7, 0.5], target: [0, 0.02, 0], orthographic: true},  // a directional light's kind of camera
     // Drawn into part of the target (x, y from the bottom, width, height): the NDC from the viewport.
     corner: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0], viewport: [16, 8, 96, 64]},
+    // `oblique` and `ortho` under each renderer's logarithmic depth buffer: the box of three's
+    // own writes three's logarithmic depth, the relief must too (orthographic: its linear one).
+    logDepth: {eye: [0.55, 0.45, 0.7], target: [0, 0.02, 0], logarithmic: true},
+    logOrtho: {eye: [0.6, 0.7, 0.5], target: [0, 0.02, 0], orthographic: true, logarithmic: true},
 };
 
 function setUp(T, view, relief, {withBox = true} = {}) {
@@ -54,22 +58,25 @@ function setUp(T, view, relief, {withBox = true} = {}) {
     return {scene, camera};
 }
 
-let webgl = null, webgpu = null;
-async function renderers() {
-    if (!webgl) {
-        webgl = new THREE.WebGLRenderer({canvas: new OffscreenCanvas(W, H)});
+// The two renderers, with logarithmic depth buffers where `logarithmicDepthBuffer` (made at
+// the first view that asks).
+const made = {};
+async function renderers(logarithmicDepthBuffer = false) {
+    if (!made[logarithmicDepthBuffer]) {
+        const webgl = new THREE.WebGLRenderer({canvas: new OffscreenCanvas(W, H), logarithmicDepthBuffer});
         webgl.setSize(W, H, false);
-        webgpu = new GPU.WebGPURenderer({canvas: new OffscreenCanvas(W, H)});
+        const webgpu = new GPU.WebGPURenderer({canvas: new OffscreenCanvas(W, H), logarithmicDepthBuffer});
         webgpu.setSize(W, H, false);
         await webgpu.init();
+        made[logarithmicDepthBuffer] = {webgl, webgpu};
     }
-    return {webgl, webgpu};
+    return made[logarithmicDepthBuffer];
 }
 
 const light = new THREE.Vector3(-0.45, 0.8, -0.35).normalize();
 
 async function drawWebGL(view, interpolation, base = 'plane') {
-    const {webgl: renderer} = await renderers();
+    const {webgl: renderer} = await renderers(!!kViews[view].logarithmic);
     const {w, h, samples} = heights();
     const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
     const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, base, material: new gl.ReliefShadingMaterial({lightDirection: light, shadows: 'hard'})});
@@ -89,7 +96,7 @@ async function drawWebGL(view, interpolation, base = 'plane') {
 }
 
 async function drawWebGPU(view, interpolation, base = 'plane') {
-    const {webgpu: renderer} = await renderers();
+    const {webgpu: renderer} = await renderers(!!kViews[view].logarithmic);
     const {w, h, samples} = heights();
     const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
     const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, base, material: new wg.ReliefShadingNodeMaterial({lightDirection: light, shadows: 'hard'})});

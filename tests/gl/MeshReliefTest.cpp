@@ -17,9 +17,12 @@
 // (c) from below the mesh (the mesh itself, t = 0), (d) looking level inside the shell (a row
 // of rays parallel to the grid: level pieces), (e) folded prisms (a bumpy grid with leaning
 // normals under a shell as thick as a quad; its border's walls), (f) a tube of 24 sides seen
-// from its side; seamless noise maps of 256 x 128 and 128 x 64 samples (a triangle's uv box
-// 32 x 16 and 5 x 16 texels: the walk descends before its leaves; the tube's u wraps); 64 x 48
-// pixels, about 4 s in all on llvmpipe.
+// from its side, (g) an inward tube whose shell passes its axis (a focal line), seen down the
+// axis (its rims' walls); (a), (e) and (f) again at the biquadratic last level; seamless noise
+// maps of 256 x 128 and 128 x 64 samples (a triangle's uv box 32 x 16 and 5 x 16 texels: the
+// walk descends before its leaves; the tube's u wraps); 64 x 48 pixels, about 5 s in all on
+// llvmpipe (10 s where Mesa's shader cache has not the programs). And the normal debug view:
+// the colour n * 0.5 + 0.5 of the normal AOV.
 // MICRORELIEF_MESH_PICTURE=<prefix> writes each picture's colour (shaded) as <prefix><case>.ppm.
 #include "microrelief/gl/MeshRelief.h"
 
@@ -40,6 +43,8 @@
 
 #include "GlTestBackend.h"
 #include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/core/base/BaseMeshes.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/MeshReference.h"
 #include "microrelief/gl/Objects.h"
@@ -352,6 +357,48 @@ TEST_F(MeshRelief, ATubeIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(128, 64, 7.0, 4, 11));
     expectAgreement(
         compare(tube(24, 4, 0.3f, 1.0f), map, 0.05, {0.35, 0.3, 1.3}, {0.0, 0.0, 0.0}, "tube"));
+}
+
+// An inward tube whose shell (1.25 of its radius) passes its axis, where the prisms' normal
+// lines meet (a focal line), seen down the axis through its open end: the top of the folded
+// shell and the walls of its two rims.
+TEST_F(MeshRelief, AFoldedInwardTubeIsTheReferencesPixelByPixel) {
+    const HeightMap map = seamless(synth::valueNoise(128, 64, 7.0, 4, 11));
+    const double s = 1.25 * 0.25 / map.maxValue();
+    expectAgreement(compare(cylinderTubeMesh(12, 3, 0.25f, 1.0f, true), map, s, {0.05, 1.1, 0.1},
+                            {0.0, 0.0, 0.0}, "inward"));
+}
+
+// The normal debug view (MeshReliefOptions::view): the colour is the normal AOV as n * 0.5 +
+// 0.5 (debug_views.glsl), the sRGB target giving back that display value to a step of 8 bits.
+TEST_F(MeshRelief, TheNormalViewShowsTheNormalAov) {
+    const GL& gl = test::glContext().gl();
+    const HeightMap map = seamless(synth::valueNoise(64, 32, 5.0, 3, 7));
+    gl::MeshReliefOptions options;
+    options.view = DebugView::Normal;
+    const gl::MeshRelief relief(gl, shaderDirectory(), flatGrid(2, 1.0f, 1.0f), map, 0.08, options);
+    const glm::dvec3 eye{0.0, 0.75, 0.95};
+    const glm::dmat4 viewProjection =
+        glm::perspective(glm::radians(40.0), 32.0 / 24.0, 0.05, 20.0) *
+        glm::lookAt(eye, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
+    const MeshTarget picture(gl, 32, 24);
+    const gl::SrgbWrites srgb(gl);
+    relief.draw(glm::mat4(viewProjection), eye);
+    const std::vector<std::uint8_t> color = picture.color();
+    const std::vector<float> normal = picture.normal();
+    int hits = 0;
+    double worst = 0.0;  // 8-bit steps
+    for (std::size_t at = 0; at < normal.size(); at += 4) {
+        if (normal[at + 3] < 0.5f) continue;
+        ++hits;
+        for (int k = 0; k < 3; ++k)
+            worst = std::max(worst, std::abs(color[at + k] - (normal[at + k] * 0.5 + 0.5) * 255.0));
+    }
+    EXPECT_GT(hits, 32 * 24 / 4);
+    EXPECT_LE(worst, 1.0);
+    EXPECT_THROW(gl::MeshRelief(gl, shaderDirectory(), flatGrid(2, 1.0f, 1.0f), map, 0.08,
+                                gl::MeshReliefOptions{.view = DebugView::Depth}),
+                 Error);
 }
 
 // The biquadratic last level (the B-spline, C1: no crease at the cells' edges), the same

@@ -6,8 +6,8 @@
 // as a memory budget lets them; the coarse levels of the windows lie whole in one texture
 // (its level 0 is the windows' level L, L the first level not paged). A page table says
 // which pages are resident and where. A read of a texel whose page is absent records the
-// page in the wants buffer and stands in for the texel with the finest resident window
-// above it:
+// page as wanted in the use buffer and stands in for the texel with the finest resident
+// window above it:
 //  * window (k, t) lies inside window (k + 1, min(t >> 1, last)) (its texels
 //    [t 2^k, (t + 2) 2^k) inside [(t >> 1) 2^(k+1), ((t >> 1) + 2) 2^(k+1)), or the last
 //    window of a row, which reaches to the map's edge), and a window is the max over what
@@ -22,11 +22,21 @@
 // what was wanted, until a pass wants nothing (HeadlessRenderer).
 //
 // The page table is one uint buffer; where its parts lie is the host's (PagedPyramid.h,
-// given here as defines): MICRORELIEF_PAGE_INFO_AT: L, S (two's complement), shift;
-// MICRORELIEF_PAGE_LEVELS_AT: per page level l (0 the samples, 1 + k windows level k, up to
-// windows level L, whose size only is used): its first entry, its width, its height, a
-// spare word; MICRORELIEF_PAGE_ENTRIES_AT: an entry per page, 0 when absent, else its
-// pool layer + 1. The wants buffer has a word per page, in the entries' order.
+// given here as defines): MICRORELIEF_PAGE_INFO_AT: L, S (two's complement), shift, the
+// draw's stamp; MICRORELIEF_PAGE_LEVELS_AT: per page level l (0 the samples, 1 + k windows
+// level k, up to windows level L, whose size only is used): its first entry, its width,
+// its height, a spare word; MICRORELIEF_PAGE_ENTRIES_AT: an entry per page, 0 when absent,
+// else its pool layer + 1.
+//
+// The use buffer has a word per page, in the entries' order: each read of a page writes
+// the draw's stamp there (1 to 2^31 - 1, which the host changes each time it reads the
+// buffer), with the top bit set where the page was absent and wanted. So the host learns
+// every page a draw read, resident or not, and evicts the least recently used
+// (PagedPyramid::load): the pages every ray reads stay resident. Within a draw the table
+// does not change, so all of a page's writes in it store the same word: plain stores, no
+// atomics, never a wrong value. The cost: a store a paged read (of the samples or of a
+// paged window level, resident or not; the coarse texture's reads store nothing) and a
+// read of the stamp, a word every invocation shares.
 #ifndef MICRORELIEF_PAGED_MAP_GLSL
 #define MICRORELIEF_PAGED_MAP_GLSL
 
@@ -40,8 +50,8 @@
 layout(std430, binding = 1) readonly buffer MicroreliefPageTable {
     uint mr_pageTable[];
 };
-layout(std430, binding = 2) writeonly buffer MicroreliefPageWants {
-    uint mr_pageWanted[];
+layout(std430, binding = 2) writeonly buffer MicroreliefPageUse {
+    uint mr_pageUse[];
 };
 uniform highp sampler2DArray mr_pagePool;  // the resident pages, R32F, a page a layer
 uniform highp sampler2D mr_pageCoarse;     // windows level L and coarser, R16F, bound / 2^S
@@ -59,8 +69,14 @@ ivec2 mr_pageLevelSize(int l) {
     return ivec2(int(mr_pageTable[at + 1]), int(mr_pageTable[at + 2]));
 }
 
-// The entry of the page holding texel t of page level l (t inside the level); an absent
-// one is wanted when `want`.
+// The word this draw writes for a page it reads (see the top of this file).
+uint mr_pageStamp() {
+    return mr_pageTable[MICRORELIEF_PAGE_INFO_AT + 3];
+}
+
+// The entry of the page holding texel t of page level l (t inside the level). A resident
+// page is marked read by this draw; an absent one is marked wanted when `want`, and left
+// unmarked when not (a stand-in's finer pages: not read).
 uint mr_pageEntry(int l, ivec2 t, bool want) {
     int at = MICRORELIEF_PAGE_LEVELS_AT + 4 * l;
     int shift = mr_pageShift();
@@ -68,7 +84,11 @@ uint mr_pageEntry(int l, ivec2 t, bool want) {
     ivec2 page = t >> shift;
     int index = int(mr_pageTable[at]) + page.y * across + page.x;
     uint entry = mr_pageTable[MICRORELIEF_PAGE_ENTRIES_AT + index];
-    if (entry == 0u && want) mr_pageWanted[index] = 1u;
+    if (entry != 0u) {
+        mr_pageUse[index] = mr_pageStamp();
+    } else if (want) {
+        mr_pageUse[index] = mr_pageStamp() | 0x80000000u;
+    }
     return entry;
 }
 

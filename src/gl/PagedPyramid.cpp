@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "microrelief/core/Error.h"
@@ -100,6 +101,7 @@ PagedPyramid::PagedPyramid(const GL& gl, std::shared_ptr<const PyramidPages> pag
     words[PageTableLayout::kInfoAt] = static_cast<std::uint32_t>(pagedLevels_);
     words[PageTableLayout::kInfoAt + 1] = static_cast<std::uint32_t>(source_->scaleExponent());
     words[PageTableLayout::kInfoAt + 2] = static_cast<std::uint32_t>(shift_);
+    words[PageTableLayout::kInfoAt + 3] = stamp_;  // the use buffer starts at 0: no stamp
     for (int level = 0; level <= pagedLevels_ + 1; ++level) {
         // Level 0 (the samples) has window level 0's size, W x H.
         const glm::ivec2 size = sizes[std::max(level - 1, 0)];
@@ -179,23 +181,33 @@ std::size_t PagedPyramid::gpuBytes() const {
 }
 
 std::vector<int> PagedPyramid::takeWanted() {
-    // The draws' writes to the wants reach the buffer read below only after a barrier.
+    // The draws' writes to the use buffer reach the read below only after a barrier.
     gl_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<std::uint32_t> flags(pages_.size(), 0u);
+    std::vector<std::uint32_t> words(pages_.size(), 0u);
     const PagerBindings saved(gl_);
     gl_.BindBuffer(GL_COPY_WRITE_BUFFER, wants_.id());
-    gl_.GetBufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(flags.size() * 4),
-                         flags.data());
-    std::vector<int> wanted;
-    for (std::size_t page = 0; page < flags.size(); ++page)
-        if (flags[page] != 0u) wanted.push_back(static_cast<int>(page));
-    if (!wanted.empty()) {
-        const std::vector<std::uint32_t> none(pages_.size(), 0u);
-        gl_.BufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(none.size() * 4),
-                          none.data());
-    }
+    gl_.GetBufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(words.size() * 4),
+                         words.data());
+    // Only the words of this stamp are the draws since the last call's: older stamps stay
+    // in the buffer (nothing clears it), and are never this one until the stamps wrap,
+    // where the buffer is cleared.
     ++clock_;
-    for (int page : wanted) pages_[page].wanted = clock_;
+    std::vector<int> wanted;
+    read_.clear();
+    for (std::size_t page = 0; page < words.size(); ++page) {
+        if ((words[page] & kLastStamp) != stamp_) continue;
+        (words[page] & kWantedBit ? wanted : read_).push_back(static_cast<int>(page));
+        pages_[page].used = clock_;
+    }
+    if (stamp_ == kLastStamp) {
+        std::fill(words.begin(), words.end(), 0u);
+        gl_.BufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(words.size() * 4),
+                          words.data());
+        stamp_ = 0;
+    }
+    ++stamp_;
+    gl_.BindBuffer(GL_COPY_WRITE_BUFFER, table_.id());
+    gl_.BufferSubData(GL_COPY_WRITE_BUFFER, (PageTableLayout::kInfoAt + 3) * 4, 4, &stamp_);
     return wanted;
 }
 
@@ -207,7 +219,9 @@ bool PagedPyramid::load(const std::vector<int>& pages, const std::vector<int>& k
     std::vector<int> absent;
     for (int page : pages)
         if (pages_[page].layer < 0) absent.push_back(page);
-    // Evictable: resident pages outside what is kept, least recently wanted first.
+    // Evictable: resident pages outside what is kept, least recently used first, and of
+    // those used last at once the finer level first (a coarse page is read by more rays;
+    // the ids break ties, so the order is the same every run).
     std::vector<int> evictable;
     if (absent.size() > freeLayers_.size()) {
         for (int page = 0; page < pageCount(); ++page)
@@ -215,8 +229,10 @@ bool PagedPyramid::load(const std::vector<int>& pages, const std::vector<int>& k
         if (absent.size() > freeLayers_.size() + evictable.size()) return false;
         const std::size_t needed = absent.size() - freeLayers_.size();
         std::partial_sort(evictable.begin(), evictable.begin() + static_cast<long>(needed),
-                          evictable.end(),
-                          [&](int a, int b) { return pages_[a].wanted < pages_[b].wanted; });
+                          evictable.end(), [&](int a, int b) {
+                              return std::tie(pages_[a].used, pages_[a].level, a) <
+                                     std::tie(pages_[b].used, pages_[b].level, b);
+                          });
         for (std::size_t k = 0; k < needed; ++k) {
             Page& out = pages_[evictable[k]];
             freeLayers_.push_back(out.layer);
@@ -237,7 +253,7 @@ bool PagedPyramid::load(const std::vector<int>& pages, const std::vector<int>& k
         gl_.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, page.layer, side, side, 1, GL_RED, GL_FLOAT,
                           texels.data());
         setEntry(id, static_cast<std::uint32_t>(page.layer) + 1u);
-        page.wanted = clock_;
+        page.used = clock_;
         ++residentCount_;
         ++pagesLoaded_;
     }

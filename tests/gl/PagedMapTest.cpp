@@ -400,13 +400,76 @@ TEST_F(PagedMap, ALevelOfDetailFrameWantsNoPageFinerThanItsPixels) {
         ASSERT_TRUE(pager.load(wanted, kept));
         kept.insert(kept.end(), wanted.begin(), wanted.end());
     }
-    EXPECT_LE(wantedSamples, samplePages / 8) << "of " << samplePages << " sample pages, " << kept.size() << " pages in all";
+    EXPECT_LE(wantedSamples, samplePages / 8)
+        << "of " << samplePages << " sample pages, " << kept.size() << " pages in all";
 
     PagingSettings tight = smallPages();
     tight.memoryBytes = 128 * 16 * 16 * 4;  // 128 pages of 16^2: fewer than the frame wants
     const HeadlessResult paged = renderPaged(map, job, tight);
     expectSamePicture(paged, renderWhole(map, job), "1 px level of detail");
     EXPECT_GT(hits(paged.frame), 64u * 64 / 2) << "the relief fills the picture";
+}
+
+// Pages a view reads stay resident from frame to frame (least recently used go first,
+// paged_map.glsl marking every page a draw reads): under a budget that holds what the
+// frame reads but not every page its first draws wanted (finer pages under the coarse
+// stand-ins, which the exact frame does not read), the first frame evicts, and the frames
+// after it load nothing: one draw each, the whole textures' picture. The cobbles of 512^2
+// in 32 x 32 at obliqueView, pages of 16^2 (2388): the frame reads 948 pages, its draws
+// want 1062; the budget is 1/16 over the 948. Seen red with eviction by when a page was
+// last wanted or loaded (the resident pages a draw read were never marked, so those loaded
+// first, the coarse ones every ray reads, went first): 385 pages loaded by the second
+// frame, in 27 draws (and at a budget of 950, 1011 pages every frame).
+TEST_F(PagedMap, FramesOfAViewWhosePagesFitLoadNothingAfterTheFirst) {
+    const HeightMap map = synth::cobbles(512, 512, 7);
+    const RenderJob job = obliqueView(32, 32);
+    PagingSettings paging = smallPages();
+    paging.mode = PagingSettings::Mode::Always;
+    // What the exact frame reads: a draw after the one that wanted nothing reads the same.
+    // 2000 pages of 16^2, more than its draws want (the map's 2388 would pass the GL's
+    // layers, 2048 at least, and grow the pages).
+    std::size_t frameReads = 0;
+    {
+        paging.memoryBytes = 2000 * 16 * 16 * 4;
+        ReliefRenderer renderer(gl(), shaderDirectory());
+        renderer.setPaging(paging);
+        renderer.apply(job, job.method, &map, "cobbles");
+        OffscreenTarget target(gl(), job.width, job.height);
+        const CameraFrame camera = renderer.resolveCamera(job.camera, job.width, job.height);
+        PagedPyramid& pager = *renderer.pager();
+        ASSERT_EQ(pager.pageSide(), 16);
+        std::vector<int> kept;
+        for (int draw = 0;; ++draw) {
+            ASSERT_LT(draw, 10) << "the draws end once nothing is wanted";
+            target.clear(glm::vec3(0.0f));
+            renderer.draw(camera, ShadingOptions{});
+            const std::vector<int> wanted = pager.takeWanted();
+            if (wanted.empty()) break;
+            ASSERT_TRUE(pager.load(wanted, kept));
+            kept.insert(kept.end(), wanted.begin(), wanted.end());
+        }
+        frameReads = pager.readByLastDraws().size();
+        EXPECT_GT(kept.size(), frameReads + frameReads / 16)
+            << "the draws want more pages than the frame reads, past the budget below";
+        EXPECT_LT(frameReads + frameReads / 16, static_cast<std::size_t>(pager.pageCount()));
+    }
+    paging.memoryBytes = (frameReads + frameReads / 16) * 16 * 16 * 4;
+    const HeadlessResult whole = renderWhole(map, job);
+    HeadlessRenderer renderer(test::glContext(), job.method);
+    renderer.setPaging(paging);
+    renderer.setHeights(job, map, "paged");
+    const HeadlessResult first = renderer.render(job);
+    expectSamePicture(first, whole, "the first frame");
+    EXPECT_GT(first.paging.pagesLoaded, frameReads + frameReads / 16) << "the first frame evicts";
+    for (int frame = 2; frame <= 3; ++frame) {
+        const HeadlessResult next = renderer.render(job);
+        const std::string what = "frame " + std::to_string(frame) + " of " +
+                                 std::to_string(frameReads) + " pages read, a budget of " +
+                                 std::to_string(frameReads + frameReads / 16);
+        expectSamePicture(next, whole, what);
+        EXPECT_EQ(next.paging.pagesLoaded, 0u) << what;
+        EXPECT_EQ(next.paging.draws, 1) << what;
+    }
 }
 
 }  // namespace

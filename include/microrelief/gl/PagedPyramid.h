@@ -7,8 +7,9 @@
 // wanted (load) and draws again, until a draw wants nothing: that picture is the one the
 // whole map gives, bit for bit (gl/HeadlessRender.h draws so). Pages are cut from the
 // samples and windows as PyramidPages keeps them (core/heightmap/PyramidPages.h: in memory,
-// or in a pyramid file on disk, io/PyramidFile.h); the least recently wanted go first when
-// the pool is full.
+// or in a pyramid file on disk, io/PyramidFile.h). A draw also records every resident page
+// it reads, so the least recently used go first when the pool is full: the pages a view
+// reads stay resident from one frame to the next while the pool holds them.
 //
 // GL 4.3 (shader storage in the fragment shader); the multilevel method only.
 #pragma once
@@ -53,7 +54,8 @@ struct PagingSettings {
 };
 
 // Where the page table's parts lie, in 32-bit words (paged_map.glsl gets them as defines):
-// the info words (the paged window levels L, S, log2 of the page side), then four words a
+// the info words (the paged window levels L, S, log2 of the page side, the stamp the draws
+// write to the use buffer for the pages they read), then four words a
 // page level (its first entry, width, height, a spare; level 0 the samples, 1 + k window
 // level k, up to 1 + L), then an entry a page.
 struct PageTableLayout {
@@ -74,6 +76,8 @@ public:
     GLuint pool() const { return pool_.id(); }
     GLuint coarse() const { return coarse_.id(); }
     GLuint table() const { return table_.id(); }
+    // The use buffer (paged_map.glsl): a word a page, the stamp of the last draw that read
+    // or wanted it.
     GLuint wants() const { return wants_.id(); }
 
     int pageSide() const { return 1 << shift_; }
@@ -88,21 +92,27 @@ public:
     std::size_t gpuBytes() const;
 
     // The pages the draws since the last call wanted and found absent, in the entries'
-    // order, and the wants cleared. Waits for the draws (a buffer read).
+    // order; the pages they read (resident or wanted) count as used now (for load's
+    // order), those read resident are readByLastDraws() until the next call. Waits for the
+    // draws (a buffer read).
     std::vector<int> takeWanted();
+    // The pages the draws before the last takeWanted read from the pool, in the entries'
+    // order: a host that keeps them (load's `keep`) never evicts what the next draw reads.
+    const std::vector<int>& readByLastDraws() const { return read_; }
     // Loads `pages` (ids from takeWanted) that are absent, each into a free layer or the
-    // layer of the least recently wanted resident page outside `keep` (which may hold any
-    // ids, `pages` among them). Returns false, loading nothing, when they do not all fit
-    // beside `keep`.
+    // layer of the least recently used resident page outside `keep` (which may hold any
+    // ids, `pages` among them; of pages last used at once, the finer level goes first: a
+    // coarse page is read by more rays). Returns false, loading nothing, when they do not
+    // all fit beside `keep`.
     bool load(const std::vector<int>& pages, const std::vector<int>& keep);
     bool resident(int page) const { return pages_[page].layer >= 0; }
 
 private:
     struct Page {
-        int level = 0;             // page level: 0 the samples, 1 + k window level k
-        glm::ivec2 origin;         // its first texel
-        int layer = -1;            // the pool layer, -1 absent
-        std::uint64_t wanted = 0;  // when last wanted or loaded (the load counter)
+        int level = 0;           // page level: 0 the samples, 1 + k window level k
+        glm::ivec2 origin;       // its first texel
+        int layer = -1;          // the pool layer, -1 absent
+        std::uint64_t used = 0;  // when last read, wanted or loaded (clock_)
     };
     std::vector<float> pageTexels(const Page& page) const;
     void setEntry(int page, std::uint32_t entry);
@@ -114,7 +124,12 @@ private:
     std::vector<Page> pages_;
     std::vector<int> freeLayers_;
     int residentCount_ = 0;
-    std::uint64_t clock_ = 0;
+    std::uint64_t clock_ = 0;  // takeWanted's calls
+    // What the draws write to the use buffer for a page they read (the table's info word
+    // 3): 1 to kLastStamp, changed by each takeWanted; the top bit marks a page wanted.
+    static constexpr std::uint32_t kWantedBit = 0x80000000u, kLastStamp = kWantedBit - 1;
+    std::uint32_t stamp_ = 1;
+    std::vector<int> read_;
     std::size_t pagesLoaded_ = 0, pagesEvicted_ = 0;
     gl::Texture pool_, coarse_;
     gl::Buffer table_, wants_;

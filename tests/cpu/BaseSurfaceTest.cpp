@@ -7,7 +7,9 @@
 #include <numbers>
 #include <random>
 
+#include "microrelief/core/base/BaseMeshes.h"
 #include "microrelief/core/base/BaseSurface.h"
+#include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
 #include "microrelief/core/synth/SyntheticMaps.h"
 
@@ -244,6 +246,43 @@ TEST(BaseSurface, TopNormalIsNormalToTheSurface) {
 
 // The pyramid of a wrapped map bounds the surface across the seam: the finest texels at
 // the seam see the other side's samples, and a footprint across it reads both parts.
+// core/base/BaseMeshes.h's meshes lie on the bases they copy, by the bases' own mapping
+// (BaseType::objectPoint, the inverse of BaseSurface::mapPoint): each vertex is the object
+// point over its texture coordinate times the map's size at height 0, and its normal the
+// base's top normal there (a flat map: gradient 0; BaseSurface::topNormal at the frame point
+// BaseSurface::frameRay gives it), or its opposite for an inward tube. Seen red with the
+// tube's phi a quarter turn off and with the grid's z taken from u.
+TEST(BaseMeshes, EachVertexLiesWhereItsBaseMapsItsTextureCoordinate) {
+    const int width = 64, height = 32;
+    const double s = 0.1;
+    struct Case {
+        const char* name;
+        BaseShape base;
+        TriangleMesh mesh;
+        double normalSign;
+    };
+    const std::vector<Case> cases = {
+        {"grid", BaseShape::plane(), planeGridMesh(8, 1.0f, 0.5f), 1.0},
+        {"tube", BaseShape::cylinder(0.5, 2.0), cylinderTubeMesh(24, 6, 0.5f, 2.0f), 1.0},
+        {"inward tube", BaseShape::cylinder(0.5, 2.0), cylinderTubeMesh(24, 6, 0.5f, 2.0f, true),
+         -1.0}};
+    for (const Case& c : cases) {
+        const BaseType& type = baseType(c.base);
+        const auto surface = BaseSurface::make(c.base, width, height, s, 1.0);
+        for (std::size_t k = 0; k < c.mesh.vertexCount(); ++k) {
+            const glm::dvec2 texel = glm::dvec2(c.mesh.texCoords[k]) * glm::dvec2(width, height);
+            const glm::dvec3 expected = type.objectPoint(c.base, width, height, s, texel, 0.0);
+            // The mesh's float positions: within a few float ulps of the unit.
+            EXPECT_LT(glm::length(glm::dvec3(c.mesh.positions[k]) - expected), 1e-6)
+                << c.name << " vertex " << k;
+            const glm::dvec3 q = surface->frameRay(Ray{expected, glm::dvec3(0.0, 0.0, 1.0)}).origin;
+            const glm::dvec3 normal = surface->worldNormal(surface->topNormal(q, glm::dvec2(0.0)));
+            EXPECT_NEAR(glm::dot(normal, glm::dvec3(c.mesh.normals[k])), c.normalSign, 1e-6)
+                << c.name << " vertex " << k;
+        }
+    }
+}
+
 TEST(MaxPyramidWrapped, BoundsTheSurfaceAcrossTheSeam) {
     std::mt19937 random(18);
     for (auto [w, h] :

@@ -31,6 +31,10 @@ void applyBatchFlags(const CLI::App& app, RenderOptions& o, const std::string& c
     }
     if (b.active() && o.compareReference)
         throwBadInput("--compare-reference checks one picture: not with a camera path");
+    if (b.active() && o.scene.job.onMesh)
+        throwBadInput(std::string(turntable ? "--turntable" : "--cameras") +
+                      ": camera paths are not yet drawn on the mesh base (" +
+                      flagName("base") + " mesh)");
     if (b.active() && app.count("--out") == 0) o.out = "out/microrelief-{frame:04d}.png";
 }
 
@@ -115,10 +119,18 @@ ParseResult<RenderOptions> parseRenderOptions(int argc, char** argv) {
         if (!aov.empty()) o.aov = aov;
         applyBatchFlags(app, o, cameras, frames, shard, manifest);
         o.lightSizeGiven = app.count(flagName("shading.lightSizeDegrees")) > 0;
+        o.eyeGiven = app.count(flagName("camera.eye")) > 0;
+        o.targetGiven = app.count(flagName("camera.target")) > 0;
+        if (o.scene.job.onMesh && o.compareReference)
+            throwBadInput("--compare-reference: not yet on the mesh base (" + flagName("base") +
+                          " mesh)");
         o.paging.memoryBytes = memoryMib << 20;
         // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
         allowPagedMaps(o.scene.job.map.load);
         if (!pyramidCache.empty()) {
+            if (o.scene.job.onMesh)
+                throwBadInput("--pyramid-cache: not yet on the mesh base (" + flagName("base") +
+                              " mesh)");
             o.pyramidCache = pyramidCache;
             o.scene.job.map.load.maxSamples = 0;  // never held whole: the side bounds it
         }

@@ -38,6 +38,9 @@ struct RenderOptions {
     bool quiet = false;
     bool verbose = false;
     bool lightSizeGiven = false;  // --light-size on the command line
+    // --eye, --target on the command line: on the mesh base, the one not given frames the
+    // mesh (gl/HeadlessRender.h: meshCamera).
+    bool eyeGiven = false, targetGiven = false;
     // Maps past the GL's texture size: read through pages, within --memory (MiB).
     PagingSettings paging;
     // --pyramid-cache: the map drawn from its pyramid file kept there (io/PyramidFile.h),

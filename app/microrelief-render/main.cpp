@@ -171,6 +171,33 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
     return drawn;
 }
 
+// The mesh base (--base mesh --mesh FILE): the map and the mesh read whole (io/ReliefFiles.h),
+// the camera framing the mesh's shell where the command line gives no eye or target
+// (meshCamera), drawn by gl::MeshRelief (gl/HeadlessRender.h). No georeference fit: the
+// mesh's units are its file's.
+Drawn drawMesh(const RenderOptions& o) {
+    const ReliefFiles files = loadReliefFiles(o.scene.job, ReliefParts::Heights);
+    RenderJob job = o.scene.job;
+    const ReliefExtent shell =
+        meshShellExtent(*files.mesh, job.heightScale, files.heights->maxValue());
+    job.camera = meshCamera(job.camera, o.eyeGiven, o.targetGiven, shell, job.width, job.height);
+    if (o.verbose && !(o.eyeGiven && o.targetGiven))
+        logInfo("the camera framing the mesh: " + flagName("camera.eye") + "=" +
+                exactVector(job.camera.eye) + " " + flagName("camera.target") + "=" +
+                exactVector(job.camera.target));
+    const auto context = openContext(o);
+    Drawn drawn;
+    {
+        HeadlessRenderer renderer(*context, job.method);  // its GL objects die before the context
+        renderer.setMesh(files.mesh, files.heights,
+                         files.meshFile ? files.meshFile->string() : std::string("the mesh"));
+        drawn.result = renderer.render(job);
+    }
+    drawn.context = context->description();
+    drawn.mapSize = {files.heights->width, files.heights->height};
+    return drawn;
+}
+
 int run(const RenderOptions& o) {
     if (o.batch.active()) return runBatch(o);  // a camera path: many frames
     const auto start = std::chrono::steady_clock::now();
@@ -184,8 +211,9 @@ int run(const RenderOptions& o) {
     if (o.lightSizeGiven && o.scene.job.shading.shadows != ShadowMode::Soft)
         logWarning(lightSizeUnused());
     const std::filesystem::path heightFile = heightMapPath(o.scene.job);
-    const Drawn drawn =
-        o.pyramidCache ? drawFromPyramidFile(o, heightFile) : drawLoadedMap(o, heightFile);
+    const Drawn drawn = o.scene.job.onMesh ? drawMesh(o)
+                        : o.pyramidCache   ? drawFromPyramidFile(o, heightFile)
+                                           : drawLoadedMap(o, heightFile);
     const RenderedFrame& frame = drawn.result.frame;
 
     std::size_t exhausted = 0;

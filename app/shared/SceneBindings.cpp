@@ -12,6 +12,7 @@
 
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/core/base/BaseType.h"
 #include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/core/scene/Scene.h"
@@ -252,13 +253,17 @@ SceneBinding albedo() {
     return b;
 }
 
-// --base and each base size's flag (the table of bases' fields: core/base/BaseType.h).
+// The mesh base's name for --base (ReliefDesc::onMesh): no row of the table of bases.
+constexpr const char* kMeshBase = "mesh";
+
+// --base and each base size's flag (the table of bases' fields: core/base/BaseType.h), and
+// `mesh`, the mesh base, which has no sizes (its file is --mesh's).
 SceneBinding base() {
     SceneBinding b;
     b.path = "base";
     b.keep = &GeoreferenceFit::keepBase;
     b.seed = [](const RenderJob& job, FlagSlot& slot) {
-        slot.text = baseName(job.base);
+        slot.text = job.onMesh ? kMeshBase : baseName(job.base);
         for (const BaseSize& size : baseType(job.base).sizes)
             slot.sizes[size.field] = sizeText(size, job.base);
     };
@@ -268,6 +273,7 @@ SceneBinding base() {
         for (const BaseType& type : baseTypes())
             bases += std::string(&type == &baseTypes().front() ? " " : ", ") + type.name + " (" +
                      type.summary + ")";
+        bases += std::string(", ") + kMeshBase + " (the triangle mesh of " + flagName("mesh.file") + ")";
         CLI::Option* option = app.add_option(flag, slot.text, bases)->capture_default_str();
         for (const std::string& field : baseSizeFields()) {
             // "Radius of the cylinder (default 0.3) or the sphere (default 0.5), world units"
@@ -292,11 +298,29 @@ SceneBinding base() {
         return option;
     };
     b.apply = [](RenderJob& job, const FlagSlot& slot, const FlagSlots&) {
-        job.base = parseBase(slot.text, slot.sizes);
+        job.onMesh = slot.text == kMeshBase;
+        std::vector<std::string> names;
+        for (const BaseType& type : baseTypes()) names.emplace_back(type.name);
+        names.emplace_back(kMeshBase);
+        if (std::find(names.begin(), names.end(), slot.text) == names.end())
+            throwBadInput("unknown " + flagName("base") + " '" + slot.text + "' (expected " +
+                          joinWords(names, " or ") + ")");
+        if (!job.onMesh) {
+            job.base = parseBase(slot.text, slot.sizes);
+            return;
+        }
+        for (const auto& [field, text] : slot.sizes)
+            if (!text.empty())
+                throwBadInput(flagName(field) + " does not apply to --base " + kMeshBase);
+        job.base = BaseShape{};  // not drawn: the plane's defaults (core/scene/Scene.h)
     };
     // The default base goes without saying, but where it was chosen over a georeferenced
     // map's own (a global grid's ellipsoid).
     b.echo = [](const RenderJob& job, const GeoreferenceFit& fit, CommandEcho& out) {
+        if (job.onMesh) {
+            out.spaced("base", kMeshBase);
+            return;
+        }
         const BaseType& type = baseType(job.base);
         if (&type == &baseType(BaseShape{}) && !fit.keepBase) return;
         out.spaced("base", type.name);
@@ -306,6 +330,23 @@ SceneBinding base() {
             else
                 out.joined(size.field, sizeText(size, job.base));
         }
+    };
+    return b;
+}
+
+// --mesh FILE: the mesh base's triangles (io/MeshFile.h reads them), echoed after --base mesh.
+SceneBinding meshFile() {
+    SceneBinding b;
+    b.path = "mesh.file";
+    b.seed = [](const RenderJob& job, FlagSlot& slot) {
+        if (job.mesh.file) slot.text = job.mesh.file->string();
+    };
+    b.add = addText;
+    b.apply = [](RenderJob& job, const FlagSlot& slot, const FlagSlots&) {
+        if (!slot.text.empty()) job.mesh.file = slot.text;
+    };
+    b.echo = [](const RenderJob& job, const GeoreferenceFit&, CommandEcho& out) {
+        if (job.mesh.file) out.spaced("mesh.file", job.mesh.file->string());
     };
     return b;
 }
@@ -516,6 +557,7 @@ std::vector<SceneBinding> makeBindings() {
         kept(number(MEMBER(heightScale), always), &GeoreferenceFit::keepHeightScale),
         readAfter("base", word(MEMBER(interpolation), interpolationName, parseInterpolation)),
         base(),
+        meshFile(),
         tiles(),
         animation(),
         time(),

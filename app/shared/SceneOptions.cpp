@@ -272,6 +272,8 @@ std::vector<NamedFile> filesRead(const ReliefDesc& relief, const std::string& wh
     std::vector<NamedFile> files{{heightMapPath(relief), where + flagName("map.file")}};
     if (const std::optional<std::filesystem::path> albedo = albedoPath(relief))
         files.push_back({*albedo, where + flagName("albedo")});
+    if (relief.onMesh && relief.mesh.file)
+        files.push_back({*relief.mesh.file, where + flagName("mesh.file")});
     return files;
 }
 

@@ -55,7 +55,7 @@ public:
     }
 
     // --height --channel --normalize --height-scale --exaggeration (with SceneOptions)
-    // --interpolation --base --radius --length --radii --tile --animate --time --eye
+    // --interpolation --base --radius --length --radii --mesh --tile --animate --time --eye
     // --target --up --fovy --size --model
     void addMapAndCamera(CLI::App& app);
     // --light --light-position --shadows --light-size --method --steps --pixel-error --view
@@ -110,8 +110,8 @@ std::string exactVector(const glm::dvec3& v);
 
 // heightMapPath, albedoPath, bundledColoursFit, albedoOffered: io/ReliefFiles.h.
 // The files drawing `relief` reads, named by their flags after `where` (a camera file's
-// row: "cams.csv: line 4 (frame 2): "): the height map and the albedo, if any. What no
-// output of a run may be (io/AtomicFile.h: checkOutputsAreNotInputs).
+// row: "cams.csv: line 4 (frame 2): "): the height map, the albedo, if any, and the mesh
+// base's file. What no output of a run may be (io/AtomicFile.h: checkOutputsAreNotInputs).
 std::vector<NamedFile> filesRead(const ReliefDesc& relief, const std::string& where = "");
 
 // `job` over a W x H map read with the georeference `geo` (io/HeightMapFile.h:

@@ -72,6 +72,7 @@ void HeadlessRenderer::setAlbedo(const AlbedoImage* albedo, const std::string& s
 HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     // The door: the scene as a whole (core/scene/Scene.h), once, before any GL work.
     throwIfInvalid(validateScene(job, job));
+    if (job.onMesh) return renderMesh(job);  // src/gl/HeadlessMesh.cpp
     const ReliefMap* map = renderer_->map().get();
     if (!map) throwRuntime("HeadlessRenderer::render: no height map");
     {

@@ -4,6 +4,7 @@
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/io/AlbedoFile.h"
+#include "microrelief/io/MeshFile.h"
 
 namespace microrelief {
 
@@ -29,8 +30,9 @@ std::optional<std::filesystem::path> albedoPath(const ReliefDesc& relief) {
 }
 
 bool bundledColoursFit(const ReliefDesc& relief) {
-    // The bundled map's colours go with its stones: not with a field that replaces them.
-    return relief.map.bundled() &&
+    // The bundled map's colours go with its stones: not with a field that replaces them, nor
+    // yet on the mesh base (gl/MeshRelief.h draws one colour).
+    return relief.map.bundled() && !relief.onMesh &&
            (relief.animation.empty() || animatedFieldShowsTheMap(relief.animation));
 }
 
@@ -61,6 +63,14 @@ ReliefFiles loadReliefFiles(const ReliefDesc& relief, ReliefParts parts) {
             files.heights = files.read_;
             files.georeference = std::move(read.georeference);
             files.placement = std::move(read.placement);
+        }
+        if (relief.onMesh) {
+            if (relief.mesh.triangles) {
+                files.mesh = relief.mesh.triangles;
+            } else if (relief.mesh.file) {
+                files.meshFile = *relief.mesh.file;
+                files.mesh = std::make_shared<const TriangleMesh>(loadMeshFile(*files.meshFile));
+            }
         }
     }
     if (parts != ReliefParts::Heights) {

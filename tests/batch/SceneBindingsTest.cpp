@@ -77,6 +77,17 @@ SceneOptions tiledScene() {
     return scene;
 }
 
+// The mesh base (--base mesh --mesh FILE), biquadratic, the normal view.
+SceneOptions meshScene() {
+    SceneOptions scene;
+    scene.job.onMesh = true;
+    scene.job.mesh.file = "/my meshes/rock.obj";
+    scene.job.heightScale = 0.02f;
+    scene.job.interpolation = Interpolation::Biquadratic;
+    scene.job.shading.view = DebugView::Normal;
+    return scene;
+}
+
 TEST(SceneBindings, TheEchoedCommandLineIsPinned) {
     EXPECT_EQ(renderCommandLine(SceneOptions{}),
               "microrelief-render --height-scale 0.1 --eye=0.8,0.5,0.85 --target=0,-0.03,0 "
@@ -103,13 +114,18 @@ TEST(SceneBindings, TheEchoedCommandLineIsPinned) {
               "--eye=0.8,0.5,0.85 --target=0,-0.03,0 --up=0,1,0 --fovy 45 --size 1280x720 "
               "--light=-0.45808792,0.81437856,-0.3562906 --light-size 2 --method relief "
               "--view shaded");
+    EXPECT_EQ(renderCommandLine(meshScene()),
+              "microrelief-render --height-scale 0.02 --interpolation biquadratic --base mesh "
+              "--mesh '/my meshes/rock.obj' --eye=0.8,0.5,0.85 --target=0,-0.03,0 --up=0,1,0 "
+              "--fovy 45 --size 1280x720 --light=-0.45808792,0.81437856,-0.3562906 --method "
+              "multilevel --view normal");
 }
 
 // A parse of no flags over a scene gives the scene back: each flag's seed is its field's
 // exact text.
 TEST(SceneBindings, NoFlagsOverASceneKeepIt) {
     for (const SceneOptions& scene :
-         {SceneOptions{}, cylinderScene(), ellipsoidScene(), tiledScene()}) {
+         {SceneOptions{}, cylinderScene(), ellipsoidScene(), tiledScene(), meshScene()}) {
         SceneOptions parsed = scene;
         SceneFlags flags(parsed);
         CLI::App app;
@@ -161,7 +177,18 @@ TEST(SceneBindings, FlagsOverASceneAndTheRulesBetweenThem) {
     EXPECT_TRUE(parse(cylinder, "--radius 0.25").job.base == BaseShape::cylinder(0.25, 1.25));
     // Two wrong flags at once: the one reported is the one it has always been.
     EXPECT_EQ(message(SceneOptions{}, "--interpolation cubic --base cone"),
-              "unknown --base 'cone' (expected plane, cylinder, ellipsoid or sphere)");
+              "unknown --base 'cone' (expected plane, cylinder, ellipsoid, sphere or mesh)");
+    // The mesh base: its file with it, no size of the analytic bases.
+    const SceneOptions onMesh = parse(SceneOptions{}, "--base mesh --mesh /m/rock.obj");
+    EXPECT_TRUE(onMesh.job.onMesh);
+    EXPECT_EQ(onMesh.job.mesh.file, std::filesystem::path("/m/rock.obj"));
+    EXPECT_EQ(message(SceneOptions{}, "--base mesh --mesh r.obj --radius 2"),
+              "--radius does not apply to --base mesh");
+    EXPECT_EQ(message(SceneOptions{}, "--base mesh"),
+              "--base mesh needs --mesh FILE, the triangle mesh (OBJ or glTF 2.0) the map is "
+              "laid over");
+    EXPECT_EQ(message(SceneOptions{}, "--base sphere --mesh r.obj"),
+              "--mesh is the mesh base's: give --base mesh with it (not --base sphere)");
     EXPECT_EQ(message(SceneOptions{}, "--size 5x --light 0,0,0"), "--light must not be zero");
     EXPECT_EQ(message(SceneOptions{}, "--model 1,2 --view foo --method bar"),
               "unknown --view 'foo' (expected shaded, iterations, level, normal, depth or "

@@ -10,6 +10,8 @@
 
 #include "microrelief/gl/GlContext.h"
 #include "microrelief/core/heightmap/HeightMap.h"
+#include "microrelief/core/base/ReliefExtent.h"
+#include "microrelief/core/base/TriangleMesh.h"
 #include "microrelief/gl/AnimatedHeights.h"
 #include "microrelief/core/scene/Camera.h"
 #include "microrelief/core/scene/ModelTransform.h"
@@ -43,6 +45,10 @@ struct HeadlessResult {
     std::optional<HeightMap> animatedMap;
     PagingReport paging;  // all 0 for a map in whole textures
 };
+
+namespace gl {
+class MeshRelief;
+}
 
 // Pictures of one map at a time, keeping what they share from one to the next: the
 // programs (each method compiled once), the map's textures and max pyramid (built
@@ -79,9 +85,17 @@ public:
     const RebuildCounts& rebuilds() const { return renderer_->rebuilds(); }
     // The map's colours (core/image/Albedo.h), or none (the shading's one colour). Throws Error.
     void setAlbedo(const AlbedoImage* albedo, const std::string& source);
-    // Renders `job` of the current map. The scene is checked as a whole first
-    // (validateScene: Error(BadInput) with its first refusal, before any GL work). Throws
-    // Error.
+    // The mesh base's triangles and map (ReliefDesc::onMesh; io/ReliefFiles.h loads both),
+    // which render() draws a job on the mesh base over with gl::MeshRelief (src/gl/
+    // HeadlessMesh.cpp); `source` names them in messages. The map's textures and the proxy
+    // are built at the first such render and kept while the mesh, the map, the height
+    // scale, the last level, the light's direction, the colour and the view stay the same
+    // (a camera path's frames).
+    void setMesh(std::shared_ptr<const TriangleMesh> mesh, std::shared_ptr<const HeightMap> map,
+                 const std::string& source);
+    // Renders `job` of the current map (of setMesh's mesh and map, on the mesh base). The
+    // scene is checked as a whole first (validateScene: Error(BadInput) with its first
+    // refusal, before any GL work). Throws Error.
     HeadlessResult render(const RenderJob& job);
     // When setHeights reads a map through pages (ReliefRenderer::setPaging;
     // by default Auto: maps larger than GL_MAX_TEXTURE_SIZE).
@@ -104,6 +118,8 @@ private:
     // (ReliefMap: size, highest sample, name).
     void upload(const std::function<void()>& set);
 
+    // render() of a job on the mesh base: one tile (larger pictures refused, Error(BadInput)).
+    HeadlessResult renderMesh(const RenderJob& job);
     // One tile of the picture into `result`; a paged map's drawn until it is exact.
     void drawTile(const RenderJob& job, const CameraFrame& camera, const PictureTile& part,
                   HeadlessResult& result);
@@ -113,8 +129,31 @@ private:
     std::optional<OffscreenTarget> target_;
     std::unique_ptr<AnimatedHeights> animated_;
     bool fromPages_ = false;  // the map set is a pyramid file's (setPyramidPages)
+    // setMesh's, and the MeshRelief drawn last (src/gl/HeadlessMesh.cpp; shared: deleted as
+    // made there, where it is complete).
+    struct MeshState;
+    std::shared_ptr<MeshState> mesh_;
     int maxTileSide_ = kDefaultTileSide;
 };
+
+// The box the mesh base's shell lies in (ReliefExtent: min, max, topHeight = s H): the
+// mesh's vertices' box grown by s H on every side, `top` H >= every height of the map (the
+// pyramid's top: gl::MeshRelief::top, or the map's largest sample, which bounds every
+// bilinear and biquadratic value). Why it holds: a point of the shell is X(b, t) =
+// B(b) + s t D(b) with B(b) a convex combination of the vertices (in their box),
+// D(b) = sum b_i N_i of length at most sum b_i |N_i| = 1 (unit normals, b_i >= 0, sum 1) and
+// 0 <= t <= H, so |X - B| <= s H and each coordinate lies within s H of the box.
+ReliefExtent meshShellExtent(const TriangleMesh& mesh, double heightScale, double top);
+// The camera a picture of the mesh base takes where the user gives none: `camera` with its
+// target, where not `targetGiven`, at the centre of `shell` (meshShellExtent), and its eye,
+// where not `eyeGiven`, along the default camera's direction (Camera{}: from above, to the
+// front right) from the target, at the distance where the shell's bounding sphere (about its
+// centre, radius half its box's diagonal) fills the narrower of the picture's two fields of
+// view (width x height pixels, camera.fovyDegrees): the whole shell in the picture, as the
+// default camera has the unit plane and the curved bases in it. `up` and the field of view
+// stay as given.
+Camera meshCamera(Camera camera, bool eyeGiven, bool targetGiven, const ReliefExtent& shell,
+                  int width, int height);
 
 // `source` names the map in error messages; `paging`: when and how the map is read through
 // pages (by default, past GL_MAX_TEXTURE_SIZE). Throws Error.

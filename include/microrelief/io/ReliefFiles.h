@@ -49,6 +49,10 @@ struct ReliefFiles {
     std::optional<GroundPlacement> placement;  // a DEM's, with its georeference
     std::optional<std::filesystem::path> albedoFile;  // albedoPath, where asked for
     std::optional<AlbedoImage> albedo;                // its texels, where it names one
+    // On the mesh base (ReliefDesc::onMesh), with the heights: the triangles, the
+    // description's in memory or read from its file (meshFile; io/MeshFile.h).
+    std::optional<std::filesystem::path> meshFile;
+    std::shared_ptr<const TriangleMesh> mesh;
 
     // The heights for a host that edits them (the viewer's sculpting), `heights` left empty:
     // those read from the file handed over as they are (no copy: a copy of `heights` kept
@@ -62,8 +66,9 @@ private:
 };
 
 // Reads what `relief` names, as `parts` asks: the samples it holds, or its map file as
-// relief.map.load says (loadHeightMapFile); the albedo where albedoPath names one
-// (loadAlbedo). Throws as those do: one Error(BadInput) naming the file and the reason.
+// relief.map.load says (loadHeightMapFile), and with them on the mesh base its triangles
+// (loadMeshFile); the albedo where albedoPath names one (loadAlbedo). Throws as those do:
+// one Error(BadInput) naming the file and the reason.
 ReliefFiles loadReliefFiles(const ReliefDesc& relief,
                             ReliefParts parts = ReliefParts::HeightsAndAlbedo);
 

@@ -79,8 +79,44 @@ bool ReliefDesc::operator==(const ReliefDesc& o) const {
     return map == o.map && albedo == o.albedo && base == o.base &&
            interpolation == o.interpolation && tiles == o.tiles && heightScale == o.heightScale &&
            model.objectToWorld() == o.model.objectToWorld() && animation == o.animation &&
-           time == o.time;
+           time == o.time && onMesh == o.onMesh && mesh == o.mesh;
 }
+
+namespace {
+
+// What the mesh base (ReliefDesc::onMesh) does not draw yet: "{tiles} 2,1: not yet on the
+// mesh base (--base mesh)".
+std::string notYetOnMesh(const std::string& what) {
+    return what + ": not yet on the mesh base ({base} mesh)";
+}
+
+// The relief's fields the mesh base takes or refuses: its file with it and only with it;
+// tiles, an animation, a model transform and an albedo file not yet (gl/MeshRelief.h draws
+// the mesh in its own units, one map over its uvs, in one colour).
+void checkMesh(const ReliefDesc& relief, std::vector<FieldError>& errors) {
+    if (!relief.onMesh) {
+        if (relief.mesh.given())
+            errors.push_back({"mesh.file", "{mesh.file} is the mesh base's: give {base} mesh with it "
+                                           "(not {base} " +
+                                               baseName(relief.base) + ")"});
+        return;
+    }
+    if (!relief.mesh.given())
+        errors.push_back({"mesh.file", "{base} mesh needs {mesh.file} FILE, the triangle mesh "
+                                       "(OBJ or glTF 2.0) the map is laid over"});
+    if (relief.tiles != glm::ivec2(1, 1))
+        errors.push_back({"tiles", notYetOnMesh("{tiles} " + std::to_string(relief.tiles.x) + "," +
+                                                std::to_string(relief.tiles.y) +
+                                                " (the mesh's uvs repeat the map already)")});
+    if (!relief.animation.empty())
+        errors.push_back({"animation", notYetOnMesh("{animation} " + relief.animation)});
+    if (!relief.model.isIdentity())
+        errors.push_back({"model", notYetOnMesh("{model} (the mesh is drawn in its own units)")});
+    if (relief.albedo.kind == AlbedoSource::Kind::File)
+        errors.push_back({"albedo", notYetOnMesh("{albedo} FILE (colours from a file)")});
+}
+
+}  // namespace
 
 std::vector<FieldError> ReliefDesc::validate() const {
     std::vector<FieldError> errors;
@@ -107,6 +143,7 @@ std::vector<FieldError> ReliefDesc::validate() const {
     }
     if (!(std::abs(time) <= kMaxAnimationSeconds))
         errors.push_back({"time", "{time} must be a number of seconds within +-1e9, got " + number(time)});
+    checkMesh(*this, errors);
     return errors;
 }
 
@@ -176,6 +213,30 @@ bool samePyramid(const ReliefDesc& a, const ReliefDesc& b) {
 
 std::vector<FieldError> validateTogether(const ReliefDesc& relief, const ViewDesc& view) {
     std::vector<FieldError> errors;
+    if (relief.onMesh) {
+        // What gl/MeshRelief.h draws: the multilevel method's exact hit, shaded under the
+        // directional light or as normals; the rest is not there yet.
+        if (view.method.method != Method::Multilevel)
+            errors.push_back({"method", notYetOnMesh(std::string("{method} ") +
+                                                     methodName(view.method.method) +
+                                                     " (the mesh base is traced by multilevel)")});
+        if (view.method.pixelError > 0.0f)
+            errors.push_back({"method.pixelError",
+                              notYetOnMesh("{method.pixelError} " + number(view.method.pixelError) +
+                                           " (the mesh base is drawn exact, 0)")});
+        if (view.shading.shadows != ShadowMode::Off)
+            errors.push_back({"shading.shadows", notYetOnMesh(std::string("{shading.shadows} ") +
+                                                              shadowModeName(view.shading.shadows))});
+        if (view.shading.lightPosition)
+            errors.push_back({"shading.lightPosition",
+                              notYetOnMesh("{shading.lightPosition} (a point light; "
+                                           "{shading.lightDirection} is drawn)")});
+        if (view.shading.view != DebugView::Shaded && view.shading.view != DebugView::Normal)
+            errors.push_back({"shading.view", notYetOnMesh(std::string("{shading.view} ") +
+                                                           debugViewName(view.shading.view) +
+                                                           " (shaded and normal are drawn)")});
+        return errors;  // the analytic bases' rules below concern `base`, which is not drawn
+    }
     collect(errors, "method", [&] { checkMethodSupportsBase(view.method.method, relief.base); });
     collect(errors, "method", [&] { checkMethodSupportsTiles(view.method.method, relief.tiles); });
     if (view.shading.shadows != ShadowMode::Off && !methodTracesTheSolid(view.method.method)) {

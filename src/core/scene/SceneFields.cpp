@@ -31,8 +31,8 @@ constexpr SceneField kSceneFields[] = {
      "World height of map value 1 (the map spans 1 unit); default for a georeferenced map: its "
      "true proportions",
      "world height of map value 1; the map's longer side spans 1 world unit. On a curved "
-     "base: a fraction of the radius. A georeferenced map (DEM) without it: its true "
-     "proportions"},
+     "base: a fraction of the radius; on the mesh base: the mesh's units. A georeferenced "
+     "map (DEM) without it: its true proportions"},
     {"interpolation", "--interpolation", "I", "interpolation", "bilinear",
      "`bilinear`, `biquadratic`",
      "The last level: bilinear, or biquadratic (the quadratic B-spline of the samples: smooth)",
@@ -40,10 +40,19 @@ constexpr SceneField kSceneFields[] = {
      "close up) or `biquadratic` (the quadratic B-spline of the samples: smooth; see "
      "[interpolation.md](interpolation.md))"},
     // --help appends the table of bases' names and summaries (core/base/BaseType.h).
-    {"base", "--base", "B", "base", "plane", "`plane`, `cylinder`, `ellipsoid`, `sphere`",
+    {"base", "--base", "B", "base", "plane", "`plane`, `cylinder`, `ellipsoid`, `sphere`, `mesh`",
      "Base surface the map is laid over (u wraps around a curved base's y axis):",
      "the base surface the map is laid over; its sizes are the rows below (see "
-     "[bases.md](bases.md))"},
+     "[bases.md](bases.md)); `mesh`: the triangle mesh of `--mesh`"},
+    // The mesh base's file (ReliefDesc::mesh; not a row of the table of bases).
+    {"mesh.file", "--mesh", "FILE", "", "none",
+     "OBJ, glTF 2.0 (`.gltf`, `.glb`); up to 524288 triangles",
+     "With --base mesh: the triangle mesh the map is laid over (OBJ, glTF 2.0), with texture "
+     "coordinates; --height-scale is then in its units",
+     "with `--base mesh`: the triangle mesh the map is laid over, with texture coordinates "
+     "(OBJ, glTF 2.0; read as [bases.md](bases.md#the-mesh) says); `--height-scale` is then "
+     "in the mesh's units. Not yet with shadows, `--albedo FILE`, a method other than "
+     "`multilevel`, `--pixel-error`, `--tile`, `--animate`, `--model`, `--light-position`"},
     {"tiles", "--tile", "N,M", "", "1,1", "each a whole number from 1 to 4096",
      "Repeat the map N,M times across the base (N around a curved base), as the N x M larger "
      "image made by repeating it (default 1,1)",

@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include "microrelief/core/base/BaseShape.h"
+#include "microrelief/core/base/TriangleMesh.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/scene/Camera.h"
 #include "microrelief/core/scene/FloatLimits.h"
@@ -59,10 +60,27 @@ struct AlbedoSource {
     bool operator==(const AlbedoSource&) const = default;
 };
 
+// The mesh base's triangles (docs/bases.md, "The mesh"): a mesh in memory, or an OBJ or glTF
+// 2.0 file (read by the io component, io/MeshFile.h: loadMeshFile).
+struct MeshSource {
+    std::shared_ptr<const TriangleMesh> triangles;  // first, where given
+    std::optional<std::filesystem::path> file;      // else this file
+
+    bool given() const { return triangles || file; }
+    bool operator==(const MeshSource&) const = default;
+};
+
 struct ReliefDesc {
     MapSource map;
     AlbedoSource albedo;
-    BaseShape base;  // the surface the map is laid over
+    BaseShape base;  // the surface the map is laid over, unless onMesh
+    // The mesh base (microrelief-render's --base mesh --mesh FILE): the map laid over the
+    // triangles of `mesh` (each prism X(b, t) = B(b) + s t D(b), s = heightScale in the
+    // mesh's units) rather than over `base`, which then keeps the plane's defaults. Not a row
+    // of the table of analytic bases (core/base/BaseType.h). validate() refuses here what the
+    // mesh base does not draw yet: tiles, an animation, a model transform, an albedo file.
+    bool onMesh = false;
+    MeshSource mesh;  // given exactly when onMesh
     Interpolation interpolation = Interpolation::Bilinear;  // the last level
     glm::ivec2 tiles{1, 1};  // the map repeated N x M times across the base
     float heightScale = 0.1f;  // object height of map value 1 (plane); radius fraction (curved)
@@ -89,7 +107,8 @@ struct ViewDesc {
 };
 
 // What the two must agree on: the method runs on the relief's base and tiles, shadows
-// take an exact method.
+// take an exact method; on the mesh base, the view the mesh base draws so far (multilevel,
+// exact, no shadows, the directional light, the shaded or the normal view).
 std::vector<FieldError> validateTogether(const ReliefDesc& relief, const ViewDesc& view);
 // Whether two reliefs have one max pyramid: the same heights (the map source and how it is
 // loaded, the animation not counted: an animated field is written over the map's pyramid),

@@ -1,0 +1,155 @@
+// HeadlessRenderer on the mesh base (gl/HeadlessRender.h: setMesh, render of a job with
+// ReliefDesc::onMesh): the relief drawn by gl::MeshRelief into the renderer's OffscreenTarget,
+// kept from one picture to the next while what it was built from stays the same; and the
+// mesh's shell box and default camera.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "microrelief/core/DataPaths.h"
+#include "microrelief/core/Error.h"
+#include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/gl/MeshRelief.h"
+#include "microrelief/gl/StateGuard.h"
+
+namespace microrelief {
+
+// setMesh's triangles and map, and the MeshRelief built from them with `built`'s values.
+struct HeadlessRenderer::MeshState {
+    std::shared_ptr<const TriangleMesh> mesh;
+    std::shared_ptr<const HeightMap> map;
+    std::string source;
+    std::optional<gl::MeshRelief> relief;
+    // What `relief` was built with (it bakes them in: MeshRelief's constructor).
+    struct Key {
+        double heightScale = 0.0;
+        gl::MeshReliefOptions options;
+        bool operator==(const Key& o) const {
+            return heightScale == o.heightScale &&
+                   options.interpolation == o.options.interpolation &&
+                   options.lightDirection == o.options.lightDirection &&
+                   options.albedo == o.options.albedo && options.view == o.options.view;
+        }
+    };
+    Key built;
+};
+
+void HeadlessRenderer::setMesh(std::shared_ptr<const TriangleMesh> mesh,
+                               std::shared_ptr<const HeightMap> map, const std::string& source) {
+    if (!mesh || !map) throwRuntime("HeadlessRenderer::setMesh: no mesh or no map");
+    if (mesh_ && mesh_->mesh == mesh && mesh_->map == map) return;  // its relief kept
+    mesh_ = std::make_shared<MeshState>();
+    mesh_->mesh = std::move(mesh);
+    mesh_->map = std::move(map);
+    mesh_->source = source;
+}
+
+HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
+    if (!mesh_) throwRuntime("HeadlessRenderer::render: a job on the mesh base and no mesh (setMesh)");
+    context_.makeCurrent();
+    const GL& gl = context_.gl();
+    gl::refuseEarlierError(gl, "rendering " + mesh_->source);
+    // One tile: MeshRelief draws with the whole picture's viewProjection, which a tile of a
+    // larger picture would have to narrow (not yet).
+    GLint maxRenderbuffer = 0, maxTexture = 0, maxViewport[2] = {0, 0};
+    gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    const int tile = std::min({maxTileSide_, static_cast<int>(maxRenderbuffer),
+                               static_cast<int>(maxTexture), static_cast<int>(maxViewport[0]),
+                               static_cast<int>(maxViewport[1])});
+    if (job.width > tile || job.height > tile) {
+        throwBadInput("{size} " + std::to_string(job.width) + "x" + std::to_string(job.height) +
+                      ": a picture larger than one tile (" + std::to_string(tile) +
+                      " pixels a side here) is not yet drawn on the mesh base ({base} mesh)");
+    }
+
+    MeshState::Key key;
+    key.heightScale = job.heightScale;
+    key.options.interpolation = job.interpolation;
+    key.options.lightDirection = glm::normalize(job.shading.lightDirection);
+    key.options.albedo = job.shading.albedo;
+    key.options.view = job.shading.view;
+    if (!mesh_->relief || !(mesh_->built == key)) {
+        mesh_->relief.reset();
+        mesh_->relief.emplace(gl, shaderDirectory(), *mesh_->mesh, *mesh_->map, key.heightScale,
+                              key.options);
+        mesh_->built = key;
+    }
+    const gl::MeshRelief& relief = *mesh_->relief;
+
+    // The depth range about the shell (meshShellExtent: every point of it in that box).
+    const ReliefExtent shell = meshShellExtent(*mesh_->mesh, job.heightScale, relief.top());
+    const CameraFrame camera =
+        resolveCamera(job.camera, job.width, job.height, 0.5 * glm::length(shell.max - shell.min),
+                      0.5 * (shell.min + shell.max));
+
+    if (!target_ || target_->width() != job.width || target_->height() != job.height) {
+        target_.reset();
+        target_.emplace(gl, job.width, job.height);
+    }
+    HeadlessResult result{{}, camera, std::nullopt, {}};
+    RenderedFrame& frame = result.frame;
+    try {
+        const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
+        frame.width = job.width;
+        frame.height = job.height;
+        frame.positionOrigin = camera.eye;  // MeshRelief writes the hit less the eye
+        frame.color.resize(count);
+        frame.position.resize(count);
+        frame.stats.resize(count);
+        frame.shadow.resize(count / 4);
+    } catch (const std::bad_alloc&) {
+        throwRuntime("not enough memory for a " + std::to_string(job.width) + "x" +
+                     std::to_string(job.height) + " picture (" +
+                     std::to_string(kFrameBytesPerPixel) + " bytes a pixel)");
+    }
+    target_->clear(job.background);  // depth 1: MeshRelief's test is GL_LESS
+    {
+        const gl::SrgbWrites srgb(gl);  // the relief's linear colour, encoded
+        relief.draw(glm::mat4(camera.viewProjection), camera.eye);
+    }
+    target_->readInto(frame, 0, 0, job.width, job.height);
+    gl.Finish();
+    const GLenum error = gl.GetError();
+    if (error != GL_NO_ERROR)
+        throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + mesh_->source);
+    return result;
+}
+
+ReliefExtent meshShellExtent(const TriangleMesh& mesh, double heightScale, double top) {
+    ReliefExtent extent;
+    if (mesh.positions.empty()) return extent;
+    glm::dvec3 low(mesh.positions.front()), high(low);
+    for (const glm::vec3& p : mesh.positions) {
+        low = glm::min(low, glm::dvec3(p));
+        high = glm::max(high, glm::dvec3(p));
+    }
+    extent.topHeight = heightScale * top;  // s H, the mesh's units
+    extent.min = low - glm::dvec3(extent.topHeight);
+    extent.max = high + glm::dvec3(extent.topHeight);
+    return extent;
+}
+
+Camera meshCamera(Camera camera, bool eyeGiven, bool targetGiven, const ReliefExtent& shell,
+                  int width, int height) {
+    const glm::dvec3 centre = 0.5 * (shell.min + shell.max);
+    const double radius = 0.5 * glm::length(shell.max - shell.min);
+    if (!targetGiven) camera.target = centre;
+    if (!eyeGiven) {
+        const Camera standard;
+        const glm::dvec3 direction = glm::normalize(standard.eye - standard.target);
+        // The half angle of the narrower field: vertical fovy / 2, horizontal from the aspect.
+        const double tanY = std::tan(glm::radians(camera.fovyDegrees) * 0.5);
+        const double tanX = tanY * (static_cast<double>(std::max(width, 1)) / std::max(height, 1));
+        const double half = std::atan(std::min(tanX, tanY));
+        // A sphere of radius r seen from distance d fills the half angle asin(r / d); from a
+        // target off the centre, the distance to it more.
+        const double distance =
+            std::max(radius, 1e-300) / std::sin(half) + glm::length(camera.target - centre);
+        camera.eye = camera.target + distance * direction;
+    }
+    return camera;
+}
+
+}  // namespace microrelief

@@ -18,7 +18,9 @@
 // of rays parallel to the grid: level pieces), (e) folded prisms (a bumpy grid with leaning
 // normals under a shell as thick as a quad; its border's walls), (f) a tube of 24 sides seen
 // from its side, (g) an inward tube whose shell passes its axis (a focal line), seen down the
-// axis (its rims' walls); (a), (e) and (f) again at the biquadratic last level; seamless noise
+// axis (its rims' walls), (h) bumpy inward tubes whose prisms fold across caustics, seen from
+// outside (the mesh from behind, walls, and 5 pixels entering through a fold, each fold normal
+// held to 1e-3 rad); (a), (e) and (f) again at the biquadratic last level; seamless noise
 // maps of 256 x 128 and 128 x 64 samples (a triangle's uv box 32 x 16 and 5 x 16 texels: the
 // walk descends before its leaves; the tube's u wraps); 64 x 48 pixels, about 5 s in all on
 // llvmpipe (10 s where Mesa's shader cache has not the programs). And the normal debug view:
@@ -211,6 +213,7 @@ struct Agreement {
     int normals = 0, normalsOff = 0;
     double normalWorst = 0.0, normalSum = 0.0;
     int surfaces[6] = {};  // the reference's hits by MeshSurface
+    int foldNormalsOff = 0;  // of those over kNormalOff, the hits on a fold
 };
 
 // A normal off by more than this (radians) counts against the case (expectAgreement).
@@ -272,6 +275,7 @@ Agreement compare(const TriangleMesh& mesh, const HeightMap& map, double s, glm:
             ++a.normals;
             a.normalSum += angle;
             a.normalWorst = std::max(a.normalWorst, angle);
+            if (angle > kNormalOff && hit.surface == MeshSurface::Fold) ++a.foldNormalsOff;
             if (angle > kNormalOff && ++a.normalsOff <= 3) {
                 std::printf("  (%d, %d) normal %.3g rad off: surface %d, b (%.3g, %.3g, %.3g), "
                             "t %.4g, texel (%.5f, %.5f), GPU (%.4f, %.4f, %.4f), reference (%.4f, %.4f, %.4f)\n",
@@ -399,6 +403,38 @@ TEST_F(MeshRelief, TheNormalViewShowsTheNormalAov) {
     EXPECT_THROW(gl::MeshRelief(gl, shaderDirectory(), flatGrid(2, 1.0f, 1.0f), map, 0.08,
                                 gl::MeshReliefOptions{.view = DebugView::Depth}),
                  Error);
+}
+
+// A bumpy inward tube, normals tilted at random by up to 0.4, under a shell of 0.6 against a
+// radius of about 0.25 (MeshReferenceTest's bumpyFoldedTube, its draws in a defined order): the
+// offset triangles fold across caustics, and some rays come into the solid through a fold.
+TriangleMesh bumpyFoldedTube(std::uint32_t seed) {
+    std::mt19937 random(seed);
+    TriangleMesh mesh = cylinderTubeMesh(10, 2, 0.25f, 0.8f, true);
+    std::uniform_real_distribution<double> scale(0.8, 1.2), tilt(-0.4, 0.4);
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        const float r = static_cast<float>(scale(random));
+        mesh.positions[v].x *= r;
+        mesh.positions[v].z *= r;
+        const glm::dvec3 lean{tilt(random), tilt(random), tilt(random)};
+        mesh.normals[v] = glm::normalize(mesh.normals[v] + glm::vec3(lean));
+    }
+    return mesh;
+}
+
+// Seen from outside, the bumpy folded tube shows the mesh itself from behind (t = 0), its rims'
+// walls and a few pixels where the ray enters through a fold (3 and 2 here): the fold's normal,
+// the envelope's, against the reference's.
+TEST_F(MeshRelief, AFoldedBumpyTubeIsTheReferencesPixelByPixel) {
+    for (const std::uint32_t seed : {50u, 56u}) {
+        const HeightMap map = seamless(synth::valueNoise(16, 8, 3.0, 2, 9 + seed));
+        const Agreement a = compare(bumpyFoldedTube(seed), map, 0.6,
+                                    {1.2 * std::cos(4.0), 0.3, 1.2 * std::sin(4.0)},
+                                    {0.0, 0.0, 0.0}, "bumpy-" + std::to_string(seed));
+        expectAgreement(a);
+        EXPECT_GT(a.surfaces[static_cast<int>(MeshSurface::Fold)], 0);  // the case still has folds
+        EXPECT_EQ(a.foldNormalsOff, 0);  // a handful of pixels: each one held
+    }
 }
 
 // The biquadratic last level (the B-spline, C1: no crease at the cells' edges), the same

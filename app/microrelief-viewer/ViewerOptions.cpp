@@ -132,6 +132,9 @@ void finish(ViewerOptions& o, SceneFlags& scene, const std::string& screenshot,
             const std::string& windowScreenshot, const std::string& shaderDir, bool noVsync,
             bool noPanel, std::size_t memoryMib) {
     scene.apply();
+    // The mesh base is microrelief-render's so far (gl/HeadlessRender.h), not the window's.
+    if (o.scene.job.onMesh)
+        throwBadInput("--base mesh: not yet in microrelief-viewer (microrelief-render draws it)");
     // Maps past the GL's textures are paged; their samples and pyramid stay in memory.
     o.paging.memoryBytes = memoryMib << 20;
     allowPagedMaps(o.scene.job.map.load);

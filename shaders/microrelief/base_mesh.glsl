@@ -109,12 +109,46 @@ float mr_polyBisect(float p[5], float a, float b, float fa) {
     return b;
 }
 
+// Whether p, evaluated in float by mr_polyValue, has one strict sign at every t in [0, h]:
+// its Bernstein coefficients over [0, h] all of one sign by more than 2^-12 of
+// M = sum |p_i| h^i (p's own units; M bounds |p| over [0, h]). Why that is enough:
+// p(t) = sum_j beta_j B_j(t / h) with B_j >= 0 and sum_j B_j = 1 on [0, h] (the convex hull
+// property), so |p(t)| >= min_j |beta_j| there; the beta_j below are sums of at most five
+// terms each at most |p_i| h^i, computed within about 10 ulps of M (2^-24 M an ulp), and
+// Horner's evaluation of a degree-4 p at 0 <= t <= h errs by at most 8 ulps of M (fused or
+// not). 2^-12 M is 4096 ulps of M: float's evaluation of p keeps the exact sign with room
+// to spare, even for arithmetic a few ulps worse than IEEE. A non-finite M (overflow, NaN)
+// fails the test.
+bool mr_polyKeepsSign(float p[5], float h) {
+    float a1 = p[1] * h, a2 = p[2] * h * h, a3 = p[3] * h * h * h, a4 = p[4] * h * h * h * h;
+    float size = abs(p[0]) + abs(a1) + abs(a2) + abs(a3) + abs(a4);
+    // Bernstein coefficients of degree 4 over [0, h]: beta_j = sum_i C(j, i) / C(4, i) p_i h^i.
+    float b1 = p[0] + 0.25 * a1, b2 = p[0] + 0.5 * a1 + (1.0 / 6.0) * a2;
+    float b3 = p[0] + 0.75 * a1 + 0.5 * a2 + 0.25 * a3, b4 = p[0] + a1 + a2 + a3 + a4;
+    float least = min(min(min(p[0], b1), min(b2, b3)), b4);
+    float most = max(max(max(p[0], b1), max(b2, b3)), b4);
+    float margin = size * (1.0 / 4096.0);
+    return least > margin || most < -margin;
+}
+
 // The real roots of p in (lo, hi), ascending, at most 4 (MeshTracer's rootsIn): those of
-// each derivative isolate the next one's, from the linear one up to p.
+// each derivative isolate the next one's, from the linear one up to p. Two shortcuts give
+// exactly what the full search gives (the same roots, to the bit):
+//  * p keeps one sign over [0, hi] in float (mr_polyKeepsSign, lo = 0): the last level's
+//    scan sees that sign at every point it evaluates (all in [lo, hi]), so it finds no sign
+//    change and no zero: no roots;
+//  * the levels k >= deg p: p's k-th derivative is a non-zero constant or zero (its
+//    coefficients exactly k! p_k or 0: products of p's floats by small integers), where the
+//    scan over [lo, hi] alone (no roots below to split it) finds nothing: they are skipped.
 int mr_polyRoots(float p[5], float lo, float hi, out float roots[4]) {
     int count = 0;
     roots = float[4](0.0, 0.0, 0.0, 0.0);
+    if (lo == 0.0 && mr_polyKeepsSign(p, hi)) return 0;
+    int degree = 0;
+    for (int i = 1; i < 5; ++i)
+        if (p[i] != 0.0) degree = i;
     for (int k = 3; k >= 0; --k) {
+        if (k >= degree) continue;
         float dk[5] = p;  // p's k-th derivative (no arrays of arrays in GLSL 3.30 / ES 3.00)
         for (int i = 0; i < 3; ++i)
             if (i < k) dk = mr_polyDerivative(dk);

@@ -36,7 +36,11 @@
 // does not change, so all of a page's writes in it store the same word: plain stores, no
 // atomics, never a wrong value. The cost: a store a paged read (of the samples or of a
 // paged window level, resident or not; the coarse texture's reads store nothing) and a
-// read of the stamp, a word every invocation shares.
+// read of the stamp, a word every invocation shares. One store in the code, not one a
+// case: on llvmpipe, where every page a frame reads is resident, the paged frame took
+// 4.0 times the whole textures' time with it as with the wants alone, but 4.75 times with
+// a store for each case, and 4.5 with one store and a table word to switch the resident
+// marks off (docs/perf/2026-12-07-paged-lru.md).
 #ifndef MICRORELIEF_PAGED_MAP_GLSL
 #define MICRORELIEF_PAGED_MAP_GLSL
 
@@ -84,11 +88,8 @@ uint mr_pageEntry(int l, ivec2 t, bool want) {
     ivec2 page = t >> shift;
     int index = int(mr_pageTable[at]) + page.y * across + page.x;
     uint entry = mr_pageTable[MICRORELIEF_PAGE_ENTRIES_AT + index];
-    if (entry != 0u) {
-        mr_pageUse[index] = mr_pageStamp();
-    } else if (want) {
-        mr_pageUse[index] = mr_pageStamp() | 0x80000000u;
-    }
+    uint wanted = entry != 0u ? 0u : 0x80000000u;
+    if (entry != 0u || want) mr_pageUse[index] = mr_pageStamp() | wanted;
     return entry;
 }
 

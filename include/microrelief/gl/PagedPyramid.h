@@ -55,9 +55,9 @@ struct PagingSettings {
 
 // Where the page table's parts lie, in 32-bit words (paged_map.glsl gets them as defines):
 // the info words (the paged window levels L, S, log2 of the page side, the stamp the draws
-// write to the use buffer for the pages they read), then four words a
-// page level (its first entry, width, height, a spare; level 0 the samples, 1 + k window
-// level k, up to 1 + L), then an entry a page.
+// write to the use buffer for the pages they read), then four words a page level (its
+// first entry, width, height, a spare; level 0 the samples, 1 + k window level k, up to
+// 1 + L), then an entry a page.
 struct PageTableLayout {
     static constexpr int kInfoAt = 0;
     static constexpr int kMaxPageLevels = 34;  // the samples and 33 window levels at most

@@ -88,7 +88,8 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
                   map.samples.data());
 
     // The triangle table (base_mesh.glsl): 8 RGBA32F texels a triangle.
-    const MeshProxy proxy = buildMeshProxy(mesh, map, heightScale);
+    proxy_ = buildMeshProxy(mesh, map, heightScale);
+    const MeshProxy& proxy = proxy_;
     const int triangles = static_cast<int>(mesh.triangleCount());
     const int rows = (triangles + kTableRow - 1) / kTableRow;
     GLint maxSize = 0;
@@ -172,7 +173,20 @@ void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) co
     }
     gl_.Enable(GL_DEPTH_TEST);
     gl_.DepthFunc(GL_LESS);
-    gl_.Disable(GL_CULL_FACE);
+    // One fragment a hull for a ray from outside it: back faces culled. Exact: each hull is a
+    // closed surface wound counter-clockwise seen from outside (MeshProxy.h), so at a pixel
+    // whose ray passes through its interior (as every ray that meets the prism does: the
+    // float hull encloses the exact one with a margin, MeshProxy.h), from an eye outside it,
+    // the front faces rasterised over that pixel outnumber the back faces by the winding
+    // number 1: at least one front-face fragment, which traces the prism from the eye as a
+    // back face's would. An eye inside a hull sees none of its front faces: the hulls that
+    // may hold the eye (hullsThatMayHold: the float vertices' box holds it, a superset) are
+    // drawn without culling. Which winding is front follows the orientation of
+    // viewProjection: a perspective camera's has a negative determinant (its clip z points
+    // away from the eye) and keeps counter-clockwise counter-clockwise on screen; a mirrored
+    // one (a positive determinant) turns it clockwise.
+    gl_.CullFace(GL_BACK);
+    gl_.FrontFace(glm::determinant(viewProjection) < 0.0f ? GL_CCW : GL_CW);
     // No clipping at the near plane: an eye inside a hull (inside the shell) may have that
     // hull's faces nearer than it, and its rays' hits may be too; clipped, the prism would
     // give no fragment and the pixel would show a later prism's hit. The clip volume's
@@ -180,7 +194,21 @@ void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) co
     // get depth 0 (the shader clamps), so among those the first drawn is kept.
     gl_.Enable(GL_DEPTH_CLAMP);
     gl_.BindVertexArray(vertexArray_.id());
-    gl_.DrawArrays(GL_TRIANGLES, 0, 3 * proxyTriangles_);
+    const auto drawRange = [&](std::uint32_t first, std::uint32_t end, bool cull) {
+        if (end <= first) return;
+        if (cull) gl_.Enable(GL_CULL_FACE);
+        else gl_.Disable(GL_CULL_FACE);
+        gl_.DrawArrays(GL_TRIANGLES, static_cast<GLint>(3 * first),
+                       static_cast<GLsizei>(3 * (end - first)));
+    };
+    std::uint32_t from = 0;
+    // The eye as the shader has it (float), so that the hull holding it is named.
+    for (const std::uint32_t k : hullsThatMayHold(proxy_, glm::dvec3(glm::vec3(eye)))) {
+        drawRange(from, proxy_.firstProxyTriangle[k], true);
+        from = proxy_.firstProxyTriangle[k + 1];
+        drawRange(proxy_.firstProxyTriangle[k], from, false);
+    }
+    drawRange(from, static_cast<std::uint32_t>(proxyTriangles_), true);
     gl_.BindVertexArray(0);
 }
 

@@ -13,11 +13,13 @@
 // options:  MeshReliefOptions: the last level (bilinear, biquadratic), the light's direction,
 //           the albedo, the colour view (shaded, or the normal debug view).
 //
-// Drawn with the depth test (GL_LESS) and no face culling: an eye inside a hull sees only its
-// back faces (MeshProxy.h), and a ray crossing a hull gets one fragment a face it crosses,
-// each tracing the same prism from the eye (the same hit, the depth test keeps one); and with
-// depth clamping on, so that a hull's faces nearer than the near plane (the eye inside the
-// shell) are not clipped away (the hits before the near plane get depth 0).
+// Drawn with the depth test (GL_LESS), back faces culled but for the hulls that may hold the
+// eye (core/base/MeshProxy.h's hullsThatMayHold, per draw: an eye inside a hull sees only its
+// back faces), which are drawn without culling: a ray crossing a hull from outside gets one
+// fragment of it (where it enters), tracing that prism from the eye, rather than one a face
+// it crosses (twice the fragments, each tracing the same prism); and with depth clamping on,
+// so that a hull's faces nearer than the near plane (the eye inside the shell) are not
+// clipped away (the hits before the near plane get depth 0).
 //
 // Outputs (relief.frag's locations, OffscreenTarget's attachments): 0 the colour, linear (an
 // sRGB target encodes it while sRGB writes are on, gl::SrgbWrites): the library's shading
@@ -37,6 +39,7 @@
 
 #include <glm/glm.hpp>
 
+#include "microrelief/core/base/MeshProxy.h"
 #include "microrelief/core/base/TriangleMesh.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/core/scene/Method.h"
@@ -78,6 +81,8 @@ public:
     // The pyramid's top H (map units): the prisms reach t in [0, H].
     float top() const { return top_; }
     int proxyTriangles() const { return proxyTriangles_; }
+    // The proxy drawn (its hulls' float vertices, each mesh triangle's range of them).
+    const MeshProxy& proxy() const { return proxy_; }
 
 private:
     const GL& gl_;
@@ -85,6 +90,7 @@ private:
     VertexArray vertexArray_;
     Buffer positions_, indices_;
     Texture table_, heights_, windows_;
+    MeshProxy proxy_;  // kept for hullsThatMayHold at each draw
     int proxyTriangles_ = 0, levelCount_ = 0;
     float top_ = 0.0f, heightScale_ = 0.0f;
     glm::vec2 mapSize_{0.0f};

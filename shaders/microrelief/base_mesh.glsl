@@ -606,6 +606,13 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
     kinds[cutCount++] = MR_MESH_BASE;
     cuts[cutCount] = top;
     kinds[cutCount++] = MR_MESH_TOP;
+    // The six turning numerators computed once, before the loop: chosen inside it by source,
+    // each branch's work runs on a SIMD rasteriser (llvmpipe) under a mask for every source,
+    // six times ten products where six are needed (measured: 1.5x to 1.8x the fragment's
+    // time). The same polynomials, the same cuts.
+    float turnL[5] = mr_turnNumerator(path.num, path.c), turn0[5] = mr_turnNumerator(n0, path.c);
+    float turn1[5] = mr_turnNumerator(path.n1, path.c), turn2[5] = mr_turnNumerator(path.n2, path.c);
+    float turnU[5] = mr_turnNumerator(nu, path.c), turnV[5] = mr_turnNumerator(nv, path.c);
     for (int source = 0; source < 10; ++source) {
         float p[5];
         int kind = MR_MESH_TOP;
@@ -622,13 +629,13 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
             p = path.n2;
             kind = MR_MESH_WALL0 + 2;
         } else if (source == 4) {
-            p = mr_turnNumerator(path.num, path.c);
+            p = turnL;
             kind = MR_MESH_FOLD;
-        } else if (source == 5) p = mr_turnNumerator(n0, path.c);
-        else if (source == 6) p = mr_turnNumerator(path.n1, path.c);
-        else if (source == 7) p = mr_turnNumerator(path.n2, path.c);
-        else if (source == 8) p = mr_turnNumerator(nu, path.c);
-        else p = mr_turnNumerator(nv, path.c);
+        } else if (source == 5) p = turn0;
+        else if (source == 6) p = turn1;
+        else if (source == 7) p = turn2;
+        else if (source == 8) p = turnU;
+        else p = turnV;
         float roots[4];
         int n = mr_polyRoots(p, 0.0, top, roots);
         for (int r = 0; r < 4; ++r) {

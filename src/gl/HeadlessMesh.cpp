@@ -14,6 +14,26 @@
 
 namespace microrelief {
 
+namespace {
+
+// The clip-space crop that takes the tile `part` of a width x height picture (GL window
+// coordinates, lower-left corner (part.x, part.y)) to the whole of a part.width x
+// part.height viewport: x' = sx x + ox w (and y alike), z and w unchanged, so that each of
+// the tile's pixels is the picture's pixel at the same place. MeshRelief traces the ray from
+// the eye through the fragment's point on the hull (mesh_relief.frag), which the crop does not
+// move, and writes the depth z / w, which it leaves alone.
+glm::dmat4 tileCrop(const PictureTile& part, int width, int height) {
+    glm::dmat4 crop(1.0);
+    crop[0][0] = static_cast<double>(width) / part.width;
+    crop[1][1] = static_cast<double>(height) / part.height;
+    // NDC -1 + 2 part.x / width goes to -1, -1 + 2 (part.x + part.width) / width to 1.
+    crop[3][0] = static_cast<double>(width - 2 * part.x - part.width) / part.width;
+    crop[3][1] = static_cast<double>(height - 2 * part.y - part.height) / part.height;
+    return crop;
+}
+
+}  // namespace
+
 // setMesh's triangles and map, and the MeshRelief built from them with `built`'s values.
 struct HeadlessRenderer::MeshState {
     std::shared_ptr<const TriangleMesh> mesh;
@@ -49,8 +69,8 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
     context_.makeCurrent();
     const GL& gl = context_.gl();
     gl::refuseEarlierError(gl, "rendering " + mesh_->source);
-    // One tile: MeshRelief draws with the whole picture's viewProjection, which a tile of a
-    // larger picture would have to narrow (not yet).
+    // Tiles as render() draws them (no larger than the GL's viewport and renderbuffer limits,
+    // and maxTileSide_), each with the picture's viewProjection cropped to it (tileCrop).
     GLint maxRenderbuffer = 0, maxTexture = 0, maxViewport[2] = {0, 0};
     gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
@@ -58,11 +78,7 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
     const int tile = std::min({maxTileSide_, static_cast<int>(maxRenderbuffer),
                                static_cast<int>(maxTexture), static_cast<int>(maxViewport[0]),
                                static_cast<int>(maxViewport[1])});
-    if (job.width > tile || job.height > tile) {
-        throwBadInput("{size} " + std::to_string(job.width) + "x" + std::to_string(job.height) +
-                      ": a picture larger than one tile (" + std::to_string(tile) +
-                      " pixels a side here) is not yet drawn on the mesh base ({base} mesh)");
-    }
+    if (tile < 1) throwRuntime("the GL reports no usable framebuffer size (a failed query)");
 
     MeshState::Key key;
     key.heightScale = job.heightScale;
@@ -84,9 +100,10 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
         resolveCamera(job.camera, job.width, job.height, 0.5 * glm::length(shell.max - shell.min),
                       0.5 * (shell.min + shell.max));
 
-    if (!target_ || target_->width() != job.width || target_->height() != job.height) {
+    const int targetWidth = std::min(tile, job.width), targetHeight = std::min(tile, job.height);
+    if (!target_ || target_->width() != targetWidth || target_->height() != targetHeight) {
         target_.reset();
-        target_.emplace(gl, job.width, job.height);
+        target_.emplace(gl, targetWidth, targetHeight);
     }
     HeadlessResult result{{}, camera, std::nullopt, {}};
     RenderedFrame& frame = result.frame;
@@ -104,12 +121,20 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
                      std::to_string(job.height) + " picture (" +
                      std::to_string(kFrameBytesPerPixel) + " bytes a pixel)");
     }
-    target_->clear(job.background);  // depth 1: MeshRelief's test is GL_LESS
-    {
-        const gl::SrgbWrites srgb(gl);  // the relief's linear colour, encoded
-        relief.draw(glm::mat4(camera.viewProjection), camera.eye);
+    for (int y = 0; y < job.height; y += tile) {
+        for (int x = 0; x < job.width; x += tile) {
+            const PictureTile part{x, y, std::min(tile, job.width - x),
+                                   std::min(tile, job.height - y)};
+            target_->clear(job.background);  // depth 1: MeshRelief's test is GL_LESS
+            gl.Viewport(0, 0, part.width, part.height);
+            {
+                const gl::SrgbWrites srgb(gl);  // the relief's linear colour, encoded
+                relief.draw(glm::mat4(tileCrop(part, job.width, job.height) * camera.viewProjection),
+                            camera.eye);
+            }
+            target_->readInto(frame, part.x, part.y, part.width, part.height);
+        }
     }
-    target_->readInto(frame, 0, 0, job.width, job.height);
     gl.Finish();
     const GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)

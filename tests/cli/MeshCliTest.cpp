@@ -7,7 +7,8 @@
 // triangle) off at most 0.2 % of the hits. Cases: a bumpy OBJ grid with leaning normals
 // written here (its uvs over two periods of the map) at 64 x 48; meshes no one here made,
 // from Debian's assimp-testmodels (an OBJ spider, Khronos' glTF BoxTextured), with the default
-// camera, every other pixel. And the refusals, one line each: what the mesh base does not
+// camera, every other pixel; a picture drawn in tiles (HeadlessRenderer, the program's path,
+// with small tiles) equal to the one drawn whole. And the refusals, one line each: what the mesh base does not
 // draw yet, a base without its mesh and a mesh without its base, files that are no mesh.
 #include <gtest/gtest.h>
 
@@ -21,6 +22,7 @@
 #include "microrelief/core/synth/SyntheticMaps.h"
 #include "microrelief/core/trace/MeshReference.h"
 #include "microrelief/gl/HeadlessRender.h"
+#include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/MeshFile.h"
 
@@ -190,6 +192,49 @@ TEST_F(MeshCli, DebianTestModelsWithTheDefaultCameraAreTheReferences) {
     }
 }
 
+// A picture larger than a tile (the GL's limits, 4096 by default) is drawn in tiles, each
+// with the picture's viewProjection cropped to it: with tiles of 20 pixels (4 x 3 of a 64 x 48
+// picture, the last ones narrower), the same hits and positions as drawn whole.
+TEST_F(MeshCli, APictureDrawnInTilesIsThePictureDrawnWhole) {
+    const auto meshFile = dir / "grid.obj";
+    writeBumpyGrid(meshFile, 4);
+    const auto mesh = std::make_shared<const TriangleMesh>(loadMeshFile(meshFile));
+    const auto map = std::make_shared<const HeightMap>(seamless(synth::valueNoise(64, 32, 7.0, 4, 5)));
+    RenderJob job;
+    job.onMesh = true;
+    job.mesh.triangles = mesh;
+    job.heightScale = 0.06f;
+    job.camera.eye = {0.2, 0.8, 1.1};
+    job.camera.target = {0.0, 0.02, 0.0};
+    job.width = 64;
+    job.height = 48;
+    const auto context = createHeadlessContext(Backend::Auto);
+    HeadlessRenderer renderer(*context);
+    renderer.setMesh(mesh, map, "grid.obj");
+    const HeadlessResult whole = renderer.render(job);
+    renderer.setMaxTileSide(20);
+    const HeadlessResult tiled = renderer.render(job);
+    ASSERT_EQ(tiled.frame.position.size(), whole.frame.position.size());
+    int hits = 0, differ = 0;
+    double worst = 0.0;  // mesh units
+    for (std::size_t p = 0; p < whole.frame.position.size(); p += 4) {
+        const bool hit = whole.frame.position[p + 3] > 0.5f;
+        hits += hit;
+        if (hit != (tiled.frame.position[p + 3] > 0.5f)) {
+            ++differ;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, double(std::abs(whole.frame.position[p + c] -
+                                                    tiled.frame.position[p + c])));
+    }
+    std::printf("tiles of 20: %d hits, hit/miss %d, worst %.3g (mesh units)\n", hits, differ, worst);
+    EXPECT_GT(hits, 64 * 48 / 4);
+    EXPECT_EQ(differ, 0);
+    // The same rays to float's rounding of the hull point (a texel is 1/128 of a unit here).
+    EXPECT_LT(worst, 1e-4);
+}
+
 TEST_F(MeshCli, WhatTheMeshBaseDoesNotDrawYetIsRefusedInOneLine) {
     if (!std::filesystem::exists(kTestModels))
         GTEST_SKIP() << kTestModels << " is missing: Debian's assimp-testmodels (scripts/setup.sh)";
@@ -215,8 +260,6 @@ TEST_F(MeshCli, WhatTheMeshBaseDoesNotDrawYetIsRefusedInOneLine) {
     expectFailure(run(mesh + " --turntable 3"), "--turntable: camera paths are not yet drawn");
     expectFailure(run(mesh + " --compare-reference"), "--compare-reference" + notYet);
     expectFailure(run(mesh + " --pyramid-cache " + dir.path().string()), "--pyramid-cache" + notYet);
-    expectFailure(run("--base mesh --mesh " + box + " --size 5000x10 --out " + out.string()),
-                  "--size 5000x10: a picture larger than one tile");
     // Files that are no mesh: text, an image, none, a mesh without texture coordinates.
     std::ofstream(dir / "text.obj") << "not a mesh\n";
     expectFailure(run("--base mesh --mesh " + (dir / "text.obj").string() + " --out " + out.string()),

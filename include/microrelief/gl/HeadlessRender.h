@@ -118,7 +118,7 @@ private:
     // (ReliefMap: size, highest sample, name).
     void upload(const std::function<void()>& set);
 
-    // render() of a job on the mesh base: one tile (larger pictures refused, Error(BadInput)).
+    // render() of a job on the mesh base, in tiles as render() draws a picture.
     HeadlessResult renderMesh(const RenderJob& job);
     // One tile of the picture into `result`; a paged map's drawn until it is exact.
     void drawTile(const RenderJob& job, const CameraFrame& camera, const PictureTile& part,

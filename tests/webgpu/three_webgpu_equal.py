@@ -23,6 +23,12 @@ to WebGL 2: a ReliefGpuError), the entry's Relief drawn by a WebGLRenderer (a Ty
 of its render, rather than three's failing to compile a node material), and its traceRays
 asked for GPU picks (a TypeError: the CPU twin traces this entry's picks).
 
+Lit (LIT_VIEWS): the relief under three's directional, point and ambient lights, in the WebGL
+entry's ReliefStandardMaterial and the WebGPU entry's ReliefStandardNodeMaterial, against three's
+own mesh of the same map (MeshStandardMaterial) drawn by both renderers in the same page: the
+relief may differ by what the mesh differs by, plus a margin (thresholds and what was measured
+at LIT_VIEWS below).
+
 Picks (comparePicks): in three scenes (the plane, perspective; the plane turned, scaled and
 moved, orthographic, biquadratic; the cylinder) three's Raycaster through every pixel's
 centre on the WebGPU entry's Relief against the WebGL entry's Relief of the same map and
@@ -33,7 +39,8 @@ map's twin memory freed by its dispose. Thresholds at PICK_EQUAL below.
 
 Usage: three_webgpu_equal.py --package DIR (a built microrelief-three: its src/ and
 generated/) [--three DIR (three's package; default the package's node_modules/three)]
-[--chromium EXE] [--out DIR (VIEW_BASE.png: WebGL | WebGPU | differing pixels)] [--all]
+[--chromium EXE] [--out DIR (VIEW_BASE.png: WebGL | WebGPU | differing pixels; lit_ and mesh_
+VIEW_BASE_ROUGHNESS.png)] [--all] [--only refusals|views|lit|picks (one part alone)]
 Exit status 0: equal within the thresholds; 1: not, or a program missing; 77: skipped (chromium
 missing and MICRORELIEF_ALLOW_MISSING_BROWSER=1). ctest three.webgpu (label three).
 """
@@ -59,6 +66,26 @@ VIEWS = (("oblique", "bilinear", "plane"), ("lowLive", "biquadratic", "plane"), 
 MORE_VIEWS = (("low", "biquadratic", "plane"), ("round", "bilinear", "ellipsoid"))
 LIMITS = {"meanDiff": 0.05, "maxDiff": 8, "differingFraction": 0.005}
 HIT_DISAGREE_FRACTION = 0.002
+# The relief under three's lights (ReliefStandardMaterial in WebGL, ReliefStandardNodeMaterial
+# in WebGPU: directional, point and ambient lights; a view, a last level, a base, the
+# materials' roughness). three's WebGL and WebGPU lighting are two codes, so the lit relief is
+# held to what three's own mesh of the same map (the heights displaced, MeshStandardMaterial)
+# differs by between the two renderers in the same page, plus LIT_MARGINS. At roughness 1
+# nothing of three's that depends on the normal's screen derivatives shows (three adds the
+# largest derivative of the normal to the roughness, at most 1: getGeometryRoughness, WebGL's
+# lights_physical_fragment), and the pictures are as equal as the mesh's (measured: the relief
+# bit-identical in both views; the mesh too in `oblique`, in `round` 2 pixels apart at its
+# silhouette, by up to 81). Below 1 that sum shows, and the two drivers take their (coarse) derivatives from
+# different pixels of a 2 x 2 quad (SwiftShader's GL and Vulkan; measured on the relief: the
+# quads whose normal turns within them, e.g. a geometric roughness of 0.25 in WebGL and 0.10 in
+# WebGPU over one quad): the relief's normal turns from pixel to pixel far more than the mesh's
+# (whose normal is linear across each triangle), so it is held there to LIT_ROUGH_LIMITS, what
+# that costs with room (measured at 0.55: the relief mean 1.01, largest 94, 6.8 % of the pixels
+# over 2; the mesh mean 0.12, largest 25, 1.1 %). A wrong normal, position or view direction
+# shows at roughness 1 already.
+LIT_VIEWS = (("oblique", "bilinear", "plane", 1), ("round", "biquadratic", "cylinder", 1), ("oblique", "bilinear", "plane", 0.55))
+LIT_MARGINS = {"meanDiff": 0.05, "maxDiff": 2, "differingFraction": 0.002}
+LIT_ROUGH_LIMITS = {"meanDiff": 2, "maxDiff": 128, "differingFraction": 0.12}
 # What the WebGPU entry says where it cannot draw (one line each, then the page draws on):
 # case: (the error's name, what its message names).
 REFUSALS = {
@@ -100,6 +127,19 @@ def verdict(s):
     return why
 
 
+def lit_verdict(relief, mesh, roughness):
+    """Why the lit relief's stats fail against the mesh's (three's own difference), or an empty list."""
+    if roughness == 1:
+        why = [f"{k} {relief[k]:.4g} > {mesh[k]:.4g} + {margin}" for k, margin in LIT_MARGINS.items() if relief[k] > mesh[k] + margin]
+    else:
+        why = [f"{k} {relief[k]:.4g} > {limit}" for k, limit in LIT_ROUGH_LIMITS.items() if relief[k] > limit]
+    if relief["hitDisagree"] > HIT_DISAGREE_FRACTION * relief["pixels"]:
+        why.append(f"hit/miss disagree at {relief['hitDisagree']} pixels (> {HIT_DISAGREE_FRACTION:.1%})")
+    if relief["hitsGl"] < 0.2 * relief["pixels"]:
+        why.append(f"the relief covers {relief['hitsGl']} pixels (< 20 %: the scene tests little)")
+    return why
+
+
 def pick_verdict(s):
     """Why pick stats `s` fail, or an empty list."""
     why = [f"{k} {s[k]:.3g} > {PICK_EQUAL}" for k in ("maxDistance", "maxPoint", "maxNormal", "maxUv") if s[k] > PICK_EQUAL]
@@ -127,6 +167,7 @@ def main():
     parser.add_argument("--chromium", default="chromium")
     parser.add_argument("--out", help="where to write VIEW_BASE.png")
     parser.add_argument("--all", action="store_true", help="the ellipsoid too (slow on SwiftShader)")
+    parser.add_argument("--only", choices=("refusals", "views", "lit", "picks"), help="one part of the check alone")
     args = parser.parse_args()
     package, three = pathlib.Path(args.package), pathlib.Path(args.three)
     lacking = [] if shutil.which(args.chromium) else [f"no chromium ('{args.chromium}' not found: Debian package chromium)"]
@@ -177,8 +218,9 @@ def main():
         if not ready.get("result", {}).get("value"):
             print("three_webgpu_equal.py: the page did not load (compare.js: its imports?)")
             status = 1
-        answer = evaluate("refusals()") if not status else {}
-        if not status:
+        runs = lambda part: not status and args.only in (None, part)
+        answer = evaluate("refusals()") if runs("refusals") else {}
+        if runs("refusals"):
             said = json.loads(answer["result"]["value"]) if "exceptionDetails" not in answer else {}
             for case, (name, parts) in REFUSALS.items():
                 got = said.get(case, {"name": "", "message": f"refusals() threw: {answer.get('exceptionDetails')}"})
@@ -187,7 +229,7 @@ def main():
                 why += [f"no '{p}'" for p in parts if p not in got["message"]]
                 print(f"refusal {case}: {'FAILED: ' + '; '.join(why) if why else 'ok'}: {got['message']}")
                 status = status or (1 if why else 0)
-        for view, interpolation, base in (VIEWS + (MORE_VIEWS if args.all else ())) if not status else ():
+        for view, interpolation, base in (VIEWS + (MORE_VIEWS if args.all else ())) if runs("views") else ():
             answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r})")
             if "exceptionDetails" in answer:
                 details = answer["exceptionDetails"]
@@ -200,7 +242,25 @@ def main():
             why = verdict(result["stats"])
             print(f"{view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
             status = status or (1 if why else 0)
-        for view, interpolation, base, model in PICK_VIEWS if not status else ():
+        for view, interpolation, base, roughness in LIT_VIEWS if runs("lit") else ():
+            measured = {}
+            for kind in ("mesh", "lit"):
+                answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, {kind!r}, {roughness})")
+                if "exceptionDetails" in answer:
+                    details = answer["exceptionDetails"]
+                    print(f"{kind} {view} {interpolation} {base} roughness {roughness}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
+                    status = 1
+                    break
+                result = json.loads(answer["result"]["value"])
+                measured[kind] = result["stats"]
+                if out:
+                    (out / f"{kind}_{view}_{base}_{roughness}.png").write_bytes(base64.b64decode(result["png"]))
+            if len(measured) < 2:
+                continue
+            why = lit_verdict(measured["lit"], measured["mesh"], roughness)
+            print(f"lit {view} {interpolation} {base} roughness {roughness}: {'differs: ' + '; '.join(why) if why else 'equal'} relief {json.dumps(measured['lit'])} mesh {json.dumps(measured['mesh'])}")
+            status = status or (1 if why else 0)
+        for view, interpolation, base, model in PICK_VIEWS if runs("picks") else ():
             answer = evaluate(f"comparePicks({view!r}, {interpolation!r}, {base!r}, {'true' if model else 'false'})")
             what = f"picks {view} {interpolation} {base}{' turned' if model else ''}"
             if "exceptionDetails" in answer:
@@ -213,7 +273,7 @@ def main():
             print(f"{what}: {'differ: ' + '; '.join(why) if why else 'equal'} {json.dumps(stats)}")
             status = status or (1 if why else 0)
         api = evaluate("document.documentElement.dataset.api || ''").get("result", {}).get("value")
-        if api != "webgpu":
+        if api != "webgpu" and args.only in (None, "views", "lit"):
             print(f"document.documentElement.dataset.api is '{api}', not 'webgpu'")
             status = 1
         for line in drive_chromium.page_log(browser.events):

@@ -26,9 +26,9 @@ if (!built || process.argv.length !== 3 || !fs.existsSync(path.join(built, 'wgsl
 }
 // The library functions the WebGPU entry calls, as the WebGL entry's glue does, and the glue
 // naga translates with them (glsl/relief_three.glsl's shared part, glsl/webgpu_shading.glsl's
-// mrShadePixel, which src/webgpu.js calls).
+// mrShadePixel and mrTraceHit, which src/webgpu.js calls).
 const kCalled = ['mr_traceMultilevel', 'mr_hardShadow', 'mr_surfaceAlbedo', 'mr_shadeRelief', 'mr_reliefWorldNormal', 'mr_baseMapPoint',
-                 'mrNdcOf', 'mrTraceRay', 'mrShadeHit', 'mrShadePixel'];
+                 'mrNdcOf', 'mrTraceRay', 'mrShadeHit', 'mrShadePixel', 'mrTraceHit'];
 // Every kind of the table of bases (the staged package's relief_layout.js: kBaseKindValues,
 // generated from variants.glsl's MR_BASE_*), each last level.
 const {kBaseKindValues} = await import(pathToFileURL(path.join(built, 'relief_layout.js')).href);

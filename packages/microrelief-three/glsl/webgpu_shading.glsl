@@ -1,12 +1,14 @@
-// webgpu_shading.glsl: ReliefShadingNodeMaterial's pixel (microrelief-three/webgpu), the
-// counterpart of microrelief_shading.frag's main: one pixel's ray traced, shaded and its
-// depth, by relief_three.glsl's shared functions (mrNdcOf, mrTraceRay, mrShadeHit). Not for
+// webgpu_shading.glsl: the WebGPU entry's pixels (microrelief-three/webgpu): mrShadePixel,
+// ReliefShadingNodeMaterial's, the counterpart of microrelief_shading.frag's main (one pixel's
+// ray traced, shaded and its depth), and mrTraceHit, ReliefStandardNodeMaterial's, the
+// counterpart of three_material.glsl's mrBeginPixel (the hit for three's lighting), both by
+// relief_three.glsl's shared functions (mrNdcOf, mrTraceRay, mrShadeHit). Not for
 // WebGL: scripts/wgsl.mjs translates it with the library and relief_three.glsl (uniforms left
 // out) into each variant of generated/wgsl.js, and src/webgpu.js calls the WGSL mrShadePixel
-// from its node material by wgslFn, each parameter one of three's nodes (the textures, the
+// from its node materials by wgslFn, each parameter one of three's nodes (the textures, the
 // fragment's position, the viewport, the face, the relief's uniforms).
 //
-// Returns (colour, depth); depth -1 where the pixel shows nothing (a miss, or a face that
+// mrShadePixel returns (colour, depth); depth -1 where the pixel shows nothing (a miss, or a face that
 // does not run: faces 1 front, 2 back, 3 both). fragCoord and viewport (x, y, width, height in
 // the target's pixels) run down from the top, as WebGPU's and three's WebGPU viewport's do.
 // Depth: WebGPU's clip z / w is already in [0, 1] (three's WebGPU projection, reversed or not),
@@ -15,20 +17,40 @@
 #ifndef MICRORELIEF_WEBGPU_SHADING_GLSL
 #define MICRORELIEF_WEBGPU_SHADING_GLSL
 
+// The pixel at `fragCoord` traced: false where it shows nothing (a face that does not run,
+// or a miss); `relief` and `p` as relief_three.glsl's mrTraceRay gives them. Both pixels below.
+bool mrTraceFragment(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2 fragCoord, vec4 viewport,
+                     bool front, float faces, vec2 mapSize, vec2 pyramidSize, float levelCount, float maxHeight,
+                     mat4 objectToWorld, mat4 worldToObject, float heightScale, vec3 frameScale,
+                     float pixelError, vec3 rayOrigin, vec3 rayOriginDx, vec3 rayOriginDy,
+                     vec3 rayDir, vec3 rayDirDx, vec3 rayDirDy, vec2 range, out mr_Relief relief, out mrPixel p) {
+    relief = mr_Relief(mr_ReliefMap(mapSize, ivec2(pyramidSize), int(levelCount), maxHeight, ivec2(1)),
+                       mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
+    bool runs = faces == 1.0 ? front : (faces == 2.0 ? !front : true);
+    if (!runs) return false;
+    mrCameraRays rays = mrCameraRays(rayOrigin, rayOriginDx, rayOriginDy, rayDir, rayDirDx, rayDirDy, range);
+    return mrTraceRay(relief, windows, heights, rays, mrNdcOf(fragCoord, viewport, true), viewport, pixelError,
+                      worldToObject, mapSize, p);
+}
+
+// The depth of world point `world` (about the camera, as relief_three.glsl's) for WebGPU's
+// depth buffer: clip z / w of `viewProjection`, in [0, 1].
+float mrFragmentDepth(mat4 viewProjection, vec3 world) {
+    vec4 clip = viewProjection * vec4(world, 1.0);
+    return clamp(clip.z / clip.w, 0.0, 1.0);
+}
+
 vec4 mrShadePixel(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2 fragCoord, vec4 viewport,
                   bool front, float faces, vec2 mapSize, vec2 pyramidSize, float levelCount, float maxHeight,
                   mat4 objectToWorld, mat4 worldToObject, float heightScale, vec3 frameScale,
                   float pixelError, vec3 rayOrigin, vec3 rayOriginDx, vec3 rayOriginDy,
                   vec3 rayDir, vec3 rayDirDx, vec3 rayDirDy, vec2 range,
                   mat4 viewProjection, vec3 lightDirection, vec3 albedo, float shadows) {
-    bool runs = faces == 1.0 ? front : (faces == 2.0 ? !front : true);
-    if (!runs) return vec4(0.0, 0.0, 0.0, -1.0);
-    mr_Relief relief = mr_Relief(mr_ReliefMap(mapSize, ivec2(pyramidSize), int(levelCount), maxHeight, ivec2(1)),
-                                 mr_ReliefPlacement(objectToWorld, worldToObject, heightScale, frameScale));
+    mr_Relief relief;
     mrPixel p;
-    mrCameraRays rays = mrCameraRays(rayOrigin, rayOriginDx, rayOriginDy, rayDir, rayDirDx, rayDirDy, range);
-    if (!mrTraceRay(relief, windows, heights, rays, mrNdcOf(fragCoord, viewport, true), viewport, pixelError,
-                    worldToObject, mapSize, p))
+    if (!mrTraceFragment(heights, windows, fragCoord, viewport, front, faces, mapSize, pyramidSize, levelCount, maxHeight,
+                         objectToWorld, worldToObject, heightScale, frameScale, pixelError, rayOrigin, rayOriginDx,
+                         rayOriginDy, rayDir, rayDirDx, rayDirDy, range, relief, p))
         return vec4(0.0, 0.0, 0.0, -1.0);
     vec3 colour = vec3(1.0, 0.0, 1.0);  // never silent: an exhausted traversal shows magenta
     if (!p.exhausted) {
@@ -36,8 +58,30 @@ vec4 mrShadePixel(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2
         colour = mrShadeHit(relief, windows, heights, p, lightDirection, albedo, shadows == 1.0, shadowExhausted);
         if (shadowExhausted) colour = vec3(1.0, 0.0, 1.0);
     }
-    vec4 clip = viewProjection * vec4(p.world, 1.0);
-    return vec4(colour, clamp(clip.z / clip.w, 0.0, 1.0));
+    return vec4(colour, mrFragmentDepth(viewProjection, p.world));
+}
+
+// ReliefStandardNodeMaterial's pixel: the traced hit as three's lighting takes it, as
+// three_material.glsl's mrBeginPixel gives it to three's WebGL shaders (the hit in the view
+// space of `worldToCamera`, the view of this draw; the normal through its rotation). Returns
+// the columns (the hit in view space, its depth: -1 where the pixel shows nothing), (the unit
+// normal in view space, 1 where the traversal was exhausted, else 0), two of zeros.
+mat4 mrTraceHit(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2 fragCoord, vec4 viewport,
+                bool front, float faces, vec2 mapSize, vec2 pyramidSize, float levelCount, float maxHeight,
+                mat4 objectToWorld, mat4 worldToObject, float heightScale, vec3 frameScale,
+                float pixelError, vec3 rayOrigin, vec3 rayOriginDx, vec3 rayOriginDy,
+                vec3 rayDir, vec3 rayDirDx, vec3 rayDirDy, vec2 range,
+                mat4 viewProjection, mat4 worldToCamera) {
+    mr_Relief relief;
+    mrPixel p;
+    if (!mrTraceFragment(heights, windows, fragCoord, viewport, front, faces, mapSize, pyramidSize, levelCount, maxHeight,
+                         objectToWorld, worldToObject, heightScale, frameScale, pixelError, rayOrigin, rayOriginDx,
+                         rayOriginDy, rayDir, rayDirDx, rayDirDy, range, relief, p))
+        return mat4(vec4(0.0, 0.0, 0.0, -1.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    vec3 viewHit = (worldToCamera * vec4(p.world, 1.0)).xyz;
+    vec3 viewNormal = normalize(mat3(worldToCamera) * p.normal);
+    return mat4(vec4(viewHit, mrFragmentDepth(viewProjection, p.world)), vec4(viewNormal, p.exhausted ? 1.0 : 0.0),
+                vec4(0.0), vec4(0.0));
 }
 
 #endif

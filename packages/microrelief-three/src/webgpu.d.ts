@@ -1,6 +1,7 @@
 // Declarations of webgpu.js, the entry 'microrelief-three/webgpu' (hand-written; tests/three's
 // typecheck uses them under tsc --strict). docs/three.md: the API.
-import type {BufferGeometry, Box3, Color, DataTexture, Intersection, Mesh, MeshBasicNodeMaterial, Raycaster, UniformNode, Vector3, WebGPURenderer} from 'three/webgpu';
+import type {BufferGeometry, Box3, Color, DataTexture, Intersection, Mesh, MeshBasicNodeMaterial, MeshStandardNodeMaterial, MeshStandardNodeMaterialParameters, Raycaster, UniformNode, Vector3,
+             WebGPURenderer} from 'three/webgpu';
 
 import type {HeightMap} from './heights.js';
 import type {BaseShape, BaseSpec, ReliefHit, ReliefInterpolation, TracedRays} from './relief.js';
@@ -75,8 +76,15 @@ export class ReliefShadingNodeMaterial extends MeshBasicNodeMaterial {
     albedo: UniformNode<Color>;
 }
 
+/** three's MeshStandardNodeMaterial at the traced hit: three's lights, as the WebGL entry's ReliefStandardMaterial (one relief a material so far; no albedoMap, selfShadow or shadow maps yet). */
+export class ReliefStandardNodeMaterial extends MeshStandardNodeMaterial {
+    constructor(parameters?: MeshStandardNodeMaterialParameters);
+    readonly isReliefMaterial: true;
+    relief: Relief | null;
+}
+
 export interface WebGPUReliefOptions {
-    material?: ReliefShadingNodeMaterial | null;
+    material?: ReliefShadingNodeMaterial | ReliefStandardNodeMaterial | null;
     /** Default 0.1. */
     heightScale?: number;
     /** Default 'plane'. A curved base needs a map made with wrapU: true. */
@@ -88,7 +96,7 @@ export interface WebGPUReliefOptions {
 }
 
 /** The relief as a three.js Mesh for a WebGPURenderer: its proxy box, traced per pixel. */
-export class Relief extends Mesh<BufferGeometry, ReliefShadingNodeMaterial> {
+export class Relief extends Mesh<BufferGeometry, ReliefShadingNodeMaterial | ReliefStandardNodeMaterial> {
     constructor(reliefMap: ReliefMap, options?: WebGPUReliefOptions);
     readonly isRelief: true;
     /** Each option is a property too, settable at any time. */

@@ -1,7 +1,8 @@
 // microrelief-three/webgpu: exact microrelief in three.js's WebGPURenderer (docs/three.md,
 // docs/webgpu.md). The first slice: the library's own shading (ReliefShadingNodeMaterial,
-// as the WebGL entry's ReliefShadingMaterial draws it) on every base, both last levels; the
-// windows pyramid built by the C++ MaxPyramid in WebAssembly.
+// as the WebGL entry's ReliefShadingMaterial draws it) and three's lights
+// (ReliefStandardNodeMaterial, as the WebGL entry's ReliefStandardMaterial) on every base,
+// both last levels; the windows pyramid built by the C++ MaxPyramid in WebAssembly.
 //
 //   import {WebGPURenderer} from 'three/webgpu';
 //   import {createReliefMap, loadHeights, Relief, ReliefShadingNodeMaterial} from 'microrelief-three/webgpu';
@@ -15,10 +16,11 @@
 // the same glue (naga's WGSL of the package's glsl/relief_three.glsl, the pixel's ray, trace
 // and shading the WebGL entry runs, and of glsl/webgpu_shading.glsl's mrShadePixel, which
 // calls them), called from a node material by wgslFn. What is WebGPU's own is here: the
-// textures (read by textureLoad, no sampler) and three's nodes passed to mrShadePixel.
+// textures (read by textureLoad, no sampler) and three's nodes passed to the glue's pixels.
 import * as THREE from 'three/webgpu';
-import {cameraFar, cameraNear, code, Discard, Fn, frontFacing, If, screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth,
-        wgslFn} from 'three/tsl';
+import * as TSL from 'three/tsl';
+import {cameraFar, cameraNear, cameraWorldMatrix, code, Discard, Fn, frontFacing, If, normalViewGeometry, positionView, positionWorld, property,
+        screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth, wgslFn} from 'three/tsl';
 
 import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
 import * as core from '../generated/relief_core.js';
@@ -102,43 +104,47 @@ export function reachableWgsl(module, roots) {
     return items.filter((item) => kept.has(item.name)).map((item) => item.text).join('\n');
 }
 
-// The glue's pixel: glsl/webgpu_shading.glsl's mrShadePixel, which runs relief_three.glsl's
-// functions the WebGL entry's pixel runs (mrNdcOf, mrTraceRay, mrShadeHit), translated with
-// the library into each variant's module by naga (scripts/wgsl.mjs). Returns (colour,
-// depth); depth -1 where the pixel shows nothing.
-const kGlueEntry = 'mrShadePixel';
+// The glue's pixels: glsl/webgpu_shading.glsl's mrShadePixel (ReliefShadingNodeMaterial's:
+// returns (colour, depth), depth -1 where the pixel shows nothing) and mrTraceHit
+// (ReliefStandardNodeMaterial's: the hit in view space for three's lighting), which run
+// relief_three.glsl's functions the WebGL entry's pixel runs (mrNdcOf, mrTraceRay,
+// mrShadeHit), translated with the library into each variant's module by naga
+// (scripts/wgsl.mjs).
+const kGlueEntries = ['mrShadePixel', 'mrTraceHit'];
 
-// The glue for a variant (`base`_`interpolation`): {fn, parameters}, fn the module's
-// mrShadePixel as a wgslFn with what it reaches included, parameters its GLSL parameter
+// The glue function `entry` of a variant (`base`_`interpolation`): {fn, parameters}, fn the
+// module's function as a wgslFn with what it reaches included, parameters its GLSL parameter
 // names in order (naga may add a suffix _N to a name; the suffix is dropped here). Made once a
-// variant. No WGSL is written here: the call passes three's nodes by position (shade below).
+// variant and entry. No WGSL is written here: the call passes three's nodes by position (glue
+// below).
 const _glues = new Map();
-function glueFor(variant) {
-    if (!_glues.has(variant)) {
+function glueFor(variant, entryName) {
+    const key = `${variant}:${entryName}`;
+    if (!_glues.has(key)) {
         if (wgslUnavailable) throw new Error(`microrelief-three/webgpu: this package was built without its WGSL (${wgslUnavailable})`);
         const module = wgslModules[variant];
         if (!module) throw new Error(`microrelief-three/webgpu: no WGSL variant ${variant}`);
-        const entry = wgslItems(module).find((item) => item.name === kGlueEntry);
-        if (!entry) throw new Error(`microrelief-three/webgpu: the WGSL variant ${variant} has no ${kGlueEntry}`);
+        const entry = wgslItems(module).find((item) => item.name === entryName);
+        if (!entry) throw new Error(`microrelief-three/webgpu: the WGSL variant ${variant} has no ${entryName}`);
         const head = /^fn\s+\w+\(([^)]*)\)/.exec(entry.text);
         const parameters = head[1].split(',').map((p) => p.trim().split(':')[0].trim().replace(/_\d+$/, ''));
-        // What mrShadePixel reaches, in the module's order: mrShadePixel itself last.
-        const reached = reachableWgsl(module, [kGlueEntry]);
-        if (!reached.endsWith('\n' + entry.text)) throw new Error(`microrelief-three/webgpu: ${kGlueEntry} is not the last function it reaches in ${variant}`);
-        const includes = reached.slice(0, -(entry.text.length + 1));
-        _glues.set(variant, {fn: wgslFn(entry.text, [code(includes)]), parameters});
+        // What the entry reaches, in the module's order, without the entry itself (the
+        // wgslFn's own text).
+        const includes = wgslItems(reachableWgsl(module, [entryName])).filter((item) => item.name !== entryName);
+        _glues.set(key, {fn: wgslFn(entry.text, [code(includes.map((item) => item.text).join('\n'))]), parameters});
     }
-    return _glues.get(variant);
+    return _glues.get(key);
 }
 
-// mrShadePixel of `variant` called with `inputs` ({name: node}, by its GLSL parameter
-// names): each one given, none left over.
-function shade(variant, inputs) {
-    const {fn, parameters} = glueFor(variant);
+// The glue function `entryName` (kGlueEntries) of `variant` called with `inputs` ({name:
+// node}, by its GLSL parameter names): each one given, none left over.
+function glue(variant, entryName, inputs) {
+    if (!kGlueEntries.includes(entryName)) throw new Error(`microrelief-three/webgpu: no glue function ${entryName}`);
+    const {fn, parameters} = glueFor(variant, entryName);
     const extra = Object.keys(inputs).filter((name) => !parameters.includes(name));
     const missing = parameters.filter((name) => !(name in inputs));
     if (extra.length || missing.length)
-        throw new Error(`microrelief-three/webgpu: ${kGlueEntry} of ${variant} takes ${parameters.join(', ')} (missing ${missing.join(', ') || 'none'}, extra ${extra.join(', ') || 'none'})`);
+        throw new Error(`microrelief-three/webgpu: ${entryName} of ${variant} takes ${parameters.join(', ')} (missing ${missing.join(', ') || 'none'}, extra ${extra.join(', ') || 'none'})`);
     return fn(parameters.map((name) => inputs[name]));
 }
 
@@ -223,6 +229,46 @@ function reliefUniform(name, value) {
     return uniform(value).onObjectUpdate(({object}) => object.uniforms[name].value);
 }
 
+// The Relief a relief material is built for (three builds a node material for its object).
+function drawnRelief(builder, name) {
+    const relief = builder.object;
+    if (!relief || !relief.isRelief) throw new Error(`microrelief-three/webgpu: a ${name} draws only on a Relief (new Relief(map, {material}))`);
+    return relief;
+}
+
+// The WGSL variant a relief draws with (generated/wgsl.js's name).
+const variantOf = (relief) => `${relief.base.kind}_${relief.interpolation}`;
+
+// The parameters both glue pixels take (webgpu_shading.glsl's mrTraceFragment): the relief's
+// textures and uniforms, the fragment's position, the viewport, the face; the matrix the
+// depth is made with (mrDepthMatrix under a logarithmic depth buffer: tracedDepth).
+function traceInputs(builder, relief) {
+    const u = (name) => reliefUniform(name, relief.uniforms[name].value);
+    const logarithmic = builder.renderer.logarithmicDepthBuffer === true;
+    return {
+        heights: texture(relief.reliefMap.heights), windows: texture(relief.reliefMap.windows),
+        fragCoord: screenCoordinate, viewport, front: frontFacing, faces: u('mrFaces'),
+        mapSize: u('mrMapSize'), pyramidSize: u('mrPyramidSize'), levelCount: u('mrLevelCount'), maxHeight: u('mrMaxHeight'),
+        objectToWorld: u('mrObjectToWorld'), worldToObject: u('mrWorldToObject'), heightScale: u('mrHeightScale'),
+        frameScale: u('mrFrameScale'), pixelError: u('mrPixelError'),
+        rayOrigin: u('mrRayOrigin'), rayOriginDx: u('mrRayOriginDx'), rayOriginDy: u('mrRayOriginDy'),
+        rayDir: u('mrRayDir'), rayDirDx: u('mrRayDirDx'), rayDirDy: u('mrRayDirDy'), range: u('mrRange'),
+        viewProjection: u(logarithmic ? 'mrDepthMatrix' : 'mrViewProjection'),
+    };
+}
+
+// The depth three's other meshes write, from the glue's `depth` (-1: nothing shown): the
+// traced clip z / w; under a logarithmic depth buffer (NodeMaterial.setupDepth's) three's
+// logarithmic depth of the hit's view z for a perspective camera, which mrDepthMatrix hands
+// the glue as -z / far (a float's relative precision at any distance, as the buffer means to
+// keep), and the traced clip z / w (its orthographic depth) for any other.
+function tracedDepth(builder, relief, depth) {
+    const clamped = depth.max(0);
+    if (builder.renderer.logarithmicDepthBuffer !== true) return clamped;
+    const perspective = reliefUniform('mrPerspective', relief.uniforms.mrPerspective.value);
+    return select(perspective.equal(1), viewZToLogarithmicDepth(clamped.mul(cameraFar).negate(), cameraNear, cameraFar), clamped);
+}
+
 // The library's own shading, as microrelief-render draws it and as the WebGL entry's
 // ReliefShadingMaterial does: one directional light (`lightDirection`, world, towards the
 // light), a grey `albedo` (linear), the hard self-shadow with `shadows: 'hard'`; not lit
@@ -252,29 +298,12 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
     }
 
     setup(builder) {
-        const relief = builder.object;
-        if (!relief || !relief.isRelief) throw new Error('microrelief-three/webgpu: a ReliefShadingNodeMaterial draws only on a Relief (new Relief(map, {material}))');
-        const u = (name) => reliefUniform(name, relief.uniforms[name].value);
-        const logarithmic = builder.renderer.logarithmicDepthBuffer === true;
-        const traced = shade(`${relief.base.kind}_${relief.interpolation}`, {
-            heights: texture(relief.reliefMap.heights), windows: texture(relief.reliefMap.windows),
-            fragCoord: screenCoordinate, viewport, front: frontFacing, faces: u('mrFaces'),
-            mapSize: u('mrMapSize'), pyramidSize: u('mrPyramidSize'), levelCount: u('mrLevelCount'), maxHeight: u('mrMaxHeight'),
-            objectToWorld: u('mrObjectToWorld'), worldToObject: u('mrWorldToObject'), heightScale: u('mrHeightScale'),
-            frameScale: u('mrFrameScale'), pixelError: u('mrPixelError'),
-            rayOrigin: u('mrRayOrigin'), rayOriginDx: u('mrRayOriginDx'), rayOriginDy: u('mrRayOriginDy'),
-            rayDir: u('mrRayDir'), rayDirDx: u('mrRayDirDx'), rayDirDy: u('mrRayDirDy'), range: u('mrRange'),
-            viewProjection: u(logarithmic ? 'mrDepthMatrix' : 'mrViewProjection'), lightDirection: this.lightDirection, albedo: this.albedo,
+        const relief = drawnRelief(builder, 'ReliefShadingNodeMaterial');
+        const traced = glue(variantOf(relief), 'mrShadePixel', {
+            ...traceInputs(builder, relief), lightDirection: this.lightDirection, albedo: this.albedo,
             shadows: uniform(this.shadows === 'hard' ? 1 : 0),
         }).toVar('mrTraced');
-        // The depth three's other meshes write: the traced clip z / w; under a logarithmic
-        // depth buffer (NodeMaterial.setupDepth's) three's logarithmic depth of the hit's view
-        // z for a perspective camera, which mrDepthMatrix hands the glue as -z / far (a
-        // float's relative precision at any distance, as the buffer means to keep), and the
-        // traced clip z / w (its orthographic depth) for any other.
-        const depth = traced.w.max(0);
-        this.depthNode = !logarithmic ? depth
-                                      : select(u('mrPerspective').equal(1), viewZToLogarithmicDepth(depth.mul(cameraFar).negate(), cameraNear, cameraFar), depth);
+        this.depthNode = tracedDepth(builder, relief, traced.w);
         this.colorNode = Fn(() => {
             If(traced.w.lessThan(0), () => {
                 Discard();
@@ -290,6 +319,83 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
         if (source.lightDirection) this.lightDirection.value.copy(source.lightDirection.value);
         if (source.albedo) this.albedo.value.copy(source.albedo.value);
         return this;
+    }
+}
+
+// ReliefStandardNodeMaterial's traced pixel (mrTraceHit's columns), one a fragment.
+const kHit = property('mat4', 'mrHit');
+
+// three's MeshStandardNodeMaterial on the relief: three's lights (directional, point, spot,
+// hemisphere, ambient, ...), environment maps, fog and tone mapping evaluated at the traced
+// hit, as the WebGL entry's ReliefStandardMaterial evaluates three's MeshStandardMaterial
+// there. Its parameters are MeshStandardNodeMaterial's (color, roughness, metalness, ...). The
+// glue's mrTraceHit (webgpu_shading.glsl) traces the pixel once and gives the hit in the
+// camera's view space and its unit normal there, as three_material.glsl's mrBeginPixel gives
+// them to three's WebGL shaders; this material hands them to three's lighting as the
+// fragment's surface: the normal as `normalNode`, the position by three's overrideNodes
+// (r187: positionView, positionWorld and normalViewGeometry, the nodes three's lights, BRDFs,
+// fog and shadow lookups read, replaced in the fragment stage; its contextNode), the depth as `depthNode` (logarithmic as ReliefShadingNodeMaterial's). Misses
+// and faces that do not run are discarded; an exhausted traversal is magenta, as in WebGL.
+// Not yet: the map's colours (albedoMap), the library's self-shadow (selfShadow), three's
+// shadow maps (the relief neither casts into them nor is its lookup biased as the WebGL
+// entry's: docs/three.md).
+export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
+    constructor(parameters = {}) {
+        requireSupportedThree();
+        if (typeof TSL.overrideNodes !== 'function')
+            throw new Error("ReliefStandardNodeMaterial: this three has no overrideNodes (three/tsl, r187 and newer), which hands three's lighting the traced hit");
+        super(parameters);
+        this.isReliefMaterial = true;
+        this.relief = null;
+        this.side = THREE.DoubleSide;  // the faces that run are chosen per draw (mrFaces)
+        // The surface three lights is the hit (kHit, traced by setupClipping below), in the
+        // fragment stage: its view position (three's positionViewDirection follows from it:
+        // normalize(-position), or (0, 0, 1) for an orthographic camera, as three's WebGL
+        // shaders have it), three's world position (the camera's matrixWorld of the view
+        // position: what shadow-map lookups and projected lights read; not tested yet) and
+        // the geometry's normal (whose screen derivatives roughen the specular where the
+        // normal turns fast: three's getGeometryRoughness, as WebGL's lights_physical_fragment
+        // does with the hit's normal). Set here, not in setup: three reads a material's
+        // contextNode before it sets the material up (set there, the first program three
+        // made lit the box, measured).
+        const view = kHit.element(0).xyz;
+        this.contextNode = TSL.overrideNodes([
+            [positionView, view],
+            [positionWorld, cameraWorldMatrix.mul(vec4(view, 1)).xyz],
+            [normalViewGeometry, kHit.element(1).xyz],
+        ], null, 'fragment');
+    }
+
+    customProgramCacheKey() {
+        const relief = this.relief;
+        return `microrelief-webgpu-standard:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}`;
+    }
+
+    setup(builder) {
+        const relief = drawnRelief(builder, 'ReliefStandardNodeMaterial');
+        const u = (name) => reliefUniform(name, relief.uniforms[name].value);
+        // The trace, once a pixel, into a property of its own (kHit): three builds the
+        // overrides in a context of their own, where a variable of the trace would be
+        // declared (and traced) a second time.
+        this._mrTrace = glue(variantOf(relief), 'mrTraceHit', {...traceInputs(builder, relief), worldToCamera: u('mrWorldToCamera')});
+        this.depthNode = tracedDepth(builder, relief, kHit.element(0).w);
+        this.normalNode = kHit.element(1).xyz;
+        return super.setup(builder);
+    }
+
+    // The first step of three's fragment stage (NodeMaterial.setup): the pixel traced into
+    // kHit, and discarded where it shows nothing (a discarded fragment lights nothing).
+    setupClipping(builder) {
+        kHit.assign(this._mrTrace).toStack();
+        If(kHit.element(0).w.lessThan(0), () => {
+            Discard();
+        });
+        return super.setupClipping(builder);
+    }
+
+    // Never silent: an exhausted traversal shows magenta (three_material.glsl's last line).
+    setupOutput(builder, outputNode) {
+        return select(kHit.element(1).w.greaterThan(0.5), vec4(1, 0, 1, 1), super.setupOutput(builder, outputNode));
     }
 }
 
@@ -334,11 +440,11 @@ export class Relief extends THREE.Mesh {
         if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
         const shape = drawnBase(base);
         checkBaseForMap(shape, base, reliefMap);
-        if (material !== null && !(material instanceof ReliefShadingNodeMaterial))
-            throw new TypeError('Relief: the material must be a ReliefShadingNodeMaterial (microrelief-three/webgpu)');
+        if (material !== null && !(material instanceof ReliefShadingNodeMaterial) && !(material instanceof ReliefStandardNodeMaterial))
+            throw new TypeError('Relief: the material must be a ReliefShadingNodeMaterial or a ReliefStandardNodeMaterial (microrelief-three/webgpu)');
         super(new THREE.BufferGeometry(), material ?? new ReliefShadingNodeMaterial());
         if (this.material.relief && this.material.relief !== this)
-            throw new TypeError('Relief: this ReliefShadingNodeMaterial draws another relief (one material a relief in microrelief-three/webgpu so far)');
+            throw new TypeError('Relief: this material draws another relief (one material a relief in microrelief-three/webgpu so far)');
         this.material.relief = this;
         this.isRelief = true;
         this.type = 'Relief';

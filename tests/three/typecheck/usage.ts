@@ -109,5 +109,11 @@ export async function craterOnWebGPU(canvas: HTMLCanvasElement): Promise<number>
     // @ts-expect-error: this entry's picks are the CPU twin's, not the GPU's
     relief.traceRays([0, 1, 0], [0, -1, 0], [0, 2], {on: 'gpu'});
     const twinBytes: number = map.twinBytes;
+    // three's lights on the relief: MeshStandardNodeMaterial's parameters.
+    const lit = new onWebGPU.Relief(map, {material: new onWebGPU.ReliefStandardNodeMaterial({color: 0xc8b8a0, roughness: 0.55, metalness: 0.15})});
+    scene.add(lit, new WebGPU.DirectionalLight(0xffffff, 2), new WebGPU.PointLight(0x9fb8ff, 0.5), new WebGPU.AmbientLight(0x404850));
+    lit.material.side = WebGPU.DoubleSide;
+    // @ts-expect-error: the roughness is a number
+    new onWebGPU.ReliefStandardNodeMaterial({roughness: 'rough'});
     return relief.heightScale + hits.length + (hit ? hit.distance : 0) + rays.t[0] + twinBytes;
 }

@@ -44,6 +44,7 @@ const kViews = {
 function setUp(T, view, relief, {withBox = true} = {}) {
     const scene = new T.Scene();
     scene.add(relief);
+    if (relief.isLit) addLights(T, scene);
     if (withBox) {
         const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
         box.position.set(0.0, 0.02, 0.05);  // half buried: the relief's depth draws the line between them
@@ -75,12 +76,45 @@ async function renderers(logarithmicDepthBuffer = false) {
 
 const light = new THREE.Vector3(-0.45, 0.8, -0.35).normalize();
 
-async function drawWebGL(view, interpolation, base = 'plane') {
+// The lit scenes (`lit`: the relief in each entry's standard material; `mesh`: the same
+// height map as three's own triangle mesh, displaced, in three's MeshStandardMaterial, the
+// measure of how three's WebGL and WebGPU lighting differ on a surface whose normal turns as
+// fast, from pixel to pixel, as the relief's): three's directional, point and ambient lights.
+const kLit = {color: 0xc8b8a0, roughness: 0.55, metalness: 0.15};
+function addLights(T, scene) {
+    const sun = new T.DirectionalLight(0xfff4e0, 2.5);
+    sun.position.set(-0.9, 1.6, -0.7);
+    const lamp = new T.PointLight(0x9fb8ff, 0.06, 0, 2);
+    lamp.position.set(0.2, 0.16, 0.25);
+    scene.add(sun, sun.target, lamp, new T.AmbientLight(0x404850, 1.2));
+}
+
+function displacedMesh(T, roughness) {
+    const {w, h, samples} = heights();
+    const geometry = new T.PlaneGeometry(1, h / w, w - 1, h - 1).rotateX(-Math.PI / 2);
+    const position = geometry.attributes.position;
+    for (let k = 0; k < position.count; ++k) position.setY(k, 0.08 * samples[k]);
+    geometry.computeVertexNormals();
+    const mesh = new T.Mesh(geometry, new T.MeshStandardMaterial({...kLit, roughness}));
+    mesh.isLit = true;
+    return mesh;
+}
+
+// What a picture of `kind` shows of an entry `E` (gl or wg): 'shading', the relief in the
+// library's own shading; 'lit', in the entry's standard material under three's lights;
+// 'mesh', no relief (displacedMesh under the same lights); `roughness` the standard materials'.
+function reliefMaterial(E, kind, roughness) {
+    if (kind === 'lit') return new (E === gl ? gl.ReliefStandardMaterial : wg.ReliefStandardNodeMaterial)({...kLit, roughness});
+    return new (E === gl ? gl.ReliefShadingMaterial : wg.ReliefShadingNodeMaterial)({lightDirection: light, shadows: 'hard'});
+}
+
+async function drawWebGL(view, interpolation, base = 'plane', kind = 'shading', roughness = kLit.roughness) {
     const {webgl: renderer} = await renderers(!!kViews[view].logarithmic);
     const {w, h, samples} = heights();
     const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
-    const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, base, material: new gl.ReliefShadingMaterial({lightDirection: light, shadows: 'hard'})});
-    const {scene, camera} = setUp(THREE, view, relief);
+    const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, base, material: reliefMaterial(gl, kind, roughness)});
+    relief.isLit = kind === 'lit';
+    const {scene, camera} = setUp(THREE, view, kind === 'mesh' ? displacedMesh(THREE, roughness) : relief, {withBox: kind !== 'mesh'});
     const target = new THREE.WebGLRenderTarget(W, H);
     if (kViews[view].viewport) target.viewport.set(...kViews[view].viewport);  // GL's y from the bottom
     renderer.setRenderTarget(target);
@@ -95,12 +129,13 @@ async function drawWebGL(view, interpolation, base = 'plane') {
     return pixels;
 }
 
-async function drawWebGPU(view, interpolation, base = 'plane') {
+async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading', roughness = kLit.roughness) {
     const {webgpu: renderer} = await renderers(!!kViews[view].logarithmic);
     const {w, h, samples} = heights();
     const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
-    const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, base, material: new wg.ReliefShadingNodeMaterial({lightDirection: light, shadows: 'hard'})});
-    const {scene, camera} = setUp(GPU, view, relief);
+    const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, base, material: reliefMaterial(wg, kind, roughness)});
+    relief.isLit = kind === 'lit';
+    const {scene, camera} = setUp(GPU, view, kind === 'mesh' ? displacedMesh(GPU, roughness) : relief, {withBox: kind !== 'mesh'});
     const target = new GPU.RenderTarget(W, H);
     if (kViews[view].viewport) {  // the same pixels: WebGPU's y from the top
         const [x, y, w, h] = kViews[view].viewport;
@@ -130,10 +165,10 @@ async function drawWebGPU(view, interpolation, base = 'plane') {
     return pixels;
 }
 
-// The pictures of `view` with last level `interpolation` compared: per pixel the largest channel difference (of 255), hit
+// The pictures of `view` with last level `interpolation` on `base`, of `kind` (reliefMaterial), compared: per pixel the largest channel difference (of 255), hit
 // (alpha) agreement, and a PNG strip (bottom row first in the data, drawn upright).
-async function compareEntries(view, interpolation, base) {
-    const a = await drawWebGL(view, interpolation, base), b = await drawWebGPU(view, interpolation, base);
+async function compareEntries(view, interpolation, base, kind = 'shading', roughness = kLit.roughness) {
+    const a = await drawWebGL(view, interpolation, base, kind, roughness), b = await drawWebGPU(view, interpolation, base, kind, roughness);
     let sum = 0, max = 0, differing = 0, hitsGl = 0, hitsGpu = 0, hitDisagree = 0, reliefGl = 0;
     const canvas = new OffscreenCanvas(3 * W, H), ctx = canvas.getContext('2d'), image = ctx.createImageData(3 * W, H);
     for (let y = 0; y < H; ++y)

@@ -3,8 +3,9 @@
 // fragment's point on the hull, traced in that one prism (microrelief/base_mesh.glsl, the
 // GLSL of core/trace/MeshTracer); the hit's depth is written and the depth test keeps the
 // least over prisms, which is the first hit on the union. A ray that misses the prism is
-// discarded. The eye may be inside a hull (drawn without face culling, gl/MeshRelief.h): the
-// trace starts at lambda = 0, the eye, wherever the fragment is.
+// discarded. The eye may be inside a hull (the hulls that may hold it are drawn without face
+// culling, the others with back faces culled: gl/MeshRelief.h): the trace starts at
+// lambda = 0, the eye, wherever the fragment is.
 //
 // Host defines: MICRORELIEF_INTERPOLATION (relief_map.glsl: the last level, bilinear or
 // biquadratic).

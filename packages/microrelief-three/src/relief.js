@@ -16,8 +16,8 @@ import * as THREE from 'three';
 import {glue, library} from '../generated/glsl.js';
 import * as core from '../generated/relief_core.js';
 import {ReliefDepthMaterial, ReliefDistanceMaterial, ReliefPhysicalMaterial, ReliefShadingMaterial, ReliefStandardMaterial, reliefDefines} from './materials.js';
-import {baseShape, boxFaces, cameraRays, checkBaseForMap, checkHeightScale, checkInterpolation, checkRays, raycastRelief, reliefExtent, reliefFrame, reliefMapUniforms,
-        reliefUniforms, traceOne, traceRaysOnTwin, updateReliefBox} from './relief_host.js';
+import {baseShape, boxFaces, cameraRays, checkBaseForMap, checkHeightScale, checkInterpolation, checkPixelError, checkRays, defineReliefOptions, raycastRelief, reliefExtent,
+        reliefFrame, reliefMapUniforms, reliefUniforms, traceOne, traceRaysOnTwin, updateReliefBox} from './relief_host.js';
 import {disposeOverrides, drawUnderOverride, restoreDrawRange} from './override.js';
 import {kWebGPURendererUnsupported, requireSupportedThree} from './three_version.js';
 import {twinLoaded} from './twin.js';
@@ -66,14 +66,14 @@ export class Relief extends THREE.Mesh {
     // ReliefStandardMaterial by default), heightScale (s, 0.1), base ('plane', 'cylinder',
     // 'sphere', 'ellipsoid', or {kind, radius, length, radii}), interpolation ('bilinear' or
     // 'biquadratic'), pixelError (level of detail in pixels; 0 is exact). Each option is a
-    // property too, settable at any time: the box is rebuilt and the materials' program
-    // variant switched where a change needs it.
+    // property too, settable at any time (relief_host.js's defineReliefOptions, below): the box
+    // is rebuilt and the materials' program variant switched where a change needs it.
     constructor(reliefMap, {material = null, heightScale = 0.1, base = 'plane', interpolation = 'bilinear', pixelError = 0} = {}) {
         requireSupportedThree();
         if (!reliefMap || !reliefMap.windows) throw new TypeError('Relief: the first argument must be a ReliefMap (createReliefMap)');
         checkHeightScale(heightScale);
         checkInterpolation(interpolation);
-        if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
+        checkPixelError(pixelError);
         const shape = baseShape(base);
         checkBaseForMap(shape, base, reliefMap);
         if (material !== null) checkMaterial(material);
@@ -95,15 +95,6 @@ export class Relief extends THREE.Mesh {
         this.onBeforeShadow = (renderer, object, camera, shadowCamera) => this.prepareDraw(renderer, shadowCamera, false);
     }
 
-    get pixelError() {
-        return this.uniforms.mrPixelError.value;
-    }
-
-    set pixelError(value) {
-        if (!(value >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
-        this.uniforms.mrPixelError.value = value;
-    }
-
     // The material three draws the box with: a relief material (one many reliefs may share),
     // never three's own, refused here in one line naming what to use.
     get material() {
@@ -114,41 +105,6 @@ export class Relief extends THREE.Mesh {
         checkMaterial(material);
         this._material = material;
         if (material.relief === null) material.relief = this;  // renderer.compile's variant before a draw
-    }
-
-    get heightScale() {
-        return this.uniforms.mrHeightScale.value;
-    }
-
-    set heightScale(value) {
-        checkHeightScale(value);
-        this.uniforms.mrHeightScale.value = Math.fround(value);
-        this.updateBox();
-    }
-
-    // The base's shape ({kind, radius, length} or {kind, radii}, frozen); set it as the
-    // constructor's option (a name or a shape), held to the map's wrapU as there.
-    get base() {
-        return this._base;
-    }
-
-    set base(value) {
-        const shape = baseShape(value);
-        checkBaseForMap(shape, value, this.reliefMap);
-        this._base = Object.freeze(shape);
-        this.uniforms.mrFrameScale.value.set(...core.frameScale(shape));
-        this.updateBox();
-        this.shadowMaterialsNeedUpdate();
-    }
-
-    get interpolation() {
-        return this._interpolation;
-    }
-
-    set interpolation(value) {
-        checkInterpolation(value);
-        this._interpolation = value;
-        this.shadowMaterialsNeedUpdate();
     }
 
     get reliefMap() {
@@ -371,7 +327,14 @@ export class Relief extends THREE.Mesh {
         this.customDistanceMaterial.dispose();
         disposeOverrides(this);
     }
+
+    // heightScale, pixelError, interpolation and base as properties: relief_host.js's, both
+    // entries' (a new variant: the shadow materials' programs made again).
+    static {
+        defineReliefOptions(this.prototype, {shapeOf: baseShape, variantChanged: (relief) => relief.shadowMaterialsNeedUpdate()});
+    }
 }
+
 
 // A full-viewport triangle tracing a batch of rays (glsl/pick.frag), shared by all reliefs.
 function makePickResources() {

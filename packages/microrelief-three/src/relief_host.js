@@ -79,6 +79,73 @@ export function checkInterpolation(value) {
     if (!['bilinear', 'biquadratic'].includes(value)) throw new TypeError(`Relief: interpolation '${value}' (expected bilinear or biquadratic)`);
 }
 
+export function checkPixelError(value) {
+    if (!(value >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
+}
+
+// The options both entries' Relief carry as properties, settable at any time: heightScale
+// (the box rebuilt), pixelError, interpolation and base (the box rebuilt, the base's frame
+// scale set), defined once here on `prototype` (each entry's Relief.prototype) over its
+// uniforms (reliefUniforms), its `_interpolation` and `_base` and its updateBox. What differs
+// by entry comes in `hooks`: shapeOf(value), the base a value names (the entry's refusals:
+// baseShape's, and the bases the entry draws), and variantChanged(relief), called where the
+// program's variant changed (the last level, or the base's kind): the entry's programs made
+// again.
+export function defineReliefOptions(prototype, {shapeOf, variantChanged}) {
+    Object.defineProperties(prototype, {
+        heightScale: {
+            get() {
+                return this.uniforms.mrHeightScale.value;
+            },
+            set(value) {
+                checkHeightScale(value);
+                this.uniforms.mrHeightScale.value = Math.fround(value);
+                this.updateBox();
+            },
+            configurable: true,
+        },
+        pixelError: {
+            get() {
+                return this.uniforms.mrPixelError.value;
+            },
+            set(value) {
+                checkPixelError(value);
+                this.uniforms.mrPixelError.value = value;
+            },
+            configurable: true,
+        },
+        interpolation: {
+            get() {
+                return this._interpolation;
+            },
+            set(value) {
+                checkInterpolation(value);
+                const changed = value !== this._interpolation;
+                this._interpolation = value;
+                if (changed) variantChanged(this);
+            },
+            configurable: true,
+        },
+        // The base's shape ({kind, radius, length} or {kind, radii}, frozen); set it as the
+        // constructor's option (a name or a shape), held to the map's wrapU as there.
+        base: {
+            get() {
+                return this._base;
+            },
+            set(value) {
+                const shape = shapeOf(value);
+                checkBaseForMap(shape, value, this.reliefMap);
+                const changed = shape.kind !== this._base.kind;
+                this._base = Object.freeze(shape);
+                this.uniforms.mrFrameScale.value.set(...core.frameScale(shape));
+                this.updateBox();
+                if (changed) variantChanged(this);
+            },
+            configurable: true,
+        },
+    });
+}
+
 // The box (ReliefRenderer::uploadBox): the bounds from the pyramid's top, grown by
 // kBoxMargin; a new geometry (a clone's box is its own). A BufferGeometry, not the
 // BoxGeometry (whose parameters, all toJSON writes of it, do not hold the translation).

@@ -26,8 +26,8 @@ import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/
 import * as core from '../generated/relief_core.js';
 import {kBaseKindValues} from '../generated/relief_layout.js';
 import {checkHeightMap, largestSample, windowLevelsOnCpu} from './map_host.js';
-import {baseShape, boxFaces, checkBaseForMap, checkHeightScale, checkInterpolation, checkRays, raycastRelief, reliefFrame, reliefMapUniforms, reliefUniforms,
-        traceOne, traceRaysOnTwin, updateReliefBox} from './relief_host.js';
+import {baseShape, boxFaces, checkBaseForMap, checkHeightScale, checkInterpolation, checkPixelError, checkRays, defineReliefOptions, raycastRelief, reliefFrame,
+        reliefMapUniforms, reliefUniforms, traceOne, traceRaysOnTwin, updateReliefBox} from './relief_host.js';
 import {requireSupportedThree} from './three_version.js';
 import {loadTwin, releaseTwins, twinBytes} from './twin.js';
 
@@ -437,7 +437,7 @@ export class Relief extends THREE.Mesh {
         checkReliefMap(reliefMap, 'the first argument');
         checkHeightScale(heightScale);
         checkInterpolation(interpolation);
-        if (!(pixelError >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
+        checkPixelError(pixelError);
         const shape = drawnBase(base);
         checkBaseForMap(shape, base, reliefMap);
         if (material !== null && !(material instanceof ReliefShadingNodeMaterial) && !(material instanceof ReliefStandardNodeMaterial))
@@ -480,7 +480,8 @@ export class Relief extends THREE.Mesh {
         updateReliefBox(this);
     }
 
-    // Each option is a property too, settable at any time, as in the WebGL entry.
+    // Each option is a property too, settable at any time, as in the WebGL entry: the map here,
+    // heightScale, pixelError, interpolation and base by relief_host.js (below).
     get reliefMap() {
         return this._reliefMap;
     }
@@ -489,45 +490,6 @@ export class Relief extends THREE.Mesh {
         checkReliefMap(reliefMap, 'reliefMap');
         checkBaseForMap(this._base, this._base.kind, reliefMap);
         this.setMapAndBase(reliefMap, this._base);
-    }
-
-    get base() {
-        return this._base;
-    }
-
-    set base(value) {
-        const shape = drawnBase(value);
-        checkBaseForMap(shape, value, this._reliefMap);
-        this.setMapAndBase(this._reliefMap, shape);
-    }
-
-    get interpolation() {
-        return this._interpolation;
-    }
-
-    set interpolation(value) {
-        checkInterpolation(value);
-        if (value !== this._interpolation) this.material.needsUpdate = true;
-        this._interpolation = value;
-    }
-
-    get heightScale() {
-        return this.uniforms.mrHeightScale.value;
-    }
-
-    set heightScale(value) {
-        checkHeightScale(value);
-        this.uniforms.mrHeightScale.value = Math.fround(value);
-        this.updateBox();
-    }
-
-    get pixelError() {
-        return this.uniforms.mrPixelError.value;
-    }
-
-    set pixelError(value) {
-        if (!(value >= 0)) throw new TypeError('Relief: pixelError must be a number >= 0');
-        this.uniforms.mrPixelError.value = value;
     }
 
     // three's Raycaster: the relief's own hit, {distance, point, uv (three's convention),
@@ -553,5 +515,13 @@ export class Relief extends THREE.Mesh {
 
     dispose() {
         this.geometry.dispose();
+    }
+
+    // heightScale, pixelError, interpolation and base as properties: relief_host.js's, both
+    // entries' (a base this entry draws; a new variant: the material's program made again).
+    static {
+        defineReliefOptions(this.prototype, {shapeOf: drawnBase, variantChanged: (relief) => {
+            relief.material.needsUpdate = true;
+        }});
     }
 }

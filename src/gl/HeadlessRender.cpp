@@ -1,6 +1,7 @@
 #include "microrelief/gl/HeadlessRender.h"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 
 #include "microrelief/core/DataPaths.h"
@@ -139,6 +140,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
                      std::to_string(job.height) + " picture (" +
                      std::to_string(kFrameBytesPerPixel) + " bytes a pixel)");
     }
+    quartersReversed_ = !quartersReversed_;  // drawTile's quarters, the other way this frame
     for (int y = 0; y < job.height; y += tile) {
         for (int x = 0; x < job.width; x += tile) {
             const PictureTile part{x, y, std::min(tile, job.width - x),
@@ -196,11 +198,16 @@ void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
             }
             ++result.paging.splits;
             const int w0 = (part.width + 1) / 2, h0 = (part.height + 1) / 2;
-            for (const PictureTile& quarter :
-                 {PictureTile{part.x, part.y, w0, h0},
-                  PictureTile{part.x + w0, part.y, part.width - w0, h0},
-                  PictureTile{part.x, part.y + h0, w0, part.height - h0},
-                  PictureTile{part.x + w0, part.y + h0, part.width - w0, part.height - h0}}) {
+            std::array<PictureTile, 4> quarters = {
+                PictureTile{part.x, part.y, w0, h0},
+                PictureTile{part.x + w0, part.y, part.width - w0, h0},
+                PictureTile{part.x, part.y + h0, w0, part.height - h0},
+                PictureTile{part.x + w0, part.y + h0, part.width - w0, part.height - h0}};
+            // Every other frame in the opposite order: the same order every frame is least
+            // recently used eviction's worst case, each quarter evicting what the next one
+            // needs; reversed, a frame starts with the pages the last one ended with.
+            if (quartersReversed_) std::reverse(quarters.begin(), quarters.end());
+            for (const PictureTile& quarter : quarters) {
                 if (quarter.width > 0 && quarter.height > 0) drawTile(job, camera, quarter, result);
             }
             return;

@@ -472,4 +472,33 @@ TEST_F(PagedMap, FramesOfAViewWhosePagesFitLoadNothingAfterTheFirst) {
     }
 }
 
+// A view whose pages do not fit the pool: its tile is drawn in quarters, every frame. Drawn
+// in one order every frame, least recently used eviction met its worst case (each quarter
+// evicted what the next one needed: 380 pages a frame after the first, 64 x 64 pixels reading
+// 1239 pages under a budget of 1100); HeadlessRenderer draws them the other way round every
+// other frame, and a frame begins with the pages the last one ended with. The pictures are
+// the whole textures' still.
+TEST_F(PagedMap, FramesPastTheBudgetDrawTheirQuartersTheOtherWayRound) {
+    const HeightMap map = synth::cobbles(512, 512, 7);
+    const RenderJob job = obliqueView(64, 64);
+    PagingSettings paging = smallPages();
+    paging.mode = PagingSettings::Mode::Always;
+    paging.memoryBytes = 1100 * 16 * 16 * 4;
+    const HeadlessResult whole = renderWhole(map, job);
+    HeadlessRenderer renderer(test::glContext(), job.method);
+    renderer.setPaging(paging);
+    renderer.setHeights(job, map, "paged");
+    std::size_t later = 0;
+    for (int frame = 1; frame <= 5; ++frame) {
+        const HeadlessResult next = renderer.render(job);
+        const std::string what = "frame " + std::to_string(frame);
+        expectSamePicture(next, whole, what);
+        EXPECT_GT(next.paging.splits, 0) << what << ": the view does not fit";
+        if (frame > 1) later += next.paging.pagesLoaded;
+        std::printf("[ paged   ] 64 x 64 under 1100 pages, %s: %zu pages loaded, %d draws\n",
+                    what.c_str(), next.paging.pagesLoaded, next.paging.draws);
+    }
+    EXPECT_LT(later / 4, 250u) << "pages loaded a frame after the first";
+}
+
 }  // namespace

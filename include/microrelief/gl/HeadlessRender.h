@@ -129,6 +129,10 @@ private:
     std::optional<OffscreenTarget> target_;
     std::unique_ptr<AnimatedHeights> animated_;
     bool fromPages_ = false;  // the map set is a pyramid file's (setPyramidPages)
+    // Whether drawTile draws a tile too large for the page pool in its quarters last to
+    // first: every other frame (render() turns it), so that a camera path's frames do not
+    // cycle through the quarters in one order, least recently used eviction's worst case.
+    bool quartersReversed_ = false;
     // setMesh's, and the MeshRelief drawn last (src/gl/HeadlessMesh.cpp; shared: deleted as
     // made there, where it is complete).
     struct MeshState;

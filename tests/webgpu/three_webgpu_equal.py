@@ -20,8 +20,10 @@ document.documentElement.dataset.api = 'webgpu' once the WebGPU entry's first fr
 and the entry refuse in one line, before the pictures: a WebGLRenderer (a TypeError pointing at
 'microrelief-three'), a WebGPURenderer without a WebGPU adapter (forceWebGL, three's fallback
 to WebGL 2: a ReliefGpuError), the entry's Relief drawn by a WebGLRenderer (a TypeError out
-of its render, rather than three's failing to compile a node material), and its traceRays
-asked for GPU picks (a TypeError: the CPU twin traces this entry's picks).
+of its render, rather than three's failing to compile a node material), its traceRays
+asked for GPU picks (a TypeError: the CPU twin traces this entry's picks), and an albedoMap
+with NearestFilter both ways (a TypeError: three's WebGPU gives it no sampler, and the WGSL
+would not compile).
 
 Lit (LIT_VIEWS): the relief under three's directional, point and ambient lights, in the WebGL
 entry's ReliefStandardMaterial and the WebGPU entry's ReliefStandardNodeMaterial, against three's
@@ -40,7 +42,7 @@ map's twin memory freed by its dispose. Thresholds at PICK_EQUAL below.
 Usage: three_webgpu_equal.py --package DIR (a built microrelief-three: its src/ and
 generated/) [--three DIR (three's package; default the package's node_modules/three)]
 [--chromium EXE] [--out DIR (VIEW_BASE.png: WebGL | WebGPU | differing pixels; lit_ and mesh_
-VIEW_BASE_ROUGHNESS.png)] [--all] [--only refusals|views|lit|picks (one part alone)]
+VIEW_BASE_ROUGHNESS.png)] [--all] [--only refusals|views|albedo|lit|picks (one part alone)]
 Exit status 0: equal within the thresholds; 1: not, or a program missing; 77: skipped (chromium
 missing and MICRORELIEF_ALLOW_MISSING_BROWSER=1). ctest three.webgpu (label three).
 """
@@ -84,6 +86,13 @@ HIT_DISAGREE_FRACTION = 0.002
 # over 2; the mesh mean 0.12, largest 25, 1.1 %). A wrong normal, position or view direction
 # shows at roughness 1 already.
 LIT_VIEWS = (("oblique", "bilinear", "plane", 1), ("round", "biquadratic", "cylinder", 1), ("oblique", "bilinear", "plane", 0.55))
+# The map's colours (albedoMap: a 64 x 48 sRGB texture of stripes and checks, mipmapped), filtered
+# over each pixel's footprint by the library's mr_surfaceAlbedo in both entries: in the library's
+# own shading (ReliefShadingMaterial against ReliefShadingNodeMaterial) on the plane and the
+# cylinder, and under three's lights at roughness 1 (ReliefStandardMaterial against
+# ReliefStandardNodeMaterial), held to LIMITS as the views above.
+ALBEDO_VIEWS = (("oblique", "bilinear", "plane", "shadingAlbedo"), ("round", "biquadratic", "cylinder", "shadingAlbedo"),
+                ("oblique", "bilinear", "plane", "litAlbedo"))
 LIT_MARGINS = {"meanDiff": 0.05, "maxDiff": 2, "differingFraction": 0.002}
 LIT_ROUGH_LIMITS = {"meanDiff": 2, "maxDiff": 128, "differingFraction": 0.12}
 # What the WebGPU entry says where it cannot draw (one line each, then the page draws on):
@@ -93,6 +102,7 @@ REFUSALS = {
     "noAdapter": ("ReliefGpuError", ["no WebGPU adapter", "WebGLRenderer", "'microrelief-three'"]),
     "drawnByWebGL": ("TypeError", ["Relief:", "WebGLRenderer", "import from 'microrelief-three'"]),
     "gpuPicks": ("TypeError", ["Relief.traceRays", "on 'gpu'", "auto or cpu"]),
+    "nearestAlbedo": ("TypeError", ["ReliefStandardNodeMaterial", "albedoMap", "NearestFilter", "loadAlbedo"]),
 }
 # The picks (three's Raycaster through every pixel's centre, the relief alone): a view, a last
 # level, a base, and whether the relief is turned, scaled and moved (its matrixWorld).
@@ -167,7 +177,7 @@ def main():
     parser.add_argument("--chromium", default="chromium")
     parser.add_argument("--out", help="where to write VIEW_BASE.png")
     parser.add_argument("--all", action="store_true", help="the ellipsoid too (slow on SwiftShader)")
-    parser.add_argument("--only", choices=("refusals", "views", "lit", "picks"), help="one part of the check alone")
+    parser.add_argument("--only", choices=("refusals", "views", "albedo", "lit", "picks"), help="one part of the check alone")
     args = parser.parse_args()
     package, three = pathlib.Path(args.package), pathlib.Path(args.three)
     lacking = [] if shutil.which(args.chromium) else [f"no chromium ('{args.chromium}' not found: Debian package chromium)"]
@@ -241,6 +251,19 @@ def main():
                 (out / f"{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
             why = verdict(result["stats"])
             print(f"{view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
+            status = status or (1 if why else 0)
+        for view, interpolation, base, kind in ALBEDO_VIEWS if runs("albedo") else ():
+            answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, {kind!r}, 1)")
+            if "exceptionDetails" in answer:
+                details = answer["exceptionDetails"]
+                print(f"{kind} {view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
+                status = 1
+                continue
+            result = json.loads(answer["result"]["value"])
+            if out:
+                (out / f"{kind}_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
+            why = verdict(result["stats"])
+            print(f"{kind} {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
             status = status or (1 if why else 0)
         for view, interpolation, base, roughness in LIT_VIEWS if runs("lit") else ():
             measured = {}

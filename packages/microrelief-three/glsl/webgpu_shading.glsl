@@ -33,6 +33,18 @@ bool mrTraceFragment(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, v
                       worldToObject, mapSize, p);
 }
 
+// The map's colours at hit `p` where `useAlbedoMap` is 1 (mr_surfaceAlbedo: filtered over the
+// pixel's footprint, as relief.frag and the WebGL entry's materials draw them; the footprint's
+// ray steps per pixel are the camera's per NDC unit times 2 / the viewport's size), else
+// `albedo`. The WGSL takes the albedo's sampler as its first parameter (scripts/wgsl.mjs's
+// samplerAsParameter).
+vec3 mrPixelAlbedo(MICRORELIEF_ALBEDO_TEXTURE albedoMap, float useAlbedoMap, vec3 albedo, mr_Relief relief, mrPixel p,
+                   vec4 viewport, vec3 rayDirDx, vec3 rayDirDy) {
+    if (useAlbedoMap != 1.0) return albedo;
+    vec2 pixel = 2.0 / viewport.zw;
+    return mr_surfaceAlbedo(albedoMap, relief, p.hit, p.dir, p.normal, rayDirDx * pixel.x, rayDirDy * pixel.y, false);
+}
+
 // The depth of world point `world` (about the camera, as relief_three.glsl's) for WebGPU's
 // depth buffer: clip z / w of `viewProjection`, in [0, 1].
 float mrFragmentDepth(mat4 viewProjection, vec3 world) {
@@ -45,7 +57,8 @@ vec4 mrShadePixel(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2
                   mat4 objectToWorld, mat4 worldToObject, float heightScale, vec3 frameScale,
                   float pixelError, vec3 rayOrigin, vec3 rayOriginDx, vec3 rayOriginDy,
                   vec3 rayDir, vec3 rayDirDx, vec3 rayDirDy, vec2 range,
-                  mat4 viewProjection, vec3 lightDirection, vec3 albedo, float shadows) {
+                  mat4 viewProjection, vec3 lightDirection, vec3 albedo, float shadows,
+                  MICRORELIEF_ALBEDO_TEXTURE albedoMap, float useAlbedoMap) {
     mr_Relief relief;
     mrPixel p;
     if (!mrTraceFragment(heights, windows, fragCoord, viewport, front, faces, mapSize, pyramidSize, levelCount, maxHeight,
@@ -55,7 +68,9 @@ vec4 mrShadePixel(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2
     vec3 colour = vec3(1.0, 0.0, 1.0);  // never silent: an exhausted traversal shows magenta
     if (!p.exhausted) {
         bool shadowExhausted = false;
-        colour = mrShadeHit(relief, windows, heights, p, lightDirection, albedo, shadows == 1.0, shadowExhausted);
+        colour = mrShadeHit(relief, windows, heights, p, lightDirection,
+                            mrPixelAlbedo(albedoMap, useAlbedoMap, albedo, relief, p, viewport, rayDirDx, rayDirDy),
+                            shadows == 1.0, shadowExhausted);
         if (shadowExhausted) colour = vec3(1.0, 0.0, 1.0);
     }
     return vec4(colour, mrFragmentDepth(viewProjection, p.world));
@@ -65,13 +80,15 @@ vec4 mrShadePixel(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2
 // three_material.glsl's mrBeginPixel gives it to three's WebGL shaders (the hit in the view
 // space of `worldToCamera`, the view of this draw; the normal through its rotation). Returns
 // the columns (the hit in view space, its depth: -1 where the pixel shows nothing), (the unit
-// normal in view space, 1 where the traversal was exhausted, else 0), two of zeros.
+// normal in view space, 1 where the traversal was exhausted, else 0), (the map's colours at
+// the hit where useAlbedoMap is 1, else white: three's diffuse colour is multiplied by them,
+// as three_material.glsl's MR_ALBEDO_MAP does), and zeros.
 mat4 mrTraceHit(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2 fragCoord, vec4 viewport,
                 bool front, float faces, vec2 mapSize, vec2 pyramidSize, float levelCount, float maxHeight,
                 mat4 objectToWorld, mat4 worldToObject, float heightScale, vec3 frameScale,
                 float pixelError, vec3 rayOrigin, vec3 rayOriginDx, vec3 rayOriginDy,
                 vec3 rayDir, vec3 rayDirDx, vec3 rayDirDy, vec2 range,
-                mat4 viewProjection, mat4 worldToCamera) {
+                mat4 viewProjection, mat4 worldToCamera, MICRORELIEF_ALBEDO_TEXTURE albedoMap, float useAlbedoMap) {
     mr_Relief relief;
     mrPixel p;
     if (!mrTraceFragment(heights, windows, fragCoord, viewport, front, faces, mapSize, pyramidSize, levelCount, maxHeight,
@@ -80,8 +97,9 @@ mat4 mrTraceHit(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2 f
         return mat4(vec4(0.0, 0.0, 0.0, -1.0), vec4(0.0), vec4(0.0), vec4(0.0));
     vec3 viewHit = (worldToCamera * vec4(p.world, 1.0)).xyz;
     vec3 viewNormal = normalize(mat3(worldToCamera) * p.normal);
+    vec3 colours = p.exhausted ? vec3(1.0) : mrPixelAlbedo(albedoMap, useAlbedoMap, vec3(1.0), relief, p, viewport, rayDirDx, rayDirDy);
     return mat4(vec4(viewHit, mrFragmentDepth(viewProjection, p.world)), vec4(viewNormal, p.exhausted ? 1.0 : 0.0),
-                vec4(0.0), vec4(0.0));
+                vec4(colours, 0.0), vec4(0.0));
 }
 
 #endif

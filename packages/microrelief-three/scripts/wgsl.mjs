@@ -64,8 +64,9 @@ export const wgslVariants = (kinds) => kinds.flatMap((base) =>
 // a texture2D, no sampler (GL_EXT_samplerless_texture_functions; WGSL's textureLoad): the
 // same texels as the defaults read, so the library's functions name no module-scope binding
 // for them. The cell's four samples are four reads (no gather: it needs a sampler). The
-// albedo is filtered (textureGrad), so it is sampled through mrAlbedoSampler, the one
-// binding of the module (group 0, binding 0; docs/webgpu.md's plan: a parameter later).
+// albedo is filtered (textureGrad), so it is sampled through mrAlbedoSampler, declared here
+// as a binding (group 0, binding 0) for naga, which libraryWgsl then makes a parameter of the
+// functions that use it (samplerAsParameter).
 export const kWebGpuHooks = `#extension GL_EXT_samplerless_texture_functions : require
 #define MICRORELIEF_SAMPLER texture2D
 #define MICRORELIEF_TEXTURE_GATHER 0
@@ -101,13 +102,46 @@ export function libraryEntry(library, variant, glue) {
         '\n#define MICRORELIEF_THREE_PARAMETERS_ONLY\n' + kWgslGlue.map((key) => glue[key] + '\n').join('') + 'void main() {}\n';
 }
 
+// The albedo's sampler as a parameter rather than a module-scope binding: a node material
+// (three's WebGPURenderer) cannot hold a binding of the module's own beside three's, but can
+// pass three's sampler of the albedo texture to the function it calls. naga's output mended,
+// at the build, by text: the binding (`@group(0) @binding(0)` and `var mrAlbedoSampler:
+// sampler;`, naga's two lines) is dropped, and every function that names mrAlbedoSampler, or
+// calls one that does, takes it as its first parameter (`fn f(mrAlbedoSampler: sampler, ...`)
+// and passes it first to each such call (`f(mrAlbedoSampler, ...`), until none is left
+// (mr_filteredAlbedo, mr_surfaceAlbedo, the glue's pixels). Throws WgslError where the
+// module is not what this was written for (no binding, or a function of no parameters).
+export function samplerAsParameter(module, what) {
+    const binding = /^@group\(0\) @binding\(0\) *\nvar mrAlbedoSampler: sampler;\n/m;
+    if (!binding.test(module)) throw new WgslError(`${what}: no module-scope mrAlbedoSampler binding where naga writes it`);
+    let text = module.replace(binding, '');
+    const functions = () => [...text.matchAll(/^fn (\w+)\(([^)]*)\)[^\n]*\{\n[\s\S]*?^\}$/gm)];
+    const threaded = new Set();
+    for (;;) {
+        const next = functions().filter((f) => !threaded.has(f[1]) && (/\bmrAlbedoSampler\b/.test(f[0]) ||
+                                                  [...threaded].some((name) => new RegExp(`\\b${name}\\(`).test(f[0].slice(f[0].indexOf('{'))))));
+        if (next.length === 0) break;
+        for (const f of next) {
+            if (f[2].trim() === '') throw new WgslError(`${what}: ${f[1]} takes no parameter (the sampler cannot be threaded)`);
+            threaded.add(f[1]);
+        }
+        for (const f of next) {
+            text = text.replace(new RegExp(`^fn ${f[1]}\\(`, 'm'), `fn ${f[1]}(mrAlbedoSampler: sampler, `);
+            text = text.replace(new RegExp(`([^\\w])${f[1]}\\((?!mrAlbedoSampler: )`, 'g'), (m, before) => `${before}${f[1]}(mrAlbedoSampler, `);
+        }
+    }
+    return text;
+}
+
 // Every variant's WGSL (`variants`: wgslVariants'): {name: text}, each with a header naming naga's version and the
-// variant. Throws WgslError naming the first variant that fails.
+// variant, the albedo's sampler a parameter (samplerAsParameter). Throws WgslError naming the first variant that fails.
 export function libraryWgsl(naga, library, glue, variants) {
     const modules = {};
-    for (const variant of variants)
-        modules[variant.name] = `// naga ${naga.nagaVersion}: microrelief's library and microrelief-three's glue (${kWgslGlue.join(', ')}), ${variant.base} base, ${variant.interpolation} last level, ${variant.method}\n` +
-            translate(naga, libraryEntry(library, variant, glue), `WGSL variant ${variant.name}`);
+    for (const variant of variants) {
+        const what = `WGSL variant ${variant.name}`;
+        modules[variant.name] = `// naga ${naga.nagaVersion}: microrelief's library and microrelief-three's glue (${kWgslGlue.join(', ')}), ${variant.base} base, ${variant.interpolation} last level, ${variant.method}; the albedo's sampler a parameter\n` +
+            samplerAsParameter(translate(naga, libraryEntry(library, variant, glue), what), what);
+    }
     return modules;
 }
 

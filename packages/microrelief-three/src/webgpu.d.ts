@@ -1,11 +1,12 @@
 // Declarations of webgpu.js, the entry 'microrelief-three/webgpu' (hand-written; tests/three's
 // typecheck uses them under tsc --strict). docs/three.md: the API.
-import type {BufferGeometry, Box3, Color, DataTexture, Intersection, Mesh, MeshBasicNodeMaterial, MeshStandardNodeMaterial, MeshStandardNodeMaterialParameters, Raycaster, UniformNode, Vector3,
-             WebGPURenderer} from 'three/webgpu';
+import type {BufferGeometry, Box3, Color, DataTexture, Intersection, Mesh, MeshBasicNodeMaterial, MeshStandardNodeMaterial, MeshStandardNodeMaterialParameters, Raycaster, Texture,
+             UniformNode, Vector3, WebGPURenderer} from 'three/webgpu';
 
 import type {HeightMap} from './heights.js';
 import type {BaseShape, BaseSpec, ReliefHit, ReliefInterpolation, TracedRays} from './relief.js';
 
+export {albedoFromBytes, loadAlbedo} from './albedo.js';
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
 export type {HeightMap, HeightsOptions, PngHeightsOptions} from './heights.js';
 export {baseShape, cameraRays, reliefExtent} from './relief.js';
@@ -60,6 +61,8 @@ export function createReliefMap(renderer: WebGPURenderer, map: HeightMap, option
 export interface ReliefShadingNodeParameters {
     /** Towards the light, world. */
     lightDirection?: Vector3;
+    /** The map's colours (loadAlbedo's texture: flipY false, sRGB, mipmapped); null: `albedo`. */
+    albedoMap?: Texture | null;
     /** Linear. */
     albedo?: Color;
     /** Default 'off'. */
@@ -74,13 +77,20 @@ export class ReliefShadingNodeMaterial extends MeshBasicNodeMaterial {
     shadows: 'off' | 'hard';
     lightDirection: UniformNode<Vector3>;
     albedo: UniformNode<Color>;
+    albedoMap: Texture | null;
 }
 
-/** three's MeshStandardNodeMaterial at the traced hit: three's lights, as the WebGL entry's ReliefStandardMaterial (one relief a material so far; no albedoMap, selfShadow or shadow maps yet). */
+export interface ReliefStandardNodeParameters extends MeshStandardNodeMaterialParameters {
+    /** The map's colours, multiplying `color` (loadAlbedo's texture: flipY false, sRGB, mipmapped). */
+    albedoMap?: Texture | null;
+}
+
+/** three's MeshStandardNodeMaterial at the traced hit: three's lights, as the WebGL entry's ReliefStandardMaterial (one relief a material so far; no selfShadow or shadow maps yet). */
 export class ReliefStandardNodeMaterial extends MeshStandardNodeMaterial {
-    constructor(parameters?: MeshStandardNodeMaterialParameters);
+    constructor(parameters?: ReliefStandardNodeParameters);
     readonly isReliefMaterial: true;
     relief: Relief | null;
+    albedoMap: Texture | null;
 }
 
 export interface WebGPUReliefOptions {

@@ -19,7 +19,7 @@
 // textures (read by textureLoad, no sampler) and three's nodes passed to the glue's pixels.
 import * as THREE from 'three/webgpu';
 import * as TSL from 'three/tsl';
-import {cameraFar, cameraNear, cameraWorldMatrix, code, Discard, Fn, frontFacing, If, normalViewGeometry, positionView, positionWorld, property,
+import {cameraFar, cameraNear, cameraWorldMatrix, code, diffuseColor, Discard, Fn, frontFacing, If, normalViewGeometry, positionView, positionWorld, property, sampler,
         screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth, wgslFn} from 'three/tsl';
 
 import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
@@ -31,6 +31,7 @@ import {baseShape, boxFaces, checkBaseForMap, checkHeightScale, checkInterpolati
 import {requireSupportedThree} from './three_version.js';
 import {loadTwin, releaseTwins, twinBytes} from './twin.js';
 
+export {albedoFromBytes, loadAlbedo} from './albedo.js';
 export {HeightMapError, heightsFromArray, heightsFromBytes, heightsFromImage, heightsFromPng, kMaxMapSide, loadHeights} from './heights.js';
 export {baseShape, cameraRays, reliefExtent} from './relief_host.js';
 
@@ -239,6 +240,35 @@ function drawnRelief(builder, name) {
 // The WGSL variant a relief draws with (generated/wgsl.js's name).
 const variantOf = (relief) => `${relief.base.kind}_${relief.interpolation}`;
 
+// The albedo texture bound where a material has no albedoMap (the glue's pixels take one
+// always; useAlbedoMap 0 leaves it unread): one white texel.
+let _noAlbedo = null;
+function noAlbedo() {
+    if (!_noAlbedo) {
+        _noAlbedo = new THREE.DataTexture(new Uint8Array([255, 255, 255, 255]), 1, 1, THREE.RGBAFormat, THREE.UnsignedByteType);
+        _noAlbedo.minFilter = _noAlbedo.magFilter = THREE.LinearFilter;  // filterable: three gives it a sampler
+        _noAlbedo.needsUpdate = true;
+    }
+    return _noAlbedo;
+}
+
+// The map's colours as the glue's pixels take them (mrPixelAlbedo): the texture, its
+// sampler (the WGSL's first parameter: scripts/wgsl.mjs's samplerAsParameter), whether to
+// read it. `albedoMap` a texture as loadAlbedo makes it (flipY false, sRGB, mipmapped), or
+// null.
+// three gives a texture no sampler where it cannot filter it (nearest both ways): refused, by
+// the materials' constructors and again when the program is made (for one set later).
+function checkAlbedoMap(albedoMap, what) {
+    if (albedoMap && albedoMap.minFilter === THREE.NearestFilter && albedoMap.magFilter === THREE.NearestFilter)
+        throw new TypeError(`${what}: albedoMap is filtered over each pixel's footprint, and a texture with NearestFilter both ways has no sampler in three's WebGPU (loadAlbedo's is mipmapped, linear)`);
+}
+
+function albedoInputs(albedoMap) {
+    checkAlbedoMap(albedoMap, 'microrelief-three/webgpu');
+    const node = texture(albedoMap ?? noAlbedo());
+    return {albedoMap: node, mrAlbedoSampler: sampler(node), useAlbedoMap: uniform(albedoMap ? 1 : 0)};
+}
+
 // The parameters both glue pixels take (webgpu_shading.glsl's mrTraceFragment): the relief's
 // textures and uniforms, the fragment's position, the viewport, the face; the matrix the
 // depth is made with (mrDepthMatrix under a logarithmic depth buffer: tracedDepth).
@@ -271,15 +301,18 @@ function tracedDepth(builder, relief, depth) {
 
 // The library's own shading, as microrelief-render draws it and as the WebGL entry's
 // ReliefShadingMaterial does: one directional light (`lightDirection`, world, towards the
-// light), a grey `albedo` (linear), the hard self-shadow with `shadows: 'hard'`; not lit
+// light), the map's colours (`albedoMap`, loadAlbedo's) or a grey `albedo` (linear), the hard
+// self-shadow with `shadows: 'hard'`; not lit
 // by three's lights; three's output conversion applies (toneMapped false). A node material
 // (MeshBasicNodeMaterial) whose colour and depth are the traced pixel's (the depth
 // logarithmic where the renderer's depth buffer is, as three's meshes write it). In this slice one
 // material draws one relief (the textures are bound when its program is built).
 export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
-    constructor({lightDirection = new THREE.Vector3(-0.45, 0.8, -0.35).normalize(), albedo = new THREE.Color(0.6, 0.58, 0.55), shadows = 'off'} = {}) {
+    constructor({lightDirection = new THREE.Vector3(-0.45, 0.8, -0.35).normalize(), albedoMap = null, albedo = new THREE.Color(0.6, 0.58, 0.55),
+                 shadows = 'off'} = {}) {
         requireSupportedThree();
         if (!['off', 'hard'].includes(shadows)) throw new TypeError(`ReliefShadingNodeMaterial: shadows '${shadows}' (expected off or hard)`);
+        checkAlbedoMap(albedoMap, 'ReliefShadingNodeMaterial');
         super();
         this.isReliefMaterial = true;
         this.relief = null;
@@ -289,19 +322,20 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
         this.shadows = shadows;
         this.lightDirection = uniform(lightDirection.clone());
         this.albedo = uniform(new THREE.Color().copy(albedo));
+        this.albedoMap = albedoMap;
     }
 
     customProgramCacheKey() {
-        // The variant and the map (the program binds its textures: another map, another program).
+        // The variant, the map and the albedo (the program binds its textures: others, another program).
         const relief = this.relief;
-        return `microrelief-webgpu:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}:${this.shadows}`;
+        return `microrelief-webgpu:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}:${this.shadows}:${albedoKey(this.albedoMap)}`;
     }
 
     setup(builder) {
         const relief = drawnRelief(builder, 'ReliefShadingNodeMaterial');
         const traced = glue(variantOf(relief), 'mrShadePixel', {
             ...traceInputs(builder, relief), lightDirection: this.lightDirection, albedo: this.albedo,
-            shadows: uniform(this.shadows === 'hard' ? 1 : 0),
+            shadows: uniform(this.shadows === 'hard' ? 1 : 0), ...albedoInputs(this.albedoMap),
         }).toVar('mrTraced');
         this.depthNode = tracedDepth(builder, relief, traced.w);
         this.colorNode = Fn(() => {
@@ -318,9 +352,13 @@ export class ReliefShadingNodeMaterial extends THREE.MeshBasicNodeMaterial {
         this.shadows = source.shadows;
         if (source.lightDirection) this.lightDirection.value.copy(source.lightDirection.value);
         if (source.albedo) this.albedo.value.copy(source.albedo.value);
+        this.albedoMap = source.albedoMap ?? null;
         return this;
     }
 }
+
+// A material's albedo in its program's key: the texture binds with the program.
+const albedoKey = (albedoMap) => (albedoMap ? `albedo${albedoMap.id}` : 'grey');
 
 // ReliefStandardNodeMaterial's traced pixel (mrTraceHit's columns), one a fragment.
 const kHit = property('mat4', 'mrHit');
@@ -336,15 +374,19 @@ const kHit = property('mat4', 'mrHit');
 // (r187: positionView, positionWorld and normalViewGeometry, the nodes three's lights, BRDFs,
 // fog and shadow lookups read, replaced in the fragment stage; its contextNode), the depth as `depthNode` (logarithmic as ReliefShadingNodeMaterial's). Misses
 // and faces that do not run are discarded; an exhausted traversal is magenta, as in WebGL.
-// Not yet: the map's colours (albedoMap), the library's self-shadow (selfShadow), three's
-// shadow maps (the relief neither casts into them nor is its lookup biased as the WebGL
+// `albedoMap` (loadAlbedo's texture) multiplies three's diffuse colour by the map's colours,
+// filtered over the pixel's footprint as in WebGL. Not yet: the library's self-shadow
+// (selfShadow), three's shadow maps (the relief neither casts into them nor is its lookup biased as the WebGL
 // entry's: docs/three.md).
 export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
     constructor(parameters = {}) {
         requireSupportedThree();
         if (typeof TSL.overrideNodes !== 'function')
             throw new Error("ReliefStandardNodeMaterial: this three has no overrideNodes (three/tsl, r187 and newer), which hands three's lighting the traced hit");
-        super(parameters);
+        const {albedoMap = null, ...rest} = parameters;
+        checkAlbedoMap(albedoMap, 'ReliefStandardNodeMaterial');
+        super(rest);
+        this.albedoMap = albedoMap;
         this.isReliefMaterial = true;
         this.relief = null;
         this.side = THREE.DoubleSide;  // the faces that run are chosen per draw (mrFaces)
@@ -368,7 +410,7 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
 
     customProgramCacheKey() {
         const relief = this.relief;
-        return `microrelief-webgpu-standard:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}`;
+        return `microrelief-webgpu-standard:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}:${albedoKey(this.albedoMap)}`;
     }
 
     setup(builder) {
@@ -377,7 +419,8 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
         // The trace, once a pixel, into a property of its own (kHit): three builds the
         // overrides in a context of their own, where a variable of the trace would be
         // declared (and traced) a second time.
-        this._mrTrace = glue(variantOf(relief), 'mrTraceHit', {...traceInputs(builder, relief), worldToCamera: u('mrWorldToCamera')});
+        this._mrTrace = glue(variantOf(relief), 'mrTraceHit', {...traceInputs(builder, relief), worldToCamera: u('mrWorldToCamera'),
+                                                               ...albedoInputs(this.albedoMap)});
         this.depthNode = tracedDepth(builder, relief, kHit.element(0).w);
         this.normalNode = kHit.element(1).xyz;
         return super.setup(builder);
@@ -393,9 +436,22 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
         return super.setupClipping(builder);
     }
 
+    // The map's colours (albedoMap) multiply three's diffuse colour, as three_material.glsl's
+    // MR_ALBEDO_MAP does right after three sets it.
+    setupDiffuseColor(builder) {
+        super.setupDiffuseColor(builder);
+        if (this.albedoMap) diffuseColor.assign(vec4(diffuseColor.rgb.mul(kHit.element(2).xyz), diffuseColor.a));
+    }
+
     // Never silent: an exhausted traversal shows magenta (three_material.glsl's last line).
     setupOutput(builder, outputNode) {
         return select(kHit.element(1).w.greaterThan(0.5), vec4(1, 0, 1, 1), super.setupOutput(builder, outputNode));
+    }
+
+    copy(source) {
+        super.copy(source);
+        this.albedoMap = source.albedoMap ?? null;
+        return this;
     }
 }
 

@@ -115,5 +115,11 @@ export async function craterOnWebGPU(canvas: HTMLCanvasElement): Promise<number>
     lit.material.side = WebGPU.DoubleSide;
     // @ts-expect-error: the roughness is a number
     new onWebGPU.ReliefStandardNodeMaterial({roughness: 'rough'});
+    // The map's colours in both materials.
+    const albedoMap = await onWebGPU.loadAlbedo('cobbles-albedo.png');
+    lit.material = new onWebGPU.ReliefStandardNodeMaterial({albedoMap, roughness: 0.85});
+    relief.material = new onWebGPU.ReliefShadingNodeMaterial({albedoMap, shadows: 'hard'});
+    // @ts-expect-error: an albedo map is a texture
+    new onWebGPU.ReliefShadingNodeMaterial({albedoMap: 'cobbles-albedo.png'});
     return relief.heightScale + hits.length + (hit ? hit.distance : 0) + rays.t[0] + twinBytes;
 }

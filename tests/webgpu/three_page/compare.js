@@ -100,12 +100,33 @@ function displacedMesh(T, roughness) {
     return mesh;
 }
 
+// The map's colours for entry `E`'s materials (as loadAlbedo makes them: sRGB, flipY false,
+// repeating, mipmapped): 64 x 48 stripes and checks of several colours, so that the footprint
+// filter and the tiling show.
+function albedoMap(T) {
+    const w = 64, h = 48, data = new Uint8Array(4 * w * h);
+    for (let y = 0; y < h; ++y)
+        for (let x = 0; x < w; ++x)
+            data.set([(x * 37) % 256, ((x >> 2) + (y >> 2)) % 2 ? 220 : 40, (y * 23 + x * 5) % 256, 255], 4 * (y * w + x));
+    const texture = new T.DataTexture(data, w, h, T.RGBAFormat, T.UnsignedByteType);
+    texture.colorSpace = T.SRGBColorSpace;
+    texture.flipY = false;
+    texture.wrapS = texture.wrapT = T.RepeatWrapping;
+    texture.minFilter = T.LinearMipmapLinearFilter;
+    texture.magFilter = T.LinearFilter;
+    texture.generateMipmaps = true;
+    texture.needsUpdate = true;
+    return texture;
+}
+
 // What a picture of `kind` shows of an entry `E` (gl or wg): 'shading', the relief in the
 // library's own shading; 'lit', in the entry's standard material under three's lights;
-// 'mesh', no relief (displacedMesh under the same lights); `roughness` the standard materials'.
+// 'mesh', no relief (displacedMesh under the same lights); 'shadingAlbedo' and 'litAlbedo'
+// as 'shading' and 'lit' with the map's colours (albedoMap); `roughness` the standard materials'.
 function reliefMaterial(E, kind, roughness) {
-    if (kind === 'lit') return new (E === gl ? gl.ReliefStandardMaterial : wg.ReliefStandardNodeMaterial)({...kLit, roughness});
-    return new (E === gl ? gl.ReliefShadingMaterial : wg.ReliefShadingNodeMaterial)({lightDirection: light, shadows: 'hard'});
+    const T = E === gl ? THREE : GPU, map = kind.endsWith('Albedo') ? {albedoMap: albedoMap(T)} : {};
+    if (kind.startsWith('lit')) return new (E === gl ? gl.ReliefStandardMaterial : wg.ReliefStandardNodeMaterial)({...kLit, roughness, ...map});
+    return new (E === gl ? gl.ReliefShadingMaterial : wg.ReliefShadingNodeMaterial)({lightDirection: light, shadows: 'hard', ...map});
 }
 
 async function drawWebGL(view, interpolation, base = 'plane', kind = 'shading', roughness = kLit.roughness) {
@@ -113,7 +134,7 @@ async function drawWebGL(view, interpolation, base = 'plane', kind = 'shading', 
     const {w, h, samples} = heights();
     const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
     const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, base, material: reliefMaterial(gl, kind, roughness)});
-    relief.isLit = kind === 'lit';
+    relief.isLit = kind.startsWith('lit');
     const {scene, camera} = setUp(THREE, view, kind === 'mesh' ? displacedMesh(THREE, roughness) : relief, {withBox: kind !== 'mesh'});
     const target = new THREE.WebGLRenderTarget(W, H);
     if (kViews[view].viewport) target.viewport.set(...kViews[view].viewport);  // GL's y from the bottom
@@ -134,7 +155,7 @@ async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading',
     const {w, h, samples} = heights();
     const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
     const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, base, material: reliefMaterial(wg, kind, roughness)});
-    relief.isLit = kind === 'lit';
+    relief.isLit = kind.startsWith('lit');
     const {scene, camera} = setUp(GPU, view, kind === 'mesh' ? displacedMesh(GPU, roughness) : relief, {withBox: kind !== 'mesh'});
     const target = new GPU.RenderTarget(W, H);
     if (kViews[view].viewport) {  // the same pixels: WebGPU's y from the top
@@ -323,6 +344,10 @@ async function refusals() {
     // Its picks on the GPU: this entry has none (the CPU twin traces them).
     await attempt('gpuPicks', () => relief.traceRays([0, 1, 0], [0, -1, 0], [0, 2], {on: 'gpu'}));
     relief.reliefMap.dispose();
+    // An albedo map three's WebGPU cannot filter (NearestFilter both ways: no sampler).
+    const nearest = albedoMap(GPU);
+    nearest.minFilter = nearest.magFilter = GPU.NearestFilter;
+    await attempt('nearestAlbedo', () => new wg.ReliefStandardNodeMaterial({albedoMap: nearest}));
     return JSON.stringify(said);
 }
 

@@ -22,7 +22,7 @@ export function requireSupportedThree() {
 // The renderer this entry draws with: THREE.WebGLRenderer. A WebGPURenderer is named as such
 // (issue 51: tried as a new user would, it was refused as "not a WebGLRenderer", and a relief
 // drew as its white box in it, silently), pointing at the WebGPU entry in one line.
-export const kWebGPURendererUnsupported = "microrelief-three draws with THREE.WebGLRenderer; a WebGPURenderer takes the WebGPU entry: import from 'microrelief-three/webgpu' (so far ReliefShadingNodeMaterial, the library's own shading)";
+export const kWebGPURendererUnsupported = "microrelief-three draws with THREE.WebGLRenderer; a WebGPURenderer takes the WebGPU entry: import from 'microrelief-three/webgpu' (ReliefShadingNodeMaterial, the library's own shading; ReliefStandardNodeMaterial, three's lights)";
 
 // Throws a TypeError for anything but a WebGLRenderer; `what` names the caller.
 export function requireWebGLRenderer(renderer, what) {

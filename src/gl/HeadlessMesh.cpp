@@ -88,8 +88,10 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
     key.options.view = job.shading.view;
     if (!mesh_->relief || !(mesh_->built == key)) {
         mesh_->relief.reset();
-        mesh_->relief.emplace(gl, shaderDirectory(), *mesh_->mesh, *mesh_->map, key.heightScale,
-                              key.options);
+        // The map's rows reversed (HeightMap.h: rowsReversed): the mesh's (0, 0) is the
+        // image's bottom-left corner, as the contract has it, not its first row.
+        mesh_->relief.emplace(gl, shaderDirectory(), *mesh_->mesh, rowsReversed(*mesh_->map),
+                              key.heightScale, key.options);
         mesh_->built = key;
     }
     const gl::MeshRelief& relief = *mesh_->relief;

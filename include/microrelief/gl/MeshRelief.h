@@ -63,7 +63,9 @@ struct MeshReliefOptions {
 class MeshRelief {
 public:
     // `mesh` as io/MeshFile.h's loadMeshFile gives it (unit normals, no zero-area triangles),
-    // `map` non-empty with finite heights >= 0, `heightScale` s >= 0 in the mesh's units.
+    // `map` non-empty with finite heights >= 0, its row j at v = (j + 1/2) / H (bottom row
+    // first, as OpenGL's textures: a map read from an image, top row first, is passed
+    // rowsReversed, HeightMap.h), `heightScale` s >= 0 in the mesh's units.
     // Throws Error(BadInput) where the triangle table exceeds the GL's texture size,
     // Error(Runtime) where the program does not compile.
     MeshRelief(const GL& gl, const std::filesystem::path& shaderDir, const TriangleMesh& mesh,

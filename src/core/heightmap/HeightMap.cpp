@@ -11,6 +11,13 @@
 
 namespace microrelief {
 
+HeightMap rowsReversed(const HeightMap& map) {
+    HeightMap reversed(map.width, map.height);
+    for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i) reversed.at(i, j) = map.at(i, map.height - 1 - j);
+    return reversed;
+}
+
 float HeightMap::clamped(int i, int j) const {
     return at(std::clamp(i, 0, width - 1), std::clamp(j, 0, height - 1));
 }

@@ -81,6 +81,13 @@ struct HeightMap {
     float minValue() const;
 };
 
+// The map with its rows in the opposite order: row j of the result is row H - 1 - j of
+// `map`. The mesh base's texture coordinates are OpenGL's, (0, 0) the image's bottom-left
+// corner (docs/bases.md, "The mesh"), while a HeightMap's row 0 is the image's first, top,
+// row: the mesh's classes (MeshReference, MeshTracer, MeshProxy, gl::MeshRelief) address a
+// map's row j at v = (j + 1/2) / H, so an image's map is handed to them reversed.
+HeightMap rowsReversed(const HeightMap& map);
+
 // The largest map side loadHeightMap (io/HeightMapFile.h) accepts, checked from the file's
 // header before any sample is read or allocated: 16384, the GL_MAX_TEXTURE_SIZE of llvmpipe and of
 // most desktop GPUs (and the least that OpenGL 4.1 and later guarantee), so that a map's samples

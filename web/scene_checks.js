@@ -80,7 +80,8 @@ export class SceneChecks {
     }
 
     // The fields a message may name that have no name here (map.samples: no program sets it
-    // from text); the tests hold this list to that one.
+    // from text; mesh.file: the mesh base is not on the pages yet); the tests hold this list
+    // to those two.
     unnamedFields() {
         return this.fields.filter((field) => !(field in this.names));
     }

@@ -112,9 +112,10 @@ for (const c of cases.filter((c) => c.page === 'web' || withThree)) {
         report(name, e.message);
     }
 }
-// Every field a message may name has a name on the pages, but map.samples (no text sets it).
+// Every field a message may name has a name on the pages, but map.samples (no text sets it)
+// and mesh.file (the mesh base is microrelief-render's alone so far: issue 50).
 const unnamed = checks.unnamedFields();
-report('every field has a name', JSON.stringify(unnamed) === '["map.samples"]' ? '' : `no names for ${unnamed}`);
+report('every field has a name', JSON.stringify(unnamed) === '["map.samples","mesh.file"]' ? '' : `no names for ${unnamed}`);
 // The page fills the parameter block through relief_layout.js (generated from
 // shaders/relief_parameters.glsl): a member left out, a name that is not a member, or a wrong
 // count is refused, and a block with every member given is written whole.

@@ -18,12 +18,12 @@ void addMeshOptions(CLI::App& app, MeshFlags& flags) {
                    "Side of the benchmark's relief, texels (a square map)")
         ->capture_default_str();
     app.add_option("--grids", flags.grids,
-                   "Flat grids of N x N quads copying the plane base (2 N^2 triangles), "
-                   "comma-separated; 0 alone: none")
+                   "Flat grids of N x N quads (1 to 128) copying the plane base (2 N^2 "
+                   "triangles), comma-separated; 0 alone: none")
         ->capture_default_str();
     app.add_option("--tubes", flags.tubes,
-                   "Tubes of S sides and S/4 rings copying the cylinder base (S^2/2 "
-                   "triangles), comma-separated; 0 alone: none")
+                   "Tubes of S sides (4 to 512) and S/4 rings, at least one, copying the "
+                   "cylinder base (2 S max(1, S/4) triangles), comma-separated; 0 alone: none")
         ->capture_default_str();
     app.add_option("--views", flags.views, "View angles, degrees from the base's normal")
         ->capture_default_str();

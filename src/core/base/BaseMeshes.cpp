@@ -51,15 +51,7 @@ TriangleMesh cylinderTubeMesh(int around, int along, float radius, float length,
             mesh.texCoords.push_back({static_cast<float>(u), static_cast<float>(v)});
         }
     }
-    // The outward tube's quads as the lattice has them: (a, c, b) with c the next ring.
-    for (int j = 0; j < along; ++j) {
-        for (int k = 0; k < around; ++k) {
-            const unsigned a = static_cast<unsigned>(j * (around + 1) + k), b = a + 1,
-                           c = a + static_cast<unsigned>(around) + 1;
-            mesh.triangles.push_back({a, c, b});
-            mesh.triangles.push_back({b, c, c + 1});
-        }
-    }
+    addQuads(mesh, around, along);  // facing out: u grows round +y, v down the axis
     return mesh;
 }
 

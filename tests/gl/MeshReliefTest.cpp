@@ -64,58 +64,11 @@ HeightMap seamless(HeightMap map) {
     return map;
 }
 
-// n x n quads on y = 0 over [-a/2, a/2] x [-b/2, b/2], normals +y, uv over [0, 1]^2
-// (MeshTracerTest's flatGrid).
-TriangleMesh flatGrid(int n, float a, float b) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= n; ++j) {
-        for (int i = 0; i <= n; ++i) {
-            const float u = static_cast<float>(i) / n, v = static_cast<float>(j) / n;
-            mesh.positions.push_back({(u - 0.5f) * a, 0.0f, (v - 0.5f) * b});
-            mesh.normals.push_back({0.0f, 1.0f, 0.0f});
-            mesh.texCoords.push_back({u, v});
-        }
-    }
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            const unsigned k = j * (n + 1) + i, right = k + 1, up = k + n + 1;
-            mesh.triangles.push_back({k, up, right});
-            mesh.triangles.push_back({right, up, up + 1});
-        }
-    }
-    return mesh;
-}
-
-// A tube about the y axis, u around, v along, normals outward (MeshTracerTest's tube).
-TriangleMesh tube(int around, int along, float radius, float length) {
-    TriangleMesh mesh;
-    for (int j = 0; j <= along; ++j) {
-        for (int k = 0; k <= around; ++k) {
-            const double u = static_cast<double>(k) / around, v = static_cast<double>(j) / along;
-            const double phi = 2.0 * kPi * (u - 0.5);
-            const glm::vec3 outward(static_cast<float>(std::sin(phi)), 0.0f,
-                                    static_cast<float>(std::cos(phi)));
-            const float y = static_cast<float>((1.0 - 2.0 * v) * 0.5 * length);
-            mesh.positions.push_back({radius * outward.x, y, radius * outward.z});
-            mesh.normals.push_back(outward);
-            mesh.texCoords.push_back({static_cast<float>(u), static_cast<float>(v)});
-        }
-    }
-    for (int j = 0; j < along; ++j) {
-        for (int k = 0; k < around; ++k) {
-            const unsigned a = j * (around + 1) + k, b = a + 1, c = a + around + 1;
-            mesh.triangles.push_back({a, c, b});
-            mesh.triangles.push_back({b, c, c + 1});
-        }
-    }
-    return mesh;
-}
-
 // A bumpy grid whose normals lean at random by up to `lean` (MeshTracerTest's bumpyGrid; each
 // draw of two numbers a braced list, evaluated left to right under every compiler): with a
 // shell as thick as a quad the prisms twist and fold over their neighbours.
 TriangleMesh bumpyGrid(int n, double lean, std::mt19937& random) {
-    TriangleMesh mesh = flatGrid(n, 1.0f, 1.0f);
+    TriangleMesh mesh = planeGridMesh(n, 1.0f, 1.0f);
     std::uniform_real_distribution<double> height(-0.05, 0.05), tilt(-lean, lean);
     for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
         mesh.positions[k].y = static_cast<float>(height(random));
@@ -318,7 +271,7 @@ class MeshRelief : public test::GlTest {};
 TEST_F(MeshRelief, AFlatGridIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
     expectAgreement(
-        compare(flatGrid(8, 1.0f, 1.0f), map, 0.08, {0.0, 0.75, 0.95}, {0.0, 0.0, 0.0}, "flat"));
+        compare(planeGridMesh(8, 1.0f, 1.0f), map, 0.08, {0.0, 0.75, 0.95}, {0.0, 0.0, 0.0}, "flat"));
 }
 
 // The eye inside the shell (at 0.6 of its height over the grid's corner region), looking
@@ -326,7 +279,7 @@ TEST_F(MeshRelief, AFlatGridIsTheReferencesPixelByPixel) {
 TEST_F(MeshRelief, FromInsideTheShellTheGridIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
     const double s = 0.08;
-    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, s, {-0.3, 0.6 * s, 0.35},
+    expectAgreement(compare(planeGridMesh(8, 1.0f, 1.0f), map, s, {-0.3, 0.6 * s, 0.35},
                             {0.2, 0.0, -0.2}, "inside"));
 }
 
@@ -334,7 +287,7 @@ TEST_F(MeshRelief, FromInsideTheShellTheGridIsTheReferencesPixelByPixel) {
 // away from D; and the border's walls.
 TEST_F(MeshRelief, FromBelowTheMeshTheGridIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
-    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, 0.08, {0.1, -0.7, 0.9},
+    expectAgreement(compare(planeGridMesh(8, 1.0f, 1.0f), map, 0.08, {0.1, -0.7, 0.9},
                             {0.0, 0.0, 0.0}, "below"));
 }
 
@@ -343,7 +296,7 @@ TEST_F(MeshRelief, FromBelowTheMeshTheGridIsTheReferencesPixelByPixel) {
 TEST_F(MeshRelief, LookingLevelInsideTheShellTheGridIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
     const double s = 0.08;
-    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, s, {-0.3, 0.7 * s, 0.35},
+    expectAgreement(compare(planeGridMesh(8, 1.0f, 1.0f), map, s, {-0.3, 0.7 * s, 0.35},
                             {0.2, 0.7 * s, -0.2}, "level", 47));
 }
 
@@ -360,7 +313,7 @@ TEST_F(MeshRelief, FoldedPrismsAreTheReferencesPixelByPixel) {
 TEST_F(MeshRelief, ATubeIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(128, 64, 7.0, 4, 11));
     expectAgreement(
-        compare(tube(24, 4, 0.3f, 1.0f), map, 0.05, {0.35, 0.3, 1.3}, {0.0, 0.0, 0.0}, "tube"));
+        compare(cylinderTubeMesh(24, 4, 0.3f, 1.0f), map, 0.05, {0.35, 0.3, 1.3}, {0.0, 0.0, 0.0}, "tube"));
 }
 
 // An inward tube whose shell (1.25 of its radius) passes its axis, where the prisms' normal
@@ -380,7 +333,7 @@ TEST_F(MeshRelief, TheNormalViewShowsTheNormalAov) {
     const HeightMap map = seamless(synth::valueNoise(64, 32, 5.0, 3, 7));
     gl::MeshReliefOptions options;
     options.view = DebugView::Normal;
-    const gl::MeshRelief relief(gl, shaderDirectory(), flatGrid(2, 1.0f, 1.0f), map, 0.08, options);
+    const gl::MeshRelief relief(gl, shaderDirectory(), planeGridMesh(2, 1.0f, 1.0f), map, 0.08, options);
     const glm::dvec3 eye{0.0, 0.75, 0.95};
     const glm::dmat4 viewProjection =
         glm::perspective(glm::radians(40.0), 32.0 / 24.0, 0.05, 20.0) *
@@ -400,7 +353,7 @@ TEST_F(MeshRelief, TheNormalViewShowsTheNormalAov) {
     }
     EXPECT_GT(hits, 32 * 24 / 4);
     EXPECT_LE(worst, 1.0);
-    EXPECT_THROW(gl::MeshRelief(gl, shaderDirectory(), flatGrid(2, 1.0f, 1.0f), map, 0.08,
+    EXPECT_THROW(gl::MeshRelief(gl, shaderDirectory(), planeGridMesh(2, 1.0f, 1.0f), map, 0.08,
                                 gl::MeshReliefOptions{.view = DebugView::Depth}),
                  Error);
 }
@@ -441,7 +394,7 @@ TEST_F(MeshRelief, AFoldedBumpyTubeIsTheReferencesPixelByPixel) {
 // thresholds: the flat grid, the folded prisms and the tube.
 TEST_F(MeshRelief, BiquadraticAFlatGridIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
-    expectAgreement(compare(flatGrid(8, 1.0f, 1.0f), map, 0.08, {0.0, 0.75, 0.95}, {0.0, 0.0, 0.0},
+    expectAgreement(compare(planeGridMesh(8, 1.0f, 1.0f), map, 0.08, {0.0, 0.75, 0.95}, {0.0, 0.0, 0.0},
                             "flat-biquadratic", 48, Interpolation::Biquadratic));
 }
 
@@ -455,7 +408,7 @@ TEST_F(MeshRelief, BiquadraticFoldedPrismsAreTheReferencesPixelByPixel) {
 
 TEST_F(MeshRelief, BiquadraticATubeIsTheReferencesPixelByPixel) {
     const HeightMap map = seamless(synth::valueNoise(128, 64, 7.0, 4, 11));
-    expectAgreement(compare(tube(24, 4, 0.3f, 1.0f), map, 0.05, {0.35, 0.3, 1.3}, {0.0, 0.0, 0.0},
+    expectAgreement(compare(cylinderTubeMesh(24, 4, 0.3f, 1.0f), map, 0.05, {0.35, 0.3, 1.3}, {0.0, 0.0, 0.0},
                             "tube-biquadratic", 48, Interpolation::Biquadratic));
 }
 

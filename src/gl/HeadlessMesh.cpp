@@ -108,21 +108,7 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
         target_.emplace(gl, targetWidth, targetHeight);
     }
     HeadlessResult result{{}, camera, std::nullopt, {}};
-    RenderedFrame& frame = result.frame;
-    try {
-        const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
-        frame.width = job.width;
-        frame.height = job.height;
-        frame.positionOrigin = camera.eye;  // MeshRelief writes the hit less the eye
-        frame.color.resize(count);
-        frame.position.resize(count);
-        frame.stats.resize(count);
-        frame.shadow.resize(count / 4);
-    } catch (const std::bad_alloc&) {
-        throwRuntime("not enough memory for a " + std::to_string(job.width) + "x" +
-                     std::to_string(job.height) + " picture (" +
-                     std::to_string(kFrameBytesPerPixel) + " bytes a pixel)");
-    }
+    allocateFrame(result.frame, job, camera.eye);  // MeshRelief writes the hit less the eye
     for (int y = 0; y < job.height; y += tile) {
         for (int x = 0; x < job.width; x += tile) {
             const PictureTile part{x, y, std::min(tile, job.width - x),
@@ -134,7 +120,7 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
                 relief.draw(glm::mat4(tileCrop(part, job.width, job.height) * camera.viewProjection),
                             camera.eye);
             }
-            target_->readInto(frame, part.x, part.y, part.width, part.height);
+            target_->readInto(result.frame, part.x, part.y, part.width, part.height);
         }
     }
     gl.Finish();

@@ -125,21 +125,7 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
 
     HeadlessResult result{{}, camera, std::nullopt, {}};
     const std::size_t loadedBefore = renderer_->pager() ? renderer_->pager()->pagesLoaded() : 0;
-    RenderedFrame& frame = result.frame;
-    try {
-        const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
-        frame.width = job.width;
-        frame.positionOrigin = camera.eye;  // ReliefRenderer::draw traces relative to it
-        frame.height = job.height;
-        frame.color.resize(count);
-        frame.position.resize(count);
-        frame.stats.resize(count);
-        frame.shadow.resize(count / 4);
-    } catch (const std::bad_alloc&) {
-        throwRuntime("not enough memory for a " + std::to_string(job.width) + "x" +
-                     std::to_string(job.height) + " picture (" +
-                     std::to_string(kFrameBytesPerPixel) + " bytes a pixel)");
-    }
+    allocateFrame(result.frame, job, camera.eye);  // ReliefRenderer::draw traces relative to it
     quartersReversed_ = !quartersReversed_;  // drawTile's quarters, the other way this frame
     for (int y = 0; y < job.height; y += tile) {
         for (int x = 0; x < job.width; x += tile) {
@@ -158,6 +144,24 @@ HeadlessResult HeadlessRenderer::render(const RenderJob& job) {
     if (error != GL_NO_ERROR)
         throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + map->source());
     return result;
+}
+
+void HeadlessRenderer::allocateFrame(RenderedFrame& frame, const RenderJob& job,
+                                     const glm::dvec3& positionOrigin) {
+    try {
+        const std::size_t count = static_cast<std::size_t>(job.width) * job.height * 4;
+        frame.width = job.width;
+        frame.height = job.height;
+        frame.positionOrigin = positionOrigin;
+        frame.color.resize(count);
+        frame.position.resize(count);
+        frame.stats.resize(count);
+        frame.shadow.resize(count / 4);
+    } catch (const std::bad_alloc&) {
+        throwRuntime("not enough memory for a " + std::to_string(job.width) + "x" +
+                     std::to_string(job.height) + " picture (" +
+                     std::to_string(kFrameBytesPerPixel) + " bytes a pixel)");
+    }
 }
 
 void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,

@@ -68,19 +68,6 @@ void writeBumpyGrid(const std::filesystem::path& file, int n) {
     }
 }
 
-// The world size of one texel on triangle k: sqrt(world area / texel area).
-double texelSize(const TriangleMesh& mesh, const HeightMap& map, std::size_t k) {
-    const glm::uvec3 v = mesh.triangles[k];
-    const glm::dvec3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]],
-                     p2 = mesh.positions[v[2]];
-    const glm::dvec2 t0 = mesh.texCoords[v[0]], t1 = mesh.texCoords[v[1]],
-                     t2 = mesh.texCoords[v[2]];
-    const double world = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
-    const glm::dvec2 a = (t1 - t0) * glm::dvec2(map.width, map.height),
-                     b = (t2 - t0) * glm::dvec2(map.width, map.height);
-    return std::sqrt(world / (0.5 * std::abs(a.x * b.y - a.y * b.x)));
-}
-
 struct Agreement {
     int pixels = 0, hits = 0, hitMiss = 0, far = 0;
     double worst = 0.0;  // texels
@@ -105,7 +92,7 @@ Agreement compare(const test::Aov& aov, const Camera& camera, const TriangleMesh
             if (!hit) continue;
             ++a.hits;
             const double off = glm::length(glm::dvec3(p[0], p[1], p[2]) - hit.position) /
-                               texelSize(mesh, map, hit.triangle);
+                               test::meshTexelSize(mesh, map, hit.triangle);
             a.worst = std::max(a.worst, off);
             if (off > 0.5) ++a.far;
         }

@@ -78,20 +78,6 @@ TriangleMesh bumpyGrid(int n, double lean, std::mt19937& random) {
     return mesh;
 }
 
-// The world size of one texel on triangle k: sqrt(world area / texel area).
-double texelSize(const TriangleMesh& mesh, const HeightMap& map, std::size_t k) {
-    const glm::uvec3 v = mesh.triangles[k];
-    const glm::dvec3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]],
-                     p2 = mesh.positions[v[2]];
-    const glm::dvec2 t0 = mesh.texCoords[v[0]], t1 = mesh.texCoords[v[1]],
-                     t2 = mesh.texCoords[v[2]];
-    const double world = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
-    const glm::dvec2 a = (t1 - t0) * glm::dvec2(map.width, map.height),
-                     b = (t2 - t0) * glm::dvec2(map.width, map.height);
-    const double texels = 0.5 * std::abs(a.x * b.y - a.y * b.x);
-    return std::sqrt(world / texels);
-}
-
 // A framebuffer with MeshRelief's outputs as this test reads them: the colour (sRGB, as
 // OffscreenTarget's), the position AOV (RGBA32F, location 1) and the normal AOV (RGBA32F,
 // location 4, which OffscreenTarget has not), and a float depth buffer; rows read top first.
@@ -218,7 +204,7 @@ Agreement compare(const TriangleMesh& mesh, const HeightMap& map, double s, glm:
             ++a.hits;
             ++a.surfaces[static_cast<int>(hit.surface)];
             const glm::dvec3 world = eye + glm::dvec3(position[at], position[at + 1], position[at + 2]);
-            const double off = glm::length(world - hit.position) / texelSize(mesh, map, hit.triangle);
+            const double off = glm::length(world - hit.position) / test::meshTexelSize(mesh, map, hit.triangle);
             a.worst = std::max(a.worst, off);
             if (off > 0.5) ++a.far;
             const glm::dvec3 n(normal[at], normal[at + 1], normal[at + 2]);

@@ -271,4 +271,17 @@ RenderedFrame withWorldPositions(RenderedFrame frame) {
     return frame;
 }
 
+double meshTexelSize(const TriangleMesh& mesh, const HeightMap& map, std::size_t k) {
+    const glm::uvec3 v = mesh.triangles[k];
+    const glm::dvec3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]],
+                     p2 = mesh.positions[v[2]];
+    const glm::dvec2 t0 = mesh.texCoords[v[0]], t1 = mesh.texCoords[v[1]],
+                     t2 = mesh.texCoords[v[2]];
+    const double world = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+    const glm::dvec2 a = (t1 - t0) * glm::dvec2(map.width, map.height),
+                     b = (t2 - t0) * glm::dvec2(map.width, map.height);
+    const double texels = 0.5 * std::abs(a.x * b.y - a.y * b.x);
+    return std::sqrt(world / texels);
+}
+
 }  // namespace microrelief::test

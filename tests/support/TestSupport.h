@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "microrelief/headless/HeadlessContext.h"
+#include "microrelief/core/base/TriangleMesh.h"
 #include "microrelief/core/heightmap/HeightMap.h"
 #include "microrelief/io/ImageFile.h"
 #include "microrelief/core/scene/Camera.h"
@@ -108,6 +109,10 @@ struct Aov {
     }
 };
 Aov readAov(const std::filesystem::path& file);
+
+// The world size of one texel of `map` on triangle k of `mesh` (the mesh base's unit of
+// error): sqrt(the triangle's world area over its area in texels).
+double meshTexelSize(const TriangleMesh& mesh, const HeightMap& map, std::size_t k);
 
 // Two pictures' RGB channels compared over the rectangle [x0, x1) x [y0, y1): the largest
 // difference, the mean, and how many channel values differ by more than one level.

@@ -118,6 +118,10 @@ private:
     // (ReliefMap: size, highest sample, name).
     void upload(const std::function<void()>& set);
 
+    // The picture's arrays at the job's size, positions relative to `positionOrigin`;
+    // Error(Runtime) where memory runs out.
+    static void allocateFrame(RenderedFrame& frame, const RenderJob& job,
+                              const glm::dvec3& positionOrigin);
     // render() of a job on the mesh base, in tiles as render() draws a picture.
     HeadlessResult renderMesh(const RenderJob& job);
     // One tile of the picture into `result`; a paged map's drawn until it is exact.

@@ -153,10 +153,14 @@ protected:
                        ", {\"wait\": \"ready\"}, {\"eval\": " + jsonString(script) + "}]");
     }
 
+    // Whether runPage's browser offers WebGPU (drive_chromium.py --webgpu: SwiftShader).
+    enum class Gpu { WebGL2Only, WithWebGPU };
+
     // Runs `steps` (a JSON array of drive_chromium.py's steps) in one browser, the pages
     // served from `root` (a folder holding web/, shaders/ and assets/ and web/serve.py).
     PageRun runPage(const std::string& steps,
-                    const std::filesystem::path& root = MICRORELIEF_WEB_ROOT) {
+                    const std::filesystem::path& root = MICRORELIEF_WEB_ROOT,
+                    Gpu gpu = Gpu::WebGL2Only) {
         const auto stepsFile = dir / "steps.json", flat = dir / "result.txt",
                    json = dir / "result.json";
         std::ofstream(stepsFile) << steps;
@@ -164,7 +168,8 @@ protected:
         const std::string command = python_ + " " + MICRORELIEF_DRIVER + " --chromium " +
                                     chromium_ + " --root " + quote(root.string()) +
                                     " --steps " + stepsFile.string() + " --out " + json.string() +
-                                    " --flat " + flat.string();
+                                    " --flat " + flat.string() +
+                                    (gpu == Gpu::WithWebGPU ? " --webgpu" : "");
         const test::RunResult run = test::runCommand(command, dir.path());
         PageRun page;
         page.status = run.status;

@@ -63,6 +63,17 @@ FLAGS = [
     "--remote-debugging-pipe",
 ]
 
+# With --webgpu: WebGPU on SwiftShader, and its canvases presented through Vulkan on
+# SwiftShader too. Without the two Vulkan flags a page that draws WebGPU into a <canvas>
+# loses its device at the first frame ("A valid external Instance reference no longer
+# exists", Chromium 156 headless); WebGPU into textures alone runs either way.
+WEBGPU_FLAGS = [
+    "--enable-unsafe-webgpu",
+    "--use-webgpu-adapter=swiftshader",
+    "--enable-features=Vulkan",
+    "--use-vulkan=swiftshader",
+]
+
 STATE_JS = """JSON.stringify({state: document.documentElement.dataset.state || '',
   map: document.documentElement.dataset.map || '',
   mapError: document.documentElement.dataset.mapError || '',
@@ -274,7 +285,10 @@ def main():
     parser.add_argument("--out", required=True, help="the JSON result")
     parser.add_argument("--flat", help="the result as STEP.KEY<TAB>VALUE lines")
     parser.add_argument("--timeout", type=float, default=90, help="seconds a wait may take")
+    parser.add_argument("--webgpu", action="store_true", help="give the pages WebGPU (SwiftShader)")
     args = parser.parse_args()
+    if args.webgpu:
+        FLAGS.extend(WEBGPU_FLAGS)
 
     sys.path.insert(0, str(pathlib.Path(args.root) / "web"))
     import serve  # web/serve.py: the server scripts/web.sh runs

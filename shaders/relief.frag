@@ -76,7 +76,9 @@ layout(depth_less) out float gl_FragDepth;
 #elif MICRORELIEF_METHOD == MR_METHOD_RCSM
 #define MICRORELIEF_METHOD_TRAITS MR_TRAITS_RCSM
 #else
-#error MICRORELIEF_METHOD is none of microrelief/variants.glsl's MR_METHOD_*
+// No apostrophe in the message: naga's preprocessor (the page's WebGPU path) reads the
+// lines of a branch not taken too, and refuses a lone quote there.
+#error MICRORELIEF_METHOD is none of the MR_METHOD_* values of microrelief/variants.glsl
 #endif
 // The choices test a trait as (MICRORELIEF_METHOD_TRAITS & MR_TRAIT_X) != 0, spelled out:
 // naga's preprocessor (the WGSL translation, docs/webgpu.md) takes no function-like macro

@@ -9,11 +9,18 @@
 // only when its method is chosen (cone's on the GPU, rcsm's in WebAssembly: cone_maps.js),
 // the state "loading" meanwhile. Every view is held to the programs' own checks before it is
 // drawn (scene_checks.js: the C++ in WebAssembly): one the programs refuse is an error in
-// their words, the state "error", never a blank canvas called "ready".
+// their words, the state "error", never a blank canvas called "ready". data-api: the API the
+// last picture was drawn with, "webgpu" (relief_gpu.js, on its own canvas) or "webgl2"
+// (relief_gl.js): WebGPU where the browser gives an adapter and relief_gpu.js draws the view
+// (gpuRefusal), else WebGL 2; the URL's api= forces one, and where it cannot draw the view
+// the page says so in one line (an error at start, a refused edit in the panel) rather than
+// drawing with the other. The WebGPU path reads the map's pyramids and albedo from the WebGL
+// renderer, which builds them in either case.
 import createSceneChecksModule from './generated/scene_checks_wasm.js';
 import {ConeMapBuilder, ConeMapCancelled} from './cone_maps.js';
 import {decodePng, heightsFromPng, PngError} from './png.js';
 import {ReliefRenderer} from './relief_gl.js';
+import {GpuReliefRenderer, gpuRefusal, requestGpu} from './relief_gpu.js';
 import {baseTypeNamed, kBaseSizes, kBaseTypes} from './relief_core.js';
 import * as scene from './scene.js';
 import {largestSample, SceneChecks} from './scene_checks.js';
@@ -27,7 +34,9 @@ const kDefaultAlbedo = new URL('../assets/cobbles-albedo.png', document.baseURI)
 const app = {
     view: null,
     initialView: null,
-    renderer: null,
+    renderer: null,     // WebGL 2 (relief_gl.js): the map's textures, pyramids and cone maps, and its pictures
+    gpu: null,          // WebGPU (relief_gpu.js), where the browser gives an adapter and the URL does not say api=webgl2
+    gpuWhy: '',         // why there is no WebGPU renderer, where there is none
     checks: null,       // the programs' checks of a view (SceneChecks)
     map: null,          // {name, bundled, width, height, samples, maxHeight}
     albedoImage: null,  // the bundled map's colours, RGBA
@@ -238,6 +247,20 @@ function pixels() {
     return [canvas.width, canvas.height];
 }
 
+// The page's canvases: WebGL 2's, and WebGPU's where there is a WebGPU renderer (a canvas
+// takes one API). Both have the same size; the one drawn last is shown.
+const canvases = () => [$('canvas'), ...(app.gpu ? [app.gpu.canvas] : [])];
+
+// The API `view` is drawn with: api= where the URL says, else WebGPU where it can draw it.
+const apiFor = (view) => view.api ?? (app.gpu && !gpuRefusal(view) ? 'webgpu' : 'webgl2');
+
+// Why `view` cannot be drawn with the API its api= asks for, one line, or ''.
+function apiRefusal(view) {
+    if (view.api !== 'webgpu') return '';
+    const why = app.gpu ? gpuRefusal(view) : app.gpuWhy;
+    return why ? `api=webgpu: ${why}` : '';
+}
+
 function commandLine() {
     return scene.renderCommandLine(app.view, app.map && !app.map.bundled ? app.map.name : null, pixels());
 }
@@ -295,14 +318,18 @@ function sizeCanvas() {
         const stage = $('stage');
         css = [Math.max(1, stage.clientWidth), Math.max(1, stage.clientHeight)];
     }
-    canvas.style.width = `${css[0]}px`;
-    canvas.style.height = `${css[1]}px`;
     // One ray a device pixel, or a 1/resolution of them (the canvas scales the picture up).
     const w = Math.max(1, Math.round((css[0] * dpr) / v.resolution));
     const h = Math.max(1, Math.round((css[1] * dpr) / v.resolution));
+    for (const c of canvases()) {
+        c.style.width = `${css[0]}px`;
+        c.style.height = `${css[1]}px`;
+    }
     if (canvas.width !== w || canvas.height !== h) {
-        canvas.width = w;
-        canvas.height = h;
+        for (const c of canvases()) {
+            c.width = w;
+            c.height = h;
+        }
         requestRender();
     }
 }
@@ -313,7 +340,7 @@ function edit(change) {
     const next = structuredClone(app.view);
     try {
         change(next);
-        const why = refusal(next);
+        const why = apiRefusal(next) || refusal(next);
         if (why) throw new Error(why);
     } catch (e) {
         inputError(e.message);
@@ -474,8 +501,7 @@ function zoom(v, steps) {
     v.eye = scene.add(v.target, scene.scale(offset, wanted / distance));
 }
 
-function wireCamera() {
-    const canvas = $('canvas');
+function wireCamera(canvas) {
     let drag = null;
     canvas.addEventListener('contextmenu', (event) => event.preventDefault());
     canvas.addEventListener('pointerdown', (event) => {
@@ -529,9 +555,11 @@ async function frame() {
         shadows: scene.methodTracesTheSolid(view.method) ? view.shadows : 'off',
         albedoMap: !!app.renderer.albedo,
     };
+    const api = apiFor(view);
+    const drawer = api === 'webgpu' ? app.gpu : app.renderer;
     let program;
     try {
-        program = await app.renderer.program(config);
+        program = await drawer.program(config);
     } catch (e) {
         app.drawing = false;
         fail(e.message);
@@ -560,13 +588,20 @@ async function frame() {
     }
     const start = performance.now();
     try {
-        app.renderer.draw(program, view, size);
-        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the picture
+        if (api === 'webgpu') {
+            await app.gpu.draw(program, view, size, app.albedoImage);  // resolves once the GPU is done
+        } else {
+            app.renderer.draw(program, view, size);
+            gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the picture
+        }
     } catch (e) {
         app.drawing = false;
         fail(`drawing failed: ${e.message}`);
         return;
     }
+    $('canvas').hidden = api !== 'webgl2';
+    if (app.gpu) app.gpu.canvas.hidden = api !== 'webgpu';
+    root.dataset.api = api;
     const error = gl.getError();
     if (error !== gl.NO_ERROR) {
         app.drawing = false;
@@ -576,7 +611,7 @@ async function frame() {
     const elapsed = performance.now() - start;
     ++app.frames;
     root.dataset.frames = String(app.frames);
-    $('frame-time').textContent = `${elapsed.toFixed(1)} ms at ${size[0]} x ${size[1]} (wall time to finish)`;
+    $('frame-time').textContent = `${elapsed.toFixed(1)} ms at ${size[0]} x ${size[1]} in ${api === 'webgpu' ? 'WebGPU' : 'WebGL 2'} (wall time to finish)`;
     $('command').textContent = commandLine();
     app.drawing = false;
     if ($('continuous').checked) app.dirty = true;
@@ -618,16 +653,41 @@ async function start() {
         event.preventDefault();
         fail('the WebGL context was lost (the GPU was reset or is needed elsewhere): reload the page');
     });
-    wirePanel();
-    wireCamera();
-    sizeCanvas();
-    new ResizeObserver(sizeCanvas).observe($('stage'));
     try {
         app.renderer = await ReliefRenderer.create(gl, kShaderRoot);
     } catch (e) {
         fail(e.message);
         return;
     }
+    // WebGPU unless the URL says api=webgl2: where it cannot be had, api=webgpu fails in one
+    // line, and without the key the page draws with WebGL 2.
+    if (app.view.api !== 'webgl2') {
+        const gpu = await requestGpu();
+        if (gpu.why) {
+            app.gpuWhy = gpu.why;
+        } else {
+            const gpuCanvas = document.createElement('canvas');
+            gpuCanvas.id = 'gpu-canvas';
+            gpuCanvas.hidden = true;
+            canvas.after(gpuCanvas);
+            try {
+                app.gpu = await GpuReliefRenderer.create(gpuCanvas, gpu, app.renderer, kShaderRoot);
+                app.gpu.onLost = (message) => fail(`the WebGPU device was lost (${message}): reload the page`);
+            } catch (e) {
+                gpuCanvas.remove();
+                app.gpuWhy = e.message;
+            }
+        }
+        const why = apiRefusal(app.view);
+        if (why) {
+            fail(why);
+            return;
+        }
+    }
+    wirePanel();
+    for (const c of canvases()) wireCamera(c);
+    sizeCanvas();
+    new ResizeObserver(sizeCanvas).observe($('stage'));
     try {
         const [heights, albedo] = await Promise.all([fetchBytes(kDefaultMap), fetchBytes(kDefaultAlbedo)]);
         app.albedoImage = await albedoFromBytes(albedo);

@@ -24,9 +24,10 @@
 // WebGL 2 renders into R16F only with EXT_color_buffer_float (the builder's passes need it,
 // and reading the top back as floats); without it there is no pyramid and the page says so.
 import {ShaderFiles, mapCompilerLog} from './shader_source.js';
-import {defineValue, kBaseKindValues, kDebugViewValues, kInterpolationValues, kMethodValues, kParametersSize, kShadowModeValues,
+import {defineValue, kBaseKindValues, kInterpolationValues, kMethodValues, kParametersSize, kShadowModeValues,
         writeParameters} from './relief_layout.js';
 import * as core from './relief_core.js';
+import {reliefFrame} from './relief_frame.js';
 import * as scene from './scene.js';
 
 const kBandRows = 64, kBandsFrom = 4 * kBandRows;
@@ -636,29 +637,11 @@ export class ReliefRenderer {
     // `pixels` is the drawing buffer's [W, H].
     draw(program, view, pixels) {
         const gl = this.gl, t = this.textures;
-        const base = scene.viewBase(view);
-        const heightScale = view.heightScale;
         const maxMip = scene.methodReadsMaxPyramid(view.method);
-        const shape = t.shape(maxMip);
-
-        // The box, from the windows' top (ReliefRenderer::uploadBox), in floats.
-        const boxExtent = core.reliefExtent(t.size[0], t.size[1], t.maxHeight, heightScale, base);
-        const margin = Math.fround(1e-3);
-        const lo = boxExtent.min.map((c) => Math.fround(Math.fround(c) - margin));
-        const hi = boxExtent.max.map((c) => Math.fround(Math.fround(c) + margin));
-        const corners = new Float32Array([lo[0], lo[1], lo[2], hi[0], lo[1], lo[2], hi[0], lo[1], hi[2], lo[0], lo[1], hi[2],
-                                          lo[0], hi[1], lo[2], hi[0], hi[1], lo[2], hi[0], hi[1], hi[2], lo[0], hi[1], hi[2]]);
-
-        // The camera's depth range from the samples' maximum (HeadlessRenderer::render).
-        const radius = scene.sceneRadius(core.reliefExtent(t.size[0], t.size[1], t.maxSample, heightScale, base));
-        const camera = scene.resolveCamera(view, pixels[0], pixels[1], radius);
-
-        // Front faces from outside the box grown by a margin, back faces from inside.
-        const eye = view.eye;
-        const grow = [0, 1, 2].map((k) => 1e-4 * (hi[k] - lo[k]) + 1e-6);
-        const outside = [0, 1, 2].some((k) => eye[k] < lo[k] - grow[k] || eye[k] > hi[k] + grow[k]);
-
-        const p = this.parameters(view, camera, shape, base, pixels);
+        // The box, its faces, the camera and the parameters (relief_frame.js, shared with
+        // relief_gpu.js).
+        const {corners, outside, values} = reliefFrame(view, t.shape(maxMip), t.maxSample, pixels);
+        const p = writeParameters(values);
         gl.bindBuffer(gl.UNIFORM_BUFFER, this.parameterBuffer);
         gl.bufferData(gl.UNIFORM_BUFFER, p, gl.STREAM_DRAW);
         gl.bindBuffer(gl.ARRAY_BUFFER, this.boxVertices);
@@ -701,52 +684,5 @@ export class ReliefRenderer {
         gl.drawArrays(gl.TRIANGLES, 0, 3);
         gl.bindVertexArray(null);
         for (let unit = kUnits.coneMap; unit >= 0; --unit) bind(unit, null);
-    }
-
-    // MicroreliefParameters (ReliefRenderer::parameters), laid out by the module generated
-    // from shaders/relief_parameters.glsl.
-    parameters(view, camera, shape, base, pixels) {
-        const extent = core.reliefExtent(shape.size[0], shape.size[1], shape.maxHeight, view.heightScale, base);
-        // Traced relative to the eye, as ReliefRenderer::parameters does: the page places
-        // the relief at the origin, so the model is the move by minus the eye, its inverse
-        // the move back, and the clip transform takes the eye-relative world (its last
-        // column VP (eye, 1), in double).
-        const [x, y, z] = camera.eye, vp = camera.viewProjection;
-        const viewProjection = vp.slice(0, 12).concat([0, 1, 2, 3].map((r) => vp[r] * x + vp[4 + r] * y + vp[8 + r] * z + vp[12 + r]));
-        return writeParameters({
-            viewProjection,
-            objectToWorld: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -x, -y, -z, 1],
-            worldToObject: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x, y, z, 1],
-            eye: [0, 0, 0],
-            pixelErrorTolerance: view.pixelError,
-            cameraRight: camera.right,
-            heightScale: view.heightScale,
-            cameraUp: camera.up,
-            reliefMaxHeight: shape.maxHeight,
-            cameraForward: camera.forward,
-            tMin: 0,
-            frameScale: core.frameScale(base),
-            tMax: 3.4e38,
-            reliefBoxMin: extent.min,
-            pyramidLevels: shape.levelCount,
-            reliefBoxMax: extent.max,
-            maxIterations: core.traversalBudget(shape.size[0], shape.size[1]),
-            lightDirection: scene.normalizeFloat(view.light),
-            debugView: Number(defineValue(kDebugViewValues, view.view, 'debugView')),
-            albedo: scene.toFloat([0.6, 0.58, 0.55]),  // ShadingOptions::albedo, without a texture
-            methodSteps: view.steps,
-            reliefSize: shape.size,
-            pyramidSize: shape.pyramidSize,
-            viewportSize: pixels,
-            tileOrigin: [0, 0],  // the whole picture
-            methodMinSteps: scene.minSteps(view.steps),
-            methodRefineSteps: 8,  // relief mapping's binary steps
-            depthZeroToOne: 0,  // WebGL's clip depth is [-1, 1]
-            blockPadding: 0,  // std140 padding before lightPosition
-            lightPosition: [0, 0, 0, 0],  // a directional light
-            lightTanRadius: Math.tan(0.5 * view.lightSize * 0.01745329251994329576923690768489),
-            albedoFinest: 0,  // filtered over the pixel's footprint
-            reliefTiles: [1, 1],
-        });
     }
 }

@@ -121,6 +121,8 @@ const methodHas = (m, trait) => kMethodTraits[m].includes(trait);
 export const kViews = ['shaded', 'iterations', 'level', 'normal', 'depth', 'position'];
 export const kShadows = ['off', 'hard', 'soft'];
 export const kInterpolations = ['bilinear', 'biquadratic'];
+// The graphics APIs the page draws with (the key api=): relief_gpu.js, relief_gl.js.
+export const kApis = ['webgpu', 'webgl2'];
 export const methodHasSteps = (m) => methodHas(m, 'steps');
 export const methodTracesTheSolid = (m) => methodHas(m, 'solid');
 // The cone map a method reads (peers/ConeMap.h), or null: cone's conservative map, rcsm's
@@ -160,6 +162,7 @@ export function defaultView() {
         albedo: true,  // the bundled map's colours with the bundled map
         resolution: 1,  // 1, 2 or 4: the picture has a 1/resolution of the canvas's pixels
         clean: false,
+        api: null,  // 'webgpu' or 'webgl2': the page draws with it or says why not; null: WebGPU where it can draw the view
     };
 }
 
@@ -228,6 +231,7 @@ export function viewFromQuery(search) {
     get('albedo', (t) => (v.albedo = choice('albedo', t, ['none', 'map']) === 'map'));
     get('resolution', (t) => (v.resolution = Number(choice('resolution', t, ['1', '2', '4']))));
     get('clean', (t) => (v.clean = t === '1'));
+    get('api', (t) => (v.api = choice('api', t, kApis)));
     refuseUnknownKeys(q, known);
     return v;
 }
@@ -282,6 +286,7 @@ export function queryFromView(v) {
     if (!v.albedo) q.set('albedo', 'none');
     if (v.resolution !== 1) q.set('resolution', String(v.resolution));
     if (v.clean) q.set('clean', '1');
+    if (v.api) q.set('api', v.api);
     return q.toString().replace(/%2C/g, ',');
 }
 

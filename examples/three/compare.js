@@ -1,19 +1,22 @@
 // shading=microrelief: the relief alone, drawn by ReliefShadingMaterial (the library's own
 // shading, one directional light, the bundled map's colours), with microrelief-render's
 // camera, background and light, so that the picture can be held against
-// microrelief-render's of the same flags (tests/three).
-import * as THREE from 'three';
-import {createReliefMap, loadAlbedo, loadHeights, Relief, reliefExtent, ReliefShadingMaterial} from 'microrelief-three';
-
+// microrelief-render's of the same flags (tests/three). `kit` is the renderer= key's
+// (renderers.js): WebGL's ReliefShadingMaterial or WebGPU's ReliefShadingNodeMaterial, the
+// same scene.
 import {normalizeFloat, viewBase} from './view.js';
 
-export async function compare(canvas, view) {
-    const renderer = new THREE.WebGLRenderer({canvas, antialias: false, preserveDrawingBuffer: true});
+export async function compare(canvas, view, kit) {
+    const {THREE, relief: {createReliefMap, loadAlbedo, loadHeights, Relief, reliefExtent}} = kit;
+    // microrelief-three/webgpu builds the max pyramid in WebAssembly only (docs/three.md).
+    if (view.renderer === 'webgpu' && view.pyramid === 'gpu')
+        throw new Error('pyramid=gpu: renderer=webgpu builds the max pyramid in WebAssembly (pyramid=auto or cpu)');
+    const renderer = await kit.create({canvas, antialias: false, preserveDrawingBuffer: true});
     const base = viewBase(view);
     const heights = await loadHeights('../../assets/cobbles.png');
     const map = await createReliefMap(renderer, heights, {wrapU: base !== 'plane', pyramid: view.pyramid});
     const albedoMap = view.albedo ? await loadAlbedo('../../assets/cobbles-albedo.png') : null;
-    const material = new ReliefShadingMaterial({lightDirection: new THREE.Vector3(...normalizeFloat(view.light)), albedoMap, shadows: view.shadows});
+    const material = kit.shadingMaterial({lightDirection: new THREE.Vector3(...normalizeFloat(view.light)), albedoMap, shadows: view.shadows});
     const relief = new Relief(map, {material, heightScale: view.heightScale, base, interpolation: view.interpolation, pixelError: view.pixelError});
     const scene = new THREE.Scene();
     scene.background = new THREE.Color().setRGB(0.11, 0.12, 0.14, THREE.LinearSRGBColorSpace);

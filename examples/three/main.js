@@ -1,14 +1,16 @@
 // main.js: the page around the example. Reads the URL (view.js), sizes the canvas, runs
-// cobbles.js (the three-lit scene) or, with shading=microrelief, compare.js (the
-// library's own shading, to hold against microrelief-render), and reports its state as the
-// web page does (<html data-state="loading|ready|error">, #error) for the tests, which
-// find the scene's objects in window.microreliefThree. The URL's view is held to the
-// programs' own checks first (microrelief-three's loadSceneChecks: the C++ in WebAssembly),
-// and over the map at the canvas's size before it is drawn: one they refuse is an error in
-// their words, with this page's keys for their flags.
-import * as THREE from 'three';
+// cobbles.js (the three-lit scene; cobbles_webgpu.js with renderer=webgpu) or, with
+// shading=microrelief, compare.js (the library's own shading, to hold against
+// microrelief-render) on the renderer the URL asks for (renderers.js), and reports its state
+// as the web page does (<html data-state="loading|ready|error">, #error, and once the first
+// frame is drawn data-api="webgl2|webgpu") for the tests, which find the scene's objects in
+// window.microreliefThree. The URL's view is held to the programs' own checks first
+// (microrelief-three's loadSceneChecks: the C++ in WebAssembly), and over the map at the
+// canvas's size before it is drawn: one they refuse is an error in their words, with this
+// page's keys for their flags.
 import * as microrelief from 'microrelief-three';
 
+import {kApiOf, rendererKit} from './renderers.js';
 import {viewFromUrl} from './view.js';
 
 const root = document.documentElement;
@@ -40,10 +42,12 @@ async function start() {
     const [width, height] = size();
     Object.assign(canvas.style, {width: `${width}px`, height: `${height}px`});
     Object.assign(canvas, {width, height});
-    let app;
+    let app, kit;
     try {
-        const scene = view.shading === 'microrelief' ? (await import('./compare.js')).compare : (await import('./cobbles.js')).cobbles;
-        app = await scene(canvas, view);
+        kit = await rendererKit(view.renderer);
+        const scene = view.shading === 'microrelief' ? (await import('./compare.js')).compare
+                                                     : (await import(view.renderer === 'webgpu' ? './cobbles_webgpu.js' : './cobbles.js')).cobbles;
+        app = await scene(canvas, view, kit);
     } catch (e) {
         console.error(e);
         fail(e.message);
@@ -55,13 +59,12 @@ async function start() {
         fail(`the URL: ${why}`);
         return;
     }
-    const render = () => {
+    const render = async () => {
         app.renderer.render(app.scene, app.camera);
-        const gl = app.renderer.getContext();
-        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the picture
+        await kit.finish(app.renderer);  // waits for the picture
     };
     // A shader three cannot compile is this page's error (three itself only logs it).
-    app.renderer.debug.onShaderError = (gl, program, vertex, fragment) => {
+    if (app.renderer.isWebGLRenderer) app.renderer.debug.onShaderError = (gl, program, vertex, fragment) => {
         const report = [vertex, fragment].map((shader) => {
             const log = (gl.getShaderInfoLog(shader) || '').trim();
             const line = /ERROR: \d+:(\d+)/.exec(log);
@@ -71,7 +74,7 @@ async function start() {
         });
         fail(`a shader does not compile:\n${report.join('\n').trim() || gl.getProgramInfoLog(program)}`);
     };
-    window.microreliefThree = {...app, view, THREE, microrelief, render};
+    window.microreliefThree = {...app, view, THREE: kit.THREE, microrelief: kit.relief, render};
     if (!view.size) {
         addEventListener('resize', () => {
             const [w, h] = size();
@@ -83,11 +86,12 @@ async function start() {
         });
     }
     try {
-        render();
+        await render();
     } catch (e) {
         fail(`drawing failed: ${e.message}`);
         return;
     }
+    root.dataset.api = kApiOf[view.renderer];
     requestAnimationFrame(() => requestAnimationFrame(() => {
         if (root.dataset.state !== 'error') root.dataset.state = 'ready';
     }));

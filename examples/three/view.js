@@ -3,7 +3,10 @@
 // (the library's own shading: microrelief-render's picture, to hold against it) base=,
 // radius=, length=, radii=, interpolation=, height-scale=, light=x,y,z, shadows=off|hard,
 // albedo=none, pixel-error=, model= (microrelief-render's --model: 12 numbers, a 3 x 4 affine
-// matrix in rows) and pyramid=auto|gpu|cpu (how the max pyramid is built).
+// matrix in rows) and pyramid=auto|gpu|cpu (how the max pyramid is built); and
+// renderer=webgl|webgpu: the three.js renderer that draws (three's WebGLRenderer and
+// microrelief-three, the default; three's WebGPURenderer and microrelief-three/webgpu, forced:
+// a browser without WebGPU gets one line saying so, never the other renderer's picture).
 // A value that does not parse is an error naming the key; whether the view is one the
 // programs draw is their own checks' to say (microrelief-three's loadSceneChecks: main.js).
 // The bases and their sizes' keys are the table of bases' rows: the package's generated
@@ -41,7 +44,7 @@ export function viewFromUrl(search) {
         eye: [0.8, 0.5, 0.85], target: [0, -0.03, 0], up: [0, 1, 0], fovy: 45, size: null, clean: false,
         shading: 'three', base: 'plane', ...Object.fromEntries(kBaseSizes.map((size) => [size.viewName, undefined])),
         interpolation: 'bilinear', heightScale: f32(0.1), light: [-0.45, 0.8, -0.35], shadows: 'off',
-        albedo: true, pixelError: 0, pyramid: 'auto', model: null,
+        albedo: true, pixelError: 0, pyramid: 'auto', model: null, renderer: 'webgl',
     };
     const known = new Set();  // a key not among them is refused, as on the web page
     const get = (key, parse) => {
@@ -73,6 +76,7 @@ export function viewFromUrl(search) {
     get('pixel-error', (t) => (v.pixelError = f32(numbers('pixel-error', t, 1)[0])));
     get('pyramid', (t) => (v.pyramid = choice('pyramid', t, ['auto', 'gpu', 'cpu'])));
     get('model', (t) => (v.model = numbers('model', t, 12)));
+    get('renderer', (t) => (v.renderer = choice('renderer', t, ['webgl', 'webgpu'])));
     for (const key of q.keys())
         if (!known.has(key)) throw new Error(`${key}: not a key this page knows (${[...known].join(', ')})`);
     return v;

@@ -117,8 +117,9 @@ protected:
     }
 
     // BrowserTest's runPage, served from site() unless told otherwise.
-    PageRun runPage(const std::string& steps, const std::filesystem::path& root = site()) {
-        return browser::BrowserTest::runPage(steps, root);
+    PageRun runPage(const std::string& steps, const std::filesystem::path& root = site(),
+                    Gpu gpu = Gpu::WebGL2Only) {
+        return browser::BrowserTest::runPage(steps, root, gpu);
     }
 
     void SetUp() override {

@@ -386,7 +386,7 @@ window.threeChecks = (() => {
         } finally {
             renderer.extensions.has = has;
         }
-        render();
+        await render();
         return lines.join('\n');
     }
 

@@ -24,7 +24,7 @@ does not take is an error naming the key.
 
 Usage: page_webgpu_equal.py --root DIR (the build's share/microrelief) [--chromium EXE]
 [--out DIR (CASE.png: WebGL 2 | WebGPU | differing pixels in white, for every case)]
-[--only CASE ...]
+[--only CASE ... (these views alone; the checks of the key run always)]
 Exit status 0: equal within the thresholds; 1: not, or a program missing; 77: skipped (chromium
 missing and MICRORELIEF_ALLOW_MISSING_BROWSER=1). ctest web.webgpu_page (label web).
 """
@@ -149,10 +149,10 @@ def main():
     sys.path.insert(0, str(root / "web"))
     import drive_chromium
     import serve
-    # Vulkan (SwiftShader) for the compositor too: without it Chromium here cannot show a
-    # WebGPU canvas (no shared image for its swap chain: the GPU process goes down).
-    drive_chromium.FLAGS = [*drive_chromium.FLAGS, "--enable-unsafe-webgpu", "--use-webgpu-adapter=swiftshader",
-                            "--use-vulkan=swiftshader", "--enable-features=Vulkan"]
+    # WebGPU on SwiftShader, its canvases shown through Vulkan on SwiftShader (drive_chromium.py
+    # --webgpu's flags: without Vulkan for the compositor Chromium here loses the page's WebGPU
+    # device at its first frame, no shared image for the canvas's swap chain).
+    drive_chromium.FLAGS = [*drive_chromium.FLAGS, *drive_chromium.WEBGPU_FLAGS]
     scratch = pathlib.Path(tempfile.mkdtemp(prefix="microrelief-page-webgpu-"))
     out = pathlib.Path(args.out) if args.out else None
     if out:
@@ -186,7 +186,7 @@ def main():
         checks = [("method=maxmip", "webgl2", "ready", ""),
                   ("api=webgpu&method=cone", "", "error", "api=webgpu: the page's WebGPU path draws the multilevel method only"),
                   ("api=webgl", "", "error", "the URL: api=webgl: expected webgpu, webgl2")]
-        for query, api, state, error in checks if not args.only else []:
+        for query, api, state, error in checks:
             got = visit(query)
             print(f"{query}: data-api {got['api'] or '(none)'}, {got['state']}{', ' + got['error'] if got['error'] else ''}")
             if got["api"] != api or got["state"] != state or not got["error"].startswith(error) or \

@@ -982,7 +982,7 @@ protected:
 // example draws (the same code, the same three, the same browser: the same picture; with
 // another three, MICRORELIEF_THREE_VERSION, it is only drawn), and its shading=microrelief
 // picture, with the pyramid built by the tarball's WebAssembly, is microrelief-render's
-// (kLimits) with any three.
+// (kLimits) with any three, drawn by its WebGL entry and by its WebGPU entry (renderer=webgpu).
 TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
     const fs::path root = packed().site, project = packed().project;
     EXPECT_TRUE(fs::exists(project / "node_modules" / "three" / "build" / "three.module.js"));
@@ -1043,6 +1043,18 @@ TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
     const auto rendered = dir / "oblique-render.png";
     render(v.flags + " --size " + size(v.width, v.height), rendered);
     expectSamePicture("installed-compare", dir / "installed-compare.png", rendered,
+                      "microrelief-render --size " + size(v.width, v.height), kLimits);
+
+    // The installed package's WebGPU entry ('microrelief-three/webgpu', the tarball's
+    // src/webgpu.js and generated/wgsl.js) draws the same picture under renderer=webgpu.
+    const PageRun gpu = runPage("[" + open("renderer=webgpu&shading=microrelief", v.width, v.height, "three/") +
+                                    ", {\"wait\": \"ready\"}, {\"eval\": \"document.documentElement.dataset.api\"}, "
+                                    "{\"screenshot\": " + jsonString((dir / "installed-webgpu.png").string()) + "}]",
+                                root, Gpu::WithWebGPU);
+    for (const std::string& line : gpu.log) std::printf("    page: %s\n", line.c_str());
+    ASSERT_EQ(gpu.at(1, "state"), "ready") << gpu.at(1, "error");
+    EXPECT_EQ(gpu.at(2, "value"), "webgpu");
+    expectSamePicture("installed-webgpu", dir / "installed-webgpu.png", rendered,
                       "microrelief-render --size " + size(v.width, v.height), kLimits);
 }
 

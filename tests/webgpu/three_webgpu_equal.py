@@ -100,6 +100,7 @@ LIT_ROUGH_LIMITS = {"meanDiff": 2, "maxDiff": 128, "differingFraction": 0.12}
 REFUSALS = {
     "webglRenderer": ("TypeError", ["WebGLRenderer", "import from 'microrelief-three'"]),
     "noAdapter": ("ReliefGpuError", ["no WebGPU adapter", "WebGLRenderer", "'microrelief-three'"]),
+    "tooLarge": ("ReliefGpuError", ["wide: ", " x 1 is larger than this WebGPU device's maxTextureDimension2D ("]),
     "drawnByWebGL": ("TypeError", ["Relief:", "WebGLRenderer", "import from 'microrelief-three'"]),
     "gpuPicks": ("TypeError", ["Relief.traceRays", "on 'gpu'", "auto or cpu"]),
     "nearestAlbedo": ("TypeError", ["ReliefStandardNodeMaterial", "albedoMap", "NearestFilter", "loadAlbedo"]),

@@ -318,7 +318,8 @@ async function comparePicks(view, interpolation, base, model) {
 
 // What the WebGPU entry says where it cannot draw: given a WebGLRenderer, given a
 // WebGPURenderer without a WebGPU adapter (forceWebGL: three's fallback to WebGL 2, as where
-// the browser has no adapter), and its Relief drawn by a WebGLRenderer. -> JSON {[case]: {name, message}} (no name: nothing thrown).
+// the browser has no adapter), a map wider than the device's maxTextureDimension2D, and its
+// Relief drawn by a WebGLRenderer. -> JSON {[case]: {name, message}} (no name: nothing thrown).
 async function refusals() {
     const {w, h, samples} = heights();
     const map = wg.heightsFromArray(samples, w, h, {name: 'waves'});
@@ -335,8 +336,12 @@ async function refusals() {
     await attempt('webglRenderer', () => wg.createReliefMap(new THREE.WebGLRenderer({canvas: new OffscreenCanvas(8, 8)}), map));
     await attempt('noAdapter', () => wg.createReliefMap(fallback, map));
     fallback.dispose();
-    // This entry's Relief in a WebGLRenderer's scene.
+    // A map one texel wider than the device takes; the map after it is made and drawn below
+    // (the scene goes on).
     const {webgl: glRenderer, webgpu: gpuRenderer} = await renderers();
+    const wide = gpuRenderer.backend.device.limits.maxTextureDimension2D + 1;
+    await attempt('tooLarge', () => wg.createReliefMap(gpuRenderer, wg.heightsFromArray(new Float32Array(wide), wide, 1, {name: 'wide'})));
+    // This entry's Relief in a WebGLRenderer's scene.
     const relief = new wg.Relief(await wg.createReliefMap(gpuRenderer, map));
     const scene = new THREE.Scene();
     scene.add(relief);

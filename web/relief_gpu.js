@@ -121,7 +121,10 @@ export async function requestGpu() {
     if (!adapter) return {why: 'this browser\'s WebGPU gives no adapter'};
     const features = adapter.features.has('depth-clip-control') ? ['depth-clip-control'] : [];
     try {
-        return {adapter, device: await adapter.requestDevice({requiredFeatures: features})};
+        // The adapter's largest textures, as the WebGL path has GL's MAX_TEXTURE_SIZE (the
+        // default device stops at 8192 a side).
+        const requiredLimits = {maxTextureDimension2D: adapter.limits.maxTextureDimension2D};
+        return {adapter, device: await adapter.requestDevice({requiredFeatures: features, requiredLimits})};
     } catch (e) {
         return {why: `this browser's WebGPU adapter gives no device (${e.message})`};
     }
@@ -299,6 +302,8 @@ export class GpuReliefRenderer {
     mapFrom(glTextures) {
         if (this.mapTextures?.from === glTextures) return this.mapTextures;
         const gl = this.gl.gl, device = this.device, [w, h] = glTextures.size;
+        const most = device.limits.maxTextureDimension2D;
+        if (w > most || h > most) throw new GpuError(`${w}x${h} is larger than this WebGPU device's textures (${most} a side)`);
         const upload = (data, size, level, texture) =>
             device.queue.writeTexture({texture, mipLevel: level}, data, {bytesPerRow: 4 * size[0]}, size);
         const samples = device.createTexture({size: [w, h], format: 'r32float',

@@ -20,7 +20,8 @@ Also: document.documentElement.dataset.api is the API asked for once the picture
 without the api key the page picks WebGPU for a view it can draw (multilevel) and WebGL 2 for
 one it cannot (maxmip); api=webgpu with a method the WebGPU path does not draw (cone) is an
 error in one line starting 'api=webgpu: ', nothing drawn (data-api unset); a value the key
-does not take is an error naming the key.
+does not take is an error naming the key; maxmip chosen in the panel is refused there in one
+line under api=webgpu (the view kept, on WebGPU), and drawn in WebGL 2 without the key.
 
 Usage: page_webgpu_equal.py --root DIR (the build's share/microrelief) [--chromium EXE]
 [--out DIR (CASE.png: WebGL 2 | WebGPU | differing pixels in white, for every case)]
@@ -193,6 +194,26 @@ def main():
                     (error and "\n" in got["error"]) or (not error and got["error"]):
                 failures.append(f"{query}: expected data-api '{api}', state {state}"
                                 f"{', the error ' + repr(error) if error else ''}; got {got}")
+
+        # The panel: method=maxmip chosen there is refused in one line under api=webgpu (the
+        # view stays multilevel, on WebGPU); without the key the page goes on in WebGL 2.
+        choose = ("new Promise((resolve) => { const m = document.getElementById('method'); m.value = 'maxmip';"
+                  " m.dispatchEvent(new Event('change')); const root = document.documentElement, started = Date.now();"
+                  " const poll = () => { if (Date.now() - started > 30000 || (root.dataset.state !== 'loading'"
+                  " && (root.dataset.api === 'webgl2' || document.getElementById('input-error').textContent)))"
+                  " resolve(JSON.stringify({api: root.dataset.api, state: root.dataset.state,"
+                  " refused: document.getElementById('input-error').textContent, method: m.value}));"
+                  " else setTimeout(poll, 100); }; poll(); })")
+        for query, expected in (("api=webgpu", {"api": "webgpu", "state": "ready", "method": "multilevel",
+                                                "refused": "api=webgpu: the page's WebGPU path draws the multilevel method only, "
+                                                           "not method=maxmip (drawn in WebGL 2: api=webgl2, or no api key)"}),
+                                ("method=multilevel", {"api": "webgl2", "state": "ready", "method": "maxmip", "refused": ""})):
+            outcome = drive_chromium.run_steps(browser, url, [
+                {"open": f"{query}&size={SIZE[0]}x{SIZE[1]}", "size": list(SIZE)}, {"wait": "ready"}, {"eval": choose}], 120)
+            got = json.loads(outcome[2]["value"])
+            print(f"{query}, maxmip chosen in the panel: {got}")
+            if got != expected:
+                failures.append(f"{query}, maxmip chosen in the panel: expected {expected}, got {got}")
 
         for name, query in CASES.items():
             if args.only and name not in args.only:

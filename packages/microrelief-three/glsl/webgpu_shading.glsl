@@ -2,7 +2,9 @@
 // ReliefShadingNodeMaterial's, the counterpart of microrelief_shading.frag's main (one pixel's
 // ray traced, shaded and its depth), and mrTraceHit, ReliefStandardNodeMaterial's, the
 // counterpart of three_material.glsl's mrBeginPixel (the hit for three's lighting), both by
-// relief_three.glsl's shared functions (mrNdcOf, mrTraceRay, mrShadeHit). Not for
+// relief_three.glsl's shared functions (mrNdcOf, mrTraceRay, mrShadeHit), and mrSelfShadow,
+// the counterpart of three_material.glsl's mrSelfShadowDirection and mrSelfShadowPoint
+// (selfShadow: the hard shadow from mrTraceHit's hit towards one of three's lights). Not for
 // WebGL: scripts/wgsl.mjs translates it with the library and relief_three.glsl (uniforms left
 // out) into each variant of generated/wgsl.js, and src/webgpu.js calls the WGSL mrShadePixel
 // from its node materials by wgslFn, each parameter one of three's nodes (the textures, the
@@ -76,6 +78,12 @@ vec4 mrShadePixel(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2
     return vec4(colour, mrFragmentDepth(viewProjection, p.world));
 }
 
+// The pixel mrTraceHit traced last in this invocation, and its relief: what mrSelfShadow
+// shoots its shadow rays from (private to the fragment, as three_material.glsl's mrHitPixel
+// is in WebGL: naga writes them as `var<private>`).
+mr_Relief mrTracedRelief;
+mrPixel mrTracedPixel;
+
 // ReliefStandardNodeMaterial's pixel: the traced hit as three's lighting takes it, as
 // three_material.glsl's mrBeginPixel gives it to three's WebGL shaders (the hit in the view
 // space of `worldToCamera`, the view of this draw; the normal through its rotation). Returns
@@ -95,11 +103,36 @@ mat4 mrTraceHit(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, vec2 f
                          objectToWorld, worldToObject, heightScale, frameScale, pixelError, rayOrigin, rayOriginDx,
                          rayOriginDy, rayDir, rayDirDx, rayDirDy, range, relief, p))
         return mat4(vec4(0.0, 0.0, 0.0, -1.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    mrTracedRelief = relief;
+    mrTracedPixel = p;
     vec3 viewHit = (worldToCamera * vec4(p.world, 1.0)).xyz;
     vec3 viewNormal = normalize(mat3(worldToCamera) * p.normal);
     vec3 colours = p.exhausted ? vec3(1.0) : mrPixelAlbedo(albedoMap, useAlbedoMap, vec3(1.0), relief, p, viewport, rayDirDx, rayDirDy);
     return mat4(vec4(viewHit, mrFragmentDepth(viewProjection, p.world)), vec4(viewNormal, p.exhausted ? 1.0 : 0.0),
                 vec4(colours, 0.0), vec4(0.0));
+}
+
+// The library's exact hard self-shadow at the hit mrTraceHit traced in this invocation (1
+// lit, 0 shadowed), towards one of three's lights as three_material.glsl's
+// mrSelfShadowDirection and mrSelfShadowPoint shoot it in WebGL: `light` in the camera's view
+// space (three lights there), w 0 the unit direction towards a directional light (the ray to
+// MR_T_INFINITY), w 1 a point or spot light's position (the ray to the light, t 1 in the
+// frame); `cameraToWorld` the camera's matrixWorld about the camera (relief_three.glsl's
+// mrCameraToWorld). 1 where the pixel's traversal was exhausted (shown magenta: no shadow
+// from a hit that is not one), as in WebGL.
+float mrSelfShadow(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, mat4 cameraToWorld, vec4 light) {
+    if (mrTracedPixel.exhausted) return 1.0;
+    vec3 toLight;
+    float tMax = MR_T_INFINITY;
+    if (light.w == 0.0) {
+        toLight = mr_baseFrameVector(mrTracedRelief, mat3(cameraToWorld) * light.xyz);
+    } else {
+        vec3 world = (cameraToWorld * vec4(light.xyz, 1.0)).xyz;
+        toLight = mr_baseFramePoint(mrTracedRelief, world) - mrTracedPixel.hit.position;
+        tMax = 1.0;
+    }
+    bool exhausted = false;
+    return mr_hardShadow(mrTracedRelief, windows, heights, mrTracedPixel.hit, toLight, tMax, exhausted);
 }
 
 #endif

@@ -83,14 +83,18 @@ export class ReliefShadingNodeMaterial extends MeshBasicNodeMaterial {
 export interface ReliefStandardNodeParameters extends MeshStandardNodeMaterialParameters {
     /** The map's colours, multiplying `color` (loadAlbedo's texture: flipY false, sRGB, mipmapped). */
     albedoMap?: Texture | null;
+    /** The library's exact hard shadow of the relief on itself towards each directional, point and spot light (default false). */
+    selfShadow?: boolean;
 }
 
-/** three's MeshStandardNodeMaterial at the traced hit: three's lights, as the WebGL entry's ReliefStandardMaterial (one relief a material so far; no selfShadow or shadow maps yet). */
+/** three's MeshStandardNodeMaterial at the traced hit: three's lights, as the WebGL entry's ReliefStandardMaterial (one relief a material so far; no shadow maps yet). */
 export class ReliefStandardNodeMaterial extends MeshStandardNodeMaterial {
     constructor(parameters?: ReliefStandardNodeParameters);
     readonly isReliefMaterial: true;
     relief: Relief | null;
     albedoMap: Texture | null;
+    /** Settable at any time: the material's program is made again. */
+    selfShadow: boolean;
 }
 
 export interface WebGPUReliefOptions {

@@ -19,8 +19,8 @@
 // textures (read by textureLoad, no sampler) and three's nodes passed to the glue's pixels.
 import * as THREE from 'three/webgpu';
 import * as TSL from 'three/tsl';
-import {cameraFar, cameraNear, cameraWorldMatrix, code, diffuseColor, Discard, Fn, frontFacing, If, normalViewGeometry, positionView, positionWorld, property, sampler,
-        screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth, wgslFn} from 'three/tsl';
+import {cameraFar, cameraNear, cameraWorldMatrix, code, diffuseColor, Discard, Fn, frontFacing, If, lightViewPosition, normalViewGeometry, positionView, positionWorld,
+        property, sampler, screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth, wgslFn} from 'three/tsl';
 
 import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
 import * as core from '../generated/relief_core.js';
@@ -105,43 +105,56 @@ export function reachableWgsl(module, roots) {
     return items.filter((item) => kept.has(item.name)).map((item) => item.text).join('\n');
 }
 
-// The glue's pixels: glsl/webgpu_shading.glsl's mrShadePixel (ReliefShadingNodeMaterial's:
-// returns (colour, depth), depth -1 where the pixel shows nothing) and mrTraceHit
-// (ReliefStandardNodeMaterial's: the hit in view space for three's lighting), which run
-// relief_three.glsl's functions the WebGL entry's pixel runs (mrNdcOf, mrTraceRay,
-// mrShadeHit), translated with the library into each variant's module by naga
-// (scripts/wgsl.mjs).
-const kGlueEntries = ['mrShadePixel', 'mrTraceHit'];
+// The glue's functions: glsl/webgpu_shading.glsl's mrShadePixel (ReliefShadingNodeMaterial's:
+// returns (colour, depth), depth -1 where the pixel shows nothing), mrTraceHit
+// (ReliefStandardNodeMaterial's: the hit in view space for three's lighting) and mrSelfShadow
+// (its selfShadow: the hard shadow from mrTraceHit's hit towards one of three's lights), which
+// run relief_three.glsl's functions the WebGL entry's pixel runs (mrNdcOf, mrTraceRay,
+// mrShadeHit) and the library's, translated with the library into each variant's module by
+// naga (scripts/wgsl.mjs).
+const kGlueEntries = ['mrShadePixel', 'mrTraceHit', 'mrSelfShadow'];
 
-// The glue function `entry` of a variant (`base`_`interpolation`): {fn, parameters}, fn the
-// module's function as a wgslFn with what it reaches included, parameters its GLSL parameter
-// names in order (naga may add a suffix _N to a name; the suffix is dropped here). Made once a
-// variant and entry. No WGSL is written here: the call passes three's nodes by position (glue
-// below).
+// The glue functions `entryNames` of a variant (`base`_`interpolation`), called together from
+// one node material: {name: {fn, parameters}}, fn the module's function as a wgslFn, parameters
+// its GLSL parameter names in order (naga may add a suffix _N to a name; the suffix is dropped
+// here). What they reach (the library, the glue's module-scope variables: mrTraceHit leaves its
+// pixel there for mrSelfShadow) is one include they share, so that the shader holds each item
+// once. Made once a variant and set of entries. No WGSL is written here: the call passes
+// three's nodes by position (glue below).
 const _glues = new Map();
-function glueFor(variant, entryName) {
-    const key = `${variant}:${entryName}`;
+function glueFunctions(variant, entryNames) {
+    const key = `${variant}:${entryNames.join(',')}`;
     if (!_glues.has(key)) {
         if (wgslUnavailable) throw new Error(`microrelief-three/webgpu: this package was built without its WGSL (${wgslUnavailable})`);
         const module = wgslModules[variant];
         if (!module) throw new Error(`microrelief-three/webgpu: no WGSL variant ${variant}`);
-        const entry = wgslItems(module).find((item) => item.name === entryName);
-        if (!entry) throw new Error(`microrelief-three/webgpu: the WGSL variant ${variant} has no ${entryName}`);
-        const head = /^fn\s+\w+\(([^)]*)\)/.exec(entry.text);
-        const parameters = head[1].split(',').map((p) => p.trim().split(':')[0].trim().replace(/_\d+$/, ''));
-        // What the entry reaches, in the module's order, without the entry itself (the
-        // wgslFn's own text).
-        const includes = wgslItems(reachableWgsl(module, [entryName])).filter((item) => item.name !== entryName);
-        _glues.set(key, {fn: wgslFn(entry.text, [code(includes.map((item) => item.text).join('\n'))]), parameters});
+        const items = wgslItems(module);
+        // What the entries reach, in the module's order, without the entries themselves (each
+        // its wgslFn's own text); an entry another reaches would be in the shader twice.
+        const reached = wgslItems(reachableWgsl(module, entryNames));
+        for (const name of entryNames)
+            if (wgslItems(reachableWgsl(module, entryNames.filter((other) => other !== name))).some((item) => item.name === name))
+                throw new Error(`microrelief-three/webgpu: the glue function ${name} is called by another of ${entryNames.join(', ')}`);
+        const include = code(reached.filter((item) => !entryNames.includes(item.name)).map((item) => item.text).join('\n'));
+        const functions = {};
+        for (const name of entryNames) {
+            const entry = items.find((item) => item.name === name);
+            if (!entry) throw new Error(`microrelief-three/webgpu: the WGSL variant ${variant} has no ${name}`);
+            const head = /^fn\s+\w+\(([^)]*)\)/.exec(entry.text);
+            const parameters = head[1].split(',').map((p) => p.trim().split(':')[0].trim().replace(/_\d+$/, ''));
+            functions[name] = {fn: wgslFn(entry.text, [include]), parameters};
+        }
+        _glues.set(key, functions);
     }
     return _glues.get(key);
 }
 
 // The glue function `entryName` (kGlueEntries) of `variant` called with `inputs` ({name:
-// node}, by its GLSL parameter names): each one given, none left over.
-function glue(variant, entryName, inputs) {
-    if (!kGlueEntries.includes(entryName)) throw new Error(`microrelief-three/webgpu: no glue function ${entryName}`);
-    const {fn, parameters} = glueFor(variant, entryName);
+// node}, by its GLSL parameter names): each one given, none left over. `entries`: every glue
+// function the material calls (glueFunctions: they share their include).
+function glue(variant, entryName, inputs, entries = [entryName]) {
+    if (!kGlueEntries.includes(entryName) || !entries.includes(entryName)) throw new Error(`microrelief-three/webgpu: no glue function ${entryName}`);
+    const {fn, parameters} = glueFunctions(variant, entries)[entryName];
     const extra = Object.keys(inputs).filter((name) => !parameters.includes(name));
     const missing = parameters.filter((name) => !(name in inputs));
     if (extra.length || missing.length)
@@ -375,18 +388,21 @@ const kHit = property('mat4', 'mrHit');
 // fog and shadow lookups read, replaced in the fragment stage; its contextNode), the depth as `depthNode` (logarithmic as ReliefShadingNodeMaterial's). Misses
 // and faces that do not run are discarded; an exhausted traversal is magenta, as in WebGL.
 // `albedoMap` (loadAlbedo's texture) multiplies three's diffuse colour by the map's colours,
-// filtered over the pixel's footprint as in WebGL. Not yet: the library's self-shadow
-// (selfShadow), three's shadow maps (the relief neither casts into them nor is its lookup biased as the WebGL
-// entry's: docs/three.md).
+// filtered over the pixel's footprint as in WebGL. `selfShadow`: the library's exact hard
+// shadow of the relief on itself towards each of three's directional, point and spot lights
+// (ReliefLightingModel below), on top of three's shadow maps, as the WebGL entry's. Not yet:
+// three's shadow maps (the relief neither casts into them nor is its lookup biased as the
+// WebGL entry's: docs/three.md).
 export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
     constructor(parameters = {}) {
         requireSupportedThree();
         if (typeof TSL.overrideNodes !== 'function')
             throw new Error("ReliefStandardNodeMaterial: this three has no overrideNodes (three/tsl, r187 and newer), which hands three's lighting the traced hit");
-        const {albedoMap = null, ...rest} = parameters;
+        const {albedoMap = null, selfShadow = false, ...rest} = parameters;
         checkAlbedoMap(albedoMap, 'ReliefStandardNodeMaterial');
         super(rest);
         this.albedoMap = albedoMap;
+        this._selfShadow = !!selfShadow;
         this.isReliefMaterial = true;
         this.relief = null;
         this.side = THREE.DoubleSide;  // the faces that run are chosen per draw (mrFaces)
@@ -408,22 +424,42 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
         ], null, 'fragment');
     }
 
+    // The self-shadow's rays are in the program: another value, another program.
+    get selfShadow() {
+        return this._selfShadow;
+    }
+
+    set selfShadow(value) {
+        if (!!value !== this._selfShadow) this.needsUpdate = true;
+        this._selfShadow = !!value;
+    }
+
     customProgramCacheKey() {
         const relief = this.relief;
-        return `microrelief-webgpu-standard:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}:${albedoKey(this.albedoMap)}`;
+        return `microrelief-webgpu-standard:${relief ? `${relief.base.kind}:${relief.interpolation}:${relief.reliefMap.heights.id}` : ''}:${albedoKey(this.albedoMap)}:${this.selfShadow ? 'self' : ''}`;
     }
 
     setup(builder) {
         const relief = drawnRelief(builder, 'ReliefStandardNodeMaterial');
         const u = (name) => reliefUniform(name, relief.uniforms[name].value);
+        const variant = variantOf(relief), entries = this.selfShadow ? ['mrTraceHit', 'mrSelfShadow'] : ['mrTraceHit'];
+        const inputs = traceInputs(builder, relief);
         // The trace, once a pixel, into a property of its own (kHit): three builds the
         // overrides in a context of their own, where a variable of the trace would be
         // declared (and traced) a second time.
-        this._mrTrace = glue(variantOf(relief), 'mrTraceHit', {...traceInputs(builder, relief), worldToCamera: u('mrWorldToCamera'),
-                                                               ...albedoInputs(this.albedoMap)});
+        this._mrTrace = glue(variant, 'mrTraceHit', {...inputs, worldToCamera: u('mrWorldToCamera'), ...albedoInputs(this.albedoMap)}, entries);
+        // selfShadow: the shadow ray from that hit towards a light (mrSelfShadow reads the pixel
+        // mrTraceHit left), the same textures' nodes (one binding each).
+        this._mrSelfShadow = this.selfShadow ?
+            (light) => glue(variant, 'mrSelfShadow', {heights: inputs.heights, windows: inputs.windows, cameraToWorld: u('mrCameraToWorld'), light}, entries) : null;
         this.depthNode = tracedDepth(builder, relief, kHit.element(0).w);
         this.normalNode = kHit.element(1).xyz;
         return super.setup(builder);
+    }
+
+    // three's physical lighting, each direct light dimmed by the self-shadow (selfShadow).
+    setupLightingModel(builder) {
+        return this._mrSelfShadow ? new ReliefLightingModel(this._mrSelfShadow) : super.setupLightingModel(builder);
     }
 
     // The first step of three's fragment stage (NodeMaterial.setup): the pixel traced into
@@ -451,7 +487,32 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
     copy(source) {
         super.copy(source);
         this.albedoMap = source.albedoMap ?? null;
+        this.selfShadow = source.selfShadow ?? false;
         return this;
+    }
+}
+
+// three's PhysicalLightingModel (MeshStandardNodeMaterial's) with the library's hard self-shadow
+// on each direct light, as the WebGL entry's patch multiplies three's directLight.color by
+// mrSelfShadowDirection or mrSelfShadowPoint right after three's getDirectionalLightInfo,
+// getPointLightInfo or getSpotLightInfo (materials.js): the light's colour, three's shadow
+// map already in it, times `selfShadow(light)` (mrSelfShadow: 1 lit, 0 shadowed) for a
+// directional light (the unit direction towards it three lights with, view space, w 0) and a
+// point or spot light (its view position, w 1). Other lights (rect area: directRectArea, not
+// direct) as three lights them.
+class ReliefLightingModel extends THREE.PhysicalLightingModel {
+    constructor(selfShadow) {
+        super();
+        this.mrSelfShadow = selfShadow;
+    }
+
+    direct(data, builder) {
+        const light = data.lightNode && data.lightNode.light;
+        let toLight = null;
+        if (light && light.isDirectionalLight) toLight = vec4(data.lightDirection, 0);
+        else if (light && (light.isPointLight || light.isSpotLight)) toLight = vec4(lightViewPosition(light), 1);
+        const lightColor = toLight ? data.lightColor.mul(this.mrSelfShadow(toLight).toVar()) : data.lightColor;
+        super.direct({...data, lightColor}, builder);
     }
 }
 

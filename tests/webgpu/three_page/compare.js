@@ -44,7 +44,7 @@ const kViews = {
 function setUp(T, view, relief, {withBox = true} = {}) {
     const scene = new T.Scene();
     scene.add(relief);
-    if (relief.isLit) addLights(T, scene);
+    if (relief.isLit) addLights(T, scene, relief.raking);
     if (withBox) {
         const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
         box.position.set(0.0, 0.02, 0.05);  // half buried: the relief's depth draws the line between them
@@ -79,14 +79,23 @@ const light = new THREE.Vector3(-0.45, 0.8, -0.35).normalize();
 // The lit scenes (`lit`: the relief in each entry's standard material; `mesh`: the same
 // height map as three's own triangle mesh, displaced, in three's MeshStandardMaterial, the
 // measure of how three's WebGL and WebGPU lighting differ on a surface whose normal turns as
-// fast, from pixel to pixel, as the relief's): three's directional, point and ambient lights.
+// fast, from pixel to pixel, as the relief's): three's directional, point and ambient lights;
+// `raking` adds a second directional light that grazes the relief where the camera sees it
+// (the self-shadow's scenes: long shadows): on the plane 12 degrees above it, on the cylinder
+// (`raking` 'cylinder': its axis is y) from 20 degrees off its axis, towards the camera.
 const kLit = {color: 0xc8b8a0, roughness: 0.55, metalness: 0.15};
-function addLights(T, scene) {
+function addLights(T, scene, raking = null) {
     const sun = new T.DirectionalLight(0xfff4e0, 2.5);
     sun.position.set(-0.9, 1.6, -0.7);
     const lamp = new T.PointLight(0x9fb8ff, 0.06, 0, 2);
     lamp.position.set(0.2, 0.16, 0.25);
     scene.add(sun, sun.target, lamp, new T.AmbientLight(0x404850, 1.2));
+    if (raking) {
+        const low = new T.DirectionalLight(0xffd0a0, 2);
+        if (raking === 'cylinder') low.position.set(0.93, 0.1, -0.37);
+        else low.position.set(0.95, 0.21, 0.2);
+        scene.add(low, low.target);
+    }
 }
 
 function displacedMesh(T, roughness) {
@@ -122,19 +131,28 @@ function albedoMap(T) {
 // What a picture of `kind` shows of an entry `E` (gl or wg): 'shading', the relief in the
 // library's own shading; 'lit', in the entry's standard material under three's lights;
 // 'mesh', no relief (displacedMesh under the same lights); 'shadingAlbedo' and 'litAlbedo'
-// as 'shading' and 'lit' with the map's colours (albedoMap); `roughness` the standard materials'.
+// as 'shading' and 'lit' with the map's colours (albedoMap); 'litShadow' as 'lit' with the
+// library's self-shadow (selfShadow), 'litShadow' and 'litRaking' (without it) with the raking
+// light too (addLights); `roughness` the standard materials'.
 function reliefMaterial(E, kind, roughness) {
     const T = E === gl ? THREE : GPU, map = kind.endsWith('Albedo') ? {albedoMap: albedoMap(T)} : {};
-    if (kind.startsWith('lit')) return new (E === gl ? gl.ReliefStandardMaterial : wg.ReliefStandardNodeMaterial)({...kLit, roughness, ...map});
+    if (kind.startsWith('lit'))
+        return new (E === gl ? gl.ReliefStandardMaterial : wg.ReliefStandardNodeMaterial)({...kLit, roughness, ...map, selfShadow: kind === 'litShadow'});
     return new (E === gl ? gl.ReliefShadingMaterial : wg.ReliefShadingNodeMaterial)({lightDirection: light, shadows: 'hard', ...map});
 }
+
+// The relief's height scale: 0.08, but for the self-shadow's scenes on a curved base, whose heights
+// are radial in units of its radius (0.3 by default, so 0.08 raises a bump 0.012 over texels 0.03
+// wide: too flat to shadow anything but near the terminator), 0.4.
+const heightScaleOf = (base, kind) => (kind.startsWith('litShadow') || kind === 'litRaking') && base !== 'plane' ? 0.4 : 0.08;
 
 async function drawWebGL(view, interpolation, base = 'plane', kind = 'shading', roughness = kLit.roughness) {
     const {webgl: renderer} = await renderers(!!kViews[view].logarithmic);
     const {w, h, samples} = heights();
     const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
-    const relief = new gl.Relief(map, {heightScale: 0.08, interpolation, base, material: reliefMaterial(gl, kind, roughness)});
+    const relief = new gl.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(gl, kind, roughness)});
     relief.isLit = kind.startsWith('lit');
+    relief.raking = kind === 'litShadow' || kind === 'litRaking' ? base : null;
     const {scene, camera} = setUp(THREE, view, kind === 'mesh' ? displacedMesh(THREE, roughness) : relief, {withBox: kind !== 'mesh'});
     const target = new THREE.WebGLRenderTarget(W, H);
     if (kViews[view].viewport) target.viewport.set(...kViews[view].viewport);  // GL's y from the bottom
@@ -154,8 +172,9 @@ async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading',
     const {webgpu: renderer} = await renderers(!!kViews[view].logarithmic);
     const {w, h, samples} = heights();
     const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
-    const relief = new wg.Relief(map, {heightScale: 0.08, interpolation, base, material: reliefMaterial(wg, kind, roughness)});
+    const relief = new wg.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(wg, kind, roughness)});
     relief.isLit = kind.startsWith('lit');
+    relief.raking = kind === 'litShadow' || kind === 'litRaking' ? base : null;
     const {scene, camera} = setUp(GPU, view, kind === 'mesh' ? displacedMesh(GPU, roughness) : relief, {withBox: kind !== 'mesh'});
     const target = new GPU.RenderTarget(W, H);
     if (kViews[view].viewport) {  // the same pixels: WebGPU's y from the top
@@ -212,11 +231,19 @@ async function compareEntries(view, interpolation, base, kind = 'shading', rough
             image.data.set([v, v, v, 255], 4 * (row * 3 * W + 2 * W + x));
         }
     ctx.putImageData(image, 0, 0);
+    // The self-shadow's scenes: the pixels it darkens (by more than 8 in a channel) in the WebGL
+    // picture, against the same without it (the scene tests the shadow only where there are many).
+    let selfShadowed;
+    if (kind === 'litShadow') {
+        const c = await drawWebGL(view, interpolation, base, 'litRaking', roughness);
+        selfShadowed = 0;
+        for (let k = 0; k < a.length; k += 4) selfShadowed += Math.max(c[k] - a[k], c[k + 1] - a[k + 1], c[k + 2] - a[k + 2]) > 8;
+    }
     const blob = await canvas.convertToBlob({type: 'image/png'});
     const png = btoa(String.fromCharCode(...new Uint8Array(await blob.arrayBuffer())));
     const n = W * H;
     return JSON.stringify({stats: {pixels: n, meanDiff: sum / n, maxDiff: max, differingFraction: differing / n,
-                                   hitsGl, hitsGpu, hitDisagree, reliefGl}, png});
+                                   hitsGl, hitsGpu, hitDisagree, reliefGl, selfShadowed}, png});
 }
 
 // The picks (three's Raycaster) of `view`'s scene, the relief alone, through every pixel's

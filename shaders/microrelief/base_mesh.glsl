@@ -46,13 +46,16 @@
 
 // The triangle table: per mesh triangle 8 RGBA32F texels, triangle k's at texel
 // ((k % MR_MESH_TABLE_ROW) * 8 + j, k / MR_MESH_TABLE_ROW):
-// j = 0..2: P_i, T_i.x; j = 3..5: N_i, T_i.y; j = 6: H_tri, 0, 0, 0; j = 7 unused.
+// j = 0..2: P_i, T_i.x; j = 3..5: N_i, T_i.y; j = 6: H_tri, the smooth edges (core/trace/
+// MeshTracer.h's smoothEdges: bit i where the wall b_i = 0 is no surface, as a float), 0, 0;
+// j = 7 unused.
 const int MR_MESH_TABLE_ROW = 256;
 
 struct mr_MeshTriangle {
     vec3 p0, e1, e2;  // P0, P1 - P0, P2 - P0
     vec3 n0, f1, f2;  // N0, N1 - N0, N2 - N0
     vec2 uv0, uv1, uv2;
+    int smoothEdges;  // bit i: the wall b_i = 0 is on a smooth edge, no surface
 };
 
 mr_MeshTriangle mr_meshTriangle(sampler2D table, int k) {
@@ -60,8 +63,9 @@ mr_MeshTriangle mr_meshTriangle(sampler2D table, int k) {
     vec4 a0 = texelFetch(table, at, 0), a1 = texelFetch(table, at + ivec2(1, 0), 0);
     vec4 a2 = texelFetch(table, at + ivec2(2, 0), 0), m0 = texelFetch(table, at + ivec2(3, 0), 0);
     vec4 m1 = texelFetch(table, at + ivec2(4, 0), 0), m2 = texelFetch(table, at + ivec2(5, 0), 0);
+    int smoothEdges = int(texelFetch(table, at + ivec2(6, 0), 0).y);
     return mr_MeshTriangle(a0.xyz, a1.xyz - a0.xyz, a2.xyz - a0.xyz, m0.xyz, m1.xyz - m0.xyz,
-                           m2.xyz - m0.xyz, vec2(a0.w, m0.w), vec2(a1.w, m1.w), vec2(a2.w, m2.w));
+                           m2.xyz - m0.xyz, vec2(a0.w, m0.w), vec2(a1.w, m1.w), vec2(a2.w, m2.w), smoothEdges);
 }
 
 // ---- Polynomials in t of degree <= 4: float[5], coefficients of t^0 .. t^4 ----
@@ -528,15 +532,50 @@ float mr_meshWalkPiece(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIE
 // traceTriangle's loop body): at the piece's start when that is on or under the surface (the
 // ray entered through it: piece.entry), else where the walk finds the path coming down to the
 // top.
+//
+// A wall on a smooth edge (tri.smoothEdges: the neighbour's prism continues this one there) is
+// no surface where the two prisms lie on its two sides. A piece that starts on it within
+// rounding of the top or of the mesh (2^-12 H: float's error in the cut's t and in h at its
+// uv is far below) starts where the neighbour's top or mesh reaches the edge, the neighbour's
+// own hit a rounding later or level (which the depth test may lose to this one): named as
+// MeshReference names a hit, by the nearest surface (distances in the mesh's units:
+// s |D| (h - t) to the top, s |D| t to the mesh, |b_j| times the altitude over edge j to a
+// wall that is a surface; the top and the mesh tied, h = 0, the mesh for a ray going up
+// along D). Further from both it keeps the wall's name: there the ray came into the union
+// earlier, through another prism, whose hit the depth test keeps, unless the prisms fold so
+// that both lie on one side of the wall, where the wall is the surface. Not dropped (the
+// fragment cannot tell the two apart), and no hit is moved, only named.
 void mr_meshSolvePiece(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPLER heights,
-                       mr_MeshPath path, mr_MeshPiece piece, float top, int budget, inout mr_MeshHit best) {
+                       mr_MeshTriangle tri, vec3 v, float s, mr_MeshPath path, mr_MeshPiece piece,
+                       float top, int budget, inout mr_MeshHit best) {
     mr_MeshPoint m0 = mr_meshPointOn(path, piece, 0.0);
-    bool entered = mr_meshSurfaceAt(relief, heights, m0.uv) >= m0.t;
+    float h0 = mr_meshSurfaceAt(relief, heights, m0.uv);
+    bool entered = h0 >= m0.t;
+    int surface = entered ? piece.entry : MR_MESH_TOP;
+    float band = top * (1.0 / 4096.0);
+    if (entered && surface >= MR_MESH_WALL0 && surface <= MR_MESH_WALL0 + 2 &&
+        ((tri.smoothEdges >> (surface - MR_MESH_WALL0)) & 1) != 0 && (h0 - m0.t <= band || m0.t <= band)) {
+        vec3 along = tri.n0 + m0.b.y * tri.f1 + m0.b.z * tri.f2;
+        float unit = s * length(along), toTop = (h0 - m0.t) * unit, toBase = abs(m0.t) * unit;
+        bool base = toBase < toTop || (toBase == toTop && dot(v, along) > 0.0);
+        surface = base ? MR_MESH_BASE : MR_MESH_TOP;
+        float closest = base ? toBase : toTop;
+        float twiceArea = length(cross(tri.e1, tri.e2));
+        vec3 edges = vec3(length(tri.e2 - tri.e1), length(tri.e2), length(tri.e1));  // opposite P_j
+        for (int j = 0; j < 3; ++j) {
+            if (((tri.smoothEdges >> j) & 1) != 0) continue;
+            float distance = abs(m0.b[j]) * twiceArea / edges[j];
+            if (distance < closest) {
+                closest = distance;
+                surface = MR_MESH_WALL0 + j;
+            }
+        }
+    }
     float p = entered ? 0.0 : mr_meshWalkPiece(relief, windows, heights, path, piece, top, budget);
     if (p < 0.0) return;
     mr_MeshPoint m = mr_meshPointOn(path, piece, p);
     if (best.surface != MR_MESH_NONE && m.lambda >= best.lambda) return;
-    best = mr_MeshHit(max(m.lambda, 0.0), m.t, m.b, m.uv, entered ? piece.entry : MR_MESH_TOP);
+    best = mr_MeshHit(max(m.lambda, 0.0), m.t, m.b, m.uv, surface);
 }
 
 // The first hit of the ray origin + lambda v (lambda in [0, lambdaMax]) in the prism of `tri`:
@@ -588,7 +627,7 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
             if (empty || lo > hi) continue;
             piece.lambdaA = lo;
             piece.lambdaB = hi;
-            mr_meshSolvePiece(relief, windows, heights, path, piece, top, budget, hit);
+            mr_meshSolvePiece(relief, windows, heights, tri, v, s, path, piece, top, budget, hit);
         }
         return hit.surface != MR_MESH_NONE ? hit.lambda : -1.0;
     }
@@ -695,7 +734,7 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
                 piece.lambdaB = lt;
             }
         }
-        mr_meshSolvePiece(relief, windows, heights, path, piece, top, budget, hit);
+        mr_meshSolvePiece(relief, windows, heights, tri, v, s, path, piece, top, budget, hit);
     }
     return hit.surface != MR_MESH_NONE ? hit.lambda : -1.0;
 }

@@ -9,6 +9,7 @@
 #include "microrelief/core/Error.h"
 #include "microrelief/core/base/MeshProxy.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
+#include "microrelief/core/trace/MeshTracer.h"
 #include "microrelief/core/trace/MultilevelTracer.h"
 #include "microrelief/gl/ShaderProgram.h"
 #include "microrelief/gl/ShaderSource.h"
@@ -98,6 +99,7 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
         throwBadInput("MeshRelief: " + std::to_string(triangles) + " triangles need a table of " +
                       std::to_string(rows) + " rows, more than the GL's texture size " +
                       std::to_string(maxSize));
+    const std::vector<std::uint8_t> smooth = smoothEdges(mesh);
     std::vector<float> table(static_cast<std::size_t>(std::max(rows, 1)) * kTableRow * 8 * 4, 0.0f);
     for (int k = 0; k < triangles; ++k) {
         float* row = &table[static_cast<std::size_t>(k) * 8 * 4];
@@ -112,6 +114,7 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
             std::copy(normal, normal + 4, m);
         }
         row[4 * 6] = proxy.topHeights[k];
+        row[4 * 6 + 1] = static_cast<float>(smooth[k]);  // 0..7: exact
     }
     table_ = Texture::create(gl);
     nearestTexture(gl, table_, 0);

@@ -517,5 +517,60 @@ TEST(MeshTracer, FetchesOnAFlatGridAgainstThePlane) {
     }
 }
 
+// smoothEdges: the walls that are no surface (issue 50's contract: walls only where the
+// neighbouring prisms' heights differ). A 2 x 2 grid: each triangle's edges inside the grid
+// smooth, the border's not; a tube's edges along it and diagonals smooth, its rims not; a seam
+// whose uv jumps by half a period, split normals (a hard edge) and a third triangle on an
+// edge keep their walls; a shift of uv by whole periods does not. Seen red: the integer shift
+// not allowed, and the two sides' winding not compared (a fin on one side smooth).
+TEST(MeshTracer, SmoothEdgesAreTheSharedContinuousOnes) {
+    const TriangleMesh grid = planeGridMesh(2, 1.0f, 1.0f);
+    const std::vector<std::uint8_t> smooth = smoothEdges(grid);
+    ASSERT_EQ(smooth.size(), grid.triangles.size());
+    for (std::size_t k = 0; k < grid.triangles.size(); ++k) {
+        for (int i = 0; i < 3; ++i) {
+            const glm::vec3 a = grid.positions[grid.triangles[k][(i + 1) % 3]],
+                            b = grid.positions[grid.triangles[k][(i + 2) % 3]];
+            const bool border = (a.x == b.x && std::abs(a.x) == 0.5f) || (a.z == b.z && std::abs(a.z) == 0.5f);
+            EXPECT_EQ((smooth[k] >> i & 1u) != 0, !border) << "triangle " << k << " edge " << i;
+        }
+    }
+    const TriangleMesh tube = cylinderTubeMesh(8, 1, 0.5f, 1.0f);
+    // A tube of one quad along: each triangle has an edge along the tube (smooth), a rim (a
+    // wall) and its quad's diagonal (smooth), but for the seam between u = 7/8 .. 1 and
+    // u = 0 .. 1/8, whose two columns' x are sin(pi) and sin(-pi) rounded (+-9e-17 apart:
+    // not the same positions, so walls, as the contract has them).
+    int smoothCount = 0;
+    for (const std::uint8_t bits : smoothEdges(tube))
+        smoothCount += (bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1);
+    EXPECT_EQ(smoothCount, 2 * static_cast<int>(tube.triangles.size()) - 2);
+
+    // Two triangles on the edge (0,0,0)-(1,0,0), the second's uv shifted by (0.5, 0) (a seam),
+    // then by (1, -2) (the map's period: smooth), then its normals split, then a third triangle.
+    TriangleMesh pair;
+    pair.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0}, {1, 0, 1}};
+    pair.normals = std::vector<glm::vec3>(6, glm::vec3(0, 1, 0));
+    pair.texCoords = {{0, 0}, {1, 0}, {0, 1}, {0.5f, 0}, {1.5f, 0}, {1.5f, -1}};
+    pair.triangles = {{0, 1, 2}, {4, 3, 5}};
+    // Edge opposite vertex 2 of triangle 0 (1 -> 0... its vertices 0, 1) and opposite vertex 2
+    // of triangle 1 (4 -> 3, the other way round).
+    EXPECT_EQ(smoothEdges(pair)[0], 0);
+    pair.texCoords = {{0, 0}, {1, 0}, {0, 1}, {1, -2}, {2, -2}, {2, -3}};
+    EXPECT_EQ(smoothEdges(pair)[0], 4);
+    EXPECT_EQ(smoothEdges(pair)[1], 4);
+    TriangleMesh hard = pair;
+    hard.normals[3] = glm::normalize(glm::vec3(0, 1, 1));
+    EXPECT_EQ(smoothEdges(hard)[0], 0);
+    TriangleMesh fin = pair;
+    fin.triangles[1] = {3, 4, 5};  // the same way round: both on one side of the edge
+    EXPECT_EQ(smoothEdges(fin)[0], 0);
+    TriangleMesh three = pair;
+    three.positions.push_back({0.5f, 1, 0});
+    three.normals.push_back({0, 1, 0});
+    three.texCoords.push_back({0, 0});
+    three.triangles.push_back({0, 1, 6});
+    EXPECT_EQ(smoothEdges(three)[0], 0);
+}
+
 }  // namespace
 }  // namespace microrelief

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <vector>
 
 #include "microrelief/core/Error.h"
 #include "microrelief/core/GlslConstants.h"
@@ -124,9 +126,61 @@ int rootsIn(const MeshPolynomial& p, double lo, double hi, double* out) {
 struct Cut {
     double t;
     MeshSurface reason;
+    int wall = -1;  // reason Wall: b_wall = 0
 };
 
 }  // namespace
+
+std::vector<std::uint8_t> smoothEdges(const TriangleMesh& mesh) {
+    // Each triangle's edge opposite vertex i runs from vertex i + 1 to vertex i + 2; keyed by
+    // its two positions in a fixed order, so that both triangles of an edge meet in one entry.
+    using Key = std::array<float, 6>;
+    struct Side {
+        std::size_t triangle;
+        int edge;
+        bool reversed;  // the key's order is the edge's i + 2 -> i + 1
+    };
+    std::map<Key, std::vector<Side>> edges;
+    const auto keyOf = [&](std::uint32_t a, std::uint32_t b, bool& reversed) {
+        const glm::vec3 pa = mesh.positions[a], pb = mesh.positions[b];
+        const Key ab{pa.x, pa.y, pa.z, pb.x, pb.y, pb.z}, ba{pb.x, pb.y, pb.z, pa.x, pa.y, pa.z};
+        reversed = ba < ab;
+        return reversed ? ba : ab;
+    };
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+        const glm::uvec3 v = mesh.triangles[k];
+        for (int i = 0; i < 3; ++i) {
+            bool reversed = false;
+            const Key key = keyOf(v[(i + 1) % 3], v[(i + 2) % 3], reversed);
+            edges[key].push_back({k, i, reversed});
+        }
+    }
+    std::vector<std::uint8_t> smooth(mesh.triangles.size(), 0);
+    for (const auto& [key, sides] : edges) {
+        if (sides.size() != 2 || sides[0].reversed == sides[1].reversed) continue;
+        // The two ends of each side in the key's order.
+        std::uint32_t ends[2][2];
+        for (int s = 0; s < 2; ++s) {
+            const glm::uvec3 v = mesh.triangles[sides[s].triangle];
+            const std::uint32_t a = v[(sides[s].edge + 1) % 3], b = v[(sides[s].edge + 2) % 3];
+            ends[s][0] = sides[s].reversed ? b : a;
+            ends[s][1] = sides[s].reversed ? a : b;
+        }
+        bool same = true;
+        glm::dvec2 shift{0.0};
+        for (int e = 0; e < 2; ++e) {
+            const std::uint32_t a = ends[0][e], b = ends[1][e];
+            same = same && mesh.normals[a] == mesh.normals[b];
+            const glm::dvec2 d = glm::dvec2(mesh.texCoords[b]) - glm::dvec2(mesh.texCoords[a]);
+            same = same && d == glm::floor(d) && (e == 0 || d == shift);
+            shift = d;
+        }
+        if (!same) continue;
+        for (const Side& side : sides)
+            smooth[side.triangle] |= static_cast<std::uint8_t>(1u << side.edge);
+    }
+    return smooth;
+}
 
 MeshTracer::MeshTracer(const TriangleMesh& mesh, HeightMap map, double heightScale,
                        Interpolation interpolation)
@@ -139,8 +193,10 @@ MeshTracer::MeshTracer(const TriangleMesh& mesh, HeightMap map, double heightSca
       top_(std::max(static_cast<double>(pyramid_.maxHeight()), 1e-6)),
       maxIterations_(traversalBudget(map_.width, map_.height)) {
     if (map_.empty()) throwRuntime("MeshTracer: an empty map");
+    const std::vector<std::uint8_t> smooth = smoothEdges(mesh);
     for (const glm::uvec3& k : mesh.triangles) {
         Triangle tri;
+        tri.smooth = smooth[triangles_.size()];
         const glm::dvec3 p[3] = {mesh.positions[k[0]], mesh.positions[k[1]],
                                  mesh.positions[k[2]]};
         const glm::dvec3 n[3] = {mesh.normals[k[0]], mesh.normals[k[1]], mesh.normals[k[2]]};
@@ -271,6 +327,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
             piece.levelB1 = {-slope.x - slope.y, slope.x, slope.y};
             double lo = 0.0, hi = lambdaMax;
             MeshSurface entry = MeshSurface::Inside;
+            int wall = -1;
             bool empty = false;
             for (int i = 0; i < 3; ++i) {
                 const double b0 = piece.levelB0[i], b1 = piece.levelB1[i];
@@ -280,6 +337,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
                     if (-b0 / b1 > lo) {
                         lo = -b0 / b1;
                         entry = MeshSurface::Wall;
+                        wall = i;
                     }
                 } else {
                     hi = std::min(hi, -b0 / b1);
@@ -289,6 +347,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
             piece.lambdaA = lo;
             piece.lambdaB = hi;
             piece.entry = entry;
+            piece.wall = wall;
             add(piece);
         }
         return count;
@@ -305,12 +364,13 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
     struct Source {
         MeshPolynomial p;
         MeshSurface reason;
+        int wall = -1;
     };
     const Source sources[] = {
         {path.c, MeshSurface::Fold},
-        {n0, MeshSurface::Wall},
-        {path.n1, MeshSurface::Wall},
-        {path.n2, MeshSurface::Wall},
+        {n0, MeshSurface::Wall, 0},
+        {path.n1, MeshSurface::Wall, 1},
+        {path.n2, MeshSurface::Wall, 2},
         {turnNumerator(path.num, path.c), MeshSurface::Fold},
         {turnNumerator(n0, path.c), MeshSurface::Top},
         {turnNumerator(path.n1, path.c), MeshSurface::Top},
@@ -325,7 +385,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
     for (const Source& source : sources) {
         double roots[4];
         const int n = rootsIn(source.p, 0.0, h, roots);
-        for (int r = 0; r < n; ++r) cuts[cutCount++] = {roots[r], source.reason};
+        for (int r = 0; r < n; ++r) cuts[cutCount++] = {roots[r], source.reason, source.wall};
     }
     std::sort(cuts, cuts + cutCount, [](const Cut& a, const Cut& b) { return a.t < b.t; });
 
@@ -351,6 +411,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
         double tA = forward ? ta : tb, tB = forward ? tb : ta;
         double lambdaA = forward ? la : lb, lambdaB = forward ? lb : la;
         MeshSurface entry = forward ? cuts[i].reason : cuts[i + 1].reason;
+        int wall = forward ? cuts[i].wall : cuts[i + 1].wall;
         // Where lambda = L between tA and tB: the sign of (num - L c) sign(c) is that of
         // lambda - L inside; the bracket's end where lambda >= L (a hair past L at most).
         const auto crossing = [&](double L) {
@@ -363,6 +424,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
             tA = crossing(lambdaMin);
             lambdaA = std::max(lambdaMin, lambdaAt(tA));
             entry = MeshSurface::Inside;
+            wall = -1;
         }
         if (lambdaB > lambdaMax) {
             tB = crossing(lambdaMax);
@@ -374,6 +436,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
         piece.lambdaA = lambdaA;
         piece.lambdaB = lambdaB;
         piece.entry = entry;
+        piece.wall = wall;
         add(piece);
     }
     return count;
@@ -612,9 +675,41 @@ MeshTraceHit MeshTracer::traceTriangle(const Ray& ray, std::size_t k, double lam
         const MeshPathPoint m0 = pointOn(path, piece, 0.0);
         double p = -1.0;
         MeshSurface surface = MeshSurface::Top;
-        if (surfaceAt(m0.uv, stats) >= m0.t) {
+        if (const double h = surfaceAt(m0.uv, stats); h >= m0.t) {
             p = 0.0;
             surface = piece.entry;
+            // A wall on a smooth edge (smoothEdges) is no surface where the two prisms lie on
+            // its two sides. Starting on it within rounding of the top or the mesh (1e-9 H
+            // here, 2^-12 H in float), the piece starts where the neighbour's top or mesh
+            // reaches the edge, the neighbour's own hit a rounding later or level: named as
+            // MeshReference names a hit, by the nearest surface (distances in the mesh's units:
+            // s |D| (h - t), s |D| t, |b_j| times the altitude over edge j for a wall that is a
+            // surface; top and mesh tied, h = 0, the mesh for a ray going up along D). Further
+            // from both it stays a wall: the ray came into the union earlier through another
+            // prism, unless the prisms fold to one side of the wall, where it is the surface.
+            // No hit is moved or dropped, only named (base_mesh.glsl's mr_meshSolvePiece).
+            const Triangle& tri = triangles_[k];
+            const double band = 1e-9 * top_;
+            if (surface == MeshSurface::Wall && piece.wall >= 0 && (tri.smooth >> piece.wall & 1u) &&
+                (h - m0.t <= band || m0.t <= band)) {
+                const glm::dvec3 along = tri.n0 + m0.b.y * tri.f1 + m0.b.z * tri.f2;
+                const double unit = heightScale_ * glm::length(along);
+                const double toTop = (h - m0.t) * unit, toBase = std::abs(m0.t) * unit;
+                const bool base =
+                    toBase < toTop || (toBase == toTop && glm::dot(ray.direction, along) > 0.0);
+                surface = base ? MeshSurface::Base : MeshSurface::Top;
+                double closest = base ? toBase : toTop;
+                const double twiceArea = glm::length(glm::cross(tri.e1, tri.e2));
+                const double edges[3] = {glm::length(tri.e2 - tri.e1), glm::length(tri.e2),
+                                         glm::length(tri.e1)};  // opposite P_j
+                for (int j = 0; j < 3; ++j) {
+                    if (tri.smooth >> j & 1u) continue;
+                    if (const double d = std::abs(m0.b[j]) * twiceArea / edges[j]; d < closest) {
+                        closest = d;
+                        surface = MeshSurface::Wall;
+                    }
+                }
+            }
         } else {
             p = walkSegments(PiecePath(*this, path, piece), maxIterations_, stats).value_or(-1.0);
         }

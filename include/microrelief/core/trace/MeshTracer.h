@@ -48,7 +48,8 @@
 //
 // Where the hit is: Top (inside a piece, t = h), or where a piece starts already at or below
 // the surface: Base (t = 0, the mesh itself), Wall (b_k = 0), Fold (lambda turns), Inside
-// (lambda = 0, the ray's origin in the solid).
+// (lambda = 0, the ray's origin in the solid). A wall b_k = 0 on a smooth edge
+// (smoothEdges) is no surface: a piece that starts on it is on the top or the mesh there.
 //
 // Not handled apart (the reference does it): a curve piece's end at a common root of num and
 // c (a ray lying in one offset plane of a curved triangle, a focal height); such an end is
@@ -59,6 +60,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -70,6 +72,17 @@
 #include "microrelief/core/trace/MeshReference.h"
 
 namespace microrelief {
+
+// Per triangle, bit i set where the wall b_i = 0 is no surface of the solid (the contract: walls
+// stand only where the neighbouring prisms' heights differ): the edge opposite vertex i is
+// shared by exactly two triangles (no other triangle has an edge with those two positions),
+// run the other way round in the other, with the same positions and normals at both ends
+// (float equality), and texture coordinates that differ there by one vector of integers (the
+// map repeats). Then the two prisms' walls on that edge are the same ruled surface, the heights
+// along it the same function, and the solids meet there with nothing exposed between them.
+// A UV seam, a hard edge (normals split), the mesh's border and an edge of three triangles
+// keep their walls.
+std::vector<std::uint8_t> smoothEdges(const TriangleMesh& mesh);
 
 // A polynomial in t, coefficients of t^0 .. t^4.
 using MeshPolynomial = std::array<double, 5>;
@@ -91,6 +104,7 @@ struct MeshPiece {
     double lambdaA = 0.0, lambdaB = 0.0;
     glm::dvec3 levelB0{0.0}, levelB1{0.0};  // level: b = B0 + lambda B1
     MeshSurface entry = MeshSurface::Top;   // what starting at A below the surface means
+    int wall = -1;                          // entry Wall: which, b_wall = 0
 };
 
 // The path's point at a piece's parameter.
@@ -154,6 +168,7 @@ private:
         glm::dvec3 p0, e1, e2, n0, f1, f2;  // P0, P1 - P0, P2 - P0, N0, N1 - N0, N2 - N0
         glm::dvec2 uv0, uv1, uv2;
         glm::dvec3 boxLo, boxHi;
+        std::uint8_t smooth = 0;  // smoothEdges' bits
     };
     PrismPath path(const Ray& ray, const Triangle& tri) const;
     glm::dvec3 texelPoint(const MeshPathPoint& m) const;  // (X, Y, t)

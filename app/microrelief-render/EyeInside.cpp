@@ -1,5 +1,6 @@
 #include "EyeInside.h"
 
+#include "microrelief/core/trace/MeshReference.h"
 #include "microrelief/core/trace/ReferenceTracer.h"
 
 namespace microrelief {
@@ -15,6 +16,12 @@ bool eyeInsideTheSolid(const HeightMap& map, const RenderJob& job) {
         {tiled ? &whole : &map, job.heightScale, job.base, job.interpolation, job.model},
         Ray{camera.eye, camera.target - camera.eye});
     return hit && hit.t == 0.0;
+}
+
+bool eyeInsideTheMeshSolid(const TriangleMesh& mesh, const HeightMap& map, const RenderJob& job) {
+    const MeshReference reference(mesh, map, job.heightScale, job.interpolation);
+    const MeshHit hit = reference.trace(Ray{job.camera.eye, job.camera.target - job.camera.eye});
+    return hit.surface == MeshSurface::Inside;
 }
 
 }  // namespace microrelief

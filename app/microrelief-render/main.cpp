@@ -16,11 +16,13 @@
 #include "SceneOptions.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Log.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/core/trace/Accuracy.h"
 #include "microrelief/core/trace/ReferenceTracer.h"
 #include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/io/HeightMapFile.h"
 #include "microrelief/io/ImageFile.h"
+#include "microrelief/io/MeshFile.h"
 #include "microrelief/io/PyramidFile.h"
 #include "microrelief/io/ReliefFiles.h"
 
@@ -177,9 +179,24 @@ Drawn drawLoadedMap(const RenderOptions& o, const std::filesystem::path& heightF
 // mesh's units are its file's.
 Drawn drawMesh(const RenderOptions& o) {
     const ReliefFiles files = loadReliefFiles(o.scene.job, ReliefParts::Heights);
+    const std::string name = files.meshFile ? files.meshFile->string() : std::string("the mesh");
     RenderJob job = o.scene.job;
-    const ReliefExtent shell =
-        meshShellExtent(*files.mesh, job.heightScale, files.heights->maxValue());
+    const TriangleMesh& mesh = *files.mesh;
+    const double top = files.heights->maxValue();
+    const ReliefExtent shell = meshShellExtent(mesh, job.heightScale, top);
+    if (o.verbose) {
+        // What --height-scale is measured against: it is in the mesh's units.
+        const MeshSize size = meshSize(mesh);
+        logInfo(name + ": " + std::to_string(mesh.triangleCount()) + " triangles, " +
+                std::to_string(mesh.vertexCount()) + " vertices, box " + exactVector(size.low) +
+                " to " + exactVector(size.high) + " (diagonal " + formatNumber(size.diagonal, 4) +
+                ", median triangle " + formatNumber(size.medianTriangle, 4) + "); the shell " +
+                flagName("heightScale") + " " + formatNumber(job.heightScale, 4) +
+                " x the map's largest height " + formatNumber(top, 4) + " = " +
+                formatNumber(job.heightScale * top, 4) + " mesh units thick (" +
+                formatNumber(100.0 * job.heightScale * top / size.diagonal, 3) +
+                " % of the diagonal)");
+    }
     job.camera = meshCamera(job.camera, o.eyeGiven, o.targetGiven, shell, job.width, job.height);
     if (o.verbose && !(o.eyeGiven && o.targetGiven))
         logInfo("the camera framing the mesh: " + flagName("camera.eye") + "=" +
@@ -189,9 +206,24 @@ Drawn drawMesh(const RenderOptions& o) {
     Drawn drawn;
     {
         HeadlessRenderer renderer(*context, job.method);  // its GL objects die before the context
-        renderer.setMesh(files.mesh, files.heights,
-                         files.meshFile ? files.meshFile->string() : std::string("the mesh"));
+        renderer.setMesh(files.mesh, files.heights, name);
         drawn.result = renderer.render(job);
+    }
+    // Warnings once the picture is drawn (a refusal is one line alone).
+    if (const std::size_t flat = zeroUvAreaTriangles(mesh); flat > 0) {
+        logWarning(name + ": " + std::to_string(flat) + " of " +
+                   std::to_string(mesh.triangleCount()) +
+                   " triangles have zero area in texture coordinates (their uvs on one point "
+                   "or one line): the map is one height or stripes over them" +
+                   (flat == mesh.triangleCount() ? ", and no relief shows anywhere" : ""));
+    }
+    // The mesh's classes take the map's rows reversed (HeightMap.h: rowsReversed).
+    if (eyeInsideTheMeshSolid(mesh, rowsReversed(*files.heights), job)) {  // checked by now
+        logWarning(flagName("camera.eye") + " lies inside the relief's solid on " +
+                   std::filesystem::path(name).filename().string() +
+                   " (in the shell between the mesh and the relief's top, as the exact "
+                   "reference traces it): the picture is undefined there; move the eye out "
+                   "of the shell");
     }
     drawn.context = context->description();
     drawn.mapSize = {files.heights->width, files.heights->height};

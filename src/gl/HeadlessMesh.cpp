@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
+#include "microrelief/core/Text.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/gl/MeshRelief.h"
 #include "microrelief/gl/StateGuard.h"
@@ -66,6 +68,8 @@ void HeadlessRenderer::setMesh(std::shared_ptr<const TriangleMesh> mesh,
 
 HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
     if (!mesh_) throwRuntime("HeadlessRenderer::render: a job on the mesh base and no mesh (setMesh)");
+    // Before any GL work: the float range and precision the shader needs.
+    checkMeshFloatLimits(*mesh_->mesh, *mesh_->map, job.heightScale, mesh_->source);
     context_.makeCurrent();
     const GL& gl = context_.gl();
     gl::refuseEarlierError(gl, "rendering " + mesh_->source);
@@ -128,6 +132,99 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
     if (error != GL_NO_ERROR)
         throwRuntime("GL error " + gl::enumHex(error) + " while rendering " + mesh_->source);
     return result;
+}
+
+namespace {
+
+std::string figure(double value) { return formatNumber(value, 3); }
+
+}  // namespace
+
+MeshSize meshSize(const TriangleMesh& mesh) {
+    MeshSize size;
+    if (mesh.positions.empty()) return size;
+    size.low = size.high = glm::dvec3(mesh.positions.front());
+    for (const glm::vec3& p : mesh.positions) {
+        size.low = glm::min(size.low, glm::dvec3(p));
+        size.high = glm::max(size.high, glm::dvec3(p));
+        size.reach = std::max({size.reach, std::abs(double(p.x)), std::abs(double(p.y)),
+                               std::abs(double(p.z))});
+    }
+    size.diagonal = glm::length(size.high - size.low);
+    std::vector<double> sides;
+    sides.reserve(mesh.triangleCount());
+    for (const glm::uvec3& v : mesh.triangles) {
+        const glm::dvec3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]],
+                         p2 = mesh.positions[v[2]];
+        sides.push_back(std::sqrt(glm::length(glm::cross(p1 - p0, p2 - p0))));  // sqrt(2 area)
+    }
+    if (!sides.empty()) {
+        std::nth_element(sides.begin(), sides.begin() + sides.size() / 2, sides.end());
+        size.medianTriangle = sides[sides.size() / 2];
+    }
+    return size;
+}
+
+// The limits, and why each holds (measured with microrelief-render on llvmpipe against
+// core/trace/MeshReference.h, the exact reference, pixel by pixel, on a 4 x 4 and a 16 x 16
+// quad grid of leaning normals, one unit wide, under a 64 x 32 noise map laid twice over it
+// (a texel 0.011 units), 64 x 48 pixels; the issue's thresholds are 0.1 % hit/miss and
+// 0.2 % of the hits more than half a texel off). The shader works in float on the mesh's
+// own coordinates (mesh_relief.frag, base_mesh.glsl: its polynomials' coefficients are
+// differences of the vertices), so its rounding is a step of 2^-23 of the vertices' largest
+// coordinate, `reach`. (The eye's does not count: the unit grid seen from 10 to 330 units
+// away, the field of view narrowed to frame it, matched the reference at every distance.)
+//  1. The shell no more than kMaxShellPerSize times the mesh's box diagonal: shells 6 and
+//     60 times the grid's size, framed by the default camera, matched the reference (0 of
+//     about 45 hits off), 605 times had 2 of 45 hits off, 6050 times 18 of 44, and at
+//     --height-scale 1e9 (6e8 times) every hit was off.
+//  2. The shell's thickness s H at least kMinShellSteps steps of the reach: at the origin
+//     the grid's normals matched the reference down to 2.2 steps (s = 1.5e-7) and 340 of
+//     1593 hits had their normals turned over at 1.4 steps (s = 1e-7).
+//  3. The reach at most kMaxReachPerTriangle times the median triangle's size (sqrt of
+//     twice its area: a grid quad's side): the errors come of the edges' rounding against
+//     their length. The 4 x 4 grid (quads 0.25) moved to x, z = 30 (122 sizes) matched the
+//     reference, the 16 x 16 (quads 0.0625) at 10 (168 sizes) too; the 4 x 4 at 100 (402
+//     sizes) had 1 % of its hits off at s = 0.1, the 16 x 16 at 30 (488) 0.47 %, and further
+//     out worse: the 4 x 4 at 1000 up to 10 %, from 2000 whole quads missed (6 % hit/miss;
+//     at 1e5 nothing hit). The median, not the smallest triangle, so that one small
+//     triangle refuses no mesh (Debian's spider, 107 units out, its median triangle 5.5,
+//     matches the reference with the default camera in MeshCliTest); how far a small
+//     triangle's own pixels stray was not measured. These are the shader's figures today
+//     (issue 50): a shader that traces relative to the triangle would move the last two.
+constexpr double kMaxShellPerSize = 16.0;
+constexpr double kMinShellSteps = 4.0;
+constexpr double kMaxReachPerTriangle = 256.0;
+
+void checkMeshFloatLimits(const TriangleMesh& mesh, const HeightMap& map, double heightScale,
+                          const std::string& source) {
+    const MeshSize size = meshSize(mesh);
+    const double top = map.maxValue();
+    const double shell = heightScale * top;  // s H, the mesh's units
+    const std::string shellText = "the shell ({heightScale} " + figure(heightScale) +
+                                  " x the map's largest height " + figure(top) + " = " +
+                                  figure(shell) + " mesh units)";
+    if (!(shell <= kMaxShellPerSize * size.diagonal)) {
+        throwBadInput(source + ": " + shellText + " is more than " + figure(kMaxShellPerSize) +
+                      " times the mesh's size (its box's diagonal, " + figure(size.diagonal) +
+                      "), past what the shader's float solve traces exactly; lower "
+                      "{heightScale} (it is in the mesh's units)");
+    }
+    const double step = std::ldexp(size.reach, -23);  // float's rounding there
+    if (shell > 0.0 && !(shell >= kMinShellSteps * step)) {
+        throwBadInput(source + ": " + shellText + " is thinner than " + figure(kMinShellSteps) +
+                      " float steps at the mesh's largest coordinate " + figure(size.reach) +
+                      " (" + figure(kMinShellSteps * step) +
+                      "): float cannot resolve it; raise {heightScale}, or move the mesh "
+                      "nearer the origin");
+    }
+    if (!(size.reach <= kMaxReachPerTriangle * size.medianTriangle)) {
+        throwBadInput(source + ": the mesh reaches " + figure(size.reach) +
+                      " units from the origin, more than " + figure(kMaxReachPerTriangle) +
+                      " times its median triangle's size (" + figure(size.medianTriangle) +
+                      "): the shader's float arithmetic on its coordinates does not hold its "
+                      "hits to a fraction of a texel there; move the mesh nearer the origin");
+    }
 }
 
 ReliefExtent meshShellExtent(const TriangleMesh& mesh, double heightScale, double top) {

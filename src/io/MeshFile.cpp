@@ -464,6 +464,20 @@ void checkGltfVersion(const aiScene& scene, const std::string& name) {
 
 }  // namespace
 
+std::size_t zeroUvAreaTriangles(const TriangleMesh& mesh) {
+    std::size_t count = 0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        // In double: the float coordinates' differences exactly, the area to double's
+        // rounding, far below the bound (which is float's: uvs far from 0 with edges of a
+        // few of their ulps may fall either side of it, a warning's margin).
+        const glm::dvec2 a = glm::dvec2(mesh.texCoords[t[1]]) - glm::dvec2(mesh.texCoords[t[0]]);
+        const glm::dvec2 b = glm::dvec2(mesh.texCoords[t[2]]) - glm::dvec2(mesh.texCoords[t[0]]);
+        const double area = std::abs(a.x * b.y - a.y * b.x);
+        count += area <= std::ldexp(1.0, -20) * glm::length(a) * glm::length(b);
+    }
+    return count;
+}
+
 TriangleMesh loadMeshFile(const std::filesystem::path& file, const MeshLimits& limits) {
     const std::string name = file.string();
     const MeshFormat format = checkMeshPath(file, name, limits);

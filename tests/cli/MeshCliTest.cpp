@@ -8,8 +8,10 @@
 // written here (its uvs over two periods of the map) at 64 x 48; meshes no one here made,
 // from Debian's assimp-testmodels (an OBJ spider, Khronos' glTF BoxTextured), with the default
 // camera, every other pixel; a picture drawn in tiles (HeadlessRenderer, the program's path,
-// with small tiles) equal to the one drawn whole. And the refusals, one line each: what the mesh base does not
-// draw yet, a base without its mesh and a mesh without its base, files that are no mesh.
+// with small tiles) equal to the one drawn whole. And the refusals, one line each: what the mesh
+// base does not draw yet, what its shader's float cannot trace, a base without its mesh and a
+// mesh without its base, files that are no mesh; what -v says of the mesh; the warnings of an
+// eye inside the shell and of triangles of zero uv area.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,16 +41,18 @@ HeightMap seamless(HeightMap map) {
     return map;
 }
 
-// n x n quads over [-0.5, 0.5]^2, heights and normals leaning by a fixed pattern, uvs over
-// [0, 2]^2 (the map twice each way), every vertex a v, vt and vn of its own.
-void writeBumpyGrid(const std::filesystem::path& file, int n) {
+// n x n quads over [-0.5, 0.5]^2 (moved by `offset`), heights and normals leaning by a fixed
+// pattern, uvs over [0, 2]^2 (the map twice each way), every vertex a v, vt and vn of its own.
+void writeBumpyGrid(const std::filesystem::path& file, int n,
+                    const glm::dvec3& offset = glm::dvec3(0.0)) {
     std::ofstream out(file);
     const auto number = [](double v) { return formatNumber(v, 9); };
     for (int j = 0; j <= n; ++j) {
         for (int i = 0; i <= n; ++i) {
             const double x = static_cast<double>(i) / n - 0.5, z = static_cast<double>(j) / n - 0.5;
             const double y = 0.04 * std::sin(7.0 * x + 1.0) * std::cos(5.0 * z);
-            out << "v " << number(x) << " " << number(y) << " " << number(z) << "\n";
+            out << "v " << number(x + offset.x) << " " << number(y + offset.y) << " "
+                << number(z + offset.z) << "\n";
             out << "vt " << number(2.0 * i / n) << " " << number(2.0 * j / n) << "\n";
             const double lx = 0.3 * std::sin(3.0 * i + j), lz = 0.3 * std::cos(2.0 * j + i);
             const double length = std::sqrt(lx * lx + 1.0 + lz * lz);
@@ -272,6 +276,122 @@ TEST_F(MeshCli, APictureDrawnInTilesIsThePictureDrawnWhole) {
     // along it by that over the angle: within 0.05 texel as expectAgreement holds the
     // shader's hits (a texel is 1/128 of a unit here; 1.3e-4 units seen on llvmpipe).
     EXPECT_LT(worst, 0.05 / 128.0);
+}
+
+
+// Where the shader's float arithmetic does not trace the mesh exactly (src/gl/HeadlessMesh.cpp:
+// checkMeshFloatLimits, with the measurements behind each limit): one line and exit 2, before
+// anything is drawn. The unit bumpy grid under the noise map (largest height 0.855): a shell
+// 1e9 high (the picture was empty, exit 0, before the check), 1e-7 thick (its normals turned
+// over), and the grid moved to x, z = 1e5 at s = 0.01 (too thin there) and at s = 1 (too
+// far from the origin for its triangles: both drew nothing). Seen red with the check not
+// called: exit 0 each.
+TEST_F(MeshCli, WhatFloatCannotTraceIsRefusedInOneLine) {
+    const auto mesh = dir / "grid.obj", far = dir / "far.obj", map = writeNoiseMap();
+    writeBumpyGrid(mesh, 4);
+    writeBumpyGrid(far, 4, {1e5, 0.0, 1e5});
+    const auto out = dir / "never.png";
+    const std::string flags = " --height " + map.string() + " --size 32x24 --out " + out.string();
+    expectFailure(run("--base mesh --mesh " + mesh.string() + " --height-scale 1e9" + flags),
+                  "is more than 16 times the mesh's size (its box's diagonal, 1.42)");
+    const test::RunResult thin =
+        run("--base mesh --mesh " + mesh.string() + " --height-scale 1e-7" + flags);
+    expectFailure(thin, "mesh units) is thinner than 4 float steps at the mesh's largest "
+                        "coordinate 0.5");
+    EXPECT_NE(thin.err.find("(--height-scale 1e-07 x the map's largest height 0.855"),
+              std::string::npos)
+        << thin.err;
+    const std::string farView = " --eye 100000.2,0.8,100001.1 --target 1e5,0,1e5" + flags;
+    expectFailure(run("--base mesh --mesh " + far.string() + " --height-scale 0.01" + farView),
+                  "far.obj: the shell (--height-scale 0.01 x the map's largest height 0.855 = "
+                  "0.00855 mesh units) is thinner than 4 float steps at the mesh's largest "
+                  "coordinate 1e+05 (0.0477)");
+    expectFailure(run("--base mesh --mesh " + far.string() + " --height-scale 1" + farView),
+                  "far.obj: the mesh reaches 1e+05 units from the origin, more than 256 "
+                  "times its median triangle's size (0.25");
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// What -v says of a mesh, for choosing --height-scale in its units: the glTF box (12
+// triangles, 24 vertices, a unit cube about the origin) under the bundled map (largest
+// height 1).
+TEST_F(MeshCli, VerboseSaysTheMeshsSizeAndTheShellsThickness) {
+    if (!std::filesystem::exists(kTestModels))
+        GTEST_SKIP() << kTestModels << " is missing: Debian's assimp-testmodels (scripts/setup.sh)";
+    const std::string box = (kTestModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf").string();
+    const test::RunResult r = run("--base mesh --mesh " + box + " --height-scale 0.05 -v " +
+                                  "--size 16x12 --out " + (dir / "box.png").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string all = r.out + r.err;
+    for (const char* said :
+         {"BoxTextured.gltf: 12 triangles, 24 vertices, box -0.5,-0.5,-0.5 to 0.5,0.5,0.5 "
+          "(diagonal 1.732, median triangle 1); the shell --height-scale 0.05 x the map's "
+          "largest height 1 = 0.05 mesh units thick (2.89 % of the diagonal)"})
+        EXPECT_NE(all.find(said), std::string::npos) << all;
+}
+
+// An eye inside the relief's solid is warned of, as on the plane: the unit quad of
+// TheMapsBottomLeftCornerIsUvZero under a map of heights 1 everywhere at s = 0.1 (the solid
+// the slab 0 <= z <= 0.1 over the quad). The eye at z = 0.05 over the quad: warned; at
+// z = 0.15 over it, and at z = 0.05 beside it (x = 1.05: outside the shell, inside its
+// bounding box, the quad's grown by 0.1): not.
+// Seen red with the check dropped (no warning) and with it asking for any hit at the eye's
+// ray rather than one at the eye (the eye at 0.15 warned).
+TEST_F(MeshCli, AnEyeInsideTheShellIsWarnedOf) {
+    const auto meshFile = dir / "quad.obj", mapFile = dir / "ones.png";
+    std::ofstream(meshFile) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                               "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+                               "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+    HeightMap ones(8, 8);
+    for (float& h : ones.samples) h = 1.0f;
+    test::writeMap(mapFile, ones, PixelType::UInt16);
+    const auto drawFrom = [&](const std::string& eye) {
+        return run("--base mesh --mesh " + meshFile.string() + " --height " + mapFile.string() +
+                   " --height-scale 0.1 --eye " + eye + " --target 0.5,0.5,0 --size 16x12 " +
+                   "--out " + (dir / "quad.png").string());
+    };
+    const std::string warning = "--eye lies inside the relief's solid on quad.obj (in the shell";
+    const test::RunResult inside = drawFrom("0.5,0.5,0.05");
+    ASSERT_EQ(inside.status, 0) << inside.err;
+    EXPECT_NE(inside.err.find("microrelief-render: warning: " + warning), std::string::npos)
+        << inside.err;
+    for (const char* eye : {"0.5,0.5,0.15", "1.05,0.5,0.05"}) {
+        const test::RunResult outside = drawFrom(eye);
+        ASSERT_EQ(outside.status, 0) << outside.err;
+        EXPECT_EQ(outside.err.find(warning), std::string::npos) << eye << ": " << outside.err;
+    }
+}
+
+// Triangles whose texture coordinates have zero area draw no relief of the map's: warned of
+// with their count, once drawn. Two triangles, one with its three uvs on a line: 1 of 2.
+// Debian's WusonOBJ.obj, one `vt` for all its corners: every triangle, and no relief at all.
+// Seen red with the warning dropped.
+TEST_F(MeshCli, TrianglesOfZeroUvAreaAreWarnedOf) {
+    const auto meshFile = dir / "striped.obj";
+    std::ofstream(meshFile) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                               "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 0.5\nvn 0 0 1\n"
+                               "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+    const test::RunResult r = run("--base mesh --mesh " + meshFile.string() +
+                                  " --height-scale 0.05 --size 16x12 --out " +
+                                  (dir / "striped.png").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("striped.obj: 1 of 2 triangles have zero area in texture coordinates"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("no relief shows anywhere"), std::string::npos) << r.err;
+    EXPECT_EQ(r.errLines(), 1) << r.err;
+    const auto wuson = kTestModels / "OBJ/WusonOBJ.obj";
+    if (!std::filesystem::exists(wuson))
+        GTEST_SKIP() << wuson << " is missing: Debian's assimp-testmodels (scripts/setup.sh)";
+    const test::RunResult all = run("--base mesh --mesh " + wuson.string() +
+                                    " --height-scale 0.05 --size 16x12 --out " +
+                                    (dir / "wuson.png").string());
+    ASSERT_EQ(all.status, 0) << all.err;
+    EXPECT_NE(all.err.find("WusonOBJ.obj: 3732 of 3732 triangles have zero area in texture "
+                           "coordinates (their uvs on one point or one line): the map is one "
+                           "height or stripes over them, and no relief shows anywhere"),
+              std::string::npos)
+        << all.err;
 }
 
 TEST_F(MeshCli, WhatTheMeshBaseDoesNotDrawYetIsRefusedInOneLine) {

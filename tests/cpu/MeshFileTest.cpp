@@ -606,6 +606,31 @@ void expectWellFormed(const TriangleMesh& mesh) {
     }
 }
 
+// zeroUvAreaTriangles: the triangles over which no relief of the map's shows (microrelief-
+// render warns of them). Counted: three uvs at one point, on one line, on one line up to
+// float's rounding (three points of v = 4 u - 0.1); not counted: a
+// sliver of uv area 1e-6 of its sides' product (a thin triangle, still mapped), and a whole
+// unit triangle. Seen red with the sine's bound at 0 (the rounded line not counted) and at
+// 1e-5 (the sliver counted).
+TEST(MeshFile, ZeroUvAreaTrianglesAreThoseOnAPointOrALine) {
+    TriangleMesh mesh;
+    const auto add = [&](glm::vec2 a, glm::vec2 b, glm::vec2 c) {
+        const auto base = static_cast<unsigned>(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+        mesh.normals.insert(mesh.normals.end(), 3, glm::vec3(0, 0, 1));
+        mesh.texCoords.insert(mesh.texCoords.end(), {a, b, c});
+        mesh.triangles.push_back({base, base + 1, base + 2});
+    };
+    add({0.3f, 0.3f}, {0.3f, 0.3f}, {0.3f, 0.3f});  // one point
+    EXPECT_EQ(zeroUvAreaTriangles(mesh), 1u);
+    add({0.0f, 0.5f}, {1.0f, 0.5f}, {0.25f, 0.5f});  // one line
+    add({0.1f, 0.3f}, {0.2f, 0.7f}, {0.3f, 1.1f});   // v = 4 u - 0.1, rounded to float
+    EXPECT_EQ(zeroUvAreaTriangles(mesh), 3u);
+    add({0.0f, 0.0f}, {1.0f, 0.0f}, {0.5f, 1e-6f});  // a sliver
+    add({0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f});
+    EXPECT_EQ(zeroUvAreaTriangles(mesh), 3u);
+}
+
 TEST(MeshFile, ReadsRealMeshes) {
     if (!std::filesystem::exists(kTestModels))
         GTEST_SKIP() << kTestModels << " is missing: Debian's assimp-testmodels (scripts/setup.sh)";

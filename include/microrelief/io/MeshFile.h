@@ -61,4 +61,12 @@ struct MeshLimits {
 // Error(Runtime) naming the file when memory runs out.
 TriangleMesh loadMeshFile(const std::filesystem::path& file, const MeshLimits& limits = {});
 
+// How many of `mesh`'s triangles have zero area in texture space: their three texture
+// coordinates on one point or one line (|(T1 - T0) x (T2 - T0)| at most 2^-20 of
+// |T1 - T0| |T2 - T0|, the sine of their angle below what float coordinates tell from
+// zero). Over such a triangle the map is read at one point or along one line: one height,
+// or stripes, and no relief of the map's shows (a file with one `vt` for every corner has
+// them all). loadMeshFile reads them as the contract says; microrelief-render warns.
+std::size_t zeroUvAreaTriangles(const TriangleMesh& mesh);
+
 }  // namespace microrelief

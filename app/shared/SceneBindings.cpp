@@ -273,7 +273,8 @@ SceneBinding base() {
         for (const BaseType& type : baseTypes())
             bases += std::string(&type == &baseTypes().front() ? " " : ", ") + type.name + " (" +
                      type.summary + ")";
-        bases += std::string(", ") + kMeshBase + " (the triangle mesh of " + flagName("mesh.file") + ")";
+        bases += std::string(", ") + kMeshBase + " (the triangle mesh of " + flagName("mesh.file") +
+                 "; microrelief-render only so far)";
         CLI::Option* option = app.add_option(flag, slot.text, bases)->capture_default_str();
         for (const std::string& field : baseSizeFields()) {
             // "Radius of the cylinder (default 0.3) or the sphere (default 0.5), world units"

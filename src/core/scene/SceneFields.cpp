@@ -43,16 +43,20 @@ constexpr SceneField kSceneFields[] = {
     {"base", "--base", "B", "base", "plane", "`plane`, `cylinder`, `ellipsoid`, `sphere`, `mesh`",
      "Base surface the map is laid over (u wraps around a curved base's y axis):",
      "the base surface the map is laid over; its sizes are the rows below (see "
-     "[bases.md](bases.md)); `mesh`: the triangle mesh of `--mesh`"},
+     "[bases.md](bases.md)); `mesh`: the triangle mesh of `--mesh` (microrelief-render only "
+     "so far)"},
     // The mesh base's file (ReliefDesc::mesh; not a row of the table of bases).
     {"mesh.file", "--mesh", "FILE", "", "none",
      "OBJ, glTF 2.0 (`.gltf`, `.glb`); up to 524288 triangles",
      "With --base mesh: the triangle mesh the map is laid over (OBJ, glTF 2.0), with texture "
-     "coordinates; --height-scale is then in its units",
+     "coordinates; --height-scale is then in its units (microrelief-render only so far)",
      "with `--base mesh`: the triangle mesh the map is laid over, with texture coordinates "
      "(OBJ, glTF 2.0; read as [bases.md](bases.md#the-mesh) says); `--height-scale` is then "
-     "in the mesh's units. Not yet with shadows, `--albedo FILE`, a method other than "
-     "`multilevel`, `--pixel-error`, `--tile`, `--animate`, `--model`, `--light-position`"},
+     "in the mesh's units (`-v` prints the mesh's box and the shell's thickness). "
+     "microrelief-render only so far, and not yet with shadows, `--albedo FILE`, a method "
+     "other than `multilevel`, `--pixel-error`, `--tile`, `--animate`, `--model`, "
+     "`--light-position`, a `--view` other than `shaded` and `normal`, camera paths "
+     "(`--turntable`, `--cameras`), `--compare-reference` or `--pyramid-cache`"},
     {"tiles", "--tile", "N,M", "", "1,1", "each a whole number from 1 to 4096",
      "Repeat the map N,M times across the base (N around a curved base), as the N x M larger "
      "image made by repeating it (default 1,1)",

@@ -409,6 +409,22 @@ TEST_F(MeshRelief, AFineGridsInteriorEdgesAreNoWalls) {
     EXPECT_EQ(a.smoothNormalsOff, 0);
 }
 
+// A shell thinner than float resolves against the eye's distance (s H from 1e-9 to 3e-8 of
+// it: every t of a piece gives one lambda in float): the flat grid from 40 degrees and the
+// tube, each normal the reference's (a new-user review found every normal inverted on a unit
+// box at --height-scale 1e-9, speckled at 3e-8: a piece's ends' lambdas equal, its entry was
+// taken at t = 0, the mesh seen from below). Seen red without base_mesh.glsl's
+// mr_meshForward: the grid at 1e-9 2112 normals of 2112 off (3.14 rad), the tube at 3e-8 1177
+// of 1416.
+TEST_F(MeshRelief, AShellThinnerThanFloatResolvesKeepsItsNormals) {
+    const HeightMap grid = seamless(synth::valueNoise(256, 128, 9.0, 4, 7));
+    expectAgreement(compare(planeGridMesh(8, 1.0f, 1.0f), grid, 1e-9, {0.0, 0.75, 0.95},
+                            {0.0, 0.0, 0.0}, "thin"));
+    const HeightMap tube = seamless(synth::valueNoise(128, 64, 7.0, 4, 11));
+    expectAgreement(compare(cylinderTubeMesh(24, 4, 0.3f, 1.0f), tube, 3e-8, {0.35, 0.3, 1.3},
+                            {0.0, 0.0, 0.0}, "thin-tube"));
+}
+
 // The biquadratic last level (the B-spline, C1: no crease at the cells' edges), the same
 // thresholds: the flat grid, the folded prisms and the tube.
 TEST_F(MeshRelief, BiquadraticAFlatGridIsTheReferencesPixelByPixel) {

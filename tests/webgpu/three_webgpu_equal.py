@@ -32,6 +32,10 @@ relief may differ by what the mesh differs by, plus a margin (thresholds and wha
 at LIT_VIEWS below). With selfShadow (SELF_SHADOW_VIEWS): the library's hard self-shadow towards
 three's directional and point lights in both entries' standard materials, held to LIMITS.
 
+Cast (CAST_VIEWS): the relief in both entries' standard materials casting into a directional
+light's shadow map (three's WebGPU shadow pass draws it with the material's depthNode) onto
+three's own square through it, against three's own mesh of the map casting in the same scene.
+
 Picks (comparePicks): in three scenes (the plane, perspective; the plane turned, scaled and
 moved, orthographic, biquadratic; the cylinder) three's Raycaster through every pixel's
 centre on the WebGPU entry's Relief against the WebGL entry's Relief of the same map and
@@ -43,7 +47,7 @@ map's twin memory freed by its dispose. Thresholds at PICK_EQUAL below.
 Usage: three_webgpu_equal.py --package DIR (a built microrelief-three: its src/ and
 generated/) [--three DIR (three's package; default the package's node_modules/three)]
 [--chromium EXE] [--out DIR (VIEW_BASE.png: WebGL | WebGPU | differing pixels; lit_ and mesh_
-VIEW_BASE_ROUGHNESS.png, litShadow_VIEW_BASE.png)] [--all] [--only refusals|views|albedo|lit|picks (one part alone)]
+VIEW_BASE_ROUGHNESS.png, litShadow_, cast_ and castMesh_VIEW_BASE.png)] [--all] [--only refusals|views|albedo|lit|cast|picks (one part alone)]
 Exit status 0: equal within the thresholds; 1: not, or a program missing; 77: skipped (chromium
 missing and MICRORELIEF_ALLOW_MISSING_BROWSER=1). ctest three.webgpu (label three).
 """
@@ -106,6 +110,23 @@ ALBEDO_VIEWS = (("oblique", "bilinear", "plane", "shadingAlbedo"), ("round", "bi
 # (measured: 1 477 of 6 192 and 653 of 5 655).
 SELF_SHADOW_VIEWS = (("oblique", "bilinear", "plane"), ("round", "biquadratic", "cylinder"))
 SELF_SHADOWED = 0.05
+# The relief casting into three's shadow map: a directional light's (the raking light of the
+# self-shadow's scenes, at 8 times its intensity), BasicShadowMap (the nearest texel: no filter
+# of three's own between the two renderers), on three's own grey square through the relief at a
+# height inside its range (compare.js: setUp), where the relief's traced bumps cast their
+# shadows (its proxy box would shadow the whole square); the relief lit as in LIT_VIEWS at
+# roughness 1 and not receiving. As the lit views, against three's own mesh of the map casting
+# in the same scene (measured: bit-identical). The two entries write the shadow map's depth
+# differently (WebGL's ReliefDepthMaterial packs it into RGBA8, WebGPU writes depth32float), so
+# a ground pixel whose depth from the light is within that rounding of the relief's (where the
+# square meets the surface) may flip between lit and shadowed, which is the whole light there
+# (up to 51 levels): the largest difference is not held, the mean and the pixels over 2 are
+# (CAST_MARGINS over the mesh's). Measured: 4 pixels apart (0.03 %), mean 0.016. The scene must
+# test it: the relief's shadow darkens at least CAST_SHADOWED of the pixels of the WebGL picture
+# against the same scene with the relief not casting.
+CAST_VIEWS = (("oblique", "bilinear", "plane"),)
+CAST_MARGINS = {"meanDiff": 0.05, "differingFraction": 0.001}
+CAST_SHADOWED = 0.02
 LIT_MARGINS = {"meanDiff": 0.05, "maxDiff": 2, "differingFraction": 0.002}
 LIT_ROUGH_LIMITS = {"meanDiff": 2, "maxDiff": 128, "differingFraction": 0.12}
 # What the WebGPU entry says where it cannot draw (one line each, then the page draws on):
@@ -191,7 +212,7 @@ def main():
     parser.add_argument("--chromium", default="chromium")
     parser.add_argument("--out", help="where to write VIEW_BASE.png")
     parser.add_argument("--all", action="store_true", help="the ellipsoid too (slow on SwiftShader)")
-    parser.add_argument("--only", choices=("refusals", "views", "albedo", "lit", "picks"), help="one part of the check alone")
+    parser.add_argument("--only", choices=("refusals", "views", "albedo", "lit", "cast", "picks"), help="one part of the check alone")
     args = parser.parse_args()
     package, three = pathlib.Path(args.package), pathlib.Path(args.three)
     lacking = [] if shutil.which(args.chromium) else [f"no chromium ('{args.chromium}' not found: Debian package chromium)"]
@@ -308,9 +329,32 @@ def main():
             if out:
                 (out / f"litShadow_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
             why = verdict(result["stats"])
-            if result["stats"]["selfShadowed"] < SELF_SHADOWED * result["stats"]["reliefGl"]:
-                why.append(f"the self-shadow darkens {result['stats']['selfShadowed']} pixels (< {SELF_SHADOWED:.0%} of the relief's: the scene tests little)")
+            if result["stats"]["shadowed"] < SELF_SHADOWED * result["stats"]["reliefGl"]:
+                why.append(f"the self-shadow darkens {result['stats']['shadowed']} pixels (< {SELF_SHADOWED:.0%} of the relief's: the scene tests little)")
             print(f"selfShadow {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
+            status = status or (1 if why else 0)
+        for view, interpolation, base in CAST_VIEWS if runs("cast") else ():
+            measured = {}
+            for kind in ("castMesh", "cast"):
+                answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, {kind!r}, 1)")
+                if "exceptionDetails" in answer:
+                    details = answer["exceptionDetails"]
+                    print(f"{kind} {view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
+                    status = 1
+                    break
+                result = json.loads(answer["result"]["value"])
+                measured[kind] = result["stats"]
+                if out:
+                    (out / f"{kind}_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
+            if len(measured) < 2:
+                continue
+            relief, mesh = measured["cast"], measured["castMesh"]
+            why = [f"{k} {relief[k]:.4g} > {mesh[k]:.4g} + {margin}" for k, margin in CAST_MARGINS.items() if relief[k] > mesh[k] + margin]
+            if relief["hitDisagree"] > HIT_DISAGREE_FRACTION * relief["pixels"]:
+                why.append(f"hit/miss disagree at {relief['hitDisagree']} pixels (> {HIT_DISAGREE_FRACTION:.1%})")
+            if relief["shadowed"] < CAST_SHADOWED * relief["pixels"]:
+                why.append(f"the relief's shadow darkens {relief['shadowed']} pixels (< {CAST_SHADOWED:.0%}: the scene tests little)")
+            print(f"cast {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} relief {json.dumps(measured['cast'])} mesh {json.dumps(measured['castMesh'])}")
             status = status or (1 if why else 0)
         for view, interpolation, base, model in PICK_VIEWS if runs("picks") else ():
             answer = evaluate(f"comparePicks({view!r}, {interpolation!r}, {base!r}, {'true' if model else 'false'})")

@@ -312,6 +312,31 @@ function tracedDepth(builder, relief, depth) {
     return select(perspective.equal(1), viewZToLogarithmicDepth(clamped.mul(cameraFar).negate(), cameraNear, cameraFar), clamped);
 }
 
+// The relief's depth as `material`'s depthNode: in the material's own pass `material._mrDepth`
+// (its setup's, from the trace of its pixel), in any other (three's shadow pass: its depth
+// material, isShadowPassMaterial, draws each caster with the caster material's depthNode,
+// Renderer._getShadowNodes) the relief traced again from that pass's camera (castDepth).
+function reliefDepth(material) {
+    return Fn((builder) => (builder.material === material ? material._mrDepth : castDepth(builder)))();
+}
+
+// The relief in three's shadow pass for a light (a directional or spot light's camera, a point
+// light's cube faces), as the WebGL entry's ReliefDepthMaterial and ReliefDistanceMaterial
+// draw it: each shadow-map texel's ray from the light's camera traced (mrTraceHit: the relief's
+// uniforms are that camera's, Relief.onBeforeRender given it; the map's colours not read), the
+// texel discarded where it shows nothing or where the traversal ran out of its budget (no
+// shadow from a ray that did not finish, three_material.glsl's MR_SHADOW_PASS), its depth
+// the hit's, as the relief's own pass writes it (tracedDepth).
+function castDepth(builder) {
+    const relief = drawnRelief(builder, 'relief material');
+    const hit = glue(variantOf(relief), 'mrTraceHit', {...traceInputs(builder, relief), ...albedoInputs(null),
+                                                        worldToCamera: reliefUniform('mrWorldToCamera', relief.uniforms.mrWorldToCamera.value)}).toVar('mrCast');
+    If(hit.element(0).w.lessThan(0).or(hit.element(1).w.greaterThan(0.5)), () => {
+        Discard();
+    });
+    return tracedDepth(builder, relief, hit.element(0).w);
+}
+
 // The library's own shading, as microrelief-render draws it and as the WebGL entry's
 // ReliefShadingMaterial does: one directional light (`lightDirection`, world, towards the
 // light), the map's colours (`albedoMap`, loadAlbedo's) or a grey `albedo` (linear), the hard
@@ -390,9 +415,10 @@ const kHit = property('mat4', 'mrHit');
 // `albedoMap` (loadAlbedo's texture) multiplies three's diffuse colour by the map's colours,
 // filtered over the pixel's footprint as in WebGL. `selfShadow`: the library's exact hard
 // shadow of the relief on itself towards each of three's directional, point and spot lights
-// (ReliefLightingModel below), on top of three's shadow maps, as the WebGL entry's. Not yet:
-// three's shadow maps (the relief neither casts into them nor is its lookup biased as the
-// WebGL entry's: docs/three.md).
+// (ReliefLightingModel below), on top of three's shadow maps, as the WebGL entry's. It casts
+// into three's shadow maps (depthNode: reliefDepth). Not yet: three's shadow maps received as
+// the WebGL entry receives them (the lookup is at the hit, positionWorld, but not biased by the
+// map's texel: docs/three.md).
 export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
     constructor(parameters = {}) {
         requireSupportedThree();
@@ -406,6 +432,10 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
         this.isReliefMaterial = true;
         this.relief = null;
         this.side = THREE.DoubleSide;  // the faces that run are chosen per draw (mrFaces)
+        this.shadowSide = THREE.DoubleSide;  // in three's shadow passes too (castDepth)
+        // The depth: this material's pass's (the trace of kHit, setup below) or, in three's
+        // shadow pass, the relief traced from the light's camera (castDepth).
+        this.depthNode = reliefDepth(this);
         // The surface three lights is the hit (kHit, traced by setupClipping below), in the
         // fragment stage: its view position (three's positionViewDirection follows from it:
         // normalize(-position), or (0, 0, 1) for an orthographic camera, as three's WebGL
@@ -452,7 +482,7 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
         // mrTraceHit left), the same textures' nodes (one binding each).
         this._mrSelfShadow = this.selfShadow ?
             (light) => glue(variant, 'mrSelfShadow', {heights: inputs.heights, windows: inputs.windows, cameraToWorld: u('mrCameraToWorld'), light}, entries) : null;
-        this.depthNode = tracedDepth(builder, relief, kHit.element(0).w);
+        this._mrDepth = tracedDepth(builder, relief, kHit.element(0).w);
         this.normalNode = kHit.element(1).xyz;
         return super.setup(builder);
     }

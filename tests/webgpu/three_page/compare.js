@@ -44,7 +44,14 @@ const kViews = {
 function setUp(T, view, relief, {withBox = true} = {}) {
     const scene = new T.Scene();
     scene.add(relief);
-    if (relief.isLit) addLights(T, scene, relief.raking);
+    if (relief.isLit) addLights(T, scene, relief.raking, relief.casting);
+    if (relief.casting) {  // three's own square through the relief, which casts its shadow on it
+        const ground = new T.Mesh(new T.PlaneGeometry(1, 0.75).rotateX(-Math.PI / 2), new T.MeshStandardMaterial({color: 0xa0a0a0, roughness: 1}));
+        ground.position.y = 0.045;
+        ground.receiveShadow = true;
+        relief.castShadow = relief.casting !== 'off';
+        scene.add(ground);
+    }
     if (withBox) {
         const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
         box.position.set(0.0, 0.02, 0.05);  // half buried: the relief's depth draws the line between them
@@ -84,7 +91,7 @@ const light = new THREE.Vector3(-0.45, 0.8, -0.35).normalize();
 // (the self-shadow's scenes: long shadows): on the plane 12 degrees above it, on the cylinder
 // (`raking` 'cylinder': its axis is y) from 20 degrees off its axis, towards the camera.
 const kLit = {color: 0xc8b8a0, roughness: 0.55, metalness: 0.15};
-function addLights(T, scene, raking = null) {
+function addLights(T, scene, raking = null, casting = false) {
     const sun = new T.DirectionalLight(0xfff4e0, 2.5);
     sun.position.set(-0.9, 1.6, -0.7);
     const lamp = new T.PointLight(0x9fb8ff, 0.06, 0, 2);
@@ -95,6 +102,12 @@ function addLights(T, scene, raking = null) {
         if (raking === 'cylinder') low.position.set(0.93, 0.1, -0.37);
         else low.position.set(0.95, 0.21, 0.2);
         scene.add(low, low.target);
+        if (casting) {  // its shadow map (BasicShadowMap: nearest texel, no filter of three's own), bright enough to see
+            low.castShadow = true;
+            low.intensity = 8;
+            Object.assign(low.shadow.camera, {left: -0.7, right: 0.7, bottom: -0.7, top: 0.7, near: 0.05, far: 3});
+            low.shadow.mapSize.set(512, 512);
+        }
     }
 }
 
@@ -136,7 +149,7 @@ function albedoMap(T) {
 // light too (addLights); `roughness` the standard materials'.
 function reliefMaterial(E, kind, roughness) {
     const T = E === gl ? THREE : GPU, map = kind.endsWith('Albedo') ? {albedoMap: albedoMap(T)} : {};
-    if (kind.startsWith('lit'))
+    if (kind.startsWith('lit') || kind.startsWith('cast'))
         return new (E === gl ? gl.ReliefStandardMaterial : wg.ReliefStandardNodeMaterial)({...kLit, roughness, ...map, selfShadow: kind === 'litShadow'});
     return new (E === gl ? gl.ReliefShadingMaterial : wg.ReliefShadingNodeMaterial)({lightDirection: light, shadows: 'hard', ...map});
 }
@@ -146,20 +159,33 @@ function reliefMaterial(E, kind, roughness) {
 // wide: too flat to shadow anything but near the terminator), 0.4.
 const heightScaleOf = (base, kind) => (kind.startsWith('litShadow') || kind === 'litRaking') && base !== 'plane' ? 0.4 : 0.08;
 
+// What a picture of `kind` shows (reliefMaterial): the relief, or for 'mesh' and 'castMesh' three's
+// own mesh of the map, lit where `kind` asks, with the raking light, casting its shadow ('cast',
+// 'castMesh': the raking light's shadow map on three's square through the relief, setUp;
+// 'castOff': the same scene with the relief not casting).
+function subject(T, relief, kind, base, roughness) {
+    const shown = kind === 'mesh' || kind === 'castMesh' ? displacedMesh(T, roughness) : relief;
+    shown.isLit = kind.startsWith('lit') || kind.startsWith('mesh') || kind.startsWith('cast');
+    shown.raking = ['litShadow', 'litRaking', 'cast', 'castMesh', 'castOff'].includes(kind) ? base : null;
+    shown.casting = kind.startsWith('cast') && (kind === 'castOff' ? 'off' : true);
+    return shown;
+}
+
 async function drawWebGL(view, interpolation, base = 'plane', kind = 'shading', roughness = kLit.roughness) {
     const {webgl: renderer} = await renderers(!!kViews[view].logarithmic);
     const {w, h, samples} = heights();
     const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
     const relief = new gl.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(gl, kind, roughness)});
-    relief.isLit = kind.startsWith('lit');
-    relief.raking = kind === 'litShadow' || kind === 'litRaking' ? base : null;
-    const {scene, camera} = setUp(THREE, view, kind === 'mesh' ? displacedMesh(THREE, roughness) : relief, {withBox: kind !== 'mesh'});
+    const {scene, camera} = setUp(THREE, view, subject(THREE, relief, kind, base, roughness), {withBox: !kind.startsWith('mesh') && !kind.startsWith('cast')});
+    renderer.shadowMap.enabled = kind.startsWith('cast');
+    renderer.shadowMap.type = THREE.BasicShadowMap;
     const target = new THREE.WebGLRenderTarget(W, H);
     if (kViews[view].viewport) target.viewport.set(...kViews[view].viewport);  // GL's y from the bottom
     renderer.setRenderTarget(target);
     renderer.setClearColor(0x000000, 0);
     renderer.clear();
     renderer.render(scene, camera);
+    renderer.shadowMap.enabled = false;
     renderer.setRenderTarget(null);
     const pixels = new Uint8Array(4 * W * H);
     renderer.readRenderTargetPixels(target, 0, 0, W, H, pixels);  // rows from the bottom
@@ -173,9 +199,9 @@ async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading',
     const {w, h, samples} = heights();
     const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
     const relief = new wg.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(wg, kind, roughness)});
-    relief.isLit = kind.startsWith('lit');
-    relief.raking = kind === 'litShadow' || kind === 'litRaking' ? base : null;
-    const {scene, camera} = setUp(GPU, view, kind === 'mesh' ? displacedMesh(GPU, roughness) : relief, {withBox: kind !== 'mesh'});
+    const {scene, camera} = setUp(GPU, view, subject(GPU, relief, kind, base, roughness), {withBox: !kind.startsWith('mesh') && !kind.startsWith('cast')});
+    renderer.shadowMap.enabled = kind.startsWith('cast');
+    renderer.shadowMap.type = GPU.BasicShadowMap;
     const target = new GPU.RenderTarget(W, H);
     if (kViews[view].viewport) {  // the same pixels: WebGPU's y from the top
         const [x, y, w, h] = kViews[view].viewport;
@@ -195,6 +221,7 @@ async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading',
     renderer.setClearColor(0x000000, 0);
     renderer.clear();
     renderer.render(scene, camera);
+    renderer.shadowMap.enabled = false;
     const read = await renderer.readRenderTargetPixelsAsync(target, 0, 0, W, H);  // rows from the top
     renderer.setRenderTarget(null);
     document.documentElement.dataset.api = 'webgpu';
@@ -231,19 +258,21 @@ async function compareEntries(view, interpolation, base, kind = 'shading', rough
             image.data.set([v, v, v, 255], 4 * (row * 3 * W + 2 * W + x));
         }
     ctx.putImageData(image, 0, 0);
-    // The self-shadow's scenes: the pixels it darkens (by more than 8 in a channel) in the WebGL
-    // picture, against the same without it (the scene tests the shadow only where there are many).
-    let selfShadowed;
-    if (kind === 'litShadow') {
-        const c = await drawWebGL(view, interpolation, base, 'litRaking', roughness);
-        selfShadowed = 0;
-        for (let k = 0; k < a.length; k += 4) selfShadowed += Math.max(c[k] - a[k], c[k + 1] - a[k + 1], c[k + 2] - a[k + 2]) > 8;
+    // The shadows' scenes: the pixels the shadow darkens (by more than 8 in a channel) in the
+    // WebGL picture, against the same without it (the self-shadow, the relief's casting): the
+    // scene tests the shadow only where there are many.
+    let shadowed;
+    const without = {litShadow: 'litRaking', cast: 'castOff'}[kind];
+    if (without) {
+        const c = await drawWebGL(view, interpolation, base, without, roughness);
+        shadowed = 0;
+        for (let k = 0; k < a.length; k += 4) shadowed += Math.max(c[k] - a[k], c[k + 1] - a[k + 1], c[k + 2] - a[k + 2]) > 8;
     }
     const blob = await canvas.convertToBlob({type: 'image/png'});
     const png = btoa(String.fromCharCode(...new Uint8Array(await blob.arrayBuffer())));
     const n = W * H;
     return JSON.stringify({stats: {pixels: n, meanDiff: sum / n, maxDiff: max, differingFraction: differing / n,
-                                   hitsGl, hitsGpu, hitDisagree, reliefGl, selfShadowed}, png});
+                                   hitsGl, hitsGpu, hitDisagree, reliefGl, shadowed}, png});
 }
 
 // The picks (three's Raycaster) of `view`'s scene, the relief alone, through every pixel's

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "microrelief/core/Error.h"
 #include "microrelief/core/base/MeshProxy.h"
 #include "microrelief/core/heightmap/MaxPyramid.h"
@@ -88,8 +90,26 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
     gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, map.width, map.height, 0, GL_RED, GL_FLOAT,
                   map.samples.data());
 
+    // The mesh about its own origin (the middle of its vertices' box, a float): every float
+    // the shader computes from positions (the ray's origin less a corner, the path's
+    // coefficients) is then in the mesh's size rather than in its distance from the file's
+    // origin, where a mesh at x = 1e5 kept 2^-7 of its units (a new-user review: 4.5 % of the
+    // normals speckled at s = 0.01). p - origin is exact in double; rounded to float it moves
+    // by at most 2^-25 of |p - origin|, the mesh's own float resolution at its size (and not
+    // at all where the vertices share the origin's binade, as a mesh far from zero does: both
+    // multiples of that ulp, their difference below 2^24 of it). The proxy and the table are
+    // both built from these positions, so the hulls hold the prisms traced.
+    glm::vec3 lo = mesh.positions.empty() ? glm::vec3(0.0f) : mesh.positions[0], hi = lo;
+    for (const glm::vec3& p : mesh.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    origin_ = glm::dvec3(glm::vec3(0.5f * lo + 0.5f * hi));
+    TriangleMesh local = mesh;
+    for (glm::vec3& p : local.positions) p = glm::vec3(glm::dvec3(p) - origin_);
+
     // The triangle table (base_mesh.glsl): 8 RGBA32F texels a triangle.
-    proxy_ = buildMeshProxy(mesh, map, heightScale);
+    proxy_ = buildMeshProxy(local, map, heightScale);
     const MeshProxy& proxy = proxy_;
     const int triangles = static_cast<int>(mesh.triangleCount());
     const int rows = (triangles + kTableRow - 1) / kTableRow;
@@ -105,7 +125,7 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
         float* row = &table[static_cast<std::size_t>(k) * 8 * 4];
         const glm::uvec3 v = mesh.triangles[k];
         for (int i = 0; i < 3; ++i) {
-            const glm::vec3 p = mesh.positions[v[i]], n = mesh.normals[v[i]];
+            const glm::vec3 p = local.positions[v[i]], n = mesh.normals[v[i]];
             const glm::vec2 uv = mesh.texCoords[v[i]];
             float* a = row + 4 * i;
             float* m = row + 4 * (3 + i);
@@ -164,11 +184,19 @@ MeshRelief::MeshRelief(const GL& gl, const std::filesystem::path& shaderDir,
 }
 
 void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) const {
+    draw(glm::dmat4(viewProjection), eye);
+}
+
+void MeshRelief::draw(const glm::dmat4& viewProjection, const glm::dvec3& eye) const {
     const StateGuard saved(gl_);
     gl_.UseProgram(program_.id());
-    gl_.UniformMatrix4fv(viewProjection_, 1, GL_FALSE, &viewProjection[0][0]);
-    gl_.Uniform3f(eye_, static_cast<float>(eye.x), static_cast<float>(eye.y),
-                  static_cast<float>(eye.z));
+    // The mesh's units less origin_ (the constructor): the eye and the projection moved in
+    // double, so that the shader sees the eye in the mesh's size.
+    const glm::mat4 localViewProjection(viewProjection * glm::translate(glm::dmat4(1.0), origin_));
+    const glm::dvec3 localEye = eye - origin_;
+    gl_.UniformMatrix4fv(viewProjection_, 1, GL_FALSE, &localViewProjection[0][0]);
+    gl_.Uniform3f(eye_, static_cast<float>(localEye.x), static_cast<float>(localEye.y),
+                  static_cast<float>(localEye.z));
     const GLuint units[3] = {table_.id(), heights_.id(), windows_.id()};
     for (int i = 0; i < 3; ++i) {
         gl_.ActiveTexture(GL_TEXTURE0 + i);
@@ -189,7 +217,7 @@ void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) co
     // away from the eye) and keeps counter-clockwise counter-clockwise on screen; a mirrored
     // one (a positive determinant) turns it clockwise.
     gl_.CullFace(GL_BACK);
-    gl_.FrontFace(glm::determinant(viewProjection) < 0.0f ? GL_CCW : GL_CW);
+    gl_.FrontFace(glm::determinant(viewProjection) < 0.0 ? GL_CCW : GL_CW);
     // No clipping at the near plane: an eye inside a hull (inside the shell) may have that
     // hull's faces nearer than it, and its rays' hits may be too; clipped, the prism would
     // give no fragment and the pixel would show a later prism's hit. The clip volume's
@@ -206,7 +234,7 @@ void MeshRelief::draw(const glm::mat4& viewProjection, const glm::dvec3& eye) co
     };
     std::uint32_t from = 0;
     // The eye as the shader has it (float), so that the hull holding it is named.
-    for (const std::uint32_t k : hullsThatMayHold(proxy_, glm::dvec3(glm::vec3(eye)))) {
+    for (const std::uint32_t k : hullsThatMayHold(proxy_, glm::dvec3(glm::vec3(localEye)))) {
         drawRange(from, proxy_.firstProxyTriangle[k], true);
         from = proxy_.firstProxyTriangle[k + 1];
         drawRange(proxy_.firstProxyTriangle[k], from, false);

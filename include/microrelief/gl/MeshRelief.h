@@ -77,14 +77,22 @@ public:
 
     // Draws the relief into the bound framebuffer (its viewport), seen through
     // `viewProjection` (mesh units to clip space) from `eye` (mesh units). GL state is
-    // restored after.
+    // restored after. The shader works about origin() (the mesh's box centre): the eye and
+    // the projection are moved there in double. A float viewProjection of a mesh far from the
+    // file's origin has its translation rounded to float there (2^-24 of the distance: at
+    // 1e5 units the hulls drawn up to 0.006 units off the rays the shader traces); pass the
+    // double one.
+    void draw(const glm::dmat4& viewProjection, const glm::dvec3& eye) const;
     void draw(const glm::mat4& viewProjection, const glm::dvec3& eye) const;
 
     // The pyramid's top H (map units): the prisms reach t in [0, H].
     float top() const { return top_; }
     int proxyTriangles() const { return proxyTriangles_; }
-    // The proxy drawn (its hulls' float vertices, each mesh triangle's range of them).
+    // The proxy drawn (its hulls' float vertices, each mesh triangle's range of them), in the
+    // mesh's units less origin().
     const MeshProxy& proxy() const { return proxy_; }
+    // Where the shader's coordinates start: the middle of the vertices' box (a float).
+    glm::dvec3 origin() const { return origin_; }
 
 private:
     const GL& gl_;
@@ -96,6 +104,7 @@ private:
     int proxyTriangles_ = 0, levelCount_ = 0;
     float top_ = 0.0f, heightScale_ = 0.0f;
     glm::vec2 mapSize_{0.0f};
+    glm::dvec3 origin_{0.0};
     GLint viewProjection_ = -1, eye_ = -1;
 };
 

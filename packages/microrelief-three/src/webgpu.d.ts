@@ -87,7 +87,7 @@ export interface ReliefStandardNodeParameters extends MeshStandardNodeMaterialPa
     selfShadow?: boolean;
 }
 
-/** three's MeshStandardNodeMaterial at the traced hit: three's lights, as the WebGL entry's ReliefStandardMaterial (one relief a material so far; it casts into three's shadow maps, and receives them without the WebGL entry's texel bias). */
+/** three's MeshStandardNodeMaterial at the traced hit: three's lights, as the WebGL entry's ReliefStandardMaterial (one relief a material so far; it casts into three's shadow maps and receives them, as the WebGL entry's). */
 export class ReliefStandardNodeMaterial extends MeshStandardNodeMaterial {
     constructor(parameters?: ReliefStandardNodeParameters);
     readonly isReliefMaterial: true;

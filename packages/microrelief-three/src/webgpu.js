@@ -19,8 +19,9 @@
 // textures (read by textureLoad, no sampler) and three's nodes passed to the glue's pixels.
 import * as THREE from 'three/webgpu';
 import * as TSL from 'three/tsl';
-import {cameraFar, cameraNear, cameraWorldMatrix, code, diffuseColor, Discard, Fn, frontFacing, If, lightViewPosition, normalViewGeometry, positionView, positionWorld,
-        property, sampler, screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth, wgslFn} from 'three/tsl';
+import {cameraFar, cameraNear, cameraWorldMatrix, code, context, diffuseColor, Discard, float, Fn, frontFacing, If, lightShadowMatrix, lightViewPosition, normalViewGeometry,
+        normalWorld, positionView, positionWorld, property, reference, sampler, screenCoordinate, select, texture, uniform, vec4, viewport, viewZToLogarithmicDepth,
+        wgslFn} from 'three/tsl';
 
 import {unavailable as wgslUnavailable, wgsl as wgslModules} from '../generated/wgsl.js';
 import * as core from '../generated/relief_core.js';
@@ -108,11 +109,12 @@ export function reachableWgsl(module, roots) {
 // The glue's functions: glsl/webgpu_shading.glsl's mrShadePixel (ReliefShadingNodeMaterial's:
 // returns (colour, depth), depth -1 where the pixel shows nothing), mrTraceHit
 // (ReliefStandardNodeMaterial's: the hit in view space for three's lighting) and mrSelfShadow
-// (its selfShadow: the hard shadow from mrTraceHit's hit towards one of three's lights), which
+// (its selfShadow: the hard shadow from mrTraceHit's hit towards one of three's lights) and
+// mrShadowTexelSize (its shadow lookups' bias: a shadow-map texel's world size), which
 // run relief_three.glsl's functions the WebGL entry's pixel runs (mrNdcOf, mrTraceRay,
 // mrShadeHit) and the library's, translated with the library into each variant's module by
 // naga (scripts/wgsl.mjs).
-const kGlueEntries = ['mrShadePixel', 'mrTraceHit', 'mrSelfShadow'];
+const kGlueEntries = ['mrShadePixel', 'mrTraceHit', 'mrSelfShadow', 'mrShadowTexelSize'];
 
 // The glue functions `entryNames` of a variant (`base`_`interpolation`), called together from
 // one node material: {name: {fn, parameters}}, fn the module's function as a wgslFn, parameters
@@ -238,9 +240,10 @@ export async function createReliefMap(renderer, map, {wrapU = false} = {}) {
 
 // ---- the material and the relief ----
 
-// A relief uniform the node material reads per draw from the relief drawn (Relief.uniforms).
+// A relief uniform the node material reads per draw from the relief drawn, for the draw's
+// camera (Relief.uniformsFor).
 function reliefUniform(name, value) {
-    return uniform(value).onObjectUpdate(({object}) => object.uniforms[name].value);
+    return uniform(value).onObjectUpdate(({object, camera, renderId}) => object.uniformsFor(camera, renderId)[name].value);
 }
 
 // The Relief a relief material is built for (three builds a node material for its object).
@@ -323,7 +326,7 @@ function reliefDepth(material) {
 // The relief in three's shadow pass for a light (a directional or spot light's camera, a point
 // light's cube faces), as the WebGL entry's ReliefDepthMaterial and ReliefDistanceMaterial
 // draw it: each shadow-map texel's ray from the light's camera traced (mrTraceHit: the relief's
-// uniforms are that camera's, Relief.onBeforeRender given it; the map's colours not read), the
+// uniforms are that camera's, Relief.uniformsFor; the map's colours not read), the
 // texel discarded where it shows nothing or where the traversal ran out of its budget (no
 // shadow from a ray that did not finish, three_material.glsl's MR_SHADOW_PASS), its depth
 // the hit's, as the relief's own pass writes it (tracedDepth).
@@ -416,9 +419,8 @@ const kHit = property('mat4', 'mrHit');
 // filtered over the pixel's footprint as in WebGL. `selfShadow`: the library's exact hard
 // shadow of the relief on itself towards each of three's directional, point and spot lights
 // (ReliefLightingModel below), on top of three's shadow maps, as the WebGL entry's. It casts
-// into three's shadow maps (depthNode: reliefDepth). Not yet: three's shadow maps received as
-// the WebGL entry receives them (the lookup is at the hit, positionWorld, but not biased by the
-// map's texel: docs/three.md).
+// into three's shadow maps (depthNode: reliefDepth) and receives them, each lookup moved off
+// the surface by the map's texel as in WebGL (receivedShadow; docs/three.md, "Shadow acne").
 export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
     constructor(parameters = {}) {
         requireSupportedThree();
@@ -452,6 +454,10 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
             [positionWorld, cameraWorldMatrix.mul(vec4(view, 1)).xyz],
             [normalViewGeometry, kHit.element(1).xyz],
         ], null, 'fragment');
+        // three's shadow lookups for each light (its context's getShadow, which three's
+        // AnalyticLightNode asks for the light's shadowed colour): at the hit moved off the
+        // surface by what the map's texel asks for (receivedShadow).
+        this.contextNode.value.getShadow = (lightNode) => this.receivedShadow(lightNode);
     }
 
     // The self-shadow's rays are in the program: another value, another program.
@@ -472,7 +478,9 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
     setup(builder) {
         const relief = drawnRelief(builder, 'ReliefStandardNodeMaterial');
         const u = (name) => reliefUniform(name, relief.uniforms[name].value);
-        const variant = variantOf(relief), entries = this.selfShadow ? ['mrTraceHit', 'mrSelfShadow'] : ['mrTraceHit'];
+        const variant = variantOf(relief), entries = ['mrTraceHit', 'mrShadowTexelSize', ...(this.selfShadow ? ['mrSelfShadow'] : [])];
+        this._mrTexelSize = (inputs) => glue(variant, 'mrShadowTexelSize', inputs, entries);
+        this._mrBasicShadows = builder.renderer.shadowMap.type === THREE.BasicShadowMap;
         const inputs = traceInputs(builder, relief);
         // The trace, once a pixel, into a property of its own (kHit): three builds the
         // overrides in a context of their own, where a variable of the trace would be
@@ -485,6 +493,23 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
         this._mrDepth = tracedDepth(builder, relief, kHit.element(0).w);
         this.normalNode = kHit.element(1).xyz;
         return super.setup(builder);
+    }
+
+    // three's shadow of `lightNode`'s light at the hit (the light's colour times its shadow map's
+    // lookup, AnalyticLightNode's shadowColorNode), looked up at the hit moved along its normal
+    // by the map's reach times its texel's world size there, as the WebGL entry's
+    // three_material.glsl moves vDirectionalShadowCoord, vSpotLightCoord and vPointShadowCoord
+    // (docs/three.md, "Shadow acne"): half a texel's diagonal for BasicShadowMap's nearest
+    // texel, three's PCF radius (shadow.radius) plus a diagonal for its filtered lookups. How:
+    // three's ShadowNode looks up at its context's shadowPositionWorld where there is one
+    // (ShadowBaseNode.setupShadowPosition), to which it adds the light's normalBias as on any
+    // mesh; the light's shadowed colour is built in a context that gives it, per light.
+    receivedShadow(lightNode) {
+        const light = lightNode.light, shadow = light.shadow;
+        const reach = this._mrBasicShadows ? float(Math.SQRT1_2) : reference('radius', 'float', shadow).add(Math.SQRT2);
+        const texel = this._mrTexelSize({m: lightShadowMatrix(light), p: positionWorld, mapSize: reference('mapSize', 'vec2', shadow),
+                                         point: float(light.isPointLight ? 1 : 0)});
+        return context(lightNode.shadowColorNode, {shadowPositionWorld: positionWorld.add(normalWorld.mul(reach.mul(texel)))});
     }
 
     // three's physical lighting, each direct light dimmed by the self-shadow (selfShadow).
@@ -604,10 +629,25 @@ export class Relief extends THREE.Mesh {
             // A WebGLRenderer cannot compile a node material (three's own error then says
             // nothing of why): this one line instead, thrown out of its render.
             if (renderer.isWebGLRenderer) throw new TypeError(`Relief: ${kWebGLRendererHere}`);
+        };
+    }
+
+    // The uniforms for a draw with `camera` in render call `renderId` (three's NodeFrame's):
+    // the rays, the camera-relative matrices, the faces that run, the depth's matrix
+    // (reliefFrame, boxFaces, depthMatrix), made once a camera and render call, when the
+    // uniforms are read for a draw (reliefUniform), not in onBeforeRender: three's WebGPU
+    // renderer renders the shadow maps a receiving object's lights need after its
+    // onBeforeRender and before its uniforms are read (its lights' updateBefore), and the
+    // relief is drawn there too, with each light's camera.
+    uniformsFor(camera, renderId) {
+        if (this._framedCamera !== camera || this._framedRender !== renderId) {
             const rays = reliefFrame(this, camera, this.uniforms);
             this.uniforms.mrFaces.value = boxFaces(this.box, this.matrixWorld, camera, rays.range);
             depthMatrix(this.uniforms, camera, rays.perspective);
-        };
+            this._framedCamera = camera;
+            this._framedRender = renderId;
+        }
+        return this.uniforms;
     }
 
     // The map's and the base's uniforms, the box; the material's program again where the

@@ -45,12 +45,19 @@ function setUp(T, view, relief, {withBox = true} = {}) {
     const scene = new T.Scene();
     scene.add(relief);
     if (relief.isLit) addLights(T, scene, relief.raking, relief.casting);
-    if (relief.casting) {  // three's own square through the relief, which casts its shadow on it
+    if (relief.casting === 'ground' || relief.casting === 'off') {  // three's own square through the relief, which casts its shadow on it
         const ground = new T.Mesh(new T.PlaneGeometry(1, 0.75).rotateX(-Math.PI / 2), new T.MeshStandardMaterial({color: 0xa0a0a0, roughness: 1}));
         ground.position.y = 0.045;
         ground.receiveShadow = true;
         relief.castShadow = relief.casting !== 'off';
         scene.add(ground);
+    } else if (relief.casting) {  // 'self', 'unreceived': the relief casts; a ball of three's own too, low over it
+        const ball = new T.Mesh(new T.SphereGeometry(0.04, 24, 12), new T.MeshStandardMaterial({color: 0x30a050, roughness: 1}));
+        ball.position.set(0.25, 0.09, 0);
+        ball.castShadow = true;
+        relief.castShadow = true;
+        relief.receiveShadow = relief.casting === 'self';  // the relief receives the map: its own shadows and the ball's
+        scene.add(ball);
     }
     if (withBox) {
         const box = new T.Mesh(new T.BoxGeometry(0.1, 0.1, 0.1), new T.MeshBasicMaterial({color: 0x3366cc}));
@@ -149,7 +156,7 @@ function albedoMap(T) {
 // light too (addLights); `roughness` the standard materials'.
 function reliefMaterial(E, kind, roughness) {
     const T = E === gl ? THREE : GPU, map = kind.endsWith('Albedo') ? {albedoMap: albedoMap(T)} : {};
-    if (kind.startsWith('lit') || kind.startsWith('cast'))
+    if (['lit', 'cast', 'receive'].some((k) => kind.startsWith(k)))
         return new (E === gl ? gl.ReliefStandardMaterial : wg.ReliefStandardNodeMaterial)({...kLit, roughness, ...map, selfShadow: kind === 'litShadow'});
     return new (E === gl ? gl.ReliefShadingMaterial : wg.ReliefShadingNodeMaterial)({lightDirection: light, shadows: 'hard', ...map});
 }
@@ -162,12 +169,14 @@ const heightScaleOf = (base, kind) => (kind.startsWith('litShadow') || kind === 
 // What a picture of `kind` shows (reliefMaterial): the relief, or for 'mesh' and 'castMesh' three's
 // own mesh of the map, lit where `kind` asks, with the raking light, casting its shadow ('cast',
 // 'castMesh': the raking light's shadow map on three's square through the relief, setUp;
-// 'castOff': the same scene with the relief not casting).
+// 'castOff': the same scene with the relief not casting; 'receive', 'receiveMesh': the relief
+// or the mesh casting and receiving that map, with a ball of three's own casting too;
+// 'receiveOff': the relief not receiving it).
 function subject(T, relief, kind, base, roughness) {
-    const shown = kind === 'mesh' || kind === 'castMesh' ? displacedMesh(T, roughness) : relief;
-    shown.isLit = kind.startsWith('lit') || kind.startsWith('mesh') || kind.startsWith('cast');
-    shown.raking = ['litShadow', 'litRaking', 'cast', 'castMesh', 'castOff'].includes(kind) ? base : null;
-    shown.casting = kind.startsWith('cast') && (kind === 'castOff' ? 'off' : true);
+    const shown = ['mesh', 'castMesh', 'receiveMesh'].includes(kind) ? displacedMesh(T, roughness) : relief;
+    shown.isLit = ['lit', 'mesh', 'cast', 'receive'].some((k) => kind.startsWith(k));
+    shown.raking = ['litShadow', 'litRaking', 'cast', 'castMesh', 'castOff', 'receive', 'receiveMesh', 'receiveOff'].includes(kind) ? base : null;
+    shown.casting = {cast: 'ground', castMesh: 'ground', castOff: 'off', receive: 'self', receiveMesh: 'self', receiveOff: 'unreceived'}[kind] ?? null;
     return shown;
 }
 
@@ -176,8 +185,8 @@ async function drawWebGL(view, interpolation, base = 'plane', kind = 'shading', 
     const {w, h, samples} = heights();
     const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
     const relief = new gl.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(gl, kind, roughness)});
-    const {scene, camera} = setUp(THREE, view, subject(THREE, relief, kind, base, roughness), {withBox: !kind.startsWith('mesh') && !kind.startsWith('cast')});
-    renderer.shadowMap.enabled = kind.startsWith('cast');
+    const {scene, camera} = setUp(THREE, view, subject(THREE, relief, kind, base, roughness), {withBox: !['mesh', 'cast', 'receive'].some((k) => kind.startsWith(k))});
+    renderer.shadowMap.enabled = kind.startsWith('cast') || kind.startsWith('receive');
     renderer.shadowMap.type = THREE.BasicShadowMap;
     const target = new THREE.WebGLRenderTarget(W, H);
     if (kViews[view].viewport) target.viewport.set(...kViews[view].viewport);  // GL's y from the bottom
@@ -199,8 +208,8 @@ async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading',
     const {w, h, samples} = heights();
     const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
     const relief = new wg.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(wg, kind, roughness)});
-    const {scene, camera} = setUp(GPU, view, subject(GPU, relief, kind, base, roughness), {withBox: !kind.startsWith('mesh') && !kind.startsWith('cast')});
-    renderer.shadowMap.enabled = kind.startsWith('cast');
+    const {scene, camera} = setUp(GPU, view, subject(GPU, relief, kind, base, roughness), {withBox: !['mesh', 'cast', 'receive'].some((k) => kind.startsWith(k))});
+    renderer.shadowMap.enabled = kind.startsWith('cast') || kind.startsWith('receive');
     renderer.shadowMap.type = GPU.BasicShadowMap;
     const target = new GPU.RenderTarget(W, H);
     if (kViews[view].viewport) {  // the same pixels: WebGPU's y from the top
@@ -262,7 +271,7 @@ async function compareEntries(view, interpolation, base, kind = 'shading', rough
     // WebGL picture, against the same without it (the self-shadow, the relief's casting): the
     // scene tests the shadow only where there are many.
     let shadowed;
-    const without = {litShadow: 'litRaking', cast: 'castOff'}[kind];
+    const without = {litShadow: 'litRaking', cast: 'castOff', receive: 'receiveOff'}[kind];
     if (without) {
         const c = await drawWebGL(view, interpolation, base, without, roughness);
         shadowed = 0;

@@ -532,23 +532,17 @@ float mr_meshWalkPiece(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIE
 // turnL = num' c - num c', lambda' = turnL / c^2; MeshTracer's forward). By la <= lb unless the
 // two are equal to float's rounding (2^-16 of their size: a shell thinner than float resolves
 // against the eye's distance, s H below about 2^-16 |lambda V|, where every t of a piece gives
-// one lambda in float): then by the sign of turnL in the middle of the piece, exact where it is
-// clear of its evaluation's rounding (2^-12 of the sum of the products' sizes, as
-// mr_polyKeepsSign has it): turnL keeps one sign on the piece (cut at its roots). Its terms are
-// products of the path's coefficients, whose t-terms are computed from s-scaled vectors, not as
-// differences of the large ones: in a thin shell they keep their relative precision where
-// num / c does not. Only which end is the piece's entry depends on it, not a hit's lambda.
-bool mr_meshForward(mr_MeshPath path, float turnL[5], float la, float lb, float tm) {
+// one lambda in float): then by the sign of lambda' in the middle of the piece, where it is
+// clear of its rounding. turnL keeps one sign on the piece (cut at its roots), and at tm it is
+// num'(tm) c(tm) - num(tm) c'(tm): each factor's t-terms come from s-scaled vectors, not as
+// differences of large ones, so in a thin shell they keep their relative precision where
+// num / c does not; clear: beyond 2^-12 of |num' c| + |num c'| (each factor a few ulps off).
+// Only which end is the piece's entry depends on it, never a hit's lambda.
+bool mr_meshForward(mr_MeshPath path, float la, float lb, float tm) {
     if (abs(lb - la) > (abs(la) + abs(lb)) * (1.0 / 65536.0)) return la <= lb;
-    float cAbs[5], numAbs[5];
-    for (int i = 0; i < 5; ++i) {
-        cAbs[i] = abs(path.c[i]);
-        numAbs[i] = abs(path.num[i]);
-    }
-    float size = mr_polyValue(mr_polyPlus(mr_polyTimes(mr_polyDerivative(numAbs), cAbs),
-                                          mr_polyTimes(numAbs, mr_polyDerivative(cAbs)), 1.0), tm);
-    float d = mr_polyValue(turnL, tm);
-    return abs(d) > size * (1.0 / 4096.0) ? d > 0.0 : la <= lb;
+    float a = mr_polyValue(mr_polyDerivative(path.num), tm) * mr_polyValue(path.c, tm);
+    float b = mr_polyValue(path.num, tm) * mr_polyValue(mr_polyDerivative(path.c), tm);
+    return abs(a - b) > (abs(a) + abs(b)) * (1.0 / 4096.0) ? a > b : la <= lb;
 }
 
 // One piece's first hit, kept in `best` when it is before the best so far (MeshTracer::
@@ -733,7 +727,7 @@ float mr_meshTraceTriangle(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICROR
         }
         float limit = hit.surface != MR_MESH_NONE ? min(hit.lambda, lambdaMax) : lambdaMax;
         if (max(la, lb) < 0.0 || min(la, lb) > limit) continue;
-        bool forward = mr_meshForward(path, turnL, la, lb, tm);
+        bool forward = mr_meshForward(path, la, lb, tm);
         mr_MeshPiece piece = mr_MeshPiece(forward ? ta : tb, forward ? tb : ta, forward ? la : lb,
                                           forward ? lb : la, false, vec3(0.0), vec3(0.0),
                                           forward ? kinds[i] : kinds[i + 1]);

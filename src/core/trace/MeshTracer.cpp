@@ -361,7 +361,6 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
         plus(plus(scaled(path.c, path.uv0.x), scaled(path.n1, du1.x)), scaled(path.n2, du2.x));
     const MeshPolynomial nv =
         plus(plus(scaled(path.c, path.uv0.y), scaled(path.n1, du1.y)), scaled(path.n2, du2.y));
-    const MeshPolynomial turnL = turnNumerator(path.num, path.c);  // lambda' c^2
     struct Source {
         MeshPolynomial p;
         MeshSurface reason;
@@ -372,7 +371,7 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
         {n0, MeshSurface::Wall, 0},
         {path.n1, MeshSurface::Wall, 1},
         {path.n2, MeshSurface::Wall, 2},
-        {turnL, MeshSurface::Fold},
+        {turnNumerator(path.num, path.c), MeshSurface::Fold},
         {turnNumerator(n0, path.c), MeshSurface::Top},
         {turnNumerator(path.n1, path.c), MeshSurface::Top},
         {turnNumerator(path.n2, path.c), MeshSurface::Top},
@@ -410,20 +409,15 @@ int MeshTracer::pieces(const Ray& ray, std::size_t k, double lambdaMax, PrismPat
         if (std::max(la, lb) < lambdaMin || std::min(la, lb) > lambdaMax) continue;
         // A = ta where lambda grows from ta to tb: by la <= lb, unless the two are equal to
         // rounding (a shell thinner than the eye's distance resolves: every t of the piece one
-        // lambda), where the sign of lambda' = turnL / c^2 in the middle decides, when it is
-        // clear of turnL's rounding (base_mesh.glsl's mr_meshForward, the same rule; 2^-16
-        // and 2^-12 there, 2^-40 and 2^-30 in double). turnL keeps one sign on the piece.
+        // lambda), where the sign of lambda' = (num' c - num c') / c^2 in the middle decides,
+        // when it is clear of the factors' rounding (base_mesh.glsl's mr_meshForward, the same
+        // rule; 2^-16 and 2^-12 there, 2^-40 and 2^-30 in double). It keeps one sign on the
+        // piece (cut at the roots of num' c - num c').
         bool forward = la <= lb;
         if (std::abs(lb - la) <= (std::abs(la) + std::abs(lb)) * 0x1p-40) {
-            MeshPolynomial cAbs{}, numAbs{};
-            for (int j = 0; j < 5; ++j) {
-                cAbs[j] = std::abs(path.c[j]);
-                numAbs[j] = std::abs(path.num[j]);
-            }
-            const double size = value(plus(times(derivative(numAbs), cAbs),
-                                           times(numAbs, derivative(cAbs)), 1.0), tm);
-            const double d = value(turnL, tm);
-            if (std::abs(d) > size * 0x1p-30) forward = d > 0.0;
+            const double a = value(derivative(path.num), tm) * value(path.c, tm);
+            const double b = value(path.num, tm) * value(derivative(path.c), tm);
+            if (std::abs(a - b) > (std::abs(a) + std::abs(b)) * 0x1p-30) forward = a > b;
         }
         double tA = forward ? ta : tb, tB = forward ? tb : ta;
         double lambdaA = forward ? la : lb, lambdaB = forward ? lb : la;

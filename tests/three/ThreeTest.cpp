@@ -542,7 +542,7 @@ TEST_F(ThreePage, RendererWebGPUWithoutWebGPUIsOneLineNotAFallback) {
 // --prefer-offline`: from the npm cache that the package's `npm ci` filled, no network
 // needed), laid out as web/three/ of a site that web/serve.py serves with examples/three's
 // files. ThreeTarball's tests need node and npm, not a browser; ThreePackage runs the
-// installed example in Chromium.
+// installed example in Chromium, and the WebGPU entry bundled there by Vite (web/bundle/).
 
 namespace fs = std::filesystem;
 
@@ -653,6 +653,7 @@ struct Packed {
     test::RunResult pack, install;
     std::string before, after, listing;
     std::string three, tested;  // the three installed, and the package's (devDependencies)
+    std::string vite;           // the package's Vite (devDependencies), for ThreePackage's bundle
 };
 
 test::RunResult runIn(const fs::path& folder, const std::string& command, const fs::path& scratch) {
@@ -720,6 +721,7 @@ const Packed& packed() {
         const char* three = std::getenv("MICRORELIEF_THREE_VERSION");
         p->tested = devDependency("three");
         p->three = three && *three ? three : p->tested;
+        p->vite = devDependency("vite");
         p->install = runIn(p->project,
                            p->env + browser::quote(p->npm) +
                                " install --prefer-offline --no-audit --no-fund three@" + p->three +
@@ -1055,6 +1057,94 @@ TEST_F(ThreePackage, TheTarballInstalledIntoAScratchProjectRunsTheExample) {
     ASSERT_EQ(gpu.at(1, "state"), "ready") << gpu.at(1, "error");
     EXPECT_EQ(gpu.at(2, "value"), "webgpu");
     expectSamePicture("installed-webgpu", dir / "installed-webgpu.png", rendered,
+                      "microrelief-render --size " + size(v.width, v.height), kLimits);
+}
+
+// The WebGPU entry as a consumer who bundles gets it: tests/three/typecheck/vite's app.ts (the
+// WebGPU example's shading=microrelief scene, from examples/three's compare.js, renderers.js
+// and view.js, with imports of 'three/webgpu' and 'microrelief-three/webgpu') in app/ of the
+// scratch project, with Vite (the package's devDependency, installed there from the npm
+// cache), typechecked by tsc --strict against the tarball's declarations and @types/three,
+// bundled by `vite build` into web/bundle/, and run from there in Chromium with WebGPU. The
+// bundle holds what the entry loads: each WGSL module of generated/wgsl.js (its first line)
+// and the WebAssembly of generated/pyramid_wasm.js and twin_wasm.js (their base64, whole),
+// and the page draws microrelief-render's picture (kLimits) on WebGPU (data-api).
+TEST_F(ThreePackage, TheWebGPUEntryBundledByViteRunsTheExample) {
+    const Packed& p = packed();
+    const fs::path project = p.project, app = project / "app", bundle = p.site / "web" / "bundle",
+                   installed = project / "node_modules" / "microrelief-three";
+    const test::RunResult install =
+        runIn(project,
+              p.env + browser::quote(p.npm) +
+                  " install --prefer-offline --no-audit --no-fund vite@" + p.vite,
+              dir.path());
+    ASSERT_EQ(install.status, 0) << install.out << install.err << "\n(vite@" << p.vite
+                                 << " comes from the npm cache that `npm ci` in "
+                                    "packages/microrelief-three fills: bash scripts/setup.sh)";
+    fs::create_directories(app);
+    for (const char* file : {"index.html", "app.ts", "tsconfig.json"})
+        fs::copy_file(fs::path(MICRORELIEF_THREE_TESTS_DIR) / "typecheck" / "vite" / file,
+                      app / file, fs::copy_options::overwrite_existing);
+
+    const fs::path tsc = fs::path(MICRORELIEF_PACKAGE_DIR) / "node_modules" / ".bin" / "tsc";
+    ASSERT_TRUE(fs::exists(tsc))
+        << tsc << ": no TypeScript: `npm ci` in packages/microrelief-three (bash scripts/setup.sh)";
+    const test::RunResult typecheck = runIn(
+        app, browser::quote(tsc.string()) + " --noEmit --strict -p tsconfig.json", dir.path());
+    EXPECT_EQ(typecheck.status, 0) << typecheck.out << typecheck.err;
+    const test::RunResult build = runIn(
+        project,
+        browser::quote(p.node) + " node_modules/vite/bin/vite.js build app --base ./ --outDir " +
+            browser::quote(bundle.string()) + " --emptyOutDir --logLevel warn",
+        dir.path());
+    ASSERT_EQ(build.status, 0) << build.out << build.err;
+
+    // What the bundle holds: its files' text, each WGSL module's first line and the two
+    // WebAssembly modules' base64 in it.
+    std::string bundled;
+    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(bundle))
+        if (entry.is_regular_file()) bundled += test::readText(entry.path());
+    const test::RunResult headers =
+        runIn(installed,
+              browser::quote(p.node) +
+                  " -e \"import('./generated/wgsl.js').then(({wgsl}) => { for (const text of "
+                  "Object.values(wgsl)) console.log(text.split(String.fromCharCode(10))[0]); })\"",
+              dir.path());
+    ASSERT_EQ(headers.status, 0) << headers.err;
+    const std::vector<std::string> modules = sortedLines(headers.out);
+    EXPECT_GE(modules.size(), 6u) << headers.out;  // each base, both last levels
+    for (const std::string& header : modules)
+        EXPECT_TRUE(bundled.find(header) != std::string::npos) << "not in the bundle: " << header;
+    for (const char* wasm : {"pyramid_wasm.js", "twin_wasm.js"}) {
+        // The longest data URL in it (emscripten's SINGLE_FILE: the module's bytes; the
+        // prefix alone is there too, as the string it tests URLs with).
+        const std::string text = test::readText(installed / "generated" / wasm);
+        std::string base64;
+        for (std::size_t from = text.find("data:application/octet-stream;base64,");
+             from != std::string::npos;
+             from = text.find("data:application/octet-stream;base64,", from + 1)) {
+            const std::string url = text.substr(from, text.find_first_of("\"'`", from) - from);
+            if (url.size() > base64.size()) base64 = url;
+        }
+        ASSERT_GT(base64.size(), 10000u) << wasm << ": no WebAssembly in it";
+        EXPECT_TRUE(bundled.find(base64) != std::string::npos)
+            << wasm << "'s WebAssembly (" << base64.size() << " characters) is not in the bundle";
+    }
+    std::printf("    bundle: %.1f MB, %zu WGSL modules\n", bundled.size() / 1e6, modules.size());
+
+    const View& v = viewNamed("oblique");
+    const PageRun gpu = runPage(
+        "[" + open("renderer=webgpu&shading=microrelief", v.width, v.height, "bundle/") +
+            ", {\"wait\": \"ready\"}, {\"eval\": \"document.documentElement.dataset.api\"}, "
+            "{\"screenshot\": " +
+            jsonString((dir / "bundled-webgpu.png").string()) + "}]",
+        p.site, Gpu::WithWebGPU);
+    for (const std::string& line : gpu.log) std::printf("    page: %s\n", line.c_str());
+    ASSERT_EQ(gpu.at(1, "state"), "ready") << gpu.at(1, "error");
+    EXPECT_EQ(gpu.at(2, "value"), "webgpu");
+    const auto rendered = dir / "oblique-render.png";
+    render(v.flags + " --size " + size(v.width, v.height), rendered);
+    expectSamePicture("bundled-webgpu", dir / "bundled-webgpu.png", rendered,
                       "microrelief-render --size " + size(v.width, v.height), kLimits);
 }
 

@@ -183,6 +183,8 @@ Drawn drawMesh(const RenderOptions& o) {
     RenderJob job = o.scene.job;
     const TriangleMesh& mesh = *files.mesh;
     const double top = files.heights->maxValue();
+    // Before the camera frames it (HeadlessRenderer::render checks it again).
+    checkMeshFloatLimits(mesh, *files.heights, job.heightScale, name);
     const ReliefExtent shell = meshShellExtent(mesh, job.heightScale, top);
     if (o.verbose) {
         // What --height-scale is measured against: it is in the mesh's units.

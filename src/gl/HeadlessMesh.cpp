@@ -10,6 +10,7 @@
 #include "microrelief/core/DataPaths.h"
 #include "microrelief/core/Error.h"
 #include "microrelief/core/Text.h"
+#include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/gl/HeadlessRender.h"
 #include "microrelief/gl/MeshRelief.h"
 #include "microrelief/gl/StateGuard.h"
@@ -121,7 +122,9 @@ HeadlessResult HeadlessRenderer::renderMesh(const RenderJob& job) {
             gl.Viewport(0, 0, part.width, part.height);
             {
                 const gl::SrgbWrites srgb(gl);  // the relief's linear colour, encoded
-                relief.draw(glm::mat4(tileCrop(part, job.width, job.height) * camera.viewProjection),
+                // The double projection: MeshRelief moves it to its origin() in double (a
+                // float one far from the file's origin is rounded there: gl/MeshRelief.h).
+                relief.draw(tileCrop(part, job.width, job.height) * camera.viewProjection,
                             camera.eye);
             }
             target_->readInto(result.frame, part.x, part.y, part.width, part.height);
@@ -169,32 +172,23 @@ MeshSize meshSize(const TriangleMesh& mesh) {
 // core/trace/MeshReference.h, the exact reference, pixel by pixel, on a 4 x 4 and a 16 x 16
 // quad grid of leaning normals, one unit wide, under a 64 x 32 noise map laid twice over it
 // (a texel 0.011 units), 64 x 48 pixels; the issue's thresholds are 0.1 % hit/miss and
-// 0.2 % of the hits more than half a texel off). The shader works in float on the mesh's
-// own coordinates (mesh_relief.frag, base_mesh.glsl: its polynomials' coefficients are
-// differences of the vertices), so its rounding is a step of 2^-23 of the vertices' largest
-// coordinate, `reach`. (The eye's does not count: the unit grid seen from 10 to 330 units
-// away, the field of view narrowed to frame it, matched the reference at every distance.)
+// 0.2 % of the hits more than half a texel off). gl::MeshRelief works about the middle of
+// the vertices' box (MeshRelief::origin), the eye and the projection moved there in double,
+// so where the mesh lies and where the eye is do not count: the grids at x, z = 1e4 and 1e5
+// at s = 1e-8, 0.01 and 0.1 matched the reference, and at 1e6 their normals did (the AOV's
+// float positions cannot show hits to a texel there).
 //  1. The shell no more than kMaxShellPerSize times the mesh's box diagonal: shells 6 and
 //     60 times the grid's size, framed by the default camera, matched the reference (0 of
-//     about 45 hits off), 605 times had 2 of 45 hits off, 6050 times 18 of 44, and at
+//     about 45 hits off), 605 times had 2 of 45 hits off, 6050 times 17 of 44, and at
 //     --height-scale 1e9 (6e8 times) every hit was off.
-//  2. The shell's thickness s H at least kMinShellSteps steps of the reach: at the origin
-//     the grid's normals matched the reference down to 2.2 steps (s = 1.5e-7) and 340 of
-//     1593 hits had their normals turned over at 1.4 steps (s = 1e-7).
-//  3. The reach at most kMaxReachPerTriangle times the median triangle's size (sqrt of
-//     twice its area: a grid quad's side): the errors come of the edges' rounding against
-//     their length. The 4 x 4 grid (quads 0.25) moved to x, z = 30 (122 sizes) matched the
-//     reference, the 16 x 16 (quads 0.0625) at 10 (168 sizes) too; the 4 x 4 at 100 (402
-//     sizes) had 1 % of its hits off at s = 0.1, the 16 x 16 at 30 (488) 0.47 %, and further
-//     out worse: the 4 x 4 at 1000 up to 10 %, from 2000 whole quads missed (6 % hit/miss;
-//     at 1e5 nothing hit). The median, not the smallest triangle, so that one small
-//     triangle refuses no mesh (Debian's spider, 107 units out, its median triangle 5.5,
-//     matches the reference with the default camera in MeshCliTest); how far a small
-//     triangle's own pixels stray was not measured. These are the shader's figures today
-//     (issue 50): a shader that traces relative to the triangle would move the last two.
+//  2. The shell at least kMinShellPerSize times the diagonal (2^-64): the shader's
+//     s-scaled terms keep their relative precision down to float's smallest numbers; the
+//     grids matched the reference with shells 6e-31 of the diagonal (s = 1e-30) and lost
+//     every normal at 6e-37 (s = 1e-36, float's underflow).
+//  3. The vertices within kMaxWorldPosition of the origin, as every position of a scene
+//     (core/scene/FloatLimits.h): the default camera frames the mesh from beyond it.
 constexpr double kMaxShellPerSize = 16.0;
-constexpr double kMinShellSteps = 4.0;
-constexpr double kMaxReachPerTriangle = 256.0;
+const double kMinShellPerSize = std::ldexp(1.0, -64);
 
 void checkMeshFloatLimits(const TriangleMesh& mesh, const HeightMap& map, double heightScale,
                           const std::string& source) {
@@ -210,20 +204,16 @@ void checkMeshFloatLimits(const TriangleMesh& mesh, const HeightMap& map, double
                       "), past what the shader's float solve traces exactly; lower "
                       "{heightScale} (it is in the mesh's units)");
     }
-    const double step = std::ldexp(size.reach, -23);  // float's rounding there
-    if (shell > 0.0 && !(shell >= kMinShellSteps * step)) {
-        throwBadInput(source + ": " + shellText + " is thinner than " + figure(kMinShellSteps) +
-                      " float steps at the mesh's largest coordinate " + figure(size.reach) +
-                      " (" + figure(kMinShellSteps * step) +
-                      "): float cannot resolve it; raise {heightScale}, or move the mesh "
-                      "nearer the origin");
+    if (shell > 0.0 && !(shell >= kMinShellPerSize * size.diagonal)) {
+        throwBadInput(source + ": " + shellText + " is less than 2^-64 of the mesh's size (its "
+                      "box's diagonal, " + figure(size.diagonal) +
+                      "), past float's range in the shader's solve; raise {heightScale} (it is "
+                      "in the mesh's units)");
     }
-    if (!(size.reach <= kMaxReachPerTriangle * size.medianTriangle)) {
+    if (!(size.reach <= kMaxWorldPosition)) {
         throwBadInput(source + ": the mesh reaches " + figure(size.reach) +
-                      " units from the origin, more than " + figure(kMaxReachPerTriangle) +
-                      " times its median triangle's size (" + figure(size.medianTriangle) +
-                      "): the shader's float arithmetic on its coordinates does not hold its "
-                      "hits to a fraction of a texel there; move the mesh nearer the origin");
+                      " units from the origin, beyond the " + figure(kMaxWorldPosition) +
+                      " a world position may lie from it; move the mesh nearer the origin");
     }
 }
 

@@ -282,33 +282,27 @@ TEST_F(MeshCli, APictureDrawnInTilesIsThePictureDrawnWhole) {
 // Where the shader's float arithmetic does not trace the mesh exactly (src/gl/HeadlessMesh.cpp:
 // checkMeshFloatLimits, with the measurements behind each limit): one line and exit 2, before
 // anything is drawn. The unit bumpy grid under the noise map (largest height 0.855): a shell
-// 1e9 high (the picture was empty, exit 0, before the check), 1e-7 thick (its normals turned
-// over), and the grid moved to x, z = 1e5 at s = 0.01 (too thin there) and at s = 1 (too
-// far from the origin for its triangles: both drew nothing). Seen red with the check not
-// called: exit 0 each.
+// 1e9 high (every hit off, exit 0, before the check) and 1e-25 thick (past float's range: at
+// 1e-36 every normal was lost); and a triangle 1e13 units out, past where any position of a
+// scene may lie (the default camera would frame it from there). Seen red with the check not
+// called: exit 0 for the shells; the far triangle refused for the camera the program framed
+// it with, naming --eye.
 TEST_F(MeshCli, WhatFloatCannotTraceIsRefusedInOneLine) {
     const auto mesh = dir / "grid.obj", far = dir / "far.obj", map = writeNoiseMap();
     writeBumpyGrid(mesh, 4);
-    writeBumpyGrid(far, 4, {1e5, 0.0, 1e5});
+    std::ofstream(far) << "v 1e13 0 0\nv 1.1e13 0 0\nv 1e13 1e12 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                          "f 1/1 2/2 3/3\n";
     const auto out = dir / "never.png";
     const std::string flags = " --height " + map.string() + " --size 32x24 --out " + out.string();
     expectFailure(run("--base mesh --mesh " + mesh.string() + " --height-scale 1e9" + flags),
                   "is more than 16 times the mesh's size (its box's diagonal, 1.42)");
     const test::RunResult thin =
-        run("--base mesh --mesh " + mesh.string() + " --height-scale 1e-7" + flags);
-    expectFailure(thin, "mesh units) is thinner than 4 float steps at the mesh's largest "
-                        "coordinate 0.5");
-    EXPECT_NE(thin.err.find("(--height-scale 1e-07 x the map's largest height 0.855"),
-              std::string::npos)
-        << thin.err;
-    const std::string farView = " --eye 100000.2,0.8,100001.1 --target 1e5,0,1e5" + flags;
-    expectFailure(run("--base mesh --mesh " + far.string() + " --height-scale 0.01" + farView),
-                  "far.obj: the shell (--height-scale 0.01 x the map's largest height 0.855 = "
-                  "0.00855 mesh units) is thinner than 4 float steps at the mesh's largest "
-                  "coordinate 1e+05 (0.0477)");
-    expectFailure(run("--base mesh --mesh " + far.string() + " --height-scale 1" + farView),
-                  "far.obj: the mesh reaches 1e+05 units from the origin, more than 256 "
-                  "times its median triangle's size (0.25");
+        run("--base mesh --mesh " + mesh.string() + " --height-scale 1e-25" + flags);
+    expectFailure(thin, "grid.obj: the shell (--height-scale 1e-25 x the map's largest height "
+                        "0.855 = 8.55e-26 mesh units) is less than 2^-64 of the mesh's size");
+    expectFailure(run("--base mesh --mesh " + far.string() + " --height-scale 1" + flags),
+                  "far.obj: the mesh reaches 1.1e+13 units from the origin, beyond the 1e+12 a "
+                  "world position may lie from it");
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 

@@ -154,7 +154,8 @@ private:
 ReliefExtent meshShellExtent(const TriangleMesh& mesh, double heightScale, double top);
 // What the mesh base's checks and `-v` tell of a mesh: its vertices' box and that box's
 // diagonal, the largest |coordinate| of a vertex (`reach`), and the median over its
-// triangles of sqrt(2 area) (a grid quad's side), all in the mesh's units.
+// triangles of sqrt(2 area) (a grid quad's side: the scale of its detail), all in the
+// mesh's units.
 struct MeshSize {
     glm::dvec3 low{0.0}, high{0.0};
     double diagonal = 0.0, reach = 0.0, medianTriangle = 0.0;
@@ -163,10 +164,9 @@ MeshSize meshSize(const TriangleMesh& mesh);
 // Throws Error(BadInput), one line naming `source` (the mesh) and the limit, where the
 // shader's float arithmetic cannot trace the mesh base exactly (src/gl/HeadlessMesh.cpp
 // says how each was measured): the shell s H (`heightScale` times the map's largest
-// height) more than 16 times the vertices' box diagonal; the shell thinner than 4 float
-// steps (2^-23) of the vertices' largest coordinate; that coordinate more than 256 times
-// the median triangle's size (a mesh far from the origin). HeadlessRenderer::render checks
-// it before drawing a job on the mesh base.
+// height) more than 16 times the vertices' box diagonal or less than 2^-64 of it; a vertex
+// farther than kMaxWorldPosition from the origin (core/scene/FloatLimits.h).
+// HeadlessRenderer::render checks it before drawing a job on the mesh base.
 void checkMeshFloatLimits(const TriangleMesh& mesh, const HeightMap& map, double heightScale,
                           const std::string& source);
 // The camera a picture of the mesh base takes where the user gives none: `camera` with its

@@ -815,8 +815,10 @@ TEST_F(ThreeTarball, TheTarballHoldsExactlyWhatAConsumerRuns) {
 // The declarations (src/*.d.ts), installed from the tarball with three's own types, under
 // tsc --noEmit --strict (the package's TypeScript, its devDependency): tests/three/typecheck's
 // usage.ts (the API in use, and misuses that must be errors) and exports.ts, which
-// typecheck/exports.mjs writes from what the module exports at run time (each declared, and
-// nothing more), with node's module resolution and a bundler's. Red before: TS7016, no
+// typecheck/exports.mjs writes from what each entry, 'microrelief-three' and
+// 'microrelief-three/webgpu', exports at run time (each declared, and nothing more: red with
+// webgpu.d.ts's wgslItems dropped, TS2339, and a kNotThere added), with node's module
+// resolution and a bundler's. Red before: TS7016, no
 // declaration file for 'microrelief-three'.
 TEST_F(ThreeTarball, TheDeclarationsTypecheckUnderStrict) {
     const Packed& p = packed();

@@ -77,7 +77,7 @@ public:
 
     // Draws the relief into the bound framebuffer (its viewport), seen through
     // `viewProjection` (mesh units to clip space) from `eye` (mesh units). GL state is
-    // restored after. The shader works about origin() (the mesh's box centre): the eye and
+    // restored after. The shader works about origin() (a far mesh's box centre): the eye and
     // the projection are moved there in double. A float viewProjection of a mesh far from the
     // file's origin has its translation rounded to float there (2^-24 of the distance: at
     // 1e5 units the hulls drawn up to 0.006 units off the rays the shader traces); pass the
@@ -91,7 +91,8 @@ public:
     // The proxy drawn (its hulls' float vertices, each mesh triangle's range of them), in the
     // mesh's units less origin().
     const MeshProxy& proxy() const { return proxy_; }
-    // Where the shader's coordinates start: the middle of the vertices' box (a float).
+    // Where the shader's coordinates start: the middle of the vertices' box (a float) where
+    // that is farther from zero than the box's diagonal, else zero.
     glm::dvec3 origin() const { return origin_; }
 
 private:

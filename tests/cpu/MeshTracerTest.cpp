@@ -532,7 +532,7 @@ TEST(MeshTracer, SmoothEdgesAreTheSharedContinuousOnes) {
             const glm::vec3 a = grid.positions[grid.triangles[k][(i + 1) % 3]],
                             b = grid.positions[grid.triangles[k][(i + 2) % 3]];
             const bool border = (a.x == b.x && std::abs(a.x) == 0.5f) || (a.z == b.z && std::abs(a.z) == 0.5f);
-            EXPECT_EQ((smooth[k] >> i & 1u) != 0, !border) << "triangle " << k << " edge " << i;
+            EXPECT_EQ(((smooth[k] >> i) & 1u) != 0, !border) << "triangle " << k << " edge " << i;
         }
     }
     const TriangleMesh tube = cylinderTubeMesh(8, 1, 0.5f, 1.0f);
@@ -542,7 +542,7 @@ TEST(MeshTracer, SmoothEdgesAreTheSharedContinuousOnes) {
     // not the same positions, so walls, as the contract has them).
     int smoothCount = 0;
     for (const std::uint8_t bits : smoothEdges(tube))
-        smoothCount += (bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1);
+        smoothCount += (bits & 1) + ((bits >> 1) & 1) + ((bits >> 2) & 1);
     EXPECT_EQ(smoothCount, 2 * static_cast<int>(tube.triangles.size()) - 2);
 
     // Two triangles on the edge (0,0,0)-(1,0,0), the second's uv shifted by (0.5, 0) (a seam),

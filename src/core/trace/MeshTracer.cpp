@@ -701,7 +701,7 @@ MeshTraceHit MeshTracer::traceTriangle(const Ray& ray, std::size_t k, double lam
             // No hit is moved or dropped, only named (base_mesh.glsl's mr_meshSolvePiece).
             const Triangle& tri = triangles_[k];
             const double band = 1e-9 * top_;
-            if (surface == MeshSurface::Wall && piece.wall >= 0 && (tri.smooth >> piece.wall & 1u) &&
+            if (surface == MeshSurface::Wall && piece.wall >= 0 && ((tri.smooth >> piece.wall) & 1u) &&
                 (h - m0.t <= band || m0.t <= band)) {
                 const glm::dvec3 along = tri.n0 + m0.b.y * tri.f1 + m0.b.z * tri.f2;
                 const double unit = heightScale_ * glm::length(along);
@@ -714,7 +714,7 @@ MeshTraceHit MeshTracer::traceTriangle(const Ray& ray, std::size_t k, double lam
                 const double edges[3] = {glm::length(tri.e2 - tri.e1), glm::length(tri.e2),
                                          glm::length(tri.e1)};  // opposite P_j
                 for (int j = 0; j < 3; ++j) {
-                    if (tri.smooth >> j & 1u) continue;
+                    if ((tri.smooth >> j) & 1u) continue;
                     if (const double d = std::abs(m0.b[j]) * twiceArea / edges[j]; d < closest) {
                         closest = d;
                         surface = MeshSurface::Wall;

@@ -456,8 +456,9 @@ export class ReliefStandardNodeMaterial extends THREE.MeshStandardNodeMaterial {
         ], null, 'fragment');
         // three's shadow lookups for each light (its context's getShadow, which three's
         // AnalyticLightNode asks for the light's shadowed colour): at the hit moved off the
-        // surface by what the map's texel asks for (receivedShadow).
-        this.contextNode.value.getShadow = (lightNode) => this.receivedShadow(lightNode);
+        // surface by what the map's texel asks for (receivedShadow, of the material being built:
+        // a copy shares this context).
+        this.contextNode.value.getShadow = (lightNode, builder) => builder.material.receivedShadow(lightNode);
     }
 
     // The self-shadow's rays are in the program: another value, another program.

@@ -115,6 +115,18 @@ function addLights(T, scene, raking = null, casting = false) {
             Object.assign(low.shadow.camera, {left: -0.7, right: 0.7, bottom: -0.7, top: 0.7, near: 0.05, far: 3});
             low.shadow.mapSize.set(512, 512);
         }
+        if (casting === 'self' || casting === 'unreceived') {  // the lamp's cube map too, brighter, and a spot light's
+            lamp.castShadow = true;
+            lamp.intensity = 0.3;
+            Object.assign(lamp.shadow.camera, {near: 0.01, far: 2});
+            lamp.shadow.mapSize.set(256, 256);
+            const spot = new T.SpotLight(0xa0ffb0, 1.2, 0, 0.45, 0.2, 2);
+            spot.position.set(-0.35, 0.3, 0.3);
+            spot.castShadow = true;
+            Object.assign(spot.shadow.camera, {near: 0.05, far: 2});
+            spot.shadow.mapSize.set(256, 256);
+            scene.add(spot, spot.target);
+        }
     }
 }
 

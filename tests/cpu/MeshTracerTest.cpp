@@ -376,6 +376,35 @@ TEST(MeshTracer, AFlatGridAgreesWithTheReference) {
     }
 }
 
+// A shell thinner than double resolves against the eye's distance (s = 1e-18 of a unit grid:
+// every t of a piece one lambda in double), rays from above: each hit on the top as the
+// reference has it, not on the mesh (the piece's direction from lambda's derivative,
+XX
+TEST(MeshTracer, AShellThinnerThanDoubleResolvesIsHitOnItsTop) {
+    const HeightMap map = seamless(synth::valueNoise(32, 16, 5.0, 3, 7));
+    const TriangleMesh mesh = planeGridMesh(4, 1.0f, 1.0f);
+    const double s = 1e-18;
+    const MeshTracer tracer(mesh, map, s);
+    const MeshReference reference(mesh, map, s);
+    std::mt19937 random(5);
+    int hits = 0, top = 0;
+    for (int k = 0; k < 200; ++k) {
+        const glm::dvec3 target{uniform(random, -0.45, 0.45), 0.0, uniform(random, -0.45, 0.45)};
+        const glm::dvec3 eye{uniform(random, -1.0, 1.0), uniform(random, 0.3, 1.0), uniform(random, -1.0, 1.0)};
+        const Ray ray{eye, target - eye};
+        const MeshTraceHit hit = tracer.trace(ray);
+        const MeshHit expected = reference.trace(ray);
+        ASSERT_EQ(static_cast<bool>(hit), static_cast<bool>(expected));
+        if (!hit) continue;
+        ++hits;
+        EXPECT_EQ(expected.surface, MeshSurface::Top);
+        if (hit.surface == MeshSurface::Top) ++top;
+        EXPECT_LT(glm::length(hit.position - expected.position), 1e-9);
+    }
+    EXPECT_GT(hits, 150);
+    EXPECT_EQ(top, hits);
+}
+
 TEST(MeshTracer, TheMapRepeatsInUAndV) {
     // uv over [-0.7, 1.6] x [-1.3, 0.9] on a map whose edges differ (a spike at a corner): the
     // footprints cross the period's edges, where the pyramid's bounds and the cells wrap.

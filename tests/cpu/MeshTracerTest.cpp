@@ -379,7 +379,7 @@ TEST(MeshTracer, AFlatGridAgreesWithTheReference) {
 // A shell thinner than double resolves against the eye's distance (s = 1e-18 of a unit grid:
 // every t of a piece one lambda in double), rays from above: each hit on the top as the
 // reference has it, not on the mesh (the piece's direction from lambda's derivative,
-XX
+// MeshTracer's forward; seen red with la <= lb alone: 0 of 200 hits on the top).
 TEST(MeshTracer, AShellThinnerThanDoubleResolvesIsHitOnItsTop) {
     const HeightMap map = seamless(synth::valueNoise(32, 16, 5.0, 3, 7));
     const TriangleMesh mesh = planeGridMesh(4, 1.0f, 1.0f);

@@ -102,7 +102,8 @@ ALBEDO_VIEWS = (("oblique", "bilinear", "plane", "shadingAlbedo"), ("round", "bi
 # The library's self-shadow under three's lights (selfShadow: ReliefStandardMaterial against
 # ReliefStandardNodeMaterial at roughness 1, the lights of LIT_VIEWS and a raking directional
 # light; on the cylinder heightScale 0.4: compare.js's addLights and heightScaleOf): a view, a
-# last level, a base. The shadow rays are the library's in both entries, traced from the same
+# last level, a base. On the plane the WebGPU relief is drawn first without it and then given
+# selfShadow: true (the property live, its program made again). The shadow rays are the library's in both entries, traced from the same
 # hit towards the same light, so held to LIMITS as the library's own shading (the directional
 # light's direction is three's uniform in WebGL, made in the shader in WebGPU: rounded apart,
 # it may move a grazing ray's verdict at a pixel or two). Measured: bit-identical, 6 301 and

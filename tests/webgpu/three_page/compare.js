@@ -228,6 +228,12 @@ async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading',
         const [x, y, w, h] = kViews[view].viewport;
         target.viewport.set(x, H - y - h, w, h);
     }
+    if (kind === 'litShadow' && base === 'plane') {  // selfShadow set live: drawn without it first, its program made again
+        relief.material.selfShadow = false;
+        renderer.setRenderTarget(target);
+        renderer.render(scene, camera);
+        relief.material.selfShadow = true;
+    }
     if (kViews[view].live) {
         const flat = await wg.createReliefMap(renderer, wg.heightsFromArray(samples.map((x) => 0.5 * x), w, h, {name: 'half'}));
         relief.reliefMap = flat;

@@ -6,9 +6,26 @@
 // MicroreliefParameters (ReliefRenderer::parameters) by name, as relief_layout.js's
 // writeParameters takes them. A host changes only what its API asks (relief_gpu.js: the clip
 // transform for WebGPU's framebuffer and depth range) and writes the buffer.
-import {defineValue, kDebugViewValues} from './relief_layout.js';
+import {defineValue, kBaseKindValues, kDebugViewValues, kInterpolationValues, kMethodValues, kShadowModeValues} from './relief_layout.js';
 import * as core from './relief_core.js';
 import * as scene from './scene.js';
+
+// The #defines of relief.frag's variant `c` ({method, base, interpolation, shadows,
+// albedoMap}), each value by its name from the GLSL's own table (variants.glsl, through the
+// generated relief_layout.js): what both hosts compile, WebGL 2 as GLSL ES and WebGPU as
+// naga's WGSL of it. No depth layout (WebGL 2 has no conservative depth, and the page draws
+// the relief alone) and no tiling.
+export function reliefDefines(c) {
+    return [
+        ['MICRORELIEF_METHOD', defineValue(kMethodValues, c.method, 'MICRORELIEF_METHOD')],
+        ['MICRORELIEF_BASE', defineValue(kBaseKindValues, c.base, 'MICRORELIEF_BASE')],
+        ['MICRORELIEF_INTERPOLATION', defineValue(kInterpolationValues, c.interpolation, 'MICRORELIEF_INTERPOLATION')],
+        ['MICRORELIEF_DEPTH_LAYOUT', '0'],
+        ['MICRORELIEF_SHADOWS', defineValue(kShadowModeValues, c.shadows, 'MICRORELIEF_SHADOWS')],
+        ['MICRORELIEF_ALBEDO_MAP', c.albedoMap ? '1' : '0'],
+        ['MICRORELIEF_TILING', '0'],
+    ];
+}
 
 // `view` (scene.js's) drawn at `pixels` ([W, H]) over a map whose textures' `shape`
 // (ReliefTextures.shape: size, pyramidSize, levelCount, maxHeight) and largest sample

@@ -24,10 +24,9 @@
 // WebGL 2 renders into R16F only with EXT_color_buffer_float (the builder's passes need it,
 // and reading the top back as floats); without it there is no pyramid and the page says so.
 import {ShaderFiles, mapCompilerLog} from './shader_source.js';
-import {defineValue, kBaseKindValues, kInterpolationValues, kMethodValues, kParametersSize, kShadowModeValues,
-        writeParameters} from './relief_layout.js';
+import {kParametersSize, writeParameters} from './relief_layout.js';
 import * as core from './relief_core.js';
-import {reliefFrame} from './relief_frame.js';
+import {reliefDefines, reliefFrame} from './relief_frame.js';
 import * as scene from './scene.js';
 
 const kBandRows = 64, kBandsFrom = 4 * kBandRows;
@@ -525,19 +524,7 @@ export class ReliefRenderer {
     async compileProgram(c) {
         const gl = this.gl, version = '300 es';
         const what = `relief (${c.method}, ${c.base}, ${c.interpolation})`;
-        const defines = [
-            // Each value by its name, from the GLSL's own table (variants.glsl, through the
-            // generated relief_layout.js).
-            ['MICRORELIEF_METHOD', defineValue(kMethodValues, c.method, 'MICRORELIEF_METHOD')],
-            ['MICRORELIEF_BASE', defineValue(kBaseKindValues, c.base, 'MICRORELIEF_BASE')],
-            ['MICRORELIEF_INTERPOLATION', defineValue(kInterpolationValues, c.interpolation, 'MICRORELIEF_INTERPOLATION')],
-            // No depth layout: WebGL 2 has no conservative depth, and the page draws the
-            // relief alone.
-            ['MICRORELIEF_DEPTH_LAYOUT', '0'],
-            ['MICRORELIEF_SHADOWS', defineValue(kShadowModeValues, c.shadows, 'MICRORELIEF_SHADOWS')],
-            ['MICRORELIEF_ALBEDO_MAP', c.albedoMap ? '1' : '0'],
-            ['MICRORELIEF_TILING', '0'],
-        ];
+        const defines = reliefDefines(c);
         const vertex = compile(gl, gl.VERTEX_SHADER, await this.files.assemble(this.shaderRoot + 'relief_box.vert', version), what);
         const fragment = compile(gl, gl.FRAGMENT_SHADER, await this.files.assemble(this.shaderRoot + 'relief.frag', version, defines), what);
         const program = link(gl, vertex, fragment, what);

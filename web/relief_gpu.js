@@ -28,9 +28,8 @@
 // levels, every debug view, shadows off, hard or soft, with or without the albedo. The peers
 // (their cone maps and maxmip's quadtree are WebGL's alone so far) are refused in one line.
 import {ShaderFiles, mapCompilerLog} from './shader_source.js';
-import {defineValue, kBaseKindValues, kInterpolationValues, kMethodValues, kParametersSize, kShadowModeValues,
-        writeParameters} from './relief_layout.js';
-import {reliefFrame} from './relief_frame.js';
+import {kParametersSize, writeParameters} from './relief_layout.js';
+import {reliefDefines, reliefFrame} from './relief_frame.js';
 import * as scene from './scene.js';
 
 export class GpuError extends Error {}
@@ -271,15 +270,7 @@ export class GpuReliefRenderer {
 
     async makeProgram(c) {
         const what = `relief in WebGPU (${c.method}, ${c.base}, ${c.interpolation})`;
-        const defines = [
-            ['MICRORELIEF_METHOD', defineValue(kMethodValues, c.method, 'MICRORELIEF_METHOD')],
-            ['MICRORELIEF_BASE', defineValue(kBaseKindValues, c.base, 'MICRORELIEF_BASE')],
-            ['MICRORELIEF_INTERPOLATION', defineValue(kInterpolationValues, c.interpolation, 'MICRORELIEF_INTERPOLATION')],
-            ['MICRORELIEF_DEPTH_LAYOUT', '0'],
-            ['MICRORELIEF_SHADOWS', defineValue(kShadowModeValues, c.shadows, 'MICRORELIEF_SHADOWS')],
-            ['MICRORELIEF_ALBEDO_MAP', c.albedoMap ? '1' : '0'],
-            ['MICRORELIEF_TILING', '0'],
-        ];
+        const defines = reliefDefines(c);
         const vertex = await this.module('relief_box.vert', 'vertex', defines, what);
         const fragment = await this.module('relief.frag', 'fragment', defines, what);
         const pipeline = (cullMode) => this.device.createRenderPipelineAsync({

@@ -1,8 +1,6 @@
 // cobbles.js on three's WebGPURenderer (renderer=webgpu): the same floor, sphere and knot,
 // from microrelief-three/webgpu. What differs from cobbles.js is what moving a scene to
-// WebGPU changes: the renderer (awaited), the node materials, and no shadow maps for the
-// relief yet (the WebGPU entry neither casts nor receives three's shadows: docs/three.md), so
-// that the floor shows the ball's and knot's lighting but not their shadows.
+// WebGPU changes: the imports, the renderer (awaited), and the node material.
 import * as THREE from 'three/webgpu';
 import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
 import {createReliefMap, loadAlbedo, loadHeights, Relief, ReliefStandardNodeMaterial} from 'microrelief-three/webgpu';
@@ -21,12 +19,12 @@ export async function cobbles(canvas, {eye = [0.8, 0.5, 0.85], target = [0, -0.0
     scene.add(sun, new THREE.HemisphereLight(0xbfd4ff, 0x3b3025, 0.8));
     const [heights, albedoMap] = await Promise.all([loadHeights('../../assets/cobbles.png'), loadAlbedo('../../assets/cobbles-albedo.png')]);
     const map = await createReliefMap(renderer, heights);
-    const floor = new Relief(map, {material: new ReliefStandardNodeMaterial({albedoMap, roughness: 0.85})});
+    const floor = new Relief(map, {material: new ReliefStandardNodeMaterial({albedoMap, roughness: 0.85, selfShadow: true})});
     const ball = new THREE.Mesh(new THREE.SphereGeometry(0.1, 48, 24), new THREE.MeshStandardMaterial({color: 0xc8452b, roughness: 0.3}));
     const knot = new THREE.Mesh(new THREE.TorusKnotGeometry(0.06, 0.02, 128, 16), new THREE.MeshStandardMaterial({color: 0x3a7bd5, metalness: 0.5}));
     ball.position.set(0.15, 0.04, 0.12);
     knot.position.set(-0.2, 0.25, -0.05);
-    for (const object of [ball, knot]) object.castShadow = object.receiveShadow = true;
+    for (const object of [floor, ball, knot]) object.castShadow = object.receiveShadow = true;
     scene.add(floor, ball, knot);
     const controls = new OrbitControls(camera, canvas);
     controls.target.set(...target);

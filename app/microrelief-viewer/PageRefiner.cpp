@@ -12,15 +12,16 @@ bool PageRefiner::afterDraw(bool anotherView, const std::vector<int>& wanted, co
     wanted_ = wanted.size();
     if (wanted.empty() || poolTooSmall_) return false;
     // Each load keeps what the view's draws loaded before, so the view either ends wanting
-    // nothing or runs out of pool: it never loads the same page twice.
+    // nothing or runs out of pool (a load of nothing): it never loads the same page twice.
     const std::vector<int> some(
         wanted.begin(),
         wanted.begin() + static_cast<std::ptrdiff_t>(std::min(wanted.size(), kPagesPerFrame)));
-    if (!load(some, kept_)) {
+    const std::size_t loaded = std::min(load(some, kept_), some.size());
+    if (loaded == 0) {  // the pool holds what the view keeps and nothing more
         poolTooSmall_ = true;
         return true;
     }
-    kept_.insert(kept_.end(), some.begin(), some.end());
+    kept_.insert(kept_.end(), some.begin(), some.begin() + static_cast<std::ptrdiff_t>(loaded));
     ++generation_;  // the view is drawn again with them
     return false;
 }

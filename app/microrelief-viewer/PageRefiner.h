@@ -5,7 +5,10 @@
 // view needs more pages at once than the pool holds (then it stays drawn partly from
 // coarser windows, which lie above the surface: coarse, never a hole). Pages loaded for the
 // view being refined are kept for it, so it never loads a page twice; another view starts
-// afresh.
+// afresh. Each load also keeps the pages the last draw read (the viewer's Load is
+// PagedPyramid::loadWhatFitsKeepingRead, HeadlessRenderer's rule): a frame of a moving view
+// loads what it lacks only where it evicts nothing the frame before it read, so a slow orbit
+// or a still view after one does not reload the pages it is drawn from.
 #pragma once
 
 #include <cstddef>
@@ -20,9 +23,11 @@ public:
     // 64 MiB of 256^2 float pages: a view that wants thousands refines over frames, each
     // answering the mouse, instead of stalling.
     static constexpr std::size_t kPagesPerFrame = 256;
-    // Loads `pages` keeping `keep` resident (PagedPyramid::load); false: the pool cannot
-    // hold them all, nothing loaded.
-    using Load = std::function<bool(const std::vector<int>& pages, const std::vector<int>& keep)>;
+    // Loads the longest run of `pages` from the first that fits the pool beside `keep` (and
+    // what the last draw read: PagedPyramid::loadWhatFitsKeepingRead); returns its length,
+    // 0 where none fits.
+    using Load =
+        std::function<std::size_t(const std::vector<int>& pages, const std::vector<int>& keep)>;
 
     // After a draw that wanted `wanted` (PagedPyramid::takeWanted); `anotherView`: not the
     // view refined before. Returns true where the pool has just proved too small for the

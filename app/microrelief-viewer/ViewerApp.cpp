@@ -609,7 +609,7 @@ void ViewerApp::loadWantedPages() {
     const bool anotherView = refinedView_ != view;
     refinedView_ = view;
     const auto load = [pager](const std::vector<int>& pages, const std::vector<int>& keep) {
-        return pager->load(pages, keep);
+        return pager->loadWhatFitsKeepingRead(pages, keep);
     };
     if (pages_.afterDraw(anotherView, pager->takeWanted(), load)) {
         note("this view reads more pages at once than --memory holds (" +

@@ -188,9 +188,7 @@ void HeadlessRenderer::drawTile(const RenderJob& job, const CameraFrame& camera,
         ++result.paging.draws;
         const std::vector<int> wanted = pager->takeWanted();
         if (wanted.empty()) break;
-        std::vector<int> keep = kept;
-        keep.insert(keep.end(), pager->readByLastDraws().begin(), pager->readByLastDraws().end());
-        if (!pager->load(wanted, keep)) {
+        if (!pager->loadKeepingRead(wanted, kept)) {
             if (part.width == 1 && part.height == 1) {
                 throwBadInput(renderer_->map()->source() +
                               ": one pixel's ray needs more pages than the memory "

@@ -260,6 +260,41 @@ bool PagedPyramid::load(const std::vector<int>& pages, const std::vector<int>& k
     return true;
 }
 
+bool PagedPyramid::loadKeepingRead(const std::vector<int>& pages, const std::vector<int>& keep) {
+    std::vector<int> kept = keep;
+    kept.insert(kept.end(), read_.begin(), read_.end());
+    return load(pages, kept);
+}
+
+std::size_t PagedPyramid::loadWhatFitsKeepingRead(const std::vector<int>& pages,
+                                                  const std::vector<int>& keep) {
+    // A layer for each page held: resident and kept or read, or taken from `pages` (absent:
+    // a free layer or an evicted page's; resident: its own, no longer evictable). load
+    // finds the layers for the pages taken, since they and those held are at most the pool.
+    std::vector<char> held(pages_.size(), 0);
+    int room = capacity();
+    const std::vector<int>* const heldLists[] = {&keep, &read_};
+    for (const std::vector<int>* list : heldLists) {
+        for (int page : *list) {
+            if (held[page] || pages_[page].layer < 0) continue;
+            held[page] = 1;
+            --room;
+        }
+    }
+    std::size_t taken = 0;
+    for (; taken < pages.size(); ++taken) {
+        const int page = pages[taken];
+        if (held[page]) continue;
+        if (room == 0) break;
+        held[page] = 1;
+        --room;
+    }
+    if (taken == 0) return 0;
+    const std::vector<int> some(pages.begin(), pages.begin() + static_cast<std::ptrdiff_t>(taken));
+    if (!loadKeepingRead(some, keep)) throwRuntime("PagedPyramid: a load counted to fit did not");
+    return taken;
+}
+
 std::vector<float> PagedPyramid::pageTexels(const Page& page) const {
     // Texels past the level's edge are never read (reads are clamped to the level); 0.
     const int side = pageSide();

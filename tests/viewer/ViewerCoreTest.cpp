@@ -453,18 +453,20 @@ TEST(OutputFiles, AScreenshotNeverOverwritesAndAnEditedMapKeepsItsGround) {
 }
 
 // A paged view refined over frames against a pool of `capacity` pages (a stand-in for
-// PagedPyramid::load: it refuses a load whose pages and those kept do not fit): 600 wanted
-// pages load 256, 256 and 88 over three draws, each kept for the next load and each a new
-// generation; a draw that wants none is exact. Another view forgets what was kept; a view
-// that needs more than the pool holds stops refining, said once. Seen red: with the kept
-// pages not passed on (the third load fits a pool of 300), and with kPagesPerFrame ignored.
+// PagedPyramid::loadWhatFitsKeepingRead: it loads what fits beside the pages kept): 600
+// wanted pages load 256, 256 and 88 over three draws, each kept for the next load and each
+// a new generation; a draw that wants none is exact. Another view forgets what was kept; a
+// view that needs more than the pool holds loads what fits, then stops refining, said once.
+// Seen red: with the kept pages not passed on (the third load fits a pool of 300), and with
+// kPagesPerFrame ignored.
 TEST(PageRefiner, AViewLoadsItsPagesOverFramesUntilExactOrThePoolIsFull) {
     std::size_t capacity = 700;
     std::vector<std::size_t> loads;
-    const PageRefiner::Load load = [&](const std::vector<int>& pages, const std::vector<int>& keep) {
-        if (pages.size() + keep.size() > capacity) return false;
-        loads.push_back(pages.size());
-        return true;
+    const PageRefiner::Load load = [&](const std::vector<int>& pages,
+                                       const std::vector<int>& keep) -> std::size_t {
+        if (keep.size() >= capacity) return 0;
+        loads.push_back(std::min(pages.size(), capacity - keep.size()));
+        return loads.back();
     };
     std::vector<int> wanted(600);
     for (int k = 0; k < 600; ++k) wanted[static_cast<std::size_t>(k)] = k;
@@ -487,13 +489,16 @@ TEST(PageRefiner, AViewLoadsItsPagesOverFramesUntilExactOrThePoolIsFull) {
     capacity = 300;  // another view, in a smaller pool
     EXPECT_FALSE(refiner.afterDraw(true, wanted, load));
     EXPECT_EQ(refiner.kept().size(), 256u) << "the last view's pages are not kept for this one";
-    EXPECT_TRUE(refiner.afterDraw(false, {wanted.begin() + 256, wanted.end()}, load));
+    EXPECT_FALSE(refiner.afterDraw(false, {wanted.begin() + 256, wanted.end()}, load));
+    EXPECT_EQ(refiner.kept().size(), 300u) << "what fits is loaded";
+    EXPECT_TRUE(refiner.afterDraw(false, {wanted.begin() + 300, wanted.end()}, load));
     EXPECT_TRUE(refiner.poolTooSmall());
     EXPECT_FALSE(refiner.refining());
     EXPECT_EQ(refiner.progress(), "coarse in parts, raise --memory");
-    EXPECT_FALSE(refiner.afterDraw(false, {wanted.begin() + 256, wanted.end()}, load))
+    EXPECT_FALSE(refiner.afterDraw(false, {wanted.begin() + 300, wanted.end()}, load))
         << "said once a view";
-    EXPECT_EQ(refiner.generation(), 4);
+    EXPECT_EQ(refiner.generation(), 5);
+    EXPECT_EQ(loads, (std::vector<std::size_t>{256, 256, 88, 256, 44}));
 
     refiner.noPages();
     EXPECT_FALSE(refiner.pagesWanted());

@@ -105,6 +105,18 @@ public:
     // coarse page is read by more rays). Returns false, loading nothing, when they do not
     // all fit beside `keep`.
     bool load(const std::vector<int>& pages, const std::vector<int>& keep);
+    // The hosts' rule (HeadlessRenderer's tiles, the viewer's frames): load with the pages
+    // the last draws read kept too (readByLastDraws), besides `keep`. Least recently used
+    // order alone evicts them last, but where the pool is short it evicts them still, and
+    // the next draw wants them again; kept, the load fails instead (a host then draws in
+    // parts, or loads less: loadWhatFitsKeepingRead).
+    bool loadKeepingRead(const std::vector<int>& pages, const std::vector<int>& keep);
+    // loadKeepingRead of the longest run of `pages` from the first that fits beside `keep`
+    // and the pages the last draws read; returns its length (0: none fits, nothing loaded).
+    // For a host that cannot draw a view in parts (the viewer): it loads what fits and
+    // draws again, never at the cost of a page its last draw read.
+    std::size_t loadWhatFitsKeepingRead(const std::vector<int>& pages,
+                                        const std::vector<int>& keep);
     bool resident(int page) const { return pages_[page].layer >= 0; }
 
 private:

@@ -96,6 +96,24 @@ vec3 mrShadeHit(mr_Relief relief, MICRORELIEF_SAMPLER windows, MICRORELIEF_SAMPL
     return mr_shadeRelief(material, p.normal, normalize(lightDirection), normalize(-p.dir), vec3(visibility));
 }
 
+// The world size of a shadow-map texel at `p` for a light whose matrix `m` takes the world to
+// the map's [0, 1] (projective for a spot light): 1 over the steepest rate of its
+// coordinates (three_material.glsl's and webgpu_shading.glsl's shadow lookups move the hit
+// off the surface by a reach of these: docs/three.md, "Shadow acne").
+float mrShadowTexel(mat4 m, vec3 p, vec2 mapSize) {
+    vec4 c = m * vec4(p, 1.0);
+    vec3 x = vec3(m[0][0], m[1][0], m[2][0]), y = vec3(m[0][1], m[1][1], m[2][1]), w = vec3(m[0][3], m[1][3], m[2][3]);
+    vec2 perUnit = vec2(length(x - (c.x / c.w) * w), length(y - (c.y / c.w) * w)) * mapSize / abs(c.w);
+    return 1.0 / min(perUnit.x, perUnit.y);
+}
+
+// The same on a point light's cube (`m` its shadow matrix, the light at the origin it takes
+// p to): a face's texel at the depth of p's largest coordinate about the light.
+float mrPointShadowTexel(mat4 m, vec3 p, vec2 mapSize) {
+    vec3 a = abs((m * vec4(p, 1.0)).xyz);
+    return 2.0 * max(a.x, max(a.y, a.z)) / mapSize.x;
+}
+
 #ifndef MICRORELIEF_THREE_PARAMETERS_ONLY
 
 uniform sampler2D mrHeights;   // the samples, R32F, W x H (nearest; u repeats on a curved base)

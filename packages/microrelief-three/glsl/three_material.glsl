@@ -58,23 +58,13 @@ float mrShadowReach(float radius) {
 #endif
 }
 
-// The world size of a shadow-map texel at `p` for a light whose matrix takes the world to the
-// map's [0, 1] (projective for a spot light): 1 over the steepest rate of its coordinates.
-float mrShadowTexel(mat4 m, vec3 p, vec2 mapSize) {
-    vec4 c = m * vec4(p, 1.0);
-    vec3 x = vec3(m[0][0], m[1][0], m[2][0]), y = vec3(m[0][1], m[1][1], m[2][1]), w = vec3(m[0][3], m[1][3], m[2][3]);
-    vec2 perUnit = vec2(length(x - (c.x / c.w) * w), length(y - (c.y / c.w) * w)) * mapSize / abs(c.w);
-    return 1.0 / min(perUnit.x, perUnit.y);
-}
-
 // The normal offset the texel asks for, world units (mrShadowReach texels).
 float mrShadowTexelBias(mat4 m, vec3 p, vec2 mapSize, float radius) {
     return mrShadowReach(radius) * mrShadowTexel(m, p, mapSize);
 }
 
 float mrPointShadowTexelBias(mat4 m, vec3 p, vec2 mapSize, float radius) {
-    vec3 a = abs((m * vec4(p, 1.0)).xyz);  // the light to p: the cube face's depth is its largest
-    return mrShadowReach(radius) * 2.0 * max(a.x, max(a.y, a.z)) / mapSize.x;
+    return mrShadowReach(radius) * mrPointShadowTexel(m, p, mapSize);
 }
 #endif
 

@@ -137,20 +137,11 @@ float mrSelfShadow(MICRORELIEF_SAMPLER heights, MICRORELIEF_SAMPLER windows, mat
 
 // The world size of a shadow-map texel at `p` (three's world), for ReliefStandardNodeMaterial's
 // shadow lookups (docs/three.md, "Shadow acne": the hit is moved along its normal by the map's
-// reach times this before three looks it up): `m` the light's shadow matrix, taking the world
-// to the map's [0, 1] (projective for a spot light: 1 over the steepest rate of its
-// coordinates, three_material.glsl's mrShadowTexel), or, where `point` is 1, a point light's
-// (the light at its origin: a cube face's texel at p's largest coordinate about the light,
-// three_material.glsl's mrPointShadowTexelBias).
+// reach times this before three looks it up): `m` the light's shadow matrix, a spot or
+// directional light's (relief_three.glsl's mrShadowTexel) or, where `point` is 1, a point
+// light's (mrPointShadowTexel), the rule the WebGL entry's three_material.glsl applies.
 float mrShadowTexelSize(mat4 m, vec3 p, vec2 mapSize, float point) {
-    vec4 c = m * vec4(p, 1.0);
-    if (point == 1.0) {
-        vec3 a = abs(c.xyz);
-        return 2.0 * max(a.x, max(a.y, a.z)) / mapSize.x;
-    }
-    vec3 x = vec3(m[0][0], m[1][0], m[2][0]), y = vec3(m[0][1], m[1][1], m[2][1]), w = vec3(m[0][3], m[1][3], m[2][3]);
-    vec2 perUnit = vec2(length(x - (c.x / c.w) * w), length(y - (c.y / c.w) * w)) * mapSize / abs(c.w);
-    return 1.0 / min(perUnit.x, perUnit.y);
+    return point == 1.0 ? mrPointShadowTexel(m, p, mapSize) : mrShadowTexel(m, p, mapSize);
 }
 
 #endif

@@ -20,6 +20,7 @@
 #include "microrelief/core/scene/FloatLimits.h"
 #include "microrelief/headless/HeadlessContext.h"
 #include "microrelief/io/ImageFile.h"
+#include "microrelief/io/MeshFile.h"
 #include "microrelief/io/ReliefFiles.h"
 
 namespace microrelief {
@@ -227,9 +228,16 @@ struct CheckedFrames {
     std::optional<LoadedMap> last;  // the last map loaded
 };
 
+// The name of a frame's mesh in messages: its file.
+std::string meshName(const RenderJob& job) {
+    return job.mesh.file ? job.mesh.file->string() : std::string("the mesh");
+}
+
 // A frame's scene over its map: a georeferenced map's true proportions where the frame's
 // flags let.
 RenderJob frameJob(const PathFrame& frame, const MapFacts& facts) {
+    // The mesh base: no fit, the mesh's units are its file's (as its single picture).
+    if (frame.scene.job.onMesh) return frame.scene.job;
     return sceneOverMap(frame.scene.job, frame.scene.georeference, facts.extent.width,
                         facts.extent.height, facts.georeference,
                         heightMapPath(frame.scene.job).string());
@@ -259,6 +267,7 @@ MapFacts readMapFacts(const RenderOptions& o, const PathFrame& frame, const MapK
 // unless --quiet, what its georeference gave.
 void reportMapFacts(const RenderOptions& o, const PathFrame& frame, const MapKey& key,
                     const MapFacts& facts) {
+    if (frame.scene.job.onMesh) return;  // no georeference fit on the mesh base (frameJob)
     if (const std::string unused = exaggerationUnused(std::get<0>(key).string(),
                                                       frame.scene.georeference, facts.georeference);
         !unused.empty())
@@ -293,7 +302,12 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
             const RenderJob job = frameJob(frame, facts->second);
             checkPictureSize(job.width, job.height);
             if (o.pyramidCache) checkDrawnFromPyramidFile(job, o.compareReference);
-            if (job.animation.empty()) {
+            if (job.onMesh) {
+                // The mesh's own limits (the map's largest height from its facts); the
+                // camera's positions were checked with the path (CameraPath.h).
+                checkMeshFloatLimits(*job.mesh.triangles, facts->second.extent.maxHeight,
+                                     job.heightScale, meshName(job));
+            } else if (job.animation.empty()) {
                 const MapExtent& map = facts->second.extent;
                 checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxHeight},
                                  job.heightScale, job.base, job.model, job.camera,
@@ -309,6 +323,65 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
     return checked;
 }
 
+// The meshes of a path's frames on the mesh base (ReliefDesc::onMesh): each file named
+// and the triangles read from it, once.
+using PathMeshes = std::vector<std::pair<std::string, std::shared_ptr<const TriangleMesh>>>;
+
+// A frame's mesh: read once a file (kept in `meshes`) and held in the frame's scene
+// (MeshSource::triangles: no frame reads its file again, and the renderer keeps its proxy
+// from frame to frame: HeadlessRenderer::setMesh). Errors name the frame's row, where
+// `fromRow` (a command line's file is named by its own flag).
+void holdMesh(PathFrame& frame, PathMeshes& meshes, bool fromRow) {
+    MeshSource& source = frame.scene.job.mesh;
+    if (!frame.scene.job.onMesh || source.triangles) return;
+    const std::string name = meshName(frame.scene.job);
+    for (const auto& [file, mesh] : meshes) {
+        if (file == name) {
+            source.triangles = mesh;
+            return;
+        }
+    }
+    try {
+        source.triangles = std::make_shared<const TriangleMesh>(loadMeshFile(*source.file));
+    } catch (const Error& e) {
+        if (!fromRow) throw;
+        throw e.after(frame.origin + ": ");
+    }
+    meshes.emplace_back(name, source.triangles);
+}
+
+// The path with its frames' meshes held (holdMesh), once the plan's files are checked: a
+// camera file's selected rows each hold their own. A turntable on the mesh base turns the
+// camera the single picture takes: where --eye or --target is not given, the one framing
+// the mesh's shell (gl/HeadlessRender.h: meshCamera, at the command line's picture size),
+// for which the map is read too, even where --skip-existing finds every frame done (the
+// manifest's rows name each frame's camera).
+CameraPath pathWithMeshes(const RenderOptions& o, std::vector<PathFrame> rows,
+                          const std::vector<int>& frames, PathMeshes& meshes) {
+    if (o.batch.cameras) {
+        for (const int k : frames) holdMesh(rows.at(static_cast<std::size_t>(k)), meshes, true);
+        return CameraPath(std::move(rows));
+    }
+    PathFrame line{o.scene, "", "the command line"};
+    if (!line.scene.job.onMesh) return CameraPath::turntable(o.scene, o.batch.turntable);
+    holdMesh(line, meshes, false);
+    RenderJob& job = line.scene.job;
+    if (!(o.eyeGiven && o.targetGiven)) {
+        const std::shared_ptr<const HeightMap> map =
+            loadFilesOrPointToCache(job, o.compareReference, ReliefParts::Heights).heights;
+        // Before the camera frames it, as the single picture (the line names the mesh).
+        checkMeshFloatLimits(*job.mesh.triangles, *map, job.heightScale, meshName(job));
+        job.camera = meshCamera(job.camera, o.eyeGiven, o.targetGiven,
+                                meshShellExtent(*job.mesh.triangles, job.heightScale,
+                                                map->maxValue()),
+                                job.width, job.height);
+        if (o.verbose)
+            logInfo("the camera framing the mesh, the turntable's frame 0: " +
+                    cameraFlags(job.camera));
+    }
+    return CameraPath::turntable(line.scene, o.batch.turntable);
+}
+
 // The stages of a run, in the order runBatch calls them. Each says what it hands the next.
 
 // Stage 1, the plan: the path (frames made one at a time as they are drawn: a path of a
@@ -320,17 +393,24 @@ struct BatchPlan {
     std::vector<int> frames;
     std::vector<FrameFiles> files;
     std::filesystem::path manifest;
+    PathMeshes meshes;  // of the selected frames on the mesh base
 };
 
 BatchPlan planBatch(const RenderOptions& o) {
-    CameraPath path = o.batch.cameras ? CameraPath(readCameraFile(*o.batch.cameras, o.scene))
+    std::vector<PathFrame> rows;
+    if (o.batch.cameras) rows = readCameraFile(*o.batch.cameras, o.scene);
+    CameraPath path = o.batch.cameras ? CameraPath(rows)
                                       : CameraPath::turntable(o.scene, o.batch.turntable);
     const Shard shard = o.batch.shard.value_or(Shard{});
     std::vector<int> frames = selectFrames(path.size(), o.batch.frames, shard);
     std::vector<FrameFiles> files = frameFiles(o, path.size(), frames);
     std::filesystem::path manifest = manifestFile(o);
     checkFilesWritten(o, path, files, manifest);
-    return {std::move(path), shard, std::move(frames), std::move(files), std::move(manifest)};
+    PathMeshes meshes;
+    path = pathWithMeshes(o, std::move(rows), frames, meshes);
+    return {std::move(path),     shard,
+            std::move(frames),   std::move(files),
+            std::move(manifest), std::move(meshes)};
 }
 
 // Stage 2, --skip-existing: which of the plan's frames have whole files already (done, by
@@ -391,6 +471,7 @@ public:
     int mapsLoaded() const { return mapsLoaded_; }
     int eyeInside() const { return eyeInside_; }
     const std::string& firstEyeInside() const { return firstEyeInside_; }
+    bool firstEyeInsideOnMesh() const { return firstEyeInsideOnMesh_; }
 
 private:
     // The context and renderer, for the first frame drawn (none where every frame is skipped).
@@ -419,7 +500,7 @@ private:
                 mapHeld_.reset();
                 ++mapsLoaded_;
             }
-        } else if (renderer_->needsHeights(job)) {
+        } else if (job.onMesh || renderer_->needsHeights(job)) {
             // The same samples for another pyramid (another base or tiles): the map held.
             // The check's map, where it has the same samples, is not read again either.
             std::optional<LoadedMap>& checkedMap = checked_.last;
@@ -435,7 +516,12 @@ private:
                 mapHeld_.reset();
                 ++mapsLoaded_;
             }
-            renderer_->setHeights(job, heights, std::get<0>(key).string());
+            // On the mesh base: the mesh and this map, whose relief the renderer keeps while
+            // both are the same (the same pointers: HeadlessRenderer::setMesh).
+            if (job.onMesh)
+                renderer_->setMesh(job.mesh.triangles, heights, meshName(job));
+            else
+                renderer_->setHeights(job, heights, std::get<0>(key).string());
             map_ = std::move(heights);
             mapHeld_ = key;
         }
@@ -456,8 +542,15 @@ private:
         const HeightMap* traced = result.animatedMap ? &*result.animatedMap
                                   : map_             ? map_.get()
                                                      : nullptr;
-        if (traced && eyeInsideTheSolid(*traced, job) && eyeInside_++ == 0)
+        // The mesh's classes take the map's rows reversed (HeightMap.h: rowsReversed).
+        const bool inside =
+            traced && (job.onMesh ? eyeInsideTheMeshSolid(*job.mesh.triangles,
+                                                          rowsReversed(*traced), job)
+                                  : eyeInsideTheSolid(*traced, job));
+        if (inside && eyeInside_++ == 0) {
             firstEyeInside_ = frame.origin;
+            firstEyeInsideOnMesh_ = job.onMesh;
+        }
     }
 
     const RenderOptions& o_;
@@ -474,6 +567,7 @@ private:
     int mapsLoaded_ = 0;
     int eyeInside_ = 0;  // frames whose eye lies inside the solid
     std::string firstEyeInside_;
+    bool firstEyeInsideOnMesh_ = false;  // whether that frame's base is the mesh
 };
 
 // Stage 5's end for a frame: a warning for pixels that ran out of the iteration budget, then
@@ -549,12 +643,28 @@ FrameCounts drawFrames(const BatchPlan& plan, const std::vector<bool>& done,
 // of what was drawn, to where, how fast, and from how many maps.
 void reportRun(const RenderOptions& o, const BatchPlan& plan, const FrameCounts& counts,
                const FrameRenderer& renderer, Clock::time_point start) {
+    for (const auto& [name, held] : plan.meshes) {
+        // Once drawn, as the single picture warns; each mesh once.
+        if (counts.rendered == 0) break;
+        const TriangleMesh& mesh = *held;
+        if (const std::size_t flat = zeroUvAreaTriangles(mesh); flat > 0) {
+            logWarning(name + ": " + std::to_string(flat) + " of " +
+                       std::to_string(mesh.triangleCount()) +
+                       " triangles have zero area in texture coordinates (their uvs on one "
+                       "point or one line): the map is one height or stripes over them" +
+                       (flat == mesh.triangleCount() ? ", and no relief shows anywhere" : ""));
+        }
+    }
     if (renderer.eyeInside() > 0) {
+        const bool onMesh = renderer.firstEyeInsideOnMesh();
+        const std::string where = onMesh
+                                      ? "in the shell between the mesh and the relief's top"
+                                      : "under its surface";
         logWarning(plural(renderer.eyeInside(), "frame") + " of " +
-                   std::to_string(plan.files.size()) +
-                   " drawn with the eye inside the relief's solid (under its surface; first: " +
-                   renderer.firstEyeInside() +
-                   "): the pictures are undefined there; move the eye above the surface");
+                   std::to_string(plan.files.size()) + " drawn with the eye inside the relief's solid (" +
+                   where + "; first: " + renderer.firstEyeInside() +
+                   "): the pictures are undefined there; move the eye " +
+                   (onMesh ? "out of the shell" : "above the surface"));
     }
     if (o.quiet) return;
     const double seconds = secondsSince(start);

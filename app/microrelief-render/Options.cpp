@@ -31,10 +31,6 @@ void applyBatchFlags(const CLI::App& app, RenderOptions& o, const std::string& c
     }
     if (b.active() && o.compareReference)
         throwBadInput("--compare-reference checks one picture: not with a camera path");
-    if (b.active() && o.scene.job.onMesh)
-        throwBadInput(std::string(turntable ? "--turntable" : "--cameras") +
-                      ": camera paths are not yet drawn on the mesh base (" +
-                      flagName("base") + " mesh)");
     if (b.active() && app.count("--out") == 0) o.out = "out/microrelief-{frame:04d}.png";
 }
 

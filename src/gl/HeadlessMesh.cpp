@@ -192,8 +192,12 @@ const double kMinShellPerSize = std::ldexp(1.0, -64);
 
 void checkMeshFloatLimits(const TriangleMesh& mesh, const HeightMap& map, double heightScale,
                           const std::string& source) {
+    checkMeshFloatLimits(mesh, map.maxValue(), heightScale, source);
+}
+
+void checkMeshFloatLimits(const TriangleMesh& mesh, double top, double heightScale,
+                          const std::string& source) {
     const MeshSize size = meshSize(mesh);
-    const double top = map.maxValue();
     const double shell = heightScale * top;  // s H, the mesh's units
     const std::string shellText = "the shell ({heightScale} " + figure(heightScale) +
                                   " x the map's largest height " + figure(top) + " = " +

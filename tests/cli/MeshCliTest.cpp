@@ -11,13 +11,15 @@
 // with small tiles) equal to the one drawn whole. And the refusals, one line each: what the mesh
 // base does not draw yet, what its shader's float cannot trace, a base without its mesh and a
 // mesh without its base, files that are no mesh; what -v says of the mesh; the warnings of an
-// eye inside the shell and of triangles of zero uv area.
+// eye inside the shell and of triangles of zero uv area. Camera paths on the mesh base: a
+// turntable framing the mesh as the single picture does, a camera file with a row's own flags.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "TestSupport.h"
 #include "microrelief/core/Text.h"
@@ -278,6 +280,118 @@ TEST_F(MeshCli, APictureDrawnInTilesIsThePictureDrawnWhole) {
     EXPECT_LT(worst, 0.05 / 128.0);
 }
 
+// The flags of a camera, every number exact (17 digits read back to the same double; "="
+// keeps a leading minus a value).
+std::string cameraFlags(const Camera& c) {
+    const auto exact = [](double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", v);
+        return std::string(text);
+    };
+    const auto vector = [&](const glm::dvec3& v) {
+        return exact(v.x) + "," + exact(v.y) + "," + exact(v.z);
+    };
+    return "--eye=" + vector(c.eye) + " --target=" + vector(c.target) + " --up=" + vector(c.up) +
+           " --fovy " + exact(c.fovyDegrees);
+}
+
+// Whether two pictures (and two AOVs) are the same, pixel for pixel.
+void expectSamePicture(const std::filesystem::path& png, const std::filesystem::path& exr,
+                       const std::filesystem::path& otherPng, const std::filesystem::path& otherExr) {
+    const test::Image a = test::readImage(png), b = test::readImage(otherPng);
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    EXPECT_TRUE(a.pixels == b.pixels) << png << " and " << otherPng << " differ";
+    const test::Aov p = test::readAov(exr), q = test::readAov(otherExr);
+    EXPECT_TRUE(p.pixels == q.pixels) << exr << " and " << otherExr << " differ";
+}
+
+// --turntable on the mesh base: frame 0 is the single picture's camera framing the mesh's
+// shell (meshCamera), the same picture and AOV pixel for pixel as the single picture drawn
+// without --eye and --target; frames 1 and 2 turn it by 120 and 240 degrees about the
+// vertical through its target (docs/batch.md), each frame's AOV the reference's hits of its
+// own camera's rays. The bumpy grid under the noise map, 32 x 24. Seen red with every frame
+// drawn with frame 0's scene: frame 2's AOV 32 of 768 pixels hit/miss off the reference and
+// all 80 of its hits more than half a texel off.
+TEST_F(MeshCli, ATurntableFramesTheMeshAndEachFrameIsItsCamerasPicture) {
+    const auto mesh = dir / "grid.obj", map = writeNoiseMap();
+    writeBumpyGrid(mesh, 4);
+    const double s = 0.06;
+    const std::string scene = "--base mesh --mesh " + mesh.string() + " --height " + map.string() +
+                              " --height-scale " + formatNumber(s, 9) + " --size 32x24";
+    const test::RunResult path = run(scene + " --turntable 3 -q --out " +
+                                     (dir / "tt-{frame}.png").string() + " --aov " +
+                                     (dir / "tt-{frame}.exr").string());
+    ASSERT_EQ(path.status, 0) << path.err;
+    const test::RunResult single = run(scene + " -q --out " + (dir / "one.png").string() +
+                                       " --aov " + (dir / "one.exr").string());
+    ASSERT_EQ(single.status, 0) << single.err;
+    expectSamePicture(dir / "tt-0.png", dir / "tt-0.exr", dir / "one.png", dir / "one.exr");
+
+    const TriangleMesh triangles = loadMeshFile(mesh);
+    const HeightMap heights = rowsReversed(loadHeightMapFile(map).map);
+    const Camera framed =
+        meshCamera(Camera{}, false, false, meshShellExtent(triangles, s, heights.maxValue()), 32, 24);
+    for (int k = 1; k < 3; ++k) {
+        SCOPED_TRACE("frame " + std::to_string(k));
+        const double angle = 2.0 * 3.14159265358979323846 * k / 3.0;
+        const double c = std::cos(angle), n = std::sin(angle);
+        const auto turn = [&](const glm::dvec3& v) {
+            return glm::dvec3{c * v.x + n * v.z, v.y, -n * v.x + c * v.z};
+        };
+        Camera camera = framed;
+        camera.eye = framed.target + turn(framed.eye - framed.target);
+        camera.up = turn(framed.up);
+        const test::Aov aov = test::readAov(dir / ("tt-" + std::to_string(k) + ".exr"));
+        ASSERT_EQ(aov.width, 32);
+        expectAgreement(compare(aov, camera, triangles, heights, s), 32 * 24 / 12);
+    }
+}
+
+// --cameras on the mesh base: two rows, the second with a height scale of its own (the
+// renderer builds the relief again for it), each frame the single picture of its row's
+// camera and flags pixel for pixel, and the reference's. Seen red with every frame drawn
+// with the first row's scene: frame 1 not its single picture (picture and AOV), 125 of 768
+// pixels hit/miss off the reference and all 376 of its hits more than half a texel off.
+TEST_F(MeshCli, ACameraFilesFramesAreTheirRowsSinglePictures) {
+    const auto mesh = dir / "grid.obj", map = writeNoiseMap(), cameras = dir / "cams.csv";
+    writeBumpyGrid(mesh, 4);
+    std::ofstream(cameras) << "eye_x,eye_y,eye_z,target_x,target_y,target_z,fovy,flags\n"
+                              "0.2,0.8,1.1,0,0.02,0,40,\n"
+                              "-0.9,0.5,-0.6,0.1,0,0,35,--height-scale 0.03\n";
+    const std::string scene =
+        "--base mesh --mesh " + mesh.string() + " --height " + map.string() + " --size 32x24";
+    const test::RunResult path = run(scene + " --height-scale 0.06 --cameras " + cameras.string() + " -q --out " +
+                                     (dir / "cam-{frame}.png").string() + " --aov " +
+                                     (dir / "cam-{frame}.exr").string());
+    ASSERT_EQ(path.status, 0) << path.err;
+    const TriangleMesh triangles = loadMeshFile(mesh);
+    const HeightMap heights = rowsReversed(loadHeightMapFile(map).map);
+    const struct {
+        glm::dvec3 eye, target;
+        double fovy, s;
+    } rows[] = {{{0.2, 0.8, 1.1}, {0.0, 0.02, 0.0}, 40.0, 0.06},
+                {{-0.9, 0.5, -0.6}, {0.1, 0.0, 0.0}, 35.0, 0.03}};
+    for (int k = 0; k < 2; ++k) {
+        SCOPED_TRACE("frame " + std::to_string(k));
+        Camera camera;
+        camera.eye = rows[k].eye;
+        camera.target = rows[k].target;
+        camera.fovyDegrees = rows[k].fovy;
+        const auto frame = dir / ("cam-" + std::to_string(k));
+        expectAgreement(compare(test::readAov(frame.string() + ".exr"), camera, triangles, heights,
+                                rows[k].s),
+                        32 * 24 / 8);
+        if (k == 0) continue;  // one single picture: the row with flags of its own
+        const test::RunResult single =
+            run(scene + " " + cameraFlags(camera) + " --height-scale 0.03 -q --out " +
+                (dir / "one.png").string() + " --aov " + (dir / "one.exr").string());
+        ASSERT_EQ(single.status, 0) << single.err;
+        expectSamePicture(frame.string() + ".png", frame.string() + ".exr", dir / "one.png",
+                          dir / "one.exr");
+    }
+}
+
 
 // Where the shader's float arithmetic does not trace the mesh exactly (src/gl/HeadlessMesh.cpp:
 // checkMeshFloatLimits, with the measurements behind each limit): one line and exit 2, before
@@ -410,7 +524,6 @@ TEST_F(MeshCli, WhatTheMeshBaseDoesNotDrawYetIsRefusedInOneLine) {
     expectFailure(run(mesh + " --light-position 1,2,3"), "--light-position");
     expectFailure(run(mesh + " --view iterations"), "--view iterations");
     expectFailure(run(mesh + " --radius 0.3"), "--radius does not apply to --base mesh");
-    expectFailure(run(mesh + " --turntable 3"), "--turntable: camera paths are not yet drawn");
     expectFailure(run(mesh + " --compare-reference"), "--compare-reference" + notYet);
     expectFailure(run(mesh + " --pyramid-cache " + dir.path().string()), "--pyramid-cache" + notYet);
     // Files that are no mesh: text, an image, none, a mesh without texture coordinates.

@@ -169,6 +169,10 @@ MeshSize meshSize(const TriangleMesh& mesh);
 // HeadlessRenderer::render checks it before drawing a job on the mesh base.
 void checkMeshFloatLimits(const TriangleMesh& mesh, const HeightMap& map, double heightScale,
                           const std::string& source);
+// The same with the map's largest height `top` (a camera path checks each frame's map from
+// its facts, not held in memory).
+void checkMeshFloatLimits(const TriangleMesh& mesh, double top, double heightScale,
+                          const std::string& source);
 // The camera a picture of the mesh base takes where the user gives none: `camera` with its
 // target, where not `targetGiven`, at the centre of `shell` (meshShellExtent), and its eye,
 // where not `eyeGiven`, along the default camera's direction (Camera{}: from above, to the

@@ -55,8 +55,8 @@ constexpr SceneField kSceneFields[] = {
      "in the mesh's units (`-v` prints the mesh's box and the shell's thickness). "
      "microrelief-render only so far, and not yet with shadows, `--albedo FILE`, a method "
      "other than `multilevel`, `--pixel-error`, `--tile`, `--animate`, `--model`, "
-     "`--light-position`, a `--view` other than `shaded` and `normal`, camera paths "
-     "(`--turntable`, `--cameras`), `--compare-reference` or `--pyramid-cache`"},
+     "`--light-position`, a `--view` other than `shaded` and `normal`, `--compare-reference` "
+     "or `--pyramid-cache`"},
     {"tiles", "--tile", "N,M", "", "1,1", "each a whole number from 1 to 4096",
      "Repeat the map N,M times across the base (N around a curved base), as the N x M larger "
      "image made by repeating it (default 1,1)",

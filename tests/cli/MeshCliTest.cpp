@@ -392,6 +392,32 @@ TEST_F(MeshCli, ACameraFilesFramesAreTheirRowsSinglePictures) {
     }
 }
 
+// A camera file's row may put its frame on a mesh of its own (`--base mesh --mesh FILE` in
+// its flags) under a command line on the plane: the mesh read for that row and its frame
+// the reference's; the plane's frame drawn too. Seen red with rows' meshes not read (the
+// program crashed, status 139).
+TEST_F(MeshCli, ARowMayPutItsFrameOnAMeshOfItsOwn) {
+    const auto mesh = dir / "grid.obj", map = writeNoiseMap(), cameras = dir / "cams.csv";
+    writeBumpyGrid(mesh, 4);
+    std::ofstream(cameras) << "eye_x,eye_y,eye_z,target_x,target_y,target_z,fovy,flags\n"
+                              "0.8,0.5,0.85,0,0,0,40,\n"
+                              "0.2,0.8,1.1,0,0.02,0,40,--base mesh --mesh " + mesh.string() +
+                                  " --height-scale 0.06\n";
+    const test::RunResult path =
+        run("--height " + map.string() + " --size 32x24 --cameras " + cameras.string() +
+            " -q --out " + (dir / "row-{frame}.png").string() + " --aov " +
+            (dir / "row-{frame}.exr").string());
+    ASSERT_EQ(path.status, 0) << path.err;
+    EXPECT_EQ(test::readImage(dir / "row-0.png").width, 32);
+    Camera camera;
+    camera.eye = {0.2, 0.8, 1.1};
+    camera.target = {0.0, 0.02, 0.0};
+    camera.fovyDegrees = 40.0;
+    expectAgreement(compare(test::readAov(dir / "row-1.exr"), camera, loadMeshFile(mesh),
+                            rowsReversed(loadHeightMapFile(map).map), 0.06),
+                    32 * 24 / 8);
+}
+
 
 // Where the shader's float arithmetic does not trace the mesh exactly (src/gl/HeadlessMesh.cpp:
 // checkMeshFloatLimits, with the measurements behind each limit): one line and exit 2, before

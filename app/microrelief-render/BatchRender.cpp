@@ -500,31 +500,52 @@ private:
                 mapHeld_.reset();
                 ++mapsLoaded_;
             }
-        } else if (job.onMesh || renderer_->needsHeights(job)) {
+        } else if (job.onMesh) {
+            setMeshMap(job, key);
+        } else if (renderer_->needsHeights(job)) {
             // The same samples for another pyramid (another base or tiles): the map held.
             // The check's map, where it has the same samples, is not read again either.
             std::optional<LoadedMap>& checkedMap = checked_.last;
             const bool held = map_ && mapHeld_ && sameSamples(*mapHeld_, key);
             const bool checkedHere = checkedMap && sameSamples(checkedMap->key, key);
+            // Or the mesh frames' map (setMeshMap), where a path mixes the mesh and a base.
+            const bool onTheMesh = meshMap_ && sameSamples(meshMap_->key, key);
             std::shared_ptr<const HeightMap> heights =
                 held          ? map_
+                : onTheMesh   ? meshMap_->map
                 : checkedHere ? std::move(checkedMap->map)
                               : loadReliefFiles(job, ReliefParts::Heights).heights;
             checkedMap.reset();  // taken, or held already, or of another map: not kept
             if (!held) {
                 map_.reset();  // the last map, kept now only by pages that setHeights lets go
                 mapHeld_.reset();
-                ++mapsLoaded_;
+                if (!onTheMesh) ++mapsLoaded_;
             }
-            // On the mesh base: the mesh and this map, whose relief the renderer keeps while
-            // both are the same (the same pointers: HeadlessRenderer::setMesh).
-            if (job.onMesh)
-                renderer_->setMesh(job.mesh.triangles, heights, meshName(job));
-            else
-                renderer_->setHeights(job, heights, std::get<0>(key).string());
+            renderer_->setHeights(job, heights, std::get<0>(key).string());
             map_ = std::move(heights);
             mapHeld_ = key;
         }
+    }
+
+    // The mesh base's map, held apart from `map_` (the other bases' pyramid, which a path
+    // that mixes them keeps): loaded only for other samples than the last mesh frame's, and
+    // not where the other bases' or the check's map has them. The renderer keeps the mesh's
+    // relief while the mesh and the map are the same (the same pointers:
+    // HeadlessRenderer::setMesh).
+    void setMeshMap(const RenderJob& job, const MapKey& key) {
+        std::optional<LoadedMap>& checkedMap = checked_.last;
+        if (!meshMap_ || !sameSamples(meshMap_->key, key)) {
+            const bool checkedHere = checkedMap && sameSamples(checkedMap->key, key);
+            const bool heldHere = map_ && mapHeld_ && sameSamples(*mapHeld_, key);
+            std::shared_ptr<const HeightMap> heights =
+                heldHere      ? map_
+                : checkedHere ? std::move(checkedMap->map)
+                              : loadReliefFiles(job, ReliefParts::Heights).heights;
+            if (!heldHere) ++mapsLoaded_;
+            meshMap_ = LoadedMap{key, std::move(heights)};
+        }
+        checkedMap.reset();  // taken, or held already, or of another map: not kept
+        renderer_->setMesh(job.mesh.triangles, meshMap_->map, meshName(job));
     }
 
     // The albedo, loaded again only where it is another file (or none) than the last frame's.
@@ -540,6 +561,7 @@ private:
     // A map drawn from its pyramid file is not in memory to hold the eye to.
     void noteEyeInside(const PathFrame& frame, const RenderJob& job, const HeadlessResult& result) {
         const HeightMap* traced = result.animatedMap ? &*result.animatedMap
+                                  : job.onMesh       ? meshMap_->map.get()
                                   : map_             ? map_.get()
                                                      : nullptr;
         // The mesh's classes take the map's rows reversed (HeightMap.h: rowsReversed).
@@ -561,6 +583,7 @@ private:
     // pages keep it rather than a copy where it reads it through pages.
     std::shared_ptr<const HeightMap> map_;
     std::optional<MapKey> mapHeld_;   // the key of the frame `map_` was loaded or set for
+    std::optional<LoadedMap> meshMap_;  // the mesh base's map and its key (setMeshMap)
     std::optional<MapKey> pagesSet_;  // the map whose pyramid file the renderer reads
     // The albedo file set on the renderer (itself optional: none); unset before the first.
     std::optional<std::optional<std::filesystem::path>> loadedAlbedo_;

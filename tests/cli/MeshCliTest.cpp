@@ -393,31 +393,41 @@ TEST_F(MeshCli, ACameraFilesFramesAreTheirRowsSinglePictures) {
 }
 
 // A camera file's row may put its frame on a mesh of its own (`--base mesh --mesh FILE` in
-// its flags) under a command line on the plane: the mesh read for that row and its frame
-// the reference's; the plane's frame drawn too. Seen red with rows' meshes not read (the
-// program crashed, status 139).
+// its flags) under a command line on the plane: the mesh read for those rows and their
+// frames the reference's; rows on the mesh, the plane, the mesh again: the plane's frame its
+// single picture pixel for pixel, the mesh's two frames of one camera the same picture (the
+// bases leave each other's renderer as it was), and the map read once for both bases. Seen
+// red with rows' meshes not read (the program crashed, status 139) and with the plane's
+// frame not taking the mesh frame's map ("2 maps loaded").
 TEST_F(MeshCli, ARowMayPutItsFrameOnAMeshOfItsOwn) {
     const auto mesh = dir / "grid.obj", map = writeNoiseMap(), cameras = dir / "cams.csv";
     writeBumpyGrid(mesh, 4);
+    const std::string onMesh =
+        "0.2,0.8,1.1,0,0.02,0,40,--base mesh --mesh " + mesh.string() + " --height-scale 0.06\n";
     std::ofstream(cameras) << "eye_x,eye_y,eye_z,target_x,target_y,target_z,fovy,flags\n"
-                              "0.8,0.5,0.85,0,0,0,40,\n"
-                              "0.2,0.8,1.1,0,0.02,0,40,--base mesh --mesh " + mesh.string() +
-                                  " --height-scale 0.06\n";
+                           << onMesh << "0.8,0.5,0.85,0,0,0,40,\n"
+                           << onMesh;
+    const std::string scene = "--height " + map.string() + " --size 32x24";
     const test::RunResult path =
-        run("--height " + map.string() + " --size 32x24 --cameras " + cameras.string() +
-            " -q --out " + (dir / "row-{frame}.png").string() + " --aov " +
-            (dir / "row-{frame}.exr").string());
+        run(scene + " --cameras " + cameras.string() + " --out " +
+            (dir / "row-{frame}.png").string() + " --aov " + (dir / "row-{frame}.exr").string());
     ASSERT_EQ(path.status, 0) << path.err;
-    EXPECT_EQ(test::readImage(dir / "row-0.png").width, 32);
+    EXPECT_NE(path.out.find("3 rendered"), std::string::npos) << path.out;
+    EXPECT_NE(path.out.find(", 1 map loaded"), std::string::npos) << path.out;
     Camera camera;
     camera.eye = {0.2, 0.8, 1.1};
     camera.target = {0.0, 0.02, 0.0};
     camera.fovyDegrees = 40.0;
-    expectAgreement(compare(test::readAov(dir / "row-1.exr"), camera, loadMeshFile(mesh),
+    expectAgreement(compare(test::readAov(dir / "row-0.exr"), camera, loadMeshFile(mesh),
                             rowsReversed(loadHeightMapFile(map).map), 0.06),
                     32 * 24 / 8);
+    expectSamePicture(dir / "row-0.png", dir / "row-0.exr", dir / "row-2.png", dir / "row-2.exr");
+    const test::RunResult plane =
+        run(scene + " --eye=0.8,0.5,0.85 --target=0,0,0 --fovy 40 -q --out " +
+            (dir / "plane.png").string() + " --aov " + (dir / "plane.exr").string());
+    ASSERT_EQ(plane.status, 0) << plane.err;
+    expectSamePicture(dir / "row-1.png", dir / "row-1.exr", dir / "plane.png", dir / "plane.exr");
 }
-
 
 // Where the shader's float arithmetic does not trace the mesh exactly (src/gl/HeadlessMesh.cpp:
 // checkMeshFloatLimits, with the measurements behind each limit): one line and exit 2, before

@@ -110,6 +110,12 @@ ALBEDO_VIEWS = (("oblique", "bilinear", "plane", "shadingAlbedo"), ("round", "bi
 # 5 655 pixels. The scene must test the shadow: it darkens (by more than 8 in a channel) at
 # least SELF_SHADOWED of the relief's pixels in the WebGL picture against the same without it
 # (measured: 1 477 of 6 192 and 653 of 5 655).
+# three's Fog on the lit relief (ReliefStandardMaterial against ReliefStandardNodeMaterial at
+# roughness 1, 'litFog' in compare.js: clear near the camera, a dark blue from 1.5 away), held
+# to LIMITS as the lit views; the fog must darken at least FOGGED of the relief's pixels by more
+# than 8 (against the same scene without it), or the scene tests little.
+FOG_VIEWS = (("oblique", "bilinear", "plane"),)
+FOGGED = 0.2
 SELF_SHADOW_VIEWS = (("oblique", "bilinear", "plane"), ("round", "biquadratic", "cylinder"))
 SELF_SHADOWED = 0.05
 # The relief casting into three's shadow map: a directional light's (the raking light of the
@@ -326,6 +332,21 @@ def main():
                 continue
             why = lit_verdict(measured["lit"], measured["mesh"], roughness)
             print(f"lit {view} {interpolation} {base} roughness {roughness}: {'differs: ' + '; '.join(why) if why else 'equal'} relief {json.dumps(measured['lit'])} mesh {json.dumps(measured['mesh'])}")
+            status = status or (1 if why else 0)
+        for view, interpolation, base in FOG_VIEWS if runs("lit") else ():
+            answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, 'litFog', 1)")
+            if "exceptionDetails" in answer:
+                details = answer["exceptionDetails"]
+                print(f"fog {view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
+                status = 1
+                continue
+            result = json.loads(answer["result"]["value"])
+            if out:
+                (out / f"litFog_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
+            why = verdict(result["stats"])
+            if result["stats"]["shadowed"] < FOGGED * result["stats"]["reliefGl"]:
+                why.append(f"the fog darkens {result['stats']['shadowed']} pixels (< {FOGGED:.0%} of the relief's: the scene tests little)")
+            print(f"fog {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
             status = status or (1 if why else 0)
         for view, interpolation, base in SELF_SHADOW_VIEWS if runs("lit") else ():
             answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, 'litShadow', 1)")

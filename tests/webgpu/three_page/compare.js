@@ -165,7 +165,8 @@ function albedoMap(T) {
 // 'mesh', no relief (displacedMesh under the same lights); 'shadingAlbedo' and 'litAlbedo'
 // as 'shading' and 'lit' with the map's colours (albedoMap); 'litShadow' as 'lit' with the
 // library's self-shadow (selfShadow), 'litShadow' and 'litRaking' (without it) with the raking
-// light too (addLights); `roughness` the standard materials'.
+// light too (addLights); 'litFog' as 'lit' in three's Fog (drawWebGL, drawWebGPU: near the
+// camera clear, then towards a dark blue); `roughness` the standard materials'.
 function reliefMaterial(E, kind, roughness) {
     const T = E === gl ? THREE : GPU, map = kind.endsWith('Albedo') ? {albedoMap: albedoMap(T)} : {};
     if (['lit', 'cast', 'receive'].some((k) => kind.startsWith(k)))
@@ -198,6 +199,7 @@ async function drawWebGL(view, interpolation, base = 'plane', kind = 'shading', 
     const map = await gl.createReliefMap(renderer, gl.heightsFromArray(samples, w, h, {name: 'waves'}), {pyramid: 'cpu', wrapU: base !== 'plane'});
     const relief = new gl.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(gl, kind, roughness)});
     const {scene, camera} = setUp(THREE, view, subject(THREE, relief, kind, base, roughness), {withBox: !['mesh', 'cast', 'receive'].some((k) => kind.startsWith(k))});
+    if (kind === 'litFog') scene.fog = new THREE.Fog(0x101418, 0.7, 1.5);  // three's fog, by its own nodes or chunks
     renderer.shadowMap.enabled = kind.startsWith('cast') || kind.startsWith('receive');
     renderer.shadowMap.type = THREE.BasicShadowMap;
     const target = new THREE.WebGLRenderTarget(W, H);
@@ -221,6 +223,7 @@ async function drawWebGPU(view, interpolation, base = 'plane', kind = 'shading',
     const map = await wg.createReliefMap(renderer, wg.heightsFromArray(samples, w, h, {name: 'waves'}), {wrapU: base !== 'plane'});
     const relief = new wg.Relief(map, {heightScale: heightScaleOf(base, kind), interpolation, base, material: reliefMaterial(wg, kind, roughness)});
     const {scene, camera} = setUp(GPU, view, subject(GPU, relief, kind, base, roughness), {withBox: !['mesh', 'cast', 'receive'].some((k) => kind.startsWith(k))});
+    if (kind === 'litFog') scene.fog = new GPU.Fog(0x101418, 0.7, 1.5);  // three's fog, by its own nodes or chunks
     renderer.shadowMap.enabled = kind.startsWith('cast') || kind.startsWith('receive');
     renderer.shadowMap.type = GPU.BasicShadowMap;
     const target = new GPU.RenderTarget(W, H);
@@ -289,7 +292,7 @@ async function compareEntries(view, interpolation, base, kind = 'shading', rough
     // WebGL picture, against the same without it (the self-shadow, the relief's casting): the
     // scene tests the shadow only where there are many.
     let shadowed;
-    const without = {litShadow: 'litRaking', cast: 'castOff', receive: 'receiveOff'}[kind];
+    const without = {litShadow: 'litRaking', cast: 'castOff', receive: 'receiveOff', litFog: 'lit'}[kind];
     if (without) {
         const c = await drawWebGL(view, interpolation, base, without, roughness);
         shadowed = 0;

@@ -13,6 +13,7 @@
 #include "EyeInside.h"
 #include "FramePattern.h"
 #include "Manifest.h"
+#include "MeshNotes.h"
 #include "Progress.h"
 #include "PyramidCache.h"
 #include "microrelief/core/Error.h"
@@ -289,6 +290,7 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                           const std::vector<int>& frames) {
     CheckedFrames checked;
     std::set<std::filesystem::path> albedos;
+    std::set<std::string> described;  // the meshes' -v lines said
     for (const int k : frames) {
         const PathFrame frame = path.frame(k);
         try {
@@ -307,6 +309,14 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                 // camera's positions were checked with the path (CameraPath.h).
                 checkMeshFloatLimits(*job.mesh.triangles, facts->second.extent.maxHeight,
                                      job.heightScale, meshName(job));
+                // -v's size of the mesh against its shell, as the single picture says it:
+                // once for each mesh and height scale of the path.
+                if (o.verbose)
+                    if (std::string line = meshSizeLine(meshName(job), *job.mesh.triangles,
+                                                        job.heightScale,
+                                                        facts->second.extent.maxHeight);
+                        described.insert(line).second)
+                        logInfo(line);
             } else if (job.animation.empty()) {
                 const MapExtent& map = facts->second.extent;
                 checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxHeight},
@@ -670,13 +680,7 @@ void reportRun(const RenderOptions& o, const BatchPlan& plan, const FrameCounts&
         // Once drawn, as the single picture warns; each mesh once.
         if (counts.rendered == 0) break;
         const TriangleMesh& mesh = *held;
-        if (const std::size_t flat = zeroUvAreaTriangles(mesh); flat > 0) {
-            logWarning(name + ": " + std::to_string(flat) + " of " +
-                       std::to_string(mesh.triangleCount()) +
-                       " triangles have zero area in texture coordinates (their uvs on one "
-                       "point or one line): the map is one height or stripes over them" +
-                       (flat == mesh.triangleCount() ? ", and no relief shows anywhere" : ""));
-        }
+        warnOfZeroUvArea(name, mesh);
     }
     if (renderer.eyeInside() > 0) {
         const bool onMesh = renderer.firstEyeInsideOnMesh();

@@ -10,6 +10,7 @@
 #include "Aov.h"
 #include "BatchRender.h"
 #include "EyeInside.h"
+#include "MeshNotes.h"
 #include "Options.h"
 #include "Progress.h"
 #include "PyramidCache.h"
@@ -186,19 +187,8 @@ Drawn drawMesh(const RenderOptions& o) {
     // Before the camera frames it (HeadlessRenderer::render checks it again).
     checkMeshFloatLimits(mesh, *files.heights, job.heightScale, name);
     const ReliefExtent shell = meshShellExtent(mesh, job.heightScale, top);
-    if (o.verbose) {
-        // What --height-scale is measured against: it is in the mesh's units.
-        const MeshSize size = meshSize(mesh);
-        logInfo(name + ": " + std::to_string(mesh.triangleCount()) + " triangles, " +
-                std::to_string(mesh.vertexCount()) + " vertices, box " + exactVector(size.low) +
-                " to " + exactVector(size.high) + " (diagonal " + formatNumber(size.diagonal, 4) +
-                ", median triangle " + formatNumber(size.medianTriangle, 4) + "); the shell " +
-                flagName("heightScale") + " " + formatNumber(job.heightScale, 4) +
-                " x the map's largest height " + formatNumber(top, 4) + " = " +
-                formatNumber(job.heightScale * top, 4) + " mesh units thick (" +
-                formatNumber(100.0 * job.heightScale * top / size.diagonal, 3) +
-                " % of the diagonal)");
-    }
+    // What --height-scale is measured against: it is in the mesh's units.
+    if (o.verbose) logInfo(meshSizeLine(name, mesh, job.heightScale, top));
     job.camera = meshCamera(job.camera, o.eyeGiven, o.targetGiven, shell, job.width, job.height);
     if (o.verbose && !(o.eyeGiven && o.targetGiven))
         logInfo("the camera framing the mesh: " + flagName("camera.eye") + "=" +
@@ -212,13 +202,7 @@ Drawn drawMesh(const RenderOptions& o) {
         drawn.result = renderer.render(job);
     }
     // Warnings once the picture is drawn (a refusal is one line alone).
-    if (const std::size_t flat = zeroUvAreaTriangles(mesh); flat > 0) {
-        logWarning(name + ": " + std::to_string(flat) + " of " +
-                   std::to_string(mesh.triangleCount()) +
-                   " triangles have zero area in texture coordinates (their uvs on one point "
-                   "or one line): the map is one height or stripes over them" +
-                   (flat == mesh.triangleCount() ? ", and no relief shows anywhere" : ""));
-    }
+    warnOfZeroUvArea(name, mesh);
     // The mesh's classes take the map's rows reversed (HeightMap.h: rowsReversed).
     if (eyeInsideTheMeshSolid(mesh, rowsReversed(*files.heights), job)) {  // checked by now
         logWarning(flagName("camera.eye") + " lies inside the relief's solid on " +

@@ -6,7 +6,7 @@ import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
 import {createReliefMap, loadAlbedo, loadHeights, Relief, ReliefStandardNodeMaterial} from 'microrelief-three/webgpu';
 
 export async function cobbles(canvas, {eye = [0.8, 0.5, 0.85], target = [0, -0.03, 0], fovy = 45} = {}) {
-    const renderer = new THREE.WebGPURenderer({canvas, antialias: true});
+    const renderer = new THREE.WebGPURenderer({canvas, antialias: true, alpha: false});  // opaque, as a WebGLRenderer's canvas
     await renderer.init();
     renderer.shadowMap.enabled = true;
     const scene = new THREE.Scene();

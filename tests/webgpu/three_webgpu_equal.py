@@ -289,94 +289,71 @@ def main():
                 why += [f"no '{p}'" for p in parts if p not in got["message"]]
                 print(f"refusal {case}: {'FAILED: ' + '; '.join(why) if why else 'ok'}: {got['message']}")
                 status = status or (1 if why else 0)
-        for view, interpolation, base in (VIEWS + (MORE_VIEWS if args.all else ())) if runs("views") else ():
-            answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r})")
+        def draw(label, call, png):
+            """compare.js's `call` evaluated: its JSON, the strip written to `png` under --out;
+            None where it threw (said, as a failure)."""
+            nonlocal status
+            answer = evaluate(call)
             if "exceptionDetails" in answer:
                 details = answer["exceptionDetails"]
-                print(f"{view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
+                print(f"{label}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
                 status = 1
-                continue
+                return None
             result = json.loads(answer["result"]["value"])
-            if out:
-                (out / f"{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
-            why = verdict(result["stats"])
-            print(f"{view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
+            if out and png:
+                (out / png).write_bytes(base64.b64decode(result["png"]))
+            return result
+
+        def report(label, why, shown):
+            nonlocal status
+            print(f"{label}: {'differs: ' + '; '.join(why) if why else 'equal'} {shown}")
             status = status or (1 if why else 0)
-        for view, interpolation, base, kind in ALBEDO_VIEWS if runs("albedo") else ():
-            answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, {kind!r}, 1)")
-            if "exceptionDetails" in answer:
-                details = answer["exceptionDetails"]
-                print(f"{kind} {view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
-                status = 1
+
+        def darkens(stats, least, what):
+            """Why a scene whose effect (`what`) darkens fewer than `least` of the relief's pixels tests little."""
+            return ([f"{what} darkens {stats['shadowed']} pixels (< {least:.0%} of the relief's: the scene tests little)"]
+                    if stats["shadowed"] < least * stats["reliefGl"] else [])
+
+        def compared(label, kind, view, interpolation, base, roughness, png):
+            """compareEntries for a picture of `kind` (compare.js; roughness None: its default)."""
+            rough = "" if roughness is None else f", {roughness}"
+            return draw(label, f"compareEntries({view!r}, {interpolation!r}, {base!r}, {kind!r}{rough})", png)
+
+        # One picture a case, held to LIMITS (and, for the shadows and the fog, to darkening enough).
+        single = [(f"{view} {interpolation} {base}", "shading", view, interpolation, base, None, f"{view}_{base}.png", None)
+                  for view, interpolation, base in (VIEWS + (MORE_VIEWS if args.all else ())) if runs("views")]
+        single += [(f"{kind} {view} {interpolation} {base}", kind, view, interpolation, base, 1, f"{kind}_{view}_{base}.png", None)
+                   for view, interpolation, base, kind in ALBEDO_VIEWS if runs("albedo")]
+        single += [(f"fog {view} {interpolation} {base}", "litFog", view, interpolation, base, 1, f"litFog_{view}_{base}.png",
+                    (FOGGED, "the fog")) for view, interpolation, base in FOG_VIEWS if runs("lit")]
+        single += [(f"selfShadow {view} {interpolation} {base}", "litShadow", view, interpolation, base, 1,
+                    f"litShadow_{view}_{base}.png", (SELF_SHADOWED, "the self-shadow"))
+                   for view, interpolation, base in SELF_SHADOW_VIEWS if runs("lit")]
+        for label, kind, view, interpolation, base, roughness, png, effect in single:
+            result = compared(label, kind, view, interpolation, base, roughness, png)
+            if result is None:
                 continue
-            result = json.loads(answer["result"]["value"])
-            if out:
-                (out / f"{kind}_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
-            why = verdict(result["stats"])
-            print(f"{kind} {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
-            status = status or (1 if why else 0)
+            why = verdict(result["stats"]) + (darkens(result["stats"], *effect) if effect else [])
+            report(label, why, json.dumps(result["stats"]))
+
+        # Two pictures a case: the relief's differences held to three's own mesh's (lit, cast).
+        def paired(view, interpolation, base, kinds, roughness, png):
+            measured = {}
+            for kind in kinds:
+                result = compared(f"{kind} {view} {interpolation} {base}", kind, view, interpolation, base, roughness, png(kind))
+                if result is None:
+                    return None
+                measured[kind] = result["stats"]
+            return measured
+
         for view, interpolation, base, roughness in LIT_VIEWS if runs("lit") else ():
-            measured = {}
-            for kind in ("mesh", "lit"):
-                answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, {kind!r}, {roughness})")
-                if "exceptionDetails" in answer:
-                    details = answer["exceptionDetails"]
-                    print(f"{kind} {view} {interpolation} {base} roughness {roughness}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
-                    status = 1
-                    break
-                result = json.loads(answer["result"]["value"])
-                measured[kind] = result["stats"]
-                if out:
-                    (out / f"{kind}_{view}_{base}_{roughness}.png").write_bytes(base64.b64decode(result["png"]))
-            if len(measured) < 2:
-                continue
-            why = lit_verdict(measured["lit"], measured["mesh"], roughness)
-            print(f"lit {view} {interpolation} {base} roughness {roughness}: {'differs: ' + '; '.join(why) if why else 'equal'} relief {json.dumps(measured['lit'])} mesh {json.dumps(measured['mesh'])}")
-            status = status or (1 if why else 0)
-        for view, interpolation, base in FOG_VIEWS if runs("lit") else ():
-            answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, 'litFog', 1)")
-            if "exceptionDetails" in answer:
-                details = answer["exceptionDetails"]
-                print(f"fog {view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
-                status = 1
-                continue
-            result = json.loads(answer["result"]["value"])
-            if out:
-                (out / f"litFog_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
-            why = verdict(result["stats"])
-            if result["stats"]["shadowed"] < FOGGED * result["stats"]["reliefGl"]:
-                why.append(f"the fog darkens {result['stats']['shadowed']} pixels (< {FOGGED:.0%} of the relief's: the scene tests little)")
-            print(f"fog {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
-            status = status or (1 if why else 0)
-        for view, interpolation, base in SELF_SHADOW_VIEWS if runs("lit") else ():
-            answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, 'litShadow', 1)")
-            if "exceptionDetails" in answer:
-                details = answer["exceptionDetails"]
-                print(f"selfShadow {view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
-                status = 1
-                continue
-            result = json.loads(answer["result"]["value"])
-            if out:
-                (out / f"litShadow_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
-            why = verdict(result["stats"])
-            if result["stats"]["shadowed"] < SELF_SHADOWED * result["stats"]["reliefGl"]:
-                why.append(f"the self-shadow darkens {result['stats']['shadowed']} pixels (< {SELF_SHADOWED:.0%} of the relief's: the scene tests little)")
-            print(f"selfShadow {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} {json.dumps(result['stats'])}")
-            status = status or (1 if why else 0)
+            measured = paired(view, interpolation, base, ("mesh", "lit"), roughness, lambda kind: f"{kind}_{view}_{base}_{roughness}.png")
+            if measured:
+                report(f"lit {view} {interpolation} {base} roughness {roughness}", lit_verdict(measured["lit"], measured["mesh"], roughness),
+                       f"relief {json.dumps(measured['lit'])} mesh {json.dumps(measured['mesh'])}")
         for view, interpolation, base, part in CAST_VIEWS if runs("cast") else ():
-            measured = {}
-            for kind in (f"{part}Mesh", part):
-                answer = evaluate(f"compareEntries({view!r}, {interpolation!r}, {base!r}, {kind!r}, 1)")
-                if "exceptionDetails" in answer:
-                    details = answer["exceptionDetails"]
-                    print(f"{kind} {view} {interpolation} {base}: FAILED to draw: {(details.get('exception') or {}).get('description', details.get('text'))}")
-                    status = 1
-                    break
-                result = json.loads(answer["result"]["value"])
-                measured[kind] = result["stats"]
-                if out:
-                    (out / f"{kind}_{view}_{base}.png").write_bytes(base64.b64decode(result["png"]))
-            if len(measured) < 2:
+            measured = paired(view, interpolation, base, (f"{part}Mesh", part), 1, lambda kind: f"{kind}_{view}_{base}.png")
+            if not measured:
                 continue
             relief, mesh = measured[part], measured[f"{part}Mesh"]
             why = [f"{k} {relief[k]:.4g} > {mesh[k]:.4g} + {margin}" for k, margin in CAST_MARGINS.items() if relief[k] > mesh[k] + margin]
@@ -384,8 +361,7 @@ def main():
                 why.append(f"hit/miss disagree at {relief['hitDisagree']} pixels (> {HIT_DISAGREE_FRACTION:.1%})")
             if relief["shadowed"] < CAST_SHADOWED * relief["pixels"]:
                 why.append(f"the shadow map darkens {relief['shadowed']} pixels (< {CAST_SHADOWED:.0%}: the scene tests little)")
-            print(f"{part} {view} {interpolation} {base}: {'differs: ' + '; '.join(why) if why else 'equal'} relief {json.dumps(relief)} mesh {json.dumps(mesh)}")
-            status = status or (1 if why else 0)
+            report(f"{part} {view} {interpolation} {base}", why, f"relief {json.dumps(relief)} mesh {json.dumps(mesh)}")
         for view, interpolation, base, model in PICK_VIEWS if runs("picks") else ():
             answer = evaluate(f"comparePicks({view!r}, {interpolation!r}, {base!r}, {'true' if model else 'false'})")
             what = f"picks {view} {interpolation} {base}{' turned' if model else ''}"

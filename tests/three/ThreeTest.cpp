@@ -452,12 +452,12 @@ TEST_F(ThreePage, ViewsTheProgramsRefuseAreRefusedWithTheirMessages) {
 // microrelief-three/webgpu. shading=microrelief against microrelief-render's picture of the
 // same flags, held to the WebGL entry's limits (kLimits: three.webgpu finds the two entries'
 // pictures bit-identical on SwiftShader, so WebGPU is allowed nothing more), on the plane with
-// the map's colours, at a grazing view with hard shadows, under a model matrix and on the
-// cylinder's biquadratic last level; data-api says 'webgpu' once the first frame is drawn.
-// The three-lit example (cobbles_webgpu.js) draws too: ready, 'webgpu', and no box of the
-// relief's proxy left white (the relief has no shadow maps there yet: docs/three.md).
+// the map's colours, at a grazing view with hard shadows, under a model matrix, on the
+// cylinder's biquadratic last level and on the sphere; data-api says 'webgpu' once the
+// first frame is drawn. The three-lit example (cobbles_webgpu.js) draws too: ready,
+// 'webgpu', no box of the relief's proxy left white, and the WebGL example's picture.
 TEST_F(ThreePage, RendererWebGPUDrawsTheRenderersPicture) {
-    const char* names[] = {"oblique", "grazing-shadows", "model", "cylinder-biquadratic"};
+    const char* names[] = {"oblique", "grazing-shadows", "model", "cylinder-biquadratic", "sphere"};
     std::string steps = "[";
     for (const char* name : names) {
         const View& v = viewNamed(name);

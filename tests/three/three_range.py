@@ -85,8 +85,12 @@ def main():
     parser.add_argument("--npm", required=True)
     parser.add_argument("--node", required=True)
     parser.add_argument("--work", default="three-range", help="scratch folder (installs kept)")
-    parser.add_argument("--filter", default="-ThreeTarball.*:ThreePackage.*",
-                        help="the suites to run on each end (default: the browser suites)")
+    # The browser suites but the WebGPU example's (ThreePage.RendererWebGPU*): the WebGPU entry
+    # is held on the package's own three (ctest three.webgpu, three.webgpu_example), and its
+    # ReliefStandardNodeMaterial, which the example's lit scene draws with, needs three r187
+    # (overrideNodes) and refuses an older one in one line (docs/three.md).
+    parser.add_argument("--filter", default="-ThreeTarball.*:ThreePackage.*:ThreePage.RendererWebGPU*",
+                        help="the suites to run on each end (default: the browser suites but the WebGPU example's)")
     args = parser.parse_args()
     if not os.path.exists(os.path.join(args.stage, "web", "three", "index.html")):
         fail(f"{args.stage}/web/three is not staged: build the microrelief-three target")

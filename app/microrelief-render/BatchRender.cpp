@@ -290,7 +290,9 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                           const std::vector<int>& frames) {
     CheckedFrames checked;
     std::set<std::filesystem::path> albedos;
-    std::set<std::string> described;  // the meshes' -v lines said
+    // The meshes' -v lines said (mesh, height scale, the map's top): each once, its sizes
+    // (a sort of the triangles) not computed again per frame.
+    std::set<std::tuple<std::string, double, double>> described;
     for (const int k : frames) {
         const PathFrame frame = path.frame(k);
         try {
@@ -311,12 +313,9 @@ CheckedFrames checkFrames(const RenderOptions& o, const CameraPath& path,
                                      job.heightScale, meshName(job));
                 // -v's size of the mesh against its shell, as the single picture says it:
                 // once for each mesh and height scale of the path.
-                if (o.verbose)
-                    if (std::string line = meshSizeLine(meshName(job), *job.mesh.triangles,
-                                                        job.heightScale,
-                                                        facts->second.extent.maxHeight);
-                        described.insert(line).second)
-                        logInfo(line);
+                const double top = facts->second.extent.maxHeight;
+                if (o.verbose && described.emplace(meshName(job), job.heightScale, top).second)
+                    logInfo(meshSizeLine(meshName(job), *job.mesh.triangles, job.heightScale, top));
             } else if (job.animation.empty()) {
                 const MapExtent& map = facts->second.extent;
                 checkFloatLimits({map.width * job.tiles.x, map.height * job.tiles.y, map.maxHeight},
